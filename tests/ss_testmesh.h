@@ -1,0 +1,49 @@
+/* ss_testmesh.h — complexes the tests build: periodic grids, polygons, stars of
+ * link triangulations, tet meshes of cubes, surfaces of links, and random
+ * relabellings.  Test-only code: it aborts on failure. */
+#ifndef SS_TESTMESH_H
+#define SS_TESTMESH_H
+
+#include "ss_cx.h"
+
+/* A triangulated sphere with positions on the unit sphere. */
+typedef struct {
+  int k;          /* vertices */
+  int ntri;       /* triangles = 2k - 4 */
+  int (*tri)[3];  /* triangles, consistently oriented (outward normals) */
+  double (*x)[3]; /* vertex positions */
+} tm_link;
+
+/* "tetrahedron", "octahedron", "icosahedron", "bipyramid:N" (N equator vertices). */
+tm_link *tm_link_named(const char *name);
+void tm_link_free(tm_link *l);
+
+/* Periodic d-cube grid (d = 1, 2, 3) with N^d cells; vertex i + N j + N^2 k has
+ * coordinates (i, j, k) (dim = d; positions do not wrap). */
+ss_cx *tm_torus(int d, int N);
+/* Periodic triangle grid N x N (each grid square split along its diagonal). */
+ss_cx *tm_torus_triangles(int N);
+/* Closed polygon with n segments on the unit circle (dim 2). */
+ss_cx *tm_polygon(int n);
+/* Hex star of a link: one hex per link triangle, 6k - 9 vertices, centre 0. */
+ss_cx *tm_hex_star(const tm_link *l);
+/* Tet star of a link: one tet per link triangle, k + 1 vertices, centre 0. */
+ss_cx *tm_tet_star(const tm_link *l);
+/* The link as a closed triangle surface (dim 3). */
+ss_cx *tm_link_surface(const tm_link *l);
+/* The link's triangles each split into 3 quads (a closed quad surface whose
+ * link vertices keep their degree as valence). */
+ss_cx *tm_link_quads(const tm_link *l);
+/* N^3 unit cubes, each cut into 6 tets about its main diagonal (Kuhn). */
+ss_cx *tm_kuhn(int N);
+/* Move every vertex by a pseudo-random offset of size <= amp (seeded). */
+void tm_jitter(ss_cx *cx, double amp, unsigned long seed);
+/* A relabelled copy: vertices and cells permuted, each cell's vertex list turned
+ * by a random orientation-preserving symmetry of its cell type (seeded). */
+ss_cx *tm_permuted(const ss_cx *cx, unsigned long seed);
+/* 0 if a and b are the same complex up to relabelling (positions within tol,
+ * same cells as vertex sets); otherwise prints the first difference and
+ * returns 1. */
+int tm_same_geometry(const ss_cx *a, const ss_cx *b, double tol);
+
+#endif
