@@ -1,0 +1,81 @@
+/* ss_mesh.c — choosing a mesh format and opening files for the readers and
+ * writers of ss_mesh_medit.c, ss_mesh_vtk.c and ss_mesh_obj.c. */
+#include "ss_mesh.h"
+
+#include <errno.h>
+#include <string.h>
+#include <strings.h>
+
+ss_mesh_format ss_mesh_format_from_path(const char *path) {
+  const char *dot = strrchr(path, '.');
+  const char *slash = strrchr(path, '/');
+  if (!dot || (slash && dot < slash)) return SS_MESH_AUTO;
+  if (!strcasecmp(dot, ".mesh")) return SS_MESH_MEDIT;
+  if (!strcasecmp(dot, ".vtk")) return SS_MESH_VTK;
+  if (!strcasecmp(dot, ".obj")) return SS_MESH_OBJ;
+  return SS_MESH_AUTO;
+}
+
+const char *ss_mesh_format_name(ss_mesh_format fmt) {
+  switch (fmt) {
+  case SS_MESH_MEDIT:
+    return "medit";
+  case SS_MESH_VTK:
+    return "vtk";
+  case SS_MESH_OBJ:
+    return "obj";
+  default:
+    return "auto";
+  }
+}
+
+static ss_status resolve(const char *path, ss_mesh_format *fmt, ss_error *err) {
+  if (*fmt == SS_MESH_AUTO) *fmt = ss_mesh_format_from_path(path);
+  if (*fmt == SS_MESH_AUTO)
+    return ss_error_set(err, SS_EINPUT,
+                        "%s: cannot tell the mesh format (use .mesh, .vtk or .obj)",
+                        path);
+  return SS_OK;
+}
+
+ss_status ss_mesh_read(const char *path, ss_mesh_format fmt, ss_cx **out, ss_error *err) {
+  *out = NULL;
+  ss_status st = resolve(path, &fmt, err);
+  if (st) return st;
+  if (fmt == SS_MESH_VTK)
+    return ss_error_set(err, SS_EINPUT, "%s: VTK files are written, not read (use .mesh)",
+                        path);
+  FILE *f = fopen(path, "r");
+  if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  st = fmt == SS_MESH_MEDIT ? ss_mesh_read_medit(f, path, out, err)
+                            : ss_mesh_read_obj(f, path, out, err);
+  fclose(f);
+  return st;
+}
+
+ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
+                        const ss_mesh_write_opts *opts, ss_error *err) {
+  ss_status st = resolve(path, &fmt, err);
+  if (st) return st;
+  FILE *f = fopen(path, "w");
+  if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  switch (fmt) {
+  case SS_MESH_MEDIT:
+    st = ss_mesh_write_medit(f, cx, opts, err);
+    break;
+  case SS_MESH_VTK:
+    st = ss_mesh_write_vtk(f, cx, err);
+    break;
+  default:
+    st = ss_mesh_write_obj(f, cx, err);
+    break;
+  }
+  if (fclose(f) && !st) st = ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  if (st && err && !strstr(err->msg, path)) {
+    char msg[sizeof err->msg];
+    snprintf(msg, sizeof msg, "%s", err->msg);
+    ss_error_set(err, st, "%s: %s", path, msg);
+  }
+  if (st) remove(path); /* never leave a half-written mesh behind */
+  return st;
+}
