@@ -1,0 +1,43 @@
+/* ss_sink.h — where a scheme's rule sends its weights.
+ *
+ * A rule says "fine vertex `row` receives weight w times the split position of
+ * fine vertex `src`" (the split position is row src of L applied to the coarse
+ * points).  The same rule code therefore serves two uses (DESIGN section 3):
+ *  - positions: y[row] += w * xlin[src], for subdividing whole meshes fast;
+ *  - operator:  R(row, p) += w / |parents(src)| for each parent p of src, giving
+ *    the refinement operator R = (rule) * L from coarse to fine vertices, from
+ *    which local subdivision matrices are read. */
+#ifndef SS_SINK_H
+#define SS_SINK_H
+
+#include <stddef.h> /* gsl_spmatrix.h uses size_t without including it */
+
+#include <gsl/gsl_spmatrix.h>
+
+#include "ss_split.h"
+
+typedef struct {
+  const ss_split *L;  /* parents of the fine vertices */
+  size_t dim;         /* coordinates per vertex (positions mode) */
+  const double *xlin; /* positions mode: split positions, nfine*dim; else NULL */
+  double *y;          /* positions mode: accumulated new positions, nfine*dim */
+  gsl_spmatrix *M;    /* operator mode: nfine x ncoarse, COO; else NULL */
+  ss_status st;       /* SS_OK, or SS_ENOMEM once an insertion into M failed */
+} ss_sink;
+
+/* Operator-mode emission (out of line: it walks the parents). */
+void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w);
+
+/* Send weight w from split vertex src to fine vertex row. */
+static inline void ss_sink_emit(ss_sink *k, size_t row, size_t src, double w) {
+  if (k->M) {
+    ss_sink_emit_operator(k, row, src, w);
+    return;
+  }
+  double *y = k->y + row * k->dim;
+  const double *x = k->xlin + src * k->dim;
+  for (size_t r = 0; r < k->dim; r++)
+    y[r] += w * x[r];
+}
+
+#endif

@@ -1,0 +1,174 @@
+/* ss_split.c — what both splits share: the parent-list builder, dispatch, and
+ * the operator L as a sparse matrix. */
+#include "ss_split.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_split_impl.h"
+
+int ss_split_accepts(ss_split_kind kind, ss_cell_type t) {
+  if (kind == SS_SPLIT_MULTILINEAR)
+    return t == SS_VERTEX || t == SS_SEGMENT || t == SS_QUAD || t == SS_HEX;
+  return t == SS_VERTEX || t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET ||
+         t == SS_OCT;
+}
+
+const char *ss_split_name(ss_split_kind kind) {
+  return kind == SS_SPLIT_MULTILINEAR ? "multilinear" : "tetoct";
+}
+
+void ss_split_free(ss_split *L) {
+  if (!L) return;
+  free(L->ptr);
+  free(L->parent);
+  free(L);
+}
+
+ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
+                          ss_split **L, ss_error *err) {
+  *fine = NULL;
+  *L = NULL;
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    if (coarse->nc[t] && !ss_split_accepts(kind, (ss_cell_type)t))
+      return ss_error_set(
+          err, SS_EINPUT, "the %s split does not take %s (the mesh has %zu)",
+          ss_split_name(kind), ss_cell_plural((ss_cell_type)t), coarse->nc[t]);
+  ss_status st = ss_cx_validate(coarse, err);
+  if (st) return st;
+  return kind == SS_SPLIT_MULTILINEAR ? ss_split_multilinear(coarse, fine, L, err)
+                                      : ss_split_tetoct(coarse, fine, L, err);
+}
+
+ss_status ss_split_builder_init(ss_split_builder *b, size_t ncoarse, size_t expect_new,
+                                ss_error *err) {
+  memset(b, 0, sizeof *b);
+  ss_split *L = calloc(1, sizeof *L);
+  if (!L) return ss_error_nomem(err, "split");
+  b->L = L;
+  L->ncoarse = L->nfine = ncoarse;
+  b->vcap = ncoarse + expect_new + 1;
+  b->pcap = ncoarse + 2 * expect_new + 1;
+  L->ptr = malloc(b->vcap * sizeof *L->ptr);
+  L->parent = malloc(b->pcap * sizeof *L->parent);
+  if (!L->ptr || !L->parent) {
+    ss_split_free(L);
+    b->L = NULL;
+    return ss_error_nomem(err, "split parents");
+  }
+  for (size_t v = 0; v < ncoarse; v++) {
+    L->ptr[v] = v;
+    L->parent[v] = (ss_idx)v;
+  }
+  L->ptr[ncoarse] = ncoarse;
+  return SS_OK;
+}
+
+static int cmp_idx(const void *a, const void *b) {
+  ss_idx x = *(const ss_idx *)a, y = *(const ss_idx *)b;
+  return (x > y) - (x < y);
+}
+
+ss_status ss_split_builder_add(ss_split_builder *b, const ss_idx *par, int n,
+                               ss_idx *index, ss_error *err) {
+  ss_split *L = b->L;
+  if (L->nfine >= (size_t)SS_IDX_NONE - 1)
+    return ss_error_set(err, SS_EINPUT, "refined complex would exceed %u vertices",
+                        (unsigned)SS_IDX_NONE - 1);
+  if (L->nfine + 2 > b->vcap) {
+    size_t cap = 2 * b->vcap;
+    size_t *p = realloc(L->ptr, cap * sizeof *p);
+    if (!p) return ss_error_nomem(err, "split parents");
+    L->ptr = p;
+    b->vcap = cap;
+  }
+  size_t at = L->ptr[L->nfine];
+  if (at + (size_t)n > b->pcap) {
+    size_t cap = 2 * b->pcap + (size_t)n;
+    ss_idx *p = realloc(L->parent, cap * sizeof *p);
+    if (!p) return ss_error_nomem(err, "split parents");
+    L->parent = p;
+    b->pcap = cap;
+  }
+  memcpy(L->parent + at, par, (size_t)n * sizeof *par);
+  qsort(L->parent + at, (size_t)n, sizeof *par, cmp_idx);
+  *index = (ss_idx)L->nfine;
+  L->nfine++;
+  L->ptr[L->nfine] = at + (size_t)n;
+  return SS_OK;
+}
+
+ss_status ss_split_shared(ss_split_builder *b, ss_hash *h, const uint32_t *key,
+                          const ss_idx *par, int n, ss_idx *index, ss_error *err) {
+  ss_idx next = (ss_idx)b->L->nfine;
+  int inserted = 0;
+  ss_status st = ss_hash_insert(h, key, next, index, &inserted, err);
+  if (st || !inserted) return st;
+  ss_idx got;
+  st = ss_split_builder_add(b, par, n, &got, err);
+  return st;
+}
+
+ss_status ss_split_builder_finish(ss_split_builder *b, const ss_cx *coarse, ss_cx *fine,
+                                  ss_error *err) {
+  ss_split *L = b->L;
+  ss_status st = ss_cx_reserve_vertices(fine, L->nfine, err);
+  if (st) return st;
+  const size_t dim = (size_t)coarse->dim;
+  memcpy(fine->x, coarse->x, coarse->nv * dim * sizeof *fine->x);
+  memcpy(fine->vref, coarse->vref, coarse->nv * sizeof *fine->vref);
+  for (size_t f = coarse->nv; f < L->nfine; f++) {
+    double *y = fine->x + f * dim;
+    for (size_t r = 0; r < dim; r++)
+      y[r] = 0.0;
+    const size_t n = ss_split_npar(L, f);
+    for (size_t k = L->ptr[f]; k < L->ptr[f + 1]; k++) {
+      const double *x = coarse->x + (size_t)L->parent[k] * dim;
+      for (size_t r = 0; r < dim; r++)
+        y[r] += x[r];
+    }
+    for (size_t r = 0; r < dim; r++)
+      y[r] /= (double)n;
+    fine->vref[f] = 0;
+  }
+  fine->nv = L->nfine;
+  /* give back the slack of amortised growth (a failed shrink is harmless) */
+  size_t *p = realloc(L->ptr, (L->nfine + 1) * sizeof *p);
+  if (p) L->ptr = p;
+  ss_idx *q = realloc(L->parent, L->ptr[L->nfine] * sizeof *q + 1);
+  if (q) L->parent = q;
+  return SS_OK;
+}
+
+ss_status ss_split_matrix(const ss_split *L, gsl_spmatrix **out, ss_error *err) {
+  *out = NULL;
+  size_t nnz = L->ptr[L->nfine];
+  gsl_spmatrix *M =
+      gsl_spmatrix_alloc_nzmax(L->nfine, L->ncoarse, nnz ? nnz : 1, GSL_SPMATRIX_CSR);
+  if (!M) return ss_error_nomem(err, "split matrix");
+  for (size_t f = 0; f <= L->nfine; f++)
+    M->p[f] = (int)L->ptr[f];
+  for (size_t f = 0; f < L->nfine; f++) {
+    double w = 1.0 / (double)ss_split_npar(L, f);
+    for (size_t k = L->ptr[f]; k < L->ptr[f + 1]; k++) {
+      M->i[k] = (int)L->parent[k];
+      M->data[k] = w;
+    }
+  }
+  M->nz = nnz;
+  *out = M;
+  return SS_OK;
+}
+
+ss_status ss_split_builder_hand_over(ss_split_builder *b, ss_status st, ss_cx *fine,
+                                     ss_cx **fine_out, ss_split **L_out) {
+  if (st) {
+    ss_cx_free(fine);
+    ss_split_free(b->L);
+    fine = NULL;
+    b->L = NULL;
+  }
+  *fine_out = fine;
+  *L_out = b->L;
+  return st;
+}

@@ -1,0 +1,75 @@
+/* ss_split.h — linear (topological) refinement of a complex.
+ *
+ * A split refines every cell of a complex once and places each new vertex at the
+ * centroid of a set of coarse vertices, its *parents*: an edge midpoint has 2, a
+ * quad-face centre 4, an octahedron centre 6, a hex centre 8.  The linear
+ * refinement operator L (fine x coarse) therefore has row f equal to
+ * 1/|parents(f)| on each parent.  Coarse vertex v is fine vertex v (a single
+ * parent, itself); new vertices follow in order of first appearance.
+ *
+ * Splits:
+ *  - multilinear (MLCA paper, section 2.1): a d-cube (segment, quad, hex) into 2^d
+ *    d-cubes; new vertices are shared by every cell holding the same edge or quad
+ *    face (matched by vertex sets, whatever the cell type), so hexes, crease quads
+ *    and crease segments stay conforming.  Child k' of a d-cube is the octant with
+ *    binary offset ss_cube_corner_bits(d, k'); it holds coarse corner k' at its
+ *    own corner k', and every child keeps the parent's orientation.
+ *  - tetoct (tet/oct paper, section 2.1): a tet into 4 corner tets + 1 octahedron,
+ *    an octahedron into 6 octahedra + 8 tets about its centroid, a triangle into
+ *    4, a segment into 2.  Children 0..3 of a tet (of a triangle) sit at corners
+ *    0..3 (0..2) with the parent's vertex order; the tet's octahedron is
+ *    (m01, m03, m02, m23, m12, m13); the middle triangle is (m12, m20, m01).
+ *    Octahedron children: octahedra 0..5 about corners 0..5, then the 8 tets of
+ *    the faces (s0,s1,s2), s_k in {k, k+3}, in binary order of the choices.
+ * Vertex cells are copied.  Every child keeps the parent's reference.
+ *
+ * Fine cells of coarse cell i of type t occupy a contiguous block, in coarse
+ * order (for the tet/oct split: each coarse cell's tets in the tet array and its
+ * octahedra in the octahedron array, coarse tets first). */
+#ifndef SS_SPLIT_H
+#define SS_SPLIT_H
+
+#include <stddef.h> /* gsl_spmatrix.h uses size_t without including it */
+
+#include <gsl/gsl_spmatrix.h>
+
+#include "ss_cx.h"
+
+typedef enum {
+  SS_SPLIT_MULTILINEAR = 0, /* vertices, segments, quads, hexes */
+  SS_SPLIT_TETOCT           /* vertices, segments, triangles, tets, octahedra */
+} ss_split_kind;
+
+/* The linear refinement operator L in parent-list form. */
+typedef struct {
+  size_t ncoarse; /* coarse vertices; fine vertex v < ncoarse is coarse vertex v */
+  size_t nfine;   /* fine vertices */
+  size_t *ptr;    /* nfine+1 offsets into parent */
+  ss_idx *parent; /* parents of fine f: parent[ptr[f] .. ptr[f+1]), ascending */
+} ss_split;
+
+/* Number of parents of fine vertex f. */
+static inline size_t ss_split_npar(const ss_split *L, size_t f) {
+  return L->ptr[f + 1] - L->ptr[f];
+}
+
+/* Whether a split accepts cells of type t. */
+int ss_split_accepts(ss_split_kind kind, ss_cell_type t);
+/* Name of a split ("multilinear", "tetoct"). */
+const char *ss_split_name(ss_split_kind kind);
+
+/* Refine `coarse` once: *fine receives the refined complex with new vertices at
+ * their linear (centroid) positions, *L the operator.  Both are owned by the
+ * caller.  SS_EINPUT if the complex holds a cell type the split does not accept
+ * or a malformed cell; SS_ENOMEM.  Cost: linear in the size of the complex. */
+ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
+                          ss_split **L, ss_error *err);
+
+/* Free; NULL is a no-op. */
+void ss_split_free(ss_split *L);
+
+/* L as a new nfine x ncoarse CSR matrix (caller frees with gsl_spmatrix_free).
+ * SS_ENOMEM. */
+ss_status ss_split_matrix(const ss_split *L, gsl_spmatrix **out, ss_error *err);
+
+#endif
