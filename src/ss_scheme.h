@@ -1,0 +1,76 @@
+/* ss_scheme.h — subdivision schemes as global refinement operators.
+ *
+ * A scheme is a topological split (ss_split.h) followed by a rule that gives
+ * every fine vertex as a linear combination of split positions.  Refining a
+ * complex yields the fine complex and, on request, the sparse refinement
+ * operator R (fine x coarse, fine = R * coarse), which is all the analysis ever
+ * needs: local subdivision matrices are read from R, never typed in.
+ *
+ * Built-in schemes (each defined in its own file, the only place that knows its
+ * weights):
+ *   mlca           multilinear split + cell averaging, d = 1, 2, 3, with creases
+ *                  by lower-dimensional cells (ss_scheme_mlca.c)
+ *   tetoct         tet/oct split + weighted-centroid smoothing (ss_scheme_tetoct.c)
+ *   catmull-clark  quad surfaces; boundaries and segments as B-spline creases
+ *   loop           triangle surfaces; boundaries and segments as B-spline creases
+ * plus the `averaging` family (split + one mask per cell type) that stencil files
+ * describe. */
+#ifndef SS_SCHEME_H
+#define SS_SCHEME_H
+
+#include <stddef.h> /* gsl_spmatrix.h uses size_t without including it */
+
+#include <gsl/gsl_spmatrix.h>
+
+#include "ss_cx.h"
+#include "ss_split.h"
+
+typedef struct ss_scheme ss_scheme; /* opaque; immutable once built, so threads
+                                       may share one */
+
+/* Weights of the averaging family: for a vertex v of dimension dim[v] (the
+ * lowest dimension of a cell holding it), the new position is the mean over the
+ * cells of that dimension holding v of sum_u mask[type][role(v,u)] * u
+ * (ss_cell_role gives the roles).  Vertices in no cell keep their position. */
+typedef struct {
+  ss_split_kind split;           /* topological split */
+  int accepts[SS_NCELLTYPES];    /* nonzero for each cell type the scheme takes */
+  double mask[SS_NCELLTYPES][4]; /* weight of a cell vertex by its role */
+} ss_averaging;
+
+/* Names of the built-in schemes, NULL-terminated. */
+const char *const *ss_scheme_names(void);
+
+/* Build the scheme called `name` (one of ss_scheme_names()).  SS_EINPUT for an
+ * unknown name (the message lists the known ones); SS_ENOMEM. */
+ss_status ss_scheme_new(const char *name, ss_scheme **out, ss_error *err);
+
+/* Build an averaging-family scheme from masks (copied).  Each accepted cell
+ * type's mask must sum to 1 over the cell's vertices (within 1e-12) and the
+ * split must take the type; otherwise SS_EINPUT naming the cell type. */
+ss_status ss_scheme_averaging_new(const char *name, const ss_averaging *a,
+                                  ss_scheme **out, ss_error *err);
+
+/* Free; NULL is a no-op. */
+void ss_scheme_free(ss_scheme *s);
+
+const char *ss_scheme_name(const ss_scheme *s);
+ss_split_kind ss_scheme_split_kind(const ss_scheme *s);
+/* Whether the scheme takes cells of type t. */
+int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t);
+
+/* Refine `coarse` once.  *fine receives the refined complex (caller owns).  If
+ * R is not NULL, *R receives the refinement operator as a new CSR matrix of
+ * size fine->nv x coarse->nv (caller frees), and the fine positions are R times
+ * the coarse ones; every row of R is checked to sum to 1 (SS_EINTERNAL if not).
+ * SS_EINPUT for cell types the scheme does not take or malformed cells;
+ * SS_ENOMEM.  Cost: linear in the complex; the operator adds a log factor. */
+ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
+                           gsl_spmatrix **R, ss_error *err);
+
+/* Refine `levels` times (positions only).  *fine receives the result; levels = 0
+ * gives a copy.  Errors as ss_scheme_refine. */
+ss_status ss_scheme_refine_levels(const ss_scheme *s, const ss_cx *coarse, int levels,
+                                  ss_cx **fine, ss_error *err);
+
+#endif

@@ -1,0 +1,75 @@
+/* ss_scheme_loop.c — Loop subdivision of triangle surfaces (Loop 1987), the
+ * triangular 2D baseline.
+ *
+ * On the 1-to-4 triangle split:
+ *   edge point    3/8 of each end + 1/8 of each opposite vertex (in general
+ *                 3/4 midpoint + 1/4 mean of the opposite vertices);
+ *   vertex point  (1 - n b) v + b sum of its n neighbours, with Loop's
+ *                 b = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n;
+ * crease edges and vertices (boundaries, segment cells, non-manifold edges; see
+ * ss_crease.h) follow the cubic B-spline: midpoints, and 1/8, 3/4, 1/8; corners
+ * are interpolated. */
+#include <math.h>
+
+#include "ss_crease.h"
+#include "ss_scheme_impl.h"
+
+/* Loop's vertex weight for a smooth vertex of valence n. */
+static double loop_beta(double n) {
+  const double pi = 3.14159265358979323846;
+  double t = 3.0 / 8.0 + cos(2.0 * pi / n) / 4.0;
+  return (5.0 / 8.0 - t * t) / n;
+}
+
+/* The coarse vertex two edge midpoints share (they are edges of one triangle). */
+static ss_idx common_parent(const ss_split *L, ss_idx y, ss_idx z) {
+  ss_idx y0 = L->parent[L->ptr[y]], y1 = L->parent[L->ptr[y] + 1];
+  ss_idx z0 = L->parent[L->ptr[z]], z1 = L->parent[L->ptr[z] + 1];
+  return (y0 == z0 || y0 == z1) ? y0 : y1;
+}
+
+static ss_status loop_rule(const ss_scheme *s, const ss_cx *fine, const ss_split *L,
+                           ss_sink *k, ss_error *err) {
+  (void)s;
+  ss_crease *c = NULL;
+  ss_status st = ss_crease_classify(fine, L, SS_TRIANGLE, 3, &c, err);
+  if (st) return st;
+  const size_t nc = L->ncoarse;
+  for (size_t x = nc; x < fine->nv; x++)
+    ss_sink_emit(k, x, x, c->sharp[x] ? 1.0 : 3.0 / 4.0);
+  /* the middle triangle of each coarse triangle holds its three edge midpoints */
+  for (size_t t = 0; t < fine->nc[SS_TRIANGLE]; t++) {
+    const ss_idx *v = ss_cx_cell(fine, SS_TRIANGLE, t);
+    if (v[0] < nc || v[1] < nc || v[2] < nc) continue;
+    for (int i = 0; i < 3; i++) {
+      ss_idx x = v[i];
+      if (c->sharp[x]) continue;
+      ss_idx opp = common_parent(L, v[(i + 1) % 3], v[(i + 2) % 3]);
+      double m = (double)c->nface[x] / 3.0; /* coarse triangles at this edge */
+      ss_sink_emit(k, x, opp, 1.0 / (4.0 * m));
+    }
+  }
+  for (size_t x = nc; x < fine->nv; x++) {
+    for (size_t p = L->ptr[x]; p < L->ptr[x + 1]; p++) {
+      ss_idx a = L->parent[p], b = ss_crease_other(L, x, a);
+      if (c->kind[a] == SS_SMOOTH)
+        ss_sink_emit(k, a, b, loop_beta((double)c->nedge[a]));
+      else if (c->kind[a] == SS_CREASE && c->sharp[x])
+        ss_sink_emit(k, a, b, 1.0 / 8.0);
+    }
+  }
+  for (size_t v = 0; v < nc; v++) {
+    double n = (double)c->nedge[v];
+    double self = c->kind[v] == SS_SMOOTH   ? 1.0 - n * loop_beta(n)
+                  : c->kind[v] == SS_CREASE ? 3.0 / 4.0
+                                            : 1.0;
+    ss_sink_emit(k, v, v, self);
+  }
+  ss_crease_free(c);
+  return SS_OK;
+}
+
+ss_status ss_scheme_loop_new(ss_scheme **out, ss_error *err) {
+  unsigned accepts = (1u << SS_VERTEX) | (1u << SS_SEGMENT) | (1u << SS_TRIANGLE);
+  return ss_scheme_alloc("loop", SS_SPLIT_TETOCT, accepts, loop_rule, out, err);
+}
