@@ -1,0 +1,56 @@
+/* main.c — `subspectra`: one program, one subcommand per job. */
+#include <stdio.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "ss_cli.h"
+
+#ifndef SS_VERSION
+#define SS_VERSION "0.1.0"
+#endif
+
+typedef struct {
+  const char *name;         /* subcommand */
+  int (*run)(int, char **); /* its entry point */
+  const char *summary;      /* one line for the overview */
+} command;
+
+static const command commands[] = {
+    {"subdivide", ss_cli_subdivide, "refine a mesh L times with a scheme"},
+};
+
+static void overview(FILE *f) {
+  fprintf(f,
+          "subspectra %s — spectral analysis and smoothness verification of subdivision "
+          "schemes\n\n"
+          "usage: subspectra COMMAND [OPTIONS] ...\n\ncommands:\n",
+          SS_VERSION);
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
+  fprintf(f, "\n'subspectra COMMAND --help' describes a command.\n"
+             "Exit status: 0 ran and everything checked holds, 1 ran and something "
+             "checked fails,\n2 bad usage or bad input.\n");
+}
+
+int main(int argc, char **argv) {
+  /* library code reports through ss_status; GSL must not abort the process */
+  gsl_set_error_handler_off();
+  if (argc < 2) {
+    overview(stderr);
+    return SS_EXIT_USAGE;
+  }
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+    overview(stdout);
+    return SS_EXIT_OK;
+  }
+  if (!strcmp(argv[1], "--version")) {
+    printf("subspectra %s\n", SS_VERSION);
+    return SS_EXIT_OK;
+  }
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+  fprintf(stderr, "subspectra: unknown command '%s' (see 'subspectra --help')\n",
+          argv[1]);
+  return SS_EXIT_USAGE;
+}

@@ -1,0 +1,29 @@
+/* ss_cli.h — the subcommands of the `subspectra` tool and what they share.
+ * Exit statuses (DESIGN section 7): 0 ran and everything checked holds, 1 ran
+ * and something checked fails, 2 bad usage or bad input. */
+#ifndef SS_CLI_H
+#define SS_CLI_H
+
+#include "ss_error.h"
+
+enum { SS_EXIT_OK = 0, SS_EXIT_FAIL = 1, SS_EXIT_USAGE = 2 };
+
+/* Subcommands: argv[0] is the subcommand name. */
+int ss_cli_subdivide(int argc, char **argv);
+
+/* Print "subspectra: <msg>" to stderr and return the exit status for a failed
+ * library call: 2 for bad input, i/o or memory, 1 for numerical or internal
+ * failures (the run happened but a check did not hold). */
+int ss_cli_fail(const ss_error *err);
+/* Print "subspectra CMD: <message>" and a hint to use --help; returns 2. */
+int ss_cli_usage_error(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Parse a whole decimal integer in [lo, hi]; 0 on success, -1 otherwise. */
+int ss_cli_parse_int(const char *s, long lo, long hi, long *out);
+/* Monotonic wall-clock seconds. */
+double ss_cli_now(void);
+
+#endif

@@ -1,0 +1,218 @@
+/* ss_cli_subdivide.c — `subspectra subdivide`: refine a whole mesh. */
+#include <getopt.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <json-c/json.h>
+
+#include "ss_cli.h"
+#include "ss_mesh.h"
+#include "ss_scheme.h"
+
+static const char *const usage_text =
+    "usage: subspectra subdivide --scheme S [--levels L] IN -o OUT [options]\n"
+    "\n"
+    "Refine the mesh IN L times with scheme S and write the result to OUT.\n"
+    "Formats follow the file extensions: .mesh (Medit; read and write), .obj\n"
+    "(surfaces; read and write), .vtk (legacy VTK for ParaView; write only).\n"
+    "\n"
+    "  -s, --scheme S        mlca | tetoct | catmull-clark | loop\n"
+    "  -l, --levels L        number of refinement levels, 0..12 (default 1)\n"
+    "  -o, --output OUT      output file\n"
+    "      --split-octahedra write octahedra as 4 tetrahedra each (.mesh), for\n"
+    "                        tools that lack the Octahedra keyword\n"
+    "      --format F        summary as text (default) or json, on stdout\n"
+    "  -h, --help            this text\n"
+    "\n"
+    "Schemes and the cells they take:\n"
+    "  mlca           segments, quadrilaterals, hexahedra (+ corners); lower-\n"
+    "                 dimensional cells are creases (MLCA paper, section 3.2)\n"
+    "  tetoct         tetrahedra, octahedra (+ triangle/segment/corner creases)\n"
+    "  catmull-clark  quadrilateral surfaces; boundaries and segments are creases\n"
+    "  loop           triangle surfaces; boundaries and segments are creases\n"
+    "\n"
+    "The input is checked: malformed files, cells a scheme does not take, and\n"
+    "flat, folded or inverted cells are errors (exit status 2).\n";
+
+/* Cells after one more level, per type (exact: splits have fixed child counts). */
+static void next_counts(const double *in, double *out) {
+  out[SS_VERTEX] = in[SS_VERTEX];
+  out[SS_SEGMENT] = 2 * in[SS_SEGMENT];
+  out[SS_TRIANGLE] = 4 * in[SS_TRIANGLE];
+  out[SS_QUAD] = 4 * in[SS_QUAD];
+  out[SS_HEX] = 8 * in[SS_HEX];
+  out[SS_TET] = 4 * in[SS_TET] + 8 * in[SS_OCT];
+  out[SS_OCT] = in[SS_TET] + 6 * in[SS_OCT];
+}
+
+static json_object *level_json(int level, const ss_cx *cx, double seconds) {
+  json_object *o = json_object_new_object();
+  json_object_object_add(o, "level", json_object_new_int(level));
+  json_object_object_add(o, "vertices", json_object_new_int64((int64_t)cx->nv));
+  json_object *cells = json_object_new_object();
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    if (cx->nc[t])
+      json_object_object_add(cells, ss_cell_plural((ss_cell_type)t),
+                             json_object_new_int64((int64_t)cx->nc[t]));
+  json_object_object_add(o, "cells", cells);
+  json_object_object_add(o, "seconds", json_object_new_double(seconds));
+  return o;
+}
+
+static void level_text(const char *what, const ss_cx *cx, double seconds) {
+  printf("%s: %zu vertices", what, cx->nv);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    if (cx->nc[t])
+      printf(", %zu %s", cx->nc[t],
+             cx->nc[t] == 1 ? ss_cell_name((ss_cell_type)t)
+                            : ss_cell_plural((ss_cell_type)t));
+  if (seconds >= 0) printf(" (%.3f s)", seconds);
+  printf("\n");
+}
+
+int ss_cli_subdivide(int argc, char **argv) {
+  static const struct option opts[] = {{"scheme", required_argument, NULL, 's'},
+                                       {"levels", required_argument, NULL, 'l'},
+                                       {"output", required_argument, NULL, 'o'},
+                                       {"split-octahedra", no_argument, NULL, 'S'},
+                                       {"format", required_argument, NULL, 'F'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
+  const char *scheme_name = NULL, *out_path = NULL, *in_path = NULL;
+  long levels = 1;
+  int json = 0;
+  ss_mesh_write_opts wopts = {0};
+  optind = 1;
+  opterr = 0;
+  int c;
+  while ((c = getopt_long(argc, argv, ":s:l:o:h", opts, NULL)) != -1) {
+    switch (c) {
+    case 's':
+      scheme_name = optarg;
+      break;
+    case 'l':
+      if (ss_cli_parse_int(optarg, 0, 12, &levels))
+        return ss_cli_usage_error("subdivide", "--levels '%s' is not an integer in 0..12",
+                                  optarg);
+      break;
+    case 'o':
+      out_path = optarg;
+      break;
+    case 'S':
+      wopts.split_octahedra = 1;
+      break;
+    case 'F':
+      if (!strcmp(optarg, "json"))
+        json = 1;
+      else if (!strcmp(optarg, "text"))
+        json = 0;
+      else
+        return ss_cli_usage_error("subdivide", "--format '%s' is not text or json",
+                                  optarg);
+      break;
+    case 'h':
+      fputs(usage_text, stdout);
+      return SS_EXIT_OK;
+    case ':':
+      return ss_cli_usage_error("subdivide", "option %s needs a value", argv[optind - 1]);
+    default:
+      return ss_cli_usage_error("subdivide", "unknown option '%s'", argv[optind - 1]);
+    }
+  }
+  if (optind + 1 != argc)
+    return ss_cli_usage_error("subdivide", optind == argc ? "no input mesh given"
+                                                          : "more than one input mesh");
+  in_path = argv[optind];
+  if (!scheme_name) return ss_cli_usage_error("subdivide", "--scheme is required");
+  if (!out_path) return ss_cli_usage_error("subdivide", "-o OUT is required");
+  if (ss_mesh_format_from_path(out_path) == SS_MESH_AUTO)
+    return ss_cli_usage_error("subdivide",
+                              "cannot tell the format of '%s' (use .mesh, .vtk or .obj)",
+                              out_path);
+
+  ss_error err = {0};
+  ss_scheme *scheme = NULL;
+  ss_cx *cx = NULL;
+  json_object *report = NULL, *lv = NULL;
+  int rc = SS_EXIT_OK;
+  if (ss_scheme_new(scheme_name, &scheme, &err) ||
+      ss_mesh_read(in_path, SS_MESH_AUTO, &cx, &err)) {
+    rc = ss_cli_fail(&err);
+    goto done;
+  }
+  if (ss_cx_check_orientation(cx, &err)) {
+    fprintf(stderr, "subspectra: %s: %s\n", in_path, err.msg);
+    rc = SS_EXIT_USAGE;
+    goto done;
+  }
+  {
+    double n[SS_NCELLTYPES], m[SS_NCELLTYPES], total = 0;
+    for (int t = 0; t < SS_NCELLTYPES; t++)
+      n[t] = (double)cx->nc[t];
+    for (long l = 0; l < levels; l++) {
+      next_counts(n, m);
+      memcpy(n, m, sizeof n);
+    }
+    for (int t = 0; t < SS_NCELLTYPES; t++)
+      total += n[t];
+    if (total > 2e9) {
+      fprintf(
+          stderr,
+          "subspectra subdivide: %ld levels would make %.3g cells (the limit is 2e9); "
+          "use fewer levels\n",
+          levels, total);
+      rc = SS_EXIT_USAGE;
+      goto done;
+    }
+  }
+  if (json) {
+    report = json_object_new_object();
+    json_object_object_add(report, "scheme", json_object_new_string(scheme_name));
+    json_object_object_add(report, "input", json_object_new_string(in_path));
+    lv = json_object_new_array();
+    json_object_object_add(report, "levels", lv);
+    json_object_array_add(lv, level_json(0, cx, 0.0));
+  } else {
+    char what[64];
+    snprintf(what, sizeof what, "read %s", in_path);
+    level_text(what, cx, -1);
+  }
+  for (long l = 1; l <= levels; l++) {
+    double t0 = ss_cli_now();
+    ss_cx *fine = NULL;
+    if (ss_scheme_refine(scheme, cx, &fine, NULL, &err)) {
+      rc = ss_cli_fail(&err);
+      goto done;
+    }
+    ss_cx_free(cx);
+    cx = fine;
+    double dt = ss_cli_now() - t0;
+    if (json) {
+      json_object_array_add(lv, level_json((int)l, cx, dt));
+    } else {
+      char what[32];
+      snprintf(what, sizeof what, "%s level %ld", scheme_name, l);
+      level_text(what, cx, dt);
+    }
+  }
+  if (ss_mesh_write(out_path, SS_MESH_AUTO, cx, &wopts, &err)) {
+    rc = ss_cli_fail(&err);
+    goto done;
+  }
+  if (json) {
+    json_object_object_add(report, "output", json_object_new_string(out_path));
+    json_object_object_add(
+        report, "format",
+        json_object_new_string(ss_mesh_format_name(ss_mesh_format_from_path(out_path))));
+    printf("%s\n", json_object_to_json_string_ext(
+                       report, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+  } else {
+    printf("wrote %s (%s)\n", out_path,
+           ss_mesh_format_name(ss_mesh_format_from_path(out_path)));
+  }
+done:
+  json_object_put(report);
+  ss_cx_free(cx);
+  ss_scheme_free(scheme);
+  return rc;
+}

@@ -1,0 +1,41 @@
+/* ss_cli_util.c — error reporting and option parsing shared by subcommands. */
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "ss_cli.h"
+
+int ss_cli_fail(const ss_error *err) {
+  fprintf(stderr, "subspectra: %s\n",
+          err->msg[0] ? err->msg : ss_status_name(err->status));
+  return (err->status == SS_ENUMERIC || err->status == SS_EINTERNAL) ? SS_EXIT_FAIL
+                                                                     : SS_EXIT_USAGE;
+}
+
+int ss_cli_usage_error(const char *cmd, const char *fmt, ...) {
+  va_list ap;
+  fprintf(stderr, "subspectra %s: ", cmd);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fprintf(stderr, "\n(see 'subspectra %s --help')\n", cmd);
+  return SS_EXIT_USAGE;
+}
+
+int ss_cli_parse_int(const char *s, long lo, long hi, long *out) {
+  if (!s || !*s) return -1;
+  char *end = NULL;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  if (errno || *end || v < lo || v > hi) return -1;
+  *out = v;
+  return 0;
+}
+
+double ss_cli_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}

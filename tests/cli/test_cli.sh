@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# test_cli.sh EXE SRCDIR — the command-line contract of `subspectra subdivide`:
+# exit statuses (0 ok, 2 bad usage or input), messages that name the problem,
+# JSON output, and every malformed sample file rejected with status 2.
+set -u
+exe=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+checks=0
+failed=0
+
+# expect STATUS PATTERN CMD...: run CMD, check its exit status and that
+# stdout+stderr match the extended regex PATTERN.
+expect() {
+  local want=$1 pat=$2
+  shift 2
+  checks=$((checks + 1))
+  local out rc
+  out=$(timeout 60 "$@" 2>&1)
+  rc=$?
+  if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
+    failed=$((failed + 1))
+    echo "FAILED: $* -> status $rc (want $want), output:" >&2
+    echo "$out" | head -5 >&2
+  fi
+}
+
+m=$src/data/meshes
+expect 0 "subdivide" "$exe" --help
+expect 0 "tetoct" "$exe" subdivide --help
+expect 2 "unknown command 'frobnicate'" "$exe" frobnicate
+expect 2 "usage" "$exe"
+expect 2 "unknown scheme 'butterfly'" "$exe" subdivide --scheme butterfly "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
+expect 2 "--scheme is required" "$exe" subdivide "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
+expect 2 "-o OUT is required" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh"
+expect 2 "no input mesh" "$exe" subdivide --scheme tetoct -o "$tmp/o.mesh"
+expect 2 "levels 'abc'" "$exe" subdivide --scheme tetoct --levels abc "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
+expect 2 "levels '13'" "$exe" subdivide --scheme tetoct --levels 13 "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
+expect 2 "unknown option '--bogus'" "$exe" subdivide --bogus
+expect 2 "format of" "$exe" subdivide --scheme mlca "$m/cube-creased.mesh" -o "$tmp/o.xyz"
+expect 2 "would make .* cells" "$exe" subdivide --scheme mlca --levels 12 "$m/hexstar-icosahedron.mesh" -o "$tmp/o.mesh"
+expect 2 "does not take .*tetrahedra" "$exe" subdivide --scheme mlca "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
+expect 2 "does not take .*hexahedra" "$exe" subdivide --scheme loop "$m/cube-creased.mesh" -o "$tmp/o.mesh"
+expect 2 "no-such-file" "$exe" subdivide --scheme mlca "$tmp/no-such-file.mesh" -o "$tmp/o.mesh"
+
+# every scheme on a sample it takes, then the output read back
+expect 0 "mlca level 2: " "$exe" subdivide --scheme mlca --levels 2 "$m/cube-creased.mesh" -o "$tmp/a.mesh"
+expect 0 "read .*a.mesh: 125 vertices, 96 quadrilaterals, 64 hexahedra" "$exe" subdivide --scheme mlca --levels 0 "$tmp/a.mesh" -o "$tmp/a2.mesh"
+expect 0 "tetoct level 1: .*24 tetrahedra, 6 octahedra" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o "$tmp/b.vtk"
+expect 0 "UNSTRUCTURED_GRID" cat "$tmp/b.vtk"
+expect 0 "wrote" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --split-octahedra -o "$tmp/c.mesh"
+expect 0 "read .*c.mesh: .* 48 tetrahedra" "$exe" subdivide --scheme tetoct --levels 0 "$tmp/c.mesh" -o "$tmp/c2.mesh"
+expect 0 "catmull-clark level 3: 386 vertices, 384 quadrilaterals" "$exe" subdivide --scheme catmull-clark --levels 3 "$m/cube-surface.obj" -o "$tmp/d.obj"
+expect 0 "loop level 2: 162 vertices, 320 triangles" "$exe" subdivide --scheme loop --levels 2 "$m/icosahedron.obj" -o "$tmp/e.obj"
+expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/patch3x3.mesh" -o "$tmp/f.mesh"
+expect 0 "tetoct level 1" "$exe" subdivide --scheme tetoct "$m/tetstar-icosahedron.mesh" -o "$tmp/g.mesh"
+expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/hexstar-icosahedron.mesh" -o "$tmp/h.mesh"
+
+# machine-readable summary
+checks=$((checks + 1))
+json=$("$exe" subdivide --scheme mlca --levels 2 --format json "$m/cube-creased.mesh" -o "$tmp/j.mesh")
+if ! python3 -c 'import json,sys; d=json.loads(sys.argv[1]); assert d["levels"][2]["cells"]["hexahedra"]==64 and d["levels"][2]["vertices"]==125, d' "$json"; then
+  failed=$((failed + 1))
+  echo "FAILED: json summary: $json" >&2
+fi
+
+# an inverted cell: the second of two tets listed the wrong way round
+cat >"$tmp/inv.mesh" <<'MESH'
+MeshVersionFormatted 2
+Dimension 3
+Vertices
+5
+0 0 0 0
+1 0 0 0
+0 1 0 0
+0 0 1 0
+0 0 -1 0
+Tetrahedra
+3
+1 2 3 4 0
+1 3 2 5 0
+1 2 3 5 0
+End
+MESH
+expect 2 "tetrahedron 3 is inverted" "$exe" subdivide --scheme tetoct "$tmp/inv.mesh" -o "$tmp/o.mesh"
+
+# every malformed sample: status 2 and a message naming the file
+for f in "$src"/tests/mesh/bad/*; do
+  [ -f "$f" ] || continue
+  name=$(basename "$f")
+  case "$name" in *.obj) scheme=loop ;; *) scheme=mlca ;; esac
+  expect 2 "$name" "$exe" subdivide --scheme "$scheme" "$f" -o "$tmp/o.mesh"
+done
+
+echo "cli: $checks checks, $failed failed"
+[ "$failed" -eq 0 ] && [ "$checks" -gt 0 ]
