@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# check_format.sh CLANG_FORMAT SRCDIR — every C source and header is formatted
+# as .clang-format says (the style rule "clang-format; warnings are errors").
+set -u
+cf=$1
+src=$2
+cd "$src" || exit 1
+files=$(find src tests -name '*.[ch]' | sort)
+n=0
+bad=0
+for f in $files; do
+  n=$((n + 1))
+  if ! "$cf" --dry-run --Werror "$f" >/dev/null 2>&1; then
+    bad=$((bad + 1))
+    echo "not clang-formatted: $f (run: clang-format -i $f)" >&2
+  fi
+done
+echo "format: $n files, $bad not formatted"
+[ "$bad" -eq 0 ] && [ "$n" -gt 0 ]
