@@ -53,9 +53,7 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *fine, const ss_
       for (int i = 0; i < n; i++) {
         const ss_idx v = cv[i];
         if (dimv[v] != D) continue;
-        const double inv = 1.0 / (double)val[v];
-        for (int j = 0; j < n; j++)
-          if (w[i][j] != 0.0) ss_sink_emit(k, v, cv[j], w[i][j] * inv);
+        ss_sink_emit_many(k, v, n, cv, w[i], 1.0 / (double)val[v]);
       }
     }
   }

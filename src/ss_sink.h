@@ -40,4 +40,27 @@ static inline void ss_sink_emit(ss_sink *k, size_t row, size_t src, double w) {
     y[r] += w * x[r];
 }
 
+/* Send weights scale * w[j] from split vertices src[j] (j < n) to fine vertex
+ * row: the same as n calls of ss_sink_emit, but in positions mode the sum is
+ * formed locally and written once, which keeps a whole-mesh pass cache-bound
+ * on the cell's few vertices instead of scattering n writes. */
+static inline void ss_sink_emit_many(ss_sink *k, size_t row, int n, const ss_idx *src,
+                                     const double *w, double scale) {
+  if (k->M) {
+    for (int j = 0; j < n; j++)
+      if (w[j] != 0.0) ss_sink_emit_operator(k, row, src[j], w[j] * scale);
+    return;
+  }
+  double acc[SS_MAXDIM] = {0.0};
+  const size_t dim = k->dim;
+  for (int j = 0; j < n; j++) {
+    const double *x = k->xlin + (size_t)src[j] * dim;
+    for (size_t r = 0; r < dim; r++)
+      acc[r] += w[j] * x[r];
+  }
+  double *y = k->y + row * dim;
+  for (size_t r = 0; r < dim; r++)
+    y[r] += scale * acc[r];
+}
+
 #endif
