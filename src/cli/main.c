@@ -17,6 +17,7 @@ typedef struct {
 } command;
 
 static const command commands[] = {
+    {"enumerate", ss_cli_enumerate, "links (vertex one-rings): all, random, of a mesh"},
     {"subdivide", ss_cli_subdivide, "refine a mesh L times with a scheme"},
 };
 
