@@ -27,6 +27,12 @@ int ss_cli_usage_error(const char *cmd, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* --format: set *json from "text" or "json"; otherwise print a usage error
+ * for cmd and return 2 (0 on success). */
+int ss_cli_format_option(const char *cmd, const char *arg, int *json);
+/* The usage error for getopt_long's ':' (missing value) or '?' (unknown
+ * option) result c; returns 2. */
+int ss_cli_option_error(const char *cmd, int c, char **argv);
 /* Parse a whole decimal integer in [lo, hi]; 0 on success, -1 otherwise. */
 int ss_cli_parse_int(const char *s, long lo, long hi, long *out);
 /* Monotonic wall-clock seconds. */

@@ -110,23 +110,13 @@ int ss_cli_enumerate_links(int argc, char **argv) {
       break;
     }
     case 'F':
-      if (!strcmp(optarg, "json"))
-        json = 1;
-      else if (!strcmp(optarg, "text"))
-        json = 0;
-      else
-        return ss_cli_usage_error("enumerate links", "--format '%s' is not text or json",
-                                  optarg);
+      if (ss_cli_format_option("enumerate links", optarg, &json)) return SS_EXIT_USAGE;
       break;
     case 'h':
       fputs(links_usage, stdout);
       return SS_EXIT_OK;
-    case ':':
-      return ss_cli_usage_error("enumerate links", "option %s needs a value",
-                                argv[optind - 1]);
     default:
-      return ss_cli_usage_error("enumerate links", "unknown option '%s'",
-                                argv[optind - 1]);
+      return ss_cli_option_error("enumerate links", c, argv);
     }
   }
   if (optind < argc)
@@ -187,23 +177,14 @@ int ss_cli_enumerate_canonical(int argc, char **argv) {
   while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
     switch (c) {
     case 'F':
-      if (!strcmp(optarg, "json"))
-        json = 1;
-      else if (!strcmp(optarg, "text"))
-        json = 0;
-      else
-        return ss_cli_usage_error("enumerate canonical",
-                                  "--format '%s' is not text or json", optarg);
+      if (ss_cli_format_option("enumerate canonical", optarg, &json))
+        return SS_EXIT_USAGE;
       break;
     case 'h':
       fputs(canonical_usage, stdout);
       return SS_EXIT_OK;
-    case ':':
-      return ss_cli_usage_error("enumerate canonical", "option %s needs a value",
-                                argv[optind - 1]);
     default:
-      return ss_cli_usage_error("enumerate canonical", "unknown option '%s'",
-                                argv[optind - 1]);
+      return ss_cli_option_error("enumerate canonical", c, argv);
     }
   }
   if (optind < argc)

@@ -102,21 +102,13 @@ int ss_cli_subdivide(int argc, char **argv) {
       wopts.split_octahedra = 1;
       break;
     case 'F':
-      if (!strcmp(optarg, "json"))
-        json = 1;
-      else if (!strcmp(optarg, "text"))
-        json = 0;
-      else
-        return ss_cli_usage_error("subdivide", "--format '%s' is not text or json",
-                                  optarg);
+      if (ss_cli_format_option("subdivide", optarg, &json)) return SS_EXIT_USAGE;
       break;
     case 'h':
       fputs(usage_text, stdout);
       return SS_EXIT_OK;
-    case ':':
-      return ss_cli_usage_error("subdivide", "option %s needs a value", argv[optind - 1]);
     default:
-      return ss_cli_usage_error("subdivide", "unknown option '%s'", argv[optind - 1]);
+      return ss_cli_option_error("subdivide", c, argv);
     }
   }
   if (optind + 1 != argc)

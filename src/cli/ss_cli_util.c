@@ -1,7 +1,9 @@
 /* ss_cli_util.c — error reporting and option parsing shared by subcommands. */
 #include <errno.h>
 #include <stdarg.h>
+#include <getopt.h>
 #include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 #include <time.h>
 
@@ -38,4 +40,21 @@ double ss_cli_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int ss_cli_format_option(const char *cmd, const char *arg, int *json) {
+  if (!strcmp(arg, "json")) {
+    *json = 1;
+  } else if (!strcmp(arg, "text")) {
+    *json = 0;
+  } else {
+    return ss_cli_usage_error(cmd, "--format '%s' is not text or json", arg);
+  }
+  return 0;
+}
+
+int ss_cli_option_error(const char *cmd, int c, char **argv) {
+  if (c == ':')
+    return ss_cli_usage_error(cmd, "option %s needs a value", argv[optind - 1]);
+  return ss_cli_usage_error(cmd, "unknown option '%s'", argv[optind - 1]);
 }
