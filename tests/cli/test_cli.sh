@@ -93,5 +93,20 @@ for f in "$src"/tests/mesh/bad/*; do
   expect 2 "$name" "$exe" subdivide --scheme "$scheme" "$f" -o "$tmp/o.mesh"
 done
 
+# enumerate random: K-vertex links, one per line, reproducible from the seed
+expect 0 "seed S" "$exe" enumerate random --help
+expect 2 "--vertices '3'" "$exe" enumerate random --vertices 3 --samples 1
+expect 2 "--samples is required" "$exe" enumerate random --vertices 12
+expect 2 "--format 'xml'" "$exe" enumerate random --vertices 12 --samples 1 --format xml
+checks=$((checks + 1))
+r1=$("$exe" enumerate random --vertices 12 --samples 3 --seed 7)
+r2=$("$exe" enumerate random --vertices 12 --samples 3 --seed 7)
+if [ "$(grep -c '^12 ' <<<"$r1")" -ne 3 ] || [ "$(wc -l <<<"$r1")" -ne 3 ] || [ "$r1" != "$r2" ]; then
+  failed=$((failed + 1))
+  echo "FAILED: enumerate random --vertices 12 --samples 3 --seed 7 (3 lines '12 ...', twice the same):" >&2
+  echo "$r1" "$r2" | head -6 >&2
+fi
+expect 0 '^\{"vertices":12,"seed":7,"sample":2,"link":"12 ' "$exe" enumerate random --vertices 12 --samples 3 --seed 7 --format json
+
 echo "cli: $checks checks, $failed failed"
 [ "$failed" -eq 0 ] && [ "$checks" -gt 0 ]
