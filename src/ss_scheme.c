@@ -105,12 +105,20 @@ static ss_status check_rows(const ss_scheme *s, const gsl_spmatrix *R, ss_error 
 
 ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
                            gsl_spmatrix **R_out, ss_error *err) {
+  return ss_scheme_refine_split(s, coarse, fine_out, R_out, NULL, err);
+}
+
+ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse,
+                                 ss_cx **fine_out, gsl_spmatrix **R_out, ss_split **L_out,
+                                 ss_error *err) {
   ss_cx *fine = NULL;
   ss_split *L = NULL;
-  gsl_spmatrix *M = NULL, *R = NULL;
+  gsl_spmatrix *R = NULL;
+  ss_triplets M = {0, 0, NULL, NULL, NULL};
   double *y = NULL;
   *fine_out = NULL;
   if (R_out) *R_out = NULL;
+  if (L_out) *L_out = NULL;
   ss_status st = check_types(s, coarse, err);
   if (st) goto done;
   if (coarse->nv == 0) {
@@ -125,25 +133,15 @@ ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine
     goto done;
   }
   ss_sink k = {L, dim, fine->x, y, NULL, SS_OK};
-  if (R_out) {
-    M = gsl_spmatrix_alloc(nf, coarse->nv ? coarse->nv : 1);
-    if (!M) {
-      st = ss_error_nomem(err, "refinement operator");
-      goto done;
-    }
-    k.M = M;
-  }
+  if (R_out) k.M = &M;
   if ((st = s->rule(s, fine, L, &k, err))) goto done;
   if (k.st) {
     st = ss_error_nomem(err, "refinement operator");
     goto done;
   }
   if (R_out) {
-    R = gsl_spmatrix_compress(M, GSL_SPMATRIX_CSR);
-    if (!R) {
-      st = ss_error_nomem(err, "refinement operator");
-      goto done;
-    }
+    if ((st = ss_triplets_csr(&M, nf, coarse->nv, &R, err))) goto done;
+    ss_triplets_clear(&M);
     if ((st = check_rows(s, R, err))) goto done;
     for (size_t r = 0; r < dim; r++) {
       gsl_vector_const_view xv =
@@ -161,7 +159,11 @@ ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine
   y = NULL;
 done:
   free(y);
-  if (M) gsl_spmatrix_free(M); /* unlike free(), GSL's free rejects NULL */
+  ss_triplets_clear(&M);
+  if (L_out && !st) {
+    *L_out = L;
+    L = NULL;
+  }
   ss_split_free(L);
   if (st) {
     if (R) gsl_spmatrix_free(R);

@@ -68,6 +68,13 @@ int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t);
 ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
                            gsl_spmatrix **R, ss_error *err);
 
+/* As ss_scheme_refine, and if L is not NULL, *L receives the topological split
+ * that the rule smoothed (its parent lists name where each fine vertex was
+ * born; caller frees with ss_split_free).  The analysis uses it to carry exact
+ * local coordinates from level to level. */
+ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
+                                 gsl_spmatrix **R, ss_split **L, ss_error *err);
+
 /* Refine `levels` times (positions only).  *fine receives the result; levels = 0
  * gives a copy.  Errors as ss_scheme_refine. */
 ss_status ss_scheme_refine_levels(const ss_scheme *s, const ss_cx *coarse, int levels,

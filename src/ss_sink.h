@@ -16,12 +16,29 @@
 
 #include "ss_split.h"
 
+/* Operator entries as an unsorted list of (row, column, weight) triplets;
+ * repeated positions are summed when the list becomes a CSR matrix
+ * (ss_triplets_csr).  Appending is O(1), which GSL's COO format with its
+ * search tree per insertion is not. */
+typedef struct {
+  size_t n, cap; /* triplets held, allocated */
+  ss_idx *row;   /* rows (fine vertices) */
+  ss_idx *col;   /* columns (coarse vertices) */
+  double *w;     /* weights */
+} ss_triplets;
+
+/* The nrows x ncols CSR matrix summing the triplets (*out, caller frees with
+ * gsl_spmatrix_free).  SS_ENOMEM. */
+ss_status ss_triplets_csr(const ss_triplets *t, size_t nrows, size_t ncols,
+                          gsl_spmatrix **out, ss_error *err);
+void ss_triplets_clear(ss_triplets *t);
+
 typedef struct {
   const ss_split *L;  /* parents of the fine vertices */
   size_t dim;         /* coordinates per vertex (positions mode) */
   const double *xlin; /* positions mode: split positions, nfine*dim; else NULL */
   double *y;          /* positions mode: accumulated new positions, nfine*dim */
-  gsl_spmatrix *M;    /* operator mode: nfine x ncoarse, COO; else NULL */
+  ss_triplets *M;     /* operator mode: the entries of R; else NULL */
   ss_status st;       /* SS_OK, or SS_ENOMEM once an insertion into M failed */
 } ss_sink;
 
