@@ -36,6 +36,10 @@
  *   tet edge star, valence n >= 3: n + 2 vertices, n tets: 0 and 1 the edge's
  *     ends, 2 + i the far vertex of face i; tet i = (0, 1, 2 + i, 2 + (i+1) % n).
  *   tet face star: 5 vertices, 2 tets: (0, 1, 2, 3) and (0, 2, 1, 4).
+ *   surface vertex stars (2D baselines, kind vertex, in the plane z = 0), valence
+ *     n: quad star 2n + 1 vertices (0 the centre, 1 + i the edge point of ray i,
+ *     1 + n + i the far corner of quad i), quads (0, 1+i, 1+n+i, 1+(i+1)%n);
+ *     triangle star n + 1 vertices, triangles (0, 1+i, 1+(i+1)%n).
  *
  * Local coordinates (DESIGN section 3, "exact, canonical local coordinates").
  * Every star vertex has a small integer vector in one chart shared by all cells
@@ -60,6 +64,8 @@
  *     -e_n, e_n, e_i, e_i+1.  These are the conical coordinates of the
  *     bipyramid link (ss_link_named "bipyramid:n": equator vertex i is face i,
  *     the two poles +-e_n), as seen at the midpoint.
+ *   surface vertex stars: conical coordinates over the n rays (ncoord = n),
+ *     supported on two consecutive rays; quad i is spanned by (e_i, e_i+1).
  *   face star: integer barycentric coordinates, coordinate v for star vertex v
  *     (ncoord = 5); vertex v is e_v, a point's coordinates sum to 1 and are
  *     supported on one tet.
@@ -144,6 +150,12 @@ ss_status ss_star_tet_edge(int n, ss_star **out, ss_error *err);
 /* Two tets sharing a face (5 vertices).  SS_ENOMEM. */
 ss_status ss_star_tet_face(ss_star **out, ss_error *err);
 
+/* The n quads (triangles) around a surface vertex of valence n, the stars of
+ * the 2D baselines (layout above).  SS_EINPUT unless 3 <= n <= SS_STAR_MAXN,
+ * SS_ENOMEM.  Cost O(n). */
+ss_status ss_star_quad_vertex(int n, ss_star **out, ss_error *err);
+ss_status ss_star_tri_vertex(int n, ss_star **out, ss_error *err);
+
 /* Free a star and everything it owns; NULL is a no-op. */
 void ss_star_free(ss_star *s);
 
@@ -157,6 +169,10 @@ void ss_star_free(ss_star *s);
  * x must hold 3k doubles.  SS_ENUMERIC if rounding left a triangle
  * non-positive, SS_ENOMEM.  Cost: a conjugate-gradient solve, O(k^2) worst. */
 ss_status ss_star_link_embed(const ss_link *l, double *x, ss_error *err);
+
+/* A coordinate vector from m (index, value) pairs with distinct indices and
+ * nonzero values (m <= SS_STAR_MAXSUPP), sorted into canonical form. */
+ss_star_coord ss_star_coord_make(int m, const int32_t *idx, const int32_t *val);
 
 /* Total order on coordinate vectors (by support, then values): negative, 0 or
  * positive like strcmp.  Equal iff the vectors are equal. */

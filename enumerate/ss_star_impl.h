@@ -10,10 +10,6 @@
 ss_status ss_star_alloc(ss_star_kind kind, ss_cell_type t, int n, int ncoord, size_t nv,
                         size_t ncells, ss_star **out, ss_error *err);
 
-/* A coordinate vector from m (index, value) pairs with distinct indices and
- * nonzero values (m <= SS_STAR_MAXSUPP), sorted into canonical form. */
-ss_star_coord ss_star_coord_make(int m, const int32_t *idx, const int32_t *val);
-
 /* Append a vertex with coordinates c; its position is computed from s->axis,
  * so the axes must be set first.  SS_ENOMEM. */
 ss_status ss_star_push_vertex(ss_star *s, ss_star_coord c, ss_error *err);

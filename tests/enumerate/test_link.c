@@ -9,38 +9,7 @@
 #include "ss_enum.h"
 #include "ss_link.h"
 #include "ss_test.h"
-
-/* A relabelled copy: vertices permuted by a seeded shuffle, each list turned
- * by a random offset, and (if mirror) every list reversed. */
-static ss_link *scrambled(const ss_link *l, unsigned seed, int mirror) {
-  const int k = l->k;
-  int *perm = malloc((size_t)k * sizeof *perm), *inv = malloc((size_t)k * sizeof *inv);
-  int *deg = malloc((size_t)k * sizeof *deg),
-      *nbr = malloc((size_t)l->off[k] * sizeof *nbr);
-  srand(seed);
-  for (int v = 0; v < k; v++)
-    perm[v] = v;
-  for (int v = k - 1; v > 0; v--) {
-    int j = rand() % (v + 1), t = perm[v];
-    perm[v] = perm[j], perm[j] = t;
-  }
-  for (int v = 0; v < k; v++)
-    inv[perm[v]] = v;
-  int n = 0;
-  for (int nv = 0; nv < k; nv++) {
-    int v = inv[nv], d = ss_link_deg(l, v), r = rand() % d;
-    deg[nv] = d;
-    for (int i = 0; i < d; i++) {
-      int j = mirror ? (r - i + d) % d : (r + i) % d;
-      nbr[n++] = perm[l->nbr[l->off[v] + j]];
-    }
-  }
-  ss_link *out = NULL;
-  ss_error err = {0};
-  if (ss_link_new(k, deg, nbr, &out, &err)) fprintf(stderr, "scrambled: %s\n", err.msg);
-  free(perm), free(inv), free(deg), free(nbr);
-  return out;
-}
+#include "ss_testlink.h"
 
 /* ---- collecting canonical forms from the generator ---- */
 
@@ -144,7 +113,7 @@ static int check_invariance(const ss_link *l, void *ctx) {
   ss_link *c0 = NULL;
   if (ss_link_canonical(l, &c0, NULL, NULL)) return 1;
   for (unsigned s = 1; s <= 3; s++) {
-    ss_link *m = scrambled(l, s * 7919u + (unsigned)l->k, (int)(s & 1));
+    ss_link *m = ss_testlink_scrambled(l, s * 7919u + (unsigned)l->k, (int)(s & 1));
     ss_link *c1 = NULL;
     if (!m || ss_link_canonical(m, &c1, NULL, NULL) || !ss_link_equal(c0, c1)) (*bad)++;
     /* the canonical form of a canonical form is itself */
@@ -180,7 +149,7 @@ static void test_canonical(void) {
     }
   CHECK(ok, "perm is an isomorphism onto the canonical form");
   /* a chiral pair: mirror images are identified */
-  ss_link *m = scrambled(l, 5, 1);
+  ss_link *m = ss_testlink_scrambled(l, 5, 1);
   CHECK(m && ss_link_isomorphic(l, m) == 1, "mirror image isomorphic");
   ss_link *o8 = NULL;
   REQUIRE_OK_VOID(ss_link_named("bipyramid:6", &o8, &err), &err);
