@@ -1,0 +1,95 @@
+/* ss_eig.h — eigenstructure of a local subdivision matrix and the eigenvalue
+ * condition (DESIGN sections 1 and 5).
+ *
+ * S = [A 0; B C] (ss_local.h), so its spectrum is that of the one-ring block A
+ * together with that of the outer block C.  C is itself reducible: ordered by
+ * the strongly connected components of its sparsity graph (Tarjan's algorithm)
+ * it is block lower triangular, and its spectrum is the union of its diagonal
+ * blocks' spectra.  A is solved by LAPACK dgeevx (balanced; reciprocal
+ * condition numbers of eigenvalues and eigenvectors), each outer block of more
+ * than one point likewise, 1 x 1 blocks by reading the diagonal.  Condition
+ * numbers are those of the block holding the eigenvalue.
+ *
+ * Multiplicities: eigenvalues within a relative tolerance `tol` of each other
+ * (|a - b| <= tol * max(|a|, |b|)) form one group.  The default, 1e-6, joins
+ * the copies of an exact tie that rounding splits (by about 1e-8 for a Jordan
+ * block of size 2) and keeps apart genuine near-ties (relative gaps of 1e-3 are
+ * met in practice).  It is printed with every verdict.
+ *
+ * The subdominant basis (the control net of the characteristic map): the
+ * leading m eigenvalues after lambda0 (m = 3 in volume cases, 2 on surfaces).
+ * When they are distinct by more than `cluster` (relative), the right
+ * eigenvectors of A; otherwise (repeated or clustered) an orthonormal basis of
+ * their invariant subspace from the real Schur form (dgees, reordered by
+ * dtrsen).  Either is extended from the one-ring to the two-ring by solving
+ * B X1 + C X2 = X2 T block by block.  If a leading eigenvalue belongs to the
+ * outer block, the basis comes from a Schur form of the whole S. */
+#ifndef SS_EIG_H
+#define SS_EIG_H
+
+#include <stddef.h>
+
+#include "ss_error.h"
+
+typedef enum { SS_PASS = 0, SS_FAIL, SS_UNDECIDED } ss_verdict_kind;
+
+/* A verdict and its reason. */
+typedef struct {
+  ss_verdict_kind verdict; /* pass, fail or undecided */
+  char reason[256];        /* why (empty when passing) */
+} ss_verdict;
+
+/* One eigenvalue of S. */
+typedef struct {
+  double re, im; /* the eigenvalue */
+  double rcond;  /* reciprocal condition number in its block (1 for 1 x 1) */
+  int block;     /* 0: the one-ring block; b > 0: outer block number b */
+  int group;     /* index of its group of equal eigenvalues (0 = leading) */
+  int mult;      /* size of that group */
+} ss_eigval;
+
+/* Options of an analysis. */
+typedef struct {
+  double tol;     /* relative tolerance for equal eigenvalues (default 1e-6) */
+  double cluster; /* relative gap below which the subdominant eigenvalues are
+                     treated as a cluster (default 1e-2) */
+  int dim;        /* 3: volume condition (lambda1..3); 2: surface (lambda1..2) */
+  int basis;      /* nonzero: compute the subdominant basis */
+} ss_eig_opts;
+
+/* Eigenstructure of one local matrix. */
+typedef struct {
+  size_t n;               /* eigenvalues (= rows of S) */
+  ss_eigval *val;         /* all n, by decreasing modulus; ties: real first, then
+                             larger real part first, then larger imaginary part */
+  int ngroups;            /* groups of equal eigenvalues */
+  size_t nblocks;         /* diagonal blocks of the outer part */
+  size_t largest_block;   /* size of the largest of them */
+  ss_verdict cond;        /* the eigenvalue condition */
+  double tol;             /* the tolerance used */
+  int m;                  /* subdominant eigenvalues (3 or 2) */
+  double *basis;          /* NULL, or n x m column-major: the subdominant basis */
+  const char *basis_kind; /* "eigenvectors", "schur" or "" */
+} ss_eig;
+
+/* Default options for dimension dim (2 or 3). */
+ss_eig_opts ss_eig_defaults(int dim);
+
+/* Analyse S (n x n, row-major) whose leading n1 x n1 block A is invariant
+ * (S[i][j] = 0 for i < n1 <= j).  *out is owned by the caller (ss_eig_free).
+ * SS_EINPUT if S is not of that form or opts are out of range; SS_ENUMERIC if
+ * LAPACK fails; SS_ENOMEM. */
+ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
+                     ss_eig **out, ss_error *err);
+
+void ss_eig_free(ss_eig *e);
+
+/* Eigenvalues of a dense n x n matrix (row-major) by one LAPACK dgeev call,
+ * with right eigenvectors: the reference the benchmark compares against.
+ * re, im receive n values each (unsorted).  SS_ENUMERIC, SS_ENOMEM. */
+ss_status ss_eig_dense(const double *S, size_t n, double *re, double *im, ss_error *err);
+
+/* "pass", "fail", "undecided". */
+const char *ss_verdict_name(ss_verdict_kind v);
+
+#endif

@@ -1,0 +1,606 @@
+/* ss_local.c — local subdivision matrices read from the global refinement
+ * operator of a refined star.  The method and the checks are in ss_local.h. */
+#include "ss_local.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXLEVELS 8       /* levels of refinement tried at most */
+#define MAXCELLS  6000000 /* refuse to refine a patch beyond this many cells */
+#define STAT_TOL  1e-12   /* S on consecutive levels must agree to this */
+
+/* One level of the refined star. */
+typedef struct {
+  ss_cx *cx;            /* the complex of this level */
+  ss_split *split;      /* parents of this level's vertices (NULL on level 0) */
+  gsl_spmatrix *R;      /* operator to the next level, CSR (NULL on the last) */
+  ss_star_coord *abs;   /* chart coordinates, cx->nv */
+  ss_star_coord *rel;   /* coordinates relative to p (levels >= lc), cx->nv */
+  size_t *order;        /* vertices sorted by rel, for lookup */
+  unsigned char *inner; /* vertex not on the patch boundary */
+} level;
+
+/* Extraction workspace. */
+typedef struct {
+  const ss_scheme *scheme; /* the scheme */
+  ss_star *star;           /* the star (level 0 is its complex) */
+  int lc;                  /* first level on which p is a vertex */
+  ss_star_coord cp;        /* p's chart coordinates on level lc */
+  int nlev;                /* levels built */
+  level lev[MAXLEVELS];    /* levels 0 .. nlev-1 */
+} work;
+
+const char *ss_case_name(ss_case_kind kind) {
+  switch (kind) {
+  case SS_CASE_VERTEX:
+    return "vertex";
+  case SS_CASE_EDGE:
+    return "edge";
+  case SS_CASE_FACE:
+    return "face";
+  case SS_CASE_SURFACE_VERTEX:
+    return "surface-vertex";
+  }
+  return "?";
+}
+
+int ss_local_label_norm(const ss_star_coord *c) {
+  int m = 0;
+  for (int i = 0; i < c->n; i++)
+    m = abs(c->val[i]) > m ? abs(c->val[i]) : m;
+  return m;
+}
+
+/* ---- sparse coordinate arithmetic ---- */
+
+/* sum_i mult[i] * c[i] / div, which must be an integer vector with at most
+ * SS_STAR_MAXSUPP nonzeros.  Returns 0 on success, -1 otherwise. */
+static int lincomb(int m, const ss_star_coord *const *c, const int *mult, int div,
+                   ss_star_coord *out) {
+  int32_t idx[8 * SS_STAR_MAXSUPP];
+  long val[8 * SS_STAR_MAXSUPP];
+  int n = 0;
+  for (int i = 0; i < m; i++)
+    for (int e = 0; e < c[i]->n; e++) {
+      int j = 0;
+      while (j < n && idx[j] != c[i]->idx[e])
+        j++;
+      if (j == n) {
+        if (n == 8 * SS_STAR_MAXSUPP) return -1;
+        idx[n] = c[i]->idx[e];
+        val[n++] = 0;
+      }
+      val[j] += (long)mult[i] * c[i]->val[e];
+    }
+  int32_t oi[SS_STAR_MAXSUPP], ov[SS_STAR_MAXSUPP];
+  int k = 0;
+  for (int j = 0; j < n; j++) {
+    if (val[j] == 0) continue;
+    if (val[j] % div != 0 || k == SS_STAR_MAXSUPP) return -1;
+    oi[k] = idx[j];
+    ov[k++] = (int32_t)(val[j] / div);
+  }
+  *out = ss_star_coord_make(k, oi, ov);
+  return 0;
+}
+
+/* ---- the levels ---- */
+
+/* A vertex and its coordinates, for sorting without global state. */
+typedef struct {
+  ss_star_coord c; /* relative coordinates */
+  size_t v;        /* vertex index */
+} keyed;
+
+static int by_rel(const void *a, const void *b) {
+  return ss_star_coord_cmp(&((const keyed *)a)->c, &((const keyed *)b)->c);
+}
+
+/* Vertex with relative coordinates c on level l, or SIZE_MAX. */
+static size_t lookup(const level *L, const ss_star_coord *c) {
+  size_t lo = 0, hi = L->cx->nv;
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    int r = ss_star_coord_cmp(L->rel + L->order[mid], c);
+    if (r == 0) return L->order[mid];
+    if (r < 0)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return SIZE_MAX;
+}
+
+/* Facets of the top cells, as sorted vertex quadruples (padded with
+ * SS_IDX_NONE); a vertex is inner iff no facet holding it occurs once. */
+static const int hex_facets[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+static const int tet_facets[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+typedef struct {
+  ss_idx v[4];
+} facet;
+
+static int facet_cmp(const void *a, const void *b) {
+  return memcmp(a, b, sizeof(facet)); /* an order; only equality matters */
+}
+
+static void push_facet(facet *f, size_t *nf, const ss_idx *cell, const int *loc, int m) {
+  facet x = {{SS_IDX_NONE, SS_IDX_NONE, SS_IDX_NONE, SS_IDX_NONE}};
+  for (int i = 0; i < m; i++)
+    x.v[i] = cell[loc[i]];
+  for (int i = 1; i < m; i++) /* insertion sort */
+    for (int j = i; j > 0 && x.v[j - 1] > x.v[j]; j--) {
+      ss_idx t = x.v[j];
+      x.v[j] = x.v[j - 1];
+      x.v[j - 1] = t;
+    }
+  f[(*nf)++] = x;
+}
+
+static ss_status mark_inner(level *L, ss_error *err) {
+  const ss_cx *cx = L->cx;
+  size_t cap = 6 * cx->nc[SS_HEX] + 4 * cx->nc[SS_TET] + 8 * cx->nc[SS_OCT] +
+               4 * cx->nc[SS_QUAD] + 3 * cx->nc[SS_TRIANGLE] + 1;
+  facet *f = malloc(cap * sizeof *f);
+  L->inner = malloc(cx->nv + 1);
+  if (!f || !L->inner) {
+    free(f);
+    return ss_error_nomem(err, "patch boundary");
+  }
+  size_t nf = 0;
+  const int topdim = ss_cx_topdim(cx);
+  for (size_t i = 0; topdim == 3 && i < cx->nc[SS_HEX]; i++)
+    for (int k = 0; k < 6; k++)
+      push_facet(f, &nf, ss_cx_cell(cx, SS_HEX, i), hex_facets[k], 4);
+  for (size_t i = 0; topdim == 3 && i < cx->nc[SS_TET]; i++)
+    for (int k = 0; k < 4; k++)
+      push_facet(f, &nf, ss_cx_cell(cx, SS_TET, i), tet_facets[k], 3);
+  for (size_t i = 0; topdim == 3 && i < cx->nc[SS_OCT]; i++)
+    for (int k = 0; k < 8; k++) {
+      const int loc[3] = {k & 1 ? 3 : 0, k & 2 ? 4 : 1, k & 4 ? 5 : 2};
+      push_facet(f, &nf, ss_cx_cell(cx, SS_OCT, i), loc, 3);
+    }
+  for (size_t i = 0; topdim == 2 && i < cx->nc[SS_QUAD]; i++)
+    for (int k = 0; k < 4; k++) {
+      const int loc[2] = {k, (k + 1) % 4};
+      push_facet(f, &nf, ss_cx_cell(cx, SS_QUAD, i), loc, 2);
+    }
+  for (size_t i = 0; topdim == 2 && i < cx->nc[SS_TRIANGLE]; i++)
+    for (int k = 0; k < 3; k++) {
+      const int loc[2] = {k, (k + 1) % 3};
+      push_facet(f, &nf, ss_cx_cell(cx, SS_TRIANGLE, i), loc, 2);
+    }
+  qsort(f, nf, sizeof *f, facet_cmp);
+  memset(L->inner, 1, cx->nv + 1);
+  for (size_t i = 0; i < nf;) {
+    size_t j = i + 1;
+    while (j < nf && facet_cmp(f + i, f + j) == 0)
+      j++;
+    if (j - i == 1)
+      for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)
+        L->inner[f[i].v[k]] = 0;
+    i = j;
+  }
+  free(f);
+  return SS_OK;
+}
+
+/* Relative coordinates, lookup order and boundary marks of level l >= lc. */
+static ss_status finish_level(work *W, int l, ss_error *err) {
+  level *L = W->lev + l;
+  const size_t nv = L->cx->nv;
+  L->rel = malloc((nv + 1) * sizeof *L->rel);
+  L->order = malloc((nv + 1) * sizeof *L->order);
+  keyed *k = malloc((nv + 1) * sizeof *k);
+  if (!L->rel || !L->order || !k) {
+    free(k);
+    return ss_error_nomem(err, "local coordinates");
+  }
+  const ss_star_coord *c[2];
+  const int mult[2] = {1, -(1 << (l - W->lc))};
+  c[1] = &W->cp;
+  for (size_t v = 0; v < nv; v++) {
+    c[0] = L->abs + v;
+    if (lincomb(2, c, mult, 1, L->rel + v)) {
+      free(k);
+      return ss_error_set(err, SS_EINTERNAL,
+                          "local coordinates of vertex %zu on level %d have too many "
+                          "nonzero entries",
+                          v, l);
+    }
+    k[v].c = L->rel[v];
+    k[v].v = v;
+  }
+  qsort(k, nv, sizeof *k, by_rel);
+  for (size_t i = 0; i < nv; i++)
+    L->order[i] = k[i].v;
+  free(k);
+  for (size_t i = 1; i < nv; i++)
+    if (ss_star_coord_cmp(L->rel + L->order[i - 1], L->rel + L->order[i]) == 0)
+      return ss_error_set(err, SS_EINTERNAL, "two vertices of level %d share coordinates",
+                          l);
+  return mark_inner(L, err);
+}
+
+/* Refine the last level once more. */
+static ss_status add_level(work *W, ss_error *err) {
+  if (W->nlev == MAXLEVELS)
+    return ss_error_set(err, SS_EINTERNAL, "no stationary neighbourhood within %d levels",
+                        MAXLEVELS);
+  level *C = W->lev + W->nlev - 1, *F = W->lev + W->nlev;
+  if (8 * ss_cx_ncells(C->cx) > MAXCELLS)
+    return ss_error_set(err, SS_EINTERNAL,
+                        "no stationary neighbourhood before the patch exceeds %d cells",
+                        MAXCELLS);
+  ss_status st = ss_scheme_refine_split(W->scheme, C->cx, &F->cx, &C->R, &F->split, err);
+  if (st) return st;
+  W->nlev++;
+  const size_t nf = F->cx->nv;
+  F->abs = malloc((nf + 1) * sizeof *F->abs);
+  if (!F->abs) return ss_error_nomem(err, "local coordinates");
+  for (size_t f = 0; f < nf; f++) {
+    const ss_star_coord *par[8];
+    int mult[8];
+    const size_t np = ss_split_npar(F->split, f);
+    if (np > 8) return ss_error_set(err, SS_EINTERNAL, "vertex with %zu parents", np);
+    for (size_t i = 0; i < np; i++) {
+      par[i] = C->abs + F->split->parent[F->split->ptr[f] + i];
+      mult[i] = 2;
+    }
+    if (lincomb((int)np, par, mult, (int)np, F->abs + f))
+      return ss_error_set(err, SS_EINTERNAL,
+                          "fine vertex %zu on level %d has no integer coordinates", f,
+                          W->nlev - 1);
+  }
+  if (W->nlev - 1 >= W->lc) return finish_level(W, W->nlev - 1, err);
+  return SS_OK;
+}
+
+static void free_work(work *W) {
+  for (int l = 0; l < W->nlev; l++) {
+    level *L = W->lev + l;
+    if (l > 0) ss_cx_free(L->cx); /* level 0 belongs to the star */
+    ss_split_free(L->split);
+    if (L->R) gsl_spmatrix_free(L->R);
+    if (l > 0) free(L->abs);
+    free(L->rel);
+    free(L->order);
+    free(L->inner);
+  }
+  ss_star_free(W->star);
+}
+
+/* ---- sets of coordinates ---- */
+
+/* Why an attempt at level w failed: for lack of room (a deeper level may do)
+ * or for good (status set in err). */
+enum { OK = 0, ROOM = 1, HARD = 2 };
+
+/* Add to mark_c (level l) every column of the rows of the marked vertices of
+ * level l + 1.  A row of a boundary vertex means the patch is too small. */
+static int influence(const level *C, const level *F, const unsigned char *mark_f,
+                     unsigned char *mark_c) {
+  for (size_t f = 0; f < F->cx->nv; f++) {
+    if (!mark_f[f]) continue;
+    if (!F->inner[f]) return ROOM;
+    for (int q = C->R->p[f]; q < C->R->p[f + 1]; q++)
+      mark_c[C->R->i[q]] = 1;
+  }
+  return OK;
+}
+
+/* Vertices of level l lying in Omega_w (the cells around p on level w). */
+static ss_status omega_marks(const work *W, int w, size_t p, unsigned char **out,
+                             ss_error *err) {
+  for (int l = w; l < W->nlev; l++) {
+    out[l - w] = calloc(W->lev[l].cx->nv + 1, 1);
+    if (!out[l - w]) return ss_error_nomem(err, "two-ring");
+  }
+  const ss_cx *cx = W->lev[w].cx;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    if (ss_cell_dim((ss_cell_type)t) != ss_cx_topdim(cx)) continue;
+    const int nv = ss_cell_nverts((ss_cell_type)t);
+    for (size_t i = 0; i < cx->nc[t]; i++) {
+      const ss_idx *v = ss_cx_cell(cx, (ss_cell_type)t, i);
+      int has = 0;
+      for (int j = 0; j < nv; j++)
+        has |= v[j] == p;
+      for (int j = 0; has && j < nv; j++)
+        out[0][v[j]] = 1;
+    }
+  }
+  for (int l = w + 1; l < W->nlev; l++) {
+    const ss_split *sp = W->lev[l].split;
+    for (size_t f = 0; f < sp->nfine; f++) {
+      int all = 1;
+      for (size_t q = sp->ptr[f]; q < sp->ptr[f + 1]; q++)
+        all &= out[l - 1 - w][sp->parent[q]];
+      out[l - w][f] = (unsigned char)all;
+    }
+  }
+  return SS_OK;
+}
+
+static int label_cmp(const void *a, const void *b) {
+  const ss_star_coord *x = a, *y = b;
+  int nx = ss_local_label_norm(x), ny = ss_local_label_norm(y);
+  if (nx != ny) return nx < ny ? -1 : 1;
+  return ss_star_coord_cmp(x, y);
+}
+
+/* Read S (n2 x n2) between levels l and l + 1 for the labels; ROOM if a label is
+ * missing or a row lies on the boundary, HARD (with err) if a row leaves the
+ * set. */
+static int read_matrix(const work *W, int l, const ss_local *M, double *S, size_t *colmap,
+                       ss_error *err) {
+  const level *C = W->lev + l, *F = W->lev + l + 1;
+  const size_t n = M->n2;
+  for (size_t j = 0; j < C->cx->nv; j++)
+    colmap[j] = SIZE_MAX;
+  for (size_t j = 0; j < n; j++) {
+    size_t v = lookup(C, M->label + j);
+    if (v == SIZE_MAX) return ROOM;
+    colmap[v] = j;
+  }
+  memset(S, 0, n * n * sizeof *S);
+  for (size_t i = 0; i < n; i++) {
+    size_t f = lookup(F, M->label + i);
+    if (f == SIZE_MAX || !F->inner[f]) return ROOM;
+    for (int q = C->R->p[f]; q < C->R->p[f + 1]; q++) {
+      size_t j = colmap[C->R->i[q]];
+      if (j == SIZE_MAX) {
+        ss_error_set(
+            err, SS_EINTERNAL,
+            "the two-ring is not invariant: a row of level %d reaches outside it", l + 1);
+        return HARD;
+      }
+      if (i < M->n1 && j >= M->n1) {
+        ss_error_set(err, SS_EINTERNAL, "the one-ring is not invariant (level %d)",
+                     l + 1);
+        return HARD;
+      }
+      S[i * n + j] += C->R->data[q];
+    }
+  }
+  return OK;
+}
+
+/* One attempt with the two-ring on level w (levels up to w + 2 exist). */
+static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
+  const level *Lw = W->lev + w;
+  const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
+  size_t p = lookup(Lw, &zero);
+  if (p == SIZE_MAX) {
+    ss_error_set(err, SS_EINTERNAL, "the centre is not a vertex of level %d", w);
+    return HARD;
+  }
+  int rc = OK;
+  unsigned char *om[3] = {NULL, NULL, NULL}, *a1 = NULL, *t1 = NULL, *t2 = NULL,
+                *one = NULL;
+  size_t *colmap = NULL;
+  double *S2 = NULL;
+  const size_t nw = Lw->cx->nv, nw1 = W->lev[w + 1].cx->nv;
+  if (omega_marks(W, w, p, om, err)) {
+    rc = HARD;
+    goto done;
+  }
+  a1 = malloc(nw1 + 1);
+  t1 = malloc(nw + 1);
+  t2 = malloc(nw + 1);
+  one = calloc(nw + 1, 1);
+  if (!a1 || !t1 || !t2 || !one) {
+    ss_error_nomem(err, "two-ring");
+    rc = HARD;
+    goto done;
+  }
+  /* depth 1 and depth 2 */
+  memcpy(t1, om[0], nw);
+  if ((rc = influence(Lw, W->lev + w + 1, om[1], t1))) goto done;
+  memcpy(a1, om[1], nw1);
+  if ((rc = influence(W->lev + w + 1, W->lev + w + 2, om[2], a1))) goto done;
+  memcpy(t2, om[0], nw);
+  if ((rc = influence(Lw, W->lev + w + 1, a1, t2))) goto done;
+  if (memcmp(t1, t2, nw) != 0) {
+    ss_error_set(err, SS_EINTERNAL,
+                 "the two-ring grows from depth 1 to depth 2: no fixed point reached");
+    rc = HARD;
+    goto done;
+  }
+  /* one-ring: closure of {p}, via coordinates */
+  one[p] = 1;
+  for (int changed = 1; changed;) {
+    changed = 0;
+    for (size_t v = 0; v < nw; v++) {
+      if (!one[v]) continue;
+      size_t f = lookup(W->lev + w + 1, Lw->rel + v);
+      if (f == SIZE_MAX || !W->lev[w + 1].inner[f]) {
+        rc = ROOM;
+        goto done;
+      }
+      for (int q = Lw->R->p[f]; q < Lw->R->p[f + 1]; q++) {
+        size_t u = Lw->R->i[q];
+        if (!one[u]) one[u] = 1, changed = 1;
+      }
+    }
+  }
+  size_t n2 = 0, n1 = 0;
+  for (size_t v = 0; v < nw; v++) {
+    n2 += t2[v];
+    n1 += one[v];
+    if (one[v] && !t2[v]) {
+      ss_error_set(err, SS_EINTERNAL, "the one-ring is not inside the two-ring");
+      rc = HARD;
+      goto done;
+    }
+  }
+  M->n2 = n2;
+  M->n1 = n1;
+  M->label = malloc((n2 + 1) * sizeof *M->label);
+  M->S = malloc((n2 * n2 + 1) * sizeof *M->S);
+  S2 = malloc((n2 * n2 + 1) * sizeof *S2);
+  colmap = malloc((W->lev[w + 1].cx->nv + 1) * sizeof *colmap);
+  if (!M->label || !M->S || !S2 || !colmap) {
+    ss_error_nomem(err, "local matrix");
+    rc = HARD;
+    goto done;
+  }
+  size_t i1 = 0, i2 = n1;
+  for (size_t v = 0; v < nw; v++)
+    if (one[v])
+      M->label[i1++] = Lw->rel[v];
+    else if (t2[v])
+      M->label[i2++] = Lw->rel[v];
+  qsort(M->label, n1, sizeof *M->label, label_cmp);
+  qsort(M->label + n1, n2 - n1, sizeof *M->label, label_cmp);
+  if ((rc = read_matrix(W, w, M, M->S, colmap, err))) goto done;
+  if ((rc = read_matrix(W, w + 1, M, S2, colmap, err))) goto done;
+  double diff = 0.0;
+  M->nnz = 0;
+  for (size_t k = 0; k < n2 * n2; k++) {
+    diff = fmax(diff, fabs(M->S[k] - S2[k]));
+    M->nnz += M->S[k] != 0.0;
+  }
+  if (!(diff <= STAT_TOL)) {
+    ss_error_set(err, SS_EINTERNAL,
+                 "not stationary: the local matrix on level %d differs from level %d by "
+                 "%.3g",
+                 w, w + 1, diff);
+    rc = HARD;
+    goto done;
+  }
+  for (size_t i = 0; i < n2; i++) {
+    double sum = 0.0;
+    for (size_t j = 0; j < n2; j++)
+      sum += M->S[i * n2 + j];
+    if (!(fabs(sum - 1.0) <= 1e-12)) {
+      ss_error_set(err, SS_EINTERNAL, "row %zu of the local matrix sums to %.17g", i,
+                   sum);
+      rc = HARD;
+      goto done;
+    }
+  }
+  M->level = w;
+done:
+  for (int i = 0; i < 3; i++)
+    free(om[i]);
+  free(a1);
+  free(t1);
+  free(t2);
+  free(one);
+  free(colmap);
+  free(S2);
+  if (rc) {
+    free(M->label);
+    free(M->S);
+    M->label = NULL;
+    M->S = NULL;
+  }
+  return rc;
+}
+
+/* ---- cases and stars ---- */
+
+ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
+                        ss_error *err) {
+  *out = NULL;
+  const int ml = ss_scheme_split_kind(s) == SS_SPLIT_MULTILINEAR;
+  ss_cell_type t;
+  switch (c->kind) {
+  case SS_CASE_VERTEX:
+  case SS_CASE_EDGE:
+    t = ml ? SS_HEX : SS_TET;
+    break;
+  case SS_CASE_FACE:
+    if (ml)
+      return ss_error_set(err, SS_EINPUT,
+                          "scheme %s: the face case exists only for schemes with the "
+                          "tet/oct split (two tets sharing a face)",
+                          ss_scheme_name(s));
+    t = SS_TET;
+    break;
+  case SS_CASE_SURFACE_VERTEX:
+    t = ml ? SS_QUAD : SS_TRIANGLE;
+    break;
+  default:
+    return ss_error_set(err, SS_EINPUT, "unknown case");
+  }
+  if (!ss_scheme_accepts(s, t))
+    return ss_error_set(
+        err, SS_EINPUT,
+        "scheme %s does not support the %s case: its star would be made of "
+        "%s, which the scheme does not take",
+        ss_scheme_name(s), ss_case_name(c->kind), ss_cell_plural(t));
+  if (c->kind == SS_CASE_VERTEX && !c->link)
+    return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
+  switch (c->kind) {
+  case SS_CASE_VERTEX:
+    return t == SS_HEX ? ss_star_hex_vertex(c->link, out, err)
+                       : ss_star_tet_vertex(c->link, out, err);
+  case SS_CASE_EDGE:
+    return t == SS_HEX ? ss_star_hex_edge(c->n, out, err)
+                       : ss_star_tet_edge(c->n, out, err);
+  case SS_CASE_FACE:
+    return ss_star_tet_face(out, err);
+  default:
+    return t == SS_QUAD ? ss_star_quad_vertex(c->n, out, err)
+                        : ss_star_tri_vertex(c->n, out, err);
+  }
+}
+
+ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
+                       ss_error *err) {
+  *out = NULL;
+  work W;
+  memset(&W, 0, sizeof W);
+  W.scheme = s;
+  ss_status st = ss_local_star(s, c, &W.star, err);
+  if (st) return st;
+  ss_local *M = calloc(1, sizeof *M);
+  if (!M) {
+    ss_star_free(W.star);
+    return ss_error_nomem(err, "local matrix");
+  }
+  M->ncoord = W.star->ncoord;
+  M->dim = c->kind == SS_CASE_SURFACE_VERTEX ? 2 : 3;
+  M->cell = W.star->cell_type;
+  if (c->kind == SS_CASE_VERTEX || c->kind == SS_CASE_SURFACE_VERTEX) {
+    W.lc = 0;
+    W.cp = ss_star_coord_make(0, NULL, NULL);
+  } else if (c->kind == SS_CASE_EDGE) {
+    W.lc = 1;
+    W.cp = ss_star_coord_make(0, NULL, NULL);
+  } else {
+    const int32_t idx[3] = {0, 1, 2}, val[3] = {2, 1, 1};
+    W.lc = 2;
+    W.cp = ss_star_coord_make(3, idx, val);
+  }
+  W.lev[0].cx = W.star->cx;
+  W.lev[0].abs = W.star->coord;
+  W.nlev = 1;
+  if (W.lc == 0) st = finish_level(&W, 0, err);
+  int w = W.lc + 1, rc = ROOM;
+  while (!st && rc == ROOM) {
+    while (!st && W.nlev < w + 3)
+      st = add_level(&W, err);
+    if (st) break;
+    rc = attempt(&W, w, M, err);
+    if (rc == HARD) st = err && err->status ? err->status : SS_EINTERNAL;
+    w++;
+  }
+  free_work(&W);
+  if (st) {
+    ss_local_free(M);
+    return st;
+  }
+  *out = M;
+  return SS_OK;
+}
+
+void ss_local_free(ss_local *L) {
+  if (!L) return;
+  free(L->S);
+  free(L->label);
+  free(L);
+}

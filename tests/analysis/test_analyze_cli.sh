@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# test_analyze_cli.sh EXE — `subspectra analyze` and `subspectra matrix` from the
+# outside: the JSON contract (DESIGN section 7), one object per input line,
+# TSV, Matrix Market output that reproduces the spectrum's trace, and exit
+# status 2 with a message for every kind of bad input.
+set -u
+exe=$1
+checks=0
+failed=0
+fail() {
+  failed=$((failed + 1))
+  echo "FAILED: $*" >&2
+}
+# expect STATUS PATTERN STDIN CMD...: feed STDIN, check status and output
+expect() {
+  local want=$1 pat=$2 input=$3
+  shift 3
+  checks=$((checks + 1))
+  local out rc
+  out=$(printf '%s' "$input" | timeout 120 "$@" 2>&1)
+  rc=$?
+  if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
+    fail "$* <<< '$input' -> status $rc (want $want): $(head -3 <<<"$out")"
+  fi
+}
+
+expect 0 "eigenstructure with LAPACK" "" "$exe" analyze --help
+expect 0 "Matrix Market" "" "$exe" matrix --help
+expect 2 "unknown scheme 'nope'" "" "$exe" analyze --scheme nope --edge 4
+expect 2 "--scheme is required" "" "$exe" analyze --edge 4
+expect 2 "exactly one of" "" "$exe" analyze --scheme mlca
+expect 2 "exactly one of" "" "$exe" analyze --scheme mlca --edge 4 --face
+expect 2 "face case exists only" "" "$exe" analyze --scheme mlca --face
+expect 2 "does not support the vertex case" "" "$exe" analyze --scheme catmull-clark --vertex octahedron
+expect 2 "does not support the edge case" "" "$exe" analyze --scheme loop --edge 5
+expect 2 "valence must be an integer in 3..1000, not '2'" "" "$exe" analyze --scheme mlca --edge 2
+expect 2 "not 'x'" "" "$exe" analyze --scheme mlca --surface-vertex x
+expect 2 "--tol" "" "$exe" analyze --scheme mlca --edge 4 --tol 0.5
+expect 2 "--format" "" "$exe" analyze --scheme mlca --edge 4 --format mtx
+expect 2 "--ring" "" "$exe" matrix --scheme mlca --edge 4 --ring 3
+expect 2 "unknown link .dodecahedron." "" "$exe" analyze --scheme mlca --vertex dodecahedron
+expect 2 "the vertex count is 4 but there are 2" "" "$exe" analyze --scheme mlca --vertex "4 bcd,adc"
+expect 2 "stdin:2: .*not symmetric" "octahedron
+5 bcd,ade,aed,acb,abc
+" "$exe" analyze --scheme tetoct --vertex - --format json
+expect 2 "no links read" "" "$exe" analyze --scheme tetoct --vertex -
+expect 2 "unexpected argument" "" "$exe" analyze --scheme mlca --edge 4 extra
+
+# the JSON contract, one object per line
+json=$(printf 'tetrahedron\n# a comment\n\noctahedron\nbipyramid:5\n' |
+  "$exe" analyze --scheme mlca --vertex - --format json)
+checks=$((checks + 1))
+python3 - "$json" <<'PY' || fail "JSON contract"
+import json, sys
+lines = sys.argv[1].strip().split("\n")
+assert len(lines) == 3, len(lines)
+for s in lines:
+    o = json.loads(s)
+    for key in ("scheme", "case", "link", "two_ring_size", "one_ring_size",
+                "eigenvalues", "eigen_condition", "regularity"):
+        assert key in o, key
+    assert o["scheme"] == "mlca" and o["case"] == "vertex"
+    assert len(o["eigenvalues"]) == 16
+    mods = [abs(complex(e["re"], e["im"])) for e in o["eigenvalues"]]
+    assert all(a >= b - 1e-12 for a, b in zip(mods, mods[1:])), mods
+    assert o["eigen_condition"]["verdict"] in ("pass", "fail", "undecided")
+    assert o["regularity"]["verdict"] in ("pass", "fail", "undecided")
+o = json.loads(lines[1])
+assert o["two_ring_size"] == 125 and o["one_ring_size"] == 27
+assert o["link"] == "6 bcde,aefc,abfd,acfe,adfb,bedc", o["link"]
+assert [round(e["re"], 12) for e in o["eigenvalues"][:4]] == [1, 0.5, 0.5, 0.5]
+PY
+
+# edge cases carry their valence; tsv has a header and one row per case
+expect 0 '"case":"edge","valence":5' "" "$exe" analyze --scheme tetoct --edge 5 --format json
+expect 0 "^scheme	case	link_or_valence" "" "$exe" analyze --scheme loop --surface-vertex 7 --format tsv
+expect 0 "eigenvalue condition: pass" "" "$exe" analyze --scheme catmull-clark --surface-vertex 5
+
+# Matrix Market: header, labels, and the trace equals the sum of the eigenvalues
+mtx=$("$exe" matrix --scheme catmull-clark --surface-vertex 5)
+checks=$((checks + 1))
+python3 - "$mtx" "$("$exe" analyze --scheme catmull-clark --surface-vertex 5 --format json --eigenvalues 1000)" <<'PY' || fail "Matrix Market export"
+import json, sys
+lines = sys.argv[1].split("\n")
+assert lines[0] == "%%MatrixMarket matrix coordinate real general", lines[0]
+body = [l for l in lines if l and not l.startswith("%")]
+n, m, nnz = map(int, body[0].split())
+assert n == m == 31 and nnz == len(body) - 1, (n, m, nnz)
+labels = [l for l in lines if l.startswith("% ") and l[2:].split(" ")[0].isdigit()]
+assert len(labels) == 31 and labels[0] == "% 1 ()", labels[:2]
+rows = {}
+trace = 0.0
+for l in body[1:]:
+    i, j, v = l.split()
+    rows[int(i)] = rows.get(int(i), 0.0) + float(v)
+    if i == j:
+        trace += float(v)
+assert all(abs(s - 1) < 1e-12 for s in rows.values()) and len(rows) == 31
+ev = json.loads(sys.argv[2])["eigenvalues"]
+assert len(ev) == 31
+assert abs(sum(e["re"] for e in ev) - trace) < 1e-9, (trace, sum(e["re"] for e in ev))
+PY
+expect 0 "^9 9 " "" "$exe" matrix --scheme mlca --surface-vertex 4 --ring 1
+
+echo "analyze_cli: $checks checks, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,517 @@
+/* test_local.c — local subdivision matrices and their spectra against closed
+ * forms and structure that would break if the mathematics were wrong:
+ * Catmull–Clark's subdominant eigenvalue (for catmull-clark and for 2D mlca),
+ * MLCA's vertex-parameter eigenvalues 1/4 and 1/16, Loop's subdominant
+ * eigenvalue, the tricubic spectrum at a regular hex vertex, the tensor
+ * product structure along MLCA edges, the tet/oct face and edge spectra,
+ * invariance under relabelling and mirroring of the link, a global-vs-local
+ * cross-check on real refined patches, and the verdict logic with its
+ * tolerance on matrices whose spectrum is known by construction. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_eig.h"
+#include "ss_enum.h"
+#include "ss_local.h"
+#include "ss_split.h"
+#include "ss_test.h"
+#include "ss_testlink.h"
+
+#define PI 3.14159265358979323846
+
+static ss_scheme *scheme(const char *name) {
+  ss_scheme *s = NULL;
+  ss_error err = {0};
+  if (ss_scheme_new(name, &s, &err)) fprintf(stderr, "%s\n", err.msg);
+  return s;
+}
+
+/* Local matrix and eigenstructure of one case (NULLs on failure, reported). */
+static int analyse(const ss_scheme *s, ss_case c, ss_local **M, ss_eig **e) {
+  ss_error err = {0};
+  *M = NULL;
+  *e = NULL;
+  if (ss_local_new(s, &c, M, &err)) {
+    CHECK(0, "%s %s n=%d: %s", ss_scheme_name(s), ss_case_name(c.kind), c.n, err.msg);
+    return -1;
+  }
+  ss_eig_opts o = ss_eig_defaults((*M)->dim);
+  if (ss_eig_new((*M)->S, (*M)->n2, (*M)->n1, &o, e, &err)) {
+    CHECK(0, "eig: %s", err.msg);
+    ss_local_free(*M);
+    *M = NULL;
+    return -1;
+  }
+  return 0;
+}
+
+static int by_value(const void *pa, const void *pb) {
+  const double *a = pa, *b = pb;
+  if (a[0] != b[0]) return a[0] < b[0] ? -1 : 1;
+  return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+/* The multiset of eigenvalues as (re, im) pairs sorted by value. */
+static double *values(const ss_eig *e) {
+  double *v = malloc(2 * e->n * sizeof *v);
+  for (size_t i = 0; i < e->n; i++)
+    v[2 * i] = e->val[i].re, v[2 * i + 1] = e->val[i].im;
+  qsort(v, e->n, 2 * sizeof *v, by_value);
+  return v;
+}
+
+/* Number of pairs of two sorted multisets of size n that differ by more than
+ * tol. */
+static size_t mismatches(const double *a, const double *b, size_t n, double tol) {
+  size_t bad = 0;
+  for (size_t i = 0; i < n; i++)
+    bad +=
+        !(fabs(a[2 * i] - b[2 * i]) <= tol && fabs(a[2 * i + 1] - b[2 * i + 1]) <= tol);
+  return bad;
+}
+
+/* Count of eigenvalues within tol of x (real). */
+static int count_near(const ss_eig *e, double x, double tol) {
+  int c = 0;
+  for (size_t i = 0; i < e->n; i++)
+    c += fabs(e->val[i].re - x) <= tol && fabs(e->val[i].im) <= tol;
+  return c;
+}
+
+static const double curve[5] = {1.0, 0.5, 0.25, 0.125, 0.125}; /* cubic B-spline
+                                                                  two-ring spectrum */
+
+/* ---- 2D ---- */
+
+static void test_surfaces(void) {
+  ss_scheme *ml = scheme("mlca"), *cc = scheme("catmull-clark"), *lp = scheme("loop");
+  for (int n = 3; n <= 12; n++) {
+    const double c2 = cos(2 * PI / n), c1 = cos(PI / n);
+    const double lcc = (5 + c2 + c1 * sqrt(2 * (9 + c2))) / 16, lloop = 3.0 / 8 + c2 / 4;
+    ss_local *Mm, *Mc, *Ml;
+    ss_eig *em, *ec, *el;
+    ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n};
+    if (analyse(ml, c, &Mm, &em) || analyse(cc, c, &Mc, &ec) || analyse(lp, c, &Ml, &el))
+      continue;
+    CHECK(Mm->n2 == (size_t)(6 * n + 1) && Mm->n1 == (size_t)(2 * n + 1),
+          "mlca n=%d: two-ring %zu one-ring %zu", n, Mm->n2, Mm->n1);
+    CHECK(Mc->n2 == (size_t)(6 * n + 1) && Mc->n1 == (size_t)(2 * n + 1),
+          "catmull-clark n=%d: two-ring %zu one-ring %zu", n, Mc->n2, Mc->n1);
+    CHECK(Ml->n2 == (size_t)(3 * n + 1) && Ml->n1 == (size_t)(n + 1),
+          "loop n=%d: two-ring %zu one-ring %zu", n, Ml->n2, Ml->n1);
+    for (int i = 1; i <= 2; i++) {
+      CHECK_CLOSE(em->val[i].re, lcc, 1e-10, "mlca n=%d lambda%d", n, i);
+      CHECK_CLOSE(ec->val[i].re, lcc, 1e-10, "catmull-clark n=%d lambda%d", n, i);
+      CHECK_CLOSE(el->val[i].re, lloop, 1e-10, "loop n=%d lambda%d", n, i);
+    }
+    CHECK(em->cond.verdict == SS_PASS && ec->cond.verdict == SS_PASS &&
+              el->cond.verdict == SS_PASS,
+          "n=%d: eigenvalue condition %s / %s / %s", n, em->cond.reason, ec->cond.reason,
+          el->cond.reason);
+    /* MLCA's vertex-parameter eigenvalues 1/4 and 1/16 (MLCA paper, eq. 6): take
+     * them out; every other eigenvalue must match Catmull–Clark's, leaving
+     * exactly two of Catmull–Clark's (its own vertex-parameter pair) over */
+    double *vm = values(em), *vc = values(ec);
+    size_t nm = em->n, nc = ec->n;
+    const double drop[2] = {0.25, 0.0625};
+    for (int d = 0; d < 2; d++) {
+      size_t i = 0;
+      while (i < nm && !(fabs(vm[2 * i] - drop[d]) <= 1e-9 && vm[2 * i + 1] == 0.0))
+        i++;
+      CHECK(i < nm, "mlca n=%d has no eigenvalue %g", n, drop[d]);
+      if (i < nm) {
+        memmove(vm + 2 * i, vm + 2 * i + 2, 2 * (nm - i - 1) * sizeof *vm);
+        nm--;
+      }
+    }
+    size_t unmatched = 0;
+    unsigned char *used = calloc(nc, 1);
+    for (size_t i = 0; i < nm; i++) {
+      size_t j = 0;
+      while (j < nc && (used[j] || !(fabs(vm[2 * i] - vc[2 * j]) <= 1e-8 &&
+                                     fabs(vm[2 * i + 1] - vc[2 * j + 1]) <= 1e-8)))
+        j++;
+      if (j < nc)
+        used[j] = 1;
+      else
+        unmatched++;
+    }
+    CHECK(unmatched == 0 && nc - nm == 2,
+          "n=%d: %zu mlca eigenvalues not found in catmull-clark's", n, unmatched);
+    free(used);
+    free(vm);
+    free(vc);
+    ss_eig_free(em), ss_eig_free(ec), ss_eig_free(el);
+    ss_local_free(Mm), ss_local_free(Mc), ss_local_free(Ml);
+  }
+  ss_scheme_free(ml), ss_scheme_free(cc), ss_scheme_free(lp);
+}
+
+/* ---- 3D MLCA ---- */
+
+static void test_mlca_regular(void) {
+  ss_scheme *s = scheme("mlca");
+  ss_link *oct = NULL;
+  ss_error err = {0};
+  ss_link_named("octahedron", &oct, &err);
+  ss_local *M;
+  ss_eig *e;
+  if (!analyse(s, (ss_case){SS_CASE_VERTEX, oct, 0}, &M, &e)) {
+    CHECK(M->n2 == 125 && M->n1 == 27, "regular hex vertex: two-ring %zu, one-ring %zu",
+          M->n2, M->n1);
+    /* the tensor cube of the curve's two-ring spectrum */
+    double expect[2 * 125];
+    size_t n = 0;
+    for (int a = 0; a < 5; a++)
+      for (int b = 0; b < 5; b++)
+        for (int c = 0; c < 5; c++, n++)
+          expect[2 * n] = curve[a] * curve[b] * curve[c], expect[2 * n + 1] = 0.0;
+    qsort(expect, 125, 2 * sizeof *expect, by_value);
+    double *got = values(e);
+    if (e->n == 125)
+      CHECK(mismatches(got, expect, 125, 1e-9) == 0, "regular spectrum is not tricubic");
+    free(got);
+    CHECK(count_near(e, 0.5, 1e-9) == 3 && count_near(e, 0.25, 1e-9) == 6 &&
+              count_near(e, 0.125, 1e-9) == 13,
+          "1/2, 1/4, 1/8 multiplicities %d %d %d", count_near(e, 0.5, 1e-9),
+          count_near(e, 0.25, 1e-9), count_near(e, 0.125, 1e-9));
+    CHECK(e->val[1].mult == 3 && e->val[4].mult == 6 && e->val[10].mult == 13,
+          "grouped multiplicities %d %d %d", e->val[1].mult, e->val[4].mult,
+          e->val[10].mult);
+    /* the one-ring block alone: 1/8 seven times */
+    ss_eig *e1 = NULL;
+    double *A = malloc(27 * 27 * sizeof *A);
+    for (int i = 0; i < 27; i++)
+      for (int j = 0; j < 27; j++)
+        A[i * 27 + j] = M->S[(size_t)i * M->n2 + (size_t)j];
+    ss_eig_opts o = ss_eig_defaults(3);
+    if (!ss_eig_new(A, 27, 27, &o, &e1, &err)) {
+      CHECK(count_near(e1, 0.125, 1e-9) == 7, "one-ring block: 1/8 x %d",
+            count_near(e1, 0.125, 1e-9));
+      ss_eig_free(e1);
+    }
+    free(A);
+    CHECK(e->cond.verdict == SS_PASS, "regular vertex: %s", e->cond.reason);
+    ss_eig_free(e);
+    ss_local_free(M);
+  }
+  ss_link_free(oct);
+  ss_scheme_free(s);
+}
+
+static void test_mlca_edges(void) {
+  ss_scheme *s = scheme("mlca");
+  for (int n = 3; n <= 8; n++) {
+    ss_local *M2, *M3;
+    ss_eig *e2, *e3;
+    if (analyse(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n}, &M2, &e2)) continue;
+    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n}, &M3, &e3)) continue;
+    CHECK(M3->n2 == 5 * M2->n2 && M3->n1 == 3 * M2->n1,
+          "edge n=%d: two-ring %zu one-ring %zu", n, M3->n2, M3->n1);
+    const size_t N = e2->n * 5;
+    double *expect = malloc(2 * N * sizeof *expect);
+    for (size_t i = 0; i < e2->n; i++)
+      for (int c = 0; c < 5; c++) {
+        expect[2 * (5 * i + c)] = e2->val[i].re * curve[c];
+        expect[2 * (5 * i + c) + 1] = e2->val[i].im * curve[c];
+      }
+    qsort(expect, N, 2 * sizeof *expect, by_value);
+    double *got = values(e3);
+    if (e3->n == N)
+      CHECK(mismatches(got, expect, N, 1e-8) == 0,
+            "edge n=%d: spectrum is not 2D x curve", n);
+    free(got);
+    free(expect);
+    ss_eig_free(e2), ss_eig_free(e3);
+    ss_local_free(M2), ss_local_free(M3);
+  }
+  ss_scheme_free(s);
+}
+
+/* ---- tet/oct ---- */
+
+static void test_tetoct(void) {
+  ss_scheme *s = scheme("tetoct");
+  ss_local *M;
+  ss_eig *e;
+  if (!analyse(s, (ss_case){SS_CASE_FACE, NULL, 0}, &M, &e)) {
+    CHECK_CLOSE(e->val[0].re, 1.0, 1e-10, "face lambda0");
+    for (int i = 1; i <= 3; i++)
+      CHECK_CLOSE(e->val[i].re, 0.5, 1e-10, "face lambda%d", i);
+    for (int i = 4; i <= 9; i++)
+      CHECK_CLOSE(e->val[i].re, 0.25, 1e-10, "face lambda%d", i);
+    CHECK(hypot(e->val[10].re, e->val[10].im) < 0.25 - 1e-3, "face: |lambda10| = %g",
+          hypot(e->val[10].re, e->val[10].im));
+    ss_eig_free(e);
+    ss_local_free(M);
+  }
+  for (int n = 3; n <= 10; n++) {
+    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n}, &M, &e)) continue;
+    /* leading four: {1, l, l, 1/2} as a multiset, l real and not 1/2 */
+    int half = -1;
+    for (int i = 1; i <= 3; i++)
+      if (fabs(e->val[i].re - 0.5) <= 1e-10) half = i;
+    CHECK(half > 0, "edge n=%d: 1/2 not among the leading eigenvalues", n);
+    double l[2];
+    int m = 0;
+    for (int i = 1; i <= 3 && half > 0; i++)
+      if (i != half) l[m++] = e->val[i].re;
+    CHECK(m == 2 && fabs(l[0] - l[1]) <= 1e-10 && fabs(l[0] - 0.5) > 1e-3 &&
+              e->val[1].im == 0.0 && e->val[2].im == 0.0 && e->val[3].im == 0.0,
+          "edge n=%d: leading eigenvalues are not 1, l, l, 1/2", n);
+    CHECK(e->val[1].mult + e->val[2].mult + e->val[3].mult == 5,
+          "edge n=%d: multiplicities %d %d %d", n, e->val[1].mult, e->val[2].mult,
+          e->val[3].mult);
+    ss_eig_free(e);
+    ss_local_free(M);
+  }
+  ss_scheme_free(s);
+}
+
+/* ---- sizes and invariance over many links ---- */
+
+typedef struct {
+  ss_scheme *mlca, *tetoct;
+  int count;
+} links_ctx;
+
+static int visit(const ss_link *l, void *vctx) {
+  links_ctx *ctx = vctx;
+  const int k = l->k;
+  ss_scheme *ss[2] = {ctx->mlca, ctx->tetoct};
+  for (int si = 0; si < 2; si++) {
+    ss_local *M;
+    ss_eig *e;
+    if (analyse(ss[si], (ss_case){SS_CASE_VERTEX, l, 0}, &M, &e)) continue;
+    if (si == 0)
+      CHECK(M->n2 == (size_t)(30 * k - 55) && M->n1 == (size_t)(6 * k - 9),
+            "mlca k=%d: two-ring %zu one-ring %zu", k, M->n2, M->n1);
+    else
+      CHECK(M->n2 == (size_t)(5 * k - 5) && M->n1 == (size_t)(k + 1),
+            "tetoct k=%d: two-ring %zu one-ring %zu", k, M->n2, M->n1);
+    double *ref = values(e);
+    for (int mirror = 0; mirror < 2; mirror++) {
+      ss_link *r = ss_testlink_scrambled(l, (unsigned)(ctx->count * 7 + mirror), mirror);
+      ss_local *M2;
+      ss_eig *e2;
+      if (r && !analyse(ss[si], (ss_case){SS_CASE_VERTEX, r, 0}, &M2, &e2)) {
+        double *v = values(e2);
+        CHECK(M2->n2 == M->n2 && M2->n1 == M->n1 && mismatches(v, ref, e->n, 1e-9) == 0,
+              "%s k=%d link %d: spectrum changes under relabelling (mirror %d)",
+              ss_scheme_name(ss[si]), k, ctx->count, mirror);
+        free(v);
+        ss_eig_free(e2);
+        ss_local_free(M2);
+      }
+      ss_link_free(r);
+    }
+    free(ref);
+    ss_eig_free(e);
+    ss_local_free(M);
+  }
+  ctx->count++;
+  return 0;
+}
+
+static void test_links(void) {
+  links_ctx ctx = {scheme("mlca"), scheme("tetoct"), 0};
+  ss_enum_opts o = {4, 8, 0, 1};
+  ss_error err = {0};
+  CHECK(ss_enum_links(&o, visit, &ctx, NULL, &err) == SS_OK, "%s", err.msg);
+  CHECK(ctx.count == 1 + 1 + 2 + 5 + 14, "visited %d links", ctx.count);
+  ss_scheme_free(ctx.mlca);
+  ss_scheme_free(ctx.tetoct);
+}
+
+/* ---- global vs local ---- */
+
+/* Fine coordinates: 2 * mean of the split parents' (dense, nc per vertex). */
+static long *fine_coords(const ss_split *L, const long *co, int nc) {
+  long *fc = calloc(L->nfine * (size_t)nc + 1, sizeof *fc);
+  for (size_t v = 0; v < L->nfine; v++) {
+    const long np = (long)ss_split_npar(L, v);
+    for (size_t q = L->ptr[v]; q < L->ptr[v + 1]; q++)
+      for (int i = 0; i < nc; i++)
+        fc[v * (size_t)nc + (size_t)i] += 2 * co[L->parent[q] * (size_t)nc + (size_t)i];
+    for (int i = 0; i < nc; i++)
+      fc[v * (size_t)nc + (size_t)i] /= np;
+  }
+  return fc;
+}
+
+/* Refine the star of case c with scheme s to level w + 1, tracking exact
+ * coordinates independently of ss_local (2 * mean of the split parents), give
+ * the level-w vertices random positions, refine once more as a whole mesh, and
+ * compare the fine two-ring with S times the coarse two-ring. */
+static void cross_check(const ss_scheme *s, ss_case c, const char *what) {
+  ss_error err = {0};
+  ss_local *M = NULL;
+  ss_star *star = NULL;
+  if (ss_local_new(s, &c, &M, &err) || ss_local_star(s, &c, &star, &err)) {
+    CHECK(0, "%s: %s", what, err.msg);
+    ss_local_free(M);
+    return;
+  }
+  ss_cx *cx = NULL;
+  ss_cx_copy(star->cx, &cx, &err);
+  const int nc = star->ncoord;
+  long *co = malloc(cx->nv * (size_t)nc * sizeof *co);
+  memset(co, 0, cx->nv * (size_t)nc * sizeof *co);
+  for (size_t v = 0; v < cx->nv; v++)
+    for (int i = 0; i < star->coord[v].n; i++)
+      co[v * (size_t)nc + (size_t)star->coord[v].idx[i]] = star->coord[v].val[i];
+  for (int l = 0; l < M->level; l++) {
+    ss_cx *f = NULL;
+    ss_split *L = NULL;
+    if (ss_scheme_refine_split(s, cx, &f, NULL, &L, &err)) {
+      CHECK(0, "%s: %s", what, err.msg);
+      break;
+    }
+    long *fc = fine_coords(L, co, nc);
+    free(co);
+    co = fc;
+    ss_split_free(L);
+    ss_cx_free(cx);
+    cx = f;
+  }
+  /* the centre's coordinates on level w (the face case's centre is 1/4 (2,1,1)
+   * of the face on level 2) */
+  long *cp = calloc((size_t)nc, sizeof *cp);
+  if (c.kind == SS_CASE_FACE) {
+    const long sc = 1L << (M->level - 2);
+    cp[0] = 2 * sc, cp[1] = sc, cp[2] = sc;
+  }
+  /* random positions on level w */
+  srand(12345);
+  for (size_t i = 0; i < cx->nv * (size_t)cx->dim; i++)
+    cx->x[i] = (double)rand() / RAND_MAX - 0.5;
+  ss_cx *f = NULL;
+  ss_split *L = NULL;
+  ss_scheme_refine_split(s, cx, &f, NULL, &L, &err);
+  /* find the label's vertex on a level by brute force over dense coordinates */
+  size_t *cidx = malloc(M->n2 * sizeof *cidx), *fidx = malloc(M->n2 * sizeof *fidx);
+  long *want = malloc((size_t)nc * sizeof *want);
+  size_t missing = 0;
+  long *fco = fine_coords(L, co, nc);
+  for (size_t j = 0; j < M->n2; j++) {
+    for (int pass = 0; pass < 2; pass++) {
+      const long scale = pass ? 2 : 1;
+      for (int i = 0; i < nc; i++)
+        want[i] = scale * cp[i];
+      for (int e = 0; e < M->label[j].n; e++)
+        want[M->label[j].idx[e]] += M->label[j].val[e];
+      const ss_cx *X = pass ? f : cx;
+      size_t found = SIZE_MAX;
+      const long *cc = pass ? fco : co;
+      for (size_t v = 0; v < X->nv && found == SIZE_MAX; v++)
+        if (!memcmp(cc + v * (size_t)nc, want, (size_t)nc * sizeof *want)) found = v;
+      if (found == SIZE_MAX) missing++;
+      (pass ? fidx : cidx)[j] = found;
+    }
+  }
+  CHECK(missing == 0, "%s: %zu labels not found in the refined patch", what, missing);
+  double worst = 0.0;
+  for (size_t i = 0; missing == 0 && i < M->n2; i++)
+    for (int d = 0; d < cx->dim; d++) {
+      double y = 0.0;
+      for (size_t j = 0; j < M->n2; j++)
+        y += M->S[i * M->n2 + j] * cx->x[cidx[j] * (size_t)cx->dim + (size_t)d];
+      worst = fmax(worst, fabs(y - f->x[fidx[i] * (size_t)f->dim + (size_t)d]));
+    }
+  CHECK(worst <= 1e-12, "%s: global and local subdivision differ by %g", what, worst);
+  free(cidx), free(fidx), free(want), free(cp), free(co), free(fco);
+  ss_split_free(L);
+  ss_cx_free(f);
+  ss_cx_free(cx);
+  ss_star_free(star);
+  ss_local_free(M);
+}
+
+static void test_cross(void) {
+  ss_scheme *ml = scheme("mlca"), *to = scheme("tetoct"), *cc = scheme("catmull-clark"),
+            *lp = scheme("loop");
+  const char *links[] = {"tetrahedron", "bipyramid:5",
+                         "7 bcdef,afgc,abgd,acge,adgf,aegb,bfedc", "icosahedron"};
+  for (int i = 0; i < 4; i++) {
+    ss_link *l = NULL;
+    ss_error err = {0};
+    if (ss_link_parse(links[i], &l, &err)) {
+      CHECK(0, "%s: %s", links[i], err.msg);
+      continue;
+    }
+    cross_check(ml, (ss_case){SS_CASE_VERTEX, l, 0}, links[i]);
+    cross_check(to, (ss_case){SS_CASE_VERTEX, l, 0}, links[i]);
+    ss_link_free(l);
+  }
+  cross_check(ml, (ss_case){SS_CASE_EDGE, NULL, 5}, "mlca edge 5");
+  cross_check(to, (ss_case){SS_CASE_EDGE, NULL, 7}, "tetoct edge 7");
+  cross_check(to, (ss_case){SS_CASE_FACE, NULL, 0}, "tetoct face");
+  cross_check(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5}, "catmull-clark 5");
+  cross_check(lp, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 7}, "loop 7");
+  ss_scheme_free(ml), ss_scheme_free(to), ss_scheme_free(cc), ss_scheme_free(lp);
+}
+
+/* ---- the verdict on matrices of known spectrum ---- */
+
+/* Verdict for the upper triangular matrix with diagonal d (n <= 8) plus an
+ * optional 2 x 2 rotation block at rows 1, 2 (complex pair). */
+static ss_verdict_kind verdict_of(const double *d, int n, int dim, int rot, double tol,
+                                  int *mult1) {
+  double S[64] = {0};
+  for (int i = 0; i < n; i++)
+    S[i * n + i] = d[i];
+  for (int i = 0; i + 1 < n; i++)
+    S[i * n + i + 1] = 0.01; /* not symmetric, still triangular */
+  if (rot) {
+    S[1 * n + 1] = S[2 * n + 2] = 0.4;
+    S[1 * n + 2] = 0.3, S[2 * n + 1] = -0.3;
+  }
+  ss_eig_opts o = ss_eig_defaults(dim);
+  o.tol = tol;
+  o.basis = 0;
+  ss_eig *e = NULL;
+  ss_error err = {0};
+  if (ss_eig_new(S, (size_t)n, (size_t)n, &o, &e, &err)) {
+    CHECK(0, "%s", err.msg);
+    return SS_UNDECIDED;
+  }
+  ss_verdict_kind v = e->cond.verdict;
+  if (mult1) *mult1 = e->val[1].mult;
+  ss_eig_free(e);
+  return v;
+}
+
+static void test_verdicts(void) {
+  const double ok[6] = {1, 0.5, 0.4, 0.3, 0.2, 0.1};
+  const double tie34[6] = {1, 0.5, 0.4, 0.3, 0.3, 0.1};
+  const double near34[6] = {1,  0.5, 0.4, 0.3, 0.3 * (1 - 1e-3),
+                            0.1}; /* a genuine near-tie */
+  const double split[6] = {1, 0.5, 0.5 * (1 + 1e-9), 0.5 * (1 - 1e-9), 0.2, 0.1};
+  const double double1[6] = {1, 1, 0.4, 0.3, 0.2, 0.1};
+  const double negative[6] = {1, 0.5, 0.4, -0.3, 0.2, 0.1};
+  const double neg4[6] = {1, 0.5, 0.4, 0.3, -0.3, 0.1};
+  int m = 0;
+  CHECK(verdict_of(ok, 6, 3, 0, 1e-6, NULL) == SS_PASS, "distinct spectrum");
+  CHECK(verdict_of(tie34, 6, 3, 0, 1e-6, NULL) == SS_FAIL, "lambda3 = lambda4");
+  CHECK(verdict_of(neg4, 6, 3, 0, 1e-6, NULL) == SS_FAIL, "lambda3 = |lambda4|");
+  CHECK(verdict_of(near34, 6, 3, 0, 1e-6, NULL) == SS_PASS, "near-tie 1e-3 kept apart");
+  CHECK(verdict_of(near34, 6, 3, 0, 1e-2, NULL) == SS_FAIL, "near-tie within tol 1e-2");
+  CHECK(verdict_of(split, 6, 3, 0, 1e-6, &m) == SS_PASS && m == 3,
+        "a tie split by rounding is one group (mult %d)", m);
+  CHECK(verdict_of(double1, 6, 3, 0, 1e-6, NULL) == SS_FAIL, "eigenvalue 1 twice");
+  CHECK(verdict_of(negative, 6, 3, 0, 1e-6, NULL) == SS_FAIL, "negative lambda3");
+  CHECK(verdict_of(ok, 6, 3, 1, 1e-6, NULL) == SS_FAIL, "complex lambda1");
+  CHECK(verdict_of(tie34, 6, 2, 0, 1e-6, NULL) == SS_PASS, "2D: lambda2 > |lambda3|");
+}
+
+int main(void) {
+  test_verdicts();
+  test_surfaces();
+  test_mlca_regular();
+  test_mlca_edges();
+  test_tetoct();
+  test_links();
+  test_cross();
+  return ss_test_done("local");
+}
