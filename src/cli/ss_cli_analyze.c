@@ -1,0 +1,455 @@
+/* ss_cli_analyze.c — `subspectra analyze` (local matrix, eigenstructure,
+ * eigenvalue condition for one case or one case per input line) and
+ * `subspectra matrix` (the local matrix in Matrix Market format). */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <json-c/json.h>
+
+#include "ss_cli.h"
+#include "ss_eig.h"
+#include "ss_link.h"
+#include "ss_local.h"
+
+enum { FMT_TEXT = 0, FMT_JSON, FMT_TSV, FMT_MTX };
+
+/* Options shared by analyze and matrix. */
+typedef struct {
+  const char *cmd;    /* "analyze" or "matrix" */
+  const char *scheme; /* --scheme */
+  ss_case_kind kind;  /* which case option was given */
+  int ncase;          /* how many case options were given */
+  const char *link;   /* --vertex argument ("-" = standard input) */
+  int n;              /* --edge / --surface-vertex valence */
+  double tol;         /* --tol */
+  int neig;           /* --eigenvalues: how many to print */
+  int format;         /* FMT_* */
+  int ring;           /* matrix --ring 1|2 */
+  const char *out;    /* matrix -o FILE */
+} opts;
+
+static void help(const char *cmd) {
+  const int m = !strcmp(cmd, "matrix");
+  printf("usage: subspectra %s --scheme S CASE [options]\n\n", cmd);
+  if (m)
+    printf("Write the local subdivision matrix S of one case in Matrix Market format,\n"
+           "rows and columns labelled (in comments) by their exact coordinates relative\n"
+           "to the centre.  S maps the two-ring on level j to the two-ring on level\n"
+           "j+1; the one-ring comes first, so S = [A 0; B C].\n\n");
+  else
+    printf("Derive the local subdivision matrix of one case from the scheme's global\n"
+           "rule, compute its eigenstructure with LAPACK and test the eigenvalue\n"
+           "condition: lambda0 = 1 simple; lambda1..3 (surfaces: 1..2) real, positive;\n"
+           "lambda3 > |lambda4| (surfaces: lambda2 > |lambda3|).  Equal eigenvalues are\n"
+           "grouped by a relative tolerance, printed with the verdict.\n\n");
+  printf("cases (exactly one):\n"
+         "  --vertex LINK          a 3D vertex whose link is LINK: plantri ASCII\n"
+         "                         ('4 bcd,adc,abd,acb') or a name (tetrahedron,\n"
+         "                         octahedron, icosahedron, bipyramid:N); '-' reads one\n"
+         "                         link per line on standard input%s\n"
+         "  --edge N               a point on an edge of valence N (3..1000)\n"
+         "  --face                 a point inside the face of two tets (tet/oct split)\n"
+         "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
+         "options:\n"
+         "  --scheme S             mlca, tetoct, catmull-clark, loop\n",
+         m ? "" : " (one result\n                         per line)");
+  if (m)
+    printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "
+           "2)\n"
+           "  --format mtx           Matrix Market (the only format)\n"
+           "  -o FILE                write to FILE instead of standard output\n");
+  else
+    printf("  --tol T                relative tolerance for equal eigenvalues (default "
+           "1e-6)\n"
+           "  --eigenvalues K        how many leading eigenvalues to print (default 16)\n"
+           "  --format F             text (default), json (one object per case), tsv\n");
+  printf("  -h, --help             this help\n\n"
+         "Schemes use the star their split calls for: mlca hexes (quads on surfaces),\n"
+         "tetoct tets, catmull-clark quads, loop triangles.\n"
+         "Exit status: 0 all conditions hold, 1 a condition fails (or the extraction\n"
+         "failed a check), 2 bad usage or input.\n");
+}
+
+static int parse(int argc, char **argv, opts *o) {
+  enum {
+    O_SCHEME = 256,
+    O_VERTEX,
+    O_EDGE,
+    O_FACE,
+    O_SURF,
+    O_TOL,
+    O_NEIG,
+    O_FORMAT,
+    O_RING
+  };
+  static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
+                                     {"vertex", required_argument, 0, O_VERTEX},
+                                     {"edge", required_argument, 0, O_EDGE},
+                                     {"face", no_argument, 0, O_FACE},
+                                     {"surface-vertex", required_argument, 0, O_SURF},
+                                     {"tol", required_argument, 0, O_TOL},
+                                     {"eigenvalues", required_argument, 0, O_NEIG},
+                                     {"format", required_argument, 0, O_FORMAT},
+                                     {"ring", required_argument, 0, O_RING},
+                                     {"help", no_argument, 0, 'h'},
+                                     {0, 0, 0, 0}};
+  const int m = !strcmp(o->cmd, "matrix");
+  optind = 1;
+  opterr = 0;
+  int c;
+  long v;
+  while ((c = getopt_long(argc, argv, m ? ":ho:" : ":h", lo, NULL)) != -1) {
+    switch (c) {
+    case 'h':
+      help(o->cmd);
+      return -1;
+    case 'o':
+      o->out = optarg;
+      break;
+    case O_SCHEME:
+      o->scheme = optarg;
+      break;
+    case O_VERTEX:
+      o->kind = SS_CASE_VERTEX;
+      o->link = optarg;
+      o->ncase++;
+      break;
+    case O_EDGE:
+    case O_SURF:
+      if (ss_cli_parse_int(optarg, 3, 1000, &v))
+        return ss_cli_usage_error(o->cmd,
+                                  "%s: valence must be an integer in 3..1000, not '%s'",
+                                  c == O_EDGE ? "--edge" : "--surface-vertex", optarg);
+      o->kind = c == O_EDGE ? SS_CASE_EDGE : SS_CASE_SURFACE_VERTEX;
+      o->n = (int)v;
+      o->ncase++;
+      break;
+    case O_FACE:
+      o->kind = SS_CASE_FACE;
+      o->ncase++;
+      break;
+    case O_TOL: {
+      char *end;
+      o->tol = strtod(optarg, &end);
+      if (*optarg == '\0' || *end != '\0' || !(o->tol > 0.0 && o->tol < 0.1))
+        return ss_cli_usage_error(
+            o->cmd, "--tol: expected a number in (0, 0.1), not '%s'", optarg);
+      break;
+    }
+    case O_NEIG:
+      if (m || ss_cli_parse_int(optarg, 1, 1000000, &v))
+        return ss_cli_usage_error(o->cmd,
+                                  "--eigenvalues: expected a positive integer, not "
+                                  "'%s'",
+                                  optarg);
+      o->neig = (int)v;
+      break;
+    case O_FORMAT:
+      if (!m && !strcmp(optarg, "text"))
+        o->format = FMT_TEXT;
+      else if (!m && !strcmp(optarg, "json"))
+        o->format = FMT_JSON;
+      else if (!m && !strcmp(optarg, "tsv"))
+        o->format = FMT_TSV;
+      else if (m && !strcmp(optarg, "mtx"))
+        o->format = FMT_MTX;
+      else
+        return ss_cli_usage_error(o->cmd, "--format: expected %s, not '%s'",
+                                  m ? "mtx" : "text, json or tsv", optarg);
+      break;
+    case O_RING:
+      if (!m || ss_cli_parse_int(optarg, 1, 2, &v))
+        return ss_cli_usage_error(o->cmd, "--ring: expected 1 or 2, not '%s'", optarg);
+      o->ring = (int)v;
+      break;
+    default:
+      return ss_cli_option_error(o->cmd, c, argv);
+    }
+  }
+  if (optind < argc)
+    return ss_cli_usage_error(o->cmd, "unexpected argument '%s'", argv[optind]);
+  if (!o->scheme) return ss_cli_usage_error(o->cmd, "--scheme is required");
+  if (o->ncase != 1)
+    return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
+                                      "--surface-vertex");
+  if (m && o->link && !strcmp(o->link, "-"))
+    return ss_cli_usage_error(o->cmd, "--vertex -: matrix takes one link, not a stream");
+  return 0;
+}
+
+/* ---- output ---- */
+
+static const char *param_text(const opts *o, const char *canon, char *buf, size_t n) {
+  if (o->kind == SS_CASE_VERTEX) return canon;
+  if (o->kind == SS_CASE_FACE) return "";
+  snprintf(buf, n, "%d", o->n);
+  return buf;
+}
+
+static void print_json(const opts *o, const char *scheme, const char *canon, int k,
+                       const ss_local *M, const ss_eig *e) {
+  json_object *r = json_object_new_object();
+  json_object_object_add(r, "scheme", json_object_new_string(scheme));
+  json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
+  if (o->kind == SS_CASE_VERTEX) {
+    json_object_object_add(r, "link", json_object_new_string(canon));
+    json_object_object_add(r, "k", json_object_new_int(k));
+  }
+  if (o->kind == SS_CASE_EDGE || o->kind == SS_CASE_SURFACE_VERTEX)
+    json_object_object_add(r, "valence", json_object_new_int(o->n));
+  json_object_object_add(r, "two_ring_size", json_object_new_int64((int64_t)M->n2));
+  json_object_object_add(r, "one_ring_size", json_object_new_int64((int64_t)M->n1));
+  json_object_object_add(r, "level", json_object_new_int(M->level));
+  json_object_object_add(r, "outer_blocks", json_object_new_int64((int64_t)e->nblocks));
+  json_object_object_add(r, "largest_outer_block",
+                         json_object_new_int64((int64_t)e->largest_block));
+  json_object *ev = json_object_new_array();
+  for (size_t i = 0; i < e->n && i < (size_t)o->neig; i++) {
+    json_object *x = json_object_new_object();
+    json_object_object_add(x, "re", json_object_new_double(e->val[i].re));
+    json_object_object_add(x, "im", json_object_new_double(e->val[i].im));
+    json_object_object_add(x, "multiplicity", json_object_new_int(e->val[i].mult));
+    json_object_object_add(x, "rcond", json_object_new_double(e->val[i].rcond));
+    json_object_object_add(
+        x, "block", json_object_new_string(e->val[i].block ? "outer" : "one-ring"));
+    json_object_array_add(ev, x);
+  }
+  json_object_object_add(r, "eigenvalues", ev);
+  json_object *c = json_object_new_object();
+  json_object_object_add(c, "verdict",
+                         json_object_new_string(ss_verdict_name(e->cond.verdict)));
+  json_object_object_add(c, "reason", json_object_new_string(e->cond.reason));
+  json_object_object_add(c, "tolerance", json_object_new_double(e->tol));
+  json_object_object_add(r, "eigen_condition", c);
+  json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
+  json_object *g = json_object_new_object();
+  json_object_object_add(g, "verdict", json_object_new_string("undecided"));
+  json_object_object_add(g, "min_scaled_jacobian", NULL);
+  json_object_object_add(
+      g, "reason",
+      json_object_new_string("the characteristic-map regularity test is "
+                             "not implemented yet"));
+  json_object_object_add(r, "regularity", g);
+  printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
+                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+  json_object_put(r);
+}
+
+static void print_value(FILE *f, const ss_eigval *v) {
+  if (v->im == 0.0)
+    fprintf(f, "%.12g", v->re);
+  else
+    fprintf(f, "%.12g%+.12gi", v->re, v->im);
+}
+
+static void print_tsv(const opts *o, const char *scheme, const char *canon,
+                      const ss_local *M, const ss_eig *e, int header) {
+  if (header) {
+    printf("scheme\tcase\tlink_or_valence\ttwo_ring\tone_ring");
+    for (int i = 0; i < o->neig; i++)
+      printf("\tlambda%d", i);
+    printf("\teigen_condition\treason\ttolerance\n");
+  }
+  char buf[32];
+  printf("%s\t%s\t%s\t%zu\t%zu", scheme, ss_case_name(o->kind),
+         param_text(o, canon, buf, sizeof buf), M->n2, M->n1);
+  for (int i = 0; i < o->neig; i++) {
+    putchar('\t');
+    if ((size_t)i < e->n) print_value(stdout, e->val + i);
+  }
+  printf("\t%s\t%s\t%g\n", ss_verdict_name(e->cond.verdict), e->cond.reason, e->tol);
+}
+
+static void print_text(const opts *o, const char *scheme, const char *canon, int k,
+                       const ss_local *M, const ss_eig *e) {
+  printf("scheme %s, %s case", scheme, ss_case_name(o->kind));
+  if (o->kind == SS_CASE_VERTEX)
+    printf(", link %s (k = %d, %d %s)\n", canon, k, 2 * k - 4, ss_cell_plural(M->cell));
+  else if (o->kind == SS_CASE_FACE)
+    printf(" (two tets sharing a face)\n");
+  else
+    printf(", valence %d\n", o->n);
+  printf(
+      "two-ring %zu points, one-ring %zu (read on level %d); outer part in %zu blocks, "
+      "the largest %zu\n",
+      M->n2, M->n1, M->level, e->nblocks, e->largest_block);
+  printf("\n    #  eigenvalue            mult  rcond     block\n");
+  for (size_t i = 0; i < e->n && i < (size_t)o->neig; i++) {
+    char v[64];
+    if (e->val[i].im == 0.0)
+      snprintf(v, sizeof v, "%.12g", e->val[i].re);
+    else
+      snprintf(v, sizeof v, "%.8g%+.8gi", e->val[i].re, e->val[i].im);
+    printf("  %3zu  %-20s  %4d  %-8.2e  %s\n", i, v, e->val[i].mult, e->val[i].rcond,
+           e->val[i].block ? "outer" : "one-ring");
+  }
+  printf("\neigenvalue condition: %s%s%s (equal within relative tolerance %.1e)\n",
+         ss_verdict_name(e->cond.verdict), e->cond.reason[0] ? ": " : "", e->cond.reason,
+         e->tol);
+  if (e->basis_kind[0]) printf("subdominant basis: %s\n", e->basis_kind);
+  printf("regularity: undecided (the characteristic-map test is not implemented yet)\n");
+}
+
+static void print_label(FILE *f, const ss_star_coord *c) {
+  fputc('(', f);
+  for (int i = 0; i < c->n; i++)
+    fprintf(f, "%s%d:%d", i ? " " : "", c->idx[i], c->val[i]);
+  fputc(')', f);
+}
+
+static int write_mtx(const opts *o, const char *scheme, const char *canon,
+                     const ss_local *M) {
+  FILE *f = o->out ? fopen(o->out, "w") : stdout;
+  if (!f) {
+    fprintf(stderr, "subspectra: %s: cannot open for writing\n", o->out);
+    return SS_EXIT_USAGE;
+  }
+  const size_t n = o->ring == 1 ? M->n1 : M->n2;
+  size_t nnz = 0;
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = 0; j < n; j++)
+      nnz += M->S[i * M->n2 + j] != 0.0;
+  char buf[32];
+  fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n");
+  fprintf(f, "%% subspectra local subdivision matrix: scheme %s, %s case %s\n", scheme,
+          ss_case_name(o->kind), param_text(o, canon, buf, sizeof buf));
+  fprintf(f,
+          "%% %s: row i = point i on level j+1, column j = point j on level j (read on "
+          "level %d)\n",
+          o->ring == 1 ? "one-ring block A" : "whole two-ring S", M->level);
+  fprintf(f,
+          "%% points 1..%zu are the one-ring, %zu..%zu the rest of the two-ring; each\n"
+          "%% point is named by its exact coordinates relative to the centre, as\n"
+          "%% (chart-index:value ...) pairs in units of the level's grid\n",
+          M->n1, M->n1 + 1, M->n2);
+  for (size_t i = 0; i < n; i++) {
+    fprintf(f, "%% %zu ", i + 1);
+    print_label(f, M->label + i);
+    fputc('\n', f);
+  }
+  fprintf(f, "%zu %zu %zu\n", n, n, nnz);
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = 0; j < n; j++)
+      if (M->S[i * M->n2 + j] != 0.0)
+        fprintf(f, "%zu %zu %.17g\n", i + 1, j + 1, M->S[i * M->n2 + j]);
+  if (o->out && fclose(f) != 0) {
+    fprintf(stderr, "subspectra: %s: write failed\n", o->out);
+    return SS_EXIT_USAGE;
+  }
+  return SS_EXIT_OK;
+}
+
+/* ---- one case ---- */
+
+/* Analyse one case; link_text is the link's text for the vertex case and
+ * where is a prefix for messages ("" or "stdin:LINE: "). */
+static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
+                    const char *where, int *header) {
+  ss_error err = {0};
+  ss_link *l = NULL, *cl = NULL;
+  char *canon = NULL;
+  ss_local *M = NULL;
+  ss_eig *e = NULL;
+  int rc = SS_EXIT_OK;
+  if (o->kind == SS_CASE_VERTEX) {
+    if (ss_link_parse(link_text, &l, &err) || ss_link_canonical(l, &cl, NULL, &err) ||
+        ss_link_format(cl, &canon, &err)) {
+      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+      rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+      goto done;
+    }
+  }
+  ss_case c = {o->kind, l, o->n};
+  if (ss_local_new(s, &c, &M, &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+    rc = err.status == SS_EINPUT || err.status == SS_EIO ? SS_EXIT_USAGE : SS_EXIT_FAIL;
+    goto done;
+  }
+  if (o->format == FMT_MTX) {
+    rc = write_mtx(o, ss_scheme_name(s), canon ? canon : "", M);
+    goto done;
+  }
+  ss_eig_opts eo = ss_eig_defaults(M->dim);
+  eo.tol = o->tol;
+  if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+    rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
+    goto done;
+  }
+  const int k = l ? l->k : 0;
+  if (o->format == FMT_JSON)
+    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e);
+  else if (o->format == FMT_TSV)
+    print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, (*header)++ == 0);
+  else
+    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e);
+  if (e->cond.verdict != SS_PASS) rc = SS_EXIT_FAIL;
+done:
+  ss_eig_free(e);
+  ss_local_free(M);
+  free(canon);
+  ss_link_free(l);
+  ss_link_free(cl);
+  return rc;
+}
+
+static int run(int argc, char **argv, const char *cmd) {
+  opts o = {cmd, NULL, SS_CASE_VERTEX, 0, NULL, 0, 1e-6, 16, FMT_TEXT, 2, NULL};
+  if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
+  int r = parse(argc, argv, &o);
+  if (r) return r < 0 ? SS_EXIT_OK : r;
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  if (ss_scheme_new(o.scheme, &s, &err)) {
+    fprintf(stderr, "subspectra %s: --scheme: %s\n", cmd, err.msg);
+    return SS_EXIT_USAGE;
+  }
+  int rc = SS_EXIT_OK, header = 0;
+  if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {
+    char *line = NULL;
+    size_t cap = 0;
+    long lineno = 0, nread = 0;
+    while (getline(&line, &cap, stdin) >= 0) {
+      lineno++;
+      char *hash = strchr(line, '#');
+      if (hash) *hash = '\0';
+      char *p = line;
+      while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
+        p++;
+      size_t len = strlen(p);
+      while (len && (p[len - 1] == '\n' || p[len - 1] == '\r' || p[len - 1] == ' '))
+        p[--len] = '\0';
+      if (!*p) continue;
+      char where[48];
+      snprintf(where, sizeof where, "stdin:%ld: ", lineno);
+      int one = one_case(&o, s, p, where, &header);
+      nread++;
+      fflush(stdout);
+      if (one == SS_EXIT_USAGE) {
+        rc = SS_EXIT_USAGE;
+        break;
+      }
+      if (one == SS_EXIT_FAIL) rc = SS_EXIT_FAIL;
+    }
+    free(line);
+    if (rc == SS_EXIT_OK && nread == 0) {
+      fprintf(stderr, "subspectra %s: stdin: no links read\n", cmd);
+      rc = SS_EXIT_USAGE;
+    }
+  } else {
+    rc = one_case(&o, s, o.link, "", &header);
+  }
+  ss_scheme_free(s);
+  return rc;
+}
+
+int ss_cli_analyze(int argc, char **argv) {
+  return run(argc, argv, "analyze");
+}
+
+int ss_cli_matrix(int argc, char **argv) {
+  return run(argc, argv, "matrix");
+}
