@@ -4,6 +4,8 @@
 #ifndef SS_CLI_H
 #define SS_CLI_H
 
+#include <stdio.h>
+
 #include "ss_error.h"
 
 enum { SS_EXIT_OK = 0, SS_EXIT_FAIL = 1, SS_EXIT_USAGE = 2 };
@@ -37,6 +39,11 @@ int ss_cli_format_option(const char *cmd, const char *arg, int *json);
 int ss_cli_option_error(const char *cmd, int c, char **argv);
 /* Parse a whole decimal integer in [lo, hi]; 0 on success, -1 otherwise. */
 int ss_cli_parse_int(const char *s, long lo, long hi, long *out);
+/* The next item of a line-oriented input (one link per line): reads lines
+ * from f, drops '#' comments and surrounding white space, skips empty lines.
+ * Returns the item, which lives in *line until the next call, or NULL at the
+ * end of the input; *lineno counts every line read, for messages. */
+char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno);
 /* Monotonic wall-clock seconds. */
 double ss_cli_now(void);
 

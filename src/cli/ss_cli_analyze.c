@@ -412,17 +412,8 @@ static int run(int argc, char **argv, const char *cmd) {
     char *line = NULL;
     size_t cap = 0;
     long lineno = 0, nread = 0;
-    while (getline(&line, &cap, stdin) >= 0) {
-      lineno++;
-      char *hash = strchr(line, '#');
-      if (hash) *hash = '\0';
-      char *p = line;
-      while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
-        p++;
-      size_t len = strlen(p);
-      while (len && (p[len - 1] == '\n' || p[len - 1] == '\r' || p[len - 1] == ' '))
-        p[--len] = '\0';
-      if (!*p) continue;
+    char *p;
+    while ((p = ss_cli_next_item(stdin, &line, &cap, &lineno))) {
       char where[48];
       snprintf(where, sizeof where, "stdin:%ld: ", lineno);
       int one = one_case(&o, s, p, where, &header);

@@ -195,14 +195,8 @@ int ss_cli_enumerate_canonical(int argc, char **argv) {
   size_t cap = 0;
   long lineno = 0, nread = 0;
   int rc = SS_EXIT_OK;
-  while (getline(&line, &cap, stdin) >= 0) {
-    lineno++;
-    char *hash = strchr(line, '#');
-    if (hash) *hash = '\0';
-    char *p = line;
-    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
-      p++;
-    if (!*p) continue;
+  char *p;
+  while ((p = ss_cli_next_item(stdin, &line, &cap, &lineno))) {
     ss_error err = {0};
     ss_link *l = NULL, *cl = NULL;
     int *aut = NULL, naut = 0;

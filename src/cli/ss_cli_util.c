@@ -58,3 +58,19 @@ int ss_cli_option_error(const char *cmd, int c, char **argv) {
     return ss_cli_usage_error(cmd, "option %s needs a value", argv[optind - 1]);
   return ss_cli_usage_error(cmd, "unknown option '%s'", argv[optind - 1]);
 }
+
+char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno) {
+  while (getline(line, cap, f) >= 0) {
+    ++*lineno;
+    char *p = *line, *hash = strchr(p, '#');
+    if (hash) *hash = '\0';
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
+      p++;
+    size_t len = strlen(p);
+    while (len && (p[len - 1] == ' ' || p[len - 1] == '\t' || p[len - 1] == '\r' ||
+                   p[len - 1] == '\n'))
+      p[--len] = '\0';
+    if (*p) return p;
+  }
+  return NULL;
+}
