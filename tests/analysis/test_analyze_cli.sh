@@ -5,46 +5,30 @@
 # status 2 with a message for every kind of bad input.
 set -u
 exe=$1
-checks=0
-failed=0
-fail() {
-  failed=$((failed + 1))
-  echo "FAILED: $*" >&2
-}
-# expect STATUS PATTERN STDIN CMD...: feed STDIN, check status and output
-expect() {
-  local want=$1 pat=$2 input=$3
-  shift 3
-  checks=$((checks + 1))
-  local out rc
-  out=$(printf '%s' "$input" | timeout 120 "$@" 2>&1)
-  rc=$?
-  if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
-    fail "$* <<< '$input' -> status $rc (want $want): $(head -3 <<<"$out")"
-  fi
-}
+SS_EXPECT_TIMEOUT=120
+. "$(dirname "$0")/../ss_expect.sh"
 
-expect 0 "eigenstructure with LAPACK" "" "$exe" analyze --help
-expect 0 "Matrix Market" "" "$exe" matrix --help
-expect 2 "unknown scheme 'nope'" "" "$exe" analyze --scheme nope --edge 4
-expect 2 "--scheme is required" "" "$exe" analyze --edge 4
-expect 2 "exactly one of" "" "$exe" analyze --scheme mlca
-expect 2 "exactly one of" "" "$exe" analyze --scheme mlca --edge 4 --face
-expect 2 "face case exists only" "" "$exe" analyze --scheme mlca --face
-expect 2 "does not support the vertex case" "" "$exe" analyze --scheme catmull-clark --vertex octahedron
-expect 2 "does not support the edge case" "" "$exe" analyze --scheme loop --edge 5
-expect 2 "valence must be an integer in 3..1000, not '2'" "" "$exe" analyze --scheme mlca --edge 2
-expect 2 "not 'x'" "" "$exe" analyze --scheme mlca --surface-vertex x
-expect 2 "--tol" "" "$exe" analyze --scheme mlca --edge 4 --tol 0.5
-expect 2 "--format" "" "$exe" analyze --scheme mlca --edge 4 --format mtx
-expect 2 "--ring" "" "$exe" matrix --scheme mlca --edge 4 --ring 3
-expect 2 "unknown link .dodecahedron." "" "$exe" analyze --scheme mlca --vertex dodecahedron
-expect 2 "the vertex count is 4 but there are 2" "" "$exe" analyze --scheme mlca --vertex "4 bcd,adc"
-expect 2 "stdin:2: .*not symmetric" "octahedron
+expect_in 0 "eigenstructure with LAPACK" "" "$exe" analyze --help
+expect_in 0 "Matrix Market" "" "$exe" matrix --help
+expect_in 2 "unknown scheme 'nope'" "" "$exe" analyze --scheme nope --edge 4
+expect_in 2 "--scheme is required" "" "$exe" analyze --edge 4
+expect_in 2 "exactly one of" "" "$exe" analyze --scheme mlca
+expect_in 2 "exactly one of" "" "$exe" analyze --scheme mlca --edge 4 --face
+expect_in 2 "face case exists only" "" "$exe" analyze --scheme mlca --face
+expect_in 2 "does not support the vertex case" "" "$exe" analyze --scheme catmull-clark --vertex octahedron
+expect_in 2 "does not support the edge case" "" "$exe" analyze --scheme loop --edge 5
+expect_in 2 "valence must be an integer in 3..1000, not '2'" "" "$exe" analyze --scheme mlca --edge 2
+expect_in 2 "not 'x'" "" "$exe" analyze --scheme mlca --surface-vertex x
+expect_in 2 "--tol" "" "$exe" analyze --scheme mlca --edge 4 --tol 0.5
+expect_in 2 "--format" "" "$exe" analyze --scheme mlca --edge 4 --format mtx
+expect_in 2 "--ring" "" "$exe" matrix --scheme mlca --edge 4 --ring 3
+expect_in 2 "unknown link .dodecahedron." "" "$exe" analyze --scheme mlca --vertex dodecahedron
+expect_in 2 "the vertex count is 4 but there are 2" "" "$exe" analyze --scheme mlca --vertex "4 bcd,adc"
+expect_in 2 "stdin:2: .*not symmetric" "octahedron
 5 bcd,ade,aed,acb,abc
 " "$exe" analyze --scheme tetoct --vertex - --format json
-expect 2 "no links read" "" "$exe" analyze --scheme tetoct --vertex -
-expect 2 "unexpected argument" "" "$exe" analyze --scheme mlca --edge 4 extra
+expect_in 2 "no links read" "" "$exe" analyze --scheme tetoct --vertex -
+expect_in 2 "unexpected argument" "" "$exe" analyze --scheme mlca --edge 4 extra
 
 # the JSON contract, one object per line
 json=$(printf 'tetrahedron\n# a comment\n\noctahedron\nbipyramid:5\n' |
@@ -72,9 +56,9 @@ assert [round(e["re"], 12) for e in o["eigenvalues"][:4]] == [1, 0.5, 0.5, 0.5]
 PY
 
 # edge cases carry their valence; tsv has a header and one row per case
-expect 0 '"case":"edge","valence":5' "" "$exe" analyze --scheme tetoct --edge 5 --format json
-expect 0 "^scheme	case	link_or_valence" "" "$exe" analyze --scheme loop --surface-vertex 7 --format tsv
-expect 0 "eigenvalue condition: pass" "" "$exe" analyze --scheme catmull-clark --surface-vertex 5
+expect_in 0 '"case":"edge","valence":5' "" "$exe" analyze --scheme tetoct --edge 5 --format json
+expect_in 0 "^scheme	case	link_or_valence" "" "$exe" analyze --scheme loop --surface-vertex 7 --format tsv
+expect_in 0 "eigenvalue condition: pass" "" "$exe" analyze --scheme catmull-clark --surface-vertex 5
 
 # Matrix Market: header, labels, and the trace equals the sum of the eigenvalues
 mtx=$("$exe" matrix --scheme catmull-clark --surface-vertex 5)
@@ -100,7 +84,6 @@ ev = json.loads(sys.argv[2])["eigenvalues"]
 assert len(ev) == 31
 assert abs(sum(e["re"] for e in ev) - trace) < 1e-9, (trace, sum(e["re"] for e in ev))
 PY
-expect 0 "^9 9 " "" "$exe" matrix --scheme mlca --surface-vertex 4 --ring 1
+expect_in 0 "^9 9 " "" "$exe" matrix --scheme mlca --surface-vertex 4 --ring 1
 
-echo "analyze_cli: $checks checks, $failed failed"
-[ "$failed" -eq 0 ]
+expect_done "analyze_cli"

@@ -7,24 +7,7 @@ exe=$1
 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-checks=0
-failed=0
-
-# expect STATUS PATTERN CMD...: run CMD, check its exit status and that
-# stdout+stderr match the extended regex PATTERN.
-expect() {
-  local want=$1 pat=$2
-  shift 2
-  checks=$((checks + 1))
-  local out rc
-  out=$(timeout 60 "$@" 2>&1)
-  rc=$?
-  if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
-    failed=$((failed + 1))
-    echo "FAILED: $* -> status $rc (want $want), output:" >&2
-    echo "$out" | head -5 >&2
-  fi
-}
+. "$(dirname "$0")/../ss_expect.sh"
 
 m=$src/data/meshes
 expect 0 "subdivide" "$exe" --help
@@ -108,5 +91,4 @@ if [ "$(grep -c '^12 ' <<<"$r1")" -ne 3 ] || [ "$(wc -l <<<"$r1")" -ne 3 ] || [ 
 fi
 expect 0 '^\{"vertices":12,"seed":7,"sample":2,"link":"12 ' "$exe" enumerate random --vertices 12 --samples 3 --seed 7 --format json
 
-echo "cli: $checks checks, $failed failed"
-[ "$failed" -eq 0 ] && [ "$checks" -gt 0 ]
+expect_done "cli"

@@ -5,37 +5,20 @@
 # malformed link.
 set -u
 exe=$1
-checks=0
-failed=0
-fail() {
-  failed=$((failed + 1))
-  echo "FAILED: $*" >&2
-}
-# expect STATUS PATTERN STDIN CMD...: feed STDIN, check status and output
-expect() {
-  local want=$1 pat=$2 input=$3
-  shift 3
-  checks=$((checks + 1))
-  local out rc
-  out=$(printf '%s' "$input" | timeout 60 "$@" 2>&1)
-  rc=$?
-  if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
-    fail "$* <<< '$input' -> status $rc (want $want): $(head -3 <<<"$out")"
-  fi
-}
+. "$(dirname "$0")/../ss_expect.sh"
 
-expect 0 "Every link" "" "$exe" enumerate links --help
-expect 0 "canonical form" "" "$exe" enumerate canonical --help
-expect 0 "links" "" "$exe" enumerate --help
-expect 2 "--vertices is required" "" "$exe" enumerate links
-expect 2 "--vertices '3'" "" "$exe" enumerate links --vertices 3
-expect 2 "--vertices '9..8'" "" "$exe" enumerate links --vertices 9..8
-expect 2 "--vertices '21'" "" "$exe" enumerate links --vertices 21
-expect 2 "--part '3/3'" "" "$exe" enumerate links --vertices 8 --part 3/3
-expect 2 "--part 'x'" "" "$exe" enumerate links --vertices 8 --part x
-expect 2 "unknown option '--bogus'" "" "$exe" enumerate links --bogus
-expect 2 "unknown 'enumerate frob'" "" "$exe" enumerate frob
-expect 2 "no links read" "" "$exe" enumerate canonical
+expect_in 0 "Every link" "" "$exe" enumerate links --help
+expect_in 0 "canonical form" "" "$exe" enumerate canonical --help
+expect_in 0 "links" "" "$exe" enumerate --help
+expect_in 2 "--vertices is required" "" "$exe" enumerate links
+expect_in 2 "--vertices '3'" "" "$exe" enumerate links --vertices 3
+expect_in 2 "--vertices '9..8'" "" "$exe" enumerate links --vertices 9..8
+expect_in 2 "--vertices '21'" "" "$exe" enumerate links --vertices 21
+expect_in 2 "--part '3/3'" "" "$exe" enumerate links --vertices 8 --part 3/3
+expect_in 2 "--part 'x'" "" "$exe" enumerate links --vertices 8 --part x
+expect_in 2 "unknown option '--bogus'" "" "$exe" enumerate links --bogus
+expect_in 2 "unknown 'enumerate frob'" "" "$exe" enumerate frob
+expect_in 2 "no links read" "" "$exe" enumerate canonical
 
 # counts, as a table and as JSON
 checks=$((checks + 1))
@@ -85,14 +68,14 @@ done | "$exe" enumerate canonical | sort -u | wc -l)
 checks=$((checks + 1))
 forms=$(printf '%s\n' "bipyramid:5" "icosahedron" "bipyramid:10" | "$exe" enumerate canonical | sort -u | wc -l)
 [ "$forms" -eq 3 ] || fail "distinct links: $forms canonical forms, expected 3"
-expect 0 '"automorphisms":120' "icosahedron" "$exe" enumerate canonical --format json
+expect_in 0 '"automorphisms":120' "icosahedron" "$exe" enumerate canonical --format json
 
 # malformed links: status 2, the line number and the problem
 ok="4 bcd,adc,abd,acb"
-expect 2 "stdin:2: the vertex count is 5 but there are 4" "$ok
+expect_in 2 "stdin:2: the vertex count is 5 but there are 4" "$ok
 5 bcd,adc,abd,acb
 " "$exe" enumerate canonical
-expect 2 "stdin:4: .*not symmetric" "$ok
+expect_in 2 "stdin:4: .*not symmetric" "$ok
 # a comment line
 
 5 bcde,adc,abd,acb,bcd
@@ -102,11 +85,10 @@ torus=$(python3 -c '
 d = [(1, 0), (0, 1), (-1, 1), (-1, 0), (0, -1), (1, -1)]
 print(9, ",".join("".join(chr(97 + ((i + a) % 3) * 3 + (j + b) % 3) for a, b in d)
                   for i in range(3) for j in range(3)))')
-expect 2 "stdin:1: .*not a sphere" "$torus" "$exe" enumerate canonical
-expect 2 "stdin:1: .*multi-edge" "4 bbd,adc,abd,acb" "$exe" enumerate canonical
-expect 2 "stdin:1: .*degree 2" "5 bcd,acd,abd,abc,ab" "$exe" enumerate canonical
-expect 2 "stdin:1: .*rotations do not form triangles" "4 bcd,acd,abd,acb" "$exe" enumerate canonical
-expect 2 "stdin:1: .*unknown link 'cube'" "cube" "$exe" enumerate canonical
+expect_in 2 "stdin:1: .*not a sphere" "$torus" "$exe" enumerate canonical
+expect_in 2 "stdin:1: .*multi-edge" "4 bbd,adc,abd,acb" "$exe" enumerate canonical
+expect_in 2 "stdin:1: .*degree 2" "5 bcd,acd,abd,abc,ab" "$exe" enumerate canonical
+expect_in 2 "stdin:1: .*rotations do not form triangles" "4 bcd,acd,abd,acb" "$exe" enumerate canonical
+expect_in 2 "stdin:1: .*unknown link 'cube'" "cube" "$exe" enumerate canonical
 
-echo "enumerate cli: $checks checks, $failed failed"
-[ "$failed" -eq 0 ] && [ "$checks" -gt 0 ]
+expect_done "enumerate cli"

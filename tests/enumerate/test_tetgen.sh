@@ -12,12 +12,7 @@ set -u
 exe=$1
 tetgen=$2
 meshdir=$3
-checks=0
-failed=0
-fail() {
-  failed=$((failed + 1))
-  echo "FAILED: $*" >&2
-}
+. "$(dirname "$0")/../ss_expect.sh"
 if ! command -v "$tetgen" >/dev/null 2>&1; then
   echo "test_tetgen.sh: tetgen not found ('$tetgen'); install it (apt-get install tetgen, or ./run)" >&2
   exit 1
@@ -25,18 +20,6 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# expect STATUS PATTERN CMD...: check status and combined output
-expect() {
-  local want=$1 pat=$2
-  shift 2
-  checks=$((checks + 1))
-  local out rc
-  out=$(timeout 60 "$@" 2>&1)
-  rc=$?
-  if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
-    fail "$* -> status $rc (want $want): $(head -3 <<<"$out")"
-  fi
-}
 
 # a closed surface: the cube [0,2]^3 as a piecewise linear complex
 cat >"$tmp/cube.poly" <<'POLY'
@@ -179,5 +162,4 @@ expect 2 "icosahedron.obj: .*no tetrahedra or hexahedra" "$exe" enumerate mesh "
 printf 'MeshVersionFormatted 1\nDimension 3\nVertices\n1\n0 0 0 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n' >"$tmp/dangling.mesh"
 expect 2 "dangling.mesh" "$exe" enumerate mesh "$tmp/dangling.mesh"
 
-echo "test_tetgen: $checks checks, $failed failed"
-[ "$failed" -eq 0 ]
+expect_done "test_tetgen"
