@@ -27,6 +27,14 @@ void ss_eig_free(ss_eig *e) {
   free(e);
 }
 
+/* The leading m x m block of the row-major n x n matrix S, column-major into
+ * a (LAPACK's layout). */
+static void colmajor(const double *S, size_t n, size_t m, double *a) {
+  for (size_t i = 0; i < m; i++)
+    for (size_t j = 0; j < m; j++)
+      a[j * m + i] = S[i * n + j];
+}
+
 /* ---- strongly connected components of the outer block (Tarjan, iterative) ---- */
 
 /* Components of the graph on nodes 0..nc-1 with an edge i -> j when
@@ -140,9 +148,7 @@ ss_status ss_eig_dense(const double *S, size_t n, double *re, double *im, ss_err
     free(vr);
     return ss_error_nomem(err, "eigenvalues");
   }
-  for (size_t i = 0; i < n; i++)
-    for (size_t j = 0; j < n; j++)
-      a[j * n + i] = S[i * n + j];
+  colmajor(S, n, n, a);
   lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)n, a,
                                   (lapack_int)n, re, im, NULL, 1, vr, (lapack_int)n);
   free(a);
@@ -176,28 +182,35 @@ static int close_to(const ss_eigval *a, const ss_eigval *b, double tol) {
   return d <= tol * fmax(modulus(a), modulus(b));
 }
 
-static void make_groups(ss_eig *e, double tol) {
+/* Group equal eigenvalues (within tol, relative) and set their
+ * multiplicities.  SS_ENOMEM. */
+static ss_status make_groups(ss_eig *e, double tol, ss_error *err) {
   int ng = 0;
-  size_t *rep = malloc((e->n + 1) * sizeof *rep);
+  size_t *rep = malloc((e->n + 1) * sizeof *rep); /* first member of a group */
+  size_t *size = calloc(e->n + 1, sizeof *size);  /* members of a group */
+  if (!rep || !size) {
+    free(rep);
+    free(size);
+    return ss_error_nomem(err, "eigenvalue groups");
+  }
   for (size_t i = 0; i < e->n; i++) {
     int g = -1;
     /* groups are contiguous in practice; look back over the recent ones */
-    for (int k = ng - 1; rep && k >= 0 && k >= ng - 8 && g < 0; k--)
+    for (int k = ng - 1; k >= 0 && k >= ng - 8 && g < 0; k--)
       if (close_to(e->val + rep[k], e->val + i, tol)) g = k;
     if (g < 0) {
       g = ng++;
-      if (rep) rep[g] = i;
+      rep[g] = i;
     }
     e->val[i].group = g;
+    size[g]++;
   }
-  for (size_t i = 0; i < e->n; i++) {
-    int m = 0;
-    for (size_t j = 0; j < e->n; j++)
-      m += e->val[j].group == e->val[i].group;
-    e->val[i].mult = m;
-  }
+  for (size_t i = 0; i < e->n; i++)
+    e->val[i].mult = (int)size[e->val[i].group];
   e->ngroups = ng;
   free(rep);
+  free(size);
+  return SS_OK;
 }
 
 /* ---- the eigenvalue condition ---- */
@@ -288,10 +301,11 @@ done:
 
 /* Solve (C - mu I) x = r for the outer block by forward substitution over the
  * components (comp/start from tarjan); x, r indexed by outer node.  Returns 0,
- * or -1 if a diagonal block is (numerically) singular. */
+ * or -1 if a diagonal block is (numerically) singular.  Workspaces: work holds
+ * (b+1)^2 doubles and piv b pivots, b the largest block. */
 static int outer_solve(const double *S, size_t n, size_t n1, const size_t *comp,
                        const size_t *start, long ncomp, double mu, const double *r,
-                       double *x, unsigned char *done_, double *work) {
+                       double *x, unsigned char *done_, double *work, lapack_int *piv) {
   const size_t nc = n - n1;
   memset(done_, 0, nc);
   for (long c = 0; c < ncomp; c++) {
@@ -313,12 +327,9 @@ static int outer_solve(const double *S, size_t n, size_t n1, const size_t *comp,
       if (!(fabs(work[0]) > 1e-12 * fmax(1.0, scale))) return -1;
       x[comp[b]] = work[1] / work[0];
     } else {
-      lapack_int *piv = malloc(sz * sizeof *piv);
-      if (!piv) return -1;
       lapack_int info =
           LAPACKE_dgesv(LAPACK_COL_MAJOR, (lapack_int)sz, 1, work, (lapack_int)sz, piv,
                         work + sz * sz, (lapack_int)sz);
-      free(piv);
       if (info != 0) return -1;
       for (size_t k = 0; k < sz; k++)
         x[comp[b + k]] = work[sz * sz + k];
@@ -357,6 +368,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   size_t *comp = malloc((nc + 1) * sizeof *comp),
          *start = malloc((nc + 2) * sizeof *start);
   double *blk = NULL, *bw = NULL;
+  lapack_int *piv = NULL;
   if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || !comp || !start) {
     st = ss_error_nomem(err, "eigenvalues");
     goto done;
@@ -371,9 +383,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     goto done;
   }
   /* the one-ring block */
-  for (size_t i = 0; i < n1; i++)
-    for (size_t j = 0; j < n1; j++)
-      a[j * n1 + i] = S[i * n + j];
+  colmajor(S, n, n1, a);
   if ((st = block_eig(a, n1, wr, wi, rc, vr, err))) goto done;
   for (size_t i = 0; i < n1; i++) {
     e->val[i] = (ss_eigval){wr[i], wi[i], rc[i], 0, 0, 0};
@@ -393,7 +403,8 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   e->largest_block = big;
   blk = malloc((big * big + 1) * sizeof *blk);
   bw = malloc(((big + 1) * (big + 1) + nc + 1) * sizeof *bw);
-  if (!blk || !bw) {
+  piv = malloc((big + 1) * sizeof *piv);
+  if (!blk || !bw || !piv) {
     st = ss_error_nomem(err, "outer blocks");
     goto done;
   }
@@ -412,7 +423,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
       e->val[k++] = (ss_eigval){wr[r], wi[r], rc[r], (int)c + 1, 0, 0};
   }
   qsort(e->val, n, sizeof *e->val, by_modulus);
-  make_groups(e, opts->tol);
+  if ((st = make_groups(e, opts->tol, err))) goto done;
   condition(e, e->m, opts->tol);
 
   /* the subdominant basis: only when the leading m are real and positive */
@@ -459,9 +470,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     if (ok) e->basis_kind = "eigenvectors";
   } else if (!outer) {
     q = malloc((n1 * n1 + 1) * sizeof *q);
-    for (size_t i = 0; q && i < n1; i++)
-      for (size_t j = 0; j < n1; j++)
-        a[j * n1 + i] = S[i * n + j];
+    if (q) colmajor(S, n, n1, a); /* dgeevx overwrote the first copy */
     ok = q && schur_basis(a, n1, e->val + 1, m, q) == 0;
     if (ok) {
       memcpy(x1, q, n1 * (size_t)m * sizeof *x1);
@@ -487,7 +496,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
       for (size_t i = 0; i < n1; i++)
         e->basis[(size_t)j * n + i] = x1[(size_t)j * n1 + i];
       ok = outer_solve(S, n, n1, comp, start, ncomp, t[j * m + j], r,
-                       e->basis + (size_t)j * n + n1, dn, bw) == 0;
+                       e->basis + (size_t)j * n + n1, dn, bw, piv) == 0;
     }
     if (!r || !dn) ok = 0;
     free(r);
@@ -500,9 +509,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     free(q);
     q = malloc((n * n + 1) * sizeof *q);
     if (full && q) {
-      for (size_t i = 0; i < n; i++)
-        for (size_t j = 0; j < n; j++)
-          full[j * n + i] = S[i * n + j];
+      colmajor(S, n, n, full);
       ok = schur_basis(full, n, e->val + 1, m, q) == 0;
       if (ok) {
         memcpy(e->basis, q, n * (size_t)m * sizeof *e->basis);
@@ -532,6 +539,7 @@ done:
   free(start);
   free(blk);
   free(bw);
+  free(piv);
   if (st) {
     ss_eig_free(e);
     return st;
