@@ -82,6 +82,63 @@ static int count_near(const ss_eig *e, double x, double tol) {
 static const double curve[5] = {1.0, 0.5, 0.25, 0.125, 0.125}; /* cubic B-spline
                                                                   two-ring spectrum */
 
+/* The subdominant basis X (n x m) spans an invariant subspace of S for
+ * lambda1..m: S X = X C with C = (X^T X)^-1 X^T S X, and trace C is the sum of
+ * those eigenvalues.  Checked for residual and trace.  Without the eigenvalue
+ * condition there must be no basis. */
+static void check_basis(const ss_local *M, const ss_eig *e, const char *what) {
+  if (e->cond.verdict != SS_PASS) { /* no map without the eigenvalue condition */
+    CHECK(e->basis == NULL, "%s: a basis although the condition fails", what);
+    return;
+  }
+  CHECK(e->basis != NULL, "%s: no subdominant basis", what);
+  if (!e->basis) return;
+  const size_t n = M->n2;
+  const int m = e->m;
+  double *SX = calloc(n * (size_t)m, sizeof *SX), G[9] = {0}, H[9] = {0}, C[9] = {0};
+  for (int c = 0; c < m; c++)
+    for (size_t i = 0; i < n; i++)
+      for (size_t j = 0; j < n; j++)
+        SX[(size_t)c * n + i] += M->S[i * n + j] * e->basis[(size_t)c * n + j];
+  for (int a = 0; a < m; a++)
+    for (int b = 0; b < m; b++)
+      for (size_t i = 0; i < n; i++) {
+        G[a * m + b] += e->basis[(size_t)a * n + i] * e->basis[(size_t)b * n + i];
+        H[a * m + b] += e->basis[(size_t)a * n + i] * SX[(size_t)b * n + i];
+      }
+  /* C = G^-1 H by Gauss-Jordan (G is m x m, m <= 3, positive definite) */
+  for (int col = 0; col < m; col++) {
+    for (int r = 0; r < m; r++)
+      C[r * m + col] = H[r * m + col];
+  }
+  for (int p = 0; p < m; p++) {
+    const double d = G[p * m + p];
+    for (int c = 0; c < m; c++)
+      G[p * m + c] /= d, C[p * m + c] /= d;
+    for (int r = 0; r < m; r++) {
+      if (r == p) continue;
+      const double f = G[r * m + p];
+      for (int c = 0; c < m; c++)
+        G[r * m + c] -= f * G[p * m + c], C[r * m + c] -= f * C[p * m + c];
+    }
+  }
+  double res = 0.0, scale = 0.0, trace = 0.0, want = 0.0;
+  for (int c = 0; c < m; c++) {
+    trace += C[c * m + c];
+    want += e->val[c + 1].re;
+    for (size_t i = 0; i < n; i++) {
+      double y = SX[(size_t)c * n + i];
+      for (int k = 0; k < m; k++)
+        y -= e->basis[(size_t)k * n + i] * C[k * m + c];
+      res = fmax(res, fabs(y));
+      scale = fmax(scale, fabs(e->basis[(size_t)c * n + i]));
+    }
+  }
+  CHECK(res <= 1e-10 * scale, "%s: S X - X C = %g (basis not invariant)", what, res);
+  CHECK_CLOSE(trace, want, 1e-10, "%s: trace of S on the basis", what);
+  free(SX);
+}
+
 /* ---- 2D ---- */
 
 static void test_surfaces(void) {
@@ -105,6 +162,9 @@ static void test_surfaces(void) {
       CHECK_CLOSE(ec->val[i].re, lcc, 1e-10, "catmull-clark n=%d lambda%d", n, i);
       CHECK_CLOSE(el->val[i].re, lloop, 1e-10, "loop n=%d lambda%d", n, i);
     }
+    check_basis(Mm, em, "mlca surface");
+    check_basis(Mc, ec, "catmull-clark surface");
+    check_basis(Ml, el, "loop surface");
     CHECK(em->cond.verdict == SS_PASS && ec->cond.verdict == SS_PASS &&
               el->cond.verdict == SS_PASS,
           "n=%d: eigenvalue condition %s / %s / %s", n, em->cond.reason, ec->cond.reason,
@@ -193,6 +253,7 @@ static void test_mlca_regular(void) {
     }
     free(A);
     CHECK(e->cond.verdict == SS_PASS, "regular vertex: %s", e->cond.reason);
+    check_basis(M, e, "regular vertex");
     ss_eig_free(e);
     ss_local_free(M);
   }
@@ -223,6 +284,7 @@ static void test_mlca_edges(void) {
             "edge n=%d: spectrum is not 2D x curve", n);
     free(got);
     free(expect);
+    check_basis(M3, e3, "mlca edge");
     ss_eig_free(e2), ss_eig_free(e3);
     ss_local_free(M2), ss_local_free(M3);
   }
@@ -243,6 +305,7 @@ static void test_tetoct(void) {
       CHECK_CLOSE(e->val[i].re, 0.25, 1e-10, "face lambda%d", i);
     CHECK(hypot(e->val[10].re, e->val[10].im) < 0.25 - 1e-3, "face: |lambda10| = %g",
           hypot(e->val[10].re, e->val[10].im));
+    check_basis(M, e, "tetoct face");
     ss_eig_free(e);
     ss_local_free(M);
   }
@@ -263,6 +326,7 @@ static void test_tetoct(void) {
     CHECK(e->val[1].mult + e->val[2].mult + e->val[3].mult == 5,
           "edge n=%d: multiplicities %d %d %d", n, e->val[1].mult, e->val[2].mult,
           e->val[3].mult);
+    check_basis(M, e, "tetoct edge");
     ss_eig_free(e);
     ss_local_free(M);
   }
@@ -290,6 +354,7 @@ static int visit(const ss_link *l, void *vctx) {
     else
       CHECK(M->n2 == (size_t)(5 * k - 5) && M->n1 == (size_t)(k + 1),
             "tetoct k=%d: two-ring %zu one-ring %zu", k, M->n2, M->n1);
+    check_basis(M, e, ss_scheme_name(ss[si]));
     double *ref = values(e);
     for (int mirror = 0; mirror < 2; mirror++) {
       ss_link *r = ss_testlink_scrambled(l, (unsigned)(ctx->count * 7 + mirror), mirror);
