@@ -254,6 +254,14 @@ static void test_mlca_regular(void) {
     free(A);
     CHECK(e->cond.verdict == SS_PASS, "regular vertex: %s", e->cond.reason);
     check_basis(M, e, "regular vertex");
+    /* outer blocks: a point of [-2,2]^3 outside [-1,1]^3 keeps its +-2
+     * coordinates (their rows read only themselves there), the others range
+     * over [-1,1]; so one block per pattern of +-2 entries: 6 of 9 points,
+     * 12 of 3, 8 of 1 */
+    CHECK(e->nblocks == 26 && e->largest_block == 9,
+          "regular vertex: %zu outer blocks, "
+          "largest %zu (expected 26, 9)",
+          e->nblocks, e->largest_block);
     ss_eig_free(e);
     ss_local_free(M);
   }
@@ -568,6 +576,28 @@ static void test_verdicts(void) {
   CHECK(verdict_of(negative, 6, 3, 0, 1e-6, NULL) == SS_FAIL, "negative lambda3");
   CHECK(verdict_of(ok, 6, 3, 1, 1e-6, NULL) == SS_FAIL, "complex lambda1");
   CHECK(verdict_of(tie34, 6, 2, 0, 1e-6, NULL) == SS_PASS, "2D: lambda2 > |lambda3|");
+  /* condition numbers: a symmetric matrix (Q diag(1, 1/2, 1/4) Q^T, Q a
+   * rotation) has perfectly conditioned eigenvalues, rcond = 1 */
+  const double c = cos(0.3), sn = sin(0.3), d[3] = {1.0, 0.5, 0.25};
+  const double Q[9] = {c, -sn, 0, sn * c, c * c, -sn, sn * sn, sn * c, c};
+  double A[9] = {0};
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      for (int k = 0; k < 3; k++)
+        A[i * 3 + j] += Q[i * 3 + k] * d[k] * Q[j * 3 + k];
+  ss_eig_opts o = ss_eig_defaults(2);
+  o.basis = 0;
+  ss_eig *e = NULL;
+  ss_error err = {0};
+  if (!ss_eig_new(A, 3, 3, &o, &e, &err)) {
+    for (int i = 0; i < 3; i++) {
+      CHECK_CLOSE(e->val[i].re, d[i], 1e-12, "symmetric: eigenvalue %d", i);
+      CHECK_CLOSE(e->val[i].rcond, 1.0, 1e-12, "symmetric: rcond of eigenvalue %d", i);
+    }
+    ss_eig_free(e);
+  } else {
+    CHECK(0, "%s", err.msg);
+  }
 }
 
 int main(void) {
