@@ -3,29 +3,83 @@
 
 #include <stdlib.h>
 
+/* Room for m more triplets; 0, or -1 (and k->st set) without memory. */
+static int reserve(ss_sink *k, size_t m) {
+  ss_triplets *t = k->M;
+  if (t->n + m <= t->cap) return 0;
+  size_t cap = t->cap ? 2 * t->cap : 1024;
+  while (cap < t->n + m)
+    cap *= 2;
+  ss_idx *r = realloc(t->row, cap * sizeof *r);
+  if (r) t->row = r;
+  ss_idx *c = realloc(t->col, cap * sizeof *c);
+  if (c) t->col = c;
+  double *w2 = realloc(t->w, cap * sizeof *w2);
+  if (w2) t->w = w2;
+  if (!r || !c || !w2) {
+    k->st = SS_ENOMEM;
+    return -1;
+  }
+  t->cap = cap;
+  return 0;
+}
+
 void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w) {
   const ss_split *L = k->L;
-  const double ws = w / (double)ss_split_npar(L, src);
+  const size_t np = ss_split_npar(L, src);
+  if (reserve(k, np)) return;
+  ss_triplets *t = k->M;
+  const double ws = w / (double)np;
   for (size_t q = L->ptr[src]; q < L->ptr[src + 1]; q++) {
-    ss_triplets *t = k->M;
-    if (t->n == t->cap) {
-      size_t cap = t->cap ? 2 * t->cap : 1024;
-      ss_idx *r = realloc(t->row, cap * sizeof *r);
-      if (r) t->row = r;
-      ss_idx *c = realloc(t->col, cap * sizeof *c);
-      if (c) t->col = c;
-      double *w2 = realloc(t->w, cap * sizeof *w2);
-      if (w2) t->w = w2;
-      if (!r || !c || !w2) {
-        k->st = SS_ENOMEM;
-        return;
-      }
-      t->cap = cap;
-    }
     t->row[t->n] = (ss_idx)row;
     t->col[t->n] = L->parent[q];
     t->w[t->n++] = ws;
   }
+}
+
+/* Append the m merged entries of row. */
+static void flush(ss_sink *k, size_t row, int m, const ss_idx *col, const double *acc) {
+  if (reserve(k, (size_t)m)) return;
+  ss_triplets *t = k->M;
+  for (int i = 0; i < m; i++) {
+    t->row[t->n] = (ss_idx)row;
+    t->col[t->n] = col[i];
+    t->w[t->n++] = acc[i];
+  }
+}
+
+void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src,
+                                const double *w, double scale) {
+  enum { CAP = 4 * SS_MAXCELLVERTS };
+  ss_idx col[CAP];
+  double acc[CAP];
+  int m = 0;
+  const ss_split *L = k->L;
+  for (int j = 0; j < n; j++) {
+    if (w[j] == 0.0) continue;
+    const size_t np = ss_split_npar(L, src[j]);
+    if (np > CAP) {
+      ss_sink_emit_operator(k, row, src[j], w[j] * scale);
+      continue;
+    }
+    if (m + np > CAP) { /* more distinct parents than merging has room for */
+      flush(k, row, m, col, acc);
+      m = 0;
+    }
+    const double ws = w[j] * scale / (double)np;
+    for (size_t q = L->ptr[src[j]]; q < L->ptr[src[j] + 1]; q++) {
+      const ss_idx c = L->parent[q];
+      int i = 0;
+      while (i < m && col[i] != c)
+        i++;
+      if (i == m) {
+        col[m] = c;
+        acc[m++] = 0.0;
+      }
+      acc[i] += ws;
+    }
+  }
+  flush(k, row, m, col, acc);
 }
 
 void ss_triplets_clear(ss_triplets *t) {

@@ -45,6 +45,13 @@ typedef struct {
 /* Operator-mode emission (out of line: it walks the parents). */
 void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w);
 
+/* Operator-mode ss_sink_emit_many: the sources' parents are merged into
+ * distinct coarse columns before they are appended (a fine hex's 8 sources
+ * have 27 parent slots but at most 8 distinct parents), which cuts the triplet
+ * list, and with it the assembly of R, several-fold. */
+void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src,
+                                const double *w, double scale);
+
 /* Send weight w from split vertex src to fine vertex row. */
 static inline void ss_sink_emit(ss_sink *k, size_t row, size_t src, double w) {
   if (k->M) {
@@ -64,8 +71,7 @@ static inline void ss_sink_emit(ss_sink *k, size_t row, size_t src, double w) {
 static inline void ss_sink_emit_many(ss_sink *k, size_t row, int n, const ss_idx *src,
                                      const double *w, double scale) {
   if (k->M) {
-    for (int j = 0; j < n; j++)
-      if (w[j] != 0.0) ss_sink_emit_operator(k, row, src[j], w[j] * scale);
+    ss_sink_emit_many_operator(k, row, n, src, w, scale);
     return;
   }
   double acc[SS_MAXDIM] = {0.0};
