@@ -35,6 +35,50 @@ static void colmajor(const double *S, size_t n, size_t m, double *a) {
       a[j * m + i] = S[i * n + j];
 }
 
+/* ---- the sparsity of S ---- */
+
+/* S in compressed rows; in row r the columns < n1 (the part B of the outer
+ * rows) come before mid[r], those >= n1 (C) from mid[r] on. */
+typedef struct {
+  size_t *ptr; /* n + 1 row starts */
+  size_t *mid; /* n: first entry of a row with column >= n1 */
+  size_t *col; /* nnz column indices, increasing within a row */
+  double *val; /* nnz values */
+} csr;
+
+static void csr_free(csr *A) {
+  free(A->ptr);
+  free(A->mid);
+  free(A->col);
+  free(A->val);
+}
+
+/* Returns 0, or -1 when out of memory. */
+static int csr_make(const double *S, size_t n, size_t n1, csr *A) {
+  size_t nnz = 0;
+  for (size_t k = 0; k < n * n; k++)
+    nnz += S[k] != 0.0;
+  A->ptr = malloc((n + 1) * sizeof *A->ptr);
+  A->mid = malloc((n + 1) * sizeof *A->mid);
+  A->col = malloc((nnz + 1) * sizeof *A->col);
+  A->val = malloc((nnz + 1) * sizeof *A->val);
+  if (!A->ptr || !A->mid || !A->col || !A->val) return -1;
+  size_t q = 0;
+  for (size_t i = 0; i < n; i++) {
+    A->ptr[i] = q;
+    A->mid[i] = SIZE_MAX;
+    for (size_t j = 0; j < n; j++) {
+      if (S[i * n + j] == 0.0) continue;
+      if (j >= n1 && A->mid[i] == SIZE_MAX) A->mid[i] = q;
+      A->col[q] = j;
+      A->val[q++] = S[i * n + j];
+    }
+    if (A->mid[i] == SIZE_MAX) A->mid[i] = q;
+  }
+  A->ptr[n] = q;
+  return 0;
+}
+
 /* ---- strongly connected components of the outer block (Tarjan, iterative) ---- */
 
 /* Components of the graph on nodes 0..nc-1 with an edge i -> j when
@@ -43,7 +87,7 @@ static void colmajor(const double *S, size_t n, size_t m, double *a) {
  * component after every component it reaches, so this is an order in which
  * block forward substitution works.  Returns the number of components, or -1
  * when out of memory. */
-static long tarjan(const double *S, size_t n, size_t n1, size_t *comp, size_t *start) {
+static long tarjan(const csr *A, size_t n, size_t n1, size_t *comp, size_t *start) {
   const size_t nc = n - n1;
   size_t *index = malloc((nc + 1) * sizeof *index), *low = malloc((nc + 1) * sizeof *low),
          *stack = malloc((nc + 1) * sizeof *stack),
@@ -61,19 +105,18 @@ static long tarjan(const double *S, size_t n, size_t n1, size_t *comp, size_t *s
     size_t depth = 0;
     call[depth++] = root;
     index[root] = low[root] = counter++;
-    next[root] = 0;
+    next[root] = A->mid[n1 + root];
     stack[sp++] = root;
     on[root] = 1;
     while (depth) {
       size_t v = call[depth - 1];
-      const double *row = S + (n1 + v) * n + n1;
       int descended = 0;
-      while (next[v] < nc) {
-        size_t w = next[v]++;
-        if (w == v || row[w] == 0.0) continue;
+      while (next[v] < A->ptr[n1 + v + 1]) {
+        size_t w = A->col[next[v]++] - n1;
+        if (w == v) continue;
         if (index[w] == SIZE_MAX) {
           index[w] = low[w] = counter++;
-          next[w] = 0;
+          next[w] = A->mid[n1 + w];
           stack[sp++] = w;
           on[w] = 1;
           call[depth++] = w;
@@ -111,34 +154,66 @@ done:
 
 /* ---- dense eigenvalues of a block ---- */
 
-/* Eigenvalues (and, if vr != NULL, right eigenvectors, column-major n x n) of
+/* Workspace of the dense block solves, sized once for the largest block so
+ * that the many small outer blocks cost no allocation and no workspace query
+ * each. */
+typedef struct {
+  size_t nmax;       /* largest block served */
+  double *vl, *vr;   /* nmax^2 each: left and right eigenvectors */
+  double *scale;     /* nmax balancing factors */
+  double *rcv;       /* nmax eigenvector condition numbers (unused) */
+  double *work;      /* lwork doubles for dgeevx */
+  lapack_int lwork;  /* length of work */
+  lapack_int *iwork; /* 2 nmax integers */
+} blockws;
+
+static void blockws_free(blockws *w) {
+  free(w->vl);
+  free(w->vr);
+  free(w->scale);
+  free(w->rcv);
+  free(w->work);
+  free(w->iwork);
+}
+
+/* Returns 0, or -1 when out of memory. */
+static int blockws_make(size_t nmax, blockws *w) {
+  memset(w, 0, sizeof *w);
+  w->nmax = nmax;
+  const lapack_int n = (lapack_int)nmax;
+  double q = 0.0, one = 1.0;
+  lapack_int ilo, ihi, iq = 0;
+  double abnrm, d = 0.0;
+  /* workspace query: dgeevx needs at least n(n+6) for sense 'E' */
+  LAPACKE_dgeevx_work(LAPACK_COL_MAJOR, 'B', 'V', 'V', 'E', n, &one, n, &d, &d, &d, n, &d,
+                      n, &ilo, &ihi, &d, &abnrm, &d, &d, &q, -1, &iq);
+  w->lwork = (lapack_int)q;
+  if (w->lwork < n * (n + 6)) w->lwork = n * (n + 6);
+  w->vl = malloc((nmax * nmax + 1) * sizeof *w->vl);
+  w->vr = malloc((nmax * nmax + 1) * sizeof *w->vr);
+  w->scale = malloc((nmax + 1) * sizeof *w->scale);
+  w->rcv = malloc((nmax + 1) * sizeof *w->rcv);
+  w->work = malloc(((size_t)w->lwork + 1) * sizeof *w->work);
+  w->iwork = malloc((2 * nmax + 1) * sizeof *w->iwork);
+  return w->vl && w->vr && w->scale && w->rcv && w->work && w->iwork ? 0 : -1;
+}
+
+/* Eigenvalues (and, if vr != NULL, right eigenvectors, column-major m x m) of
  * the m x m column-major matrix a (overwritten), with reciprocal condition
- * numbers in rc. */
-static ss_status block_eig(double *a, size_t m, double *wr, double *wi, double *rc,
-                           double *vr, ss_error *err) {
+ * numbers in rc; m <= ws->nmax. */
+static ss_status block_eig(blockws *ws, double *a, size_t m, double *wr, double *wi,
+                           double *rc, double *vr, ss_error *err) {
   const lapack_int n = (lapack_int)m;
-  double *vl = malloc(m * m * sizeof *vl), *own = vr ? NULL : malloc(m * m * sizeof *own),
-         *scale = malloc(m * sizeof *scale), *rcv = malloc(m * sizeof *rcv);
-  ss_status st = SS_OK;
-  if (!vl || (!vr && !own) || !scale || !rcv) {
-    st = ss_error_nomem(err, "eigenvalues");
-    goto done;
-  }
   lapack_int ilo, ihi;
   double abnrm;
-  lapack_int info =
-      LAPACKE_dgeevx(LAPACK_COL_MAJOR, 'B', 'V', 'V', 'E', n, a, n, wr, wi, vl, n,
-                     vr ? vr : own, n, &ilo, &ihi, scale, &abnrm, rc, rcv);
+  lapack_int info = LAPACKE_dgeevx_work(
+      LAPACK_COL_MAJOR, 'B', 'V', 'V', 'E', n, a, n, wr, wi, ws->vl, n, vr ? vr : ws->vr,
+      n, &ilo, &ihi, ws->scale, &abnrm, rc, ws->rcv, ws->work, ws->lwork, ws->iwork);
   if (info != 0)
-    st = ss_error_set(err, SS_ENUMERIC,
-                      "LAPACK dgeevx failed on a %zu x %zu block (info %d)", m, m,
-                      (int)info);
-done:
-  free(vl);
-  free(own);
-  free(scale);
-  free(rcv);
-  return st;
+    return ss_error_set(err, SS_ENUMERIC,
+                        "LAPACK dgeevx failed on a %zu x %zu block (info %d)", m, m,
+                        (int)info);
+  return SS_OK;
 }
 
 ss_status ss_eig_dense(const double *S, size_t n, double *re, double *im, ss_error *err) {
@@ -299,45 +374,77 @@ done:
   return rc;
 }
 
+/* The outer components: comp/start from tarjan, and for each outer node its
+ * component (cid) and its place in it (pos). */
+typedef struct {
+  long n;               /* components */
+  size_t *comp, *start; /* nodes by component; n + 1 offsets */
+  size_t *cid, *pos;    /* per outer node */
+} components;
+
 /* Solve (C - mu I) x = r for the outer block by forward substitution over the
- * components (comp/start from tarjan); x, r indexed by outer node.  Returns 0,
- * or -1 if a diagonal block is (numerically) singular.  Workspaces: work holds
- * (b+1)^2 doubles and piv b pivots, b the largest block. */
-static int outer_solve(const double *S, size_t n, size_t n1, const size_t *comp,
-                       const size_t *start, long ncomp, double mu, const double *r,
-                       double *x, unsigned char *done_, double *work, lapack_int *piv) {
-  const size_t nc = n - n1;
-  memset(done_, 0, nc);
-  for (long c = 0; c < ncomp; c++) {
-    const size_t b = start[c], sz = start[c + 1] - b;
+ * components; x, r indexed by outer node.  Returns 0, or -1 if a diagonal
+ * block is (numerically) singular.  Workspaces: work holds (b+1)^2 doubles and
+ * piv b pivots, b the largest block. */
+static int outer_solve(const csr *A, size_t n1, const components *K, double mu,
+                       const double *r, double *x, double *work, lapack_int *piv) {
+  for (long c = 0; c < K->n; c++) {
+    const size_t b = K->start[c], sz = K->start[c + 1] - b;
+    memset(work, 0, sz * sz * sizeof *work);
     for (size_t k = 0; k < sz; k++) {
-      const size_t i = comp[b + k];
-      const double *row = S + (n1 + i) * n + n1;
+      const size_t i = K->comp[b + k];
       double s = r[i];
-      for (size_t j = 0; j < nc; j++)
-        if (done_[j] && row[j] != 0.0) s -= row[j] * x[j];
+      for (size_t q = A->mid[n1 + i]; q < A->ptr[n1 + i + 1]; q++) {
+        const size_t j = A->col[q] - n1;
+        if (K->cid[j] < (size_t)c)
+          s -= A->val[q] * x[j]; /* solved before */
+        else if (K->cid[j] == (size_t)c)
+          work[K->pos[j] * sz + k] += A->val[q];
+        else
+          return -1; /* not in Tarjan's order: cannot happen */
+      }
+      work[k * sz + k] -= mu;
       work[sz * sz + k] = s; /* rhs after the sub-matrix */
-      for (size_t l = 0; l < sz; l++)
-        work[l * sz + k] = row[comp[b + l]] - (comp[b + l] == i ? mu : 0.0);
     }
     double scale = 0.0;
     for (size_t k = 0; k < sz * sz; k++)
       scale = fmax(scale, fabs(work[k]));
     if (sz == 1) {
       if (!(fabs(work[0]) > 1e-12 * fmax(1.0, scale))) return -1;
-      x[comp[b]] = work[1] / work[0];
+      x[K->comp[b]] = work[1] / work[0];
     } else {
       lapack_int info =
           LAPACKE_dgesv(LAPACK_COL_MAJOR, (lapack_int)sz, 1, work, (lapack_int)sz, piv,
                         work + sz * sz, (lapack_int)sz);
       if (info != 0) return -1;
       for (size_t k = 0; k < sz; k++)
-        x[comp[b + k]] = work[sz * sz + k];
+        x[K->comp[b + k]] = work[sz * sz + k];
     }
-    for (size_t k = 0; k < sz; k++)
-      done_[comp[b + k]] = 1;
   }
   return 0;
+}
+
+/* Solved outer blocks.  The lattice around p repeats an outer block many
+ * times over with exactly the same entries in the same order (for an MLCA
+ * vertex with k = 10, about 30 of its 34 blocks larger than 1 x 1 are copies);
+ * equal matrices have equal eigenvalues, so each distinct block is solved
+ * once. */
+typedef struct {
+  size_t n;                /* distinct blocks held */
+  size_t *sz, *at, *res;   /* per block: size, offset in mat, offset in re/im/rc */
+  double *mat;             /* the blocks, column-major, one after another */
+  double *re, *im, *rc;    /* their eigenvalues and condition numbers */
+  size_t matfill, resfill; /* used lengths of mat and of re/im/rc */
+} memo;
+
+static void memo_free(memo *M) {
+  free(M->sz);
+  free(M->at);
+  free(M->res);
+  free(M->mat);
+  free(M->re);
+  free(M->im);
+  free(M->rc);
 }
 
 /* ---- the driver ---- */
@@ -365,11 +472,14 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
          *wr = malloc((n + 1) * sizeof *wr), *wi = malloc((n + 1) * sizeof *wi),
          *rc = malloc((n + 1) * sizeof *rc), *awr = malloc((n1 + 1) * sizeof *awr),
          *awi = malloc((n1 + 1) * sizeof *awi);
-  size_t *comp = malloc((nc + 1) * sizeof *comp),
-         *start = malloc((nc + 2) * sizeof *start);
+  components K = {0, malloc((nc + 1) * sizeof(size_t)), malloc((nc + 2) * sizeof(size_t)),
+                  malloc((nc + 1) * sizeof(size_t)), malloc((nc + 1) * sizeof(size_t))};
+  csr A = {NULL, NULL, NULL, NULL};
+  blockws ws = {0};
   double *blk = NULL, *bw = NULL;
   lapack_int *piv = NULL;
-  if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || !comp || !start) {
+  if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || !K.comp || !K.start ||
+      !K.cid || !K.pos || csr_make(S, n, n1, &A)) {
     st = ss_error_nomem(err, "eigenvalues");
     goto done;
   }
@@ -382,46 +492,86 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     st = ss_error_nomem(err, "eigenvalues");
     goto done;
   }
+  /* the outer blocks' structure */
+  K.n = tarjan(&A, n, n1, K.comp, K.start);
+  if (K.n < 0) {
+    st = ss_error_nomem(err, "outer blocks");
+    goto done;
+  }
+  size_t big = 0;
+  for (long c = 0; c < K.n; c++) {
+    const size_t b = K.start[c], sz = K.start[c + 1] - b;
+    big = sz > big ? sz : big;
+    for (size_t q = 0; q < sz; q++) {
+      K.cid[K.comp[b + q]] = (size_t)c;
+      K.pos[K.comp[b + q]] = q;
+    }
+  }
+  e->nblocks = (size_t)K.n;
+  e->largest_block = big;
+  blk = malloc((big * big + 1) * sizeof *blk);
+  bw = malloc(((big + 1) * (big + 1) + nc + 1) * sizeof *bw);
+  piv = malloc((big + 1) * sizeof *piv);
+  if (!blk || !bw || !piv || blockws_make(big > n1 ? big : n1, &ws)) {
+    st = ss_error_nomem(err, "eigenvalues");
+    goto done;
+  }
   /* the one-ring block */
   colmajor(S, n, n1, a);
-  if ((st = block_eig(a, n1, wr, wi, rc, vr, err))) goto done;
+  if ((st = block_eig(&ws, a, n1, wr, wi, rc, vr, err))) goto done;
   for (size_t i = 0; i < n1; i++) {
     e->val[i] = (ss_eigval){wr[i], wi[i], rc[i], 0, 0, 0};
     awr[i] = wr[i];
     awi[i] = wi[i];
   }
-  /* the outer blocks */
-  long ncomp = tarjan(S, n, n1, comp, start);
-  if (ncomp < 0) {
+  /* the outer blocks' eigenvalues */
+  memo M = {0};
+  M.sz = malloc(((size_t)K.n + 1) * sizeof *M.sz);
+  M.at = malloc(((size_t)K.n + 1) * sizeof *M.at);
+  M.res = malloc(((size_t)K.n + 1) * sizeof *M.res);
+  M.mat = malloc((big * nc + 1) * sizeof *M.mat);
+  M.re = malloc((nc + 1) * sizeof *M.re);
+  M.im = malloc((nc + 1) * sizeof *M.im);
+  M.rc = malloc((nc + 1) * sizeof *M.rc);
+  if (!M.sz || !M.at || !M.res || !M.mat || !M.re || !M.im || !M.rc) {
+    memo_free(&M);
     st = ss_error_nomem(err, "outer blocks");
     goto done;
   }
-  e->nblocks = (size_t)ncomp;
-  size_t k = n1, big = 0;
-  for (long c = 0; c < ncomp; c++)
-    big = start[c + 1] - start[c] > big ? start[c + 1] - start[c] : big;
-  e->largest_block = big;
-  blk = malloc((big * big + 1) * sizeof *blk);
-  bw = malloc(((big + 1) * (big + 1) + nc + 1) * sizeof *bw);
-  piv = malloc((big + 1) * sizeof *piv);
-  if (!blk || !bw || !piv) {
-    st = ss_error_nomem(err, "outer blocks");
-    goto done;
-  }
-  for (long c = 0; c < ncomp; c++) {
-    const size_t b = start[c], sz = start[c + 1] - b;
+  size_t k = n1;
+  for (long c = 0; c < K.n; c++) {
+    const size_t b = K.start[c], sz = K.start[c + 1] - b;
     if (sz == 1) {
-      const size_t i = n1 + comp[b];
+      const size_t i = n1 + K.comp[b];
       e->val[k++] = (ss_eigval){S[i * n + i], 0.0, 1.0, (int)c + 1, 0, 0};
       continue;
     }
+    double *mat = M.mat + M.matfill;
     for (size_t r = 0; r < sz; r++)
       for (size_t q = 0; q < sz; q++)
-        blk[q * sz + r] = S[(n1 + comp[b + r]) * n + n1 + comp[b + q]];
-    if ((st = block_eig(blk, sz, wr, wi, rc, NULL, err))) goto done;
-    for (size_t r = 0; r < sz; r++)
-      e->val[k++] = (ss_eigval){wr[r], wi[r], rc[r], (int)c + 1, 0, 0};
+        mat[q * sz + r] = S[(n1 + K.comp[b + r]) * n + n1 + K.comp[b + q]];
+    size_t hit = SIZE_MAX;
+    for (size_t h = 0; h < M.n && hit == SIZE_MAX; h++)
+      if (M.sz[h] == sz && !memcmp(M.mat + M.at[h], mat, sz * sz * sizeof *mat)) hit = h;
+    if (hit == SIZE_MAX) { /* a new block: solve a copy, keep the matrix */
+      memcpy(blk, mat, sz * sz * sizeof *blk);
+      if ((st = block_eig(&ws, blk, sz, M.re + M.resfill, M.im + M.resfill,
+                          M.rc + M.resfill, NULL, err))) {
+        memo_free(&M);
+        goto done;
+      }
+      hit = M.n++;
+      M.sz[hit] = sz;
+      M.at[hit] = M.matfill;
+      M.res[hit] = M.resfill;
+      M.matfill += sz * sz;
+      M.resfill += sz;
+    }
+    for (size_t r = 0, at = M.res[hit]; r < sz; r++)
+      e->val[k++] =
+          (ss_eigval){M.re[at + r], M.im[at + r], M.rc[at + r], (int)c + 1, 0, 0};
   }
+  memo_free(&M);
   qsort(e->val, n, sizeof *e->val, by_modulus);
   if ((st = make_groups(e, opts->tol, err))) goto done;
   condition(e, e->m, opts->tol);
@@ -483,24 +633,22 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   if (ok) {
     /* extend: (C - T_jj) x2_j = sum_{i<j} T_ij x2_i - B x1_j */
     double *r = malloc((nc + 1) * sizeof *r);
-    unsigned char *dn = malloc(nc + 1);
-    for (int j = 0; ok && r && dn && j < m; j++) {
+    for (int j = 0; ok && r && j < m; j++) {
       for (size_t i = 0; i < nc; i++) {
         double s = 0.0;
-        for (size_t c = 0; c < n1; c++)
-          s -= S[(n1 + i) * n + c] * x1[(size_t)j * n1 + c];
+        for (size_t p = A.ptr[n1 + i]; p < A.mid[n1 + i]; p++)
+          s -= A.val[p] * x1[(size_t)j * n1 + A.col[p]];
         for (int l = 0; l < j; l++)
           s += t[j * m + l] * e->basis[(size_t)l * n + n1 + i];
         r[i] = s;
       }
       for (size_t i = 0; i < n1; i++)
         e->basis[(size_t)j * n + i] = x1[(size_t)j * n1 + i];
-      ok = outer_solve(S, n, n1, comp, start, ncomp, t[j * m + j], r,
-                       e->basis + (size_t)j * n + n1, dn, bw, piv) == 0;
+      ok = outer_solve(&A, n1, &K, t[j * m + j], r, e->basis + (size_t)j * n + n1, bw,
+                       piv) == 0;
     }
-    if (!r || !dn) ok = 0;
+    if (!r) ok = 0;
     free(r);
-    free(dn);
   }
   if (!ok) {
     /* a leading eigenvalue in the outer block, or extension impossible: Schur
@@ -535,8 +683,12 @@ done:
   free(rc);
   free(awr);
   free(awi);
-  free(comp);
-  free(start);
+  free(K.comp);
+  free(K.start);
+  free(K.cid);
+  free(K.pos);
+  csr_free(&A);
+  blockws_free(&ws);
   free(blk);
   free(bw);
   free(piv);
