@@ -10,9 +10,9 @@
  *   (c) a dense dgeev of each whole two-ring matrix over our time — target
  *       >= 10; and the largest difference between the two spectra (sorted by
  *       modulus), which must be at rounding level.
- * By default every link with k <= 11 and every 10th link with k = 12 (the
- * extraction of the 7595 k = 12 matrices takes a quarter of an hour); `--all`
- * takes all 9150; `--kmax K` stops at k = K. */
+ * By default every link with k <= 11 and every 10th link with k = 12 (about
+ * 4 minutes); `--all` takes all 9150 (about 25 minutes, most of it the dense
+ * reference solves of the 305 x 305 two-rings); `--kmax K` stops at k = K. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
