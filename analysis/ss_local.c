@@ -467,6 +467,61 @@ static int read_matrix(const work *W, int l, const ss_local *M, double *S, size_
   return OK;
 }
 
+/* The top cells of level w (L) with every corner in the two-ring (marks t2),
+ * corners as label indices.  OK or HARD (with err). */
+static int collect_cells(const level *L, const unsigned char *t2, ss_local *M,
+                         ss_error *err) {
+  const ss_cx *cx = L->cx;
+  const int top = ss_cx_topdim(cx);
+  size_t n = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    for (int t = 0; t < SS_NCELLTYPES; t++) {
+      if (ss_cell_dim((ss_cell_type)t) != top) continue;
+      const int nv = ss_cell_nverts((ss_cell_type)t);
+      for (size_t i = 0; i < cx->nc[t]; i++) {
+        const ss_idx *v = ss_cx_cell(cx, (ss_cell_type)t, i);
+        int in = 1;
+        for (int j = 0; j < nv && in; j++)
+          in = t2[v[j]];
+        if (!in) continue;
+        if (pass == 0) {
+          n++;
+          continue;
+        }
+        M->ctype[M->ncells] = (ss_cell_type)t;
+        size_t *c = M->corner + M->ncells * SS_MAXCELLVERTS;
+        for (int j = 0; j < SS_MAXCELLVERTS; j++) {
+          c[j] = SIZE_MAX;
+          if (j >= nv) continue;
+          const ss_star_coord *x = L->rel + v[j];
+          /* labels are sorted within the one-ring and within the rest */
+          const ss_star_coord *hit =
+              bsearch(x, M->label, M->n1, sizeof *M->label, label_cmp);
+          if (!hit)
+            hit =
+                bsearch(x, M->label + M->n1, M->n2 - M->n1, sizeof *M->label, label_cmp);
+          if (!hit) {
+            ss_error_set(err, SS_EINTERNAL, "a two-ring cell corner has no label");
+            return HARD;
+          }
+          c[j] = (size_t)(hit - M->label);
+        }
+        M->ncells++;
+      }
+    }
+    if (pass == 0) {
+      M->ctype = malloc((n + 1) * sizeof *M->ctype);
+      M->corner = malloc((n * SS_MAXCELLVERTS + 1) * sizeof *M->corner);
+      M->ncells = 0;
+      if (!M->ctype || !M->corner) {
+        ss_error_nomem(err, "two-ring cells");
+        return HARD;
+      }
+    }
+  }
+  return OK;
+}
+
 /* One attempt with the two-ring on level w (levels up to w + 2 exist). */
 static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
   const level *Lw = W->lev + w;
@@ -581,6 +636,7 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
       goto done;
     }
   }
+  if ((rc = collect_cells(Lw, t2, M, err))) goto done;
   M->level = w;
 done:
   for (int i = 0; i < 3; i++)
@@ -594,8 +650,13 @@ done:
   if (rc) {
     free(M->label);
     free(M->S);
+    free(M->ctype);
+    free(M->corner);
     M->label = NULL;
     M->S = NULL;
+    M->ctype = NULL;
+    M->corner = NULL;
+    M->ncells = 0;
   }
   return rc;
 }
@@ -702,5 +763,7 @@ void ss_local_free(ss_local *L) {
   if (!L) return;
   free(L->S);
   free(L->label);
+  free(L->ctype);
+  free(L->corner);
   free(L);
 }

@@ -34,6 +34,12 @@
  *     (w+1, w+2) (the stationary regime).  If room runs out, w grows, up to a
  *     limit; any other failure is SS_EINTERNAL, never a wrong matrix.
  *
+ * Cells: the cells of level w whose corners all lie in the two-ring (the
+ * cells the characteristic map's regularity is judged on; 64 hexes for the
+ * regular MLCA vertex), with corners named by their labels.  Their vertex order
+ * comes from the split, which keeps every child positively oriented, so one
+ * orientation holds for all of them.
+ *
  * Ordering: labels (and rows and columns of S) list the one-ring first, then
  * the rest of the two-ring; within each part by the largest absolute
  * coordinate (so the centre comes first), then by ss_star_coord_cmp.  S is
@@ -72,6 +78,11 @@ typedef struct {
   int dim;              /* 3 for volume cases, 2 for surface vertices */
   int level;            /* the level w that S maps from */
   ss_cell_type cell;    /* the cell type of the star (hex, tet, quad, triangle) */
+  size_t ncells;        /* cells of level w with every corner in the two-ring */
+  ss_cell_type *ctype;  /* ncells cell types (hex; tet and oct; quad; triangle) */
+  size_t *corner;       /* ncells * SS_MAXCELLVERTS corners, as indices into
+                           label, in the vertex order of ss_cx.h; unused slots
+                           SIZE_MAX */
 } ss_local;
 
 /* Name of a case kind as in the command line and JSON ("vertex", "edge",
