@@ -24,6 +24,7 @@ void ss_eig_free(ss_eig *e) {
   if (!e) return;
   free(e->val);
   free(e->basis);
+  free(e->T);
   free(e);
 }
 
@@ -374,6 +375,37 @@ done:
   return rc;
 }
 
+/* Whether the subdominant eigenvalues are defective: for every eigenvalue
+ * lambda repeated among lambda1..lambdam (same group), the restriction T must
+ * have as many independent eigenvectors as copies, i.e. rank(T - lambda I) =
+ * m - copies, ranks counting singular values above tol |lambda|.  (A Jordan
+ * block leaves an off-diagonal entry of the size of lambda; a true repeat
+ * leaves rounding.)  Returns 1, 0, or -1 when LAPACK fails. */
+static int defective(const ss_eig *e, double tol) {
+  const int m = e->m;
+  for (int i = 1; i <= m; i++) {
+    int copies = 0, first = 1;
+    for (int j = 1; j <= m; j++) {
+      copies += e->val[j].group == e->val[i].group;
+      if (j < i && e->val[j].group == e->val[i].group) first = 0;
+    }
+    if (!first || copies < 2) continue;
+    const double lambda = e->val[i].re;
+    double a[9], sv[3], superb[3];
+    for (int r = 0; r < m; r++)
+      for (int c = 0; c < m; c++)
+        a[c * m + r] = e->T[c * m + r] - (r == c ? lambda : 0.0);
+    if (LAPACKE_dgesvd(LAPACK_COL_MAJOR, 'N', 'N', m, m, a, m, sv, NULL, 1, NULL, 1,
+                       superb))
+      return -1;
+    int rank = 0;
+    for (int r = 0; r < m; r++)
+      rank += sv[r] > tol * fabs(lambda);
+    if (rank > m - copies) return 1;
+  }
+  return 0;
+}
+
 /* The outer components: comp/start from tarjan, and for each outer node its
  * component (cid) and its place in it (pos). */
 typedef struct {
@@ -661,15 +693,22 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
       ok = schur_basis(full, n, e->val + 1, m, q) == 0;
       if (ok) {
         memcpy(e->basis, q, n * (size_t)m * sizeof *e->basis);
+        for (int i = 0; i < m; i++)
+          for (int j = 0; j < m; j++)
+            t[j * m + i] = full[(size_t)j * n + (size_t)i];
         e->basis_kind = "schur";
       }
     }
   }
   free(full);
   free(q);
-  free(t);
   free(x1);
-  if (!ok) {
+  if (ok) {
+    e->T = t;
+    e->defective = defective(e, opts->tol);
+    if (e->defective < 0) st = ss_error_nomem(err, "subdominant basis");
+  } else {
+    free(t);
     free(e->basis);
     e->basis = NULL;
     e->basis_kind = "";

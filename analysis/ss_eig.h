@@ -70,6 +70,12 @@ typedef struct {
   int m;                  /* subdominant eigenvalues (3 or 2) */
   double *basis;          /* NULL, or n x m column-major: the subdominant basis */
   const char *basis_kind; /* "eigenvectors", "schur" or "" */
+  double *T;              /* with the basis: m x m column-major, S basis = basis T
+                             (diagonal for eigenvectors, upper quasi-triangular
+                             for a Schur basis); else NULL */
+  int defective;          /* with the basis: 1 if a repeated subdominant
+                             eigenvalue has fewer eigenvectors than copies (a
+                             Jordan block in T, judged with tol), else 0 */
 } ss_eig;
 
 /* Default options for dimension dim (2 or 3). */
