@@ -1,0 +1,77 @@
+/* ss_jac.h — the sign of the Jacobian determinant of one cell's natural
+ * interpolant, and its scaled Jacobian (DESIGN section 5).
+ *
+ * A cell is given by its corner points in the vertex order of ss_cx.h, `dim`
+ * coordinates each (3 for hexes, tets and octahedra; 2 for quads and
+ * triangles), and mapped by its natural interpolant:
+ *   hex       the trilinear map of [0,1]^3 (corner j at the parameter point
+ *             ss_cube_corner_bits(3, j), bit i the i-th parameter).  Its
+ *             Jacobian determinant is triquadratic; its 27 Bernstein (Bezier)
+ *             coefficients on [0,1]^3 bound it, and the 8 corner coefficients
+ *             are its exact corner values.  All 27 of one strict sign: that sign
+ *             everywhere.  Two exact values (corners of the cell or of a
+ *             sub-cube) of opposite sign, or one exact zero: folded.  Otherwise
+ *             the box is split in 8 by de Casteljau's algorithm, down to
+ *             `maxdepth` levels; boxes still in doubt there make the cell
+ *             undecided.
+ *   quad      the bilinear map of [0,1]^2: its Jacobian determinant is affine,
+ *             so the four corner values decide exactly.
+ *   tet, triangle  the affine map: the determinant of the edge vectors from
+ *             vertex 0.
+ *   oct       the eight tets (centroid, one vertex of each opposite pair
+ *             (0,3), (1,4), (2,5)), each oriented as the octant it fills: all
+ *             eight of one strict sign, else folded.
+ *
+ * Scaled Jacobian (a continuous measure in [-1, 1], 1 for the ideal cell,
+ * invariant under similarities, negative when inverted): the smallest over the
+ * cell's corners of det(edge vectors at the corner) / product of their lengths,
+ * with edges taken along the parameter directions (hex, quad), times sqrt(2) for
+ * tets and 2/sqrt(3) for triangles so that the regular simplex scores 1; for an
+ * octahedron the smallest over its eight centroid tets of that value at the
+ * centroid (1 for the regular octahedron).
+ *
+ * These functions cannot fail: cells have at most 8 corners and the
+ * subdivision works in a fixed-size stack. */
+#ifndef SS_JAC_H
+#define SS_JAC_H
+
+#include "ss_cx.h"
+
+/* The verdict for one cell. */
+typedef enum {
+  SS_JAC_FOLDED = 0,    /* the determinant vanishes or changes sign in the cell */
+  SS_JAC_POSITIVE = 1,  /* > 0 everywhere on the closed cell */
+  SS_JAC_NEGATIVE = -1, /* < 0 everywhere on the closed cell */
+  SS_JAC_UNDECIDED = 2  /* hex only: still in doubt at the depth limit */
+} ss_jac_sign;
+
+/* Result for one cell. */
+typedef struct {
+  ss_jac_sign sign;  /* the verdict */
+  double min_scaled; /* smallest scaled Jacobian of the cell (see above) */
+  double max_scaled; /* largest corner value of the same measure, so that a
+                        caller whose cells are all negative can report
+                        -max_scaled as its margin */
+  int depth;         /* hex: deepest subdivision level used (0 = none) */
+  double where[3];   /* FOLDED: a parameter point of the cell where the sign
+                        differs from the sign seen first (hex, quad: in
+                        [0,1]^d; tet, triangle, oct: unused, zero) */
+} ss_jac_result;
+
+/* Default depth limit of the hex subdivision. */
+#define SS_JAC_DEPTH 6
+
+/* Decide the sign of the Jacobian determinant of cell type t with corners x
+ * (ss_cell_nverts(t) points of dim coordinates, row by row) and compute its
+ * scaled Jacobian.  dim must be 3 for hexes, tets and octahedra and 2 for quads
+ * and triangles; other types or dims give SS_JAC_UNDECIDED with NaN measures.
+ * maxdepth bounds the hex subdivision (0: the 27 coefficients only). */
+void ss_jac_cell(ss_cell_type t, const double *x, int dim, int maxdepth,
+                 ss_jac_result *r);
+
+/* Jacobian determinant of the trilinear map of the hex with corners x (8 x 3)
+ * at the parameter point (u, v, w) in [0,1]^3: the reference value the
+ * Bernstein test bounds (for tests and pictures). */
+double ss_jac_hex_at(const double *x, double u, double v, double w);
+
+#endif

@@ -1,0 +1,420 @@
+/* test_charmap.c — the characteristic map and its regularity verdict:
+ *  - regular configurations, whose characteristic map is (up to a similarity)
+ *    the lattice itself, so every cell is ideal: minimum scaled Jacobian 1;
+ *  - the papers' claims: every MLCA vertex one-ring with k <= 8 (at most 12
+ *    hexes) passes both conditions — except one, a finding verified
+ *    independently here (test_mlca_k8); every tet/oct vertex one-ring with
+ *    k <= 7, its edges of valence 3..10 and its face pass; Catmull–Clark,
+ *    Loop and MLCA surfaces pass for valences 3..12;
+ *  - the verdict and the minimum scaled Jacobian do not change when a link is
+ *    relabelled or mirrored;
+ *  - cases that must fail do: plain multilinear subdivision (no averaging) has
+ *    eigenvalue 1/2 k times; a folded control net is caught; a Jordan block
+ *    among the subdominant eigenvalues is reported as defective. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lapacke.h>
+
+#include "ss_charmap.h"
+#include "ss_enum.h"
+#include "ss_scheme.h"
+#include "ss_test.h"
+#include "ss_testlink.h"
+
+static ss_scheme *scheme(const char *name) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  if (ss_scheme_new(name, &s, &err)) {
+    fprintf(stderr, "scheme %s: %s\n", name, err.msg);
+    exit(1);
+  }
+  return s;
+}
+
+/* Local matrix, eigenstructure and regularity of one case; 0 on success. */
+typedef struct {
+  ss_local *M;
+  ss_eig *e;
+  ss_charmap *cm;
+  ss_regularity r;
+} result;
+
+static int run(const ss_scheme *s, ss_case c, result *out) {
+  ss_error err = {0};
+  memset(out, 0, sizeof *out);
+  if (ss_local_new(s, &c, &out->M, &err)) {
+    CHECK(0, "%s: extraction: %s", ss_scheme_name(s), err.msg);
+    return -1;
+  }
+  ss_eig_opts o = ss_eig_defaults(out->M->dim);
+  if (ss_eig_new(out->M->S, out->M->n2, out->M->n1, &o, &out->e, &err)) {
+    CHECK(0, "%s: eigenstructure: %s", ss_scheme_name(s), err.msg);
+    ss_local_free(out->M);
+    return -1;
+  }
+  if (ss_charmap_analyze(out->M, out->e, SS_JAC_DEPTH, &out->cm, &out->r, &err)) {
+    CHECK(0, "%s: regularity: %s", ss_scheme_name(s), err.msg);
+    ss_eig_free(out->e);
+    ss_local_free(out->M);
+    return -1;
+  }
+  return 0;
+}
+
+static void done(result *r) {
+  ss_charmap_free(r->cm);
+  ss_eig_free(r->e);
+  ss_local_free(r->M);
+}
+
+/* ---- regular configurations: the map is the lattice ---- */
+
+static void test_regular(void) {
+  ss_scheme *mlca = scheme("mlca"), *cc = scheme("catmull-clark"), *loop = scheme("loop");
+  ss_link *oct = NULL;
+  ss_error err = {0};
+  CHECK(ss_link_parse("octahedron", &oct, &err) == SS_OK, "%s", err.msg);
+  result r;
+  if (oct && !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0}, &r)) {
+    CHECK(r.r.verdict.verdict == SS_PASS, "regular MLCA vertex: %s", r.r.verdict.reason);
+    CHECK(r.cm && r.cm->ncells == 64, "regular MLCA vertex: %zu cells, expected 4^3",
+          r.cm ? r.cm->ncells : 0);
+    CHECK_CLOSE(r.r.min_scaled_jacobian, 1.0, 1e-9, "regular MLCA vertex: cubes");
+    done(&r);
+  }
+  if (!run(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 4}, &r)) {
+    CHECK(r.r.verdict.verdict == SS_PASS, "regular CC vertex: %s", r.r.verdict.reason);
+    CHECK(r.cm && r.cm->ncells == 16, "regular CC vertex: %zu cells",
+          r.cm ? r.cm->ncells : 0);
+    CHECK_CLOSE(r.r.min_scaled_jacobian, 1.0, 1e-9, "regular CC vertex: squares");
+    done(&r);
+  }
+  if (!run(loop, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 6}, &r)) {
+    CHECK(r.r.verdict.verdict == SS_PASS, "regular Loop vertex: %s", r.r.verdict.reason);
+    CHECK(r.cm && r.cm->ncells == 24, "regular Loop vertex: %zu cells",
+          r.cm ? r.cm->ncells : 0);
+    CHECK_CLOSE(r.r.min_scaled_jacobian, 1.0, 1e-9, "regular Loop vertex: equilateral");
+    done(&r);
+  }
+  ss_link_free(oct);
+  ss_scheme_free(mlca);
+  ss_scheme_free(cc);
+  ss_scheme_free(loop);
+}
+
+/* ---- the papers' claims, and invariance ---- */
+
+/* The one MLCA vertex one-ring with k <= 8 whose characteristic map is not
+ * regular (a finding against the MLCA paper's claim; test_mlca_k8 below
+ * shows why), in canonical form. */
+static const char *mlca_k8_exception = "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb";
+
+typedef struct {
+  ss_scheme *s;
+  int count, passed;
+  const char *except; /* a link expected to fail regularity, or NULL */
+} links_ctx;
+
+static int visit(const ss_link *l, void *vctx) {
+  links_ctx *ctx = vctx;
+  result r;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0}, &r)) return 0;
+  char *text = NULL;
+  ss_error err = {0};
+  if (ss_link_format(l, &text, &err)) text = NULL;
+  const int pass = r.e->cond.verdict == SS_PASS && r.r.verdict.verdict == SS_PASS;
+  ctx->passed += pass;
+  char *canon = NULL;
+  ss_link *cl = NULL;
+  const int except = ctx->except && !ss_link_canonical(l, &cl, NULL, &err) &&
+                     !ss_link_format(cl, &canon, &err) && !strcmp(canon, ctx->except);
+  free(canon);
+  ss_link_free(cl);
+  CHECK(pass != except, "%s %s: eigenvalue condition %s (%s), regularity %s (%s)",
+        ss_scheme_name(ctx->s), text ? text : "?", ss_verdict_name(r.e->cond.verdict),
+        r.e->cond.reason, ss_verdict_name(r.r.verdict.verdict), r.r.verdict.reason);
+  CHECK(!pass || r.r.min_scaled_jacobian > 0.0, "%s %s: pass with scaled Jacobian %g",
+        ss_scheme_name(ctx->s), text ? text : "?", r.r.min_scaled_jacobian);
+  for (int mirror = 0; mirror < 2; mirror++) {
+    ss_link *q =
+        ss_testlink_scrambled(l, (unsigned)(ctx->count * 5 + 3 + mirror), mirror);
+    result r2;
+    if (q && !run(ctx->s, (ss_case){SS_CASE_VERTEX, q, 0}, &r2)) {
+      CHECK(r2.r.verdict.verdict == r.r.verdict.verdict,
+            "%s %s: verdict changes under relabelling (mirror %d)",
+            ss_scheme_name(ctx->s), text ? text : "?", mirror);
+      CHECK(fabs(r2.r.min_scaled_jacobian - r.r.min_scaled_jacobian) <= 1e-8 ||
+                (isnan(r2.r.min_scaled_jacobian) && isnan(r.r.min_scaled_jacobian)),
+            "%s %s: minimum scaled Jacobian %.12g becomes %.12g under relabelling "
+            "(mirror %d)",
+            ss_scheme_name(ctx->s), text ? text : "?", r.r.min_scaled_jacobian,
+            r2.r.min_scaled_jacobian, mirror);
+      done(&r2);
+    }
+    ss_link_free(q);
+  }
+  free(text);
+  done(&r);
+  ctx->count++;
+  return 0;
+}
+
+static void test_claims(void) {
+  /* MLCA paper: every vertex one-ring with at most 12 hexes (k <= 8) */
+  links_ctx ctx = {scheme("mlca"), 0, 0, mlca_k8_exception};
+  ss_enum_opts o = {4, 8, 0, 1};
+  ss_error err = {0};
+  CHECK(ss_enum_links(&o, visit, &ctx, NULL, &err) == SS_OK, "%s", err.msg);
+  CHECK(ctx.count == 23 && ctx.passed == 22, "mlca: %d of %d links k <= 8 pass",
+        ctx.passed, ctx.count);
+  ss_scheme_free(ctx.s);
+  /* tet/oct paper: every vertex one-ring with k <= 7 */
+  links_ctx tc = {scheme("tetoct"), 0, 0, NULL};
+  ss_enum_opts o7 = {4, 7, 0, 1};
+  CHECK(ss_enum_links(&o7, visit, &tc, NULL, &err) == SS_OK, "%s", err.msg);
+  CHECK(tc.count == 9 && tc.passed == 9, "tetoct: %d of %d links k <= 7 pass", tc.passed,
+        tc.count);
+  ss_scheme_free(tc.s);
+  /* tet/oct edges of valence 3..10 and the face */
+  ss_scheme *to = scheme("tetoct");
+  for (int n = 2; n <= 10; n++) {
+    result r;
+    ss_case c =
+        n == 2 ? (ss_case){SS_CASE_FACE, NULL, 0} : (ss_case){SS_CASE_EDGE, NULL, n};
+    if (run(to, c, &r)) continue;
+    CHECK(r.e->cond.verdict == SS_PASS && r.r.verdict.verdict == SS_PASS,
+          "tetoct %s %d: condition %s, regularity %s (%s)", ss_case_name(c.kind), n,
+          ss_verdict_name(r.e->cond.verdict), ss_verdict_name(r.r.verdict.verdict),
+          r.r.verdict.reason);
+    done(&r);
+  }
+  ss_scheme_free(to);
+  /* 2D baselines: regular characteristic maps for every valence */
+  const char *names[3] = {"catmull-clark", "loop", "mlca"};
+  for (int i = 0; i < 3; i++) {
+    ss_scheme *s = scheme(names[i]);
+    for (int n = 3; n <= 12; n++) {
+      result r;
+      if (run(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n}, &r)) continue;
+      CHECK(r.r.verdict.verdict == SS_PASS && r.r.min_scaled_jacobian > 0.0,
+            "%s surface valence %d: regularity %s (%s), scaled Jacobian %g", names[i], n,
+            ss_verdict_name(r.r.verdict.verdict), r.r.verdict.reason,
+            r.r.min_scaled_jacobian);
+      done(&r);
+    }
+    ss_scheme_free(s);
+  }
+}
+
+/* ---- failures ---- */
+
+/* Plain multilinear subdivision: the split without averaging (each vertex
+ * keeps its split position).  Around a vertex with k edges it has eigenvalue
+ * 1/2 k times, so lambda3 = |lambda4| and there is no characteristic map. */
+static void test_plain_multilinear(void) {
+  ss_averaging a;
+  memset(&a, 0, sizeof a);
+  a.split = SS_SPLIT_MULTILINEAR;
+  const ss_cell_type types[3] = {SS_SEGMENT, SS_QUAD, SS_HEX};
+  for (int i = 0; i < 3; i++) {
+    a.accepts[types[i]] = 1;
+    a.mask[types[i]][0] = 1.0; /* self */
+  }
+  ss_scheme *s = NULL;
+  ss_error err = {0};
+  if (ss_scheme_averaging_new("plain-multilinear", &a, &s, &err)) {
+    CHECK(0, "plain multilinear scheme: %s", err.msg);
+    return;
+  }
+  for (int k = 5; k <= 8; k++) {
+    ss_link *l = NULL;
+    char name[32];
+    snprintf(name, sizeof name, "bipyramid:%d", k - 2);
+    if (ss_link_parse(name, &l, &err)) {
+      CHECK(0, "%s: %s", name, err.msg);
+      continue;
+    }
+    result r;
+    if (!run(s, (ss_case){SS_CASE_VERTEX, l, 0}, &r)) {
+      int halves = 0;
+      for (size_t j = 0; j < r.e->n; j++)
+        halves += r.e->val[j].group == r.e->val[1].group;
+      CHECK(fabs(r.e->val[1].re - 0.5) <= 1e-9 && halves == k,
+            "plain multilinear k=%d: lambda1 = %.12g with multiplicity %d, expected 1/2 "
+            "%d times",
+            k, r.e->val[1].re, halves, k);
+      CHECK(r.e->cond.verdict == SS_FAIL, "plain multilinear k=%d: condition %s", k,
+            ss_verdict_name(r.e->cond.verdict));
+      CHECK(r.r.verdict.verdict != SS_PASS && !r.cm,
+            "plain multilinear k=%d: regularity %s", k,
+            ss_verdict_name(r.r.verdict.verdict));
+      done(&r);
+    }
+    ss_link_free(l);
+  }
+  ss_scheme_free(s);
+}
+
+/* A folded control net: the regular MLCA vertex's map with one corner point
+ * pushed through the centre. */
+static void test_folded(void) {
+  ss_scheme *mlca = scheme("mlca");
+  ss_link *oct = NULL;
+  ss_error err = {0};
+  result r;
+  if (ss_link_parse("octahedron", &oct, &err) ||
+      run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0}, &r)) {
+    CHECK(0, "regular vertex: %s", err.msg);
+    ss_link_free(oct);
+    ss_scheme_free(mlca);
+    return;
+  }
+  ss_charmap *cm = r.cm;
+  CHECK(cm != NULL, "regular vertex has a map");
+  if (cm) {
+    /* point 0 is p; its neighbours in the one-ring sit at distance ~1/2; move
+     * the first one-ring point beyond p, to the other side */
+    double *x = cm->x + 1 * (size_t)cm->dim;
+    for (int d = 0; d < cm->dim; d++)
+      x[d] = -2.0 * x[d];
+    ss_regularity reg;
+    ss_charmap_regularity(cm, SS_JAC_DEPTH, &reg);
+    CHECK(reg.verdict.verdict == SS_FAIL, "folded net: verdict %s (%s)",
+          ss_verdict_name(reg.verdict.verdict), reg.verdict.reason);
+    CHECK(reg.nfolded + (reg.npositive && reg.nnegative) > 0 &&
+              reg.min_scaled_jacobian < 0.0,
+          "folded net: %zu folded, scaled Jacobian %g", reg.nfolded,
+          reg.min_scaled_jacobian);
+    /* the whole map mirrored (z3 -> -z3) is still regular, of the other sign */
+    for (int d = 0; d < cm->dim; d++)
+      x[d] = -0.5 * x[d];
+    const int sign0 = r.r.sign;
+    for (size_t i = 0; i < cm->n; i++)
+      cm->x[i * 3 + 2] = -cm->x[i * 3 + 2];
+    ss_charmap_regularity(cm, SS_JAC_DEPTH, &reg);
+    CHECK(reg.verdict.verdict == SS_PASS && reg.sign == -sign0 && sign0 != 0,
+          "mirrored map: verdict %s, sign %d (unmirrored %d)",
+          ss_verdict_name(reg.verdict.verdict), reg.sign, sign0);
+    CHECK_CLOSE(reg.min_scaled_jacobian, 1.0, 1e-9, "mirrored map: still cubes");
+  }
+  done(&r);
+  ss_link_free(oct);
+  ss_scheme_free(mlca);
+}
+
+/* Jordan blocks: S = diag(1, 1/2, 1/2, 1/4, 1/8) with and without a coupling
+ * of the two halves. */
+static void test_defective(void) {
+  for (int jordan = 0; jordan < 2; jordan++) {
+    double S[25] = {0};
+    const double d[5] = {1.0, 0.5, 0.5, 0.25, 0.125};
+    for (int i = 0; i < 5; i++)
+      S[i * 5 + i] = d[i];
+    if (jordan) S[2 * 5 + 1] = 0.3; /* row 2 reads column 1 */
+    ss_eig_opts o = ss_eig_defaults(3);
+    ss_eig *e = NULL;
+    ss_error err = {0};
+    if (ss_eig_new(S, 5, 5, &o, &e, &err)) {
+      CHECK(0, "defective test: %s", err.msg);
+      continue;
+    }
+    CHECK(e->cond.verdict == SS_PASS, "jordan %d: condition %s", jordan, e->cond.reason);
+    CHECK(e->defective == jordan, "jordan %d: defective = %d", jordan, e->defective);
+    ss_eig_free(e);
+  }
+}
+
+/* The MLCA finding, checked independently of ss_eig and its basis: for the
+ * k = 8 link with two adjacent valence-7 edges, lambda3 and lambda4 are a
+ * near-tie (relative gap about 1.4e-3) and the eigenvector of lambda3 is a
+ * "quadratic" mode: the map (z1, z2, z3) folds, while (z1, z2, z4) — the
+ * third linear mode, just below — is regular.  Eigenvectors here come from one
+ * dense LAPACK dgeev of the whole two-ring matrix. */
+static void test_mlca_k8(void) {
+  ss_scheme *mlca = scheme("mlca");
+  ss_link *l = NULL;
+  ss_error err = {0};
+  result r;
+  if (ss_link_parse(mlca_k8_exception, &l, &err) ||
+      run(mlca, (ss_case){SS_CASE_VERTEX, l, 0}, &r)) {
+    CHECK(0, "k8 link: %s", err.msg);
+    ss_link_free(l);
+    ss_scheme_free(mlca);
+    return;
+  }
+  const double gap = (r.e->val[3].re - r.e->val[4].re) / r.e->val[3].re;
+  CHECK(r.e->cond.verdict == SS_PASS && gap > 1e-3 && gap < 2e-3,
+        "k8 link: condition %s, relative gap lambda3/lambda4 %.3g",
+        ss_verdict_name(r.e->cond.verdict), gap);
+  CHECK(r.r.verdict.verdict == SS_FAIL, "k8 link: regularity %s",
+        ss_verdict_name(r.r.verdict.verdict));
+  const size_t n = r.M->n2;
+  double *a = malloc(n * n * sizeof *a), *vr = malloc(n * n * sizeof *vr),
+         *wr = malloc(n * sizeof *wr), *wi = malloc(n * sizeof *wi);
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = 0; j < n; j++)
+      a[j * n + i] = r.M->S[i * n + j];
+  CHECK(LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)n, a, (lapack_int)n, wr, wi,
+                      NULL, 1, vr, (lapack_int)n) == 0,
+        "dense dgeev");
+  /* the five largest real eigenvalues, in order */
+  size_t idx[5];
+  for (int k = 0; k < 5; k++) {
+    size_t best = SIZE_MAX;
+    for (size_t i = 0; i < n; i++) {
+      int used = 0;
+      for (int q = 0; q < k; q++)
+        used |= idx[q] == i;
+      if (!used && wi[i] == 0.0 && (best == SIZE_MAX || wr[i] > wr[best])) best = i;
+    }
+    idx[k] = best;
+  }
+  for (int third = 3; third <= 4; third++) {
+    ss_eig e;
+    ss_eigval val[4];
+    memset(&e, 0, sizeof e);
+    memset(val, 0, sizeof val);
+    e.n = n;
+    e.m = 3;
+    e.basis_kind = "eigenvectors";
+    e.val = val;
+    e.basis = malloc(n * 3 * sizeof *e.basis);
+    const size_t cols[3] = {idx[1], idx[2], idx[third]};
+    for (int j = 0; j < 3; j++) {
+      memcpy(e.basis + (size_t)j * n, vr + cols[j] * n, n * sizeof *e.basis);
+      val[j + 1].re = wr[cols[j]];
+    }
+    CHECK_CLOSE(val[3].re, r.e->val[third].re, 1e-9, "dense lambda%d", third);
+    ss_charmap *cm = NULL;
+    if (ss_charmap_new(r.M, &e, &cm, &err) == SS_OK) {
+      ss_regularity reg;
+      ss_charmap_regularity(cm, SS_JAC_DEPTH, &reg);
+      CHECK(third == 3 ? reg.verdict.verdict == SS_FAIL : reg.verdict.verdict == SS_PASS,
+            "k8 link, map (z1, z2, z%d): %s (%s)", third,
+            ss_verdict_name(reg.verdict.verdict), reg.verdict.reason);
+      if (third == 3)
+        CHECK_CLOSE(reg.min_scaled_jacobian, r.r.min_scaled_jacobian, 1e-8,
+                    "dense and block eigenvectors give the same map");
+    } else {
+      CHECK(0, "k8 charmap: %s", err.msg);
+    }
+    ss_charmap_free(cm);
+    free(e.basis);
+  }
+  free(a), free(vr), free(wr), free(wi);
+  done(&r);
+  ss_link_free(l);
+  ss_scheme_free(mlca);
+}
+
+int main(void) {
+  test_mlca_k8();
+  test_regular();
+  test_folded();
+  test_defective();
+  test_plain_multilinear();
+  test_claims();
+  return ss_test_done("charmap");
+}
