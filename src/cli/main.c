@@ -20,6 +20,7 @@ static const command commands[] = {
     {"analyze", ss_cli_analyze,
      "local subdivision matrix, eigenstructure, verdicts of a case"},
     {"matrix", ss_cli_matrix, "the local subdivision matrix of a case (Matrix Market)"},
+    {"draw", ss_cli_draw, "a picture of a case's characteristic map (PNG, SVG, VTK)"},
     {"enumerate", ss_cli_enumerate, "links (vertex one-rings): all, random, of a mesh"},
     {"subdivide", ss_cli_subdivide, "refine a mesh L times with a scheme"},
 };

@@ -15,6 +15,7 @@ int ss_cli_subdivide(int argc, char **argv);
 int ss_cli_enumerate(int argc, char **argv);
 int ss_cli_analyze(int argc, char **argv);
 int ss_cli_matrix(int argc, char **argv);
+int ss_cli_draw(int argc, char **argv);
 /* `enumerate` sub-subcommands (argv[0] = "links", "canonical", ...). */
 int ss_cli_enumerate_links(int argc, char **argv);
 int ss_cli_enumerate_canonical(int argc, char **argv);

@@ -1,6 +1,7 @@
 /* ss_cli_analyze.c — `subspectra analyze` (local matrix, eigenstructure,
- * eigenvalue condition for one case or one case per input line) and
- * `subspectra matrix` (the local matrix in Matrix Market format). */
+ * eigenvalue condition and characteristic-map regularity for one case or one
+ * case per input line), `subspectra matrix` (the local matrix in Matrix Market
+ * format) and `subspectra draw` (a picture of the characteristic map). */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -9,32 +10,45 @@
 
 #include <json-c/json.h>
 
+#include "ss_charmap.h"
 #include "ss_cli.h"
 #include "ss_eig.h"
 #include "ss_link.h"
 #include "ss_local.h"
+#include "ss_report_draw.h"
 
 enum { FMT_TEXT = 0, FMT_JSON, FMT_TSV, FMT_MTX };
 
 /* Options shared by analyze and matrix. */
 typedef struct {
-  const char *cmd;    /* "analyze" or "matrix" */
-  const char *scheme; /* --scheme */
-  ss_case_kind kind;  /* which case option was given */
-  int ncase;          /* how many case options were given */
-  const char *link;   /* --vertex argument ("-" = standard input) */
-  int n;              /* --edge / --surface-vertex valence */
-  double tol;         /* --tol */
-  int neig;           /* --eigenvalues: how many to print */
-  int format;         /* FMT_* */
-  int ring;           /* matrix --ring 1|2 */
-  const char *out;    /* matrix -o FILE */
+  const char *cmd;          /* "analyze" or "matrix" */
+  const char *scheme;       /* --scheme */
+  ss_case_kind kind;        /* which case option was given */
+  int ncase;                /* how many case options were given */
+  const char *link;         /* --vertex argument ("-" = standard input) */
+  int n;                    /* --edge / --surface-vertex valence */
+  double tol;               /* --tol */
+  int neig;                 /* --eigenvalues: how many to print */
+  int format;               /* FMT_* */
+  int ring;                 /* matrix --ring 1|2 */
+  const char *out;          /* matrix, draw: -o FILE */
+  int depth;                /* --depth: hex subdivision limit of the Jacobian test */
+  ss_report_draw_opts draw; /* draw: picture options */
 } opts;
 
 static void help(const char *cmd) {
-  const int m = !strcmp(cmd, "matrix");
-  printf("usage: subspectra %s --scheme S CASE [options]\n\n", cmd);
-  if (m)
+  const int m = !strcmp(cmd, "matrix"), d = !strcmp(cmd, "draw");
+  printf("usage: subspectra %s --scheme S CASE [options]%s\n\n", cmd,
+         d ? " -o FILE" : "");
+  if (d)
+    printf("Draw the characteristic map of one case: its control net on the two-ring\n"
+           "(the subdominant eigenvectors, or a basis of their invariant subspace),\n"
+           "cells in 3D projection with depth cues beside the cross-section through\n"
+           "the centre by the plane z3 = 0; cells that are not regular in red\n"
+           "(undecided ones orange).  Surface cases are drawn flat.  FILE's extension\n"
+           "picks the format: .png, .svg, or .vtk (for ParaView, with per-cell\n"
+           "Jacobian sign and minimum scaled Jacobian).\n\n");
+  else if (m)
     printf("Write the local subdivision matrix S of one case in Matrix Market format,\n"
            "rows and columns labelled (in comments) by their exact coordinates relative\n"
            "to the centre.  S maps the two-ring on level j to the two-ring on level\n"
@@ -44,7 +58,12 @@ static void help(const char *cmd) {
            "rule, compute its eigenstructure with LAPACK and test the eigenvalue\n"
            "condition: lambda0 = 1 simple; lambda1..3 (surfaces: 1..2) real, positive;\n"
            "lambda3 > |lambda4| (surfaces: lambda2 > |lambda3|).  Equal eigenvalues are\n"
-           "grouped by a relative tolerance, printed with the verdict.\n\n");
+           "grouped by a relative tolerance, printed with the verdict.  Then test the\n"
+           "characteristic map for regularity on the two-ring: every cell, mapped by\n"
+           "its multilinear interpolant, must have a Jacobian determinant of one\n"
+           "strict sign, the same for all cells (hexes: Bernstein coefficients with\n"
+           "adaptive subdivision; quads: corners; tets: determinant; octahedra: eight\n"
+           "tets), and report the minimum scaled Jacobian.\n\n");
   printf("cases (exactly one):\n"
          "  --vertex LINK          a 3D vertex whose link is LINK: plantri ASCII\n"
          "                         ('4 bcd,adc,abd,acb') or a name (tetrahedron,\n"
@@ -55,7 +74,7 @@ static void help(const char *cmd) {
          "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
          "options:\n"
          "  --scheme S             mlca, tetoct, catmull-clark, loop\n",
-         m ? "" : " (one result\n                         per line)");
+         m || d ? "" : " (one result\n                         per line)");
   if (m)
     printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "
            "2)\n"
@@ -64,13 +83,22 @@ static void help(const char *cmd) {
   else
     printf("  --tol T                relative tolerance for equal eigenvalues (default "
            "1e-6)\n"
-           "  --eigenvalues K        how many leading eigenvalues to print (default 16)\n"
+           "  --depth D              subdivision depth limit of the hex Jacobian test "
+           "(0..12,\n"
+           "                         default %d)\n",
+           SS_JAC_DEPTH);
+  if (d)
+    printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk\n"
+           "  --size WxH             picture size (default 1200x600)\n"
+           "  --view AZ,EL           view direction in degrees (default 30,25)\n");
+  else if (!m)
+    printf("  --eigenvalues K        how many leading eigenvalues to print (default 16)\n"
            "  --format F             text (default), json (one object per case), tsv\n");
   printf("  -h, --help             this help\n\n"
          "Schemes use the star their split calls for: mlca hexes (quads on surfaces),\n"
          "tetoct tets, catmull-clark quads, loop triangles.\n"
-         "Exit status: 0 all conditions hold, 1 a condition fails (or the extraction\n"
-         "failed a check), 2 bad usage or input.\n");
+         "Exit status: 0 all conditions hold, 1 a condition fails or is undecided (or\n"
+         "the extraction failed a check), 2 bad usage or input.\n");
 }
 
 static int parse(int argc, char **argv, opts *o) {
@@ -83,7 +111,10 @@ static int parse(int argc, char **argv, opts *o) {
     O_TOL,
     O_NEIG,
     O_FORMAT,
-    O_RING
+    O_RING,
+    O_DEPTH,
+    O_SIZE,
+    O_VIEW
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -94,14 +125,17 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"eigenvalues", required_argument, 0, O_NEIG},
                                      {"format", required_argument, 0, O_FORMAT},
                                      {"ring", required_argument, 0, O_RING},
+                                     {"depth", required_argument, 0, O_DEPTH},
+                                     {"size", required_argument, 0, O_SIZE},
+                                     {"view", required_argument, 0, O_VIEW},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
-  const int m = !strcmp(o->cmd, "matrix");
+  const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
   optind = 1;
   opterr = 0;
   int c;
   long v;
-  while ((c = getopt_long(argc, argv, m ? ":ho:" : ":h", lo, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, m || d ? ":ho:" : ":h", lo, NULL)) != -1) {
     switch (c) {
     case 'h':
       help(o->cmd);
@@ -148,7 +182,9 @@ static int parse(int argc, char **argv, opts *o) {
       o->neig = (int)v;
       break;
     case O_FORMAT:
-      if (!m && !strcmp(optarg, "text"))
+      if (d)
+        return ss_cli_usage_error(o->cmd, "--format: draw takes the format from -o FILE");
+      else if (!m && !strcmp(optarg, "text"))
         o->format = FMT_TEXT;
       else if (!m && !strcmp(optarg, "json"))
         o->format = FMT_JSON;
@@ -165,6 +201,36 @@ static int parse(int argc, char **argv, opts *o) {
         return ss_cli_usage_error(o->cmd, "--ring: expected 1 or 2, not '%s'", optarg);
       o->ring = (int)v;
       break;
+    case O_DEPTH:
+      if (m || ss_cli_parse_int(optarg, 0, 12, &v))
+        return ss_cli_usage_error(
+            o->cmd, "--depth: expected an integer in 0..12, not '%s'", optarg);
+      o->depth = (int)v;
+      break;
+    case O_SIZE: {
+      int w = 0, h = 0;
+      char tail;
+      if (!d || sscanf(optarg, "%dx%d%c", &w, &h, &tail) != 2 || w < 100 || h < 100 ||
+          w > 10000 || h > 10000)
+        return ss_cli_usage_error(
+            o->cmd, "--size: expected WxH with 100 <= W, H <= 10000, not '%s'", optarg);
+      o->draw.width = w;
+      o->draw.height = h;
+      break;
+    }
+    case O_VIEW: {
+      double az = 0.0, el = 0.0;
+      char tail;
+      if (!d || sscanf(optarg, "%lf,%lf%c", &az, &el, &tail) != 2 ||
+          !(fabs(az) <= 360.0) || !(fabs(el) <= 90.0))
+        return ss_cli_usage_error(
+            o->cmd,
+            "--view: expected AZ,EL in degrees (|AZ| <= 360, |EL| <= 90), not '%s'",
+            optarg);
+      o->draw.azimuth = az;
+      o->draw.elevation = el;
+      break;
+    }
     default:
       return ss_cli_option_error(o->cmd, c, argv);
     }
@@ -175,8 +241,10 @@ static int parse(int argc, char **argv, opts *o) {
   if (o->ncase != 1)
     return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
                                       "--surface-vertex");
-  if (m && o->link && !strcmp(o->link, "-"))
-    return ss_cli_usage_error(o->cmd, "--vertex -: matrix takes one link, not a stream");
+  if ((m || d) && o->link && !strcmp(o->link, "-"))
+    return ss_cli_usage_error(o->cmd, "--vertex -: %s takes one link, not a stream",
+                              o->cmd);
+  if (d && !o->out) return ss_cli_usage_error(o->cmd, "-o FILE is required");
   return 0;
 }
 
@@ -190,7 +258,7 @@ static const char *param_text(const opts *o, const char *canon, char *buf, size_
 }
 
 static void print_json(const opts *o, const char *scheme, const char *canon, int k,
-                       const ss_local *M, const ss_eig *e) {
+                       const ss_local *M, const ss_eig *e, const ss_regularity *reg) {
   json_object *r = json_object_new_object();
   json_object_object_add(r, "scheme", json_object_new_string(scheme));
   json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
@@ -226,12 +294,22 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
   json_object_object_add(r, "eigen_condition", c);
   json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
   json_object *g = json_object_new_object();
-  json_object_object_add(g, "verdict", json_object_new_string("undecided"));
-  json_object_object_add(g, "min_scaled_jacobian", NULL);
+  json_object_object_add(g, "verdict",
+                         json_object_new_string(ss_verdict_name(reg->verdict.verdict)));
+  json_object_object_add(g, "min_scaled_jacobian",
+                         isfinite(reg->min_scaled_jacobian)
+                             ? json_object_new_double(reg->min_scaled_jacobian)
+                             : NULL);
+  json_object_object_add(g, "reason", json_object_new_string(reg->verdict.reason));
   json_object_object_add(
-      g, "reason",
-      json_object_new_string("the characteristic-map regularity test is "
-                             "not implemented yet"));
+      g, "cells",
+      json_object_new_int64(
+          (int64_t)(reg->npositive + reg->nnegative + reg->nfolded + reg->nundecided)));
+  json_object_object_add(g, "orientation", json_object_new_int(reg->sign));
+  json_object_object_add(g, "folded_cells", json_object_new_int64((int64_t)reg->nfolded));
+  json_object_object_add(g, "undecided_cells",
+                         json_object_new_int64((int64_t)reg->nundecided));
+  json_object_object_add(g, "depth", json_object_new_int(reg->depth));
   json_object_object_add(r, "regularity", g);
   printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
                                                        JSON_C_TO_STRING_NOSLASHESCAPE));
@@ -246,12 +324,14 @@ static void print_value(FILE *f, const ss_eigval *v) {
 }
 
 static void print_tsv(const opts *o, const char *scheme, const char *canon,
-                      const ss_local *M, const ss_eig *e, int header) {
+                      const ss_local *M, const ss_eig *e, const ss_regularity *reg,
+                      int header) {
   if (header) {
     printf("scheme\tcase\tlink_or_valence\ttwo_ring\tone_ring");
     for (int i = 0; i < o->neig; i++)
       printf("\tlambda%d", i);
-    printf("\teigen_condition\treason\ttolerance\n");
+    printf("\teigen_condition\treason\ttolerance\tregularity\tregularity_reason\t"
+           "min_scaled_jacobian\n");
   }
   char buf[32];
   printf("%s\t%s\t%s\t%zu\t%zu", scheme, ss_case_name(o->kind),
@@ -260,11 +340,14 @@ static void print_tsv(const opts *o, const char *scheme, const char *canon,
     putchar('\t');
     if ((size_t)i < e->n) print_value(stdout, e->val + i);
   }
-  printf("\t%s\t%s\t%g\n", ss_verdict_name(e->cond.verdict), e->cond.reason, e->tol);
+  printf("\t%s\t%s\t%g\t%s\t%s\t", ss_verdict_name(e->cond.verdict), e->cond.reason,
+         e->tol, ss_verdict_name(reg->verdict.verdict), reg->verdict.reason);
+  if (isfinite(reg->min_scaled_jacobian)) printf("%.6g", reg->min_scaled_jacobian);
+  putchar('\n');
 }
 
 static void print_text(const opts *o, const char *scheme, const char *canon, int k,
-                       const ss_local *M, const ss_eig *e) {
+                       const ss_local *M, const ss_eig *e, const ss_regularity *reg) {
   printf("scheme %s, %s case", scheme, ss_case_name(o->kind));
   if (o->kind == SS_CASE_VERTEX)
     printf(", link %s (k = %d, %d %s)\n", canon, k, 2 * k - 4, ss_cell_plural(M->cell));
@@ -290,7 +373,15 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
          ss_verdict_name(e->cond.verdict), e->cond.reason[0] ? ": " : "", e->cond.reason,
          e->tol);
   if (e->basis_kind[0]) printf("subdominant basis: %s\n", e->basis_kind);
-  printf("regularity: undecided (the characteristic-map test is not implemented yet)\n");
+  printf("regularity: %s%s%s\n", ss_verdict_name(reg->verdict.verdict),
+         reg->verdict.reason[0] ? ": " : "", reg->verdict.reason);
+  const size_t ncells = reg->npositive + reg->nnegative + reg->nfolded + reg->nundecided;
+  if (ncells)
+    printf("  %zu cells of the two-ring: %zu positive, %zu negative, %zu folded, %zu "
+           "undecided (hex subdivision depth limit %d)\n"
+           "  minimum scaled Jacobian %.6g (cell %zu)\n",
+           ncells, reg->npositive, reg->nnegative, reg->nfolded, reg->nundecided,
+           reg->depth, reg->min_scaled_jacobian, reg->worst_cell);
 }
 
 static void print_label(FILE *f, const ss_star_coord *c) {
@@ -353,6 +444,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   char *canon = NULL;
   ss_local *M = NULL;
   ss_eig *e = NULL;
+  ss_charmap *cm = NULL;
   int rc = SS_EXIT_OK;
   if (o->kind == SS_CASE_VERTEX) {
     if (ss_link_parse(link_text, &l, &err) || ss_link_canonical(l, &cl, NULL, &err) ||
@@ -379,15 +471,43 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
     goto done;
   }
+  ss_regularity reg;
+  if (ss_charmap_analyze(M, e, o->depth, &cm, &reg, &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+    rc = SS_EXIT_FAIL;
+    goto done;
+  }
   const int k = l ? l->k : 0;
-  if (o->format == FMT_JSON)
-    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e);
+  if (!strcmp(o->cmd, "draw")) {
+    if (!cm) {
+      fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
+              reg.verdict.reason);
+      rc = SS_EXIT_FAIL;
+      goto done;
+    }
+    char caption[600], buf[32];
+    snprintf(caption, sizeof caption, "%s, %s %s", ss_scheme_name(s),
+             ss_case_name(o->kind),
+             o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf));
+    ss_report_draw_opts dopt = o->draw;
+    dopt.caption = caption;
+    if (ss_report_draw(cm, &reg, &dopt, o->out, &err)) {
+      fprintf(stderr, "subspectra draw: %s\n", err.msg);
+      rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+      goto done;
+    }
+    fprintf(stderr, "subspectra draw: wrote %s (regularity %s%s%s)\n", o->out,
+            ss_verdict_name(reg.verdict.verdict), reg.verdict.reason[0] ? ": " : "",
+            reg.verdict.reason);
+  } else if (o->format == FMT_JSON)
+    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg);
   else if (o->format == FMT_TSV)
-    print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, (*header)++ == 0);
+    print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, (*header)++ == 0);
   else
-    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e);
-  if (e->cond.verdict != SS_PASS) rc = SS_EXIT_FAIL;
+    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg);
+  if (e->cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS) rc = SS_EXIT_FAIL;
 done:
+  ss_charmap_free(cm);
   ss_eig_free(e);
   ss_local_free(M);
   free(canon);
@@ -397,7 +517,9 @@ done:
 }
 
 static int run(int argc, char **argv, const char *cmd) {
-  opts o = {cmd, NULL, SS_CASE_VERTEX, 0, NULL, 0, 1e-6, 16, FMT_TEXT, 2, NULL};
+  opts o = {
+      cmd,  NULL,         SS_CASE_VERTEX,           0, NULL, 0, 1e-6, 16, FMT_TEXT, 2,
+      NULL, SS_JAC_DEPTH, ss_report_draw_defaults()};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
   int r = parse(argc, argv, &o);
   if (r) return r < 0 ? SS_EXIT_OK : r;
@@ -443,4 +565,8 @@ int ss_cli_analyze(int argc, char **argv) {
 
 int ss_cli_matrix(int argc, char **argv) {
   return run(argc, argv, "matrix");
+}
+
+int ss_cli_draw(int argc, char **argv) {
+  return run(argc, argv, "draw");
 }

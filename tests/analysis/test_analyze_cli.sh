@@ -53,7 +53,37 @@ o = json.loads(lines[1])
 assert o["two_ring_size"] == 125 and o["one_ring_size"] == 27
 assert o["link"] == "6 bcde,aefc,abfd,acfe,adfb,bedc", o["link"]
 assert [round(e["re"], 12) for e in o["eigenvalues"][:4]] == [1, 0.5, 0.5, 0.5]
+for s in lines:  # MLCA, k <= 7: both conditions hold
+    g = json.loads(s)["regularity"]
+    assert g["verdict"] == "pass" and g["reason"] == "", g
+    assert 0 < g["min_scaled_jacobian"] <= 1 and g["folded_cells"] == 0, g
+assert abs(json.loads(lines[1])["regularity"]["min_scaled_jacobian"] - 1) < 1e-9
 PY
+
+# regularity: the MLCA finding fails with its reason and exit status 1; an
+# eigenvalue-condition failure leaves the map undecided
+k8="8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb"
+expect_in 1 '"regularity":\{"verdict":"fail","min_scaled_jacobian":-0\.8' "" "$exe" analyze --scheme mlca --vertex "$k8" --format json
+expect_in 1 "regularity: fail: hexahedron .* folds" "" "$exe" analyze --scheme mlca --vertex "$k8"
+expect_in 1 "regularity: undecided: no characteristic map" "" "$exe" analyze --scheme mlca --edge 8
+expect_in 2 "--depth" "" "$exe" analyze --scheme mlca --edge 4 --depth 13
+
+# draw: pictures, and its errors
+tmp=$(mktemp -d)
+expect_in 0 "wrote $tmp/t.png \\(regularity pass\\)" "" "$exe" draw --scheme mlca --vertex tetrahedron -o "$tmp/t.png" --size 400x300 --view 10,20
+expect_in 0 "wrote $tmp/t.svg" "" "$exe" draw --scheme catmull-clark --surface-vertex 5 -o "$tmp/t.svg"
+expect_in 0 "wrote $tmp/t.vtk" "" "$exe" draw --scheme tetoct --face -o "$tmp/t.vtk"
+expect_in 1 "regularity fail" "" "$exe" draw --scheme mlca --vertex "$k8" -o "$tmp/k8.png"
+expect_in 1 "no characteristic map to draw" "" "$exe" draw --scheme mlca --edge 8 -o "$tmp/e8.png"
+expect_in 2 "-o FILE is required" "" "$exe" draw --scheme mlca --edge 4
+expect_in 2 "unknown picture format" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.gif"
+expect_in 2 "cannot" "" "$exe" draw --scheme mlca --edge 4 -o /nonexistent/dir/x.png
+expect_in 2 "--size" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --size 10x10
+expect_in 2 "--view" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --view 10
+expect_in 2 "takes one link" "" "$exe" draw --scheme mlca --vertex - -o "$tmp/x.png"
+checks=$((checks + 1))
+[ -s "$tmp/t.png" ] && [ -s "$tmp/t.svg" ] && grep -q "^CELL_TYPES" "$tmp/t.vtk" || fail "draw outputs"
+rm -rf "$tmp"
 
 # edge cases carry their valence; tsv has a header and one row per case
 expect_in 0 '"case":"edge","valence":5' "" "$exe" analyze --scheme tetoct --edge 5 --format json

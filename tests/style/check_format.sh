@@ -5,7 +5,7 @@ set -u
 cf=$1
 src=$2
 cd "$src" || exit 1
-files=$(find src enumerate analysis tests -name '*.[ch]' | sort)
+files=$(find src enumerate analysis reports tests -name '*.[ch]' | sort)
 n=0
 bad=0
 for f in $files; do

@@ -1,0 +1,499 @@
+/* ss_report_draw.c — pictures of a characteristic map (cairo) and its VTK
+ * export.  What is drawn: ss_report_draw.h. */
+#include "ss_report_draw.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cairo-svg.h>
+#include <cairo.h>
+
+ss_report_draw_opts ss_report_draw_defaults(void) {
+  ss_report_draw_opts o = {1200, 600, 30.0, 25.0, NULL};
+  return o;
+}
+
+/* ---- colours ---- */
+
+typedef struct {
+  double r, g, b;
+} rgb;
+
+static const rgb col_cell = {0.55, 0.70, 0.90};  /* regular cells */
+static const rgb col_ring = {0.20, 0.45, 0.85};  /* regular cells around p */
+static const rgb col_bad = {0.90, 0.10, 0.10};   /* folded or wrongly oriented */
+static const rgb col_doubt = {1.00, 0.55, 0.00}; /* undecided */
+
+/* A cell is bad when folded or of the minority sign; 2 when undecided. */
+static int cell_state(const ss_charmap *cm, const ss_regularity *r, size_t c) {
+  const ss_jac_sign s = cm->jac[c].sign;
+  if (s == SS_JAC_UNDECIDED) return 2;
+  if (s == SS_JAC_FOLDED) return 1;
+  if (r->sign && (int)s != r->sign) return 1;
+  return 0;
+}
+
+static int around_p(const ss_charmap *cm, size_t c) {
+  const int nv = ss_cell_nverts(cm->ctype[c]);
+  for (int j = 0; j < nv; j++)
+    if (cm->corner[c * SS_MAXCELLVERTS + (size_t)j] == 0) return 1;
+  return 0;
+}
+
+static rgb cell_colour(const ss_charmap *cm, const ss_regularity *r, size_t c) {
+  const int s = cell_state(cm, r, c);
+  return s == 1 ? col_bad : s == 2 ? col_doubt : around_p(cm, c) ? col_ring : col_cell;
+}
+
+/* ---- faces of the 3D cells ---- */
+
+static const int hex_faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+static const int tet_faces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+/* Face f of a cell of type t: its corner slots (returns how many, 0 if none). */
+static int cell_face(ss_cell_type t, int f, int *slot) {
+  if (t == SS_HEX && f < 6) {
+    memcpy(slot, hex_faces[f], 4 * sizeof *slot);
+    return 4;
+  }
+  if (t == SS_TET && f < 4) {
+    memcpy(slot, tet_faces[f], 3 * sizeof *slot);
+    return 3;
+  }
+  if (t == SS_OCT && f < 8) {
+    slot[0] = f & 1 ? 3 : 0, slot[1] = f & 2 ? 4 : 1, slot[2] = f & 4 ? 5 : 2;
+    return 3;
+  }
+  return 0;
+}
+
+/* One face to paint. */
+typedef struct {
+  size_t cell;         /* its cell */
+  int n;               /* corners (3 or 4) */
+  double sx[4], sy[4]; /* projected corners */
+  double depth;        /* mean depth (larger = nearer the viewer) */
+  double shade;        /* 0..1: how squarely it faces the viewer */
+} face;
+
+static int by_depth(const void *a, const void *b) {
+  const double x = ((const face *)a)->depth, y = ((const face *)b)->depth;
+  return (x > y) - (x < y); /* far first */
+}
+
+/* The viewing frame: right, up, toward the viewer. */
+typedef struct {
+  double r[3], u[3], f[3];
+} view;
+
+static view make_view(double az_deg, double el_deg) {
+  const double az = az_deg * M_PI / 180.0, el = el_deg * M_PI / 180.0;
+  view v = {{-sin(az), cos(az), 0.0},
+            {-sin(el) * cos(az), -sin(el) * sin(az), cos(el)},
+            {cos(el) * cos(az), cos(el) * sin(az), sin(el)}};
+  return v;
+}
+
+static double dot3(const double *a, const double *b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* A panel: the box it occupies and the map from data to it. */
+typedef struct {
+  double x0, y0, w, h;           /* box on the surface */
+  double minx, maxx, miny, maxy; /* data bounds */
+  double scale, cx, cy;          /* fitted transform */
+} panel;
+
+static void panel_fit(panel *p) {
+  const double dx = fmax(p->maxx - p->minx, 1e-12), dy = fmax(p->maxy - p->miny, 1e-12);
+  const double m = 0.08;
+  p->scale = fmin(p->w * (1 - 2 * m) / dx, p->h * (1 - 2 * m) / dy);
+  p->cx = 0.5 * (p->minx + p->maxx);
+  p->cy = 0.5 * (p->miny + p->maxy);
+}
+
+static void panel_see(panel *p, double x, double y) {
+  p->minx = fmin(p->minx, x), p->maxx = fmax(p->maxx, x);
+  p->miny = fmin(p->miny, y), p->maxy = fmax(p->maxy, y);
+}
+
+static void to_surface(const panel *p, double x, double y, double *X, double *Y) {
+  *X = p->x0 + 0.5 * p->w + p->scale * (x - p->cx);
+  *Y = p->y0 + 0.5 * p->h - p->scale * (y - p->cy); /* y up */
+}
+
+static panel new_panel(double x0, double y0, double w, double h) {
+  panel p = {x0, y0, w, h, INFINITY, -INFINITY, INFINITY, -INFINITY, 1.0, 0.0, 0.0};
+  return p;
+}
+
+static void panel_title(cairo_t *cr, const panel *p, const char *t) {
+  cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+  cairo_set_font_size(cr, 13.0);
+  cairo_move_to(cr, p->x0 + 10, p->y0 + 18);
+  cairo_show_text(cr, t);
+}
+
+static void mark_p(cairo_t *cr, const panel *p, double x, double y) {
+  double X, Y;
+  to_surface(p, x, y, &X, &Y);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_arc(cr, X, Y, 4.0, 0, 2 * M_PI);
+  cairo_fill(cr);
+}
+
+/* ---- the 3D panel ---- */
+
+static ss_status draw_3d(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
+                         const view *v, panel *p, ss_error *err) {
+  size_t nf = 0;
+  for (size_t c = 0; c < cm->ncells; c++)
+    for (int f = 0, s[4]; cell_face(cm->ctype[c], f, s); f++)
+      nf++;
+  face *F = malloc((nf + 1) * sizeof *F);
+  if (!F) return ss_error_nomem(err, "drawing");
+  nf = 0;
+  double dmin = INFINITY, dmax = -INFINITY;
+  for (size_t c = 0; c < cm->ncells; c++) {
+    int s[4];
+    for (int f = 0, n; (n = cell_face(cm->ctype[c], f, s)) > 0; f++) {
+      face *x = F + nf++;
+      x->cell = c;
+      x->n = n;
+      x->depth = 0.0;
+      double P[4][3];
+      for (int j = 0; j < n; j++) {
+        const double *q = cm->x + cm->corner[c * SS_MAXCELLVERTS + (size_t)s[j]] * 3;
+        memcpy(P[j], q, sizeof P[j]);
+        x->sx[j] = dot3(q, v->r);
+        x->sy[j] = dot3(q, v->u);
+        x->depth += dot3(q, v->f) / n;
+        panel_see(p, x->sx[j], x->sy[j]);
+      }
+      /* normal from the diagonals (or two edges of a triangle) */
+      double a[3], b[3], nrm[3];
+      for (int i = 0; i < 3; i++) {
+        a[i] = P[2][i] - P[0][i];
+        b[i] = P[n == 4 ? 3 : 1][i] - P[n == 4 ? 1 : 0][i];
+      }
+      nrm[0] = a[1] * b[2] - a[2] * b[1];
+      nrm[1] = a[2] * b[0] - a[0] * b[2];
+      nrm[2] = a[0] * b[1] - a[1] * b[0];
+      const double l = sqrt(dot3(nrm, nrm));
+      x->shade = l > 0 ? fabs(dot3(nrm, v->f)) / l : 0.0;
+      dmin = fmin(dmin, x->depth), dmax = fmax(dmax, x->depth);
+    }
+  }
+  panel_fit(p);
+  qsort(F, nf, sizeof *F, by_depth);
+  const double span = dmax > dmin ? dmax - dmin : 1.0;
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (size_t i = 0; i < nf; i++) {
+    const face *x = F + i;
+    const double near = (x->depth - dmin) / span; /* 0 far .. 1 near */
+    const rgb c = cell_colour(cm, r, x->cell);
+    const int bad = cell_state(cm, r, x->cell) != 0;
+    /* depth cue: far faces fade toward the background, shading by angle */
+    const double fade = bad ? 0.15 : 0.55 * (1.0 - near);
+    const double light = 0.65 + 0.35 * x->shade;
+    cairo_new_path(cr);
+    for (int j = 0; j < x->n; j++) {
+      double X, Y;
+      to_surface(p, x->sx[j], x->sy[j], &X, &Y);
+      if (j == 0)
+        cairo_move_to(cr, X, Y);
+      else
+        cairo_line_to(cr, X, Y);
+    }
+    cairo_close_path(cr);
+    cairo_set_source_rgba(cr, (c.r * light) * (1 - fade) + fade,
+                          (c.g * light) * (1 - fade) + fade,
+                          (c.b * light) * (1 - fade) + fade, bad ? 0.85 : 0.45);
+    cairo_fill_preserve(cr);
+    const double g = 0.15 + 0.55 * (1.0 - near);
+    cairo_set_source_rgba(cr, g, g, g + 0.05, 0.9);
+    cairo_set_line_width(cr, bad ? 1.6 : 0.5 + 0.9 * near);
+    cairo_stroke(cr);
+  }
+  free(F);
+  mark_p(cr, p, dot3(cm->x, v->r), dot3(cm->x, v->u));
+  return SS_OK;
+}
+
+/* ---- the cross-section z3 = 0 ---- */
+
+static int by_angle_cmp(const void *a, const void *b) {
+  const double x = ((const double *)a)[2], y = ((const double *)b)[2];
+  return (x > y) - (x < y);
+}
+
+/* The polygon where the plane z3 = 0 cuts cell c (through its straight
+ * edges): up to 12 points (x, y, angle), ordered by angle; returns the count. */
+static int section(const ss_charmap *cm, size_t c, double pts[][3]) {
+  const ss_cell_type t = cm->ctype[c];
+  int n = 0;
+  for (int e = 0; e < ss_cell_nedges(t); e++) {
+    int a, b;
+    ss_cell_edge(t, e, &a, &b);
+    const double *A = cm->x + cm->corner[c * SS_MAXCELLVERTS + (size_t)a] * 3;
+    const double *B = cm->x + cm->corner[c * SS_MAXCELLVERTS + (size_t)b] * 3;
+    /* a point on the plane counts as above it (the plane z3 = +0), so a
+     * face lying in the plane is drawn once, by the cell below it */
+    if ((A[2] >= 0) == (B[2] >= 0)) continue;
+    const double s = A[2] / (A[2] - B[2]);
+    if (n < 12) {
+      pts[n][0] = A[0] + s * (B[0] - A[0]);
+      pts[n][1] = A[1] + s * (B[1] - A[1]);
+      n++;
+    }
+  }
+  if (n < 3) return 0;
+  double mx = 0, my = 0;
+  for (int i = 0; i < n; i++)
+    mx += pts[i][0] / n, my += pts[i][1] / n;
+  for (int i = 0; i < n; i++)
+    pts[i][2] = atan2(pts[i][1] - my, pts[i][0] - mx);
+  qsort(pts, (size_t)n, sizeof pts[0], by_angle_cmp);
+  return n;
+}
+
+static void polygon(cairo_t *cr, const panel *p, int n, const double *xy, int stride,
+                    rgb c, int bad) {
+  cairo_new_path(cr);
+  for (int j = 0; j < n; j++) {
+    double X, Y;
+    to_surface(p, xy[j * stride], xy[j * stride + 1], &X, &Y);
+    if (j == 0)
+      cairo_move_to(cr, X, Y);
+    else
+      cairo_line_to(cr, X, Y);
+  }
+  cairo_close_path(cr);
+  cairo_set_source_rgba(cr, c.r, c.g, c.b, bad ? 0.85 : 0.5);
+  cairo_fill_preserve(cr);
+  cairo_set_source_rgba(cr, 0.15, 0.15, 0.2, 0.9);
+  cairo_set_line_width(cr, bad ? 1.6 : 0.7);
+  cairo_stroke(cr);
+}
+
+static void draw_section(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
+                         panel *p) {
+  double pts[12][3];
+  for (size_t c = 0; c < cm->ncells; c++) {
+    int n = section(cm, c, pts);
+    for (int i = 0; i < n; i++)
+      panel_see(p, pts[i][0], pts[i][1]);
+  }
+  panel_see(p, cm->x[0], cm->x[1]);
+  panel_fit(p);
+  for (int pass = 0; pass < 2; pass++) /* bad cells on top */
+    for (size_t c = 0; c < cm->ncells; c++) {
+      const int bad = cell_state(cm, r, c) != 0;
+      if (bad != pass) continue;
+      int n = section(cm, c, pts);
+      if (n) polygon(cr, p, n, pts[0], 3, cell_colour(cm, r, c), bad);
+    }
+  mark_p(cr, p, cm->x[0], cm->x[1]);
+}
+
+/* ---- surfaces: the planar map ---- */
+
+static void draw_flat(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
+                      panel *p) {
+  for (size_t i = 0; i < cm->n; i++)
+    panel_see(p, cm->x[2 * i], cm->x[2 * i + 1]);
+  panel_fit(p);
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t c = 0; c < cm->ncells; c++) {
+      const int bad = cell_state(cm, r, c) != 0;
+      if (bad != pass) continue;
+      const int nv = ss_cell_nverts(cm->ctype[c]);
+      double xy[8];
+      for (int j = 0; j < nv && j < 4; j++) {
+        const double *q = cm->x + cm->corner[c * SS_MAXCELLVERTS + (size_t)j] * 2;
+        xy[2 * j] = q[0], xy[2 * j + 1] = q[1];
+      }
+      polygon(cr, p, nv < 4 ? nv : 4, xy, 2, cell_colour(cm, r, c), bad);
+    }
+  mark_p(cr, p, cm->x[0], cm->x[1]);
+}
+
+/* ---- the picture ---- */
+
+static void caption(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
+                    const ss_report_draw_opts *o, double y, double w) {
+  char line[3][400];
+  snprintf(line[0], sizeof line[0], "%s", o->caption ? o->caption : "");
+  int n = snprintf(line[1], sizeof line[1], "lambda1..%d =", cm->dim);
+  for (int i = 0; i < cm->dim && n > 0 && (size_t)n < sizeof line[1]; i++)
+    n += snprintf(line[1] + n, sizeof line[1] - (size_t)n, " %.6f", cm->lambda[i]);
+  snprintf(line[2], sizeof line[2], "regularity: %s, min scaled Jacobian %.4f%s%.200s",
+           ss_verdict_name(r->verdict.verdict), r->min_scaled_jacobian,
+           r->verdict.reason[0] ? ": " : "", r->verdict.reason);
+  cairo_set_font_size(cr, 14.0);
+  for (int i = 0; i < 3; i++) {
+    if (i == 2 && r->verdict.verdict != SS_PASS)
+      cairo_set_source_rgb(cr, 0.75, 0.0, 0.0);
+    else
+      cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_move_to(cr, 12, y + 18 + 18 * i);
+    cairo_show_text(cr, line[i]);
+  }
+  (void)w;
+}
+
+static ss_status paint(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
+                       const ss_report_draw_opts *o, ss_error *err) {
+  const double W = o->width, H = o->height, cap = 70.0;
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         CAIRO_FONT_WEIGHT_NORMAL);
+  ss_status st = SS_OK;
+  if (cm->dim == 3) {
+    view v = make_view(o->azimuth, o->elevation);
+    panel a = new_panel(0, 0, W / 2, H - cap), b = new_panel(W / 2, 0, W / 2, H - cap);
+    if ((st = draw_3d(cr, cm, r, &v, &a, err))) return st;
+    draw_section(cr, cm, r, &b);
+    char t[120];
+    snprintf(t, sizeof t, "two-ring, %zu cells (view %.0f, %.0f)", cm->ncells, o->azimuth,
+             o->elevation);
+    panel_title(cr, &a, t);
+    panel_title(cr, &b, "cross-section z3 = 0 through p");
+    cairo_set_source_rgb(cr, 0.8, 0.8, 0.8);
+    cairo_set_line_width(cr, 1.0);
+    cairo_move_to(cr, W / 2, 10);
+    cairo_line_to(cr, W / 2, H - cap);
+    cairo_stroke(cr);
+  } else {
+    panel a = new_panel(0, 0, W, H - cap);
+    draw_flat(cr, cm, r, &a);
+    char t[120];
+    snprintf(t, sizeof t, "planar characteristic map, %zu cells", cm->ncells);
+    panel_title(cr, &a, t);
+  }
+  caption(cr, cm, r, o, H - cap, W);
+  return st;
+}
+
+/* ---- VTK ---- */
+
+static const int oct_pyramids[2][5] = {{1, 2, 4, 5, 0}, {1, 5, 4, 2, 3}};
+
+static ss_status write_vtk(const ss_charmap *cm, const char *path, ss_error *err) {
+  FILE *f = fopen(path, "w");
+  if (!f) return ss_error_set(err, SS_EIO, "%s: cannot open for writing", path);
+  size_t ncell = 0, nidx = 0;
+  for (size_t c = 0; c < cm->ncells; c++) {
+    const ss_cell_type t = cm->ctype[c];
+    ncell += t == SS_OCT ? 2 : 1;
+    nidx += t == SS_OCT ? 12 : 1 + (size_t)ss_cell_nverts(t);
+  }
+  fprintf(f,
+          "# vtk DataFile Version 3.0\nsubspectra characteristic map\nASCII\n"
+          "DATASET UNSTRUCTURED_GRID\nPOINTS %zu double\n",
+          cm->n);
+  for (size_t i = 0; i < cm->n; i++)
+    fprintf(f, "%.17g %.17g %.17g\n", cm->x[i * (size_t)cm->dim],
+            cm->x[i * (size_t)cm->dim + 1],
+            cm->dim == 3 ? cm->x[i * (size_t)cm->dim + 2] : 0.0);
+  fprintf(f, "CELLS %zu %zu\n", ncell, nidx);
+  for (size_t c = 0; c < cm->ncells; c++) {
+    const ss_cell_type t = cm->ctype[c];
+    const size_t *v = cm->corner + c * SS_MAXCELLVERTS;
+    if (t == SS_OCT) {
+      for (int q = 0; q < 2; q++) {
+        fprintf(f, "5");
+        for (int j = 0; j < 5; j++)
+          fprintf(f, " %zu", v[oct_pyramids[q][j]]);
+        fputc('\n', f);
+      }
+      continue;
+    }
+    fprintf(f, "%d", ss_cell_nverts(t));
+    for (int j = 0; j < ss_cell_nverts(t); j++)
+      fprintf(f, " %zu", v[j]);
+    fputc('\n', f);
+  }
+  fprintf(f, "CELL_TYPES %zu\n", ncell);
+  for (size_t c = 0; c < cm->ncells; c++) {
+    const ss_cell_type t = cm->ctype[c];
+    const int code = t == SS_HEX        ? 12
+                     : t == SS_TET      ? 10
+                     : t == SS_QUAD     ? 9
+                     : t == SS_TRIANGLE ? 5
+                                        : 14; /* octahedron: two pyramids */
+    fprintf(f, t == SS_OCT ? "%d\n%d\n" : "%d\n", code, code);
+  }
+  fprintf(f, "CELL_DATA %zu\nSCALARS jacobian_sign int 1\nLOOKUP_TABLE default\n", ncell);
+  for (size_t c = 0; c < cm->ncells; c++)
+    for (int q = 0; q < (cm->ctype[c] == SS_OCT ? 2 : 1); q++)
+      fprintf(f, "%d\n", (int)cm->jac[c].sign);
+  fprintf(f, "SCALARS min_scaled_jacobian double 1\nLOOKUP_TABLE default\n");
+  for (size_t c = 0; c < cm->ncells; c++)
+    for (int q = 0; q < (cm->ctype[c] == SS_OCT ? 2 : 1); q++)
+      fprintf(f, "%.17g\n", cm->jac[c].min_scaled);
+  fprintf(f, "POINT_DATA %zu\nSCALARS one_ring int 1\nLOOKUP_TABLE default\n", cm->n);
+  for (size_t i = 0; i < cm->n; i++)
+    fprintf(f, "%d\n", i < cm->n1);
+  const int bad = ferror(f);
+  if (fclose(f) != 0 || bad) return ss_error_set(err, SS_EIO, "%s: write failed", path);
+  return SS_OK;
+}
+
+/* ---- dispatch ---- */
+
+static int has_ext(const char *path, const char *ext) {
+  const size_t n = strlen(path), m = strlen(ext);
+  if (n < m) return 0;
+  for (size_t i = 0; i < m; i++)
+    if (tolower((unsigned char)path[n - m + i]) != ext[i]) return 0;
+  return 1;
+}
+
+ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
+                         const ss_report_draw_opts *o, const char *path, ss_error *err) {
+  if (o->width < 100 || o->height < 100 || o->width > 10000 || o->height > 10000)
+    return ss_error_set(err, SS_EINPUT, "draw: picture size %dx%d out of range", o->width,
+                        o->height);
+  if (cm->dim != 2 && cm->dim != 3)
+    return ss_error_set(err, SS_EINPUT, "draw: a map of dimension %d", cm->dim);
+  if (has_ext(path, ".vtk")) return write_vtk(cm, path, err);
+  const int png = has_ext(path, ".png"), svg = has_ext(path, ".svg");
+  if (!png && !svg)
+    return ss_error_set(err, SS_EINPUT,
+                        "draw: %s: unknown picture format (use .png, .svg or .vtk)",
+                        path);
+  cairo_surface_t *s =
+      png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o->width, o->height)
+          : cairo_svg_surface_create(path, o->width, o->height);
+  if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
+    ss_status st = ss_error_set(err, SS_EIO, "%s: %s", path,
+                                cairo_status_to_string(cairo_surface_status(s)));
+    cairo_surface_destroy(s);
+    return st;
+  }
+  cairo_t *cr = cairo_create(s);
+  ss_status st = paint(cr, cm, r, o, err);
+  if (!st && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
+    st = ss_error_set(err, SS_EIO, "%s: drawing failed: %s", path,
+                      cairo_status_to_string(cairo_status(cr)));
+  cairo_destroy(cr);
+  if (!st && png) {
+    cairo_status_t ws = cairo_surface_write_to_png(s, path);
+    if (ws != CAIRO_STATUS_SUCCESS)
+      st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path,
+                        cairo_status_to_string(ws));
+  }
+  cairo_surface_finish(s);
+  if (!st && cairo_surface_status(s) != CAIRO_STATUS_SUCCESS)
+    st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path,
+                      cairo_status_to_string(cairo_surface_status(s)));
+  cairo_surface_destroy(s);
+  return st;
+}

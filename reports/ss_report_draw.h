@@ -1,0 +1,50 @@
+/* ss_report_draw.h — pictures of a characteristic map's two-ring (issue 5):
+ * raster (PNG) and vector (SVG) drawings through cairo, and legacy VTK for
+ * ParaView.
+ *
+ * A drawing has two panels side by side:
+ *   left   the two-ring's cells in 3D projection (orthographic, from the
+ *          direction given by azimuth and elevation), faces painted back to
+ *          front with depth cues (faces further away lighter and greyer, shading
+ *          by the angle to the viewer), cell edges drawn, the one-ring's cells
+ *          emphasised, and cells that are not regular (ss_jac verdict folded,
+ *          undecided, or of the minority sign) filled in a warning colour
+ *          (red; undecided orange); the centre p (point 0, at the origin of
+ *          the map) marked;
+ *   right  the planar cross-section of the control net through p by the plane
+ *          z3 = 0 (the cells' edges cut by the plane, each cut cell as a
+ *          polygon, warning colours as on the left).
+ * Surface cases (dim 2) are drawn in one panel, flat, as the planar map.
+ * A caption states the case, lambda1..m, the verdict and the minimum scaled
+ * Jacobian.
+ *
+ * VTK: an UNSTRUCTURED_GRID (ASCII, legacy format 4.2 or 3.0) with the points
+ * (z1, z2, z3; surfaces with z3 = 0), the cells (hexes, tets, octahedra as
+ * VTK_HEXAHEDRON / VTK_TETRA / VTK_POLYHEDRON or 8 tets, quads, triangles) in
+ * the vertex order of ss_cx.h, and CELL_DATA "jacobian_sign" (int: 1, -1, 0
+ * folded, 2 undecided) and "min_scaled_jacobian" (double), POINT_DATA
+ * "one_ring" (int 0/1). */
+#ifndef SS_REPORT_DRAW_H
+#define SS_REPORT_DRAW_H
+
+#include "ss_charmap.h"
+
+/* How to draw. */
+typedef struct {
+  int width, height;   /* picture size in pixels (PNG) or points (SVG) */
+  double azimuth;      /* view direction: degrees about the z3 axis */
+  double elevation;    /* view direction: degrees above the z1-z2 plane */
+  const char *caption; /* first caption line (the case), or NULL */
+} ss_report_draw_opts;
+
+/* Defaults: 1200 x 600, azimuth 30, elevation 25, no caption. */
+ss_report_draw_opts ss_report_draw_defaults(void);
+
+/* Draw cm (judged by ss_charmap_regularity, verdict r) into the file at path;
+ * the format follows the extension: .png, .svg or .vtk.  SS_EINPUT for
+ * another extension or bad options, SS_EIO when the file cannot be written
+ * (message names the file), SS_ENOMEM. */
+ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
+                         const ss_report_draw_opts *o, const char *path, ss_error *err);
+
+#endif
