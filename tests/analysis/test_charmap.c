@@ -322,6 +322,20 @@ static void test_defective(void) {
     }
     CHECK(e->cond.verdict == SS_PASS, "jordan %d: condition %s", jordan, e->cond.reason);
     CHECK(e->defective == jordan, "jordan %d: defective = %d", jordan, e->defective);
+    /* no map for a Jordan block: regularity fails with that reason */
+    ss_local M;
+    memset(&M, 0, sizeof M);
+    M.n2 = M.n1 = 5;
+    ss_charmap *cm = NULL;
+    ss_regularity reg;
+    CHECK(ss_charmap_analyze(&M, e, SS_JAC_DEPTH, &cm, &reg, &err) == SS_OK, "%s",
+          err.msg);
+    if (jordan)
+      CHECK(reg.verdict.verdict == SS_FAIL && strstr(reg.verdict.reason, "defective") &&
+                !cm,
+            "jordan: regularity %s (%s)", ss_verdict_name(reg.verdict.verdict),
+            reg.verdict.reason);
+    ss_charmap_free(cm);
     ss_eig_free(e);
   }
 }
@@ -409,7 +423,37 @@ static void test_mlca_k8(void) {
   ss_scheme_free(mlca);
 }
 
+/* Complex subdominant eigenvalues: the condition fails and regularity fails
+ * with that reason, without a map. */
+static void test_complex(void) {
+  double S[25] = {0};
+  const double d[5] = {1.0, 0.5, 0.5, 0.25, 0.125};
+  for (int i = 0; i < 5; i++)
+    S[i * 5 + i] = d[i];
+  S[1 * 5 + 2] = 0.2, S[2 * 5 + 1] = -0.2; /* 0.5 +- 0.2i */
+  ss_eig_opts o = ss_eig_defaults(3);
+  ss_eig *e = NULL;
+  ss_error err = {0};
+  if (ss_eig_new(S, 5, 5, &o, &e, &err)) {
+    CHECK(0, "complex test: %s", err.msg);
+    return;
+  }
+  ss_local M;
+  memset(&M, 0, sizeof M);
+  M.n2 = M.n1 = 5;
+  ss_charmap *cm = NULL;
+  ss_regularity reg;
+  CHECK(ss_charmap_analyze(&M, e, SS_JAC_DEPTH, &cm, &reg, &err) == SS_OK, "%s", err.msg);
+  CHECK(e->cond.verdict == SS_FAIL && reg.verdict.verdict == SS_FAIL && !cm &&
+            strstr(reg.verdict.reason, "complex") && isnan(reg.min_scaled_jacobian),
+        "complex: condition %s, regularity %s (%s)", ss_verdict_name(e->cond.verdict),
+        ss_verdict_name(reg.verdict.verdict), reg.verdict.reason);
+  ss_charmap_free(cm);
+  ss_eig_free(e);
+}
+
 int main(void) {
+  test_complex();
   test_mlca_k8();
   test_regular();
   test_folded();
