@@ -21,6 +21,12 @@
  *    (m01, m03, m02, m23, m12, m13); the middle triangle is (m12, m20, m01).
  *    Octahedron children: octahedra 0..5 about corners 0..5, then the 8 tets of
  *    the faces (s0,s1,s2), s_k in {k, k+3}, in binary order of the choices.
+ *    Major diagonals (box-spline paper, Definition 3.2) live in the vertex
+ *    order: an octahedron's is its pair (0,3), a tet's its edge pair (0,1),
+ *    (2,3) (the tet's octahedron joins their midpoints); every child's is
+ *    parallel to its parent's (corner children are scaled copies, and an
+ *    octahedron's tet (c, B, ., .) with B = m(s1,s2) puts first the pair
+ *    whose octahedron lies along the parent's axis (0,3)).
  * Vertex cells are copied.  Every child keeps the parent's reference.
  *
  * Fine cells of coarse cell i of type t occupy a contiguous block, in coarse

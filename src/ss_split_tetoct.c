@@ -87,9 +87,13 @@ static ss_status split_oct(to_state *s, const ss_idx *v, int32_t ref, ss_cx *fin
       child[j] = j == i ? v[i] : (j == (i + 3) % 6 ? c : mid[i][j]);
     if ((st = ss_cx_add_cell(fine, SS_OCT, child, ref, err))) return st;
   }
-  /* eight tets, one per face (s0,s1,s2) with s_k in {k, k+3}: (c, A, B, C) with
-   * A = m(s0,s1), B = m(s1,s2), C = m(s0,s2); an odd number of choices k+3
-   * reverses the face, so two vertices swap */
+  /* eight tets, one per face (s0,s1,s2) with s_k in {k, k+3}: c and A =
+   * m(s0,s1), B = m(s1,s2), C = m(s0,s2).  The edge pair (c,B), (A,C) comes
+   * first: the octahedron it will bound joins their midpoints, along the
+   * parent's axis s0 (its major diagonal (0,3), box-spline paper, Algorithm 1:
+   * children inherit the parallel diagonal).  An odd number of choices k+3
+   * reverses the face; (c, B, C, A) and (c, B, A, C) are then the positive
+   * orders. */
   for (int f = 0; f < 8; f++) {
     int s0 = (f & 1) ? 3 : 0, s1 = (f & 2) ? 4 : 1, s2 = (f & 4) ? 5 : 2;
     int odd = ((f & 1) + ((f >> 1) & 1) + ((f >> 2) & 1)) & 1;
@@ -97,7 +101,7 @@ static ss_status split_oct(to_state *s, const ss_idx *v, int32_t ref, ss_cx *fin
     if (odd)
       ADD(SS_TET, c, B, A, C);
     else
-      ADD(SS_TET, c, A, B, C);
+      ADD(SS_TET, c, B, C, A);
   }
   return SS_OK;
 }

@@ -184,6 +184,53 @@ static void test_tet_oct(void) {
   ss_cx_free(oc);
 }
 
+/* Major diagonals (box-spline paper, Definition 3.2, Algorithm 1; DESIGN
+ * section 4) live in the vertex order: an octahedron's is its pair (0, 3), a
+ * tet's the edge pair (0,1), (2,3).  Every child inherits the diagonal
+ * parallel to its parent's, so after any number of splits of one tet every
+ * octahedron's x3 - x0 is parallel to (x2 + x3 - x0 - x1) of the base tet,
+ * and every tet's pair gives the octahedron of that direction. */
+static void test_diagonals(void) {
+  const double xt[4][3] = {{0, 0, 0}, {1, 0.1, 0}, {0.2, 1, 0.1}, {0.1, 0.2, 1}};
+  double d[3];
+  for (int r = 0; r < 3; r++)
+    d[r] = xt[2][r] + xt[3][r] - xt[0][r] - xt[1][r];
+  ss_cx *cx = one_cell(SS_TET, xt, 4);
+  ss_error err = {0};
+  for (int level = 1; level <= 3 && cx; level++) {
+    ss_cx *f = NULL;
+    ss_split *L = NULL;
+    REQUIRE_OK_VOID(ss_split_refine(SS_SPLIT_TETOCT, cx, &f, &L, &err), &err);
+    ss_split_free(L);
+    ss_cx_free(cx);
+    cx = f;
+    size_t bad = 0;
+    for (int t = SS_TET; t <= SS_OCT; t += SS_OCT - SS_TET) {
+      for (size_t i = 0; i < cx->nc[t]; i++) {
+        const ss_idx *v = ss_cx_cell(cx, (ss_cell_type)t, i);
+        double e[3], c[3];
+        for (int r = 0; r < 3; r++) {
+          const double *x = cx->x;
+          e[r] = t == SS_OCT ? x[3 * v[3] + r] - x[3 * v[0] + r]
+                             : x[3 * v[2] + r] + x[3 * v[3] + r] - x[3 * v[0] + r] -
+                                   x[3 * v[1] + r];
+        }
+        c[0] = e[1] * d[2] - e[2] * d[1];
+        c[1] = e[2] * d[0] - e[0] * d[2];
+        c[2] = e[0] * d[1] - e[1] * d[0];
+        const double ne = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]),
+                     nd = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        bad += !(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) <= 1e-12 * ne * nd);
+      }
+    }
+    CHECK(bad == 0,
+          "level %d: %zu of %zu cells have a diagonal not parallel to the "
+          "base tet's",
+          level, bad, cx->nc[SS_TET] + cx->nc[SS_OCT]);
+  }
+  ss_cx_free(cx);
+}
+
 static void test_triangle_and_rejects(void) {
   ss_cx *cx = NULL, *f = NULL;
   ss_split *L = NULL;
@@ -221,6 +268,7 @@ static void test_triangle_and_rejects(void) {
 }
 
 int main(void) {
+  test_diagonals();
   gsl_set_error_handler_off();
   test_hex();
   test_tet_oct();
