@@ -22,12 +22,13 @@ static const entry registry[] = {
     {"tetoct", ss_scheme_tetoct_new},
     {"catmull-clark", ss_scheme_catmull_clark_new},
     {"loop", ss_scheme_loop_new},
+    {"boxspline", ss_scheme_boxspline_new},
 };
 #define NREG (sizeof registry / sizeof registry[0])
 
 const char *const *ss_scheme_names(void) {
-  static const char *const names[NREG + 1] = {"mlca", "tetoct", "catmull-clark", "loop",
-                                              NULL};
+  static const char *const names[NREG + 1] = {"mlca", "tetoct",    "catmull-clark",
+                                              "loop", "boxspline", NULL};
   return names;
 }
 
@@ -36,7 +37,8 @@ ss_status ss_scheme_new(const char *name, ss_scheme **out, ss_error *err) {
   for (size_t i = 0; i < NREG; i++)
     if (strcmp(name, registry[i].name) == 0) return registry[i].make(out, err);
   return ss_error_set(err, SS_EINPUT,
-                      "unknown scheme '%s' (known: mlca, tetoct, catmull-clark, loop)",
+                      "unknown scheme '%s' (known: mlca, tetoct, catmull-clark, loop, "
+                      "boxspline)",
                       name);
 }
 
@@ -134,7 +136,7 @@ ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse,
   }
   ss_sink k = {L, dim, fine->x, y, NULL, SS_OK};
   if (R_out) k.M = &M;
-  if ((st = s->rule(s, fine, L, &k, err))) goto done;
+  if ((st = s->rule(s, coarse, fine, L, &k, err))) goto done;
   if (k.st) {
     st = ss_error_nomem(err, "refinement operator");
     goto done;

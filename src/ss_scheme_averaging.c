@@ -12,8 +12,10 @@
 
 #include "ss_scheme_impl.h"
 
-static ss_status averaging_rule(const ss_scheme *s, const ss_cx *fine, const ss_split *L,
-                                ss_sink *k, ss_error *err) {
+static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
+                                const ss_cx *fine, const ss_split *L, ss_sink *k,
+                                ss_error *err) {
+  (void)coarse; /* the split complex and L say all this rule needs */
   (void)L;
   const size_t nv = fine->nv;
   unsigned char *dimv = malloc(nv + 1);

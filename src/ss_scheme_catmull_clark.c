@@ -14,8 +14,9 @@
 #include "ss_crease.h"
 #include "ss_scheme_impl.h"
 
-static ss_status cc_rule(const ss_scheme *s, const ss_cx *fine, const ss_split *L,
-                         ss_sink *k, ss_error *err) {
+static ss_status cc_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                         const ss_split *L, ss_sink *k, ss_error *err) {
+  (void)coarse; /* the split complex and L say all this rule needs */
   (void)s;
   ss_crease *c = NULL;
   ss_status st = ss_crease_classify(fine, L, SS_QUAD, 2, &c, err);

@@ -5,10 +5,12 @@
 #include "ss_scheme.h"
 #include "ss_sink.h"
 
-/* The rule of a scheme: given the split complex `fine` (topology, and positions
- * at the split points) and L, emit every fine vertex's weights into k. */
-typedef ss_status (*ss_rule_fn)(const ss_scheme *s, const ss_cx *fine, const ss_split *L,
-                                ss_sink *k, ss_error *err);
+/* The rule of a scheme: given the coarse complex, the split complex `fine`
+ * (topology, and positions at the split points) and L, emit every fine
+ * vertex's weights into k. */
+typedef ss_status (*ss_rule_fn)(const ss_scheme *s, const ss_cx *coarse,
+                                const ss_cx *fine, const ss_split *L, ss_sink *k,
+                                ss_error *err);
 
 struct ss_scheme {
   char name[64];       /* scheme name, e.g. "mlca" */
@@ -27,5 +29,6 @@ ss_status ss_scheme_mlca_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_tetoct_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_catmull_clark_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_loop_new(ss_scheme **out, ss_error *err);
+ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err);
 
 #endif

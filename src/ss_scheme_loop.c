@@ -28,8 +28,9 @@ static ss_idx common_parent(const ss_split *L, ss_idx y, ss_idx z) {
   return (y0 == z0 || y0 == z1) ? y0 : y1;
 }
 
-static ss_status loop_rule(const ss_scheme *s, const ss_cx *fine, const ss_split *L,
-                           ss_sink *k, ss_error *err) {
+static ss_status loop_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                           const ss_split *L, ss_sink *k, ss_error *err) {
+  (void)coarse; /* the split complex and L say all this rule needs */
   (void)s;
   ss_crease *c = NULL;
   ss_status st = ss_crease_classify(fine, L, SS_TRIANGLE, 3, &c, err);
