@@ -73,7 +73,7 @@ static void help(const char *cmd) {
          "  --face                 a point inside the face of two tets (tet/oct split)\n"
          "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
          "options:\n"
-         "  --scheme S             mlca, tetoct, catmull-clark, loop\n",
+         "  --scheme S             mlca, tetoct, boxspline, catmull-clark, loop\n",
          m || d ? "" : " (one result\n                         per line)");
   if (m)
     printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "

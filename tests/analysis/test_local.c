@@ -520,6 +520,18 @@ static void test_cross(void) {
     cross_check(to, (ss_case){SS_CASE_VERTEX, l, 0}, links[i]);
     ss_link_free(l);
   }
+  {
+    /* box-spline solids: vertex, edge and face cases */
+    ss_scheme *bx = scheme("boxspline");
+    ss_link *l = NULL;
+    ss_error err = {0};
+    if (!ss_link_parse("bipyramid:5", &l, &err))
+      cross_check(bx, (ss_case){SS_CASE_VERTEX, l, 0}, "boxspline bipyramid:5");
+    ss_link_free(l);
+    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 5}, "boxspline edge 5");
+    cross_check(bx, (ss_case){SS_CASE_FACE, NULL, 0}, "boxspline face");
+    ss_scheme_free(bx);
+  }
   cross_check(ml, (ss_case){SS_CASE_EDGE, NULL, 5}, "mlca edge 5");
   cross_check(to, (ss_case){SS_CASE_EDGE, NULL, 7}, "tetoct edge 7");
   cross_check(to, (ss_case){SS_CASE_FACE, NULL, 0}, "tetoct face");

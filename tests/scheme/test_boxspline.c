@@ -1,0 +1,304 @@
+/* test_boxspline.c — the box-spline solid scheme (box-spline paper, sections
+ * 3.3–3.5) against the trivariate box spline it is built on:
+ *  - inside a refined tet (the octet-truss with parallel major diagonals)
+ *    every row is one of the regular rules (3.3)–(3.6);
+ *  - the composite mask of an interior vertex equals the coefficients of
+ *    (1/32)(1+z1)^2(1+z2)^2(1+z3)^2(1+z1 z2 z3)^2 (equation 3.2) under a
+ *    unimodular map of Z^3 onto the lattice, and its even part is rule (3.3);
+ *  - the extraordinary vertex rule (3.7) at an icosahedral vertex. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_scheme.h"
+#include "ss_split.h"
+#include "ss_test.h"
+
+/* A tet with corners 0, e1, e2, e3, refined `levels` times by the linear
+ * split: vertex positions are exact dyadic lattice points. */
+static ss_cx *lattice_tet(int levels) {
+  const double x[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  ss_cx *cx = NULL;
+  ss_error err = {0};
+  ss_cx_new(3, &cx, &err);
+  for (int i = 0; i < 4; i++)
+    ss_cx_add_vertex(cx, x[i], 0, &err);
+  const ss_idx v[4] = {0, 1, 2, 3};
+  ss_cx_add_cell(cx, SS_TET, v, 0, &err);
+  for (int l = 0; l < levels && cx; l++) {
+    ss_cx *f = NULL;
+    ss_split *L = NULL;
+    if (ss_split_refine(SS_SPLIT_TETOCT, cx, &f, &L, &err)) {
+      CHECK(0, "split: %s", err.msg);
+      f = NULL;
+    }
+    ss_split_free(L);
+    ss_cx_free(cx);
+    cx = f;
+  }
+  return cx;
+}
+
+/* Lattice coordinates (units 1/n) of point x; -1 entries if not a lattice
+ * point. */
+static void lat(const double *x, int n, long *out) {
+  for (int r = 0; r < 3; r++) {
+    const double s = x[r] * n;
+    out[r] = fabs(s - nearbyint(s)) < 1e-9 ? (long)nearbyint(s) : -1;
+  }
+}
+
+/* Strictly inside the tet a+b+c <= n, all >= 0, at distance >= d. */
+static int inside(const long *a, int n, int d) {
+  return a[0] >= d && a[1] >= d && a[2] >= d && a[0] + a[1] + a[2] <= n - d;
+}
+
+typedef struct {
+  ss_cx *coarse, *fine;
+  gsl_spmatrix *R;
+  double *y; /* fine lattice positions (linear split), fine->nv x 3 */
+} level_op;
+
+/* The operator from a tet refined `levels` times to the next level, with the
+ * fine vertices' linear positions. */
+static int make_op(const ss_scheme *s, int levels, level_op *o) {
+  ss_error err = {0};
+  ss_split *L = NULL;
+  memset(o, 0, sizeof *o);
+  o->coarse = lattice_tet(levels);
+  if (!o->coarse ||
+      ss_scheme_refine_split(s, o->coarse, &o->fine, &o->R, &L, &err) != SS_OK) {
+    CHECK(0, "box-spline refinement: %s", err.msg);
+    return -1;
+  }
+  o->y = calloc(o->fine->nv * 3, sizeof *o->y);
+  for (size_t f = 0; f < o->fine->nv; f++) {
+    const size_t np = ss_split_npar(L, f);
+    for (size_t q = L->ptr[f]; q < L->ptr[f + 1]; q++)
+      for (int r = 0; r < 3; r++)
+        o->y[3 * f + r] += o->coarse->x[3 * L->parent[q] + r] / (double)np;
+  }
+  ss_split_free(L);
+  return 0;
+}
+
+static void free_op(level_op *o) {
+  free(o->y);
+  if (o->R) gsl_spmatrix_free(o->R);
+  ss_cx_free(o->fine);
+  ss_cx_free(o->coarse);
+}
+
+static int near(double a, double b) {
+  return fabs(a - b) < 1e-14;
+}
+
+/* Every row of an interior fine vertex is a regular rule. */
+static void test_regular_rules(const ss_scheme *s) {
+  level_op o;
+  if (make_op(s, 3, &o)) return;
+  const int n = 16;             /* fine lattice units */
+  int counts[4] = {0, 0, 0, 0}; /* vertex, edge 6, edge 4, centre */
+  for (size_t f = 0; f < o.fine->nv; f++) {
+    long a[3];
+    lat(o.y + 3 * f, n, a);
+    if (a[0] < 0 || !inside(a, n, 3)) continue;
+    const int b = o.R->p[f], e = o.R->p[f + 1], m = e - b;
+    double big = 0.0;
+    int nbig = 0, nsmall = 0;
+    double small = -1.0;
+    for (int q = b; q < e; q++)
+      big = fmax(big, o.R->data[q]);
+    for (int q = b; q < e; q++) {
+      if (near(o.R->data[q], big))
+        nbig++;
+      else if (small < 0 || near(o.R->data[q], small))
+        small = o.R->data[q], nsmall++;
+    }
+    const int even = a[0] % 2 == 0 && a[1] % 2 == 0 && a[2] % 2 == 0;
+    if (even) { /* an old vertex: (3.3) */
+      CHECK(m == 15 && near(big, 18.0 / 32) && nsmall == 14 && near(small, 1.0 / 32),
+            "vertex (%ld %ld %ld): %d entries, %g and %d x %g", a[0], a[1], a[2], m, big,
+            nsmall, small);
+      counts[0]++;
+    } else if (m == 8) { /* (3.4) */
+      CHECK(nbig == 2 && near(big, 10.0 / 32) && nsmall == 6 && near(small, 2.0 / 32),
+            "edge point (%ld %ld %ld): %d x %g, %d x %g", a[0], a[1], a[2], nbig, big,
+            nsmall, small);
+      counts[1]++;
+    } else if (m == 6 && near(big, 8.0 / 32) && nbig == 2 && near(small, 4.0 / 32)) {
+      /* (3.5) has 8/32 on the edge's ends and (3.6) on the diagonal's ends:
+       * tell them apart by the parity of the fine point (an octahedron centre
+       * has all three coordinates odd) */
+      const int allodd = a[0] % 2 && a[1] % 2 && a[2] % 2;
+      counts[allodd ? 3 : 2]++;
+    } else {
+      CHECK(0, "row at (%ld %ld %ld) is no regular rule: %d entries", a[0], a[1], a[2],
+            m);
+    }
+  }
+  CHECK(counts[0] > 0 && counts[1] > 0 && counts[2] > 0 && counts[3] > 0,
+        "regular rules seen: %d vertex, %d edge (3.4), %d edge (3.5), %d centres (3.6)",
+        counts[0], counts[1], counts[2], counts[3]);
+  free_op(&o);
+}
+
+/* The composite mask of the vertex at lattice point (4,4,4)/16 against the
+ * box spline's generating function. */
+static void test_generating_function(const ss_scheme *s) {
+  level_op o;
+  if (make_op(s, 4, &o)) return;
+  const int nc = 16, nf = 32;
+  size_t x = SIZE_MAX;
+  for (size_t v = 0; v < o.coarse->nv; v++) {
+    long a[3];
+    lat(o.coarse->x + 3 * v, nc, a);
+    if (a[0] == 4 && a[1] == 4 && a[2] == 4) x = v;
+  }
+  CHECK(x != SIZE_MAX, "no coarse vertex at (4,4,4)/16");
+  if (x == SIZE_MAX) {
+    free_op(&o);
+    return;
+  }
+  /* the column: offsets j = fine lattice point - 2 * (4,4,4) */
+  long off[512][3];
+  double val[512];
+  int m = 0;
+  double sum = 0.0;
+  for (size_t f = 0; f < o.fine->nv; f++)
+    for (int q = o.R->p[f]; q < o.R->p[f + 1]; q++) {
+      if ((size_t)o.R->i[q] != x || o.R->data[q] == 0.0) continue;
+      long a[3];
+      lat(o.y + 3 * f, nf, a);
+      CHECK(a[0] >= 0 && inside(a, nf, 1), "mask entry near the tet's boundary");
+      if (m < 512) {
+        for (int r = 0; r < 3; r++)
+          off[m][r] = a[r] - 8;
+        val[m++] = o.R->data[q];
+      }
+      sum += o.R->data[q];
+    }
+  CHECK_CLOSE(sum, 8.0, 1e-13, "the composite mask sums to 2^3");
+  /* coefficients of f, indices 0..4 per variable, centred at 2 */
+  double c[5][5][5] = {{{0}}};
+  const int binom[3] = {1, 2, 1};
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++)
+      for (int d = 0; d < 3; d++)
+        for (int e = 0; e < 3; e++)
+          c[a + e][b + e][d + e] += binom[a] * binom[b] * binom[d] * binom[e] / 32.0;
+  int nz = 0;
+  for (int i = 0; i < 125; i++)
+    nz += c[i / 25][(i / 5) % 5][i % 5] != 0.0;
+  CHECK(m == nz, "mask has %d entries, the generating function %d", m, nz);
+  /* the even part is the vertex rule (3.3): 18/32 and fourteen 1/32 */
+  int even = 0;
+  for (int i = 0; i < 125; i++) {
+    const int i0 = i / 25, i1 = (i / 5) % 5, i2 = i % 5;
+    if (i0 % 2 == 0 && i1 % 2 == 0 && i2 % 2 == 0 && c[i0][i1][i2] != 0.0) {
+      even++;
+      CHECK(near(c[i0][i1][i2], i0 == 2 && i1 == 2 && i2 == 2 ? 18.0 / 32 : 1.0 / 32),
+            "even coefficient (%d %d %d) = %g", i0, i1, i2, c[i0][i1][i2]);
+    }
+  }
+  CHECK(even == 15, "even part: %d entries", even);
+  /* a unimodular U (columns among the mask's offsets of size one step, i.e.
+   * the 14 lattice neighbours) with mask(U (i - 2)) = c[i] for all i */
+  long nb[64][3];
+  int nn = 0;
+  for (int k = 0; k < m && nn < 64; k++) {
+    int even_k = off[k][0] % 2 == 0 && off[k][1] % 2 == 0 && off[k][2] % 2 == 0;
+    if (!even_k || (off[k][0] == 0 && off[k][1] == 0 && off[k][2] == 0)) continue;
+    if (near(val[k], 1.0 / 32)) { /* a neighbour of the vertex rule, 2 fine steps */
+      for (int r = 0; r < 3; r++)
+        nb[nn][r] = off[k][r] / 2;
+      nn++;
+    }
+  }
+  CHECK(nn == 14, "the vertex rule has %d neighbours", nn);
+  int matches = 0;
+  for (int p = 0; p < nn; p++)
+    for (int q = 0; q < nn; q++)
+      for (int r = 0; r < nn; r++) {
+        const long *u1 = nb[p], *u2 = nb[q], *u3 = nb[r];
+        const long det = u1[0] * (u2[1] * u3[2] - u2[2] * u3[1]) -
+                         u1[1] * (u2[0] * u3[2] - u2[2] * u3[0]) +
+                         u1[2] * (u2[0] * u3[1] - u2[1] * u3[0]);
+        if (det != 1 && det != -1) continue;
+        int ok = 1;
+        for (int i = 0; i < 125 && ok; i++) {
+          const int i0 = i / 25 - 2, i1 = (i / 5) % 5 - 2, i2 = i % 5 - 2;
+          const double want = c[i / 25][(i / 5) % 5][i % 5];
+          long t[3];
+          for (int d = 0; d < 3; d++)
+            t[d] = u1[d] * i0 + u2[d] * i1 + u3[d] * i2;
+          double got = 0.0;
+          for (int k = 0; k < m; k++)
+            if (off[k][0] == t[0] && off[k][1] == t[1] && off[k][2] == t[2]) got = val[k];
+          ok = near(got, want);
+        }
+        matches += ok;
+      }
+  CHECK(matches > 0, "no unimodular map takes the generating function onto the mask");
+  free_op(&o);
+}
+
+/* (3.7) at a vertex whose 12 neighbours are all edges (the icosahedral star,
+ * before any octahedron exists). */
+static void test_extraordinary(const ss_scheme *s) {
+  /* a vertex at the origin and 12 around it on a sphere: the 20 tets of the
+   * icosahedron */
+  const double g = (1.0 + sqrt(5.0)) / 2.0;
+  const double ico[12][3] = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                             {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                             {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  const int tri[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                          {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                          {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                          {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  ss_cx *cx = NULL, *f = NULL;
+  ss_error err = {0};
+  ss_cx_new(3, &cx, &err);
+  const double o[3] = {0, 0, 0};
+  ss_cx_add_vertex(cx, o, 0, &err);
+  for (int i = 0; i < 12; i++)
+    ss_cx_add_vertex(cx, ico[i], 0, &err);
+  for (int t = 0; t < 20; t++) {
+    const ss_idx v[4] = {0, (ss_idx)tri[t][0] + 1, (ss_idx)tri[t][2] + 1,
+                         (ss_idx)tri[t][1] + 1};
+    ss_cx_add_cell(cx, SS_TET, v, 0, &err);
+  }
+  gsl_spmatrix *R = NULL;
+  if (ss_scheme_refine(s, cx, &f, &R, &err)) {
+    CHECK(0, "icosahedral star: %s", err.msg);
+    ss_cx_free(cx);
+    return;
+  }
+  CHECK(R->p[1] - R->p[0] == 13, "centre row has %d entries", R->p[1] - R->p[0]);
+  for (int q = R->p[0]; q < R->p[1]; q++)
+    CHECK(near(R->data[q], R->i[q] == 0 ? 9.0 / 16 : 7.0 / (16 * 12)),
+          "centre row: %g at column %d", R->data[q], R->i[q]);
+  for (size_t r = 0; r < f->nv; r++) {
+    double sum = 0.0;
+    for (int q = R->p[r]; q < R->p[r + 1]; q++)
+      sum += R->data[q];
+    CHECK(fabs(sum - 1.0) < 1e-14, "row %zu sums to %.17g", r, sum);
+  }
+  gsl_spmatrix_free(R);
+  ss_cx_free(f);
+  ss_cx_free(cx);
+}
+
+int main(void) {
+  ss_scheme *s = NULL;
+  ss_error err = {0};
+  if (ss_scheme_new("boxspline", &s, &err)) {
+    fprintf(stderr, "%s\n", err.msg);
+    return 1;
+  }
+  test_regular_rules(s);
+  test_generating_function(s);
+  test_extraordinary(s);
+  ss_scheme_free(s);
+  return ss_test_done("boxspline");
+}
