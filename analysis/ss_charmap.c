@@ -63,8 +63,10 @@ ss_status ss_charmap_new(const ss_local *M, const ss_eig *e, ss_charmap **out,
       cm->x[i * (size_t)m + (size_t)j] = col[i] / scale;
     cm->lambda[j] = e->val[j + 1].re;
   }
-  memcpy(cm->ctype, M->ctype, M->ncells * sizeof *cm->ctype);
-  memcpy(cm->corner, M->corner, M->ncells * SS_MAXCELLVERTS * sizeof *cm->corner);
+  if (M->ncells) { /* a matrix given without its cells has none to copy */
+    memcpy(cm->ctype, M->ctype, M->ncells * sizeof *cm->ctype);
+    memcpy(cm->corner, M->corner, M->ncells * SS_MAXCELLVERTS * sizeof *cm->corner);
+  }
   *out = cm;
   return SS_OK;
 }
