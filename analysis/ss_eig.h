@@ -11,7 +11,9 @@
  * numbers are those of the block holding the eigenvalue.
  *
  * Multiplicities: eigenvalues within a relative tolerance `tol` of each other
- * (|a - b| <= tol * max(|a|, |b|)) form one group.  The default, 1e-6, joins
+ * (|a - b| <= tol * max(|a|, |b|)) form one group; an imaginary part below
+ * tol * |lambda| (a real multiple eigenvalue split by rounding into a
+ * conjugate pair) is set to 0.  The default, 1e-6, joins
  * the copies of an exact tie that rounding splits (by about 1e-8 for a Jordan
  * block of size 2) and keeps apart genuine near-ties (relative gaps of 1e-3 are
  * met in practice).  It is printed with every verdict.
