@@ -695,19 +695,36 @@ ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
         ss_scheme_name(s), ss_case_name(c->kind), ss_cell_plural(t));
   if (c->kind == SS_CASE_VERTEX && !c->link)
     return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
+  if (c->diag != SS_DIAG_BFS && (c->kind != SS_CASE_EDGE || t != SS_TET))
+    return ss_error_set(err, SS_EINPUT,
+                        "major diagonals '%s' are defined around an edge: only for the "
+                        "edge case of a tet star",
+                        ss_diag_name(c->diag));
+  ss_status st;
   switch (c->kind) {
   case SS_CASE_VERTEX:
-    return t == SS_HEX ? ss_star_hex_vertex(c->link, out, err)
-                       : ss_star_tet_vertex(c->link, out, err);
+    st = t == SS_HEX ? ss_star_hex_vertex(c->link, out, err)
+                     : ss_star_tet_vertex(c->link, out, err);
+    break;
   case SS_CASE_EDGE:
-    return t == SS_HEX ? ss_star_hex_edge(c->n, out, err)
-                       : ss_star_tet_edge(c->n, out, err);
+    st =
+        t == SS_HEX ? ss_star_hex_edge(c->n, out, err) : ss_star_tet_edge(c->n, out, err);
+    break;
   case SS_CASE_FACE:
-    return ss_star_tet_face(out, err);
+    st = ss_star_tet_face(out, err);
+    break;
   default:
     return t == SS_QUAD ? ss_star_quad_vertex(c->n, out, err)
                         : ss_star_tri_vertex(c->n, out, err);
   }
+  /* tet stars carry their major diagonals in the tets' vertex order (the edge
+   * star's edge is star vertices 0 and 1) */
+  if (!st && t == SS_TET) st = ss_diag_choose((*out)->cx, c->diag, 0, 1, err);
+  if (st) {
+    ss_star_free(*out);
+    *out = NULL;
+  }
+  return st;
 }
 
 ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,

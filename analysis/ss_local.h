@@ -48,6 +48,7 @@
 #ifndef SS_LOCAL_H
 #define SS_LOCAL_H
 
+#include "ss_diag.h"
 #include "ss_error.h"
 #include "ss_link.h"
 #include "ss_scheme.h"
@@ -65,6 +66,9 @@ typedef struct {
   ss_case_kind kind;   /* which centre */
   const ss_link *link; /* vertex case: the link; otherwise NULL */
   int n;               /* edge and surface vertex cases: the valence */
+  ss_diag_mode diag;   /* tet stars: major diagonals (ss_diag.h; bfs = 0 by
+                          default; skew and center only for the edge case,
+                          around the edge) */
 } ss_case;
 
 /* The local subdivision matrix of one case. */

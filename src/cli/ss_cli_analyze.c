@@ -34,6 +34,7 @@ typedef struct {
   const char *out;          /* matrix, draw: -o FILE */
   int depth;                /* --depth: hex subdivision limit of the Jacobian test */
   ss_report_draw_opts draw; /* draw: picture options */
+  ss_diag_mode diag;        /* --diagonals: major diagonals of tet stars */
 } opts;
 
 static void help(const char *cmd) {
@@ -73,7 +74,11 @@ static void help(const char *cmd) {
          "  --face                 a point inside the face of two tets (tet/oct split)\n"
          "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
          "options:\n"
-         "  --scheme S             mlca, tetoct, boxspline, catmull-clark, loop\n",
+         "  --scheme S             mlca, tetoct, boxspline, catmull-clark, loop\n"
+         "  --diagonals D          major diagonals of tet stars (boxspline): bfs\n"
+         "                         (Algorithm 2, default), or around the edge of\n"
+         "                         --edge: skew (the same turn all round) or center\n"
+         "                         (all toward the edge)\n",
          m || d ? "" : " (one result\n                         per line)");
   if (m)
     printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "
@@ -114,7 +119,8 @@ static int parse(int argc, char **argv, opts *o) {
     O_RING,
     O_DEPTH,
     O_SIZE,
-    O_VIEW
+    O_VIEW,
+    O_DIAG
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -128,6 +134,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"depth", required_argument, 0, O_DEPTH},
                                      {"size", required_argument, 0, O_SIZE},
                                      {"view", required_argument, 0, O_VIEW},
+                                     {"diagonals", required_argument, 0, O_DIAG},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -200,6 +207,11 @@ static int parse(int argc, char **argv, opts *o) {
       if (!m || ss_cli_parse_int(optarg, 1, 2, &v))
         return ss_cli_usage_error(o->cmd, "--ring: expected 1 or 2, not '%s'", optarg);
       o->ring = (int)v;
+      break;
+    case O_DIAG:
+      if (ss_diag_parse(optarg, &o->diag))
+        return ss_cli_usage_error(
+            o->cmd, "--diagonals: expected bfs, skew or center, not '%s'", optarg);
       break;
     case O_DEPTH:
       if (m || ss_cli_parse_int(optarg, 0, 12, &v))
@@ -454,7 +466,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
       goto done;
     }
   }
-  ss_case c = {o->kind, l, o->n};
+  ss_case c = {o->kind, l, o->n, o->diag};
   if (ss_local_new(s, &c, &M, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
     rc = err.status == SS_EINPUT || err.status == SS_EIO ? SS_EXIT_USAGE : SS_EXIT_FAIL;
@@ -517,9 +529,20 @@ done:
 }
 
 static int run(int argc, char **argv, const char *cmd) {
-  opts o = {
-      cmd,  NULL,         SS_CASE_VERTEX,           0, NULL, 0, 1e-6, 16, FMT_TEXT, 2,
-      NULL, SS_JAC_DEPTH, ss_report_draw_defaults()};
+  opts o = {cmd,
+            NULL,
+            SS_CASE_VERTEX,
+            0,
+            NULL,
+            0,
+            1e-6,
+            16,
+            FMT_TEXT,
+            2,
+            NULL,
+            SS_JAC_DEPTH,
+            ss_report_draw_defaults(),
+            SS_DIAG_BFS};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
   int r = parse(argc, argv, &o);
   if (r) return r < 0 ? SS_EXIT_OK : r;

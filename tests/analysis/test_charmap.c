@@ -77,21 +77,21 @@ static void test_regular(void) {
   ss_error err = {0};
   CHECK(ss_link_parse("octahedron", &oct, &err) == SS_OK, "%s", err.msg);
   result r;
-  if (oct && !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0}, &r)) {
+  if (oct && !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
     CHECK(r.r.verdict.verdict == SS_PASS, "regular MLCA vertex: %s", r.r.verdict.reason);
     CHECK(r.cm && r.cm->ncells == 64, "regular MLCA vertex: %zu cells, expected 4^3",
           r.cm ? r.cm->ncells : 0);
     CHECK_CLOSE(r.r.min_scaled_jacobian, 1.0, 1e-9, "regular MLCA vertex: cubes");
     done(&r);
   }
-  if (!run(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 4}, &r)) {
+  if (!run(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 4, SS_DIAG_BFS}, &r)) {
     CHECK(r.r.verdict.verdict == SS_PASS, "regular CC vertex: %s", r.r.verdict.reason);
     CHECK(r.cm && r.cm->ncells == 16, "regular CC vertex: %zu cells",
           r.cm ? r.cm->ncells : 0);
     CHECK_CLOSE(r.r.min_scaled_jacobian, 1.0, 1e-9, "regular CC vertex: squares");
     done(&r);
   }
-  if (!run(loop, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 6}, &r)) {
+  if (!run(loop, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 6, SS_DIAG_BFS}, &r)) {
     CHECK(r.r.verdict.verdict == SS_PASS, "regular Loop vertex: %s", r.r.verdict.reason);
     CHECK(r.cm && r.cm->ncells == 24, "regular Loop vertex: %zu cells",
           r.cm ? r.cm->ncells : 0);
@@ -120,7 +120,7 @@ typedef struct {
 static int visit(const ss_link *l, void *vctx) {
   links_ctx *ctx = vctx;
   result r;
-  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0}, &r)) return 0;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) return 0;
   char *text = NULL;
   ss_error err = {0};
   if (ss_link_format(l, &text, &err)) text = NULL;
@@ -141,7 +141,7 @@ static int visit(const ss_link *l, void *vctx) {
     ss_link *q =
         ss_testlink_scrambled(l, (unsigned)(ctx->count * 5 + 3 + mirror), mirror);
     result r2;
-    if (q && !run(ctx->s, (ss_case){SS_CASE_VERTEX, q, 0}, &r2)) {
+    if (q && !run(ctx->s, (ss_case){SS_CASE_VERTEX, q, 0, SS_DIAG_BFS}, &r2)) {
       CHECK(r2.r.verdict.verdict == r.r.verdict.verdict,
             "%s %s: verdict changes under relabelling (mirror %d)",
             ss_scheme_name(ctx->s), text ? text : "?", mirror);
@@ -181,8 +181,8 @@ static void test_claims(void) {
   ss_scheme *to = scheme("tetoct");
   for (int n = 2; n <= 10; n++) {
     result r;
-    ss_case c =
-        n == 2 ? (ss_case){SS_CASE_FACE, NULL, 0} : (ss_case){SS_CASE_EDGE, NULL, n};
+    ss_case c = n == 2 ? (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}
+                       : (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS};
     if (run(to, c, &r)) continue;
     CHECK(r.e->cond.verdict == SS_PASS && r.r.verdict.verdict == SS_PASS,
           "tetoct %s %d: condition %s, regularity %s (%s)", ss_case_name(c.kind), n,
@@ -197,7 +197,7 @@ static void test_claims(void) {
     ss_scheme *s = scheme(names[i]);
     for (int n = 3; n <= 12; n++) {
       result r;
-      if (run(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n}, &r)) continue;
+      if (run(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, &r)) continue;
       CHECK(r.r.verdict.verdict == SS_PASS && r.r.min_scaled_jacobian > 0.0,
             "%s surface valence %d: regularity %s (%s), scaled Jacobian %g", names[i], n,
             ss_verdict_name(r.r.verdict.verdict), r.r.verdict.reason,
@@ -237,7 +237,7 @@ static void test_plain_multilinear(void) {
       continue;
     }
     result r;
-    if (!run(s, (ss_case){SS_CASE_VERTEX, l, 0}, &r)) {
+    if (!run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) {
       int halves = 0;
       for (size_t j = 0; j < r.e->n; j++)
         halves += r.e->val[j].group == r.e->val[1].group;
@@ -265,7 +265,7 @@ static void test_folded(void) {
   ss_error err = {0};
   result r;
   if (ss_link_parse("octahedron", &oct, &err) ||
-      run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0}, &r)) {
+      run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
     CHECK(0, "regular vertex: %s", err.msg);
     ss_link_free(oct);
     ss_scheme_free(mlca);
@@ -352,7 +352,7 @@ static void test_mlca_k8(void) {
   ss_error err = {0};
   result r;
   if (ss_link_parse(mlca_k8_exception, &l, &err) ||
-      run(mlca, (ss_case){SS_CASE_VERTEX, l, 0}, &r)) {
+      run(mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) {
     CHECK(0, "k8 link: %s", err.msg);
     ss_link_free(l);
     ss_scheme_free(mlca);

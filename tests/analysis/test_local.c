@@ -148,7 +148,7 @@ static void test_surfaces(void) {
     const double lcc = (5 + c2 + c1 * sqrt(2 * (9 + c2))) / 16, lloop = 3.0 / 8 + c2 / 4;
     ss_local *Mm, *Mc, *Ml;
     ss_eig *em, *ec, *el;
-    ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n};
+    ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS};
     if (analyse(ml, c, &Mm, &em) || analyse(cc, c, &Mc, &ec) || analyse(lp, c, &Ml, &el))
       continue;
     CHECK(Mm->n2 == (size_t)(6 * n + 1) && Mm->n1 == (size_t)(2 * n + 1),
@@ -217,7 +217,7 @@ static void test_mlca_regular(void) {
   ss_link_named("octahedron", &oct, &err);
   ss_local *M;
   ss_eig *e;
-  if (!analyse(s, (ss_case){SS_CASE_VERTEX, oct, 0}, &M, &e)) {
+  if (!analyse(s, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &M, &e)) {
     CHECK(M->n2 == 125 && M->n1 == 27, "regular hex vertex: two-ring %zu, one-ring %zu",
           M->n2, M->n1);
     /* the tensor cube of the curve's two-ring spectrum */
@@ -274,8 +274,9 @@ static void test_mlca_edges(void) {
   for (int n = 3; n <= 8; n++) {
     ss_local *M2, *M3;
     ss_eig *e2, *e3;
-    if (analyse(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n}, &M2, &e2)) continue;
-    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n}, &M3, &e3)) continue;
+    if (analyse(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, &M2, &e2))
+      continue;
+    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &M3, &e3)) continue;
     CHECK(M3->n2 == 5 * M2->n2 && M3->n1 == 3 * M2->n1,
           "edge n=%d: two-ring %zu one-ring %zu", n, M3->n2, M3->n1);
     const size_t N = e2->n * 5;
@@ -305,7 +306,7 @@ static void test_tetoct(void) {
   ss_scheme *s = scheme("tetoct");
   ss_local *M;
   ss_eig *e;
-  if (!analyse(s, (ss_case){SS_CASE_FACE, NULL, 0}, &M, &e)) {
+  if (!analyse(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, &M, &e)) {
     CHECK_CLOSE(e->val[0].re, 1.0, 1e-10, "face lambda0");
     for (int i = 1; i <= 3; i++)
       CHECK_CLOSE(e->val[i].re, 0.5, 1e-10, "face lambda%d", i);
@@ -318,7 +319,7 @@ static void test_tetoct(void) {
     ss_local_free(M);
   }
   for (int n = 3; n <= 10; n++) {
-    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n}, &M, &e)) continue;
+    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &M, &e)) continue;
     /* leading four: {1, l, l, 1/2} as a multiset, l real and not 1/2 */
     int half = -1;
     for (int i = 1; i <= 3; i++)
@@ -355,7 +356,7 @@ static int visit(const ss_link *l, void *vctx) {
   for (int si = 0; si < 2; si++) {
     ss_local *M;
     ss_eig *e;
-    if (analyse(ss[si], (ss_case){SS_CASE_VERTEX, l, 0}, &M, &e)) continue;
+    if (analyse(ss[si], (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &M, &e)) continue;
     if (si == 0)
       CHECK(M->n2 == (size_t)(30 * k - 55) && M->n1 == (size_t)(6 * k - 9),
             "mlca k=%d: two-ring %zu one-ring %zu", k, M->n2, M->n1);
@@ -368,7 +369,7 @@ static int visit(const ss_link *l, void *vctx) {
       ss_link *r = ss_testlink_scrambled(l, (unsigned)(ctx->count * 7 + mirror), mirror);
       ss_local *M2;
       ss_eig *e2;
-      if (r && !analyse(ss[si], (ss_case){SS_CASE_VERTEX, r, 0}, &M2, &e2)) {
+      if (r && !analyse(ss[si], (ss_case){SS_CASE_VERTEX, r, 0, SS_DIAG_BFS}, &M2, &e2)) {
         double *v = values(e2);
         CHECK(M2->n2 == M->n2 && M2->n1 == M->n1 && mismatches(v, ref, e->n, 1e-9) == 0,
               "%s k=%d link %d: spectrum changes under relabelling (mirror %d)",
@@ -516,8 +517,8 @@ static void test_cross(void) {
       CHECK(0, "%s: %s", links[i], err.msg);
       continue;
     }
-    cross_check(ml, (ss_case){SS_CASE_VERTEX, l, 0}, links[i]);
-    cross_check(to, (ss_case){SS_CASE_VERTEX, l, 0}, links[i]);
+    cross_check(ml, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, links[i]);
+    cross_check(to, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, links[i]);
     ss_link_free(l);
   }
   {
@@ -526,17 +527,19 @@ static void test_cross(void) {
     ss_link *l = NULL;
     ss_error err = {0};
     if (!ss_link_parse("bipyramid:5", &l, &err))
-      cross_check(bx, (ss_case){SS_CASE_VERTEX, l, 0}, "boxspline bipyramid:5");
+      cross_check(bx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS},
+                  "boxspline bipyramid:5");
     ss_link_free(l);
-    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 5}, "boxspline edge 5");
-    cross_check(bx, (ss_case){SS_CASE_FACE, NULL, 0}, "boxspline face");
+    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, "boxspline edge 5");
+    cross_check(bx, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "boxspline face");
     ss_scheme_free(bx);
   }
-  cross_check(ml, (ss_case){SS_CASE_EDGE, NULL, 5}, "mlca edge 5");
-  cross_check(to, (ss_case){SS_CASE_EDGE, NULL, 7}, "tetoct edge 7");
-  cross_check(to, (ss_case){SS_CASE_FACE, NULL, 0}, "tetoct face");
-  cross_check(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5}, "catmull-clark 5");
-  cross_check(lp, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 7}, "loop 7");
+  cross_check(ml, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, "mlca edge 5");
+  cross_check(to, (ss_case){SS_CASE_EDGE, NULL, 7, SS_DIAG_BFS}, "tetoct edge 7");
+  cross_check(to, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "tetoct face");
+  cross_check(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS},
+              "catmull-clark 5");
+  cross_check(lp, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 7, SS_DIAG_BFS}, "loop 7");
   ss_scheme_free(ml), ss_scheme_free(to), ss_scheme_free(cc), ss_scheme_free(lp);
 }
 

@@ -80,7 +80,7 @@ static void test_png_svg(const char *dir) {
   ss_error err = {0};
   result r;
   if (ss_link_parse("tetrahedron", &oct, &err) ||
-      run("mlca", (ss_case){SS_CASE_VERTEX, oct, 0}, &r)) {
+      run("mlca", (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
     ss_link_free(oct);
     return;
   }
@@ -123,7 +123,7 @@ static void test_png_svg(const char *dir) {
   done(&r);
   ss_link_free(oct);
   /* a surface case draws too */
-  if (!run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5}, &r)) {
+  if (!run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS}, &r)) {
     o = ss_report_draw_defaults();
     CHECK(ss_report_draw(r.cm, &r.r, &o, png, &err) == SS_OK, "surface png: %s", err.msg);
     red = red_pixels(png, &w, &h);
@@ -136,7 +136,7 @@ static void test_png_svg(const char *dir) {
 /* VTK: the counts and the per-cell signs read back. */
 static void test_vtk(const char *dir) {
   result r;
-  if (run("tetoct", (ss_case){SS_CASE_EDGE, NULL, 4}, &r)) return;
+  if (run("tetoct", (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS}, &r)) return;
   ss_error err = {0};
   ss_report_draw_opts o = ss_report_draw_defaults();
   const char *vtk = path(dir, "a.vtk");

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ss_diag.h"
 #include "ss_scheme.h"
 #include "ss_split.h"
 #include "ss_test.h"
@@ -289,7 +290,84 @@ static void test_extraordinary(const ss_scheme *s) {
   ss_cx_free(cx);
 }
 
+/* Major-diagonal choices on an edge star of n tets (0, 1, c_i, c_i+1). */
+static ss_cx *edge_star(int n) {
+  ss_cx *cx = NULL;
+  ss_error err = {0};
+  ss_cx_new(3, &cx, &err);
+  const double a[3] = {0, 0, -1}, b[3] = {0, 0, 1};
+  ss_cx_add_vertex(cx, a, 0, &err);
+  ss_cx_add_vertex(cx, b, 0, &err);
+  for (int i = 0; i < n; i++) {
+    const double x[3] = {cos(2 * M_PI * i / n), sin(2 * M_PI * i / n), 0};
+    ss_cx_add_vertex(cx, x, 0, &err);
+  }
+  for (int i = 0; i < n; i++) {
+    const ss_idx v[4] = {0, 1, (ss_idx)(2 + i), (ss_idx)(2 + (i + 1) % n)};
+    ss_cx_add_cell(cx, SS_TET, v, 0, &err);
+  }
+  return cx;
+}
+
+static int same_pair(ss_idx a, ss_idx b, ss_idx c, ss_idx d) {
+  return (a == c && b == d) || (a == d && b == c);
+}
+
+static void test_diagonals(void) {
+  ss_error err = {0};
+  for (int n = 3; n <= 9; n++) {
+    for (int m = 0; m < 3; m++) {
+      ss_cx *cx = edge_star(n);
+      int positive = 0;
+      for (size_t t = 0; t < cx->nc[SS_TET]; t++)
+        positive += ss_cx_cell_orientation(cx, SS_TET, t, NULL) == 1;
+      CHECK(positive == n, "edge star %d: %d positive tets before", n, positive);
+      CHECK(ss_diag_choose(cx, (ss_diag_mode)m, 0, 1, &err) == SS_OK, "%s", err.msg);
+      positive = 0;
+      int as_asked = 0;
+      for (size_t t = 0; t < cx->nc[SS_TET]; t++) {
+        const ss_idx *v = ss_cx_cell(cx, SS_TET, t);
+        positive += ss_cx_cell_orientation(cx, SS_TET, t, NULL) == 1;
+        const ss_idx ci = (ss_idx)(2 + t), cj = (ss_idx)(2 + (t + 1) % (size_t)n);
+        if (m == SS_DIAG_CENTER)
+          as_asked += same_pair(v[0], v[1], 0, 1) && same_pair(v[2], v[3], ci, cj);
+        else if (m == SS_DIAG_SKEW)
+          as_asked += (same_pair(v[0], v[1], 0, ci) && same_pair(v[2], v[3], cj, 1)) ||
+                      (same_pair(v[2], v[3], 0, ci) && same_pair(v[0], v[1], cj, 1));
+        else
+          as_asked++;
+      }
+      CHECK(positive == n && as_asked == n, "edge star %d, %s: %d positive, %d as asked",
+            n, ss_diag_name((ss_diag_mode)m), positive, as_asked);
+      if (m == SS_DIAG_BFS) {
+        /* Algorithm 2: neighbours (sharing the face (0, 1, c_i+1)) avoid each
+         * other's diagonal edges where they can; around the edge only the last
+         * tet may be forced */
+        int clash = 0;
+        for (int t = 0; t < n; t++) {
+          const ss_idx *v = ss_cx_cell(cx, SS_TET, (size_t)t),
+                       *w = ss_cx_cell(cx, SS_TET, (size_t)((t + 1) % n));
+          for (int e = 0; e < 2; e++)
+            for (int f = 0; f < 2; f++)
+              clash += same_pair(v[2 * e], v[2 * e + 1], w[2 * f], w[2 * f + 1]);
+        }
+        CHECK(clash <= 1, "edge star %d, bfs: %d neighbours share a diagonal edge", n,
+              clash);
+      }
+      ss_cx_free(cx);
+    }
+  }
+  ss_cx *cx = edge_star(4);
+  CHECK(ss_diag_choose(cx, SS_DIAG_SKEW, 2, 4, &err) == SS_EINPUT, "a non-edge");
+  ss_diag_mode dm;
+  CHECK(ss_diag_parse("center", &dm) == 0 && dm == SS_DIAG_CENTER &&
+            ss_diag_parse("diagonal", &dm) == -1,
+        "parse");
+  ss_cx_free(cx);
+}
+
 int main(void) {
+  test_diagonals();
   ss_scheme *s = NULL;
   ss_error err = {0};
   if (ss_scheme_new("boxspline", &s, &err)) {
