@@ -12,13 +12,16 @@
 
 /* One level of the refined star. */
 typedef struct {
-  ss_cx *cx;            /* the complex of this level */
-  ss_split *split;      /* parents of this level's vertices (NULL on level 0) */
-  gsl_spmatrix *R;      /* operator to the next level, CSR (NULL on the last) */
-  ss_star_coord *abs;   /* chart coordinates, cx->nv */
-  ss_star_coord *rel;   /* coordinates relative to p (levels >= lc), cx->nv */
-  size_t *order;        /* vertices sorted by rel, for lookup */
-  unsigned char *inner; /* vertex not on the patch boundary */
+  ss_cx *cx;             /* the complex of this level */
+  ss_split *split;       /* parents of this level's vertices (NULL on level 0) */
+  gsl_spmatrix *R;       /* operator to the next level, CSR (NULL on the last) */
+  ss_star_coord *abs;    /* chart coordinates, cx->nv */
+  ss_star_coord *rel;    /* coordinates relative to p (levels >= lc), cx->nv */
+  size_t *order;         /* vertices sorted by rel, for lookup */
+  unsigned char *inner;  /* vertex not on the patch boundary */
+  unsigned char *cinner; /* schemes reaching 2 rings: vertex not on the
+                            boundary of the complex refined into the next
+                            level (after peeling), else NULL */
 } level;
 
 /* Extraction workspace. */
@@ -141,13 +144,12 @@ static void push_facet(facet *f, size_t *nf, const ss_idx *cell, const int *loc,
   f[(*nf)++] = x;
 }
 
-static ss_status mark_inner(level *L, ss_error *err) {
-  const ss_cx *cx = L->cx;
+static ss_status inner_marks(const ss_cx *cx, unsigned char **out, ss_error *err) {
   size_t cap = 6 * cx->nc[SS_HEX] + 4 * cx->nc[SS_TET] + 8 * cx->nc[SS_OCT] +
                4 * cx->nc[SS_QUAD] + 3 * cx->nc[SS_TRIANGLE] + 1;
   facet *f = malloc(cap * sizeof *f);
-  L->inner = malloc(cx->nv + 1);
-  if (!f || !L->inner) {
+  unsigned char *inner = *out = malloc(cx->nv + 1);
+  if (!f || !inner) {
     free(f);
     return ss_error_nomem(err, "patch boundary");
   }
@@ -175,17 +177,17 @@ static ss_status mark_inner(level *L, ss_error *err) {
       push_facet(f, &nf, ss_cx_cell(cx, SS_TRIANGLE, i), loc, 2);
     }
   qsort(f, nf, sizeof *f, facet_cmp);
-  memset(L->inner, 0, cx->nv + 1);
+  memset(inner, 0, cx->nv + 1);
   for (size_t i = 0; i < nf; i++)
     for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)
-      L->inner[f[i].v[k]] = 1;
+      inner[f[i].v[k]] = 1;
   for (size_t i = 0; i < nf;) {
     size_t j = i + 1;
     while (j < nf && facet_cmp(f + i, f + j) == 0)
       j++;
     if (j - i == 1)
       for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)
-        L->inner[f[i].v[k]] = 0;
+        inner[f[i].v[k]] = 0;
     i = j;
   }
   free(f);
@@ -226,7 +228,7 @@ static ss_status finish_level(work *W, int l, ss_error *err) {
     if (ss_star_coord_cmp(L->rel + L->order[i - 1], L->rel + L->order[i]) == 0)
       return ss_error_set(err, SS_EINTERNAL, "two vertices of level %d share coordinates",
                           l);
-  return mark_inner(L, err);
+  return inner_marks(L->cx, &L->inner, err);
 }
 
 /* Peel level l (l > 0, p a vertex) before it is refined: with the distance
@@ -330,6 +332,11 @@ static ss_status add_level(work *W, ss_error *err) {
     ss_status st = peel(C, err);
     if (st) return st;
   }
+  if (ss_scheme_reach(W->scheme) > 1) {
+    free(C->cinner);
+    ss_status st = inner_marks(C->cx, &C->cinner, err);
+    if (st) return st;
+  }
   if (8 * ss_cx_ncells(C->cx) > MAXCELLS)
     return ss_error_set(err, SS_EINTERNAL,
                         "no stationary neighbourhood before the patch exceeds %d cells",
@@ -368,6 +375,7 @@ static void free_work(work *W) {
     free(L->rel);
     free(L->order);
     free(L->inner);
+    free(L->cinner);
   }
   ss_star_free(W->star);
 }
@@ -378,13 +386,25 @@ static void free_work(work *W) {
  * or for good (status set in err). */
 enum { OK = 0, ROOM = 1, HARD = 2 };
 
+/* Whether the row of fine vertex f (level F) in C's operator is complete: f
+ * is not on the boundary of F; and for schemes whose rule reads the coarse
+ * neighbourhoods of the vertices it combines (reach 2, ss_scheme.h), none of
+ * the row's coarse vertices is on the boundary of the complex C refined. */
+static int row_complete(const level *C, const level *F, size_t f) {
+  if (!F->inner[f]) return 0;
+  if (C->cinner)
+    for (int q = C->R->p[f]; q < C->R->p[f + 1]; q++)
+      if (!C->cinner[C->R->i[q]]) return 0;
+  return 1;
+}
+
 /* Add to mark_c (level l) every column of the rows of the marked vertices of
  * level l + 1.  A row of a boundary vertex means the patch is too small. */
 static int influence(const level *C, const level *F, const unsigned char *mark_f,
                      unsigned char *mark_c) {
   for (size_t f = 0; f < F->cx->nv; f++) {
     if (!mark_f[f]) continue;
-    if (!F->inner[f]) return ROOM;
+    if (!row_complete(C, F, f)) return ROOM;
     for (int q = C->R->p[f]; q < C->R->p[f + 1]; q++)
       mark_c[C->R->i[q]] = 1;
   }
@@ -447,7 +467,7 @@ static int read_matrix(const work *W, int l, const ss_local *M, double *S, size_
   memset(S, 0, n * n * sizeof *S);
   for (size_t i = 0; i < n; i++) {
     size_t f = lookup(F, M->label + i);
-    if (f == SIZE_MAX || !F->inner[f]) return ROOM;
+    if (f == SIZE_MAX || !row_complete(C, F, f)) return ROOM;
     for (int q = C->R->p[f]; q < C->R->p[f + 1]; q++) {
       size_t j = colmap[C->R->i[q]];
       if (j == SIZE_MAX) {
@@ -570,7 +590,7 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
     for (size_t v = 0; v < nw; v++) {
       if (!one[v]) continue;
       size_t f = lookup(W->lev + w + 1, Lw->rel + v);
-      if (f == SIZE_MAX || !W->lev[w + 1].inner[f]) {
+      if (f == SIZE_MAX || !row_complete(Lw, W->lev + w + 1, f)) {
         rc = ROOM;
         goto done;
       }

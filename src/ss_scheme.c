@@ -51,12 +51,17 @@ ss_status ss_scheme_alloc(const char *name, ss_split_kind split, unsigned accept
   s->split = split;
   s->accepts = accepts;
   s->rule = rule;
+  s->reach = 1;
   *out = s;
   return SS_OK;
 }
 
 void ss_scheme_free(ss_scheme *s) {
   free(s);
+}
+
+int ss_scheme_reach(const ss_scheme *s) {
+  return s->reach;
 }
 
 const char *ss_scheme_name(const ss_scheme *s) {

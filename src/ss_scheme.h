@@ -59,6 +59,13 @@ ss_split_kind ss_scheme_split_kind(const ss_scheme *s);
 /* Whether the scheme takes cells of type t. */
 int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t);
 
+/* How far a fine vertex's rule reaches: 1 if it reads only the coarse cells
+ * holding the fine vertex (the averaging family, Catmull–Clark, Loop), 2 if
+ * it also reads the coarse neighbourhoods of the vertices it combines (the
+ * box-spline rules: rho(e) needs all neighbours of both ends).  Local-matrix
+ * extraction uses it to know which rows of a truncated patch are complete. */
+int ss_scheme_reach(const ss_scheme *s);
+
 /* Refine `coarse` once.  *fine receives the refined complex (caller owns).  If
  * R is not NULL, *R receives the refinement operator as a new CSR matrix of
  * size fine->nv x coarse->nv (caller frees), and the fine positions are R times

@@ -18,6 +18,9 @@ struct ss_scheme {
   unsigned accepts;    /* bit t set: takes cells of type t */
   ss_rule_fn rule;     /* the smoothing rule */
   ss_averaging avg;    /* masks, for averaging-family schemes */
+  int reach;           /* 1: a fine vertex's rule reads only the coarse cells
+                          holding it; 2: it also reads the coarse
+                          neighbourhoods of the vertices it combines */
 };
 
 /* Allocate a scheme with the given parts. */
