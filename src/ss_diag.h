@@ -21,7 +21,26 @@
  *           round (the paper's figure 23, first row);
  *   center  around the edge (v0, v1): the pair v0 v1, c_i c_i+1 (all diagonals
  *           toward the central edge, figure 23, second row).
- * Tets not holding the edge are left alone by skew and center. */
+ * Tets not holding the edge are left alone by skew and center.
+ *
+ * Properness.  Definition 3.2 states its condition (a)/(b)/(c) for two
+ * octahedra sharing an edge; that is the octet-truss lattice's situation,
+ * where it holds for parallel diagonals.  Across a face of the input mesh two
+ * tets meet (and, once refined, two octahedra and two tets meet face to face,
+ * section 4.2), where no choice can meet (a)/(b)/(c) on all three shared
+ * edges.  What section 4.2 needs there is that the refined points inside the
+ * shared face see the regular neighbour counts (|rho| = 14 at vertices, 4 or 6
+ * at edges), so that the regular rules apply; test_boxspline shows by
+ * counting that this holds exactly when the two diagonals mark the same part
+ * of the face: two tets whose pairs hold the same edge of their common face,
+ * two octahedra whose diagonals end at the same corner of it.  A pair of
+ * cells is therefore counted as improper if it is
+ *   two tets or two octahedra sharing a face whose marks differ, or
+ *   two octahedra sharing only an edge that violates (a), (b) and (c).
+ * Note: Algorithm 2 as printed keeps a tet's pair away from its visited
+ * neighbours' diagonal edges, so it tends to make face pairs improper in this
+ * sense, and the "skew" edge star (figure 23's smoother row) is improper on
+ * every face around the edge while "center" is proper. */
 #ifndef SS_DIAG_H
 #define SS_DIAG_H
 
@@ -41,5 +60,12 @@ int ss_diag_parse(const char *name, ss_diag_mode *out);
  * diagonals.  For skew and center, (v0, v1) is the edge; ignored for bfs.
  * SS_ENOMEM; SS_EINPUT if skew/center name a pair that is no edge of a tet. */
 ss_status ss_diag_choose(ss_cx *cx, ss_diag_mode m, ss_idx v0, ss_idx v1, ss_error *err);
+
+/* Count the adjacent pairs of cells the diagonals concern (tet-tet and
+ * oct-oct across a face, oct-oct across an edge only) and the improper ones
+ * among them (see above).  Reads the diagonals from the vertex order.
+ * SS_ENOMEM.  Cost O(c log c) in the number of cells. */
+ss_status ss_diag_improper(const ss_cx *cx, size_t *pairs, size_t *improper,
+                           ss_error *err);
 
 #endif

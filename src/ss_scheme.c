@@ -64,6 +64,10 @@ int ss_scheme_reach(const ss_scheme *s) {
   return s->reach;
 }
 
+int ss_scheme_reads_diagonals(const ss_scheme *s) {
+  return s->diagonals;
+}
+
 const char *ss_scheme_name(const ss_scheme *s) {
   return s->name;
 }

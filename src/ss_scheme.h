@@ -66,6 +66,10 @@ int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t);
  * extraction uses it to know which rows of a truncated patch are complete. */
 int ss_scheme_reach(const ss_scheme *s);
 
+/* Whether the rule reads the major diagonals carried in the tets' and
+ * octahedra's vertex order (ss_diag.h): 1 for boxspline, 0 otherwise. */
+int ss_scheme_reads_diagonals(const ss_scheme *s);
+
 /* Refine `coarse` once.  *fine receives the refined complex (caller owns).  If
  * R is not NULL, *R receives the refinement operator as a new CSR matrix of
  * size fine->nv x coarse->nv (caller frees), and the fine positions are R times

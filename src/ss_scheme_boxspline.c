@@ -297,6 +297,9 @@ ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err) {
   const unsigned accepts = (1u << SS_TET) | (1u << SS_OCT);
   ss_status st =
       ss_scheme_alloc("boxspline", SS_SPLIT_TETOCT, accepts, boxspline_rule, out, err);
-  if (!st) (*out)->reach = 2; /* rho(e) reads both ends' neighbourhoods */
+  if (!st) {
+    (*out)->reach = 2; /* rho(e) reads both ends' neighbourhoods */
+    (*out)->diagonals = 1;
+  }
   return st;
 }

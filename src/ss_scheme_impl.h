@@ -21,6 +21,7 @@ struct ss_scheme {
   int reach;           /* 1: a fine vertex's rule reads only the coarse cells
                           holding it; 2: it also reads the coarse
                           neighbourhoods of the vertices it combines */
+  int diagonals;       /* 1 if the rule reads major diagonals (ss_diag.h) */
 };
 
 /* Allocate a scheme with the given parts. */

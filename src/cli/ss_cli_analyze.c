@@ -269,8 +269,16 @@ static const char *param_text(const opts *o, const char *canon, char *buf, size_
   return buf;
 }
 
+/* Major diagonals of a tet star, for schemes that read them. */
+typedef struct {
+  int shown;       /* 1 if the scheme reads diagonals */
+  size_t pairs;    /* adjacent cell pairs they concern (ss_diag_improper) */
+  size_t improper; /* of which improper */
+} diag_info;
+
 static void print_json(const opts *o, const char *scheme, const char *canon, int k,
-                       const ss_local *M, const ss_eig *e, const ss_regularity *reg) {
+                       const ss_local *M, const ss_eig *e, const ss_regularity *reg,
+                       const diag_info *di) {
   json_object *r = json_object_new_object();
   json_object_object_add(r, "scheme", json_object_new_string(scheme));
   json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
@@ -283,6 +291,13 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
   json_object_object_add(r, "two_ring_size", json_object_new_int64((int64_t)M->n2));
   json_object_object_add(r, "one_ring_size", json_object_new_int64((int64_t)M->n1));
   json_object_object_add(r, "level", json_object_new_int(M->level));
+  if (di->shown) {
+    json_object *d = json_object_new_object();
+    json_object_object_add(d, "choice", json_object_new_string(ss_diag_name(o->diag)));
+    json_object_object_add(d, "pairs", json_object_new_int64((int64_t)di->pairs));
+    json_object_object_add(d, "improper", json_object_new_int64((int64_t)di->improper));
+    json_object_object_add(r, "diagonals", d);
+  }
   json_object_object_add(r, "outer_blocks", json_object_new_int64((int64_t)e->nblocks));
   json_object_object_add(r, "largest_outer_block",
                          json_object_new_int64((int64_t)e->largest_block));
@@ -359,7 +374,8 @@ static void print_tsv(const opts *o, const char *scheme, const char *canon,
 }
 
 static void print_text(const opts *o, const char *scheme, const char *canon, int k,
-                       const ss_local *M, const ss_eig *e, const ss_regularity *reg) {
+                       const ss_local *M, const ss_eig *e, const ss_regularity *reg,
+                       const diag_info *di) {
   printf("scheme %s, %s case", scheme, ss_case_name(o->kind));
   if (o->kind == SS_CASE_VERTEX)
     printf(", link %s (k = %d, %d %s)\n", canon, k, 2 * k - 4, ss_cell_plural(M->cell));
@@ -371,6 +387,10 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
       "two-ring %zu points, one-ring %zu (read on level %d); outer part in %zu blocks, "
       "the largest %zu\n",
       M->n2, M->n1, M->level, e->nblocks, e->largest_block);
+  if (di->shown)
+    printf("major diagonals: %s; %zu of %zu face-adjacent pairs improper (Definition 3.2 "
+           "as read in ss_diag.h)\n",
+           ss_diag_name(o->diag), di->improper, di->pairs);
   printf("\n    #  eigenvalue            mult  rcond     block\n");
   for (size_t i = 0; i < e->n && i < (size_t)o->neig; i++) {
     char v[64];
@@ -472,6 +492,19 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     rc = err.status == SS_EINPUT || err.status == SS_EIO ? SS_EXIT_USAGE : SS_EXIT_FAIL;
     goto done;
   }
+  diag_info di = {0, 0, 0};
+  if (ss_scheme_reads_diagonals(s) && M->cell == SS_TET) {
+    ss_star *star = NULL;
+    if (ss_local_star(s, &c, &star, &err) ||
+        ss_diag_improper(star->cx, &di.pairs, &di.improper, &err)) {
+      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+      ss_star_free(star);
+      rc = SS_EXIT_FAIL;
+      goto done;
+    }
+    ss_star_free(star);
+    di.shown = 1;
+  }
   if (o->format == FMT_MTX) {
     rc = write_mtx(o, ss_scheme_name(s), canon ? canon : "", M);
     goto done;
@@ -512,11 +545,11 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
             ss_verdict_name(reg.verdict.verdict), reg.verdict.reason[0] ? ": " : "",
             reg.verdict.reason);
   } else if (o->format == FMT_JSON)
-    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg);
+    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &di);
   else if (o->format == FMT_TSV)
     print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, (*header)++ == 0);
   else
-    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg);
+    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &di);
   if (e->cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS) rc = SS_EXIT_FAIL;
 done:
   ss_charmap_free(cm);

@@ -366,8 +366,123 @@ static void test_diagonals(void) {
   ss_cx_free(cx);
 }
 
+/* The face-to-face case (section 4.2): two tets sharing the face (0, 1, 2),
+ * every combination of their diagonals.  After three levels of the split,
+ * count rho (Definition 3.3: cell edges and octahedron diagonals) at the
+ * points strictly inside the shared face: vertices must have 14, and edges 4
+ * or 6 exactly when ss_diag_improper calls the pair proper; the count of
+ * improper pairs must stay zero on every level of a proper mesh. */
+static void test_face_to_face(void) {
+  static const int perm[3][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}};
+  const double X[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {.3, .3, 1}, {.3, .3, -1}};
+  const ss_idx A[4] = {0, 1, 2, 3}, B[4] = {0, 2, 1, 4};
+  ss_error err = {0};
+  int nproper = 0;
+  for (int p = 0; p < 3; p++)
+    for (int q = 0; q < 3; q++) {
+      ss_cx *cx = NULL;
+      ss_cx_new(3, &cx, &err);
+      for (int i = 0; i < 5; i++)
+        ss_cx_add_vertex(cx, X[i], 0, &err);
+      ss_idx a[4], b[4];
+      for (int i = 0; i < 4; i++)
+        a[i] = A[perm[p][i]], b[i] = B[perm[q][i]];
+      ss_cx_add_cell(cx, SS_TET, a, 0, &err);
+      ss_cx_add_cell(cx, SS_TET, b, 0, &err);
+      /* both pairs hold the same edge of the face (0, 1, 2)? */
+      int same = 0;
+      for (int e = 0; e < 2; e++)
+        for (int f = 0; f < 2; f++)
+          same += same_pair(a[2 * e], a[2 * e + 1], b[2 * f], b[2 * f + 1]);
+      size_t np = 0, nbad = 0;
+      CHECK(ss_diag_improper(cx, &np, &nbad, &err) == SS_OK && np == 1 &&
+                nbad == (size_t)!same,
+            "pairs %d %d: %zu pairs, %zu improper, same edge %d", p, q, np, nbad, same);
+      nproper += same;
+      const int proper = nbad == 0;
+      for (int l = 1; l <= 3; l++) {
+        ss_cx *f = NULL;
+        ss_split *L = NULL;
+        if (ss_split_refine(SS_SPLIT_TETOCT, cx, &f, &L, &err)) {
+          CHECK(0, "split: %s", err.msg);
+          break;
+        }
+        ss_split_free(L);
+        ss_cx_free(cx);
+        cx = f;
+        CHECK(ss_diag_improper(cx, &np, &nbad, &err) == SS_OK && np > 0 &&
+                  (proper ? nbad == 0 : nbad > 0),
+              "pairs %d %d, level %d: %zu of %zu improper", p, q, l, nbad, np);
+      }
+      const size_t n = cx->nv;
+      unsigned char *E = calloc(n * n, 1); /* bit 1: cell edge, bit 2: diagonal */
+      for (size_t t = 0; t < cx->nc[SS_TET]; t++) {
+        const ss_idx *v = ss_cx_cell(cx, SS_TET, t);
+        for (int i = 0; i < 4; i++)
+          for (int j = 0; j < 4; j++)
+            if (i != j) E[v[i] * n + v[j]] |= 1;
+      }
+      for (size_t t = 0; t < cx->nc[SS_OCT]; t++) {
+        const ss_idx *v = ss_cx_cell(cx, SS_OCT, t);
+        for (int i = 0; i < 6; i++)
+          for (int j = 0; j < 6; j++)
+            if (i != j) E[v[i] * n + v[j]] |= i % 3 != j % 3 ? 1 : i % 3 == 0 ? 2 : 0;
+      }
+      const double eps = 1e-9;
+#define FACE_INSIDE(x)                                                                   \
+  (fabs((x)[2]) < eps && (x)[0] > eps && (x)[1] > eps && (x)[0] + (x)[1] < 1 - eps)
+      int nv = 0, badv = 0, ne = 0, bade = 0;
+      for (size_t u = 0; u < n; u++) {
+        if (!FACE_INSIDE(cx->x + 3 * u)) continue;
+        int rho = 0;
+        for (size_t w = 0; w < n; w++)
+          rho += E[u * n + w] != 0;
+        nv++;
+        badv += rho != 14;
+        for (size_t w = u + 1; w < n; w++) {
+          if (!(E[u * n + w] & 1) || !FACE_INSIDE(cx->x + 3 * w)) continue;
+          int re = 0;
+          for (size_t z = 0; z < n; z++)
+            re += E[u * n + z] && E[w * n + z];
+          ne++;
+          bade += re != 4 && re != 6;
+        }
+      }
+#undef FACE_INSIDE
+      CHECK(nv > 0 && ne > 0 && badv == 0 && (proper ? bade == 0 : bade > 0),
+            "pairs %d %d (%s): %d of %d face vertices, %d of %d face edges irregular", p,
+            q, proper ? "proper" : "improper", badv, nv, bade, ne);
+      free(E);
+      ss_cx_free(cx);
+    }
+  CHECK(nproper == 3, "%d of 9 combinations share an edge", nproper);
+}
+
+/* Inside one refined tet all diagonals are parallel: the lattice is proper;
+ * around an edge, "center" is proper and "skew" improper on every face. */
+static void test_proper_counts(void) {
+  ss_error err = {0};
+  size_t np = 0, nbad = 0;
+  ss_cx *cx = lattice_tet(3);
+  CHECK(cx && ss_diag_improper(cx, &np, &nbad, &err) == SS_OK && np > 0 && nbad == 0,
+        "lattice: %zu of %zu improper", nbad, np);
+  ss_cx_free(cx);
+  for (int n = 3; n <= 9; n++)
+    for (int m = SS_DIAG_SKEW; m <= SS_DIAG_CENTER; m++) {
+      cx = edge_star(n);
+      ss_diag_choose(cx, (ss_diag_mode)m, 0, 1, &err);
+      CHECK(ss_diag_improper(cx, &np, &nbad, &err) == SS_OK && np == (size_t)n &&
+                nbad == (m == SS_DIAG_SKEW ? (size_t)n : 0),
+            "edge star %d %s: %zu of %zu improper", n, ss_diag_name((ss_diag_mode)m),
+            nbad, np);
+      ss_cx_free(cx);
+    }
+}
+
 int main(void) {
   test_diagonals();
+  test_face_to_face();
+  test_proper_counts();
   ss_scheme *s = NULL;
   ss_error err = {0};
   if (ss_scheme_new("boxspline", &s, &err)) {
