@@ -23,12 +23,13 @@ static const entry registry[] = {
     {"catmull-clark", ss_scheme_catmull_clark_new},
     {"loop", ss_scheme_loop_new},
     {"boxspline", ss_scheme_boxspline_new},
+    {"boxspline-avg", ss_scheme_boxspline_avg_new},
 };
 #define NREG (sizeof registry / sizeof registry[0])
 
 const char *const *ss_scheme_names(void) {
-  static const char *const names[NREG + 1] = {"mlca", "tetoct",    "catmull-clark",
-                                              "loop", "boxspline", NULL};
+  static const char *const names[NREG + 1] = {
+      "mlca", "tetoct", "catmull-clark", "loop", "boxspline", "boxspline-avg", NULL};
   return names;
 }
 
@@ -38,7 +39,7 @@ ss_status ss_scheme_new(const char *name, ss_scheme **out, ss_error *err) {
     if (strcmp(name, registry[i].name) == 0) return registry[i].make(out, err);
   return ss_error_set(err, SS_EINPUT,
                       "unknown scheme '%s' (known: mlca, tetoct, catmull-clark, loop, "
-                      "boxspline)",
+                      "boxspline, boxspline-avg)",
                       name);
 }
 

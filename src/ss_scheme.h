@@ -13,6 +13,8 @@
  *   tetoct         tet/oct split + weighted-centroid smoothing (ss_scheme_tetoct.c)
  *   catmull-clark  quad surfaces; boundaries and segments as B-spline creases
  *   loop           triangle surfaces; boundaries and segments as B-spline creases
+ *   boxspline      box-spline solids over the tet/oct split (ss_scheme_boxspline.c)
+ *   boxspline-avg  the same averaged over the three diagonal directions
  * plus the `averaging` family (split + one mask per cell type) that stencil files
  * describe. */
 #ifndef SS_SCHEME_H

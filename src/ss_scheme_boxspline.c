@@ -21,7 +21,28 @@
  * surface: a vertex with n boundary neighbours (1 - n beta) x + beta each,
  * beta = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n; an edge 3/8 (a + b) + 1/8
  * of the vertex opposite it in each of its two boundary triangles (split
- * evenly when the boundary is not a manifold there). */
+ * evenly when the boundary is not a manifold there).
+ *
+ * boxspline-avg (Appendix A): the mean of the three schemes whose major
+ * diagonals all point one of the lattice's three ways.  It reads no diagonals.
+ * On the lattice its rules are the means of (3.3)-(3.6) over the three
+ * directions (derived below from their weights, checked against the three
+ * box-spline schemes in test_boxspline).  A regular vertex x lies in six
+ * octahedra; in each direction two of the six corners opposite x are its
+ * diagonal neighbours, so each such corner gets 1/3 of 1/32, and the twelve
+ * edge neighbours keep 1/32.  A regular edge lies in two octahedra; in two
+ * directions it has six neighbours (3.4: the four apexes of its triangles and
+ * one octahedron corner opposite an end), in one direction four (3.5).  An
+ * octahedron centre is the mean of its corners.  Away from the lattice the
+ * weights go by counts, as (3.7)/(3.8) do: a vertex in some octahedron takes
+ * 9/16 x + 3/8 mean(edge neighbours) + 1/16 mean(corners opposite x); an edge
+ * in some octahedron takes 7/24 on each end, 1/3 shared by the common edge
+ * neighbours and 1/12 by the corners opposite its ends in its octahedra.
+ * Vertices and edges in no octahedron (the refined input mesh's own vertices
+ * and edge pieces) never see a diagonal and keep (3.7) and (3.5)/(3.8); so do
+ * boundary points their Loop rules.  The face-to-face configuration has no
+ * lattice counterpart (Appendix A: it "becomes irregular"); the count rules
+ * apply there as written. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -77,7 +98,7 @@ static int adj_make(size_t nv, size_t n, const ss_idx *pairs, adjacency *A) {
  * vertex of their cell. */
 typedef struct {
   ss_idx v[3]; /* sorted corners */
-  ss_idx opp;  /* unused: keeps the struct a multiple of 4 words */
+  ss_idx opp;  /* 1 if a boundary face (held by one cell), else 0 */
 } face;
 
 static int face_cmp(const void *a, const void *b) {
@@ -100,30 +121,45 @@ static double loop_beta(double n) {
   return (5.0 / 8.0 - t * t) / n;
 }
 
-static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
-                                const ss_cx *fine, const ss_split *L, ss_sink *k,
-                                ss_error *err) {
-  (void)s;
-  (void)fine;
+/* The coarse complex's neighbourhoods, shared by both variants. */
+typedef struct {
+  adjacency nb;       /* boxspline: rho (edges and diagonals); avg: edges */
+  adjacency bnd;      /* boundary edges (of faces held by one cell) */
+  adjacency opp;      /* avg: the corners opposite x in the octahedra holding x */
+  adjacency inoct;    /* avg: the octahedra holding x (as indices) */
+  face *faces;        /* all cell faces, sorted; opp = 1 marks boundary ones */
+  size_t nfa;         /* number of faces */
+  unsigned char *onb; /* nv flags: on the boundary surface */
+  ss_idx *common;     /* scratch for one edge's neighbours */
+} topo;
+
+static void topo_free(topo *T) {
+  adj_free(&T->nb);
+  adj_free(&T->bnd);
+  adj_free(&T->opp);
+  adj_free(&T->inoct);
+  free(T->faces);
+  free(T->onb);
+  free(T->common);
+}
+
+/* Build T; with_diag adds the major diagonals (pair (0, 3) of each
+ * octahedron) to the neighbours, as Definition 3.3 does; without, the
+ * octahedra's opposite corners and incidences are listed instead. */
+static ss_status topo_make(const ss_cx *coarse, const ss_split *L, int with_diag, topo *T,
+                           ss_error *err) {
   const size_t nv = coarse->nv, nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
-  ss_status st = SS_OK;
-  adjacency rho = {NULL, NULL}, bnd = {NULL, NULL};
-  ss_idx *pairs = NULL, *bpairs = NULL, *common = NULL;
-  face *faces = NULL;
-  unsigned char *onb = NULL;
-  /* coarse edges: the fine vertices with two parents */
+  memset(T, 0, sizeof *T);
   size_t ne = 0;
   for (size_t f = nv; f < L->nfine; f++)
     ne += ss_split_npar(L, f) == 2;
-  pairs = malloc((2 * (ne + no) + 1) * sizeof *pairs);
   const size_t nf = 4 * nt + 8 * no;
-  faces = malloc((nf + 1) * sizeof *faces);
-  bpairs = malloc((6 * nf + 1) * sizeof *bpairs);
-  onb = calloc(nv + 1, 1);
-  if (!pairs || !faces || !bpairs || !onb) {
-    st = ss_error_nomem(err, "box-spline neighbours");
-    goto done;
-  }
+  ss_idx *pairs = malloc((2 * (ne + 3 * no) + 1) * sizeof *pairs);
+  ss_idx *bpairs = malloc((6 * nf + 1) * sizeof *bpairs);
+  T->faces = malloc((nf + 1) * sizeof *T->faces);
+  T->onb = calloc(nv + 1, 1);
+  if (!pairs || !bpairs || !T->faces || !T->onb) goto nomem;
+  /* coarse edges: the fine vertices with two parents */
   size_t np = 0;
   for (size_t f = nv; f < L->nfine; f++)
     if (ss_split_npar(L, f) == 2) {
@@ -131,165 +167,300 @@ static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
       pairs[2 * np + 1] = L->parent[L->ptr[f] + 1];
       np++;
     }
-  for (size_t o = 0; o < no; o++) { /* major diagonals: pair (0, 3) */
-    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
-    pairs[2 * np] = v[0];
-    pairs[2 * np + 1] = v[3];
-    np++;
-  }
-  if (adj_make(nv, np, pairs, &rho)) {
-    st = ss_error_nomem(err, "box-spline neighbours");
-    goto done;
+  if (with_diag)
+    for (size_t o = 0; o < no; o++) { /* major diagonals: pair (0, 3) */
+      const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
+      pairs[2 * np] = v[0];
+      pairs[2 * np + 1] = v[3];
+      np++;
+    }
+  if (adj_make(nv, np, pairs, &T->nb)) goto nomem;
+  if (!with_diag) {
+    /* opposite corners (all three pairs), and vertex-octahedron incidence as
+     * pairs (vertex, nv + octahedron) folded back below */
+    np = 0;
+    for (size_t o = 0; o < no; o++) {
+      const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
+      for (int i = 0; i < 3; i++) {
+        pairs[2 * np] = v[i];
+        pairs[2 * np + 1] = v[i + 3];
+        np++;
+      }
+    }
+    if (adj_make(nv, np, pairs, &T->opp)) goto nomem;
+    /* incidence: a CSR of octahedra per vertex */
+    T->inoct.ptr = calloc(nv + 1, sizeof *T->inoct.ptr);
+    T->inoct.nb = malloc((6 * no + 1) * sizeof *T->inoct.nb);
+    if (!T->inoct.ptr || !T->inoct.nb) goto nomem;
+    for (size_t o = 0; o < no; o++)
+      for (int i = 0; i < 6; i++)
+        T->inoct.ptr[ss_cx_cell(coarse, SS_OCT, o)[i] + 1]++;
+    for (size_t v = 0; v < nv; v++)
+      T->inoct.ptr[v + 1] += T->inoct.ptr[v];
+    size_t *fill = calloc(nv + 1, sizeof *fill);
+    if (!fill) goto nomem;
+    for (size_t o = 0; o < no; o++)
+      for (int i = 0; i < 6; i++) {
+        const ss_idx x = ss_cx_cell(coarse, SS_OCT, o)[i];
+        T->inoct.nb[T->inoct.ptr[x] + fill[x]++] = (ss_idx)o;
+      }
+    free(fill);
   }
   /* boundary: faces held by one cell */
   size_t nfa = 0;
   for (size_t t = 0; t < nt; t++) {
     const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
     for (int i = 0; i < 4; i++)
-      faces[nfa++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
+      T->faces[nfa++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
   }
   for (size_t o = 0; o < no; o++) {
     const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
     for (int f = 0; f < 8; f++)
-      faces[nfa++] = make_face(v[f & 1 ? 3 : 0], v[f & 2 ? 4 : 1], v[f & 4 ? 5 : 2]);
+      T->faces[nfa++] = make_face(v[f & 1 ? 3 : 0], v[f & 2 ? 4 : 1], v[f & 4 ? 5 : 2]);
   }
-  qsort(faces, nfa, sizeof *faces, face_cmp);
+  qsort(T->faces, nfa, sizeof *T->faces, face_cmp);
+  T->nfa = nfa;
   size_t nb = 0;
   for (size_t i = 0; i < nfa;) {
     size_t j = i + 1;
-    while (j < nfa && face_cmp(faces + i, faces + j) == 0)
+    while (j < nfa && face_cmp(T->faces + i, T->faces + j) == 0)
       j++;
     if (j - i == 1) {
-      const ss_idx *v = faces[i].v;
+      const ss_idx *v = T->faces[i].v;
       for (int e = 0; e < 3; e++) {
         bpairs[2 * nb] = v[e];
         bpairs[2 * nb + 1] = v[(e + 1) % 3];
         nb++;
-        onb[v[e]] = 1;
+        T->onb[v[e]] = 1;
       }
-      faces[i].opp = 1; /* mark: a boundary face */
+      T->faces[i].opp = 1; /* mark: a boundary face */
     } else {
       for (size_t q = i; q < j; q++)
-        faces[q].opp = 0;
+        T->faces[q].opp = 0;
     }
     i = j;
   }
-  if (adj_make(nv, nb, bpairs, &bnd)) {
-    st = ss_error_nomem(err, "box-spline boundary");
-    goto done;
-  }
+  if (adj_make(nv, nb, bpairs, &T->bnd)) goto nomem;
   size_t maxdeg = 0;
   for (size_t v = 0; v < nv; v++)
-    maxdeg = rho.ptr[v + 1] - rho.ptr[v] > maxdeg ? rho.ptr[v + 1] - rho.ptr[v] : maxdeg;
-  common = malloc((maxdeg + 1) * sizeof *common);
-  if (!common) {
-    st = ss_error_nomem(err, "box-spline neighbours");
-    goto done;
-  }
-  /* old vertices */
-  for (size_t x = 0; x < nv; x++) {
-    if (onb[x]) {
-      const size_t n = bnd.ptr[x + 1] - bnd.ptr[x];
-      const double beta = n ? loop_beta((double)n) : 0.0;
-      ss_sink_emit(k, x, x, 1.0 - (double)n * beta);
-      for (size_t q = bnd.ptr[x]; q < bnd.ptr[x + 1]; q++)
-        ss_sink_emit(k, x, bnd.nb[q], beta);
-      continue;
-    }
-    const size_t n = rho.ptr[x + 1] - rho.ptr[x];
-    if (n == 0) { /* a vertex in no cell keeps its place */
-      ss_sink_emit(k, x, x, 1.0);
-      continue;
-    }
-    ss_sink_emit(k, x, x, 9.0 / 16.0);
-    for (size_t q = rho.ptr[x]; q < rho.ptr[x + 1]; q++)
-      ss_sink_emit(k, x, rho.nb[q], 7.0 / (16.0 * (double)n));
-  }
-  /* edge points and octahedron centres */
-  for (size_t f = nv; f < L->nfine; f++) {
-    const size_t npar = ss_split_npar(L, f);
-    const ss_idx *par = L->parent + L->ptr[f];
-    if (npar == 2) {
-      const ss_idx a = par[0], b = par[1];
-      if (onb[a] && onb[b]) {
-        /* a boundary edge: the vertices opposite it in boundary triangles */
-        size_t m = 0;
-        for (size_t q = bnd.ptr[a]; q < bnd.ptr[a + 1]; q++) {
-          const ss_idx c = bnd.nb[q];
-          if (c == b) continue;
-          face t = make_face(a, b, c);
-          const face *hit = bsearch(&t, faces, nfa, sizeof *faces, face_cmp);
-          /* bsearch finds some copy; a boundary face occurs once */
-          if (hit && hit->opp) common[m++] = c;
-        }
-        if (m > 0) {
-          ss_sink_emit(k, f, a, 3.0 / 8.0);
-          ss_sink_emit(k, f, b, 3.0 / 8.0);
-          for (size_t i = 0; i < m; i++)
-            ss_sink_emit(k, f, common[i], 0.25 / (double)m);
-          continue;
-        }
-      }
-      /* rho(e): the sorted intersection of rho(a) and rho(b) */
-      size_t m = 0, p = rho.ptr[a], q = rho.ptr[b];
-      while (p < rho.ptr[a + 1] && q < rho.ptr[b + 1]) {
-        if (rho.nb[p] < rho.nb[q])
-          p++;
-        else if (rho.nb[p] > rho.nb[q])
-          q++;
-        else
-          common[m++] = rho.nb[p], p++, q++;
-      }
-      if (m == 0) {
-        ss_sink_emit(k, f, a, 0.5);
-        ss_sink_emit(k, f, b, 0.5);
-      } else if (m == 4) {
-        ss_sink_emit(k, f, a, 8.0 / 32.0);
-        ss_sink_emit(k, f, b, 8.0 / 32.0);
-        for (size_t i = 0; i < m; i++)
-          ss_sink_emit(k, f, common[i], 4.0 / 32.0);
-      } else {
-        ss_sink_emit(k, f, a, 5.0 / 16.0);
-        ss_sink_emit(k, f, b, 5.0 / 16.0);
-        for (size_t i = 0; i < m; i++)
-          ss_sink_emit(k, f, common[i], 3.0 / (8.0 * (double)m));
-      }
-    } else if (npar != 1 && npar != 6) {
-      st = ss_error_set(err, SS_EINTERNAL, "fine vertex %zu with %zu parents", f, npar);
-      goto done;
-    }
-  }
-  /* octahedron centres: the split adds one per coarse octahedron, in order,
-   * after the edge midpoints it creates; find each by its six parents */
-  {
-    size_t oc = 0;
-    for (size_t f = nv; f < L->nfine && oc < no; f++) {
-      if (ss_split_npar(L, f) != 6) continue;
-      const ss_idx *v = ss_cx_cell(coarse, SS_OCT, oc);
-      ss_idx sorted[6];
-      memcpy(sorted, v, sizeof sorted);
-      qsort(sorted, 6, sizeof *sorted, cmp_idx);
-      if (memcmp(sorted, L->parent + L->ptr[f], sizeof sorted) != 0) {
-        st = ss_error_set(err, SS_EINTERNAL,
-                          "octahedron %zu: its centre is not where "
-                          "the split put it",
-                          oc);
-        goto done;
-      }
-      for (int i = 0; i < 6; i++)
-        ss_sink_emit(k, f, v[i], (i == 0 || i == 3 ? 8.0 : 4.0) / 32.0);
-      oc++;
-    }
-    if (oc != no) st = ss_error_set(err, SS_EINTERNAL, "octahedron centres missing");
-  }
-done:
-  adj_free(&rho);
-  adj_free(&bnd);
+    maxdeg = T->nb.ptr[v + 1] - T->nb.ptr[v] > maxdeg ? T->nb.ptr[v + 1] - T->nb.ptr[v]
+                                                      : maxdeg;
+  size_t maxoct = 0; /* room for two corners per octahedron of an end */
+  if (T->inoct.ptr)
+    for (size_t v = 0; v < nv; v++)
+      maxoct = T->inoct.ptr[v + 1] - T->inoct.ptr[v] > maxoct
+                   ? T->inoct.ptr[v + 1] - T->inoct.ptr[v]
+                   : maxoct;
+  T->common = malloc((maxdeg + 2 * maxoct + 1) * sizeof *T->common);
+  if (!T->common) goto nomem;
   free(pairs);
   free(bpairs);
-  free(common);
-  free(faces);
-  free(onb);
+  return SS_OK;
+nomem:
+  free(pairs);
+  free(bpairs);
+  topo_free(T);
+  return ss_error_nomem(err, "box-spline neighbours");
+}
+
+/* Loop's boundary rule for an old vertex on the boundary. */
+static void boundary_vertex(const topo *T, size_t x, ss_sink *k) {
+  const size_t n = T->bnd.ptr[x + 1] - T->bnd.ptr[x];
+  const double beta = n ? loop_beta((double)n) : 0.0;
+  ss_sink_emit(k, x, x, 1.0 - (double)n * beta);
+  for (size_t q = T->bnd.ptr[x]; q < T->bnd.ptr[x + 1]; q++)
+    ss_sink_emit(k, x, T->bnd.nb[q], beta);
+}
+
+/* Loop's boundary rule for the edge point f of (a, b) if both ends are on the
+ * boundary and the edge is in a boundary triangle; 1 if emitted. */
+static int boundary_edge(const topo *T, size_t f, ss_idx a, ss_idx b, ss_sink *k) {
+  if (!T->onb[a] || !T->onb[b]) return 0;
+  size_t m = 0;
+  for (size_t q = T->bnd.ptr[a]; q < T->bnd.ptr[a + 1]; q++) {
+    const ss_idx c = T->bnd.nb[q];
+    if (c == b) continue;
+    face t = make_face(a, b, c);
+    const face *hit = bsearch(&t, T->faces, T->nfa, sizeof *T->faces, face_cmp);
+    /* bsearch finds some copy; a boundary face occurs once */
+    if (hit && hit->opp) T->common[m++] = c;
+  }
+  if (m == 0) return 0;
+  ss_sink_emit(k, f, a, 3.0 / 8.0);
+  ss_sink_emit(k, f, b, 3.0 / 8.0);
+  for (size_t i = 0; i < m; i++)
+    ss_sink_emit(k, f, T->common[i], 0.25 / (double)m);
+  return 1;
+}
+
+/* The sorted intersection of the neighbour lists of a and b into
+ * T->common; its length. */
+static size_t common_neighbours(const topo *T, ss_idx a, ss_idx b) {
+  size_t m = 0, p = T->nb.ptr[a], q = T->nb.ptr[b];
+  while (p < T->nb.ptr[a + 1] && q < T->nb.ptr[b + 1]) {
+    if (T->nb.nb[p] < T->nb.nb[q])
+      p++;
+    else if (T->nb.nb[p] > T->nb.nb[q])
+      q++;
+    else
+      T->common[m++] = T->nb.nb[p], p++, q++;
+  }
+  return m;
+}
+
+/* (3.7) over the neighbour list of x (or keep x if it has none). */
+static void vertex_rule(const topo *T, size_t x, ss_sink *k) {
+  const size_t n = T->nb.ptr[x + 1] - T->nb.ptr[x];
+  if (n == 0) { /* a vertex in no cell keeps its place */
+    ss_sink_emit(k, x, x, 1.0);
+    return;
+  }
+  ss_sink_emit(k, x, x, 9.0 / 16.0);
+  for (size_t q = T->nb.ptr[x]; q < T->nb.ptr[x + 1]; q++)
+    ss_sink_emit(k, x, T->nb.nb[q], 7.0 / (16.0 * (double)n));
+}
+
+/* (3.5) or (3.8) by the number m of neighbours in T->common. */
+static void edge_rule(const topo *T, size_t f, ss_idx a, ss_idx b, size_t m, ss_sink *k) {
+  if (m == 0) {
+    ss_sink_emit(k, f, a, 0.5);
+    ss_sink_emit(k, f, b, 0.5);
+  } else if (m == 4) {
+    ss_sink_emit(k, f, a, 8.0 / 32.0);
+    ss_sink_emit(k, f, b, 8.0 / 32.0);
+    for (size_t i = 0; i < m; i++)
+      ss_sink_emit(k, f, T->common[i], 4.0 / 32.0);
+  } else {
+    ss_sink_emit(k, f, a, 5.0 / 16.0);
+    ss_sink_emit(k, f, b, 5.0 / 16.0);
+    for (size_t i = 0; i < m; i++)
+      ss_sink_emit(k, f, T->common[i], 3.0 / (8.0 * (double)m));
+  }
+}
+
+/* The octahedron centres: the split adds one per coarse octahedron, in order,
+ * after the edge midpoints it creates; find each by its six parents and give
+ * it weight w_end on the diagonal's ends and w_corner on the other corners. */
+static ss_status centres(const ss_cx *coarse, const ss_split *L, double w_end,
+                         double w_corner, ss_sink *k, ss_error *err) {
+  const size_t nv = coarse->nv, no = coarse->nc[SS_OCT];
+  size_t oc = 0;
+  for (size_t f = nv; f < L->nfine && oc < no; f++) {
+    if (ss_split_npar(L, f) != 6) continue;
+    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, oc);
+    ss_idx sorted[6];
+    memcpy(sorted, v, sizeof sorted);
+    qsort(sorted, 6, sizeof *sorted, cmp_idx);
+    if (memcmp(sorted, L->parent + L->ptr[f], sizeof sorted) != 0)
+      return ss_error_set(err, SS_EINTERNAL,
+                          "octahedron %zu: its centre is not where the split put it", oc);
+    for (int i = 0; i < 6; i++)
+      ss_sink_emit(k, f, v[i], i == 0 || i == 3 ? w_end : w_corner);
+    oc++;
+  }
+  if (oc != no) return ss_error_set(err, SS_EINTERNAL, "octahedron centres missing");
+  return SS_OK;
+}
+
+static ss_status check_parents(const ss_split *L, size_t nv, ss_error *err) {
+  for (size_t f = nv; f < L->nfine; f++) {
+    const size_t npar = ss_split_npar(L, f);
+    if (npar != 2 && npar != 6)
+      return ss_error_set(err, SS_EINTERNAL, "fine vertex %zu with %zu parents", f, npar);
+  }
+  return SS_OK;
+}
+
+static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
+                                const ss_cx *fine, const ss_split *L, ss_sink *k,
+                                ss_error *err) {
+  (void)s;
+  (void)fine;
+  const size_t nv = coarse->nv;
+  topo T;
+  ss_status st = check_parents(L, nv, err);
+  if (st || (st = topo_make(coarse, L, 1, &T, err))) return st;
+  for (size_t x = 0; x < nv; x++) {
+    if (T.onb[x])
+      boundary_vertex(&T, x, k);
+    else
+      vertex_rule(&T, x, k); /* rho(x): (3.7), i.e. (3.3) at 14 */
+  }
+  for (size_t f = nv; f < L->nfine; f++) {
+    if (ss_split_npar(L, f) != 2) continue;
+    const ss_idx a = L->parent[L->ptr[f]], b = L->parent[L->ptr[f] + 1];
+    if (boundary_edge(&T, f, a, b, k)) continue;
+    /* rho(e) = rho(a) ∩ rho(b): (3.4) at 6 is (3.8) */
+    edge_rule(&T, f, a, b, common_neighbours(&T, a, b), k);
+  }
+  st = centres(coarse, L, 8.0 / 32.0, 4.0 / 32.0, k, err); /* (3.6) */
+  topo_free(&T);
+  return st;
+}
+
+/* Appendix A's averaged weights, as means over the three directions of the
+ * regular rules' weights (see the file comment). */
+#define AVG3(a, b, c) (((a) + (b) + (c)) / 3.0)
+static const double avg_edge_end = AVG3(10.0 / 32, 10.0 / 32, 8.0 / 32);    /* 7/24 */
+static const double avg_edge_apex = 4 * AVG3(2.0 / 32, 2.0 / 32, 4.0 / 32); /* 1/3 */
+static const double avg_edge_opp = 4 * AVG3(2.0 / 32, 0.0, 0.0);            /* 1/12 */
+static const double avg_vertex_edge = 12 * (1.0 / 32);                      /* 3/8 */
+static const double avg_vertex_opp = 6 * AVG3(1.0 / 32, 0.0, 0.0);          /* 1/16 */
+
+static ss_status boxspline_avg_rule(const ss_scheme *s, const ss_cx *coarse,
+                                    const ss_cx *fine, const ss_split *L, ss_sink *k,
+                                    ss_error *err) {
+  (void)s;
+  (void)fine;
+  const size_t nv = coarse->nv;
+  topo T;
+  ss_status st = check_parents(L, nv, err);
+  if (st || (st = topo_make(coarse, L, 0, &T, err))) return st;
+  for (size_t x = 0; x < nv; x++) {
+    const size_t ne = T.nb.ptr[x + 1] - T.nb.ptr[x], no = T.opp.ptr[x + 1] - T.opp.ptr[x];
+    if (T.onb[x]) {
+      boundary_vertex(&T, x, k);
+    } else if (no == 0 || ne == 0) {
+      vertex_rule(&T, x, k); /* no octahedron, no diagonal: (3.7) */
+    } else {
+      ss_sink_emit(k, x, x, 9.0 / 16.0);
+      for (size_t q = T.nb.ptr[x]; q < T.nb.ptr[x + 1]; q++)
+        ss_sink_emit(k, x, T.nb.nb[q], avg_vertex_edge / (double)ne);
+      for (size_t q = T.opp.ptr[x]; q < T.opp.ptr[x + 1]; q++)
+        ss_sink_emit(k, x, T.opp.nb[q], avg_vertex_opp / (double)no);
+    }
+  }
+  for (size_t f = nv; f < L->nfine; f++) {
+    if (ss_split_npar(L, f) != 2) continue;
+    const ss_idx a = L->parent[L->ptr[f]], b = L->parent[L->ptr[f] + 1];
+    if (boundary_edge(&T, f, a, b, k)) continue;
+    const size_t m = common_neighbours(&T, a, b);
+    /* the corners opposite a and b in the octahedra holding both */
+    size_t q = 0;
+    for (size_t i = T.inoct.ptr[a]; i < T.inoct.ptr[a + 1]; i++) {
+      const ss_idx *v = ss_cx_cell(coarse, SS_OCT, T.inoct.nb[i]);
+      int ia = -1, ib = -1;
+      for (int j = 0; j < 6; j++)
+        ia = v[j] == a ? j : ia, ib = v[j] == b ? j : ib;
+      if (ib < 0) continue;
+      T.common[m + q++] = v[(ia + 3) % 6];
+      T.common[m + q++] = v[(ib + 3) % 6];
+    }
+    if (q == 0 || m == 0) {
+      edge_rule(&T, f, a, b, m, k); /* no octahedron: (3.5)/(3.8) */
+      continue;
+    }
+    ss_sink_emit(k, f, a, avg_edge_end);
+    ss_sink_emit(k, f, b, avg_edge_end);
+    for (size_t i = 0; i < m; i++)
+      ss_sink_emit(k, f, T.common[i], avg_edge_apex / (double)m);
+    for (size_t i = 0; i < q; i++)
+      ss_sink_emit(k, f, T.common[m + i], avg_edge_opp / (double)q);
+  }
+  /* (3.6) averaged: every corner is a diagonal end in one direction of three */
+  const double c = AVG3(8.0 / 32, 4.0 / 32, 4.0 / 32);
+  st = centres(coarse, L, c, c, k, err);
+  topo_free(&T);
   return st;
 }
 
@@ -301,5 +472,13 @@ ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err) {
     (*out)->reach = 2; /* rho(e) reads both ends' neighbourhoods */
     (*out)->diagonals = 1;
   }
+  return st;
+}
+
+ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err) {
+  const unsigned accepts = (1u << SS_TET) | (1u << SS_OCT);
+  ss_status st = ss_scheme_alloc("boxspline-avg", SS_SPLIT_TETOCT, accepts,
+                                 boxspline_avg_rule, out, err);
+  if (!st) (*out)->reach = 2; /* common neighbours of both ends */
   return st;
 }

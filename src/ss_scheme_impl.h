@@ -34,5 +34,6 @@ ss_status ss_scheme_tetoct_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_catmull_clark_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_loop_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err);
+ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err);
 
 #endif

@@ -6,6 +6,7 @@
 #include <json-c/json.h>
 
 #include "ss_cli.h"
+#include "ss_diag.h"
 #include "ss_mesh.h"
 #include "ss_scheme.h"
 
@@ -16,11 +17,18 @@ static const char *const usage_text =
     "Formats follow the file extensions: .mesh (Medit; read and write), .obj\n"
     "(surfaces; read and write), .vtk (legacy VTK for ParaView; write only).\n"
     "\n"
-    "  -s, --scheme S        mlca | tetoct | boxspline | catmull-clark | loop\n"
+    "  -s, --scheme S        mlca | tetoct | boxspline | boxspline-avg |\n"
+    "                        catmull-clark | loop\n"
     "  -l, --levels L        number of refinement levels, 0..12 (default 1)\n"
     "  -o, --output OUT      output file\n"
     "      --split-octahedra write octahedra as 4 tetrahedra each (.mesh), for\n"
     "                        tools that lack the Octahedra keyword\n"
+    "      --diagonals D     boxspline: the tets' major diagonals, bfs (Algorithm 2\n"
+    "                        of the box-spline paper, default) or given (the pair\n"
+    "                        (0,1),(2,3) of each tet's vertex order in IN, as\n"
+    "                        subdivide writes them); octahedra keep theirs, the\n"
+    "                        pair (0,3).  The summary counts improper pairs\n"
+    "                        (Definition 3.2; see the README)\n"
     "      --format F        summary as text (default) or json, on stdout\n"
     "  -h, --help            this text\n"
     "\n"
@@ -28,8 +36,9 @@ static const char *const usage_text =
     "  mlca           segments, quadrilaterals, hexahedra (+ corners); lower-\n"
     "                 dimensional cells are creases (MLCA paper, section 3.2)\n"
     "  tetoct         tetrahedra, octahedra (+ triangle/segment/corner creases)\n"
-    "  boxspline      tetrahedra, octahedra; boundary surfaces by Loop's rules;\n"
-    "                 major diagonals from the cells' vertex order\n"
+    "  boxspline      tetrahedra, octahedra; boundary surfaces by Loop's rules\n"
+    "  boxspline-avg  the same, averaged over the three diagonal directions\n"
+    "                 (Appendix A): reads no diagonals\n"
     "  catmull-clark  quadrilateral surfaces; boundaries and segments are creases\n"
     "  loop           triangle surfaces; boundaries and segments are creases\n"
     "\n"
@@ -78,11 +87,13 @@ int ss_cli_subdivide(int argc, char **argv) {
                                        {"output", required_argument, NULL, 'o'},
                                        {"split-octahedra", no_argument, NULL, 'S'},
                                        {"format", required_argument, NULL, 'F'},
+                                       {"diagonals", required_argument, NULL, 'D'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   const char *scheme_name = NULL, *out_path = NULL, *in_path = NULL;
   long levels = 1;
   int json = 0;
+  const char *diag = NULL; /* --diagonals: NULL (default bfs), "bfs", "given" */
   ss_mesh_write_opts wopts = {0};
   optind = 1;
   opterr = 0;
@@ -105,6 +116,12 @@ int ss_cli_subdivide(int argc, char **argv) {
       break;
     case 'F':
       if (ss_cli_format_option("subdivide", optarg, &json)) return SS_EXIT_USAGE;
+      break;
+    case 'D':
+      if (strcmp(optarg, "bfs") && strcmp(optarg, "given"))
+        return ss_cli_usage_error("subdivide",
+                                  "--diagonals: expected bfs or given, not '%s'", optarg);
+      diag = optarg;
       break;
     case 'h':
       fputs(usage_text, stdout);
@@ -139,6 +156,21 @@ int ss_cli_subdivide(int argc, char **argv) {
     rc = SS_EXIT_USAGE;
     goto done;
   }
+  size_t dpairs = 0, dbad = 0;
+  const int reads_diag = ss_scheme_reads_diagonals(scheme);
+  if (diag && !reads_diag) {
+    rc = ss_cli_usage_error(
+        "subdivide", "--diagonals: scheme %s reads no major diagonals", scheme_name);
+    goto done;
+  }
+  if (reads_diag) {
+    if (!diag) diag = "bfs";
+    if ((!strcmp(diag, "bfs") && ss_diag_choose(cx, SS_DIAG_BFS, 0, 0, &err)) ||
+        ss_diag_improper(cx, &dpairs, &dbad, &err)) {
+      rc = ss_cli_fail(&err);
+      goto done;
+    }
+  }
   {
     double n[SS_NCELLTYPES], m[SS_NCELLTYPES], total = 0;
     for (int t = 0; t < SS_NCELLTYPES; t++)
@@ -163,6 +195,13 @@ int ss_cli_subdivide(int argc, char **argv) {
     report = json_object_new_object();
     json_object_object_add(report, "scheme", json_object_new_string(scheme_name));
     json_object_object_add(report, "input", json_object_new_string(in_path));
+    if (reads_diag) {
+      json_object *d = json_object_new_object();
+      json_object_object_add(d, "choice", json_object_new_string(diag));
+      json_object_object_add(d, "pairs", json_object_new_int64((int64_t)dpairs));
+      json_object_object_add(d, "improper", json_object_new_int64((int64_t)dbad));
+      json_object_object_add(report, "diagonals", d);
+    }
     lv = json_object_new_array();
     json_object_object_add(report, "levels", lv);
     json_object_array_add(lv, level_json(0, cx, 0.0));
@@ -170,6 +209,10 @@ int ss_cli_subdivide(int argc, char **argv) {
     char what[64];
     snprintf(what, sizeof what, "read %s", in_path);
     level_text(what, cx, -1);
+    if (reads_diag)
+      printf("major diagonals: %s; %zu of %zu adjacent pairs improper (Definition 3.2 as "
+             "read in the README)\n",
+             diag, dbad, dpairs);
   }
   for (long l = 1; l <= levels; l++) {
     double t0 = ss_cli_now();

@@ -340,6 +340,52 @@ static void test_defective(void) {
   }
 }
 
+/* Box-spline solids at the valence-5 vertex whose link is the triangular
+ * bipyramid, bipyramid:3 (FINDING, reports/README.md).  Its one-ring block
+ * follows from (3.7), (3.8) on the two apex spokes (3 neighbours) and (3.5) on the three
+ * equator spokes (4 neighbours); by the link's symmetry, derived by hand:
+ *   apex-antisymmetric mode:  5/16 (the apex spoke rule's own weight);
+ *   equator modes (sum 0 on the equator): 1/4 - 1/8 = 1/8, twice;
+ *   symmetric modes: 1 and the roots of x^2 - 3/8 x + 31/1280 (the 3x3 block
+ *   on centre, apexes, equator: trace 11/8, determinant (9/16 - 7/40)/16).
+ * So two of the three linear functions contract by only 1/8, below the
+ * symmetric quadratic-like mode: lambda3 is not a linear mode and the
+ * characteristic map must fold. */
+static void test_boxspline_k5(void) {
+  ss_scheme *bx = scheme("boxspline");
+  ss_link *l = NULL;
+  ss_error err = {0};
+  result r;
+  /* bipyramid:3: the apexes a, e and the equator b, c, d */
+  if (ss_link_parse("bipyramid:3", &l, &err) || l->k != 5 ||
+      run(bx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) {
+    CHECK(0, "bipyramid:3: %s", err.msg);
+    ss_link_free(l);
+    ss_scheme_free(bx);
+    return;
+  }
+  const double disc = sqrt(9.0 / 64 - 4 * 31.0 / 1280);
+  const double want[4] = {5.0 / 16, (3.0 / 8 + disc) / 2, 1.0 / 8, (3.0 / 8 - disc) / 2};
+  const int mult[4] = {1, 1, 2, 1};
+  for (int q = 0; q < 4; q++) {
+    int found = 0;
+    for (size_t i = 0; i < r.e->n; i++)
+      found += r.e->val[i].block == 0 && r.e->val[i].im == 0.0 &&
+               fabs(r.e->val[i].re - want[q]) < 1e-12;
+    CHECK(found == mult[q], "one-ring eigenvalue %.12g found %d times, want %d", want[q],
+          found, mult[q]);
+  }
+  CHECK_CLOSE(r.e->val[1].re, want[0], 1e-12, "lambda1 is the apex mode");
+  CHECK_CLOSE(r.e->val[2].re, want[1], 1e-12, "lambda2 is a symmetric mode");
+  CHECK(r.e->val[3].re > 1.0 / 8 + 1e-3, "lambda3 = %g lies above the equator modes",
+        r.e->val[3].re);
+  CHECK(r.r.verdict.verdict == SS_FAIL, "bipyramid:3: regularity %s",
+        ss_verdict_name(r.r.verdict.verdict));
+  done(&r);
+  ss_link_free(l);
+  ss_scheme_free(bx);
+}
+
 /* The MLCA finding, checked independently of ss_eig and its basis: for the
  * k = 8 link with two adjacent valence-7 edges, lambda3 and lambda4 are a
  * near-tie (relative gap about 1.4e-3) and the eigenvector of lambda3 is a
@@ -455,6 +501,7 @@ static void test_complex(void) {
 int main(void) {
   test_complex();
   test_mlca_k8();
+  test_boxspline_k5();
   test_regular();
   test_folded();
   test_defective();

@@ -529,9 +529,21 @@ static void test_cross(void) {
     if (!ss_link_parse("bipyramid:5", &l, &err))
       cross_check(bx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS},
                   "boxspline bipyramid:5");
-    ss_link_free(l);
     cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, "boxspline edge 5");
     cross_check(bx, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "boxspline face");
+    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 6, SS_DIAG_SKEW},
+                "boxspline edge 6 skew");
+    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 6, SS_DIAG_CENTER},
+                "boxspline edge 6 center");
+    ss_scheme *av = scheme("boxspline-avg");
+    if (l)
+      cross_check(av, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS},
+                  "boxspline-avg bipyramid:5");
+    cross_check(av, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS},
+                "boxspline-avg edge 5");
+    cross_check(av, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "boxspline-avg face");
+    ss_link_free(l);
+    ss_scheme_free(av);
     ss_scheme_free(bx);
   }
   cross_check(ml, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, "mlca edge 5");

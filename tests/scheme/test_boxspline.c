@@ -16,16 +16,18 @@
 #include "ss_test.h"
 
 /* A tet with corners 0, e1, e2, e3, refined `levels` times by the linear
- * split: vertex positions are exact dyadic lattice points. */
-static ss_cx *lattice_tet(int levels) {
+ * split: vertex positions are exact dyadic lattice points.  dir picks which
+ * pair of opposite edges carries the major diagonal (all cells inherit it). */
+static ss_cx *lattice_tet_dir(int levels, int dir) {
+  static const ss_idx order[3][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}};
   const double x[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   ss_cx *cx = NULL;
   ss_error err = {0};
   ss_cx_new(3, &cx, &err);
   for (int i = 0; i < 4; i++)
     ss_cx_add_vertex(cx, x[i], 0, &err);
-  const ss_idx v[4] = {0, 1, 2, 3};
-  ss_cx_add_cell(cx, SS_TET, v, 0, &err);
+  /* an even reordering: the diagonal pair (01),(23) is one of three */
+  ss_cx_add_cell(cx, SS_TET, order[dir], 0, &err);
   for (int l = 0; l < levels && cx; l++) {
     ss_cx *f = NULL;
     ss_split *L = NULL;
@@ -38,6 +40,10 @@ static ss_cx *lattice_tet(int levels) {
     cx = f;
   }
   return cx;
+}
+
+static ss_cx *lattice_tet(int levels) {
+  return lattice_tet_dir(levels, 0);
 }
 
 /* Lattice coordinates (units 1/n) of point x; -1 entries if not a lattice
@@ -479,6 +485,231 @@ static void test_proper_counts(void) {
     }
 }
 
+/* Rows of the refinement from a tet refined `levels` times (lattice units
+ * 1/2^levels), for the fine points at least 3 fine units inside: rows[i] is
+ * dense over the coarse lattice ((2^levels + 1)^3 points), keyed[i] the fine
+ * point's lattice index.  Returns the number of rows (0 on failure). */
+static int lattice_rows(const ss_scheme *s, int levels, int dir, double **rows,
+                        long **keyed) {
+  ss_error err = {0};
+  ss_split *L = NULL;
+  ss_cx *coarse = lattice_tet_dir(levels, dir), *fine = NULL;
+  gsl_spmatrix *R = NULL;
+  const int nc = 1 << levels, nf = 2 * nc, side = nc + 1;
+  *rows = NULL;
+  *keyed = NULL;
+  if (!coarse || ss_scheme_refine_split(s, coarse, &fine, &R, &L, &err)) {
+    CHECK(0, "%s: %s", ss_scheme_name(s), err.msg);
+    ss_cx_free(coarse);
+    return 0;
+  }
+  double *W = calloc(fine->nv * (size_t)(side * side * side), sizeof *W);
+  long *K = calloc(fine->nv, sizeof *K);
+  int n = 0;
+  for (size_t f = 0; f < fine->nv; f++) {
+    double y[3] = {0, 0, 0};
+    const size_t np = ss_split_npar(L, f);
+    for (size_t q = L->ptr[f]; q < L->ptr[f + 1]; q++)
+      for (int r = 0; r < 3; r++)
+        y[r] += coarse->x[3 * L->parent[q] + r] / (double)np;
+    long a[3];
+    lat(y, nf, a);
+    if (a[0] < 0 || !inside(a, nf, 3)) continue;
+    K[n] = (a[0] * (nf + 1) + a[1]) * (nf + 1) + a[2];
+    for (int q = R->p[f]; q < R->p[f + 1]; q++) {
+      long c[3];
+      lat(coarse->x + 3 * R->i[q], nc, c);
+      W[(size_t)n * (size_t)(side * side * side) +
+        (size_t)((c[0] * side + c[1]) * side + c[2])] = R->data[q];
+    }
+    n++;
+  }
+  ss_split_free(L);
+  gsl_spmatrix_free(R);
+  ss_cx_free(fine);
+  ss_cx_free(coarse);
+  *rows = W;
+  *keyed = K;
+  return n;
+}
+
+/* Appendix A: on the lattice, boxspline-avg is the mean of the three
+ * box-spline schemes whose diagonals point the lattice's three ways. */
+static void test_avg_lattice(const ss_scheme *bs, const ss_scheme *avg) {
+  const int levels = 3, side = (1 << levels) + 1, ncol = side * side * side;
+  double *Wd[3], *Wa;
+  long *Kd[3], *Ka;
+  int nd[3];
+  for (int d = 0; d < 3; d++)
+    nd[d] = lattice_rows(bs, levels, d, &Wd[d], &Kd[d]);
+  const int na = lattice_rows(avg, levels, 0, &Wa, &Ka);
+  CHECK(na >= 30 && nd[0] == na && nd[1] == na && nd[2] == na, "rows: %d %d %d %d", na,
+        nd[0], nd[1], nd[2]);
+  int bad = 0, differ = 0, shapes[4] = {0, 0, 0, 0};
+  for (int i = 0; i < na && nd[0] == na && nd[1] == na && nd[2] == na; i++) {
+    int j[3];
+    for (int d = 0; d < 3; d++) /* the same fine point in each */
+      for (j[d] = 0; j[d] < na && Kd[d][j[d]] != Ka[i]; j[d]++)
+        ;
+    if (j[0] == na || j[1] == na || j[2] == na) {
+      bad++;
+      continue;
+    }
+    int nz = 0;
+    for (int c = 0; c < ncol; c++) {
+      const double *r0 = Wd[0] + (size_t)j[0] * ncol, *r1 = Wd[1] + (size_t)j[1] * ncol,
+                   *r2 = Wd[2] + (size_t)j[2] * ncol;
+      const double mean = (r0[c] + r1[c] + r2[c]) / 3.0;
+      bad += fabs(Wa[(size_t)i * ncol + c] - mean) > 1e-15;
+      differ += fabs(r0[c] - r1[c]) > 1e-15;
+      nz += Wa[(size_t)i * ncol + c] != 0.0;
+    }
+    /* vertex 1 + 12 + 6, edge 2 + 4 + 4, centre 6 */
+    shapes[nz == 19 ? 0 : nz == 10 ? 1 : nz == 6 ? 2 : 3]++;
+  }
+  CHECK(bad == 0, "%d averaged weights differ from the mean of the three directions",
+        bad);
+  CHECK(differ > 0,
+        "the three directions give the same rules: the test would be vacuous");
+  CHECK(shapes[0] > 0 && shapes[1] > 0 && shapes[2] > 0 && shapes[3] == 0,
+        "averaged row shapes: %d vertex, %d edge, %d centre, %d other", shapes[0],
+        shapes[1], shapes[2], shapes[3]);
+  for (int d = 0; d < 3; d++) {
+    free(Wd[d]);
+    free(Kd[d]);
+  }
+  free(Wa);
+  free(Ka);
+}
+
+/* The points of cx refined `levels` times by s (caller frees); *n their
+ * number. */
+static double *refined_points(const ss_scheme *s, const ss_cx *cx, int levels,
+                              size_t *n) {
+  ss_error err = {0};
+  ss_cx *f = NULL;
+  *n = 0;
+  if (ss_scheme_refine_levels(s, cx, levels, &f, &err)) {
+    CHECK(0, "%s: %s", ss_scheme_name(s), err.msg);
+    return NULL;
+  }
+  double *x = malloc(3 * f->nv * sizeof *x);
+  memcpy(x, f->x, 3 * f->nv * sizeof *x);
+  *n = f->nv;
+  ss_cx_free(f);
+  return x;
+}
+
+/* Hausdorff distance of two point sets (max-norm), INFINITY if the counts
+ * differ. */
+static double point_set_distance(const double *a, size_t na, const double *b, size_t nb) {
+  if (na != nb || !a || !b) return (double)INFINITY;
+  double h = 0.0;
+  for (int side = 0; side < 2; side++) {
+    const double *p = side ? b : a, *q = side ? a : b;
+    for (size_t i = 0; i < na; i++) {
+      double best = (double)INFINITY;
+      for (size_t j = 0; j < nb; j++) {
+        double d = 0.0;
+        for (int r = 0; r < 3; r++)
+          d = fmax(d, fabs(p[3 * i + r] - q[3 * j + r]));
+        best = fmin(best, d);
+      }
+      h = fmax(h, best);
+    }
+  }
+  return h;
+}
+
+/* An edge star of valence 7 with a bump, a random-ish but fixed geometry. */
+static ss_cx *bumpy_star(int n) {
+  ss_cx *cx = edge_star(n);
+  for (size_t v = 0; v < cx->nv; v++)
+    for (int r = 0; r < 3; r++)
+      cx->x[3 * v + r] += 0.05 * sin(1.7 * (double)(v + 1) * (r + 1));
+  return cx;
+}
+
+/* boxspline-avg ignores the diagonals (bfs, skew, center give the same fine
+ * points), while boxspline does not; boxspline is invariant under relabelling
+ * the vertices when the diagonal pairs are carried along (a random even
+ * reordering of each tet that keeps its pair). */
+static void test_diagonal_invariance(const ss_scheme *bs, const ss_scheme *avg) {
+  ss_error err = {0};
+  /* the first level of a tet mesh reads no diagonal (there is no octahedron
+   * yet): compare after two */
+  for (int n = 4; n <= 8; n++) {
+    double *P[2][3];
+    size_t np[2][3];
+    for (int m = 0; m < 3; m++) {
+      ss_cx *cx = bumpy_star(n);
+      ss_diag_choose(cx, (ss_diag_mode)m, 0, 1, &err);
+      P[0][m] = refined_points(bs, cx, 2, &np[0][m]);
+      P[1][m] = refined_points(avg, cx, 2, &np[1][m]);
+      ss_cx_free(cx);
+    }
+    for (int m = 1; m < 3; m++) {
+      const double d = point_set_distance(P[1][m], np[1][m], P[1][0], np[1][0]);
+      CHECK(d < 1e-14, "edge star %d: boxspline-avg moves by %g between %s and bfs", n, d,
+            ss_diag_name((ss_diag_mode)m));
+    }
+    const double d = point_set_distance(P[0][1], np[0][1], P[0][2], np[0][2]);
+    CHECK(d > 1e-3 && isfinite(d),
+          "edge star %d: boxspline skew and center differ by only %g (the test would be "
+          "vacuous)",
+          n, d);
+    for (int i = 0; i < 2; i++)
+      for (int m = 0; m < 3; m++)
+        free(P[i][m]);
+  }
+  /* relabelling with the diagonals carried along */
+  static const int keep[4][4] = {{0, 1, 2, 3}, {1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+  unsigned seed = 7;
+  for (int trial = 0; trial < 6; trial++) {
+    ss_cx *cx = bumpy_star(5 + trial % 4);
+    ss_diag_choose(cx, trial % 2 ? SS_DIAG_SKEW : SS_DIAG_BFS, 0, 1, &err);
+    const size_t nv = cx->nv;
+    ss_idx *map = malloc(nv * sizeof *map), *inv = malloc(nv * sizeof *inv);
+    for (size_t v = 0; v < nv; v++)
+      map[v] = (ss_idx)v;
+    for (size_t v = nv - 1; v > 0; v--) { /* Fisher-Yates */
+      seed = seed * 1103515245u + 12345u;
+      const size_t j = (seed >> 8) % (v + 1);
+      const ss_idx t = map[v];
+      map[v] = map[j];
+      map[j] = t;
+    }
+    for (size_t v = 0; v < nv; v++)
+      inv[map[v]] = (ss_idx)v;
+    ss_cx *rl = NULL;
+    ss_cx_new(3, &rl, &err);
+    for (size_t w = 0; w < nv; w++)
+      ss_cx_add_vertex(rl, cx->x + 3 * inv[w], 0, &err);
+    for (size_t t = 0; t < cx->nc[SS_TET]; t++) {
+      const ss_idx *v = ss_cx_cell(cx, SS_TET, t);
+      seed = seed * 1103515245u + 12345u;
+      const int *k = keep[(seed >> 8) % 4];
+      const ss_idx w[4] = {map[v[k[0]]], map[v[k[1]]], map[v[k[2]]], map[v[k[3]]]};
+      ss_cx_add_cell(rl, SS_TET, w, 0, &err);
+    }
+    size_t n1 = 0, n2 = 0;
+    double *A = refined_points(bs, cx, 2, &n1), *B = refined_points(bs, rl, 2, &n2);
+    const double d = point_set_distance(A, n1, B, n2);
+    CHECK(n1 > 0 && d < 1e-14, "trial %d: relabelled box-spline refinement moves by %g",
+          trial, d);
+    size_t p1, b1, p2, b2;
+    CHECK(!ss_diag_improper(cx, &p1, &b1, &err) &&
+              !ss_diag_improper(rl, &p2, &b2, &err) && p1 == p2 && b1 == b2,
+          "trial %d: improper pairs change under relabelling", trial);
+    free(A);
+    free(B);
+    free(map);
+    free(inv);
+    ss_cx_free(rl);
+    ss_cx_free(cx);
+  }
+}
+
 int main(void) {
   test_diagonals();
   test_face_to_face();
@@ -492,6 +723,14 @@ int main(void) {
   test_regular_rules(s);
   test_generating_function(s);
   test_extraordinary(s);
+  ss_scheme *avg = NULL;
+  if (ss_scheme_new("boxspline-avg", &avg, &err)) {
+    fprintf(stderr, "%s\n", err.msg);
+    return 1;
+  }
+  test_avg_lattice(s, avg);
+  test_diagonal_invariance(s, avg);
+  ss_scheme_free(avg);
   ss_scheme_free(s);
   return ss_test_done("boxspline");
 }
