@@ -12,7 +12,7 @@
 #include <lapacke.h>
 
 ss_eig_opts ss_eig_defaults(int dim) {
-  ss_eig_opts o = {1e-6, 1e-2, dim, 1};
+  ss_eig_opts o = {1e-6, 1e-2, dim, 1, 0};
   return o;
 }
 
@@ -615,7 +615,12 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   condition(e, e->m, opts->tol);
 
   /* the subdominant basis: only when the leading m are real and positive */
-  if (!opts->basis || e->cond.verdict != SS_PASS) goto done;
+  int real_positive = 1;
+  for (int i = 1; i <= e->m && (size_t)i < n; i++)
+    real_positive &= e->val[i].im == 0.0 && e->val[i].re > 0.0;
+  if (!opts->basis || (size_t)e->m >= n ||
+      (e->cond.verdict != SS_PASS && !(opts->force && real_positive)))
+    goto done;
   const int m = e->m;
   int outer = 0, clustered = 0;
   for (int i = 1; i <= m; i++) {

@@ -57,6 +57,10 @@ typedef struct {
                      treated as a cluster (default 1e-2) */
   int dim;        /* 3: volume condition (lambda1..3); 2: surface (lambda1..2) */
   int basis;      /* nonzero: compute the subdominant basis */
+  int force;      /* nonzero: compute it even when the eigenvalue condition
+                     fails, as long as lambda1..m are real and positive (for
+                     pictures of what is not a characteristic map; a tie
+                     lambda_m = lambda_m+1 is cut arbitrarily) */
 } ss_eig_opts;
 
 /* Eigenstructure of one local matrix. */

@@ -35,6 +35,7 @@ typedef struct {
   int depth;                /* --depth: hex subdivision limit of the Jacobian test */
   ss_report_draw_opts draw; /* draw: picture options */
   ss_diag_mode diag;        /* --diagonals: major diagonals of tet stars */
+  int force;                /* draw --force: a map even when the condition fails */
 } opts;
 
 static void help(const char *cmd) {
@@ -65,21 +66,23 @@ static void help(const char *cmd) {
            "strict sign, the same for all cells (hexes: Bernstein coefficients with\n"
            "adaptive subdivision; quads: corners; tets: determinant; octahedra: eight\n"
            "tets), and report the minimum scaled Jacobian.\n\n");
-  printf("cases (exactly one):\n"
-         "  --vertex LINK          a 3D vertex whose link is LINK: plantri ASCII\n"
-         "                         ('4 bcd,adc,abd,acb') or a name (tetrahedron,\n"
-         "                         octahedron, icosahedron, bipyramid:N); '-' reads one\n"
-         "                         link per line on standard input%s\n"
-         "  --edge N               a point on an edge of valence N (3..1000)\n"
-         "  --face                 a point inside the face of two tets (tet/oct split)\n"
-         "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
-         "options:\n"
-         "  --scheme S             mlca, tetoct, boxspline, catmull-clark, loop\n"
-         "  --diagonals D          major diagonals of tet stars (boxspline): bfs\n"
-         "                         (Algorithm 2, default), or around the edge of\n"
-         "                         --edge: skew (the same turn all round) or center\n"
-         "                         (all toward the edge)\n",
-         m || d ? "" : " (one result\n                         per line)");
+  printf(
+      "cases (exactly one):\n"
+      "  --vertex LINK          a 3D vertex whose link is LINK: plantri ASCII\n"
+      "                         ('4 bcd,adc,abd,acb') or a name (tetrahedron,\n"
+      "                         octahedron, icosahedron, bipyramid:N); '-' reads one\n"
+      "                         link per line on standard input%s\n"
+      "  --edge N               a point on an edge of valence N (3..1000)\n"
+      "  --face                 a point inside the face of two tets (tet/oct split)\n"
+      "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
+      "options:\n"
+      "  --scheme S             mlca, tetoct, boxspline, boxspline-avg, catmull-clark,\n"
+      "                         loop\n"
+      "  --diagonals D          major diagonals of tet stars (boxspline): bfs\n"
+      "                         (Algorithm 2, default), or around the edge of\n"
+      "                         --edge: skew (the same turn all round) or center\n"
+      "                         (all toward the edge)\n",
+      m || d ? "" : " (one result\n                         per line)");
   if (m)
     printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "
            "2)\n"
@@ -95,13 +98,21 @@ static void help(const char *cmd) {
   if (d)
     printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk\n"
            "  --size WxH             picture size (default 1200x600)\n"
-           "  --view AZ,EL           view direction in degrees (default 30,25)\n");
+           "  --view AZ,EL           view direction in degrees (default 30,25)\n"
+           "  --force                draw the map of the three leading subdominant\n"
+           "                         eigenvectors even when the eigenvalue condition\n"
+           "                         fails (they must be real and positive); with a\n"
+           "                         tie lambda3 = lambda4 the third is an arbitrary\n"
+           "                         vector of the tied eigenspace.  Such a picture is\n"
+           "                         not a characteristic map; the caption says so\n");
   else if (!m)
     printf("  --eigenvalues K        how many leading eigenvalues to print (default 16)\n"
            "  --format F             text (default), json (one object per case), tsv\n");
   printf("  -h, --help             this help\n\n"
          "Schemes use the star their split calls for: mlca hexes (quads on surfaces),\n"
-         "tetoct tets, catmull-clark quads, loop triangles.\n"
+         "tetoct, boxspline and boxspline-avg tets, catmull-clark quads, loop\n"
+         "triangles.  boxspline reports how many face-adjacent pairs of the star have\n"
+         "improper diagonals (Definition 3.2 as read in the README).\n"
          "Exit status: 0 all conditions hold, 1 a condition fails or is undecided (or\n"
          "the extraction failed a check), 2 bad usage or input.\n");
 }
@@ -120,7 +131,8 @@ static int parse(int argc, char **argv, opts *o) {
     O_DEPTH,
     O_SIZE,
     O_VIEW,
-    O_DIAG
+    O_DIAG,
+    O_FORCE
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -135,6 +147,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"size", required_argument, 0, O_SIZE},
                                      {"view", required_argument, 0, O_VIEW},
                                      {"diagonals", required_argument, 0, O_DIAG},
+                                     {"force", no_argument, 0, O_FORCE},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -243,6 +256,10 @@ static int parse(int argc, char **argv, opts *o) {
       o->draw.elevation = el;
       break;
     }
+    case O_FORCE:
+      if (!d) return ss_cli_usage_error(o->cmd, "--force is an option of draw only");
+      o->force = 1;
+      break;
     default:
       return ss_cli_option_error(o->cmd, c, argv);
     }
@@ -511,6 +528,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   }
   ss_eig_opts eo = ss_eig_defaults(M->dim);
   eo.tol = o->tol;
+  eo.force = o->force;
   if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
     rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
@@ -524,6 +542,16 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   }
   const int k = l ? l->k : 0;
   if (!strcmp(o->cmd, "draw")) {
+    int forced = 0;
+    if (!cm && o->force && e->basis) {
+      if (ss_charmap_new(M, e, &cm, &err)) {
+        fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
+        rc = SS_EXIT_FAIL;
+        goto done;
+      }
+      ss_charmap_regularity(cm, o->depth, &reg);
+      forced = 1;
+    }
     if (!cm) {
       fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
               reg.verdict.reason);
@@ -531,9 +559,16 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
       goto done;
     }
     char caption[600], buf[32];
-    snprintf(caption, sizeof caption, "%s, %s %s", ss_scheme_name(s),
+    char dtext[128] = "";
+    if (di.shown)
+      snprintf(dtext, sizeof dtext, ", diagonals %s (%zu of %zu pairs improper)",
+               ss_diag_name(o->diag), di.improper, di.pairs);
+    snprintf(caption, sizeof caption, "%s, %s %s%s%s", ss_scheme_name(s),
              ss_case_name(o->kind),
-             o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf));
+             o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf), dtext,
+             forced
+                 ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
+                 : "");
     ss_report_draw_opts dopt = o->draw;
     dopt.caption = caption;
     if (ss_report_draw(cm, &reg, &dopt, o->out, &err)) {
@@ -541,9 +576,11 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
       rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
       goto done;
     }
-    fprintf(stderr, "subspectra draw: wrote %s (regularity %s%s%s)\n", o->out,
+    fprintf(stderr, "subspectra draw: wrote %s (%s %s%s%s)\n", o->out,
+            forced ? "forced map, eigenvalue condition fails; its cells:" : "regularity",
             ss_verdict_name(reg.verdict.verdict), reg.verdict.reason[0] ? ": " : "",
             reg.verdict.reason);
+    if (forced) rc = SS_EXIT_FAIL;
   } else if (o->format == FMT_JSON)
     print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &di);
   else if (o->format == FMT_TSV)
@@ -575,7 +612,8 @@ static int run(int argc, char **argv, const char *cmd) {
             NULL,
             SS_JAC_DEPTH,
             ss_report_draw_defaults(),
-            SS_DIAG_BFS};
+            SS_DIAG_BFS,
+            0};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
   int r = parse(argc, argv, &o);
   if (r) return r < 0 ? SS_EXIT_OK : r;

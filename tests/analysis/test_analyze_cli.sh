@@ -76,6 +76,19 @@ expect_in 0 "wrote $tmp/t.vtk" "" "$exe" draw --scheme tetoct --face -o "$tmp/t.
 expect_in 1 "regularity fail" "" "$exe" draw --scheme mlca --vertex "$k8" -o "$tmp/k8.png"
 expect_in 1 "no characteristic map to draw" "" "$exe" draw --scheme mlca --edge 8 -o "$tmp/e8.png"
 expect_in 2 "-o FILE is required" "" "$exe" draw --scheme mlca --edge 4
+# box-spline solids: the figure-23 edge pair; "center" has no characteristic
+# map at valence 9 (lambda3 = lambda4), --force draws the would-be map
+expect_in 0 "regularity pass" "" "$exe" draw --scheme boxspline --edge 9 --diagonals skew -o "$tmp/s9.png"
+expect_in 1 "no characteristic map to draw" "" "$exe" draw --scheme boxspline --edge 9 --diagonals center -o "$tmp/c9.png"
+expect_in 1 "forced map, eigenvalue condition fails; its cells: fail" "" "$exe" draw --scheme boxspline --edge 9 --diagonals center --force -o "$tmp/c9.png"
+[ -s "$tmp/c9.png" ] || fail "draw --force wrote no picture"
+expect_in 2 "--force is an option of draw only" "" "$exe" analyze --scheme boxspline --edge 9 --force
+expect_in 0 "major diagonals: skew; 9 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --edge 9 --diagonals skew --eigenvalues 4
+expect_in 1 "major diagonals: center; 0 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --edge 9 --diagonals center --eigenvalues 4
+expect_in 0 "scheme boxspline-avg, edge case, valence 5" "" "$exe" analyze --scheme boxspline-avg --edge 5
+avgout=$("$exe" analyze --scheme boxspline-avg --edge 5 --format json)
+checks=$((checks + 1))
+grep -q '"diagonals"' <<<"$avgout" && fail "boxspline-avg reports diagonals it does not read"
 expect_in 2 "unknown picture format" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.gif"
 expect_in 2 "cannot" "" "$exe" draw --scheme mlca --edge 4 -o /nonexistent/dir/x.png
 expect_in 2 "--size" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --size 10x10

@@ -16,6 +16,12 @@ expect 2 "unknown command 'frobnicate'" "$exe" frobnicate
 expect 2 "usage" "$exe"
 expect 2 "unknown scheme 'butterfly'" "$exe" subdivide --scheme butterfly "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
 expect 2 "--scheme is required" "$exe" subdivide "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
+# box-spline solids: Algorithm 2 by default, the file's diagonals on request
+expect 0 "major diagonals: bfs; [0-9]+ of 6 adjacent pairs improper" "$exe" subdivide --scheme boxspline --levels 2 "$m/cube-6tets.mesh" -o "$tmp/b.mesh"
+expect 0 "major diagonals: given; [0-9]+ of 240 adjacent pairs improper" "$exe" subdivide --scheme boxspline --diagonals given "$tmp/b.mesh" -o "$tmp/b2.mesh"
+expect 0 "boxspline-avg level 2: 125 vertices, 144 tetrahedra, 60 octahedra" "$exe" subdivide --scheme boxspline-avg --levels 2 "$m/cube-6tets.mesh" -o "$tmp/a.mesh"
+expect 2 "--diagonals: scheme tetoct reads no major diagonals" "$exe" subdivide --scheme tetoct --diagonals bfs "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
+expect 2 "--diagonals: expected bfs or given, not 'x'" "$exe" subdivide --scheme boxspline --diagonals x "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
 expect 2 "-o OUT is required" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh"
 expect 2 "no input mesh" "$exe" subdivide --scheme tetoct -o "$tmp/o.mesh"
 expect 2 "levels 'abc'" "$exe" subdivide --scheme tetoct --levels abc "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
