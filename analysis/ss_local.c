@@ -715,7 +715,8 @@ ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
         ss_scheme_name(s), ss_case_name(c->kind), ss_cell_plural(t));
   if (c->kind == SS_CASE_VERTEX && !c->link)
     return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
-  if (c->diag != SS_DIAG_BFS && (c->kind != SS_CASE_EDGE || t != SS_TET))
+  if ((c->diag == SS_DIAG_SKEW || c->diag == SS_DIAG_CENTER) &&
+      (c->kind != SS_CASE_EDGE || t != SS_TET))
     return ss_error_set(err, SS_EINPUT,
                         "major diagonals '%s' are defined around an edge: only for the "
                         "edge case of a tet star",

@@ -67,8 +67,8 @@ typedef struct {
   const ss_link *link; /* vertex case: the link; otherwise NULL */
   int n;               /* edge and surface vertex cases: the valence */
   ss_diag_mode diag;   /* tet stars: major diagonals (ss_diag.h; bfs = 0 by
-                          default; skew and center only for the edge case,
-                          around the edge) */
+                          default, or proper; skew and center only for the
+                          edge case, around the edge) */
 } ss_case;
 
 /* The local subdivision matrix of one case. */

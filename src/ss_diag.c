@@ -5,7 +5,10 @@
 #include <string.h>
 
 const char *ss_diag_name(ss_diag_mode m) {
-  return m == SS_DIAG_SKEW ? "skew" : m == SS_DIAG_CENTER ? "center" : "bfs";
+  return m == SS_DIAG_SKEW     ? "skew"
+         : m == SS_DIAG_CENTER ? "center"
+         : m == SS_DIAG_PROPER ? "proper"
+                               : "bfs";
 }
 
 int ss_diag_parse(const char *name, ss_diag_mode *out) {
@@ -15,6 +18,8 @@ int ss_diag_parse(const char *name, ss_diag_mode *out) {
     *out = SS_DIAG_SKEW;
   else if (!strcmp(name, "center"))
     *out = SS_DIAG_CENTER;
+  else if (!strcmp(name, "proper"))
+    *out = SS_DIAG_PROPER;
   else
     return -1;
   return 0;
@@ -51,7 +56,8 @@ static int tface_cmp(const void *a, const void *b) {
   return (x->tet > y->tet) - (x->tet < y->tet);
 }
 
-static ss_status choose_bfs(ss_cx *cx, ss_error *err) {
+/* Algorithm 2; match = 1 turns its "fewest shared edges" into "most". */
+static ss_status choose_bfs(ss_cx *cx, int match, ss_error *err) {
   const size_t nt = cx->nc[SS_TET];
   if (nt == 0) return SS_OK;
   tface *F = malloc(4 * nt * sizeof *F);
@@ -115,7 +121,7 @@ static ss_status choose_bfs(ss_cx *cx, ss_error *err) {
         }
       }
       ss_idx *v = ss_cx_cell(cx, SS_TET, t);
-      int best = 0, bestc = 3;
+      int best = 0, bestc = match ? -1 : 3;
       for (int p = 0; p < 3; p++) {
         int c = 0;
         for (int e = 0; e < 2; e++) {
@@ -123,7 +129,7 @@ static ss_status choose_bfs(ss_cx *cx, ss_error *err) {
           for (int i = 0; i < ns; i++)
             c += s[i] == k;
         }
-        if (c < bestc) best = p, bestc = c;
+        if (match ? c > bestc : c < bestc) best = p, bestc = c;
       }
       apply_pair(v, best);
       done[t] = 1;
@@ -152,7 +158,8 @@ static int even_order(const ss_idx *v, const ss_idx *o) {
 }
 
 ss_status ss_diag_choose(ss_cx *cx, ss_diag_mode m, ss_idx v0, ss_idx v1, ss_error *err) {
-  if (m == SS_DIAG_BFS) return choose_bfs(cx, err);
+  if (m == SS_DIAG_BFS || m == SS_DIAG_PROPER)
+    return choose_bfs(cx, m == SS_DIAG_PROPER, err);
   size_t hits = 0;
   for (size_t t = 0; t < cx->nc[SS_TET]; t++) {
     ss_idx *v = ss_cx_cell(cx, SS_TET, t);

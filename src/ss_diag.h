@@ -21,6 +21,10 @@
  *           round (the paper's figure 23, first row);
  *   center  around the edge (v0, v1): the pair v0 v1, c_i c_i+1 (all diagonals
  *           toward the central edge, figure 23, second row).
+ *   proper  Algorithm 2's breadth-first search and tie-breaks, but each tet
+ *           takes the pair holding the most edges of its visited neighbours'
+ *           diagonals (the first such pair), i.e. it makes as many of its face
+ *           pairs proper (below) as it can; not an algorithm of the paper.
  * Tets not holding the edge are left alone by skew and center.
  *
  * Properness.  Definition 3.2 states its condition (a)/(b)/(c) for two
@@ -49,10 +53,11 @@
 typedef enum {
   SS_DIAG_BFS = 0, /* Algorithm 2 (the default) */
   SS_DIAG_SKEW,    /* skew around an edge */
-  SS_DIAG_CENTER   /* toward an edge */
+  SS_DIAG_CENTER,  /* toward an edge */
+  SS_DIAG_PROPER   /* Algorithm 2's search, matching instead of avoiding */
 } ss_diag_mode;
 
-/* Name ("bfs", "skew", "center") and parse (0, or -1 for an unknown name). */
+/* Name ("bfs", "skew", "center", "proper") and parse (0, or -1 for an unknown name). */
 const char *ss_diag_name(ss_diag_mode m);
 int ss_diag_parse(const char *name, ss_diag_mode *out);
 

@@ -224,7 +224,8 @@ static int parse(int argc, char **argv, opts *o) {
     case O_DIAG:
       if (ss_diag_parse(optarg, &o->diag))
         return ss_cli_usage_error(
-            o->cmd, "--diagonals: expected bfs, skew or center, not '%s'", optarg);
+            o->cmd, "--diagonals: expected bfs, proper, skew or center, not '%s'",
+            optarg);
       break;
     case O_DEPTH:
       if (m || ss_cli_parse_int(optarg, 0, 12, &v))

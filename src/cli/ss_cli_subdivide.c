@@ -24,7 +24,8 @@ static const char *const usage_text =
     "      --split-octahedra write octahedra as 4 tetrahedra each (.mesh), for\n"
     "                        tools that lack the Octahedra keyword\n"
     "      --diagonals D     boxspline: the tets' major diagonals, bfs (Algorithm 2\n"
-    "                        of the box-spline paper, default) or given (the pair\n"
+    "                        of the box-spline paper, default), proper (its search\n"
+    "                        made to match neighbours' diagonals) or given (the pair\n"
     "                        (0,1),(2,3) of each tet's vertex order in IN, as\n"
     "                        subdivide writes them); octahedra keep theirs, the\n"
     "                        pair (0,3).  The summary counts improper pairs\n"
@@ -118,9 +119,9 @@ int ss_cli_subdivide(int argc, char **argv) {
       if (ss_cli_format_option("subdivide", optarg, &json)) return SS_EXIT_USAGE;
       break;
     case 'D':
-      if (strcmp(optarg, "bfs") && strcmp(optarg, "given"))
-        return ss_cli_usage_error("subdivide",
-                                  "--diagonals: expected bfs or given, not '%s'", optarg);
+      if (strcmp(optarg, "bfs") && strcmp(optarg, "proper") && strcmp(optarg, "given"))
+        return ss_cli_usage_error(
+            "subdivide", "--diagonals: expected bfs, proper or given, not '%s'", optarg);
       diag = optarg;
       break;
     case 'h':
@@ -165,7 +166,9 @@ int ss_cli_subdivide(int argc, char **argv) {
   }
   if (reads_diag) {
     if (!diag) diag = "bfs";
-    if ((!strcmp(diag, "bfs") && ss_diag_choose(cx, SS_DIAG_BFS, 0, 0, &err)) ||
+    if ((strcmp(diag, "given") &&
+         ss_diag_choose(cx, strcmp(diag, "bfs") ? SS_DIAG_PROPER : SS_DIAG_BFS, 0, 0,
+                        &err)) ||
         ss_diag_improper(cx, &dpairs, &dbad, &err)) {
       rc = ss_cli_fail(&err);
       goto done;

@@ -85,6 +85,8 @@ expect_in 1 "forced map, eigenvalue condition fails; its cells: fail" "" "$exe" 
 expect_in 2 "--force is an option of draw only" "" "$exe" analyze --scheme boxspline --edge 9 --force
 expect_in 0 "major diagonals: skew; 9 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --edge 9 --diagonals skew --eigenvalues 4
 expect_in 1 "major diagonals: center; 0 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --edge 9 --diagonals center --eigenvalues 4
+expect_in 1 "major diagonals: proper; 2 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --vertex bipyramid:3 --diagonals proper
+expect_in 2 "defined around an edge" "" "$exe" analyze --scheme boxspline --vertex bipyramid:3 --diagonals skew
 expect_in 0 "scheme boxspline-avg, edge case, valence 5" "" "$exe" analyze --scheme boxspline-avg --edge 5
 avgout=$("$exe" analyze --scheme boxspline-avg --edge 5 --format json)
 checks=$((checks + 1))

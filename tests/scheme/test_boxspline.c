@@ -367,7 +367,8 @@ static void test_diagonals(void) {
   CHECK(ss_diag_choose(cx, SS_DIAG_SKEW, 2, 4, &err) == SS_EINPUT, "a non-edge");
   ss_diag_mode dm;
   CHECK(ss_diag_parse("center", &dm) == 0 && dm == SS_DIAG_CENTER &&
-            ss_diag_parse("diagonal", &dm) == -1,
+            ss_diag_parse("diagonal", &dm) == -1 && ss_diag_parse("proper", &dm) == 0 &&
+            dm == SS_DIAG_PROPER && !strcmp(ss_diag_name(SS_DIAG_PROPER), "proper"),
         "parse");
   ss_cx_free(cx);
 }
@@ -473,6 +474,20 @@ static void test_proper_counts(void) {
   CHECK(cx && ss_diag_improper(cx, &np, &nbad, &err) == SS_OK && np > 0 && nbad == 0,
         "lattice: %zu of %zu improper", nbad, np);
   ss_cx_free(cx);
+  for (int n = 3; n <= 9; n++) {
+    /* Algorithm 2 avoids its neighbours' edges, so around an edge every face
+     * but at most one is improper; the matching search makes none improper */
+    size_t nb[2];
+    for (int m = 0; m < 2; m++) {
+      cx = edge_star(n);
+      ss_diag_choose(cx, m ? SS_DIAG_PROPER : SS_DIAG_BFS, 0, 1, &err);
+      CHECK(ss_diag_improper(cx, &np, &nb[m], &err) == SS_OK && np == (size_t)n,
+            "edge star %d: %zu pairs", n, np);
+      ss_cx_free(cx);
+    }
+    CHECK(nb[0] + 1 >= (size_t)n && nb[1] == 0,
+          "edge star %d: bfs %zu, proper %zu improper", n, nb[0], nb[1]);
+  }
   for (int n = 3; n <= 9; n++)
     for (int m = SS_DIAG_SKEW; m <= SS_DIAG_CENTER; m++) {
       cx = edge_star(n);
