@@ -407,7 +407,7 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
       M->n2, M->n1, M->level, e->nblocks, e->largest_block);
   if (di->shown)
     printf("major diagonals: %s; %zu of %zu face-adjacent pairs improper (Definition 3.2 "
-           "as read in ss_diag.h)\n",
+           "as read in the README)\n",
            ss_diag_name(o->diag), di->improper, di->pairs);
   printf("\n    #  eigenvalue            mult  rcond     block\n");
   for (size_t i = 0; i < e->n && i < (size_t)o->neig; i++) {
