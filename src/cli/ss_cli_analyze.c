@@ -442,7 +442,7 @@ static void print_label(FILE *f, const ss_star_coord *c) {
 }
 
 static int write_mtx(const opts *o, const char *scheme, const char *canon,
-                     const ss_local *M) {
+                     const ss_local *M, const diag_info *di) {
   FILE *f = o->out ? fopen(o->out, "w") : stdout;
   if (!f) {
     fprintf(stderr, "subspectra: %s: cannot open for writing\n", o->out);
@@ -457,6 +457,9 @@ static int write_mtx(const opts *o, const char *scheme, const char *canon,
   fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n");
   fprintf(f, "%% subspectra local subdivision matrix: scheme %s, %s case %s\n", scheme,
           ss_case_name(o->kind), param_text(o, canon, buf, sizeof buf));
+  if (di->shown)
+    fprintf(f, "%% major diagonals: %s; %zu of %zu face-adjacent pairs improper\n",
+            ss_diag_name(o->diag), di->improper, di->pairs);
   fprintf(f,
           "%% %s: row i = point i on level j+1, column j = point j on level j (read on "
           "level %d)\n",
@@ -524,7 +527,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     di.shown = 1;
   }
   if (o->format == FMT_MTX) {
-    rc = write_mtx(o, ss_scheme_name(s), canon ? canon : "", M);
+    rc = write_mtx(o, ss_scheme_name(s), canon ? canon : "", M, &di);
     goto done;
   }
   ss_eig_opts eo = ss_eig_defaults(M->dim);
