@@ -16,6 +16,7 @@
 #include "ss_link.h"
 #include "ss_local.h"
 #include "ss_report_draw.h"
+#include "ss_stencil.h"
 
 enum { FMT_TEXT = 0, FMT_JSON, FMT_TSV, FMT_MTX };
 
@@ -23,6 +24,7 @@ enum { FMT_TEXT = 0, FMT_JSON, FMT_TSV, FMT_MTX };
 typedef struct {
   const char *cmd;          /* "analyze" or "matrix" */
   const char *scheme;       /* --scheme */
+  const char *stencil;      /* --stencil FILE (instead of --scheme) */
   ss_case_kind kind;        /* which case option was given */
   int ncase;                /* how many case options were given */
   const char *link;         /* --vertex argument ("-" = standard input) */
@@ -132,7 +134,8 @@ static int parse(int argc, char **argv, opts *o) {
     O_SIZE,
     O_VIEW,
     O_DIAG,
-    O_FORCE
+    O_FORCE,
+    O_STENCIL
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -148,6 +151,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"view", required_argument, 0, O_VIEW},
                                      {"diagonals", required_argument, 0, O_DIAG},
                                      {"force", no_argument, 0, O_FORCE},
+                                     {"stencil", required_argument, 0, O_STENCIL},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -257,6 +261,9 @@ static int parse(int argc, char **argv, opts *o) {
       o->draw.elevation = el;
       break;
     }
+    case O_STENCIL:
+      o->stencil = optarg;
+      break;
     case O_FORCE:
       if (!d) return ss_cli_usage_error(o->cmd, "--force is an option of draw only");
       o->force = 1;
@@ -267,7 +274,8 @@ static int parse(int argc, char **argv, opts *o) {
   }
   if (optind < argc)
     return ss_cli_usage_error(o->cmd, "unexpected argument '%s'", argv[optind]);
-  if (!o->scheme) return ss_cli_usage_error(o->cmd, "--scheme is required");
+  if (!o->scheme == !o->stencil)
+    return ss_cli_usage_error(o->cmd, "give exactly one of --scheme and --stencil");
   if (o->ncase != 1)
     return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
                                       "--surface-vertex");
@@ -605,6 +613,7 @@ done:
 static int run(int argc, char **argv, const char *cmd) {
   opts o = {cmd,
             NULL,
+            NULL,
             SS_CASE_VERTEX,
             0,
             NULL,
@@ -623,9 +632,11 @@ static int run(int argc, char **argv, const char *cmd) {
   if (r) return r < 0 ? SS_EXIT_OK : r;
   ss_error err = {0};
   ss_scheme *s = NULL;
-  if (ss_scheme_new(o.scheme, &s, &err)) {
-    fprintf(stderr, "subspectra %s: --scheme: %s\n", cmd, err.msg);
-    return SS_EXIT_USAGE;
+  if (o.stencil ? ss_stencil_load(o.stencil, &s, NULL, &err)
+                : ss_scheme_new(o.scheme, &s, &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", cmd,
+            o.stencil ? "--stencil " : "--scheme: ", err.msg);
+    return err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
   }
   int rc = SS_EXIT_OK, header = 0;
   if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {

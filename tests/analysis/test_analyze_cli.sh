@@ -11,8 +11,17 @@ SS_EXPECT_TIMEOUT=120
 expect_in 0 "eigenstructure with LAPACK" "" "$exe" analyze --help
 expect_in 0 "Matrix Market" "" "$exe" matrix --help
 expect_in 2 "unknown scheme 'nope'" "" "$exe" analyze --scheme nope --edge 4
-expect_in 2 "--scheme is required" "" "$exe" analyze --edge 4
+expect_in 2 "give exactly one of --scheme and --stencil" "" "$exe" analyze --edge 4
 expect_in 2 "exactly one of" "" "$exe" analyze --scheme mlca
+# stencil files: the shipped MLCA stencil gives the built-in scheme's result
+st="$(dirname "$0")/../../data/stencils"
+a=$("$exe" analyze --stencil "$st/mlca.ini" --vertex octahedron --format json | sed 's/"scheme":"[^"]*",//')
+b=$("$exe" analyze --scheme mlca --vertex octahedron --format json | sed 's/"scheme":"[^"]*",//')
+checks=$((checks + 1))
+[ -n "$a" ] && [ "$a" = "$b" ] || fail "mlca.ini and mlca differ: $a vs $b"
+expect_in 1 "eigenvalue condition: fail" "" "$exe" analyze --stencil "$st/no-smoothing.ini" --edge 5
+expect_in 2 "give exactly one of --scheme and --stencil" "" "$exe" analyze --scheme mlca --stencil "$st/mlca.ini" --edge 4
+expect_in 2 "--stencil /nonexistent.ini: No such file" "" "$exe" analyze --stencil /nonexistent.ini --edge 4
 expect_in 2 "exactly one of" "" "$exe" analyze --scheme mlca --edge 4 --face
 expect_in 2 "face case exists only" "" "$exe" analyze --scheme mlca --face
 expect_in 2 "does not support the vertex case" "" "$exe" analyze --scheme catmull-clark --vertex octahedron

@@ -1,0 +1,324 @@
+/* ss_stencil.c — reading stencil files.  See ss_stencil.h. */
+#include "ss_stencil.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <ini.h>
+
+/* An exact rational num/den, den > 0, in lowest terms. */
+typedef struct {
+  long long num, den;
+} rational;
+
+static long long gcd_ll(long long a, long long b) {
+  if (a < 0) a = -a;
+  while (b) {
+    const long long t = a % b;
+    a = b;
+    b = t;
+  }
+  return a ? a : 1;
+}
+
+/* Parse "[+-]digits[/digits]" (surrounding blanks allowed); 0 or -1. */
+static int parse_rational(const char *s, rational *out) {
+  while (isspace((unsigned char)*s))
+    s++;
+  int neg = 0;
+  if (*s == '+' || *s == '-') neg = *s++ == '-';
+  long long part[2] = {0, 1};
+  for (int k = 0; k < 2; k++) {
+    if (!isdigit((unsigned char)*s)) return -1;
+    long long v = 0;
+    int nd = 0;
+    while (isdigit((unsigned char)*s)) {
+      if (++nd > 17) return -1; /* keeps sums of a few terms exact in 63 bits */
+      v = 10 * v + (*s++ - '0');
+    }
+    part[k] = v;
+    if (k == 0 && *s != '/') break;
+    if (k == 0) s++;
+  }
+  while (isspace((unsigned char)*s))
+    s++;
+  if (*s || part[1] == 0) return -1;
+  const long long g = gcd_ll(part[0], part[1]);
+  out->num = (neg ? -part[0] : part[0]) / g;
+  out->den = part[1] / g;
+  return 0;
+}
+
+/* sum += c * r, exactly; -1 on overflow. */
+static int add_scaled(rational *sum, long long c, rational r) {
+  long long a, b, d;
+  if (__builtin_mul_overflow(sum->num, r.den, &a) ||
+      __builtin_mul_overflow(c, r.num, &b) || __builtin_mul_overflow(b, sum->den, &b) ||
+      __builtin_add_overflow(a, b, &a) || __builtin_mul_overflow(sum->den, r.den, &d))
+    return -1;
+  const long long g = gcd_ll(a, d);
+  sum->num = a / g;
+  sum->den = d / g;
+  return 0;
+}
+
+static const char *const role_names[SS_NCELLTYPES][4] = {
+    [SS_SEGMENT] = {"self", "other"},
+    [SS_TRIANGLE] = {"self", "edge"},
+    [SS_QUAD] = {"self", "edge", "opposite"},
+    [SS_TET] = {"self", "edge"},
+    [SS_HEX] = {"self", "edge", "face", "opposite"},
+    [SS_OCT] = {"self", "edge", "opposite"},
+};
+
+/* Section names of the cell types: [mask.NAME]. */
+static const char *const short_names[SS_NCELLTYPES] = {
+    [SS_SEGMENT] = "segment", [SS_TRIANGLE] = "triangle", [SS_QUAD] = "quad",
+    [SS_TET] = "tet",         [SS_HEX] = "hex",           [SS_OCT] = "oct",
+};
+
+/* Cell types each split takes in a stencil file. */
+static int split_takes(ss_split_kind k, ss_cell_type t) {
+  if (k == SS_SPLIT_MULTILINEAR) return t == SS_SEGMENT || t == SS_QUAD || t == SS_HEX;
+  return t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET || t == SS_OCT;
+}
+
+typedef struct {
+  char name[64]; /* [scheme] name */
+  int have_name, have_family, have_split;
+  ss_split_kind split;
+  rational w[SS_NCELLTYPES][4];  /* weights by type and role */
+  unsigned given[SS_NCELLTYPES]; /* bit r: role r given */
+  int has_mask[SS_NCELLTYPES];   /* a [mask.*] section seen */
+  char msg[256];                 /* the handler's complaint */
+} reader;
+
+static int cell_type_of(const char *s, ss_cell_type *t) {
+  for (int k = 0; k < SS_NCELLTYPES; k++)
+    if (short_names[k] && !strcmp(s, short_names[k])) {
+      *t = (ss_cell_type)k;
+      return 0;
+    }
+  return -1;
+}
+
+static int handler(void *user, const char *section, const char *key, const char *value) {
+  reader *R = user;
+  if (!strcmp(section, "scheme")) {
+    if (!strcmp(key, "name")) {
+      if (R->have_name++) goto repeated;
+      if (!*value || strlen(value) >= sizeof R->name) {
+        snprintf(R->msg, sizeof R->msg, "[scheme] name must have 1..%zu characters",
+                 sizeof R->name - 1);
+        return 0;
+      }
+      strcpy(R->name, value);
+    } else if (!strcmp(key, "family")) {
+      if (R->have_family++) goto repeated;
+      if (strcmp(value, "averaging")) {
+        snprintf(R->msg, sizeof R->msg,
+                 "[scheme] family '%.64s' is unknown (known: averaging)", value);
+        return 0;
+      }
+    } else if (!strcmp(key, "split")) {
+      if (R->have_split++) goto repeated;
+      if (!strcmp(value, "multilinear"))
+        R->split = SS_SPLIT_MULTILINEAR;
+      else if (!strcmp(value, "tetoct"))
+        R->split = SS_SPLIT_TETOCT;
+      else {
+        snprintf(R->msg, sizeof R->msg,
+                 "[scheme] split '%.64s' is unknown (known: multilinear, tetoct)", value);
+        return 0;
+      }
+    } else {
+      snprintf(R->msg, sizeof R->msg,
+               "[scheme] key '%.64s' is unknown (known: name, family, split)", key);
+      return 0;
+    }
+    return 1;
+  }
+  if (strncmp(section, "mask.", 5)) {
+    snprintf(R->msg, sizeof R->msg,
+             "section [%.64s] is unknown (known: [scheme], [mask.TYPE])", section);
+    return 0;
+  }
+  ss_cell_type t;
+  if (cell_type_of(section + 5, &t)) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.64s]: unknown cell type '%.64s' (known: segment, triangle, quad, "
+             "tet, hex, oct)",
+             section, section + 5);
+    return 0;
+  }
+  R->has_mask[t] = 1;
+  int r = -1;
+  for (int q = 0; q < ss_cell_nroles(t); q++)
+    if (!strcmp(key, role_names[t][q])) r = q;
+  if (r < 0) {
+    char known[64] = "";
+    for (int q = 0; q < ss_cell_nroles(t); q++)
+      snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", q ? ", " : "",
+               role_names[t][q]);
+    snprintf(R->msg, sizeof R->msg, "[%.64s]: role '%.64s' is unknown (known: %s)",
+             section, key, known);
+    return 0;
+  }
+  if (R->given[t] & (1u << r)) goto repeated;
+  if (parse_rational(value, &R->w[t][r])) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.64s] %s = '%.64s' is not a rational p/q (digits, optional sign, q > 0)",
+             section, key, value);
+    return 0;
+  }
+  R->given[t] |= 1u << r;
+  return 1;
+repeated:
+  snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
+  return 0;
+}
+
+/* Line number (1-based) of the first line of text that is "[section]" after
+ * trimming, or 0. */
+static int section_line(const char *text, const char *section) {
+  int line = 1;
+  const size_t n = strlen(section);
+  for (const char *p = text; *p; line++) {
+    const char *e = strchr(p, '\n');
+    const char *q = p;
+    while (q < (e ? e : p + strlen(p)) && isspace((unsigned char)*q))
+      q++;
+    if (*q == '[' && !strncmp(q + 1, section, n) && q[n + 1] == ']') return line;
+    if (!e) break;
+    p = e + 1;
+  }
+  return 0;
+}
+
+ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
+                           ss_error *err) {
+  *out = NULL;
+  reader *R = calloc(1, sizeof *R);
+  if (!R) return ss_error_nomem(err, "stencil");
+  const int rc = ini_parse_string(text, handler, R);
+  ss_status st = SS_OK;
+  if (rc != 0) {
+    st = ss_error_set(err, SS_EINPUT, "%s:%d: %s", where, rc,
+                      R->msg[0] ? R->msg : "not an INI line");
+    goto done;
+  }
+  const int sl = section_line(text, "scheme");
+  if (!R->have_name || !R->have_family || !R->have_split) {
+    st = ss_error_set(err, SS_EINPUT, "%s:%d: [scheme] needs name, family and split%s",
+                      where, sl ? sl : 1, sl ? "" : " (no [scheme] section)");
+    goto done;
+  }
+  ss_averaging a;
+  memset(&a, 0, sizeof a);
+  a.split = R->split;
+  a.accepts[SS_VERTEX] = 1;
+  a.mask[SS_VERTEX][0] = 1.0;
+  int nmask = 0;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    if (!R->has_mask[t]) continue;
+    char sec[32];
+    snprintf(sec, sizeof sec, "mask.%s", short_names[t]);
+    const int line = section_line(text, sec);
+    if (!split_takes(R->split, (ss_cell_type)t)) {
+      st = ss_error_set(err, SS_EINPUT, "%s:%d: [%s]: split %s does not make %s", where,
+                        line, sec,
+                        R->split == SS_SPLIT_MULTILINEAR ? "multilinear" : "tetoct",
+                        ss_cell_plural((ss_cell_type)t));
+      goto done;
+    }
+    const int nr = ss_cell_nroles((ss_cell_type)t);
+    for (int r = 0; r < nr; r++)
+      if (!(R->given[t] & (1u << r))) {
+        st = ss_error_set(err, SS_EINPUT, "%s:%d: [%s] lacks the role '%s'", where, line,
+                          sec, role_names[t][r]);
+        goto done;
+      }
+    /* sum over the cell's vertices, each with its role relative to vertex 0 */
+    rational sum = {0, 1};
+    int overflow = 0;
+    for (int j = 0; j < ss_cell_nverts((ss_cell_type)t); j++)
+      overflow |= add_scaled(&sum, 1, R->w[t][ss_cell_role((ss_cell_type)t, 0, j)]);
+    if (overflow) {
+      st = ss_error_set(err, SS_EINPUT,
+                        "%s:%d: [%s]: weights too large to sum exactly in 64 bits", where,
+                        line, sec);
+      goto done;
+    }
+    if (sum.num != sum.den) {
+      st = ss_error_set(
+          err, SS_EINPUT,
+          "%s:%d: [%s]: the weights sum to %lld/%lld over the %d vertices of a "
+          "%s, not 1",
+          where, line, sec, sum.num, sum.den, ss_cell_nverts((ss_cell_type)t),
+          ss_cell_name((ss_cell_type)t));
+      goto done;
+    }
+    a.accepts[t] = 1;
+    for (int r = 0; r < nr; r++)
+      a.mask[t][r] = (double)R->w[t][r].num / (double)R->w[t][r].den;
+    nmask++;
+  }
+  if (nmask == 0) {
+    st = ss_error_set(err, SS_EINPUT, "%s:%d: no [mask.TYPE] section", where, sl);
+    goto done;
+  }
+  st = ss_scheme_averaging_new(R->name, &a, out, err);
+done:
+  free(R);
+  return st;
+}
+
+ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
+                          ss_error *err) {
+  *out = NULL;
+  FILE *f = fopen(path, "rb");
+  if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  size_t cap = 4096, n = 0;
+  char *buf = malloc(cap);
+  while (buf) {
+    if (n + 1 >= cap) {
+      if (cap > (1u << 24)) { /* a stencil is a few lines; refuse a huge file */
+        free(buf);
+        fclose(f);
+        return ss_error_set(err, SS_EINPUT, "%s: larger than 16 MB, not a stencil file",
+                            path);
+      }
+      char *nb = realloc(buf, cap *= 2);
+      if (!nb) break;
+      buf = nb;
+    }
+    const size_t got = fread(buf + n, 1, cap - n - 1, f);
+    n += got;
+    if (got == 0) break;
+  }
+  const int bad = ferror(f);
+  fclose(f);
+  if (!buf) return ss_error_nomem(err, "stencil file");
+  if (bad) {
+    free(buf);
+    return ss_error_set(err, SS_EIO, "%s: read error", path);
+  }
+  buf[n] = '\0';
+  if (strlen(buf) != n) {
+    free(buf);
+    return ss_error_set(err, SS_EINPUT, "%s: contains a NUL byte, not a stencil file",
+                        path);
+  }
+  if (identity) {
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < n; i++)
+      h = (h ^ (unsigned char)buf[i]) * 1099511628211ull;
+    *identity = h;
+  }
+  const ss_status st = ss_stencil_parse(buf, path, out, err);
+  free(buf);
+  return st;
+}
