@@ -23,6 +23,7 @@ static const command commands[] = {
     {"draw", ss_cli_draw, "a picture of a case's characteristic map (PNG, SVG, VTK)"},
     {"enumerate", ss_cli_enumerate, "links (vertex one-rings): all, random, of a mesh"},
     {"subdivide", ss_cli_subdivide, "refine a mesh L times with a scheme"},
+    {"check", ss_cli_check, "the CI gate: every case of a stencil file must pass"},
 };
 
 static void overview(FILE *f) {

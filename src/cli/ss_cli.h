@@ -16,6 +16,7 @@ int ss_cli_enumerate(int argc, char **argv);
 int ss_cli_analyze(int argc, char **argv);
 int ss_cli_matrix(int argc, char **argv);
 int ss_cli_draw(int argc, char **argv);
+int ss_cli_check(int argc, char **argv);
 /* `enumerate` sub-subcommands (argv[0] = "links", "canonical", ...). */
 int ss_cli_enumerate_links(int argc, char **argv);
 int ss_cli_enumerate_canonical(int argc, char **argv);
@@ -40,6 +41,8 @@ int ss_cli_format_option(const char *cmd, const char *arg, int *json);
 int ss_cli_option_error(const char *cmd, int c, char **argv);
 /* Parse a whole decimal integer in [lo, hi]; 0 on success, -1 otherwise. */
 int ss_cli_parse_int(const char *s, long lo, long hi, long *out);
+/* Parse "A" or "A..B" (integers 0..1000000) into *a, *b; 0 or -1. */
+int ss_cli_parse_range(const char *s, long *a, long *b);
 /* The next item of a line-oriented input (one link per line): reads lines
  * from f, drops '#' comments and surrounding white space, skips empty lines.
  * Returns the item, which lives in *line until the next call, or NULL at the

@@ -37,23 +37,6 @@ static const char canonical_usage[] =
     "                   canonical form, vertex count and automorphism count\n"
     "  -h, --help       this text\n";
 
-static int parse_range(const char *s, long *a, long *b) {
-  const char *dots = strstr(s, "..");
-  if (!dots) {
-    if (ss_cli_parse_int(s, 0, 1000000, a)) return -1;
-    *b = *a;
-    return 0;
-  }
-  char first[32];
-  size_t n = (size_t)(dots - s);
-  if (n == 0 || n >= sizeof first) return -1;
-  memcpy(first, s, n);
-  first[n] = '\0';
-  if (ss_cli_parse_int(first, 0, 1000000, a) || ss_cli_parse_int(dots + 2, 0, 1000000, b))
-    return -1;
-  return 0;
-}
-
 typedef struct {
   int json;
   uint64_t written;
@@ -87,7 +70,7 @@ int ss_cli_enumerate_links(int argc, char **argv) {
   while ((c = getopt_long(argc, argv, ":k:cp:h", opts, NULL)) != -1) {
     switch (c) {
     case 'k':
-      if (parse_range(optarg, &a, &b) || a < 4 || b > SS_ENUM_MAXK || a > b)
+      if (ss_cli_parse_range(optarg, &a, &b) || a < 4 || b > SS_ENUM_MAXK || a > b)
         return ss_cli_usage_error(
             "enumerate links", "--vertices '%s' is not A or A..B with 4 <= A <= B <= %d",
             optarg, SS_ENUM_MAXK);

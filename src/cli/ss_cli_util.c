@@ -74,3 +74,20 @@ char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno) {
   }
   return NULL;
 }
+
+int ss_cli_parse_range(const char *s, long *a, long *b) {
+  const char *dots = strstr(s, "..");
+  if (!dots) {
+    if (ss_cli_parse_int(s, 0, 1000000, a)) return -1;
+    *b = *a;
+    return 0;
+  }
+  char first[32];
+  size_t n = (size_t)(dots - s);
+  if (n == 0 || n >= sizeof first) return -1;
+  memcpy(first, s, n);
+  first[n] = '\0';
+  if (ss_cli_parse_int(first, 0, 1000000, a) || ss_cli_parse_int(dots + 2, 0, 1000000, b))
+    return -1;
+  return 0;
+}

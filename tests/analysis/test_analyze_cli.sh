@@ -22,6 +22,21 @@ checks=$((checks + 1))
 expect_in 1 "eigenvalue condition: fail" "" "$exe" analyze --stencil "$st/no-smoothing.ini" --edge 5
 expect_in 2 "give exactly one of --scheme and --stencil" "" "$exe" analyze --scheme mlca --stencil "$st/mlca.ini" --edge 4
 expect_in 2 "--stencil /nonexistent.ini: No such file" "" "$exe" analyze --stencil /nonexistent.ini --edge 4
+# check, the CI gate: 0 for MLCA as a stencil, 1 for no smoothing, 2 for bad files
+expect_in 0 "8 cases: 8 pass, 0 fail, 0 undecided, 0 errors" "" "$exe" check "$st/mlca.ini"
+# all 23 links k <= 8 and edges 3..7: only the k = 8 finding (reports/README.md) fails
+expect_in 1 "28 cases: 27 pass, 1 fail, 0 undecided, 0 errors" "" "$exe" check "$st/mlca.ini" --vertices 4..8 --edges 3..7
+expect_in 1 "fail       edge 5: eigenvalue condition" "" "$exe" check "$st/no-smoothing.ini"
+expect_in 0 "9 cases: 9 pass" "" "$exe" check "$st/tetoct.ini"
+expect_in 1 "fail       edge 8" "" "$exe" check "$st/mlca.ini" --edges 8
+sdir=$(mktemp -d)
+printf '[scheme]\nname = x\nfamily = averaging\nsplit = multilinear\n[mask.hex]\nself = 1/2\nedge = 1/8\nface = 0\nopposite = 0\n' >"$sdir/sum.ini"
+expect_in 2 "sum.ini:5: \[mask.hex\]: the weights sum to 7/8" "" "$exe" check "$sdir/sum.ini"
+rm -rf "$sdir"
+expect_in 2 "no stencil file given" "" "$exe" check
+expect_in 2 "--vertices '3..5'" "" "$exe" check "$st/mlca.ini" --vertices 3..5
+expect_in 2 "--face: the stencil's split is not tetoct" "" "$exe" check "$st/mlca.ini" --face
+expect_in 0 "CI gate" "" "$exe" check --help
 expect_in 2 "exactly one of" "" "$exe" analyze --scheme mlca --edge 4 --face
 expect_in 2 "face case exists only" "" "$exe" analyze --scheme mlca --face
 expect_in 2 "does not support the vertex case" "" "$exe" analyze --scheme catmull-clark --vertex octahedron

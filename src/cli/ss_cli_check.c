@@ -1,0 +1,185 @@
+/* ss_cli_check.c — `subspectra check STENCIL`: the CI gate for new stencils.
+ * Runs every case asked for (every link of the vertex range, every edge
+ * valence, the face) through extraction, eigenstructure and the regularity
+ * test, prints a summary and the cases that do not pass, and exits 0 when all
+ * pass, 1 when any fails or is undecided, 2 on bad input. */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_charmap.h"
+#include "ss_cli.h"
+#include "ss_eig.h"
+#include "ss_enum.h"
+#include "ss_link.h"
+#include "ss_local.h"
+#include "ss_stencil.h"
+
+static const char *const usage_text =
+    "usage: subspectra check STENCIL.ini [--vertices A..B] [--edges A..B] [--face]\n"
+    "                        [--tol T] [--depth D]\n"
+    "\n"
+    "The CI gate for a new stencil: analyse every case and pass only if all pass.\n"
+    "Each case: the local subdivision matrix from the stencil's global rule, its\n"
+    "eigenvalue condition (relative tolerance T, default 1e-6) and the\n"
+    "regularity of its characteristic map (hex subdivision depth D, default 6),\n"
+    "exactly as `subspectra analyze` does.  Prints one line per case that fails\n"
+    "or is undecided, then a summary.\n"
+    "\n"
+    "  --vertices A..B   every vertex link with A..B vertices (4 <= A <= B <= 9;\n"
+    "                    hex stars for split multilinear, tet stars for tetoct)\n"
+    "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
+    "  --face            the face of two tets (split tetoct only)\n"
+    "  -h, --help        this text\n"
+    "With no case option: --vertices 4..6 --edges 3..6 (and --face for tetoct).\n"
+    "\n"
+    "Exit status: 0 every case passes both conditions, 1 some case fails or is\n"
+    "undecided, 2 bad usage or a bad stencil file (the message names file, line\n"
+    "and key).  In CI:  subspectra check data/stencils/mine.ini || exit 1\n";
+
+typedef struct {
+  const ss_scheme *s;
+  double tol;
+  int depth;
+  long cases, pass, fail, undecided, errors;
+} gate;
+
+/* Analyse one case; print it unless it passes. */
+static void run_case(gate *g, ss_case c, const char *what) {
+  ss_error err = {0};
+  ss_local *M = NULL;
+  ss_eig *e = NULL;
+  ss_charmap *cm = NULL;
+  ss_regularity reg;
+  g->cases++;
+  if (ss_local_new(g->s, &c, &M, &err)) {
+    printf("error      %s: %s\n", what, err.msg);
+    g->errors++;
+    return;
+  }
+  ss_eig_opts eo = ss_eig_defaults(M->dim);
+  eo.tol = g->tol;
+  if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err) ||
+      ss_charmap_analyze(M, e, g->depth, &cm, &reg, &err)) {
+    printf("error      %s: %s\n", what, err.msg);
+    g->errors++;
+  } else if (e->cond.verdict == SS_PASS && reg.verdict.verdict == SS_PASS) {
+    g->pass++;
+  } else {
+    const int undecided =
+        e->cond.verdict != SS_FAIL && reg.verdict.verdict == SS_UNDECIDED;
+    ++*(undecided ? &g->undecided : &g->fail);
+    printf("%-10s %s: %s%s\n", undecided ? "undecided" : "fail", what,
+           e->cond.verdict != SS_PASS ? "eigenvalue condition: " : "regularity: ",
+           e->cond.verdict != SS_PASS ? e->cond.reason : reg.verdict.reason);
+  }
+  ss_charmap_free(cm);
+  ss_eig_free(e);
+  ss_local_free(M);
+}
+
+static int visit(const ss_link *l, void *ctx) {
+  gate *g = ctx;
+  ss_error err = {0};
+  char *text = NULL;
+  if (ss_link_format(l, &text, &err)) {
+    g->errors++;
+    return 1;
+  }
+  char what[512];
+  snprintf(what, sizeof what, "vertex %s", text);
+  run_case(g, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, what);
+  free(text);
+  return 0;
+}
+
+int ss_cli_check(int argc, char **argv) {
+  static const struct option opts[] = {{"vertices", required_argument, NULL, 'v'},
+                                       {"edges", required_argument, NULL, 'e'},
+                                       {"face", no_argument, NULL, 'f'},
+                                       {"tol", required_argument, NULL, 't'},
+                                       {"depth", required_argument, NULL, 'd'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
+  long va = 0, vb = -1, ea = 0, eb = -1, depth = SS_JAC_DEPTH;
+  int face = 0, any = 0;
+  double tol = 1e-6;
+  optind = 1;
+  opterr = 0;
+  int c;
+  while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+    switch (c) {
+    case 'v':
+      if (ss_cli_parse_range(optarg, &va, &vb) || va < 4 || vb > 9 || va > vb)
+        return ss_cli_usage_error(
+            "check", "--vertices '%s' is not A..B with 4 <= A <= B <= 9", optarg);
+      any = 1;
+      break;
+    case 'e':
+      if (ss_cli_parse_range(optarg, &ea, &eb) || ea < 3 || eb > 64 || ea > eb)
+        return ss_cli_usage_error(
+            "check", "--edges '%s' is not A..B with 3 <= A <= B <= 64", optarg);
+      any = 1;
+      break;
+    case 'f':
+      face = any = 1;
+      break;
+    case 't': {
+      char *end;
+      tol = strtod(optarg, &end);
+      if (*end || !(tol > 0.0 && tol <= 1e-2))
+        return ss_cli_usage_error("check", "--tol '%s' is not a number in (0, 0.01]",
+                                  optarg);
+      break;
+    }
+    case 'd':
+      if (ss_cli_parse_int(optarg, 0, 12, &depth))
+        return ss_cli_usage_error("check", "--depth '%s' is not an integer in 0..12",
+                                  optarg);
+      break;
+    case 'h':
+      fputs(usage_text, stdout);
+      return SS_EXIT_OK;
+    default:
+      return ss_cli_option_error("check", c, argv);
+    }
+  }
+  if (optind + 1 != argc)
+    return ss_cli_usage_error("check", optind == argc ? "no stencil file given"
+                                                      : "more than one stencil file");
+  const char *path = argv[optind];
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  if (ss_stencil_load(path, &s, NULL, &err)) {
+    fprintf(stderr, "subspectra check: %s\n", err.msg);
+    return err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+  }
+  const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
+  if (face && !tetoct) {
+    ss_scheme_free(s);
+    return ss_cli_usage_error("check", "--face: the stencil's split is not tetoct");
+  }
+  if (!any) va = 4, vb = 6, ea = 3, eb = 6, face = tetoct;
+  gate g = {s, tol, (int)depth, 0, 0, 0, 0, 0};
+  printf("check %s (scheme %s): relative tolerance %g, hex depth %ld\n", path,
+         ss_scheme_name(s), tol, depth);
+  if (vb >= va) {
+    ss_enum_opts eo = {(int)va, (int)vb, 0, 1};
+    if (ss_enum_links(&eo, visit, &g, NULL, &err)) {
+      fprintf(stderr, "subspectra check: %s\n", err.msg);
+      ss_scheme_free(s);
+      return SS_EXIT_FAIL;
+    }
+  }
+  for (long n = ea; n <= eb; n++) {
+    char what[32];
+    snprintf(what, sizeof what, "edge %ld", n);
+    run_case(&g, (ss_case){SS_CASE_EDGE, NULL, (int)n, SS_DIAG_BFS}, what);
+  }
+  if (face) run_case(&g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "face");
+  printf("%ld cases: %ld pass, %ld fail, %ld undecided, %ld errors\n", g.cases, g.pass,
+         g.fail, g.undecided, g.errors);
+  ss_scheme_free(s);
+  return g.pass == g.cases ? SS_EXIT_OK : SS_EXIT_FAIL;
+}
