@@ -94,7 +94,9 @@ int ss_cli_subdivide(int argc, char **argv) {
   const char *scheme_name = NULL, *out_path = NULL, *in_path = NULL;
   long levels = 1;
   int json = 0;
-  const char *diag = NULL; /* --diagonals: NULL (default bfs), "bfs", "given" */
+  const char *diag = NULL;          /* --diagonals as given; NULL: the default, bfs */
+  ss_diag_mode dmode = SS_DIAG_BFS; /* its mode, unless given */
+  int given = 0;                    /* --diagonals given: keep the file's */
   ss_mesh_write_opts wopts = {0};
   optind = 1;
   opterr = 0;
@@ -119,7 +121,9 @@ int ss_cli_subdivide(int argc, char **argv) {
       if (ss_cli_format_option("subdivide", optarg, &json)) return SS_EXIT_USAGE;
       break;
     case 'D':
-      if (strcmp(optarg, "bfs") && strcmp(optarg, "proper") && strcmp(optarg, "given"))
+      given = !strcmp(optarg, "given");
+      if (!given && (ss_diag_parse(optarg, &dmode) ||
+                     (dmode != SS_DIAG_BFS && dmode != SS_DIAG_PROPER)))
         return ss_cli_usage_error(
             "subdivide", "--diagonals: expected bfs, proper or given, not '%s'", optarg);
       diag = optarg;
@@ -166,9 +170,7 @@ int ss_cli_subdivide(int argc, char **argv) {
   }
   if (reads_diag) {
     if (!diag) diag = "bfs";
-    if ((strcmp(diag, "given") &&
-         ss_diag_choose(cx, strcmp(diag, "bfs") ? SS_DIAG_PROPER : SS_DIAG_BFS, 0, 0,
-                        &err)) ||
+    if ((!given && ss_diag_choose(cx, dmode, 0, 0, &err)) ||
         ss_diag_improper(cx, &dpairs, &dbad, &err)) {
       rc = ss_cli_fail(&err);
       goto done;
