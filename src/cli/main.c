@@ -24,6 +24,10 @@ static const command commands[] = {
     {"enumerate", ss_cli_enumerate, "links (vertex one-rings): all, random, of a mesh"},
     {"subdivide", ss_cli_subdivide, "refine a mesh L times with a scheme"},
     {"check", ss_cli_check, "the CI gate: every case of a stencil file must pass"},
+    {"sweep", ss_cli_sweep, "analyse many cases into a resumable SQLite store"},
+    {"merge", ss_cli_merge, "join the stores of sweep parts into one"},
+    {"report", ss_cli_report, "tables (md, csv, tex, json) and plots of a store"},
+    {"reproduce", ss_cli_reproduce, "the papers' tables beside the values they quote"},
 };
 
 static void overview(FILE *f) {

@@ -17,6 +17,10 @@ int ss_cli_analyze(int argc, char **argv);
 int ss_cli_matrix(int argc, char **argv);
 int ss_cli_draw(int argc, char **argv);
 int ss_cli_check(int argc, char **argv);
+int ss_cli_sweep(int argc, char **argv);
+int ss_cli_merge(int argc, char **argv);
+int ss_cli_report(int argc, char **argv);
+int ss_cli_reproduce(int argc, char **argv);
 /* `enumerate` sub-subcommands (argv[0] = "links", "canonical", ...). */
 int ss_cli_enumerate_links(int argc, char **argv);
 int ss_cli_enumerate_canonical(int argc, char **argv);
@@ -43,6 +47,8 @@ int ss_cli_option_error(const char *cmd, int c, char **argv);
 int ss_cli_parse_int(const char *s, long lo, long hi, long *out);
 /* Parse "A" or "A..B" (integers 0..1000000) into *a, *b; 0 or -1. */
 int ss_cli_parse_range(const char *s, long *a, long *b);
+/* Parse "I/N" (--part) with integers 0 <= I < N <= 10^9; 0 or -1. */
+int ss_cli_parse_part(const char *s, long *part, long *nparts);
 /* The next item of a line-oriented input (one link per line): reads lines
  * from f, drops '#' comments and surrounding white space, skips empty lines.
  * Returns the item, which lives in *line until the next call, or NULL at the

@@ -8,12 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ss_charmap.h"
 #include "ss_cli.h"
-#include "ss_eig.h"
 #include "ss_enum.h"
 #include "ss_link.h"
-#include "ss_local.h"
+#include "ss_jac.h"
+#include "ss_result.h"
 #include "ss_stencil.h"
 
 static const char *const usage_text =
@@ -48,35 +47,21 @@ typedef struct {
 /* Analyse one case; print it unless it passes. */
 static void run_case(gate *g, ss_case c, const char *what) {
   ss_error err = {0};
-  ss_local *M = NULL;
-  ss_eig *e = NULL;
-  ss_charmap *cm = NULL;
-  ss_regularity reg;
+  ss_result r;
+  const ss_result_opts ro = {g->tol, g->depth};
   g->cases++;
-  if (ss_local_new(g->s, &c, &M, &err)) {
+  if (ss_result_compute(g->s, &c, &ro, &r, &err)) {
     printf("error      %s: %s\n", what, err.msg);
     g->errors++;
     return;
   }
-  ss_eig_opts eo = ss_eig_defaults(M->dim);
-  eo.tol = g->tol;
-  if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err) ||
-      ss_charmap_analyze(M, e, g->depth, &cm, &reg, &err)) {
-    printf("error      %s: %s\n", what, err.msg);
-    g->errors++;
-  } else if (e->cond.verdict == SS_PASS && reg.verdict.verdict == SS_PASS) {
-    g->pass++;
-  } else {
-    const int undecided =
-        e->cond.verdict != SS_FAIL && reg.verdict.verdict == SS_UNDECIDED;
-    ++*(undecided ? &g->undecided : &g->fail);
-    printf("%-10s %s: %s%s\n", undecided ? "undecided" : "fail", what,
-           e->cond.verdict != SS_PASS ? "eigenvalue condition: " : "regularity: ",
-           e->cond.verdict != SS_PASS ? e->cond.reason : reg.verdict.reason);
-  }
-  ss_charmap_free(cm);
-  ss_eig_free(e);
-  ss_local_free(M);
+  const ss_verdict_kind v = ss_result_verdict(&r);
+  ++*(v == SS_PASS ? &g->pass : v == SS_FAIL ? &g->fail : &g->undecided);
+  if (v != SS_PASS)
+    printf("%-10s %s: %s%s\n", v == SS_UNDECIDED ? "undecided" : "fail", what,
+           r.cond.verdict != SS_PASS ? "eigenvalue condition: " : "regularity: ",
+           r.cond.verdict != SS_PASS ? r.cond.reason : r.reg.reason);
+  ss_result_clear(&r);
 }
 
 static int visit(const ss_link *l, void *ctx) {

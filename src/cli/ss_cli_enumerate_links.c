@@ -78,20 +78,11 @@ int ss_cli_enumerate_links(int argc, char **argv) {
     case 'c':
       count = 1;
       break;
-    case 'p': {
-      char *slash = strchr(optarg, '/');
-      char first[32];
-      size_t n = slash ? (size_t)(slash - optarg) : 0;
-      if (!slash || n == 0 || n >= sizeof first)
-        return ss_cli_usage_error("enumerate links", "--part '%s' is not I/N", optarg);
-      memcpy(first, optarg, n);
-      first[n] = '\0';
-      if (ss_cli_parse_int(slash + 1, 1, 1000000000, &nparts) ||
-          ss_cli_parse_int(first, 0, nparts - 1, &part))
+    case 'p':
+      if (ss_cli_parse_part(optarg, &part, &nparts))
         return ss_cli_usage_error("enumerate links",
                                   "--part '%s': need integers 0 <= I < N", optarg);
       break;
-    }
     case 'F':
       if (ss_cli_format_option("enumerate links", optarg, &json)) return SS_EXIT_USAGE;
       break;

@@ -91,3 +91,16 @@ int ss_cli_parse_range(const char *s, long *a, long *b) {
     return -1;
   return 0;
 }
+
+int ss_cli_parse_part(const char *s, long *part, long *nparts) {
+  const char *slash = strchr(s, '/');
+  char first[32];
+  const size_t n = slash ? (size_t)(slash - s) : 0;
+  if (!slash || n == 0 || n >= sizeof first) return -1;
+  memcpy(first, s, n);
+  first[n] = '\0';
+  if (ss_cli_parse_int(slash + 1, 1, 1000000000, nparts) ||
+      ss_cli_parse_int(first, 0, *nparts - 1, part))
+    return -1;
+  return 0;
+}

@@ -1,0 +1,112 @@
+/* ss_result.c — one case through the whole pipeline (ss_result.h). */
+#include "ss_result.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "ss_charmap.h"
+#include "ss_diag.h"
+#include "ss_jac.h"
+#include "ss_link.h"
+
+ss_result_opts ss_result_defaults(void) {
+  return (ss_result_opts){1e-6, SS_JAC_DEPTH};
+}
+
+void ss_result_clear(ss_result *r) {
+  if (!r) return;
+  free(r->link);
+  memset(r, 0, sizeof *r);
+}
+
+ss_verdict_kind ss_result_verdict(const ss_result *r) {
+  if (r->cond.verdict == SS_FAIL || r->reg.verdict == SS_FAIL) return SS_FAIL;
+  if (r->cond.verdict == SS_PASS && r->reg.verdict == SS_PASS) return SS_PASS;
+  return SS_UNDECIDED;
+}
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The canonical text of a vertex case's link (an empty string otherwise). */
+static ss_status link_text(const ss_case *c, char **out, ss_error *err) {
+  if (c->kind != SS_CASE_VERTEX) {
+    *out = calloc(1, 1);
+    return *out ? SS_OK : ss_error_nomem(err, "result link");
+  }
+  if (!c->link) return ss_error_set(err, SS_EINPUT, "vertex case without a link");
+  ss_link *cl = NULL;
+  ss_status st = ss_link_canonical(c->link, &cl, NULL, err);
+  if (!st) st = ss_link_format(cl, out, err);
+  ss_link_free(cl);
+  return st;
+}
+
+/* Count improper pairs of major diagonals.  ss_local does not keep its star,
+ * so the star is built once more; it costs a small fraction of the
+ * extraction, which refines it several levels. */
+static ss_status diagonals(const ss_scheme *s, const ss_case *c, ss_result *r,
+                           ss_error *err) {
+  ss_star *star = NULL;
+  ss_status st = ss_local_star(s, c, &star, err);
+  if (!st) st = ss_diag_improper(star->cx, &r->pairs, &r->improper, err);
+  ss_star_free(star);
+  r->has_diag = st == SS_OK;
+  return st;
+}
+
+ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
+                            ss_result *r, ss_error *err) {
+  memset(r, 0, sizeof *r);
+  if (!(o->tol > 0.0 && o->tol < 0.1) || o->depth < 0 || o->depth > 12)
+    return ss_error_set(err, SS_EINPUT,
+                        "analysis options out of range (tol %g, depth %d)", o->tol,
+                        o->depth);
+  const double t0 = now();
+  ss_local *M = NULL;
+  ss_eig *e = NULL;
+  ss_charmap *cm = NULL;
+  ss_regularity reg;
+  ss_status st = link_text(c, &r->link, err);
+  if (!st) st = ss_local_new(s, c, &M, err);
+  if (!st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET)
+    st = diagonals(s, c, r, err);
+  if (!st) {
+    ss_eig_opts eo = ss_eig_defaults(M->dim);
+    eo.tol = o->tol;
+    st = ss_eig_new(M->S, M->n2, M->n1, &eo, &e, err);
+  }
+  if (!st) st = ss_charmap_analyze(M, e, o->depth, &cm, &reg, err);
+  if (st) {
+    ss_charmap_free(cm);
+    ss_eig_free(e);
+    ss_local_free(M);
+    ss_result_clear(r);
+    return st;
+  }
+  r->kind = c->kind;
+  r->k = c->kind == SS_CASE_VERTEX ? c->link->k : c->kind == SS_CASE_FACE ? 0 : c->n;
+  r->cells = c->kind == SS_CASE_VERTEX ? (size_t)(2 * r->k - 4)
+             : c->kind == SS_CASE_FACE ? 2
+                                       : (size_t)c->n;
+  r->two_ring = M->n2;
+  r->one_ring = M->n1;
+  r->neig = e->n < SS_RESULT_NEIG ? (int)e->n : SS_RESULT_NEIG;
+  for (int i = 0; i < r->neig; i++)
+    r->eig[i] = (ss_result_eigval){e->val[i].re, e->val[i].im, e->val[i].mult};
+  r->cond = e->cond;
+  r->tol = e->tol;
+  r->reg = reg.verdict;
+  r->min_sj = reg.min_scaled_jacobian;
+  r->depth = reg.depth;
+  ss_charmap_free(cm);
+  ss_eig_free(e);
+  ss_local_free(M);
+  r->seconds = now() - t0;
+  return SS_OK;
+}

@@ -1,0 +1,79 @@
+/* ss_result.h — the whole analysis of one case, reduced to what a sweep
+ * stores and a report prints (DESIGN sections 2, 5 and 7).
+ *
+ * The pipeline link -> star -> local matrix (ss_local) -> eigenstructure and
+ * eigenvalue condition (ss_eig) -> characteristic-map regularity (ss_charmap)
+ * in one call, shared by `check`, `sweep` and `reproduce` so that they judge a
+ * case exactly as `analyze` does.  A result owns no pointer into the
+ * intermediate objects: it is a plain value (apart from the link text) that
+ * can be written to the store and read back unchanged.
+ *
+ * Thread safety: no global state is touched; results for different cases may
+ * be computed concurrently with one shared, read-only scheme. */
+#ifndef SS_RESULT_H
+#define SS_RESULT_H
+
+#include <stddef.h>
+
+#include "ss_eig.h"
+#include "ss_local.h"
+
+#define SS_RESULT_NEIG 16 /* leading eigenvalues kept (lambda0 first) */
+
+/* Analysis parameters that change a verdict; part of a result's identity. */
+typedef struct {
+  double tol; /* relative tolerance for equal eigenvalues (ss_eig; 1e-6) */
+  int depth;  /* hex subdivision depth limit of the Jacobian test (ss_jac) */
+} ss_result_opts;
+
+/* One eigenvalue as kept in a result. */
+typedef struct {
+  double re, im; /* the eigenvalue */
+  int mult;      /* size of its group of equal eigenvalues (within tol) */
+} ss_result_eigval;
+
+/* The analysis of one case. */
+typedef struct {
+  ss_case_kind kind; /* vertex, edge, face, surface-vertex */
+  int k;             /* vertex: vertices of the link; edge and surface
+                        vertex: the valence n; face: 0 */
+  char *link;        /* vertex: the canonical link in plantri ASCII; else an
+                        empty string.  Owned (ss_result_clear) */
+  size_t cells;      /* cells around the centre: 2k - 4 for a vertex, n for
+                        an edge or surface vertex, 2 for a face */
+  size_t two_ring;   /* rows of the local matrix S */
+  size_t one_ring;   /* rows of its invariant block A */
+  int neig;          /* eigenvalues kept: min(SS_RESULT_NEIG, two_ring) */
+  ss_result_eigval eig[SS_RESULT_NEIG]; /* leading eigenvalues of S, by
+                                           decreasing modulus (ss_eig order) */
+  ss_verdict cond;                      /* the eigenvalue condition */
+  double tol;                           /* the tolerance it used */
+  ss_verdict reg;                       /* regularity of the characteristic map */
+  double min_sj;   /* minimum scaled Jacobian (ss_charmap); NaN: no map */
+  int depth;       /* the hex depth limit used */
+  int has_diag;    /* 1 if the scheme reads major diagonals (tet stars) */
+  size_t pairs;    /* with has_diag: adjacent cell pairs they concern */
+  size_t improper; /* with has_diag: of which improper (ss_diag_improper) */
+  double seconds;  /* wall-clock time the analysis took */
+} ss_result;
+
+/* Defaults: tol 1e-6, depth SS_JAC_DEPTH. */
+ss_result_opts ss_result_defaults(void);
+
+/* Analyse case c of scheme s into *r (which need not be initialised; on
+ * failure it is left cleared).  For a vertex case the link is put in canonical
+ * form first, so isomorphic or mirrored links give equal results.  Free the
+ * link text with ss_result_clear.  SS_EINPUT when the scheme does not support
+ * the case or an option is out of range; SS_EINTERNAL, SS_ENUMERIC when
+ * extraction or LAPACK fail (a defect to report, not a verdict); SS_ENOMEM. */
+ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
+                            ss_result *r, ss_error *err);
+
+/* Both verdicts combined: pass if both pass; fail if either fails; else
+ * undecided. */
+ss_verdict_kind ss_result_verdict(const ss_result *r);
+
+/* Release r's link text and zero r.  NULL is a no-op. */
+void ss_result_clear(ss_result *r);
+
+#endif

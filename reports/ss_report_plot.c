@@ -1,0 +1,2 @@
+/* ss_report_plot.c — plots (being written). */
+#include "ss_store.h"

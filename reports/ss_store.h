@@ -1,0 +1,119 @@
+/* ss_store.h — the results store: one SQLite database per sweep (or per
+ * project), one row per analysed case (DESIGN sections 2 and 8).
+ *
+ * Schema (version 1; the README shows it in full):
+ *   meta(key, value)       program = subspectra, schema = 1, created = UTC time
+ *   scheme(id, identity, name, stencil, stencil_hash, tol, depth, diagonals)
+ *                          identity is unique: the scheme name or the hash of
+ *                          its stencil file, with every analysis parameter
+ *                          that can change a verdict (ss_store_identity)
+ *   result(scheme_id, kind, k, link, ...)   primary key (scheme_id, kind, k,
+ *                          link): a case is stored at most once per identity
+ *   cases                  a view: result joined with its scheme's name and
+ *                          identity, plus the combined verdict; what `report
+ *                          --where` filters
+ * The file is marked with PRAGMA application_id = SS_STORE_APP_ID and
+ * user_version = SS_STORE_SCHEMA, so a foreign SQLite file is recognised.
+ *
+ * Durability: journal_mode WAL, synchronous NORMAL.  Every ss_store_put is its
+ * own committed transaction, so a process killed at any moment (SIGKILL
+ * included) loses at most the case it was computing, never a stored one, and
+ * the next open recovers the write-ahead log.  Several processes may write one
+ * store (SQLite's locking, with a busy timeout); one ss_store handle must not
+ * be used by two threads at once (sweep serialises its writes).
+ *
+ * Library code: nothing here prints; failures come back as ss_status with a
+ * message naming the file. */
+#ifndef SS_STORE_H
+#define SS_STORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ss_diag.h"
+#include "ss_result.h"
+
+#define SS_STORE_APP_ID 0x53537370 /* "SSsp" */
+#define SS_STORE_SCHEMA 1
+
+typedef struct ss_store ss_store; /* an open database and its statements */
+
+typedef enum {
+  SS_STORE_READ = 0, /* an existing store, read only */
+  SS_STORE_WRITE     /* create the file if missing, else open it to add rows */
+} ss_store_mode;
+
+/* What the scheme column of a result means. */
+typedef struct {
+  const char *name;      /* scheme name (a stencil file's [scheme] name) */
+  const char *stencil;   /* the stencil file as given, or NULL for a built-in
+                            scheme (informative only: the hash identifies) */
+  uint64_t stencil_hash; /* FNV-1a 64 of the stencil file's bytes (ss_stencil) */
+  int reads_diagonals;   /* 1 if the scheme reads major diagonals */
+  ss_diag_mode diag;     /* with reads_diagonals: the choice */
+  ss_result_opts opts;   /* tolerance and hex depth */
+} ss_store_scheme;
+
+/* One stored row, as ss_store_each hands it out (pointers valid during the
+ * visit only). */
+typedef struct {
+  const char *scheme;   /* scheme name */
+  const char *identity; /* scheme identity (ss_store_identity) */
+  ss_result r;          /* the result, as computed (r.link borrowed) */
+} ss_store_row;
+
+/* Return nonzero to stop the iteration early. */
+typedef int (*ss_store_visit)(const ss_store_row *row, void *ctx);
+
+/* The identity text of sc into buf (n bytes, >= 128 is always enough):
+ * "NAME tol=T depth=D[ diagonals=X]" for a built-in scheme,
+ * "stencil:HASH16 tol=T depth=D[ diagonals=X]" for a stencil file. */
+void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n);
+
+/* Open path (see ss_store_mode).  An existing file must be a subspectra store
+ * of this schema version and pass SQLite's quick_check.  *out is owned by the
+ * caller (ss_store_close).  SS_EINPUT: not SQLite, corrupt, a foreign
+ * database, or another schema version (the message says which); SS_EIO: the
+ * file cannot be opened or created; SS_ENOMEM. */
+ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
+                        ss_error *err);
+
+/* Close (NULL is a no-op); checkpoints the write-ahead log. */
+void ss_store_close(ss_store *st);
+
+/* The id of scheme sc in st, inserting it if new.  SS_EIO on a database
+ * error. */
+ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *id,
+                             ss_error *err);
+
+/* *found = 1 if the case (kind, k, canonical link or "") is stored for scheme
+ * id, and then *verdict (may be NULL) is its combined verdict
+ * (ss_result_verdict).  SS_EIO. */
+ss_status ss_store_has(ss_store *st, int64_t id, ss_case_kind kind, int k,
+                       const char *link, int *found, ss_verdict_kind *verdict,
+                       ss_error *err);
+
+/* Store r for scheme id and commit.  A row already there is kept (results are
+ * deterministic), *added = 0 then, else 1 (added may be NULL).  SS_EIO. */
+ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
+                       ss_error *err);
+
+/* Rows of scheme id by kind (*nk[kind]), for progress (ids < 0: all
+ * schemes).  nk has 4 entries, indexed by ss_case_kind.  SS_EIO. */
+ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[4], ss_error *err);
+
+/* Visit the rows whose view row satisfies `where` (an SQL expression over the
+ * columns of the view `cases`, or NULL for all), ordered by scheme identity,
+ * kind, k and link.  SS_EINPUT if where does not compile (SQLite's message),
+ * SS_EIO on a database error, SS_ENOMEM. */
+ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, void *ctx,
+                        ss_error *err);
+
+/* Copy every scheme and result of the store at src into st in one
+ * transaction; rows already in st are kept.  *added and *present (may be
+ * NULL) count the results copied and those st had already.  src is checked
+ * like ss_store_open(READ).  SS_EINPUT for a bad src, SS_EIO. */
+ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *present,
+                         ss_error *err);
+
+#endif

@@ -1,0 +1,540 @@
+/* ss_cli_sweep.c — `subspectra sweep` (analyse many cases into a results
+ * store, resumably, in threads) and `subspectra merge` (join stores).
+ *
+ * Work is cut into chunks of cases; each chunk is analysed by an OpenMP
+ * parallel loop whose threads share the read-only scheme and write through
+ * one store handle inside a critical section.  A case already in the store
+ * (same scheme identity, kind, k and canonical link) is skipped, so a rerun
+ * after any interruption computes only what is missing, and every stored
+ * row is its own committed transaction (ss_store.h), so a kill loses only
+ * the cases being computed at that moment. */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <omp.h>
+
+#include "ss_cli.h"
+#include "ss_enum.h"
+#include "ss_jac.h"
+#include "ss_link.h"
+#include "ss_result.h"
+#include "ss_stencil.h"
+#include "ss_store.h"
+
+static const char *const sweep_usage =
+    "usage: subspectra sweep (--scheme S | --stencil FILE) CASES [--db FILE]\n"
+    "                        [--jobs N] [--part I/N] [--tol T] [--depth D]\n"
+    "                        [--diagonals D]\n"
+    "\n"
+    "Analyse every case asked for, exactly as `subspectra analyze` does, and store\n"
+    "each result in a SQLite results store (schema in the README).  Results are\n"
+    "keyed by the scheme's identity (its name, or the hash of the stencil file's\n"
+    "bytes, with --tol, --depth and --diagonals), the case and the canonical link:\n"
+    "a rerun skips the cases already stored, so an interrupted sweep (even by\n"
+    "SIGKILL) resumes where it stopped, and no case is ever stored twice.\n"
+    "\n"
+    "cases (one or more):\n"
+    "  --vertices A..B   every vertex link with A..B vertices (4 <= A <= B <= 20;\n"
+    "                    the number of links grows about 7-fold per vertex: 7595\n"
+    "                    at 12, 2.4 million at 15); for surface schemes\n"
+    "                    (catmull-clark, loop) the vertex valences A..B (3..1000)\n"
+    "  --edges A..B      points on edges of valence A..B (3 <= A <= B <= 1000)\n"
+    "  --face            the point inside the face of two tets (split tetoct)\n"
+    "  --links FILE      the vertex links in FILE, one per line (plantri ASCII or a\n"
+    "                    name; '#' comments); '-' reads standard input\n"
+    "options:\n"
+    "  --db FILE         the results store (default subspectra.db; created if\n"
+    "                    missing; a file that is not a subspectra store is refused)\n"
+    "  --jobs N          threads (default: the number of processors)\n"
+    "  --part I/N        only part I of N (0 <= I < N): the enumeration is split\n"
+    "                    into N disjoint parts covering every case, for N processes\n"
+    "                    or machines; join their stores with `subspectra merge`\n"
+    "  --tol T           relative tolerance for equal eigenvalues (default 1e-6)\n"
+    "  --depth D         hex subdivision depth of the Jacobian test (0..12, default "
+    "6)\n"
+    "  --diagonals D     major diagonals (boxspline): bfs (default) or proper; skew\n"
+    "                    or center with --edges only\n"
+    "  -h, --help        this text\n"
+    "\n"
+    "Progress (cases done / total, rate, ETA, failures so far) goes to standard\n"
+    "error while it is a terminal; otherwise only the final summary is printed.\n"
+    "Exit status: 0 every case passes both conditions, 1 some case fails, is\n"
+    "undecided or could not be analysed, 2 bad usage, a bad link or store file.\n";
+
+static const char *const merge_usage =
+    "usage: subspectra merge OUT.db IN.db...\n"
+    "\n"
+    "Copy every result of the stores IN.db... into OUT.db (created if missing),\n"
+    "matching schemes by identity; a case OUT.db already has is kept.  For the\n"
+    "stores of a sweep split with --part.  Exit status 0, or 2 when a file is not\n"
+    "a subspectra results store (nothing is copied from it).\n";
+
+enum { CHUNK = 512 };
+
+/* One case to run. */
+typedef struct {
+  ss_case_kind kind; /* the case */
+  int n;             /* edge or surface valence */
+  ss_link *link;     /* vertex case: the link (owned) */
+} job;
+
+/* A sweep in progress. */
+typedef struct {
+  const ss_scheme *s; /* the scheme (read-only, shared by the threads) */
+  ss_store *st;       /* the store */
+  int64_t id;         /* the scheme's id in the store */
+  ss_result_opts ro;  /* analysis options */
+  ss_diag_mode diag;  /* major diagonals */
+  int jobs;           /* threads */
+  job chunk[CHUNK];   /* cases waiting to be run */
+  size_t nchunk;      /* how many */
+  size_t total;       /* cases in this sweep (this part) */
+  size_t computed;    /* cases analysed and stored now */
+  size_t skipped;     /* cases found in the store */
+  size_t pass, fail, undecided, errors; /* verdicts (stored cases included) */
+  double t0, last;                      /* start, last progress line (seconds) */
+  int tty;                              /* stderr is a terminal: show progress */
+  int stop;                             /* a store error happened: run nothing more */
+  ss_error fatal;                       /* that error */
+} sweep;
+
+static void fmt_time(double s, char *buf, size_t n) {
+  if (!isfinite(s) || s < 0) {
+    snprintf(buf, n, "?");
+    return;
+  }
+  long t = lround(s);
+  if (t >= 3600)
+    snprintf(buf, n, "%ldh%02ldm", t / 3600, t / 60 % 60);
+  else if (t >= 60)
+    snprintf(buf, n, "%ldm%02lds", t / 60, t % 60);
+  else
+    snprintf(buf, n, "%lds", t);
+}
+
+/* The progress line; call inside the critical section. */
+static void progress(sweep *w, int force) {
+  const double t = ss_cli_now();
+  if (!w->tty || (!force && t - w->last < 0.25)) return;
+  w->last = t;
+  const size_t done = w->computed + w->skipped + w->errors;
+  const double rate = w->computed / (t - w->t0 > 1e-9 ? t - w->t0 : 1e-9);
+  char eta[32];
+  fmt_time(rate > 0 ? (double)(w->total - done) / rate : (double)NAN, eta, sizeof eta);
+  fprintf(stderr,
+          "\rsweep: %zu/%zu cases (%.1f%%), %.1f cases/s, ETA %s; %zu fail, %zu "
+          "undecided, %zu errors\033[K",
+          done, w->total, w->total ? 100.0 * (double)done / (double)w->total : 100.0,
+          rate, eta, w->fail, w->undecided, w->errors);
+}
+
+/* Run one case (in a worker thread). */
+static void run_job(sweep *w, const job *j) {
+  ss_error err = {0};
+  ss_case c = {j->kind, j->link, j->n, w->diag};
+  int found = 0, stop = 0;
+  ss_verdict_kind v = SS_PASS;
+  char *canon = NULL;
+  ss_link *cl = NULL;
+  ss_status s = SS_OK;
+  if (j->kind == SS_CASE_VERTEX) {
+    s = ss_link_canonical(j->link, &cl, NULL, &err);
+    if (!s) s = ss_link_format(cl, &canon, &err);
+  }
+  ss_link_free(cl);
+  const int k = j->kind == SS_CASE_VERTEX ? j->link->k
+                : j->kind == SS_CASE_FACE ? 0
+                                          : j->n;
+#pragma omp critical(ss_sweep_store)
+  {
+    stop = w->stop;
+    if (!stop && !s &&
+        ss_store_has(w->st, w->id, j->kind, k, canon, &found, &v, &w->fatal))
+      w->stop = stop = 1;
+    if (found) {
+      w->skipped++;
+      ++*(v == SS_PASS ? &w->pass : v == SS_FAIL ? &w->fail : &w->undecided);
+      progress(w, 0);
+    }
+  }
+  if (stop || found || s) {
+    if (s) {
+#pragma omp critical(ss_sweep_store)
+      {
+        w->errors++;
+        fprintf(stderr, "%ssweep: %s: %s\n", w->tty ? "\r\033[K" : "",
+                ss_case_name(j->kind), err.msg);
+      }
+    }
+    free(canon);
+    return;
+  }
+  ss_result r;
+  s = ss_result_compute(w->s, &c, &w->ro, &r, &err);
+#pragma omp critical(ss_sweep_store)
+  {
+    if (s) {
+      w->errors++;
+      fprintf(stderr, "%ssweep: %s %s%d: %s\n", w->tty ? "\r\033[K" : "",
+              ss_case_name(j->kind), canon ? canon : "", canon ? 0 : j->n, err.msg);
+    } else if (!w->stop) {
+      int added = 0;
+      if (ss_store_put(w->st, w->id, &r, &added, &w->fatal))
+        w->stop = 1;
+      else {
+        /* a case given twice (isomorphic links) is stored once */
+        ++*(added ? &w->computed : &w->skipped);
+        v = ss_result_verdict(&r);
+        ++*(v == SS_PASS ? &w->pass : v == SS_FAIL ? &w->fail : &w->undecided);
+      }
+    }
+    progress(w, 0);
+  }
+  ss_result_clear(&r);
+  free(canon);
+}
+
+/* Run the waiting cases in parallel and free them. */
+static void flush(sweep *w) {
+  const long n = (long)w->nchunk;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(w->jobs)
+  for (long i = 0; i < n; i++)
+    run_job(w, &w->chunk[i]);
+  for (size_t i = 0; i < w->nchunk; i++)
+    ss_link_free(w->chunk[i].link);
+  w->nchunk = 0;
+}
+
+/* Queue a case (the link is copied); runs the chunk when it is full. */
+static int add(sweep *w, ss_case_kind kind, int n, const ss_link *l) {
+  if (w->stop) return 1;
+  job *j = &w->chunk[w->nchunk];
+  *j = (job){kind, n, NULL};
+  if (l && ss_link_copy(l, &j->link, &w->fatal)) {
+    w->stop = 1;
+    return 1;
+  }
+  if (++w->nchunk == CHUNK) flush(w);
+  return w->stop;
+}
+
+static int visit(const ss_link *l, void *ctx) {
+  return add(ctx, SS_CASE_VERTEX, 0, l);
+}
+
+/* The links of --links, all read and checked before anything runs. */
+typedef struct {
+  ss_link **l; /* the links */
+  size_t n;    /* how many */
+} linklist;
+
+static int read_links(const char *path, linklist *ll) {
+  FILE *f = strcmp(path, "-") ? fopen(path, "r") : stdin;
+  const char *name = strcmp(path, "-") ? path : "stdin";
+  if (!f) {
+    fprintf(stderr, "subspectra sweep: --links %s: cannot open\n", path);
+    return SS_EXIT_USAGE;
+  }
+  char *line = NULL, *p;
+  size_t cap = 0, alloc = 0;
+  long lineno = 0;
+  int rc = SS_EXIT_OK;
+  while ((p = ss_cli_next_item(f, &line, &cap, &lineno))) {
+    ss_error err = {0};
+    ss_link *l = NULL;
+    if (ss_link_parse(p, &l, &err)) {
+      fprintf(stderr, "subspectra sweep: %s:%ld: %s\n", name, lineno, err.msg);
+      rc = SS_EXIT_USAGE;
+      break;
+    }
+    if (ll->n == alloc) {
+      alloc = alloc ? 2 * alloc : 64;
+      ss_link **q = realloc(ll->l, alloc * sizeof *q);
+      if (!q) {
+        ss_link_free(l);
+        fprintf(stderr, "subspectra sweep: out of memory reading %s\n", name);
+        rc = SS_EXIT_FAIL;
+        break;
+      }
+      ll->l = q;
+    }
+    ll->l[ll->n++] = l;
+  }
+  free(line);
+  if (f != stdin) fclose(f);
+  if (!rc && ll->n == 0) {
+    fprintf(stderr, "subspectra sweep: --links %s: no links read\n", name);
+    rc = SS_EXIT_USAGE;
+  }
+  return rc;
+}
+
+int ss_cli_sweep(int argc, char **argv) {
+  enum {
+    O_SCHEME = 256,
+    O_STENCIL,
+    O_VERT,
+    O_EDGES,
+    O_FACE,
+    O_LINKS,
+    O_DB,
+    O_JOBS,
+    O_PART,
+    O_TOL,
+    O_DEPTH,
+    O_DIAG
+  };
+  static const struct option opts[] = {{"scheme", required_argument, NULL, O_SCHEME},
+                                       {"stencil", required_argument, NULL, O_STENCIL},
+                                       {"vertices", required_argument, NULL, O_VERT},
+                                       {"edges", required_argument, NULL, O_EDGES},
+                                       {"face", no_argument, NULL, O_FACE},
+                                       {"links", required_argument, NULL, O_LINKS},
+                                       {"db", required_argument, NULL, O_DB},
+                                       {"jobs", required_argument, NULL, O_JOBS},
+                                       {"part", required_argument, NULL, O_PART},
+                                       {"tol", required_argument, NULL, O_TOL},
+                                       {"depth", required_argument, NULL, O_DEPTH},
+                                       {"diagonals", required_argument, NULL, O_DIAG},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
+  const char *scheme = NULL, *stencil = NULL, *links = NULL, *db = "subspectra.db";
+  const char *vtext = NULL;
+  long va = 0, vb = -1, ea = 0, eb = -1, jobs = omp_get_num_procs(), part = 0, nparts = 1,
+       depth = SS_JAC_DEPTH;
+  int face = 0;
+  double tol = 1e-6;
+  ss_diag_mode diag = SS_DIAG_BFS;
+  int diag_given = 0;
+  optind = 1;
+  opterr = 0;
+  int c;
+  while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+    switch (c) {
+    case O_SCHEME:
+      scheme = optarg;
+      break;
+    case O_STENCIL:
+      stencil = optarg;
+      break;
+    case O_VERT:
+      if (ss_cli_parse_range(optarg, &va, &vb) || va > vb)
+        return ss_cli_usage_error("sweep", "--vertices '%s' is not A..B with A <= B",
+                                  optarg);
+      vtext = optarg;
+      break;
+    case O_EDGES:
+      if (ss_cli_parse_range(optarg, &ea, &eb) || ea < 3 || eb > 1000 || ea > eb)
+        return ss_cli_usage_error(
+            "sweep", "--edges '%s' is not A..B with 3 <= A <= B <= 1000", optarg);
+      break;
+    case O_FACE:
+      face = 1;
+      break;
+    case O_LINKS:
+      links = optarg;
+      break;
+    case O_DB:
+      db = optarg;
+      break;
+    case O_JOBS:
+      if (ss_cli_parse_int(optarg, 1, 1024, &jobs))
+        return ss_cli_usage_error("sweep", "--jobs '%s' is not an integer in 1..1024",
+                                  optarg);
+      break;
+    case O_PART:
+      if (ss_cli_parse_part(optarg, &part, &nparts))
+        return ss_cli_usage_error("sweep", "--part '%s': need integers 0 <= I < N",
+                                  optarg);
+      break;
+    case O_TOL: {
+      char *end;
+      tol = strtod(optarg, &end);
+      if (*optarg == '\0' || *end || !(tol > 0.0 && tol < 0.1))
+        return ss_cli_usage_error("sweep", "--tol '%s' is not a number in (0, 0.1)",
+                                  optarg);
+      break;
+    }
+    case O_DEPTH:
+      if (ss_cli_parse_int(optarg, 0, 12, &depth))
+        return ss_cli_usage_error("sweep", "--depth '%s' is not an integer in 0..12",
+                                  optarg);
+      break;
+    case O_DIAG:
+      if (ss_diag_parse(optarg, &diag))
+        return ss_cli_usage_error(
+            "sweep", "--diagonals: expected bfs, proper, skew or center, not '%s'",
+            optarg);
+      diag_given = 1;
+      break;
+    case 'h':
+      fputs(sweep_usage, stdout);
+      return SS_EXIT_OK;
+    default:
+      return ss_cli_option_error("sweep", c, argv);
+    }
+  }
+  if (optind < argc)
+    return ss_cli_usage_error("sweep", "unexpected argument '%s'", argv[optind]);
+  if (!scheme == !stencil)
+    return ss_cli_usage_error("sweep", "give exactly one of --scheme and --stencil");
+  if (!vtext && eb < ea && !face && !links)
+    return ss_cli_usage_error("sweep",
+                              "no cases: give --vertices, --edges, --face or --links");
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  uint64_t hash = 0;
+  if (stencil ? ss_stencil_load(stencil, &s, &hash, &err)
+              : ss_scheme_new(scheme, &s, &err)) {
+    fprintf(stderr, "subspectra sweep: %s%s\n",
+            stencil ? "--stencil " : "--scheme: ", err.msg);
+    return err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+  }
+  const int volume = ss_scheme_accepts(s, SS_HEX) || ss_scheme_accepts(s, SS_TET);
+  const int reads = ss_scheme_reads_diagonals(s);
+  const char *bad = NULL;
+  char msg[160];
+  if (vtext && volume && (va < 4 || vb > SS_ENUM_MAXK)) {
+    snprintf(msg, sizeof msg, "--vertices '%s': links have 4..%d vertices", vtext,
+             SS_ENUM_MAXK);
+    bad = msg;
+  } else if (vtext && !volume && (va < 3 || vb > 1000)) {
+    snprintf(msg, sizeof msg, "--vertices '%s': surface valences are 3..1000", vtext);
+    bad = msg;
+  } else if (!volume && (eb >= ea || face || links))
+    bad = "--edges, --face and --links need a volumetric scheme";
+  else if (face && ss_scheme_split_kind(s) != SS_SPLIT_TETOCT)
+    bad = "--face: the scheme does not split tets (tetoct split)";
+  else if (diag_given && !reads)
+    bad = "--diagonals: the scheme reads no major diagonals";
+  else if ((diag == SS_DIAG_SKEW || diag == SS_DIAG_CENTER) && (vtext || face || links))
+    bad = "--diagonals skew and center are defined around an edge: --edges only";
+  if (bad) {
+    ss_scheme_free(s);
+    return ss_cli_usage_error("sweep", "%s", bad);
+  }
+  linklist ll = {NULL, 0};
+  int rc = links ? read_links(links, &ll) : SS_EXIT_OK;
+  sweep *w = calloc(1, sizeof *w);
+  ss_store *st = NULL;
+  if (rc) goto done;
+  if (!w) {
+    fprintf(stderr, "subspectra sweep: out of memory\n");
+    rc = SS_EXIT_FAIL;
+    goto done;
+  }
+  ss_store_scheme sc = {ss_scheme_name(s), stencil, hash, reads, diag, {tol, (int)depth}};
+  int64_t id = 0;
+  if (ss_store_open(db, SS_STORE_WRITE, &st, &err) ||
+      ss_store_scheme_id(st, &sc, &id, &err)) {
+    fprintf(stderr, "subspectra sweep: %s\n", err.msg);
+    rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+    goto done;
+  }
+  *w = (sweep){.s = s,
+               .st = st,
+               .id = id,
+               .ro = {tol, (int)depth},
+               .diag = diag,
+               .jobs = (int)jobs,
+               .tty = isatty(STDERR_FILENO)};
+  /* the total first, so that progress can show an ETA */
+  ss_enum_opts eo = {(int)va, (int)vb, (int)part, (int)nparts};
+  if (vtext && volume) {
+    uint64_t counts[SS_ENUM_MAXK + 1];
+    if (ss_enum_links(&eo, NULL, NULL, counts, &err)) {
+      fprintf(stderr, "subspectra sweep: %s\n", err.msg);
+      rc = SS_EXIT_FAIL;
+      goto done;
+    }
+    for (long k = va; k <= vb; k++)
+      w->total += counts[k];
+  }
+  size_t idx = 0; /* index of the non-enumerated cases, for --part */
+  for (long n = vtext && !volume ? va : 1; n <= (vtext && !volume ? vb : 0); n++)
+    w->total += idx++ % (size_t)nparts == (size_t)part;
+  for (long n = ea; n <= eb; n++)
+    w->total += idx++ % (size_t)nparts == (size_t)part;
+  if (face) w->total += idx++ % (size_t)nparts == (size_t)part;
+  for (size_t i = 0; i < ll.n; i++)
+    w->total += idx++ % (size_t)nparts == (size_t)part;
+  char ident[256];
+  ss_store_identity(&sc, ident, sizeof ident);
+  if (w->tty)
+    fprintf(stderr, "sweep: %zu cases of %s into %s with %ld thread%s%s\n", w->total,
+            ident, db, jobs, jobs == 1 ? "" : "s", nparts > 1 ? " (this part)" : "");
+  w->t0 = w->last = ss_cli_now();
+  if (vtext && volume && ss_enum_links(&eo, visit, w, NULL, &err) && !w->stop) {
+    w->stop = 1;
+    w->fatal = err;
+  }
+  idx = 0;
+  for (long n = vtext && !volume ? va : 1; n <= (vtext && !volume ? vb : 0); n++)
+    if (idx++ % (size_t)nparts == (size_t)part)
+      add(w, SS_CASE_SURFACE_VERTEX, (int)n, NULL);
+  for (long n = ea; n <= eb; n++)
+    if (idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_EDGE, (int)n, NULL);
+  if (face && idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_FACE, 0, NULL);
+  for (size_t i = 0; i < ll.n; i++)
+    if (idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_VERTEX, 0, ll.l[i]);
+  flush(w);
+  const double dt = ss_cli_now() - w->t0;
+  if (w->tty) fprintf(stderr, "\r\033[K");
+  if (w->stop) {
+    fprintf(stderr, "subspectra sweep: %s\n", w->fatal.msg);
+    rc = w->fatal.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+    goto done;
+  }
+  char took[32];
+  fmt_time(dt, took, sizeof took);
+  fprintf(stderr,
+          "sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with %ld thread%s; "
+          "%zu already stored): %zu pass, %zu fail, %zu undecided, %zu errors; "
+          "store %s\n",
+          w->computed + w->skipped + w->errors, ident, took, w->computed,
+          dt > 0 ? (double)w->computed / dt : 0.0, jobs, jobs == 1 ? "" : "s", w->skipped,
+          w->pass, w->fail, w->undecided, w->errors, db);
+  rc = w->fail || w->undecided || w->errors ? SS_EXIT_FAIL : SS_EXIT_OK;
+done:
+  for (size_t i = 0; i < ll.n; i++)
+    ss_link_free(ll.l[i]);
+  free(ll.l);
+  free(w);
+  ss_store_close(st);
+  ss_scheme_free(s);
+  return rc;
+}
+
+int ss_cli_merge(int argc, char **argv) {
+  if (argc >= 2 && (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help"))) {
+    fputs(merge_usage, stdout);
+    return SS_EXIT_OK;
+  }
+  if (argc < 3) return ss_cli_usage_error("merge", "need OUT.db and at least one IN.db");
+  for (int i = 1; i < argc; i++)
+    if (argv[i][0] == '-')
+      return ss_cli_usage_error("merge", "unknown option '%s'", argv[i]);
+  ss_error err = {0};
+  ss_store *out = NULL;
+  if (ss_store_open(argv[1], SS_STORE_WRITE, &out, &err)) {
+    fprintf(stderr, "subspectra merge: %s\n", err.msg);
+    return SS_EXIT_USAGE;
+  }
+  int rc = SS_EXIT_OK;
+  for (int i = 2; i < argc; i++) {
+    size_t added = 0, present = 0;
+    if (ss_store_merge(out, argv[i], &added, &present, &err)) {
+      fprintf(stderr, "subspectra merge: %s\n", err.msg);
+      rc = SS_EXIT_USAGE;
+      continue;
+    }
+    fprintf(stderr, "merge: %s: %zu results added, %zu already in %s\n", argv[i], added,
+            present, argv[1]);
+  }
+  ss_store_close(out);
+  return rc;
+}
