@@ -446,6 +446,8 @@ int ss_cli_sweep(int argc, char **argv) {
   ss_enum_opts eo = {(int)va, (int)vb, (int)part, (int)nparts};
   if (vtext && volume) {
     uint64_t counts[SS_ENUM_MAXK + 1];
+    if (w->tty && vb >= 15)
+      fprintf(stderr, "sweep: counting the links with %ld..%ld vertices...\n", va, vb);
     if (ss_enum_links(&eo, NULL, NULL, counts, &err)) {
       fprintf(stderr, "subspectra sweep: %s\n", err.msg);
       rc = SS_EXIT_FAIL;
