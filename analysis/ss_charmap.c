@@ -111,8 +111,17 @@ void ss_charmap_regularity(ss_charmap *cm, int maxdepth, ss_regularity *r) {
   }
   r->sign = r->nnegative > r->npositive ? -1 : 1;
   for (size_t c = 0; c < cm->ncells; c++) {
-    const double s =
-        r->sign > 0 ? cm->jac[c].min_scaled : -cm->jac[c].max_scaled; /* margin */
+    /* the margin, oriented by the common sign.  A cell of one strict sign
+     * opposite to it counts as minus its own quality (the smallest |corner
+     * value|), not as its most negative corner: corner values of a tet reach
+     * sqrt(2) in size, the quality never exceeds 1, so the measure stays in
+     * [-1, 1] and a mirrored cell scores exactly the negative. */
+    const ss_jac_result *j = cm->jac + c;
+    const int opposite = (r->sign > 0 && j->sign == SS_JAC_NEGATIVE) ||
+                         (r->sign < 0 && j->sign == SS_JAC_POSITIVE);
+    const double s = opposite      ? (r->sign > 0 ? j->max_scaled : -j->min_scaled)
+                     : r->sign > 0 ? j->min_scaled
+                                   : -j->max_scaled;
     if (r->worst_cell == SIZE_MAX || s < r->min_scaled_jacobian) {
       r->min_scaled_jacobian = s;
       r->worst_cell = c;

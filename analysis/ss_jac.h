@@ -22,13 +22,16 @@
  *             (0,3), (1,4), (2,5)), each oriented as the octant it fills: all
  *             eight of one strict sign, else folded.
  *
- * Scaled Jacobian (a continuous measure in [-1, 1], 1 for the ideal cell,
- * invariant under similarities, negative when inverted): the smallest over the
+ * Scaled Jacobian (a continuous measure, 1 for the ideal cell, invariant
+ * under similarities, negative when inverted): min_scaled is the smallest over the
  * cell's corners of det(edge vectors at the corner) / product of their lengths,
  * with edges taken along the parameter directions (hex, quad), times sqrt(2) for
  * tets and 2/sqrt(3) for triangles so that the regular simplex scores 1; for an
  * octahedron the smallest over its eight centroid tets of that value at the
- * centroid (1 for the regular octahedron).
+ * centroid (1 for the regular octahedron).  For a cell of one strict sign the
+ * smallest |corner value| (its quality) is at most 1; single tet corners reach
+ * sqrt(2) in size, so an inverted tet's min_scaled can be below -1 (ss_charmap
+ * uses -quality for cells of the opposite sign).
  *
  * These functions cannot fail: cells have at most 8 corners and the
  * subdivision works in a fixed-size stack. */

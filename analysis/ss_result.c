@@ -33,17 +33,19 @@ static double now(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* The canonical text of a vertex case's link (an empty string otherwise). */
-static ss_status link_text(const ss_case *c, char **out, ss_error *err) {
+/* The canonical form of a vertex case's link (*cl, caller frees) and its text
+ * (an empty string and no link otherwise).  The canonical labelling is the
+ * one analysed, so that isomorphic links give results equal to the last bit
+ * (LAPACK's rounding depends on the order of rows). */
+static ss_status link_text(const ss_case *c, ss_link **cl, char **out, ss_error *err) {
+  *cl = NULL;
   if (c->kind != SS_CASE_VERTEX) {
     *out = calloc(1, 1);
     return *out ? SS_OK : ss_error_nomem(err, "result link");
   }
   if (!c->link) return ss_error_set(err, SS_EINPUT, "vertex case without a link");
-  ss_link *cl = NULL;
-  ss_status st = ss_link_canonical(c->link, &cl, NULL, err);
-  if (!st) st = ss_link_format(cl, out, err);
-  ss_link_free(cl);
+  ss_status st = ss_link_canonical(c->link, cl, NULL, err);
+  if (!st) st = ss_link_format(*cl, out, err);
   return st;
 }
 
@@ -72,16 +74,20 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   ss_eig *e = NULL;
   ss_charmap *cm = NULL;
   ss_regularity reg;
-  ss_status st = link_text(c, &r->link, err);
-  if (!st) st = ss_local_new(s, c, &M, err);
+  ss_link *cl = NULL;
+  ss_status st = link_text(c, &cl, &r->link, err);
+  ss_case cc = *c;
+  if (cl) cc.link = cl;
+  if (!st) st = ss_local_new(s, &cc, &M, err);
   if (!st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET)
-    st = diagonals(s, c, r, err);
+    st = diagonals(s, &cc, r, err);
   if (!st) {
     ss_eig_opts eo = ss_eig_defaults(M->dim);
     eo.tol = o->tol;
     st = ss_eig_new(M->S, M->n2, M->n1, &eo, &e, err);
   }
   if (!st) st = ss_charmap_analyze(M, e, o->depth, &cm, &reg, err);
+  ss_link_free(cl);
   if (st) {
     ss_charmap_free(cm);
     ss_eig_free(e);

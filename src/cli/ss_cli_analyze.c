@@ -515,7 +515,9 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
       goto done;
     }
   }
-  ss_case c = {o->kind, l, o->n, o->diag};
+  /* the canonical labelling, as sweep and reproduce analyse it (ss_result):
+   * isomorphic links then give the same numbers to the last bit */
+  ss_case c = {o->kind, cl ? cl : l, o->n, o->diag};
   if (ss_local_new(s, &c, &M, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
     rc = err.status == SS_EINPUT || err.status == SS_EIO ? SS_EXIT_USAGE : SS_EXIT_FAIL;
