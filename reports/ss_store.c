@@ -156,6 +156,34 @@ static ss_status prepare(ss_store *st, ss_error *err) {
   return SS_OK;
 }
 
+/* Reading a WAL database needs its -shm file, which cannot be created beside
+ * a store in a directory the user may not write (a shared results folder, a
+ * read-only medium).  Such a store is reopened as immutable: nothing is
+ * written, and no other process may be writing it meanwhile.  1 if reopened. */
+static int retry_immutable(ss_store *st, const char *path) {
+  const int code = sqlite3_errcode(st->db);
+  if (code != SQLITE_READONLY && code != SQLITE_CANTOPEN) return 0;
+  /* a file: URI, percent-encoding what the URI syntax reserves */
+  const size_t n = strlen(path);
+  char *uri = malloc(3 * n + 32);
+  if (!uri) return 0;
+  size_t k = (size_t)sprintf(uri, "file:");
+  for (size_t i = 0; i < n; i++) {
+    const unsigned char ch = (unsigned char)path[i];
+    if (ch == '%' || ch == '?' || ch == '#' || ch <= ' ')
+      k += (size_t)sprintf(uri + k, "%%%02X", ch);
+    else
+      uri[k++] = (char)ch;
+  }
+  strcpy(uri + k, "?immutable=1");
+  sqlite3_close(st->db);
+  st->db = NULL;
+  const int rc = sqlite3_open_v2(
+      uri, &st->db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX, NULL);
+  free(uri);
+  return rc == SQLITE_OK;
+}
+
 ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
                         ss_error *err) {
   *out = NULL;
@@ -181,7 +209,9 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
     goto fail;
   }
   sqlite3_busy_timeout(st->db, 30000);
-  if ((s = validate(st, &empty, err))) goto fail;
+  s = validate(st, &empty, err);
+  if (s && st->readonly && retry_immutable(st, path)) s = validate(st, &empty, err);
+  if (s) goto fail;
   if (empty && st->readonly) {
     s = ss_error_set(err, SS_EINPUT, "%s: an empty file, not a subspectra results store",
                      path);
