@@ -479,7 +479,12 @@ ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
     return st;
   }
   cairo_t *cr = cairo_create(s);
-  ss_status st = paint(cr, cm, r, o, err);
+  const ss_status st = paint(cr, cm, r, o, err);
+  return ss_report_cairo_close(cr, s, png, path, st, err);
+}
+
+ss_status ss_report_cairo_close(cairo_t *cr, cairo_surface_t *s, int png,
+                                const char *path, ss_status st, ss_error *err) {
   if (!st && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
     st = ss_error_set(err, SS_EIO, "%s: drawing failed: %s", path,
                       cairo_status_to_string(cairo_status(cr)));
@@ -490,6 +495,7 @@ ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
       st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path,
                         cairo_status_to_string(ws));
   }
+  /* an SVG surface writes its file here */
   cairo_surface_finish(s);
   if (!st && cairo_surface_status(s) != CAIRO_STATUS_SUCCESS)
     st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path,

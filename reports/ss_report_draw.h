@@ -27,6 +27,8 @@
 #ifndef SS_REPORT_DRAW_H
 #define SS_REPORT_DRAW_H
 
+#include <cairo.h>
+
 #include "ss_charmap.h"
 
 /* How to draw. */
@@ -46,5 +48,12 @@ ss_report_draw_opts ss_report_draw_defaults(void);
  * (message names the file), SS_ENOMEM. */
 ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
                          const ss_report_draw_opts *o, const char *path, ss_error *err);
+
+/* Close a picture drawn on surface s through cr: check cr's status, write a
+ * PNG surface to path (an SVG surface writes itself when finished), then
+ * finish and destroy both.  st is the status so far; returns the first
+ * failure (SS_EIO naming path).  Shared by the pictures and the plots. */
+ss_status ss_report_cairo_close(cairo_t *cr, cairo_surface_t *s, int png,
+                                const char *path, ss_status st, ss_error *err);
 
 #endif

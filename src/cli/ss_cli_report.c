@@ -1,11 +1,184 @@
-/* ss_cli_report.c — `subspectra report` (being written). */
+/* ss_cli_report.c — `subspectra report`: tables (Markdown, CSV, LaTeX, JSON)
+ * and a figure of the cases in a results store written by `subspectra sweep`.
+ * Exit status 0 when every reported case passes both conditions, 1 when any
+ * fails or is undecided, 2 on bad usage, a bad store or a bad --where. */
+#include <getopt.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
 
 #include "ss_cli.h"
+#include "ss_report_plot.h"
+#include "ss_report_table.h"
+#include "ss_store.h"
+
+static const char *const usage_text =
+    "usage: subspectra report --db FILE [--format md|csv|tex|json]\n"
+    "                         [--table cases|summary|both] [--where EXPR]\n"
+    "                         [--plot FILE.png|FILE.svg] [--size WxH]\n"
+    "\n"
+    "Tables of the cases in a results store (written by `subspectra sweep`):\n"
+    "  cases    one row per case: scheme, case, k (link vertices) or valence,\n"
+    "           cells, canonical link (vertex cases), lambda1..lambda4 of the\n"
+    "           two-ring matrix (a+bi when complex) and their multiplicities,\n"
+    "           the eigenvalue condition and the regularity of the\n"
+    "           characteristic map with their reasons, the minimum scaled\n"
+    "           Jacobian, and improper pairs of major diagonals (boxspline);\n"
+    "  summary  per scheme identity, case kind and k: cases, pass, fail,\n"
+    "           undecided (pass = both conditions hold), the worst minimum\n"
+    "           scaled Jacobian and the range of |lambda1|.\n"
+    "\n"
+    "  --db FILE          the results store (SQLite)\n"
+    "  --format F         md (GitHub Markdown, default), csv (RFC 4180, one table,\n"
+    "                     numbers to 17 digits), tex (booktabs: paste into a paper\n"
+    "                     with \\usepackage{booktabs}), json ({\"cases\": [...],\n"
+    "                     \"summary\": [...]}, numbers as numbers)\n"
+    "  --table T          cases, summary or both (default both; csv: cases)\n"
+    "  --where EXPR       an SQL expression over the columns of the view `cases`:\n"
+    "                     scheme, identity, kind, k, link, cells, two_ring,\n"
+    "                     one_ring, lambda1..lambda4 (moduli), eigen_condition,\n"
+    "                     regularity, verdict ('pass', 'fail', 'undecided'),\n"
+    "                     min_scaled_jacobian, tolerance, depth, improper_pairs,\n"
+    "                     seconds.  E.g. --where \"kind = 'vertex' AND k <= 8\",\n"
+    "                     --where \"verdict != 'pass'\"\n"
+    "  --plot FILE        a figure against k: |lambda1..4| and the minimum scaled\n"
+    "                     Jacobian (failing cases red), PNG or SVG by the\n"
+    "                     extension; one scheme identity (the first selected).\n"
+    "                     Alone (without --format or --table) no table is printed\n"
+    "  --size WxH         the figure's size (default: 560 per case kind + 20, x 720)\n"
+    "  -h, --help         this text\n"
+    "\n"
+    "An empty selection prints empty tables (a note on stderr) and exits 0.\n"
+    "Exit status: 0 every reported case passes both conditions, 1 some case\n"
+    "fails or is undecided, 2 bad usage, a bad store or a bad --where.\n";
+
+/* Library failure: the message, and exit status 2 (bad store, bad --where,
+ * unwritable output, no memory). */
+static int report_fail(const ss_error *err) {
+  fprintf(stderr, "subspectra report: %s\n",
+          err->msg[0] ? err->msg : ss_status_name(err->status));
+  return SS_EXIT_USAGE;
+}
 
 int ss_cli_report(int argc, char **argv) {
-  (void)argc;
-  (void)argv;
-  fputs("subspectra report: not yet implemented\n", stderr);
-  return SS_EXIT_USAGE;
+  enum { O_DB = 256, O_FORMAT, O_TABLE, O_WHERE, O_PLOT, O_SIZE };
+  static const struct option opts[] = {{"db", required_argument, NULL, O_DB},
+                                       {"format", required_argument, NULL, O_FORMAT},
+                                       {"table", required_argument, NULL, O_TABLE},
+                                       {"where", required_argument, NULL, O_WHERE},
+                                       {"plot", required_argument, NULL, O_PLOT},
+                                       {"size", required_argument, NULL, O_SIZE},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
+  const char *db = NULL, *where = NULL, *plot = NULL;
+  ss_report_format fmt = SS_REPORT_MD;
+  int have_format = 0;
+  unsigned tables = 0;
+  ss_report_plot_opts po = ss_report_plot_defaults();
+  optind = 1;
+  opterr = 0;
+  int c;
+  while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+    switch (c) {
+    case O_DB:
+      db = optarg;
+      break;
+    case O_FORMAT:
+      if (ss_report_format_parse(optarg, &fmt))
+        return ss_cli_usage_error("report", "--format '%s' is not md, csv, tex or json",
+                                  optarg);
+      have_format = 1;
+      break;
+    case O_TABLE:
+      if (ss_report_tables_parse(optarg, &tables))
+        return ss_cli_usage_error("report", "--table '%s' is not cases, summary or both",
+                                  optarg);
+      break;
+    case O_WHERE:
+      where = optarg;
+      break;
+    case O_PLOT:
+      plot = optarg;
+      break;
+    case O_SIZE: {
+      int w = 0, h = 0;
+      char tail;
+      if (sscanf(optarg, "%dx%d%c", &w, &h, &tail) != 2 || w < 200 || h < 200 ||
+          w > 10000 || h > 10000)
+        return ss_cli_usage_error(
+            "report", "--size '%s' is not WxH with 200 <= W, H <= 10000", optarg);
+      po.width = w;
+      po.height = h;
+      break;
+    }
+    case 'h':
+      fputs(usage_text, stdout);
+      return SS_EXIT_OK;
+    default:
+      return ss_cli_option_error("report", c, argv);
+    }
+  }
+  if (optind < argc)
+    return ss_cli_usage_error("report", "unexpected argument '%s'", argv[optind]);
+  if (!db) return ss_cli_usage_error("report", "no results store given (--db FILE)");
+  if ((po.width || po.height) && !plot)
+    return ss_cli_usage_error("report", "--size needs --plot");
+  /* --plot alone prints no table */
+  const int print = have_format || tables || !plot;
+  if (!tables) tables = fmt == SS_REPORT_CSV ? SS_REPORT_CASES : SS_REPORT_BOTH;
+  if (fmt == SS_REPORT_CSV && tables == SS_REPORT_BOTH)
+    return ss_cli_usage_error("report",
+                              "--format csv holds one table: --table cases or summary");
+  if (plot) {
+    /* the format check before the (possibly long) read of the store */
+    const size_t n = strlen(plot);
+    if (n < 4 || (strcasecmp(plot + n - 4, ".png") && strcasecmp(plot + n - 4, ".svg")))
+      return ss_cli_usage_error("report", "--plot '%s' is not FILE.png or FILE.svg",
+                                plot);
+  }
+
+  ss_error err = {0};
+  ss_store *st = NULL;
+  ss_report_rows rows = {0};
+  ss_report_summary *sum = NULL;
+  size_t ns = 0;
+  int rc = SS_EXIT_OK;
+  if (ss_store_open(db, SS_STORE_READ, &st, &err) ||
+      ss_report_rows_load(st, where, &rows, &err) ||
+      ss_report_summarize(rows.row, rows.n, &sum, &ns, &err)) {
+    rc = report_fail(&err);
+    goto done;
+  }
+  if (rows.n == 0)
+    fprintf(stderr, "subspectra report: %s: no cases selected%s\n", db,
+            where ? " by --where" : " (an empty store)");
+  if (print &&
+      ss_report_table_write(stdout, fmt, tables, rows.row, rows.n, sum, ns, &err)) {
+    rc = report_fail(&err);
+    goto done;
+  }
+  if (plot) {
+    size_t nid = rows.n > 0;
+    for (size_t i = 1; i < rows.n; i++)
+      nid += strcmp(rows.row[i].identity, rows.row[i - 1].identity) != 0;
+    size_t plotted = 0;
+    if (ss_report_plot(rows.row, rows.n, &po, plot, &plotted, &err)) {
+      rc = report_fail(&err);
+      goto done;
+    }
+    if (nid > 1)
+      fprintf(stderr,
+              "subspectra report: --plot: %zu scheme identities selected; %s shows the "
+              "first, '%s' (%zu cases); choose another with --where \"identity = "
+              "'...'\"\n",
+              nid, plot, rows.row[0].identity, plotted);
+  }
+  for (size_t i = 0; i < rows.n; i++)
+    if (ss_result_verdict(&rows.row[i].r) != SS_PASS) rc = SS_EXIT_FAIL;
+done:
+  free(sum);
+  ss_report_rows_clear(&rows);
+  ss_store_close(st);
+  return rc;
 }

@@ -30,6 +30,7 @@
 #include "ss_local.h"
 #include "ss_report_draw.h"
 #include "ss_report_ref.h"
+#include "ss_report_table.h"
 #include "ss_result.h"
 #include "ss_scheme.h"
 
@@ -451,15 +452,7 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
     json_object_object_add(d, "improper", json_object_new_int64((int64_t)r->improper));
     json_object_object_add(o, "diagonals", d);
   }
-  json_object *ev = json_object_new_array();
-  for (int i = 0; i < r->neig; i++) {
-    json_object *x = json_object_new_object();
-    json_object_object_add(x, "re", json_object_new_double(r->eig[i].re));
-    json_object_object_add(x, "im", json_object_new_double(r->eig[i].im));
-    json_object_object_add(x, "multiplicity", json_object_new_int(r->eig[i].mult));
-    json_object_array_add(ev, x);
-  }
-  json_object_object_add(o, "eigenvalues", ev);
+  json_object_object_add(o, "eigenvalues", ss_report_eig_json(r));
   json_object *c = json_object_new_object();
   json_object_object_add(c, "verdict",
                          json_object_new_string(ss_verdict_name(r->cond.verdict)));
