@@ -467,7 +467,6 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
   json_object_object_add(g, "reason", json_object_new_string(r->reg.reason));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(o, "regularity", g);
-  json_object_object_add(o, "seconds", json_object_new_double(r->seconds));
   return o;
 }
 
