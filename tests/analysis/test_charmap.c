@@ -19,6 +19,7 @@
 
 #include "ss_charmap.h"
 #include "ss_enum.h"
+#include "ss_result.h"
 #include "ss_scheme.h"
 #include "ss_test.h"
 #include "ss_testlink.h"
@@ -498,7 +499,69 @@ static void test_complex(void) {
   ss_eig_free(e);
 }
 
+/* ss_result analyses a vertex case in the canonical labelling of its link, so
+ * relabelled and mirrored copies give the same numbers to the last bit (not
+ * merely within rounding) — sweeps key results by the canonical link, and a
+ * store must not depend on which copy came first.  And the minimum scaled
+ * Jacobian of failing maps stays in [-1, 1]: a cell inverted against the
+ * majority counts as minus its own quality (an inverted tet's most negative
+ * corner alone reaches -sqrt(2); the box-spline bipyramid gave -1.22). */
+static void test_result_canonical(void) {
+  ss_error err = {0};
+  const char *schemes[] = {"mlca", "boxspline", "tetoct"};
+  const char *links[] = {"8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb", "bipyramid:3",
+                         "octahedron", "7 bcdefg,agc,abgd,acgfe,adf,aedg,afdcb"};
+  const ss_result_opts ro = ss_result_defaults();
+  int failing = 0;
+  for (int si = 0; si < 3; si++) {
+    ss_scheme *s = NULL;
+    REQUIRE_OK_VOID(ss_scheme_new(schemes[si], &s, &err), &err);
+    for (int li = 0; li < 4; li++) {
+      ss_link *l = NULL;
+      if (ss_link_parse(links[li], &l, &err) && ss_link_named(links[li], &l, &err)) {
+        CHECK(0, "link %s: %s", links[li], err.msg);
+        continue;
+      }
+      ss_result r0;
+      ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+      REQUIRE_OK_VOID(ss_result_compute(s, &c, &ro, &r0, &err), &err);
+      failing += ss_result_verdict(&r0) != SS_PASS;
+      CHECK(isnan(r0.min_sj) || (r0.min_sj >= -1.0 && r0.min_sj <= 1.0),
+            "%s %s: minimum scaled Jacobian %.17g outside [-1, 1]", schemes[si],
+            links[li], r0.min_sj);
+      for (unsigned seed = 1; seed <= 4; seed++) {
+        ss_link *m = ss_testlink_scrambled(l, seed, seed % 2);
+        if (!m) {
+          CHECK(0, "scrambled copy of %s", links[li]);
+          continue;
+        }
+        ss_result r1;
+        c.link = m;
+        if (!ss_result_compute(s, &c, &ro, &r1, &err)) {
+          CHECK(!strcmp(r0.link, r1.link) && r0.neig == r1.neig &&
+                    !memcmp(r0.eig, r1.eig, sizeof r0.eig[0] * (size_t)r0.neig) &&
+                    r0.cond.verdict == r1.cond.verdict &&
+                    r0.reg.verdict == r1.reg.verdict &&
+                    !strcmp(r0.reg.reason, r1.reg.reason) &&
+                    (isnan(r0.min_sj) ? isnan(r1.min_sj) : r0.min_sj == r1.min_sj) &&
+                    r0.improper == r1.improper,
+                "%s %s, copy %u: not bit for bit equal (min SJ %.17g vs %.17g)",
+                schemes[si], links[li], seed, r0.min_sj, r1.min_sj);
+          ss_result_clear(&r1);
+        } else
+          CHECK(0, "%s", err.msg);
+        ss_link_free(m);
+      }
+      ss_result_clear(&r0);
+      ss_link_free(l);
+    }
+    ss_scheme_free(s);
+  }
+  CHECK(failing >= 3, "the set was chosen with failing maps in it (%d)", failing);
+}
+
 int main(void) {
+  test_result_canonical();
   test_complex();
   test_mlca_k8();
   test_boxspline_k5();

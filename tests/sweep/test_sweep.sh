@@ -130,6 +130,24 @@ expect 2 "noise.db: not a subspectra results store" "$exe" merge "$tmp/m2.db" "$
 expect 2 "foreign.db: a foreign SQLite database" "$exe" merge "$tmp/m2.db" "$tmp/foreign.db"
 expect 2 "nothere.db: no such results store" "$exe" merge "$tmp/m2.db" "$tmp/nothere.db"
 
+# a store in a directory the reader may not write (WAL wants a -shm file
+# beside it) is still read; needs root to play another user, else skipped
+if [ "$(id -u)" = 0 ] && command -v su >/dev/null &&
+  su nobody -s /bin/sh -c "'$exe' --version" >/dev/null 2>&1; then
+  ro=$(mktemp -d /tmp/ss_ro.XXXXXX)
+  sqlite3 "$tmp/merged.db" "PRAGMA wal_checkpoint(TRUNCATE)" >/dev/null
+  cp "$tmp/merged.db" "$ro/s.db"
+  chmod 644 "$ro/s.db"
+  chmod 555 "$ro"
+  checks=$((checks + 1))
+  out=$(su nobody -s /bin/sh -c "'$exe' report --db '$ro/s.db' --format csv --table summary" 2>&1)
+  grep -q "^mlca tol=1e-06 depth=6,mlca,vertex,10,233," <<<"$out" ||
+    fail "read-only directory: $(head -3 <<<"$out")"
+  [ -z "$(ls "$ro" | grep -v '^s.db$')" ] || fail "files left beside a read-only store: $(ls "$ro")"
+  chmod 755 "$ro"
+  rm -rf "$ro"
+fi
+
 # usage errors
 expect 2 "no cases" "$exe" sweep --scheme mlca --db "$tmp/u.db"
 expect 2 "exactly one of --scheme and --stencil" "$exe" sweep --edges 3..4 --db "$tmp/u.db"
