@@ -10,11 +10,13 @@
  * the cases being computed at that moment. */
 #include <getopt.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include <json-c/json.h>
 #include <omp.h>
 
 #include "ss_cli.h"
@@ -58,10 +60,14 @@ static const char *const sweep_usage =
     "6)\n"
     "  --diagonals D     major diagonals (boxspline): bfs (default) or proper; skew\n"
     "                    or center with --edges only\n"
+    "  --format F        text (default) or json: the final summary also as one\n"
+    "                    JSON object on standard output\n"
     "  -h, --help        this text\n"
     "\n"
     "Progress (cases done / total, rate, ETA, failures so far) goes to standard\n"
     "error while it is a terminal; otherwise only the final summary is printed.\n"
+    "SIGINT or SIGTERM: the cases being computed are finished and stored, the\n"
+    "summary printed, and the sweep ends (rerun the same command to resume).\n"
     "Exit status: 0 every case passes both conditions, 1 some case fails, is\n"
     "undecided or could not be analysed, 2 bad usage, a bad link or store file.\n";
 
@@ -74,6 +80,15 @@ static const char *const merge_usage =
     "a subspectra results store (nothing is copied from it).\n";
 
 enum { CHUNK = 512 };
+
+/* The signal that asked the sweep to stop (SIGINT, SIGTERM), or 0.  The one
+ * piece of process-wide state: a signal handler can reach nothing else.  The
+ * cases being computed finish and are stored; the rest is left for a rerun. */
+static volatile sig_atomic_t interrupted;
+
+static void on_signal(int sig) {
+  interrupted = sig;
+}
 
 /* One case to run. */
 typedef struct {
@@ -134,6 +149,7 @@ static void progress(sweep *w, int force) {
 
 /* Run one case (in a worker thread). */
 static void run_job(sweep *w, const job *j) {
+  if (interrupted) return;
   ss_error err = {0};
   ss_case c = {j->kind, j->link, j->n, w->diag};
   int found = 0, stop = 0;
@@ -179,8 +195,12 @@ static void run_job(sweep *w, const job *j) {
   {
     if (s) {
       w->errors++;
-      fprintf(stderr, "%ssweep: %s %s%d: %s\n", w->tty ? "\r\033[K" : "",
-              ss_case_name(j->kind), canon ? canon : "", canon ? 0 : j->n, err.msg);
+      if (canon)
+        fprintf(stderr, "%ssweep: vertex %s: %s\n", w->tty ? "\r\033[K" : "", canon,
+                err.msg);
+      else
+        fprintf(stderr, "%ssweep: %s %d: %s\n", w->tty ? "\r\033[K" : "",
+                ss_case_name(j->kind), j->n, err.msg);
     } else if (!w->stop) {
       int added = 0;
       if (ss_store_put(w->st, w->id, &r, &added, &w->fatal))
@@ -211,7 +231,7 @@ static void flush(sweep *w) {
 
 /* Queue a case (the link is copied); runs the chunk when it is full. */
 static int add(sweep *w, ss_case_kind kind, int n, const ss_link *l) {
-  if (w->stop) return 1;
+  if (w->stop || interrupted) return 1;
   job *j = &w->chunk[w->nchunk];
   *j = (job){kind, n, NULL};
   if (l && ss_link_copy(l, &j->link, &w->fatal)) {
@@ -286,7 +306,8 @@ int ss_cli_sweep(int argc, char **argv) {
     O_PART,
     O_TOL,
     O_DEPTH,
-    O_DIAG
+    O_DIAG,
+    O_FORMAT
   };
   static const struct option opts[] = {{"scheme", required_argument, NULL, O_SCHEME},
                                        {"stencil", required_argument, NULL, O_STENCIL},
@@ -300,6 +321,7 @@ int ss_cli_sweep(int argc, char **argv) {
                                        {"tol", required_argument, NULL, O_TOL},
                                        {"depth", required_argument, NULL, O_DEPTH},
                                        {"diagonals", required_argument, NULL, O_DIAG},
+                                       {"format", required_argument, NULL, O_FORMAT},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   const char *scheme = NULL, *stencil = NULL, *links = NULL, *db = "subspectra.db";
@@ -309,7 +331,7 @@ int ss_cli_sweep(int argc, char **argv) {
   int face = 0;
   double tol = 1e-6;
   ss_diag_mode diag = SS_DIAG_BFS;
-  int diag_given = 0;
+  int diag_given = 0, json = 0;
   optind = 1;
   opterr = 0;
   int c;
@@ -370,6 +392,9 @@ int ss_cli_sweep(int argc, char **argv) {
             "sweep", "--diagonals: expected bfs, proper, skew or center, not '%s'",
             optarg);
       diag_given = 1;
+      break;
+    case O_FORMAT:
+      if (ss_cli_format_option("sweep", optarg, &json)) return SS_EXIT_USAGE;
       break;
     case 'h':
       fputs(sweep_usage, stdout);
@@ -469,6 +494,12 @@ int ss_cli_sweep(int argc, char **argv) {
   if (w->tty)
     fprintf(stderr, "sweep: %zu cases of %s into %s with %ld thread%s%s\n", w->total,
             ident, db, jobs, jobs == 1 ? "" : "s", nparts > 1 ? " (this part)" : "");
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
   w->t0 = w->last = ss_cli_now();
   if (vtext && volume && ss_enum_links(&eo, visit, w, NULL, &err) && !w->stop) {
     w->stop = 1;
@@ -493,13 +524,42 @@ int ss_cli_sweep(int argc, char **argv) {
   }
   char took[32];
   fmt_time(dt, took, sizeof took);
+  const size_t done = w->computed + w->skipped + w->errors;
   fprintf(stderr,
           "sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with %ld thread%s; "
           "%zu already stored): %zu pass, %zu fail, %zu undecided, %zu errors; "
           "store %s\n",
-          w->computed + w->skipped + w->errors, ident, took, w->computed,
-          dt > 0 ? (double)w->computed / dt : 0.0, jobs, jobs == 1 ? "" : "s", w->skipped,
-          w->pass, w->fail, w->undecided, w->errors, db);
+          done, ident, took, w->computed, dt > 0 ? (double)w->computed / dt : 0.0, jobs,
+          jobs == 1 ? "" : "s", w->skipped, w->pass, w->fail, w->undecided, w->errors,
+          db);
+  if (interrupted)
+    fprintf(stderr,
+            "sweep: interrupted (%s) with %zu of %zu cases done; the same command "
+            "resumes\n",
+            interrupted == SIGINT ? "SIGINT" : "SIGTERM", done, w->total);
+  if (json) {
+    json_object *o = json_object_new_object();
+    json_object_object_add(o, "scheme", json_object_new_string(ss_scheme_name(s)));
+    json_object_object_add(o, "identity", json_object_new_string(ident));
+    json_object_object_add(o, "db", json_object_new_string(db));
+    json_object_object_add(o, "part", json_object_new_int64(part));
+    json_object_object_add(o, "parts", json_object_new_int64(nparts));
+    json_object_object_add(o, "threads", json_object_new_int64(jobs));
+    json_object_object_add(o, "cases", json_object_new_int64((int64_t)w->total));
+    json_object_object_add(o, "done", json_object_new_int64((int64_t)done));
+    json_object_object_add(o, "computed", json_object_new_int64((int64_t)w->computed));
+    json_object_object_add(o, "already_stored",
+                           json_object_new_int64((int64_t)w->skipped));
+    json_object_object_add(o, "pass", json_object_new_int64((int64_t)w->pass));
+    json_object_object_add(o, "fail", json_object_new_int64((int64_t)w->fail));
+    json_object_object_add(o, "undecided", json_object_new_int64((int64_t)w->undecided));
+    json_object_object_add(o, "errors", json_object_new_int64((int64_t)w->errors));
+    json_object_object_add(o, "seconds", json_object_new_double(dt));
+    json_object_object_add(o, "interrupted", json_object_new_boolean(interrupted != 0));
+    printf("%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN |
+                                                         JSON_C_TO_STRING_NOSLASHESCAPE));
+    json_object_put(o);
+  }
   rc = w->fail || w->undecided || w->errors ? SS_EXIT_FAIL : SS_EXIT_OK;
 done:
   for (size_t i = 0; i < ll.n; i++)
@@ -508,6 +568,13 @@ done:
   free(w);
   ss_store_close(st);
   ss_scheme_free(s);
+  if (interrupted) {
+    /* die of the signal, as the shell expects of an interrupted program */
+    fflush(stdout);
+    const int sig = interrupted;
+    signal(sig, SIG_DFL);
+    raise(sig);
+  }
   return rc;
 }
 
