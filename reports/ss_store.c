@@ -316,11 +316,10 @@ ss_status ss_store_has(ss_store *st, int64_t id, ss_case_kind kind, int k,
   const int rc = sqlite3_step(st->has);
   *found = rc == SQLITE_ROW;
   if (*found && verdict) {
-    const ss_verdict_kind c = verdict_of((const char *)sqlite3_column_text(st->has, 0));
-    const ss_verdict_kind g = verdict_of((const char *)sqlite3_column_text(st->has, 1));
-    *verdict = c == SS_FAIL || g == SS_FAIL   ? SS_FAIL
-               : c == SS_PASS && g == SS_PASS ? SS_PASS
-                                              : SS_UNDECIDED;
+    ss_result r;
+    r.cond.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 0));
+    r.reg.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 1));
+    *verdict = ss_result_verdict(&r);
   }
   sqlite3_reset(st->has);
   if (rc != SQLITE_ROW && rc != SQLITE_DONE) return db_error(st, err, "lookup");
