@@ -143,13 +143,27 @@ static void topo_free(topo *T) {
   free(T->common);
 }
 
+/* The tet/oct split's fine vertices are edge midpoints (2 parents) or
+ * octahedron centres (6); anything else is a split this file cannot read. */
+static ss_status check_parents(const ss_split *L, size_t nv, ss_error *err) {
+  for (size_t f = nv; f < L->nfine; f++) {
+    const size_t npar = ss_split_npar(L, f);
+    if (npar != 2 && npar != 6)
+      return ss_error_set(err, SS_EINTERNAL, "fine vertex %zu with %zu parents", f, npar);
+  }
+  return SS_OK;
+}
+
 /* Build T; with_diag adds the major diagonals (pair (0, 3) of each
  * octahedron) to the neighbours, as Definition 3.3 does; without, the
- * octahedra's opposite corners and incidences are listed instead. */
+ * octahedra's opposite corners and incidences are listed instead.
+ * The split's parents are checked first (check_parents). */
 static ss_status topo_make(const ss_cx *coarse, const ss_split *L, int with_diag, topo *T,
                            ss_error *err) {
   const size_t nv = coarse->nv, nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
   memset(T, 0, sizeof *T);
+  ss_status st = check_parents(L, nv, err);
+  if (st) return st;
   size_t ne = 0;
   for (size_t f = nv; f < L->nfine; f++)
     ne += ss_split_npar(L, f) == 2;
@@ -362,15 +376,6 @@ static ss_status centres(const ss_cx *coarse, const ss_split *L, double w_end,
   return SS_OK;
 }
 
-static ss_status check_parents(const ss_split *L, size_t nv, ss_error *err) {
-  for (size_t f = nv; f < L->nfine; f++) {
-    const size_t npar = ss_split_npar(L, f);
-    if (npar != 2 && npar != 6)
-      return ss_error_set(err, SS_EINTERNAL, "fine vertex %zu with %zu parents", f, npar);
-  }
-  return SS_OK;
-}
-
 static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
                                 const ss_cx *fine, const ss_split *L, ss_sink *k,
                                 ss_error *err) {
@@ -378,8 +383,8 @@ static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
   (void)fine;
   const size_t nv = coarse->nv;
   topo T;
-  ss_status st = check_parents(L, nv, err);
-  if (st || (st = topo_make(coarse, L, 1, &T, err))) return st;
+  ss_status st = topo_make(coarse, L, 1, &T, err);
+  if (st) return st;
   for (size_t x = 0; x < nv; x++) {
     if (T.onb[x])
       boundary_vertex(&T, x, k);
@@ -414,8 +419,8 @@ static ss_status boxspline_avg_rule(const ss_scheme *s, const ss_cx *coarse,
   (void)fine;
   const size_t nv = coarse->nv;
   topo T;
-  ss_status st = check_parents(L, nv, err);
-  if (st || (st = topo_make(coarse, L, 0, &T, err))) return st;
+  ss_status st = topo_make(coarse, L, 0, &T, err);
+  if (st) return st;
   for (size_t x = 0; x < nv; x++) {
     const size_t ne = T.nb.ptr[x + 1] - T.nb.ptr[x], no = T.opp.ptr[x + 1] - T.opp.ptr[x];
     if (T.onb[x]) {
