@@ -448,12 +448,28 @@ static ss_status write_vtk(const ss_charmap *cm, const char *path, ss_error *err
 
 /* ---- dispatch ---- */
 
-static int has_ext(const char *path, const char *ext) {
+int ss_report_has_ext(const char *path, const char *ext) {
   const size_t n = strlen(path), m = strlen(ext);
   if (n < m) return 0;
   for (size_t i = 0; i < m; i++)
     if (tolower((unsigned char)path[n - m + i]) != ext[i]) return 0;
   return 1;
+}
+
+ss_status ss_report_cairo_open(const char *path, int png, int width, int height,
+                               cairo_t **cr, cairo_surface_t **s, ss_error *err) {
+  *cr = NULL;
+  *s = png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height)
+           : cairo_svg_surface_create(path, width, height);
+  if (cairo_surface_status(*s) != CAIRO_STATUS_SUCCESS) {
+    ss_status st = ss_error_set(err, SS_EIO, "%s: %s", path,
+                                cairo_status_to_string(cairo_surface_status(*s)));
+    cairo_surface_destroy(*s);
+    *s = NULL;
+    return st;
+  }
+  *cr = cairo_create(*s);
+  return SS_OK;
 }
 
 ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
@@ -463,23 +479,17 @@ ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
                         o->height);
   if (cm->dim != 2 && cm->dim != 3)
     return ss_error_set(err, SS_EINPUT, "draw: a map of dimension %d", cm->dim);
-  if (has_ext(path, ".vtk")) return write_vtk(cm, path, err);
-  const int png = has_ext(path, ".png"), svg = has_ext(path, ".svg");
+  if (ss_report_has_ext(path, ".vtk")) return write_vtk(cm, path, err);
+  const int png = ss_report_has_ext(path, ".png"), svg = ss_report_has_ext(path, ".svg");
   if (!png && !svg)
     return ss_error_set(err, SS_EINPUT,
                         "draw: %s: unknown picture format (use .png, .svg or .vtk)",
                         path);
-  cairo_surface_t *s =
-      png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o->width, o->height)
-          : cairo_svg_surface_create(path, o->width, o->height);
-  if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
-    ss_status st = ss_error_set(err, SS_EIO, "%s: %s", path,
-                                cairo_status_to_string(cairo_surface_status(s)));
-    cairo_surface_destroy(s);
-    return st;
-  }
-  cairo_t *cr = cairo_create(s);
-  const ss_status st = paint(cr, cm, r, o, err);
+  cairo_surface_t *s;
+  cairo_t *cr;
+  ss_status st = ss_report_cairo_open(path, png, o->width, o->height, &cr, &s, err);
+  if (st) return st;
+  st = paint(cr, cm, r, o, err);
   return ss_report_cairo_close(cr, s, png, path, st, err);
 }
 

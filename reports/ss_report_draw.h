@@ -49,6 +49,15 @@ ss_report_draw_opts ss_report_draw_defaults(void);
 ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
                          const ss_report_draw_opts *o, const char *path, ss_error *err);
 
+/* 1 if path ends in ext (lower case, with the dot), ignoring case. */
+int ss_report_has_ext(const char *path, const char *ext);
+
+/* Open a picture of width x height pixels: an image surface for PNG (written
+ * by ss_report_cairo_close), an SVG surface writing to path otherwise, and a
+ * context on it.  SS_EIO naming path if cairo cannot make the surface. */
+ss_status ss_report_cairo_open(const char *path, int png, int width, int height,
+                               cairo_t **cr, cairo_surface_t **s, ss_error *err);
+
 /* Close a picture drawn on surface s through cr: check cr's status, write a
  * PNG surface to path (an SVG surface writes itself when finished), then
  * finish and destroy both.  st is the status so far; returns the first

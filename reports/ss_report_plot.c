@@ -3,12 +3,10 @@
 #include "ss_report_plot.h"
 #include "ss_report_draw.h"
 
-#include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include <cairo-svg.h>
 #include <cairo.h>
 
 #define NLAMBDA 4 /* |lambda1|..|lambda4| in the top panel */
@@ -343,14 +341,6 @@ static void column(cairo_t *cr, ss_case_kind kind, const ss_report_row **sel, si
   cairo_restore(cr);
 }
 
-static int has_ext(const char *path, const char *ext) {
-  const size_t n = strlen(path), m = strlen(ext);
-  if (n < m) return 0;
-  for (size_t i = 0; i < m; i++)
-    if (tolower((unsigned char)path[n - m + i]) != ext[i]) return 0;
-  return 1;
-}
-
 ss_report_plot_opts ss_report_plot_defaults(void) {
   return (ss_report_plot_opts){0, 0, NULL};
 }
@@ -394,7 +384,7 @@ ss_status ss_report_plot(const ss_report_row *rows, size_t n,
                          const ss_report_plot_opts *o, const char *path, size_t *plotted,
                          ss_error *err) {
   if (plotted) *plotted = 0;
-  const int png = has_ext(path, ".png"), svg = has_ext(path, ".svg");
+  const int png = ss_report_has_ext(path, ".png"), svg = ss_report_has_ext(path, ".svg");
   if (!png && !svg)
     return ss_error_set(err, SS_EINPUT,
                         "--plot %s: unknown picture format (use .png "
@@ -425,15 +415,9 @@ ss_status ss_report_plot(const ss_report_row *rows, size_t n,
     st = ss_error_set(err, SS_EINPUT, "--plot: picture size %dx%d out of range", W, H);
     goto done;
   }
-  cairo_surface_t *s = png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H)
-                           : cairo_svg_surface_create(path, W, H);
-  if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
-    st = ss_error_set(err, SS_EIO, "%s: %s", path,
-                      cairo_status_to_string(cairo_surface_status(s)));
-    cairo_surface_destroy(s);
-    goto done;
-  }
-  cairo_t *cr = cairo_create(s);
+  cairo_surface_t *s;
+  cairo_t *cr;
+  if ((st = ss_report_cairo_open(path, png, W, H, &cr, &s, err))) goto done;
   paint(cr, sel, m, identity, W, H, v);
   st = ss_report_cairo_close(cr, s, png, path, SS_OK, err);
   if (!st && plotted) *plotted = m;
