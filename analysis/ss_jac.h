@@ -45,7 +45,12 @@ typedef enum {
   SS_JAC_FOLDED = 0,    /* the determinant vanishes or changes sign in the cell */
   SS_JAC_POSITIVE = 1,  /* > 0 everywhere on the closed cell */
   SS_JAC_NEGATIVE = -1, /* < 0 everywhere on the closed cell */
-  SS_JAC_UNDECIDED = 2  /* hex only: still in doubt at the depth limit */
+  SS_JAC_UNDECIDED = 2, /* still in doubt: hex at the depth limit; or a value
+                           that decides is zero to rounding (see below); or,
+                           for the interval and exact variants, no proof */
+  SS_JAC_DEGENERATE = 3 /* double path only: every value that bounds det J is
+                           zero to rounding, |v| <= SS_JAC_FLAT L^dim (L the
+                           cell's largest corner distance): flat, no sign */
 } ss_jac_sign;
 
 /* Result for one cell. */
@@ -61,6 +66,10 @@ typedef struct {
                         [0,1]^d; tet, triangle, oct: unused, zero) */
 } ss_jac_result;
 
+/* Relative size below which a value of det J is zero to rounding in the
+ * double path: |v| <= SS_JAC_FLAT * L^dim. */
+#define SS_JAC_FLAT 1e-12
+
 /* Default depth limit of the hex subdivision. */
 #define SS_JAC_DEPTH 6
 
@@ -71,6 +80,17 @@ typedef struct {
  * maxdepth bounds the hex subdivision (0: the 27 coefficients only). */
 void ss_jac_cell(ss_cell_type t, const double *x, int dim, int maxdepth,
                  ss_jac_result *r);
+
+/* As ss_jac_cell for corners known only within boxes, lo[i] <= x[i] <= hi[i]
+ * (same layout as x): every quantity is computed in interval arithmetic with
+ * outward rounding, so POSITIVE / NEGATIVE / FOLDED hold for every net in the
+ * boxes (the true one among them): POSITIVE when every bounding value is
+ * certainly > 0, FOLDED when two exact values (corner coefficients of the cell
+ * or of a sub-box, corner values of a quad, octant determinants) are certainly
+ * of opposite signs; otherwise UNDECIDED.  Never DEGENERATE.  min_scaled and
+ * max_scaled are those of the midpoints (a measure, not a proof). */
+void ss_jac_cell_interval(ss_cell_type t, const double *lo, const double *hi, int dim,
+                          int maxdepth, ss_jac_result *r);
 
 /* Jacobian determinant of the trilinear map of the hex with corners x (8 x 3)
  * at the parameter point (u, v, w) in [0,1]^3: the reference value the

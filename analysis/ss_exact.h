@@ -1,0 +1,152 @@
+/* ss_exact.h — the exact eigenstructure of a local subdivision matrix and the
+ * certified eigenvalue condition (DESIGN sections 5 and 10, "certified
+ * verdicts"; `analyze --certify`).
+ *
+ * Rational matrix.  The schemes' weights are rationals with small
+ * denominators, but ss_local reads S in double precision.  Each entry s is
+ * replaced by the rational p/q with q <= maxden nearest to it, accepted only if
+ * |s - p/q| <= 2^-40 max(1, |s|): two rationals of denominator <= maxden are
+ * at least 1/maxden^2 apart, far more than that, so the rational matrix is
+ * the unique one of bounded denominators the computed entries round to (the
+ * default maxden = 2^18 keeps 1/maxden^2 = 2^-36 above the acceptance
+ * window).  Every row must then sum to exactly 1.  A scheme with irrational
+ * weights (Loop's cos(2 pi / n), box-spline boundary rules) fails this with
+ * SS_ENUMERIC naming the entry: its verdicts cannot be certified this way.
+ * What is certified is therefore a statement about that rational matrix.
+ *
+ * Spectrum.  S = [A 0; B C] and C is block lower triangular over the strongly
+ * connected components of its sparsity graph, so the characteristic
+ * polynomial of S is the product of those of A and of C's diagonal blocks
+ * (equal blocks are computed once).  Each is computed exactly over Z (FLINT:
+ * the block scaled by the common denominator of its entries) and factored
+ * into irreducibles over Q (fmpz_poly_factor); equal factors of different
+ * blocks are merged, multiplicities added.  Distinct irreducible factors have
+ * no common root and each has simple roots, so the distinct eigenvalues of S
+ * are exactly the roots of the merged factors, with the multiplicity of their
+ * factor.  Roots are isolated in ball arithmetic (arb_fmpz_poly_complex_roots
+ * on each squarefree factor) and refined until the moduli of all roots that
+ * matter to the order are separated, or until maxprec bits.
+ *
+ * Order: distinct roots by decreasing modulus, real before complex, larger
+ * real part first, then larger imaginary part (ss_eig's order).  Two distinct
+ * roots of equal modulus are tied exactly when that is proven: complex
+ * conjugates, or r and -r (a factor and its reflection f(-x)).  Any other
+ * pair whose modulus enclosures still overlap at maxprec makes the order, and
+ * every verdict depending on it, uncertified.
+ *
+ * The certified eigenvalue condition (m = 3 in volume cases, 2 on surfaces),
+ * on the multiset of eigenvalues ordered as above:
+ *   lambda0 = 1 simple: x - 1 is a factor of multiplicity 1 and every other
+ *     root has modulus < 1 (proven);
+ *   lambda1..lambdam real and positive (their factors' roots are real, proven
+ *     by the real-root isolation, and > 0);
+ *   lambda_m > |lambda_m+1|: proven by separated enclosures; lambda_m =
+ *     lambda_m+1 (the same root, multiplicity > 1, from one factor) is a
+ *     certified fail ("exact tie"), as is |lambda_m+1| = lambda_m proven for a
+ *     different root (a conjugate pair, or -lambda_m);
+ *   non-defective lambda1..lambdam: for each of their factors f with
+ *     multiplicity e, rank f(S) = n - e deg f, computed exactly.  A Jordan
+ *     block is a certified fail.
+ * Each verdict carries certified = 1 when it follows from the above, 0 when
+ * something could not be decided (then the verdict is SS_UNDECIDED with the
+ * reason, e.g. "not certified: moduli of lambda3 and lambda4 not separated
+ * at 4096 bits" or "not certified: an outer block of 900 points exceeds the
+ * exact path's limit of 400").
+ *
+ * Basis.  For a certified pass, an enclosure of a real basis X (n x m) of the
+ * invariant subspace of lambda1..lambdam: S X = X J exactly for some real
+ * m x m J whose spectrum is lambda1..lambdam.  On the one-ring block by
+ * Rump's method (acb_mat_eig_enclosure_rump) for each distinct eigenvalue
+ * among lambda1..m, started from an approximate basis of its eigenspace;
+ * extended to the outer points by solving B X1 + C X2 = X2 J block by block
+ * in ball arithmetic (each diagonal block a small Sylvester system).  The
+ * enclosure is returned as intervals lo <= X <= hi.  When lambda1..m are all
+ * rational, X is also available exactly (ss_exact_basis_rational), which
+ * lets a caller prove that a quantity vanishes.
+ *
+ * Threads: no global state; FLINT's own caches are thread-local.  Call
+ * flint_cleanup() per thread only at thread exit (the CLI does not). */
+#ifndef SS_EXACT_H
+#define SS_EXACT_H
+
+#include <stddef.h>
+
+#include "ss_eig.h"
+#include "ss_error.h"
+
+typedef struct ss_exact ss_exact; /* opaque: FLINT matrices, factors, balls */
+
+/* Options of the exact path. */
+typedef struct {
+  long maxden;      /* largest denominator of the rational reconstruction
+                       (default 1 << 18) */
+  long prec;        /* first working precision of the root balls, bits (128) */
+  long maxprec;     /* precision at which separation gives up (4096) */
+  int dim;          /* 3: volume condition (lambda1..3); 2: surface */
+  size_t max_block; /* largest diagonal block (one-ring or outer) whose
+                       characteristic polynomial is computed (default 400);
+                       larger: every verdict undecided, not certified */
+  int basis;        /* nonzero: enclose the subdominant basis on a pass */
+} ss_exact_opts;
+
+/* One distinct eigenvalue of S. */
+typedef struct {
+  double re, im; /* midpoint of its enclosure */
+  double rad;    /* radius of the enclosure: |true - (re + i im)| <= rad */
+  int mult;      /* algebraic multiplicity in S */
+  int degree;    /* degree of its minimal polynomial over Q */
+  int factor;    /* index of that polynomial among the merged factors */
+  int real;      /* 1 if proven real */
+  int tied_next; /* 1 if its modulus is proven equal to the next root's */
+} ss_exact_root;
+
+/* Defaults for dimension dim (2 or 3). */
+ss_exact_opts ss_exact_defaults(int dim);
+
+/* The exact eigenstructure of S (n x n, row-major, leading n1 x n1 block
+ * invariant as in ss_eig_new).  *out is owned by the caller (ss_exact_free).
+ * Fails with SS_ENUMERIC when an entry is not a rational of bounded
+ * denominator or a row does not sum to 1 (the message names the entry),
+ * SS_EINPUT for a malformed S or options, SS_ENOMEM.  A block beyond
+ * max_block or roots not separated at maxprec are not failures: the verdict
+ * says so.  Cost: dominated by the characteristic polynomial of A,
+ * O(n1^4) big-integer operations, and its factorisation. */
+ss_status ss_exact_new(const double *S, size_t n, size_t n1, const ss_exact_opts *o,
+                       ss_exact **out, ss_error *err);
+
+/* Free; NULL is a no-op. */
+void ss_exact_free(ss_exact *x);
+
+/* The certified eigenvalue condition: verdict, reason and *certified (1 if the
+ * verdict is proven, 0 if it is SS_UNDECIDED for want of proof). */
+void ss_exact_condition(const ss_exact *x, ss_verdict *v, int *certified);
+
+/* The distinct eigenvalues in the order above: *nroots of them, valid while x
+ * lives. */
+const ss_exact_root *ss_exact_roots(const ss_exact *x, size_t *nroots);
+
+/* The minimal polynomial of root r as text ("8*x^2 - 6*x + 1"), into buf of
+ * size len (truncated with "..." if longer).  Returns buf. */
+char *ss_exact_minpoly(const ss_exact *x, size_t r, char *buf, size_t len);
+
+/* Enclosure of the subdominant basis (see above): lo, hi receive n * m values,
+ * column-major (column j = basis vector j, rows in S's order).  SS_EINPUT if
+ * the condition is not a certified pass or the basis was not requested;
+ * SS_ENUMERIC if Rump's method or a block solve could not be verified at
+ * maxprec (then nothing about regularity can be certified). */
+ss_status ss_exact_basis(const ss_exact *x, double *lo, double *hi, ss_error *err);
+
+/* When lambda1..m are all rational, the basis is rational too: if every
+ * entry of an exact basis (the same X as ss_exact_basis encloses, or another
+ * basis of the same subspace) has numerator and denominator fitting in int64,
+ * fill num and den (n * m each, column-major, den > 0) and return 1; else
+ * return 0 and leave them unspecified. */
+int ss_exact_basis_rational(const ss_exact *x, long long *num, long long *den);
+
+/* The rational of denominator at most maxden nearest to s, accepted under the
+ * rule above (|s - p/q| <= 2^-40 max(1, |s|)): 1 with *p / *q in lowest
+ * terms (q > 0), else 0.  The same reconstruction ss_exact_new applies to S,
+ * for callers that need other rows of the rule exactly. */
+int ss_exact_rational(double s, long maxden, long long *p, long long *q);
+
+#endif
