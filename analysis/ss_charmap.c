@@ -1,11 +1,17 @@
-/* ss_charmap.c — the characteristic map's control net and its regularity.
- * Method and verdicts: ss_charmap.h. */
+/* ss_charmap.c — the characteristic map's control net, normalised, and its
+ * regularity judged on the ring.  Method and verdicts: ss_charmap.h. */
 #include "ss_charmap.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <lapacke.h>
+
+ss_charmap_opts ss_charmap_defaults(void) {
+  return (ss_charmap_opts){SS_JAC_DEPTH, 3, 0.5};
+}
 
 void ss_charmap_free(ss_charmap *cm) {
   if (!cm) return;
@@ -16,10 +22,92 @@ void ss_charmap_free(ss_charmap *cm) {
   free(cm);
 }
 
+/* Push a net (dim coordinates per point) through ring level R: out[i] = sum
+ * of R's row i applied to prev. */
+static void push(const ss_local_ring *R, const double *prev, int dim, double *out) {
+  for (size_t i = 0; i < R->nv; i++) {
+    double v[3] = {0.0, 0.0, 0.0};
+    for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++)
+      for (int d = 0; d < dim; d++)
+        v[d] += R->w[q] * prev[R->col[q] * (size_t)dim + (size_t)d];
+    for (int d = 0; d < dim; d++)
+      out[i * (size_t)dim + (size_t)d] = v[d];
+  }
+}
+
+/* Translate x (n points) to the centroid of the ring's points and map it by
+ * C^(-1/2) (ss_charmap.h).  The ring's points: the corners of ring level 0's
+ * cells, pushed from x; without a ring, the two-ring itself.  Returns 0, -1
+ * out of memory, -2 if the points span less than dim dimensions. */
+static int normalise(double *x, size_t n, int dim, const ss_local *M) {
+  double *pts = x;
+  size_t np = n;
+  unsigned char *use = NULL;
+  double *net = NULL;
+  int rc = -1;
+  if (M->nring > 0) {
+    const ss_local_ring *R = M->ring;
+    net = malloc((R->nv * (size_t)dim + 1) * sizeof *net);
+    use = calloc(R->nv + 1, 1);
+    if (!net || !use) goto done;
+    push(R, x, dim, net);
+    for (size_t q = 0; q < R->ncells * SS_MAXCELLVERTS; q++)
+      if (R->corner[q] != SIZE_MAX) use[R->corner[q]] = 1;
+    pts = net;
+    np = R->nv;
+  }
+  double mean[3] = {0, 0, 0}, C[9] = {0}, cnt = 0.0;
+  for (size_t i = 0; i < np; i++) {
+    if (use && !use[i]) continue;
+    cnt += 1.0;
+    for (int d = 0; d < dim; d++)
+      mean[d] += pts[i * (size_t)dim + (size_t)d];
+  }
+  for (int d = 0; d < dim; d++)
+    mean[d] /= cnt;
+  for (size_t i = 0; i < np; i++) {
+    if (use && !use[i]) continue;
+    for (int a = 0; a < dim; a++)
+      for (int b = 0; b < dim; b++)
+        C[a * dim + b] += (pts[i * (size_t)dim + (size_t)a] - mean[a]) *
+                          (pts[i * (size_t)dim + (size_t)b] - mean[b]) / cnt;
+  }
+  double mu[3];
+  if (LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'V', 'U', dim, C, dim, mu)) goto done;
+  if (!(mu[0] > 1e-14 * mu[dim - 1])) { /* ascending order */
+    rc = -2;
+    goto done;
+  }
+  double W[9]; /* V diag(mu^-1/2) V^T, symmetric */
+  for (int a = 0; a < dim; a++)
+    for (int b = 0; b < dim; b++) {
+      double s = 0.0;
+      for (int k = 0; k < dim; k++)
+        s += C[a * dim + k] * C[b * dim + k] / sqrt(mu[k]);
+      W[a * dim + b] = s;
+    }
+  for (size_t i = 0; i < n; i++) {
+    double v[3];
+    for (int d = 0; d < dim; d++)
+      v[d] = x[i * (size_t)dim + (size_t)d] - mean[d];
+    for (int b = 0; b < dim; b++) {
+      double s = 0.0;
+      for (int a = 0; a < dim; a++)
+        s += v[a] * W[a * dim + b];
+      x[i * (size_t)dim + (size_t)b] = s;
+    }
+  }
+  rc = 0;
+done:
+  free(net);
+  free(use);
+  return rc;
+}
+
 ss_status ss_charmap_new(const ss_local *M, const ss_eig *e, ss_charmap **out,
                          ss_error *err) {
   *out = NULL;
-  if (!e->basis || e->n != M->n2 || e->m < 2 || e->m > 3)
+  if (!e->basis || e->n != M->n2 || e->m < 2 || e->m > 3 || M->dim != e->m)
     return ss_error_set(err, SS_EINPUT,
                         "no characteristic map: the eigenstructure has no subdominant "
                         "basis for this matrix");
@@ -39,29 +127,19 @@ ss_status ss_charmap_new(const ss_local *M, const ss_eig *e, ss_charmap **out,
     ss_charmap_free(cm);
     return ss_error_nomem(err, "characteristic map");
   }
-  /* scale: eigenvectors each to unit norm (each is unique up to scale and
-   * sign); a Schur basis by one common factor, so that the map stays unique
-   * up to a rotation (a different orthonormal basis of the same subspace) */
-  const int eigvec = !strcmp(e->basis_kind, "eigenvectors");
-  double norms[3], mean = 0.0;
   for (int j = 0; j < m; j++) {
-    const double *col = e->basis + (size_t)j * n;
-    norms[j] = 0.0;
     for (size_t i = 0; i < n; i++)
-      norms[j] = hypot(norms[j], col[i]);
-    if (!(norms[j] > 0.0)) {
-      ss_charmap_free(cm);
-      return ss_error_set(err, SS_ENUMERIC,
-                          "no characteristic map: basis column %d vanishes", j + 1);
-    }
-    mean += norms[j] / m;
-  }
-  for (int j = 0; j < m; j++) {
-    const double *col = e->basis + (size_t)j * n;
-    const double scale = eigvec ? norms[j] : mean;
-    for (size_t i = 0; i < n; i++)
-      cm->x[i * (size_t)m + (size_t)j] = col[i] / scale;
+      cm->x[i * (size_t)m + (size_t)j] = e->basis[(size_t)j * n + i];
     cm->lambda[j] = e->val[j + 1].re;
+  }
+  const int rc = normalise(cm->x, n, m, M);
+  if (rc) {
+    ss_charmap_free(cm);
+    return rc == -1 ? ss_error_nomem(err, "characteristic map")
+                    : ss_error_set(err, SS_ENUMERIC,
+                                   "no characteristic map: the subdominant basis spans "
+                                   "less than %d dimensions on the ring",
+                                   m);
   }
   if (M->ncells) { /* a matrix given without its cells has none to copy */
     memcpy(cm->ctype, M->ctype, M->ncells * sizeof *cm->ctype);
@@ -71,94 +149,175 @@ ss_status ss_charmap_new(const ss_local *M, const ss_eig *e, ss_charmap **out,
   return SS_OK;
 }
 
-void ss_charmap_regularity(ss_charmap *cm, int maxdepth, ss_regularity *r) {
-  memset(r, 0, sizeof *r);
-  r->depth = maxdepth;
-  r->worst_cell = SIZE_MAX;
-  r->min_scaled_jacobian = NAN;
-  size_t first_folded = SIZE_MAX, first_undecided = SIZE_MAX, first_pos = SIZE_MAX,
-         first_neg = SIZE_MAX;
-  for (size_t c = 0; c < cm->ncells; c++) {
-    double x[SS_MAXCELLVERTS * 3];
-    const ss_cell_type t = cm->ctype[c];
-    const int nv = ss_cell_nverts(t);
+/* Judge ncells cells of the net x (dim coordinates per point) into *L, each
+ * cell's result into jac[c]. */
+static void judge(size_t ncells, const ss_cell_type *ctype, const size_t *corner,
+                  const double *x, int dim, int depth, ss_ring_level *L,
+                  ss_jac_result *jac) {
+  memset(L, 0, sizeof *L);
+  L->cells = ncells;
+  L->worst_cell = SIZE_MAX;
+  L->min_scaled_jacobian = NAN;
+  for (size_t c = 0; c < ncells; c++) {
+    double y[SS_MAXCELLVERTS * 3];
+    const int nv = ss_cell_nverts(ctype[c]);
     for (int j = 0; j < nv; j++)
-      for (int d = 0; d < cm->dim; d++)
-        x[j * cm->dim + d] =
-            cm->x[cm->corner[c * SS_MAXCELLVERTS + (size_t)j] * (size_t)cm->dim +
-                  (size_t)d];
-    ss_jac_cell(t, x, cm->dim, maxdepth, cm->jac + c);
-    switch (cm->jac[c].sign) {
-    case SS_JAC_POSITIVE:
-      if (r->npositive++ == 0) first_pos = c;
-      break;
-    case SS_JAC_NEGATIVE:
-      if (r->nnegative++ == 0) first_neg = c;
-      break;
-    case SS_JAC_FOLDED:
-      if (r->nfolded++ == 0) first_folded = c;
-      break;
-    default:
-      if (r->nundecided++ == 0) first_undecided = c;
-      break;
+      for (int d = 0; d < dim; d++)
+        y[j * dim + d] =
+            x[corner[c * SS_MAXCELLVERTS + (size_t)j] * (size_t)dim + (size_t)d];
+    ss_jac_cell(ctype[c], y, dim, depth, jac + c);
+    L->positive += jac[c].sign == SS_JAC_POSITIVE;
+    L->negative += jac[c].sign == SS_JAC_NEGATIVE;
+    L->folded += jac[c].sign == SS_JAC_FOLDED;
+    L->undecided += jac[c].sign == SS_JAC_UNDECIDED;
+    L->degenerate += jac[c].sign == SS_JAC_DEGENERATE;
+  }
+  L->sign = L->negative > L->positive ? -1 : 1;
+  for (size_t c = 0; c < ncells; c++) {
+    /* a cell of one strict sign opposite to most counts as minus its own
+     * quality (the smallest |corner value|), so the measure stays in [-1, 1]
+     * and a mirrored cell scores exactly the negative */
+    const ss_jac_result *j = jac + c;
+    const int opposite = (L->sign > 0 && j->sign == SS_JAC_NEGATIVE) ||
+                         (L->sign < 0 && j->sign == SS_JAC_POSITIVE);
+    L->inverted += opposite;
+    if (j->sign == SS_JAC_DEGENERATE) continue; /* no sign, no margin */
+    const double s = opposite      ? (L->sign > 0 ? j->max_scaled : -j->min_scaled)
+                     : L->sign > 0 ? j->min_scaled
+                                   : -j->max_scaled;
+    if (L->worst_cell == SIZE_MAX || s < L->min_scaled_jacobian) {
+      L->min_scaled_jacobian = s;
+      L->worst_cell = c;
     }
   }
+  L->bad_fraction = ncells ? (double)(L->folded + L->inverted) / (double)ncells : 0.0;
+}
+
+/* Whether a level's cells are all of one strict sign. */
+static int clean(const ss_ring_level *L) {
+  return L->cells > 0 && L->folded == 0 && L->inverted == 0 && L->undecided == 0 &&
+         L->degenerate == 0;
+}
+
+/* Fill the summary fields of r from level l. */
+static void take(ss_regularity *r, int l) {
+  const ss_ring_level *L = r->level + l;
+  r->ring_level = l;
+  r->sign = L->sign;
+  r->min_scaled_jacobian = L->min_scaled_jacobian;
+  r->worst_cell = L->worst_cell;
+  r->npositive = L->positive;
+  r->nnegative = L->negative;
+  r->nfolded = L->folded;
+  r->nundecided = L->undecided;
+  r->ndegenerate = L->degenerate;
+  r->ninverted = L->inverted;
+}
+
+/* The verdict from the judged levels 0 .. r->nlevels - 1 (ss_charmap.h). */
+static void decide(ss_regularity *r, int want) {
   ss_verdict *v = &r->verdict;
-  if (cm->ncells == 0) {
+  v->reason[0] = '\0';
+  for (int l = 0; l < r->nlevels; l++)
+    if (clean(r->level + l)) {
+      take(r, l);
+      v->verdict = SS_PASS;
+      return;
+    }
+  const int last = r->nlevels - 1;
+  take(r, last);
+  if (want > r->nlevels) r->want_levels = want;
+  const ss_ring_level *L = r->level + last;
+  if (L->folded + L->inverted == 0) {
     v->verdict = SS_UNDECIDED;
-    snprintf(v->reason, sizeof v->reason, "the two-ring has no cells");
+    if (L->undecided)
+      snprintf(v->reason, sizeof v->reason,
+               "ring level %d: %zu of %zu cells still in doubt at hex subdivision depth "
+               "%d",
+               last, L->undecided, L->cells, r->depth);
+    else
+      snprintf(v->reason, sizeof v->reason,
+               "ring level %d: %zu of %zu cells flat to rounding (|det J| <= %.0e L^d): "
+               "no sign in double precision",
+               last, L->degenerate, L->cells, SS_JAC_FLAT);
     return;
   }
-  r->sign = r->nnegative > r->npositive ? -1 : 1;
-  for (size_t c = 0; c < cm->ncells; c++) {
-    /* the margin, oriented by the common sign.  A cell of one strict sign
-     * opposite to it counts as minus its own quality (the smallest |corner
-     * value|), not as its most negative corner: corner values of a tet reach
-     * sqrt(2) in size, the quality never exceeds 1, so the measure stays in
-     * [-1, 1] and a mirrored cell scores exactly the negative. */
-    const ss_jac_result *j = cm->jac + c;
-    const int opposite = (r->sign > 0 && j->sign == SS_JAC_NEGATIVE) ||
-                         (r->sign < 0 && j->sign == SS_JAC_POSITIVE);
-    const double s = opposite      ? (r->sign > 0 ? j->max_scaled : -j->min_scaled)
-                     : r->sign > 0 ? j->min_scaled
-                                   : -j->max_scaled;
-    if (r->worst_cell == SIZE_MAX || s < r->min_scaled_jacobian) {
-      r->min_scaled_jacobian = s;
-      r->worst_cell = c;
+  char what[128];
+  snprintf(what, sizeof what,
+           "%zu of %zu cells folded, %zu inverted (min scaled Jacobian %.3g)", L->folded,
+           L->cells, L->inverted, L->min_scaled_jacobian);
+  if (last == 0) {
+    v->verdict = SS_FAIL;
+    snprintf(v->reason, sizeof v->reason, "ring level 0: %s; one ring level judged",
+             what);
+    return;
+  }
+  const ss_ring_level *P = r->level + last - 1;
+  const size_t was = P->folded + P->inverted;
+  const double ratio =
+      P->bad_fraction > 0.0 ? L->bad_fraction / P->bad_fraction : (double)INFINITY;
+  v->verdict = ratio >= r->shrink ? SS_FAIL : SS_UNDECIDED;
+  snprintf(v->reason, sizeof v->reason,
+           "ring level %d: %s; %s under refinement (%zu bad cells on level %d: fraction "
+           "ratio %.2f %s %.2f)%s",
+           last, what, ratio >= r->shrink ? "the fold persists" : "shrinking", was,
+           last - 1, ratio, ratio >= r->shrink ? ">=" : "<", r->shrink,
+           ratio >= r->shrink ? "" : ": det J may vanish on a curve, not decided");
+}
+
+static void no_map(ss_regularity *r, const ss_charmap_opts *o) {
+  memset(r, 0, sizeof *r);
+  r->depth = o->depth;
+  r->shrink = o->shrink;
+  r->worst_cell = SIZE_MAX;
+  r->ring_level = -1;
+  r->min_scaled_jacobian = NAN;
+}
+
+ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
+                                const ss_charmap_opts *o, ss_regularity *r,
+                                ss_error *err) {
+  no_map(r, o);
+  const int dim = cm->dim;
+  const int nl = M->nring < o->ring_levels ? M->nring : o->ring_levels;
+  /* the two-ring's own cells, for pictures and the centre's count */
+  ss_ring_level two;
+  judge(cm->ncells, cm->ctype, cm->corner, cm->x, dim, o->depth, &two, cm->jac);
+  if (nl < 1) {
+    r->verdict.verdict = SS_UNDECIDED;
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "the local matrix carries no ring to judge the map on");
+    return SS_OK;
+  }
+  double *prev = cm->x, *net = NULL;
+  for (int l = 0; l < nl; l++) {
+    const ss_local_ring *R = M->ring + l;
+    net = malloc((R->nv * (size_t)dim + 1) * sizeof *net);
+    ss_jac_result *jac = malloc((R->ncells + 1) * sizeof *jac);
+    if (!net || !jac) {
+      if (prev != cm->x) free(prev);
+      free(net);
+      free(jac);
+      return ss_error_nomem(err, "ring net");
     }
+    push(R, prev, dim, net);
+    if (prev != cm->x) free(prev);
+    judge(R->ncells, R->ctype, R->corner, net, dim, o->depth, r->level + l, jac);
+    free(jac);
+    r->nlevels = l + 1;
+    prev = net;
+    if (clean(r->level + l)) break;
   }
-  const char *sname = r->sign > 0 ? "positive" : "negative";
-  if (r->nfolded) {
-    const size_t c = first_folded;
-    const ss_jac_result *j = cm->jac + c;
-    v->verdict = SS_FAIL;
-    snprintf(v->reason, sizeof v->reason,
-             "%s %zu of %zu folds: its Jacobian determinant vanishes or changes sign "
-             "(near parameter (%.3g, %.3g, %.3g)); %zu folded cells",
-             ss_cell_name(cm->ctype[c]), c, cm->ncells, j->where[0], j->where[1],
-             j->where[2], r->nfolded);
-    r->worst_cell = c;
-  } else if (r->npositive && r->nnegative) {
-    const size_t c = r->sign > 0 ? first_neg : first_pos;
-    v->verdict = SS_FAIL;
-    snprintf(v->reason, sizeof v->reason,
-             "cells of both orientations: %zu positive, %zu negative (e.g. %s %zu is "
-             "%s, most are %s)",
-             r->npositive, r->nnegative, ss_cell_name(cm->ctype[c]), c,
-             r->sign > 0 ? "negative" : "positive", sname);
-    r->worst_cell = c;
-  } else if (r->nundecided) {
-    const size_t c = first_undecided;
-    v->verdict = SS_UNDECIDED;
-    snprintf(v->reason, sizeof v->reason,
-             "%s %zu: the Bernstein test is still in doubt at subdivision depth %d (%zu "
-             "such cells)",
-             ss_cell_name(cm->ctype[c]), c, maxdepth, r->nundecided);
-    r->worst_cell = c;
-  } else {
-    v->verdict = SS_PASS;
-    v->reason[0] = '\0';
+  free(net);
+  decide(r, o->ring_levels);
+  for (size_t c = 0; c < cm->ncells; c++) {
+    int centre = 0;
+    for (int j = 0; j < SS_MAXCELLVERTS && !centre; j++)
+      centre = cm->corner[c * SS_MAXCELLVERTS + (size_t)j] == 0;
+    const ss_jac_sign want = r->sign < 0 ? SS_JAC_NEGATIVE : SS_JAC_POSITIVE;
+    r->centre_corner_folds += centre && cm->jac[c].sign != want;
   }
+  return SS_OK;
 }
 
 /* Whether the condition failed because a subdominant eigenvalue is complex. */
@@ -168,13 +327,10 @@ static int complex_subdominant(const ss_eig *e) {
   return 0;
 }
 
-ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, int maxdepth,
+ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, const ss_charmap_opts *o,
                              ss_charmap **cm, ss_regularity *r, ss_error *err) {
   *cm = NULL;
-  memset(r, 0, sizeof *r);
-  r->depth = maxdepth;
-  r->worst_cell = SIZE_MAX;
-  r->min_scaled_jacobian = NAN;
+  no_map(r, o);
   ss_verdict *v = &r->verdict;
   if (e->cond.verdict != SS_PASS || !e->basis) {
     if (complex_subdominant(e)) {
@@ -205,6 +361,14 @@ ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, int maxdepth,
     v->reason[len] = '\0';
     return SS_OK;
   }
-  ss_charmap_regularity(*cm, maxdepth, r);
-  return SS_OK;
+  return ss_charmap_regularity(*cm, M, o, r, err);
+}
+
+ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
+                           const ss_eig *e, const ss_charmap_opts *o, ss_charmap **cm,
+                           ss_regularity *r, ss_error *err) {
+  ss_status st = ss_charmap_analyze(M, e, o, cm, r, err);
+  if (st || !*cm || r->want_levels <= M->nring) return st;
+  if ((st = ss_local_ring_deepen(s, c, r->want_levels, M, err))) return st;
+  return ss_charmap_regularity(*cm, M, o, r, err);
 }

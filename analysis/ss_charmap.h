@@ -1,31 +1,50 @@
-/* ss_charmap.h — the characteristic map on the two-ring and its regularity
- * under multilinear interpolation (DESIGN sections 1 and 5).
+/* ss_charmap.h — the characteristic map's control net and its regularity,
+ * judged on the map's ring (DESIGN sections 1, 5 and 10).
  *
- * The characteristic map's control net places two-ring point i at
- * (z1[i], .., zm[i]), the rows of the subdominant basis (ss_eig): eigenvectors
- * of lambda1..lambdam, or an orthonormal basis of their invariant subspace when
- * they repeat or cluster.  Any two bases differ by an invertible linear map,
- * which changes no Jacobian's strictness of sign, only possibly all signs at
- * once, so the verdict does not depend on the basis.  Scaling, which the
- * verdict ignores but the scaled Jacobian and pictures see: eigenvectors each
- * to unit Euclidean norm over the two-ring (each is unique up to scale and
- * sign), a Schur basis by one common factor to mean column norm 1 (another
- * orthonormal basis of the subspace differs by a rotation).  Either way the
- * map of a case is unique up to a similarity, so the minimum scaled Jacobian
- * does not change when a link is relabelled.
+ * The control net places two-ring point i at (z1[i], .., zm[i]), the rows of
+ * the subdominant basis (ss_eig): eigenvectors of lambda1..lambdam, or a basis
+ * of their invariant subspace when they repeat or cluster.  Any two bases
+ * differ by an invertible linear map G, which changes no Jacobian's
+ * strictness of sign, only possibly all signs at once, so verdicts do not
+ * depend on the basis.  The scaled Jacobian does, so the net is normalised:
+ * translated to the centroid of the ring's points (the corners of ring level
+ * 0's cells, below) and mapped by C^(-1/2), C their covariance matrix, which
+ * makes that point cloud isotropic (covariance I).  For another basis, X G,
+ * this gives the same net up to an orthogonal map (C^(1/2) G = U P, polar
+ * decomposition: (X - m) G (G^T C G)^(-1/2) = (X - m) C^(-1/2) U), and
+ * scaled Jacobians are invariant under orthogonal maps up to their common
+ * sign, which the orientation below absorbs: the minimum scaled Jacobian is
+ * a property of the case, not of LAPACK's basis.
  *
- * Regularity: every cell of the two-ring (ss_local's cells) mapped by its
- * natural interpolant (ss_jac) has a Jacobian determinant of one strict sign,
- * and all cells the same sign (the cells are consistently oriented).  Verdict:
- *   fail       a folded cell (which cell, where), or cells of both signs; or,
- *              with no map, complex or defective subdominant eigenvalues;
- *   undecided  a hex still in doubt at the subdivision depth limit; or no map
- *              because the eigenvalue condition fails otherwise (e.g. lambda3
- *              not above |lambda4|: the subdominant subspace is not defined);
- *   pass       otherwise.
- * The minimum scaled Jacobian (ss_jac) over the cells, times the common sign
- * (the sign of most cells), measures the margin: positive on a pass, <= 0 when
- * some cell is inverted or degenerate. */
+ * Where regularity is judged.  psi is self-similar, psi(lambda .) = Lambda
+ * psi on the cells around p, so psi is regular iff it is regular on its ring
+ * (ss_local.h): ring level r = the cells of grid level w + 1 + r inside the
+ * cells around p on level w and outside those on level w + 1, their control
+ * points pushed from the two-ring by r + 1 applications of the global rule
+ * (ring level 0 is the two-ring's cells that do not touch p, as S maps them).
+ * The multilinear interpolant of ring level r converges to psi as r grows.
+ * The two-ring's cells that touch p are not part of it: their interpolant's
+ * Jacobian at the centre corner is not a value of psi's, so a fold there
+ * decides nothing; such cells are counted (centre_corner_folds) and do not
+ * fail the verdict.
+ *
+ * Verdict, levels r = 0, 1, .., L - 1 (opts.ring_levels = L):
+ *   pass       at the first level whose cells are all of one strict sign;
+ *   fail       a fold or cells of both orientations at the last level, which
+ *              persists: the fraction of ring cells that fold or are inverted
+ *              has not fallen below opts.shrink times the previous level's
+ *              (a fold of psi over a region keeps its fraction as the cells
+ *              shrink, i.e. its cell count grows about 8x per level; a
+ *              Jacobian that vanishes on a curve leaves a chain of bad cells
+ *              whose count only doubles: fraction x 1/4); also, with no map,
+ *              complex or defective subdominant eigenvalues;
+ *   undecided  a fold that shrinks from level to level (the mark of a
+ *              Jacobian that vanishes on a curve or surface: neither pass nor
+ *              fail by this test), cells still in doubt (hex subdivision
+ *              depth) or flat to rounding at the last level, or no map because
+ *              the eigenvalue condition fails otherwise.
+ * The minimum scaled Jacobian (ss_jac) is over the deciding (else the last)
+ * level's ring cells, times their common sign. */
 #ifndef SS_CHARMAP_H
 #define SS_CHARMAP_H
 
@@ -38,43 +57,97 @@ typedef struct {
   int dim;             /* coordinates per point: m = 3 (volume) or 2 (surface) */
   size_t n;            /* points: the two-ring, in the order of the labels */
   size_t n1;           /* the first n1 points are the one-ring */
-  double *x;           /* n * dim coordinates, point by point */
+  double *x;           /* n * dim coordinates, point by point, normalised */
   double lambda[3];    /* lambda1..lambdam (real parts) */
   size_t ncells;       /* cells of the two-ring (copied from ss_local) */
   ss_cell_type *ctype; /* ncells cell types */
   size_t *corner;      /* ncells * SS_MAXCELLVERTS corner point indices */
-  ss_jac_result *jac;  /* ncells per-cell results (after ss_charmap_regularity) */
+  ss_jac_result *jac;  /* ncells per-cell results of the two-ring's cells
+                          (after ss_charmap_regularity; for pictures) */
 } ss_charmap;
+
+/* Options of the regularity test. */
+typedef struct {
+  int depth;       /* hex subdivision depth limit of ss_jac (SS_JAC_DEPTH) */
+  int ring_levels; /* ring levels judged at most, 1..SS_LOCAL_MAXRING (3) */
+  double shrink;   /* a fold shrinks when its fraction of the ring's cells
+                      falls below shrink times the previous level's (0.5: a
+                      fold over a region keeps its fraction, one along a curve
+                      falls 4x per level) */
+} ss_charmap_opts;
+
+/* One ring level's cells by verdict. */
+typedef struct {
+  size_t cells;               /* ring cells of the level */
+  size_t positive, negative;  /* of one strict sign (ss_jac) */
+  size_t folded;              /* whose sign changes inside (or vanishes) */
+  size_t undecided;           /* in doubt (hex depth limit, rounding) */
+  size_t degenerate;          /* flat to rounding: no sign */
+  int sign;                   /* +1 or -1: the orientation of most cells */
+  size_t inverted;            /* cells of one strict sign opposite to it */
+  double min_scaled_jacobian; /* oriented minimum over the cells (ss_jac) */
+  size_t worst_cell;          /* the cell giving it */
+  double bad_fraction;        /* (folded + inverted) / cells: what must not
+                                 shrink for a fold to persist */
+} ss_ring_level;
 
 /* The regularity verdict. */
 typedef struct {
   ss_verdict verdict;         /* pass, fail or undecided, with the reason */
   double min_scaled_jacobian; /* see above; NaN when there is no map */
-  int sign;                   /* +1 or -1: the orientation of most cells; 0: none */
-  size_t worst_cell;          /* the cell giving the minimum (or the failing one);
-                                 SIZE_MAX when there is no map */
-  size_t npositive, nnegative, nfolded, nundecided; /* cells by ss_jac verdict */
-  int depth; /* the hex subdivision depth limit used */
+  int sign;                   /* +1 or -1: the orientation of the ring; 0: none */
+  size_t worst_cell;          /* in the deciding level's ring cells; SIZE_MAX when
+                                 there is no map */
+  size_t npositive, nnegative, nfolded, nundecided; /* the deciding (else the
+                                                       last) level's ring cells */
+  size_t ndegenerate;                               /* of those, flat to rounding */
+  size_t ninverted;           /* of those, of one strict sign opposite to most */
+  size_t centre_corner_folds; /* two-ring cells around p not of the ring's
+                                 sign (folded, inverted, in doubt or flat):
+                                 reported, never a failure */
+  int ring_level;             /* the level that decided; the last judged if none
+                                 did; -1 without a map */
+  int nlevels;                /* ring levels judged */
+  ss_ring_level level[SS_LOCAL_MAXRING]; /* each judged level */
+  int depth;                             /* the hex subdivision depth limit used */
+  double shrink;                         /* the shrink ratio used */
+  int want_levels;                       /* > nlevels when the verdict would be judged on
+                                            deeper ring levels than M has (ss_charmap_judge
+                                            builds them) */
 } ss_regularity;
 
+/* Defaults: depth SS_JAC_DEPTH, 3 ring levels, shrink 0.5. */
+ss_charmap_opts ss_charmap_defaults(void);
+
 /* The characteristic map of case M with eigenstructure e (which must carry a
- * subdominant basis).  *out is owned by the caller (ss_charmap_free).
- * SS_EINPUT if e has no basis or sizes disagree; SS_ENOMEM. */
+ * subdominant basis), normalised as above.  *out is owned by the caller
+ * (ss_charmap_free).  SS_EINPUT if e has no basis or sizes disagree;
+ * SS_ENUMERIC if the basis is degenerate on the ring; SS_ENOMEM. */
 ss_status ss_charmap_new(const ss_local *M, const ss_eig *e, ss_charmap **out,
                          ss_error *err);
 
 void ss_charmap_free(ss_charmap *cm);
 
-/* Judge every cell (filling cm->jac) and summarise into *r, with hex
- * subdivision to maxdepth levels (SS_JAC_DEPTH by default).  Cannot fail. */
-void ss_charmap_regularity(ss_charmap *cm, int maxdepth, ss_regularity *r);
+/* Judge the map on M's ring levels (at most o->ring_levels of them; M is the
+ * case cm was made from, read during the call only) and the two-ring's cells
+ * (filling cm->jac), summarised into *r.  SS_ENOMEM only. */
+ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
+                                const ss_charmap_opts *o, ss_regularity *r,
+                                ss_error *err);
 
 /* The whole second half of the verdict for one case: when e allows a map,
  * build it (*cm, caller frees; may be NULL on return) and judge it; otherwise
  * the verdict without a map (fail for complex or defective subdominant
  * eigenvalues, undecided for any other failure of the eigenvalue condition).
  * SS_ENOMEM only. */
-ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, int maxdepth,
+ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, const ss_charmap_opts *o,
                              ss_charmap **cm, ss_regularity *r, ss_error *err);
+
+/* As ss_charmap_analyze, and when the verdict wants deeper ring levels than M
+ * has, rebuild M's ring deeper (ss_local_ring_deepen, for scheme s and case c
+ * that M was made from) and judge again.  Errors: those of the two calls. */
+ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
+                           const ss_eig *e, const ss_charmap_opts *o, ss_charmap **cm,
+                           ss_regularity *r, ss_error *err);
 
 #endif

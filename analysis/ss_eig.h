@@ -38,7 +38,7 @@ typedef enum { SS_PASS = 0, SS_FAIL, SS_UNDECIDED } ss_verdict_kind;
 /* A verdict and its reason. */
 typedef struct {
   ss_verdict_kind verdict; /* pass, fail or undecided */
-  char reason[256];        /* why (empty when passing) */
+  char reason[512];        /* why (empty when passing) */
 } ss_verdict;
 
 /* One eigenvalue of S. */

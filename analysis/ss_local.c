@@ -246,7 +246,10 @@ static ss_status finish_level(work *W, int l, ss_error *err) {
  * only cost room (a deeper level), never a wrong row: every row read belongs
  * to an inner vertex of the complex the operator was built from. */
 #define PEEL_FROM 4
-static ss_status peel(level *L, ss_error *err) {
+/* With `near` (marks of L's vertices) instead: drop every cell with a vertex
+ * farther from p than margin plus the farthest marked vertex (the ring's
+ * deeper levels need only a neighbourhood of Omega_w). */
+static ss_status peel(level *L, const unsigned char *near, int margin, ss_error *err) {
   ss_cx *cx = L->cx;
   const size_t nv = cx->nv;
   const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
@@ -301,7 +304,14 @@ static ss_status peel(level *L, ss_error *err) {
     }
   }
   free(ptr), free(inc), free(queue);
-  if (r >= PEEL_FROM) {
+  int cut = r; /* cells reaching dist >= cut go */
+  if (near) {
+    int rho = 0;
+    for (size_t v = 0; v < nv; v++)
+      if (near[v] && dist[v] > rho) rho = dist[v];
+    cut = rho + margin + 1;
+  }
+  if (near || r >= PEEL_FROM) {
     for (int t = 0; t < SS_NCELLTYPES; t++) {
       const int n = ss_cell_nverts((ss_cell_type)t);
       size_t kept = 0;
@@ -309,7 +319,7 @@ static ss_status peel(level *L, ss_error *err) {
         const ss_idx *v = cx->cells[t] + i * (size_t)n;
         int far = 0;
         for (int j = 0; j < n && !far; j++)
-          far = dist[v[j]] < 0 || dist[v[j]] >= r;
+          far = dist[v[j]] < 0 || dist[v[j]] >= cut;
         if (far) continue;
         memmove(cx->cells[t] + kept * (size_t)n, v, (size_t)n * sizeof *v);
         if (cx->cref[t]) cx->cref[t][kept] = cx->cref[t][i];
@@ -322,14 +332,15 @@ static ss_status peel(level *L, ss_error *err) {
   return SS_OK;
 }
 
-/* Refine the last level once more. */
-static ss_status add_level(work *W, ss_error *err) {
+/* Refine the last level once more, peeled first (peel's near and margin). */
+static ss_status add_level(work *W, const unsigned char *near, int margin,
+                           ss_error *err) {
   if (W->nlev == MAXLEVELS)
     return ss_error_set(err, SS_EINTERNAL, "no stationary neighbourhood within %d levels",
                         MAXLEVELS);
   level *C = W->lev + W->nlev - 1, *F = W->lev + W->nlev;
   if (W->nlev - 1 > 0 && W->nlev - 1 >= W->lc) {
-    ss_status st = peel(C, err);
+    ss_status st = peel(C, near, margin, err);
     if (st) return st;
   }
   if (ss_scheme_reach(W->scheme) > 1) {
@@ -487,6 +498,15 @@ static int read_matrix(const work *W, int l, const ss_local *M, double *S, size_
   return OK;
 }
 
+/* Index of the label x among M's labels (sorted within the one-ring and
+ * within the rest), or SIZE_MAX. */
+static size_t label_index(const ss_local *M, const ss_star_coord *x) {
+  const ss_star_coord *hit = bsearch(x, M->label, M->n1, sizeof *M->label, label_cmp);
+  if (!hit)
+    hit = bsearch(x, M->label + M->n1, M->n2 - M->n1, sizeof *M->label, label_cmp);
+  return hit ? (size_t)(hit - M->label) : SIZE_MAX;
+}
+
 /* The top cells of level w (L) with every corner in the two-ring (marks t2),
  * corners as label indices.  OK or HARD (with err). */
 static int collect_cells(const level *L, const unsigned char *t2, ss_local *M,
@@ -513,18 +533,12 @@ static int collect_cells(const level *L, const unsigned char *t2, ss_local *M,
         for (int j = 0; j < SS_MAXCELLVERTS; j++) {
           c[j] = SIZE_MAX;
           if (j >= nv) continue;
-          const ss_star_coord *x = L->rel + v[j];
-          /* labels are sorted within the one-ring and within the rest */
-          const ss_star_coord *hit =
-              bsearch(x, M->label, M->n1, sizeof *M->label, label_cmp);
-          if (!hit)
-            hit =
-                bsearch(x, M->label + M->n1, M->n2 - M->n1, sizeof *M->label, label_cmp);
-          if (!hit) {
+          c[j] = label_index(M, L->rel + v[j]);
+          if (c[j] == SIZE_MAX) {
             ss_error_set(err, SS_EINTERNAL, "a two-ring cell corner has no label");
             return HARD;
           }
-          c[j] = (size_t)(hit - M->label);
+          M->ncentre += c[j] == 0; /* label 0 is the centre */
         }
         M->ncells++;
       }
@@ -532,7 +546,7 @@ static int collect_cells(const level *L, const unsigned char *t2, ss_local *M,
     if (pass == 0) {
       M->ctype = malloc((n + 1) * sizeof *M->ctype);
       M->corner = malloc((n * SS_MAXCELLVERTS + 1) * sizeof *M->corner);
-      M->ncells = 0;
+      M->ncells = M->ncentre = 0;
       if (!M->ctype || !M->corner) {
         ss_error_nomem(err, "two-ring cells");
         return HARD;
@@ -681,6 +695,151 @@ done:
   return rc;
 }
 
+/* ---- the ring ---- */
+
+/* Whether the top cell v (nv corners) of a level has every corner marked. */
+static int all_marked(const ss_idx *v, int nv, const unsigned char *mark) {
+  for (int j = 0; j < nv; j++)
+    if (!mark[v[j]]) return 0;
+  return 1;
+}
+
+/* Ring level r on grid level l = w + 1 + r (ss_local.h): the top cells of
+ * level l inside Omega_w (om marks) and not inside Omega_{w+1} (om1 marks);
+ * counts them, or with M->ring[r] allocated, lists them with corners as
+ * vertex indices of level l (renumbered by the caller). */
+static size_t ring_cells(const level *L, const unsigned char *om,
+                         const unsigned char *om1, ss_local_ring *R) {
+  const ss_cx *cx = L->cx;
+  const int top = ss_cx_topdim(cx);
+  size_t n = 0;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    if (ss_cell_dim((ss_cell_type)t) != top) continue;
+    const int nv = ss_cell_nverts((ss_cell_type)t);
+    for (size_t i = 0; i < cx->nc[t]; i++) {
+      const ss_idx *v = ss_cx_cell(cx, (ss_cell_type)t, i);
+      if (!all_marked(v, nv, om) || all_marked(v, nv, om1)) continue;
+      if (R) {
+        R->ctype[n] = (ss_cell_type)t;
+        for (int j = 0; j < SS_MAXCELLVERTS; j++)
+          R->corner[n * SS_MAXCELLVERTS + (size_t)j] = j < nv ? v[j] : SIZE_MAX;
+      }
+      n++;
+    }
+  }
+  return n;
+}
+
+/* Build M's ring levels 0 .. nring - 1 from the levels w .. w + nring of W
+ * (which must exist).  OK or HARD (with err). */
+static int build_ring(const work *W, int w, int nring, ss_local *M, ss_error *err) {
+  const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
+  const size_t p0 = lookup(W->lev + w, &zero), p1 = lookup(W->lev + w + 1, &zero);
+  unsigned char *om[MAXLEVELS] = {NULL}, *om1[MAXLEVELS] = {NULL},
+                *need[MAXLEVELS] = {NULL};
+  size_t *idx[MAXLEVELS] = {NULL};
+  int rc = OK;
+  if (p0 == SIZE_MAX || p1 == SIZE_MAX || w + nring >= W->nlev) {
+    ss_error_set(err, SS_EINTERNAL, "ring: levels %d..%d are missing", w, w + nring);
+    rc = HARD;
+    goto done;
+  }
+  if (omega_marks(W, w, p0, om, err) || omega_marks(W, w + 1, p1, om1, err)) {
+    rc = HARD;
+    goto done;
+  }
+  for (int l = w; l <= w + nring; l++) {
+    need[l] = calloc(W->lev[l].cx->nv + 1, 1);
+    idx[l] = malloc((W->lev[l].cx->nv + 1) * sizeof *idx[l]);
+    if (!need[l] || !idx[l]) {
+      ss_error_nomem(err, "ring");
+      rc = HARD;
+      goto done;
+    }
+  }
+  /* the cells, then what their corners read, from the finest level down */
+  for (int r = 0; r < nring; r++) {
+    const int l = w + 1 + r;
+    ss_local_ring *R = M->ring + r;
+    R->ncells = ring_cells(W->lev + l, om[l - w], om1[l - w - 1], NULL);
+    R->ctype = malloc((R->ncells + 1) * sizeof *R->ctype);
+    R->corner = malloc((R->ncells * SS_MAXCELLVERTS + 1) * sizeof *R->corner);
+    if (!R->ctype || !R->corner) {
+      ss_error_nomem(err, "ring cells");
+      rc = HARD;
+      goto done;
+    }
+    ring_cells(W->lev + l, om[l - w], om1[l - w - 1], R);
+    for (size_t q = 0; q < R->ncells * SS_MAXCELLVERTS; q++)
+      if (R->corner[q] != SIZE_MAX) need[l][R->corner[q]] = 1;
+  }
+  for (int l = w + nring; l > w; l--) {
+    const level *C = W->lev + l - 1, *F = W->lev + l;
+    for (size_t f = 0; f < F->cx->nv; f++) {
+      if (!need[l][f]) continue;
+      if (!row_complete(C, F, f)) {
+        ss_error_set(err, SS_EINTERNAL,
+                     "ring level %d: the row of a point inside Omega_w is incomplete",
+                     l - w - 1);
+        rc = HARD;
+        goto done;
+      }
+      for (int q = C->R->p[f]; q < C->R->p[f + 1]; q++)
+        need[l - 1][C->R->i[q]] = 1;
+    }
+  }
+  /* number the kept points; level w's are the two-ring labels */
+  for (size_t v = 0; v < W->lev[w].cx->nv; v++) {
+    idx[w][v] = need[w][v] ? label_index(M, W->lev[w].rel + v) : SIZE_MAX;
+    if (need[w][v] && idx[w][v] == SIZE_MAX) {
+      ss_error_set(err, SS_EINTERNAL, "the ring reads a point outside the two-ring");
+      rc = HARD;
+      goto done;
+    }
+  }
+  for (int r = 0; r < nring; r++) {
+    const int l = w + 1 + r;
+    const level *C = W->lev + l - 1, *F = W->lev + l;
+    ss_local_ring *R = M->ring + r;
+    size_t nv = 0, nnz = 0;
+    for (size_t f = 0; f < F->cx->nv; f++) {
+      idx[l][f] = need[l][f] ? nv++ : SIZE_MAX;
+      if (need[l][f]) nnz += (size_t)(C->R->p[f + 1] - C->R->p[f]);
+    }
+    R->nv = nv;
+    R->nprev = r == 0 ? M->n2 : M->ring[r - 1].nv;
+    R->ptr = malloc((nv + 1) * sizeof *R->ptr);
+    R->col = malloc((nnz + 1) * sizeof *R->col);
+    R->w = malloc((nnz + 1) * sizeof *R->w);
+    if (!R->ptr || !R->col || !R->w) {
+      ss_error_nomem(err, "ring rows");
+      rc = HARD;
+      goto done;
+    }
+    size_t q = 0, i = 0;
+    for (size_t f = 0; f < F->cx->nv; f++) {
+      if (!need[l][f]) continue;
+      R->ptr[i++] = q;
+      for (int e = C->R->p[f]; e < C->R->p[f + 1]; e++) {
+        R->col[q] = idx[l - 1][C->R->i[e]];
+        R->w[q++] = C->R->data[e];
+      }
+    }
+    R->ptr[nv] = q;
+    for (size_t k = 0; k < R->ncells * SS_MAXCELLVERTS; k++)
+      if (R->corner[k] != SIZE_MAX) R->corner[k] = idx[l][R->corner[k]];
+    M->nring = r + 1;
+  }
+done:
+  for (int l = 0; l < MAXLEVELS; l++) {
+    free(om[l]);
+    free(om1[l]);
+    free(need[l]);
+    free(idx[l]);
+  }
+  return rc;
+}
+
 /* ---- cases and stars ---- */
 
 ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
@@ -750,7 +909,15 @@ ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
 
 ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
                        ss_error *err) {
+  return ss_local_new_ring(s, c, SS_LOCAL_RING, out, err);
+}
+
+ss_status ss_local_new_ring(const ss_scheme *s, const ss_case *c, int nring,
+                            ss_local **out, ss_error *err) {
   *out = NULL;
+  if (nring < 1 || nring > SS_LOCAL_MAXRING)
+    return ss_error_set(err, SS_EINPUT, "ring levels must be in 1..%d, not %d",
+                        SS_LOCAL_MAXRING, nring);
   work W;
   memset(&W, 0, sizeof W);
   W.scheme = s;
@@ -782,12 +949,28 @@ ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
   int w = W.lc + 1, rc = ROOM;
   while (!st && rc == ROOM) {
     while (!st && W.nlev < w + 3)
-      st = add_level(&W, err);
+      st = add_level(&W, NULL, 0, err);
     if (st) break;
     rc = attempt(&W, w, M, err);
     if (rc == HARD) st = err && err->status ? err->status : SS_EINTERNAL;
     w++;
   }
+  /* the ring: level w + 1 + r for ring level r; levels beyond w + 2 refine a
+   * neighbourhood of Omega_w only (the rows read reach a few cells out, the
+   * margin covers schemes of reach 2) */
+  w--;
+  while (!st && W.nlev < w + nring + 1) {
+    const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
+    unsigned char *om[MAXLEVELS] = {NULL};
+    const size_t p = lookup(W.lev + w, &zero);
+    st = p == SIZE_MAX ? ss_error_set(err, SS_EINTERNAL, "the centre is lost")
+                       : omega_marks(&W, w, p, om, err);
+    if (!st) st = add_level(&W, om[W.nlev - 1 - w], 2 + 2 * ss_scheme_reach(s), err);
+    for (int l = 0; l < MAXLEVELS; l++)
+      free(om[l]);
+  }
+  if (!st && build_ring(&W, w, nring, M, err) == HARD)
+    st = err && err->status ? err->status : SS_EINTERNAL;
   free_work(&W);
   if (st) {
     ss_local_free(M);
@@ -797,8 +980,39 @@ ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
   return SS_OK;
 }
 
+ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
+                               ss_local *M, ss_error *err) {
+  ss_local *D = NULL;
+  ss_status st = ss_local_new_ring(s, c, nring, &D, err);
+  if (st) return st;
+  if (D->n2 != M->n2 || D->n1 != M->n1 ||
+      memcmp(D->S, M->S, M->n2 * M->n2 * sizeof *M->S) ||
+      memcmp(D->label, M->label, M->n2 * sizeof *M->label)) {
+    ss_local_free(D);
+    return ss_error_set(err, SS_EINTERNAL,
+                        "the deeper extraction gave another local matrix");
+  }
+  for (int r = 0; r < SS_LOCAL_MAXRING; r++) { /* swap the rings */
+    const ss_local_ring t = M->ring[r];
+    M->ring[r] = D->ring[r];
+    D->ring[r] = t;
+  }
+  const int n = M->nring;
+  M->nring = D->nring;
+  D->nring = n;
+  ss_local_free(D);
+  return SS_OK;
+}
+
 void ss_local_free(ss_local *L) {
   if (!L) return;
+  for (int r = 0; r < SS_LOCAL_MAXRING; r++) {
+    free(L->ring[r].ptr);
+    free(L->ring[r].col);
+    free(L->ring[r].w);
+    free(L->ring[r].ctype);
+    free(L->ring[r].corner);
+  }
   free(L->S);
   free(L->label);
   free(L->ctype);

@@ -40,6 +40,23 @@
  * comes from the split, which keeps every child positively oriented, so one
  * orientation holds for all of them.
  *
+ * The ring (DESIGN section 10).  The characteristic map psi is self-similar,
+ * psi(lambda .) = Lambda psi on Omega_{w+1}, so it is regular iff it is
+ * regular on the ring Omega_w \ Omega_{w+1}: the cells of level w + 1 inside
+ * Omega_w that do not touch p, and, refined r more times, the cells of level
+ * w + 1 + r inside Omega_w and outside Omega_{w+1} ("ring level r").  A cell
+ * lies in Omega_w iff all its corners do (each cell is an affine image of a
+ * lattice cell within one base cell, where Omega_w is convex).  The ring's
+ * control points on level w + 1 + r are combinations of the two-ring's
+ * (rows of the global rule, applied r + 1 times), so any net on the two-ring
+ * (the characteristic map's, in doubles or intervals) can be pushed there:
+ * ring level r's point i = sum_q w[q] * (previous level's point col[q]), the
+ * previous level of ring level 0 being the two-ring (label indices).  Every
+ * row is a complete row of the rule (as for S), and only the points the
+ * ring's cells and the next level need are kept.  Levels w + 1 and w + 2 are
+ * built for S anyway; deeper ring levels refine the patch further, peeled to
+ * a neighbourhood of Omega_w.
+ *
  * Ordering: labels (and rows and columns of S) list the one-ring first, then
  * the rest of the two-ring; within each part by the largest absolute
  * coordinate (so the centre comes first), then by ss_star_coord_cmp.  S is
@@ -71,6 +88,24 @@ typedef struct {
                           edge case, around the edge) */
 } ss_case;
 
+#define SS_LOCAL_MAXRING 4 /* ring levels at most (ss_local_new_ring) */
+#define SS_LOCAL_RING    2 /* ring levels of ss_local_new (no extra refinement) */
+
+/* One level of the ring: points pushed from the previous level, and the ring's
+ * cells on this level. */
+typedef struct {
+  size_t nv;           /* points of this level */
+  size_t nprev;        /* points of the previous level (the two-ring for level 0) */
+  size_t *ptr;         /* nv + 1 row starts into col and w */
+  size_t *col;         /* previous-level point of each entry */
+  double *w;           /* weight of each entry; every row sums to 1 */
+  size_t ncells;       /* ring cells on this level */
+  ss_cell_type *ctype; /* ncells cell types */
+  size_t *corner;      /* ncells * SS_MAXCELLVERTS corners, indices into this
+                          level's points, vertex order of ss_cx.h; unused slots
+                          SIZE_MAX */
+} ss_local_ring;
+
 /* The local subdivision matrix of one case. */
 typedef struct {
   size_t n2;            /* two-ring points (rows and columns of S) */
@@ -87,6 +122,11 @@ typedef struct {
   size_t *corner;       /* ncells * SS_MAXCELLVERTS corners, as indices into
                            label, in the vertex order of ss_cx.h; unused slots
                            SIZE_MAX */
+  size_t ncentre;       /* of these cells, how many have the centre p (label 0)
+                           as a corner: the cells around p, which the ring
+                           does not contain */
+  int nring;            /* ring levels built (see above) */
+  ss_local_ring ring[SS_LOCAL_MAXRING]; /* ring levels 0 .. nring - 1 */
 } ss_local;
 
 /* Name of a case kind as in the command line and JSON ("vertex", "edge",
@@ -108,6 +148,20 @@ ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
  * O(cells of the star * 8^(w+2)). */
 ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
                        ss_error *err);
+
+/* As ss_local_new, with nring ring levels (1 .. SS_LOCAL_MAXRING) instead of
+ * SS_LOCAL_RING.  Levels beyond SS_LOCAL_RING cost one more refinement of the
+ * patch each (peeled to the neighbourhood of the cells around p).  S and
+ * everything else are the same as ss_local_new's, bit for bit. */
+ss_status ss_local_new_ring(const ss_scheme *s, const ss_case *c, int nring,
+                            ss_local **out, ss_error *err);
+
+/* Replace M's ring by one of nring levels (M made by ss_local_new or
+ * ss_local_new_ring for scheme s and case c): the case is extracted again
+ * with the deeper ring, and its S and labels must equal M's bit for bit
+ * (SS_EINTERNAL otherwise).  Other errors as ss_local_new_ring. */
+ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
+                               ss_local *M, ss_error *err);
 
 /* Free; NULL is a no-op. */
 void ss_local_free(ss_local *L);

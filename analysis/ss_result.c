@@ -12,7 +12,8 @@
 #include "ss_link.h"
 
 ss_result_opts ss_result_defaults(void) {
-  return (ss_result_opts){1e-6, SS_JAC_DEPTH};
+  const ss_charmap_opts co = ss_charmap_defaults();
+  return (ss_result_opts){1e-6, co.depth, co.ring_levels};
 }
 
 void ss_result_clear(ss_result *r) {
@@ -65,10 +66,12 @@ static ss_status diagonals(const ss_scheme *s, const ss_case *c, ss_result *r,
 ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
                             ss_result *r, ss_error *err) {
   memset(r, 0, sizeof *r);
-  if (!(o->tol > 0.0 && o->tol < 0.1) || o->depth < 0 || o->depth > 12)
-    return ss_error_set(err, SS_EINPUT,
-                        "analysis options out of range (tol %g, depth %d)", o->tol,
-                        o->depth);
+  if (!(o->tol > 0.0 && o->tol < 0.1) || o->depth < 0 || o->depth > 12 ||
+      o->ring_levels < 1 || o->ring_levels > SS_LOCAL_MAXRING)
+    return ss_error_set(
+        err, SS_EINPUT,
+        "analysis options out of range (tol %g, depth %d, ring levels %d)", o->tol,
+        o->depth, o->ring_levels);
   const double t0 = now();
   ss_local *M = NULL;
   ss_eig *e = NULL;
@@ -86,7 +89,12 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
     eo.tol = o->tol;
     st = ss_eig_new(M->S, M->n2, M->n1, &eo, &e, err);
   }
-  if (!st) st = ss_charmap_analyze(M, e, o->depth, &cm, &reg, err);
+  if (!st) {
+    ss_charmap_opts co = ss_charmap_defaults();
+    co.depth = o->depth;
+    co.ring_levels = o->ring_levels;
+    st = ss_charmap_judge(s, &cc, M, e, &co, &cm, &reg, err);
+  }
   ss_link_free(cl);
   if (st) {
     ss_charmap_free(cm);
@@ -110,6 +118,9 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   r->reg = reg.verdict;
   r->min_sj = reg.min_scaled_jacobian;
   r->depth = reg.depth;
+  r->ring_levels = o->ring_levels;
+  r->ring_level = reg.ring_level;
+  r->centre_corner_folds = reg.centre_corner_folds;
   ss_charmap_free(cm);
   ss_eig_free(e);
   ss_local_free(M);

@@ -22,8 +22,9 @@
 
 /* Analysis parameters that change a verdict; part of a result's identity. */
 typedef struct {
-  double tol; /* relative tolerance for equal eigenvalues (ss_eig; 1e-6) */
-  int depth;  /* hex subdivision depth limit of the Jacobian test (ss_jac) */
+  double tol;      /* relative tolerance for equal eigenvalues (ss_eig; 1e-6) */
+  int depth;       /* hex subdivision depth limit of the Jacobian test (ss_jac) */
+  int ring_levels; /* ring levels regularity is judged on at most (ss_charmap) */
 } ss_result_opts;
 
 /* One eigenvalue as kept in a result. */
@@ -47,17 +48,23 @@ typedef struct {
   ss_result_eigval eig[SS_RESULT_NEIG]; /* leading eigenvalues of S, by
                                            decreasing modulus (ss_eig order) */
   ss_verdict cond;                      /* the eigenvalue condition */
+  int cond_certified;                   /* 1 if cond is proven (ss_exact) */
   double tol;                           /* the tolerance it used */
   ss_verdict reg;                       /* regularity of the characteristic map */
-  double min_sj;   /* minimum scaled Jacobian (ss_charmap); NaN: no map */
-  int depth;       /* the hex depth limit used */
-  int has_diag;    /* 1 if the scheme reads major diagonals (tet stars) */
-  size_t pairs;    /* with has_diag: adjacent cell pairs they concern */
-  size_t improper; /* with has_diag: of which improper (ss_diag_improper) */
-  double seconds;  /* wall-clock time the analysis took */
+  int reg_certified;                    /* 1 if reg is proven */
+  double min_sj;              /* minimum scaled Jacobian (ss_charmap); NaN: no map */
+  int depth;                  /* the hex depth limit used */
+  int ring_levels;            /* the ring levels allowed (ss_charmap_opts) */
+  int ring_level;             /* the ring level that decided the regularity verdict (the
+                                 last judged if none did); -1 without a map */
+  size_t centre_corner_folds; /* cells around p not of the ring's sign */
+  int has_diag;               /* 1 if the scheme reads major diagonals (tet stars) */
+  size_t pairs;               /* with has_diag: adjacent cell pairs they concern */
+  size_t improper;            /* with has_diag: of which improper (ss_diag_improper) */
+  double seconds;             /* wall-clock time the analysis took */
 } ss_result;
 
-/* Defaults: tol 1e-6, depth SS_JAC_DEPTH. */
+/* Defaults: tol 1e-6, depth SS_JAC_DEPTH, 3 ring levels. */
 ss_result_opts ss_result_defaults(void);
 
 /* Analyse case c of scheme s into *r (which need not be initialised; on

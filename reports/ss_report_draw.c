@@ -22,19 +22,12 @@ typedef struct {
   double r, g, b;
 } rgb;
 
-static const rgb col_cell = {0.55, 0.70, 0.90};  /* regular cells */
-static const rgb col_ring = {0.20, 0.45, 0.85};  /* regular cells around p */
-static const rgb col_bad = {0.90, 0.10, 0.10};   /* folded or wrongly oriented */
-static const rgb col_doubt = {1.00, 0.55, 0.00}; /* undecided */
-
-/* A cell is bad when folded or of the minority sign; 2 when undecided. */
-static int cell_state(const ss_charmap *cm, const ss_regularity *r, size_t c) {
-  const ss_jac_sign s = cm->jac[c].sign;
-  if (s == SS_JAC_UNDECIDED) return 2;
-  if (s == SS_JAC_FOLDED) return 1;
-  if (r->sign && (int)s != r->sign) return 1;
-  return 0;
-}
+static const rgb col_cell = {0.55, 0.70, 0.90};   /* regular cells */
+static const rgb col_ring = {0.20, 0.45, 0.85};   /* regular cells around p */
+static const rgb col_bad = {0.90, 0.10, 0.10};    /* folded or wrongly oriented */
+static const rgb col_doubt = {1.00, 0.55, 0.00};  /* undecided or flat */
+static const rgb col_centre = {0.60, 0.45, 0.75}; /* a fold around p: it decides
+                                                     nothing (ss_charmap.h) */
 
 static int around_p(const ss_charmap *cm, size_t c) {
   const int nv = ss_cell_nverts(cm->ctype[c]);
@@ -43,9 +36,24 @@ static int around_p(const ss_charmap *cm, size_t c) {
   return 0;
 }
 
+/* 1 when a ring cell is folded or of the minority sign, 2 when undecided or
+ * flat, 3 when a cell around p is not of the ring's sign, else 0. */
+static int cell_state(const ss_charmap *cm, const ss_regularity *r, size_t c) {
+  const ss_jac_sign s = cm->jac[c].sign;
+  int bad = s == SS_JAC_UNDECIDED || s == SS_JAC_DEGENERATE ? 2 : 0;
+  if (s == SS_JAC_FOLDED ||
+      (r->sign && (s == SS_JAC_POSITIVE || s == SS_JAC_NEGATIVE) && (int)s != r->sign))
+    bad = 1;
+  return bad && around_p(cm, c) ? 3 : bad;
+}
+
 static rgb cell_colour(const ss_charmap *cm, const ss_regularity *r, size_t c) {
   const int s = cell_state(cm, r, c);
-  return s == 1 ? col_bad : s == 2 ? col_doubt : around_p(cm, c) ? col_ring : col_cell;
+  return s == 1            ? col_bad
+         : s == 2          ? col_doubt
+         : s == 3          ? col_centre
+         : around_p(cm, c) ? col_ring
+                           : col_cell;
 }
 
 /* ---- faces of the 3D cells ---- */

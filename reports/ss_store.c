@@ -31,10 +31,12 @@ static const char *const schema_sql =
     "  stencil_hash TEXT,\n"
     "  tol REAL NOT NULL,\n"
     "  depth INTEGER NOT NULL,\n"
+    "  ring_levels INTEGER NOT NULL,\n"
     "  diagonals TEXT);\n"
     "CREATE TABLE result(\n"
     "  scheme_id INTEGER NOT NULL REFERENCES scheme(id),\n"
-    "  kind TEXT NOT NULL CHECK (kind IN ('vertex','edge','face','surface-vertex')),\n"
+    "  kind TEXT NOT NULL CHECK (kind IN ('vertex','edge','face','surface-vertex',\n"
+    "                                     'edge-point')),\n"
     "  k INTEGER NOT NULL,\n"
     "  link TEXT NOT NULL,\n"
     "  cells INTEGER NOT NULL,\n"
@@ -44,11 +46,15 @@ static const char *const schema_sql =
     "  eigenvalues TEXT NOT NULL,\n"
     "  eigen_condition TEXT NOT NULL,\n"
     "  eigen_reason TEXT NOT NULL,\n"
+    "  eigen_certified INTEGER NOT NULL,\n"
     "  tolerance REAL NOT NULL,\n"
     "  regularity TEXT NOT NULL,\n"
     "  regularity_reason TEXT NOT NULL,\n"
+    "  regularity_certified INTEGER NOT NULL,\n"
     "  min_scaled_jacobian REAL,\n"
     "  depth INTEGER NOT NULL,\n"
+    "  ring_level INTEGER NOT NULL,\n"
+    "  centre_corner_folds INTEGER NOT NULL,\n"
     "  improper_pairs INTEGER,\n"
     "  adjacent_pairs INTEGER,\n"
     "  seconds REAL NOT NULL,\n"
@@ -149,8 +155,14 @@ static ss_status prepare(ss_store *st, ss_error *err) {
     return db_error(st, err, "prepare");
   if (st->readonly) return SS_OK;
   if (sqlite3_prepare_v2(st->db,
-                         "INSERT OR IGNORE INTO result VALUES(?1,?2,?3,?4,?5,?6,?7,?8,"
-                         "?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22)",
+                         "INSERT OR IGNORE INTO result(scheme_id,kind,k,link,cells,"
+                         "two_ring,one_ring,lambda1,lambda2,lambda3,lambda4,eigenvalues,"
+                         "eigen_condition,eigen_reason,tolerance,regularity,"
+                         "regularity_reason,min_scaled_jacobian,depth,improper_pairs,"
+                         "adjacent_pairs,seconds,eigen_certified,regularity_certified,"
+                         "ring_level,centre_corner_folds) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,"
+                         "?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,"
+                         "?25,?26)",
                          -1, &st->put, NULL) != SQLITE_OK)
     return db_error(st, err, "prepare");
   return SS_OK;
@@ -250,11 +262,11 @@ void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n) {
   if (sc->reads_diagonals)
     snprintf(diag, sizeof diag, " diagonals=%s", ss_diag_name(sc->diag));
   if (sc->stencil)
-    snprintf(buf, n, "stencil:%016" PRIx64 " tol=%g depth=%d%s", sc->stencil_hash,
-             sc->opts.tol, sc->opts.depth, diag);
+    snprintf(buf, n, "stencil:%016" PRIx64 " tol=%g depth=%d rings=%d%s",
+             sc->stencil_hash, sc->opts.tol, sc->opts.depth, sc->opts.ring_levels, diag);
   else
-    snprintf(buf, n, "%s tol=%g depth=%d%s", sc->name, sc->opts.tol, sc->opts.depth,
-             diag);
+    snprintf(buf, n, "%s tol=%g depth=%d rings=%d%s", sc->name, sc->opts.tol,
+             sc->opts.depth, sc->opts.ring_levels, diag);
 }
 
 ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *id,
@@ -279,11 +291,11 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
   if (st->readonly)
     return ss_error_set(err, SS_EINPUT, "%s: no results for scheme '%s'", st->path,
                         ident);
-  rc =
-      sqlite3_prepare_v2(st->db,
-                         "INSERT OR IGNORE INTO scheme(identity,name,stencil,"
-                         "stencil_hash,tol,depth,diagonals) VALUES(?1,?2,?3,?4,?5,?6,?7)",
-                         -1, &q, NULL);
+  rc = sqlite3_prepare_v2(st->db,
+                          "INSERT OR IGNORE INTO scheme(identity,name,stencil,"
+                          "stencil_hash,tol,depth,diagonals,ring_levels) "
+                          "VALUES(?1,?2,?3,?4,?5,?6,?7,?8)",
+                          -1, &q, NULL);
   if (rc == SQLITE_OK) {
     sqlite3_bind_text(q, 1, ident, -1, SQLITE_TRANSIENT);
     sqlite3_bind_text(q, 2, sc->name, -1, SQLITE_TRANSIENT);
@@ -295,6 +307,7 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
     sqlite3_bind_int(q, 6, sc->opts.depth);
     if (sc->reads_diagonals)
       sqlite3_bind_text(q, 7, ss_diag_name(sc->diag), -1, SQLITE_STATIC);
+    sqlite3_bind_int(q, 8, sc->opts.ring_levels);
     rc = sqlite3_step(q);
   }
   sqlite3_finalize(q);
@@ -377,6 +390,10 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
     sqlite3_bind_int64(q, 21, (int64_t)r->pairs);
   }
   sqlite3_bind_double(q, 22, r->seconds);
+  sqlite3_bind_int(q, 23, r->cond_certified);
+  sqlite3_bind_int(q, 24, r->reg_certified);
+  sqlite3_bind_int(q, 25, r->ring_level);
+  sqlite3_bind_int64(q, 26, (int64_t)r->centre_corner_folds);
   const int rc = sqlite3_step(q);
   sqlite3_reset(q);
   free(ev);
@@ -451,7 +468,8 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
   static const char *const cols =
       "SELECT scheme, identity, kind, k, link, cells, two_ring, one_ring, eigenvalues, "
       "eigen_condition, eigen_reason, tolerance, regularity, regularity_reason, "
-      "min_scaled_jacobian, depth, improper_pairs, adjacent_pairs, seconds FROM cases";
+      "min_scaled_jacobian, depth, improper_pairs, adjacent_pairs, seconds, "
+      "eigen_certified, regularity_certified, ring_level, centre_corner_folds FROM cases";
   size_t n = strlen(cols) + (where ? strlen(where) : 0) + 64;
   char *sql = malloc(n);
   if (!sql) return ss_error_nomem(err, "query");
@@ -499,6 +517,10 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     r->improper = (size_t)sqlite3_column_int64(q, 16);
     r->pairs = (size_t)sqlite3_column_int64(q, 17);
     r->seconds = sqlite3_column_double(q, 18);
+    r->cond_certified = sqlite3_column_int(q, 19);
+    r->reg_certified = sqlite3_column_int(q, 20);
+    r->ring_level = sqlite3_column_int(q, 21);
+    r->centre_corner_folds = (size_t)sqlite3_column_int64(q, 22);
     if (visit(&row, ctx)) break;
   }
   if (!s && rc != SQLITE_ROW && rc != SQLITE_DONE) s = db_error(st, err, "query");
@@ -527,13 +549,14 @@ ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *p
   /* schemes are matched by identity, so ids may differ between stores */
   rc = exec(st, "BEGIN IMMEDIATE;"
                 "INSERT OR IGNORE INTO main.scheme(identity,name,stencil,stencil_hash,"
-                "tol,depth,diagonals) SELECT identity,name,stencil,stencil_hash,tol,"
-                "depth,diagonals FROM src.scheme;"
+                "tol,depth,ring_levels,diagonals) SELECT identity,name,stencil,"
+                "stencil_hash,tol,depth,ring_levels,diagonals FROM src.scheme;"
                 "INSERT OR IGNORE INTO main.result SELECT m.id, r.kind, r.k, r.link, "
                 "r.cells, r.two_ring, r.one_ring, r.lambda1, r.lambda2, r.lambda3, "
                 "r.lambda4, r.eigenvalues, r.eigen_condition, r.eigen_reason, "
-                "r.tolerance, r.regularity, r.regularity_reason, "
-                "r.min_scaled_jacobian, r.depth, r.improper_pairs, r.adjacent_pairs, "
+                "r.eigen_certified, r.tolerance, r.regularity, r.regularity_reason, "
+                "r.regularity_certified, r.min_scaled_jacobian, r.depth, r.ring_level, "
+                "r.centre_corner_folds, r.improper_pairs, r.adjacent_pairs, "
                 "r.seconds FROM src.result r JOIN src.scheme s ON s.id = r.scheme_id "
                 "JOIN main.scheme m ON m.identity = s.identity;"
                 "COMMIT;");

@@ -1,9 +1,10 @@
 /* ss_store.h — the results store: one SQLite database per sweep (or per
  * project), one row per analysed case (DESIGN sections 2 and 8).
  *
- * Schema (version 1; the README shows it in full):
- *   meta(key, value)       program = subspectra, schema = 1, created = UTC time
- *   scheme(id, identity, name, stencil, stencil_hash, tol, depth, diagonals)
+ * Schema (version 2; the README shows it in full):
+ *   meta(key, value)       program = subspectra, schema = 2, created = UTC time
+ *   scheme(id, identity, name, stencil, stencil_hash, tol, depth, ring_levels,
+ *          diagonals)
  *                          identity is unique: the scheme name or the hash of
  *                          its stencil file, with every analysis parameter
  *                          that can change a verdict (ss_store_identity)
@@ -34,7 +35,7 @@
 #include "ss_result.h"
 
 #define SS_STORE_APP_ID 0x53537370 /* "SSsp" */
-#define SS_STORE_SCHEMA 1
+#define SS_STORE_SCHEMA 2
 
 typedef struct ss_store ss_store; /* an open database and its statements */
 
@@ -51,7 +52,7 @@ typedef struct {
   uint64_t stencil_hash; /* FNV-1a 64 of the stencil file's bytes (ss_stencil) */
   int reads_diagonals;   /* 1 if the scheme reads major diagonals */
   ss_diag_mode diag;     /* with reads_diagonals: the choice */
-  ss_result_opts opts;   /* tolerance and hex depth */
+  ss_result_opts opts;   /* tolerance, hex depth, ring levels */
 } ss_store_scheme;
 
 /* One stored row, as ss_store_each hands it out (pointers valid during the
@@ -66,8 +67,8 @@ typedef struct {
 typedef int (*ss_store_visit)(const ss_store_row *row, void *ctx);
 
 /* The identity text of sc into buf (n bytes, >= 128 is always enough):
- * "NAME tol=T depth=D[ diagonals=X]" for a built-in scheme,
- * "stencil:HASH16 tol=T depth=D[ diagonals=X]" for a stencil file. */
+ * "NAME tol=T depth=D rings=R[ diagonals=X]" for a built-in scheme,
+ * "stencil:HASH16 tol=T depth=D rings=R[ diagonals=X]" for a stencil file. */
 void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n);
 
 /* Open path (see ss_store_mode).  An existing file must be a subspectra store

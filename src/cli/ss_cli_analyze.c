@@ -35,6 +35,7 @@ typedef struct {
   int ring;                 /* matrix --ring 1|2 */
   const char *out;          /* matrix, draw: -o FILE */
   int depth;                /* --depth: hex subdivision limit of the Jacobian test */
+  int ring_levels;          /* --ring-levels: ring levels judged at most */
   ss_report_draw_opts draw; /* draw: picture options */
   ss_diag_mode diag;        /* --diagonals: major diagonals of tet stars */
   int force;                /* draw --force: a map even when the condition fails */
@@ -67,7 +68,14 @@ static void help(const char *cmd) {
            "its multilinear interpolant, must have a Jacobian determinant of one\n"
            "strict sign, the same for all cells (hexes: Bernstein coefficients with\n"
            "adaptive subdivision; quads: corners; tets: determinant; octahedra: eight\n"
-           "tets), and report the minimum scaled Jacobian.\n\n");
+           "tets), and report the minimum scaled Jacobian.  The map is self-similar,\n"
+           "so it is judged on its ring: the cells that do not touch the centre, as S\n"
+           "maps them (ring level 0), refined by the scheme's rule while a fold is\n"
+           "seen (levels 1, 2, ...); a fold that persists fails, one that shrinks\n"
+           "(its share of the cells falls below half per level) is undecided.  Folds\n"
+           "of the cells around the centre decide nothing and are only counted.  The\n"
+           "map is normalised (the ring's points isotropic) so that scaled Jacobians\n"
+           "do not depend on the eigenvector basis.\n\n");
   printf(
       "cases (exactly one):\n"
       "  --vertex LINK          a 3D vertex whose link is LINK: plantri ASCII\n"
@@ -95,8 +103,9 @@ static void help(const char *cmd) {
            "1e-6)\n"
            "  --depth D              subdivision depth limit of the hex Jacobian test "
            "(0..12,\n"
-           "                         default %d)\n",
-           SS_JAC_DEPTH);
+           "                         default %d)\n"
+           "  --ring-levels L        ring levels judged at most (1..%d, default %d)\n",
+           SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels);
   if (d)
     printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk\n"
            "  --size WxH             picture size (default 1200x600)\n"
@@ -135,7 +144,8 @@ static int parse(int argc, char **argv, opts *o) {
     O_VIEW,
     O_DIAG,
     O_FORCE,
-    O_STENCIL
+    O_STENCIL,
+    O_RINGS
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -152,6 +162,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"diagonals", required_argument, 0, O_DIAG},
                                      {"force", no_argument, 0, O_FORCE},
                                      {"stencil", required_argument, 0, O_STENCIL},
+                                     {"ring-levels", required_argument, 0, O_RINGS},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -237,6 +248,13 @@ static int parse(int argc, char **argv, opts *o) {
             o->cmd, "--depth: expected an integer in 0..12, not '%s'", optarg);
       o->depth = (int)v;
       break;
+    case O_RINGS:
+      if (m || ss_cli_parse_int(optarg, 1, SS_LOCAL_MAXRING, &v))
+        return ss_cli_usage_error(o->cmd,
+                                  "--ring-levels: expected an integer in 1..%d, not '%s'",
+                                  SS_LOCAL_MAXRING, optarg);
+      o->ring_levels = (int)v;
+      break;
     case O_SIZE: {
       int w = 0, h = 0;
       char tail;
@@ -302,6 +320,58 @@ typedef struct {
   size_t improper; /* of which improper */
 } diag_info;
 
+static json_object *level_json(const ss_ring_level *L, int l) {
+  json_object *x = json_object_new_object();
+  json_object_object_add(x, "level", json_object_new_int(l));
+  json_object_object_add(x, "cells", json_object_new_int64((int64_t)L->cells));
+  json_object_object_add(x, "positive", json_object_new_int64((int64_t)L->positive));
+  json_object_object_add(x, "negative", json_object_new_int64((int64_t)L->negative));
+  json_object_object_add(x, "folded", json_object_new_int64((int64_t)L->folded));
+  json_object_object_add(x, "inverted", json_object_new_int64((int64_t)L->inverted));
+  json_object_object_add(x, "undecided", json_object_new_int64((int64_t)L->undecided));
+  json_object_object_add(x, "degenerate", json_object_new_int64((int64_t)L->degenerate));
+  json_object_object_add(x, "min_scaled_jacobian",
+                         isfinite(L->min_scaled_jacobian)
+                             ? json_object_new_double(L->min_scaled_jacobian)
+                             : NULL);
+  return x;
+}
+
+/* The regularity object of DESIGN section 7, with the ring's levels. */
+static json_object *regularity_json(const ss_regularity *reg) {
+  json_object *g = json_object_new_object();
+  json_object_object_add(g, "verdict",
+                         json_object_new_string(ss_verdict_name(reg->verdict.verdict)));
+  json_object_object_add(g, "certified", json_object_new_boolean(0));
+  json_object_object_add(g, "min_scaled_jacobian",
+                         isfinite(reg->min_scaled_jacobian)
+                             ? json_object_new_double(reg->min_scaled_jacobian)
+                             : NULL);
+  json_object_object_add(g, "reason", json_object_new_string(reg->verdict.reason));
+  json_object_object_add(
+      g, "cells",
+      json_object_new_int64((int64_t)(reg->npositive + reg->nnegative + reg->nfolded +
+                                      reg->nundecided + reg->ndegenerate)));
+  json_object_object_add(g, "orientation", json_object_new_int(reg->sign));
+  json_object_object_add(g, "folded_cells", json_object_new_int64((int64_t)reg->nfolded));
+  json_object_object_add(g, "inverted_cells",
+                         json_object_new_int64((int64_t)reg->ninverted));
+  json_object_object_add(g, "undecided_cells",
+                         json_object_new_int64((int64_t)reg->nundecided));
+  json_object_object_add(g, "degenerate_cells",
+                         json_object_new_int64((int64_t)reg->ndegenerate));
+  json_object_object_add(g, "centre_corner_folds",
+                         json_object_new_int64((int64_t)reg->centre_corner_folds));
+  json_object_object_add(g, "ring_level", json_object_new_int(reg->ring_level));
+  json_object *lv = json_object_new_array();
+  for (int l = 0; l < reg->nlevels; l++)
+    json_object_array_add(lv, level_json(reg->level + l, l));
+  json_object_object_add(g, "ring_levels", lv);
+  json_object_object_add(g, "shrink", json_object_new_double(reg->shrink));
+  json_object_object_add(g, "depth", json_object_new_int(reg->depth));
+  return g;
+}
+
 static void print_json(const opts *o, const char *scheme, const char *canon, int k,
                        const ss_local *M, const ss_eig *e, const ss_regularity *reg,
                        const diag_info *di) {
@@ -346,24 +416,7 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
   json_object_object_add(c, "tolerance", json_object_new_double(e->tol));
   json_object_object_add(r, "eigen_condition", c);
   json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
-  json_object *g = json_object_new_object();
-  json_object_object_add(g, "verdict",
-                         json_object_new_string(ss_verdict_name(reg->verdict.verdict)));
-  json_object_object_add(g, "min_scaled_jacobian",
-                         isfinite(reg->min_scaled_jacobian)
-                             ? json_object_new_double(reg->min_scaled_jacobian)
-                             : NULL);
-  json_object_object_add(g, "reason", json_object_new_string(reg->verdict.reason));
-  json_object_object_add(
-      g, "cells",
-      json_object_new_int64(
-          (int64_t)(reg->npositive + reg->nnegative + reg->nfolded + reg->nundecided)));
-  json_object_object_add(g, "orientation", json_object_new_int(reg->sign));
-  json_object_object_add(g, "folded_cells", json_object_new_int64((int64_t)reg->nfolded));
-  json_object_object_add(g, "undecided_cells",
-                         json_object_new_int64((int64_t)reg->nundecided));
-  json_object_object_add(g, "depth", json_object_new_int(reg->depth));
-  json_object_object_add(r, "regularity", g);
+  json_object_object_add(r, "regularity", regularity_json(reg));
   printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
                                                        JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(r);
@@ -433,13 +486,27 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
   if (e->basis_kind[0]) printf("subdominant basis: %s\n", e->basis_kind);
   printf("regularity: %s%s%s\n", ss_verdict_name(reg->verdict.verdict),
          reg->verdict.reason[0] ? ": " : "", reg->verdict.reason);
-  const size_t ncells = reg->npositive + reg->nnegative + reg->nfolded + reg->nundecided;
-  if (ncells)
-    printf("  %zu cells of the two-ring: %zu positive, %zu negative, %zu folded, %zu "
-           "undecided (hex subdivision depth limit %d)\n"
-           "  minimum scaled Jacobian %.6g (cell %zu)\n",
-           ncells, reg->npositive, reg->nnegative, reg->nfolded, reg->nundecided,
-           reg->depth, reg->min_scaled_jacobian, reg->worst_cell);
+  if (reg->nlevels > 0) {
+    printf(
+        "  judged on the ring (cells not touching the centre), levels 0..%d of at most "
+        "%d; fold shrink ratio %.2f:\n",
+        reg->nlevels - 1, o->ring_levels, reg->shrink);
+    for (int l = 0; l < reg->nlevels; l++) {
+      const ss_ring_level *L = reg->level + l;
+      printf(
+          "    level %d: %zu cells: %zu positive, %zu negative, %zu folded (%zu inverted "
+          "whole), %zu undecided, %zu flat; minimum scaled Jacobian %.6g\n",
+          l, L->cells, L->positive, L->negative, L->folded, L->inverted, L->undecided,
+          L->degenerate, L->min_scaled_jacobian);
+    }
+    printf(
+        "  minimum scaled Jacobian %.6g (level %d, ring cell %zu; hex subdivision depth "
+        "limit %d)\n"
+        "  cells around the centre: %zu of %zu not of the ring's sign "
+        "(centre_corner_folds; they decide nothing)\n",
+        reg->min_scaled_jacobian, reg->ring_level, reg->worst_cell, reg->depth,
+        reg->centre_corner_folds, M->ncentre);
+  }
 }
 
 static void print_label(FILE *f, const ss_star_coord *c) {
@@ -549,7 +616,10 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     goto done;
   }
   ss_regularity reg;
-  if (ss_charmap_analyze(M, e, o->depth, &cm, &reg, &err)) {
+  ss_charmap_opts co = ss_charmap_defaults();
+  co.depth = o->depth;
+  co.ring_levels = o->ring_levels;
+  if (ss_charmap_judge(s, &c, M, e, &co, &cm, &reg, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
     rc = SS_EXIT_FAIL;
     goto done;
@@ -563,7 +633,11 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
         rc = SS_EXIT_FAIL;
         goto done;
       }
-      ss_charmap_regularity(cm, o->depth, &reg);
+      if (ss_charmap_regularity(cm, M, &co, &reg, &err)) {
+        fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
+        rc = SS_EXIT_FAIL;
+        goto done;
+      }
       forced = 1;
     }
     if (!cm) {
@@ -626,6 +700,7 @@ static int run(int argc, char **argv, const char *cmd) {
             2,
             NULL,
             SS_JAC_DEPTH,
+            ss_charmap_defaults().ring_levels,
             ss_report_draw_defaults(),
             SS_DIAG_BFS,
             0};

@@ -48,7 +48,9 @@ typedef struct {
 static void run_case(gate *g, ss_case c, const char *what) {
   ss_error err = {0};
   ss_result r;
-  const ss_result_opts ro = {g->tol, g->depth};
+  ss_result_opts ro = ss_result_defaults();
+  ro.tol = g->tol;
+  ro.depth = g->depth;
   g->cases++;
   if (ss_result_compute(g->s, &c, &ro, &r, &err)) {
     printf("error      %s: %s\n", what, err.msg);

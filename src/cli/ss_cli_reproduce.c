@@ -10,6 +10,7 @@
 #include <errno.h>
 #include <getopt.h>
 #include <glob.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -70,6 +71,19 @@ static const table_spec tables[] = {
      "Cells = hexes around the vertex (2k − 4). λ1..λ3 and \\|λ4\\| are the leading "
      "eigenvalues of the two-ring matrix after λ0 = 1. The one differing row is "
      "finding 1 of reports/README.md."},
+    {"mlca-vertices-k9-10",
+     "MLCA: every vertex one-ring with k = 9 and 10 (14 and 16 hexes)", "mlca",
+     SS_CASE_VERTEX, SRC_LINKS, 9, 10, SS_DIAG_BFS, 0,
+     "subspectra enumerate links --vertices 9..10 | subspectra analyze --scheme mlca "
+     "--vertex - --format json",
+     "Inside the range the MLCA paper says it analysed exhaustively (val ≤ 12 edges at "
+     "the vertex, i.e. k ≤ 12), beyond what earlier versions of this project swept. "
+     "Cells = hexes around the vertex (2k − 4). See reports/README.md, finding 5."},
+    {"tetoct-vertices-k8-10", "tet/oct: every vertex one-ring with k = 8..10", "tetoct",
+     SS_CASE_VERTEX, SRC_LINKS, 8, 10, SS_DIAG_BFS, 0,
+     "subspectra enumerate links --vertices 8..10 | subspectra analyze --scheme tetoct "
+     "--vertex - --format json",
+     "Beyond the paper's tested links. Cells = tets around the vertex (2k − 4)."},
     {"tetoct-vertices-k4-7", "tet/oct: every vertex one-ring with k ≤ 7", "tetoct",
      SS_CASE_VERTEX, SRC_LINKS, 4, 7, SS_DIAG_BFS, 0,
      "subspectra enumerate links --vertices 4..7 | subspectra analyze --scheme tetoct "
@@ -465,9 +479,44 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(r->min_sj) ? json_object_new_double(r->min_sj) : NULL);
   json_object_object_add(g, "reason", json_object_new_string(r->reg.reason));
+  json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));
+  json_object_object_add(g, "ring_levels", json_object_new_int(r->ring_levels));
+  json_object_object_add(g, "centre_corner_folds",
+                         json_object_new_int64((int64_t)r->centre_corner_folds));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(o, "regularity", g);
   return o;
+}
+
+/* The verdicts of an exhaustive table counted per k: which condition fails,
+ * and how many passing maps fold in cells around p (which decide nothing,
+ * ss_charmap.h). */
+static void per_k(strbuf *md, const result_list *l) {
+  sb_printf(md, "\n| k | links | pass | fail: eigenvalue condition | fail: regularity | "
+                "undecided | passing, with folds around p |\n"
+                "|--:|--:|--:|--:|--:|--:|--:|\n");
+  int lo = INT_MAX, hi = 0;
+  for (size_t i = 0; i < l->n; i++) {
+    lo = l->r[i].k < lo ? l->r[i].k : lo;
+    hi = l->r[i].k > hi ? l->r[i].k : hi;
+  }
+  for (int k = lo; k <= hi; k++) { /* the enumeration interleaves the k */
+    size_t n = 0, pass = 0, fcond = 0, freg = 0, und = 0, centre = 0;
+    for (size_t i = 0; i < l->n; i++) {
+      const ss_result *r = l->r + i;
+      if (r->k != k) continue;
+      const ss_verdict_kind v = ss_result_verdict(r);
+      n++;
+      pass += v == SS_PASS;
+      fcond += r->cond.verdict == SS_FAIL;
+      freg += r->cond.verdict != SS_FAIL && r->reg.verdict == SS_FAIL;
+      und += v == SS_UNDECIDED;
+      centre += v == SS_PASS && r->centre_corner_folds > 0;
+    }
+    if (n)
+      sb_printf(md, "| %d | %zu | %zu | %zu | %zu | %zu | %zu |\n", k, n, pass, fcond,
+                freg, und, centre);
+  }
 }
 
 /* Counts for the summary line. */
@@ -623,6 +672,7 @@ static ss_status write_table(const char *dir, const table_spec *t, const result_
       "%zu match, %zu differ; %zu of %zu rows not quoted (relative tolerance %g).\n",
       ty->pass, ty->cases, ty->quoted, ty->match, ty->quoted - ty->match, ty->unquoted,
       ty->cases, tol);
+  if (t->src == SRC_LINKS) per_k(&md, l);
   if (ncmp) {
     sb_printf(&md, "\n## Quoted values\n\n| # | case | quantity | quoted | computed | "
                    "computed − quoted | tolerance | status | source |\n"
@@ -740,12 +790,12 @@ static ss_status draw_figure(const figure_spec *f, const char *path, ss_error *e
     st = ss_eig_new(M->S, M->n2, M->n1, &eo, &e, err);
   }
   ss_regularity reg;
-  const int depth = ss_result_defaults().depth;
-  if (!st) st = ss_charmap_analyze(M, e, depth, &cm, &reg, err);
+  const ss_charmap_opts co = ss_charmap_defaults();
+  if (!st) st = ss_charmap_judge(s, &c, M, e, &co, &cm, &reg, err);
   int forced = 0;
   if (!st && !cm && f->force && e->basis) {
     st = ss_charmap_new(M, e, &cm, err);
-    if (!st) ss_charmap_regularity(cm, depth, &reg);
+    if (!st) st = ss_charmap_regularity(cm, M, &co, &reg, err);
     forced = 1;
   }
   if (!st && !cm)

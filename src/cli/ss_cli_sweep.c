@@ -452,7 +452,10 @@ int ss_cli_sweep(int argc, char **argv) {
     rc = SS_EXIT_FAIL;
     goto done;
   }
-  ss_store_scheme sc = {ss_scheme_name(s), stencil, hash, reads, diag, {tol, (int)depth}};
+  ss_result_opts ro = ss_result_defaults();
+  ro.tol = tol;
+  ro.depth = (int)depth;
+  ss_store_scheme sc = {ss_scheme_name(s), stencil, hash, reads, diag, ro};
   int64_t id = 0;
   if (ss_store_open(db, SS_STORE_WRITE, &st, &err) ||
       ss_store_scheme_id(st, &sc, &id, &err)) {
@@ -463,7 +466,7 @@ int ss_cli_sweep(int argc, char **argv) {
   *w = (sweep){.s = s,
                .st = st,
                .id = id,
-               .ro = {tol, (int)depth},
+               .ro = ro,
                .diag = diag,
                .jobs = (int)jobs,
                .tty = isatty(STDERR_FILENO)};

@@ -87,8 +87,23 @@ PY
 # regularity: the MLCA finding fails with its reason and exit status 1; an
 # eigenvalue-condition failure leaves the map undecided
 k8="8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb"
-expect_in 1 '"regularity":\{"verdict":"fail","min_scaled_jacobian":-0\.74' "" "$exe" analyze --scheme mlca --vertex "$k8" --format json
-expect_in 1 "regularity: fail: hexahedron .* folds" "" "$exe" analyze --scheme mlca --vertex "$k8"
+# (judged on the ring: level r has 8^r times level 0's cells; the fold
+# persists, i.e. its share of the cells does not halve from level to level)
+k8json=$("$exe" analyze --scheme mlca --vertex "$k8" --format json)
+checks=$((checks + 1))
+python3 - "$k8json" <<'PY' || fail "k = 8 finding: $k8json"
+import json, sys
+g = json.loads(sys.argv[1])["regularity"]
+lv = g["ring_levels"]
+assert g["verdict"] == "fail" and "persists" in g["reason"] and not g["certified"], g
+assert len(lv) == 3 and g["ring_level"] == 2, g
+assert all(l["cells"] == lv[0]["cells"] * 8 ** l["level"] for l in lv), lv
+bad = [(l["folded"] + l["inverted"]) / l["cells"] for l in lv]
+assert all(b > 0 for b in bad) and bad[2] >= 0.5 * bad[1], bad
+assert g["min_scaled_jacobian"] < 0 and g["folded_cells"] == lv[2]["folded"], g
+assert g["inverted_cells"] == lv[2]["inverted"] > 0, g
+PY
+expect_in 1 "regularity: fail: ring level 2: .* the fold persists" "" "$exe" analyze --scheme mlca --vertex "$k8"
 expect_in 1 "regularity: undecided: no characteristic map" "" "$exe" analyze --scheme mlca --edge 8
 expect_in 2 "--depth" "" "$exe" analyze --scheme mlca --edge 4 --depth 13
 

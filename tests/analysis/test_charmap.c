@@ -24,6 +24,9 @@
 #include "ss_test.h"
 #include "ss_testlink.h"
 
+/* regularity options (ss_charmap_defaults, set in main) */
+static ss_charmap_opts copts;
+
 static ss_scheme *scheme(const char *name) {
   ss_error err = {0};
   ss_scheme *s = NULL;
@@ -55,7 +58,7 @@ static int run(const ss_scheme *s, ss_case c, result *out) {
     ss_local_free(out->M);
     return -1;
   }
-  if (ss_charmap_analyze(out->M, out->e, SS_JAC_DEPTH, &out->cm, &out->r, &err)) {
+  if (ss_charmap_judge(s, &c, out->M, out->e, &copts, &out->cm, &out->r, &err)) {
     CHECK(0, "%s: regularity: %s", ss_scheme_name(s), err.msg);
     ss_eig_free(out->e);
     ss_local_free(out->M);
@@ -258,8 +261,9 @@ static void test_plain_multilinear(void) {
   ss_scheme_free(s);
 }
 
-/* A folded control net: the regular MLCA vertex's map with one corner point
- * pushed through the centre. */
+/* A folded control net: the regular MLCA vertex's map folded over the plane
+ * z3 = 0 (z3 -> |z3|), so that the lower half of the ring is inverted, a fold
+ * that refinement keeps. */
 static void test_folded(void) {
   ss_scheme *mlca = scheme("mlca");
   ss_link *oct = NULL;
@@ -275,26 +279,30 @@ static void test_folded(void) {
   ss_charmap *cm = r.cm;
   CHECK(cm != NULL, "regular vertex has a map");
   if (cm) {
-    /* point 0 is p; its neighbours in the one-ring sit at distance ~1/2; move
-     * the first one-ring point beyond p, to the other side */
-    double *x = cm->x + 1 * (size_t)cm->dim;
-    for (int d = 0; d < cm->dim; d++)
-      x[d] = -2.0 * x[d];
+    double *keep = malloc(cm->n * 3 * sizeof *keep);
+    if (!keep) return;
+    memcpy(keep, cm->x, cm->n * 3 * sizeof *keep);
+    for (size_t i = 0; i < cm->n; i++)
+      cm->x[i * 3 + 2] = fabs(cm->x[i * 3 + 2]);
     ss_regularity reg;
-    ss_charmap_regularity(cm, SS_JAC_DEPTH, &reg);
+    REQUIRE_OK_VOID(ss_charmap_regularity(cm, r.M, &copts, &reg, &err), &err);
     CHECK(reg.verdict.verdict == SS_FAIL, "folded net: verdict %s (%s)",
           ss_verdict_name(reg.verdict.verdict), reg.verdict.reason);
-    CHECK(reg.nfolded + (reg.npositive && reg.nnegative) > 0 &&
-              reg.min_scaled_jacobian < 0.0,
-          "folded net: %zu folded, scaled Jacobian %g", reg.nfolded,
-          reg.min_scaled_jacobian);
+    CHECK(reg.ninverted > 0 && reg.min_scaled_jacobian < 0.0 &&
+              reg.nlevels == r.M->nring && strstr(reg.verdict.reason, "persists"),
+          "folded net: %zu inverted, scaled Jacobian %g, %d levels", reg.ninverted,
+          reg.min_scaled_jacobian, reg.nlevels);
+    /* the fold keeps its share of the ring: half the cells, on every level */
+    for (int l = 0; l < reg.nlevels; l++)
+      CHECK(fabs(reg.level[l].bad_fraction - 0.5) < 0.1, "folded net, level %d: %g bad",
+            l, reg.level[l].bad_fraction);
     /* the whole map mirrored (z3 -> -z3) is still regular, of the other sign */
-    for (int d = 0; d < cm->dim; d++)
-      x[d] = -0.5 * x[d];
+    memcpy(cm->x, keep, cm->n * 3 * sizeof *keep);
+    free(keep);
     const int sign0 = r.r.sign;
     for (size_t i = 0; i < cm->n; i++)
       cm->x[i * 3 + 2] = -cm->x[i * 3 + 2];
-    ss_charmap_regularity(cm, SS_JAC_DEPTH, &reg);
+    REQUIRE_OK_VOID(ss_charmap_regularity(cm, r.M, &copts, &reg, &err), &err);
     CHECK(reg.verdict.verdict == SS_PASS && reg.sign == -sign0 && sign0 != 0,
           "mirrored map: verdict %s, sign %d (unmirrored %d)",
           ss_verdict_name(reg.verdict.verdict), reg.sign, sign0);
@@ -329,8 +337,7 @@ static void test_defective(void) {
     M.n2 = M.n1 = 5;
     ss_charmap *cm = NULL;
     ss_regularity reg;
-    CHECK(ss_charmap_analyze(&M, e, SS_JAC_DEPTH, &cm, &reg, &err) == SS_OK, "%s",
-          err.msg);
+    CHECK(ss_charmap_analyze(&M, e, &copts, &cm, &reg, &err) == SS_OK, "%s", err.msg);
     if (jordan)
       CHECK(reg.verdict.verdict == SS_FAIL && strstr(reg.verdict.reason, "defective") &&
                 !cm,
@@ -451,7 +458,7 @@ static void test_mlca_k8(void) {
     ss_charmap *cm = NULL;
     if (ss_charmap_new(r.M, &e, &cm, &err) == SS_OK) {
       ss_regularity reg;
-      ss_charmap_regularity(cm, SS_JAC_DEPTH, &reg);
+      REQUIRE_OK_VOID(ss_charmap_regularity(cm, r.M, &copts, &reg, &err), &err);
       CHECK(third == 3 ? reg.verdict.verdict == SS_FAIL : reg.verdict.verdict == SS_PASS,
             "k8 link, map (z1, z2, z%d): %s (%s)", third,
             ss_verdict_name(reg.verdict.verdict), reg.verdict.reason);
@@ -490,7 +497,7 @@ static void test_complex(void) {
   M.n2 = M.n1 = 5;
   ss_charmap *cm = NULL;
   ss_regularity reg;
-  CHECK(ss_charmap_analyze(&M, e, SS_JAC_DEPTH, &cm, &reg, &err) == SS_OK, "%s", err.msg);
+  CHECK(ss_charmap_analyze(&M, e, &copts, &cm, &reg, &err) == SS_OK, "%s", err.msg);
   CHECK(e->cond.verdict == SS_FAIL && reg.verdict.verdict == SS_FAIL && !cm &&
             strstr(reg.verdict.reason, "complex") && isnan(reg.min_scaled_jacobian),
         "complex: condition %s, regularity %s (%s)", ss_verdict_name(e->cond.verdict),
@@ -560,7 +567,225 @@ static void test_result_canonical(void) {
   CHECK(failing >= 3, "the set was chosen with failing maps in it (%d)", failing);
 }
 
+/* ---- the ring ---- */
+
+/* Stats of the two-ring's own cells, split into those around p and the rest,
+ * judged here directly on the control net (not through the ring). */
+static void two_ring_split(const ss_charmap *cm, size_t *pos, size_t *neg, size_t *other,
+                           size_t *centre_bad, int sign) {
+  *pos = *neg = *other = *centre_bad = 0;
+  for (size_t c = 0; c < cm->ncells; c++) {
+    double y[SS_MAXCELLVERTS * 3];
+    const int nv = ss_cell_nverts(cm->ctype[c]);
+    int centre = 0;
+    for (int j = 0; j < nv; j++) {
+      const size_t v = cm->corner[c * SS_MAXCELLVERTS + (size_t)j];
+      centre |= v == 0;
+      for (int d = 0; d < cm->dim; d++)
+        y[j * cm->dim + d] = cm->x[v * (size_t)cm->dim + (size_t)d];
+    }
+    ss_jac_result j;
+    ss_jac_cell(cm->ctype[c], y, cm->dim, SS_JAC_DEPTH, &j);
+    if (centre)
+      *centre_bad += (int)j.sign != sign;
+    else
+      ++*(j.sign == SS_JAC_POSITIVE ? pos : j.sign == SS_JAC_NEGATIVE ? neg : other);
+  }
+}
+
+/* Ring level 0 is the two-ring's cells that do not touch p (S maps them: the
+ * net there is the two-ring's times Lambda, whose determinant is positive),
+ * and level r refines it: 8^r (surfaces 4^r) times the volume.  Checked on
+ * every kind of case, with the level-0 verdicts recounted directly on the
+ * two-ring's cells. */
+static void test_ring_structure(void) {
+  static const struct {
+    const char *scheme, *link;
+    ss_case_kind kind;
+    int n;
+  } cases[] = {
+      {"mlca", "octahedron", SS_CASE_VERTEX, 0},
+      {"mlca", "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb", SS_CASE_VERTEX, 0},
+      {"mlca", NULL, SS_CASE_EDGE, 5},
+      {"tetoct", "icosahedron", SS_CASE_VERTEX, 0},
+      {"tetoct", NULL, SS_CASE_EDGE, 4},
+      {"tetoct", NULL, SS_CASE_FACE, 0},
+      {"boxspline", "bipyramid:5", SS_CASE_VERTEX, 0},
+      {"catmull-clark", NULL, SS_CASE_SURFACE_VERTEX, 5},
+      {"loop", NULL, SS_CASE_SURFACE_VERTEX, 7},
+      {"mlca", NULL, SS_CASE_SURFACE_VERTEX, 3}};
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    ss_scheme *s = scheme(cases[i].scheme);
+    ss_link *l = NULL;
+    ss_error err = {0};
+    result r;
+    if ((cases[i].link && ss_link_parse(cases[i].link, &l, &err)) ||
+        run(s, (ss_case){cases[i].kind, l, cases[i].n, SS_DIAG_BFS}, &r)) {
+      CHECK(0, "%s %s: %s", cases[i].scheme, cases[i].link, err.msg);
+      ss_link_free(l);
+      ss_scheme_free(s);
+      continue;
+    }
+    const ss_local *M = r.M;
+    const size_t grow = M->dim == 3 ? 8 : 4;
+    CHECK(M->nring >= 2 && M->ring[0].ncells == M->ncells - M->ncentre && M->ncentre > 0,
+          "%s %s %d: ring level 0 has %zu cells, the two-ring %zu of which %zu around p",
+          cases[i].scheme, ss_case_name(cases[i].kind), cases[i].n, M->ring[0].ncells,
+          M->ncells, M->ncentre);
+    /* volume in tets of the level's edge length: an octahedron of the tet/oct
+     * split holds 4 of them; every other cell type 1 of its own kind */
+    size_t vol[SS_LOCAL_MAXRING] = {0};
+    for (int l2 = 0; l2 < M->nring; l2++)
+      for (size_t c = 0; c < M->ring[l2].ncells; c++)
+        vol[l2] += M->ring[l2].ctype[c] == SS_OCT ? 4 : 1;
+    for (int l2 = 1; l2 < M->nring; l2++)
+      CHECK(vol[l2] == grow * vol[l2 - 1],
+            "%s %s: ring level %d has volume %zu, level %d %zu", cases[i].scheme,
+            ss_case_name(cases[i].kind), l2, vol[l2], l2 - 1, vol[l2 - 1]);
+    if (r.cm && r.r.nlevels > 0) {
+      size_t pos, neg, other, cbad;
+      two_ring_split(r.cm, &pos, &neg, &other, &cbad, r.r.level[0].sign);
+      const ss_ring_level *L0 = r.r.level;
+      CHECK(L0->positive == pos && L0->negative == neg &&
+                L0->folded + L0->undecided + L0->degenerate == other,
+            "%s %s: ring level 0 +%zu -%zu, two-ring's outer cells +%zu -%zu",
+            cases[i].scheme, ss_case_name(cases[i].kind), L0->positive, L0->negative, pos,
+            neg);
+      CHECK(cbad == r.r.centre_corner_folds, "%s %s: %zu centre folds, counted %zu",
+            cases[i].scheme, ss_case_name(cases[i].kind), r.r.centre_corner_folds, cbad);
+    }
+    done(&r);
+    ss_link_free(l);
+    ss_scheme_free(s);
+  }
+}
+
+/* The normalised map does not depend on the basis: the verdict, every
+ * level's counts and the minimum scaled Jacobian are the same for the basis
+ * times any invertible G, of either sign of determinant. */
+static void test_basis_invariance(void) {
+  ss_scheme *s = scheme("mlca");
+  const char *links[3] = {"8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb", "bipyramid:5",
+                          "7 bgecdf,afdceg,aebd,acbf,agbc,adb,abe"};
+  uint64_t seed = 12345;
+  for (int i = 0; i < 3; i++) {
+    ss_link *l = NULL;
+    ss_error err = {0};
+    result r;
+    if (ss_link_parse(links[i], &l, &err) ||
+        run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r) || !r.cm) {
+      CHECK(0, "%s: %s", links[i], err.msg);
+      ss_link_free(l);
+      continue;
+    }
+    const size_t n = r.M->n2;
+    double *b0 = malloc(n * 3 * sizeof *b0);
+    if (!b0) break;
+    memcpy(b0, r.e->basis, n * 3 * sizeof *b0);
+    for (int trial = 0; trial < 4; trial++) {
+      double G[9];
+      for (int k = 0; k < 9; k++) {
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        G[k] = (double)(seed >> 11) / 9007199254740992.0 * 2.0 - 1.0;
+      }
+      if (trial & 1) /* a reflection too */
+        for (int k = 0; k < 3; k++)
+          G[k] = -G[k];
+      for (size_t p = 0; p < n; p++)
+        for (int j = 0; j < 3; j++) {
+          double v = 0.0;
+          for (int k = 0; k < 3; k++)
+            v += b0[(size_t)k * n + p] * G[k * 3 + j];
+          r.e->basis[(size_t)j * n + p] = v;
+        }
+      ss_charmap *cm = NULL;
+      ss_regularity reg;
+      REQUIRE_OK_VOID(ss_charmap_new(r.M, r.e, &cm, &err), &err);
+      REQUIRE_OK_VOID(ss_charmap_regularity(cm, r.M, &copts, &reg, &err), &err);
+      CHECK(reg.verdict.verdict == r.r.verdict.verdict && reg.nlevels == r.r.nlevels,
+            "%s, basis G %d: verdict %s, was %s", links[i], trial,
+            ss_verdict_name(reg.verdict.verdict), ss_verdict_name(r.r.verdict.verdict));
+      for (int q = 0; q < reg.nlevels && q < r.r.nlevels; q++)
+        CHECK(reg.level[q].folded == r.r.level[q].folded &&
+                  reg.level[q].inverted == r.r.level[q].inverted,
+              "%s, basis G %d, level %d: %zu folded %zu inverted, was %zu %zu", links[i],
+              trial, q, reg.level[q].folded, reg.level[q].inverted, r.r.level[q].folded,
+              r.r.level[q].inverted);
+      CHECK(fabs(reg.min_scaled_jacobian - r.r.min_scaled_jacobian) < 1e-9,
+            "%s, basis G %d: minimum scaled Jacobian %.15g, was %.15g", links[i], trial,
+            reg.min_scaled_jacobian, r.r.min_scaled_jacobian);
+      ss_charmap_free(cm);
+    }
+    free(b0);
+    done(&r);
+    ss_link_free(l);
+  }
+  ss_scheme_free(s);
+}
+
+/* Folds of the cells around p decide nothing: among the links with 9
+ * vertices there is one whose two-ring folds only in cells around p (found by
+ * search, checked directly on the control net) and whose ring is regular. */
+typedef struct {
+  ss_scheme *s;
+  int found;   /* links passing with folds around p */
+  int checked; /* links seen */
+} centre_ctx;
+
+static int visit_centre(const ss_link *l, void *vctx) {
+  centre_ctx *ctx = vctx;
+  ctx->checked++;
+  result r;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) return 1;
+  if (r.cm && r.r.verdict.verdict == SS_PASS && r.r.centre_corner_folds > 0) {
+    size_t pos, neg, other, cbad;
+    two_ring_split(r.cm, &pos, &neg, &other, &cbad, r.r.sign);
+    CHECK(cbad > 0 && other == 0 && (pos == 0 || neg == 0),
+          "centre-only fold: around p %zu bad; elsewhere +%zu -%zu, %zu other", cbad, pos,
+          neg, other);
+    ctx->found++;
+  }
+  done(&r);
+  return ctx->found > 0;
+}
+
+/* A fold that shrinks under refinement is undecided, not failed: among the
+ * links with 10 vertices there is one (found by search) whose bad cells grow
+ * fewer than 4 times from level to level while the cells grow 8 times. */
+static int visit_shrink(const ss_link *l, void *vctx) {
+  centre_ctx *ctx = vctx;
+  ctx->checked++;
+  result r;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) return 1;
+  if (r.cm && r.r.verdict.verdict == SS_UNDECIDED &&
+      strstr(r.r.verdict.reason, "shrink")) {
+    const ss_ring_level *L = r.r.level + r.r.nlevels - 1, *P = L - 1;
+    CHECK(r.r.nlevels == copts.ring_levels && P->folded + P->inverted > 0 &&
+              2 * (L->folded + L->inverted) * P->cells <
+                  (P->folded + P->inverted) * L->cells,
+          "shrinking fold: %zu of %zu bad, before %zu of %zu", L->folded + L->inverted,
+          L->cells, P->folded + P->inverted, P->cells);
+    ctx->found++;
+  }
+  done(&r);
+  return ctx->found > 0 || ctx->checked >= 150;
+}
+
+static void test_ring_verdicts(void) {
+  ss_error err = {0};
+  centre_ctx c9 = {scheme("mlca"), 0, 0};
+  ss_enum_opts o9 = {9, 9, 0, 1};
+  CHECK(ss_enum_links(&o9, visit_centre, &c9, NULL, &err) == SS_OK, "%s", err.msg);
+  CHECK(c9.found == 1, "no link k = 9 passes with folds around p (%d seen)", c9.checked);
+  centre_ctx c10 = {c9.s, 0, 0};
+  ss_enum_opts o10 = {10, 10, 0, 1};
+  CHECK(ss_enum_links(&o10, visit_shrink, &c10, NULL, &err) == SS_OK, "%s", err.msg);
+  CHECK(c10.found == 1, "no shrinking fold among %d links k = 10", c10.checked);
+  ss_scheme_free(c9.s);
+}
+
 int main(void) {
+  copts = ss_charmap_defaults();
   test_result_canonical();
   test_complex();
   test_mlca_k8();
@@ -570,5 +795,8 @@ int main(void) {
   test_defective();
   test_plain_multilinear();
   test_claims();
+  test_ring_structure();
+  test_basis_invariance();
+  test_ring_verdicts();
   return ss_test_done("charmap");
 }

@@ -12,6 +12,9 @@
 #include "ss_report_draw.h"
 #include "ss_test.h"
 
+/* regularity options (ss_charmap_defaults, set in main) */
+static ss_charmap_opts copts;
+
 typedef struct {
   ss_local *M;
   ss_eig *e;
@@ -28,14 +31,15 @@ static int run(const char *scheme, ss_case c, result *out) {
     ss_scheme_free(s);
     return -1;
   }
-  ss_scheme_free(s);
   ss_eig_opts o = ss_eig_defaults(out->M->dim);
   if (ss_eig_new(out->M->S, out->M->n2, out->M->n1, &o, &out->e, &err) ||
-      ss_charmap_analyze(out->M, out->e, SS_JAC_DEPTH, &out->cm, &out->r, &err) ||
+      ss_charmap_judge(s, &c, out->M, out->e, &copts, &out->cm, &out->r, &err) ||
       !out->cm) {
     CHECK(0, "%s: %s", scheme, err.msg);
+    ss_scheme_free(s);
     return -1;
   }
+  ss_scheme_free(s);
   return 0;
 }
 
@@ -92,11 +96,11 @@ static void test_png_svg(const char *dir) {
   long red = red_pixels(png, &w, &h);
   CHECK(w == 640 && h == 360, "png size %dx%d", w, h);
   CHECK(red == 0, "a regular map has %ld warning pixels", red);
-  /* fold it: push the first one-ring point through p */
-  for (int d = 0; d < 3; d++)
-    r.cm->x[3 + d] *= -2.0;
+  /* fold it over the plane z3 = 0: the lower half of the ring inverts */
+  for (size_t i = 0; i < r.cm->n; i++)
+    r.cm->x[3 * i + 2] = fabs(r.cm->x[3 * i + 2]);
   ss_regularity reg;
-  ss_charmap_regularity(r.cm, SS_JAC_DEPTH, &reg);
+  REQUIRE_OK_VOID(ss_charmap_regularity(r.cm, r.M, &copts, &reg, &err), &err);
   CHECK(reg.verdict.verdict == SS_FAIL, "folded map: %s", reg.verdict.reason);
   CHECK(ss_report_draw(r.cm, &reg, &o, png, &err) == SS_OK, "png: %s", err.msg);
   red = red_pixels(png, &w, &h);
@@ -179,6 +183,7 @@ static void test_vtk(const char *dir) {
 }
 
 int main(void) {
+  copts = ss_charmap_defaults();
   char dir[] = "/tmp/ss_test_draw_XXXXXX";
   if (!mkdtemp(dir)) {
     perror("mkdtemp");

@@ -175,7 +175,7 @@ grep -q '\\textbar{}lambda4\\textbar{}' <<<"$tex" && ! grep -q '[^\\]_' <<<"$(gr
 # plots
 expect 1 "" "$exe" report --db "$db" --where "scheme = 'mlca'" --plot "$dir/p.png"
 expect 1 "" "$exe" report --db "$db" --where "scheme = 'mlca'" --plot "$dir/p.svg" --size 900x600
-expect 1 "2 scheme identities selected; .*shows the first, 'mlca tol=1e-06 depth=6'" \
+expect 1 "2 scheme identities selected; .*shows the first, 'mlca tol=1e-06 depth=6 rings=3'" \
   "$exe" report --db "$db" --plot "$dir/q.png"
 checks=$((checks + 1))
 python3 - "$dir" <<'PY' || fail "plot files"
