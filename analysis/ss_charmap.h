@@ -150,4 +150,33 @@ ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
                            const ss_eig *e, const ss_charmap_opts *o, ss_charmap **cm,
                            ss_regularity *r, ss_error *err);
 
+/* ---- symmetries the map does not see (ss_charmap_sym.c) ---- */
+
+/* What ss_charmap_symmetry found. */
+typedef struct {
+  int tested;      /* symmetries of the case that commute with S */
+  int found;       /* 1 if one of them, sigma, has psi o sigma = psi */
+  int order;       /* with found: the order N of sigma */
+  size_t moved;    /* with found: two-ring points sigma moves */
+  double distance; /* with found: ||M_sigma - I||_F, against the gap below */
+  double gap;      /* 2 sin(pi / N): the least ||M - I|| of a matrix M != I
+                      with M^N = I, half of which separates the two cases */
+  char what[160];  /* with found: sigma, in words */
+} ss_charmap_sym;
+
+/* Whether the characteristic map identifies points that a symmetry of the
+ * case exchanges.  A symmetry sigma (a link automorphism for a vertex, the
+ * dihedral symmetries and the flip of the edge for an edge point, the rays'
+ * dihedral group on a surface, the swaps fixing the centre of a face) acts on
+ * the two-ring by a permutation P of its labels; if P S = S P, it maps the
+ * subdominant invariant subspace to itself, P X = X M_sigma, with M_sigma of
+ * finite order N.  psi o sigma = psi exactly when M_sigma = I; otherwise
+ * ||M_sigma - I|| >= max over its eigenvalues w != 1 of |w - 1| >= 2 sin(pi/N),
+ * so comparing with half that gap is decided by no tolerance of rounding
+ * size.  Found: psi is not injective (two distinct points, i and sigma(i), have
+ * one image).  c is the case M was made from (for a vertex: the same link, in
+ * the labelling M used).  SS_ENOMEM; SS_EINPUT for a malformed case. */
+ss_status ss_charmap_symmetry(const ss_charmap *cm, const ss_local *M, const ss_case *c,
+                              ss_charmap_sym *out, ss_error *err);
+
 #endif

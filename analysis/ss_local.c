@@ -3,6 +3,7 @@
 #include "ss_local.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -44,6 +45,8 @@ const char *ss_case_name(ss_case_kind kind) {
     return "face";
   case SS_CASE_SURFACE_VERTEX:
     return "surface-vertex";
+  case SS_CASE_EDGE_POINT:
+    return "edge-point";
   }
   return "?";
 }
@@ -500,7 +503,7 @@ static int read_matrix(const work *W, int l, const ss_local *M, double *S, size_
 
 /* Index of the label x among M's labels (sorted within the one-ring and
  * within the rest), or SIZE_MAX. */
-static size_t label_index(const ss_local *M, const ss_star_coord *x) {
+size_t ss_local_label_index(const ss_local *M, const ss_star_coord *x) {
   const ss_star_coord *hit = bsearch(x, M->label, M->n1, sizeof *M->label, label_cmp);
   if (!hit)
     hit = bsearch(x, M->label + M->n1, M->n2 - M->n1, sizeof *M->label, label_cmp);
@@ -533,7 +536,7 @@ static int collect_cells(const level *L, const unsigned char *t2, ss_local *M,
         for (int j = 0; j < SS_MAXCELLVERTS; j++) {
           c[j] = SIZE_MAX;
           if (j >= nv) continue;
-          c[j] = label_index(M, L->rel + v[j]);
+          c[j] = ss_local_label_index(M, L->rel + v[j]);
           if (c[j] == SIZE_MAX) {
             ss_error_set(err, SS_EINTERNAL, "a two-ring cell corner has no label");
             return HARD;
@@ -790,7 +793,7 @@ static int build_ring(const work *W, int w, int nring, ss_local *M, ss_error *er
   }
   /* number the kept points; level w's are the two-ring labels */
   for (size_t v = 0; v < W->lev[w].cx->nv; v++) {
-    idx[w][v] = need[w][v] ? label_index(M, W->lev[w].rel + v) : SIZE_MAX;
+    idx[w][v] = need[w][v] ? ss_local_label_index(M, W->lev[w].rel + v) : SIZE_MAX;
     if (need[w][v] && idx[w][v] == SIZE_MAX) {
       ss_error_set(err, SS_EINTERNAL, "the ring reads a point outside the two-ring");
       rc = HARD;
@@ -841,6 +844,25 @@ done:
 }
 
 /* ---- cases and stars ---- */
+
+int ss_local_edge_point(const ss_scheme *s, const ss_link *l) {
+  const int n = l->k - 2;
+  if (ss_scheme_split_kind(s) != SS_SPLIT_MULTILINEAR || n < 3 || n == 4) return 0;
+  for (int v = 0, poles = 0; v < l->k; v++) { /* cheap filter: degrees n, n, 4 ... */
+    const int d = ss_link_deg(l, v);
+    poles += d == n && n != 4;
+    if (d != 4 && d != n) return 0;
+    if (v == l->k - 1 && poles != 2) return 0;
+  }
+  char name[32];
+  snprintf(name, sizeof name, "bipyramid:%d", n);
+  ss_link *b = NULL;
+  ss_error err = {0};
+  if (ss_link_named(name, &b, &err)) return -1;
+  const int iso = ss_link_isomorphic(l, b);
+  ss_link_free(b);
+  return iso < 0 ? -1 : iso ? n : 0;
+}
 
 ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
                         ss_error *err) {

@@ -72,11 +72,17 @@
 #include "ss_star.h"
 
 typedef enum {
-  SS_CASE_VERTEX = 0,    /* a 3D vertex with a link */
-  SS_CASE_EDGE,          /* a point on an edge of valence n */
-  SS_CASE_FACE,          /* a point inside the face shared by two tets */
-  SS_CASE_SURFACE_VERTEX /* a 2D vertex of valence n */
+  SS_CASE_VERTEX = 0,     /* a 3D vertex with a link */
+  SS_CASE_EDGE,           /* a point on an edge of valence n */
+  SS_CASE_FACE,           /* a point inside the face shared by two tets */
+  SS_CASE_SURFACE_VERTEX, /* a 2D vertex of valence n */
+  SS_CASE_EDGE_POINT      /* results only: a vertex whose link is the bipyramid
+                             over n (n != 4) in a hex mesh, which is a point on
+                             an edge of valence n and is analysed as the edge
+                             case (ss_local_edge_point) */
 } ss_case_kind;
+
+#define SS_NCASEKINDS 5 /* case kinds, for tables indexed by kind */
 
 /* One case to analyse.  The link is borrowed, not copied. */
 typedef struct {
@@ -130,8 +136,20 @@ typedef struct {
 } ss_local;
 
 /* Name of a case kind as in the command line and JSON ("vertex", "edge",
- * "face", "surface-vertex"). */
+ * "face", "surface-vertex", "edge-point"). */
 const char *ss_case_name(ss_case_kind kind);
+
+/* Points on extraordinary edges (DESIGN section 10).  A vertex of a hex mesh
+ * whose link is the bipyramid over an n-gon has two edges of valence n (the
+ * poles) and n regular ones: it lies on an edge of valence n, and its hex star
+ * is the star of that edge's midpoint once refined, so its local matrix is
+ * the edge case's (the same two-ring, relabelled) and the edge analysis, not
+ * the vertex condition, decides its smoothness.  Returns n when the scheme
+ * splits hexes (multilinear split) and l is such a bipyramid with n != 4 (the
+ * octahedron is the regular vertex); 0 otherwise, and -1 when out of memory.
+ * For tet stars a bipyramid link is an ordinary vertex: the tet/oct split
+ * refines a vertex and an edge midpoint differently. */
+int ss_local_edge_point(const ss_scheme *s, const ss_link *l);
 
 /* The star the scheme refines for case c (hex or tet stars by the scheme's
  * split; see above).  *out is owned by the caller.  SS_EINPUT if the scheme
@@ -165,6 +183,10 @@ ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
 
 /* Free; NULL is a no-op. */
 void ss_local_free(ss_local *L);
+
+/* The index of the label x among M's labels, or SIZE_MAX if x labels no
+ * point of the two-ring.  Cost O(log n2). */
+size_t ss_local_label_index(const ss_local *M, const ss_star_coord *x);
 
 /* Largest absolute coordinate of a label (its distance from p in the chart's
  * max-norm, in grid units). */

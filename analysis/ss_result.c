@@ -81,6 +81,9 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   ss_status st = link_text(c, &cl, &r->link, err);
   ss_case cc = *c;
   if (cl) cc.link = cl;
+  const int ep = !st && cl ? ss_local_edge_point(s, cl) : 0;
+  if (ep < 0) st = ss_error_nomem(err, "edge point");
+  if (ep > 0) cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag};
   if (!st) st = ss_local_new(s, &cc, &M, err);
   if (!st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET)
     st = diagonals(s, &cc, r, err);
@@ -103,8 +106,11 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
     ss_result_clear(r);
     return st;
   }
-  r->kind = c->kind;
+  r->kind = ep > 0 ? SS_CASE_EDGE_POINT : c->kind;
   r->k = c->kind == SS_CASE_VERTEX ? c->link->k : c->kind == SS_CASE_FACE ? 0 : c->n;
+  r->valence = ep > 0                                                         ? ep
+               : c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX ? c->n
+                                                                              : 0;
   r->cells = c->kind == SS_CASE_VERTEX ? (size_t)(2 * r->k - 4)
              : c->kind == SS_CASE_FACE ? 2
                                        : (size_t)c->n;

@@ -35,9 +35,13 @@ typedef struct {
 
 /* The analysis of one case. */
 typedef struct {
-  ss_case_kind kind; /* vertex, edge, face, surface-vertex */
-  int k;             /* vertex: vertices of the link; edge and surface
-                        vertex: the valence n; face: 0 */
+  ss_case_kind kind; /* vertex, edge, face, surface-vertex, or edge-point for
+                        a vertex case whose link makes it a point on an edge
+                        (ss_local_edge_point), judged as that edge */
+  int k;             /* vertex and edge-point: vertices of the link; edge and
+                        surface vertex: the valence n; face: 0 */
+  int valence;       /* edge, surface vertex, edge-point: the valence n;
+                        otherwise 0 */
   char *link;        /* vertex: the canonical link in plantri ASCII; else an
                         empty string.  Owned (ss_result_clear) */
   size_t cells;      /* cells around the centre: 2k - 4 for a vertex, n for
@@ -69,12 +73,20 @@ ss_result_opts ss_result_defaults(void);
 
 /* Analyse case c of scheme s into *r (which need not be initialised; on
  * failure it is left cleared).  For a vertex case the link is put in canonical
- * form first, so isomorphic or mirrored links give equal results.  Free the
+ * form first, so isomorphic or mirrored links give equal results; a link that
+ * makes the vertex a point on an edge of valence n (ss_local_edge_point) is
+ * analysed as the edge case n and reported as kind edge-point.  Free the
  * link text with ss_result_clear.  SS_EINPUT when the scheme does not support
  * the case or an option is out of range; SS_EINTERNAL, SS_ENUMERIC when
  * extraction or LAPACK fail (a defect to report, not a verdict); SS_ENOMEM. */
 ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
                             ss_result *r, ss_error *err);
+
+/* Whether r is a vertex case, judged as a vertex or as an edge point: it
+ * carries a link. */
+static inline int ss_result_has_link(const ss_result *r) {
+  return r->kind == SS_CASE_VERTEX || r->kind == SS_CASE_EDGE_POINT;
+}
 
 /* Both verdicts combined: pass if both pass; fail if either fails; else
  * undecided. */

@@ -648,9 +648,8 @@ static json_object *json_case(const ss_report_row *row) {
   json_object_object_add(o, "identity", json_object_new_string(row->identity));
   json_object_object_add(o, "case", json_object_new_string(ss_case_name(r->kind)));
   json_object_object_add(o, "k", json_object_new_int(r->k));
-  if (r->kind == SS_CASE_EDGE || r->kind == SS_CASE_SURFACE_VERTEX)
-    json_object_object_add(o, "valence", json_object_new_int(r->k));
-  if (r->kind == SS_CASE_VERTEX)
+  if (r->valence) json_object_object_add(o, "valence", json_object_new_int(r->valence));
+  if (ss_result_has_link(r))
     json_object_object_add(o, "link", json_object_new_string(r->link));
   json_object_object_add(o, "cells", jsize(r->cells));
   json_object_object_add(o, "two_ring_size", jsize(r->two_ring));

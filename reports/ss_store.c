@@ -149,8 +149,8 @@ static ss_status create(ss_store *st, ss_error *err) {
 static ss_status prepare(ss_store *st, ss_error *err) {
   if (sqlite3_prepare_v2(st->db,
                          "SELECT eigen_condition, regularity FROM result WHERE "
-                         "scheme_id=?1 AND kind=?2 AND "
-                         "k=?3 AND link=?4",
+                         "scheme_id=?1 AND (kind=?2 OR (?2='vertex' AND "
+                         "kind='edge-point')) AND k=?3 AND link=?4",
                          -1, &st->has, NULL) != SQLITE_OK)
     return db_error(st, err, "prepare");
   if (st->readonly) return SS_OK;
@@ -402,8 +402,9 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
   return SS_OK;
 }
 
-ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[4], ss_error *err) {
-  for (int i = 0; i < 4; i++)
+ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[SS_NCASEKINDS],
+                         ss_error *err) {
+  for (int i = 0; i < SS_NCASEKINDS; i++)
     nk[i] = 0;
   sqlite3_stmt *q = NULL;
   int rc = sqlite3_prepare_v2(st->db,
@@ -413,7 +414,7 @@ ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[4], ss_error *err) 
   if (rc == SQLITE_OK) sqlite3_bind_int64(q, 1, id);
   while (rc == SQLITE_OK && (rc = sqlite3_step(q)) == SQLITE_ROW) {
     const char *kind = (const char *)sqlite3_column_text(q, 0);
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < SS_NCASEKINDS; i++)
       if (!strcmp(kind, ss_case_name((ss_case_kind)i)))
         nk[i] = (size_t)sqlite3_column_int64(q, 1);
     rc = SQLITE_OK;
@@ -424,7 +425,7 @@ ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[4], ss_error *err) 
 }
 
 static int kind_of(const char *name) {
-  for (int i = 0; i < 4; i++)
+  for (int i = 0; i < SS_NCASEKINDS; i++)
     if (!strcmp(name, ss_case_name((ss_case_kind)i))) return i;
   return -1;
 }
@@ -501,6 +502,9 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     }
     r->kind = (ss_case_kind)kind;
     r->k = sqlite3_column_int(q, 3);
+    r->valence = kind == SS_CASE_EDGE || kind == SS_CASE_SURFACE_VERTEX ? r->k
+                 : kind == SS_CASE_EDGE_POINT                           ? r->k - 2
+                                                                        : 0;
     r->link = (char *)sqlite3_column_text(q, 4);
     r->cells = (size_t)sqlite3_column_int64(q, 5);
     r->two_ring = (size_t)sqlite3_column_int64(q, 6);
@@ -533,7 +537,7 @@ ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *p
   ss_store *in = NULL;
   ss_status s = ss_store_open(src, SS_STORE_READ, &in, err);
   if (s) return s;
-  size_t nin[4], before[4], after[4];
+  size_t nin[SS_NCASEKINDS], before[SS_NCASEKINDS], after[SS_NCASEKINDS];
   s = ss_store_count(in, -1, nin, err);
   ss_store_close(in);
   if (s) return s;
@@ -567,7 +571,7 @@ ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *p
   exec(st, "DETACH DATABASE src");
   if (s || (s = ss_store_count(st, -1, after, err))) return s;
   size_t a = 0, t = 0;
-  for (int i = 0; i < 4; i++) {
+  for (int i = 0; i < SS_NCASEKINDS; i++) {
     a += after[i] - before[i];
     t += nin[i];
   }

@@ -89,7 +89,8 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
 
 /* *found = 1 if the case (kind, k, canonical link or "") is stored for scheme
  * id, and then *verdict (may be NULL) is its combined verdict
- * (ss_result_verdict).  SS_EIO. */
+ * (ss_result_verdict).  A vertex case is found as an edge-point row too (a
+ * result's kind says how the vertex was judged).  SS_EIO. */
 ss_status ss_store_has(ss_store *st, int64_t id, ss_case_kind kind, int k,
                        const char *link, int *found, ss_verdict_kind *verdict,
                        ss_error *err);
@@ -100,8 +101,9 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
                        ss_error *err);
 
 /* Rows of scheme id by kind (*nk[kind]), for progress (ids < 0: all
- * schemes).  nk has 4 entries, indexed by ss_case_kind.  SS_EIO. */
-ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[4], ss_error *err);
+ * schemes).  nk has SS_NCASEKINDS entries, indexed by ss_case_kind.  SS_EIO. */
+ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[SS_NCASEKINDS],
+                         ss_error *err);
 
 /* Visit the rows whose view row satisfies `where` (an SQL expression over the
  * columns of the view `cases`, or NULL for all), ordered by scheme identity,

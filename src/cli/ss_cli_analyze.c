@@ -307,7 +307,7 @@ static int parse(int argc, char **argv, opts *o) {
 /* ---- output ---- */
 
 static const char *param_text(const opts *o, const char *canon, char *buf, size_t n) {
-  if (o->kind == SS_CASE_VERTEX) return canon;
+  if (o->kind == SS_CASE_VERTEX || o->kind == SS_CASE_EDGE_POINT) return canon;
   if (o->kind == SS_CASE_FACE) return "";
   snprintf(buf, n, "%d", o->n);
   return buf;
@@ -378,11 +378,12 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
   json_object *r = json_object_new_object();
   json_object_object_add(r, "scheme", json_object_new_string(scheme));
   json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
-  if (o->kind == SS_CASE_VERTEX) {
+  if (o->kind == SS_CASE_VERTEX || o->kind == SS_CASE_EDGE_POINT) {
     json_object_object_add(r, "link", json_object_new_string(canon));
     json_object_object_add(r, "k", json_object_new_int(k));
   }
-  if (o->kind == SS_CASE_EDGE || o->kind == SS_CASE_SURFACE_VERTEX)
+  if (o->kind == SS_CASE_EDGE || o->kind == SS_CASE_SURFACE_VERTEX ||
+      o->kind == SS_CASE_EDGE_POINT)
     json_object_object_add(r, "valence", json_object_new_int(o->n));
   json_object_object_add(r, "two_ring_size", json_object_new_int64((int64_t)M->n2));
   json_object_object_add(r, "one_ring_size", json_object_new_int64((int64_t)M->n1));
@@ -456,7 +457,11 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
                        const ss_local *M, const ss_eig *e, const ss_regularity *reg,
                        const diag_info *di) {
   printf("scheme %s, %s case", scheme, ss_case_name(o->kind));
-  if (o->kind == SS_CASE_VERTEX)
+  if (o->kind == SS_CASE_EDGE_POINT)
+    printf(", link %s (k = %d): the bipyramid over %d, a point on an edge of valence %d, "
+           "analysed as --edge %d\n",
+           canon, k, o->n, o->n, o->n);
+  else if (o->kind == SS_CASE_VERTEX)
     printf(", link %s (k = %d, %d %s)\n", canon, k, 2 * k - 4, ss_cell_plural(M->cell));
   else if (o->kind == SS_CASE_FACE)
     printf(" (two tets sharing a face)\n");
@@ -585,6 +590,15 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   /* the canonical labelling, as sweep and reproduce analyse it (ss_result):
    * isomorphic links then give the same numbers to the last bit */
   ss_case c = {o->kind, cl ? cl : l, o->n, o->diag};
+  /* a point on an extraordinary edge: the edge case judges it (ss_local.h) */
+  const int ep = cl ? ss_local_edge_point(s, cl) : 0;
+  opts oe = *o;
+  if (ep > 0) {
+    c = (ss_case){SS_CASE_EDGE, NULL, ep, o->diag};
+    oe.kind = SS_CASE_EDGE_POINT;
+    oe.n = ep;
+    o = &oe;
+  }
   if (ss_local_new(s, &c, &M, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
     rc = err.status == SS_EINPUT || err.status == SS_EIO ? SS_EXIT_USAGE : SS_EXIT_FAIL;

@@ -438,7 +438,7 @@ static ss_status write_file(const char *path, const strbuf *b, ss_error *err) {
 }
 
 static const char *case_label(const ss_result *r, char *buf, size_t n) {
-  if (r->kind == SS_CASE_VERTEX)
+  if (ss_result_has_link(r))
     snprintf(buf, n, "k = %d", r->k);
   else if (r->kind == SS_CASE_FACE)
     snprintf(buf, n, "face");
@@ -451,12 +451,11 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
   json_object *o = json_object_new_object();
   json_object_object_add(o, "scheme", json_object_new_string(t->scheme));
   json_object_object_add(o, "case", json_object_new_string(ss_case_name(r->kind)));
-  if (r->kind == SS_CASE_VERTEX) {
+  if (ss_result_has_link(r)) {
     json_object_object_add(o, "link", json_object_new_string(r->link));
     json_object_object_add(o, "k", json_object_new_int(r->k));
   }
-  if (r->kind == SS_CASE_EDGE || r->kind == SS_CASE_SURFACE_VERTEX)
-    json_object_object_add(o, "valence", json_object_new_int(r->k));
+  if (r->valence) json_object_object_add(o, "valence", json_object_new_int(r->valence));
   json_object_object_add(o, "two_ring_size", json_object_new_int64((int64_t)r->two_ring));
   json_object_object_add(o, "one_ring_size", json_object_new_int64((int64_t)r->one_ring));
   if (r->has_diag) {
@@ -493,8 +492,9 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
  * ss_charmap.h). */
 static void per_k(strbuf *md, const result_list *l) {
   sb_printf(md, "\n| k | links | pass | fail: eigenvalue condition | fail: regularity | "
-                "undecided | passing, with folds around p |\n"
-                "|--:|--:|--:|--:|--:|--:|--:|\n");
+                "undecided | passing, with folds around p | points on an edge (edge "
+                "verdict) |\n"
+                "|--:|--:|--:|--:|--:|--:|--:|---|\n");
   int lo = INT_MAX, hi = 0;
   for (size_t i = 0; i < l->n; i++) {
     lo = l->r[i].k < lo ? l->r[i].k : lo;
@@ -502,11 +502,17 @@ static void per_k(strbuf *md, const result_list *l) {
   }
   for (int k = lo; k <= hi; k++) { /* the enumeration interleaves the k */
     size_t n = 0, pass = 0, fcond = 0, freg = 0, und = 0, centre = 0;
+    char edges[128] = "–";
     for (size_t i = 0; i < l->n; i++) {
       const ss_result *r = l->r + i;
       if (r->k != k) continue;
-      const ss_verdict_kind v = ss_result_verdict(r);
       n++;
+      const ss_verdict_kind v = ss_result_verdict(r);
+      if (r->kind == SS_CASE_EDGE_POINT) { /* judged as an edge: not a vertex */
+        snprintf(edges, sizeof edges, "1 (valence %d: %s)", r->valence,
+                 ss_verdict_name(v));
+        continue;
+      }
       pass += v == SS_PASS;
       fcond += r->cond.verdict == SS_FAIL;
       freg += r->cond.verdict != SS_FAIL && r->reg.verdict == SS_FAIL;
@@ -514,8 +520,8 @@ static void per_k(strbuf *md, const result_list *l) {
       centre += v == SS_PASS && r->centre_corner_folds > 0;
     }
     if (n)
-      sb_printf(md, "| %d | %zu | %zu | %zu | %zu | %zu | %zu |\n", k, n, pass, fcond,
-                freg, und, centre);
+      sb_printf(md, "| %d | %zu | %zu | %zu | %zu | %zu | %zu | %s |\n", k, n, pass,
+                fcond, freg, und, centre, edges);
   }
 }
 
@@ -626,8 +632,9 @@ static ss_status write_table(const char *dir, const table_spec *t, const result_
   for (size_t i = 0; i < l->n; i++) {
     const ss_result *r = l->r + i;
     char buf[64];
-    if (r->kind == SS_CASE_VERTEX)
-      sb_printf(&md, "| %zu | `%s` | %d | %zu |", i + 1, r->link, r->k, r->cells);
+    if (ss_result_has_link(r))
+      sb_printf(&md, "| %zu | `%s`%s | %d | %zu |", i + 1, r->link,
+                r->kind == SS_CASE_EDGE_POINT ? " (edge point)" : "", r->k, r->cells);
     else if (r->kind == SS_CASE_FACE)
       sb_printf(&md, "| face |");
     else

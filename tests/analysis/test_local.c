@@ -629,6 +629,56 @@ static void test_verdicts(void) {
     CHECK(0, "%s", err.msg);
   }
 }
+/* A vertex whose link is the bipyramid over n is a point on an edge of
+ * valence n (ss_local_edge_point): in a hex mesh its star is the edge
+ * midpoint's, so the vertex and the edge case must give one local matrix (the
+ * same sizes and spectrum), and only hex schemes call it an edge point. */
+static void test_edge_points(void) {
+  ss_scheme *mlca = scheme("mlca"), *tetoct = scheme("tetoct");
+  ss_error err = {0};
+  for (int n = 3; n <= 9; n++) {
+    char name[32];
+    snprintf(name, sizeof name, "bipyramid:%d", n);
+    ss_link *l = NULL;
+    if (ss_link_named(name, &l, &err)) {
+      CHECK(0, "%s: %s", name, err.msg);
+      continue;
+    }
+    CHECK(ss_local_edge_point(mlca, l) == (n == 4 ? 0 : n), "%s: edge point %d", name,
+          ss_local_edge_point(mlca, l));
+    CHECK(ss_local_edge_point(tetoct, l) == 0, "%s: tet stars have no edge points", name);
+    /* a relabelled copy is recognised too; a link that is no bipyramid is not */
+    ss_link *q = ss_testlink_scrambled(l, (unsigned)n, n & 1);
+    CHECK(q && ss_local_edge_point(mlca, q) == (n == 4 ? 0 : n), "%s relabelled", name);
+    ss_link_free(q);
+    ss_local *Mv = NULL, *Me = NULL;
+    ss_eig *ev = NULL, *ee = NULL;
+    if (!analyse(mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &Mv, &ev) &&
+        !analyse(mlca, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &Me, &ee)) {
+      CHECK(Mv->n2 == Me->n2 && Mv->n1 == Me->n1,
+            "%s: vertex two-ring %zu / one-ring %zu, edge %zu / %zu", name, Mv->n2,
+            Mv->n1, Me->n2, Me->n1);
+      if (Mv->n2 == Me->n2) {
+        double *a = values(ev), *b = values(ee);
+        CHECK(mismatches(a, b, Mv->n2, 1e-10) == 0, "%s: vertex and edge spectra differ",
+              name);
+        free(a);
+        free(b);
+      }
+    }
+    ss_eig_free(ev);
+    ss_eig_free(ee);
+    ss_local_free(Mv);
+    ss_local_free(Me);
+    ss_link_free(l);
+  }
+  ss_link *ico = NULL;
+  if (!ss_link_named("icosahedron", &ico, &err))
+    CHECK(ss_local_edge_point(mlca, ico) == 0, "the icosahedron is no edge point");
+  ss_link_free(ico);
+  ss_scheme_free(mlca);
+  ss_scheme_free(tetoct);
+}
 
 int main(void) {
   test_verdicts();
@@ -638,5 +688,6 @@ int main(void) {
   test_tetoct();
   test_links();
   test_cross();
+  test_edge_points();
   return ss_test_done("local");
 }

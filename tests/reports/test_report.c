@@ -343,7 +343,7 @@ static void test_csv(ss_store *st, const computed *all) {
     if (nf != nh) break;
     rows++;
     ss_case_kind kind = SS_CASE_VERTEX;
-    for (int q = 0; q < 4; q++)
+    for (int q = 0; q < SS_NCASEKINDS; q++)
       if (!strcmp(f[ckind], ss_case_name((ss_case_kind)q))) kind = (ss_case_kind)q;
     const ss_result *r = find(all, f[cid], kind, atoi(f[ck]), f[clink]);
     CHECK(r != NULL, "csv record %zu: no such case %s %s %s", rows, f[cid], f[ckind],
@@ -524,7 +524,7 @@ static void test_json(ss_store *st, const computed *all) {
     const char *link =
         json_object_object_get_ex(c, "link", &x) ? json_object_get_string(x) : "";
     ss_case_kind kd = SS_CASE_VERTEX;
-    for (int q = 0; q < 4; q++)
+    for (int q = 0; q < SS_NCASEKINDS; q++)
       if (!strcmp(kind, ss_case_name((ss_case_kind)q))) kd = (ss_case_kind)q;
     const ss_result *r = find(all, ident, kd, k, link);
     CHECK(r != NULL, "json case %zu unknown", i);

@@ -119,7 +119,8 @@ for r in rows:
     if r["min_scaled_jacobian"]:
         g[4].append(float(r["min_scaled_jacobian"]))
     g[5].append(math.hypot(float(r["lambda1_re"]), float(r["lambda1_im"])))
-assert len(summ) == len(groups) == 14, (len(summ), len(groups))
+# 14 groups, and the edge points (bipyramid links, k = 5, 7, 8) in groups of their own
+assert len(summ) == len(groups) == 16, (len(summ), len(groups))
 for s in summ:
     g = groups[(s["identity"], s["case"], int(s["k"]))]
     assert [int(s[c]) for c in ("cases", "pass", "fail", "undecided")] == g[:4], s
@@ -129,10 +130,10 @@ for s in summ:
     assert abs(float(s["lambda1_min"]) - min(g[5])) <= 1e-15
     assert abs(float(s["lambda1_max"]) - max(g[5])) <= 1e-15
 k8 = [s for s in summ if s["case"] == "vertex" and s["k"] == "8"][0]
-assert (k8["cases"], k8["pass"], k8["fail"]) == ("14", "13", "1"), k8
+assert (k8["cases"], k8["pass"], k8["fail"]) == ("13", "12", "1"), k8  # + 1 edge point
 # JSON: the same cases with numbers as numbers
 j = json.load(open(d + "/all.json"))
-assert len(j["cases"]) == 32 and len(j["summary"]) == 14
+assert len(j["cases"]) == 32 and len(j["summary"]) == 16
 for c in j["cases"]:
     assert isinstance(c["eigenvalues"][1]["re"], float)
     assert isinstance(c["cells"], int)
@@ -146,9 +147,13 @@ PY
 n=$("$exe" report --db "$db" --format csv --where "k = 4" | tail -n +2 | wc -l)
 checks=$((checks + 1))
 [ "$n" -eq 3 ] || fail "--where 'k = 4': $n rows (mlca tetrahedron, edge 4; tetoct edge 4)"
-n=$("$exe" report --db "$db" --format csv --where "kind = 'vertex' AND k = 8" | tail -n +2 | wc -l)
+n=$("$exe" report --db "$db" --format csv --where "kind IN ('vertex', 'edge-point') AND k = 8" | tail -n +2 | wc -l)
 checks=$((checks + 1))
 [ "$n" -eq 14 ] || fail "--where k = 8 vertices: $n rows"
+# the bipyramid over 6 (k = 8) is a point on an edge of valence 6
+n=$("$exe" report --db "$db" --format csv --where "kind = 'edge-point' AND k = 8" | tail -n +2 | wc -l)
+checks=$((checks + 1))
+[ "$n" -eq 1 ] || fail "--where k = 8 edge points: $n rows"
 
 # Markdown: one line per case, '|' escaped, the tolerance noted
 md=$("$exe" report --db "$db" --where "scheme = 'mlca'" --table cases)

@@ -67,7 +67,7 @@ boxspline-vertices-5-22-proper: 16 of 18 cases pass both conditions; 36 quoted v
 catmull-clark-surface-vertices-3-8: 6 of 6 cases pass both conditions; 24 quoted values: 24 match, 0 differ; 0 rows not quoted
 mlca-edges-3-8: 5 of 6 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 6 rows not quoted
 mlca-surface-vertices-3-8: 6 of 6 cases pass both conditions; 18 quoted values: 18 match, 0 differ; 0 rows not quoted
-mlca-vertices-k4-8: 22 of 23 cases pass both conditions; 46 quoted values: 45 match, 1 differ; 0 rows not quoted
+mlca-vertices-k4-8: 22 of 23 cases pass both conditions; 40 quoted values: 39 match, 1 differ; 3 rows not quoted
 tetoct-edges-3-10: 8 of 8 cases pass both conditions; 30 quoted values: 24 match, 6 differ; 0 rows not quoted
 tetoct-face: 1 of 1 cases pass both conditions; 12 quoted values: 12 match, 0 differ; 0 rows not quoted
 tetoct-vertices-k4-7: 9 of 9 cases pass both conditions; 18 quoted values: 18 match, 0 differ; 0 rows not quoted"
@@ -127,7 +127,8 @@ grep -q "| 5 | \`8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb\` | 8 | 12 |.*| \
 # so a row differs exactly when our verdict is not a pass.  Recounted here
 # from the JSON lines, independently of the table writer: per case, the
 # quoted verdicts that differ are the eigenvalue condition when it does not
-# pass and the regularity when it does not pass.
+# pass and the regularity when it does not pass; points on an edge (the
+# bipyramid links, judged as edges) are not compared.
 for t in mlca-vertices-k9-10 tetoct-vertices-k8-10; do
   checks=$((checks + 1))
   want=$(python3 -c '
@@ -135,6 +136,8 @@ import json, sys
 n = 0
 for line in open(sys.argv[1]):
     o = json.loads(line)
+    if o["case"] == "edge-point":  # judged as an edge: not quoted as a vertex
+        continue
     n += (o["eigen_condition"]["verdict"] != "pass") + (o["regularity"]["verdict"] != "pass")
 print(n)' "$out/data/$t.jsonl")
   got=$(awk -F'\t' '!/^#/ && $10 == "differ"' "$out/$t.tsv" | wc -l)

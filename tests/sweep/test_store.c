@@ -154,7 +154,7 @@ int main(void) {
   CHECK(!found, "edge 4 was stored for mlca only");
   REQUIRE_OK(ss_store_has(st, idm, SS_CASE_EDGE, 4, "", &found, &v, &err), &err);
   CHECK(found && v == SS_PASS, "edge 4 of mlca found, passing");
-  size_t nk[4];
+  size_t nk[SS_NCASEKINDS];
   REQUIRE_OK(ss_store_count(st, -1, nk, &err), &err);
   CHECK(nk[SS_CASE_VERTEX] == 3 && nk[SS_CASE_EDGE] == 2 && nk[SS_CASE_FACE] == 0,
         "counts %zu %zu %zu", nk[0], nk[1], nk[2]);
