@@ -11,43 +11,7 @@
 
 #include "ss_report_draw.h"
 #include "ss_test.h"
-
-/* regularity options (ss_charmap_defaults, set in main) */
-static ss_charmap_opts copts;
-
-typedef struct {
-  ss_local *M;
-  ss_eig *e;
-  ss_charmap *cm;
-  ss_regularity r;
-} result;
-
-static int run(const char *scheme, ss_case c, result *out) {
-  ss_error err = {0};
-  ss_scheme *s = NULL;
-  memset(out, 0, sizeof *out);
-  if (ss_scheme_new(scheme, &s, &err) || ss_local_new(s, &c, &out->M, &err)) {
-    CHECK(0, "%s: %s", scheme, err.msg);
-    ss_scheme_free(s);
-    return -1;
-  }
-  ss_eig_opts o = ss_eig_defaults(out->M->dim);
-  if (ss_eig_new(out->M->S, out->M->n2, out->M->n1, &o, &out->e, &err) ||
-      ss_charmap_judge(s, &c, out->M, out->e, &copts, &out->cm, &out->r, &err) ||
-      !out->cm) {
-    CHECK(0, "%s: %s", scheme, err.msg);
-    ss_scheme_free(s);
-    return -1;
-  }
-  ss_scheme_free(s);
-  return 0;
-}
-
-static void done(result *r) {
-  ss_charmap_free(r->cm);
-  ss_eig_free(r->e);
-  ss_local_free(r->M);
-}
+#include "ss_testcase.h"
 
 /* Pixels that are clearly the warning red: strong red, weak green and blue. */
 static long red_pixels(const char *png, int *w, int *h) {
@@ -82,9 +46,9 @@ static char *path(const char *dir, const char *name) {
 static void test_png_svg(const char *dir) {
   ss_link *oct = NULL;
   ss_error err = {0};
-  result r;
+  ss_testcase r;
   if (ss_link_parse("tetrahedron", &oct, &err) ||
-      run("mlca", (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
+      ss_testcase_run("mlca", (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
     ss_link_free(oct);
     return;
   }
@@ -100,7 +64,8 @@ static void test_png_svg(const char *dir) {
   for (size_t i = 0; i < r.cm->n; i++)
     r.cm->x[3 * i + 2] = fabs(r.cm->x[3 * i + 2]);
   ss_regularity reg;
-  REQUIRE_OK_VOID(ss_charmap_regularity(r.cm, r.M, &copts, &reg, &err), &err);
+  const ss_charmap_opts co = ss_charmap_defaults();
+  REQUIRE_OK_VOID(ss_charmap_regularity(r.cm, r.M, &co, &reg, &err), &err);
   CHECK(reg.verdict.verdict == SS_FAIL, "folded map: %s", reg.verdict.reason);
   CHECK(ss_report_draw(r.cm, &reg, &o, png, &err) == SS_OK, "png: %s", err.msg);
   red = red_pixels(png, &w, &h);
@@ -124,23 +89,25 @@ static void test_png_svg(const char *dir) {
   o.width = 10;
   CHECK(ss_report_draw(r.cm, &reg, &o, png, &err) == SS_EINPUT, "tiny picture");
   unlink(png), unlink(svg);
-  done(&r);
+  ss_testcase_free(&r);
   ss_link_free(oct);
   /* a surface case draws too */
-  if (!run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS}, &r)) {
+  if (!ss_testcase_run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS},
+                       &r)) {
     o = ss_report_draw_defaults();
     CHECK(ss_report_draw(r.cm, &r.r, &o, png, &err) == SS_OK, "surface png: %s", err.msg);
     red = red_pixels(png, &w, &h);
     CHECK(red == 0 && w == 1200, "surface png: %ld warning pixels, width %d", red, w);
     unlink(png);
-    done(&r);
+    ss_testcase_free(&r);
   }
 }
 
 /* VTK: the counts and the per-cell signs read back. */
 static void test_vtk(const char *dir) {
-  result r;
-  if (run("tetoct", (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS}, &r)) return;
+  ss_testcase r;
+  if (ss_testcase_run("tetoct", (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS}, &r))
+    return;
   ss_error err = {0};
   ss_report_draw_opts o = ss_report_draw_defaults();
   const char *vtk = path(dir, "a.vtk");
@@ -179,11 +146,10 @@ static void test_vtk(const char *dir) {
   CHECK(signs == ncells && ones == ncells, "vtk signs: %zu of %zu equal the map's %d",
         ones, signs, r.r.sign);
   unlink(vtk);
-  done(&r);
+  ss_testcase_free(&r);
 }
 
 int main(void) {
-  copts = ss_charmap_defaults();
   char dir[] = "/tmp/ss_test_draw_XXXXXX";
   if (!mkdtemp(dir)) {
     perror("mkdtemp");

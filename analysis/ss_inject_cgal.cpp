@@ -1,0 +1,463 @@
+// ss_inject_cgal.cpp — the CGAL shim of the injectivity test
+// (ss_inject_cgal.h): a winding number by signed crossings, and overlaps of
+// cell images by a box filter and exact do_intersect.
+//
+// Exactness.  Every decision is a CGAL predicate of the Exact_predicates_
+// inexact_constructions_kernel on the given doubles: orientation, collinear,
+// equality, and do_intersect, which that kernel filters like any predicate
+// (interval arithmetic, then exact arithmetic when the intervals cannot
+// decide), so no rounding enters a yes/no answer.  The only doubles computed
+// here are the far end of the crossing segment, which is then a given point
+// like the others, and box bounds, which are the points' own coordinates.
+//
+// Degenerate simplices.  CGAL's do_intersect requires non-degenerate
+// triangles and tets.  A flat piece is replaced by the non-degenerate
+// simplices of its points of its own dimension (Caratheodory: a set of
+// affine dimension d is the union of the d-simplices its points span), so the
+// union, and the answer, is unchanged.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <new>
+#include <utility>
+#include <vector>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Intersections_2/Point_2_Segment_2.h>
+#include <CGAL/Intersections_2/Point_2_Triangle_2.h>
+#include <CGAL/Intersections_2/Segment_2_Segment_2.h>
+#include <CGAL/Intersections_2/Segment_2_Triangle_2.h>
+#include <CGAL/Intersections_2/Triangle_2_Triangle_2.h>
+#include <CGAL/Intersections_3/Point_3_Segment_3.h>
+#include <CGAL/Intersections_3/Point_3_Tetrahedron_3.h>
+#include <CGAL/Intersections_3/Point_3_Triangle_3.h>
+#include <CGAL/Intersections_3/Segment_3_Segment_3.h>
+#include <CGAL/Intersections_3/Segment_3_Tetrahedron_3.h>
+#include <CGAL/Intersections_3/Segment_3_Triangle_3.h>
+#include <CGAL/Intersections_3/Tetrahedron_3_Tetrahedron_3.h>
+#include <CGAL/Intersections_3/Tetrahedron_3_Triangle_3.h>
+#include <CGAL/Intersections_3/Triangle_3_Triangle_3.h>
+#include <CGAL/box_intersection_d.h>
+
+extern "C" {
+#include "ss_error.h"
+}
+#include "ss_inject_cgal.h"
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using P2 = K::Point_2;
+using P3 = K::Point_3;
+
+// ---- dimension traits ----
+
+template <int D> struct Geo;
+
+template <> struct Geo<2> {
+  using Point = P2;
+  static Point make(const double *p) {
+    return Point(p[0], p[1]);
+  }
+  static double coord(const Point &p, int i) {
+    return i == 0 ? p.x() : p.y();
+  }
+  // Are the k + 1 points v[0..k] affinely independent?
+  static bool full(const Point *v, int k) {
+    if (k == 0) return true;
+    if (k == 1) return v[0] != v[1];
+    return CGAL::orientation(v[0], v[1], v[2]) != CGAL::COLLINEAR;
+  }
+  // Do the closed non-degenerate simplices a (ka + 1 points) and b meet?
+  static bool meet(const Point *a, int ka, const Point *b, int kb) {
+    if (ka < kb) return meet(b, kb, a, ka);
+    if (ka == 2) {
+      const K::Triangle_2 t(a[0], a[1], a[2]);
+      if (kb == 2) return CGAL::do_intersect(t, K::Triangle_2(b[0], b[1], b[2]));
+      if (kb == 1) return CGAL::do_intersect(t, K::Segment_2(b[0], b[1]));
+      return CGAL::do_intersect(t, b[0]);
+    }
+    if (ka == 1) {
+      const K::Segment_2 s(a[0], a[1]);
+      if (kb == 1) return CGAL::do_intersect(s, K::Segment_2(b[0], b[1]));
+      return CGAL::do_intersect(s, b[0]);
+    }
+    return a[0] == b[0];
+  }
+};
+
+template <> struct Geo<3> {
+  using Point = P3;
+  static Point make(const double *p) {
+    return Point(p[0], p[1], p[2]);
+  }
+  static double coord(const Point &p, int i) {
+    return i == 0 ? p.x() : i == 1 ? p.y() : p.z();
+  }
+  static bool full(const Point *v, int k) {
+    if (k == 0) return true;
+    if (k == 1) return v[0] != v[1];
+    if (k == 2) return !CGAL::collinear(v[0], v[1], v[2]);
+    return CGAL::orientation(v[0], v[1], v[2], v[3]) != CGAL::COPLANAR;
+  }
+  static bool meet(const Point *a, int ka, const Point *b, int kb) {
+    if (ka < kb) return meet(b, kb, a, ka);
+    if (ka == 3) {
+      const K::Tetrahedron_3 t(a[0], a[1], a[2], a[3]);
+      if (kb == 3) return CGAL::do_intersect(t, K::Tetrahedron_3(b[0], b[1], b[2], b[3]));
+      if (kb == 2) return CGAL::do_intersect(t, K::Triangle_3(b[0], b[1], b[2]));
+      if (kb == 1) return CGAL::do_intersect(t, K::Segment_3(b[0], b[1]));
+      return CGAL::do_intersect(t, b[0]);
+    }
+    if (ka == 2) {
+      const K::Triangle_3 t(a[0], a[1], a[2]);
+      if (kb == 2) return CGAL::do_intersect(t, K::Triangle_3(b[0], b[1], b[2]));
+      if (kb == 1) return CGAL::do_intersect(t, K::Segment_3(b[0], b[1]));
+      return CGAL::do_intersect(t, b[0]);
+    }
+    if (ka == 1) {
+      const K::Segment_3 s(a[0], a[1]);
+      if (kb == 1) return CGAL::do_intersect(s, K::Segment_3(b[0], b[1]));
+      return CGAL::do_intersect(s, b[0]);
+    }
+    return a[0] == b[0];
+  }
+};
+
+// p on the closed segment ab (a may equal b): collinear, and between a and b
+// in every coordinate.
+template <int D>
+bool on_segment(const typename Geo<D>::Point &a, const typename Geo<D>::Point &b,
+                const typename Geo<D>::Point &p) {
+  bool col;
+  if constexpr (D == 2)
+    col = CGAL::orientation(a, b, p) == CGAL::COLLINEAR;
+  else
+    col = CGAL::collinear(a, b, p);
+  if (!col) return false;
+  for (int i = 0; i < D; i++) {
+    const double u = Geo<D>::coord(a, i), v = Geo<D>::coord(b, i),
+                 w = Geo<D>::coord(p, i);
+    if (w < std::min(u, v) || w > std::max(u, v)) return false;
+  }
+  return true;
+}
+
+// ---- winding number ----
+
+// A reproducible stream of doubles in [0, 1) (splitmix64; local state).
+struct Stream {
+  std::uint64_t s;
+  double next() {
+    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+};
+
+// A double drawn from a little beyond [lo, hi].
+double draw(double lo, double hi, Stream &r) {
+  double w = (hi - lo) + 1.0, a = lo - w, b = hi + w;
+  if (!std::isfinite(a) || !std::isfinite(b)) a = lo, b = hi;
+  const double u = r.next();
+  return (1.0 - u) * a + u * b;
+}
+
+constexpr int kTries = 64;
+
+int sgn(CGAL::Orientation o) {
+  return o == CGAL::POSITIVE ? 1 : o == CGAL::NEGATIVE ? -1 : 0;
+}
+
+// The crossing test of the segment p q with facet f, for a facet that does
+// not hold p and is not flat; sp is the side of p.  Returns the signed
+// crossing (-1, 0, +1) or sets *bad when the segment meets the facet's
+// boundary or lies in its plane.  q lies beyond every facet, so it is on no
+// facet: q on the facet's plane (line) means the segment meets it only at q.
+int crossing(const P3 *t, int sp, const P3 &p, const P3 &q, bool *bad) {
+  const int sq = sgn(CGAL::orientation(t[0], t[1], t[2], q));
+  if (sp == 0 || sq == 0) {
+    if (sp == 0 && sq == 0) *bad = true;
+    return 0;
+  }
+  if (sq == sp) return 0;
+  const int s1 = sgn(CGAL::orientation(p, q, t[0], t[1]));
+  const int s2 = sgn(CGAL::orientation(p, q, t[1], t[2]));
+  const int s3 = sgn(CGAL::orientation(p, q, t[2], t[0]));
+  const bool pos = s1 > 0 || s2 > 0 || s3 > 0, neg = s1 < 0 || s2 < 0 || s3 < 0;
+  if (pos && neg) return 0;
+  if (s1 == 0 || s2 == 0 || s3 == 0) {
+    *bad = true;
+    return 0;
+  }
+  // p inside a positive cell is on the negative side of its outward facets.
+  return -sp;
+}
+
+int crossing(const P2 *s, int sp, const P2 &p, const P2 &q, bool *bad) {
+  const int sq = sgn(CGAL::orientation(s[0], s[1], q));
+  if (sp == 0 || sq == 0) {
+    if (sp == 0 && sq == 0) *bad = true;
+    return 0;
+  }
+  if (sq == sp) return 0;
+  const int s1 = sgn(CGAL::orientation(p, q, s[0]));
+  const int s2 = sgn(CGAL::orientation(p, q, s[1]));
+  if (s1 == 0 || s2 == 0) {
+    *bad = true;
+    return 0;
+  }
+  if (s1 == s2) return 0;
+  // p inside a positive cell is on the left of its boundary segments.
+  return sp;
+}
+
+// The facet (D points) holds p: the closed triangle or segment, flat or not.
+bool holds(const P3 *t, const P3 &p) {
+  if (CGAL::collinear(t[0], t[1], t[2]))
+    return on_segment<3>(t[0], t[1], p) || on_segment<3>(t[1], t[2], p) ||
+           on_segment<3>(t[2], t[0], p);
+  return CGAL::do_intersect(K::Triangle_3(t[0], t[1], t[2]), p);
+}
+bool holds(const P2 *s, const P2 &p) {
+  return on_segment<2>(s[0], s[1], p);
+}
+
+bool flat(const P3 *t) {
+  return CGAL::collinear(t[0], t[1], t[2]);
+}
+bool flat(const P2 *s) {
+  return s[0] == s[1];
+}
+int side(const P3 *t, const P3 &p) {
+  return sgn(CGAL::orientation(t[0], t[1], t[2], p));
+}
+int side(const P2 *s, const P2 &p) {
+  return sgn(CGAL::orientation(s[0], s[1], p));
+}
+
+template <int D>
+void winding(const double *x, size_t nfacet, const size_t *facet, size_t centre,
+             ss_wind_kind *kind, int *w) {
+  using G = Geo<D>;
+  using Point = typename G::Point;
+  const Point p = G::make(x + D * centre);
+  // Facets that can be crossed (not flat), with the side of p.
+  std::vector<std::array<Point, D>> live;
+  std::vector<int> sp;
+  std::array<double, D> lo, hi;
+  for (int i = 0; i < D; i++)
+    lo[i] = hi[i] = G::coord(p, i);
+  for (size_t f = 0; f < nfacet; f++) {
+    std::array<Point, D> t;
+    for (int j = 0; j < D; j++) {
+      t[j] = G::make(x + D * facet[D * f + j]);
+      for (int i = 0; i < D; i++) {
+        lo[i] = std::min(lo[i], G::coord(t[j], i));
+        hi[i] = std::max(hi[i], G::coord(t[j], i));
+      }
+    }
+    if (holds(t.data(), p)) {
+      *kind = SS_WIND_ON_BOUNDARY;
+      return;
+    }
+    // A flat facet holds no crossing a generic segment can count: zero area
+    // (length), so it adds nothing to the winding number.
+    if (flat(t.data())) continue;
+    live.push_back(t);
+    sp.push_back(side(t.data(), p));
+  }
+  // q beyond the largest x: no facet reaches there, so q winds 0 times.
+  double qx = hi[0] + (1.0 + std::fabs(hi[0]));
+  if (!std::isfinite(qx)) qx = std::nextafter(hi[0], HUGE_VAL);
+  *kind = SS_WIND_NO_RAY;
+  if (!std::isfinite(qx) || !(qx > hi[0])) return;
+  Stream r{0x5eed1234abcdull};
+  for (int attempt = 0; attempt < kTries; attempt++) {
+    double c[D];
+    c[0] = qx;
+    for (int i = 1; i < D; i++)
+      c[i] = draw(lo[i], hi[i], r);
+    const Point q = G::make(c);
+    bool bad = false;
+    int sum = 0;
+    for (size_t f = 0; f < live.size() && !bad; f++)
+      sum += crossing(live[f].data(), sp[f], p, q, &bad);
+    if (!bad) {
+      *kind = SS_WIND_OK;
+      *w = sum;
+      return;
+    }
+  }
+}
+
+// ---- overlaps ----
+
+template <int D> struct Simplex {
+  int k;                                       // dimension: k + 1 points
+  std::array<typename Geo<D>::Point, D + 1> v; // its points
+  std::array<double, D> lo, hi;                // its box
+};
+
+int bits(unsigned mask) {
+  int n = 0;
+  for (; mask; mask &= mask - 1)
+    n++;
+  return n;
+}
+
+// Append the non-degenerate simplices of top dimension spanned by the
+// D + 1 points v: v itself when it is not flat.
+template <int D>
+void decompose(const std::array<typename Geo<D>::Point, D + 1> &v,
+               std::vector<Simplex<D>> &out) {
+  using G = Geo<D>;
+  const int m = D + 1;
+  for (int k = D; k >= 0; k--) {
+    bool any = false;
+    for (unsigned mask = 0; mask < (1u << m); mask++) {
+      if (bits(mask) != k + 1) continue;
+      Simplex<D> s;
+      s.k = k;
+      int j = 0;
+      for (int i = 0; i < m; i++)
+        if (mask & (1u << i)) s.v[static_cast<size_t>(j++)] = v[static_cast<size_t>(i)];
+      if (!G::full(s.v.data(), k)) continue;
+      for (int i = 0; i < D; i++) {
+        s.lo[i] = s.hi[i] = G::coord(s.v[0], i);
+        for (int a = 1; a <= k; a++) {
+          s.lo[i] = std::min(s.lo[i], G::coord(s.v[static_cast<size_t>(a)], i));
+          s.hi[i] = std::max(s.hi[i], G::coord(s.v[static_cast<size_t>(a)], i));
+        }
+      }
+      out.push_back(s);
+      any = true;
+      if (k == D) return; // the whole simplex
+    }
+    if (any) return;
+  }
+}
+
+template <int D> bool boxes_meet(const Simplex<D> &a, const Simplex<D> &b) {
+  for (int i = 0; i < D; i++)
+    if (a.hi[i] < b.lo[i] || b.hi[i] < a.lo[i]) return false;
+  return true;
+}
+
+bool share_corner(const size_t *a, const size_t *b, int m) {
+  for (int i = 0; i < m; i++) {
+    if (a[i] == SIZE_MAX) continue;
+    for (int j = 0; j < m; j++)
+      if (a[i] == b[j]) return true;
+  }
+  return false;
+}
+
+template <int D>
+void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorner,
+              const size_t *first_piece, const size_t *piece, size_t *count,
+              size_t pair[2]) {
+  using G = Geo<D>;
+  using Point = typename G::Point;
+  // The simplices of every cell, and the cell's box.
+  std::vector<Simplex<D>> simp;
+  std::vector<size_t> begin(ncells + 1);
+  using Box = CGAL::Box_intersection_d::Box_with_handle_d<
+      double, D, const size_t *, CGAL::Box_intersection_d::ID_FROM_HANDLE>;
+  std::vector<size_t> ids(ncells);
+  std::vector<Box> boxes;
+  boxes.reserve(ncells);
+  for (size_t c = 0; c < ncells; c++) {
+    begin[c] = simp.size();
+    for (size_t s = first_piece[c]; s < first_piece[c + 1]; s++) {
+      std::array<Point, D + 1> v;
+      for (int j = 0; j <= D; j++)
+        v[static_cast<size_t>(j)] = G::make(x + D * piece[(D + 1) * s + j]);
+      decompose<D>(v, simp);
+    }
+    double lo[D], hi[D];
+    for (int i = 0; i < D; i++)
+      lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
+    for (size_t s = begin[c]; s < simp.size(); s++)
+      for (int i = 0; i < D; i++) {
+        lo[i] = std::min(lo[i], simp[s].lo[i]);
+        hi[i] = std::max(hi[i], simp[s].hi[i]);
+      }
+    ids[c] = c;
+    boxes.emplace_back(lo, hi, &ids[c]);
+  }
+  begin[ncells] = simp.size();
+  // Candidate pairs: closed boxes that meet, cells that share no corner.
+  std::vector<std::pair<size_t, size_t>> cand;
+  const size_t m = static_cast<size_t>(maxcorner);
+  CGAL::box_self_intersection_d(
+      boxes.begin(), boxes.end(), [&](const Box &a, const Box &b) {
+        size_t i = *a.handle(), j = *b.handle();
+        if (i > j) std::swap(i, j);
+        if (!share_corner(corner + i * m, corner + j * m, maxcorner))
+          cand.emplace_back(i, j);
+      });
+  std::sort(cand.begin(), cand.end());
+  cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  *count = 0;
+  pair[0] = pair[1] = SIZE_MAX;
+  for (const auto &c : cand) {
+    bool hit = false;
+    for (size_t s = begin[c.first]; s < begin[c.first + 1] && !hit; s++)
+      for (size_t t = begin[c.second]; t < begin[c.second + 1] && !hit; t++)
+        hit = boxes_meet<D>(simp[s], simp[t]) &&
+              G::meet(simp[s].v.data(), simp[s].k, simp[t].v.data(), simp[t].k);
+    if (!hit) continue;
+    if (*count == 0) pair[0] = c.first, pair[1] = c.second;
+    ++*count;
+  }
+}
+
+// Run f, turning every exception into a status.
+template <class F> ss_status guarded(const char *what, ss_error *err, F f) {
+  try {
+    f();
+    return SS_OK;
+  } catch (const std::bad_alloc &) {
+    return ss_error_nomem(err, what);
+  } catch (const std::exception &e) {
+    return ss_error_set(err, SS_EINTERNAL, "%s: %s", what, e.what());
+  } catch (...) {
+    return ss_error_set(err, SS_EINTERNAL, "%s: unknown exception", what);
+  }
+}
+
+} // namespace
+
+extern "C" ss_status ss_inject_cgal_winding(int dim, const double *x, size_t nfacet,
+                                            const size_t *facet, size_t centre,
+                                            ss_wind_kind *kind, int *winding_out,
+                                            ss_error *err) {
+  *kind = SS_WIND_NO_RAY;
+  *winding_out = 0;
+  return guarded("winding number", err, [&] {
+    if (dim == 3)
+      winding<3>(x, nfacet, facet, centre, kind, winding_out);
+    else
+      winding<2>(x, nfacet, facet, centre, kind, winding_out);
+  });
+}
+
+extern "C" ss_status ss_inject_cgal_overlaps(int dim, const double *x, size_t ncells,
+                                             const size_t *corner, int maxcorner,
+                                             const size_t *first_piece,
+                                             const size_t *piece, size_t *noverlaps,
+                                             size_t pair[2], ss_error *err) {
+  *noverlaps = 0;
+  pair[0] = pair[1] = SIZE_MAX;
+  return guarded("cell overlaps", err, [&] {
+    if (dim == 3)
+      overlaps<3>(x, ncells, corner, maxcorner, first_piece, piece, noverlaps, pair);
+    else
+      overlaps<2>(x, ncells, corner, maxcorner, first_piece, piece, noverlaps, pair);
+  });
+}
