@@ -2,9 +2,9 @@
  * for hexes) and its scaled Jacobian.  Method: ss_jac.h.
  *
  * The sign machinery is written once, in ss_jac_impl.h, over a tiny number
- * interface, and instantiated below for double (the hot path of the sweeps).
- * The scaled Jacobian, a measure and not a proof, is computed in double
- * only. */
+ * interface, and instantiated below for double (the hot path of the sweeps,
+ * whose values of no sign are those below the flat threshold).  The scaled
+ * Jacobian, a measure and not a proof, is computed in double only. */
 #include "ss_jac.h"
 
 #include <math.h>
@@ -49,18 +49,21 @@ static inline double minus_d(double a) {
 static inline double zero_d(void) {
   return 0.0;
 }
-static inline int gt0_d(double v) {
-  return v > 0.0;
+/* above the flat threshold: a sign that rounding did not decide */
+static inline int gt0_d(double v, double thr) {
+  return v > thr;
 }
-static inline int lt0_d(double v) {
-  return v < 0.0;
+static inline int lt0_d(double v, double thr) {
+  return v < -thr;
 }
 
-#define NUM double
-#define SUF d
+#define NUM      double
+#define SUF      d
+#define JAC_FLAT SS_JAC_DEGENERATE
 #include "ss_jac_impl.h"
 #undef NUM
 #undef SUF
+#undef JAC_FLAT
 
 /* ---- the scaled Jacobian (double) ---- */
 
@@ -147,17 +150,46 @@ double ss_jac_hex_at(const double *x, double u, double v, double w) {
   return hex_at_d(x, &o, u, v, w);
 }
 
-void ss_jac_cell(ss_cell_type t, const double *x, int dim, int maxdepth,
-                 ss_jac_result *r) {
-  memset(r, 0, sizeof *r);
+/* The number of coordinates of a cell of type t in dim dimensions, 0 when the
+ * pair is not one ss_jac handles. */
+static int ncoords(ss_cell_type t, int dim) {
   const int need = t == SS_HEX || t == SS_TET || t == SS_OCT ? 3
                    : t == SS_QUAD || t == SS_TRIANGLE        ? 2
                                                              : 0;
-  if (!need || dim != need) {
-    r->sign = SS_JAC_UNDECIDED;
-    r->min_scaled = r->max_scaled = NAN;
+  return need && dim == need ? need * ss_cell_nverts(t) : 0;
+}
+
+static void no_verdict(ss_jac_result *r) {
+  r->sign = SS_JAC_UNDECIDED;
+  r->min_scaled = r->max_scaled = NAN;
+}
+
+/* SS_JAC_FLAT L^dim, L the largest distance between two of the n corners */
+static double flat_threshold(const double *x, int n, int dim) {
+  double l2 = 0.0;
+  for (int p = 0; p < n; p++)
+    for (int q = p + 1; q < n; q++) {
+      double s = 0.0;
+      for (int i = 0; i < dim; i++) {
+        const double d = x[dim * p + i] - x[dim * q + i];
+        s += d * d;
+      }
+      l2 = s > l2 ? s : l2;
+    }
+  return SS_JAC_FLAT * (dim == 3 ? l2 * sqrt(l2) : l2);
+}
+
+void ss_jac_cell(ss_cell_type t, const double *x, int dim, int maxdepth,
+                 ss_jac_result *r) {
+  memset(r, 0, sizeof *r);
+  const int n = ncoords(t, dim);
+  int finite = n > 0;
+  for (int i = 0; i < n; i++)
+    finite &= isfinite(x[i]) != 0;
+  if (!finite) {
+    no_verdict(r);
     return;
   }
   measures(t, x, r);
-  cell_sign_d(t, x, maxdepth, r);
+  cell_sign_d(t, x, maxdepth, flat_threshold(x, n / dim, dim), r);
 }

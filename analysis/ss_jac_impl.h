@@ -5,14 +5,19 @@
  * to ss_jac.c: no include guard, on purpose.
  *
  * The includer defines
- *   NUM        the number type (double)
+ *   NUM        the number type (double, or di_t for intervals)
  *   SUF        the suffix of every name defined here and of the operations
+ *   JAC_FLAT   the verdict when every value that bounds det J has no sign
+ *              (SS_JAC_DEGENERATE for doubles, SS_JAC_UNDECIDED for intervals)
  * and these operations on NUM, named with the suffix (add_d, add_di, ...):
- *   add(a, b), sub(a, b), mul(a, b)   a + b, a - b, a b
+ *   add(a, b), sub(a, b), mul(a, b)   a + b, a - b, a b (intervals: enclosures)
  *   scale(a, s), divd(a, s)           s a and a / s for a double s
  *   minus(a)                          -a
  *   zero()                            0
- *   gt0(v), lt0(v)                    v > 0, v < 0
+ *   gt0(v, thr), lt0(v, thr)          v certainly > 0, certainly < 0: for
+ *                                     doubles v > thr and v < -thr (thr the
+ *                                     flat threshold), for intervals the whole
+ *                                     interval on that side of 0 (thr unused)
  * and, shared by both, ss_jac_order (a cube's corner order, looked up once
  * per cell), ss_jac_order_init and SS_JAC_STACK (the hex box stack's size).
  * Everything here is defined as static JN(name), e.g. hex_sign_d. */
@@ -21,9 +26,9 @@
 #define JN_CAT(a, b)  JN_CAT2(a, b)
 #define JN(name)      JN_CAT(name, SUF)
 
-/* -1, 0, +1 */
-static inline int JN(sign)(NUM v) {
-  return JN(gt0)(v) ? 1 : JN(lt0)(v) ? -1 : 0;
+/* -1, 0 (no sign: zero to rounding, or an interval holding 0), +1 */
+static inline int JN(sign)(NUM v, double thr) {
+  return JN(gt0)(v, thr) ? 1 : JN(lt0)(v, thr) ? -1 : 0;
 }
 
 static NUM JN(det3)(const NUM *a, const NUM *b, const NUM *c) {
@@ -113,8 +118,11 @@ static void JN(box_point)(const JN(box) * b, int i, int j, int l, double *p) {
 }
 
 /* The hex test (ss_jac.h): exact values are the corner coefficients of the
- * cell and of its sub-boxes.  Depth first. */
-static void JN(hex_sign)(const NUM *x, int maxdepth, ss_jac_result *r) {
+ * cell and of its sub-boxes.  Depth first; a box with a corner of no sign is
+ * left in doubt without splitting it (every sub-box at that corner would keep
+ * it, and where det J vanishes on a face the split boxes would grow as 4^depth),
+ * but the other boxes are still searched for a proof of a fold. */
+static void JN(hex_sign)(const NUM *x, int maxdepth, double thr, ss_jac_result *r) {
   if (maxdepth > 15) maxdepth = 15;
   ss_jac_order o;
   ss_jac_order_init(3, &o);
@@ -131,30 +139,49 @@ static void JN(hex_sign)(const NUM *x, int maxdepth, ss_jac_result *r) {
       if ((q / stride) % 3 == 1)
         b->c[q] = JN(sub)(JN(scale)(b->c[q], 2.0),
                           JN(scale)(JN(add)(b->c[q - stride], b->c[q + stride]), 0.5));
+  int flat = 1;
+  for (int q = 0; q < 27; q++)
+    flat &= JN(sign)(b->c[q], thr) == 0;
+  r->depth = 0;
+  if (flat) {
+    r->sign = JAC_FLAT;
+    return;
+  }
   b->lo[0] = b->lo[1] = b->lo[2] = 0.0;
   b->size = 1.0;
   b->depth = 0;
-  int seen = 0; /* sign of the first exact value met */
+  int seen = 0;   /* sign of the first exact value met that has one */
+  int nosign = 0; /* an exact value without a sign was met (where holds it) */
   int npos = 0, nneg = 0, doubt = 0;
-  r->depth = 0;
   while (sp > 0) {
     JN(box) cur = stack[--sp];
     r->depth = cur.depth > r->depth ? cur.depth : r->depth;
     /* exact values: the 8 corner coefficients */
+    int blind = 0;
     for (int k = 0; k < 8; k++) {
       const int i = (k & 1) * 2, j = ((k >> 1) & 1) * 2, l = ((k >> 2) & 1) * 2;
-      const int s = JN(sign)(cur.c[i + 3 * j + 9 * l]);
-      if (s == 0 || (seen && s != seen)) {
+      const int s = JN(sign)(cur.c[i + 3 * j + 9 * l], thr);
+      if (s == 0) {
+        blind = 1;
+        if (!nosign) JN(box_point)(&cur, i, j, l, r->where);
+        nosign = 1;
+        continue;
+      }
+      if (seen && s != seen) {
         JN(box_point)(&cur, i, j, l, r->where);
         r->sign = SS_JAC_FOLDED;
         return;
       }
-      if (!seen) seen = s;
+      seen = s;
+    }
+    if (blind) {
+      doubt++;
+      continue;
     }
     int pos = 1, neg = 1;
     for (int q = 0; q < 27; q++) {
-      pos &= JN(gt0)(cur.c[q]);
-      neg &= JN(lt0)(cur.c[q]);
+      pos &= JN(gt0)(cur.c[q], thr);
+      neg &= JN(lt0)(cur.c[q], thr);
     }
     if (pos) {
       npos++;
@@ -200,38 +227,53 @@ static void JN(hex_sign)(const NUM *x, int maxdepth, ss_jac_result *r) {
 /* ---- the other cell types ---- */
 
 /* Quad: det J is affine, its four corner values decide. */
-static void JN(quad_sign)(const NUM *x, ss_jac_result *r) {
+static void JN(quad_sign)(const NUM *x, double thr, ss_jac_result *r) {
   ss_jac_order o;
   ss_jac_order_init(2, &o);
-  int first = 0, bad = -1;
+  int sg[4], flat = 1;
   for (int k = 0; k < 4; k++) {
     NUM e[3][3];
     JN(corner_frame)(x, 2, &o, k, e);
-    const int sg = JN(sign)(JN(det2)(e[0], e[1]));
-    if (k == 0) first = sg;
-    if (bad < 0 && (sg == 0 || sg != first)) bad = k;
+    sg[k] = JN(sign)(JN(det2)(e[0], e[1]), thr);
+    flat &= sg[k] == 0;
   }
-  if (bad >= 0) {
-    r->where[0] = (double)(o.bits[bad] & 1u);
-    r->where[1] = (double)((o.bits[bad] >> 1) & 1u);
-    r->sign = SS_JAC_FOLDED;
-  } else {
-    r->sign = first > 0 ? SS_JAC_POSITIVE : SS_JAC_NEGATIVE;
+  if (flat) {
+    r->sign = JAC_FLAT;
+    return;
   }
+  int first = 0, bad = -1, blind = -1;
+  for (int k = 0; k < 4; k++) {
+    if (sg[k] == 0) {
+      if (blind < 0) blind = k;
+    } else if (!first) {
+      first = sg[k];
+    } else if (bad < 0 && sg[k] != first) {
+      bad = k;
+    }
+  }
+  const int at = bad >= 0 ? bad : blind;
+  if (at >= 0) {
+    r->where[0] = (double)(o.bits[at] & 1u);
+    r->where[1] = (double)((o.bits[at] >> 1) & 1u);
+  }
+  r->sign = bad >= 0     ? SS_JAC_FOLDED
+            : blind >= 0 ? SS_JAC_UNDECIDED
+            : first > 0  ? SS_JAC_POSITIVE
+                         : SS_JAC_NEGATIVE;
 }
 
 /* Tet (d = 3) or triangle (d = 2): the determinant of the edges from vertex 0. */
-static void JN(simplex_sign)(const NUM *x, int d, ss_jac_result *r) {
+static void JN(simplex_sign)(const NUM *x, int d, double thr, ss_jac_result *r) {
   NUM e[3][3];
   for (int i = 0; i < d; i++)
     JN(diff)(d, x + d * (i + 1), x, e[i]);
-  const int s = JN(sign)(d == 3 ? JN(det3)(e[0], e[1], e[2]) : JN(det2)(e[0], e[1]));
-  r->sign = s > 0 ? SS_JAC_POSITIVE : s < 0 ? SS_JAC_NEGATIVE : SS_JAC_FOLDED;
+  const int s = JN(sign)(d == 3 ? JN(det3)(e[0], e[1], e[2]) : JN(det2)(e[0], e[1]), thr);
+  r->sign = s > 0 ? SS_JAC_POSITIVE : s < 0 ? SS_JAC_NEGATIVE : JAC_FLAT;
 }
 
 /* Octahedron: the eight tets (centroid, one vertex of each opposite pair),
  * each oriented as the octant it fills. */
-static void JN(oct_sign)(const NUM *x, ss_jac_result *r) {
+static void JN(oct_sign)(const NUM *x, double thr, ss_jac_result *r) {
   NUM c[3];
   for (int i = 0; i < 3; i++)
     c[i] = JN(zero)();
@@ -250,33 +292,36 @@ static void JN(oct_sign)(const NUM *x, ss_jac_result *r) {
     JN(diff)(3, x + 3 * s2, c, e);
     NUM d = JN(det3)(a, b, e);
     if (flips & 1) d = JN(minus)(d);
-    const int s = JN(sign)(d);
+    const int s = JN(sign)(d, thr);
     pos += s > 0;
     neg += s < 0;
     none += s == 0;
   }
-  r->sign = none || (pos && neg) ? SS_JAC_FOLDED
-            : pos                ? SS_JAC_POSITIVE
-                                 : SS_JAC_NEGATIVE;
+  r->sign = none == 8    ? JAC_FLAT
+            : pos && neg ? SS_JAC_FOLDED
+            : none       ? SS_JAC_UNDECIDED
+            : pos        ? SS_JAC_POSITIVE
+                         : SS_JAC_NEGATIVE;
 }
 
 /* The verdict, depth and where of a cell whose type and dim were checked. */
-static void JN(cell_sign)(ss_cell_type t, const NUM *x, int maxdepth, ss_jac_result *r) {
+static void JN(cell_sign)(ss_cell_type t, const NUM *x, int maxdepth, double thr,
+                          ss_jac_result *r) {
   switch (t) {
   case SS_HEX:
-    JN(hex_sign)(x, maxdepth < 0 ? 0 : maxdepth, r);
+    JN(hex_sign)(x, maxdepth < 0 ? 0 : maxdepth, thr, r);
     break;
   case SS_QUAD:
-    JN(quad_sign)(x, r);
+    JN(quad_sign)(x, thr, r);
     break;
   case SS_TET:
-    JN(simplex_sign)(x, 3, r);
+    JN(simplex_sign)(x, 3, thr, r);
     break;
   case SS_TRIANGLE:
-    JN(simplex_sign)(x, 2, r);
+    JN(simplex_sign)(x, 2, thr, r);
     break;
   case SS_OCT:
-    JN(oct_sign)(x, r);
+    JN(oct_sign)(x, thr, r);
     break;
   default:
     r->sign = SS_JAC_UNDECIDED;
