@@ -2,13 +2,16 @@
  * for hexes) and its scaled Jacobian.  Method: ss_jac.h.
  *
  * The sign machinery is written once, in ss_jac_impl.h, over a tiny number
- * interface, and instantiated below for double (the hot path of the sweeps,
- * whose values of no sign are those below the flat threshold).  The scaled
+ * interface, and instantiated twice below: for double (the hot path of the
+ * sweeps, whose values of no sign are those below the flat threshold) and for
+ * arb's di_t intervals with outward rounding (the certified path).  The scaled
  * Jacobian, a measure and not a proof, is computed in double only. */
 #include "ss_jac.h"
 
 #include <math.h>
 #include <string.h>
+
+#include "double_interval.h"
 
 enum { SS_JAC_STACK = 8 * 16 + 8 }; /* depth-first: at most 7 pending boxes per level */
 
@@ -60,6 +63,55 @@ static inline int lt0_d(double v, double thr) {
 #define NUM      double
 #define SUF      d
 #define JAC_FLAT SS_JAC_DEGENERATE
+#include "ss_jac_impl.h"
+#undef NUM
+#undef SUF
+#undef JAC_FLAT
+
+/* ---- the number interface: intervals (enclosures, outward rounding) ---- */
+
+static inline di_t add_di(di_t a, di_t b) {
+  return di_fast_add(a, b);
+}
+static inline di_t sub_di(di_t a, di_t b) {
+  return di_fast_sub(a, b);
+}
+static inline di_t mul_di(di_t a, di_t b) {
+  return di_fast_mul(a, b);
+}
+/* s a x as two products rounded to nearest, then moved outward (arb's own
+ * helpers of di_fast_add; they also cover underflow): cheaper than
+ * di_fast_mul_d's general case, and hex_at scales 1944 times per cell */
+static inline di_t scale_di(di_t a, double s) {
+  const double p = s * a.a, q = s * a.b;
+  di_t r;
+  r.a = _di_below(s >= 0.0 ? p : q);
+  r.b = _di_above(s >= 0.0 ? q : p);
+  return r;
+}
+static inline di_t divd_di(di_t a, double s) {
+  return di_fast_div_d(a, s);
+}
+static inline di_t minus_di(di_t a) {
+  return di_neg(a);
+}
+static inline di_t zero_di(void) {
+  const di_t z = {0.0, 0.0};
+  return z;
+}
+/* the whole enclosure on one side of 0 (no threshold: rounding is enclosed) */
+static inline int gt0_di(di_t v, double thr) {
+  (void)thr;
+  return v.a > 0.0;
+}
+static inline int lt0_di(di_t v, double thr) {
+  (void)thr;
+  return v.b < 0.0;
+}
+
+#define NUM      di_t
+#define SUF      di
+#define JAC_FLAT SS_JAC_UNDECIDED
 #include "ss_jac_impl.h"
 #undef NUM
 #undef SUF
@@ -192,4 +244,27 @@ void ss_jac_cell(ss_cell_type t, const double *x, int dim, int maxdepth,
   }
   measures(t, x, r);
   cell_sign_d(t, x, maxdepth, flat_threshold(x, n / dim, dim), r);
+}
+
+void ss_jac_cell_interval(ss_cell_type t, const double *lo, const double *hi, int dim,
+                          int maxdepth, ss_jac_result *r) {
+  memset(r, 0, sizeof *r);
+  const int n = ncoords(t, dim);
+  int ok = n > 0;
+  /* finite and ordered: di_t needs a <= b, and an infinite end proves nothing */
+  for (int i = 0; i < n; i++)
+    ok &= isfinite(lo[i]) && isfinite(hi[i]) && lo[i] <= hi[i];
+  if (!ok) {
+    no_verdict(r);
+    return;
+  }
+  di_t xi[SS_MAXCELLVERTS * 3];
+  double mid[SS_MAXCELLVERTS * 3];
+  for (int i = 0; i < n; i++) {
+    xi[i].a = lo[i];
+    xi[i].b = hi[i];
+    mid[i] = 0.5 * lo[i] + 0.5 * hi[i]; /* in [lo, hi], no overflow */
+  }
+  measures(t, mid, r);
+  cell_sign_di(t, xi, maxdepth, 0.0, r);
 }

@@ -111,12 +111,15 @@ void ss_jac_cell(ss_cell_type t, const double *x, int dim, int maxdepth,
 
 /* As ss_jac_cell for corners known only within boxes, lo[i] <= x[i] <= hi[i]
  * (same layout as x): every quantity is computed in interval arithmetic with
- * outward rounding, so POSITIVE / NEGATIVE / FOLDED hold for every net in the
- * boxes (the true one among them): POSITIVE when every bounding value is
- * certainly > 0, FOLDED when two exact values (corner coefficients of the cell
- * or of a sub-box, corner values of a quad, octant determinants) are certainly
- * of opposite signs; otherwise UNDECIDED.  Never DEGENERATE.  min_scaled and
- * max_scaled are those of the midpoints (a measure, not a proof). */
+ * outward rounding (arb's di_t), so POSITIVE / NEGATIVE / FOLDED hold for
+ * every net in the boxes (the true one among them): POSITIVE when every
+ * bounding value is certainly > 0 (after subdivision, for hexes), FOLDED when
+ * two exact values (corner coefficients of the cell or of a sub-box, corner
+ * values of a quad, octant determinants) are certainly of opposite signs;
+ * otherwise UNDECIDED, with `where` as in ss_jac_cell.  Never DEGENERATE.
+ * min_scaled and max_scaled are those of the midpoints (a measure, not a
+ * proof).  A non-finite bound or lo[i] > hi[i] gives UNDECIDED with NaN
+ * measures.  The same traversal as ss_jac_cell, at 10 to 15 times its cost. */
 void ss_jac_cell_interval(ss_cell_type t, const double *lo, const double *hi, int dim,
                           int maxdepth, ss_jac_result *r);
 

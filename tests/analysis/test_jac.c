@@ -7,8 +7,12 @@
  *
  * Values with no sign: flat cells (det J = 0 mathematically, computed as 0 or
  * as rounding noise) are DEGENERATE, a cell with one exact value zero is
- * UNDECIDED, not FOLDED, unless clear values prove a fold (det J sampled by a
- * formula written independently here). */
+ * UNDECIDED, not FOLDED, unless clear values prove a fold.
+ *
+ * The interval test (ss_jac_cell_interval) agrees with the double one for
+ * tight boxes; its proofs hold for random nets drawn in the boxes (det J
+ * sampled by a formula written independently here); widened boxes end in
+ * UNDECIDED, never in a wrong proof. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -326,8 +330,73 @@ static void ref_range(ss_cell_type t, const double *x, int m, double *mn, double
   }
 }
 
+/* det J at a FOLDED verdict's point (hex, quad) */
+static double ref_at(ss_cell_type t, const double *x, const double *w) {
+  return t == SS_HEX ? ref_hex(x, w) : ref_quad(x, w[0], w[1]);
+}
+
+static int nvals(ss_cell_type t) {
+  return t == SS_HEX ? 24 : t == SS_OCT ? 18 : t == SS_TET ? 12 : t == SS_QUAD ? 8 : 6;
+}
+
 static int tdim(ss_cell_type t) {
   return t == SS_QUAD || t == SS_TRIANGLE ? 2 : 3;
+}
+
+/* the interval verdict for boxes of radius rad around x */
+static void jac_box(ss_cell_type t, const double *x, double rad, int depth,
+                    ss_jac_result *r) {
+  double lo[24], hi[24];
+  for (int i = 0; i < nvals(t); i++)
+    lo[i] = x[i] - rad, hi[i] = x[i] + rad;
+  ss_jac_cell_interval(t, lo, hi, tdim(t), depth, r);
+}
+
+/* the tight radius: 1e-14 relative to the largest coordinate */
+static double tight(ss_cell_type t, const double *x) {
+  double s = 0.0;
+  for (int i = 0; i < nvals(t); i++)
+    s = fmax(s, fabs(x[i]));
+  return 1e-14 * s;
+}
+
+/* a random net in the boxes of radius rad around x: each coordinate at an end
+ * of its interval or inside it */
+static void net_in_box(ss_cell_type t, const double *x, double rad, uint64_t *seed,
+                       double *y) {
+  for (int i = 0; i < nvals(t); i++) {
+    const double u = rnd(seed), lo = x[i] - rad, hi = x[i] + rad;
+    y[i] = u < -0.5 ? lo : u > 0.5 ? hi : fmin(hi, fmax(lo, x[i] + 2.0 * u * rad));
+  }
+}
+
+/* Whether the certified verdict r holds for the net y by sampling; 1 for
+ * UNDECIDED.  FOLDED: det J at r->where has a sign opposite to one of the
+ * cell's corner values (the proof's two exact values). */
+static int holds(ss_cell_type t, const double *y, const ss_jac_result *r) {
+  double mn, mx;
+  ref_range(t, y, t == SS_HEX ? 12 : 16, &mn, &mx);
+  switch (r->sign) {
+  case SS_JAC_POSITIVE:
+    return mn > 0.0;
+  case SS_JAC_NEGATIVE:
+    return mx < 0.0;
+  case SS_JAC_FOLDED:
+    if (t == SS_HEX || t == SS_QUAD) {
+      const double v = ref_at(t, y, r->where);
+      return v > 0.0 ? mn < 0.0 : v < 0.0 ? mx > 0.0 : 0;
+    }
+    return t == SS_OCT && mn < 0.0 && mx > 0.0;
+  default:
+    return r->sign == SS_JAC_UNDECIDED;
+  }
+}
+
+/* the verdict of sampling alone: +-1 one sign, 0 both signs, 2 a zero */
+static int sampled_sign(ss_cell_type t, const double *y) {
+  double mn, mx;
+  ref_range(t, y, t == SS_HEX ? 12 : 16, &mn, &mx);
+  return mn > 0.0 ? 1 : mx < 0.0 ? -1 : mn < 0.0 && mx > 0.0 ? 0 : 2;
 }
 
 /* ---- the cells of the tests ---- */
@@ -338,8 +407,11 @@ static const double fold_hex[24] = {
 static const double deep_hex[24] = {
     0.625,  0.125,  0.25, 0.625, 0.25, 0.5, 1.25,  0.5, 0.25, 0.125,  0.875, 0.375,
     -0.625, -0.125, 1,    0.875, 0.5,  0.5, 0.625, 1,   0.75, -0.125, 1.25,  0.625};
+static const double reg_tet[12] = {1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1};
 static const double reg_oct[18] = {1,  0, 0, 0, 1,  0, 0, 0, 1,
                                    -1, 0, 0, 0, -1, 0, 0, 0, -1};
+static const double square[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+static const double eq_tri[6] = {0, 0, 1, 0, 0.5, 0.8660254037844386};
 
 static void test_reference(void) {
   /* the test's own det J agrees with ss_jac_hex_at, and the Bernstein test's
@@ -365,11 +437,163 @@ static void test_reference(void) {
   CHECK(mn == 1.0 && mx == 1.0, "regular octahedron's octants: [%g, %g]", mn, mx);
 }
 
-/* A flat cell: DEGENERATE. */
+/* The interval verdict for tight boxes against the double one: same sign,
+ * same point, same depth. */
+static void agree(ss_cell_type t, const double *x, int depth, const char *what, int n) {
+  ss_jac_result a, b;
+  ss_jac_cell(t, x, tdim(t), depth, &a);
+  jac_box(t, x, tight(t, x), depth, &b);
+  CHECK(a.sign == b.sign && a.depth == b.depth &&
+            (a.sign != SS_JAC_FOLDED || memcmp(a.where, b.where, sizeof a.where) == 0),
+        "%s %d: double %d (depth %d, at %g %g %g), interval %d (depth %d, at %g %g %g)",
+        what, n, a.sign, a.depth, a.where[0], a.where[1], a.where[2], b.sign, b.depth,
+        b.where[0], b.where[1], b.where[2]);
+  CHECK(fabs(a.min_scaled - b.min_scaled) < 1e-12 &&
+            fabs(a.max_scaled - b.max_scaled) < 1e-12,
+        "%s %d: scaled Jacobian %g %g (double), %g %g (midpoints)", what, n, a.min_scaled,
+        a.max_scaled, b.min_scaled, b.max_scaled);
+}
+
+static void test_interval_tight(void) {
+  double cube[24], mirror[24];
+  unit_cube(cube);
+  memcpy(mirror, cube + 12, 12 * sizeof *mirror);
+  memcpy(mirror + 12, cube, 12 * sizeof *mirror);
+  agree(SS_HEX, cube, SS_JAC_DEPTH, "unit cube", 0);
+  agree(SS_HEX, mirror, SS_JAC_DEPTH, "mirrored cube", 0);
+  agree(SS_TET, reg_tet, 0, "regular tet", 0);
+  agree(SS_TRIANGLE, eq_tri, 0, "triangle", 0);
+  agree(SS_OCT, reg_oct, 0, "regular octahedron", 0);
+  agree(SS_QUAD, square, 0, "square", 0);
+  const double bowtie[8] = {0, 0, 1, 0, 0, 1, 1, 1};
+  const double dart[8] = {0, 0, 2, 0, 0.5, 0.5, 0, 2};
+  agree(SS_QUAD, bowtie, 0, "bow-tie", 0);
+  agree(SS_QUAD, dart, 0, "dart", 0);
+  double oct2[18];
+  memcpy(oct2, reg_oct, sizeof oct2);
+  oct2[2 * 3 + 2] = -0.5;
+  agree(SS_OCT, oct2, 0, "squashed octahedron", 0);
+  ss_jac_result r;
+  jac_box(SS_HEX, fold_hex, tight(SS_HEX, fold_hex), SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_FOLDED && ref_hex(fold_hex, r.where) < 0.0,
+        "folding hex, certified: %d at (%g %g %g)", r.sign, r.where[0], r.where[1],
+        r.where[2]);
+  agree(SS_HEX, fold_hex, SS_JAC_DEPTH, "folding hex", 0);
+  jac_box(SS_HEX, deep_hex, tight(SS_HEX, deep_hex), SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_POSITIVE && r.depth > 0, "deep hex, certified: %d depth %d",
+        r.sign, r.depth);
+  agree(SS_HEX, deep_hex, SS_JAC_DEPTH, "deep hex", 0);
+  jac_box(SS_HEX, deep_hex, tight(SS_HEX, deep_hex), 0, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED, "deep hex at depth 0, certified: %d", r.sign);
+  /* similarities, random cells of every type, of both signs and folded */
+  uint64_t seed = 42;
+  int folded = 0;
+  for (int t = 0; t < 400; t++) {
+    double x[24], y[24];
+    unit_cube(x);
+    for (int i = 0; i < 24; i++)
+      x[i] += (t < 100 ? 0.2 : 0.55) * rnd(&seed);
+    similarity(x, 8, &seed, t & 1, y);
+    agree(SS_HEX, y, SS_JAC_DEPTH, "random hex", t);
+    ss_jac_cell(SS_HEX, y, 3, SS_JAC_DEPTH, &r);
+    folded += r.sign == SS_JAC_FOLDED;
+    double o[18], q[8], e[12], tr[6];
+    for (int i = 0; i < 18; i++)
+      o[i] = reg_oct[i] + (t < 100 ? 0.15 : 0.6) * rnd(&seed);
+    agree(SS_OCT, o, 0, "random octahedron", t);
+    for (int i = 0; i < 8; i++)
+      q[i] = square[i] + 0.6 * rnd(&seed);
+    agree(SS_QUAD, q, 0, "random quad", t);
+    for (int i = 0; i < 12; i++)
+      e[i] = rnd(&seed);
+    agree(SS_TET, e, 0, "random tet", t);
+    for (int i = 0; i < 6; i++)
+      tr[i] = rnd(&seed);
+    agree(SS_TRIANGLE, tr, 0, "random triangle", t);
+  }
+  CHECK(folded > 20, "random hexes: only %d folded", folded);
+}
+
+/* Boxes widened from tight to the cell's size: a certified verdict stays the
+ * tight one and holds for random nets in the boxes, then turns UNDECIDED for
+ * good; at the widest, UNDECIDED.  Returns the number of widths at which the
+ * sampled nets disagreed among themselves (the sign was in doubt). */
+static int widen(ss_cell_type t, const double *x, const char *what, uint64_t *seed) {
+  ss_jac_result r0, r;
+  double s = 0.0;
+  for (int i = 0; i < nvals(t); i++)
+    s = fmax(s, fabs(x[i]));
+  jac_box(t, x, tight(t, x), SS_JAC_DEPTH, &r0);
+  int was_undecided = 0, doubts = 0;
+  for (double rad = tight(t, x); rad < 2.0 * s; rad *= 8.0) {
+    jac_box(t, x, rad, SS_JAC_DEPTH, &r);
+    CHECK(r.sign == r0.sign || r.sign == SS_JAC_UNDECIDED, "%s, radius %g: %d, tight %d",
+          what, rad, r.sign, r0.sign);
+    CHECK(!was_undecided || r.sign == SS_JAC_UNDECIDED,
+          "%s, radius %g: %d after UNDECIDED at a smaller radius", what, rad, r.sign);
+    was_undecided |= r.sign == SS_JAC_UNDECIDED;
+    int bad = 0, seen[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 12; k++) {
+      double y[24];
+      net_in_box(t, x, rad, seed, y);
+      bad += !holds(t, y, &r);
+      seen[sampled_sign(t, y) + 1] = 1;
+    }
+    CHECK(bad == 0, "%s, radius %g: verdict %d fails for %d of 12 nets in the boxes",
+          what, rad, r.sign, bad);
+    if (seen[0] + seen[1] + seen[2] + seen[3] > 1) {
+      doubts++;
+      CHECK(r.sign == SS_JAC_UNDECIDED, "%s, radius %g: nets of different signs, %d",
+            what, rad, r.sign);
+    }
+  }
+  CHECK(r.sign == SS_JAC_UNDECIDED, "%s: %d at the widest boxes", what, r.sign);
+  return doubts;
+}
+
+static void test_interval_proofs(void) {
+  uint64_t seed = 2024;
+  double cube[24];
+  unit_cube(cube);
+  int doubts = 0;
+  doubts += widen(SS_HEX, cube, "unit cube", &seed);
+  doubts += widen(SS_HEX, fold_hex, "folding hex", &seed);
+  doubts += widen(SS_HEX, deep_hex, "deep hex", &seed);
+  doubts += widen(SS_TET, reg_tet, "regular tet", &seed);
+  doubts += widen(SS_TRIANGLE, eq_tri, "triangle", &seed);
+  doubts += widen(SS_OCT, reg_oct, "regular octahedron", &seed);
+  doubts += widen(SS_QUAD, square, "square", &seed);
+  const double dart[8] = {0, 0, 2, 0, 0.5, 0.5, 0, 2};
+  doubts += widen(SS_QUAD, dart, "dart", &seed);
+  double oct2[18];
+  memcpy(oct2, reg_oct, sizeof oct2);
+  oct2[2 * 3 + 2] = -0.5;
+  doubts += widen(SS_OCT, oct2, "squashed octahedron", &seed);
+  for (int t = 0; t < 12; t++) {
+    double x[24];
+    unit_cube(x);
+    for (int i = 0; i < 24; i++)
+      x[i] += 0.5 * rnd(&seed);
+    doubts += widen(SS_HEX, x, "random hex", &seed);
+  }
+  CHECK(doubts >= 10, "widening reached boxes of mixed signs only %d times", doubts);
+  /* boxes a hundredth of the cell still prove the ideal cells */
+  ss_jac_result r;
+  jac_box(SS_HEX, cube, 0.01, SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_POSITIVE, "unit cube, radius 0.01: %d", r.sign);
+  jac_box(SS_HEX, fold_hex, 1e-4, SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_FOLDED, "folding hex, radius 1e-4: %d", r.sign);
+  jac_box(SS_OCT, reg_oct, 0.01, 0, &r);
+  CHECK(r.sign == SS_JAC_POSITIVE, "regular octahedron, radius 0.01: %d", r.sign);
+}
+
+/* A flat cell: DEGENERATE in double, UNDECIDED for tight boxes. */
 static void flat_cell(ss_cell_type t, const double *x, const char *what) {
   ss_jac_result r;
   ss_jac_cell(t, x, tdim(t), SS_JAC_DEPTH, &r);
   CHECK(r.sign == SS_JAC_DEGENERATE, "%s: %d", what, r.sign);
+  jac_box(t, x, tight(t, x), SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED, "%s, certified: %d", what, r.sign);
 }
 
 /* Vertex 2 (+z) of the octahedron x moved to the centroid of the other five,
@@ -399,6 +623,8 @@ static void test_no_sign(void) {
     flat[3 * k + 2] = 0.0;
   }
   flat_cell(SS_HEX, flat, "flat hex");
+  jac_box(SS_HEX, flat, 0.0, SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED, "flat hex, point intervals: %d", r.sign);
   double noise = 0.0;
   for (int t = 0; t < 50; t++) {
     similarity(flat, 8, &seed, t & 1, y);
@@ -409,7 +635,8 @@ static void test_no_sign(void) {
   CHECK(noise > 0.0 && noise < 1e-14, "rotated flat hexes: det J up to %g", noise);
   /* exactly flat with rounding in the arithmetic: coordinates of 51 bits on
    * the plane z = x + y (exact), so det J = 0 exactly while the sums and
-   * products that compute it round */
+   * products that compute it round.  Even boxes of radius 0 must not give the
+   * enclosure a sign */
   int rounded = 0;
   for (int t = 0; t < 100; t++) {
     double e[24];
@@ -420,10 +647,14 @@ static void test_no_sign(void) {
     }
     ss_jac_cell(SS_TET, e, 3, 0, &r);
     CHECK(r.sign == SS_JAC_DEGENERATE, "flat 51-bit tet %d: %d", t, r.sign);
+    jac_box(SS_TET, e, 0.0, 0, &r);
+    CHECK(r.sign == SS_JAC_UNDECIDED, "flat 51-bit tet %d, point boxes: %d", t, r.sign);
     ref_range(SS_TET, e, 0, &mn, &mx);
     rounded += mn != 0.0;
     ss_jac_cell(SS_HEX, e, 3, SS_JAC_DEPTH, &r);
     CHECK(r.sign == SS_JAC_DEGENERATE, "flat 51-bit hex %d: %d", t, r.sign);
+    jac_box(SS_HEX, e, 0.0, SS_JAC_DEPTH, &r);
+    CHECK(r.sign == SS_JAC_UNDECIDED, "flat 51-bit hex %d, point boxes: %d", t, r.sign);
     ref_range(SS_HEX, e, 2, &mn, &mx);
     rounded += mn != 0.0 || mx != 0.0;
   }
@@ -479,6 +710,10 @@ static void test_no_sign(void) {
   ss_jac_cell(SS_HEX, z, 3, SS_JAC_DEPTH, &r);
   CHECK(r.sign == SS_JAC_UNDECIDED && memcmp(r.where, one, sizeof one) == 0,
         "zero-corner hex: %d at (%g %g %g)", r.sign, r.where[0], r.where[1], r.where[2]);
+  jac_box(SS_HEX, z, tight(SS_HEX, z), SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED && memcmp(r.where, one, sizeof one) == 0,
+        "zero-corner hex, certified: %d at (%g %g %g)", r.sign, r.where[0], r.where[1],
+        r.where[2]);
   for (int t = 0; t < 50; t++) {
     similarity(z, 8, &seed, 0, y);
     ss_jac_cell(SS_HEX, y, 3, SS_JAC_DEPTH, &r);
@@ -509,6 +744,10 @@ static void test_no_sign(void) {
   ss_jac_cell(SS_QUAD, kite, 2, 0, &r);
   CHECK(r.sign == SS_JAC_UNDECIDED && r.where[0] == 1.0 && r.where[1] == 1.0,
         "quad with a zero corner: %d at (%g %g)", r.sign, r.where[0], r.where[1]);
+  jac_box(SS_QUAD, kite, tight(SS_QUAD, kite), 0, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED && r.where[0] == 1.0 && r.where[1] == 1.0,
+        "quad with a zero corner, certified: %d at (%g %g)", r.sign, r.where[0],
+        r.where[1]);
   const double qf[8] = {-0.125, 1.25, 1.125, -0.5, 0.8125, 2, 0.875, 1.5};
   CHECK(ref_quad(qf, 1, 1) == 0.0 && ref_quad(qf, 0, 1) < -0.5,
         "zero-corner quad with a fold: %g %g", ref_quad(qf, 1, 1), ref_quad(qf, 0, 1));
@@ -528,6 +767,8 @@ static void test_no_sign(void) {
   thin[3 * 3 + 2] = 1e-6;
   ss_jac_cell(SS_TET, thin, 3, 0, &r);
   CHECK(r.sign == SS_JAC_POSITIVE, "thin tet: %d", r.sign);
+  jac_box(SS_TET, thin, tight(SS_TET, thin), 0, &r);
+  CHECK(r.sign == SS_JAC_POSITIVE, "thin tet, certified: %d", r.sign);
   const double ftri[6] = {0, 0, 2, 1, 1, 0.5};
   flat_cell(SS_TRIANGLE, ftri, "collinear triangle");
   const double rtri[6] = {0.1, 0.3, 0.1 + 2 * c, 0.3 + 2 * sn, 0.1 + c, 0.3 + sn};
@@ -551,6 +792,9 @@ static void test_no_sign(void) {
   ss_jac_cell(SS_OCT, oc, 3, 0, &r);
   CHECK(r.sign == SS_JAC_UNDECIDED, "octahedron with flat octants: %d, [%g, %g]", r.sign,
         mn, mx);
+  jac_box(SS_OCT, oc, tight(SS_OCT, oc), 0, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED, "octahedron with flat octants, certified: %d",
+        r.sign);
   oc[3 * 3] = 0.5; /* -x now at +0.5: the lower octants at x0 and x3 differ */
   apex_to_centroid(oc);
   ref_range(SS_OCT, oc, 0, &mn, &mx);
@@ -560,18 +804,33 @@ static void test_no_sign(void) {
 }
 
 static void test_bad_input(void) {
-  double cube[24];
+  double cube[24], lo[24], hi[24];
   unit_cube(cube);
   ss_jac_result r;
   const double bad[3] = {NAN, INFINITY, -INFINITY};
   for (int b = 0; b < 3; b++) {
-    double x[24];
-    memcpy(x, cube, sizeof x);
-    x[5] = bad[b];
-    ss_jac_cell(SS_HEX, x, 3, SS_JAC_DEPTH, &r);
+    memcpy(lo, cube, sizeof lo);
+    memcpy(hi, cube, sizeof hi);
+    lo[5] = bad[b];
+    ss_jac_cell_interval(SS_HEX, lo, hi, 3, SS_JAC_DEPTH, &r);
+    CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_scaled) && isnan(r.max_scaled),
+          "interval, lo %g: %d, %g", bad[b], r.sign, r.min_scaled);
+    ss_jac_cell_interval(SS_HEX, hi, lo, 3, SS_JAC_DEPTH, &r);
+    CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_scaled), "interval, hi %g: %d, %g",
+          bad[b], r.sign, r.min_scaled);
+    ss_jac_cell(SS_HEX, lo, 3, SS_JAC_DEPTH, &r);
     CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_scaled), "double, %g: %d, %g", bad[b],
           r.sign, r.min_scaled);
   }
+  memcpy(lo, cube, sizeof lo);
+  memcpy(hi, cube, sizeof hi);
+  lo[7] = hi[7] + 1e-3; /* unordered */
+  ss_jac_cell_interval(SS_HEX, lo, hi, 3, SS_JAC_DEPTH, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_scaled), "lo > hi: %d", r.sign);
+  ss_jac_cell_interval(SS_QUAD, square, square, 3, 0, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_scaled), "quad in 3D: %d", r.sign);
+  ss_jac_cell_interval(SS_SEGMENT, square, square, 2, 0, &r);
+  CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_scaled), "segment: %d", r.sign);
 }
 
 int main(void) {
@@ -579,6 +838,8 @@ int main(void) {
   test_similarity();
   test_bernstein();
   test_reference();
+  test_interval_tight();
+  test_interval_proofs();
   test_no_sign();
   test_bad_input();
   return ss_test_done("jac");
