@@ -1,0 +1,334 @@
+/* ss_jac_impl.h — the sign machinery of ss_jac.c (the Bernstein coefficients
+ * of a hex's det J, their de Casteljau subdivision, and the determinants that
+ * decide quads, tets, triangles and octahedra), written once over a number
+ * type and included by ss_jac.c once per type, FLINT-template style.  Private
+ * to ss_jac.c: no include guard, on purpose.
+ *
+ * The includer defines
+ *   NUM        the number type (double, or di_t for intervals)
+ *   SUF        the suffix of every name defined here and of the operations
+ *   JAC_FLAT   the verdict when every value that bounds det J has no sign
+ *              (SS_JAC_DEGENERATE for doubles, SS_JAC_UNDECIDED for intervals)
+ * and these operations on NUM, named with the suffix (add_d, add_di, ...):
+ *   add(a, b), sub(a, b), mul(a, b)   a + b, a - b, a b (intervals: enclosures)
+ *   scale(a, s), divd(a, s)           s a and a / s for a double s
+ *   minus(a)                          -a
+ *   zero()                            0
+ *   gt0(v, thr), lt0(v, thr)          v certainly > 0, certainly < 0: for
+ *                                     doubles v > thr and v < -thr (thr the
+ *                                     flat threshold), for intervals the whole
+ *                                     interval on that side of 0 (thr unused)
+ * and, shared by both, ss_jac_order (a cube's corner order, looked up once
+ * per cell), ss_jac_order_init and SS_JAC_STACK (the hex box stack's size).
+ * Everything here is defined as static JN(name), e.g. hex_sign_d. */
+
+#define JN_CAT2(a, b) a##_##b
+#define JN_CAT(a, b)  JN_CAT2(a, b)
+#define JN(name)      JN_CAT(name, SUF)
+
+/* -1, 0 (no sign: zero to rounding, or an interval holding 0), +1 */
+static inline int JN(sign)(NUM v, double thr) {
+  return JN(gt0)(v, thr) ? 1 : JN(lt0)(v, thr) ? -1 : 0;
+}
+
+static NUM JN(det3)(const NUM *a, const NUM *b, const NUM *c) {
+  const NUM m0 = JN(sub)(JN(mul)(b[1], c[2]), JN(mul)(b[2], c[1]));
+  const NUM m1 = JN(sub)(JN(mul)(b[0], c[2]), JN(mul)(b[2], c[0]));
+  const NUM m2 = JN(sub)(JN(mul)(b[0], c[1]), JN(mul)(b[1], c[0]));
+  return JN(add)(JN(sub)(JN(mul)(a[0], m0), JN(mul)(a[1], m1)), JN(mul)(a[2], m2));
+}
+
+static NUM JN(det2)(const NUM *a, const NUM *b) {
+  return JN(sub)(JN(mul)(a[0], b[1]), JN(mul)(a[1], b[0]));
+}
+
+/* r = a - b, d coordinates */
+static void JN(diff)(int d, const NUM *a, const NUM *b, NUM *r) {
+  for (int i = 0; i < d; i++)
+    r[i] = JN(sub)(a[i], b[i]);
+}
+
+/* Corner k of a d-cube (d = 2, 3; o its corner order): the edge vectors along
+ * increasing parameters, e[i] = x(corner with bit i set) - x(corner with bit i
+ * clear). */
+static void JN(corner_frame)(const NUM *x, int d, const ss_jac_order *o, int k,
+                             NUM e[3][3]) {
+  const unsigned b = o->bits[k];
+  for (int i = 0; i < d; i++) {
+    const unsigned b1 = b | (1u << i), b0 = b & ~(1u << i);
+    JN(diff)(d, x + d * o->index[b1], x + d * o->index[b0], e[i]);
+  }
+}
+
+/* det J of the trilinear map of the hex x (8 x 3, corner order o) at (u, v, w) */
+static NUM JN(hex_at)(const NUM *x, const ss_jac_order *o, double u, double v, double w) {
+  const double t[3] = {u, v, w};
+  NUM J[3][3]; /* J[i] = d x / d t_i */
+  for (int i = 0; i < 3; i++)
+    for (int r = 0; r < 3; r++)
+      J[i][r] = JN(zero)();
+  for (int k = 0; k < 8; k++) {
+    const unsigned b = o->bits[k];
+    for (int i = 0; i < 3; i++) {
+      double wt = 1.0; /* exact: a product of +-1, t and 1 - t */
+      for (int j = 0; j < 3; j++) {
+        const int bj = (int)((b >> j) & 1u);
+        wt *= j == i ? (bj ? 1.0 : -1.0) : (bj ? t[j] : 1.0 - t[j]);
+      }
+      if (wt == 0.0) continue; /* adds +-0: the same sums, fewer operations */
+      for (int r = 0; r < 3; r++)
+        J[i][r] = JN(add)(J[i][r], JN(scale)(x[3 * k + r], wt));
+    }
+  }
+  return JN(det3)(J[0], J[1], J[2]);
+}
+
+/* ---- hexes: Bernstein coefficients and adaptive subdivision ---- */
+
+/* A box of the parameter cube with the 27 Bernstein coefficients of det J
+ * on it, c[i + 3 j + 9 k] for the multi-index (i, j, k) in {0,1,2}^3. */
+typedef struct {
+  NUM c[27];    /* coefficients */
+  double lo[3]; /* the box's low corner in [0,1]^3 */
+  double size;  /* its edge length */
+  int depth;    /* subdivision level */
+} JN(box);
+
+/* de Casteljau at 1/2 along axis a: the coefficients of the lower and upper
+ * halves. */
+static void JN(split_axis)(const NUM *c, int a, NUM *lo, NUM *hi) {
+  const int stride = a == 0 ? 1 : a == 1 ? 3 : 9;
+  for (int q = 0; q < 27; q++) {
+    const int idx = (q / stride) % 3;
+    if (idx != 0) continue;
+    const NUM b0 = c[q], b1 = c[q + stride], b2 = c[q + 2 * stride];
+    const NUM m01 = JN(scale)(JN(add)(b0, b1), 0.5);
+    const NUM m12 = JN(scale)(JN(add)(b1, b2), 0.5);
+    const NUM m = JN(scale)(JN(add)(m01, m12), 0.5);
+    lo[q] = b0, lo[q + stride] = m01, lo[q + 2 * stride] = m;
+    hi[q] = m, hi[q + stride] = m12, hi[q + 2 * stride] = b2;
+  }
+}
+
+/* The parameter point of multi-index (i, j, l) in {0,1,2}^3 of box b. */
+static void JN(box_point)(const JN(box) * b, int i, int j, int l, double *p) {
+  p[0] = b->lo[0] + b->size * 0.5 * i;
+  p[1] = b->lo[1] + b->size * 0.5 * j;
+  p[2] = b->lo[2] + b->size * 0.5 * l;
+}
+
+/* The hex test (ss_jac.h): exact values are the corner coefficients of the
+ * cell and of its sub-boxes.  Depth first; a box with a corner of no sign is
+ * left in doubt without splitting it (every sub-box at that corner would keep
+ * it, and where det J vanishes on a face the split boxes would grow as 4^depth),
+ * but the other boxes are still searched for a proof of a fold. */
+static void JN(hex_sign)(const NUM *x, int maxdepth, double thr, ss_jac_result *r) {
+  if (maxdepth > 15) maxdepth = 15;
+  ss_jac_order o;
+  ss_jac_order_init(3, &o);
+  JN(box) stack[SS_JAC_STACK];
+  int sp = 0;
+  /* Lagrange values on {0, 1/2, 1}^3, converted axis by axis */
+  JN(box) *b = stack + sp++;
+  for (int k = 0; k < 3; k++)
+    for (int j = 0; j < 3; j++)
+      for (int i = 0; i < 3; i++)
+        b->c[i + 3 * j + 9 * k] = JN(hex_at)(x, &o, 0.5 * i, 0.5 * j, 0.5 * k);
+  for (int a = 0, stride = 1; a < 3; a++, stride *= 3)
+    for (int q = 0; q < 27; q++)
+      if ((q / stride) % 3 == 1)
+        b->c[q] = JN(sub)(JN(scale)(b->c[q], 2.0),
+                          JN(scale)(JN(add)(b->c[q - stride], b->c[q + stride]), 0.5));
+  int flat = 1;
+  for (int q = 0; q < 27; q++)
+    flat &= JN(sign)(b->c[q], thr) == 0;
+  r->depth = 0;
+  if (flat) {
+    r->sign = JAC_FLAT;
+    return;
+  }
+  b->lo[0] = b->lo[1] = b->lo[2] = 0.0;
+  b->size = 1.0;
+  b->depth = 0;
+  int seen = 0;   /* sign of the first exact value met that has one */
+  int nosign = 0; /* an exact value without a sign was met (where holds it) */
+  int npos = 0, nneg = 0, doubt = 0;
+  while (sp > 0) {
+    JN(box) cur = stack[--sp];
+    r->depth = cur.depth > r->depth ? cur.depth : r->depth;
+    /* exact values: the 8 corner coefficients */
+    int blind = 0;
+    for (int k = 0; k < 8; k++) {
+      const int i = (k & 1) * 2, j = ((k >> 1) & 1) * 2, l = ((k >> 2) & 1) * 2;
+      const int s = JN(sign)(cur.c[i + 3 * j + 9 * l], thr);
+      if (s == 0) {
+        blind = 1;
+        if (!nosign) JN(box_point)(&cur, i, j, l, r->where);
+        nosign = 1;
+        continue;
+      }
+      if (seen && s != seen) {
+        JN(box_point)(&cur, i, j, l, r->where);
+        r->sign = SS_JAC_FOLDED;
+        return;
+      }
+      seen = s;
+    }
+    if (blind) {
+      doubt++;
+      continue;
+    }
+    int pos = 1, neg = 1;
+    for (int q = 0; q < 27; q++) {
+      pos &= JN(gt0)(cur.c[q], thr);
+      neg &= JN(lt0)(cur.c[q], thr);
+    }
+    if (pos) {
+      npos++;
+      continue;
+    }
+    if (neg) {
+      nneg++;
+      continue;
+    }
+    if (cur.depth >= maxdepth || sp + 8 > SS_JAC_STACK) {
+      doubt++;
+      continue;
+    }
+    /* split into 8: along x, then y, then z */
+    NUM h[2][27], q4[4][27], q8[8][27];
+    JN(split_axis)(cur.c, 0, h[0], h[1]);
+    for (int a = 0; a < 2; a++)
+      JN(split_axis)(h[a], 1, q4[2 * a], q4[2 * a + 1]);
+    for (int a = 0; a < 4; a++)
+      JN(split_axis)(q4[a], 2, q8[2 * a], q8[2 * a + 1]);
+    for (int a = 0; a < 8; a++) {
+      /* q8 index: bit 2 = x half, bit 1 = y half, bit 0 = z half */
+      JN(box) *nb = stack + sp++;
+      memcpy(nb->c, q8[a], sizeof nb->c);
+      nb->size = 0.5 * cur.size;
+      nb->lo[0] = cur.lo[0] + ((a >> 2) & 1) * nb->size;
+      nb->lo[1] = cur.lo[1] + ((a >> 1) & 1) * nb->size;
+      nb->lo[2] = cur.lo[2] + (a & 1) * nb->size;
+      nb->depth = cur.depth + 1;
+    }
+  }
+  if (npos && nneg) {
+    /* cannot happen without exact values of both signs, which return above */
+    r->sign = SS_JAC_FOLDED;
+    return;
+  }
+  if (doubt)
+    r->sign = SS_JAC_UNDECIDED;
+  else
+    r->sign = seen > 0 ? SS_JAC_POSITIVE : SS_JAC_NEGATIVE;
+}
+
+/* ---- the other cell types ---- */
+
+/* Quad: det J is affine, its four corner values decide. */
+static void JN(quad_sign)(const NUM *x, double thr, ss_jac_result *r) {
+  ss_jac_order o;
+  ss_jac_order_init(2, &o);
+  int sg[4], flat = 1;
+  for (int k = 0; k < 4; k++) {
+    NUM e[3][3];
+    JN(corner_frame)(x, 2, &o, k, e);
+    sg[k] = JN(sign)(JN(det2)(e[0], e[1]), thr);
+    flat &= sg[k] == 0;
+  }
+  if (flat) {
+    r->sign = JAC_FLAT;
+    return;
+  }
+  int first = 0, bad = -1, blind = -1;
+  for (int k = 0; k < 4; k++) {
+    if (sg[k] == 0) {
+      if (blind < 0) blind = k;
+    } else if (!first) {
+      first = sg[k];
+    } else if (bad < 0 && sg[k] != first) {
+      bad = k;
+    }
+  }
+  const int at = bad >= 0 ? bad : blind;
+  if (at >= 0) {
+    r->where[0] = (double)(o.bits[at] & 1u);
+    r->where[1] = (double)((o.bits[at] >> 1) & 1u);
+  }
+  r->sign = bad >= 0     ? SS_JAC_FOLDED
+            : blind >= 0 ? SS_JAC_UNDECIDED
+            : first > 0  ? SS_JAC_POSITIVE
+                         : SS_JAC_NEGATIVE;
+}
+
+/* Tet (d = 3) or triangle (d = 2): the determinant of the edges from vertex 0. */
+static void JN(simplex_sign)(const NUM *x, int d, double thr, ss_jac_result *r) {
+  NUM e[3][3];
+  for (int i = 0; i < d; i++)
+    JN(diff)(d, x + d * (i + 1), x, e[i]);
+  const int s = JN(sign)(d == 3 ? JN(det3)(e[0], e[1], e[2]) : JN(det2)(e[0], e[1]), thr);
+  r->sign = s > 0 ? SS_JAC_POSITIVE : s < 0 ? SS_JAC_NEGATIVE : JAC_FLAT;
+}
+
+/* Octahedron: the eight tets (centroid, one vertex of each opposite pair),
+ * each oriented as the octant it fills. */
+static void JN(oct_sign)(const NUM *x, double thr, ss_jac_result *r) {
+  NUM c[3];
+  for (int i = 0; i < 3; i++)
+    c[i] = JN(zero)();
+  for (int k = 0; k < 6; k++)
+    for (int i = 0; i < 3; i++)
+      c[i] = JN(add)(c[i], JN(divd)(x[3 * k + i], 6.0));
+  int pos = 0, neg = 0, none = 0;
+  for (int f = 0; f < 8; f++) {
+    /* octant f: one vertex of each opposite pair; an odd number of
+     * reflections reverses the orientation (as in ss_cx_orient.c) */
+    const int s0 = (f & 1) ? 3 : 0, s1 = (f & 2) ? 4 : 1, s2 = (f & 4) ? 5 : 2;
+    const int flips = (f & 1) + ((f >> 1) & 1) + ((f >> 2) & 1);
+    NUM a[3], b[3], e[3];
+    JN(diff)(3, x + 3 * s0, c, a);
+    JN(diff)(3, x + 3 * s1, c, b);
+    JN(diff)(3, x + 3 * s2, c, e);
+    NUM d = JN(det3)(a, b, e);
+    if (flips & 1) d = JN(minus)(d);
+    const int s = JN(sign)(d, thr);
+    pos += s > 0;
+    neg += s < 0;
+    none += s == 0;
+  }
+  r->sign = none == 8    ? JAC_FLAT
+            : pos && neg ? SS_JAC_FOLDED
+            : none       ? SS_JAC_UNDECIDED
+            : pos        ? SS_JAC_POSITIVE
+                         : SS_JAC_NEGATIVE;
+}
+
+/* The verdict, depth and where of a cell whose type and dim were checked. */
+static void JN(cell_sign)(ss_cell_type t, const NUM *x, int maxdepth, double thr,
+                          ss_jac_result *r) {
+  switch (t) {
+  case SS_HEX:
+    JN(hex_sign)(x, maxdepth < 0 ? 0 : maxdepth, thr, r);
+    break;
+  case SS_QUAD:
+    JN(quad_sign)(x, thr, r);
+    break;
+  case SS_TET:
+    JN(simplex_sign)(x, 3, thr, r);
+    break;
+  case SS_TRIANGLE:
+    JN(simplex_sign)(x, 2, thr, r);
+    break;
+  case SS_OCT:
+    JN(oct_sign)(x, thr, r);
+    break;
+  default:
+    r->sign = SS_JAC_UNDECIDED;
+    break;
+  }
+}
+
+#undef JN
+#undef JN_CAT
+#undef JN_CAT2
