@@ -361,20 +361,12 @@ static void memo_free(memo *M) {
 ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
                      ss_eig **out, ss_error *err) {
   *out = NULL;
-  if (n1 == 0 || n1 > n)
-    return ss_error_set(err, SS_EINPUT,
-                        "one-ring block of %zu rows in a %zu x %zu matrix", n1, n, n);
+  ss_status st = ss_scc_check_form(S, n, n1, err);
+  if (st) return st;
   if (!(opts->tol > 0.0 && opts->tol < 0.1) || !(opts->cluster >= 0.0) ||
       (opts->dim != 2 && opts->dim != 3))
     return ss_error_set(err, SS_EINPUT,
                         "eigenvalue tolerance must be in (0, 0.1), not %g", opts->tol);
-  for (size_t i = 0; i < n1; i++)
-    for (size_t j = n1; j < n; j++)
-      if (S[i * n + j] != 0.0)
-        return ss_error_set(err, SS_EINPUT,
-                            "the one-ring block is not invariant: S[%zu][%zu] = %g", i, j,
-                            S[i * n + j]);
-  ss_status st = SS_OK;
   const size_t nc = n - n1;
   ss_eig *e = calloc(1, sizeof *e);
   double *a = malloc((n1 * n1 + 1) * sizeof *a), *vr = malloc((n1 * n1 + 1) * sizeof *vr),

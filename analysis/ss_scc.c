@@ -5,6 +5,19 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+ss_status ss_scc_check_form(const double *S, size_t n, size_t n1, ss_error *err) {
+  if (!S || n1 == 0 || n1 > n)
+    return ss_error_set(err, SS_EINPUT,
+                        "one-ring block of %zu rows in a %zu x %zu matrix", n1, n, n);
+  for (size_t i = 0; i < n1; i++)
+    for (size_t j = n1; j < n; j++)
+      if (S[i * n + j] != 0.0)
+        return ss_error_set(err, SS_EINPUT,
+                            "the one-ring block is not invariant: S[%zu][%zu] = %g", i, j,
+                            S[i * n + j]);
+  return SS_OK;
+}
+
 void ss_csr_free(ss_csr *A) {
   free(A->ptr);
   free(A->mid);

@@ -11,6 +11,13 @@
 
 #include <stddef.h>
 
+#include "ss_error.h"
+
+/* SS_EINPUT (naming the entry) unless 0 < n1 <= n and the leading n1 x n1
+ * block of the row-major n x n matrix S is invariant: S[i][j] = 0 for
+ * i < n1 <= j. */
+ss_status ss_scc_check_form(const double *S, size_t n, size_t n1, ss_error *err);
+
 /* S in compressed rows; in row r the columns < n1 (the part B of the outer
  * rows) come before mid[r], those >= n1 (C) from mid[r] on. */
 typedef struct {
