@@ -11,6 +11,8 @@
 
 #include <lapacke.h>
 
+#include "ss_scc.h"
+
 ss_eig_opts ss_eig_defaults(int dim) {
   ss_eig_opts o = {1e-6, 1e-2, dim, 1, 0};
   return o;
@@ -34,123 +36,6 @@ static void colmajor(const double *S, size_t n, size_t m, double *a) {
   for (size_t i = 0; i < m; i++)
     for (size_t j = 0; j < m; j++)
       a[j * m + i] = S[i * n + j];
-}
-
-/* ---- the sparsity of S ---- */
-
-/* S in compressed rows; in row r the columns < n1 (the part B of the outer
- * rows) come before mid[r], those >= n1 (C) from mid[r] on. */
-typedef struct {
-  size_t *ptr; /* n + 1 row starts */
-  size_t *mid; /* n: first entry of a row with column >= n1 */
-  size_t *col; /* nnz column indices, increasing within a row */
-  double *val; /* nnz values */
-} csr;
-
-static void csr_free(csr *A) {
-  free(A->ptr);
-  free(A->mid);
-  free(A->col);
-  free(A->val);
-}
-
-/* Returns 0, or -1 when out of memory. */
-static int csr_make(const double *S, size_t n, size_t n1, csr *A) {
-  size_t nnz = 0;
-  for (size_t k = 0; k < n * n; k++)
-    nnz += S[k] != 0.0;
-  A->ptr = malloc((n + 1) * sizeof *A->ptr);
-  A->mid = malloc((n + 1) * sizeof *A->mid);
-  A->col = malloc((nnz + 1) * sizeof *A->col);
-  A->val = malloc((nnz + 1) * sizeof *A->val);
-  if (!A->ptr || !A->mid || !A->col || !A->val) return -1;
-  size_t q = 0;
-  for (size_t i = 0; i < n; i++) {
-    A->ptr[i] = q;
-    A->mid[i] = SIZE_MAX;
-    for (size_t j = 0; j < n; j++) {
-      if (S[i * n + j] == 0.0) continue;
-      if (j >= n1 && A->mid[i] == SIZE_MAX) A->mid[i] = q;
-      A->col[q] = j;
-      A->val[q++] = S[i * n + j];
-    }
-    if (A->mid[i] == SIZE_MAX) A->mid[i] = q;
-  }
-  A->ptr[n] = q;
-  return 0;
-}
-
-/* ---- strongly connected components of the outer block (Tarjan, iterative) ---- */
-
-/* Components of the graph on nodes 0..nc-1 with an edge i -> j when
- * S[n1+i][n1+j] != 0 (row i reads column j).  comp[] receives the nodes
- * component by component, start[0..ncomp] the offsets.  Tarjan emits a
- * component after every component it reaches, so this is an order in which
- * block forward substitution works.  Returns the number of components, or -1
- * when out of memory. */
-static long tarjan(const csr *A, size_t n, size_t n1, size_t *comp, size_t *start) {
-  const size_t nc = n - n1;
-  size_t *index = malloc((nc + 1) * sizeof *index), *low = malloc((nc + 1) * sizeof *low),
-         *stack = malloc((nc + 1) * sizeof *stack),
-         *call = malloc((nc + 1) * sizeof *call), *next = malloc((nc + 1) * sizeof *next);
-  unsigned char *on = calloc(nc + 1, 1);
-  long ncomp = -1;
-  if (!index || !low || !stack || !call || !next || !on) goto done;
-  for (size_t i = 0; i < nc; i++)
-    index[i] = SIZE_MAX;
-  size_t counter = 0, sp = 0, emitted = 0;
-  ncomp = 0;
-  start[0] = 0;
-  for (size_t root = 0; root < nc; root++) {
-    if (index[root] != SIZE_MAX) continue;
-    size_t depth = 0;
-    call[depth++] = root;
-    index[root] = low[root] = counter++;
-    next[root] = A->mid[n1 + root];
-    stack[sp++] = root;
-    on[root] = 1;
-    while (depth) {
-      size_t v = call[depth - 1];
-      int descended = 0;
-      while (next[v] < A->ptr[n1 + v + 1]) {
-        size_t w = A->col[next[v]++] - n1;
-        if (w == v) continue;
-        if (index[w] == SIZE_MAX) {
-          index[w] = low[w] = counter++;
-          next[w] = A->mid[n1 + w];
-          stack[sp++] = w;
-          on[w] = 1;
-          call[depth++] = w;
-          descended = 1;
-          break;
-        }
-        if (on[w] && index[w] < low[v]) low[v] = index[w];
-      }
-      if (descended) continue;
-      if (low[v] == index[v]) {
-        size_t w;
-        do {
-          w = stack[--sp];
-          on[w] = 0;
-          comp[emitted++] = w;
-        } while (w != v);
-        start[++ncomp] = emitted;
-      }
-      depth--;
-      if (depth) {
-        size_t u = call[depth - 1];
-        if (low[v] < low[u]) low[u] = low[v];
-      }
-    }
-  }
-done:
-  free(index);
-  free(low);
-  free(stack);
-  free(call);
-  free(next);
-  free(on);
-  return ncomp;
 }
 
 /* ---- dense eigenvalues of a block ---- */
@@ -406,19 +291,11 @@ static int defective(const ss_eig *e, double tol) {
   return 0;
 }
 
-/* The outer components: comp/start from tarjan, and for each outer node its
- * component (cid) and its place in it (pos). */
-typedef struct {
-  long n;               /* components */
-  size_t *comp, *start; /* nodes by component; n + 1 offsets */
-  size_t *cid, *pos;    /* per outer node */
-} components;
-
 /* Solve (C - mu I) x = r for the outer block by forward substitution over the
  * components; x, r indexed by outer node.  Returns 0, or -1 if a diagonal
  * block is (numerically) singular.  Workspaces: work holds (b+1)^2 doubles and
  * piv b pivots, b the largest block. */
-static int outer_solve(const csr *A, size_t n1, const components *K, double mu,
+static int outer_solve(const ss_csr *A, size_t n1, const ss_scc *K, double mu,
                        const double *r, double *x, double *work, lapack_int *piv) {
   for (long c = 0; c < K->n; c++) {
     const size_t b = K->start[c], sz = K->start[c + 1] - b;
@@ -484,34 +361,24 @@ static void memo_free(memo *M) {
 ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
                      ss_eig **out, ss_error *err) {
   *out = NULL;
-  if (n1 == 0 || n1 > n)
-    return ss_error_set(err, SS_EINPUT,
-                        "one-ring block of %zu rows in a %zu x %zu matrix", n1, n, n);
+  ss_status st = ss_scc_check_form(S, n, n1, err);
+  if (st) return st;
   if (!(opts->tol > 0.0 && opts->tol < 0.1) || !(opts->cluster >= 0.0) ||
       (opts->dim != 2 && opts->dim != 3))
     return ss_error_set(err, SS_EINPUT,
                         "eigenvalue tolerance must be in (0, 0.1), not %g", opts->tol);
-  for (size_t i = 0; i < n1; i++)
-    for (size_t j = n1; j < n; j++)
-      if (S[i * n + j] != 0.0)
-        return ss_error_set(err, SS_EINPUT,
-                            "the one-ring block is not invariant: S[%zu][%zu] = %g", i, j,
-                            S[i * n + j]);
-  ss_status st = SS_OK;
   const size_t nc = n - n1;
   ss_eig *e = calloc(1, sizeof *e);
   double *a = malloc((n1 * n1 + 1) * sizeof *a), *vr = malloc((n1 * n1 + 1) * sizeof *vr),
          *wr = malloc((n + 1) * sizeof *wr), *wi = malloc((n + 1) * sizeof *wi),
          *rc = malloc((n + 1) * sizeof *rc), *awr = malloc((n1 + 1) * sizeof *awr),
          *awi = malloc((n1 + 1) * sizeof *awi);
-  components K = {0, malloc((nc + 1) * sizeof(size_t)), malloc((nc + 2) * sizeof(size_t)),
-                  malloc((nc + 1) * sizeof(size_t)), malloc((nc + 1) * sizeof(size_t))};
-  csr A = {NULL, NULL, NULL, NULL};
+  ss_scc K = {0, NULL, NULL, NULL, NULL, 0};
+  ss_csr A = {NULL, NULL, NULL, NULL};
   blockws ws = {0};
   double *blk = NULL, *bw = NULL;
   lapack_int *piv = NULL;
-  if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || !K.comp || !K.start ||
-      !K.cid || !K.pos || csr_make(S, n, n1, &A)) {
+  if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || ss_csr_make(S, n, n1, &A)) {
     st = ss_error_nomem(err, "eigenvalues");
     goto done;
   }
@@ -525,20 +392,11 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     goto done;
   }
   /* the outer blocks' structure */
-  K.n = tarjan(&A, n, n1, K.comp, K.start);
-  if (K.n < 0) {
+  if (ss_scc_make(&A, n, n1, &K)) {
     st = ss_error_nomem(err, "outer blocks");
     goto done;
   }
-  size_t big = 0;
-  for (long c = 0; c < K.n; c++) {
-    const size_t b = K.start[c], sz = K.start[c + 1] - b;
-    big = sz > big ? sz : big;
-    for (size_t q = 0; q < sz; q++) {
-      K.cid[K.comp[b + q]] = (size_t)c;
-      K.pos[K.comp[b + q]] = q;
-    }
-  }
+  const size_t big = K.largest;
   e->nblocks = (size_t)K.n;
   e->largest_block = big;
   blk = malloc((big * big + 1) * sizeof *blk);
@@ -733,11 +591,8 @@ done:
   free(rc);
   free(awr);
   free(awi);
-  free(K.comp);
-  free(K.start);
-  free(K.cid);
-  free(K.pos);
-  csr_free(&A);
+  ss_scc_free(&K);
+  ss_csr_free(&A);
   blockws_free(&ws);
   free(blk);
   free(bw);

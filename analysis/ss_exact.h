@@ -30,42 +30,84 @@
  * Order: distinct roots by decreasing modulus, real before complex, larger
  * real part first, then larger imaginary part (ss_eig's order).  Two distinct
  * roots of equal modulus are tied exactly when that is proven: complex
- * conjugates, or r and -r (a factor and its reflection f(-x)).  Any other
- * pair whose modulus enclosures still overlap at maxprec makes the order, and
- * every verdict depending on it, uncertified.
+ * conjugates (the conjugate of an isolated root is the one root of its
+ * factor whose ball meets the conjugate ball), r and -r (a root of f and of
+ * its reflection f(-x), found the same way), or equal exact |r|^2 (rational
+ * for the roots of linear factors, of quadratics with complex roots (c0/c2)
+ * and of cyclotomic factors (1)).  Any other pair whose modulus enclosures
+ * still overlap at maxprec makes the order, and every verdict depending on
+ * it, uncertified (e.g. the three roots of 27 x^3 - 2).  The order is proven
+ * as far as the verdict needs it: every root other than 1 below 1, and each
+ * of lambda1..lambdam above every later root.  Roots proven below lambda_m
+ * are ordered among themselves by the midpoints of their modulus enclosures
+ * where those overlap; tied_next is set only where equality is proven.
  *
  * The certified eigenvalue condition (m = 3 in volume cases, 2 on surfaces),
  * on the multiset of eigenvalues ordered as above:
  *   lambda0 = 1 simple: x - 1 is a factor of multiplicity 1 and every other
- *     root has modulus < 1 (proven);
+ *     root has modulus < 1 (proven; a root proven of modulus 1, such as -1
+ *     or a root of unity, or of modulus > 1, is a certified fail);
  *   lambda1..lambdam real and positive (their factors' roots are real, proven
  *     by the real-root isolation, and > 0);
  *   lambda_m > |lambda_m+1|: proven by separated enclosures; lambda_m =
  *     lambda_m+1 (the same root, multiplicity > 1, from one factor) is a
  *     certified fail ("exact tie"), as is |lambda_m+1| = lambda_m proven for a
- *     different root (a conjugate pair, or -lambda_m);
+ *     different root (a conjugate pair, -lambda_m, an equal exact modulus);
  *   non-defective lambda1..lambdam: for each of their factors f with
- *     multiplicity e, rank f(S) = n - e deg f, computed exactly.  A Jordan
- *     block is a certified fail.
+ *     multiplicity e > 1, rank f(T) = |T| - e deg f, computed exactly (as
+ *     the rank of the integer matrix D^deg f f(T), D the lcm of T's
+ *     denominators), where T is the principal submatrix of S on the diagonal
+ *     blocks (one-ring, outer components) lying on a path between blocks
+ *     whose polynomial f divides.  Why T suffices: the blocks reachable from
+ *     f's blocks span an invariant subspace holding every generalised
+ *     eigenvector of f's roots, and its part not leading back to them is
+ *     invariant and free of f's roots, so dividing it out keeps their
+ *     Jordan structure; hence rank f(T) decides it exactly, including
+ *     Jordan chains that couple copies of a root in different blocks
+ *     (through the off-diagonal blocks).  When f divides one block only, T is
+ *     that block.  A Jordan block is a certified fail ("defective"); a T
+ *     larger than max_block leaves the verdict undecided ("not certified:
+ *     non-defectiveness ... needs an exact rank on N points").
  * Each verdict carries certified = 1 when it follows from the above, 0 when
  * something could not be decided (then the verdict is SS_UNDECIDED with the
  * reason, e.g. "not certified: moduli of lambda3 and lambda4 not separated
  * at 4096 bits" or "not certified: an outer block of 900 points exceeds the
- * exact path's limit of 400").
+ * exact path's limit of 400"; in the latter case nothing is factored and
+ * ss_exact_roots lists no roots).
  *
  * Basis.  For a certified pass, an enclosure of a real basis X (n x m) of the
- * invariant subspace of lambda1..lambdam: S X = X J exactly for some real
- * m x m J whose spectrum is lambda1..lambdam.  On the one-ring block by
- * Rump's method (acb_mat_eig_enclosure_rump) for each distinct eigenvalue
- * among lambda1..m, started from an approximate basis of its eigenspace;
- * extended to the outer points by solving B X1 + C X2 = X2 J block by block
- * in ball arithmetic (each diagonal block a small Sylvester system).  The
- * enclosure is returned as intervals lo <= X <= hi.  When lambda1..m are all
- * rational, X is also available exactly (ss_exact_basis_rational), which
- * lets a caller prove that a quantity vanishes.
+ * invariant subspace of lambda1..lambdam: S X = X J exactly with J =
+ * diag(lambda1..lambdam) (the pass proves them real and non-defective, so X
+ * consists of eigenvectors).  Column j belongs to lambda_j+1.  For each
+ * distinct lambda among them, whose factor must divide A's polynomial only
+ * (if it also divides an outer block's, the basis is out of reach:
+ * SS_ENUMERIC):
+ *   - lambda rational: the nullspace of A - lambda over Q, extended to the
+ *     outer points by exact block solves (C_cc - lambda) x_c = -B x1 - (the
+ *     components before c); each column scaled to max |entry| = 1.  The same
+ *     X is returned exactly by ss_exact_basis_rational when all of
+ *     lambda1..m are rational;
+ *   - lambda irrational: Rump's method on A (acb_mat_eig_enclosure_rump),
+ *     started from an approximate eigenspace (SVD of A - lambda in doubles,
+ *     two steps of inverse iteration at the working precision) with the e
+ *     best-conditioned rows frozen.  It proves A X = X J' with the
+ *     eigenvalues of J' in a ball; that ball meeting no other root of A and
+ *     the frozen e x e rows having a nonzero determinant make X a basis of
+ *     lambda's eigenspace.  Extended by the same block solves in ball
+ *     arithmetic (each diagonal block proven invertible); the precision is
+ *     doubled up to maxprec if a step cannot be verified.
+ * The enclosure is returned as intervals lo <= X <= hi, rounded outward to
+ * doubles from balls of relative radius far below 2^-90 at the default
+ * precision: each interval is at most 2 ulp wide (or, for an entry that is
+ * zero or nearly, 2^-90 of its column's largest entry).
  *
  * Threads: no global state; FLINT's own caches are thread-local.  Call
- * flint_cleanup() per thread only at thread exit (the CLI does not). */
+ * flint_cleanup() per thread only at thread exit (the CLI does not).  FLINT
+ * aborts on its own allocation failures; everything else is a status.
+ *
+ * Cost: dominated by the characteristic polynomial and factorisation of A
+ * and by isolating the roots of its large irreducible factors (MLCA vertex
+ * k = 12, a degree-58 factor: well under a second). */
 #ifndef SS_EXACT_H
 #define SS_EXACT_H
 
@@ -132,16 +174,24 @@ char *ss_exact_minpoly(const ss_exact *x, size_t r, char *buf, size_t len);
 /* Enclosure of the subdominant basis (see above): lo, hi receive n * m values,
  * column-major (column j = basis vector j, rows in S's order).  SS_EINPUT if
  * the condition is not a certified pass or the basis was not requested;
- * SS_ENUMERIC if Rump's method or a block solve could not be verified at
- * maxprec (then nothing about regularity can be certified). */
+ * SS_ENUMERIC if a leading eigenvalue is also one of an outer block, or
+ * Rump's method or a block solve could not be verified at maxprec (then
+ * nothing about regularity can be certified; the message says which). */
 ss_status ss_exact_basis(const ss_exact *x, double *lo, double *hi, ss_error *err);
 
 /* When lambda1..m are all rational, the basis is rational too: if every
  * entry of an exact basis (the same X as ss_exact_basis encloses, or another
  * basis of the same subspace) has numerator and denominator fitting in int64,
  * fill num and den (n * m each, column-major, den > 0) and return 1; else
- * return 0 and leave them unspecified. */
+ * (also without a certified basis) return 0 and leave them unspecified.
+ * The basis is the one ss_exact_basis encloses: the eigenvectors, each
+ * scaled to a largest |entry| of 1. */
 int ss_exact_basis_rational(const ss_exact *x, long long *num, long long *den);
+
+/* The reconstructed entry S[i][j] = *p / *q in lowest terms (q > 0; 0/1
+ * where S is 0): the rational matrix every certified statement is about.
+ * Returns 1, or 0 if i or j is out of range. */
+int ss_exact_entry(const ss_exact *x, size_t i, size_t j, long long *p, long long *q);
 
 /* The rational of denominator at most maxden nearest to s, accepted under the
  * rule above (|s - p/q| <= 2^-40 max(1, |s|)): 1 with *p / *q in lowest

@@ -43,7 +43,7 @@ static inline int ss_testcase_run(const char *scheme, ss_case c, ss_testcase *ou
   }
   ss_scheme_free(s);
   if (ok && !out->cm)
-    snprintf(err.msg, sizeof err.msg, "no characteristic map (%s)",
+    snprintf(err.msg, sizeof err.msg, "no characteristic map (%.400s)",
              out->r.verdict.reason);
   if (!ok || !out->cm) {
     CHECK(0, "%s %s: %s", scheme, ss_case_name(c.kind), err.msg);

@@ -1,0 +1,95 @@
+/* ss_exact_impl.h — the inside of an ss_exact, shared by ss_exact.c (rational
+ * matrix, spectrum, condition) and ss_exact_basis.c (the subdominant basis).
+ * Not a public header. */
+#ifndef SS_EXACT_IMPL_H
+#define SS_EXACT_IMPL_H
+
+#include <flint/fmpq.h>
+#include <flint/fmpz_mat.h>
+#include <flint/fmpz_poly.h>
+
+#include "acb.h"
+#include "arb.h"
+
+#include "ss_exact.h"
+#include "ss_scc.h"
+
+/* A rational entry of S in lowest terms. */
+typedef struct {
+  long long num; /* numerator */
+  long long den; /* denominator, > 0 (at most maxden) */
+} ss_exact_rat;
+
+/* One distinct irreducible factor over Q of the characteristic polynomial. */
+typedef struct {
+  fmpz_poly_t f; /* primitive, positive leading coefficient */
+  int mult;      /* multiplicity in the characteristic polynomial of S */
+  long prec;     /* precision its roots were last isolated at, bits */
+  size_t root0;  /* its first root in ss_exact.rt (deg f consecutive roots) */
+  long refl;     /* the factor whose roots are minus its roots, or -1 */
+  int exact_nsq; /* 1 if |root|^2 is rational (linear factors, quadratics with
+                    complex roots, cyclotomic factors) */
+} ss_exact_factor;
+
+/* One distinct eigenvalue (internal). */
+typedef struct {
+  size_t factor;  /* index into ss_exact.fac */
+  acb_struct z;   /* isolating ball: contains this root and no other root of
+                     its factor */
+  arb_struct mod; /* enclosure of |z| */
+  fmpq nsq;       /* |z|^2 when the factor has exact_nsq */
+  int real;       /* 1 if proven real */
+  size_t cls;     /* its class of proven-equal moduli (a root index) */
+} ss_exact_rt;
+
+struct ss_exact {
+  size_t n, n1;         /* size of S and of its one-ring block A */
+  ss_exact_opts o;      /* options used */
+  int m;                /* subdominant eigenvalues (= o.dim) */
+  ss_csr A;             /* the pattern of S (values as read, in doubles) */
+  ss_exact_rat *q;      /* A.ptr[n] rational values, parallel to A.col */
+  ss_scc K;             /* components of the outer block */
+  size_t nblk;          /* diagonal blocks: 0 = A, 1 + c = outer component c */
+  size_t *bstart;       /* nblk + 1 offsets into bfac, bmult */
+  size_t *bfac;         /* factors of each block's characteristic polynomial */
+  int *bmult;           /* ... with their multiplicities in that block */
+  size_t nfac;          /* distinct factors */
+  size_t facalloc;      /* allocated entries of fac */
+  ss_exact_factor *fac; /* the merged factors */
+  size_t nrt;           /* distinct roots (0 if a block was too large) */
+  ss_exact_rt *rt;      /* nrt roots, factor by factor */
+  size_t *order;        /* nrt root indices in the order of ss_exact_roots */
+  ss_exact_root *roots; /* nrt public roots in that order */
+  ss_verdict cond;      /* the certified eigenvalue condition */
+  int certified;        /* 1 if cond is proven */
+  size_t nlead;         /* on a certified pass: distinct roots among lambda1..m */
+  size_t lead[4];       /* ... their indices into rt, in order (each root's copies
+                           all among lambda1..m: no tie with lambda_m+1) */
+  /* the subdominant basis (ss_exact_basis.c) */
+  ss_status bstatus;      /* SS_OK if lo, hi hold it */
+  char bmsg[512];         /* the message when bstatus != SS_OK */
+  double *lo, *hi;        /* n * m each, column-major, or NULL */
+  long long *bnum, *bden; /* the exact basis when lambda1..m are rational and
+                             it fits in int64, else NULL */
+};
+
+/* Compute the basis on a certified pass (sets bstatus, bmsg, lo, hi, bnum,
+ * bden).  Returns SS_ENOMEM or SS_OK; a basis that cannot be certified is not
+ * a failure of this call (bstatus says so). */
+ss_status ss_exact_basis_make(ss_exact *x, ss_error *err);
+
+/* Isolate the roots of factor k at precision prec (sets z, mod, real).
+ * Squarefree input only: the factors are irreducible. */
+void ss_exact_isolate(ss_exact *x, size_t k, long prec);
+
+/* The principal submatrix of S on rows and columns idx[0..len) scaled to
+ * integers: D = the lcm of its entries' denominators, M = D times it (M
+ * initialised len x len by the caller).  Returns 0, or -1 when out of
+ * memory. */
+int ss_exact_principal(const ss_exact *x, const size_t *idx, size_t len, fmpz_t D,
+                       fmpz_mat_t M);
+
+/* The entry S[i][j] as a rational (0 where S has no entry). */
+void ss_exact_get(const ss_exact *x, size_t i, size_t j, fmpq_t v);
+
+#endif
