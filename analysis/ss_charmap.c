@@ -39,7 +39,7 @@ static void push(const ss_local_ring *R, const double *prev, int dim, double *ou
  * C^(-1/2) (ss_charmap.h).  The ring's points: the corners of ring level 0's
  * cells, pushed from x; without a ring, the two-ring itself.  Returns 0, -1
  * out of memory, -2 if the points span less than dim dimensions. */
-static int normalise(double *x, size_t n, int dim, const ss_local *M) {
+static int normalise(double *x, size_t n, int dim, const ss_local *M, double *centre) {
   double *pts = x;
   size_t np = n;
   unsigned char *use = NULL;
@@ -86,6 +86,12 @@ static int normalise(double *x, size_t n, int dim, const ss_local *M) {
         s += C[a * dim + k] * C[b * dim + k] / sqrt(mu[k]);
       W[a * dim + b] = s;
     }
+  for (int b = 0; b < dim; b++) {
+    double c = 0.0;
+    for (int a = 0; a < dim; a++)
+      c -= mean[a] * W[a * dim + b];
+    centre[b] = c;
+  }
   for (size_t i = 0; i < n; i++) {
     double v[3];
     for (int d = 0; d < dim; d++)
@@ -132,7 +138,7 @@ ss_status ss_charmap_new(const ss_local *M, const ss_eig *e, ss_charmap **out,
       cm->x[i * (size_t)m + (size_t)j] = e->basis[(size_t)j * n + i];
     cm->lambda[j] = e->val[j + 1].re;
   }
-  const int rc = normalise(cm->x, n, m, M);
+  const int rc = normalise(cm->x, n, m, M, cm->centre);
   if (rc) {
     ss_charmap_free(cm);
     return rc == -1 ? ss_error_nomem(err, "characteristic map")
@@ -368,7 +374,24 @@ ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
                            const ss_eig *e, const ss_charmap_opts *o, ss_charmap **cm,
                            ss_regularity *r, ss_error *err) {
   ss_status st = ss_charmap_analyze(M, e, o, cm, r, err);
-  if (st || !*cm || r->want_levels <= M->nring) return st;
-  if ((st = ss_local_ring_deepen(s, c, r->want_levels, M, err))) return st;
-  return ss_charmap_regularity(*cm, M, o, r, err);
+  if (st || !*cm) return st;
+  if (r->want_levels > M->nring) {
+    if ((st = ss_local_ring_deepen(s, c, r->want_levels, M, err))) return st;
+    if ((st = ss_charmap_regularity(*cm, M, o, r, err))) return st;
+  }
+  if ((st = ss_charmap_symmetry(*cm, M, c, &r->sym, err))) return st;
+  if (r->sym.found) {
+    char ring[sizeof r->verdict.reason];
+    snprintf(ring, sizeof ring, "%s%s%.400s", ss_verdict_name(r->verdict.verdict),
+             r->verdict.reason[0] ? ": " : "", r->verdict.reason);
+    r->verdict.verdict = SS_FAIL;
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "psi o sigma = psi for %s, of order %d (||M_sigma - I|| = %.1e, gap %.2f): "
+             "det Dpsi %s; the ring alone: %.200s",
+             r->sym.what, r->sym.order, r->sym.distance, r->sym.gap,
+             r->sym.reverses ? "changes sign under sigma"
+                             : "vanishes on sigma's fixed rays",
+             ring);
+  }
+  return SS_OK;
 }

@@ -58,6 +58,9 @@ typedef struct {
   size_t n;            /* points: the two-ring, in the order of the labels */
   size_t n1;           /* the first n1 points are the one-ring */
   double *x;           /* n * dim coordinates, point by point, normalised */
+  double centre[3];    /* psi(p) in the normalised coordinates: the image of
+                          the origin of the basis' coordinates (psi(p) = 0
+                          there, since psi(lambda .) = Lambda psi) */
   double lambda[3];    /* lambda1..lambdam (real parts) */
   size_t ncells;       /* cells of the two-ring (copied from ss_local) */
   ss_cell_type *ctype; /* ncells cell types */
@@ -91,6 +94,21 @@ typedef struct {
                                  shrink for a fold to persist */
 } ss_ring_level;
 
+/* What ss_charmap_symmetry found. */
+typedef struct {
+  int tested;      /* symmetries of the case that commute with S */
+  int found;       /* 1 if one of them, sigma, has psi o sigma = psi */
+  int order;       /* with found: the order N of sigma */
+  size_t moved;    /* with found: two-ring points sigma moves */
+  double distance; /* with found: ||M_sigma - I||_F, against the gap below */
+  double gap;      /* 2 sin(pi / N): the least ||M - I|| of a matrix M != I
+                      with M^N = I, half of which separates the two cases */
+  int reverses;    /* with found: 1 if sigma reverses orientation; then
+                      det Dpsi(sigma x) = -det Dpsi(x), so psi is not regular
+                      either (its Jacobian changes sign or vanishes) */
+  char what[160];  /* with found: sigma, in words */
+} ss_charmap_sym;
+
 /* The regularity verdict. */
 typedef struct {
   ss_verdict verdict;         /* pass, fail or undecided, with the reason */
@@ -111,9 +129,11 @@ typedef struct {
   ss_ring_level level[SS_LOCAL_MAXRING]; /* each judged level */
   int depth;                             /* the hex subdivision depth limit used */
   double shrink;                         /* the shrink ratio used */
-  int want_levels;                       /* > nlevels when the verdict would be judged on
-                                            deeper ring levels than M has (ss_charmap_judge
-                                            builds them) */
+  ss_charmap_sym sym; /* the symmetry test (ss_charmap_judge): when it finds
+                         psi o sigma = psi the verdict is fail */
+  int want_levels;    /* > nlevels when the verdict would be judged on
+                         deeper ring levels than M has (ss_charmap_judge
+                         builds them) */
 } ss_regularity;
 
 /* Defaults: depth SS_JAC_DEPTH, 3 ring levels, shrink 0.5. */
@@ -145,24 +165,14 @@ ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, const ss_charma
 
 /* As ss_charmap_analyze, and when the verdict wants deeper ring levels than M
  * has, rebuild M's ring deeper (ss_local_ring_deepen, for scheme s and case c
- * that M was made from) and judge again.  Errors: those of the two calls. */
+ * that M was made from) and judge again; then test the symmetries of the case
+ * (ss_charmap_symmetry): psi o sigma = psi fails the verdict, whatever the
+ * ring showed (kept in the levels).  Errors: those of the calls. */
 ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
                            const ss_eig *e, const ss_charmap_opts *o, ss_charmap **cm,
                            ss_regularity *r, ss_error *err);
 
 /* ---- symmetries the map does not see (ss_charmap_sym.c) ---- */
-
-/* What ss_charmap_symmetry found. */
-typedef struct {
-  int tested;      /* symmetries of the case that commute with S */
-  int found;       /* 1 if one of them, sigma, has psi o sigma = psi */
-  int order;       /* with found: the order N of sigma */
-  size_t moved;    /* with found: two-ring points sigma moves */
-  double distance; /* with found: ||M_sigma - I||_F, against the gap below */
-  double gap;      /* 2 sin(pi / N): the least ||M - I|| of a matrix M != I
-                      with M^N = I, half of which separates the two cases */
-  char what[160];  /* with found: sigma, in words */
-} ss_charmap_sym;
 
 /* Whether the characteristic map identifies points that a symmetry of the
  * case exchanges.  A symmetry sigma (a link automorphism for a vertex, the
@@ -174,9 +184,36 @@ typedef struct {
  * ||M_sigma - I|| >= max over its eigenvalues w != 1 of |w - 1| >= 2 sin(pi/N),
  * so comparing with half that gap is decided by no tolerance of rounding
  * size.  Found: psi is not injective (two distinct points, i and sigma(i), have
- * one image).  c is the case M was made from (for a vertex: the same link, in
- * the labelling M used).  SS_ENOMEM; SS_EINPUT for a malformed case. */
+ * one image), and not regular: if sigma reverses orientation, det Dpsi(sigma x)
+ * = -det Dpsi(x) changes sign on the connected ring; if it keeps it, it is a
+ * rotation of the link sphere (a periodic homeomorphism of S^2 keeping its
+ * orientation fixes two points), its fixed rays cross the ring, and there
+ * Dpsi (Dsigma - I) = 0 with Dsigma != I makes Dpsi singular (psi is C^1 on
+ * the ring).  Reflections are preferred when both kinds are found.  c is the case M was
+ * made from (for a vertex: the same link, in the labelling M used).  SS_ENOMEM; SS_EINPUT
+ * for a malformed case. */
 ss_status ss_charmap_symmetry(const ss_charmap *cm, const ss_local *M, const ss_case *c,
                               ss_charmap_sym *out, ss_error *err);
+
+/* ---- injectivity (ss_charmap_inj.c) ---- */
+
+/* The injectivity verdict. */
+typedef struct {
+  ss_verdict verdict; /* pass, fail or undecided, with the reason */
+  int degree;         /* winding number of the two-ring's boundary image about
+                         psi(p) (ss_inject); 0 when not computed */
+  size_t overlaps;    /* pairs of ring cells (the two-ring's cells that do not
+                         touch p) sharing no vertex whose images meet */
+} ss_charmap_inj;
+
+/* Whether the map is one-to-one, beyond regular: fail when the symmetry test
+ * of reg found psi o sigma = psi; otherwise the PL test of ss_inject.h: the
+ * degree of the image of the two-ring's boundary about psi(p) must be +-1 and
+ * no two ring cells that share no vertex may have meeting images (the cells
+ * around p are left out: their folds at the centre corner decide nothing).
+ * Undecided when psi(p) lies on the boundary image.  SS_ENOMEM; SS_EINPUT
+ * when ss_inject refuses the cells (a defect, reported). */
+ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
+                                 ss_charmap_inj *out, ss_error *err);
 
 #endif

@@ -39,7 +39,7 @@ static size_t gcd(size_t a, size_t b) {
 /* Test one candidate; P (n2 entries) and seen (n2 bytes) are scratch.  Sets
  * out->found and the fields that go with it. */
 static void try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g,
-                    size_t *P, unsigned char *seen, const char *what,
+                    size_t *P, unsigned char *seen, const char *what, int reverses,
                     ss_charmap_sym *out) {
   const size_t n = M->n2;
   const int m = cm->dim;
@@ -122,8 +122,9 @@ static void try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g,
     }
   dist = sqrt(dist);
   const double gap = 2.0 * sin(M_PI / (double)order);
-  if (dist < 0.5 * gap && !out->found) {
+  if (dist < 0.5 * gap && (!out->found || (reverses && !out->reverses))) {
     out->found = 1;
+    out->reverses = reverses;
     out->order = (int)order;
     out->moved = moved;
     out->distance = dist;
@@ -152,18 +153,28 @@ ss_status ss_charmap_symmetry(const ss_charmap *cm, const ss_local *M, const ss_
   char what[160];
   if (c->kind == SS_CASE_VERTEX) {
     if ((st = ss_link_automorphisms(c->link, &aut, &naut, err))) goto done;
-    for (int a = 1; a < naut && !out->found; a++) { /* 0 is the identity */
+    /* an automorphism keeps the orientation iff it maps the link's first
+     * oriented triangle (0, w, w'), w' after w around 0, to an oriented one */
+    const ss_link *l = c->link;
+    const int w0 = l->nbr[l->off[0]], w1 = l->nbr[l->off[0] + 1];
+    for (int a = 1; a < naut && !(out->found && out->reverses); a++) { /* 0: identity */
       memcpy(perm, aut + (size_t)a * (size_t)nc, (size_t)nc * sizeof *perm);
-      snprintf(what, sizeof what, "link automorphism %d of %d", a + 1, naut);
-      try_map(cm, M, &g, P, seen, what, out);
+      const int v = perm[0], d = ss_link_deg(l, v);
+      int pos = 0;
+      while (pos < d && l->nbr[l->off[v] + pos] != perm[w0])
+        pos++;
+      const int reverses = l->nbr[l->off[v] + (pos + 1) % d] != perm[w1];
+      snprintf(what, sizeof what, "link automorphism %d of %d (%s)", a + 1, naut,
+               reverses ? "a reflection" : "orientation-preserving");
+      try_map(cm, M, &g, P, seen, what, reverses, out);
     }
   } else if (c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX) {
     /* the faces (rays) around the edge (vertex), turned by s and reflected;
      * an edge may also be flipped end for end (its coordinate n negated) */
     const int n = c->n, flips = c->kind == SS_CASE_EDGE ? 2 : 1;
-    for (int f = 0; f < flips && !out->found; f++)
-      for (int refl = 0; refl < 2 && !out->found; refl++)
-        for (int s = 0; s < n && !out->found; s++) {
+    for (int f = 0; f < flips && !(out->found && out->reverses); f++)
+      for (int refl = 0; refl < 2 && !(out->found && out->reverses); refl++)
+        for (int s = 0; s < n && !(out->found && out->reverses); s++) {
           if (!f && !refl && !s) continue;
           for (int i = 0; i < n; i++)
             perm[i] = refl ? ((s - i) % n + n) % n : (i + s) % n;
@@ -172,18 +183,18 @@ ss_status ss_charmap_symmetry(const ss_charmap *cm, const ss_local *M, const ss_
           snprintf(what, sizeof what, "%s by %d%s%s", refl ? "reflection" : "rotation", s,
                    c->kind == SS_CASE_EDGE ? " around the edge" : "",
                    f ? ", with the edge flipped end for end" : "");
-          try_map(cm, M, &g, P, seen, what, out);
+          try_map(cm, M, &g, P, seen, what, refl != f, out);
         }
   } else if (c->kind == SS_CASE_FACE) {
     /* the centre is (2, 1, 1) in the face (0, 1, 2): the swaps 1 <-> 2 and 3 <-> 4 */
-    for (int q = 1; q < 4 && !out->found; q++) {
+    for (int q = 1; q < 4 && !(out->found && out->reverses); q++) {
       for (int i = 0; i < nc; i++)
         perm[i] = i;
       if (q & 1) perm[1] = 2, perm[2] = 1;
       if (q & 2) perm[3] = 4, perm[4] = 3;
       snprintf(what, sizeof what, "%s%s%s", q & 1 ? "the swap of face vertices 1, 2" : "",
                q == 3 ? " and " : "", q & 2 ? "the swap of the two tets" : "");
-      try_map(cm, M, &g, P, seen, what, out);
+      try_map(cm, M, &g, P, seen, what, q != 3, out);
     }
   }
 done:

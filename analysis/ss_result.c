@@ -23,8 +23,12 @@ void ss_result_clear(ss_result *r) {
 }
 
 ss_verdict_kind ss_result_verdict(const ss_result *r) {
-  if (r->cond.verdict == SS_FAIL || r->reg.verdict == SS_FAIL) return SS_FAIL;
-  if (r->cond.verdict == SS_PASS && r->reg.verdict == SS_PASS) return SS_PASS;
+  if (r->cond.verdict == SS_FAIL || r->reg.verdict == SS_FAIL ||
+      r->inj.verdict == SS_FAIL)
+    return SS_FAIL;
+  if (r->cond.verdict == SS_PASS && r->reg.verdict == SS_PASS &&
+      r->inj.verdict == SS_PASS)
+    return SS_PASS;
   return SS_UNDECIDED;
 }
 
@@ -98,6 +102,8 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
     co.ring_levels = o->ring_levels;
     st = ss_charmap_judge(s, &cc, M, e, &co, &cm, &reg, err);
   }
+  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0};
+  if (!st && cm) st = ss_charmap_injectivity(cm, &reg, &inj, err);
   ss_link_free(cl);
   if (st) {
     ss_charmap_free(cm);
@@ -122,6 +128,8 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   r->cond = e->cond;
   r->tol = e->tol;
   r->reg = reg.verdict;
+  r->inj = inj.verdict;
+  r->inj_degree = inj.degree;
   r->min_sj = reg.min_scaled_jacobian;
   r->depth = reg.depth;
   r->ring_levels = o->ring_levels;

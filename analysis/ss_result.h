@@ -56,6 +56,8 @@ typedef struct {
   double tol;                           /* the tolerance it used */
   ss_verdict reg;                       /* regularity of the characteristic map */
   int reg_certified;                    /* 1 if reg is proven */
+  ss_verdict inj;             /* injectivity of the characteristic map (ss_charmap_inj) */
+  int inj_degree;             /* its degree about psi(p); 0 when not computed */
   double min_sj;              /* minimum scaled Jacobian (ss_charmap); NaN: no map */
   int depth;                  /* the hex depth limit used */
   int ring_levels;            /* the ring levels allowed (ss_charmap_opts) */
@@ -88,8 +90,8 @@ static inline int ss_result_has_link(const ss_result *r) {
   return r->kind == SS_CASE_VERTEX || r->kind == SS_CASE_EDGE_POINT;
 }
 
-/* Both verdicts combined: pass if both pass; fail if either fails; else
- * undecided. */
+/* The verdicts combined (eigenvalue condition, regularity, injectivity):
+ * pass if all pass; fail if any fails; else undecided. */
 ss_verdict_kind ss_result_verdict(const ss_result *r);
 
 /* Release r's link text and zero r.  NULL is a no-op. */

@@ -571,7 +571,9 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
   for (int j = 1; j <= NLAMBDA; j++)
     fprintf(f, ",lambda%d_re,lambda%d_im,lambda%d_mult", j, j, j);
   fputs(",eigen_condition,eigen_reason,tolerance,regularity,regularity_reason,"
-        "verdict,min_scaled_jacobian,depth,improper_pairs,adjacent_pairs,seconds\r\n",
+        "verdict,min_scaled_jacobian,depth,improper_pairs,adjacent_pairs,seconds,"
+        "eigen_certified,regularity_certified,ring_level,centre_corner_folds,"
+        "injectivity,injectivity_reason,degree\r\n",
         f);
   for (size_t i = 0; i < n; i++) {
     const ss_result *r = &rows[i].r;
@@ -598,7 +600,10 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
       fprintf(f, "%zu,%zu", r->improper, r->pairs);
     else
       fputc(',', f);
-    fprintf(f, ",%.17g\r\n", r->seconds);
+    fprintf(f, ",%.17g,%d,%d,%d,%zu,%s,", r->seconds, r->cond_certified, r->reg_certified,
+            r->ring_level, r->centre_corner_folds, ss_verdict_name(r->inj.verdict));
+    csv_put(f, r->inj.reason);
+    fprintf(f, ",%d\r\n", r->inj_degree);
   }
 }
 
@@ -633,10 +638,11 @@ static json_object *jsize(size_t v) {
   return json_object_new_int64((int64_t)v);
 }
 
-static json_object *jverdict(const ss_verdict *v) {
+json_object *ss_report_verdict_json(const ss_verdict *v, int certified) {
   json_object *o = json_object_new_object();
   json_object_object_add(o, "verdict",
                          json_object_new_string(ss_verdict_name(v->verdict)));
+  json_object_object_add(o, "certified", json_object_new_boolean(certified));
   json_object_object_add(o, "reason", json_object_new_string(v->reason));
   return o;
 }
@@ -655,13 +661,18 @@ static json_object *json_case(const ss_report_row *row) {
   json_object_object_add(o, "two_ring_size", jsize(r->two_ring));
   json_object_object_add(o, "one_ring_size", jsize(r->one_ring));
   json_object_object_add(o, "eigenvalues", ss_report_eig_json(r));
-  json_object *c = jverdict(&r->cond);
+  json_object *c = ss_report_verdict_json(&r->cond, r->cond_certified);
   json_object_object_add(c, "tolerance", json_object_new_double(r->tol));
   json_object_object_add(o, "eigen_condition", c);
-  json_object *g = jverdict(&r->reg);
+  json_object *g = ss_report_verdict_json(&r->reg, r->reg_certified);
   json_object_object_add(g, "min_scaled_jacobian", jnum(r->min_sj));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
+  json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));
+  json_object_object_add(g, "centre_corner_folds", jsize(r->centre_corner_folds));
   json_object_object_add(o, "regularity", g);
+  json_object *in = ss_report_verdict_json(&r->inj, 0);
+  json_object_object_add(in, "degree", json_object_new_int(r->inj_degree));
+  json_object_object_add(o, "injectivity", in);
   json_object_object_add(o, "verdict",
                          json_object_new_string(ss_verdict_name(ss_result_verdict(r))));
   if (r->has_diag) {

@@ -120,4 +120,9 @@ ss_status ss_report_table_write(FILE *f, ss_report_format fmt, unsigned tables,
  * (json_object_put). */
 json_object *ss_report_eig_json(const ss_result *r);
 
+/* A verdict as the JSON object {"verdict", "certified", "reason"} of
+ * `analyze --format json` (DESIGN section 7); certified says whether it is
+ * proven (ss_result).  The caller owns it and may add keys. */
+json_object *ss_report_verdict_json(const ss_verdict *v, int certified);
+
 #endif

@@ -55,13 +55,17 @@ static const char *const schema_sql =
     "  depth INTEGER NOT NULL,\n"
     "  ring_level INTEGER NOT NULL,\n"
     "  centre_corner_folds INTEGER NOT NULL,\n"
+    "  injectivity TEXT NOT NULL,\n"
+    "  injectivity_reason TEXT NOT NULL,\n"
+    "  degree INTEGER NOT NULL,\n"
     "  improper_pairs INTEGER,\n"
     "  adjacent_pairs INTEGER,\n"
     "  seconds REAL NOT NULL,\n"
     "  PRIMARY KEY (scheme_id, kind, k, link)) WITHOUT ROWID;\n"
     "CREATE VIEW cases AS SELECT s.name AS scheme, s.identity AS identity, r.*,\n"
-    "  CASE WHEN r.eigen_condition = 'fail' OR r.regularity = 'fail' THEN 'fail'\n"
-    "       WHEN r.eigen_condition = 'pass' AND r.regularity = 'pass' THEN 'pass'\n"
+    "  CASE WHEN 'fail' IN (r.eigen_condition, r.regularity, r.injectivity) THEN 'fail'\n"
+    "       WHEN r.eigen_condition = 'pass' AND r.regularity = 'pass' AND\n"
+    "            r.injectivity = 'pass' THEN 'pass'\n"
     "       ELSE 'undecided' END AS verdict\n"
     "  FROM result r JOIN scheme s ON s.id = r.scheme_id;\n";
 
@@ -148,7 +152,8 @@ static ss_status create(ss_store *st, ss_error *err) {
 
 static ss_status prepare(ss_store *st, ss_error *err) {
   if (sqlite3_prepare_v2(st->db,
-                         "SELECT eigen_condition, regularity FROM result WHERE "
+                         "SELECT eigen_condition, regularity, injectivity FROM result "
+                         "WHERE "
                          "scheme_id=?1 AND (kind=?2 OR (?2='vertex' AND "
                          "kind='edge-point')) AND k=?3 AND link=?4",
                          -1, &st->has, NULL) != SQLITE_OK)
@@ -160,9 +165,9 @@ static ss_status prepare(ss_store *st, ss_error *err) {
                          "eigen_condition,eigen_reason,tolerance,regularity,"
                          "regularity_reason,min_scaled_jacobian,depth,improper_pairs,"
                          "adjacent_pairs,seconds,eigen_certified,regularity_certified,"
-                         "ring_level,centre_corner_folds) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,"
-                         "?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,"
-                         "?25,?26)",
+                         "ring_level,centre_corner_folds,injectivity,injectivity_reason,"
+                         "degree) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,"
+                         "?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,?25,?26,?27,?28,?29)",
                          -1, &st->put, NULL) != SQLITE_OK)
     return db_error(st, err, "prepare");
   return SS_OK;
@@ -332,6 +337,7 @@ ss_status ss_store_has(ss_store *st, int64_t id, ss_case_kind kind, int k,
     ss_result r;
     r.cond.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 0));
     r.reg.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 1));
+    r.inj.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 2));
     *verdict = ss_result_verdict(&r);
   }
   sqlite3_reset(st->has);
@@ -394,6 +400,9 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
   sqlite3_bind_int(q, 24, r->reg_certified);
   sqlite3_bind_int(q, 25, r->ring_level);
   sqlite3_bind_int64(q, 26, (int64_t)r->centre_corner_folds);
+  sqlite3_bind_text(q, 27, ss_verdict_name(r->inj.verdict), -1, SQLITE_STATIC);
+  sqlite3_bind_text(q, 28, r->inj.reason, -1, SQLITE_STATIC);
+  sqlite3_bind_int(q, 29, r->inj_degree);
   const int rc = sqlite3_step(q);
   sqlite3_reset(q);
   free(ev);
@@ -470,7 +479,8 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
       "SELECT scheme, identity, kind, k, link, cells, two_ring, one_ring, eigenvalues, "
       "eigen_condition, eigen_reason, tolerance, regularity, regularity_reason, "
       "min_scaled_jacobian, depth, improper_pairs, adjacent_pairs, seconds, "
-      "eigen_certified, regularity_certified, ring_level, centre_corner_folds FROM cases";
+      "eigen_certified, regularity_certified, ring_level, centre_corner_folds, "
+      "injectivity, injectivity_reason, degree FROM cases";
   size_t n = strlen(cols) + (where ? strlen(where) : 0) + 64;
   char *sql = malloc(n);
   if (!sql) return ss_error_nomem(err, "query");
@@ -525,6 +535,9 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     r->reg_certified = sqlite3_column_int(q, 20);
     r->ring_level = sqlite3_column_int(q, 21);
     r->centre_corner_folds = (size_t)sqlite3_column_int64(q, 22);
+    r->inj.verdict = verdict_of((const char *)sqlite3_column_text(q, 23));
+    copy_text(r->inj.reason, sizeof r->inj.reason, sqlite3_column_text(q, 24));
+    r->inj_degree = sqlite3_column_int(q, 25);
     if (visit(&row, ctx)) break;
   }
   if (!s && rc != SQLITE_ROW && rc != SQLITE_DONE) s = db_error(st, err, "query");
@@ -560,7 +573,8 @@ ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *p
                 "r.lambda4, r.eigenvalues, r.eigen_condition, r.eigen_reason, "
                 "r.eigen_certified, r.tolerance, r.regularity, r.regularity_reason, "
                 "r.regularity_certified, r.min_scaled_jacobian, r.depth, r.ring_level, "
-                "r.centre_corner_folds, r.improper_pairs, r.adjacent_pairs, "
+                "r.centre_corner_folds, r.injectivity, r.injectivity_reason, r.degree, "
+                "r.improper_pairs, r.adjacent_pairs, "
                 "r.seconds FROM src.result r JOIN src.scheme s ON s.id = r.scheme_id "
                 "JOIN main.scheme m ON m.identity = s.identity;"
                 "COMMIT;");

@@ -16,6 +16,7 @@
 #include "ss_link.h"
 #include "ss_local.h"
 #include "ss_report_draw.h"
+#include "ss_report_table.h"
 #include "ss_stencil.h"
 
 enum { FMT_TEXT = 0, FMT_JSON, FMT_TSV, FMT_MTX };
@@ -339,15 +340,11 @@ static json_object *level_json(const ss_ring_level *L, int l) {
 
 /* The regularity object of DESIGN section 7, with the ring's levels. */
 static json_object *regularity_json(const ss_regularity *reg) {
-  json_object *g = json_object_new_object();
-  json_object_object_add(g, "verdict",
-                         json_object_new_string(ss_verdict_name(reg->verdict.verdict)));
-  json_object_object_add(g, "certified", json_object_new_boolean(0));
+  json_object *g = ss_report_verdict_json(&reg->verdict, 0);
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(reg->min_scaled_jacobian)
                              ? json_object_new_double(reg->min_scaled_jacobian)
                              : NULL);
-  json_object_object_add(g, "reason", json_object_new_string(reg->verdict.reason));
   json_object_object_add(
       g, "cells",
       json_object_new_int64((int64_t)(reg->npositive + reg->nnegative + reg->nfolded +
@@ -374,7 +371,7 @@ static json_object *regularity_json(const ss_regularity *reg) {
 
 static void print_json(const opts *o, const char *scheme, const char *canon, int k,
                        const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                       const diag_info *di) {
+                       const ss_charmap_inj *inj, const diag_info *di) {
   json_object *r = json_object_new_object();
   json_object_object_add(r, "scheme", json_object_new_string(scheme));
   json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
@@ -410,14 +407,15 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
     json_object_array_add(ev, x);
   }
   json_object_object_add(r, "eigenvalues", ev);
-  json_object *c = json_object_new_object();
-  json_object_object_add(c, "verdict",
-                         json_object_new_string(ss_verdict_name(e->cond.verdict)));
-  json_object_object_add(c, "reason", json_object_new_string(e->cond.reason));
+  json_object *c = ss_report_verdict_json(&e->cond, 0);
   json_object_object_add(c, "tolerance", json_object_new_double(e->tol));
   json_object_object_add(r, "eigen_condition", c);
   json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
   json_object_object_add(r, "regularity", regularity_json(reg));
+  json_object *in = ss_report_verdict_json(&inj->verdict, 0);
+  json_object_object_add(in, "degree", json_object_new_int(inj->degree));
+  json_object_object_add(in, "overlaps", json_object_new_int64((int64_t)inj->overlaps));
+  json_object_object_add(r, "injectivity", in);
   printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
                                                        JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(r);
@@ -455,7 +453,7 @@ static void print_tsv(const opts *o, const char *scheme, const char *canon,
 
 static void print_text(const opts *o, const char *scheme, const char *canon, int k,
                        const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                       const diag_info *di) {
+                       const ss_charmap_inj *inj, const diag_info *di) {
   printf("scheme %s, %s case", scheme, ss_case_name(o->kind));
   if (o->kind == SS_CASE_EDGE_POINT)
     printf(", link %s (k = %d): the bipyramid over %d, a point on an edge of valence %d, "
@@ -512,6 +510,12 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
         reg->min_scaled_jacobian, reg->ring_level, reg->worst_cell, reg->depth,
         reg->centre_corner_folds, M->ncentre);
   }
+  printf("injectivity: %s%s%s\n", ss_verdict_name(inj->verdict.verdict),
+         inj->verdict.reason[0] ? ": " : "", inj->verdict.reason);
+  if (inj->verdict.verdict == SS_PASS)
+    printf("  degree %d about psi(p); no two ring cells without a common vertex meet "
+           "(piecewise-linear images, exact predicates)\n",
+           inj->degree);
 }
 
 static void print_label(FILE *f, const ss_star_coord *c) {
@@ -638,6 +642,12 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     rc = SS_EXIT_FAIL;
     goto done;
   }
+  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0};
+  if (cm && ss_charmap_injectivity(cm, &reg, &inj, &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+    rc = SS_EXIT_FAIL;
+    goto done;
+  }
   const int k = l ? l->k : 0;
   if (!strcmp(o->cmd, "draw")) {
     int forced = 0;
@@ -684,12 +694,14 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
             reg.verdict.reason);
     if (forced) rc = SS_EXIT_FAIL;
   } else if (o->format == FMT_JSON)
-    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &di);
+    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di);
   else if (o->format == FMT_TSV)
     print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, (*header)++ == 0);
   else
-    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &di);
-  if (e->cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS) rc = SS_EXIT_FAIL;
+    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di);
+  if (e->cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS ||
+      inj.verdict.verdict != SS_PASS)
+    rc = SS_EXIT_FAIL;
 done:
   ss_charmap_free(cm);
   ss_eig_free(e);

@@ -466,24 +466,21 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
     json_object_object_add(o, "diagonals", d);
   }
   json_object_object_add(o, "eigenvalues", ss_report_eig_json(r));
-  json_object *c = json_object_new_object();
-  json_object_object_add(c, "verdict",
-                         json_object_new_string(ss_verdict_name(r->cond.verdict)));
-  json_object_object_add(c, "reason", json_object_new_string(r->cond.reason));
+  json_object *c = ss_report_verdict_json(&r->cond, r->cond_certified);
   json_object_object_add(c, "tolerance", json_object_new_double(r->tol));
   json_object_object_add(o, "eigen_condition", c);
-  json_object *g = json_object_new_object();
-  json_object_object_add(g, "verdict",
-                         json_object_new_string(ss_verdict_name(r->reg.verdict)));
+  json_object *g = ss_report_verdict_json(&r->reg, r->reg_certified);
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(r->min_sj) ? json_object_new_double(r->min_sj) : NULL);
-  json_object_object_add(g, "reason", json_object_new_string(r->reg.reason));
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));
   json_object_object_add(g, "ring_levels", json_object_new_int(r->ring_levels));
   json_object_object_add(g, "centre_corner_folds",
                          json_object_new_int64((int64_t)r->centre_corner_folds));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(o, "regularity", g);
+  json_object *in = ss_report_verdict_json(&r->inj, 0);
+  json_object_object_add(in, "degree", json_object_new_int(r->inj_degree));
+  json_object_object_add(o, "injectivity", in);
   return o;
 }
 
@@ -623,9 +620,10 @@ static ss_status write_table(const char *dir, const table_spec *t, const result_
       sb_printf(&md, " λ%d |", i);
     sb_printf(&md, " \\|λ%d\\| |", m + 1);
   }
-  sb_printf(&md, " eigenvalue condition | regularity | min scaled Jacobian | paper |\n|");
+  sb_printf(&md, " eigenvalue condition | regularity | injectivity | min scaled Jacobian "
+                 "| paper |\n|");
   const int ncol = (t->kind == SS_CASE_VERTEX ? 4 : 1) + has_diag + 2 +
-                   (t->neig ? t->neig : m + 1) + 4;
+                   (t->neig ? t->neig : m + 1) + 5;
   for (int i = 0; i < ncol; i++)
     sb_printf(&md, "---|");
   sb_printf(&md, "\n");
@@ -664,6 +662,11 @@ static ss_status write_table(const char *dir, const table_spec *t, const result_
     sb_verdict(&md, &r->cond);
     sb_printf(&md, " | ");
     sb_verdict(&md, &r->reg);
+    sb_printf(&md, " | ");
+    if (r->inj.verdict == SS_PASS)
+      sb_printf(&md, "pass (degree %d)", r->inj_degree);
+    else
+      sb_verdict(&md, &r->inj);
     if (isfinite(r->min_sj))
       sb_printf(&md, " | %.4f |", r->min_sj);
     else

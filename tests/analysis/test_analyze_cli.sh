@@ -106,7 +106,10 @@ assert all(b > 0 for b in bad) and bad[2] >= 0.5 * bad[1], bad
 assert g["min_scaled_jacobian"] < 0 and g["folded_cells"] == lv[2]["folded"], g
 assert g["inverted_cells"] == lv[2]["inverted"] > 0, g
 PY
-expect_in 1 "regularity: fail: ring level 2: .* the fold persists" "" "$exe" analyze --scheme mlca --vertex "$k8"
+# and a symmetry sigma of the link (order 2) with psi o sigma = psi: not
+# injective, and not regular either (det Dpsi vanishes on sigma's fixed rays)
+expect_in 1 "regularity: fail: psi o sigma = psi for link automorphism .* of order 2 .* the ring alone: fail: ring level 2: .* the fold persists" "" "$exe" analyze --scheme mlca --vertex "$k8"
+expect_in 1 "injectivity: fail: psi o sigma = psi" "" "$exe" analyze --scheme mlca --vertex "$k8"
 expect_in 1 "regularity: undecided: no characteristic map" "" "$exe" analyze --scheme mlca --edge 8
 expect_in 2 "--depth" "" "$exe" analyze --scheme mlca --edge 4 --depth 13
 

@@ -784,6 +784,92 @@ static void test_ring_verdicts(void) {
   ss_scheme_free(c9.s);
 }
 
+/* ---- symmetries and injectivity ---- */
+
+/* psi o sigma = psi.  The regular vertex (octahedron link, 48 automorphisms)
+ * has none: its map is the identity on the lattice, on which no symmetry acts
+ * trivially.  Folding that map onto a half-space, z1 -> |z1|, makes it
+ * invariant under the reflection of the link that swaps the two vertices on
+ * the z1 axis: found, orientation-reversing, and both verdicts fail.  The
+ * k = 8 link of finding 1 has such a symmetry: a reflection of order 2. */
+static void test_symmetry(void) {
+  ss_scheme *mlca = scheme("mlca");
+  ss_error err = {0};
+  ss_link *oct = NULL, *k8 = NULL;
+  result r;
+  if (!ss_link_named("octahedron", &oct, &err) &&
+      !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r) && r.cm) {
+    ss_case c = {SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS};
+    CHECK(!r.r.sym.found && r.r.sym.tested >= 40,
+          "octahedron: %d symmetries tested, found %d", r.r.sym.tested, r.r.sym.found);
+    ss_charmap_inj inj;
+    REQUIRE_OK_VOID(ss_charmap_injectivity(r.cm, &r.r, &inj, &err), &err);
+    CHECK(inj.verdict.verdict == SS_PASS && (inj.degree == 1 || inj.degree == -1) &&
+              inj.overlaps == 0,
+          "octahedron: injectivity %s (%s)", ss_verdict_name(inj.verdict.verdict),
+          inj.verdict.reason);
+    /* the lattice's own coordinates: link vertex a and its antipode a' (its
+     * one non-neighbour) span the axis x_a - x_a'; fold the first axis */
+    int anti[6], axis[3], na = 0;
+    for (int a = 0; a < 6; a++) {
+      int adj[6] = {0};
+      for (int q = oct->off[a]; q < oct->off[a + 1]; q++)
+        adj[oct->nbr[q]] = 1;
+      for (int b = 0; b < 6; b++)
+        if (b != a && !adj[b]) anti[a] = b;
+      if (anti[a] > a) axis[na++] = a;
+    }
+    for (size_t i = 0; i < r.cm->n; i++) {
+      double g[6] = {0};
+      const ss_star_coord *l = r.M->label + i;
+      for (int e = 0; e < l->n; e++)
+        g[l->idx[e]] = l->val[e];
+      for (int d = 0; d < 3; d++)
+        r.cm->x[3 * i + (size_t)d] = g[axis[d]] - g[anti[axis[d]]];
+      r.cm->x[3 * i] = fabs(r.cm->x[3 * i]);
+    }
+    ss_charmap_sym y;
+    REQUIRE_OK_VOID(ss_charmap_symmetry(r.cm, r.M, &c, &y, &err), &err);
+    CHECK(y.found && y.reverses && y.order == 2 && y.distance < 1e-12 && y.moved > 0,
+          "folded octahedron map: found %d, reverses %d, order %d, distance %g", y.found,
+          y.reverses, y.order, y.distance);
+    done(&r);
+  }
+  if (!ss_link_parse(mlca_k8_exception, &k8, &err) &&
+      !run(mlca, (ss_case){SS_CASE_VERTEX, k8, 0, SS_DIAG_BFS}, &r) && r.cm) {
+    CHECK(r.r.sym.found && r.r.sym.order == 2 && r.r.sym.reverses &&
+              r.r.sym.distance < 1e-10 && r.r.verdict.verdict == SS_FAIL &&
+              strstr(r.r.verdict.reason, "psi o sigma = psi"),
+          "k = 8 finding: symmetry found %d, order %d, reverses %d, distance %g (%s)",
+          r.r.sym.found, r.r.sym.order, r.r.sym.reverses, r.r.sym.distance,
+          r.r.verdict.reason);
+    ss_charmap_inj inj;
+    REQUIRE_OK_VOID(ss_charmap_injectivity(r.cm, &r.r, &inj, &err), &err);
+    CHECK(inj.verdict.verdict == SS_FAIL, "k = 8 finding: injectivity %s",
+          ss_verdict_name(inj.verdict.verdict));
+    done(&r);
+  }
+  /* every passing map of the papers' small cases is injective with degree +-1 */
+  const char *names[2] = {"mlca", "tetoct"};
+  for (int q = 0; q < 2; q++) {
+    ss_scheme *s = q ? scheme(names[q]) : mlca;
+    for (int n = 3; n <= 7; n++) {
+      if (run(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &r) || !r.cm) continue;
+      ss_charmap_inj inj;
+      REQUIRE_OK_VOID(ss_charmap_injectivity(r.cm, &r.r, &inj, &err), &err);
+      CHECK(r.r.verdict.verdict != SS_PASS ||
+                (inj.verdict.verdict == SS_PASS && (inj.degree == 1 || inj.degree == -1)),
+            "%s edge %d: regular but injectivity %s (%s)", names[q], n,
+            ss_verdict_name(inj.verdict.verdict), inj.verdict.reason);
+      done(&r);
+    }
+    if (q) ss_scheme_free(s);
+  }
+  ss_link_free(oct);
+  ss_link_free(k8);
+  ss_scheme_free(mlca);
+}
+
 int main(void) {
   copts = ss_charmap_defaults();
   test_result_canonical();
@@ -798,5 +884,6 @@ int main(void) {
   test_ring_structure();
   test_basis_invariance();
   test_ring_verdicts();
+  test_symmetry();
   return ss_test_done("charmap");
 }

@@ -53,7 +53,7 @@ checks=$((checks + 1))
 checks=$((checks + 1))
 grep -q '"scheme":"mlca","case":"vertex","link":"4 bcd,adc,abd,acb","k":4,"two_ring_size":' "$out/data/mlca-vertices-k4-8.jsonl" ||
   fail "mlca-vertices-k4-8.jsonl: keys"
-grep -q '"eigen_condition":{"verdict":"pass","reason":"","tolerance":' "$out/data/tetoct-face.jsonl" ||
+grep -q '"eigen_condition":{"verdict":"pass","certified":false,"reason":"","tolerance":' "$out/data/tetoct-face.jsonl" ||
   fail "tetoct-face.jsonl: eigen_condition"
 
 # each table's summary: cases passing both conditions, quoted values compared
