@@ -106,6 +106,8 @@ typedef struct {
   int reverses;    /* with found: 1 if sigma reverses orientation; then
                       det Dpsi(sigma x) = -det Dpsi(x), so psi is not regular
                       either (its Jacobian changes sign or vanishes) */
+  int index;       /* with found: sigma's number among the case's symmetries
+                      (ss_charmap_sym_perm rebuilds it) */
   char what[160];  /* with found: sigma, in words */
 } ss_charmap_sym;
 
@@ -129,6 +131,7 @@ typedef struct {
   ss_ring_level level[SS_LOCAL_MAXRING]; /* each judged level */
   int depth;                             /* the hex subdivision depth limit used */
   double shrink;                         /* the shrink ratio used */
+  int certified;      /* 1 if the verdict is proven (ss_charmap_certify) */
   ss_charmap_sym sym; /* the symmetry test (ss_charmap_judge): when it finds
                          psi o sigma = psi the verdict is fail */
   int want_levels;    /* > nlevels when the verdict would be judged on
@@ -195,6 +198,12 @@ ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
 ss_status ss_charmap_symmetry(const ss_charmap *cm, const ss_local *M, const ss_case *c,
                               ss_charmap_sym *out, ss_error *err);
 
+/* The permutation P of the two-ring (P[i] = the label index of sigma(label
+ * i)) of the symmetry y found by ss_charmap_symmetry for the same M and c.
+ * P receives M->n2 entries.  SS_EINPUT if y found none or does not fit. */
+ss_status ss_charmap_sym_perm(const ss_local *M, const ss_case *c,
+                              const ss_charmap_sym *y, size_t *P, ss_error *err);
+
 /* ---- injectivity (ss_charmap_inj.c) ---- */
 
 /* The injectivity verdict. */
@@ -204,6 +213,8 @@ typedef struct {
                          psi(p) (ss_inject); 0 when not computed */
   size_t overlaps;    /* pairs of ring cells (the two-ring's cells that do not
                          touch p) sharing no vertex whose images meet */
+  int certified;      /* 1 if the verdict is proven (ss_charmap_certify: only a
+                         failure by psi o sigma = psi is) */
 } ss_charmap_inj;
 
 /* Whether the map is one-to-one, beyond regular: fail when the symmetry test
@@ -215,5 +226,32 @@ typedef struct {
  * when ss_inject refuses the cells (a defect, reported). */
 ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
                                  ss_charmap_inj *out, ss_error *err);
+
+/* ---- certified verdicts (ss_charmap_cert.c) ---- */
+
+/* Prove the verdicts r (from ss_charmap_judge) and inj (ss_charmap_injectivity)
+ * of case c, or mark them unproven, with an enclosure lo <= X <= hi (n2 x m,
+ * column-major, the rows in S's order) of a basis of the subdominant
+ * invariant subspace (ss_exact_basis): the basis may differ from the one the
+ * double path used, which changes no sign.  The ring's nets are pushed from
+ * X in interval arithmetic (arb's double intervals, outward rounding), every
+ * weight of the rule the rational of denominator <= maxden it rounds to
+ * (ss_exact_rational), and each ring cell is judged by ss_jac_cell_interval:
+ *   pass       proven when every cell of the deciding level is proven of one
+ *              strict sign (the same for all);
+ *   fail       proven when psi o sigma = psi is (P S = S P exactly, and the
+ *              enclosure excludes M_sigma != I by the gap of ss_charmap_sym),
+ *              or when the persistence rule holds for the proven counts: the
+ *              proven bad cells of the last level against all cells of the
+ *              level before that are bad or unproven;
+ *   otherwise  the verdict becomes undecided, "not certified: why (double
+ *              precision: the verdict)".
+ * Injectivity is proven only in the symmetry case (the PL test is exact on
+ * the double net, not on X).  Sets r->certified and inj->certified.
+ * SS_ENOMEM only. */
+ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *lo,
+                             const double *hi, int m, long maxden,
+                             const ss_charmap_opts *o, ss_regularity *r,
+                             ss_charmap_inj *inj, ss_error *err);
 
 #endif

@@ -37,10 +37,10 @@ static size_t gcd(size_t a, size_t b) {
 }
 
 /* Test one candidate; P (n2 entries) and seen (n2 bytes) are scratch.  Sets
- * out->found and the fields that go with it. */
-static void try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g,
-                    size_t *P, unsigned char *seen, const char *what, int reverses,
-                    ss_charmap_sym *out) {
+ * out->found and the fields that go with it, and returns 1, when it is kept. */
+static int try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g, size_t *P,
+                   unsigned char *seen, const char *what, int reverses,
+                   ss_charmap_sym *out) {
   const size_t n = M->n2;
   const int m = cm->dim;
   memset(seen, 0, n);
@@ -48,15 +48,15 @@ static void try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g,
   for (size_t i = 0; i < n; i++) {
     const ss_star_coord y = map_label(g, M->label + i);
     P[i] = ss_local_label_index(M, &y);
-    if (P[i] == SIZE_MAX || seen[P[i]]) return; /* not a symmetry of the two-ring */
+    if (P[i] == SIZE_MAX || seen[P[i]]) return 0; /* not a symmetry of the two-ring */
     seen[P[i]] = 1;
     moved += P[i] != i;
   }
-  if (!moved) return;            /* the identity on the two-ring */
+  if (!moved) return 0;          /* the identity on the two-ring */
   for (size_t i = 0; i < n; i++) /* P S = S P, entry by entry */
     for (size_t j = 0; j < n; j++) {
       const double a = M->S[i * n + j];
-      if (a != 0.0 && !(fabs(M->S[P[i] * n + P[j]] - a) <= 1e-12)) return;
+      if (a != 0.0 && !(fabs(M->S[P[i] * n + P[j]] - a) <= 1e-12)) return 0;
     }
   out->tested++;
   /* M_sigma from P X = X M_sigma: normal equations (X is normalised, so
@@ -85,7 +85,7 @@ static void try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g,
       A[col][q] = A[piv][q];
       A[piv][q] = t;
     }
-    if (!(fabs(A[col][col]) > 0.0)) return;
+    if (!(fabs(A[col][col]) > 0.0)) return 0;
     for (int r = 0; r < m; r++) {
       if (r == col) continue;
       const double f = A[r][col] / A[col][col];
@@ -103,7 +103,7 @@ static void try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g,
         v -= cm->x[i * (size_t)m + (size_t)a] * Ms[a * m + b];
       res += v * v;
     }
-  if (!(res <= 1e-12 * xn)) return;
+  if (!(res <= 1e-12 * xn)) return 0;
   /* the order of sigma on the two-ring: the lcm of P's cycle lengths */
   size_t order = 1;
   memset(seen, 0, n);
@@ -130,77 +130,156 @@ static void try_map(const ss_charmap *cm, const ss_local *M, const chart_map *g,
     out->distance = dist;
     out->gap = gap;
     snprintf(out->what, sizeof out->what, "%s", what);
+    return 1;
   }
+  return 0;
+}
+
+/* The symmetries of a case, numbered 0 .. count - 1 (the identity left out). */
+typedef struct {
+  const ss_case *c; /* the case */
+  int nc;           /* chart dimension */
+  int *aut, naut;   /* vertex case: the link's automorphisms (aut[0] = id) */
+} candidates;
+
+static int cand_count(const candidates *C) {
+  switch (C->c->kind) {
+  case SS_CASE_VERTEX:
+    return C->naut - 1;
+  case SS_CASE_EDGE:
+    return 4 * C->c->n - 1;
+  case SS_CASE_SURFACE_VERTEX:
+    return 2 * C->c->n - 1;
+  case SS_CASE_FACE:
+    return 3;
+  default:
+    return 0;
+  }
+}
+
+/* Candidate i as a chart map (perm must hold nc entries), whether it reverses
+ * orientation, and in words. */
+static void cand_make(const candidates *C, int i, chart_map *g, int *reverses, char *what,
+                      size_t nwhat) {
+  const ss_case *c = C->c;
+  int *perm = g->perm;
+  g->flip = -1;
+  if (c->kind == SS_CASE_VERTEX) {
+    /* an automorphism keeps the orientation iff it maps the link's first
+     * oriented triangle (0, w, w'), w' after w around 0, to an oriented one */
+    const int a = i + 1;
+    memcpy(perm, C->aut + (size_t)a * (size_t)C->nc, (size_t)C->nc * sizeof *perm);
+    const ss_link *l = c->link;
+    const int w0 = l->nbr[l->off[0]], w1 = l->nbr[l->off[0] + 1];
+    const int v = perm[0], d = ss_link_deg(l, v);
+    int pos = 0;
+    while (pos < d && l->nbr[l->off[v] + pos] != perm[w0])
+      pos++;
+    *reverses = l->nbr[l->off[v] + (pos + 1) % d] != perm[w1];
+    snprintf(what, nwhat, "link automorphism %d of %d (%s)", a + 1, C->naut,
+             *reverses ? "a reflection" : "orientation-preserving");
+  } else if (c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX) {
+    /* the faces (rays) around the edge (vertex), turned by s and reflected;
+     * an edge may also be flipped end for end (its coordinate n negated) */
+    const int n = c->n, q = i + 1, s = q % n, refl = (q / n) & 1, f = q / (2 * n);
+    for (int j = 0; j < n; j++)
+      perm[j] = refl ? ((s - j) % n + n) % n : (j + s) % n;
+    if (c->kind == SS_CASE_EDGE) {
+      perm[n] = n;
+      g->flip = f ? n : -1;
+    }
+    *reverses = refl != f;
+    snprintf(what, nwhat, "%s by %d%s%s", refl ? "reflection" : "rotation", s,
+             c->kind == SS_CASE_EDGE ? " around the edge" : "",
+             f ? ", with the edge flipped end for end" : "");
+  } else {
+    /* the face: the centre is (2, 1, 1) in the face (0, 1, 2), fixed by the
+     * swaps 1 <-> 2 and 3 <-> 4 */
+    const int q = i + 1;
+    for (int j = 0; j < C->nc; j++)
+      perm[j] = j;
+    if (q & 1) perm[1] = 2, perm[2] = 1;
+    if (q & 2) perm[3] = 4, perm[4] = 3;
+    *reverses = q != 3;
+    snprintf(what, nwhat, "%s%s%s", q & 1 ? "the swap of face vertices 1, 2" : "",
+             q == 3 ? " and " : "", q & 2 ? "the swap of the two tets" : "");
+  }
+}
+
+static ss_status cand_new(const ss_local *M, const ss_case *c, candidates *C,
+                          ss_error *err) {
+  memset(C, 0, sizeof *C);
+  C->c = c;
+  C->nc = M->ncoord;
+  if (M->nring < 0 || C->nc < 1 || (c->kind == SS_CASE_VERTEX && !c->link) ||
+      (c->kind == SS_CASE_VERTEX && c->link->k != C->nc) ||
+      (c->kind == SS_CASE_EDGE && C->nc != c->n + 1) ||
+      (c->kind == SS_CASE_SURFACE_VERTEX && C->nc != c->n) ||
+      (c->kind == SS_CASE_FACE && C->nc != 5) || c->kind == SS_CASE_EDGE_POINT)
+    return ss_error_set(err, SS_EINPUT, "symmetry test: the case does not match the map");
+  if (c->kind == SS_CASE_VERTEX)
+    return ss_link_automorphisms(c->link, &C->aut, &C->naut, err);
+  return SS_OK;
 }
 
 ss_status ss_charmap_symmetry(const ss_charmap *cm, const ss_local *M, const ss_case *c,
                               ss_charmap_sym *out, ss_error *err) {
   memset(out, 0, sizeof *out);
-  const int nc = M->ncoord;
-  if (cm->n != M->n2 || nc < 1 || (c->kind == SS_CASE_VERTEX && !c->link) ||
-      (c->kind == SS_CASE_VERTEX && c->link->k != nc))
+  if (cm->n != M->n2)
     return ss_error_set(err, SS_EINPUT, "symmetry test: the case does not match the map");
+  candidates C;
+  ss_status st = cand_new(M, c, &C, err);
+  if (st) return st;
   size_t *P = malloc((M->n2 + 1) * sizeof *P);
   unsigned char *seen = malloc(M->n2 + 1);
-  int *perm = malloc((size_t)nc * sizeof *perm);
-  int *aut = NULL, naut = 0;
-  ss_status st = SS_OK;
+  int *perm = malloc((size_t)C.nc * sizeof *perm);
   if (!P || !seen || !perm) {
     st = ss_error_nomem(err, "symmetry test");
     goto done;
   }
-  chart_map g = {nc, perm, -1};
+  chart_map g = {C.nc, perm, -1};
   char what[160];
-  if (c->kind == SS_CASE_VERTEX) {
-    if ((st = ss_link_automorphisms(c->link, &aut, &naut, err))) goto done;
-    /* an automorphism keeps the orientation iff it maps the link's first
-     * oriented triangle (0, w, w'), w' after w around 0, to an oriented one */
-    const ss_link *l = c->link;
-    const int w0 = l->nbr[l->off[0]], w1 = l->nbr[l->off[0] + 1];
-    for (int a = 1; a < naut && !(out->found && out->reverses); a++) { /* 0: identity */
-      memcpy(perm, aut + (size_t)a * (size_t)nc, (size_t)nc * sizeof *perm);
-      const int v = perm[0], d = ss_link_deg(l, v);
-      int pos = 0;
-      while (pos < d && l->nbr[l->off[v] + pos] != perm[w0])
-        pos++;
-      const int reverses = l->nbr[l->off[v] + (pos + 1) % d] != perm[w1];
-      snprintf(what, sizeof what, "link automorphism %d of %d (%s)", a + 1, naut,
-               reverses ? "a reflection" : "orientation-preserving");
-      try_map(cm, M, &g, P, seen, what, reverses, out);
-    }
-  } else if (c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX) {
-    /* the faces (rays) around the edge (vertex), turned by s and reflected;
-     * an edge may also be flipped end for end (its coordinate n negated) */
-    const int n = c->n, flips = c->kind == SS_CASE_EDGE ? 2 : 1;
-    for (int f = 0; f < flips && !(out->found && out->reverses); f++)
-      for (int refl = 0; refl < 2 && !(out->found && out->reverses); refl++)
-        for (int s = 0; s < n && !(out->found && out->reverses); s++) {
-          if (!f && !refl && !s) continue;
-          for (int i = 0; i < n; i++)
-            perm[i] = refl ? ((s - i) % n + n) % n : (i + s) % n;
-          if (flips == 2) perm[n] = n;
-          g.flip = f ? n : -1;
-          snprintf(what, sizeof what, "%s by %d%s%s", refl ? "reflection" : "rotation", s,
-                   c->kind == SS_CASE_EDGE ? " around the edge" : "",
-                   f ? ", with the edge flipped end for end" : "");
-          try_map(cm, M, &g, P, seen, what, refl != f, out);
-        }
-  } else if (c->kind == SS_CASE_FACE) {
-    /* the centre is (2, 1, 1) in the face (0, 1, 2): the swaps 1 <-> 2 and 3 <-> 4 */
-    for (int q = 1; q < 4 && !(out->found && out->reverses); q++) {
-      for (int i = 0; i < nc; i++)
-        perm[i] = i;
-      if (q & 1) perm[1] = 2, perm[2] = 1;
-      if (q & 2) perm[3] = 4, perm[4] = 3;
-      snprintf(what, sizeof what, "%s%s%s", q & 1 ? "the swap of face vertices 1, 2" : "",
-               q == 3 ? " and " : "", q & 2 ? "the swap of the two tets" : "");
-      try_map(cm, M, &g, P, seen, what, q != 3, out);
-    }
+  const int n = cand_count(&C);
+  for (int i = 0; i < n && !(out->found && out->reverses); i++) {
+    int reverses = 0;
+    cand_make(&C, i, &g, &reverses, what, sizeof what);
+    if (try_map(cm, M, &g, P, seen, what, reverses, out)) out->index = i;
   }
 done:
   free(P);
   free(seen);
   free(perm);
-  free(aut);
+  free(C.aut);
+  return st;
+}
+
+ss_status ss_charmap_sym_perm(const ss_local *M, const ss_case *c,
+                              const ss_charmap_sym *y, size_t *P, ss_error *err) {
+  if (!y->found) return ss_error_set(err, SS_EINPUT, "no symmetry was found");
+  candidates C;
+  ss_status st = cand_new(M, c, &C, err);
+  if (st) return st;
+  int *perm = malloc((size_t)C.nc * sizeof *perm);
+  if (!perm) {
+    free(C.aut);
+    return ss_error_nomem(err, "symmetry");
+  }
+  chart_map g = {C.nc, perm, -1};
+  int reverses = 0;
+  char what[160];
+  if (y->index < 0 || y->index >= cand_count(&C)) {
+    st = ss_error_set(err, SS_EINPUT, "symmetry %d is not one of the case's", y->index);
+  } else {
+    cand_make(&C, y->index, &g, &reverses, what, sizeof what);
+    for (size_t i = 0; i < M->n2 && !st; i++) {
+      const ss_star_coord x = map_label(&g, M->label + i);
+      P[i] = ss_local_label_index(M, &x);
+      if (P[i] == SIZE_MAX)
+        st = ss_error_set(err, SS_EINPUT, "symmetry %d does not map the two-ring",
+                          y->index);
+    }
+  }
+  free(perm);
+  free(C.aut);
   return st;
 }

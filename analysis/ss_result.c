@@ -6,6 +6,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "ss_certify.h"
 #include "ss_charmap.h"
 #include "ss_diag.h"
 #include "ss_jac.h"
@@ -13,7 +14,7 @@
 
 ss_result_opts ss_result_defaults(void) {
   const ss_charmap_opts co = ss_charmap_defaults();
-  return (ss_result_opts){1e-6, co.depth, co.ring_levels};
+  return (ss_result_opts){1e-6, co.depth, co.ring_levels, 0};
 }
 
 void ss_result_clear(ss_result *r) {
@@ -102,8 +103,15 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
     co.ring_levels = o->ring_levels;
     st = ss_charmap_judge(s, &cc, M, e, &co, &cm, &reg, err);
   }
-  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0};
+  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0, 0};
   if (!st && cm) st = ss_charmap_injectivity(cm, &reg, &inj, err);
+  ss_certified cert = {e ? e->cond : (ss_verdict){SS_UNDECIDED, ""}, 0, 0.0};
+  if (!st && o->certify) {
+    ss_charmap_opts co = ss_charmap_defaults();
+    co.depth = o->depth;
+    co.ring_levels = o->ring_levels;
+    st = ss_certify(M, &cc, e, cm, &co, &reg, &inj, &cert, NULL, err);
+  }
   ss_link_free(cl);
   if (st) {
     ss_charmap_free(cm);
@@ -125,7 +133,10 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   r->neig = e->n < SS_RESULT_NEIG ? (int)e->n : SS_RESULT_NEIG;
   for (int i = 0; i < r->neig; i++)
     r->eig[i] = (ss_result_eigval){e->val[i].re, e->val[i].im, e->val[i].mult};
-  r->cond = e->cond;
+  r->cond = cert.cond;
+  r->cond_certified = cert.cond_certified;
+  r->reg_certified = reg.certified;
+  r->inj_certified = inj.certified;
   r->tol = e->tol;
   r->reg = reg.verdict;
   r->inj = inj.verdict;

@@ -25,6 +25,8 @@ typedef struct {
   double tol;      /* relative tolerance for equal eigenvalues (ss_eig; 1e-6) */
   int depth;       /* hex subdivision depth limit of the Jacobian test (ss_jac) */
   int ring_levels; /* ring levels regularity is judged on at most (ss_charmap) */
+  int certify;     /* nonzero: the exact path too (ss_certify): every verdict
+                      proven or undecided */
 } ss_result_opts;
 
 /* One eigenvalue as kept in a result. */
@@ -57,6 +59,7 @@ typedef struct {
   ss_verdict reg;                       /* regularity of the characteristic map */
   int reg_certified;                    /* 1 if reg is proven */
   ss_verdict inj;             /* injectivity of the characteristic map (ss_charmap_inj) */
+  int inj_certified;          /* 1 if inj is proven */
   int inj_degree;             /* its degree about psi(p); 0 when not computed */
   double min_sj;              /* minimum scaled Jacobian (ss_charmap); NaN: no map */
   int depth;                  /* the hex depth limit used */
@@ -70,7 +73,7 @@ typedef struct {
   double seconds;             /* wall-clock time the analysis took */
 } ss_result;
 
-/* Defaults: tol 1e-6, depth SS_JAC_DEPTH, 3 ring levels. */
+/* Defaults: tol 1e-6, depth SS_JAC_DEPTH, 3 ring levels, no certification. */
 ss_result_opts ss_result_defaults(void);
 
 /* Analyse case c of scheme s into *r (which need not be initialised; on

@@ -573,7 +573,7 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
   fputs(",eigen_condition,eigen_reason,tolerance,regularity,regularity_reason,"
         "verdict,min_scaled_jacobian,depth,improper_pairs,adjacent_pairs,seconds,"
         "eigen_certified,regularity_certified,ring_level,centre_corner_folds,"
-        "injectivity,injectivity_reason,degree\r\n",
+        "injectivity,injectivity_reason,degree,injectivity_certified\r\n",
         f);
   for (size_t i = 0; i < n; i++) {
     const ss_result *r = &rows[i].r;
@@ -603,7 +603,7 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
     fprintf(f, ",%.17g,%d,%d,%d,%zu,%s,", r->seconds, r->cond_certified, r->reg_certified,
             r->ring_level, r->centre_corner_folds, ss_verdict_name(r->inj.verdict));
     csv_put(f, r->inj.reason);
-    fprintf(f, ",%d\r\n", r->inj_degree);
+    fprintf(f, ",%d,%d\r\n", r->inj_degree, r->inj_certified);
   }
 }
 
@@ -670,7 +670,7 @@ static json_object *json_case(const ss_report_row *row) {
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));
   json_object_object_add(g, "centre_corner_folds", jsize(r->centre_corner_folds));
   json_object_object_add(o, "regularity", g);
-  json_object *in = ss_report_verdict_json(&r->inj, 0);
+  json_object *in = ss_report_verdict_json(&r->inj, r->inj_certified);
   json_object_object_add(in, "degree", json_object_new_int(r->inj_degree));
   json_object_object_add(o, "injectivity", in);
   json_object_object_add(o, "verdict",

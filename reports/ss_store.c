@@ -32,6 +32,7 @@ static const char *const schema_sql =
     "  tol REAL NOT NULL,\n"
     "  depth INTEGER NOT NULL,\n"
     "  ring_levels INTEGER NOT NULL,\n"
+    "  certify INTEGER NOT NULL,\n"
     "  diagonals TEXT);\n"
     "CREATE TABLE result(\n"
     "  scheme_id INTEGER NOT NULL REFERENCES scheme(id),\n"
@@ -58,6 +59,7 @@ static const char *const schema_sql =
     "  injectivity TEXT NOT NULL,\n"
     "  injectivity_reason TEXT NOT NULL,\n"
     "  degree INTEGER NOT NULL,\n"
+    "  injectivity_certified INTEGER NOT NULL,\n"
     "  improper_pairs INTEGER,\n"
     "  adjacent_pairs INTEGER,\n"
     "  seconds REAL NOT NULL,\n"
@@ -166,8 +168,9 @@ static ss_status prepare(ss_store *st, ss_error *err) {
                          "regularity_reason,min_scaled_jacobian,depth,improper_pairs,"
                          "adjacent_pairs,seconds,eigen_certified,regularity_certified,"
                          "ring_level,centre_corner_folds,injectivity,injectivity_reason,"
-                         "degree) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,"
-                         "?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,?25,?26,?27,?28,?29)",
+                         "degree,injectivity_certified) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,"
+                         "?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,"
+                         "?25,?26,?27,?28,?29,?30)",
                          -1, &st->put, NULL) != SQLITE_OK)
     return db_error(st, err, "prepare");
   return SS_OK;
@@ -267,11 +270,13 @@ void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n) {
   if (sc->reads_diagonals)
     snprintf(diag, sizeof diag, " diagonals=%s", ss_diag_name(sc->diag));
   if (sc->stencil)
-    snprintf(buf, n, "stencil:%016" PRIx64 " tol=%g depth=%d rings=%d%s",
-             sc->stencil_hash, sc->opts.tol, sc->opts.depth, sc->opts.ring_levels, diag);
+    snprintf(buf, n, "stencil:%016" PRIx64 " tol=%g depth=%d rings=%d%s%s",
+             sc->stencil_hash, sc->opts.tol, sc->opts.depth, sc->opts.ring_levels,
+             sc->opts.certify ? " certified" : "", diag);
   else
-    snprintf(buf, n, "%s tol=%g depth=%d rings=%d%s", sc->name, sc->opts.tol,
-             sc->opts.depth, sc->opts.ring_levels, diag);
+    snprintf(buf, n, "%s tol=%g depth=%d rings=%d%s%s", sc->name, sc->opts.tol,
+             sc->opts.depth, sc->opts.ring_levels, sc->opts.certify ? " certified" : "",
+             diag);
 }
 
 ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *id,
@@ -298,8 +303,8 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
                         ident);
   rc = sqlite3_prepare_v2(st->db,
                           "INSERT OR IGNORE INTO scheme(identity,name,stencil,"
-                          "stencil_hash,tol,depth,diagonals,ring_levels) "
-                          "VALUES(?1,?2,?3,?4,?5,?6,?7,?8)",
+                          "stencil_hash,tol,depth,diagonals,ring_levels,certify) "
+                          "VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9)",
                           -1, &q, NULL);
   if (rc == SQLITE_OK) {
     sqlite3_bind_text(q, 1, ident, -1, SQLITE_TRANSIENT);
@@ -313,6 +318,7 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
     if (sc->reads_diagonals)
       sqlite3_bind_text(q, 7, ss_diag_name(sc->diag), -1, SQLITE_STATIC);
     sqlite3_bind_int(q, 8, sc->opts.ring_levels);
+    sqlite3_bind_int(q, 9, sc->opts.certify);
     rc = sqlite3_step(q);
   }
   sqlite3_finalize(q);
@@ -403,6 +409,7 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
   sqlite3_bind_text(q, 27, ss_verdict_name(r->inj.verdict), -1, SQLITE_STATIC);
   sqlite3_bind_text(q, 28, r->inj.reason, -1, SQLITE_STATIC);
   sqlite3_bind_int(q, 29, r->inj_degree);
+  sqlite3_bind_int(q, 30, r->inj_certified);
   const int rc = sqlite3_step(q);
   sqlite3_reset(q);
   free(ev);
@@ -480,7 +487,7 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
       "eigen_condition, eigen_reason, tolerance, regularity, regularity_reason, "
       "min_scaled_jacobian, depth, improper_pairs, adjacent_pairs, seconds, "
       "eigen_certified, regularity_certified, ring_level, centre_corner_folds, "
-      "injectivity, injectivity_reason, degree FROM cases";
+      "injectivity, injectivity_reason, degree, injectivity_certified FROM cases";
   size_t n = strlen(cols) + (where ? strlen(where) : 0) + 64;
   char *sql = malloc(n);
   if (!sql) return ss_error_nomem(err, "query");
@@ -538,6 +545,7 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     r->inj.verdict = verdict_of((const char *)sqlite3_column_text(q, 23));
     copy_text(r->inj.reason, sizeof r->inj.reason, sqlite3_column_text(q, 24));
     r->inj_degree = sqlite3_column_int(q, 25);
+    r->inj_certified = sqlite3_column_int(q, 26);
     if (visit(&row, ctx)) break;
   }
   if (!s && rc != SQLITE_ROW && rc != SQLITE_DONE) s = db_error(st, err, "query");
@@ -566,15 +574,15 @@ ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *p
   /* schemes are matched by identity, so ids may differ between stores */
   rc = exec(st, "BEGIN IMMEDIATE;"
                 "INSERT OR IGNORE INTO main.scheme(identity,name,stencil,stencil_hash,"
-                "tol,depth,ring_levels,diagonals) SELECT identity,name,stencil,"
-                "stencil_hash,tol,depth,ring_levels,diagonals FROM src.scheme;"
+                "tol,depth,ring_levels,certify,diagonals) SELECT identity,name,stencil,"
+                "stencil_hash,tol,depth,ring_levels,certify,diagonals FROM src.scheme;"
                 "INSERT OR IGNORE INTO main.result SELECT m.id, r.kind, r.k, r.link, "
                 "r.cells, r.two_ring, r.one_ring, r.lambda1, r.lambda2, r.lambda3, "
                 "r.lambda4, r.eigenvalues, r.eigen_condition, r.eigen_reason, "
                 "r.eigen_certified, r.tolerance, r.regularity, r.regularity_reason, "
                 "r.regularity_certified, r.min_scaled_jacobian, r.depth, r.ring_level, "
                 "r.centre_corner_folds, r.injectivity, r.injectivity_reason, r.degree, "
-                "r.improper_pairs, r.adjacent_pairs, "
+                "r.injectivity_certified, r.improper_pairs, r.adjacent_pairs, "
                 "r.seconds FROM src.result r JOIN src.scheme s ON s.id = r.scheme_id "
                 "JOIN main.scheme m ON m.identity = s.identity;"
                 "COMMIT;");

@@ -4,7 +4,7 @@
  * Schema (version 2; the README shows it in full):
  *   meta(key, value)       program = subspectra, schema = 2, created = UTC time
  *   scheme(id, identity, name, stencil, stencil_hash, tol, depth, ring_levels,
- *          diagonals)
+ *          certify, diagonals)
  *                          identity is unique: the scheme name or the hash of
  *                          its stencil file, with every analysis parameter
  *                          that can change a verdict (ss_store_identity)
@@ -67,8 +67,9 @@ typedef struct {
 typedef int (*ss_store_visit)(const ss_store_row *row, void *ctx);
 
 /* The identity text of sc into buf (n bytes, >= 128 is always enough):
- * "NAME tol=T depth=D rings=R[ diagonals=X]" for a built-in scheme,
- * "stencil:HASH16 tol=T depth=D rings=R[ diagonals=X]" for a stencil file. */
+ * "NAME tol=T depth=D rings=R[ certified][ diagonals=X]" for a built-in
+ * scheme, "stencil:HASH16 tol=T depth=D rings=R[ certified][ diagonals=X]" for
+ * a stencil file ("certified": the exact path, --certify). */
 void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n);
 
 /* Open path (see ss_store_mode).  An existing file must be a subspectra store

@@ -10,6 +10,7 @@
 
 #include <json-c/json.h>
 
+#include "ss_certify.h"
 #include "ss_charmap.h"
 #include "ss_cli.h"
 #include "ss_eig.h"
@@ -37,6 +38,7 @@ typedef struct {
   const char *out;          /* matrix, draw: -o FILE */
   int depth;                /* --depth: hex subdivision limit of the Jacobian test */
   int ring_levels;          /* --ring-levels: ring levels judged at most */
+  int certify;              /* --certify: the exact path too (ss_certify) */
   ss_report_draw_opts draw; /* draw: picture options */
   ss_diag_mode diag;        /* --diagonals: major diagonals of tet stars */
   int force;                /* draw --force: a map even when the condition fails */
@@ -105,7 +107,12 @@ static void help(const char *cmd) {
            "  --depth D              subdivision depth limit of the hex Jacobian test "
            "(0..12,\n"
            "                         default %d)\n"
-           "  --ring-levels L        ring levels judged at most (1..%d, default %d)\n",
+           "  --ring-levels L        ring levels judged at most (1..%d, default %d)\n"
+           "  --certify              prove the verdicts too: the exact spectrum of the\n"
+           "                         rational matrix (FLINT), the subdominant basis in\n"
+           "                         ball arithmetic (arb) and the ring's Jacobians in\n"
+           "                         interval arithmetic; what cannot be proven becomes\n"
+           "                         undecided (\"not certified: ...\")\n",
            SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels);
   if (d)
     printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk\n"
@@ -146,7 +153,8 @@ static int parse(int argc, char **argv, opts *o) {
     O_DIAG,
     O_FORCE,
     O_STENCIL,
-    O_RINGS
+    O_RINGS,
+    O_CERTIFY
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -164,6 +172,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"force", no_argument, 0, O_FORCE},
                                      {"stencil", required_argument, 0, O_STENCIL},
                                      {"ring-levels", required_argument, 0, O_RINGS},
+                                     {"certify", no_argument, 0, O_CERTIFY},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -249,6 +258,10 @@ static int parse(int argc, char **argv, opts *o) {
             o->cmd, "--depth: expected an integer in 0..12, not '%s'", optarg);
       o->depth = (int)v;
       break;
+    case O_CERTIFY:
+      if (m || d) return ss_cli_usage_error(o->cmd, "--certify is an option of analyze");
+      o->certify = 1;
+      break;
     case O_RINGS:
       if (m || ss_cli_parse_int(optarg, 1, SS_LOCAL_MAXRING, &v))
         return ss_cli_usage_error(o->cmd,
@@ -314,6 +327,13 @@ static const char *param_text(const opts *o, const char *canon, char *buf, size_
   return buf;
 }
 
+/* What --certify adds (ss_certify). */
+typedef struct {
+  int on;                /* --certify given */
+  ss_certified c;        /* the proven eigenvalue condition, timing */
+  const ss_exact *exact; /* the exact spectrum, or NULL */
+} cert_info;
+
 /* Major diagonals of a tet star, for schemes that read them. */
 typedef struct {
   int shown;       /* 1 if the scheme reads diagonals */
@@ -340,7 +360,8 @@ static json_object *level_json(const ss_ring_level *L, int l) {
 
 /* The regularity object of DESIGN section 7, with the ring's levels. */
 static json_object *regularity_json(const ss_regularity *reg) {
-  json_object *g = ss_report_verdict_json(&reg->verdict, 0);
+  /* certified: set by ss_charmap_certify under --certify, else 0 */
+  json_object *g = ss_report_verdict_json(&reg->verdict, reg->certified);
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(reg->min_scaled_jacobian)
                              ? json_object_new_double(reg->min_scaled_jacobian)
@@ -371,7 +392,8 @@ static json_object *regularity_json(const ss_regularity *reg) {
 
 static void print_json(const opts *o, const char *scheme, const char *canon, int k,
                        const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                       const ss_charmap_inj *inj, const diag_info *di) {
+                       const ss_charmap_inj *inj, const diag_info *di,
+                       const cert_info *ci) {
   json_object *r = json_object_new_object();
   json_object_object_add(r, "scheme", json_object_new_string(scheme));
   json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
@@ -407,12 +429,33 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
     json_object_array_add(ev, x);
   }
   json_object_object_add(r, "eigenvalues", ev);
-  json_object *c = ss_report_verdict_json(&e->cond, 0);
+  json_object *c = ss_report_verdict_json(ci->on ? &ci->c.cond : &e->cond,
+                                          ci->on && ci->c.cond_certified);
   json_object_object_add(c, "tolerance", json_object_new_double(e->tol));
+  if (ci->exact) {
+    size_t nr = 0;
+    const ss_exact_root *x = ss_exact_roots(ci->exact, &nr);
+    json_object *a = json_object_new_array();
+    for (size_t i = 0; i < nr && i < (size_t)o->neig; i++) {
+      char poly[256];
+      json_object *q = json_object_new_object();
+      json_object_object_add(q, "re", json_object_new_double(x[i].re));
+      json_object_object_add(q, "im", json_object_new_double(x[i].im));
+      json_object_object_add(q, "radius", json_object_new_double(x[i].rad));
+      json_object_object_add(q, "multiplicity", json_object_new_int(x[i].mult));
+      json_object_object_add(q, "degree", json_object_new_int(x[i].degree));
+      json_object_object_add(
+          q, "minimal_polynomial",
+          json_object_new_string(ss_exact_minpoly(ci->exact, i, poly, sizeof poly)));
+      json_object_array_add(a, q);
+    }
+    json_object_object_add(c, "exact_roots", a);
+    json_object_object_add(c, "exact_seconds", json_object_new_double(ci->c.seconds));
+  }
   json_object_object_add(r, "eigen_condition", c);
   json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
   json_object_object_add(r, "regularity", regularity_json(reg));
-  json_object *in = ss_report_verdict_json(&inj->verdict, 0);
+  json_object *in = ss_report_verdict_json(&inj->verdict, inj->certified);
   json_object_object_add(in, "degree", json_object_new_int(inj->degree));
   json_object_object_add(in, "overlaps", json_object_new_int64((int64_t)inj->overlaps));
   json_object_object_add(r, "injectivity", in);
@@ -453,7 +496,8 @@ static void print_tsv(const opts *o, const char *scheme, const char *canon,
 
 static void print_text(const opts *o, const char *scheme, const char *canon, int k,
                        const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                       const ss_charmap_inj *inj, const diag_info *di) {
+                       const ss_charmap_inj *inj, const diag_info *di,
+                       const cert_info *ci) {
   printf("scheme %s, %s case", scheme, ss_case_name(o->kind));
   if (o->kind == SS_CASE_EDGE_POINT)
     printf(", link %s (k = %d): the bipyramid over %d, a point on an edge of valence %d, "
@@ -486,9 +530,23 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
   printf("\neigenvalue condition: %s%s%s (equal within relative tolerance %.1e)\n",
          ss_verdict_name(e->cond.verdict), e->cond.reason[0] ? ": " : "", e->cond.reason,
          e->tol);
+  if (ci->on) {
+    printf("eigenvalue condition, exact (%.2f s): %s%s%s%s\n", ci->c.seconds,
+           ss_verdict_name(ci->c.cond.verdict), ci->c.cond_certified ? ", certified" : "",
+           ci->c.cond.reason[0] ? ": " : "", ci->c.cond.reason);
+    size_t nr = 0;
+    const ss_exact_root *x = ci->exact ? ss_exact_roots(ci->exact, &nr) : NULL;
+    for (size_t i = 0; i < nr && i < 6; i++) {
+      char poly[160];
+      printf("    %-20.12g %+.3gi  mult %d  radius %.1e  minimal polynomial %s\n",
+             x[i].re, x[i].im, x[i].mult, x[i].rad,
+             ss_exact_minpoly(ci->exact, i, poly, sizeof poly));
+    }
+  }
   if (e->basis_kind[0]) printf("subdominant basis: %s\n", e->basis_kind);
-  printf("regularity: %s%s%s\n", ss_verdict_name(reg->verdict.verdict),
-         reg->verdict.reason[0] ? ": " : "", reg->verdict.reason);
+  printf("regularity: %s%s%s%s\n", ss_verdict_name(reg->verdict.verdict),
+         reg->certified ? ", certified" : "", reg->verdict.reason[0] ? ": " : "",
+         reg->verdict.reason);
   if (reg->nlevels > 0) {
     printf(
         "  judged on the ring (cells not touching the centre), levels 0..%d of at most "
@@ -510,8 +568,9 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
         reg->min_scaled_jacobian, reg->ring_level, reg->worst_cell, reg->depth,
         reg->centre_corner_folds, M->ncentre);
   }
-  printf("injectivity: %s%s%s\n", ss_verdict_name(inj->verdict.verdict),
-         inj->verdict.reason[0] ? ": " : "", inj->verdict.reason);
+  printf("injectivity: %s%s%s%s\n", ss_verdict_name(inj->verdict.verdict),
+         inj->certified ? ", certified" : "", inj->verdict.reason[0] ? ": " : "",
+         inj->verdict.reason);
   if (inj->verdict.verdict == SS_PASS)
     printf("  degree %d about psi(p); no two ring cells without a common vertex meet "
            "(piecewise-linear images, exact predicates)\n",
@@ -582,6 +641,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_local *M = NULL;
   ss_eig *e = NULL;
   ss_charmap *cm = NULL;
+  ss_exact *ex = NULL;
   int rc = SS_EXIT_OK;
   if (o->kind == SS_CASE_VERTEX) {
     if (ss_link_parse(link_text, &l, &err) || ss_link_canonical(l, &cl, NULL, &err) ||
@@ -642,11 +702,20 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     rc = SS_EXIT_FAIL;
     goto done;
   }
-  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0};
+  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0, 0};
   if (cm && ss_charmap_injectivity(cm, &reg, &inj, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
     rc = SS_EXIT_FAIL;
     goto done;
+  }
+  cert_info ci = {o->certify, {e->cond, 0, 0.0}, NULL};
+  if (o->certify) {
+    if (ss_certify(M, &c, e, cm, &co, &reg, &inj, &ci.c, &ex, &err)) {
+      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+      rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
+      goto done;
+    }
+    ci.exact = ex;
   }
   const int k = l ? l->k : 0;
   if (!strcmp(o->cmd, "draw")) {
@@ -694,16 +763,17 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
             reg.verdict.reason);
     if (forced) rc = SS_EXIT_FAIL;
   } else if (o->format == FMT_JSON)
-    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di);
+    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci);
   else if (o->format == FMT_TSV)
     print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, (*header)++ == 0);
   else
-    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di);
-  if (e->cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS ||
+    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci);
+  if (ci.c.cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS ||
       inj.verdict.verdict != SS_PASS)
     rc = SS_EXIT_FAIL;
 done:
   ss_charmap_free(cm);
+  ss_exact_free(ex);
   ss_eig_free(e);
   ss_local_free(M);
   free(canon);
@@ -727,6 +797,7 @@ static int run(int argc, char **argv, const char *cmd) {
             NULL,
             SS_JAC_DEPTH,
             ss_charmap_defaults().ring_levels,
+            0,
             ss_report_draw_defaults(),
             SS_DIAG_BFS,
             0};

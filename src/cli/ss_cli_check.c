@@ -17,7 +17,7 @@
 
 static const char *const usage_text =
     "usage: subspectra check STENCIL.ini [--vertices A..B] [--edges A..B] [--face]\n"
-    "                        [--tol T] [--depth D]\n"
+    "                        [--tol T] [--depth D] [--certify]\n"
     "\n"
     "The CI gate for a new stencil: analyse every case and pass only if all pass.\n"
     "Each case: the local subdivision matrix from the stencil's global rule, its\n"
@@ -30,6 +30,8 @@ static const char *const usage_text =
     "                    hex stars for split multilinear, tet stars for tetoct)\n"
     "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
     "  --face            the face of two tets (split tetoct only)\n"
+    "  --certify         prove every verdict (exact spectrum, interval Jacobians);\n"
+    "                    a verdict that cannot be proven counts as undecided\n"
     "  -h, --help        this text\n"
     "With no case option: --vertices 4..6 --edges 3..6 (and --face for tetoct).\n"
     "\n"
@@ -41,6 +43,7 @@ typedef struct {
   const ss_scheme *s;
   double tol;
   int depth;
+  int certify;
   long cases, pass, fail, undecided, errors;
 } gate;
 
@@ -51,6 +54,7 @@ static void run_case(gate *g, ss_case c, const char *what) {
   ss_result_opts ro = ss_result_defaults();
   ro.tol = g->tol;
   ro.depth = g->depth;
+  ro.certify = g->certify;
   g->cases++;
   if (ss_result_compute(g->s, &c, &ro, &r, &err)) {
     printf("error      %s: %s\n", what, err.msg);
@@ -59,10 +63,14 @@ static void run_case(gate *g, ss_case c, const char *what) {
   }
   const ss_verdict_kind v = ss_result_verdict(&r);
   ++*(v == SS_PASS ? &g->pass : v == SS_FAIL ? &g->fail : &g->undecided);
-  if (v != SS_PASS)
-    printf("%-10s %s: %s%s\n", v == SS_UNDECIDED ? "undecided" : "fail", what,
-           r.cond.verdict != SS_PASS ? "eigenvalue condition: " : "regularity: ",
-           r.cond.verdict != SS_PASS ? r.cond.reason : r.reg.reason);
+  if (v != SS_PASS) { /* the first condition that does not pass */
+    const int which = r.cond.verdict != SS_PASS ? 0 : r.reg.verdict != SS_PASS ? 1 : 2;
+    static const char *const names[3] = {"eigenvalue condition", "regularity",
+                                         "injectivity"};
+    const ss_verdict *why = which == 0 ? &r.cond : which == 1 ? &r.reg : &r.inj;
+    printf("%-10s %s: %s: %s\n", v == SS_UNDECIDED ? "undecided" : "fail", what,
+           names[which], why->reason);
+  }
   ss_result_clear(&r);
 }
 
@@ -82,15 +90,13 @@ static int visit(const ss_link *l, void *ctx) {
 }
 
 int ss_cli_check(int argc, char **argv) {
-  static const struct option opts[] = {{"vertices", required_argument, NULL, 'v'},
-                                       {"edges", required_argument, NULL, 'e'},
-                                       {"face", no_argument, NULL, 'f'},
-                                       {"tol", required_argument, NULL, 't'},
-                                       {"depth", required_argument, NULL, 'd'},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {
+      {"vertices", required_argument, NULL, 'v'}, {"edges", required_argument, NULL, 'e'},
+      {"face", no_argument, NULL, 'f'},           {"tol", required_argument, NULL, 't'},
+      {"depth", required_argument, NULL, 'd'},    {"certify", no_argument, NULL, 'c'},
+      {"help", no_argument, NULL, 'h'},           {NULL, 0, NULL, 0}};
   long va = 0, vb = -1, ea = 0, eb = -1, depth = SS_JAC_DEPTH;
-  int face = 0, any = 0;
+  int face = 0, any = 0, certify = 0;
   double tol = 1e-6;
   optind = 1;
   opterr = 0;
@@ -125,6 +131,9 @@ int ss_cli_check(int argc, char **argv) {
         return ss_cli_usage_error("check", "--depth '%s' is not an integer in 0..12",
                                   optarg);
       break;
+    case 'c':
+      certify = 1;
+      break;
     case 'h':
       fputs(usage_text, stdout);
       return SS_EXIT_OK;
@@ -148,9 +157,9 @@ int ss_cli_check(int argc, char **argv) {
     return ss_cli_usage_error("check", "--face: the stencil's split is not tetoct");
   }
   if (!any) va = 4, vb = 6, ea = 3, eb = 6, face = tetoct;
-  gate g = {s, tol, (int)depth, 0, 0, 0, 0, 0};
-  printf("check %s (scheme %s): relative tolerance %g, hex depth %ld\n", path,
-         ss_scheme_name(s), tol, depth);
+  gate g = {s, tol, (int)depth, certify, 0, 0, 0, 0, 0};
+  printf("check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
+         ss_scheme_name(s), tol, depth, certify ? ", certified verdicts" : "");
   if (vb >= va) {
     ss_enum_opts eo = {(int)va, (int)vb, 0, 1};
     if (ss_enum_links(&eo, visit, &g, NULL, &err)) {

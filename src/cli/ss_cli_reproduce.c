@@ -478,7 +478,7 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
                          json_object_new_int64((int64_t)r->centre_corner_folds));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(o, "regularity", g);
-  json_object *in = ss_report_verdict_json(&r->inj, 0);
+  json_object *in = ss_report_verdict_json(&r->inj, r->inj_certified);
   json_object_object_add(in, "degree", json_object_new_int(r->inj_degree));
   json_object_object_add(o, "injectivity", in);
   return o;

@@ -30,12 +30,13 @@
 static const char *const sweep_usage =
     "usage: subspectra sweep (--scheme S | --stencil FILE) CASES [--db FILE]\n"
     "                        [--jobs N] [--part I/N] [--tol T] [--depth D]\n"
-    "                        [--diagonals D]\n"
+    "                        [--diagonals D] [--certify]\n"
     "\n"
     "Analyse every case asked for, exactly as `subspectra analyze` does, and store\n"
     "each result in a SQLite results store (schema in the README).  Results are\n"
     "keyed by the scheme's identity (its name, or the hash of the stencil file's\n"
-    "bytes, with --tol, --depth and --diagonals), the case and the canonical link:\n"
+    "bytes, with --tol, --depth, --diagonals and --certify), the case and the\n"
+    "canonical link:\n"
     "a rerun skips the cases already stored, so an interrupted sweep (even by\n"
     "SIGKILL) resumes where it stopped, and no case is ever stored twice.\n"
     "\n"
@@ -60,6 +61,8 @@ static const char *const sweep_usage =
     "6)\n"
     "  --diagonals D     major diagonals (boxspline): bfs (default) or proper; skew\n"
     "                    or center with --edges only\n"
+    "  --certify         prove the verdicts (the exact path of `analyze --certify`);\n"
+    "                    what cannot be proven is stored as undecided\n"
     "  --format F        text (default) or json: the final summary also as one\n"
     "                    JSON object on standard output\n"
     "  -h, --help        this text\n"
@@ -307,7 +310,8 @@ int ss_cli_sweep(int argc, char **argv) {
     O_TOL,
     O_DEPTH,
     O_DIAG,
-    O_FORMAT
+    O_FORMAT,
+    O_CERTIFY
   };
   static const struct option opts[] = {{"scheme", required_argument, NULL, O_SCHEME},
                                        {"stencil", required_argument, NULL, O_STENCIL},
@@ -322,6 +326,7 @@ int ss_cli_sweep(int argc, char **argv) {
                                        {"depth", required_argument, NULL, O_DEPTH},
                                        {"diagonals", required_argument, NULL, O_DIAG},
                                        {"format", required_argument, NULL, O_FORMAT},
+                                       {"certify", no_argument, NULL, O_CERTIFY},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   const char *scheme = NULL, *stencil = NULL, *links = NULL, *db = "subspectra.db";
@@ -331,7 +336,7 @@ int ss_cli_sweep(int argc, char **argv) {
   int face = 0;
   double tol = 1e-6;
   ss_diag_mode diag = SS_DIAG_BFS;
-  int diag_given = 0, json = 0;
+  int diag_given = 0, json = 0, certify = 0;
   optind = 1;
   opterr = 0;
   int c;
@@ -392,6 +397,9 @@ int ss_cli_sweep(int argc, char **argv) {
             "sweep", "--diagonals: expected bfs, proper, skew or center, not '%s'",
             optarg);
       diag_given = 1;
+      break;
+    case O_CERTIFY:
+      certify = 1;
       break;
     case O_FORMAT:
       if (ss_cli_format_option("sweep", optarg, &json)) return SS_EXIT_USAGE;
@@ -455,6 +463,7 @@ int ss_cli_sweep(int argc, char **argv) {
   ss_result_opts ro = ss_result_defaults();
   ro.tol = tol;
   ro.depth = (int)depth;
+  ro.certify = certify;
   ss_store_scheme sc = {ss_scheme_name(s), stencil, hash, reads, diag, ro};
   int64_t id = 0;
   if (ss_store_open(db, SS_STORE_WRITE, &st, &err) ||

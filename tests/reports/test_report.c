@@ -328,7 +328,7 @@ static void test_csv(ss_store *st, const computed *all) {
   char *hdr[64], *f[64];
   size_t pos = 0;
   const int nh = csv_record(text, &pos, hdr, 64);
-  CHECK(nh == 38, "csv header has %d fields", nh);
+  CHECK(nh == 39, "csv header has %d fields", nh);
   const int cid = col(hdr, nh, "identity"), ckind = col(hdr, nh, "case"),
             ck = col(hdr, nh, "k"), clink = col(hdr, nh, "link"),
             csj = col(hdr, nh, "min_scaled_jacobian"), cre = col(hdr, nh, "lambda1_re"),

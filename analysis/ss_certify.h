@@ -1,0 +1,46 @@
+/* ss_certify.h — the certified path of one case (`--certify`; DESIGN section
+ * 10, "certified verdicts").
+ *
+ * After the double-precision analysis (ss_local, ss_eig, ss_charmap_judge,
+ * ss_charmap_injectivity) of a case, the exact path:
+ *   1. the exact spectrum of S (ss_exact: rational S, factored characteristic
+ *      polynomials, isolated roots) decides the eigenvalue condition, which
+ *      replaces the double-precision one when it is proven and becomes
+ *      undecided ("not certified: ...") when it is not;
+ *   2. on a proven pass, the enclosed subdominant basis (ss_exact_basis)
+ *      proves the regularity verdict and the injectivity verdict where it can
+ *      (ss_charmap_certify);
+ *   3. on a proven failure, there is no characteristic map: regularity is
+ *      undecided ("no characteristic map"), unless the double path already
+ *      failed it for complex or defective subdominant eigenvalues.
+ * Nothing passes without proof: every verdict that could not be proven is
+ * undecided with the reason, the double-precision verdict quoted in it.
+ * Injectivity keeps the double path's pass (exact predicates on the double
+ * net) with certified = 0: the tables say so. */
+#ifndef SS_CERTIFY_H
+#define SS_CERTIFY_H
+
+#include "ss_charmap.h"
+#include "ss_eig.h"
+#include "ss_exact.h"
+#include "ss_local.h"
+
+/* What the exact path adds to one case. */
+typedef struct {
+  ss_verdict cond;    /* the eigenvalue condition, proven or undecided */
+  int cond_certified; /* 1 if cond is proven */
+  double seconds;     /* time the exact path took (wall clock) */
+} ss_certified;
+
+/* Run the exact path on case c (M, e from the double path; cm, reg, inj its
+ * map and verdicts, or cm NULL without a map).  reg and inj are updated in
+ * place (verdicts, reasons, certified flags).  *x (may be NULL) receives the
+ * exact spectrum, owned by the caller (ss_exact_free), NULL when it could not
+ * be built.  A scheme whose weights are not small rationals is not an error:
+ * everything is then "not certified".  SS_ENOMEM; SS_EINPUT for malformed
+ * inputs. */
+ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
+                     const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
+                     ss_charmap_inj *inj, ss_certified *out, ss_exact **x, ss_error *err);
+
+#endif

@@ -1,0 +1,238 @@
+/* ss_charmap_cert.c — the regularity and injectivity verdicts proven, or said
+ * to be unproven, with an enclosure of the subdominant basis.  Method:
+ * ss_charmap.h. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lapacke.h>
+
+#include "double_interval.h"
+#include "ss_charmap.h"
+#include "ss_exact.h"
+
+/* An interval net: lo and hi, point by point (dim coordinates each). */
+typedef struct {
+  double *lo, *hi;
+} inet;
+
+static void inet_free(inet *x) {
+  free(x->lo);
+  free(x->hi);
+  x->lo = x->hi = NULL;
+}
+
+static int inet_alloc(inet *x, size_t n, int dim) {
+  x->lo = malloc((n * (size_t)dim + 1) * sizeof *x->lo);
+  x->hi = malloc((n * (size_t)dim + 1) * sizeof *x->hi);
+  return x->lo && x->hi ? 0 : -1;
+}
+
+/* The exact weight w (a reconstructed rational p/q) as an interval; 0, or -1
+ * when w is not a rational of bounded denominator. */
+static int weight(double w, long maxden, di_t *out) {
+  long long p, q;
+  if (!ss_exact_rational(w, maxden, &p, &q)) return -1;
+  const di_t P = di_interval((double)p, (double)p), Q = di_interval((double)q, (double)q);
+  *out = di_fast_div(P, Q); /* p, q < 2^53: exact as doubles */
+  return 0;
+}
+
+/* Push the interval net prev through ring level R into out (allocated). */
+static int push(const ss_local_ring *R, const inet *prev, int dim, long maxden,
+                inet *out) {
+  if (inet_alloc(out, R->nv, dim)) return -1;
+  for (size_t i = 0; i < R->nv; i++)
+    for (int d = 0; d < dim; d++) {
+      di_t s = di_interval(0.0, 0.0);
+      for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
+        di_t w;
+        if (weight(R->w[q], maxden, &w)) return -2;
+        const size_t k = R->col[q] * (size_t)dim + (size_t)d;
+        s = di_fast_add(s, di_fast_mul(w, di_interval(prev->lo[k], prev->hi[k])));
+      }
+      out->lo[i * (size_t)dim + (size_t)d] = s.a;
+      out->hi[i * (size_t)dim + (size_t)d] = s.b;
+    }
+  return 0;
+}
+
+/* Proven verdicts of the cells of one ring level. */
+typedef struct {
+  size_t cells, pos, neg, folded, unknown;
+} proven;
+
+static void judge(const ss_local_ring *R, const inet *x, int dim, int depth, proven *p) {
+  memset(p, 0, sizeof *p);
+  p->cells = R->ncells;
+  for (size_t c = 0; c < R->ncells; c++) {
+    double lo[SS_MAXCELLVERTS * 3], hi[SS_MAXCELLVERTS * 3];
+    const int nv = ss_cell_nverts(R->ctype[c]);
+    for (int j = 0; j < nv; j++)
+      for (int d = 0; d < dim; d++) {
+        const size_t k =
+            R->corner[c * SS_MAXCELLVERTS + (size_t)j] * (size_t)dim + (size_t)d;
+        lo[j * dim + d] = x->lo[k];
+        hi[j * dim + d] = x->hi[k];
+      }
+    ss_jac_result res;
+    ss_jac_cell_interval(R->ctype[c], lo, hi, dim, depth, &res);
+    p->pos += res.sign == SS_JAC_POSITIVE;
+    p->neg += res.sign == SS_JAC_NEGATIVE;
+    p->folded += res.sign == SS_JAC_FOLDED;
+    p->unknown += res.sign != SS_JAC_POSITIVE && res.sign != SS_JAC_NEGATIVE &&
+                  res.sign != SS_JAC_FOLDED;
+  }
+}
+
+/* psi o sigma = psi proven: P commutes with the exact S (entries compared as
+ * the rationals they stand for) and, with X the enclosed basis (midpoint Xm,
+ * radius E), ||P Xm - Xm||_F + 2 ||E||_F < (s_min(Xm) - ||E||_F) gap / 2: if
+ * M_sigma != I then ||P X - X|| = ||X (M_sigma - I)|| >= s_min(X) gap.  The
+ * few norms are computed in double with a margin of a factor 2.  Returns 1
+ * proven, 0 not, -1 out of memory. */
+static int sym_proven(const ss_local *M, const ss_case *c, const ss_charmap_sym *y,
+                      const double *lo, const double *hi, int m, long maxden,
+                      ss_error *err) {
+  const size_t n = M->n2;
+  size_t *P = malloc((n + 1) * sizeof *P);
+  if (!P) return -1;
+  int ok = ss_charmap_sym_perm(M, c, y, P, err) == SS_OK;
+  for (size_t i = 0; ok && i < n; i++)
+    for (size_t j = 0; ok && j < n; j++) {
+      const double a = M->S[i * n + j], b = M->S[P[i] * n + P[j]];
+      long long pa = 0, qa = 1, pb = 0, qb = 1;
+      if (a == 0.0 && b == 0.0) continue;
+      ok = ss_exact_rational(a, maxden, &pa, &qa) &&
+           ss_exact_rational(b, maxden, &pb, &qb) && pa == pb && qa == qb;
+    }
+  double dx = 0.0, e = 0.0, G[9] = {0};
+  for (int a = 0; ok && a < m; a++)
+    for (size_t i = 0; i < n; i++) {
+      const double xa = 0.5 * (lo[(size_t)a * n + i] + hi[(size_t)a * n + i]);
+      const double xp = 0.5 * (lo[(size_t)a * n + P[i]] + hi[(size_t)a * n + P[i]]);
+      const double r = 0.5 * (hi[(size_t)a * n + i] - lo[(size_t)a * n + i]);
+      dx += (xp - xa) * (xp - xa);
+      e += r * r;
+      for (int b = 0; b < m; b++)
+        G[a * m + b] += xa * 0.5 * (lo[(size_t)b * n + i] + hi[(size_t)b * n + i]);
+    }
+  double mu[3];
+  if (ok && LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'U', m, G, m, mu)) ok = 0;
+  if (ok) {
+    const double smin = sqrt(fmax(mu[0], 0.0)), en = sqrt(e);
+    ok = sqrt(dx) + 2.0 * en < 0.5 * (smin - en) * y->gap;
+  }
+  free(P);
+  return ok;
+}
+
+ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *lo,
+                             const double *hi, int m, long maxden,
+                             const ss_charmap_opts *o, ss_regularity *r,
+                             ss_charmap_inj *inj, ss_error *err) {
+  r->certified = 0;
+  inj->certified = 0;
+  ss_verdict *v = &r->verdict;
+  char why[200] = "";
+  ss_status st = SS_OK;
+  const size_t n = M->n2;
+  for (size_t i = 0; i < n * (size_t)m; i++)
+    if (!(lo[i] <= hi[i]) || !isfinite(lo[i]) || !isfinite(hi[i])) {
+      snprintf(why, sizeof why, "the basis enclosure is not finite");
+      goto uncertified;
+    }
+  if (r->sym.found) {
+    const int p = sym_proven(M, c, &r->sym, lo, hi, m, maxden, err);
+    if (p < 0) return ss_error_nomem(err, "certification");
+    if (p) {
+      r->certified = inj->certified = 1;
+      return SS_OK;
+    }
+    snprintf(why, sizeof why, "psi o sigma = psi is not proven by the enclosure");
+    goto uncertified;
+  }
+  /* the ring levels the double-precision verdict judged, in intervals */
+  proven pr[SS_LOCAL_MAXRING];
+  inet prev = {NULL, NULL}, cur = {NULL, NULL};
+  if (inet_alloc(&prev, n, m)) return ss_error_nomem(err, "certification");
+  for (size_t i = 0; i < n; i++)
+    for (int d = 0; d < m; d++) {
+      prev.lo[i * (size_t)m + (size_t)d] = lo[(size_t)d * n + i];
+      prev.hi[i * (size_t)m + (size_t)d] = hi[(size_t)d * n + i];
+    }
+  const int nl = r->nlevels < M->nring ? r->nlevels : M->nring;
+  for (int l = 0; l < nl; l++) {
+    const int rc = push(M->ring + l, &prev, m, maxden, &cur);
+    inet_free(&prev);
+    prev = cur;
+    cur.lo = cur.hi = NULL;
+    if (rc == -1) {
+      inet_free(&prev);
+      return ss_error_nomem(err, "certification");
+    }
+    if (rc == -2) {
+      snprintf(why, sizeof why,
+               "a weight of the rule is not a rational of bounded "
+               "denominator");
+      inet_free(&prev);
+      goto uncertified;
+    }
+    judge(M->ring + l, &prev, m, o->depth, pr + l);
+  }
+  inet_free(&prev);
+  if (nl < 1) {
+    snprintf(why, sizeof why, "no ring level was judged");
+    goto uncertified;
+  }
+  const int last = r->ring_level >= 0 && r->ring_level < nl ? r->ring_level : nl - 1;
+  const proven *L = pr + last;
+  if (v->verdict == SS_PASS) {
+    if (L->pos == L->cells || L->neg == L->cells) {
+      r->certified = 1;
+      return SS_OK;
+    }
+    snprintf(why, sizeof why,
+             "ring level %d: %zu of %zu cells not proven of one sign in interval "
+             "arithmetic",
+             last, L->cells - (L->pos > L->neg ? L->pos : L->neg), L->cells);
+    goto uncertified;
+  }
+  if (v->verdict == SS_FAIL && last >= 1) {
+    /* the rule of the verdict with proven counts: at least the proven bad
+     * cells now, at most the proven and unknown ones before */
+    const proven *Q = pr + last - 1;
+    const int plus = L->pos > L->neg + L->unknown, minus = L->neg > L->pos + L->unknown;
+    const int qplus = Q->pos > Q->neg + Q->unknown, qminus = Q->neg > Q->pos + Q->unknown;
+    if ((plus || minus) && (qplus || qminus)) {
+      const double now =
+          (double)(L->folded + (plus ? L->neg : L->pos)) / (double)L->cells;
+      const double before =
+          (double)(Q->folded + Q->unknown + (qplus ? Q->neg : Q->pos)) / (double)Q->cells;
+      if (now > 0.0 && now >= r->shrink * before) {
+        r->certified = 1;
+        return SS_OK;
+      }
+    }
+    snprintf(why, sizeof why,
+             "ring levels %d and %d: the folds are not proven to persist in interval "
+             "arithmetic (%zu and %zu cells unproven)",
+             last - 1, last, Q->unknown, L->unknown);
+    goto uncertified;
+  }
+  if (v->verdict == SS_FAIL)
+    snprintf(why, sizeof why, "a fold on one ring level only is not certified");
+  else
+    snprintf(why, sizeof why, "undecided in double precision");
+uncertified:
+  if (v->verdict != SS_UNDECIDED) {
+    char was[sizeof v->reason];
+    snprintf(was, sizeof was, "%s%s%.300s", ss_verdict_name(v->verdict),
+             v->reason[0] ? ": " : "", v->reason);
+    v->verdict = SS_UNDECIDED;
+    snprintf(v->reason, sizeof v->reason, "not certified: %s (double precision: %.300s)",
+             why, was);
+  }
+  return st;
+}
