@@ -39,6 +39,19 @@ static double now(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+int ss_result_certified(const ss_result *r) {
+  switch (ss_result_verdict(r)) {
+  case SS_PASS:
+    return r->cond_certified && r->reg_certified;
+  case SS_FAIL:
+    return (r->cond.verdict == SS_FAIL && r->cond_certified) ||
+           (r->reg.verdict == SS_FAIL && r->reg_certified) ||
+           (r->inj.verdict == SS_FAIL && r->inj_certified);
+  default:
+    return 0;
+  }
+}
+
 /* The canonical form of a vertex case's link (*cl, caller frees) and its text
  * (an empty string and no link otherwise).  The canonical labelling is the
  * one analysed, so that isomorphic links give results equal to the last bit

@@ -97,6 +97,12 @@ static inline int ss_result_has_link(const ss_result *r) {
  * pass if all pass; fail if any fails; else undecided. */
 ss_verdict_kind ss_result_verdict(const ss_result *r);
 
+/* Whether the combined verdict is proven (only with certify): a pass when the
+ * eigenvalue condition and the regularity are (injectivity is checked with
+ * exact predicates on the double-precision net, not proven), a failure when
+ * a condition that fails is; 0 for undecided. */
+int ss_result_certified(const ss_result *r);
+
 /* Release r's link text and zero r.  NULL is a no-op. */
 void ss_result_clear(ss_result *r);
 

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <flint/flint.h>
 #include <gsl/gsl_errno.h>
 
 #include "ss_cli.h"
@@ -59,7 +60,11 @@ int main(int argc, char **argv) {
     return SS_EXIT_OK;
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-    if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+    if (!strcmp(argv[1], commands[i].name)) {
+      const int rc = commands[i].run(argc - 1, argv + 1);
+      flint_cleanup_master(); /* FLINT's caches (the exact path, --certify) */
+      return rc;
+    }
   fprintf(stderr, "subspectra: unknown command '%s' (see 'subspectra --help')\n",
           argv[1]);
   return SS_EXIT_USAGE;

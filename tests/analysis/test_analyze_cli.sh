@@ -111,6 +111,26 @@ PY
 expect_in 1 "regularity: fail: psi o sigma = psi for link automorphism .* of order 2 .* the ring alone: fail: ring level 2: .* the fold persists" "" "$exe" analyze --scheme mlca --vertex "$k8"
 expect_in 1 "injectivity: fail: psi o sigma = psi" "" "$exe" analyze --scheme mlca --vertex "$k8"
 expect_in 1 "regularity: undecided: no characteristic map" "" "$exe" analyze --scheme mlca --edge 8
+
+# --certify: proven verdicts.  The regular vertex: the exact roots 1 and 1/2
+# (x3, minimal polynomial 2x - 1) and every verdict proven; finding 1: the
+# failure proven; Loop's irrational weights: nothing proven, undecided
+cj=$("$exe" analyze --scheme mlca --vertex octahedron --certify --format json)
+checks=$((checks + 1))
+python3 - "$cj" <<'PY' || fail "analyze --certify: $cj"
+import json, sys
+o = json.loads(sys.argv[1])
+c, g = o["eigen_condition"], o["regularity"]
+assert c["verdict"] == "pass" and c["certified"] is True, c
+assert g["verdict"] == "pass" and g["certified"] is True, g
+r = c["exact_roots"]
+assert r[0]["minimal_polynomial"] == "x - 1" and r[0]["multiplicity"] == 1, r[0]
+assert r[1]["re"] == 0.5 and r[1]["radius"] == 0 and r[1]["multiplicity"] == 3, r[1]
+assert r[1]["minimal_polynomial"] == "2*x - 1", r[1]
+PY
+expect_in 1 "regularity: fail, certified: psi o sigma = psi" "" "$exe" analyze --scheme mlca --vertex "$k8" --certify
+expect_in 1 "regularity: undecided: not certified" "" "$exe" analyze --scheme loop --surface-vertex 5 --certify
+expect_in 2 "--certify is an option of analyze" "" "$exe" matrix --scheme mlca --edge 4 --certify
 expect_in 2 "--depth" "" "$exe" analyze --scheme mlca --edge 4 --depth 13
 
 # draw: pictures, and its errors

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <flint/flint.h>
 #include <lapacke.h>
 
 #include "ss_charmap.h"
@@ -870,6 +871,73 @@ static void test_symmetry(void) {
   ss_scheme_free(mlca);
 }
 
+/* ---- certified verdicts ---- */
+
+/* The exact path (ss_result with certify): the regular vertex and every MLCA
+ * link with k <= 7 pass with both verdicts proven; finding 1 (k = 8) fails,
+ * proven by psi o sigma = psi; the MLCA edge of valence 8 fails the
+ * condition by an exact tie (1/2 three times, the tensor product); Loop's
+ * weights are irrational, so nothing is proven and nothing passes. */
+static void test_certify(void) {
+  ss_scheme *mlca = scheme("mlca"), *loop = scheme("loop");
+  ss_result_opts o = ss_result_defaults();
+  o.certify = 1;
+  ss_error err = {0};
+  ss_result r;
+  const char *links[3] = {"octahedron", "bipyramid:3", mlca_k8_exception};
+  for (int i = 0; i < 3; i++) {
+    ss_link *l = NULL;
+    if (ss_link_parse(links[i], &l, &err)) {
+      CHECK(0, "%s: %s", links[i], err.msg);
+      continue;
+    }
+    REQUIRE_OK_VOID(ss_result_compute(mlca, &(ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS},
+                                      &o, &r, &err),
+                    &err);
+    if (i < 2)
+      CHECK(ss_result_verdict(&r) == SS_PASS && r.cond_certified && r.reg_certified &&
+                ss_result_certified(&r),
+            "%s: %s, condition certified %d, regularity certified %d (%s)", links[i],
+            ss_verdict_name(ss_result_verdict(&r)), r.cond_certified, r.reg_certified,
+            r.reg.reason);
+    else
+      CHECK(ss_result_verdict(&r) == SS_FAIL && r.reg_certified && r.inj_certified &&
+                r.cond_certified && r.cond.verdict == SS_PASS,
+            "finding 1: %s, certified %d %d %d (%s)",
+            ss_verdict_name(ss_result_verdict(&r)), r.cond_certified, r.reg_certified,
+            r.inj_certified, r.reg.reason);
+    ss_result_clear(&r);
+    ss_link_free(l);
+  }
+  REQUIRE_OK_VOID(ss_result_compute(mlca, &(ss_case){SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS},
+                                    &o, &r, &err),
+                  &err);
+  CHECK(r.cond.verdict == SS_FAIL && r.cond_certified && ss_result_certified(&r),
+        "MLCA edge 8: condition %s, certified %d (%s)", ss_verdict_name(r.cond.verdict),
+        r.cond_certified, r.cond.reason);
+  ss_result_clear(&r);
+  REQUIRE_OK_VOID(
+      ss_result_compute(loop, &(ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS},
+                        &o, &r, &err),
+      &err);
+  CHECK(ss_result_verdict(&r) == SS_UNDECIDED && !r.cond_certified && !r.reg_certified &&
+            strstr(r.cond.reason, "not certified") &&
+            strstr(r.reg.reason, "not certified"),
+        "Loop 5: %s / %s (%s)", ss_verdict_name(r.cond.verdict),
+        ss_verdict_name(r.reg.verdict), r.cond.reason);
+  ss_result_clear(&r);
+  /* without certify nothing is marked proven */
+  o.certify = 0;
+  REQUIRE_OK_VOID(ss_result_compute(mlca, &(ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS},
+                                    &o, &r, &err),
+                  &err);
+  CHECK(!r.cond_certified && !r.reg_certified && !ss_result_certified(&r),
+        "double path: certified flags set");
+  ss_result_clear(&r);
+  ss_scheme_free(mlca);
+  ss_scheme_free(loop);
+}
+
 int main(void) {
   copts = ss_charmap_defaults();
   test_result_canonical();
@@ -885,5 +953,7 @@ int main(void) {
   test_basis_invariance();
   test_ring_verdicts();
   test_symmetry();
+  test_certify();
+  flint_cleanup(); /* FLINT's caches, for the leak checker */
   return ss_test_done("charmap");
 }

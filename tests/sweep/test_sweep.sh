@@ -130,6 +130,9 @@ b=$(q "$tmp/ref.db" "SELECT kind,k,link,eigenvalues,regularity,min_scaled_jacobi
 # other analysis parameters are other identities
 expect 0 "mlca tol=0.0001 depth=6 rings=3" "$exe" sweep --scheme mlca --edges 3..4 --tol 1e-4 --db "$tmp/ref.db"
 expect 0 "boxspline tol=1e-06 depth=6 rings=3 diagonals=skew" "$exe" sweep --scheme boxspline --edges 4..5 --diagonals skew --db "$tmp/ref.db"
+# --certify is another identity; its verdicts are proven (MLCA edges 3..5)
+expect 0 "mlca tol=1e-06 depth=6 rings=3 certified" "$exe" sweep --scheme mlca --edges 3..5 --certify --db "$tmp/ref.db"
+expect 0 "^3\$" sqlite3 "$tmp/ref.db" "SELECT count(*) FROM result r JOIN scheme s ON s.id = r.scheme_id WHERE s.certify = 1 AND r.eigen_certified = 1 AND r.regularity_certified = 1 AND r.regularity = 'pass'"
 
 # --links: isomorphic links (relabelled, mirrored) are one case; bad lines exit 2
 printf '# three names of two links\noctahedron\n6 bcde,aedf,abfe,afeb... \n' >"$tmp/bad.txt"
