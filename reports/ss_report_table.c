@@ -152,6 +152,7 @@ ss_status ss_report_summarize(const ss_report_row *rows, size_t n,
       break;
     }
     if (isnan(r->r.min_sj)) g->no_map++;
+    g->certified += (size_t)ss_result_certified(&r->r);
     g->worst_sj = min_nan(g->worst_sj, r->r.min_sj);
     const double l1 = modulus(&r->r, 1);
     g->l1_min = min_nan(g->l1_min, l1);
@@ -333,9 +334,9 @@ static void md_cases(FILE *f, const ss_report_row *rows, size_t n) {
 
 static void md_summary(FILE *f, const ss_report_summary *s, size_t ns) {
   fprintf(f, "## Summary (%zu groups)\n\n", ns);
-  fputs("| scheme identity | case | k | cases | pass | fail | undecided "
+  fputs("| scheme identity | case | k | cases | pass | fail | undecided | certified "
         "| worst min SJ | \\|λ1\\| range |\n"
-        "|---|---|--:|--:|--:|--:|--:|--:|---|\n",
+        "|---|---|--:|--:|--:|--:|--:|--:|--:|---|\n",
         f);
   char buf[128], a[40], b[40];
   for (size_t i = 0; i < ns; i++) {
@@ -348,7 +349,8 @@ static void md_summary(FILE *f, const ss_report_summary *s, size_t ns) {
     else
       snprintf(buf, sizeof buf, "%d", g->k);
     md_cell(f, buf);
-    fprintf(f, " %zu | %zu | %zu | %zu |", g->cases, g->pass, g->fail, g->undecided);
+    fprintf(f, " %zu | %zu | %zu | %zu | %zu |", g->cases, g->pass, g->fail, g->undecided,
+            g->certified);
     fmt_short(buf, sizeof buf, g->worst_sj, 0, "–");
     md_cell(f, buf);
     if (isnan(g->l1_min)) {
@@ -609,7 +611,7 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
 
 static void csv_summary(FILE *f, const ss_report_summary *s, size_t ns) {
   fputs("identity,scheme,case,k,cases,pass,fail,undecided,no_map,"
-        "worst_min_scaled_jacobian,lambda1_min,lambda1_max\r\n",
+        "worst_min_scaled_jacobian,lambda1_min,lambda1_max,certified\r\n",
         f);
   for (size_t i = 0; i < ns; i++) {
     const ss_report_summary *g = &s[i];
@@ -623,7 +625,7 @@ static void csv_summary(FILE *f, const ss_report_summary *s, size_t ns) {
     csv_num(f, g->l1_min);
     fputc(',', f);
     csv_num(f, g->l1_max);
-    fputs("\r\n", f);
+    fprintf(f, ",%zu\r\n", g->certified);
   }
 }
 
@@ -696,6 +698,7 @@ static json_object *json_group(const ss_report_summary *g) {
   json_object_object_add(o, "fail", jsize(g->fail));
   json_object_object_add(o, "undecided", jsize(g->undecided));
   json_object_object_add(o, "no_map", jsize(g->no_map));
+  json_object_object_add(o, "certified", jsize(g->certified));
   json_object_object_add(o, "worst_min_scaled_jacobian", jnum(g->worst_sj));
   json_object_object_add(o, "lambda1_min", jnum(g->l1_min));
   json_object_object_add(o, "lambda1_max", jnum(g->l1_max));
@@ -751,10 +754,11 @@ ss_status ss_report_table_write(FILE *f, ss_report_format fmt, unsigned tables,
     fmt_tol(tol, sizeof tol, rows, n);
     fprintf(f,
             "λ1..λ4: leading eigenvalues of the local subdivision matrix on the "
-            "two-ring, by decreasing modulus; %s%s%s. Verdicts: eigenvalue condition "
-            "and regularity of the characteristic map; min SJ: minimum scaled Jacobian "
-            "(–: no characteristic map). Summary: pass = both conditions hold, fail = "
-            "either fails, else undecided.\n",
+            "two-ring, by decreasing modulus; %s%s%s. Verdicts: eigenvalue condition, "
+            "regularity of the characteristic map (judged on its ring) and its "
+            "injectivity; min SJ: minimum scaled Jacobian (–: no characteristic map). "
+            "Summary: pass = all three hold, fail = one fails, else undecided; "
+            "certified = verdicts proven (--certify).\n",
             n ? "eigenvalues equal within a relative tolerance of "
               : "equal ones grouped",
             n ? tol : "", n ? " are grouped (mult.)" : " (mult.)");

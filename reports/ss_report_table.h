@@ -50,9 +50,11 @@ typedef struct {
   ss_case_kind kind;     /* case kind */
   int k;                 /* link vertices, valence, or 0 (face) */
   size_t cases;          /* cases in the group */
-  size_t pass;           /* of which pass both conditions */
-  size_t fail;           /* of which fail either */
-  size_t undecided;      /* the rest: neither fails, not both pass */
+  size_t pass;           /* of which pass all three verdicts (ss_result_verdict) */
+  size_t fail;           /* of which fail one */
+  size_t undecided;      /* the rest */
+  size_t certified;      /* cases whose combined verdict is proven
+                            (ss_result_certified; --certify) */
   size_t no_map;         /* cases without a characteristic map (NaN) */
   double worst_sj;       /* smallest minimum scaled Jacobian; NaN if none */
   double l1_min, l1_max; /* range of |lambda1| over the group; NaN if none */

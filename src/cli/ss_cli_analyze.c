@@ -473,13 +473,14 @@ static void print_value(FILE *f, const ss_eigval *v) {
 
 static void print_tsv(const opts *o, const char *scheme, const char *canon,
                       const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                      int header) {
+                      const ss_charmap_inj *inj, const cert_info *ci, int header) {
   if (header) {
     printf("scheme\tcase\tlink_or_valence\ttwo_ring\tone_ring");
     for (int i = 0; i < o->neig; i++)
       printf("\tlambda%d", i);
     printf("\teigen_condition\treason\ttolerance\tregularity\tregularity_reason\t"
-           "min_scaled_jacobian\n");
+           "min_scaled_jacobian\tinjectivity\tinjectivity_reason\teigen_certified\t"
+           "regularity_certified\n");
   }
   char buf[32];
   printf("%s\t%s\t%s\t%zu\t%zu", scheme, ss_case_name(o->kind),
@@ -488,10 +489,12 @@ static void print_tsv(const opts *o, const char *scheme, const char *canon,
     putchar('\t');
     if ((size_t)i < e->n) print_value(stdout, e->val + i);
   }
-  printf("\t%s\t%s\t%g\t%s\t%s\t", ss_verdict_name(e->cond.verdict), e->cond.reason,
-         e->tol, ss_verdict_name(reg->verdict.verdict), reg->verdict.reason);
+  const ss_verdict *cond = ci->on ? &ci->c.cond : &e->cond;
+  printf("\t%s\t%s\t%g\t%s\t%s\t", ss_verdict_name(cond->verdict), cond->reason, e->tol,
+         ss_verdict_name(reg->verdict.verdict), reg->verdict.reason);
   if (isfinite(reg->min_scaled_jacobian)) printf("%.6g", reg->min_scaled_jacobian);
-  putchar('\n');
+  printf("\t%s\t%s\t%d\t%d\n", ss_verdict_name(inj->verdict.verdict), inj->verdict.reason,
+         ci->on && ci->c.cond_certified, reg->certified);
 }
 
 static void print_text(const opts *o, const char *scheme, const char *canon, int k,
@@ -765,7 +768,8 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   } else if (o->format == FMT_JSON)
     print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci);
   else if (o->format == FMT_TSV)
-    print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, (*header)++ == 0);
+    print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, &inj, &ci,
+              (*header)++ == 0);
   else
     print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci);
   if (ci.c.cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS ||

@@ -133,6 +133,8 @@ expect 0 "boxspline tol=1e-06 depth=6 rings=3 diagonals=skew" "$exe" sweep --sch
 # --certify is another identity; its verdicts are proven (MLCA edges 3..5)
 expect 0 "mlca tol=1e-06 depth=6 rings=3 certified" "$exe" sweep --scheme mlca --edges 3..5 --certify --db "$tmp/ref.db"
 expect 0 "^3\$" sqlite3 "$tmp/ref.db" "SELECT count(*) FROM result r JOIN scheme s ON s.id = r.scheme_id WHERE s.certify = 1 AND r.eigen_certified = 1 AND r.regularity_certified = 1 AND r.regularity = 'pass'"
+# and report counts them (valence 4: 1 case, 1 pass, 1 certified)
+expect 0 "^mlca tol=1e-06 depth=6 rings=3 certified,mlca,edge,4,1,1,0,0,0,[^,]*,[^,]*,[^,]*,1" "$exe" report --db "$tmp/ref.db" --table summary --format csv --where "identity LIKE '%certified%'"
 
 # --links: isomorphic links (relabelled, mirrored) are one case; bad lines exit 2
 printf '# three names of two links\noctahedron\n6 bcde,aedf,abfe,afeb... \n' >"$tmp/bad.txt"
