@@ -5,6 +5,8 @@
 #ifndef SS_TESTCASE_H
 #define SS_TESTCASE_H
 
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "ss_charmap.h"
@@ -24,6 +26,18 @@ static inline void ss_testcase_free(ss_testcase *t) {
   ss_eig_free(t->e);
   ss_local_free(t->M);
   memset(t, 0, sizeof *t);
+}
+
+/* The built-in scheme called name; a test cannot go on without it, so a
+ * failure ends the test executable (exit status 1). */
+static inline ss_scheme *ss_testcase_scheme(const char *name) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  if (ss_scheme_new(name, &s, &err)) {
+    fprintf(stderr, "scheme %s: %s\n", name, err.msg);
+    exit(1);
+  }
+  return s;
 }
 
 /* Case c of the scheme named `scheme`, analysed with the defaults (ss_eig

@@ -23,20 +23,11 @@
 #include "ss_result.h"
 #include "ss_scheme.h"
 #include "ss_test.h"
+#include "ss_testcase.h"
 #include "ss_testlink.h"
 
 /* regularity options (ss_charmap_defaults, set in main) */
 static ss_charmap_opts copts;
-
-static ss_scheme *scheme(const char *name) {
-  ss_error err = {0};
-  ss_scheme *s = NULL;
-  if (ss_scheme_new(name, &s, &err)) {
-    fprintf(stderr, "scheme %s: %s\n", name, err.msg);
-    exit(1);
-  }
-  return s;
-}
 
 /* Local matrix, eigenstructure and regularity of one case; 0 on success. */
 typedef struct {
@@ -77,7 +68,8 @@ static void done(result *r) {
 /* ---- regular configurations: the map is the lattice ---- */
 
 static void test_regular(void) {
-  ss_scheme *mlca = scheme("mlca"), *cc = scheme("catmull-clark"), *loop = scheme("loop");
+  ss_scheme *mlca = ss_testcase_scheme("mlca"), *cc = ss_testcase_scheme("catmull-clark"),
+            *loop = ss_testcase_scheme("loop");
   ss_link *oct = NULL;
   ss_error err = {0};
   CHECK(ss_link_parse("octahedron", &oct, &err) == SS_OK, "%s", err.msg);
@@ -168,7 +160,7 @@ static int visit(const ss_link *l, void *vctx) {
 
 static void test_claims(void) {
   /* MLCA paper: every vertex one-ring with at most 12 hexes (k <= 8) */
-  links_ctx ctx = {scheme("mlca"), 0, 0, mlca_k8_exception};
+  links_ctx ctx = {ss_testcase_scheme("mlca"), 0, 0, mlca_k8_exception};
   ss_enum_opts o = {4, 8, 0, 1};
   ss_error err = {0};
   CHECK(ss_enum_links(&o, visit, &ctx, NULL, &err) == SS_OK, "%s", err.msg);
@@ -176,14 +168,14 @@ static void test_claims(void) {
         ctx.passed, ctx.count);
   ss_scheme_free(ctx.s);
   /* tet/oct paper: every vertex one-ring with k <= 7 */
-  links_ctx tc = {scheme("tetoct"), 0, 0, NULL};
+  links_ctx tc = {ss_testcase_scheme("tetoct"), 0, 0, NULL};
   ss_enum_opts o7 = {4, 7, 0, 1};
   CHECK(ss_enum_links(&o7, visit, &tc, NULL, &err) == SS_OK, "%s", err.msg);
   CHECK(tc.count == 9 && tc.passed == 9, "tetoct: %d of %d links k <= 7 pass", tc.passed,
         tc.count);
   ss_scheme_free(tc.s);
   /* tet/oct edges of valence 3..10 and the face */
-  ss_scheme *to = scheme("tetoct");
+  ss_scheme *to = ss_testcase_scheme("tetoct");
   for (int n = 2; n <= 10; n++) {
     result r;
     ss_case c = n == 2 ? (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}
@@ -199,7 +191,7 @@ static void test_claims(void) {
   /* 2D baselines: regular characteristic maps for every valence */
   const char *names[3] = {"catmull-clark", "loop", "mlca"};
   for (int i = 0; i < 3; i++) {
-    ss_scheme *s = scheme(names[i]);
+    ss_scheme *s = ss_testcase_scheme(names[i]);
     for (int n = 3; n <= 12; n++) {
       result r;
       if (run(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, &r)) continue;
@@ -266,7 +258,7 @@ static void test_plain_multilinear(void) {
  * z3 = 0 (z3 -> |z3|), so that the lower half of the ring is inverted, a fold
  * that refinement keeps. */
 static void test_folded(void) {
-  ss_scheme *mlca = scheme("mlca");
+  ss_scheme *mlca = ss_testcase_scheme("mlca");
   ss_link *oct = NULL;
   ss_error err = {0};
   result r;
@@ -361,7 +353,7 @@ static void test_defective(void) {
  * symmetric quadratic-like mode: lambda3 is not a linear mode and the
  * characteristic map must fold. */
 static void test_boxspline_k5(void) {
-  ss_scheme *bx = scheme("boxspline");
+  ss_scheme *bx = ss_testcase_scheme("boxspline");
   ss_link *l = NULL;
   ss_error err = {0};
   result r;
@@ -402,7 +394,7 @@ static void test_boxspline_k5(void) {
  * third linear mode, just below — is regular.  Eigenvectors here come from one
  * dense LAPACK dgeev of the whole two-ring matrix. */
 static void test_mlca_k8(void) {
-  ss_scheme *mlca = scheme("mlca");
+  ss_scheme *mlca = ss_testcase_scheme("mlca");
   ss_link *l = NULL;
   ss_error err = {0};
   result r;
@@ -616,7 +608,7 @@ static void test_ring_structure(void) {
       {"loop", NULL, SS_CASE_SURFACE_VERTEX, 7},
       {"mlca", NULL, SS_CASE_SURFACE_VERTEX, 3}};
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-    ss_scheme *s = scheme(cases[i].scheme);
+    ss_scheme *s = ss_testcase_scheme(cases[i].scheme);
     ss_link *l = NULL;
     ss_error err = {0};
     result r;
@@ -665,7 +657,7 @@ static void test_ring_structure(void) {
  * level's counts and the minimum scaled Jacobian are the same for the basis
  * times any invertible G, of either sign of determinant. */
 static void test_basis_invariance(void) {
-  ss_scheme *s = scheme("mlca");
+  ss_scheme *s = ss_testcase_scheme("mlca");
   const char *links[3] = {"8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb", "bipyramid:5",
                           "7 bgecdf,afdceg,aebd,acbf,agbc,adb,abe"};
   uint64_t seed = 12345;
@@ -774,7 +766,7 @@ static int visit_shrink(const ss_link *l, void *vctx) {
 
 static void test_ring_verdicts(void) {
   ss_error err = {0};
-  centre_ctx c9 = {scheme("mlca"), 0, 0};
+  centre_ctx c9 = {ss_testcase_scheme("mlca"), 0, 0};
   ss_enum_opts o9 = {9, 9, 0, 1};
   CHECK(ss_enum_links(&o9, visit_centre, &c9, NULL, &err) == SS_OK, "%s", err.msg);
   CHECK(c9.found == 1, "no link k = 9 passes with folds around p (%d seen)", c9.checked);
@@ -794,7 +786,7 @@ static void test_ring_verdicts(void) {
  * the z1 axis: found, orientation-reversing, and both verdicts fail.  The
  * k = 8 link of finding 1 has such a symmetry: a reflection of order 2. */
 static void test_symmetry(void) {
-  ss_scheme *mlca = scheme("mlca");
+  ss_scheme *mlca = ss_testcase_scheme("mlca");
   ss_error err = {0};
   ss_link *oct = NULL, *k8 = NULL;
   result r;
@@ -853,7 +845,7 @@ static void test_symmetry(void) {
   /* every passing map of the papers' small cases is injective with degree +-1 */
   const char *names[2] = {"mlca", "tetoct"};
   for (int q = 0; q < 2; q++) {
-    ss_scheme *s = q ? scheme(names[q]) : mlca;
+    ss_scheme *s = q ? ss_testcase_scheme(names[q]) : mlca;
     for (int n = 3; n <= 7; n++) {
       if (run(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &r) || !r.cm) continue;
       ss_charmap_inj inj;
@@ -879,7 +871,7 @@ static void test_symmetry(void) {
  * condition by an exact tie (1/2 three times, the tensor product); Loop's
  * weights are irrational, so nothing is proven and nothing passes. */
 static void test_certify(void) {
-  ss_scheme *mlca = scheme("mlca"), *loop = scheme("loop");
+  ss_scheme *mlca = ss_testcase_scheme("mlca"), *loop = ss_testcase_scheme("loop");
   ss_result_opts o = ss_result_defaults();
   o.certify = 1;
   ss_error err = {0};

@@ -41,17 +41,8 @@
 #include "ss_link_random.h"
 #include "ss_local.h"
 #include "ss_test.h"
+#include "ss_testcase.h"
 #include "ss_testlink.h"
-
-static ss_scheme *scheme(const char *name) {
-  ss_error err = {0};
-  ss_scheme *s = NULL;
-  if (ss_scheme_new(name, &s, &err)) {
-    fprintf(stderr, "scheme %s: %s\n", name, err.msg);
-    exit(1);
-  }
-  return s;
-}
 
 static double now(void) {
   struct timespec t;
@@ -154,7 +145,7 @@ static void check_dyadic(const ss_exact *x, const int *count, int maxe,
 }
 
 static void test_mlca_regular(void) {
-  ss_scheme *s = scheme("mlca");
+  ss_scheme *s = ss_testcase_scheme("mlca");
   ss_link *oct = NULL;
   ss_error err = {0};
   REQUIRE_OK_VOID(ss_link_named("octahedron", &oct, &err), &err);
@@ -217,7 +208,7 @@ static void test_mlca_regular(void) {
 }
 
 static void test_tetoct_face(void) {
-  ss_scheme *s = scheme("tetoct");
+  ss_scheme *s = ss_testcase_scheme("tetoct");
   ss_local *M;
   ss_exact *x;
   if (!run(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, &M, &x)) {
@@ -239,7 +230,7 @@ static void test_tetoct_face(void) {
 /* ---- ties from symmetry ---- */
 
 static void test_ties(void) {
-  ss_scheme *mlca = scheme("mlca"), *to = scheme("tetoct");
+  ss_scheme *mlca = ss_testcase_scheme("mlca"), *to = ss_testcase_scheme("tetoct");
   ss_local *M;
   ss_exact *x;
   /* finding 2: along an MLCA edge of valence 8, lambda3 = lambda4 = 1/2 */
@@ -327,7 +318,7 @@ static int parse_poly(const char *s, fmpz_poly_t f) {
 }
 
 static void test_catmull_clark(void) {
-  ss_scheme *cc = scheme("catmull-clark");
+  ss_scheme *cc = ss_testcase_scheme("catmull-clark");
   /* degree of (5 + cos(2 pi/n) + cos(pi/n) sqrt(2 (9 + cos(2 pi/n))))/16 over Q:
    * n = 4: 1/2; n = 3, 6: (9 + sqrt 17)/32, (11 + sqrt 57)/32; n = 5, 8: a
    * square root over Q(sqrt 5), Q(sqrt 2) (cos(pi/8) = sqrt(2 + sqrt 2)/2);
@@ -700,7 +691,7 @@ static void test_refused(void) {
   CHECK(bad == 0, "%d of 2000 random rationals not recovered", bad);
   gsl_rng_free(rng);
   /* Loop's weights are irrational: refused, naming the entry */
-  ss_scheme *loop = scheme("loop");
+  ss_scheme *loop = ss_testcase_scheme("loop");
   ss_local *M = NULL;
   ss_error err = {0};
   ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS};
@@ -924,14 +915,14 @@ static int visit(const ss_link *l, void *vctx) {
 }
 
 static void test_basis(void) {
-  links_ctx ctx = {scheme("mlca"), 0, 0, 0};
+  links_ctx ctx = {ss_testcase_scheme("mlca"), 0, 0, 0};
   ss_enum_opts eo = {4, 8, 0, 1};
   ss_error err = {0};
   CHECK(ss_enum_links(&eo, visit, &ctx, NULL, &err) == SS_OK, "%s", err.msg);
   CHECK(ctx.count == 23 && ctx.pass == 23 && ctx.basis == 22,
         "MLCA k <= 8: %d of %d certified passes, %d bases", ctx.pass, ctx.count,
         ctx.basis);
-  ss_scheme *to = scheme("tetoct"), *cc = scheme("catmull-clark");
+  ss_scheme *to = ss_testcase_scheme("tetoct"), *cc = ss_testcase_scheme("catmull-clark");
   ss_link *oct = NULL;
   REQUIRE_OK_VOID(ss_link_named("octahedron", &oct, &err), &err);
   struct {
@@ -986,7 +977,7 @@ static char *spectrum_text(const ss_exact *x) {
 }
 
 static void test_relabel(void) {
-  ss_scheme *s = scheme("mlca");
+  ss_scheme *s = ss_testcase_scheme("mlca");
   ss_link *l = NULL;
   ss_error err = {0};
   REQUIRE_OK_VOID(
@@ -1025,7 +1016,7 @@ static void test_relabel(void) {
 /* ---- timing ---- */
 
 static void test_timing(void) {
-  ss_scheme *s = scheme("mlca");
+  ss_scheme *s = ss_testcase_scheme("mlca");
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(rng, 1);
   for (int k = 8; k <= 12; k += 2) {
