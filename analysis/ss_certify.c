@@ -12,18 +12,6 @@ static double now(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* v becomes undecided, "not certified: why (double precision: v)"; an
- * undecided verdict keeps its reason. */
-static void unproven(ss_verdict *v, const char *why) {
-  if (v->verdict == SS_UNDECIDED) return;
-  char was[sizeof v->reason];
-  snprintf(was, sizeof was, "%s%s%.300s", ss_verdict_name(v->verdict),
-           v->reason[0] ? ": " : "", v->reason);
-  v->verdict = SS_UNDECIDED;
-  snprintf(v->reason, sizeof v->reason,
-           "not certified: %.150s (double precision: %.300s)", why, was);
-}
-
 ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
                      const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
                      ss_charmap_inj *inj, ss_certified *out, ss_exact **x,
@@ -43,16 +31,16 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
   }
   if (st) { /* not rational, or FLINT could not: nothing is proven */
     out->cond = e->cond;
-    unproven(&out->cond, xe.msg);
-    unproven(&reg->verdict, "no exact spectrum");
-    unproven(&inj->verdict, "no exact spectrum");
+    ss_charmap_unproven(&out->cond, xe.msg);
+    ss_charmap_unproven(&reg->verdict, "no exact spectrum");
+    ss_charmap_unproven(&inj->verdict, "no exact spectrum");
     st = SS_OK;
     goto done;
   }
   ss_exact_condition(ex, &out->cond, &out->cond_certified);
   if (!out->cond_certified) { /* undecided already, with its reason */
-    unproven(&reg->verdict, "the eigenvalue condition is not proven");
-    unproven(&inj->verdict, "the eigenvalue condition is not proven");
+    ss_charmap_unproven(&reg->verdict, "the eigenvalue condition is not proven");
+    ss_charmap_unproven(&inj->verdict, "the eigenvalue condition is not proven");
   } else if (out->cond.verdict != SS_PASS) {
     /* no characteristic map; keep a failure the double path proved from the
      * spectrum's kind (complex, defective), else there is nothing to judge */
@@ -64,8 +52,10 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
     inj->verdict.verdict = SS_UNDECIDED;
     snprintf(inj->verdict.reason, sizeof inj->verdict.reason, "no characteristic map");
   } else if (!cm) {
-    unproven(&reg->verdict, "the double-precision path found no characteristic map");
-    unproven(&inj->verdict, "the double-precision path found no characteristic map");
+    ss_charmap_unproven(&reg->verdict,
+                        "the double-precision path found no characteristic map");
+    ss_charmap_unproven(&inj->verdict,
+                        "the double-precision path found no characteristic map");
   } else {
     const size_t n = M->n2 * (size_t)cm->dim;
     lo = malloc((n + 1) * sizeof *lo);
@@ -83,7 +73,7 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
     if (bs) {
       char why[sizeof be.msg + 32];
       snprintf(why, sizeof why, "basis enclosure: %s", be.msg);
-      unproven(&reg->verdict, why);
+      ss_charmap_unproven(&reg->verdict, why);
     } else if ((st = ss_charmap_certify(M, c, lo, hi, cm->dim, eo.maxden, o, reg, inj,
                                         err))) {
       goto done;

@@ -254,4 +254,8 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
                              const ss_charmap_opts *o, ss_regularity *r,
                              ss_charmap_inj *inj, ss_error *err);
 
+/* v becomes undecided, "not certified: why (double precision: v)"; an
+ * undecided verdict keeps its reason (there is nothing to prove). */
+void ss_charmap_unproven(ss_verdict *v, const char *why);
+
 #endif

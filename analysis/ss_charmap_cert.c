@@ -226,13 +226,16 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
   else
     snprintf(why, sizeof why, "undecided in double precision");
 uncertified:
-  if (v->verdict != SS_UNDECIDED) {
-    char was[sizeof v->reason];
-    snprintf(was, sizeof was, "%s%s%.300s", ss_verdict_name(v->verdict),
-             v->reason[0] ? ": " : "", v->reason);
-    v->verdict = SS_UNDECIDED;
-    snprintf(v->reason, sizeof v->reason, "not certified: %s (double precision: %.300s)",
-             why, was);
-  }
+  ss_charmap_unproven(v, why);
   return st;
+}
+
+void ss_charmap_unproven(ss_verdict *v, const char *why) {
+  if (v->verdict == SS_UNDECIDED) return;
+  char was[sizeof v->reason];
+  snprintf(was, sizeof was, "%.9s%s%.300s", ss_verdict_name(v->verdict),
+           v->reason[0] ? ": " : "", v->reason);
+  v->verdict = SS_UNDECIDED;
+  snprintf(v->reason, sizeof v->reason,
+           "not certified: %.150s (double precision: %.300s)", why, was);
 }
