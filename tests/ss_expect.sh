@@ -7,7 +7,9 @@
 #   fail MESSAGE...                        record a failed check
 #   expect_done NAME                       print "NAME: N checks, M failed";
 #                                          true iff checks ran and none failed
-# Each command may run SS_EXPECT_TIMEOUT seconds (default 60).
+# Each command may run SS_EXPECT_TIMEOUT seconds (default 60) times
+# SS_TIMEOUT_MULTIPLIER (default 1; `./run sanitize` sets 4: the sanitizers slow
+# everything down).
 checks=0
 failed=0
 
@@ -21,7 +23,7 @@ expect() {
   shift 2
   checks=$((checks + 1))
   local out rc
-  out=$(timeout "${SS_EXPECT_TIMEOUT:-60}" "$@" 2>&1)
+  out=$(timeout "$(( ${SS_EXPECT_TIMEOUT:-60} * ${SS_TIMEOUT_MULTIPLIER:-1} ))" "$@" 2>&1)
   rc=$?
   if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
     fail "$* -> status $rc (want $want): $(head -5 <<<"$out")"
@@ -33,7 +35,7 @@ expect_in() {
   shift 3
   checks=$((checks + 1))
   local out rc
-  out=$(printf '%s' "$input" | timeout "${SS_EXPECT_TIMEOUT:-60}" "$@" 2>&1)
+  out=$(printf '%s' "$input" | timeout "$(( ${SS_EXPECT_TIMEOUT:-60} * ${SS_TIMEOUT_MULTIPLIER:-1} ))" "$@" 2>&1)
   rc=$?
   if [ "$rc" -ne "$want" ] || ! grep -Eq -- "$pat" <<<"$out"; then
     fail "$* <<< '$input' -> status $rc (want $want): $(head -3 <<<"$out")"
