@@ -987,7 +987,7 @@ ss_status ss_local_new_ring(const ss_scheme *s, const ss_case *c, int nring,
     const size_t p = lookup(W.lev + w, &zero);
     st = p == SIZE_MAX ? ss_error_set(err, SS_EINTERNAL, "the centre is lost")
                        : omega_marks(&W, w, p, om, err);
-    if (!st) st = add_level(&W, om[W.nlev - 1 - w], 2 + 2 * ss_scheme_reach(s), err);
+    if (!st) st = add_level(&W, om[W.nlev - 1 - w], ss_scheme_reach(s), err);
     for (int l = 0; l < MAXLEVELS; l++)
       free(om[l]);
   }
