@@ -89,3 +89,16 @@ done:
     ss_exact_free(ex);
   return st;
 }
+
+ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
+                              const ss_eig *e, const ss_charmap_opts *o, int certify,
+                              ss_charmap **cm, ss_regularity *reg, ss_charmap_inj *inj,
+                              ss_certified *out, ss_exact **x, ss_error *err) {
+  *out = (ss_certified){e->cond, 0, 0.0};
+  *inj = (ss_charmap_inj){{SS_UNDECIDED, "no characteristic map"}, 0, 0, 0};
+  if (x) *x = NULL;
+  ss_status st = ss_charmap_judge(s, c, M, e, o, cm, reg, err);
+  if (!st && *cm) st = ss_charmap_injectivity(*cm, reg, inj, err);
+  if (!st && certify) st = ss_certify(M, c, e, *cm, o, reg, inj, out, x, err);
+  return st;
+}

@@ -43,4 +43,16 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
                      const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
                      ss_charmap_inj *inj, ss_certified *out, ss_exact **x, ss_error *err);
 
+/* The three verdicts of case c once its eigenstructure e is known, as every
+ * command judges them: regularity (ss_charmap_judge, which may deepen M's
+ * ring, and the symmetry test), injectivity (ss_charmap_injectivity) and,
+ * with certify, the exact path (ss_certify).  *cm (caller frees; NULL without
+ * a map) and *x (may be NULL; caller frees; set only with certify) as there;
+ * out->cond is e's condition unless certify proves or unproves it.
+ * Errors: those of the calls. */
+ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
+                              const ss_eig *e, const ss_charmap_opts *o, int certify,
+                              ss_charmap **cm, ss_regularity *reg, ss_charmap_inj *inj,
+                              ss_certified *out, ss_exact **x, ss_error *err);
+
 #endif

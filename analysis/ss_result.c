@@ -110,20 +110,14 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
     eo.tol = o->tol;
     st = ss_eig_new(M->S, M->n2, M->n1, &eo, &e, err);
   }
+  ss_charmap_inj inj;
+  ss_certified cert;
   if (!st) {
     ss_charmap_opts co = ss_charmap_defaults();
     co.depth = o->depth;
     co.ring_levels = o->ring_levels;
-    st = ss_charmap_judge(s, &cc, M, e, &co, &cm, &reg, err);
-  }
-  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0, 0};
-  if (!st && cm) st = ss_charmap_injectivity(cm, &reg, &inj, err);
-  ss_certified cert = {e ? e->cond : (ss_verdict){SS_UNDECIDED, ""}, 0, 0.0};
-  if (!st && o->certify) {
-    ss_charmap_opts co = ss_charmap_defaults();
-    co.depth = o->depth;
-    co.ring_levels = o->ring_levels;
-    st = ss_certify(M, &cc, e, cm, &co, &reg, &inj, &cert, NULL, err);
+    st = ss_certify_verdicts(s, &cc, M, e, &co, o->certify, &cm, &reg, &inj, &cert, NULL,
+                             err);
   }
   ss_link_free(cl);
   if (st) {

@@ -700,26 +700,15 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_charmap_opts co = ss_charmap_defaults();
   co.depth = o->depth;
   co.ring_levels = o->ring_levels;
-  if (ss_charmap_judge(s, &c, M, e, &co, &cm, &reg, &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = SS_EXIT_FAIL;
-    goto done;
-  }
-  ss_charmap_inj inj = {{SS_UNDECIDED, "no characteristic map"}, 0, 0, 0};
-  if (cm && ss_charmap_injectivity(cm, &reg, &inj, &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = SS_EXIT_FAIL;
-    goto done;
-  }
+  ss_charmap_inj inj;
   cert_info ci = {o->certify, {e->cond, 0, 0.0}, NULL};
-  if (o->certify) {
-    if (ss_certify(M, &c, e, cm, &co, &reg, &inj, &ci.c, &ex, &err)) {
-      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-      rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
-      goto done;
-    }
-    ci.exact = ex;
+  if (ss_certify_verdicts(s, &c, M, e, &co, o->certify, &cm, &reg, &inj, &ci.c, &ex,
+                          &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+    rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
+    goto done;
   }
+  ci.exact = ex;
   const int k = l ? l->k : 0;
   if (!strcmp(o->cmd, "draw")) {
     int forced = 0;
