@@ -4,6 +4,7 @@
 #include "ss_eig.h"
 
 #include <complex.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -86,9 +87,11 @@ static int blockws_make(size_t nmax, blockws *w) {
 
 /* Eigenvalues (and, if vr != NULL, right eigenvectors, column-major m x m) of
  * the m x m column-major matrix a (overwritten), with reciprocal condition
- * numbers in rc; m <= ws->nmax. */
+ * numbers in rc, rounding error bounds in eb and cluster bounds in cb (ss_eig.h,
+ * "Rounding floor": m eps ABNRM / rc, infinite where rc = 0); m <= ws->nmax. */
 static ss_status block_eig(blockws *ws, double *a, size_t m, double *wr, double *wi,
-                           double *rc, double *vr, ss_error *err) {
+                           double *rc, double *eb, double *cb, double *vr,
+                           ss_error *err) {
   const lapack_int n = (lapack_int)m;
   lapack_int ilo, ihi;
   double abnrm;
@@ -99,6 +102,11 @@ static ss_status block_eig(blockws *ws, double *a, size_t m, double *wr, double 
     return ss_error_set(err, SS_ENUMERIC,
                         "LAPACK dgeevx failed on a %zu x %zu block (info %d)", m, m,
                         (int)info);
+  const double p = 4.0 * (double)m * DBL_EPSILON;
+  for (size_t i = 0; i < m; i++) {
+    eb[i] = rc[i] > 0.0 ? p * abnrm / rc[i] : (double)INFINITY;
+    cb[i] = sqrt(p) * abnrm;
+  }
   return SS_OK;
 }
 
@@ -176,7 +184,30 @@ static ss_status make_groups(ss_eig *e, double tol, ss_error *err) {
 
 /* ---- the eigenvalue condition ---- */
 
-static void condition(ss_eig *e, int m, double tol) {
+/* The rounding floor (ss_eig.h) of the eigenvalues v[0..n), sorted by
+ * decreasing modulus, for m subdominant ones: the largest relative error
+ * bound among the comparisons the eigenvalue condition makes. */
+static double rounding_floor(const ss_eigval *v, size_t n, int m) {
+  if (n < (size_t)m + 2) return 0.0;
+  double e[5]; /* the bounds of lambda0..lambda_m+1, clusters capped */
+  for (int i = 0; i <= m + 1; i++) {
+    double d = INFINITY; /* distance to the nearest other eigenvalue */
+    for (size_t j = 0; j < n; j++)
+      if (j != (size_t)i) d = fmin(d, hypot(v[i].re - v[j].re, v[i].im - v[j].im));
+    e[i] = v[i].err < d ? v[i].err : fmin(v[i].err, v[i].cluster);
+  }
+  double f = e[0]; /* |lambda0 - 1| */
+  f = fmax(f, (e[0] + e[1]) / modulus(v));
+  for (int i = 1; i <= m; i++)
+    f = fmax(f, e[i] / modulus(v + i));
+  f = fmax(f, (e[m] + e[m + 1]) / modulus(v + m));
+  return isnan(f) ? (double)INFINITY : f;
+}
+
+/* The eigenvalue condition at tolerance tol (the effective one); req is the
+ * tolerance requested: a comparison that fails at tol but would pass at req
+ * is decided by rounding and makes the verdict undecided. */
+static void condition(ss_eig *e, int m, double tol, double req) {
   ss_verdict *v = &e->cond;
   v->verdict = SS_PASS;
   v->reason[0] = '\0';
@@ -193,6 +224,15 @@ static void condition(ss_eig *e, int m, double tol) {
     return;
   }
   if (l[0].mult > 1) {
+    const double d = hypot(l[0].re - l[1].re, l[0].im - l[1].im);
+    if (d > req * fmax(modulus(l), modulus(l + 1))) {
+      v->verdict = SS_UNDECIDED;
+      snprintf(v->reason, sizeof v->reason,
+               "rounding decides: |lambda0 - lambda1| = %.3g is within the eigenvalues' "
+               "rounding error bound (relative %.1e)",
+               d, tol);
+      return;
+    }
     v->verdict = SS_FAIL;
     snprintf(v->reason, sizeof v->reason, "eigenvalue 1 is not simple (multiplicity %d)",
              l[0].mult);
@@ -213,7 +253,13 @@ static void condition(ss_eig *e, int m, double tol) {
     }
   }
   const double lm = l[m].re, next = modulus(l + m + 1);
-  if (!(lm - next > tol * lm)) {
+  if (!(lm - next > tol * lm) && lm - next > req * lm) {
+    v->verdict = SS_UNDECIDED;
+    snprintf(v->reason, sizeof v->reason,
+             "rounding decides: lambda%d = %.17g and |lambda%d| = %.17g differ by less "
+             "than their rounding error bound (relative %.1e)",
+             m, lm, m + 1, next, tol);
+  } else if (!(lm - next > tol * lm)) {
     v->verdict = SS_FAIL;
     snprintf(v->reason, sizeof v->reason,
              "lambda%d = %.10g is not larger than |lambda%d| = %.10g (relative tolerance "
@@ -343,6 +389,7 @@ typedef struct {
   size_t *sz, *at, *res;   /* per block: size, offset in mat, offset in re/im/rc */
   double *mat;             /* the blocks, column-major, one after another */
   double *re, *im, *rc;    /* their eigenvalues and condition numbers */
+  double *eb, *cb;         /* their rounding error and cluster bounds */
   size_t matfill, resfill; /* used lengths of mat and of re/im/rc */
 } memo;
 
@@ -354,6 +401,8 @@ static void memo_free(memo *M) {
   free(M->re);
   free(M->im);
   free(M->rc);
+  free(M->eb);
+  free(M->cb);
 }
 
 /* ---- the driver ---- */
@@ -372,18 +421,20 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   double *a = malloc((n1 * n1 + 1) * sizeof *a), *vr = malloc((n1 * n1 + 1) * sizeof *vr),
          *wr = malloc((n + 1) * sizeof *wr), *wi = malloc((n + 1) * sizeof *wi),
          *rc = malloc((n + 1) * sizeof *rc), *awr = malloc((n1 + 1) * sizeof *awr),
-         *awi = malloc((n1 + 1) * sizeof *awi);
+         *awi = malloc((n1 + 1) * sizeof *awi), *eb = malloc((n + 1) * sizeof *eb),
+         *cb = malloc((n + 1) * sizeof *cb);
   ss_scc K = {0, NULL, NULL, NULL, NULL, 0};
   ss_csr A = {NULL, NULL, NULL, NULL};
   blockws ws = {0};
   double *blk = NULL, *bw = NULL;
   lapack_int *piv = NULL;
-  if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || ss_csr_make(S, n, n1, &A)) {
+  if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || !eb || !cb ||
+      ss_csr_make(S, n, n1, &A)) {
     st = ss_error_nomem(err, "eigenvalues");
     goto done;
   }
   e->n = n;
-  e->tol = opts->tol;
+  e->tol = e->tol_requested = opts->tol;
   e->m = opts->dim;
   e->basis_kind = "";
   e->val = calloc(n + 1, sizeof *e->val);
@@ -408,9 +459,9 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   }
   /* the one-ring block */
   colmajor(S, n, n1, a);
-  if ((st = block_eig(&ws, a, n1, wr, wi, rc, vr, err))) goto done;
+  if ((st = block_eig(&ws, a, n1, wr, wi, rc, eb, cb, vr, err))) goto done;
   for (size_t i = 0; i < n1; i++) {
-    e->val[i] = (ss_eigval){wr[i], wi[i], rc[i], 0, 0, 0};
+    e->val[i] = (ss_eigval){wr[i], wi[i], rc[i], 0, 0, 0, eb[i], cb[i]};
     awr[i] = wr[i];
     awi[i] = wi[i];
   }
@@ -423,7 +474,9 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   M.re = malloc((nc + 1) * sizeof *M.re);
   M.im = malloc((nc + 1) * sizeof *M.im);
   M.rc = malloc((nc + 1) * sizeof *M.rc);
-  if (!M.sz || !M.at || !M.res || !M.mat || !M.re || !M.im || !M.rc) {
+  M.eb = malloc((nc + 1) * sizeof *M.eb);
+  M.cb = malloc((nc + 1) * sizeof *M.cb);
+  if (!M.sz || !M.at || !M.res || !M.mat || !M.re || !M.im || !M.rc || !M.eb || !M.cb) {
     memo_free(&M);
     st = ss_error_nomem(err, "outer blocks");
     goto done;
@@ -433,7 +486,14 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     const size_t b = K.start[c], sz = K.start[c + 1] - b;
     if (sz == 1) {
       const size_t i = n1 + K.comp[b];
-      e->val[k++] = (ss_eigval){S[i * n + i], 0.0, 1.0, (int)c + 1, 0, 0};
+      e->val[k++] = (ss_eigval){S[i * n + i],
+                                0.0,
+                                1.0,
+                                (int)c + 1,
+                                0,
+                                0,
+                                4.0 * DBL_EPSILON * fabs(S[i * n + i]),
+                                0.0};
       continue;
     }
     double *mat = M.mat + M.matfill;
@@ -446,7 +506,8 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     if (hit == SIZE_MAX) { /* a new block: solve a copy, keep the matrix */
       memcpy(blk, mat, sz * sz * sizeof *blk);
       if ((st = block_eig(&ws, blk, sz, M.re + M.resfill, M.im + M.resfill,
-                          M.rc + M.resfill, NULL, err))) {
+                          M.rc + M.resfill, M.eb + M.resfill, M.cb + M.resfill, NULL,
+                          err))) {
         memo_free(&M);
         goto done;
       }
@@ -459,18 +520,34 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     }
     for (size_t r = 0, at = M.res[hit]; r < sz; r++)
       e->val[k++] =
-          (ss_eigval){M.re[at + r], M.im[at + r], M.rc[at + r], (int)c + 1, 0, 0};
+          (ss_eigval){M.re[at + r], M.im[at + r], M.rc[at + r], (int)c + 1, 0, 0,
+                      M.eb[at + r], M.cb[at + r]};
   }
   memo_free(&M);
+  /* the tolerance: at least the rounding floor of the leading m + 2 */
+  qsort(e->val, n, sizeof *e->val, by_modulus);
+  e->rounding = rounding_floor(e->val, n, e->m);
+  if (e->rounding > e->tol) e->tol = e->rounding;
+  const double tol = e->tol;
   /* a real multiple eigenvalue that rounding turned into a conjugate pair
    * with an imaginary part below the tolerance is real (the verdict would
    * call it real anyway; this keeps what is printed in line with it) */
   for (size_t i = 0; i < n; i++)
-    if (e->val[i].im != 0.0 && fabs(e->val[i].im) <= opts->tol * modulus(e->val + i))
+    if (e->val[i].im != 0.0 && fabs(e->val[i].im) <= tol * modulus(e->val + i))
       e->val[i].im = 0.0;
   qsort(e->val, n, sizeof *e->val, by_modulus);
-  if ((st = make_groups(e, opts->tol, err))) goto done;
-  condition(e, e->m, opts->tol);
+  if ((st = make_groups(e, tol, err))) goto done;
+  if (!(tol < 0.1)) {
+    /* the leading eigenvalues are too ill-conditioned to be told apart at all
+     * in double precision: nothing below can be judged */
+    e->cond.verdict = SS_UNDECIDED;
+    snprintf(e->cond.reason, sizeof e->cond.reason,
+             "rounding decides: the leading eigenvalues' rounding error bound (relative "
+             "%.1e) is too large to judge them in double precision",
+             e->rounding);
+    goto done;
+  }
+  condition(e, e->m, tol, opts->tol);
 
   /* the subdominant basis: only when the leading m are real and positive */
   int real_positive = 1;
@@ -574,7 +651,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   free(x1);
   if (ok) {
     e->T = t;
-    e->defective = defective(e, opts->tol);
+    e->defective = defective(e, tol);
     if (e->defective < 0) st = ss_error_nomem(err, "subdominant basis");
   } else {
     free(t);
@@ -591,6 +668,8 @@ done:
   free(rc);
   free(awr);
   free(awi);
+  free(eb);
+  free(cb);
   ss_scc_free(&K);
   ss_csr_free(&A);
   blockws_free(&ws);

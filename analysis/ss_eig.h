@@ -18,6 +18,33 @@
  * block of size 2) and keeps apart genuine near-ties (relative gaps of 1e-3 are
  * met in practice).  It is printed with every verdict.
  *
+ * Rounding floor.  A tolerance finer than the eigenvalues' own rounding error
+ * would let rounding decide the verdict (lambda0 computed as 1 + 2e-16 "is not
+ * 1" at 1e-16).  Each computed eigenvalue carries the bound of LAPACK's
+ * Users' Guide (section 4.8, "error bounds for the nonsymmetric eigenproblem"),
+ *   err_i = p(b) eps ||B|| / s_i,
+ * where B is its diagonal block as balanced by dgeevx (ABNRM), s_i the
+ * reciprocal condition number (RCONDE) and p(b) = 4 b: the block size b for
+ * LAPACK's "modestly growing function", times 4 for the rounding already in
+ * S's entries, which the rule's arithmetic leaves a few units in the last
+ * place from the exact weights (1 x 1 blocks: err = 4 eps |s_jj|).  The bound
+ * is approximate, not rigorous (`--certify` is): the test suite checks it
+ * against the exact spectra (ss_exact) of every vertex with k <= 9 and edge
+ * of valence 3..10 of two schemes, where it holds with a margin of 3.
+ * The first-order bound fails for a multiple eigenvalue (its copies'
+ * individual s_i are near 0; computed copies of a Jordan block of size 2
+ * differ by about sqrt(eps) ||B||, which the default tolerance joins): an
+ * eigenvalue whose bound reaches its nearest neighbour is a cluster member,
+ * and its bound is capped at sqrt(p(b) eps) ||B||, the spread of a double
+ * eigenvalue (ss_eigval.cluster).
+ * The floor is the largest relative error any comparison of the verdict can
+ * meet: err_0 (lambda0 = 1), (err_0 + err_1) / |lambda0| (simple),
+ * err_i / |lambda_i| (real, i = 1..m) and (err_m + err_m+1) / lambda_m (the
+ * gap).  The tolerance
+ * used is max(requested, floor); when the floor raised it, a verdict that
+ * would have passed at the requested tolerance but fails at the raised one is
+ * SS_UNDECIDED ("rounding decides"), never a fail.  Both are printed.
+ *
  * The subdominant basis (the control net of the characteristic map): the
  * leading m eigenvalues after lambda0 (m = 3 in volume cases, 2 on surfaces).
  * When they are distinct by more than `cluster` (relative), the right
@@ -43,11 +70,13 @@ typedef struct {
 
 /* One eigenvalue of S. */
 typedef struct {
-  double re, im; /* the eigenvalue */
-  double rcond;  /* reciprocal condition number in its block (1 for 1 x 1) */
-  int block;     /* 0: the one-ring block; b > 0: outer block number b */
-  int group;     /* index of its group of equal eigenvalues (0 = leading) */
-  int mult;      /* size of that group */
+  double re, im;  /* the eigenvalue */
+  double rcond;   /* reciprocal condition number in its block (1 for 1 x 1) */
+  int block;      /* 0: the one-ring block; b > 0: outer block number b */
+  int group;      /* index of its group of equal eigenvalues (0 = leading) */
+  int mult;       /* size of that group */
+  double err;     /* bound on its rounding error (absolute; see "Rounding floor") */
+  double cluster; /* the same for a member of a cluster (see there) */
 } ss_eigval;
 
 /* Options of an analysis. */
@@ -72,7 +101,9 @@ typedef struct {
   size_t nblocks;         /* diagonal blocks of the outer part */
   size_t largest_block;   /* size of the largest of them */
   ss_verdict cond;        /* the eigenvalue condition */
-  double tol;             /* the tolerance used */
+  double tol;             /* the tolerance used: max(tol_requested, rounding) */
+  double tol_requested;   /* the tolerance asked for (ss_eig_opts.tol) */
+  double rounding;        /* the rounding floor of the verdict's comparisons */
   int m;                  /* subdominant eigenvalues (3 or 2) */
   double *basis;          /* NULL, or n x m column-major: the subdominant basis */
   const char *basis_kind; /* "eigenvectors", "schur" or "" */

@@ -102,18 +102,22 @@ static void help(const char *cmd) {
            "  --format mtx           Matrix Market (the only format)\n"
            "  -o FILE                write to FILE instead of standard output\n");
   else
-    printf("  --tol T                relative tolerance for equal eigenvalues (default "
-           "1e-6)\n"
-           "  --depth D              subdivision depth limit of the hex Jacobian test "
-           "(0..12,\n"
-           "                         default %d)\n"
-           "  --ring-levels L        ring levels judged at most (1..%d, default %d)\n"
-           "  --certify              prove the verdicts too: the exact spectrum of the\n"
-           "                         rational matrix (FLINT), the subdominant basis in\n"
-           "                         ball arithmetic (arb) and the ring's Jacobians in\n"
-           "                         interval arithmetic; what cannot be proven becomes\n"
-           "                         undecided (\"not certified: ...\")\n",
-           SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels);
+    printf(
+        "  --tol T                relative tolerance for equal eigenvalues (default "
+        "1e-6);\n"
+        "                         raised to the eigenvalues' rounding error bound when\n"
+        "                         below it (printed; a verdict only that bound decides\n"
+        "                         is undecided)\n"
+        "  --depth D              subdivision depth limit of the hex Jacobian test "
+        "(0..12,\n"
+        "                         default %d)\n"
+        "  --ring-levels L        ring levels judged at most (1..%d, default %d)\n"
+        "  --certify              prove the verdicts too: the exact spectrum of the\n"
+        "                         rational matrix (FLINT), the subdominant basis in\n"
+        "                         ball arithmetic (arb) and the ring's Jacobians in\n"
+        "                         interval arithmetic; what cannot be proven becomes\n"
+        "                         undecided (\"not certified: ...\")\n",
+        SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels);
   if (d)
     printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk\n"
            "  --size WxH             picture size (default 1200x600)\n"
@@ -432,6 +436,9 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
   json_object *c = ss_report_verdict_json(ci->on ? &ci->c.cond : &e->cond,
                                           ci->on && ci->c.cond_certified);
   json_object_object_add(c, "tolerance", json_object_new_double(e->tol));
+  json_object_object_add(c, "tolerance_requested",
+                         json_object_new_double(e->tol_requested));
+  json_object_object_add(c, "rounding_bound", json_object_new_double(e->rounding));
   if (ci->exact) {
     size_t nr = 0;
     const ss_exact_root *x = ss_exact_roots(ci->exact, &nr);
@@ -530,9 +537,13 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
     printf("  %3zu  %-20s  %4d  %-8.2e  %s\n", i, v, e->val[i].mult, e->val[i].rcond,
            e->val[i].block ? "outer" : "one-ring");
   }
-  printf("\neigenvalue condition: %s%s%s (equal within relative tolerance %.1e)\n",
+  printf("\neigenvalue condition: %s%s%s (equal within relative tolerance %.1e",
          ss_verdict_name(e->cond.verdict), e->cond.reason[0] ? ": " : "", e->cond.reason,
          e->tol);
+  if (e->tol > e->tol_requested)
+    printf(": the requested %.1e is below the eigenvalues' rounding error bound",
+           e->tol_requested);
+  printf(")\n");
   if (ci->on) {
     printf("eigenvalue condition, exact (%.2f s): %s%s%s%s\n", ci->c.seconds,
            ss_verdict_name(ci->c.cond.verdict), ci->c.cond_certified ? ", certified" : "",

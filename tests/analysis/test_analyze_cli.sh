@@ -196,4 +196,16 @@ assert abs(sum(e["re"] for e in ev) - trace) < 1e-9, (trace, sum(e["re"] for e i
 PY
 expect_in 0 "^9 9 " "" "$exe" matrix --scheme mlca --surface-vertex 4 --ring 1
 
+# a tolerance below the eigenvalues' rounding error is raised to it and says so
+# (at 1e-15 the computed lambda0 = 1 - 1.1e-15 "was not 1"); JSON carries both
+expect_in 0 "eigenvalue condition: pass \(equal within relative tolerance [0-9.]*e-1[0-4]: the requested 1.0e-15 is below the eigenvalues. rounding error bound\)" "" "$exe" analyze --scheme mlca --vertex octahedron --tol 1e-15
+out=$("$exe" analyze --scheme mlca --vertex octahedron --tol 1e-15 --format json)
+checks=$((checks + 1))
+python3 -c '
+import json, sys
+c = json.loads(sys.argv[1])["eigen_condition"]
+assert c["verdict"] == "pass" and c["tolerance_requested"] == 1e-15, c
+assert c["tolerance"] == c["rounding_bound"] and 1e-15 < c["tolerance"] < 1e-9, c
+' "$out" || fail "octahedron at --tol 1e-15: $out"
+
 expect_done "analyze_cli"

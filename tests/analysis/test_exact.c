@@ -17,6 +17,10 @@
  *  - the exact spectrum does not change when a link is relabelled or
  *    mirrored, and it agrees with the double path's verdict on every MLCA
  *    vertex one-ring with k <= 8;
+ *  - the double path's rounding error bounds (ss_eig.h, "Rounding floor")
+ *    hold against the exact spectrum for every eigenvalue of every MLCA and
+ *    tet/oct vertex with k <= 9 and edge of valence 3..10, and a tolerance
+ *    below them never turns a certified pass into a fail;
  *  - the time per MLCA vertex case at k = 8, 10, 12 (printed). */
 #include <ctype.h>
 #include <math.h>
@@ -956,6 +960,109 @@ static void test_basis(void) {
   ss_scheme_free(ctx.s);
 }
 
+/* ---- the double path's rounding error bounds ---- */
+
+typedef struct {
+  ss_scheme *s;
+  int cases, flips, raised;
+  size_t checked;
+  double worst; /* largest |computed - exact| / bound */
+} bound_ctx;
+
+/* One case: every computed eigenvalue lies within its bound of an exact root
+ * (the nearest; the root's own enclosure radius is added), and at the
+ * tolerances 1e-15 and 1e-16 (below the floor) the verdict is the exact one
+ * or undecided, with the tolerance raised to the floor and printed as such. */
+static void bound_case(bound_ctx *ctx, ss_case c, const char *what) {
+  ss_local *M;
+  ss_exact *x;
+  if (run(ctx->s, c, &M, &x)) return;
+  ss_error err = {0};
+  ss_eig_opts eo = ss_eig_defaults(M->dim);
+  eo.basis = 0;
+  ss_eig *e = NULL;
+  if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) {
+    CHECK(0, "%s: %s", what, err.msg);
+    goto done;
+  }
+  size_t nr;
+  const ss_exact_root *r = ss_exact_roots(x, &nr);
+  for (size_t i = 0; i < e->n && nr > 0; i++) {
+    double best = INFINITY;
+    for (size_t k = 0; k < nr; k++)
+      best = fmin(best, hypot(e->val[i].re - r[k].re, e->val[i].im - r[k].im) - r[k].rad);
+    const double ratio = best / e->val[i].err;
+    if (ratio > ctx->worst) ctx->worst = ratio;
+    CHECK(best <= e->val[i].err,
+          "%s: eigenvalue %zu = %.17g%+.3gi is %.3g from the exact "
+          "spectrum, beyond its bound %.3g (rcond %.3g)",
+          what, i, e->val[i].re, e->val[i].im, best, e->val[i].err, e->val[i].rcond);
+    ctx->checked++;
+  }
+  CHECK(e->rounding > 0.0 && e->rounding < 1e-9 && e->tol == eo.tol,
+        "%s: rounding floor %.3g, tolerance %.3g (the default should stand)", what,
+        e->rounding, e->tol);
+  ss_verdict exact;
+  int cert;
+  ss_exact_condition(x, &exact, &cert);
+  for (int t = 15; t <= 16; t++) {
+    ss_eig *f = NULL;
+    eo.tol = pow(10.0, -t);
+    if (ss_eig_new(M->S, M->n2, M->n1, &eo, &f, &err)) {
+      CHECK(0, "%s, tol 1e-%d: %s", what, t, err.msg);
+      continue;
+    }
+    ctx->raised += f->tol > eo.tol;
+    CHECK(f->tol_requested == eo.tol && f->tol == fmax(eo.tol, f->rounding) &&
+              f->rounding == e->rounding,
+          "%s, tol 1e-%d: requested %.3g, used %.3g, floor %.3g (at 1e-6: %.3g)", what, t,
+          f->tol_requested, f->tol, f->rounding, e->rounding);
+    const int flip =
+        f->cond.verdict != SS_UNDECIDED && cert && f->cond.verdict != exact.verdict;
+    ctx->flips += flip;
+    CHECK(!flip, "%s, tol 1e-%d: %s (%s), exact: %s", what, t,
+          ss_verdict_name(f->cond.verdict), f->cond.reason,
+          ss_verdict_name(exact.verdict));
+    ss_eig_free(f);
+  }
+  ctx->cases++;
+done:
+  ss_eig_free(e);
+  ss_exact_free(x);
+  ss_local_free(M);
+}
+
+static int bound_visit(const ss_link *l, void *vctx) {
+  bound_ctx *ctx = vctx;
+  char what[96];
+  snprintf(what, sizeof what, "%s vertex k = %d (link %d)", ss_scheme_name(ctx->s), l->k,
+           ctx->cases);
+  bound_case(ctx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, what);
+  return 0;
+}
+
+static void test_rounding_bound(void) {
+  const char *names[2] = {"mlca", "tetoct"};
+  for (int j = 0; j < 2; j++) {
+    bound_ctx ctx = {ss_testcase_scheme(names[j]), 0, 0, 0, 0, 0.0};
+    ss_enum_opts eo = {4, 9, 0, 1};
+    ss_error err = {0};
+    CHECK(ss_enum_links(&eo, bound_visit, &ctx, NULL, &err) == SS_OK, "%s", err.msg);
+    for (int n = 3; n <= 10; n++) {
+      char what[64];
+      snprintf(what, sizeof what, "%s edge %d", names[j], n);
+      bound_case(&ctx, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, what);
+    }
+    /* 1 + 1 + 2 + 5 + 14 + 50 links with k = 4..9, 8 edges */
+    CHECK(ctx.cases == 81 && ctx.raised == 2 * 81 && ctx.flips == 0,
+          "%s: %d cases, %d raised tolerances, %d flips", names[j], ctx.cases, ctx.raised,
+          ctx.flips);
+    printf("rounding bounds: %s, %d cases, %zu eigenvalues: largest error / bound %.3f\n",
+           names[j], ctx.cases, ctx.checked, ctx.worst);
+    ss_scheme_free(ctx.s);
+  }
+}
+
 /* ---- relabelling ---- */
 
 /* The exact spectrum as text: minimal polynomial and multiplicity per root,
@@ -1065,6 +1172,7 @@ int main(void) {
   test_jordan();
   test_built_ties();
   test_basis();
+  test_rounding_bound();
   test_relabel();
   test_timing();
   flint_cleanup();

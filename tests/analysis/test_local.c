@@ -606,6 +606,19 @@ static void test_verdicts(void) {
   CHECK(verdict_of(negative, 6, 3, 0, 1e-6, NULL) == SS_FAIL, "negative lambda3");
   CHECK(verdict_of(ok, 6, 3, 1, 1e-6, NULL) == SS_FAIL, "complex lambda1");
   CHECK(verdict_of(tie34, 6, 2, 0, 1e-6, NULL) == SS_PASS, "2D: lambda2 > |lambda3|");
+  /* below the rounding floor (ss_eig.h): the tolerance is raised, an exact tie
+   * still fails, a distinct spectrum still passes, and a gap that only the
+   * requested tolerance would resolve (1e-11 relative, coupled by 0.01: far
+   * below the cluster's rounding) is undecided, not a pass */
+  const double near11[6] = {1, 0.5, 0.4, 0.3, 0.3 * (1 - 1e-11), 0.1};
+  CHECK(verdict_of(ok, 6, 3, 0, 1e-15, NULL) == SS_PASS, "distinct spectrum at 1e-15");
+  CHECK(verdict_of(tie34, 6, 3, 0, 1e-15, NULL) == SS_FAIL, "lambda3 = lambda4 at 1e-15");
+  CHECK(verdict_of(double1, 6, 3, 0, 1e-15, NULL) == SS_FAIL, "1 twice at 1e-15");
+  CHECK(verdict_of(split, 6, 3, 0, 1e-15, &m) == SS_PASS && m == 3,
+        "a tie split by rounding at 1e-15 (mult %d)", m);
+  CHECK(verdict_of(near11, 6, 3, 0, 1e-15, NULL) == SS_UNDECIDED,
+        "near-tie 1e-11 at 1e-15: rounding decides");
+  CHECK(verdict_of(near11, 6, 3, 0, 1e-6, NULL) == SS_FAIL, "near-tie 1e-11 at 1e-6");
   /* condition numbers: a symmetric matrix (Q diag(1, 1/2, 1/4) Q^T, Q a
    * rotation) has perfectly conditioned eigenvalues, rcond = 1 */
   const double c = cos(0.3), sn = sin(0.3), d[3] = {1.0, 0.5, 0.25};
