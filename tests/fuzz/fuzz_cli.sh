@@ -46,9 +46,13 @@ while [ $# -gt 0 ]; do
   }
 done
 
+case $exe in /*) ;; *) exe=$PWD/$exe ;; esac
+case $gen in /*) ;; *) gen=$PWD/$gen ;; esac
+case $src in /*) ;; *) src=$PWD/$src ;; esac
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir "$tmp/in" "$tmp/out"
+cd "$tmp/out" || exit 2 # an output name that is a bad value lands here
 if ! "$gen" --src "$src" --seed "$seed" --iterations "$n" --write "$tmp/in" >/dev/null; then
   echo "fuzz_cli.sh: $gen --write failed" >&2
   exit 2

@@ -20,7 +20,8 @@
  *            at the tetrahedron link's vertex.
  * Every call must return SS_OK, or an error status (never SS_EINTERNAL from a
  * parser) whose message is non-empty, is the status's own and holds no raw
- * byte (< 0x20 or >= 0x7f: such input must be escaped, not echoed).  A crash,
+ * byte (< 0x20 or >= 0x7f: such input must be escaped, not echoed); mesh and
+ * stencil messages start "FILE:LINE: " (DESIGN section 7).  A crash,
  * a sanitizer report or a mutant running longer than --mutant-timeout prints
  * the seed, iteration and the mutant (escaped) and kills the run.
  *
@@ -259,6 +260,15 @@ static void count_shape(fuzz *F, const char *msg) {
   F->shapes[F->nshapes++].n = 1;
 }
 
+/* 1 if msg starts "mutant.EXT:LINE: " (the readers name the file and line). */
+static int names_line(const char *msg) {
+  if (strncmp(msg, "mutant.", 7)) return 0;
+  const char *p = strchr(msg, ':');
+  if (!p || p[1] < '0' || p[1] > '9') return 0;
+  p += 1 + strspn(p + 1, "0123456789");
+  return p[0] == ':' && p[1] == ' ';
+}
+
 /* The contract of a failed call.  `parser`: SS_EINTERNAL is a bug there. */
 static void check_error(fuzz *F, fz_kind kind, ss_status st, const ss_error *err,
                         int parser) {
@@ -275,6 +285,8 @@ static void check_error(fuzz *F, fz_kind kind, ss_status st, const ss_error *err
   if (!err->msg[0]) failure(F, "error without a message", err);
   if (err->status != st) failure(F, "the message belongs to another status", err);
   if (parser && st == SS_EINTERNAL) failure(F, "internal error from a parser", err);
+  if (parser && kind != FZ_LINK && st == SS_EINPUT && !names_line(err->msg))
+    failure(F, "the message does not name the file and line (\"FILE:LINE: ...\")", err);
   if (fz_has_raw(err->msg)) {
     if (F->known_raw[kind]) {
       if (!F->raw_known[kind]++) {
