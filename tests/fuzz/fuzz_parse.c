@@ -30,10 +30,12 @@
  *
  * --known-raw link,mesh,stencil: raw bytes in those parsers' messages are a
  * known bug: counted and shown once, not failures.  --known-slow skips links
- * named bipyramid:N with N > 2000, known to take seconds to parse (counted).  --only I
- * replays iteration I (with --dump: prints the mutant).  --max-seconds stops the run
- * early (a time budget).  Exit 0 if every check held, 1 otherwise, 2 on bad
- * usage. */
+ * named bipyramid:N with N > 2000, known to take seconds to parse (counted).
+ * --only I replays iteration I (with --dump: prints the mutant).
+ * --max-seconds stops the run early (a time budget); --mutant-timeout
+ * (default 20 s times SS_TIMEOUT_MULTIPLIER) bounds one mutant.  --summary
+ * adds the messages grouped by shape.  Exit 0 if every check held, 1
+ * otherwise, 2 on bad usage. */
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
@@ -725,7 +727,14 @@ int main(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     unsigned long x;
-    if (!strcmp(a, "--dump"))
+    if (!strcmp(a, "--help")) {
+      printf("usage: fuzz_parse [--seed S] [--iterations N] [--first I | --only I] "
+             "[--dump] [--max-seconds T] [--target link|mesh|stencil|all] "
+             "[--known-raw LIST] [--known-slow] [--mutant-timeout T] [--summary] "
+             "[--src DIR] [--write DIR]\n(see the comment at the top of "
+             "tests/fuzz/fuzz_parse.c)\n");
+      return 0;
+    } else if (!strcmp(a, "--dump"))
       F.dump = 1;
     else if (!strcmp(a, "--known-slow"))
       F.known_slow = 1;
