@@ -201,6 +201,7 @@ typedef struct {
   long raw_known[FZ_NKINDS];
   long stage_ok, stage_err; /* next stages after a successful parse */
   long nonfinite;           /* refinements with non-finite positions (issue 16 item 3) */
+  unsigned long nonfinite_it; /* the first of them */
   long failures;
   long skipped_slow; /* links skipped by --known-slow */
   shape shapes[MAXSHAPES];
@@ -427,7 +428,7 @@ static void refine_once(fuzz *F, fz_kind kind, const ss_scheme *only, const ss_c
   cur_stage = "ss_scheme_refine";
   ss_status st = ss_scheme_refine(s, cx, &fine, NULL, &err);
   stage_result(F, kind, st, &err);
-  if (!st && !all_finite(fine)) F->nonfinite++;
+  if (!st && !all_finite(fine) && !F->nonfinite++) F->nonfinite_it = cur_iter;
   ss_cx_free(fine);
 }
 
@@ -699,6 +700,11 @@ static void print_summary(fuzz *F, unsigned long ran, double secs, int stopped) 
   printf("  next stages: %ld ok, %ld refused with a message; %ld refinements with "
          "non-finite points\n",
          F->stage_ok, F->stage_err, F->nonfinite);
+  if (F->nonfinite)
+    printf(
+        "  (the first non-finite refinement: iteration %lu; a known bug, issue 16 item "
+        "3)\n",
+        F->nonfinite_it);
   for (int i = 0; i < 3 && F->slowest[i] > 0; i++)
     printf("  slowest %d: %.3f s (%s, iteration %lu)\n", i + 1, F->slowest[i],
            F->slowest_kind[i], F->slowest_it[i]);
