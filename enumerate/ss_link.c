@@ -77,11 +77,43 @@ int ss_link_equal(const ss_link *a, const ss_link *b) {
   return !memcmp(a->nbr, b->nbr, (size_t)a->off[a->k] * sizeof *a->nbr);
 }
 
-/* Position of w in v's list, or -1. */
-static int find(const ss_link *l, int v, int w) {
-  for (int i = l->off[v]; i < l->off[v + 1]; i++)
-    if (l->nbr[i] == w) return i - l->off[v];
-  return -1;
+/* A directed edge (from, nbr[at]) keyed by its unordered ends. */
+typedef struct {
+  long key; /* min(ends) * k + max(ends) */
+  int from; /* the vertex whose list holds it */
+  int at;   /* its index in nbr */
+} dirkey;
+
+static int by_key(const void *pa, const void *pb) {
+  const dirkey *a = pa, *b = pb;
+  return a->key < b->key ? -1 : a->key > b->key;
+}
+
+/* twin[e] for every directed edge e = (v, nbr[e]): the position of v in the
+ * list of nbr[e], or -1 if it is not there.  Sorting the edges by their
+ * unordered ends pairs each with its reverse in O(E log E); searching the
+ * lists was quadratic in the degree (bipyramid:99998 took 7 s to parse).
+ * Needs lists without repeats.  Returns 0, or -1 when out of memory. */
+static int twins(const ss_link *l, int *twin) {
+  const long ne = l->off[l->k];
+  dirkey *d = malloc(((size_t)ne + 1) * sizeof *d);
+  if (!d) return -1;
+  for (int v = 0; v < l->k; v++)
+    for (int i = l->off[v]; i < l->off[v + 1]; i++) {
+      const long a = v < l->nbr[i] ? v : l->nbr[i], b = v < l->nbr[i] ? l->nbr[i] : v;
+      d[i] = (dirkey){a * l->k + b, v, i};
+      twin[i] = -1;
+    }
+  qsort(d, (size_t)ne, sizeof *d, by_key);
+  for (long i = 0; i + 1 < ne; i++)
+    if (d[i].key == d[i + 1].key && d[i].from != d[i + 1].from) {
+      const int w = d[i + 1].from; /* d[i] = (v, w) */
+      twin[d[i].at] = d[i + 1].at - l->off[w];
+      twin[d[i + 1].at] = d[i].at - l->off[d[i].from];
+      i++;
+    }
+  free(d);
+  return 0;
 }
 
 /* Vertex number for messages: 1-based, as in the numeric text form. */
@@ -95,46 +127,65 @@ ss_status ss_link_validate(const ss_link *l, ss_error *err) {
   char b1[16], b2[16];
   if (k < 4)
     return ss_error_set(err, SS_EINPUT, "a link needs at least 4 vertices, not %d", k);
-  for (int v = 0; v < k; v++) {
+  int *seenby = malloc((size_t)k * sizeof *seenby); /* last list w was met in */
+  int *twin = malloc(((size_t)l->off[k] + 1) * sizeof *twin);
+  if (!seenby || !twin) {
+    free(seenby);
+    free(twin);
+    return ss_error_nomem(err, "link validation");
+  }
+  ss_status st = SS_OK;
+  for (int v = 0; v < k; v++)
+    seenby[v] = -1;
+  for (int v = 0; v < k && !st; v++) {
     int d = ss_link_deg(l, v);
     for (int i = 0; i < d; i++) {
       int w = l->nbr[l->off[v] + i];
-      if (w < 0 || w >= k)
-        return ss_error_set(err, SS_EINPUT, "vertex %s: neighbour %d is not a vertex",
-                            NAME(v, b1), w + 1);
-      if (w == v)
-        return ss_error_set(err, SS_EINPUT, "vertex %s lists itself (a loop)",
-                            NAME(v, b1));
-      for (int j = 0; j < i; j++)
-        if (l->nbr[l->off[v] + j] == w)
-          return ss_error_set(err, SS_EINPUT, "vertex %s lists %s twice (a multi-edge)",
-                              NAME(v, b1), NAME(w, b2));
+      if (w < 0 || w >= k) {
+        st = ss_error_set(err, SS_EINPUT, "vertex %s: neighbour %d is not a vertex",
+                          NAME(v, b1), w + 1);
+        break;
+      }
+      if (w == v) {
+        st = ss_error_set(err, SS_EINPUT, "vertex %s lists itself (a loop)", NAME(v, b1));
+        break;
+      }
+      if (seenby[w] == v) {
+        st = ss_error_set(err, SS_EINPUT, "vertex %s lists %s twice (a multi-edge)",
+                          NAME(v, b1), NAME(w, b2));
+        break;
+      }
+      seenby[w] = v;
     }
-    if (d < 3)
-      return ss_error_set(err, SS_EINPUT, "vertex %s has degree %d (at least 3 needed)",
-                          NAME(v, b1), d);
+    if (!st && d < 3)
+      st = ss_error_set(err, SS_EINPUT, "vertex %s has degree %d (at least 3 needed)",
+                        NAME(v, b1), d);
   }
-  for (int v = 0; v < k; v++)
-    for (int i = l->off[v]; i < l->off[v + 1]; i++)
-      if (find(l, l->nbr[i], v) < 0)
-        return ss_error_set(
+  free(seenby);
+  if (!st && twins(l, twin)) st = ss_error_nomem(err, "link validation");
+  for (int v = 0; v < k && !st; v++)
+    for (int i = l->off[v]; i < l->off[v + 1] && !st; i++)
+      if (twin[i] < 0)
+        st = ss_error_set(
             err, SS_EINPUT,
             "adjacency is not symmetric: %s lists %s but %s does not list %s",
             NAME(v, b1), NAME(l->nbr[i], b2), b2, b1);
-  /* Every corner (v; w, w') closes a triangle: around w, w' is followed by v. */
-  for (int v = 0; v < k; v++) {
+  /* Every corner (v; w, w') closes a triangle: around w, w' is followed by v,
+   * i.e. w' precedes v (at position twin) in w's list. */
+  for (int v = 0; v < k && !st; v++) {
     int d = ss_link_deg(l, v);
-    for (int i = 0; i < d; i++) {
+    for (int i = 0; i < d && !st; i++) {
       int w = l->nbr[l->off[v] + i], w2 = l->nbr[l->off[v] + (i + 1) % d];
-      int p = find(l, w, w2);
       int dw = ss_link_deg(l, w);
-      if (p < 0 || l->nbr[l->off[w] + (p + 1) % dw] != v)
-        return ss_error_set(err, SS_EINPUT,
-                            "the rotations do not form triangles: around vertex %d, %d "
-                            "follows %d, but around %d, %d does not follow %d",
-                            v + 1, w2 + 1, w + 1, w + 1, v + 1, w2 + 1);
+      if (l->nbr[l->off[w] + (twin[l->off[v] + i] + dw - 1) % dw] != w2)
+        st = ss_error_set(err, SS_EINPUT,
+                          "the rotations do not form triangles: around vertex %d, %d "
+                          "follows %d, but around %d, %d does not follow %d",
+                          v + 1, w2 + 1, w + 1, w + 1, v + 1, w2 + 1);
     }
   }
+  free(twin);
+  if (st) return st;
   /* Connected, and Euler characteristic 2 (every face is a triangle). */
   int *stack = malloc((size_t)k * sizeof *stack);
   char *seen = calloc((size_t)k, 1);

@@ -25,14 +25,23 @@ typedef struct {
   char msg[512];    /* "file:line: problem" or a plain sentence, NUL-terminated */
 } ss_error;
 
-/* Record a failure: sets err->status and formats err->msg (printf-style).
- * err may be NULL (then nothing is recorded).  Returns st so callers can
- * write `return ss_error_set(err, SS_EINPUT, ...)`. */
+/* Record a failure: sets err->status and formats err->msg (printf-style),
+ * escaped by ss_error_escape: messages quote the user's input, which may be
+ * binary garbage, and must not send raw bytes to a terminal.  err may be NULL
+ * (then nothing is recorded).  Returns st so callers can write
+ * `return ss_error_set(err, SS_EINPUT, ...)`. */
 ss_status ss_error_set(ss_error *err, ss_status st, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+
+/* Copy src into dst (cap bytes, cap > 0, always NUL-terminated) with every
+ * byte outside printable ASCII written as an escape: \t, \n, \r, \\ is
+ * not escaped (it is printable), others as \xHH (so UTF-8 file names appear
+ * escaped too: a message's bytes are exactly what was typed or read).  An
+ * escape that does not fit is left out whole, never cut.  Returns dst. */
+char *ss_error_escape(char *dst, size_t cap, const char *src);
 
 /* Record an allocation failure with a standard message naming what. */
 ss_status ss_error_nomem(ss_error *err, const char *what);

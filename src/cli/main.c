@@ -65,7 +65,8 @@ int main(int argc, char **argv) {
       flint_cleanup_master(); /* FLINT's caches (the exact path, --certify) */
       return rc;
     }
+  char name[256];
   fprintf(stderr, "subspectra: unknown command '%s' (see 'subspectra --help')\n",
-          argv[1]);
+          ss_error_escape(name, sizeof name, argv[1]));
   return SS_EXIT_USAGE;
 }

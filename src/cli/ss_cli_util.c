@@ -17,12 +17,14 @@ int ss_cli_fail(const ss_error *err) {
 }
 
 int ss_cli_usage_error(const char *cmd, const char *fmt, ...) {
+  /* option values are the user's bytes: escaped like library messages */
+  char raw[1024], msg[1024];
   va_list ap;
-  fprintf(stderr, "subspectra %s: ", cmd);
   va_start(ap, fmt);
-  vfprintf(stderr, fmt, ap);
+  vsnprintf(raw, sizeof raw, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "\n(see 'subspectra %s --help')\n", cmd);
+  fprintf(stderr, "subspectra %s: %s\n(see 'subspectra %s --help')\n", cmd,
+          ss_error_escape(msg, sizeof msg, raw), cmd);
   return SS_EXIT_USAGE;
 }
 

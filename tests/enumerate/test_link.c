@@ -272,7 +272,39 @@ static void test_from_triangles(void) {
         "non-manifold edge refused: %s", err.msg);
 }
 
+/* Messages quote the input escaped (binary garbage was echoed raw to the
+ * terminal), and a pole of degree 10^5 is validated (bipyramid:99998 took
+ * seconds in a quadratic neighbour search; the fuzzers time parses out). */
+static void test_escaped(void) {
+  ss_link *l = NULL;
+  ss_error err = {0};
+  CHECK(ss_link_parse("ab\x01"
+                      "c\xff\x1b[31m d",
+                      &l, &err) == SS_EINPUT &&
+            !l,
+        "garbage accepted");
+  CHECK(strstr(err.msg, "ab\\x01c\\xff\\x1b[31m") != NULL, "message: %s", err.msg);
+  for (const char *p = err.msg; *p; p++)
+    CHECK((unsigned char)*p >= 0x20 && (unsigned char)*p < 0x7f, "raw byte 0x%02x in: %s",
+          (unsigned char)*p, err.msg);
+  char buf[8];
+  CHECK(!strcmp(ss_error_escape(buf, sizeof buf, "abc\x01\x02"), "abc\\x01"),
+        "an escape is never cut: \"%s\"", buf);
+  CHECK(!strcmp(ss_error_escape(buf, sizeof buf, "a\tb\n"), "a\\tb\\n"), "\"%s\"", buf);
+  REQUIRE_OK_VOID(ss_link_named("bipyramid:99998", &l, &err), &err);
+  CHECK(l->k == 100000, "bipyramid:99998 has %d vertices", l->k);
+  ss_link_free(l);
+  /* an asymmetric or non-triangular rotation is still named as before */
+  CHECK(ss_link_parse("4 bcd,acd,abd,abc", &l, &err) == SS_EINPUT &&
+            strstr(err.msg, "do not form triangles"),
+        "%s", err.msg);
+  CHECK(ss_link_parse("5 bcd,acd,abd,abc,abc", &l, &err) == SS_EINPUT &&
+            strstr(err.msg, "not symmetric"),
+        "%s", err.msg);
+}
+
 int main(void) {
+  test_escaped();
   test_text();
   test_from_triangles();
   test_automorphisms();
