@@ -24,7 +24,8 @@ static long long gcd_ll(long long a, long long b) {
   return a ? a : 1;
 }
 
-/* Parse "[+-]digits[/digits]" (surrounding blanks allowed); 0 or -1. */
+/* Parse "[+-]digits[/digits]" (surrounding blanks allowed): 0, -1 if malformed,
+ * -2 if well formed but a part has more than 17 digits (leading zeros aside). */
 static int parse_rational(const char *s, rational *out) {
   while (isspace((unsigned char)*s))
     s++;
@@ -35,8 +36,16 @@ static int parse_rational(const char *s, rational *out) {
     if (!isdigit((unsigned char)*s)) return -1;
     long long v = 0;
     int nd = 0;
+    while (*s == '0' && isdigit((unsigned char)s[1]))
+      s++; /* leading zeros are not digits of the value */
     while (isdigit((unsigned char)*s)) {
-      if (++nd > 17) return -1; /* keeps sums of a few terms exact in 63 bits */
+      if (++nd > 17) { /* keeps sums of a few terms exact in 63 bits */
+        while (isdigit((unsigned char)*s) || *s == '/')
+          s++;
+        while (isspace((unsigned char)*s))
+          s++;
+        return *s ? -1 : -2; /* well-formed but too large: say so */
+      }
       v = 10 * v + (*s++ - '0');
     }
     part[k] = v;
@@ -168,7 +177,15 @@ static int handler(void *user, const char *section, const char *key, const char 
     return 0;
   }
   if (R->given[t] & (1u << r)) goto repeated;
-  if (parse_rational(value, &R->w[t][r])) {
+  const int pr = parse_rational(value, &R->w[t][r]);
+  if (pr == -2) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.32s] %s = '%.40s': a numerator or denominator has more than 17 digits "
+             "(weights are summed exactly in 64-bit integers; reduce the fraction)",
+             section, key, value);
+    return 0;
+  }
+  if (pr) {
     snprintf(R->msg, sizeof R->msg,
              "[%.64s] %s = '%.64s' is not a rational p/q (digits, optional sign, q > 0)",
              section, key, value);

@@ -113,6 +113,13 @@ static void test_bad(void) {
   bad(HEAD "[mask.hex]\nself = 1/8\nedge = 1/x\n", "bad.ini:7: [mask.hex] edge = '1/x'");
   bad(HEAD "[mask.hex]\nself = 1/0\n", "bad.ini:6: [mask.hex] self = '1/0'");
   bad(HEAD "[mask.hex]\nself = 0.125\n", "bad.ini:6: [mask.hex] self = '0.125'");
+  /* beyond 64 bits: said so, not "not a rational"; leading zeros do not count */
+  bad(HEAD "[mask.hex]\nself = 1/100000000000000000000\n",
+      "bad.ini:6: [mask.hex] self = '1/100000000000000000000': a numerator or "
+      "denominator has more than 17 digits");
+  bad(HEAD "[mask.hex]\nself = 000000000000000000001/8\nedge = 1/8\nface = 1/8\n"
+           "opposite = 1/7\n",
+      "bad.ini:5: [mask.hex]: the weights sum to 57/56");
   bad(HEAD "[mask.hex]\nself = 1/8\nedge = 1/8\nface = 1/8\n",
       "bad.ini:5: [mask.hex] lacks the role 'opposite'");
   bad(HEAD "[mask.hex]\nself = 1/8\nself = 1/8\n",
