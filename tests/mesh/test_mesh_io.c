@@ -2,12 +2,16 @@
  * coordinate dimension, the split-octahedron and VTK pyramid conventions
  * (orientation and volume preserved), OBJ corner-reference forms, skipped
  * Medit sections, every malformed sample in bad/ rejected with SS_EINPUT
- * and a message naming file, line and problem, and the scale-free flat-cell check. */
+ * and a message naming file, line and problem, the scale-free flat-cell check,
+ * and non-finite refinement results refused. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "ss_mesh.h"
+#include "ss_scheme.h"
 #include "ss_test.h"
 #include "ss_testmesh.h"
 
@@ -255,6 +259,60 @@ static void test_flat_scale_free(void) {
   ss_cx_free(r);
 }
 
+/* Results are checked, not only input: a finite hex whose top face sits at
+ * 1.7e308 refines to overflowing positions, which every refinement refuses
+ * (naming the fine vertex and the input vertices it derives from), and no
+ * writer puts a non-finite coordinate in a file. */
+static void test_nonfinite_results(void) {
+  static const double hex[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0,
+                               0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  ss_cx *c = one_cell(SS_HEX, 3, hex, 8, 1.0, 0.0), *fine = NULL;
+  ss_scheme *s = NULL;
+  ss_error err = {0};
+  REQUIRE_OK_VOID(ss_scheme_new("mlca", &s, &err), &err);
+  /* level 2 of a finite cube: input vertices are their own origin, others
+   * derive from corners of the cube */
+  ss_idx anc[SS_MAXCELLVERTS];
+  size_t n = 0;
+  CHECK(ss_scheme_origin(s, c, 2, 5, anc, &n, &err) == SS_OK && n == 1 && anc[0] == 5,
+        "an input vertex is its own origin (n = %zu)", n);
+  CHECK(ss_scheme_origin(s, c, 2, 30, anc, &n, &err) == SS_OK && n >= 2 && n <= 8,
+        "a level-2 vertex derives from 2..8 corners (n = %zu)", n);
+  for (size_t i = 4; i < 8; i++)
+    c->x[3 * i + 2] = 1.7e308;
+  ss_status st = ss_scheme_refine(s, c, &fine, NULL, &err);
+  CHECK(st == SS_EINPUT && !fine && strstr(err.msg, "non-finite") &&
+            strstr(err.msg, "DBL_MAX"),
+        "overflow refused: %s", err.msg);
+  size_t bad = 0;
+  st = ss_scheme_refine_at(s, c, &fine, &bad, &err);
+  CHECK(st == SS_EINPUT && bad != SIZE_MAX && bad >= 8, "overflowing vertex %zu", bad);
+  if (st == SS_EINPUT && bad != SIZE_MAX) {
+    CHECK(ss_scheme_origin(s, c, 1, bad, anc, &n, &err) == SS_OK && n >= 2,
+          "origin of the overflow: %s", err.msg);
+    CHECK(n >= 2 && anc[n - 1] >= 4, "the overflow derives from the top face");
+  }
+  st = ss_scheme_refine_levels(s, c, 2, &fine, &err);
+  CHECK(st == SS_EINPUT && !fine && strstr(err.msg, "level 1: refined vertex") &&
+            strstr(err.msg, "derives from input vertices") &&
+            strstr(err.msg, "largest input coordinate is 1.7e+308, at vertex 5"),
+        "levels name the level and the input vertices: %s", err.msg);
+  /* the writers: nothing non-finite reaches a file */
+  c->x[3 * 6] = INFINITY;
+  char dir[] = "/tmp/ss_test_nonfinite_XXXXXX", path[64];
+  if (mkdtemp(dir)) {
+    snprintf(path, sizeof path, "%s/o.mesh", dir);
+    CHECK(ss_mesh_write(path, SS_MESH_AUTO, c, NULL, &err) == SS_EINPUT &&
+              strstr(err.msg, "vertex 7 has a non-finite coordinate"),
+          "non-finite mesh not written: %s", err.msg);
+    CHECK(access(path, F_OK) != 0, "no file created");
+    remove(path);
+    rmdir(dir);
+  }
+  ss_cx_free(c);
+  ss_scheme_free(s);
+}
+
 static void test_medit_sections(void) {
   ss_error err = {0};
   /* Corners become vertex cells; cell-less sections and comments are skipped;
@@ -487,5 +545,6 @@ int main(void) {
   test_vtk();
   test_bad_files();
   test_flat_scale_free();
+  test_nonfinite_results();
   return ss_test_done("mesh_io");
 }
