@@ -276,7 +276,9 @@ ss_status ss_cx_check_orientation(const ss_cx *cx, ss_error *err) {
                             "(%d-dimensional cells): with fewer coordinates than "
                             "dimensions every cell is flat",
                             cx->dim, cx->dim == 1 ? "" : "s", cx->nc[t],
-                            ss_cell_plural((ss_cell_type)t), top);
+                            cx->nc[t] == 1 ? ss_cell_name((ss_cell_type)t)
+                                           : ss_cell_plural((ss_cell_type)t),
+                            top);
   }
   if (top < cx->dim) {
     /* no orientation without a normal: judge flatness only */

@@ -244,7 +244,7 @@ static void test_flat_scale_free(void) {
   static const double tet2[] = {0, 0, 1, 0, 0, 1, 1, 1};
   c = one_cell(SS_TET, 2, tet2, 4, 1.0, 0.0);
   CHECK(ss_cx_check_orientation(c, &err) == SS_EINPUT &&
-            strstr(err.msg, "2 coordinates per vertex but 1 tetrahedra"),
+            strstr(err.msg, "2 coordinates per vertex but 1 tetrahedron"),
         "tets with 2 coordinates refused: %s", err.msg);
   ss_cx_free(c);
   /* Medit: Triangles under Dimension 1 name the lines */
