@@ -125,18 +125,40 @@ ss_status ss_cx_copy(const ss_cx *cx, ss_cx **out, ss_error *err);
  * message naming the cell type, its index and the defect. */
 ss_status ss_cx_validate(const ss_cx *cx, ss_error *err);
 
+/* Values of a scaled Jacobian (a corner determinant divided by the lengths of
+ * the edges it is formed from, in [-1, 1]) at most this far from 0 are zero up
+ * to rounding: such a corner is flat and has no sign. */
+#define SS_CX_FLAT_TOL 1e-12
+
 /* Orientation of a volume cell (tet, hex, oct) in a complex with dim == 3, or
  * of a face (triangle, quad) with dim == 2: +1 if every corner (hex, quad), the
  * cell (tet, triangle) or every one of the eight centroid tets (oct) has
- * positive signed volume under the conventions above, -1 if all are negative,
- * 0 if they are mixed or one vanishes (a flat or folded cell).  Cells of other
- * dimensions return +1.  `vol` (may be NULL) receives the signed volume (area). */
+ * positive scaled Jacobian under the conventions above, -1 if all are
+ * negative, 0 if they are mixed or one is within SS_CX_FLAT_TOL of 0 (a flat or
+ * folded cell).  Scale-free: the cell's coordinates are rescaled by a power of
+ * two first, so a cube of side 1e-300 or 1e300 is judged like the unit cube.
+ * Cells of other dimensions return +1.  `vol` (may be NULL) receives the signed
+ * volume (area), which may under- or overflow for extreme sizes. */
 int ss_cx_cell_orientation(const ss_cx *cx, ss_cell_type t, size_t i, double *vol);
 
-/* Check that no cell is flat or folded (orientation 0) and that all cells of the
- * complex's top dimension agree in orientation (an inverted cell is one whose
- * orientation differs from the majority).  Only meaningful when dim equals the
- * top dimension; other complexes pass.  SS_EINPUT naming the first bad cell. */
+/* Whether the cell of type t with vertex indices v[0..nverts) (each < cx->nv)
+ * is flat: a cell of dimension k (1..3) whose k edges at some corner (hex,
+ * quad; for a simplex, at every corner; for an octahedron, in one of its
+ * eight centroid tets) span a k-volume within SS_CX_FLAT_TOL of 0 relative to
+ * the product of their lengths, in any number dim >= k of coordinates (a
+ * zero-area triangle in 3D is flat).  Scale-free as ss_cx_cell_orientation.
+ * Vertex cells and cells of more dimensions than coordinates return 0. */
+int ss_cx_cell_flat(const ss_cx *cx, ss_cell_type t, const ss_idx *v);
+
+/* Check the cells of the complex's top dimension (when it is 2 or 3):
+ *  - top == dim: no cell is flat or folded (orientation 0) and all agree in
+ *    orientation (an inverted cell is one whose orientation differs from the
+ *    majority);
+ *  - top < dim (surfaces in 3D, volumes in 4D): no cell is flat
+ *    (ss_cx_cell_flat); without a normal there is no orientation to compare;
+ *  - top > dim (e.g. tetrahedra with 2 coordinates): refused, every cell is
+ *    flat.
+ * SS_EINPUT naming the first bad cell (1-based, by type). */
 ss_status ss_cx_check_orientation(const ss_cx *cx, ss_error *err);
 
 #endif

@@ -3,6 +3,7 @@
 #include "ss_mesh.h"
 
 #include <errno.h>
+#include <math.h>
 #include <string.h>
 #include <strings.h>
 
@@ -57,6 +58,12 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
                         const ss_mesh_write_opts *opts, ss_error *err) {
   ss_status st = resolve(path, &fmt, err);
   if (st) return st;
+  for (size_t i = 0; i < cx->nv * (size_t)cx->dim; i++)
+    if (!isfinite(cx->x[i]))
+      return ss_error_set(err, SS_EINPUT,
+                          "%s: vertex %zu has a non-finite coordinate (%g): not written "
+                          "(no reader would accept it)",
+                          path, i / (size_t)cx->dim + 1, cx->x[i]);
   FILE *f = fopen(path, "w");
   if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
   switch (fmt) {

@@ -132,7 +132,12 @@ static ss_status read_vertices(ss_lex *lx, ss_cx *cx) {
 }
 
 static ss_status read_cells(ss_lex *lx, ss_cx *cx, ss_cell_type t, const char *kw,
-                            int has_ref) {
+                            int has_ref, long dim_line) {
+  if (ss_cell_dim(t) > cx->dim)
+    return ss_lex_fail(lx,
+                       "%s need Dimension %d or more, but line %ld says Dimension %d "
+                       "(with fewer coordinates every cell is flat)",
+                       kw, ss_cell_dim(t), dim_line, cx->dim);
   long long n;
   ss_status st = read_count(lx, kw, MAX_CELLS, &n);
   if (st) return st;
@@ -185,6 +190,7 @@ static ss_status skip_section(ss_lex *lx, const char *kw, int width) {
 static ss_status parse(ss_lex *lx, ss_cx **cxp) {
   ss_status st;
   int dim = 0, have_vertices = 0;
+  long dim_line = 0; /* line of the Dimension keyword */
   for (;;) {
     char *kw = ss_lex_next(lx, &st);
     if (st) return st;
@@ -199,6 +205,7 @@ static ss_status parse(ss_lex *lx, ss_cx **cxp) {
       continue;
     }
     if (!strcasecmp(kw, "Dimension")) {
+      if (!dim_line) dim_line = lx->tok_line;
       long long d;
       char *tok = ss_lex_next(lx, &st);
       if (st) return st;
@@ -224,7 +231,7 @@ static ss_status parse(ss_lex *lx, ss_cx **cxp) {
         known = 1;
         if (!dim) return ss_lex_fail(lx, "%s before Dimension", cell_sections[s].kw);
         if ((st = read_cells(lx, *cxp, cell_sections[s].type, cell_sections[s].kw,
-                             cell_sections[s].has_ref)))
+                             cell_sections[s].has_ref, dim_line)))
           return st;
       }
     for (size_t s = 0; s < N_SKIP_SECTIONS && !known; s++)

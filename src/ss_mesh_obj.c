@@ -4,9 +4,10 @@
  * coordinates; a 4th weight or trailing colour values are ignored), faces (f)
  * with 3 or 4 corners, polylines (l, split into segments) and points (p, vertex
  * cells).  Corner references may be i, i/t, i//n or i/t/n, and negative
- * (relative to the last vertex read).  Texture, normal, grouping and material
- * statements are ignored; anything else (free-form curves and surfaces) is an
- * error rather than silently dropped geometry. */
+ * (relative to the last vertex read).  A face of zero area (collinear
+ * corners; for a quadrilateral, at any corner) is an error naming its line.  Texture,
+ * normal, grouping and material statements are ignored; anything else (free-form curves
+ * and surfaces) is an error rather than silently dropped geometry. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,6 +70,9 @@ static ss_status parse(ss_lex *lx, ss_cx *cx) {
         ss_cell_type t = n == 3 ? SS_TRIANGLE : SS_QUAD;
         const char *defect = ss_cell_defect(t, v, cx->nv);
         if (defect) return ss_lex_fail(lx, "face is %s", defect);
+        if (ss_cx_cell_flat(cx, t, v))
+          return ss_lex_fail(lx, "face is flat (zero area%s, relative to its edges)",
+                             n == 3 ? ": its corners are collinear" : " at a corner");
         if ((st = ss_cx_add_cell(cx, t, v, 0, lx->err))) return st;
       } else if (kw[0] == 'l') {
         if (n < 2) return ss_lex_fail(lx, "line with %d vertices", n);

@@ -3,6 +3,7 @@
 #include "ss_scheme.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -115,14 +116,68 @@ static ss_status check_rows(const ss_scheme *s, const gsl_spmatrix *R, ss_error 
   return SS_OK;
 }
 
+static int cmp_idx(const void *a, const void *b) {
+  ss_idx x = *(const ss_idx *)a, y = *(const ss_idx *)b;
+  return (x > y) - (x < y);
+}
+
+/* The first of nf vertices (dim coordinates each, in y) with a non-finite
+ * coordinate, or nf if all are finite. */
+static size_t first_nonfinite(const double *y, size_t nf, size_t dim) {
+  for (size_t i = 0; i < nf * dim; i++)
+    if (!isfinite(y[i])) return i / dim;
+  return nf;
+}
+
+/* The first non-finite coordinate of vertex f. */
+static double bad_value(const double *y, size_t f, size_t dim) {
+  for (size_t r = 0; r < dim; r++)
+    if (!isfinite(y[f * dim + r])) return y[f * dim + r];
+  return 0.0;
+}
+
+/* "a, b and c": 1-based vertex numbers into buf. */
+static void list_vertices(const ss_idx *v, size_t n, char *buf, size_t cap) {
+  size_t len = 0;
+  buf[0] = '\0';
+  for (size_t j = 0; j < n && len < cap; j++) {
+    int w = snprintf(buf + len, cap - len, "%s%lu",
+                     j == 0       ? ""
+                     : j + 1 == n ? " and "
+                                  : ", ",
+                     (unsigned long)v[j] + 1);
+    if (w < 0) break;
+    len += (size_t)w;
+  }
+}
+
+static const char overflow_hint[] =
+    "coordinates this close to DBL_MAX (1.8e+308) overflow when the scheme sums "
+    "or averages them: scale the mesh down";
+
+static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
+                        gsl_spmatrix **R_out, ss_split **L_out, size_t *bad,
+                        ss_error *err);
+
 ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
                            gsl_spmatrix **R_out, ss_error *err) {
-  return ss_scheme_refine_split(s, coarse, fine_out, R_out, NULL, err);
+  return refine(s, coarse, fine_out, R_out, NULL, NULL, err);
 }
 
 ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse,
                                  ss_cx **fine_out, gsl_spmatrix **R_out, ss_split **L_out,
                                  ss_error *err) {
+  return refine(s, coarse, fine_out, R_out, L_out, NULL, err);
+}
+
+ss_status ss_scheme_refine_at(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
+                              size_t *bad, ss_error *err) {
+  return refine(s, coarse, fine_out, NULL, NULL, bad, err);
+}
+
+static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
+                        gsl_spmatrix **R_out, ss_split **L_out, size_t *bad,
+                        ss_error *err) {
   ss_cx *fine = NULL;
   ss_split *L = NULL;
   gsl_spmatrix *R = NULL;
@@ -131,6 +186,7 @@ ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse,
   *fine_out = NULL;
   if (R_out) *R_out = NULL;
   if (L_out) *L_out = NULL;
+  if (bad) *bad = SIZE_MAX;
   ss_status st = check_types(s, coarse, err);
   if (st) goto done;
   if (coarse->nv == 0) {
@@ -166,6 +222,27 @@ ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse,
       }
     }
   }
+  /* Check results, not only input: finite coordinates can still overflow. */
+  size_t f = first_nonfinite(y, nf, dim);
+  if (f < nf) {
+    /* in positions mode the rule read the split positions: an overflow there
+     * (a centroid's sum) is where it began, and spread to f from it */
+    size_t g = R_out ? nf : first_nonfinite(fine->x, nf, dim);
+    if (g < nf) {
+      f = g;
+      memcpy(y + f * dim, fine->x + f * dim, dim * sizeof *y);
+    }
+    char par[128];
+    list_vertices(L->parent + L->ptr[f], ss_split_npar(L, f), par, sizeof par);
+    st = ss_error_set(err, SS_EINPUT,
+                      "refined vertex %zu has a non-finite coordinate (%g); it derives "
+                      "from %s %s of the mesh refined; %s",
+                      f + 1, bad_value(y, f, dim),
+                      ss_split_npar(L, f) == 1 ? "vertex" : "vertices", par,
+                      overflow_hint);
+    if (bad) *bad = f;
+    goto done;
+  }
   free(fine->x);
   fine->x = y;
   y = NULL;
@@ -188,6 +265,84 @@ done:
   return st;
 }
 
+ss_status ss_scheme_origin(const ss_scheme *s, const ss_cx *input, int levels, size_t f,
+                           ss_idx *anc, size_t *n, ss_error *err) {
+  ss_split **Ls = NULL;
+  ss_cx *cur = NULL;
+  ss_idx set[64], next[64];
+  size_t ns = 0;
+  int done_levels = 0;
+  ss_status st = SS_OK;
+  *n = 0;
+  if (levels < 0)
+    return ss_error_set(err, SS_EINPUT, "number of levels %d is negative", levels);
+  Ls = calloc((size_t)levels + 1, sizeof *Ls);
+  if (!Ls) return ss_error_nomem(err, "split history");
+  const ss_cx *c = input;
+  for (; done_levels < levels; done_levels++) {
+    ss_cx *fine = NULL;
+    if ((st = ss_split_refine(s->split, c, &fine, &Ls[done_levels], err))) goto done;
+    ss_cx_free(cur);
+    c = cur = fine;
+  }
+  if (f >= c->nv) {
+    st = ss_error_set(err, SS_EINPUT, "vertex %zu is not in the refined complex (%zu)",
+                      f + 1, c->nv);
+    goto done;
+  }
+  set[ns++] = (ss_idx)f;
+  for (int l = levels - 1; l >= 0; l--) {
+    size_t nn = 0;
+    const ss_split *L = Ls[l];
+    for (size_t j = 0; j < ns; j++)
+      for (size_t q = L->ptr[set[j]]; q < L->ptr[set[j] + 1]; q++) {
+        size_t k = 0;
+        while (k < nn && next[k] != L->parent[q])
+          k++;
+        if (k == nn && nn < sizeof next / sizeof next[0]) next[nn++] = L->parent[q];
+      }
+    memcpy(set, next, nn * sizeof *set);
+    ns = nn;
+  }
+  qsort(set, ns, sizeof *set, cmp_idx);
+  memcpy(anc, set, (ns < SS_MAXCELLVERTS ? ns : SS_MAXCELLVERTS) * sizeof *anc);
+  *n = ns < SS_MAXCELLVERTS ? ns : SS_MAXCELLVERTS;
+done:
+  for (int l = 0; l < levels; l++)
+    ss_split_free(Ls[l]);
+  free(Ls);
+  ss_cx_free(cur);
+  return st;
+}
+
+ss_status ss_scheme_explain_nonfinite(const ss_scheme *s, const ss_cx *input, int level,
+                                      size_t f, ss_error *err) {
+  ss_idx anc[SS_MAXCELLVERTS];
+  size_t n = 0;
+  ss_error scratch = {0};
+  if (ss_scheme_origin(s, input, level, f, anc, &n, &scratch) || n == 0)
+    return ss_error_set(err, SS_EINPUT,
+                        "level %d: refined vertex %zu has a non-finite coordinate; %s",
+                        level, f + 1, overflow_hint);
+  /* the input's largest coordinate, the likely cause */
+  size_t big = 0;
+  double bigx = 0.0;
+  const size_t dim = (size_t)input->dim;
+  for (size_t i = 0; i < input->nv * dim; i++)
+    if (fabs(input->x[i]) > bigx) {
+      bigx = fabs(input->x[i]);
+      big = i / dim;
+    }
+  char list[128];
+  list_vertices(anc, n, list, sizeof list);
+  return ss_error_set(err, SS_EINPUT,
+                      "level %d: refined vertex %zu has a non-finite coordinate; it "
+                      "derives from input %s %s (numbered as in the file); the "
+                      "largest input coordinate is %.3g, at vertex %zu; %s",
+                      level, f + 1, n == 1 ? "vertex" : "vertices", list, bigx, big + 1,
+                      overflow_hint);
+}
+
 ss_status ss_scheme_refine_levels(const ss_scheme *s, const ss_cx *coarse, int levels,
                                   ss_cx **fine_out, ss_error *err) {
   ss_cx *cur = NULL;
@@ -197,9 +352,12 @@ ss_status ss_scheme_refine_levels(const ss_scheme *s, const ss_cx *coarse, int l
   ss_status st = ss_cx_copy(coarse, &cur, err);
   for (int l = 0; l < levels && !st; l++) {
     ss_cx *next = NULL;
-    st = ss_scheme_refine(s, cur, &next, NULL, err);
+    size_t bad;
+    st = ss_scheme_refine_at(s, cur, &next, &bad, err);
     ss_cx_free(cur);
     cur = next;
+    if (st && bad != SIZE_MAX)
+      st = ss_scheme_explain_nonfinite(s, coarse, l + 1, bad, err);
   }
   if (st) {
     ss_cx_free(cur);

@@ -76,8 +76,10 @@ int ss_scheme_reads_diagonals(const ss_scheme *s);
  * R is not NULL, *R receives the refinement operator as a new CSR matrix of
  * size fine->nv x coarse->nv (caller frees), and the fine positions are R times
  * the coarse ones; every row of R is checked to sum to 1 (SS_EINTERNAL if not).
- * SS_EINPUT for cell types the scheme does not take or malformed cells;
- * SS_ENOMEM.  Cost: linear in the complex; the operator adds a log factor. */
+ * SS_EINPUT for cell types the scheme does not take or malformed cells, and
+ * for a fine position with a non-finite coordinate (the message names it and
+ * the coarse vertices it derives from); SS_ENOMEM.  Cost: linear in the
+ * complex; the operator adds a log factor. */
 ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
                            gsl_spmatrix **R, ss_error *err);
 
@@ -88,8 +90,32 @@ ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine
 ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
                                  gsl_spmatrix **R, ss_split **L, ss_error *err);
 
+/* As ss_scheme_refine without the operator, and when a fine position is not
+ * finite (SS_EINPUT; coordinates near DBL_MAX overflow), *bad (may be NULL)
+ * receives that fine vertex, 0-based; SIZE_MAX otherwise.  Every refinement
+ * checks its results so: no caller ever receives a non-finite position. */
+ss_status ss_scheme_refine_at(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
+                              size_t *bad, ss_error *err);
+
+/* The vertices of `input` that vertex f (0-based) of `input` refined `levels`
+ * times by the scheme's split derives from: its parents followed back level by
+ * level (the corners of the smallest input cell or face holding it; a vertex of
+ * the input is its own).  anc receives them ascending, 0-based, *n <=
+ * SS_MAXCELLVERTS of them.  Repeats the splits (cost of `levels` splits; meant
+ * for error messages).  SS_EINPUT if f is out of range; SS_ENOMEM. */
+ss_status ss_scheme_origin(const ss_scheme *s, const ss_cx *input, int levels, size_t f,
+                           ss_idx *anc, size_t *n, ss_error *err);
+
+/* Record in err (SS_EINPUT, returned) that refining `input` found a non-finite
+ * coordinate on fine vertex f (0-based) at level `level` (1-based), naming the
+ * input vertices it derives from (ss_scheme_origin, 1-based as in a file) and
+ * the likely cause: coordinates near DBL_MAX overflow when averaged. */
+ss_status ss_scheme_explain_nonfinite(const ss_scheme *s, const ss_cx *input, int level,
+                                      size_t f, ss_error *err);
+
 /* Refine `levels` times (positions only).  *fine receives the result; levels = 0
- * gives a copy.  Errors as ss_scheme_refine. */
+ * gives a copy.  Errors as ss_scheme_refine; a non-finite position is
+ * explained by ss_scheme_explain_nonfinite. */
 ss_status ss_scheme_refine_levels(const ss_scheme *s, const ss_cx *coarse, int levels,
                                   ss_cx **fine, ss_error *err);
 

@@ -1,5 +1,6 @@
 /* ss_cli_subdivide.c — `subspectra subdivide`: refine a whole mesh. */
 #include <getopt.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -44,7 +45,10 @@ static const char *const usage_text =
     "  loop           triangle surfaces; boundaries and segments are creases\n"
     "\n"
     "The input is checked: malformed files, cells a scheme does not take, and\n"
-    "flat, folded or inverted cells are errors (exit status 2).\n";
+    "flat, folded or inverted cells are errors (exit status 2), and so is a\n"
+    "result with a non-finite coordinate (input coordinates near 1.8e308\n"
+    "overflow when averaged): the message names the input vertices it derives\n"
+    "from, and OUT is not written.\n";
 
 /* Cells after one more level, per type (exact: splits have fixed child counts). */
 static void next_counts(const double *in, double *out) {
@@ -148,7 +152,7 @@ int ss_cli_subdivide(int argc, char **argv) {
 
   ss_error err = {0};
   ss_scheme *scheme = NULL;
-  ss_cx *cx = NULL;
+  ss_cx *cx = NULL, *input = NULL;
   json_object *report = NULL, *lv = NULL;
   int rc = SS_EXIT_OK;
   if (ss_scheme_new(scheme_name, &scheme, &err) ||
@@ -219,14 +223,22 @@ int ss_cli_subdivide(int argc, char **argv) {
              "read in the README)\n",
              diag, dbad, dpairs);
   }
+  input = cx; /* kept to name input vertices if a level overflows */
   for (long l = 1; l <= levels; l++) {
     double t0 = ss_cli_now();
     ss_cx *fine = NULL;
-    if (ss_scheme_refine(scheme, cx, &fine, NULL, &err)) {
-      rc = ss_cli_fail(&err);
+    size_t bad;
+    if (ss_scheme_refine_at(scheme, cx, &fine, &bad, &err)) {
+      if (bad != SIZE_MAX) {
+        ss_scheme_explain_nonfinite(scheme, input, (int)l, bad, &err);
+        fprintf(stderr, "subspectra: %s: %s; nothing written\n", in_path, err.msg);
+        rc = SS_EXIT_USAGE;
+      } else {
+        rc = ss_cli_fail(&err);
+      }
       goto done;
     }
-    ss_cx_free(cx);
+    if (cx != input) ss_cx_free(cx);
     cx = fine;
     double dt = ss_cli_now() - t0;
     if (json) {
@@ -254,6 +266,7 @@ int ss_cli_subdivide(int argc, char **argv) {
   }
 done:
   json_object_put(report);
+  if (cx != input) ss_cx_free(input);
   ss_cx_free(cx);
   ss_scheme_free(scheme);
   return rc;

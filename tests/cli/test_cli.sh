@@ -75,6 +75,30 @@ End
 MESH
 expect 2 "tetrahedron 3 is inverted" "$exe" subdivide --scheme tetoct "$tmp/inv.mesh" -o "$tmp/o.mesh"
 
+# results are checked, not only input: a unit hex cube with one face pushed
+# to 1.7e308 is finite, but its refinement overflows (exit 2, no output file,
+# the input vertices named); cubes of side 1e-300 and 1e300 are accepted and
+# refine to finite meshes, which read back (the reader refuses inf)
+cube() { # cube SIDE OFFSET-OF-THE-TOP-FACE: a Medit hex cube
+  local a=$1 z=$2
+  printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n8\n'
+  printf '0 0 0 0\n%s 0 0 0\n%s %s 0 0\n0 %s 0 0\n' "$a" "$a" "$a" "$a"
+  printf '0 0 %s 0\n%s 0 %s 0\n%s %s %s 0\n0 %s %s 0\n' "$z" "$a" "$z" "$a" "$a" "$z" "$a" "$z"
+  printf 'Hexahedra\n1\n1 2 3 4 5 6 7 8 0\nEnd\n'
+}
+cube 1 1.7e308 >"$tmp/huge.mesh"
+rm -f "$tmp/huge-out.mesh"
+expect 2 "huge.mesh: level 1: refined vertex [0-9]+ has a non-finite coordinate; it derives from input vertices [0-9, ]+ and [0-9]+ \\(numbered as in the file\\); the largest input coordinate is 1.7e\\+308, at vertex 5.*DBL_MAX.*nothing written" "$exe" subdivide --scheme mlca "$tmp/huge.mesh" -o "$tmp/huge-out.mesh"
+checks=$((checks + 1))
+[ -e "$tmp/huge-out.mesh" ] && fail "subdivide wrote $tmp/huge-out.mesh despite the overflow"
+for side in 1e-300 1e300; do
+  cube "$side" "$side" >"$tmp/cube$side.mesh"
+  expect 0 "mlca level 2: 125 vertices" "$exe" subdivide --scheme mlca --levels 2 "$tmp/cube$side.mesh" -o "$tmp/cube$side-2.mesh"
+  expect 0 "read .*: 125 vertices, 64 hexahedra" "$exe" subdivide --scheme mlca --levels 0 "$tmp/cube$side-2.mesh" -o "$tmp/cube$side-3.mesh"
+done
+cube 1e-300 0 >"$tmp/flat.mesh"
+expect 2 "hexahedron 1 is flat" "$exe" subdivide --scheme mlca "$tmp/flat.mesh" -o "$tmp/o.mesh"
+
 # every malformed sample: status 2 and a message naming the file
 for f in "$src"/tests/mesh/bad/*; do
   [ -f "$f" ] || continue

@@ -1,12 +1,17 @@
 /* test_mesh_io.c — mesh formats: exact round trips of every cell type and
  * coordinate dimension, the split-octahedron and VTK pyramid conventions
  * (orientation and volume preserved), OBJ corner-reference forms, skipped
- * Medit sections, and every malformed sample in bad/ rejected with SS_EINPUT
- * and a message naming file, line and problem. */
+ * Medit sections, every malformed sample in bad/ rejected with SS_EINPUT
+ * and a message naming file, line and problem, the scale-free flat-cell check,
+ * and non-finite refinement results refused. */
+#include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "ss_mesh.h"
+#include "ss_scheme.h"
 #include "ss_test.h"
 #include "ss_testmesh.h"
 
@@ -142,6 +147,170 @@ static ss_cx *read_string(const char *text, int obj, ss_error *err) {
     ss_mesh_read_medit(f, "string", &cx, err);
   fclose(f);
   return cx;
+}
+
+/* One cell of type t on n vertices x (dim coordinates each) scaled by s and
+ * moved by off in every coordinate. */
+static ss_cx *one_cell(ss_cell_type t, int dim, const double *x, int n, double s,
+                       double off) {
+  ss_cx *c = NULL;
+  ss_error err = {0};
+  if (ss_cx_new(dim, &c, &err)) return NULL;
+  ss_idx v[SS_MAXCELLVERTS];
+  for (int i = 0; i < n; i++) {
+    double y[SS_MAXDIM];
+    for (int r = 0; r < dim; r++)
+      y[r] = x[i * dim + r] * s + off;
+    ss_cx_add_vertex(c, y, 0, &err);
+    v[i] = (ss_idx)i;
+  }
+  ss_cx_add_cell(c, t, v, 0, &err);
+  return c;
+}
+
+/* The degenerate-cell check is scale-free: cubes of side 1e-300 and 1e300 are
+ * as valid as the unit cube (unscaled, their determinants under- or
+ * overflow), a flat cell is flat at every scale, a cell flat up to rounding
+ * has no sign, and a face of zero area is flat in any number of coordinates. */
+static void test_flat_scale_free(void) {
+  static const double hex[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0,
+                               0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  static const double tet[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  static const double oct[] = {1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};
+  static const double quad[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  static const double tri[] = {0, 0, 1, 0, 0, 1};
+  static const struct {
+    ss_cell_type t;
+    int dim, n;
+    const double *x;
+  } cells[] = {{SS_HEX, 3, 8, hex},
+               {SS_TET, 3, 4, tet},
+               {SS_OCT, 3, 6, oct},
+               {SS_QUAD, 2, 4, quad},
+               {SS_TRIANGLE, 2, 3, tri}};
+  const double scales[] = {1e-300, 1e-30, 1.0, 1e30, 1e300};
+  for (size_t k = 0; k < sizeof cells / sizeof cells[0]; k++)
+    for (size_t j = 0; j < sizeof scales / sizeof scales[0]; j++)
+      for (int moved = 0; moved < 2; moved++) {
+        double s = scales[j], off = moved ? 3.0 * s : 0.0;
+        const char *name = ss_cell_name(cells[k].t);
+        ss_cx *c = one_cell(cells[k].t, cells[k].dim, cells[k].x, cells[k].n, s, off);
+        ss_error err = {0};
+        CHECK(c && ss_cx_check_orientation(c, &err) == SS_OK,
+              "%s of size %g accepted: %s", name, s, err.msg);
+        CHECK(c && ss_cx_cell_orientation(c, cells[k].t, 0, NULL) == 1,
+              "%s of size %g positive", name, s);
+        CHECK(c && !ss_cx_cell_flat(c, cells[k].t, c->cells[cells[k].t]),
+              "%s of size %g not flat", name, s);
+        /* squash the last coordinate: flat at every scale */
+        for (size_t i = 0; c && i < c->nv; i++)
+          c->x[i * (size_t)c->dim + (size_t)c->dim - 1] = off;
+        CHECK(c && ss_cx_check_orientation(c, &err) == SS_EINPUT &&
+                  strstr(err.msg, "flat"),
+              "flat %s of size %g refused: %s", name, s, err.msg);
+        ss_cx_free(c);
+      }
+  /* a tet whose 4th vertex lies on the plane of the others up to rounding */
+  double near[12] = {0.1, 0.2, 0.3, 0.7, 0.1, 0.9, 0.3, 0.8, 0.2, 0, 0, 0};
+  for (int r = 0; r < 3; r++)
+    near[9 + r] = 0.3 * near[r] + 0.3 * near[3 + r] + 0.4 * near[6 + r];
+  ss_cx *c = one_cell(SS_TET, 3, near, 4, 1.0, 0.0);
+  ss_error err = {0};
+  CHECK(ss_cx_cell_orientation(c, SS_TET, 0, NULL) == 0,
+        "rounding-level tet has no sign");
+  CHECK(ss_cx_check_orientation(c, &err) == SS_EINPUT && strstr(err.msg, "flat"),
+        "rounding-level tet refused: %s", err.msg);
+  ss_cx_free(c);
+  /* a thin but honest cell is not flat: a 1 x 1e-9 x 1e-9 box */
+  double thin[24];
+  for (int i = 0; i < 24; i++)
+    thin[i] = hex[i] * (i % 3 ? 1e-9 : 1.0);
+  c = one_cell(SS_HEX, 3, thin, 8, 1.0, 0.0);
+  CHECK(ss_cx_check_orientation(c, &err) == SS_OK, "thin box accepted: %s", err.msg);
+  ss_cx_free(c);
+  /* zero-area triangle in 3D (a surface: no orientation, but flatness) */
+  static const double line3[] = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+  c = one_cell(SS_TRIANGLE, 3, line3, 3, 1e-300, 0.0);
+  CHECK(ss_cx_check_orientation(c, &err) == SS_EINPUT &&
+            strstr(err.msg, "triangle 1 is flat"),
+        "zero-area triangle in 3D refused: %s", err.msg);
+  ss_cx_free(c);
+  static const double tri3[] = {0, 0, 0, 1, 0, 0, 0, 1, 1};
+  c = one_cell(SS_TRIANGLE, 3, tri3, 3, 1e300, 0.0);
+  CHECK(ss_cx_check_orientation(c, &err) == SS_OK, "triangle in 3D accepted: %s",
+        err.msg);
+  ss_cx_free(c);
+  /* tetrahedra with 2 coordinates: refused, never skipped */
+  static const double tet2[] = {0, 0, 1, 0, 0, 1, 1, 1};
+  c = one_cell(SS_TET, 2, tet2, 4, 1.0, 0.0);
+  CHECK(ss_cx_check_orientation(c, &err) == SS_EINPUT &&
+            strstr(err.msg, "2 coordinates per vertex but 1 tetrahedron"),
+        "tets with 2 coordinates refused: %s", err.msg);
+  ss_cx_free(c);
+  /* Medit: Triangles under Dimension 1 name the lines */
+  ss_cx *r =
+      read_string("MeshVersionFormatted 2\nDimension 1\nVertices 3\n0 0\n1 0\n2 0\n"
+                  "Triangles\n1\n1 2 3 0\nEnd\n",
+                  0, &err);
+  CHECK(!r && strstr(err.msg,
+                     "string:7: Triangles need Dimension 2 or more, but line 2 says "
+                     "Dimension 1"),
+        "Medit dimension mismatch: %s", err.msg);
+  ss_cx_free(r);
+}
+
+/* Results are checked, not only input: a finite hex whose top face sits at
+ * 1.7e308 refines to overflowing positions, which every refinement refuses
+ * (naming the fine vertex and the input vertices it derives from), and no
+ * writer puts a non-finite coordinate in a file. */
+static void test_nonfinite_results(void) {
+  static const double hex[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0,
+                               0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  ss_cx *c = one_cell(SS_HEX, 3, hex, 8, 1.0, 0.0), *fine = NULL;
+  ss_scheme *s = NULL;
+  ss_error err = {0};
+  REQUIRE_OK_VOID(ss_scheme_new("mlca", &s, &err), &err);
+  /* level 2 of a finite cube: input vertices are their own origin, others
+   * derive from corners of the cube */
+  ss_idx anc[SS_MAXCELLVERTS];
+  size_t n = 0;
+  CHECK(ss_scheme_origin(s, c, 2, 5, anc, &n, &err) == SS_OK && n == 1 && anc[0] == 5,
+        "an input vertex is its own origin (n = %zu)", n);
+  CHECK(ss_scheme_origin(s, c, 2, 30, anc, &n, &err) == SS_OK && n >= 2 && n <= 8,
+        "a level-2 vertex derives from 2..8 corners (n = %zu)", n);
+  for (size_t i = 4; i < 8; i++)
+    c->x[3 * i + 2] = 1.7e308;
+  ss_status st = ss_scheme_refine(s, c, &fine, NULL, &err);
+  CHECK(st == SS_EINPUT && !fine && strstr(err.msg, "non-finite") &&
+            strstr(err.msg, "DBL_MAX"),
+        "overflow refused: %s", err.msg);
+  size_t bad = 0;
+  st = ss_scheme_refine_at(s, c, &fine, &bad, &err);
+  CHECK(st == SS_EINPUT && bad != SIZE_MAX && bad >= 8, "overflowing vertex %zu", bad);
+  if (st == SS_EINPUT && bad != SIZE_MAX) {
+    CHECK(ss_scheme_origin(s, c, 1, bad, anc, &n, &err) == SS_OK && n >= 2,
+          "origin of the overflow: %s", err.msg);
+    CHECK(n >= 2 && anc[n - 1] >= 4, "the overflow derives from the top face");
+  }
+  st = ss_scheme_refine_levels(s, c, 2, &fine, &err);
+  CHECK(st == SS_EINPUT && !fine && strstr(err.msg, "level 1: refined vertex") &&
+            strstr(err.msg, "derives from input vertices") &&
+            strstr(err.msg, "largest input coordinate is 1.7e+308, at vertex 5"),
+        "levels name the level and the input vertices: %s", err.msg);
+  /* the writers: nothing non-finite reaches a file */
+  c->x[3 * 6] = INFINITY;
+  char dir[] = "/tmp/ss_test_nonfinite_XXXXXX", path[64];
+  if (mkdtemp(dir)) {
+    snprintf(path, sizeof path, "%s/o.mesh", dir);
+    CHECK(ss_mesh_write(path, SS_MESH_AUTO, c, NULL, &err) == SS_EINPUT &&
+              strstr(err.msg, "vertex 7 has a non-finite coordinate"),
+          "non-finite mesh not written: %s", err.msg);
+    CHECK(access(path, F_OK) != 0, "no file created");
+    remove(path);
+    rmdir(dir);
+  }
+  ss_cx_free(c);
+  ss_scheme_free(s);
 }
 
 static void test_medit_sections(void) {
@@ -304,6 +473,12 @@ static const struct {
     {"vertex-two-coordinates.obj", 2, "vertex with 2 coordinates"},
     {"curve-statement.obj", 4, "unsupported OBJ statement 'cstype'"},
     {"face-index-zero.obj", 4, "refers to vertex 0"},
+    {"face-zero-area.obj", 4, "face is flat (zero area: its corners are collinear"},
+    {"quad-zero-area-corner.obj", 6, "face is flat (zero area at a corner"},
+    {"dimension-mismatch.mesh", 9,
+     "Tetrahedra need Dimension 3 or more, but line 2 says "
+     "Dimension 2"},
+    {"flat-surface-triangle.mesh", 0, "triangle 2 is flat"},
 };
 
 static void test_bad_files(void) {
@@ -369,5 +544,7 @@ int main(void) {
   test_obj();
   test_vtk();
   test_bad_files();
+  test_flat_scale_free();
+  test_nonfinite_results();
   return ss_test_done("mesh_io");
 }
