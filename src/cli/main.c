@@ -1,6 +1,9 @@
 /* main.c — `subspectra`: one program, one subcommand per job. */
+#define _GNU_SOURCE /* fopencookie: a standard output that remembers its errors */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <flint/flint.h>
 #include <gsl/gsl_errno.h>
@@ -44,7 +47,61 @@ static void overview(FILE *f) {
              "checked fails,\n2 bad usage or bad input.\n");
 }
 
-int main(int argc, char **argv) {
+/* ---- standard output ----
+ * Standard output is written through a buffer: a full disk, a file size limit
+ * or a reader gone away may only show when it is flushed, and glibc forgets
+ * why once the failed buffer is dropped.  So main puts its own stream in
+ * stdout's place (fopencookie: the same buffering, but its writes remember the
+ * first failure's errno), and every command ends in finish(): flush, check the
+ * error flag, close.  A failure turns the command's status rc into 2 with
+ * "subspectra: error writing standard output: REASON" (the output is lost,
+ * whatever was computed).  EPIPE is the exception: the reader closed the pipe
+ * early (`| head`), which is its choice, not an error of ours -- no message and
+ * rc kept.  (With SIGPIPE at its default, as we leave it, the kernel ends the
+ * process silently at that write anyway; EPIPE is seen only when the caller
+ * ignores SIGPIPE.)  Streaming commands stop once ferror(stdout) is set. */
+
+static int stdout_errno; /* why the first write to fd 1 failed; 0 while none has */
+
+static ssize_t stdout_write(void *cookie, const char *buf, size_t n) {
+  (void)cookie;
+  size_t done = 0;
+  while (done < n) {
+    const ssize_t w = write(STDOUT_FILENO, buf + done, n - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      if (!stdout_errno) stdout_errno = w < 0 ? errno : EIO;
+      return done ? (ssize_t)done : -1; /* a short count sets the error flag */
+    }
+    done += (size_t)w;
+  }
+  return (ssize_t)n;
+}
+
+static void stdout_open(void) {
+  const cookie_io_functions_t io = {NULL, stdout_write, NULL, NULL};
+  FILE *f = fopencookie(NULL, "w", io);
+  if (!f) return; /* the plain stream: only a failure's reason may get lost */
+  if (isatty(STDOUT_FILENO)) setvbuf(f, NULL, _IOLBF, BUFSIZ);
+  stdout = f; /* glibc's stdout is a variable for this purpose */
+}
+
+static int finish(int rc) {
+  errno = 0;
+  int bad = fflush(stdout) != 0;
+  int e = errno;
+  if (ferror(stdout)) bad = 1;
+  if (fclose(stdout) != 0 && !bad) bad = 1, e = errno;
+  /* errors that only show when the descriptor is closed (NFS) */
+  if (close(STDOUT_FILENO) != 0 && errno != EBADF && !bad) bad = 1, e = errno;
+  if (stdout_errno) e = stdout_errno;
+  if (!bad || e == EPIPE) return rc;
+  fprintf(stderr, "subspectra: error writing standard output: %s\n",
+          strerror(e ? e : EIO));
+  return SS_EXIT_USAGE;
+}
+
+static int run(int argc, char **argv) {
   /* library code reports through ss_status; GSL must not abort the process */
   gsl_set_error_handler_off();
   if (argc < 2) {
@@ -68,4 +125,9 @@ int main(int argc, char **argv) {
   fprintf(stderr, "subspectra: unknown command '%s' (see 'subspectra --help')\n",
           argv[1]);
   return SS_EXIT_USAGE;
+}
+
+int main(int argc, char **argv) {
+  stdout_open();
+  return finish(run(argc, argv));
 }
