@@ -1,6 +1,7 @@
 /* main.c — `subspectra`: one program, one subcommand per job. */
 #define _GNU_SOURCE /* fopencookie: a standard output that remembers its errors */
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -61,10 +62,15 @@ static void overview(FILE *f) {
  * process silently at that write anyway; EPIPE is seen only when the caller
  * ignores SIGPIPE.)  Streaming commands stop once ferror(stdout) is set. */
 
-static int stdout_errno; /* why the first write to fd 1 failed; 0 while none has */
+static int stdout_errno;  /* why the first write to fd 1 failed; 0 while none has */
+static int stdout_closed; /* fd 1 was closed at the start (held by /dev/null) */
 
 static ssize_t stdout_write(void *cookie, const char *buf, size_t n) {
   (void)cookie;
+  if (stdout_closed) {
+    stdout_errno = EBADF;
+    return -1;
+  }
   size_t done = 0;
   while (done < n) {
     const ssize_t w = write(STDOUT_FILENO, buf + done, n - done);
@@ -79,6 +85,13 @@ static ssize_t stdout_write(void *cookie, const char *buf, size_t n) {
 }
 
 static void stdout_open(void) {
+  /* a closed fd 1 (`>&-`) would be taken by the next file opened, and our
+   * output written into it: hold it with /dev/null, and fail the writes */
+  if (fcntl(STDOUT_FILENO, F_GETFD) < 0 && errno == EBADF) {
+    stdout_closed = 1;
+    const int fd = open("/dev/null", O_WRONLY);
+    if (fd >= 0 && fd != STDOUT_FILENO) close(fd);
+  }
   const cookie_io_functions_t io = {NULL, stdout_write, NULL, NULL};
   FILE *f = fopencookie(NULL, "w", io);
   if (!f) return; /* the plain stream: only a failure's reason may get lost */

@@ -58,6 +58,12 @@ done
 checks=$((checks + 1))
 n=$("$exe" report --db "$tmp/s.db" 2>&1 >/dev/full | wc -l)
 [ "$n" -eq 1 ] || fail "report > /dev/full: $n lines of messages, want 1"
+# standard output closed (>&-): lost output is an error; a command that writes
+# none to it (draw) is not disturbed, and its file does not take fd 1's place
+closed=(bash -c '"$@" >&-' _)
+expect 2 "error writing standard output: Bad file descriptor" "${closed[@]}" "$exe" --help
+expect 0 "wrote .*c.mtx" "${closed[@]}" bash -c '"$1" matrix --scheme mlca --edge 4 -o "$2" && echo "wrote $2" >&2' _ "$exe" "$tmp/c.mtx"
+expect 0 "^%%MatrixMarket" head -1 "$tmp/c.mtx"
 # a failing check still exits 2 when its report is lost; an error is not hidden
 expect 2 "$full" "${to_full[@]}" "$exe" check "$st/mlca.ini" --edges 8
 expect 2 "unknown scheme" "${to_full[@]}" "$exe" analyze --scheme nope --vertex octahedron
