@@ -1,4 +1,5 @@
 /* ss_outfile.c — output files written whole or not at all (ss_outfile.h). */
+#define _GNU_SOURCE /* fopencookie: streams that remember why a write failed */
 #include "ss_outfile.h"
 
 #include <errno.h>
@@ -13,6 +14,8 @@
 
 struct ss_outfile {
   FILE *f;      /* the stream written: the temporary file, or the target itself */
+  int fd;       /* f's descriptor (f is an ss_outfile_fdopen stream) */
+  int errnum;   /* why a write to f failed (errno), 0 while none has */
   char *path;   /* the target as given, for messages */
   char *target; /* the file the rename replaces: path, or where its symlinks lead */
   char *tmp;    /* the temporary file beside target; NULL when written in place */
@@ -26,9 +29,9 @@ static void outfile_free(ss_outfile *o) {
 }
 
 /* Where the symbolic links at path lead (at most 40 of them, as the kernel
- * allows), as a malloc'd path; a copy of path when it is not a link or the
- * chain cannot be read (the rename then replaces the link, the old fopen
- * behaviour aside).  NULL without memory. */
+ * allows), as a malloc'd path: path itself when it is not a link; the missing
+ * file a dangling link names (created there, as fopen would).  NULL without
+ * memory. */
 static char *follow_links(const char *path) {
   char *p = strdup(path);
   for (int depth = 0; p && depth < 40; depth++) {
@@ -72,6 +75,51 @@ static void random_suffix(char *s) {
   s[6] = '\0';
 }
 
+/* ---- streams that remember why they failed ---- */
+
+typedef struct {
+  int fd;      /* the descriptor written */
+  int *errnum; /* the caller's slot for the first failure's errno */
+} fd_cookie;
+
+static ssize_t fd_write(void *cookie, const char *buf, size_t n) {
+  fd_cookie *c = cookie;
+  /* a short count (0 on error: never negative, glibc's fwrite would take it
+   * as a huge count) sets the stream's error flag */
+  if (*c->errnum) return 0; /* failed once: the output has a hole, stop */
+  size_t done = 0;
+  while (done < n) {
+    const ssize_t w = write(c->fd, buf + done, n - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      *c->errnum = w < 0 ? errno : EIO;
+      return (ssize_t)done;
+    }
+    done += (size_t)w;
+  }
+  return (ssize_t)n;
+}
+
+static int fd_close(void *cookie) {
+  fd_cookie *c = cookie;
+  const int rc = close(c->fd);
+  if (rc != 0 && !*c->errnum) *c->errnum = errno;
+  free(c);
+  return rc;
+}
+
+FILE *ss_outfile_fdopen(int fd, int *errnum) {
+  fd_cookie *c = malloc(sizeof *c);
+  if (!c) return NULL;
+  *c = (fd_cookie){fd, errnum};
+  const cookie_io_functions_t io = {NULL, fd_write, NULL, fd_close};
+  FILE *f = fopencookie(c, "w", io);
+  if (!f) free(c);
+  return f;
+}
+
+/* ---- output files ---- */
+
 ss_status ss_outfile_open(const char *path, ss_outfile **out, ss_error *err) {
   *out = NULL;
   ss_outfile *o = calloc(1, sizeof *o);
@@ -88,9 +136,14 @@ ss_status ss_outfile_open(const char *path, ss_outfile **out, ss_error *err) {
   }
   if (exists && !S_ISREG(sb.st_mode)) {
     /* a device or a FIFO: nothing to replace, written in place */
-    if (!(o->f = fopen(path, "w")))
+    o->fd = open(path, O_WRONLY | O_TRUNC);
+    if (o->fd < 0)
       st = ss_error_set(err, SS_EIO, "%s: cannot open for writing: %s", path,
                         strerror(errno));
+    else if (!(o->f = ss_outfile_fdopen(o->fd, &o->errnum))) {
+      st = ss_error_nomem(err, "output file");
+      close(o->fd);
+    }
     goto done;
   }
   o->target = follow_links(path);
@@ -118,8 +171,9 @@ ss_status ss_outfile_open(const char *path, ss_outfile **out, ss_error *err) {
   }
   /* a replaced file keeps its mode (best effort, as fopen keeps it too) */
   if (exists) (void)fchmod(fd, sb.st_mode & 07777);
-  if (!(o->f = fdopen(fd, "w"))) {
-    st = ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  o->fd = fd;
+  if (!(o->f = ss_outfile_fdopen(fd, &o->errnum))) {
+    st = ss_error_nomem(err, "output file");
     close(fd);
     unlink(o->tmp);
   }
@@ -142,19 +196,14 @@ const char *ss_outfile_path(const ss_outfile *o) {
 
 ss_status ss_outfile_commit(ss_outfile *o, ss_error *err) {
   if (!o) return SS_OK;
-  /* glibc keeps the bytes a failed write could not store, so the flush
-   * repeats the failure and its errno; EIO stands in for a lost one */
-  errno = 0;
-  int bad = fflush(o->f) != 0;
-  int e = errno;
-  if (ferror(o->f)) bad = 1;
-  if (!bad && o->tmp && fsync(fileno(o->f)) != 0) bad = 1, e = errno;
-  errno = 0;
-  if (fclose(o->f) != 0 && !bad) bad = 1, e = errno;
+  int bad = fflush(o->f) != 0 || ferror(o->f);
+  if (!bad && o->tmp && fsync(o->fd) != 0 && !o->errnum) o->errnum = errno;
+  if (fclose(o->f) != 0) bad = 1; /* closes fd; a failure's errno in o->errnum */
+  if (o->errnum) bad = 1;
   ss_status st = SS_OK;
   if (bad) {
-    st =
-        ss_error_set(err, SS_EIO, "%s: cannot write: %s", o->path, strerror(e ? e : EIO));
+    st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", o->path,
+                      strerror(o->errnum ? o->errnum : EIO));
     if (o->tmp) unlink(o->tmp);
   } else if (o->tmp && rename(o->tmp, o->target) != 0) {
     st = ss_error_set(err, SS_EIO, "%s: cannot replace it with the written file: %s",

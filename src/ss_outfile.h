@@ -52,4 +52,14 @@ ss_status ss_outfile_commit(ss_outfile *o, ss_error *err);
  * free o.  NULL is a no-op. */
 void ss_outfile_abort(ss_outfile *o);
 
+/* A write-only stream on the open descriptor fd that remembers why it failed:
+ * the errno of the first failed write(2) (or of the close) goes to *errnum,
+ * which must outlive the stream, and every later write fails too.  glibc's
+ * own streams drop a failed buffer and forget the reason, so a later fflush
+ * or fclose can report success; the output files above and the tool's
+ * standard output are written through this.  A nonzero *errnum at the start
+ * makes every write fail with it.  fclose closes fd.  fileno() is -1 on it.
+ * NULL (errno set) without memory. */
+FILE *ss_outfile_fdopen(int fd, int *errnum);
+
 #endif

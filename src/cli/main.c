@@ -1,5 +1,4 @@
 /* main.c — `subspectra`: one program, one subcommand per job. */
-#define _GNU_SOURCE /* fopencookie: a standard output that remembers its errors */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -10,6 +9,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "ss_cli.h"
+#include "ss_outfile.h"
 
 #ifndef SS_VERSION
 #define SS_VERSION "0.1.0"
@@ -52,7 +52,7 @@ static void overview(FILE *f) {
  * Standard output is written through a buffer: a full disk, a file size limit
  * or a reader gone away may only show when it is flushed, and glibc forgets
  * why once the failed buffer is dropped.  So main puts its own stream in
- * stdout's place (fopencookie: the same buffering, but its writes remember the
+ * stdout's place (ss_outfile_fdopen: the same buffering, but it remembers the
  * first failure's errno), and every command ends in finish(): flush, check the
  * error flag, close.  A failure turns the command's status rc into 2 with
  * "subspectra: error writing standard output: REASON" (the output is lost,
@@ -62,38 +62,17 @@ static void overview(FILE *f) {
  * process silently at that write anyway; EPIPE is seen only when the caller
  * ignores SIGPIPE.)  Streaming commands stop once ferror(stdout) is set. */
 
-static int stdout_errno;  /* why the first write to fd 1 failed; 0 while none has */
-static int stdout_closed; /* fd 1 was closed at the start (held by /dev/null) */
-
-static ssize_t stdout_write(void *cookie, const char *buf, size_t n) {
-  (void)cookie;
-  if (stdout_closed) {
-    stdout_errno = EBADF;
-    return -1;
-  }
-  size_t done = 0;
-  while (done < n) {
-    const ssize_t w = write(STDOUT_FILENO, buf + done, n - done);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) {
-      if (!stdout_errno) stdout_errno = w < 0 ? errno : EIO;
-      return done ? (ssize_t)done : -1; /* a short count sets the error flag */
-    }
-    done += (size_t)w;
-  }
-  return (ssize_t)n;
-}
+static int stdout_errno; /* why the first write to fd 1 failed; 0 while none has */
 
 static void stdout_open(void) {
   /* a closed fd 1 (`>&-`) would be taken by the next file opened, and our
-   * output written into it: hold it with /dev/null, and fail the writes */
+   * output written into it: hold it with /dev/null, and fail every write */
   if (fcntl(STDOUT_FILENO, F_GETFD) < 0 && errno == EBADF) {
-    stdout_closed = 1;
+    stdout_errno = EBADF;
     const int fd = open("/dev/null", O_WRONLY);
     if (fd >= 0 && fd != STDOUT_FILENO) close(fd);
   }
-  const cookie_io_functions_t io = {NULL, stdout_write, NULL, NULL};
-  FILE *f = fopencookie(NULL, "w", io);
+  FILE *f = ss_outfile_fdopen(STDOUT_FILENO, &stdout_errno);
   if (!f) return; /* the plain stream: only a failure's reason may get lost */
   if (isatty(STDOUT_FILENO)) setvbuf(f, NULL, _IOLBF, BUFSIZ);
   stdout = f; /* glibc's stdout is a variable for this purpose */
@@ -104,10 +83,9 @@ static int finish(int rc) {
   int bad = fflush(stdout) != 0;
   int e = errno;
   if (ferror(stdout)) bad = 1;
+  /* closes fd 1 too: errors that show only then (NFS) count */
   if (fclose(stdout) != 0 && !bad) bad = 1, e = errno;
-  /* errors that only show when the descriptor is closed (NFS) */
-  if (close(STDOUT_FILENO) != 0 && errno != EBADF && !bad) bad = 1, e = errno;
-  if (stdout_errno) e = stdout_errno;
+  if (bad && stdout_errno) e = stdout_errno; /* a closed fd 1 counts only if used */
   if (!bad || e == EPIPE) return rc;
   fprintf(stderr, "subspectra: error writing standard output: %s\n",
           strerror(e ? e : EIO));

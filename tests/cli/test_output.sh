@@ -106,6 +106,10 @@ echo "old obj" >"$o/keep.obj"
 expect 2 "surfaces only|does not take|cannot" "$exe" subdivide --scheme mlca "$m/cube-creased.mesh" -o "$o/keep.obj"
 for f in png svg vtk mtx mesh obj; do same "$o/keep.$f" "old $f"; done
 only keep.png keep.svg keep.vtk keep.mtx keep.mesh keep.obj
+# reproduce: the first table cannot be written; no table, no temporary file
+mkdir "$tmp/rep"
+expect 2 "mlca-vertices-k4-8.md: cannot write: File too large" "${limited[@]}" "$exe" reproduce --reference "$src/data/reference" --out "$tmp/rep"
+expect 0 "^$" find "$tmp/rep" -type f
 # a missing folder: a message naming the file, nothing made
 expect 2 "$o/no/such/x.png" "$exe" draw --scheme mlca --vertex octahedron -o "$o/no/such/x.png"
 expect 2 "$o/no/such/x.mtx" "$exe" matrix --scheme mlca --edge 4 -o "$o/no/such/x.mtx"

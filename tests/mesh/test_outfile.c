@@ -147,6 +147,29 @@ int main(void) {
           "/dev/full commit fails: %s", err.msg);
   }
 
+  /* the reason survives a dropped buffer: glibc's own stream forgets it once
+   * a large write has failed and reports EIO or nothing */
+  CHECK(ss_outfile_open("/dev/full", &o, &err) == SS_OK, "/dev/full: %s", err.msg);
+  if (o) {
+    static char big[100000];
+    memset(big, 'x', sizeof big);
+    fwrite(big, 1, sizeof big, ss_outfile_file(o));
+    fputs("tail", ss_outfile_file(o));
+    err = (ss_error){0};
+    CHECK(ss_outfile_commit(o, &err) == SS_EIO && strstr(err.msg, strerror(ENOSPC)),
+          "/dev/full after a large write: %s", err.msg);
+  }
+  int e = 0;
+  int fd = dup(STDERR_FILENO);
+  FILE *f = fd >= 0 ? ss_outfile_fdopen(fd, &e) : NULL;
+  CHECK(f != NULL, "ss_outfile_fdopen");
+  if (f) {
+    e = EBADF; /* a failure recorded before: every write fails with it */
+    fputs("never shown\n", f);
+    CHECK(fflush(f) != 0 && ferror(f) && e == EBADF, "sticky failure: e = %d", e);
+    fclose(f);
+  }
+
   unlink(in_dir("a.txt"));
   unlink(in_dir("b.txt"));
   rmdir(dir);
