@@ -3,6 +3,7 @@
 #include "ss_report_draw.h"
 
 #include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -394,8 +395,10 @@ static ss_status paint(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r
 static const int oct_pyramids[2][5] = {{1, 2, 4, 5, 0}, {1, 5, 4, 2, 3}};
 
 static ss_status write_vtk(const ss_charmap *cm, const char *path, ss_error *err) {
-  FILE *f = fopen(path, "w");
-  if (!f) return ss_error_set(err, SS_EIO, "%s: cannot open for writing", path);
+  ss_outfile *out;
+  ss_status st = ss_outfile_open(path, &out, err);
+  if (st) return st;
+  FILE *f = ss_outfile_file(out);
   size_t ncell = 0, nidx = 0;
   for (size_t c = 0; c < cm->ncells; c++) {
     const ss_cell_type t = cm->ctype[c];
@@ -449,9 +452,7 @@ static ss_status write_vtk(const ss_charmap *cm, const char *path, ss_error *err
   fprintf(f, "POINT_DATA %zu\nSCALARS one_ring int 1\nLOOKUP_TABLE default\n", cm->n);
   for (size_t i = 0; i < cm->n; i++)
     fprintf(f, "%d\n", i < cm->n1);
-  const int bad = ferror(f);
-  if (fclose(f) != 0 || bad) return ss_error_set(err, SS_EIO, "%s: write failed", path);
-  return SS_OK;
+  return ss_outfile_commit(out, err); /* checks every write above */
 }
 
 /* ---- dispatch ---- */
@@ -464,19 +465,34 @@ int ss_report_has_ext(const char *path, const char *ext) {
   return 1;
 }
 
+/* cairo's stream writer: into the canvas's file, the first errno kept. */
+static cairo_status_t canvas_write(void *closure, const unsigned char *data,
+                                   unsigned int len) {
+  ss_report_canvas *c = closure;
+  FILE *f = ss_outfile_file(c->out);
+  if (len && fwrite(data, 1, len, f) != len) {
+    if (!c->werrno) c->werrno = errno ? errno : EIO;
+    return CAIRO_STATUS_WRITE_ERROR;
+  }
+  return CAIRO_STATUS_SUCCESS;
+}
+
 ss_status ss_report_cairo_open(const char *path, int png, int width, int height,
-                               cairo_t **cr, cairo_surface_t **s, ss_error *err) {
-  *cr = NULL;
-  *s = png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height)
-           : cairo_svg_surface_create(path, width, height);
-  if (cairo_surface_status(*s) != CAIRO_STATUS_SUCCESS) {
-    ss_status st = ss_error_set(err, SS_EIO, "%s: %s", path,
-                                cairo_status_to_string(cairo_surface_status(*s)));
-    cairo_surface_destroy(*s);
-    *s = NULL;
+                               ss_report_canvas *c, ss_error *err) {
+  *c = (ss_report_canvas){NULL, NULL, NULL, png, 0};
+  ss_status st = ss_outfile_open(path, &c->out, err);
+  if (st) return st;
+  c->s = png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height)
+             : cairo_svg_surface_create_for_stream(canvas_write, c, width, height);
+  if (cairo_surface_status(c->s) != CAIRO_STATUS_SUCCESS) {
+    st = ss_error_set(err, SS_EIO, "%s: %s", path,
+                      cairo_status_to_string(cairo_surface_status(c->s)));
+    cairo_surface_destroy(c->s);
+    ss_outfile_abort(c->out);
+    *c = (ss_report_canvas){NULL, NULL, NULL, png, 0};
     return st;
   }
-  *cr = cairo_create(*s);
+  c->cr = cairo_create(c->s);
   return SS_OK;
 }
 
@@ -493,31 +509,34 @@ ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
     return ss_error_set(err, SS_EINPUT,
                         "draw: %s: unknown picture format (use .png, .svg or .vtk)",
                         path);
-  cairo_surface_t *s;
-  cairo_t *cr;
-  ss_status st = ss_report_cairo_open(path, png, o->width, o->height, &cr, &s, err);
+  ss_report_canvas c;
+  ss_status st = ss_report_cairo_open(path, png, o->width, o->height, &c, err);
   if (st) return st;
-  st = paint(cr, cm, r, o, err);
-  return ss_report_cairo_close(cr, s, png, path, st, err);
+  st = paint(c.cr, cm, r, o, err);
+  return ss_report_cairo_close(&c, st, err);
 }
 
-ss_status ss_report_cairo_close(cairo_t *cr, cairo_surface_t *s, int png,
-                                const char *path, ss_status st, ss_error *err) {
-  if (!st && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
+ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err) {
+  const char *path = ss_outfile_path(c->out);
+  if (!st && cairo_status(c->cr) != CAIRO_STATUS_SUCCESS)
     st = ss_error_set(err, SS_EIO, "%s: drawing failed: %s", path,
-                      cairo_status_to_string(cairo_status(cr)));
-  cairo_destroy(cr);
-  if (!st && png) {
-    cairo_status_t ws = cairo_surface_write_to_png(s, path);
-    if (ws != CAIRO_STATUS_SUCCESS)
-      st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path,
-                        cairo_status_to_string(ws));
-  }
-  /* an SVG surface writes its file here */
-  cairo_surface_finish(s);
-  if (!st && cairo_surface_status(s) != CAIRO_STATUS_SUCCESS)
+                      cairo_status_to_string(cairo_status(c->cr)));
+  cairo_destroy(c->cr);
+  cairo_status_t cs = CAIRO_STATUS_SUCCESS;
+  if (!st && c->png) cs = cairo_surface_write_to_png_stream(c->s, canvas_write, c);
+  /* an SVG surface writes its end here */
+  cairo_surface_finish(c->s);
+  if (cs == CAIRO_STATUS_SUCCESS) cs = cairo_surface_status(c->s);
+  cairo_surface_destroy(c->s);
+  if (!st && c->werrno)
+    st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path, strerror(c->werrno));
+  else if (!st && cs != CAIRO_STATUS_SUCCESS)
     st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path,
-                      cairo_status_to_string(cairo_surface_status(s)));
-  cairo_surface_destroy(s);
+                      cairo_status_to_string(cs));
+  if (st)
+    ss_outfile_abort(c->out);
+  else
+    st = ss_outfile_commit(c->out, err);
+  *c = (ss_report_canvas){NULL, NULL, NULL, 0, 0};
   return st;
 }

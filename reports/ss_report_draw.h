@@ -30,6 +30,7 @@
 #include <cairo.h>
 
 #include "ss_charmap.h"
+#include "ss_outfile.h"
 
 /* How to draw. */
 typedef struct {
@@ -43,26 +44,41 @@ typedef struct {
 ss_report_draw_opts ss_report_draw_defaults(void);
 
 /* Draw cm (judged by ss_charmap_regularity, verdict r) into the file at path;
- * the format follows the extension: .png, .svg or .vtk.  SS_EINPUT for
- * another extension or bad options, SS_EIO when the file cannot be written
- * (message names the file), SS_ENOMEM. */
+ * the format follows the extension: .png, .svg or .vtk.  The file is written
+ * whole or not at all (ss_outfile.h).  SS_EINPUT for another extension or bad
+ * options, SS_EIO when the file cannot be written (message names the file),
+ * SS_ENOMEM. */
 ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
                          const ss_report_draw_opts *o, const char *path, ss_error *err);
 
 /* 1 if path ends in ext (lower case, with the dot), ignoring case. */
 int ss_report_has_ext(const char *path, const char *ext);
 
-/* Open a picture of width x height pixels: an image surface for PNG (written
- * by ss_report_cairo_close), an SVG surface writing to path otherwise, and a
- * context on it.  SS_EIO naming path if cairo cannot make the surface. */
-ss_status ss_report_cairo_open(const char *path, int png, int width, int height,
-                               cairo_t **cr, cairo_surface_t **s, ss_error *err);
+/* A picture being drawn into a file (shared by the pictures and the plots):
+ * the file is written whole or not at all (ss_outfile.h). */
+typedef struct {
+  cairo_t *cr;        /* the context to draw with */
+  cairo_surface_t *s; /* an image surface (PNG) or an SVG surface streaming to out */
+  ss_outfile *out;    /* the temporary file beside the target, renamed on success */
+  int png;            /* 1 PNG, 0 SVG */
+  int werrno;         /* errno of the first failed write into out, 0 if none */
+} ss_report_canvas;
 
-/* Close a picture drawn on surface s through cr: check cr's status, write a
- * PNG surface to path (an SVG surface writes itself when finished), then
- * finish and destroy both.  st is the status so far; returns the first
- * failure (SS_EIO naming path).  Shared by the pictures and the plots. */
-ss_status ss_report_cairo_close(cairo_t *cr, cairo_surface_t *s, int png,
-                                const char *path, ss_status st, ss_error *err);
+/* Open a picture of width x height pixels into *c: the temporary file beside
+ * path, an image surface for PNG (written by ss_report_cairo_close), an SVG
+ * surface streaming into the file otherwise, and a context on it.  c must
+ * stay at its address until closed (the SVG stream writes through it).
+ * SS_EIO naming path if the file or the surface cannot be made (nothing is
+ * then left to close). */
+ss_status ss_report_cairo_open(const char *path, int png, int width, int height,
+                               ss_report_canvas *c, ss_error *err);
+
+/* Close a picture opened by ss_report_cairo_open: check the context's status,
+ * write a PNG surface into the file (an SVG surface writes as it goes and
+ * ends when finished), finish and destroy both, then rename the file over
+ * its target -- or, on any failure, remove it and leave the target as it
+ * was.  st is the status so far (not SS_OK: the drawing is abandoned);
+ * returns the first failure (SS_EIO naming the target). */
+ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err);
 
 #endif

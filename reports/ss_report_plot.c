@@ -415,11 +415,10 @@ ss_status ss_report_plot(const ss_report_row *rows, size_t n,
     st = ss_error_set(err, SS_EINPUT, "--plot: picture size %dx%d out of range", W, H);
     goto done;
   }
-  cairo_surface_t *s;
-  cairo_t *cr;
-  if ((st = ss_report_cairo_open(path, png, W, H, &cr, &s, err))) goto done;
-  paint(cr, sel, m, identity, W, H, v);
-  st = ss_report_cairo_close(cr, s, png, path, SS_OK, err);
+  ss_report_canvas c;
+  if ((st = ss_report_cairo_open(path, png, W, H, &c, err))) goto done;
+  paint(c.cr, sel, m, identity, W, H, v);
+  st = ss_report_cairo_close(&c, SS_OK, err);
   if (!st && plotted) *plotted = m;
 done:
   free(sel);

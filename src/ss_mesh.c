@@ -7,6 +7,8 @@
 #include <string.h>
 #include <strings.h>
 
+#include "ss_outfile.h"
+
 ss_mesh_format ss_mesh_format_from_path(const char *path) {
   const char *dot = strrchr(path, '.');
   const char *slash = strrchr(path, '/');
@@ -64,8 +66,10 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
                           "%s: vertex %zu has a non-finite coordinate (%g): not written "
                           "(no reader would accept it)",
                           path, i / (size_t)cx->dim + 1, cx->x[i]);
-  FILE *f = fopen(path, "w");
-  if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  /* a temporary file renamed over path: never a half-written mesh */
+  ss_outfile *out;
+  if ((st = ss_outfile_open(path, &out, err))) return st;
+  FILE *f = ss_outfile_file(out);
   switch (fmt) {
   case SS_MESH_MEDIT:
     st = ss_mesh_write_medit(f, cx, opts, err);
@@ -77,12 +81,17 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
     st = ss_mesh_write_obj(f, cx, err);
     break;
   }
-  if (fclose(f) && !st) st = ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  /* the writer saw the stream fail ("write error"): the commit names why */
+  if (st == SS_EIO && ferror(f)) st = SS_OK;
+  if (st) {
+    ss_outfile_abort(out);
+  } else {
+    st = ss_outfile_commit(out, err);
+  }
   if (st && err && !strstr(err->msg, path)) {
     char msg[sizeof err->msg];
     snprintf(msg, sizeof msg, "%s", err->msg);
     ss_error_set(err, st, "%s: %s", path, msg);
   }
-  if (st) remove(path); /* never leave a half-written mesh behind */
   return st;
 }

@@ -40,9 +40,11 @@ const char *ss_mesh_format_name(ss_mesh_format fmt);
  * SS_MESH_AUTO picks by extension.  SS_EIO if the file cannot be opened,
  * SS_EINPUT if it is malformed, SS_ENOMEM. */
 ss_status ss_mesh_read(const char *path, ss_mesh_format fmt, ss_cx **out, ss_error *err);
-/* Write cx to path; opts may be NULL for defaults.  SS_EIO, SS_EINPUT when the
- * format cannot hold the complex (e.g. OBJ with volume cells) or a coordinate
- * is not finite (then no file is created), SS_ENOMEM. */
+/* Write cx to path; opts may be NULL for defaults.  The file is written whole
+ * or not at all (a temporary file renamed over path, ss_outfile.h): on failure
+ * an existing path is left as it was.  SS_EIO, SS_EINPUT when the format
+ * cannot hold the complex (e.g. OBJ with volume cells) or a coordinate is not
+ * finite (then no file is created), SS_ENOMEM. */
 ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
                         const ss_mesh_write_opts *opts, ss_error *err);
 

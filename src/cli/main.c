@@ -1,11 +1,15 @@
 /* main.c — `subspectra`: one program, one subcommand per job. */
+#include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <flint/flint.h>
 #include <gsl/gsl_errno.h>
 
 #include "ss_cli.h"
+#include "ss_outfile.h"
 
 #ifndef SS_VERSION
 #define SS_VERSION "0.1.0"
@@ -44,7 +48,51 @@ static void overview(FILE *f) {
              "checked fails,\n2 bad usage or bad input.\n");
 }
 
-int main(int argc, char **argv) {
+/* ---- standard output ----
+ * Standard output is written through a buffer: a full disk, a file size limit
+ * or a reader gone away may only show when it is flushed, and glibc forgets
+ * why once the failed buffer is dropped.  So main puts its own stream in
+ * stdout's place (ss_outfile_fdopen: the same buffering, but it remembers the
+ * first failure's errno), and every command ends in finish(): flush, check the
+ * error flag, close.  A failure turns the command's status rc into 2 with
+ * "subspectra: error writing standard output: REASON" (the output is lost,
+ * whatever was computed).  EPIPE is the exception: the reader closed the pipe
+ * early (`| head`), which is its choice, not an error of ours -- no message and
+ * rc kept.  (With SIGPIPE at its default, as we leave it, the kernel ends the
+ * process silently at that write anyway; EPIPE is seen only when the caller
+ * ignores SIGPIPE.)  Streaming commands stop once ferror(stdout) is set. */
+
+static int stdout_errno; /* why the first write to fd 1 failed; 0 while none has */
+
+static void stdout_open(void) {
+  /* a closed fd 1 (`>&-`) would be taken by the next file opened, and our
+   * output written into it: hold it with /dev/null, and fail every write */
+  if (fcntl(STDOUT_FILENO, F_GETFD) < 0 && errno == EBADF) {
+    stdout_errno = EBADF;
+    const int fd = open("/dev/null", O_WRONLY);
+    if (fd >= 0 && fd != STDOUT_FILENO) close(fd);
+  }
+  FILE *f = ss_outfile_fdopen(STDOUT_FILENO, &stdout_errno);
+  if (!f) return; /* the plain stream: only a failure's reason may get lost */
+  if (isatty(STDOUT_FILENO)) setvbuf(f, NULL, _IOLBF, BUFSIZ);
+  stdout = f; /* glibc's stdout is a variable for this purpose */
+}
+
+static int finish(int rc) {
+  errno = 0;
+  int bad = fflush(stdout) != 0;
+  int e = errno;
+  if (ferror(stdout)) bad = 1;
+  /* closes fd 1 too: errors that show only then (NFS) count */
+  if (fclose(stdout) != 0 && !bad) bad = 1, e = errno;
+  if (bad && stdout_errno) e = stdout_errno; /* a closed fd 1 counts only if used */
+  if (!bad || e == EPIPE) return rc;
+  fprintf(stderr, "subspectra: error writing standard output: %s\n",
+          strerror(e ? e : EIO));
+  return SS_EXIT_USAGE;
+}
+
+static int run(int argc, char **argv) {
   /* library code reports through ss_status; GSL must not abort the process */
   gsl_set_error_handler_off();
   if (argc < 2) {
@@ -69,4 +117,9 @@ int main(int argc, char **argv) {
   fprintf(stderr, "subspectra: unknown command '%s' (see 'subspectra --help')\n",
           ss_error_escape(name, sizeof name, argv[1]));
   return SS_EXIT_USAGE;
+}
+
+int main(int argc, char **argv) {
+  stdout_open();
+  return finish(run(argc, argv));
 }

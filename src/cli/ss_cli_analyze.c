@@ -16,6 +16,7 @@
 #include "ss_eig.h"
 #include "ss_link.h"
 #include "ss_local.h"
+#include "ss_outfile.h"
 #include "ss_report_draw.h"
 #include "ss_report_table.h"
 #include "ss_stencil.h"
@@ -100,7 +101,8 @@ static void help(const char *cmd) {
     printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "
            "2)\n"
            "  --format mtx           Matrix Market (the only format)\n"
-           "  -o FILE                write to FILE instead of standard output\n");
+           "  -o FILE                write to FILE instead of standard output (whole or\n"
+           "                         not at all: an old FILE stays if writing fails)\n");
   else
     printf(
         "  --tol T                relative tolerance for equal eigenvalues (default "
@@ -119,7 +121,8 @@ static void help(const char *cmd) {
         "                         undecided (\"not certified: ...\")\n",
         SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels);
   if (d)
-    printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk\n"
+    printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk (whole\n"
+           "                         or not at all: an old FILE stays if writing fails)\n"
            "  --size WxH             picture size (default 1200x600)\n"
            "  --view AZ,EL           view direction in degrees (default 30,25)\n"
            "  --force                draw the map of the three leading subdominant\n"
@@ -600,11 +603,12 @@ static void print_label(FILE *f, const ss_star_coord *c) {
 
 static int write_mtx(const opts *o, const char *scheme, const char *canon,
                      const ss_local *M, const diag_info *di) {
-  FILE *f = o->out ? fopen(o->out, "w") : stdout;
-  if (!f) {
-    fprintf(stderr, "subspectra: %s: cannot open for writing\n", o->out);
-    return SS_EXIT_USAGE;
-  }
+  /* -o: a temporary file renamed over the target, written whole or not at all;
+   * standard output is checked by main */
+  ss_outfile *out = NULL;
+  ss_error err = {0};
+  if (o->out && ss_outfile_open(o->out, &out, &err)) return ss_cli_fail(&err);
+  FILE *f = out ? ss_outfile_file(out) : stdout;
   const size_t n = o->ring == 1 ? M->n1 : M->n2;
   size_t nnz = 0;
   for (size_t i = 0; i < n; i++)
@@ -636,10 +640,7 @@ static int write_mtx(const opts *o, const char *scheme, const char *canon,
     for (size_t j = 0; j < n; j++)
       if (M->S[i * M->n2 + j] != 0.0)
         fprintf(f, "%zu %zu %.17g\n", i + 1, j + 1, M->S[i * M->n2 + j]);
-  if (o->out && fclose(f) != 0) {
-    fprintf(stderr, "subspectra: %s: write failed\n", o->out);
-    return SS_EXIT_USAGE;
-  }
+  if (ss_outfile_commit(out, &err)) return ss_cli_fail(&err);
   return SS_EXIT_OK;
 }
 
@@ -827,7 +828,7 @@ static int run(int argc, char **argv, const char *cmd) {
       snprintf(where, sizeof where, "stdin:%ld: ", lineno);
       int one = one_case(&o, s, p, where, &header);
       nread++;
-      fflush(stdout);
+      if (fflush(stdout) || ferror(stdout)) break; /* output lost: main reports it */
       if (one == SS_EXIT_USAGE) {
         rc = SS_EXIT_USAGE;
         break;

@@ -191,10 +191,6 @@ int ss_cli_enumerate_mesh(int argc, char **argv) {
     print_json(path, ml);
   else
     print_text(path, ml);
-  if (fflush(stdout) || ferror(stdout)) {
-    fprintf(stderr, "subspectra: write error on standard output\n");
-    rc = SS_EXIT_USAGE;
-  }
 done:
   ss_meshlinks_free(ml);
   ss_cx_free(cx);

@@ -96,11 +96,7 @@ int ss_cli_enumerate_random(int argc, char **argv) {
     text = NULL;
     ss_link_free(l);
     l = NULL;
-    if (ferror(stdout)) break;
-  }
-  if (fflush(stdout) || ferror(stdout)) {
-    fprintf(stderr, "subspectra: write error on standard output\n");
-    rc = SS_EXIT_USAGE;
+    if (ferror(stdout)) break; /* output lost: main reports it */
   }
 done:
   free(text);

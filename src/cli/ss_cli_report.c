@@ -155,7 +155,8 @@ int ss_cli_report(int argc, char **argv) {
             where ? " by --where" : " (an empty store)");
   if (print &&
       ss_report_table_write(stdout, fmt, tables, rows.row, rows.n, sum, ns, &err)) {
-    rc = report_fail(&err);
+    /* standard output failed: main reports it, with the reason */
+    if (!(err.status == SS_EIO && ferror(stdout))) rc = report_fail(&err);
     goto done;
   }
   if (plot) {

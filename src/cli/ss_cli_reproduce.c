@@ -29,6 +29,7 @@
 #include "ss_link.h"
 #include "ss_link_random.h"
 #include "ss_local.h"
+#include "ss_outfile.h"
 #include "ss_report_draw.h"
 #include "ss_report_ref.h"
 #include "ss_report_table.h"
@@ -426,15 +427,13 @@ static void sb_verdict(strbuf *b, const ss_verdict *v, int certified) {
   }
 }
 
+/* b into the file at path, whole or not at all (ss_outfile.h). */
 static ss_status write_file(const char *path, const strbuf *b, ss_error *err) {
-  FILE *f = fopen(path, "w");
-  if (!f)
-    return ss_error_set(err, SS_EIO, "%s: cannot open for writing: %s", path,
-                        strerror(errno));
-  size_t w = b->n ? fwrite(b->s, 1, b->n, f) : 0;
-  if (fclose(f) != 0 || w != b->n)
-    return ss_error_set(err, SS_EIO, "%s: write failed", path);
-  return SS_OK;
+  ss_outfile *out;
+  ss_status st = ss_outfile_open(path, &out, err);
+  if (st) return st;
+  if (b->n) fwrite(b->s, 1, b->n, ss_outfile_file(out)); /* checked by the commit */
+  return ss_outfile_commit(out, err);
 }
 
 static const char *case_label(const ss_result *r, char *buf, size_t n) {
