@@ -14,7 +14,7 @@
 #include "ss_scc.h"
 
 ss_eig_opts ss_eig_defaults(int dim) {
-  ss_eig_opts o = {1e-6, 1e-2, dim, 1, 0};
+  ss_eig_opts o = {1e-6, 1e-2, dim, 1, 0, {NULL, NULL}};
   return o;
 }
 
@@ -407,6 +407,8 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     goto done;
   }
   /* the one-ring block */
+  const size_t nsolve = 1 + (size_t)K.n;
+  ss_progress_step(&opts->progress, "eigen-solve, block", 1, nsolve);
   colmajor(S, n, n1, a);
   if ((st = block_eig(&ws, a, n1, wr, wi, rc, vr, err))) goto done;
   for (size_t i = 0; i < n1; i++) {
@@ -436,6 +438,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
       e->val[k++] = (ss_eigval){S[i * n + i], 0.0, 1.0, (int)c + 1, 0, 0};
       continue;
     }
+    ss_progress_step(&opts->progress, "eigen-solve, block", 2 + (size_t)c, nsolve);
     double *mat = M.mat + M.matfill;
     for (size_t r = 0; r < sz; r++)
       for (size_t q = 0; q < sz; q++)
