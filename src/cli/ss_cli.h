@@ -51,6 +51,7 @@ typedef struct {
   double t0;         /* start (ss_cli_now) */
   double last;       /* time of the last line */
   const char *phase; /* the phase of the last line */
+  size_t done;       /* its step */
 } ss_cli_progress;
 void ss_cli_progress_fn(void *ctx, const char *phase, size_t done, size_t total);
 /* Print "subspectra CMD: <message>" and a hint to use --help; returns 2. */

@@ -735,7 +735,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     rc = SS_EXIT_USAGE;
     goto done;
   }
-  ss_cli_progress pr = {o->cmd, ss_cli_now(), 0.0, NULL};
+  ss_cli_progress pr = {o->cmd, ss_cli_now(), 0.0, NULL, 0};
   const ss_progress prog = {o->progress || (isatty(STDERR_FILENO) && cost.seconds > SLOW)
                                 ? ss_cli_progress_fn
                                 : NULL,

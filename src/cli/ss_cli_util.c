@@ -49,8 +49,13 @@ double ss_cli_budget(double max_memory) {
 void ss_cli_progress_fn(void *ctx, const char *phase, size_t done, size_t total) {
   ss_cli_progress *p = ctx;
   const double t = ss_cli_now();
-  if (phase == p->phase && t - p->last < 1.0 && !(total && done == total)) return;
+  /* a new phase, a new step of a phase without a total (a level), the last
+   * step, or a second since the last line */
+  if (phase == p->phase && (total || done == p->done) && t - p->last < 1.0 &&
+      !(total && done == total))
+    return;
   p->phase = phase;
+  p->done = done;
   p->last = t;
   if (total)
     fprintf(stderr, "subspectra %s: [%.1f s] %s %zu/%zu\n", p->cmd, t - p->t0, phase,
