@@ -465,6 +465,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
           (ss_eigval){M.re[at + r], M.im[at + r], M.rc[at + r], (int)c + 1, 0, 0};
   }
   memo_free(&M);
+  ss_progress_step(&opts->progress, "eigen-solve, block", nsolve, nsolve);
   /* a real multiple eigenvalue that rounding turned into a conjugate pair
    * with an imaginary part below the tolerance is real (the verdict would
    * call it real anyway; this keeps what is printed in line with it) */
