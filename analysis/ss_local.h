@@ -214,9 +214,10 @@ int ss_local_label_norm(const ss_star_coord *c);
  *   box-spline rules (they read major diagonals): vertex as tet/oct; edge
  *     bfs n2 = ceil((29n + 9) / 2), n1 = ceil((5n + 5) / 2); skew
  *     n2 = 14n + 5, n1 = 2n + 3; center as tet/oct; face n2 = 81, n1 = 15.
- * Exact for the built-in schemes (tests/analysis/test_local.c checks them
- * against extracted matrices); for a stencil file whose masks have zero
- * weights the support may be smaller, and these are upper bounds.
+ * Exact for the built-in schemes and stencil files of the same splits
+ * (tests/analysis/test_local.c checks them against extracted matrices); a
+ * stencil whose masks have zero weights may have a smaller support, and
+ * then these are upper bounds.
  *
  * Memory (bytes; peak of the pipeline without --certify):
  *   base + P + max(2 D, D + E), base = 16 MB (the program), D = 8 n2^2 the
@@ -237,8 +238,6 @@ int ss_local_label_norm(const ss_star_coord *c);
 typedef struct {
   size_t n2;            /* rows of S (two-ring points) */
   size_t n1;            /* rows of the one-ring block A */
-  int exact;            /* 1: n2 and n1 are exact (the formulas above hold);
-                           0: upper bounds */
   size_t star_vertices; /* vertices of the star refined */
   size_t star_cells;    /* cells of the star */
   size_t block;         /* estimated largest outer block (<= n2 - n1) */

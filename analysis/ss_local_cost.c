@@ -25,7 +25,7 @@ static int max_degree(const ss_link *l) {
 
 ss_status ss_local_estimate(const ss_scheme *s, const ss_case *c, ss_local_cost *out,
                             ss_error *err) {
-  *out = (ss_local_cost){0, 0, 1, 0, 0, 0, 0.0, 0.0, 0.0, 0.0};
+  *out = (ss_local_cost){0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0.0};
   const int ml = ss_scheme_split_kind(s) == SS_SPLIT_MULTILINEAR;
   const int box = ss_scheme_reads_diagonals(s);
   ss_cell_type t;
