@@ -709,6 +709,7 @@ static void estimate_rows(const ss_scheme *s, ss_case c, const char *what) {
   ss_local_free(M);
 }
 
+#if !defined(__SANITIZE_ADDRESS__)
 /* Peak resident memory (bytes) of extracting and solving case c, measured in
  * a child process (wait4's ru_maxrss), or -1. */
 static double peak_bytes(const ss_scheme *s, ss_case c) {
@@ -729,6 +730,7 @@ static double peak_bytes(const ss_scheme *s, ss_case c) {
     return -1.0;
   return 1024.0 * (double)ru.ru_maxrss;
 }
+#endif
 
 static void test_estimate(void) {
   static const char *const names[] = {"mlca",          "tetoct",        "boxspline",
