@@ -15,7 +15,7 @@
 #include "ss_scc.h"
 
 ss_eig_opts ss_eig_defaults(int dim) {
-  ss_eig_opts o = {1e-6, 1e-2, dim, 1, 0};
+  ss_eig_opts o = {1e-6, 1e-2, dim, 1, 0, {NULL, NULL}};
   return o;
 }
 
@@ -458,6 +458,8 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     goto done;
   }
   /* the one-ring block */
+  const size_t nsolve = 1 + (size_t)K.n;
+  ss_progress_step(&opts->progress, "eigen-solve, block", 1, nsolve);
   colmajor(S, n, n1, a);
   if ((st = block_eig(&ws, a, n1, wr, wi, rc, eb, cb, vr, err))) goto done;
   for (size_t i = 0; i < n1; i++) {
@@ -493,9 +495,10 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
                                 0,
                                 0,
                                 4.0 * DBL_EPSILON * fabs(S[i * n + i]),
-                                0.0};
+                                4.0 * DBL_EPSILON * fabs(S[i * n + i])};
       continue;
     }
+    ss_progress_step(&opts->progress, "eigen-solve, block", 2 + (size_t)c, nsolve);
     double *mat = M.mat + M.matfill;
     for (size_t r = 0; r < sz; r++)
       for (size_t q = 0; q < sz; q++)
@@ -524,6 +527,7 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
                       M.eb[at + r], M.cb[at + r]};
   }
   memo_free(&M);
+  ss_progress_step(&opts->progress, "eigen-solve, block", nsolve, nsolve);
   /* the tolerance: at least the rounding floor of the leading m + 2 */
   qsort(e->val, n, sizeof *e->val, by_modulus);
   e->rounding = rounding_floor(e->val, n, e->m);

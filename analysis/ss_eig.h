@@ -59,6 +59,7 @@
 #include <stddef.h>
 
 #include "ss_error.h"
+#include "ss_progress.h"
 
 typedef enum { SS_PASS = 0, SS_FAIL, SS_UNDECIDED } ss_verdict_kind;
 
@@ -81,15 +82,17 @@ typedef struct {
 
 /* Options of an analysis. */
 typedef struct {
-  double tol;     /* relative tolerance for equal eigenvalues (default 1e-6) */
-  double cluster; /* relative gap below which the subdominant eigenvalues are
-                     treated as a cluster (default 1e-2) */
-  int dim;        /* 3: volume condition (lambda1..3); 2: surface (lambda1..2) */
-  int basis;      /* nonzero: compute the subdominant basis */
-  int force;      /* nonzero: compute it even when the eigenvalue condition
-                     fails, as long as lambda1..m are real and positive (for
-                     pictures of what is not a characteristic map; a tie
-                     lambda_m = lambda_m+1 is cut arbitrarily) */
+  double tol;           /* relative tolerance for equal eigenvalues (default 1e-6) */
+  double cluster;       /* relative gap below which the subdominant eigenvalues are
+                           treated as a cluster (default 1e-2) */
+  int dim;              /* 3: volume condition (lambda1..3); 2: surface (lambda1..2) */
+  int basis;            /* nonzero: compute the subdominant basis */
+  int force;            /* nonzero: compute it even when the eigenvalue condition
+                           fails, as long as lambda1..m are real and positive (for
+                           pictures of what is not a characteristic map; a tie
+                           lambda_m = lambda_m+1 is cut arbitrarily) */
+  ss_progress progress; /* steps "eigen-solve, block" i of the blocks (the
+                           one-ring block first); default silent */
 } ss_eig_opts;
 
 /* Eigenstructure of one local matrix. */

@@ -33,6 +33,7 @@ typedef struct {
   ss_star_coord cp;        /* p's chart coordinates on level lc */
   int nlev;                /* levels built */
   level lev[MAXLEVELS];    /* levels 0 .. nlev-1 */
+  const ss_progress *prog; /* progress reports (may be NULL) */
 } work;
 
 const char *ss_case_name(ss_case_kind kind) {
@@ -355,6 +356,7 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
     return ss_error_set(err, SS_EINTERNAL,
                         "no stationary neighbourhood before the patch exceeds %d cells",
                         MAXCELLS);
+  ss_progress_step(W->prog, "refining the star to level", (size_t)W->nlev, 0);
   ss_status st = ss_scheme_refine_split(W->scheme, C->cx, &F->cx, &C->R, &F->split, err);
   if (st) return st;
   W->nlev++;
@@ -646,6 +648,7 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
       M->label[i2++] = Lw->rel[v];
   qsort(M->label, n1, sizeof *M->label, label_cmp);
   qsort(M->label + n1, n2 - n1, sizeof *M->label, label_cmp);
+  ss_progress_step(W->prog, "reading S, rows", n2, 0);
   if ((rc = read_matrix(W, w, M, M->S, colmap, err))) goto done;
   if ((rc = read_matrix(W, w + 1, M, S2, colmap, err))) goto done;
   double diff = 0.0;
@@ -936,13 +939,29 @@ ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
 
 ss_status ss_local_new_ring(const ss_scheme *s, const ss_case *c, int nring,
                             ss_local **out, ss_error *err) {
+  ss_local_opts o = ss_local_defaults();
+  o.nring = nring;
+  return ss_local_new_opts(s, c, &o, out, err);
+}
+
+ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local_opts *o,
+                            ss_local **out, ss_error *err) {
   *out = NULL;
+  const int nring = o->nring;
   if (nring < 1 || nring > SS_LOCAL_MAXRING)
     return ss_error_set(err, SS_EINPUT, "ring levels must be in 1..%d, not %d",
                         SS_LOCAL_MAXRING, nring);
+  if (o->max_bytes > 0.0) { /* refuse what cannot fit before building anything */
+    ss_local_cost k;
+    ss_status st = ss_local_estimate(s, c, &k, err);
+    if (!st) st = ss_local_check_budget(&k, o->max_bytes, err);
+    if (st) return st;
+  }
   work W;
   memset(&W, 0, sizeof W);
   W.scheme = s;
+  W.prog = &o->progress;
+  ss_progress_step(W.prog, "building the star", 0, 0);
   ss_status st = ss_local_star(s, c, &W.star, err);
   if (st) return st;
   ss_local *M = calloc(1, sizeof *M);

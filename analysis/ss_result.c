@@ -14,7 +14,7 @@
 
 ss_result_opts ss_result_defaults(void) {
   const ss_charmap_opts co = ss_charmap_defaults();
-  return (ss_result_opts){1e-6, co.depth, co.ring_levels, 0};
+  return (ss_result_opts){1e-6, co.depth, co.ring_levels, 0, 0.0};
 }
 
 void ss_result_clear(ss_result *r) {
@@ -102,7 +102,9 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   const int ep = !st && cl ? ss_local_edge_point(s, cl) : 0;
   if (ep < 0) st = ss_error_nomem(err, "edge point");
   if (ep > 0) cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag};
-  if (!st) st = ss_local_new(s, &cc, &M, err);
+  ss_local_opts lo = ss_local_defaults();
+  lo.max_bytes = o->max_bytes;
+  if (!st) st = ss_local_new_opts(s, &cc, &lo, &M, err);
   if (!st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET)
     st = diagonals(s, &cc, r, err);
   if (!st) {

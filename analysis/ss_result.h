@@ -22,11 +22,15 @@
 
 /* Analysis parameters that change a verdict; part of a result's identity. */
 typedef struct {
-  double tol;      /* relative tolerance for equal eigenvalues (ss_eig; 1e-6) */
-  int depth;       /* hex subdivision depth limit of the Jacobian test (ss_jac) */
-  int ring_levels; /* ring levels regularity is judged on at most (ss_charmap) */
-  int certify;     /* nonzero: the exact path too (ss_certify): every verdict
-                      proven or undecided */
+  double tol;       /* relative tolerance for equal eigenvalues (ss_eig; 1e-6) */
+  int depth;        /* hex subdivision depth limit of the Jacobian test (ss_jac) */
+  int ring_levels;  /* ring levels regularity is judged on at most (ss_charmap) */
+  int certify;      /* nonzero: the exact path too (ss_certify): every verdict
+                       proven or undecided */
+  double max_bytes; /* memory budget of one case (ss_local_opts): a case whose
+                       estimate exceeds it fails with SS_ENOMEM before anything
+                       is built; <= 0: none.  Not part of the identity: it
+                       decides whether a case runs, never its verdict */
 } ss_result_opts;
 
 /* One eigenvalue as kept in a result. */
@@ -73,7 +77,8 @@ typedef struct {
   double seconds;             /* wall-clock time the analysis took */
 } ss_result;
 
-/* Defaults: tol 1e-6, depth SS_JAC_DEPTH, 3 ring levels, no certification. */
+/* Defaults: tol 1e-6, depth SS_JAC_DEPTH, 3 ring levels, no certification, no
+ * memory budget. */
 ss_result_opts ss_result_defaults(void);
 
 /* Analyse case c of scheme s into *r (which need not be initialised; on

@@ -31,6 +31,29 @@ int ss_cli_enumerate_mesh(int argc, char **argv);
  * library call: 2 for bad input, i/o or memory, 1 for numerical or internal
  * failures (the run happened but a check did not hold). */
 int ss_cli_fail(const ss_error *err);
+/* The exit status of a failed library call's status, as ss_cli_fail: 2 for
+ * SS_EINPUT, SS_EIO and SS_ENOMEM (out of memory is never "a check fails"),
+ * 1 for SS_ENUMERIC and SS_EINTERNAL. */
+int ss_cli_exit_status(ss_status st);
+/* Parse a memory size: a positive number with an optional suffix K, M, G or T
+ * (powers of 1000, as the messages print them; a trailing B is allowed:
+ * "8G", "1.5GB", "500M").  0 on success, -1 otherwise. */
+int ss_cli_parse_bytes(const char *s, double *out);
+/* The memory budget of one analysis: --max-memory if given (> 0), else the
+ * default (ss_local_memory_budget: half the physical memory, 3/4 of the
+ * address space and data limits). */
+double ss_cli_budget(double max_memory);
+/* Progress lines on stderr ("subspectra CMD: [3.2 s] phase done/total"):
+ * ss_cli_progress_fn is an ss_progress_fn whose ctx is an ss_cli_progress.
+ * A line is printed when the phase changes, or at most once a second. */
+typedef struct {
+  const char *cmd;   /* command name for the prefix */
+  double t0;         /* start (ss_cli_now) */
+  double last;       /* time of the last line */
+  const char *phase; /* the phase of the last line */
+  size_t done;       /* its step */
+} ss_cli_progress;
+void ss_cli_progress_fn(void *ctx, const char *phase, size_t done, size_t total);
 /* Print "subspectra CMD: <message>" and a hint to use --help; returns 2. */
 int ss_cli_usage_error(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <json-c/json.h>
 
@@ -43,6 +44,8 @@ typedef struct {
   ss_report_draw_opts draw; /* draw: picture options */
   ss_diag_mode diag;        /* --diagonals: major diagonals of tet stars */
   int force;                /* draw --force: a map even when the condition fails */
+  double max_memory;        /* --max-memory in bytes, 0: the default budget */
+  int progress;             /* --progress: progress lines on stderr */
 } opts;
 
 static void help(const char *cmd) {
@@ -134,13 +137,24 @@ static void help(const char *cmd) {
   else if (!m)
     printf("  --eigenvalues K        how many leading eigenvalues to print (default 16)\n"
            "  --format F             text (default), json (one object per case), tsv\n");
-  printf("  -h, --help             this help\n\n"
+  printf("  --max-memory SIZE      memory budget of the case, SIZE with K, M, G or T\n"
+         "                         (powers of 1000; default half the physical memory,\n"
+         "                         3/4 of ulimit -v and -d when set): a case whose\n"
+         "                         estimate (rows of S, dense blocks, workspaces)\n"
+         "                         exceeds it is refused before anything is built,\n"
+         "                         with the estimate (exit 2)\n"
+         "  --progress             progress lines on standard error (phases: star,\n"
+         "                         S, eigen-solve blocks); by default only when\n"
+         "                         standard error is a terminal and the case is\n"
+         "                         estimated to take more than a few seconds\n"
+         "  -h, --help             this help\n\n"
          "Schemes use the star their split calls for: mlca hexes (quads on surfaces),\n"
          "tetoct, boxspline and boxspline-avg tets, catmull-clark quads, loop\n"
          "triangles.  boxspline reports how many face-adjacent pairs of the star have\n"
          "improper diagonals (Definition 3.2 as read in the README).\n"
          "Exit status: 0 all conditions hold, 1 a condition fails or is undecided (or\n"
-         "the extraction failed a check), 2 bad usage or input.\n");
+         "the extraction failed a check), 2 bad usage or input, a case beyond the\n"
+         "memory budget, or out of memory.\n");
 }
 
 static int parse(int argc, char **argv, opts *o) {
@@ -161,7 +175,9 @@ static int parse(int argc, char **argv, opts *o) {
     O_FORCE,
     O_STENCIL,
     O_RINGS,
-    O_CERTIFY
+    O_CERTIFY,
+    O_MAXMEM,
+    O_PROGRESS
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -180,6 +196,8 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"stencil", required_argument, 0, O_STENCIL},
                                      {"ring-levels", required_argument, 0, O_RINGS},
                                      {"certify", no_argument, 0, O_CERTIFY},
+                                     {"max-memory", required_argument, 0, O_MAXMEM},
+                                     {"progress", no_argument, 0, O_PROGRESS},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -306,6 +324,15 @@ static int parse(int argc, char **argv, opts *o) {
     case O_FORCE:
       if (!d) return ss_cli_usage_error(o->cmd, "--force is an option of draw only");
       o->force = 1;
+      break;
+    case O_MAXMEM:
+      if (ss_cli_parse_bytes(optarg, &o->max_memory))
+        return ss_cli_usage_error(
+            o->cmd, "--max-memory: expected a size such as 8G, 500M or 2.5G, not '%s'",
+            optarg);
+      break;
+    case O_PROGRESS:
+      o->progress = 1;
       break;
     default:
       return ss_cli_option_error(o->cmd, c, argv);
@@ -646,6 +673,28 @@ static int write_mtx(const opts *o, const char *scheme, const char *canon,
 
 /* ---- one case ---- */
 
+#define SLOW 3.0 /* estimated seconds above which a terminal sees progress */
+
+/* The case as the command line named it, for messages: "--edge 1000". */
+static void case_text(const opts *o, const ss_link *l, char *buf, size_t n) {
+  switch (o->kind) {
+  case SS_CASE_VERTEX:
+    snprintf(buf, n, "--vertex (a link with k = %d vertices)", l ? l->k : 0);
+    break;
+  case SS_CASE_EDGE_POINT:
+    snprintf(buf, n, "--vertex (the bipyramid over %d, as --edge %d)", o->n, o->n);
+    break;
+  case SS_CASE_EDGE:
+    snprintf(buf, n, "--edge %d", o->n);
+    break;
+  case SS_CASE_SURFACE_VERTEX:
+    snprintf(buf, n, "--surface-vertex %d", o->n);
+    break;
+  default:
+    snprintf(buf, n, "--face");
+  }
+}
+
 /* Analyse one case; link_text is the link's text for the vertex case and
  * where is a prefix for messages ("" or "stdin:LINE: "). */
 static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
@@ -662,7 +711,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     if (ss_link_parse(link_text, &l, &err) || ss_link_canonical(l, &cl, NULL, &err) ||
         ss_link_format(cl, &canon, &err)) {
       fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-      rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+      rc = ss_cli_exit_status(err.status);
       goto done;
     }
   }
@@ -678,9 +727,36 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     oe.n = ep;
     o = &oe;
   }
-  if (ss_local_new(s, &c, &M, &err)) {
+  /* what the case will cost, before anything is built */
+  ss_local_cost cost;
+  if (ss_local_estimate(s, &c, &cost, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = err.status == SS_EINPUT || err.status == SS_EIO ? SS_EXIT_USAGE : SS_EXIT_FAIL;
+    rc = ss_cli_exit_status(err.status);
+    goto done;
+  }
+  const double budget = ss_cli_budget(o->max_memory);
+  if (budget > 0.0 && cost.bytes > budget) {
+    char what[96], need[32], have[32];
+    case_text(o, l, what, sizeof what);
+    fprintf(stderr,
+            "subspectra %s: %s%s needs about %zu rows of S and ~%s (> budget %s: set "
+            "--max-memory to override)\n",
+            o->cmd, where, what, cost.n2,
+            ss_local_bytes_text(cost.bytes, need, sizeof need),
+            ss_local_bytes_text(budget, have, sizeof have));
+    rc = SS_EXIT_USAGE;
+    goto done;
+  }
+  ss_cli_progress pr = {o->cmd, ss_cli_now(), 0.0, NULL, 0};
+  const ss_progress prog = {o->progress || (isatty(STDERR_FILENO) && cost.seconds > SLOW)
+                                ? ss_cli_progress_fn
+                                : NULL,
+                            &pr};
+  ss_local_opts lo = ss_local_defaults();
+  lo.progress = prog;
+  if (ss_local_new_opts(s, &c, &lo, &M, &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+    rc = ss_cli_exit_status(err.status);
     goto done;
   }
   diag_info di = {0, 0, 0};
@@ -690,7 +766,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
         ss_diag_improper(star->cx, &di.pairs, &di.improper, &err)) {
       fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
       ss_star_free(star);
-      rc = SS_EXIT_FAIL;
+      rc = ss_cli_exit_status(err.status);
       goto done;
     }
     ss_star_free(star);
@@ -703,9 +779,10 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_eig_opts eo = ss_eig_defaults(M->dim);
   eo.tol = o->tol;
   eo.force = o->force;
+  eo.progress = prog;
   if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
+    rc = ss_cli_exit_status(err.status);
     goto done;
   }
   ss_regularity reg;
@@ -714,10 +791,14 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   co.ring_levels = o->ring_levels;
   ss_charmap_inj inj;
   cert_info ci = {o->certify, {e->cond, 0, 0.0}, NULL};
+  ss_progress_step(&prog,
+                   o->certify ? "regularity, injectivity, exact path"
+                              : "regularity and injectivity",
+                   0, 0);
   if (ss_certify_verdicts(s, &c, M, e, &co, o->certify, &cm, &reg, &inj, &ci.c, &ex,
                           &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
+    rc = ss_cli_exit_status(err.status);
     goto done;
   }
   ci.exact = ex;
@@ -727,12 +808,12 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     if (!cm && o->force && e->basis) {
       if (ss_charmap_new(M, e, &cm, &err)) {
         fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
-        rc = SS_EXIT_FAIL;
+        rc = ss_cli_exit_status(err.status);
         goto done;
       }
       if (ss_charmap_regularity(cm, M, &co, &reg, &err)) {
         fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
-        rc = SS_EXIT_FAIL;
+        rc = ss_cli_exit_status(err.status);
         goto done;
       }
       forced = 1;
@@ -758,7 +839,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     dopt.caption = caption;
     if (ss_report_draw(cm, &reg, &dopt, o->out, &err)) {
       fprintf(stderr, "subspectra draw: %s\n", err.msg);
-      rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+      rc = SS_EXIT_USAGE; /* bad file, i/o or out of memory */
       goto done;
     }
     fprintf(stderr, "subspectra draw: wrote %s (%s %s%s%s)\n", o->out,
@@ -805,6 +886,8 @@ static int run(int argc, char **argv, const char *cmd) {
             0,
             ss_report_draw_defaults(),
             SS_DIAG_BFS,
+            0,
+            0.0,
             0};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
   int r = parse(argc, argv, &o);
@@ -815,7 +898,7 @@ static int run(int argc, char **argv, const char *cmd) {
                 : ss_scheme_new(o.scheme, &s, &err)) {
     fprintf(stderr, "subspectra %s: %s%s\n", cmd,
             o.stencil ? "--stencil " : "--scheme: ", err.msg);
-    return err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+    return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
   }
   int rc = SS_EXIT_OK, header = 0;
   if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {

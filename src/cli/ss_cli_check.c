@@ -17,7 +17,7 @@
 
 static const char *const usage_text =
     "usage: subspectra check STENCIL.ini [--vertices A..B] [--edges A..B] [--face]\n"
-    "                        [--tol T] [--depth D] [--certify]\n"
+    "                        [--tol T] [--depth D] [--certify] [--max-memory SIZE]\n"
     "\n"
     "The CI gate for a new stencil: analyse every case and pass only if all pass.\n"
     "Each case: the local subdivision matrix from the stencil's global rule, its\n"
@@ -32,19 +32,26 @@ static const char *const usage_text =
     "  --face            the face of two tets (split tetoct only)\n"
     "  --certify         prove every verdict (exact spectrum, interval Jacobians);\n"
     "                    a verdict that cannot be proven counts as undecided\n"
+    "  --max-memory SIZE memory budget of one case (K, M, G, T: powers of 1000;\n"
+    "                    default half the physical memory, 3/4 of ulimit -v and\n"
+    "                    -d when set): a case whose estimate exceeds it is not run\n"
+    "                    but listed as an error with the estimate\n"
     "  -h, --help        this text\n"
     "With no case option: --vertices 4..6 --edges 3..6 (and --face for tetoct).\n"
     "\n"
     "Exit status: 0 every case passes both conditions, 1 some case fails or is\n"
-    "undecided, 2 bad usage or a bad stencil file (the message names file, line\n"
-    "and key).  In CI:  subspectra check data/stencils/mine.ini || exit 1\n";
+    "undecided, 2 bad usage, a bad stencil file (the message names file, line\n"
+    "and key), or a case out of memory or beyond the memory budget.  In CI:  subspectra "
+    "check data/stencils/mine.ini || exit 1\n";
 
 typedef struct {
   const ss_scheme *s;
   double tol;
   int depth;
   int certify;
+  double max_bytes; /* memory budget of one case */
   long cases, pass, fail, undecided, errors;
+  long nomem; /* of the errors, cases out of memory or beyond the budget */
 } gate;
 
 /* Analyse one case; print it unless it passes. */
@@ -55,10 +62,12 @@ static void run_case(gate *g, ss_case c, const char *what) {
   ro.tol = g->tol;
   ro.depth = g->depth;
   ro.certify = g->certify;
+  ro.max_bytes = g->max_bytes;
   g->cases++;
   if (ss_result_compute(g->s, &c, &ro, &r, &err)) {
     printf("error      %s: %s\n", what, err.msg);
     g->errors++;
+    g->nomem += err.status == SS_ENOMEM;
     return;
   }
   const ss_verdict_kind v = ss_result_verdict(&r);
@@ -90,14 +99,18 @@ static int visit(const ss_link *l, void *ctx) {
 }
 
 int ss_cli_check(int argc, char **argv) {
-  static const struct option opts[] = {
-      {"vertices", required_argument, NULL, 'v'}, {"edges", required_argument, NULL, 'e'},
-      {"face", no_argument, NULL, 'f'},           {"tol", required_argument, NULL, 't'},
-      {"depth", required_argument, NULL, 'd'},    {"certify", no_argument, NULL, 'c'},
-      {"help", no_argument, NULL, 'h'},           {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {{"vertices", required_argument, NULL, 'v'},
+                                       {"edges", required_argument, NULL, 'e'},
+                                       {"face", no_argument, NULL, 'f'},
+                                       {"tol", required_argument, NULL, 't'},
+                                       {"depth", required_argument, NULL, 'd'},
+                                       {"certify", no_argument, NULL, 'c'},
+                                       {"max-memory", required_argument, NULL, 'm'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
   long va = 0, vb = -1, ea = 0, eb = -1, depth = SS_JAC_DEPTH;
   int face = 0, any = 0, certify = 0;
-  double tol = 1e-6;
+  double tol = 1e-6, max_memory = 0.0;
   optind = 1;
   opterr = 0;
   int c;
@@ -134,6 +147,11 @@ int ss_cli_check(int argc, char **argv) {
     case 'c':
       certify = 1;
       break;
+    case 'm':
+      if (ss_cli_parse_bytes(optarg, &max_memory))
+        return ss_cli_usage_error(
+            "check", "--max-memory '%s' is not a size such as 8G, 500M or 2.5G", optarg);
+      break;
     case 'h':
       fputs(usage_text, stdout);
       return SS_EXIT_OK;
@@ -149,7 +167,7 @@ int ss_cli_check(int argc, char **argv) {
   ss_scheme *s = NULL;
   if (ss_stencil_load(path, &s, NULL, &err)) {
     fprintf(stderr, "subspectra check: %s\n", err.msg);
-    return err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+    return SS_EXIT_USAGE; /* a bad stencil file, or out of memory */
   }
   const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
   if (face && !tetoct) {
@@ -157,7 +175,7 @@ int ss_cli_check(int argc, char **argv) {
     return ss_cli_usage_error("check", "--face: the stencil's split is not tetoct");
   }
   if (!any) va = 4, vb = 6, ea = 3, eb = 6, face = tetoct;
-  gate g = {s, tol, (int)depth, certify, 0, 0, 0, 0, 0};
+  gate g = {s, tol, (int)depth, certify, ss_cli_budget(max_memory), 0, 0, 0, 0, 0, 0};
   printf("check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
          ss_scheme_name(s), tol, depth, certify ? ", certified verdicts" : "");
   if (vb >= va) {
@@ -165,7 +183,7 @@ int ss_cli_check(int argc, char **argv) {
     if (ss_enum_links(&eo, visit, &g, NULL, &err)) {
       fprintf(stderr, "subspectra check: %s\n", err.msg);
       ss_scheme_free(s);
-      return SS_EXIT_FAIL;
+      return ss_cli_exit_status(err.status);
     }
   }
   for (long n = ea; n <= eb; n++) {
@@ -177,5 +195,6 @@ int ss_cli_check(int argc, char **argv) {
   printf("%ld cases: %ld pass, %ld fail, %ld undecided, %ld errors\n", g.cases, g.pass,
          g.fail, g.undecided, g.errors);
   ss_scheme_free(s);
-  return g.pass == g.cases ? SS_EXIT_OK : SS_EXIT_FAIL;
+  /* a case out of memory or beyond the budget: exit 2, never "a check fails" */
+  return g.nomem ? SS_EXIT_USAGE : g.pass == g.cases ? SS_EXIT_OK : SS_EXIT_FAIL;
 }

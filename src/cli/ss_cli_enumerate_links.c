@@ -176,7 +176,7 @@ int ss_cli_enumerate_canonical(int argc, char **argv) {
     if (ss_link_parse(p, &l, &err) || ss_link_canonical(l, &cl, NULL, &err) ||
         ss_link_automorphisms(l, &aut, &naut, &err) || ss_link_format(cl, &text, &err)) {
       fprintf(stderr, "subspectra: stdin:%ld: %s\n", lineno, err.msg);
-      rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+      rc = SS_EXIT_USAGE; /* a bad link, or out of memory */
     } else if (json) {
       printf("{\"line\":%ld,\"vertices\":%d,\"automorphisms\":%d,\"canonical\":\"%s\"}\n",
              lineno, cl->k, naut, text);

@@ -916,10 +916,7 @@ static int make_dirs(const char *path) {
 }
 
 static int exit_for(const ss_error *err) {
-  return err->status == SS_ENUMERIC || err->status == SS_EINTERNAL ||
-                 err->status == SS_ENOMEM
-             ? SS_EXIT_FAIL
-             : SS_EXIT_USAGE;
+  return ss_cli_exit_status(err->status); /* out of memory: 2, never 1 */
 }
 
 int ss_cli_reproduce(int argc, char **argv) {
@@ -980,7 +977,7 @@ int ss_cli_reproduce(int argc, char **argv) {
   for (size_t i = 0; i < g.gl_pathc; i++)
     if (ss_report_ref_load(g.gl_pathv[i], &ref, &err)) {
       fprintf(stderr, "subspectra %s: %s\n", cmd, err.msg);
-      rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+      rc = SS_EXIT_USAGE; /* a bad reference file, or out of memory */
       goto done;
     }
   /* the output folders */

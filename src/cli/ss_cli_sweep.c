@@ -30,7 +30,7 @@
 static const char *const sweep_usage =
     "usage: subspectra sweep (--scheme S | --stencil FILE) CASES [--db FILE]\n"
     "                        [--jobs N] [--part I/N] [--tol T] [--depth D]\n"
-    "                        [--diagonals D] [--certify]\n"
+    "                        [--diagonals D] [--certify] [--max-memory SIZE]\n"
     "\n"
     "Analyse every case asked for, exactly as `subspectra analyze` does, and store\n"
     "each result in a SQLite results store (schema in the README).  Results are\n"
@@ -63,6 +63,11 @@ static const char *const sweep_usage =
     "                    or center with --edges only\n"
     "  --certify         prove the verdicts (the exact path of `analyze --certify`);\n"
     "                    what cannot be proven is stored as undecided\n"
+    "  --max-memory SIZE memory budget shared by the threads (K, M, G, T: powers of\n"
+    "                    1000; default half the physical memory, 3/4 of ulimit -v\n"
+    "                    and -d when set): a case whose estimate exceeds SIZE / N\n"
+    "                    (N threads) is not run but reported as an error, with\n"
+    "                    the estimate\n"
     "  --format F        text (default) or json: the final summary also as one\n"
     "                    JSON object on standard output\n"
     "  -h, --help        this text\n"
@@ -72,7 +77,8 @@ static const char *const sweep_usage =
     "SIGINT or SIGTERM: the cases being computed are finished and stored, the\n"
     "summary printed, and the sweep ends (rerun the same command to resume).\n"
     "Exit status: 0 every case passes both conditions, 1 some case fails, is\n"
-    "undecided or could not be analysed, 2 bad usage, a bad link or store file.\n";
+    "undecided or could not be analysed, 2 bad usage, a bad link or store file,\n"
+    "or a case out of memory or beyond the memory budget (the others still run).\n";
 
 static const char *const merge_usage =
     "usage: subspectra merge OUT.db IN.db...\n"
@@ -114,10 +120,11 @@ typedef struct {
   size_t computed;    /* cases analysed and stored now */
   size_t skipped;     /* cases found in the store */
   size_t pass, fail, undecided, errors; /* verdicts (stored cases included) */
-  double t0, last;                      /* start, last progress line (seconds) */
-  int tty;                              /* stderr is a terminal: show progress */
-  int stop;                             /* a store error happened: run nothing more */
-  ss_error fatal;                       /* that error */
+  size_t nomem;    /* of the errors, cases out of memory or beyond the budget */
+  double t0, last; /* start, last progress line (seconds) */
+  int tty;         /* stderr is a terminal: show progress */
+  int stop;        /* a store error happened: run nothing more */
+  ss_error fatal;  /* that error */
 } sweep;
 
 static void fmt_time(double s, char *buf, size_t n) {
@@ -198,6 +205,7 @@ static void run_job(sweep *w, const job *j) {
   {
     if (s) {
       w->errors++;
+      w->nomem += s == SS_ENOMEM;
       if (canon)
         fprintf(stderr, "%ssweep: vertex %s: %s\n", w->tty ? "\r\033[K" : "", canon,
                 err.msg);
@@ -280,7 +288,7 @@ static int read_links(const char *path, linklist *ll) {
       if (!q) {
         ss_link_free(l);
         fprintf(stderr, "subspectra sweep: out of memory reading %s\n", name);
-        rc = SS_EXIT_FAIL;
+        rc = SS_EXIT_USAGE;
         break;
       }
       ll->l = q;
@@ -311,7 +319,8 @@ int ss_cli_sweep(int argc, char **argv) {
     O_DEPTH,
     O_DIAG,
     O_FORMAT,
-    O_CERTIFY
+    O_CERTIFY,
+    O_MAXMEM
   };
   static const struct option opts[] = {{"scheme", required_argument, NULL, O_SCHEME},
                                        {"stencil", required_argument, NULL, O_STENCIL},
@@ -327,6 +336,7 @@ int ss_cli_sweep(int argc, char **argv) {
                                        {"diagonals", required_argument, NULL, O_DIAG},
                                        {"format", required_argument, NULL, O_FORMAT},
                                        {"certify", no_argument, NULL, O_CERTIFY},
+                                       {"max-memory", required_argument, NULL, O_MAXMEM},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   const char *scheme = NULL, *stencil = NULL, *links = NULL, *db = "subspectra.db";
@@ -334,7 +344,7 @@ int ss_cli_sweep(int argc, char **argv) {
   long va = 0, vb = -1, ea = 0, eb = -1, jobs = omp_get_num_procs(), part = 0, nparts = 1,
        depth = SS_JAC_DEPTH;
   int face = 0;
-  double tol = 1e-6;
+  double tol = 1e-6, max_memory = 0.0;
   ss_diag_mode diag = SS_DIAG_BFS;
   int diag_given = 0, json = 0, certify = 0;
   optind = 1;
@@ -401,6 +411,12 @@ int ss_cli_sweep(int argc, char **argv) {
     case O_CERTIFY:
       certify = 1;
       break;
+    case O_MAXMEM:
+      if (ss_cli_parse_bytes(optarg, &max_memory))
+        return ss_cli_usage_error(
+            "sweep", "--max-memory: expected a size such as 8G, 500M or 2.5G, not '%s'",
+            optarg);
+      break;
     case O_FORMAT:
       if (ss_cli_format_option("sweep", optarg, &json)) return SS_EXIT_USAGE;
       break;
@@ -425,7 +441,7 @@ int ss_cli_sweep(int argc, char **argv) {
               : ss_scheme_new(scheme, &s, &err)) {
     fprintf(stderr, "subspectra sweep: %s%s\n",
             stencil ? "--stencil " : "--scheme: ", err.msg);
-    return err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+    return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
   }
   const int volume = ss_scheme_accepts(s, SS_HEX) || ss_scheme_accepts(s, SS_TET);
   const int reads = ss_scheme_reads_diagonals(s);
@@ -457,19 +473,21 @@ int ss_cli_sweep(int argc, char **argv) {
   if (rc) goto done;
   if (!w) {
     fprintf(stderr, "subspectra sweep: out of memory\n");
-    rc = SS_EXIT_FAIL;
+    rc = SS_EXIT_USAGE;
     goto done;
   }
   ss_result_opts ro = ss_result_defaults();
   ro.tol = tol;
   ro.depth = (int)depth;
   ro.certify = certify;
+  /* the budget is shared by the threads, one case each */
+  ro.max_bytes = ss_cli_budget(max_memory) / (double)jobs;
   ss_store_scheme sc = {ss_scheme_name(s), stencil, hash, reads, diag, ro};
   int64_t id = 0;
   if (ss_store_open(db, SS_STORE_WRITE, &st, &err) ||
       ss_store_scheme_id(st, &sc, &id, &err)) {
     fprintf(stderr, "subspectra sweep: %s\n", err.msg);
-    rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+    rc = SS_EXIT_USAGE; /* a bad store, or out of memory */
     goto done;
   }
   *w = (sweep){.s = s,
@@ -487,7 +505,7 @@ int ss_cli_sweep(int argc, char **argv) {
       fprintf(stderr, "sweep: counting the links with %ld..%ld vertices...\n", va, vb);
     if (ss_enum_links(&eo, NULL, NULL, counts, &err)) {
       fprintf(stderr, "subspectra sweep: %s\n", err.msg);
-      rc = SS_EXIT_FAIL;
+      rc = ss_cli_exit_status(err.status);
       goto done;
     }
     for (long k = va; k <= vb; k++)
@@ -531,7 +549,7 @@ int ss_cli_sweep(int argc, char **argv) {
   if (w->tty) fprintf(stderr, "\r\033[K");
   if (w->stop) {
     fprintf(stderr, "subspectra sweep: %s\n", w->fatal.msg);
-    rc = w->fatal.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+    rc = SS_EXIT_USAGE; /* a store error, or out of memory */
     goto done;
   }
   char took[32];
@@ -572,7 +590,11 @@ int ss_cli_sweep(int argc, char **argv) {
                                                          JSON_C_TO_STRING_NOSLASHESCAPE));
     json_object_put(o);
   }
-  rc = w->fail || w->undecided || w->errors ? SS_EXIT_FAIL : SS_EXIT_OK;
+  /* a case out of memory or beyond the budget was skipped (with its message):
+   * exit 2, as for any case that could not be run for lack of memory */
+  rc = w->nomem                               ? SS_EXIT_USAGE
+       : w->fail || w->undecided || w->errors ? SS_EXIT_FAIL
+                                              : SS_EXIT_OK;
 done:
   for (size_t i = 0; i < ll.n; i++)
     ss_link_free(ll.l[i]);

@@ -1,5 +1,7 @@
 /* ss_cli_util.c — error reporting and option parsing shared by subcommands. */
+#include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <getopt.h>
 #include <stdio.h>
@@ -8,12 +10,60 @@
 #include <time.h>
 
 #include "ss_cli.h"
+#include "ss_local.h"
 
 int ss_cli_fail(const ss_error *err) {
   fprintf(stderr, "subspectra: %s\n",
           err->msg[0] ? err->msg : ss_status_name(err->status));
-  return (err->status == SS_ENUMERIC || err->status == SS_EINTERNAL) ? SS_EXIT_FAIL
-                                                                     : SS_EXIT_USAGE;
+  return ss_cli_exit_status(err->status);
+}
+
+int ss_cli_exit_status(ss_status st) {
+  return st == SS_ENUMERIC || st == SS_EINTERNAL ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+}
+
+int ss_cli_parse_bytes(const char *s, double *out) {
+  if (!s || !*s) return -1;
+  char *end = NULL;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (errno || end == s || !(v > 0.0) || !isfinite(v)) return -1;
+  static const char suffix[] = "KMGT";
+  const char *p = *end ? strchr(suffix, toupper((unsigned char)*end)) : NULL;
+  if (*end && !p) return -1;
+  if (p) {
+    for (const char *q = suffix; q <= p; q++)
+      v *= 1000.0;
+    end++;
+  }
+  if (*end == 'B' || *end == 'b') end++;
+  if (*end || !(v >= 1.0) || !isfinite(v)) return -1;
+  *out = v;
+  return 0;
+}
+
+double ss_cli_budget(double max_memory) {
+  return max_memory > 0.0 ? max_memory : ss_local_memory_budget();
+}
+
+void ss_cli_progress_fn(void *ctx, const char *phase, size_t done, size_t total) {
+  ss_cli_progress *p = ctx;
+  const double t = ss_cli_now();
+  /* a new phase, a new step of a phase without a total (a level), the last
+   * step, or a second since the last line */
+  if (phase == p->phase && (total || done == p->done) && t - p->last < 1.0 &&
+      !(total && done == total))
+    return;
+  p->phase = phase;
+  p->done = done;
+  p->last = t;
+  if (total)
+    fprintf(stderr, "subspectra %s: [%.1f s] %s %zu/%zu\n", p->cmd, t - p->t0, phase,
+            done, total);
+  else if (done)
+    fprintf(stderr, "subspectra %s: [%.1f s] %s %zu\n", p->cmd, t - p->t0, phase, done);
+  else
+    fprintf(stderr, "subspectra %s: [%.1f s] %s\n", p->cmd, t - p->t0, phase);
 }
 
 int ss_cli_usage_error(const char *cmd, const char *fmt, ...) {

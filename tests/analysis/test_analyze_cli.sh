@@ -207,5 +207,49 @@ c = json.loads(sys.argv[1])["eigen_condition"]
 assert c["verdict"] == "pass" and c["tolerance_requested"] == 1e-15, c
 assert c["tolerance"] == c["rounding_bound"] and 1e-15 < c["tolerance"] < 1e-9, c
 ' "$out" || fail "octahedron at --tol 1e-15: $out"
+# Cost guard (issue 16): a case is estimated before anything is built.  Beyond
+# the memory budget it is refused at once with exit 2 and the estimate
+# (--edge 1000, the documented maximum, needs 30005 rows of S and ~16.8 GB).
+t0=$(date +%s%N)
+expect_in 2 "--edge 1000 needs about 30005 rows of S and ~16\.8 GB \(> budget 8\.0 GB: set --max-memory to override\)" "" "$exe" analyze --scheme mlca --edge 1000 --max-memory 8G
+t1=$(date +%s%N)
+checks=$((checks + 1))
+[ $(( (t1 - t0) / 1000000 )) -lt $((2000 * ${SS_TIMEOUT_MULTIPLIER:-1})) ] || fail "--edge 1000 took $(( (t1 - t0) / 1000000 )) ms to refuse"
+expect_in 2 "needs about 30005 rows of S" "" "$exe" matrix --scheme mlca --edge 1000 --max-memory 8G
+expect_in 2 "needs about 30005 rows of S" "" "$exe" draw --scheme mlca --edge 1000 --max-memory 8G -o /dev/null.png
+expect_in 2 "bipyramid over 998, as --edge 998\) needs about 29945 rows" "" "$exe" analyze --scheme mlca --vertex bipyramid:998 --max-memory 1G
+expect_in 2 "--max-memory: expected a size" "" "$exe" analyze --scheme mlca --edge 4 --max-memory 8X
+expect_in 2 "--max-memory: expected a size" "" "$exe" analyze --scheme mlca --edge 4 --max-memory -1G
+expect_in 0 "--max-memory SIZE" "" "$exe" analyze --help
+# check and sweep: the case is skipped with its estimate, the others run, exit 2
+expect_in 2 "error      edge 3: needs about 95 rows of S.*budget of 17\.0 MB" "" "$exe" check "$st/mlca.ini" --edges 3..3 --max-memory 17M
+expect_in 0 "--max-memory SIZE" "" "$exe" check --help
+sdb=$(mktemp -d)
+expect_in 2 "sweep: edge 3: needs about 95 rows of S" "" "$exe" sweep --scheme mlca --edges 3..3 --db "$sdb/s.db" --jobs 1 --max-memory 17M
+expect_in 0 "--max-memory SIZE" "" "$exe" sweep --help
+rm -rf "$sdb"
+# progress on stderr with --progress; standard output unchanged
+pout=$("$exe" analyze --scheme mlca --edge 12 --format json --progress 2>"${TMPDIR:-/tmp}/ss_progress.$$")
+pst=$?
+perr=$(cat "${TMPDIR:-/tmp}/ss_progress.$$")
+rm -f "${TMPDIR:-/tmp}/ss_progress.$$"
+qout=$("$exe" analyze --scheme mlca --edge 12 --format json 2>/dev/null)
+checks=$((checks + 1))
+[ "$pst" -eq 1 ] && [ -n "$pout" ] && [ "$pout" = "$qout" ] || fail "--progress changed standard output or status ($pst)"
+checks=$((checks + 1))
+grep -q "refining the star to level" <<<"$perr" && grep -q "reading S, rows 365" <<<"$perr" &&
+  grep -Eq "eigen-solve, block ([0-9]+)/\1" <<<"$perr" || fail "--progress lines: $perr"
+checks=$((checks + 1))
+[ -z "$("$exe" analyze --scheme mlca --edge 12 2>&1 >/dev/null)" ] || fail "progress without --progress and without a terminal"
+# Out of memory is exit 2, never 1 (the code for a failed check): under an
+# address-space limit the budget refuses what the estimate says cannot fit,
+# and a real allocation failure (budget overridden) says "out of memory".
+# (Not under AddressSanitizer, which needs terabytes of address space.)
+if ! ldd "$exe" 2>/dev/null | grep -q libasan; then
+  expect_in 2 "needs about .* rows of S .*budget 768\.0 MB" "" bash -c "ulimit -v 1000000; exec \"\$0\" analyze --scheme mlca --edge 1000" "$exe"
+  expect_in 2 "out of memory \(canonical form\)" "" bash -c "ulimit -v 1000000; exec \"\$0\" analyze --scheme mlca --vertex bipyramid:20000" "$exe"
+  expect_in 2 "out of memory \(local matrix\)" "" bash -c "ulimit -v 200000; exec \"\$0\" analyze --scheme mlca --surface-vertex 1000 --max-memory 100G" "$exe"
+  expect_in 2 "out of memory" "" bash -c "ulimit -v 200000; exec \"\$0\" matrix --scheme mlca --surface-vertex 1000 --max-memory 100G" "$exe"
+fi
 
 expect_done "analyze_cli"

@@ -7,12 +7,19 @@
  * invariance under relabelling and mirroring of the link, a global-vs-local
  * cross-check on real refined patches, and the verdict logic with its
  * tolerance on matrices whose spectrum is known by construction. */
+#define _DEFAULT_SOURCE /* wait4: the peak memory of a child process */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gsl/gsl_rng.h>
 
 #include "ss_eig.h"
 #include "ss_enum.h"
+#include "ss_link_random.h"
 #include "ss_local.h"
 #include "ss_split.h"
 #include "ss_test.h"
@@ -693,6 +700,135 @@ static void test_edge_points(void) {
   ss_scheme_free(tetoct);
 }
 
+/* ---- the cost estimate (ss_local_estimate) ---- */
+
+/* Rows of S estimated exactly, for every built-in scheme and case kind:
+ * named links, random links (conical counts depend on k only), edges with
+ * every diagonal choice, the face, surfaces. */
+static void estimate_rows(const ss_scheme *s, ss_case c, const char *what) {
+  ss_error err = {0};
+  ss_local_cost k;
+  ss_local *M = NULL;
+  if (ss_local_estimate(s, &c, &k, &err) || ss_local_new(s, &c, &M, &err)) {
+    CHECK(0, "%s %s: %s", ss_scheme_name(s), what, err.msg);
+    return;
+  }
+  CHECK(k.n2 == M->n2 && k.n1 == M->n1,
+        "%s %s: estimated %zu / %zu rows, extracted %zu / %zu", ss_scheme_name(s), what,
+        k.n2, k.n1, M->n2, M->n1);
+  CHECK(k.block <= k.n2 - k.n1 && k.star_cells > 0 && k.bytes >= 2 * k.dense_bytes &&
+            k.dense_bytes == 8.0 * (double)k.n2 * (double)k.n2 && k.seconds > 0.0,
+        "%s %s: inconsistent estimate", ss_scheme_name(s), what);
+  ss_local_free(M);
+}
+
+#if !defined(__SANITIZE_ADDRESS__)
+/* Peak resident memory (bytes) of extracting and solving case c, measured in
+ * a child process (wait4's ru_maxrss), or -1. */
+static double peak_bytes(const ss_scheme *s, ss_case c) {
+  fflush(NULL);
+  const pid_t pid = fork();
+  if (pid < 0) return -1.0;
+  if (pid == 0) {
+    ss_local *M = NULL;
+    ss_eig *e = NULL;
+    int ok = analyse(s, c, &M, &e) == 0;
+    ss_eig_free(e);
+    ss_local_free(M);
+    _exit(ok ? 0 : 1);
+  }
+  int status = 0;
+  struct rusage ru;
+  if (wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status))
+    return -1.0;
+  return 1024.0 * (double)ru.ru_maxrss;
+}
+#endif
+
+static void test_estimate(void) {
+  static const char *const names[] = {"mlca",          "tetoct",        "boxspline",
+                                      "boxspline-avg", "catmull-clark", "loop"};
+  static const char *const links[] = {"tetrahedron", "octahedron", "icosahedron",
+                                      "bipyramid:5"};
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, 16);
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+    ss_scheme *s = scheme(names[i]);
+    const int vol = ss_scheme_accepts(s, SS_HEX) || ss_scheme_accepts(s, SS_TET);
+    ss_error err = {0};
+    char what[64];
+    for (size_t j = 0; vol && j < sizeof links / sizeof links[0] + 2; j++) {
+      ss_link *l = NULL;
+      const ss_status st = j < 4 ? ss_link_named(links[j], &l, &err)
+                                 : ss_link_random(j == 4 ? 9 : 17, rng, &l, &err);
+      if (st) {
+        CHECK(0, "link %zu: %s", j, err.msg);
+        continue;
+      }
+      snprintf(what, sizeof what, "vertex k = %d", l->k);
+      estimate_rows(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, what);
+      ss_link_free(l);
+    }
+    const int box = ss_scheme_reads_diagonals(s);
+    for (int n = 3; vol && n <= 9; n += 1 + (n > 5)) {
+      for (int d = 0; d < (box ? 3 : 1); d++) {
+        const ss_diag_mode m = d == 0   ? SS_DIAG_BFS
+                               : d == 1 ? SS_DIAG_SKEW
+                                        : SS_DIAG_CENTER;
+        snprintf(what, sizeof what, "edge %d, diagonals %s", n, ss_diag_name(m));
+        estimate_rows(s, (ss_case){SS_CASE_EDGE, NULL, n, m}, what);
+      }
+    }
+    if (ss_scheme_split_kind(s) == SS_SPLIT_TETOCT && vol)
+      estimate_rows(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "face");
+    for (int n = 3; n <= 8; n += 1 + (n > 4))
+      if (ss_scheme_accepts(s, SS_QUAD) || ss_scheme_accepts(s, SS_TRIANGLE)) {
+        snprintf(what, sizeof what, "surface vertex %d", n);
+        estimate_rows(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, what);
+      }
+    ss_scheme_free(s);
+  }
+  gsl_rng_free(rng);
+  /* the budget refuses before building anything, with the estimate */
+  ss_scheme *mlca = scheme("mlca"), *tetoct = scheme("tetoct");
+  ss_error err = {0};
+  ss_local_opts o = ss_local_defaults();
+  o.max_bytes = 1e9;
+  ss_local *M = NULL;
+  const ss_case big = {SS_CASE_EDGE, NULL, 1000, SS_DIAG_BFS};
+  CHECK(ss_local_new_opts(mlca, &big, &o, &M, &err) == SS_ENOMEM && !M &&
+            strstr(err.msg, "needs about 30005 rows of S") &&
+            strstr(err.msg, "budget of 1.0 GB"),
+        "edge 1000 under a 1 GB budget: %s", err.msg);
+  CHECK(ss_local_memory_budget() > 0.0, "no default budget");
+  /* memory within a factor 2 of the measured peak, for cases of 50..300 MB
+   * (not under AddressSanitizer, whose shadow memory inflates the peak) */
+#if !defined(__SANITIZE_ADDRESS__)
+  const struct {
+    const ss_scheme *s;
+    ss_case c;
+  } mem[] = {{mlca, {SS_CASE_EDGE, NULL, 40, SS_DIAG_BFS}},
+             {tetoct, {SS_CASE_EDGE, NULL, 60, SS_DIAG_BFS}},
+             {mlca, {SS_CASE_SURFACE_VERTEX, NULL, 400, SS_DIAG_BFS}}};
+  for (size_t i = 0; i < sizeof mem / sizeof mem[0]; i++) {
+    ss_local_cost k;
+    if (ss_local_estimate(mem[i].s, &mem[i].c, &k, &err)) {
+      CHECK(0, "%s", err.msg);
+      continue;
+    }
+    const double peak = peak_bytes(mem[i].s, mem[i].c);
+    CHECK(peak > 0 && k.bytes <= 2.0 * peak && peak <= 2.0 * k.bytes,
+          "%s %s %d: estimated %.0f MB, measured %.0f MB", ss_scheme_name(mem[i].s),
+          ss_case_name(mem[i].c.kind), mem[i].c.n, k.bytes / 1e6, peak / 1e6);
+    fprintf(stderr, "memory %s %s %d: estimated %.0f MB, measured %.0f MB\n",
+            ss_scheme_name(mem[i].s), ss_case_name(mem[i].c.kind), mem[i].c.n,
+            k.bytes / 1e6, peak / 1e6);
+  }
+#endif
+  ss_scheme_free(mlca);
+  ss_scheme_free(tetoct);
+}
+
 int main(void) {
   test_verdicts();
   test_surfaces();
@@ -702,5 +838,6 @@ int main(void) {
   test_links();
   test_cross();
   test_edge_points();
+  test_estimate();
   return ss_test_done("local");
 }
