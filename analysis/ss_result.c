@@ -146,7 +146,8 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   r->cond_certified = cert.cond_certified;
   r->reg_certified = reg.certified;
   r->inj_certified = inj.certified;
-  r->tol = e->tol_requested; /* the identity asked for; the verdict says if rounding raised it */
+  r->tol = e->tol_requested; /* the identity asked for; the verdict says if rounding
+                                raised it */
   r->reg = reg.verdict;
   r->inj = inj.verdict;
   r->inj_degree = inj.degree;
