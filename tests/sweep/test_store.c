@@ -192,13 +192,16 @@ int main(void) {
   ss_store_close(st);
 
   /* merge: into an empty store everything, into a full one nothing */
-  size_t added = 0, present = 0;
+  ss_store_merge_stats ms;
   REQUIRE_OK(ss_store_open(other, SS_STORE_WRITE, &st, &err), &err);
-  REQUIRE_OK(ss_store_merge(st, path, &added, &present, &err), &err);
-  CHECK(added == NCASES && present == 0, "merge added %zu, present %zu", added, present);
-  REQUIRE_OK(ss_store_merge(st, path, &added, &present, &err), &err);
-  CHECK(added == 0 && present == NCASES, "merge again added %zu, present %zu", added,
-        present);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_NONE, &ms, &err), &err);
+  CHECK(ms.added == NCASES && ms.present == 0 && ms.conflicts == 0,
+        "merge added %zu, present %zu, conflicts %zu", ms.added, ms.present,
+        ms.conflicts);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_NONE, &ms, &err), &err);
+  CHECK(ms.added == 0 && ms.present == NCASES && ms.conflicts == 0,
+        "merge again added %zu, present %zu, conflicts %zu", ms.added, ms.present,
+        ms.conflicts);
   m = (match){r, NCASES, 0, 0};
   REQUIRE_OK(ss_store_each(st, NULL, visit, &m, &err), &err);
   CHECK(m.seen == NCASES && m.equal == NCASES, "merged: %d rows, %d equal", m.seen,
@@ -223,7 +226,7 @@ int main(void) {
   sql(other, "PRAGMA user_version = 1"); /* the schema before the ring columns */
   file_fails(other, SS_STORE_READ, "schema version 1");
   REQUIRE_OK(ss_store_open(path, SS_STORE_WRITE, &st, &err), &err);
-  CHECK(ss_store_merge(st, other, &added, &present, &err) == SS_EINPUT,
+  CHECK(ss_store_merge(st, other, SS_STORE_PREFER_NONE, &ms, &err) == SS_EINPUT,
         "merge refuses another schema version");
   ss_store_close(st);
   snprintf(bad, sizeof bad, "%s/none.db", dir);
