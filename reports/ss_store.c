@@ -15,6 +15,8 @@
 #include <json-c/json.h>
 #include <sqlite3.h>
 
+enum { SS_STORE_OPEN_WAIT_MS = 5000 }; /* how long open waits for a lock */
+
 struct ss_store {
   sqlite3 *db;       /* the connection */
   char *path;        /* the file, for messages */
@@ -304,10 +306,15 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
                      st->db ? sqlite3_errmsg(st->db) : "out of memory");
     goto fail;
   }
-  sqlite3_busy_timeout(st->db, 30000);
+  /* Readers of a WAL database never wait for its writers: a first read that
+   * stays locked for seconds means another program holds the store
+   * exclusively, not a sweep adding rows; say so soon.  Writers then wait
+   * their turn (another process committing a row, a merge) much longer. */
+  sqlite3_busy_timeout(st->db, SS_STORE_OPEN_WAIT_MS);
   s = validate(st, &empty, err);
   if (s && st->readonly && retry_immutable(st, path)) s = validate(st, &empty, err);
   if (s) goto fail;
+  sqlite3_busy_timeout(st->db, 30000);
   if (empty && st->readonly) {
     s = ss_error_set(err, SS_EINPUT, "%s: an empty file, not a subspectra results store",
                      path);

@@ -78,7 +78,10 @@ void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n);
  * of this schema version and pass SQLite's quick_check.  *out is owned by the
  * caller (ss_store_close).  SS_EINPUT: not SQLite, corrupt, a foreign
  * database, or another schema version (the message says which); SS_EIO: the
- * file cannot be opened or created; SS_ENOMEM. */
+ * file cannot be opened or created, or (SS_STORE_WRITE) this process cannot
+ * write it or create its -wal and -shm files (a read-only file system, the
+ * file's or directory's permissions), or another process has held it
+ * locked for 5 seconds (the message says which); SS_ENOMEM. */
 ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
                         ss_error *err);
 
