@@ -661,11 +661,11 @@ int ss_cli_sweep(int argc, char **argv) {
     json_object_object_add(o, "computed", json_object_new_int64((int64_t)w->computed));
     json_object_object_add(o, "already_stored",
                            json_object_new_int64((int64_t)w->skipped));
-    json_object_object_add(o, "repeated_links", json_object_new_int64((int64_t)dups));
     json_object_object_add(o, "pass", json_object_new_int64((int64_t)w->pass));
     json_object_object_add(o, "fail", json_object_new_int64((int64_t)w->fail));
     json_object_object_add(o, "undecided", json_object_new_int64((int64_t)w->undecided));
     json_object_object_add(o, "errors", json_object_new_int64((int64_t)w->errors));
+    json_object_object_add(o, "repeated_links", json_object_new_int64((int64_t)dups));
     json_object_object_add(o, "seconds", json_object_new_double(dt));
     json_object_object_add(o, "interrupted", json_object_new_boolean(interrupted != 0));
     printf("%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN |
