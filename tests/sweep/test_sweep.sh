@@ -237,7 +237,7 @@ expect 2 "tol.db: scheme 'mlca tol=1e-06 depth=6 rings=3' was stored by an older
 # a store another program holds locked: said so (after a few seconds)
 cp "$tmp/p1.db" "$tmp/lock.db"
 sqlite3 "$tmp/lock.db" "PRAGMA locking_mode=EXCLUSIVE;" "BEGIN EXCLUSIVE;" \
-  "INSERT INTO meta VALUES('lock','held');" ".shell sleep 12" "ROLLBACK;" >/dev/null 2>&1 &
+  "INSERT INTO meta VALUES('lock','held');" ".shell sleep 20" "ROLLBACK;" >/dev/null 2>&1 &
 lockpid=$!
 locked=0
 for _ in $(seq 1 200); do
