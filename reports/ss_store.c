@@ -209,14 +209,29 @@ static ss_status validate(ss_store *st, int *empty, ss_error *err) {
   return SS_OK;
 }
 
-static ss_status create(ss_store *st, ss_error *err) {
+/* Create the schema in an empty database.  Another process may have opened
+ * the same new file at the same moment (the parts of a sweep sharing one
+ * store): whoever takes the write lock first creates, and *raced = 1 tells
+ * the others to validate what it made instead. */
+static ss_status create(ss_store *st, int *raced, ss_error *err) {
   char sql[4096];
   char when[32];
   time_t t = time(NULL);
   struct tm tm;
+  *raced = 0;
+  if (exec(st, "BEGIN IMMEDIATE") != SQLITE_OK)
+    return db_error(st, err, "cannot create the schema");
+  int rc;
+  const int64_t ntables = query_int(st, "SELECT count(*) FROM sqlite_schema", &rc);
+  if (rc != SQLITE_OK || ntables != 0) {
+    ss_status s = rc != SQLITE_OK ? db_error(st, err, "cannot create the schema") : SS_OK;
+    exec(st, "ROLLBACK");
+    *raced = rc == SQLITE_OK;
+    return s;
+  }
   strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&t, &tm));
   snprintf(sql, sizeof sql,
-           "BEGIN IMMEDIATE;\n%s"
+           "%s"
            "INSERT INTO meta VALUES('program','subspectra'),('schema','%d'),"
            "('created','%s');\n"
            "PRAGMA application_id = %d;\nPRAGMA user_version = %d;\nCOMMIT;",
@@ -329,7 +344,12 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
       s = db_error(st, err, "cannot set the journal mode");
       goto fail;
     }
-    if (empty && (s = create(st, err))) goto fail;
+    int raced = 0;
+    if (empty && (s = create(st, &raced, err))) goto fail;
+    if (raced && ((s = validate(st, &empty, err)) || empty)) {
+      if (!s) s = ss_error_set(err, SS_EIO, "%s: cannot create the schema", path);
+      goto fail;
+    }
   }
   if ((s = prepare(st, err))) goto fail;
   *out = st;

@@ -317,6 +317,21 @@ checks=$((checks + 1))
 expect 0 "^ok\$" sqlite3 "$db" "PRAGMA integrity_check"
 expect 0 "^0\$" sqlite3 "$db" "SELECT count(*) FROM result"
 
+# processes sharing a store may all create it at once: one creates the
+# schema, the others use it (three rounds of four)
+bad=0
+for r in 1 2 3; do
+  pids=""
+  for i in 1 2 3 4; do
+    "$exe" sweep --scheme mlca --edges 3..3 --jobs 1 --db "$tmp/new$r.db" >"$tmp/new$r.$i.out" 2>&1 &
+    pids="$pids $!"
+  done
+  for p in $pids; do wait "$p" || bad=$((bad + 1)); done
+done
+checks=$((checks + 1))
+[ "$bad" = 0 ] || fail "$bad of 12 sweeps creating one store at once failed: $(grep -hv '^sweep: 1 cases' "$tmp"/new*.out | head -2)"
+expect 0 "^1\$" sqlite3 "$tmp/new3.db" "SELECT count(*) FROM result"
+
 # usage errors
 expect 2 "no cases" "$exe" sweep --scheme mlca --db "$tmp/u.db"
 expect 2 "exactly one of --scheme and --stencil" "$exe" sweep --edges 3..4 --db "$tmp/u.db"
