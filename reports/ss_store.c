@@ -1,16 +1,21 @@
 /* ss_store.c — the SQLite results store (ss_store.h). */
 #include "ss_store.h"
 
+#include <errno.h>
 #include <inttypes.h>
+#include <libgen.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <json-c/json.h>
 #include <sqlite3.h>
+
+enum { SS_STORE_OPEN_WAIT_MS = 5000 }; /* how long open waits for a lock */
 
 struct ss_store {
   sqlite3 *db;       /* the connection */
@@ -72,7 +77,11 @@ static const char *const schema_sql =
     "  FROM result r JOIN scheme s ON s.id = r.scheme_id;\n";
 
 static ss_status db_error(ss_store *st, ss_error *err, const char *what) {
-  return ss_error_set(err, SS_EIO, "%s: %s: %s", st->path, what, sqlite3_errmsg(st->db));
+  const int code = sqlite3_errcode(st->db);
+  return ss_error_set(err, SS_EIO, "%s: %s: %s%s", st->path, what, sqlite3_errmsg(st->db),
+                      code == SQLITE_BUSY || code == SQLITE_LOCKED
+                          ? " (another process holds the results store)"
+                          : "");
 }
 
 static int exec(ss_store *st, const char *sql) {
@@ -95,14 +104,82 @@ static int64_t query_int(ss_store *st, const char *sql, int *rc) {
   return v;
 }
 
+/* The first read of a file failed: say why.  Only a file that SQLite cannot
+ * parse is "not a store"; a lock, a permission or the medium is not the
+ * file's fault. */
+static ss_status first_read_error(ss_store *st, ss_error *err) {
+  const char *msg = sqlite3_errmsg(st->db);
+  switch (sqlite3_errcode(st->db)) {
+  case SQLITE_BUSY:
+  case SQLITE_LOCKED:
+    return ss_error_set(err, SS_EIO,
+                        "%s: the results store is locked by another process (%s); "
+                        "try again when it has finished",
+                        st->path, msg);
+  case SQLITE_CORRUPT:
+    return ss_error_set(err, SS_EINPUT, "%s: corrupt results store (%s)", st->path, msg);
+  case SQLITE_READONLY:
+  case SQLITE_CANTOPEN:
+  case SQLITE_PERM:
+  case SQLITE_IOERR:
+  case SQLITE_AUTH:
+    return ss_error_set(err, SS_EIO, "%s: cannot read the results store (%s)%s", st->path,
+                        msg,
+                        st->readonly ? ""
+                                     : ": is its directory writable? (a store needs "
+                                       "its -wal and -shm files beside it)");
+  default: /* SQLITE_NOTADB and the like */
+    return ss_error_set(err, SS_EINPUT, "%s: not a subspectra results store (%s)",
+                        st->path, msg);
+  }
+}
+
+/* Before opening path to write: can this process write the file, or create
+ * it, and create its -wal and -shm files beside it?  SS_EIO naming what
+ * stops it (a read-only file system, the file's or the directory's
+ * permissions), for the user who would otherwise read SQLite's "attempt to
+ * write a readonly database" or worse. */
+static ss_status check_writable(const char *path, ss_error *err) {
+  const int exists = access(path, F_OK) == 0;
+  if (exists && access(path, W_OK) != 0)
+    return ss_error_set(err, SS_EIO, "%s: cannot write the results store: %s", path,
+                        errno == EROFS ? "a read-only file system"
+                        : errno == EACCES
+                            ? "no write permission on the file (open it with `report`, "
+                              "or `merge` it into a store of yours)"
+                            : strerror(errno));
+  /* the directory, needed to create the store, or its -wal and -shm files */
+  char *wal = malloc(strlen(path) + 8), *dir = strdup(path);
+  ss_status s = SS_OK;
+  if (!wal || !dir) {
+    s = ss_error_nomem(err, "results store");
+    goto done;
+  }
+  int need_dir = !exists;
+  sprintf(wal, "%s-wal", path);
+  need_dir |= access(wal, F_OK) != 0;
+  sprintf(wal, "%s-shm", path);
+  need_dir |= access(wal, F_OK) != 0;
+  const char *d = dirname(dir);
+  if (need_dir && access(d, W_OK | X_OK) != 0)
+    s = ss_error_set(err, SS_EIO, "%s: cannot %s the results store: directory %s: %s",
+                     path, exists ? "write" : "create", d,
+                     errno == EROFS    ? "a read-only file system"
+                     : errno == EACCES ? "no write permission (a store needs its -wal "
+                                         "and -shm files beside it)"
+                                       : strerror(errno));
+done:
+  free(wal);
+  free(dir);
+  return s;
+}
+
 /* Is the open file a healthy store of our schema?  An empty database (a new
  * or zero-length file) reports *empty = 1. */
 static ss_status validate(ss_store *st, int *empty, ss_error *err) {
   int rc;
   const int64_t ntables = query_int(st, "SELECT count(*) FROM sqlite_schema", &rc);
-  if (rc != SQLITE_OK)
-    return ss_error_set(err, SS_EINPUT, "%s: not a subspectra results store (%s)",
-                        st->path, sqlite3_errmsg(st->db));
+  if (rc != SQLITE_OK) return first_read_error(st, err);
   const int64_t app = query_int(st, "PRAGMA application_id", &rc);
   const int64_t ver = query_int(st, "PRAGMA user_version", &rc);
   *empty = ntables == 0 && app == 0;
@@ -132,14 +209,29 @@ static ss_status validate(ss_store *st, int *empty, ss_error *err) {
   return SS_OK;
 }
 
-static ss_status create(ss_store *st, ss_error *err) {
+/* Create the schema in an empty database.  Another process may have opened
+ * the same new file at the same moment (the parts of a sweep sharing one
+ * store): whoever takes the write lock first creates, and *raced = 1 tells
+ * the others to validate what it made instead. */
+static ss_status create(ss_store *st, int *raced, ss_error *err) {
   char sql[4096];
   char when[32];
   time_t t = time(NULL);
   struct tm tm;
+  *raced = 0;
+  if (exec(st, "BEGIN IMMEDIATE") != SQLITE_OK)
+    return db_error(st, err, "cannot create the schema");
+  int rc;
+  const int64_t ntables = query_int(st, "SELECT count(*) FROM sqlite_schema", &rc);
+  if (rc != SQLITE_OK || ntables != 0) {
+    ss_status s = rc != SQLITE_OK ? db_error(st, err, "cannot create the schema") : SS_OK;
+    exec(st, "ROLLBACK");
+    *raced = rc == SQLITE_OK;
+    return s;
+  }
   strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&t, &tm));
   snprintf(sql, sizeof sql,
-           "BEGIN IMMEDIATE;\n%s"
+           "%s"
            "INSERT INTO meta VALUES('program','subspectra'),('schema','%d'),"
            "('created','%s');\n"
            "PRAGMA application_id = %d;\nPRAGMA user_version = %d;\nCOMMIT;",
@@ -221,17 +313,23 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
   }
   const int flags =
       st->readonly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-  ss_status s = SS_OK;
+  ss_status s = st->readonly ? SS_OK : check_writable(path, err);
+  if (s) goto fail;
   int empty = 0;
   if (sqlite3_open_v2(path, &st->db, flags | SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK) {
     s = ss_error_set(err, SS_EIO, "%s: cannot open: %s", path,
                      st->db ? sqlite3_errmsg(st->db) : "out of memory");
     goto fail;
   }
-  sqlite3_busy_timeout(st->db, 30000);
+  /* Readers of a WAL database never wait for its writers: a first read that
+   * stays locked for seconds means another program holds the store
+   * exclusively, not a sweep adding rows; say so soon.  Writers then wait
+   * their turn (another process committing a row, a merge) much longer. */
+  sqlite3_busy_timeout(st->db, SS_STORE_OPEN_WAIT_MS);
   s = validate(st, &empty, err);
   if (s && st->readonly && retry_immutable(st, path)) s = validate(st, &empty, err);
   if (s) goto fail;
+  sqlite3_busy_timeout(st->db, 30000);
   if (empty && st->readonly) {
     s = ss_error_set(err, SS_EINPUT, "%s: an empty file, not a subspectra results store",
                      path);
@@ -246,7 +344,12 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
       s = db_error(st, err, "cannot set the journal mode");
       goto fail;
     }
-    if (empty && (s = create(st, err))) goto fail;
+    int raced = 0;
+    if (empty && (s = create(st, &raced, err))) goto fail;
+    if (raced && ((s = validate(st, &empty, err)) || empty)) {
+      if (!s) s = ss_error_set(err, SS_EIO, "%s: cannot create the schema", path);
+      goto fail;
+    }
   }
   if ((s = prepare(st, err))) goto fail;
   *out = st;
@@ -265,18 +368,28 @@ void ss_store_close(ss_store *st) {
   free(st);
 }
 
+/* The shortest "%.Ng" text of x that reads back as x (N = 6..17): 1e-06 stays
+ * "1e-06" (so the identities of stores written before tolerances were exact
+ * keep matching), 1.0000006e-06 is no longer "1e-06". */
+static void exact_real(double x, char *buf, size_t n) {
+  for (int p = 6; p <= 17; p++) {
+    snprintf(buf, n, "%.*g", p, x);
+    if (strtod(buf, NULL) == x) return;
+  }
+}
+
 void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n) {
-  char diag[40] = "";
+  char diag[40] = "", tol[32];
   if (sc->reads_diagonals)
     snprintf(diag, sizeof diag, " diagonals=%s", ss_diag_name(sc->diag));
+  exact_real(sc->opts.tol, tol, sizeof tol);
   if (sc->stencil)
-    snprintf(buf, n, "stencil:%016" PRIx64 " tol=%g depth=%d rings=%d%s%s",
-             sc->stencil_hash, sc->opts.tol, sc->opts.depth, sc->opts.ring_levels,
+    snprintf(buf, n, "stencil:%016" PRIx64 " tol=%s depth=%d rings=%d%s%s",
+             sc->stencil_hash, tol, sc->opts.depth, sc->opts.ring_levels,
              sc->opts.certify ? " certified" : "", diag);
   else
-    snprintf(buf, n, "%s tol=%g depth=%d rings=%d%s%s", sc->name, sc->opts.tol,
-             sc->opts.depth, sc->opts.ring_levels, sc->opts.certify ? " certified" : "",
-             diag);
+    snprintf(buf, n, "%s tol=%s depth=%d rings=%d%s%s", sc->name, tol, sc->opts.depth,
+             sc->opts.ring_levels, sc->opts.certify ? " certified" : "", diag);
 }
 
 ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *id,
@@ -285,15 +398,24 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
   ss_store_identity(sc, ident, sizeof ident);
   snprintf(hash, sizeof hash, "%016" PRIx64, sc->stencil_hash);
   sqlite3_stmt *q = NULL;
-  int rc =
-      sqlite3_prepare_v2(st->db, "SELECT id FROM scheme WHERE identity=?1", -1, &q, NULL);
+  int rc = sqlite3_prepare_v2(st->db, "SELECT id, tol FROM scheme WHERE identity=?1", -1,
+                              &q, NULL);
   if (rc == SQLITE_OK) {
     sqlite3_bind_text(q, 1, ident, -1, SQLITE_TRANSIENT);
     rc = sqlite3_step(q);
   }
   if (rc == SQLITE_ROW) {
     *id = sqlite3_column_int64(q, 0);
+    const double tol = sqlite3_column_double(q, 1);
     sqlite3_finalize(q);
+    /* a program before exact identities wrote tolerances to 6 digits: its
+     * rows under this identity may have been computed with another one */
+    if (tol != sc->opts.tol)
+      return ss_error_set(err, SS_EINPUT,
+                          "%s: scheme '%s' was stored by an older subspectra for the "
+                          "tolerance %.17g, which it did not tell apart from %.17g: "
+                          "its rows may hold either; use another store",
+                          st->path, ident, tol, sc->opts.tol);
     return SS_OK;
   }
   sqlite3_finalize(q);
@@ -553,51 +675,232 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
   return s;
 }
 
-ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *present,
-                         ss_error *err) {
+/* The value columns of result: every column but the key (scheme_id, kind, k,
+ * link) and the timing (seconds), which two runs of one case do not share.
+ * Two rows of one key conflict when any of these differs. */
+#define VALUE_COLS                                                                       \
+  "cells, two_ring, one_ring, lambda1, lambda2, lambda3, lambda4, eigenvalues, "         \
+  "eigen_condition, eigen_reason, eigen_certified, tolerance, regularity, "              \
+  "regularity_reason, regularity_certified, min_scaled_jacobian, depth, ring_level, "    \
+  "centre_corner_folds, injectivity, injectivity_reason, degree, "                       \
+  "injectivity_certified, improper_pairs, adjacent_pairs"
+enum { NVALUE = 25 };
+
+/* Exactly equal stored values (storage class and value; reals compared as
+ * doubles, so bit for bit but for the sign of zero). */
+static int same_value(sqlite3_value *a, sqlite3_value *b) {
+  const int t = sqlite3_value_type(a);
+  if (t != sqlite3_value_type(b)) return 0;
+  switch (t) {
+  case SQLITE_NULL:
+    return 1;
+  case SQLITE_INTEGER:
+    return sqlite3_value_int64(a) == sqlite3_value_int64(b);
+  case SQLITE_FLOAT:
+    return sqlite3_value_double(a) == sqlite3_value_double(b);
+  default: {
+    const void *pa =
+        t == SQLITE_TEXT ? (const void *)sqlite3_value_text(a) : sqlite3_value_blob(a);
+    const void *pb =
+        t == SQLITE_TEXT ? (const void *)sqlite3_value_text(b) : sqlite3_value_blob(b);
+    const int na = sqlite3_value_bytes(a), nb = sqlite3_value_bytes(b);
+    return na == nb && (na == 0 || memcmp(pa, pb, (size_t)na) == 0);
+  }
+  }
+}
+
+/* The statements of one merge (see ss_store_merge). */
+typedef struct {
+  sqlite3_stmt *schemes; /* src: the scheme rows */
+  sqlite3_stmt *addsch;  /* st: insert a scheme row if its identity is new */
+  sqlite3_stmt *rows;    /* src: identity, key, values, seconds of every result */
+  sqlite3_stmt *id;      /* st: the id of an identity */
+  sqlite3_stmt *ins;     /* st: insert a result unless its key is there */
+  sqlite3_stmt *repl;    /* st: insert or replace a result */
+  sqlite3_stmt *old;     /* st: the values stored under a key */
+} merge_sql;
+
+static void merge_sql_free(merge_sql *m) {
+  sqlite3_finalize(m->schemes);
+  sqlite3_finalize(m->addsch);
+  sqlite3_finalize(m->rows);
+  sqlite3_finalize(m->id);
+  sqlite3_finalize(m->ins);
+  sqlite3_finalize(m->repl);
+  sqlite3_finalize(m->old);
+}
+
+/* Prepare m's statements; on failure *failed is the connection that refused. */
+static int merge_sql_prepare(merge_sql *m, sqlite3 *src, sqlite3 *dst, sqlite3 **failed) {
+  static const char *const params =
+      "VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,"
+      "?21,?22,?23,?24,?25,?26,?27,?28,?29,?30)";
+  static const char *const scheme_cols =
+      "identity,name,stencil,stencil_hash,tol,depth,ring_levels,certify,diagonals";
+  char sql[1024];
+  *failed = src;
+  snprintf(sql, sizeof sql, "SELECT %s FROM scheme", scheme_cols);
+  int rc = sqlite3_prepare_v2(src, sql, -1, &m->schemes, NULL);
+  /* (a subquery for the identity: scheme has a depth column too) */
+  snprintf(sql, sizeof sql,
+           "SELECT (SELECT identity FROM scheme WHERE id = scheme_id), kind, k, link, "
+           "%s, seconds FROM result ORDER BY 1, 2, 3, 4",
+           VALUE_COLS);
+  if (rc == SQLITE_OK) rc = sqlite3_prepare_v2(src, sql, -1, &m->rows, NULL);
+  if (rc != SQLITE_OK) return rc;
+  *failed = dst;
+  snprintf(sql, sizeof sql,
+           "INSERT OR IGNORE INTO scheme(%s) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9)",
+           scheme_cols);
+  rc = sqlite3_prepare_v2(dst, sql, -1, &m->addsch, NULL);
+  if (rc == SQLITE_OK)
+    rc = sqlite3_prepare_v2(dst, "SELECT id FROM scheme WHERE identity = ?1", -1, &m->id,
+                            NULL);
+  snprintf(sql, sizeof sql,
+           "INSERT OR IGNORE INTO result(scheme_id, kind, k, link, %s, seconds) %s",
+           VALUE_COLS, params);
+  if (rc == SQLITE_OK) rc = sqlite3_prepare_v2(dst, sql, -1, &m->ins, NULL);
+  snprintf(sql, sizeof sql,
+           "INSERT OR REPLACE INTO result(scheme_id, kind, k, link, %s, seconds) %s",
+           VALUE_COLS, params);
+  if (rc == SQLITE_OK) rc = sqlite3_prepare_v2(dst, sql, -1, &m->repl, NULL);
+  snprintf(sql, sizeof sql,
+           "SELECT %s FROM result WHERE scheme_id = ?1 AND kind = ?2 AND k = ?3 AND "
+           "link = ?4",
+           VALUE_COLS);
+  if (rc == SQLITE_OK) rc = sqlite3_prepare_v2(dst, sql, -1, &m->old, NULL);
+  return rc;
+}
+
+/* Bind the key and values of the current row of m->rows to q (as ?2.., after
+ * the scheme id ?1). */
+static void bind_row(sqlite3_stmt *q, sqlite3_stmt *row, int64_t id, int n) {
+  sqlite3_reset(q);
+  sqlite3_clear_bindings(q);
+  sqlite3_bind_int64(q, 1, id);
+  for (int i = 1; i < n; i++)
+    sqlite3_bind_value(q, i + 1, sqlite3_column_value(row, i));
+}
+
+/* The text of the current row's key: "(IDENTITY) KIND K[ LINK]". */
+static void row_key(sqlite3_stmt *row, char *buf, size_t n) {
+  const char *link = (const char *)sqlite3_column_text(row, 3);
+  snprintf(buf, n, "(%s) %s %d%s%s", (const char *)sqlite3_column_text(row, 0),
+           (const char *)sqlite3_column_text(row, 1), sqlite3_column_int(row, 2),
+           link && *link ? " " : "", link ? link : "");
+}
+
+/* Copy src's schemes and results into st (the transaction is the caller's).
+ * An SQLite status; *failed is the connection whose error it is. */
+static int merge_rows(ss_store *st, ss_store *in, ss_store_prefer prefer,
+                      ss_store_merge_stats *ms, sqlite3 **failed) {
+  merge_sql m = {0};
+  char *ident = NULL; /* the identity whose id in st is id */
+  int64_t id = -1;
+  int rc = merge_sql_prepare(&m, in->db, st->db, failed);
+  if (rc != SQLITE_OK) goto done;
+  while ((rc = sqlite3_step(m.schemes)) == SQLITE_ROW) {
+    sqlite3_reset(m.addsch);
+    for (int i = 0; i < 9; i++)
+      sqlite3_bind_value(m.addsch, i + 1, sqlite3_column_value(m.schemes, i));
+    if ((rc = sqlite3_step(m.addsch)) != SQLITE_DONE) {
+      *failed = st->db;
+      goto done;
+    }
+  }
+  if (rc != SQLITE_DONE) {
+    *failed = in->db;
+    goto done;
+  }
+  const int ncols = 4 + NVALUE + 1; /* identity, key, values, seconds */
+  while ((rc = sqlite3_step(m.rows)) == SQLITE_ROW) {
+    *failed = st->db;
+    const char *s = (const char *)sqlite3_column_text(m.rows, 0);
+    if (!s) continue; /* (a result of no scheme: nothing to match it by) */
+    if (!ident || strcmp(ident, s)) {
+      free(ident);
+      if (!(ident = strdup(s))) {
+        rc = SQLITE_NOMEM;
+        goto done;
+      }
+      sqlite3_reset(m.id);
+      sqlite3_bind_text(m.id, 1, s, -1, SQLITE_TRANSIENT);
+      if ((rc = sqlite3_step(m.id)) != SQLITE_ROW) goto missing;
+      id = sqlite3_column_int64(m.id, 0);
+      sqlite3_reset(m.id);
+    }
+    bind_row(m.ins, m.rows, id, ncols);
+    if ((rc = sqlite3_step(m.ins)) != SQLITE_DONE) goto done;
+    if (sqlite3_changes(st->db) > 0) {
+      ms->added++;
+      continue;
+    }
+    /* the key is there: equal values, or a conflict */
+    bind_row(m.old, m.rows, id, 4);
+    if ((rc = sqlite3_step(m.old)) != SQLITE_ROW) goto missing;
+    int same = 1;
+    for (int i = 0; i < NVALUE && same; i++)
+      same =
+          same_value(sqlite3_column_value(m.old, i), sqlite3_column_value(m.rows, 4 + i));
+    sqlite3_reset(m.old);
+    if (same) {
+      ms->present++;
+      continue;
+    }
+    if (ms->conflicts < SS_STORE_NKEYS)
+      row_key(m.rows, ms->first[ms->conflicts], sizeof ms->first[0]);
+    ms->conflicts++;
+    if (prefer == SS_STORE_PREFER_NEW) {
+      bind_row(m.repl, m.rows, id, ncols);
+      if ((rc = sqlite3_step(m.repl)) != SQLITE_DONE) goto done;
+      ms->replaced++;
+    }
+  }
+  if (rc != SQLITE_DONE) *failed = in->db;
+  goto done;
+missing: /* a row just written or read is not there: only an error explains it */
+  if (rc == SQLITE_DONE) rc = SQLITE_INTERNAL;
+done:
+  free(ident);
+  merge_sql_free(&m);
+  return rc == SQLITE_DONE ? SQLITE_OK : rc;
+}
+
+ss_status ss_store_merge(ss_store *st, const char *src, ss_store_prefer prefer,
+                         ss_store_merge_stats *stats, ss_error *err) {
+  ss_store_merge_stats ms;
+  memset(&ms, 0, sizeof ms);
+  if (stats) *stats = ms;
+  if (st->readonly) return ss_error_set(err, SS_EINPUT, "%s: opened read-only", st->path);
+  /* the same file by another name (a symbolic or hard link, ./x.db): SQLite
+   * would wait for its own write lock */
+  struct stat a, b;
+  if (stat(st->path, &a) == 0 && stat(src, &b) == 0 && a.st_dev == b.st_dev &&
+      a.st_ino == b.st_ino)
+    return ss_error_set(err, SS_EINPUT,
+                        "%s is the output store %s itself (the same file): nothing to "
+                        "merge",
+                        src, st->path);
   ss_store *in = NULL;
   ss_status s = ss_store_open(src, SS_STORE_READ, &in, err);
   if (s) return s;
-  size_t nin[SS_NCASEKINDS], before[SS_NCASEKINDS], after[SS_NCASEKINDS];
-  s = ss_store_count(in, -1, nin, err);
-  ss_store_close(in);
-  if (s) return s;
-  if ((s = ss_store_count(st, -1, before, err))) return s;
-  sqlite3_stmt *q = NULL;
-  int rc = sqlite3_prepare_v2(st->db, "ATTACH DATABASE ?1 AS src", -1, &q, NULL);
-  if (rc == SQLITE_OK) {
-    sqlite3_bind_text(q, 1, src, -1, SQLITE_TRANSIENT);
-    rc = sqlite3_step(q);
-  }
-  sqlite3_finalize(q);
-  if (rc != SQLITE_DONE) return db_error(st, err, "cannot attach the input store");
-  /* schemes are matched by identity, so ids may differ between stores */
-  rc = exec(st, "BEGIN IMMEDIATE;"
-                "INSERT OR IGNORE INTO main.scheme(identity,name,stencil,stencil_hash,"
-                "tol,depth,ring_levels,certify,diagonals) SELECT identity,name,stencil,"
-                "stencil_hash,tol,depth,ring_levels,certify,diagonals FROM src.scheme;"
-                "INSERT OR IGNORE INTO main.result SELECT m.id, r.kind, r.k, r.link, "
-                "r.cells, r.two_ring, r.one_ring, r.lambda1, r.lambda2, r.lambda3, "
-                "r.lambda4, r.eigenvalues, r.eigen_condition, r.eigen_reason, "
-                "r.eigen_certified, r.tolerance, r.regularity, r.regularity_reason, "
-                "r.regularity_certified, r.min_scaled_jacobian, r.depth, r.ring_level, "
-                "r.centre_corner_folds, r.injectivity, r.injectivity_reason, r.degree, "
-                "r.injectivity_certified, r.improper_pairs, r.adjacent_pairs, "
-                "r.seconds FROM src.result r JOIN src.scheme s ON s.id = r.scheme_id "
-                "JOIN main.scheme m ON m.identity = s.identity;"
-                "COMMIT;");
+  sqlite3 *failed = st->db;
+  int rc = exec(st, "BEGIN IMMEDIATE");
+  if (rc == SQLITE_OK) rc = merge_rows(st, in, prefer, &ms, &failed);
+  if (rc == SQLITE_OK) rc = exec(st, "COMMIT");
   if (rc != SQLITE_OK) {
-    s = db_error(st, err, "merge");
+    if (rc == SQLITE_NOMEM)
+      s = ss_error_nomem(err, "merge");
+    else
+      s = ss_error_set(err, SS_EIO, "%s: %s %s: %s", failed == in->db ? src : st->path,
+                       failed == in->db ? "cannot read it to merge into" : "merging",
+                       failed == in->db ? st->path : src,
+                       sqlite3_errcode(failed) != SQLITE_OK ? sqlite3_errmsg(failed)
+                                                            : sqlite3_errstr(rc));
     exec(st, "ROLLBACK");
+    memset(&ms, 0, sizeof ms);
   }
-  exec(st, "DETACH DATABASE src");
-  if (s || (s = ss_store_count(st, -1, after, err))) return s;
-  size_t a = 0, t = 0;
-  for (int i = 0; i < SS_NCASEKINDS; i++) {
-    a += after[i] - before[i];
-    t += nin[i];
-  }
-  if (added) *added = a;
-  if (present) *present = t - a;
-  return SS_OK;
+  ss_store_close(in);
+  if (stats) *stats = ms;
+  return s;
 }

@@ -69,14 +69,19 @@ typedef int (*ss_store_visit)(const ss_store_row *row, void *ctx);
 /* The identity text of sc into buf (n bytes, >= 128 is always enough):
  * "NAME tol=T depth=D rings=R[ certified][ diagonals=X]" for a built-in
  * scheme, "stencil:HASH16 tol=T depth=D rings=R[ certified][ diagonals=X]" for
- * a stencil file ("certified": the exact path, --certify). */
+ * a stencil file ("certified": the exact path, --certify).  T is the shortest
+ * of "%.6g".."%.17g" that reads back as the tolerance exactly, so distinct
+ * tolerances are distinct identities (1e-06, 1.0000006e-06). */
 void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n);
 
 /* Open path (see ss_store_mode).  An existing file must be a subspectra store
  * of this schema version and pass SQLite's quick_check.  *out is owned by the
  * caller (ss_store_close).  SS_EINPUT: not SQLite, corrupt, a foreign
  * database, or another schema version (the message says which); SS_EIO: the
- * file cannot be opened or created; SS_ENOMEM. */
+ * file cannot be opened or created, or (SS_STORE_WRITE) this process cannot
+ * write it or create its -wal and -shm files (a read-only file system, the
+ * file's or directory's permissions), or another process has held it
+ * locked for 5 seconds (the message says which); SS_ENOMEM. */
 ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
                         ss_error *err);
 
@@ -113,11 +118,42 @@ ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[SS_NCASEKINDS],
 ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, void *ctx,
                         ss_error *err);
 
+/* What to do with a conflict: a case (scheme identity, kind, k, link) that
+ * both stores hold with different values (any column but the key and
+ * `seconds`, compared exactly). */
+typedef enum {
+  SS_STORE_PREFER_NONE = 0, /* keep st's row; the caller reports the conflicts */
+  SS_STORE_PREFER_OLD,      /* keep st's row */
+  SS_STORE_PREFER_NEW       /* replace it by src's row */
+} ss_store_prefer;
+
+enum {
+  SS_STORE_NKEYS = 3,    /* conflict keys kept by ss_store_merge_stats */
+  SS_STORE_KEYLEN = 640, /* room for one key: identity, kind, k, a k = 20 link */
+};
+
+/* What one ss_store_merge did. */
+typedef struct {
+  size_t added;     /* results whose key st did not have: copied */
+  size_t present;   /* results st had with equal values: nothing to do */
+  size_t conflicts; /* results st had with other values */
+  size_t replaced;  /* conflicts replaced by src's row (SS_STORE_PREFER_NEW) */
+  char first[SS_STORE_NKEYS][SS_STORE_KEYLEN]; /* the first min(conflicts,
+                       SS_STORE_NKEYS) conflict keys, "(IDENTITY) KIND K[ LINK]",
+                       in the order identity, kind, k, link */
+} ss_store_merge_stats;
+
 /* Copy every scheme and result of the store at src into st in one
- * transaction; rows already in st are kept.  *added and *present (may be
- * NULL) count the results copied and those st had already.  src is checked
- * like ss_store_open(READ).  SS_EINPUT for a bad src, SS_EIO. */
-ss_status ss_store_merge(ss_store *st, const char *src, size_t *added, size_t *present,
-                         ss_error *err);
+ * transaction: new keys are added, equal rows left alone, conflicts resolved
+ * by prefer (SS_STORE_PREFER_NONE keeps st's rows, as OLD does: the caller
+ * decides what a conflict means).  src is opened read-only like
+ * ss_store_open(READ), so a store on a read-only medium or in a directory the
+ * user may not write is merged too.  *stats (may be NULL) says what was done;
+ * all zero after a failure, when nothing is changed.  SS_EINPUT for a bad
+ * src, or src being st's own file under any name (symbolic or hard link);
+ * SS_EIO for a database error (reading src or writing st: the message says
+ * which file); SS_ENOMEM. */
+ss_status ss_store_merge(ss_store *st, const char *src, ss_store_prefer prefer,
+                         ss_store_merge_stats *stats, ss_error *err);
 
 #endif

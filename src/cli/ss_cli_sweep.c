@@ -48,15 +48,20 @@ static const char *const sweep_usage =
     "  --edges A..B      points on edges of valence A..B (3 <= A <= B <= 1000)\n"
     "  --face            the point inside the face of two tets (split tetoct)\n"
     "  --links FILE      the vertex links in FILE, one per line (plantri ASCII or a\n"
-    "                    name; '#' comments); '-' reads standard input\n"
+    "                    name; '#' comments); '-' reads standard input; a link\n"
+    "                    isomorphic to an earlier one (or one --vertices covers)\n"
+    "                    is run once and counted as repeated\n"
     "options:\n"
     "  --db FILE         the results store (default subspectra.db; created if\n"
-    "                    missing; a file that is not a subspectra store is refused)\n"
+    "                    missing; a file that is not a subspectra store is refused,\n"
+    "                    and one that cannot be written is named as such: read-only\n"
+    "                    file system or permissions, or locked by another program)\n"
     "  --jobs N          threads (default: the number of processors)\n"
     "  --part I/N        only part I of N (0 <= I < N): the enumeration is split\n"
     "                    into N disjoint parts covering every case, for N processes\n"
     "                    or machines; join their stores with `subspectra merge`\n"
-    "  --tol T           relative tolerance for equal eigenvalues (default 1e-6)\n"
+    "  --tol T           relative tolerance for equal eigenvalues (default 1e-6;\n"
+    "                    exact in the identity: 1.0000006e-6 is not 1e-6)\n"
     "  --depth D         hex subdivision depth of the Jacobian test (0..12, default "
     "6)\n"
     "  --diagonals D     major diagonals (boxspline): bfs (default) or proper; skew\n"
@@ -75,18 +80,28 @@ static const char *const sweep_usage =
     "Progress (cases done / total, rate, ETA, failures so far) goes to standard\n"
     "error while it is a terminal; otherwise only the final summary is printed.\n"
     "SIGINT or SIGTERM: the cases being computed are finished and stored, the\n"
-    "summary printed, and the sweep ends (rerun the same command to resume).\n"
+    "summary printed, and the sweep ends (rerun the same command to resume);\n"
+    "while the links are still being counted it ends at once, saying so.\n"
     "Exit status: 0 every case passes both conditions, 1 some case fails, is\n"
     "undecided or could not be analysed, 2 bad usage, a bad link or store file,\n"
     "or a case out of memory or beyond the memory budget (the others still run).\n";
 
 static const char *const merge_usage =
-    "usage: subspectra merge OUT.db IN.db...\n"
+    "usage: subspectra merge [--prefer new|old] OUT.db IN.db...\n"
     "\n"
     "Copy every result of the stores IN.db... into OUT.db (created if missing),\n"
-    "matching schemes by identity; a case OUT.db already has is kept.  For the\n"
-    "stores of a sweep split with --part.  Exit status 0, or 2 when a file is not\n"
-    "a subspectra results store (nothing is copied from it).\n";
+    "matching schemes by identity; for the stores of a sweep split with --part.\n"
+    "A case OUT.db already has with the same values is left alone.  A conflict\n"
+    "is a case both hold with different values (any stored column but the\n"
+    "timing, compared exactly):\n"
+    "  (default)         OUT.db's row is kept, and the conflicts are reported\n"
+    "                    (how many, the first keys): exit status 1\n"
+    "  --prefer old      OUT.db's row is kept\n"
+    "  --prefer new      IN.db's row replaces it\n"
+    "Each IN.db is merged in one transaction; IN.db is only read (it may be on a\n"
+    "read-only medium).  Exit status 0, 1 conflicts without --prefer, 2 bad usage\n"
+    "or a file that is not a subspectra results store, cannot be read or\n"
+    "written, or is OUT.db itself (nothing is copied from it).\n";
 
 enum { CHUNK = 512 };
 
@@ -304,6 +319,77 @@ static int read_links(const char *path, linklist *ll) {
   return rc;
 }
 
+/* A link of --links by its canonical form, for finding repeats. */
+typedef struct {
+  char *canon; /* canonical plantri text (owned) */
+  size_t i;    /* index in the list */
+} canon_item;
+
+static int canon_cmp(const void *pa, const void *pb) {
+  const canon_item *a = pa, *b = pb;
+  const int c = strcmp(a->canon, b->canon);
+  return c ? c : (a->i > b->i) - (a->i < b->i);
+}
+
+/* Drop the links of ll that repeat an earlier one up to isomorphism (or, when
+ * skip_hi >= skip_lo, have skip_lo..skip_hi vertices: --vertices enumerates
+ * them); the first of each stays, in order.  *dropped counts the others.
+ * Done before anything runs, so a repeat is neither computed twice nor
+ * reported as found in the store. */
+static int dedupe_links(linklist *ll, long skip_lo, long skip_hi, size_t *dropped) {
+  *dropped = 0;
+  const size_t n0 = ll->n;
+  canon_item *c = calloc(n0 ? n0 : 1, sizeof *c);
+  char *drop = calloc(ll->n ? ll->n : 1, 1);
+  int rc = SS_EXIT_OK;
+  if (!c || !drop) {
+    fprintf(stderr, "subspectra sweep: out of memory\n");
+    rc = SS_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t i = 0; i < ll->n; i++) {
+    ss_error err = {0};
+    ss_link *cl = NULL;
+    c[i].i = i;
+    if (ss_link_canonical(ll->l[i], &cl, NULL, &err) ||
+        ss_link_format(cl, &c[i].canon, &err)) {
+      ss_link_free(cl);
+      fprintf(stderr, "subspectra sweep: --links: %s\n", err.msg);
+      rc = err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
+      goto done;
+    }
+    ss_link_free(cl);
+  }
+  qsort(c, ll->n, sizeof *c, canon_cmp);
+  for (size_t i = 0; i < ll->n; i++) {
+    const int k = ll->l[c[i].i]->k;
+    drop[c[i].i] =
+        (i > 0 && !strcmp(c[i].canon, c[i - 1].canon)) || (k >= skip_lo && k <= skip_hi);
+  }
+  size_t n = 0;
+  for (size_t i = 0; i < ll->n; i++) {
+    if (drop[i])
+      ss_link_free(ll->l[i]);
+    else
+      ll->l[n++] = ll->l[i];
+  }
+  *dropped = ll->n - n;
+  ll->n = n;
+done:
+  for (size_t i = 0; c && i < n0; i++)
+    free(c[i].canon);
+  free(c);
+  free(drop);
+  return rc;
+}
+
+/* The counting pass's visitor: nothing to do but stop on a signal. */
+static int count_visit(const ss_link *l, void *ctx) {
+  (void)l;
+  (void)ctx;
+  return interrupted != 0;
+}
+
 int ss_cli_sweep(int argc, char **argv) {
   enum {
     O_SCHEME = 256,
@@ -467,7 +553,10 @@ int ss_cli_sweep(int argc, char **argv) {
     return ss_cli_usage_error("sweep", "%s", bad);
   }
   linklist ll = {NULL, 0};
+  size_t dups = 0; /* --links dropped as repeats */
   int rc = links ? read_links(links, &ll) : SS_EXIT_OK;
+  if (!rc && links)
+    rc = dedupe_links(&ll, vtext && volume ? va : 1, vtext && volume ? vb : 0, &dups);
   sweep *w = calloc(1, sizeof *w);
   ss_store *st = NULL;
   if (rc) goto done;
@@ -497,19 +586,29 @@ int ss_cli_sweep(int argc, char **argv) {
                .diag = diag,
                .jobs = (int)jobs,
                .tty = isatty(STDERR_FILENO)};
-  /* the total first, so that progress can show an ETA */
+  /* SIGINT, SIGTERM from here on: the store is open */
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  /* the total first, so that progress can show an ETA (a signal stops the
+   * count, and then the sweep before its first case) */
   ss_enum_opts eo = {(int)va, (int)vb, (int)part, (int)nparts};
+  int counting_stopped = 0;
   if (vtext && volume) {
     uint64_t counts[SS_ENUM_MAXK + 1];
     if (w->tty && vb >= 15)
       fprintf(stderr, "sweep: counting the links with %ld..%ld vertices...\n", va, vb);
-    if (ss_enum_links(&eo, NULL, NULL, counts, &err)) {
+    if (ss_enum_links(&eo, count_visit, NULL, counts, &err)) {
       fprintf(stderr, "subspectra sweep: %s\n", err.msg);
       rc = ss_cli_exit_status(err.status);
       goto done;
     }
     for (long k = va; k <= vb; k++)
       w->total += counts[k];
+    counting_stopped = interrupted != 0;
   }
   size_t idx = 0; /* index of the non-enumerated cases, for --part */
   for (long n = vtext && !volume ? va : 1; n <= (vtext && !volume ? vb : 0); n++)
@@ -521,15 +620,9 @@ int ss_cli_sweep(int argc, char **argv) {
     w->total += idx++ % (size_t)nparts == (size_t)part;
   char ident[256];
   ss_store_identity(&sc, ident, sizeof ident);
-  if (w->tty)
+  if (w->tty && !counting_stopped)
     fprintf(stderr, "sweep: %zu cases of %s into %s with %ld thread%s%s\n", w->total,
             ident, db, jobs, jobs == 1 ? "" : "s", nparts > 1 ? " (this part)" : "");
-  struct sigaction sa;
-  memset(&sa, 0, sizeof sa);
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
   w->t0 = w->last = ss_cli_now();
   if (vtext && volume && ss_enum_links(&eo, visit, w, NULL, &err) && !w->stop) {
     w->stop = 1;
@@ -555,14 +648,24 @@ int ss_cli_sweep(int argc, char **argv) {
   char took[32];
   fmt_time(dt, took, sizeof took);
   const size_t done = w->computed + w->skipped + w->errors;
-  fprintf(stderr,
-          "sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with %ld thread%s; "
-          "%zu already stored): %zu pass, %zu fail, %zu undecided, %zu errors; "
-          "store %s\n",
-          done, ident, took, w->computed, dt > 0 ? (double)w->computed / dt : 0.0, jobs,
-          jobs == 1 ? "" : "s", w->skipped, w->pass, w->fail, w->undecided, w->errors,
-          db);
-  if (interrupted)
+  char dupnote[64] = "";
+  if (dups)
+    snprintf(dupnote, sizeof dupnote, ", %zu repeated link%s in --links skipped", dups,
+             dups == 1 ? "" : "s");
+  if (counting_stopped)
+    fprintf(stderr,
+            "sweep: interrupted (%s) while counting the cases, before any was "
+            "computed (store %s); the same command resumes\n",
+            interrupted == SIGINT ? "SIGINT" : "SIGTERM", db);
+  else
+    fprintf(stderr,
+            "sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with %ld thread%s; "
+            "%zu already stored%s): %zu pass, %zu fail, %zu undecided, %zu errors; "
+            "store %s\n",
+            done, ident, took, w->computed, dt > 0 ? (double)w->computed / dt : 0.0, jobs,
+            jobs == 1 ? "" : "s", w->skipped, dupnote, w->pass, w->fail, w->undecided,
+            w->errors, db);
+  if (interrupted && !counting_stopped)
     fprintf(stderr,
             "sweep: interrupted (%s) with %zu of %zu cases done; the same command "
             "resumes\n",
@@ -575,7 +678,9 @@ int ss_cli_sweep(int argc, char **argv) {
     json_object_object_add(o, "part", json_object_new_int64(part));
     json_object_object_add(o, "parts", json_object_new_int64(nparts));
     json_object_object_add(o, "threads", json_object_new_int64(jobs));
-    json_object_object_add(o, "cases", json_object_new_int64((int64_t)w->total));
+    /* (null: the count was interrupted) */
+    json_object_object_add(
+        o, "cases", counting_stopped ? NULL : json_object_new_int64((int64_t)w->total));
     json_object_object_add(o, "done", json_object_new_int64((int64_t)done));
     json_object_object_add(o, "computed", json_object_new_int64((int64_t)w->computed));
     json_object_object_add(o, "already_stored",
@@ -584,6 +689,7 @@ int ss_cli_sweep(int argc, char **argv) {
     json_object_object_add(o, "fail", json_object_new_int64((int64_t)w->fail));
     json_object_object_add(o, "undecided", json_object_new_int64((int64_t)w->undecided));
     json_object_object_add(o, "errors", json_object_new_int64((int64_t)w->errors));
+    json_object_object_add(o, "repeated_links", json_object_new_int64((int64_t)dups));
     json_object_object_add(o, "seconds", json_object_new_double(dt));
     json_object_object_add(o, "interrupted", json_object_new_boolean(interrupted != 0));
     printf("%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN |
@@ -613,31 +719,83 @@ done:
 }
 
 int ss_cli_merge(int argc, char **argv) {
-  if (argc >= 2 && (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help"))) {
-    fputs(merge_usage, stdout);
-    return SS_EXIT_OK;
+  ss_store_prefer prefer = SS_STORE_PREFER_NONE;
+  char **files = calloc((size_t)argc, sizeof *files);
+  int nfiles = 0;
+  if (!files) {
+    fprintf(stderr, "subspectra merge: out of memory\n");
+    return SS_EXIT_FAIL;
   }
-  if (argc < 3) return ss_cli_usage_error("merge", "need OUT.db and at least one IN.db");
-  for (int i = 1; i < argc; i++)
-    if (argv[i][0] == '-')
-      return ss_cli_usage_error("merge", "unknown option '%s'", argv[i]);
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      free(files);
+      fputs(merge_usage, stdout);
+      return SS_EXIT_OK;
+    }
+    if (!strcmp(a, "--")) {
+      while (++i < argc)
+        files[nfiles++] = argv[i];
+      break;
+    }
+    if (!strncmp(a, "--prefer=", 9) || !strcmp(a, "--prefer")) {
+      const char *v = a[8] == '=' ? a + 9 : i + 1 < argc ? argv[++i] : "";
+      if (strcmp(v, "new") && strcmp(v, "old")) {
+        free(files);
+        return ss_cli_usage_error("merge", "--prefer: expected new or old, not '%s'", v);
+      }
+      prefer = !strcmp(v, "new") ? SS_STORE_PREFER_NEW : SS_STORE_PREFER_OLD;
+      continue;
+    }
+    if (a[0] == '-' && a[1]) {
+      free(files);
+      return ss_cli_usage_error("merge", "unknown option '%s'", a);
+    }
+    files[nfiles++] = argv[i];
+  }
+  if (nfiles < 2) {
+    free(files);
+    return ss_cli_usage_error("merge", "need OUT.db and at least one IN.db");
+  }
   ss_error err = {0};
   ss_store *out = NULL;
-  if (ss_store_open(argv[1], SS_STORE_WRITE, &out, &err)) {
+  const char *outname = files[0];
+  if (ss_store_open(outname, SS_STORE_WRITE, &out, &err)) {
+    free(files);
     fprintf(stderr, "subspectra merge: %s\n", err.msg);
-    return SS_EXIT_USAGE;
+    return err.status == SS_ENOMEM ? SS_EXIT_FAIL : SS_EXIT_USAGE;
   }
   int rc = SS_EXIT_OK;
-  for (int i = 2; i < argc; i++) {
-    size_t added = 0, present = 0;
-    if (ss_store_merge(out, argv[i], &added, &present, &err)) {
+  for (int i = 1; i < nfiles; i++) {
+    ss_store_merge_stats ms;
+    if (ss_store_merge(out, files[i], prefer, &ms, &err)) {
       fprintf(stderr, "subspectra merge: %s\n", err.msg);
       rc = SS_EXIT_USAGE;
       continue;
     }
-    fprintf(stderr, "merge: %s: %zu results added, %zu already in %s\n", argv[i], added,
-            present, argv[1]);
+    fprintf(stderr, "merge: %s: %zu results added, %zu already in %s", files[i], ms.added,
+            ms.present, outname);
+    if (ms.conflicts && prefer == SS_STORE_PREFER_NEW)
+      fprintf(stderr, ", %zu conflicting results replaced (--prefer new)", ms.replaced);
+    else if (ms.conflicts && prefer == SS_STORE_PREFER_OLD)
+      fprintf(stderr, ", %zu conflicting results kept as in %s (--prefer old)",
+              ms.conflicts, outname);
+    fputc('\n', stderr);
+    if (ms.conflicts && prefer == SS_STORE_PREFER_NONE) {
+      fprintf(stderr,
+              "subspectra merge: %s: %zu conflict%s with %s (the same case with other "
+              "values; first: ",
+              files[i], ms.conflicts, ms.conflicts == 1 ? "" : "s", outname);
+      for (size_t j = 0; j < ms.conflicts && j < SS_STORE_NKEYS; j++)
+        fprintf(stderr, "%s%s", j ? "; " : "", ms.first[j]);
+      fprintf(stderr,
+              "%s): %s's rows kept; --prefer new takes those of %s, --prefer old keeps "
+              "them\n",
+              ms.conflicts > SS_STORE_NKEYS ? "; ..." : "", outname, files[i]);
+      if (rc == SS_EXIT_OK) rc = SS_EXIT_FAIL;
+    }
   }
   ss_store_close(out);
+  free(files);
   return rc;
 }

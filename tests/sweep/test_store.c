@@ -2,9 +2,10 @@
  * equals the computed one bit for bit (eigenvalues, NaN scaled Jacobian of a
  * case with no map, improper pair counts); a key is stored once; lookups
  * return the stored verdict; --where filters and refuses what does not
- * compile; identities separate schemes and parameters; merge adds only what
- * is missing; foreign, corrupt and other-version files are refused with a
- * message naming the file. */
+ * compile; identities separate schemes and parameters, and hold the
+ * tolerance exactly; merge adds only what is missing, reports conflicts
+ * (resolved by --prefer), refuses a store's own file; foreign, corrupt and other-version
+ * files are refused with a message naming the file. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -192,18 +193,71 @@ int main(void) {
   ss_store_close(st);
 
   /* merge: into an empty store everything, into a full one nothing */
-  size_t added = 0, present = 0;
+  ss_store_merge_stats ms;
   REQUIRE_OK(ss_store_open(other, SS_STORE_WRITE, &st, &err), &err);
-  REQUIRE_OK(ss_store_merge(st, path, &added, &present, &err), &err);
-  CHECK(added == NCASES && present == 0, "merge added %zu, present %zu", added, present);
-  REQUIRE_OK(ss_store_merge(st, path, &added, &present, &err), &err);
-  CHECK(added == 0 && present == NCASES, "merge again added %zu, present %zu", added,
-        present);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_NONE, &ms, &err), &err);
+  CHECK(ms.added == NCASES && ms.present == 0 && ms.conflicts == 0,
+        "merge added %zu, present %zu, conflicts %zu", ms.added, ms.present,
+        ms.conflicts);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_NONE, &ms, &err), &err);
+  CHECK(ms.added == 0 && ms.present == NCASES && ms.conflicts == 0,
+        "merge again added %zu, present %zu, conflicts %zu", ms.added, ms.present,
+        ms.conflicts);
   m = (match){r, NCASES, 0, 0};
   REQUIRE_OK(ss_store_each(st, NULL, visit, &m, &err), &err);
   CHECK(m.seen == NCASES && m.equal == NCASES, "merged: %d rows, %d equal", m.seen,
         m.equal);
+  /* a conflict: the same key with another value; not a different timing */
+  CHECK(ss_store_merge(st, other, SS_STORE_PREFER_NONE, &ms, &err) == SS_EINPUT &&
+            strstr(err.msg, "itself"),
+        "merging a store into itself: %s", err.msg);
   ss_store_close(st);
+  sql(other, "UPDATE result SET seconds = seconds + 1;"
+             "UPDATE result SET regularity_reason = 'changed' WHERE kind = 'edge' AND "
+             "k = 8");
+  REQUIRE_OK(ss_store_open(other, SS_STORE_WRITE, &st, &err), &err);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_NONE, &ms, &err), &err);
+  CHECK(ms.added == 0 && ms.present == NCASES - 1 && ms.conflicts == 1 &&
+            ms.replaced == 0 &&
+            !strcmp(ms.first[0], "(mlca tol=1e-06 depth=6 rings=3) edge 8"),
+        "conflict: added %zu, present %zu, conflicts %zu, replaced %zu, first '%s'",
+        ms.added, ms.present, ms.conflicts, ms.replaced, ms.first[0]);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_OLD, &ms, &err), &err);
+  CHECK(ms.conflicts == 1 && ms.replaced == 0,
+        "--prefer old: %zu conflicts, %zu replaced", ms.conflicts, ms.replaced);
+  n = 0;
+  REQUIRE_OK(ss_store_each(st, "regularity_reason = 'changed'", count_visit, &n, &err),
+             &err);
+  CHECK(n == 1, "the old row is kept (%d)", n);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_NEW, &ms, &err), &err);
+  CHECK(ms.conflicts == 1 && ms.replaced == 1,
+        "--prefer new: %zu conflicts, %zu replaced", ms.conflicts, ms.replaced);
+  n = 0;
+  REQUIRE_OK(ss_store_each(st, "regularity_reason = 'changed'", count_visit, &n, &err),
+             &err);
+  CHECK(n == 0, "the new row replaces it (%d)", n);
+  REQUIRE_OK(ss_store_merge(st, path, SS_STORE_PREFER_NONE, &ms, &err), &err);
+  CHECK(ms.conflicts == 0 && ms.present == NCASES, "after --prefer new: %zu conflicts",
+        ms.conflicts);
+  ss_store_close(st);
+
+  /* identities hold the tolerance exactly: text that reads back as it */
+  ss_store_scheme st1 = sm, st2 = sm;
+  st2.opts.tol = 1.0000006e-6;
+  char id1[256], id2[256];
+  ss_store_identity(&st1, id1, sizeof id1);
+  ss_store_identity(&st2, id2, sizeof id2);
+  CHECK(!strcmp(id1, "mlca tol=1e-06 depth=6 rings=3") &&
+            !strcmp(id2, "mlca tol=1.0000006e-06 depth=6 rings=3"),
+        "identities '%s', '%s'", id1, id2);
+  unsigned seed = 16;
+  for (int i = 0; i < 200; i++) {
+    seed = seed * 1103515245u + 12345u;
+    st2.opts.tol = 1e-9 + 0.09 * (seed >> 8) / 16777216.0 * (i % 2 ? 1 : 1e-5);
+    ss_store_identity(&st2, id2, sizeof id2);
+    const char *t = strstr(id2, "tol=");
+    CHECK(t && strtod(t + 4, NULL) == st2.opts.tol, "tol %.17g: '%s'", st2.opts.tol, id2);
+  }
 
   /* files that are not stores */
   snprintf(bad, sizeof bad, "%s/noise.db", dir);
@@ -223,7 +277,7 @@ int main(void) {
   sql(other, "PRAGMA user_version = 1"); /* the schema before the ring columns */
   file_fails(other, SS_STORE_READ, "schema version 1");
   REQUIRE_OK(ss_store_open(path, SS_STORE_WRITE, &st, &err), &err);
-  CHECK(ss_store_merge(st, other, &added, &present, &err) == SS_EINPUT,
+  CHECK(ss_store_merge(st, other, SS_STORE_PREFER_NONE, &ms, &err) == SS_EINPUT,
         "merge refuses another schema version");
   ss_store_close(st);
   snprintf(bad, sizeof bad, "%s/none.db", dir);

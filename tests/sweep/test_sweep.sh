@@ -140,8 +140,12 @@ expect 0 "^mlca tol=1e-06 depth=6 rings=3 certified,mlca,edge,4,1,1,0,0,0,[^,]*,
 printf '# three names of two links\noctahedron\n6 bcde,aedf,abfe,afeb... \n' >"$tmp/bad.txt"
 expect 2 "bad.txt:3: " "$exe" sweep --scheme mlca --links "$tmp/bad.txt" --db "$tmp/l.db"
 printf "octahedron\n6 cbfd,cefa,bade,cafe,cdfb,beda\nbipyramid:3\n" >"$tmp/links.txt"
-expect 0 "3 cases .*2 computed.*1 already stored\): 3 pass" "$exe" sweep --scheme mlca --links "$tmp/links.txt" --db "$tmp/l.db"
+expect 0 "2 cases .*2 computed.*0 already stored, 1 repeated link in --links skipped\): 2 pass" "$exe" sweep --scheme mlca --links "$tmp/links.txt" --db "$tmp/l.db"
 expect 0 "^2\$" sqlite3 "$tmp/l.db" "SELECT count(*) FROM result"
+# repeats of one link, and links that --vertices enumerates anyway, are run once
+printf "octahedron\n6 cbfd,cefa,bade,cafe,cdfb,beda\nbipyramid:5\noctahedron\ntetrahedron\n" >"$tmp/links2.txt"
+expect 0 "5 cases .*5 computed.*0 already stored, 4 repeated links in --links skipped\): 5 pass" \
+  "$exe" sweep --scheme mlca --links "$tmp/links2.txt" --vertices 4..6 --db "$tmp/l2.db"
 expect_in 0 "1 cases .*0 computed.*1 already stored" "octahedron
 " "$exe" sweep --scheme mlca --links - --db "$tmp/l.db"
 expect 0 "^2\$" sqlite3 "$tmp/l.db" "SELECT count(*) FROM result"
@@ -184,6 +188,149 @@ if [ "$(id -u)" = 0 ] && command -v su >/dev/null &&
   chmod 755 "$ro"
   rm -rf "$ro"
 fi
+
+# merge conflicts: the same case with other values is reported, OUT's row
+# kept, exit 1, the other rows merged; --prefer old keeps, --prefer new
+# replaces; a different timing alone is no conflict
+cp "$tmp/p1.db" "$tmp/c_in.db"
+cp "$tmp/p1.db" "$tmp/c_out.db"
+q "$tmp/c_out.db" "DELETE FROM result WHERE kind = 'vertex' AND k = 9" # rows to add
+q "$tmp/c_in.db" "UPDATE result SET seconds = seconds + 1"
+q "$tmp/c_in.db" "UPDATE result SET min_scaled_jacobian = min_scaled_jacobian * 2 WHERE kind = 'edge'"
+nconf=$(q "$tmp/c_in.db" "SELECT count(*) FROM result WHERE kind = 'edge'")
+nadd=$(q "$tmp/p1.db" "SELECT count(*) FROM result WHERE kind = 'vertex' AND k = 9")
+firstk=$(q "$tmp/c_in.db" "SELECT min(k) FROM result WHERE kind = 'edge'")
+checks=$((checks + 1))
+[ "$nconf" -ge 1 ] && [ "$nadd" -ge 1 ] || fail "conflict setup: $nconf edge rows, $nadd k = 9 rows in part 1"
+old_edges=$(rows "$tmp/c_out.db" | grep '|edge|')
+expect 1 "c_in.db: $nadd results added, [0-9]+ already in .*c_out.db\$" \
+  "$exe" merge "$tmp/c_out.db" "$tmp/c_in.db"
+# (again: the conflicts stay, and are the second line)
+expect 1 "c_in.db: $nconf conflicts? with .*c_out.db \(the same case with other values; first: \(mlca tol=1e-06 depth=6 rings=3\) edge $firstk[;)].*--prefer new" \
+  "$exe" merge "$tmp/c_out.db" "$tmp/c_in.db"
+checks=$((checks + 1))
+[ "$(rows "$tmp/c_out.db" | grep '|edge|')" = "$old_edges" ] || fail "merge without --prefer changed a conflicting row"
+expect 0 "^$(q "$tmp/p1.db" "SELECT count(*) FROM result")\$" sqlite3 "$tmp/c_out.db" "SELECT count(*) FROM result"
+expect 0 "0 results added.*$nconf conflicting results kept" "$exe" merge --prefer old "$tmp/c_out.db" "$tmp/c_in.db"
+checks=$((checks + 1))
+[ "$(rows "$tmp/c_out.db" | grep '|edge|')" = "$old_edges" ] || fail "--prefer old changed a conflicting row"
+expect 0 "$nconf conflicting results replaced" "$exe" merge "$tmp/c_out.db" "$tmp/c_in.db" --prefer new
+same "--prefer new takes the input's rows" "$tmp/c_in.db" "$tmp/c_out.db"
+expect 0 "0 results added, [0-9]+ already in" "$exe" merge "$tmp/c_out.db" "$tmp/c_in.db"
+expect 2 "--prefer: expected new or old" "$exe" merge --prefer newest "$tmp/c_out.db" "$tmp/c_in.db"
+# a store merged into itself, by the same or another name: said so at once
+ln -s c_out.db "$tmp/c_link.db"
+expect 2 "c_out.db is the output store .*c_out.db itself" "$exe" merge "$tmp/c_out.db" "$tmp/c_out.db"
+expect 2 "c_link.db is the output store .*c_out.db itself" "$exe" merge "$tmp/c_out.db" "$tmp/c_link.db"
+expect 2 "/\./c_out.db is the output store" "$exe" merge "$tmp/c_link.db" "$tmp/./c_out.db"
+
+# tolerances are exact in the identity: 1.0000006e-6 is not 1e-6
+expect 0 "1 cases of mlca tol=1e-06 depth=6 .*1 computed" "$exe" sweep --scheme mlca --edges 3..3 --db "$tmp/tol.db"
+expect 0 "1 cases of mlca tol=1.0000006e-06 depth=6 .*1 computed" "$exe" sweep --scheme mlca --edges 3..3 --tol 1.0000006e-6 --db "$tmp/tol.db"
+expect 0 "^2\$" sqlite3 "$tmp/tol.db" "SELECT count(*) FROM result"
+# a store of an older program: a scheme row whose identity rounded its
+# tolerance is not reused for another tolerance of that text
+q "$tmp/tol.db" "UPDATE scheme SET tol = 1.0000006e-6 WHERE identity LIKE '% tol=1e-06 %'"
+expect 2 "tol.db: scheme 'mlca tol=1e-06 depth=6 rings=3' was stored by an older subspectra for the tolerance 1.0000006" \
+  "$exe" sweep --scheme mlca --edges 3..3 --db "$tmp/tol.db"
+
+# a store another program holds locked: said so (after a few seconds)
+cp "$tmp/p1.db" "$tmp/lock.db"
+sqlite3 "$tmp/lock.db" "PRAGMA locking_mode=EXCLUSIVE;" "BEGIN EXCLUSIVE;" \
+  "INSERT INTO meta VALUES('lock','held');" ".shell sleep 20" "ROLLBACK;" >/dev/null 2>&1 &
+lockpid=$!
+locked=0
+for _ in $(seq 1 200); do
+  sqlite3 "$tmp/lock.db" "SELECT count(*) FROM meta" >/dev/null 2>&1 || { locked=1; break; }
+  sleep 0.05
+done
+checks=$((checks + 1))
+[ "$locked" = 1 ] || fail "could not lock lock.db with the sqlite3 program"
+expect 2 "lock.db: the results store is locked by another process" \
+  "$exe" sweep --scheme mlca --edges 3..3 --db "$tmp/lock.db"
+kill "$lockpid" 2>/dev/null
+wait "$lockpid" 2>/dev/null
+
+# stores on a read-only file system (a read-only bind mount in a mount
+# namespace of our own: needs root and unshare): merge reads them, sweep says
+# why it cannot write them
+rodir=$(mktemp -d /tmp/ss_rofs.XXXXXX)
+sqlite3 "$tmp/p1.db" "PRAGMA wal_checkpoint(TRUNCATE)" >/dev/null
+cp "$tmp/p1.db" "$rodir/s.db"
+roenv=(unshare -m sh -c 'd=$1; shift; mount --bind "$d" "$d" && mount -o remount,ro,bind "$d" && exec "$@"' sh "$rodir")
+if [ "$(id -u)" = 0 ] && command -v unshare >/dev/null && "${roenv[@]}" sh -c "! touch '$rodir/x'" 2>/dev/null; then
+  expect 0 "s.db: [0-9]+ results added, 0 already in" "${roenv[@]}" "$exe" merge "$tmp/rofs_out.db" "$rodir/s.db"
+  same "merged from a read-only file system" "$tmp/p1.db" "$tmp/rofs_out.db"
+  expect 2 "s.db: cannot write the results store: a read-only file system" \
+    "${roenv[@]}" "$exe" sweep --scheme mlca --edges 3..3 --db "$rodir/s.db"
+  expect 2 "new.db: cannot create the results store: directory .*: a read-only file system" \
+    "${roenv[@]}" "$exe" sweep --scheme mlca --edges 3..3 --db "$rodir/new.db"
+  checks=$((checks + 1))
+  [ "$(ls "$rodir")" = s.db ] || fail "files left on the read-only file system: $(ls "$rodir")"
+else
+  echo "test_sweep: skipped the read-only file system checks (needs root and unshare -m)"
+fi
+rm -rf "$rodir"
+# the same by permissions, as a user who may not write (needs root to be nobody)
+if [ "$(id -u)" = 0 ] && command -v su >/dev/null &&
+  su nobody -s /bin/sh -c "'$exe' --version" >/dev/null 2>&1; then
+  ro=$(mktemp -d /tmp/ss_ro.XXXXXX)
+  wr=$(mktemp -d /tmp/ss_wr.XXXXXX)
+  cp "$tmp/p1.db" "$ro/s.db"
+  chmod 644 "$ro/s.db"
+  chmod 555 "$ro"
+  chmod 777 "$wr"
+  checks=$((checks + 1))
+  out=$(su nobody -s /bin/sh -c "'$exe' merge '$wr/o.db' '$ro/s.db'" 2>&1) ||
+    fail "merge from a directory the user may not write: $out"
+  same "merged from a read-only directory" "$tmp/p1.db" "$wr/o.db"
+  checks=$((checks + 1))
+  out=$(su nobody -s /bin/sh -c "'$exe' sweep --scheme mlca --edges 3..3 --db '$ro/s.db'" 2>&1)
+  [ $? = 2 ] && grep -q "s.db: cannot write the results store: no write permission on the file" <<<"$out" ||
+    fail "sweep into a store the user may not write: $out"
+  checks=$((checks + 1))
+  out=$(su nobody -s /bin/sh -c "'$exe' sweep --scheme mlca --edges 3..3 --db '$ro/new.db'" 2>&1)
+  [ $? = 2 ] && grep -q "new.db: cannot create the results store: directory .*: no write permission" <<<"$out" ||
+    fail "sweep into a directory the user may not write: $out"
+  chmod 755 "$ro"
+  rm -rf "$ro" "$wr"
+else
+  echo "test_sweep: skipped the permission checks (needs root to run as nobody)"
+fi
+
+# SIGTERM while the cases are counted (before the first is computed): said
+# so, the store left sound, death by the signal
+db=$tmp/count.db
+"$exe" sweep --scheme mlca --vertices 4..16 --db "$db" >/dev/null 2>"$tmp/count.err" &
+pid=$!
+for _ in $(seq 1 600); do
+  [ "$(sqlite3 "$db" "SELECT count(*) FROM scheme" 2>/dev/null)" = 1 ] && break
+  sleep 0.02
+done
+sleep 0.3
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+checks=$((checks + 1))
+[ "$rc" = 143 ] && grep -q "interrupted (SIGTERM) while counting the cases" "$tmp/count.err" ||
+  fail "SIGTERM while counting: status $rc, $(cat "$tmp/count.err")"
+expect 0 "^ok\$" sqlite3 "$db" "PRAGMA integrity_check"
+expect 0 "^0\$" sqlite3 "$db" "SELECT count(*) FROM result"
+
+# processes sharing a store may all create it at once: one creates the
+# schema, the others use it (three rounds of four)
+bad=0
+for r in 1 2 3; do
+  pids=""
+  for i in 1 2 3 4; do
+    "$exe" sweep --scheme mlca --edges 3..3 --jobs 1 --db "$tmp/new$r.db" >"$tmp/new$r.$i.out" 2>&1 &
+    pids="$pids $!"
+  done
+  for p in $pids; do wait "$p" || bad=$((bad + 1)); done
+done
+checks=$((checks + 1))
+[ "$bad" = 0 ] || fail "$bad of 12 sweeps creating one store at once failed: $(grep -hv '^sweep: 1 cases' "$tmp"/new*.out | head -2)"
+expect 0 "^1\$" sqlite3 "$tmp/new3.db" "SELECT count(*) FROM result"
 
 # usage errors
 expect 2 "no cases" "$exe" sweep --scheme mlca --db "$tmp/u.db"
