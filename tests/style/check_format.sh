@@ -6,8 +6,15 @@ cf=$1
 src=$2
 cd "$src" || exit 1
 files=$(find src enumerate analysis reports tests -name '*.[ch]' | sort)
-n=0
+n=$(wc -w <<<"$files")
 bad=0
+# one clang-format for all files (one per file took 30 s on a loaded machine);
+# only when it objects, once more per file to name the culprits
+if "$cf" --dry-run --Werror $files >/dev/null 2>&1 && [ "$n" -gt 0 ]; then
+  echo "format: $n files, 0 not formatted"
+  exit 0
+fi
+n=0
 for f in $files; do
   n=$((n + 1))
   if ! "$cf" --dry-run --Werror "$f" >/dev/null 2>&1; then
