@@ -867,15 +867,13 @@ int ss_local_edge_point(const ss_scheme *s, const ss_link *l) {
   return iso < 0 ? -1 : iso ? n : 0;
 }
 
-ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
+ss_status ss_local_cell(const ss_scheme *s, ss_case_kind kind, ss_cell_type *t,
                         ss_error *err) {
-  *out = NULL;
   const int ml = ss_scheme_split_kind(s) == SS_SPLIT_MULTILINEAR;
-  ss_cell_type t;
-  switch (c->kind) {
+  switch (kind) {
   case SS_CASE_VERTEX:
   case SS_CASE_EDGE:
-    t = ml ? SS_HEX : SS_TET;
+    *t = ml ? SS_HEX : SS_TET;
     break;
   case SS_CASE_FACE:
     if (ml)
@@ -883,20 +881,29 @@ ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
                           "scheme %s: the face case exists only for schemes with the "
                           "tet/oct split (two tets sharing a face)",
                           ss_scheme_name(s));
-    t = SS_TET;
+    *t = SS_TET;
     break;
   case SS_CASE_SURFACE_VERTEX:
-    t = ml ? SS_QUAD : SS_TRIANGLE;
+    *t = ml ? SS_QUAD : SS_TRIANGLE;
     break;
   default:
     return ss_error_set(err, SS_EINPUT, "unknown case");
   }
-  if (!ss_scheme_accepts(s, t))
+  if (!ss_scheme_accepts(s, *t))
     return ss_error_set(
         err, SS_EINPUT,
         "scheme %s does not support the %s case: its star would be made of "
         "%s, which the scheme does not take",
-        ss_scheme_name(s), ss_case_name(c->kind), ss_cell_plural(t));
+        ss_scheme_name(s), ss_case_name(kind), ss_cell_plural(*t));
+  return SS_OK;
+}
+
+ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
+                        ss_error *err) {
+  *out = NULL;
+  ss_cell_type t;
+  ss_status st0 = ss_local_cell(s, c->kind, &t, err);
+  if (st0) return st0;
   if (c->kind == SS_CASE_VERTEX && !c->link)
     return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
   if ((c->diag == SS_DIAG_SKEW || c->diag == SS_DIAG_CENTER) &&

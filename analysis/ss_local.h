@@ -152,6 +152,13 @@ const char *ss_case_name(ss_case_kind kind);
  * refines a vertex and an edge midpoint differently. */
 int ss_local_edge_point(const ss_scheme *s, const ss_link *l);
 
+/* The cell type of the star of a case of kind `kind` under scheme s: hex or
+ * tet for vertices and edges (by the scheme's split), tet for the face, quad
+ * or triangle for surface vertices.  SS_EINPUT when the scheme has no such
+ * case (the face of a multilinear split, cells the scheme does not take). */
+ss_status ss_local_cell(const ss_scheme *s, ss_case_kind kind, ss_cell_type *t,
+                        ss_error *err);
+
 /* The star the scheme refines for case c (hex or tet stars by the scheme's
  * split; see above).  *out is owned by the caller.  SS_EINPUT if the scheme
  * does not support the case (it does not take the star's cell type, or the face

@@ -29,34 +29,13 @@ ss_status ss_local_estimate(const ss_scheme *s, const ss_case *c, ss_local_cost 
   const int ml = ss_scheme_split_kind(s) == SS_SPLIT_MULTILINEAR;
   const int box = ss_scheme_reads_diagonals(s);
   ss_cell_type t;
-  int lc = 0;
-  switch (c->kind) {
-  case SS_CASE_VERTEX:
-    if (!c->link) return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
-    t = ml ? SS_HEX : SS_TET;
-    break;
-  case SS_CASE_EDGE:
-    t = ml ? SS_HEX : SS_TET;
-    lc = 1;
-    break;
-  case SS_CASE_FACE:
-    if (ml)
-      return ss_error_set(err, SS_EINPUT,
-                          "scheme %s: the face case exists only for schemes with the "
-                          "tet/oct split (two tets sharing a face)",
-                          ss_scheme_name(s));
-    t = SS_TET;
-    lc = 2;
-    break;
-  case SS_CASE_SURFACE_VERTEX:
-    t = ml ? SS_QUAD : SS_TRIANGLE;
-    break;
-  default:
-    return ss_error_set(err, SS_EINPUT, "unknown case");
-  }
-  if (!ss_scheme_accepts(s, t))
-    return ss_error_set(err, SS_EINPUT, "scheme %s does not support the %s case",
-                        ss_scheme_name(s), ss_case_name(c->kind));
+  ss_status st = ss_local_cell(s, c->kind, &t, err);
+  if (st) return st;
+  if (c->kind == SS_CASE_VERTEX && !c->link)
+    return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
+  /* the first level on which the centre is a vertex: 0 for a vertex, 1 for
+   * an edge's midpoint, 2 for the face point */
+  const int lc = c->kind == SS_CASE_EDGE ? 1 : c->kind == SS_CASE_FACE ? 2 : 0;
   if (c->kind != SS_CASE_VERTEX && c->kind != SS_CASE_FACE &&
       (c->n < 3 || c->n > SS_STAR_MAXN))
     return ss_error_set(err, SS_EINPUT, "valence %d is not in 3..%d", c->n, SS_STAR_MAXN);
