@@ -697,6 +697,31 @@ static void case_text(const opts *o, const ss_link *l, char *buf, size_t n) {
 
 /* Analyse one case; link_text is the link's text for the vertex case and
  * where is a prefix for messages ("" or "stdin:LINE: "). */
+/* Whether case c fits the memory budget: 0, or the exit status after saying
+ * why not (the estimate, or the estimator's error).  *cost receives the
+ * estimate. */
+static int check_budget(const opts *o, const ss_scheme *s, const ss_case *c,
+                        const ss_link *l, const char *where, ss_local_cost *cost) {
+  ss_error err = {0};
+  if (ss_local_estimate(s, c, cost, &err)) {
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+    return ss_cli_exit_status(err.status);
+  }
+  const double budget = ss_cli_budget(o->max_memory);
+  if (budget > 0.0 && cost->bytes > budget) {
+    char what[96], need[32], have[32];
+    case_text(o, l, what, sizeof what);
+    fprintf(stderr,
+            "subspectra %s: %s%s needs about %zu rows of S and ~%s (> budget %s: set "
+            "--max-memory to override)\n",
+            o->cmd, where, what, cost->n2,
+            ss_local_bytes_text(cost->bytes, need, sizeof need),
+            ss_local_bytes_text(budget, have, sizeof have));
+    return SS_EXIT_USAGE;
+  }
+  return 0;
+}
+
 static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
                     const char *where, int *header) {
   ss_error err = {0};
@@ -707,9 +732,20 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_charmap *cm = NULL;
   ss_exact *ex = NULL;
   int rc = SS_EXIT_OK;
+  ss_local_cost cost;
   if (o->kind == SS_CASE_VERTEX) {
-    if (ss_link_parse(link_text, &l, &err) || ss_link_canonical(l, &cl, NULL, &err) ||
-        ss_link_format(cl, &canon, &err)) {
+    if (ss_link_parse(link_text, &l, &err)) {
+      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+      rc = ss_cli_exit_status(err.status);
+      goto done;
+    }
+    /* the budget before the canonical form, which costs O(k^2) (bipyramid:99998
+     * spent 35 s there).  A bipyramid becomes an edge point below, whose rows
+     * are at least the vertex case's (MLCA 30k - 55 = 30n + 5 both, tet/oct
+     * 5k - 5 < 15n + 5, ss_local_cost.c), so nothing refused here fits. */
+    const ss_case cv = {SS_CASE_VERTEX, l, 0, o->diag};
+    if ((rc = check_budget(o, s, &cv, l, where, &cost))) goto done;
+    if (ss_link_canonical(l, &cl, NULL, &err) || ss_link_format(cl, &canon, &err)) {
       fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
       rc = ss_cli_exit_status(err.status);
       goto done;
@@ -728,25 +764,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     o = &oe;
   }
   /* what the case will cost, before anything is built */
-  ss_local_cost cost;
-  if (ss_local_estimate(s, &c, &cost, &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = ss_cli_exit_status(err.status);
-    goto done;
-  }
-  const double budget = ss_cli_budget(o->max_memory);
-  if (budget > 0.0 && cost.bytes > budget) {
-    char what[96], need[32], have[32];
-    case_text(o, l, what, sizeof what);
-    fprintf(stderr,
-            "subspectra %s: %s%s needs about %zu rows of S and ~%s (> budget %s: set "
-            "--max-memory to override)\n",
-            o->cmd, where, what, cost.n2,
-            ss_local_bytes_text(cost.bytes, need, sizeof need),
-            ss_local_bytes_text(budget, have, sizeof have));
-    rc = SS_EXIT_USAGE;
-    goto done;
-  }
+  if ((rc = check_budget(o, s, &c, l, where, &cost))) goto done;
   ss_cli_progress pr = {o->cmd, ss_cli_now(), 0.0, NULL, 0};
   const ss_progress prog = {o->progress || (isatty(STDERR_FILENO) && cost.seconds > SLOW)
                                 ? ss_cli_progress_fn
