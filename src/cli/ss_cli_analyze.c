@@ -698,26 +698,22 @@ static void case_text(const opts *o, const ss_link *l, char *buf, size_t n) {
 /* Analyse one case; link_text is the link's text for the vertex case and
  * where is a prefix for messages ("" or "stdin:LINE: "). */
 /* Whether case c fits the memory budget: 0, or the exit status after saying
- * why not (the estimate, or the estimator's error).  *cost receives the
- * estimate. */
+ * why not (the estimate against the budget, ss_local_check_budget, or the
+ * estimator's error).  *cost receives the estimate. */
 static int check_budget(const opts *o, const ss_scheme *s, const ss_case *c,
                         const ss_link *l, const char *where, ss_local_cost *cost) {
   ss_error err = {0};
-  if (ss_local_estimate(s, c, cost, &err)) {
+  ss_status st = ss_local_estimate(s, c, cost, &err);
+  if (st) {
     fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    return ss_cli_exit_status(err.status);
+    return ss_cli_exit_status(st);
   }
-  const double budget = ss_cli_budget(o->max_memory);
-  if (budget > 0.0 && cost->bytes > budget) {
-    char what[96], need[32], have[32];
+  if ((st = ss_local_check_budget(cost, ss_cli_budget(o->max_memory), &err))) {
+    char what[96];
     case_text(o, l, what, sizeof what);
-    fprintf(stderr,
-            "subspectra %s: %s%s needs about %zu rows of S and ~%s (> budget %s: set "
-            "--max-memory to override)\n",
-            o->cmd, where, what, cost->n2,
-            ss_local_bytes_text(cost->bytes, need, sizeof need),
-            ss_local_bytes_text(budget, have, sizeof have));
-    return SS_EXIT_USAGE;
+    fprintf(stderr, "subspectra %s: %s%s %s: set --max-memory to override\n", o->cmd,
+            where, what, err.msg);
+    return ss_cli_exit_status(st);
   }
   return 0;
 }
