@@ -1,0 +1,521 @@
+/* ss_limit.c — limit evaluation on hex meshes: the cached walk with
+ * eigen-jumps over stationary runs, the reference by repeated local
+ * subdivision, and the tricubic B-spline (method in ss_limit.h). */
+#include "ss_limit.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_limit_impl.h"
+
+/* Runs shorter than this are walked step by step: a jump costs about two
+ * plain steps (V^-1 P and V y, complex), so it pays from three steps on. */
+#define JUMP_MIN 3
+
+/* A cached (key, child) transition. */
+typedef struct {
+  size_t next;  /* state of the child patch */
+  lim_frame g;  /* the child's canonical frame relative to the inherited one */
+  double *W;    /* rows: child patch points from parent patch points */
+  lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
+} lim_trans;
+
+/* A patch topology met so far. */
+typedef struct {
+  lim_patch patch;  /* key, regularity and net (src: of the instance below) */
+  ss_cx *cx;        /* an instance of the patch as a complex (for refining) */
+  uint64_t hash;    /* lim_patch_hash */
+  lim_trans *tr[8]; /* per child, NULL until computed */
+} lim_state;
+
+/* Per coarse cell: its patch's state and where its points come from. */
+typedef struct {
+  size_t state; /* SIZE_MAX until first used */
+  ss_idx *src;  /* the patch's mesh vertices, in the patch's numbering */
+} lim_cell;
+
+struct ss_limit {
+  const ss_scheme *s; /* borrowed */
+  ss_cx *mesh;        /* owned copy */
+  lim_adj adj;        /* hex adjacency of the mesh */
+  int64_t *loc;       /* scratch, mesh->nv entries, all -1 between calls */
+  lim_cell *cell;     /* per hex */
+  lim_state **st;     /* states */
+  size_t nst, capst;  /* their number and room */
+  size_t *tab;        /* hash table of states: index + 1, 0 empty */
+  size_t captab;      /* its size, a power of 2 */
+  ss_limit_stats stats;
+};
+
+size_t ss_limit_ncells(const ss_limit *L) {
+  return L->mesh->nc[SS_HEX];
+}
+
+ss_limit_stats ss_limit_get_stats(const ss_limit *L) {
+  return L->stats;
+}
+
+static void state_free(lim_state *s) {
+  if (!s) return;
+  lim_patch_free(&s->patch);
+  ss_cx_free(s->cx);
+  for (int k = 0; k < 8; k++)
+    if (s->tr[k]) {
+      free(s->tr[k]->W);
+      lim_eig_free(s->tr[k]->eig);
+      free(s->tr[k]);
+    }
+  free(s);
+}
+
+void ss_limit_free(ss_limit *L) {
+  if (!L) return;
+  for (size_t i = 0; i < L->nst; i++)
+    state_free(L->st[i]);
+  free(L->st);
+  free(L->tab);
+  if (L->cell)
+    for (size_t c = 0; c < L->mesh->nc[SS_HEX]; c++)
+      free(L->cell[c].src);
+  free(L->cell);
+  free(L->loc);
+  lim_adj_free(&L->adj);
+  ss_cx_free(L->mesh);
+  free(L);
+}
+
+ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
+                       ss_error *err) {
+  ss_status st;
+  *out = NULL;
+  if (ss_scheme_split_kind(s) != SS_SPLIT_MULTILINEAR || !ss_scheme_accepts(s, SS_HEX) ||
+      ss_scheme_reach(s) != 1)
+    return ss_error_set(
+        err, SS_EINPUT,
+        "limit evaluation needs a scheme that splits hexahedra "
+        "multilinearly with a one-ring rule (mlca, ccsolid); %s is not one",
+        ss_scheme_name(s));
+  if (mesh->dim != 3)
+    return ss_error_set(err, SS_EINPUT,
+                        "limit evaluation needs a mesh with 3 coordinates, not %d",
+                        mesh->dim);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    if (t != SS_HEX && mesh->nc[t])
+      return ss_error_set(err, SS_EINPUT,
+                          "limit evaluation takes meshes of hexahedra only; this one has "
+                          "%zu %s (creases and boundary cells of lower dimension are not "
+                          "supported yet)",
+                          mesh->nc[t], ss_cell_plural((ss_cell_type)t));
+  if (!mesh->nc[SS_HEX])
+    return ss_error_set(err, SS_EINPUT, "limit evaluation: the mesh has no hexahedra");
+  if ((st = ss_cx_validate(mesh, err))) return st;
+  ss_limit *L = calloc(1, sizeof *L);
+  if (!L) return ss_error_nomem(err, "limit evaluator");
+  L->s = s;
+  if ((st = ss_cx_copy(mesh, &L->mesh, err))) goto done;
+  if ((st = lim_adj_build(L->mesh, &L->adj, err))) goto done;
+  L->loc = malloc((mesh->nv + 1) * sizeof *L->loc);
+  L->cell = calloc(mesh->nc[SS_HEX], sizeof *L->cell);
+  L->captab = 64;
+  L->tab = calloc(L->captab, sizeof *L->tab);
+  if (!L->loc || !L->cell || !L->tab) {
+    st = ss_error_nomem(err, "limit evaluator");
+    goto done;
+  }
+  for (size_t v = 0; v < mesh->nv; v++)
+    L->loc[v] = -1;
+  for (size_t c = 0; c < mesh->nc[SS_HEX]; c++)
+    L->cell[c].state = SIZE_MAX;
+done:
+  if (st)
+    ss_limit_free(L);
+  else
+    *out = L;
+  return st;
+}
+
+/* ---- the tricubic B-spline ---- */
+
+/* Uniform cubic B-spline basis on [0,1] for the points at -1, 0, 1, 2, and
+ * its derivative. */
+static void basis(double t, double b[4], double d[4]) {
+  const double s = 1.0 - t, t2 = t * t, t3 = t2 * t;
+  b[0] = s * s * s / 6.0;
+  b[1] = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
+  b[2] = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
+  b[3] = t3 / 6.0;
+  d[0] = -s * s / 2.0;
+  d[1] = (9.0 * t2 - 12.0 * t) / 6.0;
+  d[2] = (-9.0 * t2 + 6.0 * t + 3.0) / 6.0;
+  d[3] = t2 / 2.0;
+}
+
+void ss_limit_bspline(const double (*net)[3], double u, double v, double w, double p[3],
+                      double jac[3][3]) {
+  double bu[4], du[4], bv[4], dv[4], bw[4], dw[4];
+  basis(u, bu, du);
+  basis(v, bv, dv);
+  basis(w, bw, dw);
+  double r[4][3] = {{0}};
+  for (int k = 0; k < 4; k++)
+    for (int j = 0; j < 4; j++)
+      for (int i = 0; i < 4; i++) {
+        const double *q = net[i + 4 * j + 16 * k];
+        const double c[4] = {bu[i] * bv[j] * bw[k], du[i] * bv[j] * bw[k],
+                             bu[i] * dv[j] * bw[k], bu[i] * bv[j] * dw[k]};
+        for (int e = 0; e < 4; e++)
+          for (int d = 0; d < 3; d++)
+            r[e][d] += c[e] * q[d];
+      }
+  for (int d = 0; d < 3; d++)
+    p[d] = r[0][d];
+  if (jac)
+    for (int e = 0; e < 3; e++)
+      for (int d = 0; d < 3; d++)
+        jac[e][d] = r[e + 1][d];
+}
+
+/* ---- states ---- */
+
+static ss_status grow_table(ss_limit *L, ss_error *err) {
+  size_t cap = L->captab * 2;
+  size_t *t = calloc(cap, sizeof *t);
+  if (!t) return ss_error_nomem(err, "state table");
+  for (size_t i = 0; i < L->nst; i++) {
+    size_t h = (size_t)L->st[i]->hash & (cap - 1);
+    while (t[h])
+      h = (h + 1) & (cap - 1);
+    t[h] = i + 1;
+  }
+  free(L->tab);
+  L->tab = t;
+  L->captab = cap;
+  return SS_OK;
+}
+
+/* The state of patch p (taken over: moved into a new state, or freed when its
+ * key is known), with instance complex cx (likewise). */
+static ss_status state_of(ss_limit *L, lim_patch *p, ss_cx *cx, size_t *out,
+                          ss_error *err) {
+  ss_status st;
+  uint64_t h = lim_patch_hash(p);
+  size_t i = (size_t)h & (L->captab - 1);
+  while (L->tab[i]) {
+    lim_state *s = L->st[L->tab[i] - 1];
+    if (s->hash == h && lim_patch_same(&s->patch, p)) {
+      *out = L->tab[i] - 1;
+      lim_patch_free(p);
+      ss_cx_free(cx);
+      return SS_OK;
+    }
+    i = (i + 1) & (L->captab - 1);
+  }
+  lim_state *s = calloc(1, sizeof *s);
+  if (!s) {
+    st = ss_error_nomem(err, "state");
+    goto fail;
+  }
+  if (L->nst == L->capst) {
+    size_t cap = L->capst ? 2 * L->capst : 16;
+    lim_state **n = realloc(L->st, cap * sizeof *n);
+    if (!n) {
+      st = ss_error_nomem(err, "states");
+      goto fail;
+    }
+    L->st = n;
+    L->capst = cap;
+  }
+  s->patch = *p;
+  s->cx = cx;
+  s->hash = h;
+  L->st[L->nst] = s;
+  L->tab[i] = L->nst + 1;
+  *out = L->nst++;
+  L->stats.keys++;
+  if (2 * L->nst > L->captab) return grow_table(L, err);
+  return SS_OK;
+fail:
+  free(s);
+  lim_patch_free(p);
+  ss_cx_free(cx);
+  return st;
+}
+
+/* The state of coarse cell c (its patch in the stored frame). */
+static ss_status cell_state(ss_limit *L, size_t c, ss_error *err) {
+  if (L->cell[c].state != SIZE_MAX) return SS_OK;
+  ss_status st;
+  lim_patch p;
+  ss_cx *cx = NULL;
+  lim_frame id = lim_frame_id();
+  if ((st = lim_patch_build(&L->adj, c, &id, L->loc, &p, err))) return st;
+  ss_idx *src = malloc((p.nv + 1) * sizeof *src);
+  if (!src) {
+    lim_patch_free(&p);
+    return ss_error_nomem(err, "cell patch");
+  }
+  memcpy(src, p.src, p.nv * sizeof *src);
+  if ((st = lim_patch_complex(L->mesh, &p, &cx, err))) {
+    free(src);
+    lim_patch_free(&p);
+    return st;
+  }
+  size_t s;
+  if ((st = state_of(L, &p, cx, &s, err))) {
+    free(src);
+    return st;
+  }
+  L->cell[c].src = src;
+  L->cell[c].state = s;
+  return SS_OK;
+}
+
+/* The transition of state i into child k, computed on first use. */
+static ss_status transition(ss_limit *L, size_t i, int k, lim_trans **out,
+                            ss_error *err) {
+  ss_status st;
+  lim_state *s = L->st[i];
+  if (s->tr[k]) {
+    *out = s->tr[k];
+    return SS_OK;
+  }
+  lim_trans *t = calloc(1, sizeof *t);
+  if (!t) return ss_error_nomem(err, "transition");
+  lim_patch child;
+  ss_cx *ccx;
+  if ((st = lim_step(L->s, s->cx, k, 1, &child, &t->g, &ccx, &t->W, err))) {
+    free(t);
+    return st;
+  }
+  if ((st = state_of(L, &child, ccx, &t->next, err))) {
+    free(t->W);
+    free(t);
+    return st;
+  }
+  L->st[i]->tr[k] = t; /* L->st may have moved, the state has not */
+  L->stats.transitions++;
+  *out = t;
+  return SS_OK;
+}
+
+/* ---- the walk ---- */
+
+static ss_status check_args(const ss_limit *L, size_t cell, const double x[3],
+                            ss_error *err) {
+  if (cell >= L->mesh->nc[SS_HEX])
+    return ss_error_set(err, SS_EINPUT,
+                        "cell %zu does not exist (the mesh has %zu cells)", cell + 1,
+                        L->mesh->nc[SS_HEX]);
+  static const char *const name[3] = {"u", "v", "w"};
+  for (int a = 0; a < 3; a++)
+    if (!(x[a] >= 0.0 && x[a] <= 1.0))
+      return ss_error_set(err, SS_EINPUT, "parameter %s = %g is outside [0, 1]", name[a],
+                          x[a]);
+  return SS_OK;
+}
+
+/* The child holding x: bit a set iff x_a >= 1/2. */
+static int child_of(const double x[3]) {
+  unsigned b = 0;
+  for (int a = 0; a < 3; a++)
+    if (x[a] >= 0.5) b |= 1u << a;
+  return ss_cube_corner_index(3, b);
+}
+
+/* How many consecutive steps from x go into child bits b (LONG_MAX: for
+ * ever); exact, from the binary exponents of the distances to the corner. */
+static long run_length(const double x[3], unsigned b, double d[3]) {
+  long m = -1;
+  for (int a = 0; a < 3; a++) {
+    int bit = (int)((b >> a) & 1u), e;
+    d[a] = bit ? 1.0 - x[a] : x[a]; /* exact: Sterbenz */
+    if (d[a] == 0.0) continue;
+    double f = frexp(d[a], &e);
+    long ma = bit && f == 0.5 ? 1L - e : -(long)e;
+    if (m < 0 || ma < m) m = ma;
+  }
+  return m; /* -1: every distance is 0 */
+}
+
+/* x <- 2x - b under frame g; M <- G 2 M. */
+static void advance(double x[3], int k, const lim_frame *g, double M[3][3]) {
+  unsigned b = ss_cube_corner_bits(3, k);
+  double y[3], G[3][3], N[3][3];
+  for (int a = 0; a < 3; a++)
+    y[a] = 2.0 * x[a] - (double)((b >> a) & 1u);
+  lim_frame_apply(g, y, x, G);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      N[i][j] = 0.0;
+      for (int q = 0; q < 3; q++)
+        N[i][j] += 2.0 * G[i][q] * M[q][j];
+    }
+  memcpy(M, N, sizeof N);
+}
+
+/* Point and Jacobian from a regular patch's points P (patch numbering). */
+static void finish_regular(const lim_patch *p, const double *P, const double x[3],
+                           double M[3][3], int derivatives, ss_limit_point *out) {
+  double net[64][3], J[3][3];
+  for (int i = 0; i < 64; i++)
+    memcpy(net[i], P + (size_t)p->net[i] * 3, sizeof net[i]);
+  ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], out->p, J);
+  if (derivatives)
+    for (int i = 0; i < 3; i++)
+      for (int d = 0; d < 3; d++) {
+        out->jac[i][d] = 0.0;
+        for (int a = 0; a < 3; a++)
+          out->jac[i][d] += J[a][d] * M[a][i];
+      }
+}
+
+/* P <- W P (Kc x K times K x 3) into a new buffer. */
+static ss_status apply(const double *W, size_t Kc, size_t K, double **P, ss_error *err) {
+  double *Q = calloc(Kc * 3 + 1, sizeof *Q);
+  if (!Q) return ss_error_nomem(err, "patch points");
+  for (size_t i = 0; i < Kc; i++)
+    for (size_t j = 0; j < K; j++) {
+      double w = W[i * K + j];
+      if (w == 0.0) continue;
+      for (int d = 0; d < 3; d++)
+        Q[i * 3 + (size_t)d] += w * (*P)[j * 3 + (size_t)d];
+    }
+  free(*P);
+  *P = Q;
+  return SS_OK;
+}
+
+static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error *err) {
+  return ss_error_set(
+      err, SS_EINPUT,
+      "cell %zu: no regular sub-cell after %d subdivision steps: the point "
+      "lies on (or within about 2^-%d of) the mesh boundary, and limit "
+      "points of the boundary surface are not supported yet",
+      cell + 1, steps, steps);
+  (void)L;
+}
+
+ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
+                        int derivatives, ss_limit_point *out, ss_error *err) {
+  ss_status st;
+  double x[3] = {u, v, w}, M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  double *P = NULL;
+  memset(out, 0, sizeof *out);
+  if ((st = check_args(L, cell, x, err)) || (st = cell_state(L, cell, err))) return st;
+  size_t s = L->cell[cell].state;
+  const size_t K0 = L->st[s]->patch.nv;
+  P = malloc((K0 * 3 + 1) * sizeof *P);
+  if (!P) return ss_error_nomem(err, "patch points");
+  for (size_t i = 0; i < K0; i++)
+    memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
+  int plain = 0;
+  for (;;) {
+    lim_state *S = L->st[s];
+    if (S->patch.regular) {
+      finish_regular(&S->patch, P, x, M, derivatives, out);
+      break;
+    }
+    int k = child_of(x);
+    lim_trans *t = NULL;
+    if ((st = transition(L, s, k, &t, err))) goto done;
+    S = L->st[s];
+    if (t->next == s && lim_frame_is_id(&t->g)) {
+      double d[3];
+      long m = run_length(x, ss_cube_corner_bits(3, k), d);
+      if (m < 0 || m >= JUMP_MIN) {
+        if (!t->eig) {
+          if ((st = lim_eig_new(t->W, S->patch.nv, &t->eig, err))) goto done;
+          L->stats.eigs++;
+        }
+        if ((st = lim_eig_power(t->eig, m, P, err))) goto done;
+        out->products++;
+        if (m < 0) {
+          /* a fixed point: every patch point is its limit */
+          memcpy(out->p, P, sizeof out->p);
+          if (derivatives)
+            st = ss_error_set(err, SS_ENUMERIC,
+                              "cell %zu: (%g, %g, %g) is an extraordinary vertex or lies "
+                              "on an extraordinary edge or the boundary, where the "
+                              "parametric Jacobian is not defined (0 or unbounded)",
+                              cell + 1, u, v, w);
+          goto done;
+        }
+        unsigned b = ss_cube_corner_bits(3, k);
+        for (int a = 0; a < 3; a++) {
+          double y = ldexp(d[a], (int)m);
+          x[a] = (b >> a) & 1u ? 1.0 - y : y;
+          for (int j = 0; j < 3; j++)
+            M[a][j] = ldexp(M[a][j], (int)m);
+        }
+        out->steps += (int)m;
+        continue;
+      }
+    }
+    if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, &P, err))) goto done;
+    advance(x, k, &t->g, M);
+    out->steps++;
+    out->products++;
+    s = t->next;
+    if (++plain > SS_LIMIT_MAXSTEPS) {
+      st = not_reached(L, cell, plain, err);
+      goto done;
+    }
+  }
+done:
+  free(P);
+  return st;
+}
+
+ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
+                                  int derivatives, int max_depth, ss_limit_point *out,
+                                  ss_error *err) {
+  ss_status st;
+  double x[3] = {u, v, w}, M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  lim_patch p;
+  ss_cx *pcx = NULL;
+  double *P = NULL;
+  memset(out, 0, sizeof *out);
+  if ((st = check_args(L, cell, x, err))) return st;
+  lim_frame g = lim_frame_id();
+  if ((st = lim_patch_build(&L->adj, cell, &g, L->loc, &p, err))) return st;
+  if ((st = lim_patch_complex(L->mesh, &p, &pcx, err))) goto done;
+  for (int depth = 0;; depth++) {
+    if (p.regular) {
+      P = malloc((p.nv * 3 + 1) * sizeof *P);
+      if (!P) {
+        st = ss_error_nomem(err, "patch points");
+        goto done;
+      }
+      memcpy(P, pcx->x, p.nv * 3 * sizeof *P);
+      finish_regular(&p, P, x, M, derivatives, out);
+      break;
+    }
+    if (depth >= max_depth) {
+      st = ss_error_set(
+          err, SS_ENUMERIC,
+          "cell %zu: the reference evaluator found no regular sub-cell in %d "
+          "steps (the point lies on or within 2^-%d of an extraordinary "
+          "vertex or edge, or the boundary)",
+          cell + 1, max_depth, max_depth);
+      goto done;
+    }
+    int k = child_of(x);
+    lim_patch child;
+    ss_cx *ccx;
+    if ((st = lim_step(L->s, pcx, k, 0, &child, &g, &ccx, NULL, err))) goto done;
+    lim_patch_free(&p);
+    ss_cx_free(pcx);
+    p = child;
+    pcx = ccx;
+    advance(x, k, &g, M);
+    out->steps++;
+    out->products++;
+  }
+done:
+  free(P);
+  lim_patch_free(&p);
+  ss_cx_free(pcx);
+  return st;
+}

@@ -1,0 +1,132 @@
+/* ss_limit.h — the limit volume of a hex mesh: point and Jacobian at parameters
+ * (u, v, w) of a cell, for any scheme with the multilinear split whose rule
+ * reads only the coarse cells holding a fine vertex's birth element
+ * (ss_scheme_reach == 1: mlca, ccsolid and the averaging family).
+ *
+ * Why analysis/: the evaluator reads local subdivision matrices from the
+ * scheme's global rule and eigen-decomposes them (LAPACK), like ss_local and
+ * ss_eig; it is a consumer of the same machinery, not a new top level.
+ *
+ * Patches.  The limit on a cell c is determined by the control points of its
+ * patch: c and every cell sharing a vertex with c.  Refining the patch once
+ * gives, exactly as the whole mesh would, the patch of each of c's eight
+ * children (a child's patch reads only the coarse cells at the corner it
+ * sits at, all inside c's patch).  A patch is numbered canonically by a
+ * breadth-first walk over face neighbours from c, every cell carrying the
+ * frame its neighbour hands on across the shared face; its *key* (the framed
+ * cells as vertex numbers) names its topology.  A patch is regular when it is
+ * the 3x3x3 block of a grid (c's eight corners are interior vertices with
+ * the octahedron link): then the limit is the tricubic B-spline of its 64
+ * points (written here from the uniform cubic basis, not from the scheme).
+ *
+ * The walk.  Evaluate at x in c: while the patch is not regular, step into
+ * the child holding x (bit a of the child = x_a >= 1/2; x <- 2x - bits), the
+ * new patch's points being W times the old ones, W read from the rows of the
+ * patch's refinement operator.  Every (key, child) transition is computed
+ * once and cached with its W and the canonical frame of the child (the
+ * smallest key over the 48 cube symmetries, the inherited frame first).
+ * Runs: a transition that maps a key to itself in the inherited frame is
+ * stationary (the child at an extraordinary vertex after one step, or the
+ * left/right child along an extraordinary edge); a run of m equal steps is
+ * W^m = V diag(lambda)^m V^-1, one eigen-solve per such transition (Stam's
+ * idea), and m = infinity (a point exactly on the vertex, or an edge point
+ * whose remaining digits vanish) is the projection on the eigenvalue 1.
+ *
+ * Cost per point (the finding, README "Limit evaluation"):
+ *   - regular cells: O(1), the B-spline;
+ *   - cells at an extraordinary vertex, the point in the cells around it:
+ *     O(1) -- one step to level 1, one jump over the run, one step out, the
+ *     B-spline (constant independent of the distance to the vertex);
+ *   - near an extraordinary edge: the scheme-generic method.  The edge is not
+ *     a tensor product for every scheme (Joy--MacCracken is not), so the walk
+ *     follows the binary digits of the point; runs of equal digits are
+ *     jumps, so the steps are bounded by the number of digit changes, at most
+ *     about 53 per coordinate in double precision, each a K x K product
+ *     (K ~ 100 patch points).  Bounded, not constant.
+ * Boundary cells are walked the same way (the patch holds the boundary rule's
+ * cells); points on the boundary surface itself never reach a regular patch
+ * and are refused (SS_EINPUT: not supported yet), except boundary vertices
+ * reached by an infinite run.
+ *
+ * Defective eigenstructure (a run's W not diagonalisable to working accuracy:
+ * condition of V above SS_LIMIT_MAXCOND) is SS_ENUMERIC with the reason, never
+ * a silent wrong point.
+ *
+ * The evaluator caches what it learns and is therefore not thread-safe: give
+ * each thread its own. */
+#ifndef SS_LIMIT_H
+#define SS_LIMIT_H
+
+#include <stddef.h>
+
+#include "ss_cx.h"
+#include "ss_error.h"
+#include "ss_scheme.h"
+
+typedef struct ss_limit ss_limit; /* opaque: the mesh, its adjacency and the caches */
+
+/* Largest condition number ||V|| ||V^-1|| (1-norms, unit columns) of a run's
+ * eigenvector matrix accepted before the run is declared defective. */
+#define SS_LIMIT_MAXCOND 1e6
+/* Most plain (non-jump) steps of one evaluation before it gives up. */
+#define SS_LIMIT_MAXSTEPS 400
+
+/* One evaluated point. */
+typedef struct {
+  double p[3];      /* the limit point */
+  double jac[3][3]; /* with derivatives: rows d/du, d/dv, d/dw of p */
+  int steps;        /* subdivision steps walked (a jump counts its run) */
+  int products;     /* matrix products done (plain steps + jumps) */
+} ss_limit_point;
+
+/* Counters of what the caches hold. */
+typedef struct {
+  size_t keys;        /* distinct patch topologies met */
+  size_t transitions; /* (key, child) transitions computed */
+  size_t eigs;        /* eigen-decompositions computed (stationary runs) */
+} ss_limit_stats;
+
+/* An evaluator for the limit of `mesh` under scheme s.  The scheme is
+ * borrowed (it must outlive the evaluator; schemes are immutable); the mesh
+ * is copied.  SS_EINPUT when the mesh is not 3D, holds cells other than
+ * hexahedra, has a face shared by more than two cells, or the scheme does not
+ * split hexes multilinearly with a reach-1 rule; SS_ENOMEM.  O(cells). */
+ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
+                       ss_error *err);
+
+/* Free; NULL is a no-op. */
+void ss_limit_free(ss_limit *L);
+
+/* Number of cells (hexahedra) of the mesh. */
+size_t ss_limit_ncells(const ss_limit *L);
+
+/* What the caches hold. */
+ss_limit_stats ss_limit_get_stats(const ss_limit *L);
+
+/* The limit point of cell `cell` (0-based) at (u, v, w) in [0,1]^3 (u along
+ * corner 0 -> 1, v along 0 -> 3, w along 0 -> 4; ss_cx.h), and with
+ * `derivatives` the Jacobian, by the walk above.  SS_EINPUT for an unknown
+ * cell, a parameter outside [0,1] or not finite, a point on the boundary
+ * surface; SS_ENUMERIC for a defective run, or derivatives asked at a point
+ * reached only by an infinite run (an extraordinary vertex or edge, where
+ * the parametric Jacobian is 0 or unbounded); SS_ENOMEM. */
+ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
+                        int derivatives, ss_limit_point *out, ss_error *err);
+
+/* The reference: the same point by repeated local subdivision of the actual
+ * patch (refine, keep the child's patch, until it is regular; nothing cached,
+ * no eigenvalues), at most max_depth steps (SS_ENUMERIC beyond: the point
+ * lies on or within 2^-max_depth of an extraordinary vertex or edge).  This is
+ * the paper's alternative [BHU10] and the benchmark's baseline.  Errors
+ * otherwise as ss_limit_eval. */
+ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
+                                  int derivatives, int max_depth, ss_limit_point *out,
+                                  ss_error *err);
+
+/* The tricubic B-spline of a 4x4x4 net at (u, v, w) in [0,1]^3: net[i + 4j +
+ * 16k] is the control point at grid position (i - 1, j - 1, k - 1), the cell
+ * being [0,1]^3.  jac (may be NULL) receives rows d/du, d/dv, d/dw. */
+void ss_limit_bspline(const double (*net)[3], double u, double v, double w, double p[3],
+                      double jac[3][3]);
+
+#endif

@@ -1,0 +1,236 @@
+/* ss_limit_eig.c — eigen-decomposition of a stationary run's matrix and its
+ * powers: W^m = V diag(lambda^m) V^-1 (Stam's idea), checked for defects. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lapacke.h>
+
+#include "ss_limit.h"
+#include "ss_limit_impl.h"
+
+void lim_eig_free(lim_eig *e) {
+  if (!e) return;
+  free(e->pw);
+  free(e->V);
+  free(e->Vinv);
+  free(e->lam);
+  free(e);
+}
+
+/* The fallback for a defective W: W^(2^i), i = 0 .. LIM_NPOW - 1, by repeated
+ * squaring (products of averaging matrices: stable, whatever the Jordan
+ * structure). */
+static ss_status make_powers(const double *W, size_t K, lim_eig *e, ss_error *err) {
+  e->pw = malloc((LIM_NPOW * K * K + 1) * sizeof *e->pw);
+  if (!e->pw) return ss_error_nomem(err, "matrix powers");
+  memcpy(e->pw, W, K * K * sizeof *W);
+  for (int p = 1; p < LIM_NPOW; p++) {
+    const double *A = e->pw + (size_t)(p - 1) * K * K;
+    double *B = e->pw + (size_t)p * K * K;
+    memset(B, 0, K * K * sizeof *B);
+    for (size_t i = 0; i < K; i++)
+      for (size_t q = 0; q < K; q++) {
+        double a = A[i * K + q];
+        if (a == 0.0) continue;
+        for (size_t j = 0; j < K; j++)
+          B[i * K + j] += a * A[q * K + j];
+      }
+  }
+  return SS_OK;
+}
+
+/* P <- A P (K x K times K x 3). */
+static void matvec(const double *A, size_t K, double *P, double *tmp) {
+  for (size_t i = 0; i < K; i++) {
+    double acc[3] = {0, 0, 0};
+    for (size_t j = 0; j < K; j++) {
+      double a = A[i * K + j];
+      if (a == 0.0) continue;
+      for (int d = 0; d < 3; d++)
+        acc[d] += a * P[j * 3 + (size_t)d];
+    }
+    memcpy(tmp + i * 3, acc, sizeof acc);
+  }
+  memcpy(P, tmp, K * 3 * sizeof *P);
+}
+
+/* 1-norm of a K x K column-major complex matrix. */
+static double norm1(const double complex *A, size_t K) {
+  double m = 0.0;
+  for (size_t j = 0; j < K; j++) {
+    double s = 0.0;
+    for (size_t i = 0; i < K; i++)
+      s += cabs(A[j * K + i]);
+    if (s > m) m = s;
+  }
+  return m;
+}
+
+ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err) {
+  ss_status st = SS_OK;
+  lim_eig *e = calloc(1, sizeof *e);
+  double *a = malloc((K * K + 1) * sizeof *a), *wr = malloc((K + 1) * sizeof *wr);
+  double *wi = malloc((K + 1) * sizeof *wi), *vr = malloc((K * K + 1) * sizeof *vr);
+  lapack_int *ipiv = malloc((K + 1) * sizeof *ipiv);
+  *out = NULL;
+  if (e) e->why[0] = '\0';
+  if (!e || !a || !wr || !wi || !vr || !ipiv) {
+    st = ss_error_nomem(err, "eigen-decomposition");
+    goto done;
+  }
+  e->K = K;
+  e->one = SIZE_MAX;
+  e->V = malloc((K * K + 1) * sizeof *e->V);
+  e->Vinv = malloc((K * K + 1) * sizeof *e->Vinv);
+  e->lam = malloc((K + 1) * sizeof *e->lam);
+  if (!e->V || !e->Vinv || !e->lam) {
+    st = ss_error_nomem(err, "eigen-decomposition");
+    goto done;
+  }
+  memcpy(a, W, K * K * sizeof *a);
+  lapack_int info = LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'V', (lapack_int)K, a,
+                                  (lapack_int)K, wr, wi, NULL, 1, vr, (lapack_int)K);
+  if (info) {
+    st =
+        ss_error_set(err, SS_ENUMERIC, "dgeev failed (info %d) on a %zu x %zu run matrix",
+                     (int)info, K, K);
+    goto done;
+  }
+  /* complex eigenvectors from dgeev's packed pairs (row-major vr: column j) */
+  for (size_t j = 0; j < K; j++) {
+    e->lam[j] = CMPLX(wr[j], wi[j]);
+    if (wi[j] != 0.0 && j + 1 < K) {
+      for (size_t i = 0; i < K; i++) {
+        double re = vr[i * K + j], im = vr[i * K + j + 1];
+        e->V[j * K + i] = CMPLX(re, im);
+        e->V[(j + 1) * K + i] = CMPLX(re, -im);
+      }
+      e->lam[j + 1] = CMPLX(wr[j + 1], wi[j + 1]);
+      j++;
+    } else {
+      for (size_t i = 0; i < K; i++)
+        e->V[j * K + i] = vr[i * K + j];
+    }
+  }
+  /* unit columns, then the inverse */
+  for (size_t j = 0; j < K; j++) {
+    double s = 0.0;
+    for (size_t i = 0; i < K; i++)
+      s += creal(e->V[j * K + i] * conj(e->V[j * K + i]));
+    s = sqrt(s);
+    for (size_t i = 0; i < K; i++)
+      e->V[j * K + i] /= s > 0.0 ? s : 1.0;
+  }
+  memcpy(e->Vinv, e->V, K * K * sizeof *e->V);
+  info = LAPACKE_zgetrf(LAPACK_COL_MAJOR, (lapack_int)K, (lapack_int)K, e->Vinv,
+                        (lapack_int)K, ipiv);
+  if (info == 0)
+    info = LAPACKE_zgetri(LAPACK_COL_MAJOR, (lapack_int)K, e->Vinv, (lapack_int)K, ipiv);
+  e->cond = info ? HUGE_VAL : norm1(e->V, K) * norm1(e->Vinv, K);
+  if (!(e->cond <= SS_LIMIT_MAXCOND)) {
+    snprintf(e->why, sizeof e->why,
+             "the %zu x %zu matrix of a stationary run is defective or nearly so (a "
+             "Jordan block): its eigenvector matrix has condition %.3g (limit %.0e)",
+             K, K, e->cond, SS_LIMIT_MAXCOND);
+    if ((st = make_powers(W, K, e, err))) goto done;
+  }
+  /* the eigenvalue 1: simple, every other eigenvalue inside the unit disc */
+  size_t nones = 0;
+  double rest = 0.0;
+  for (size_t j = 0; j < K; j++) {
+    if (cabs(e->lam[j] - 1.0) <= 1e-9) {
+      nones++;
+      e->one = j;
+    } else if (cabs(e->lam[j]) > rest) {
+      rest = cabs(e->lam[j]);
+    }
+  }
+  if (nones != 1 || rest >= 1.0 - 1e-12) e->one = SIZE_MAX;
+  e->second = rest;
+  e->ok = 1;
+done:
+  free(a);
+  free(wr);
+  free(wi);
+  free(vr);
+  free(ipiv);
+  if (st)
+    lim_eig_free(e);
+  else
+    *out = e;
+  return st;
+}
+
+ss_status lim_eig_power(const lim_eig *e, long m, double *P, ss_error *err) {
+  const size_t K = e->K;
+  if (!e->ok) return ss_error_set(err, SS_ENUMERIC, "%s", e->why);
+  if (m < 0 && e->one == SIZE_MAX)
+    return ss_error_set(
+        err, SS_ENUMERIC,
+        "the limit at a fixed point needs the eigenvalue 1 simple and all "
+        "others inside the unit circle; this run's matrix has not");
+  if (e->pw) {
+    /* W^m by the binary digits of m; the limit as W^(2^(LIM_NPOW-1)) applied
+     * until |lambda_1|^(2^i) has vanished */
+    double *tmp = malloc((K * 3 + 1) * sizeof *tmp);
+    if (!tmp) return ss_error_nomem(err, "matrix powers");
+    if (m < 0) {
+      double l1 = e->second, r = l1;
+      int reps = 0;
+      for (int p = 0; p < LIM_NPOW - 1; p++)
+        r *= r;
+      do {
+        matvec(e->pw + (size_t)(LIM_NPOW - 1) * K * K, K, P, tmp);
+        reps++;
+        l1 = reps == 1 ? r : l1 * r;
+      } while (l1 > 1e-300 && reps < 64);
+    } else {
+      for (int p = 0; p < LIM_NPOW && m > 0; p++, m >>= 1)
+        if (m & 1) matvec(e->pw + (size_t)p * K * K, K, P, tmp);
+      if (m > 0) {
+        free(tmp);
+        return ss_error_set(err, SS_EINTERNAL, "run too long for the matrix powers");
+      }
+    }
+    free(tmp);
+    return SS_OK;
+  }
+  double complex *y = malloc((3 * K + 1) * sizeof *y);
+  if (!y) return ss_error_nomem(err, "eigen power");
+  /* y = diag(lam^m) V^-1 P */
+  for (size_t i = 0; i < K; i++) {
+    double complex acc[3] = {0, 0, 0};
+    double complex f;
+    if (m < 0)
+      f = i == e->one ? 1.0 : 0.0;
+    else if (cimag(e->lam[i]) == 0.0)
+      f = pow(creal(e->lam[i]), (double)m);
+    else
+      f = cpow(e->lam[i], (double)m);
+    if (f != 0.0)
+      for (size_t j = 0; j < K; j++) {
+        double complex vij = e->Vinv[j * K + i];
+        for (int d = 0; d < 3; d++)
+          acc[d] += vij * P[j * 3 + (size_t)d];
+      }
+    for (int d = 0; d < 3; d++)
+      y[i * 3 + (size_t)d] = f * acc[d];
+  }
+  /* P = Re(V y) */
+  for (size_t r = 0; r < K; r++) {
+    double complex acc[3] = {0, 0, 0};
+    for (size_t i = 0; i < K; i++) {
+      double complex vri = e->V[i * K + r];
+      if (y[i * 3] == 0.0 && y[i * 3 + 1] == 0.0 && y[i * 3 + 2] == 0.0) continue;
+      for (int d = 0; d < 3; d++)
+        acc[d] += vri * y[i * 3 + (size_t)d];
+    }
+    for (int d = 0; d < 3; d++)
+      P[r * 3 + (size_t)d] = creal(acc[d]);
+  }
+  free(y);
+  return SS_OK;
+}

@@ -1,0 +1,473 @@
+/* test_limit.c — limit evaluation (ss_limit): the tricubic B-spline on regular
+ * grids (from the basis matrix, independently of the library's basis), the
+ * decay of |global subdivision L levels - limit| near extraordinary vertices
+ * and edges, partition of unity and affine covariance, derivatives against
+ * finite differences, the cached walk against the reference, relabelling,
+ * bad input. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_limit.h"
+#include "ss_scheme.h"
+#include "ss_test.h"
+#include "ss_testmesh.h"
+
+/* ---- meshes ---- */
+
+/* nx x ny x nz unit hexes; vertex (i, j, k) at (i, j, k). */
+static ss_cx *grid(int nx, int ny, int nz) {
+  ss_cx *cx;
+  ss_error err = {0};
+  if (ss_cx_new(3, &cx, &err)) abort();
+  for (int k = 0; k <= nz; k++)
+    for (int j = 0; j <= ny; j++)
+      for (int i = 0; i <= nx; i++) {
+        double x[3] = {i, j, k};
+        if (ss_cx_add_vertex(cx, x, 0, &err)) abort();
+      }
+#define GV(i, j, k) (ss_idx)((i) + (nx + 1) * ((j) + (ny + 1) * (k)))
+  for (int k = 0; k < nz; k++)
+    for (int j = 0; j < ny; j++)
+      for (int i = 0; i < nx; i++) {
+        ss_idx v[8] = {GV(i, j, k),
+                       GV(i + 1, j, k),
+                       GV(i + 1, j + 1, k),
+                       GV(i, j + 1, k),
+                       GV(i, j, k + 1),
+                       GV(i + 1, j, k + 1),
+                       GV(i + 1, j + 1, k + 1),
+                       GV(i, j + 1, k + 1)};
+        if (ss_cx_add_cell(cx, SS_HEX, v, 0, &err)) abort();
+      }
+#undef GV
+  return cx;
+}
+
+/* The hex cell of grid(nx, ny, nz) at (i, j, k). */
+static size_t grid_cell(int nx, int ny, int i, int j, int k) {
+  return (size_t)(i + nx * (j + ny * k));
+}
+
+/* n sectors of R x R quads around the z axis (sector s between the unit rays
+ * at angles 2 pi s / n and 2 pi (s + 1) / n; its point (i, j) at i e_s +
+ * j e_s+1), extruded into nz layers: the z axis is an edge of valence n.
+ * Cell (s, i, j, k) (i, j < R) is cell ((k * n + s) * R + j) * R + i. */
+static ss_cx *edge_ring(int n, int R, int nz) {
+  ss_cx *cx;
+  ss_error err = {0};
+  if (ss_cx_new(3, &cx, &err)) abort();
+  /* 2D points: centre, n rays of R points, n sectors of R x R interior points */
+  int np = 1 + n * R + n * R * R;
+  for (int k = 0; k <= nz; k++)
+    for (int p = 0; p < np; p++) {
+      double x[3] = {0, 0, k};
+      if (p > 0 && p <= n * R) {
+        int s = (p - 1) / R, i = (p - 1) % R + 1;
+        x[0] = i * cos(2 * M_PI * s / n);
+        x[1] = i * sin(2 * M_PI * s / n);
+      } else if (p > n * R) {
+        int q = p - 1 - n * R, s = q / (R * R), i = q % R + 1, j = (q / R) % R + 1;
+        x[0] = i * cos(2 * M_PI * s / n) + j * cos(2 * M_PI * (s + 1) / n);
+        x[1] = i * sin(2 * M_PI * s / n) + j * sin(2 * M_PI * (s + 1) / n);
+      }
+      if (ss_cx_add_vertex(cx, x, 0, &err)) abort();
+    }
+  for (int k = 0; k < nz; k++)
+    for (int s = 0; s < n; s++)
+      for (int j = 0; j < R; j++)
+        for (int i = 0; i < R; i++) {
+          int q[4][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}};
+          ss_idx v[8];
+          for (int c = 0; c < 4; c++) {
+            int a = q[c][0], b = q[c][1], id;
+            if (a == 0 && b == 0)
+              id = 0;
+            else if (b == 0)
+              id = 1 + s * R + (a - 1);
+            else if (a == 0)
+              id = 1 + ((s + 1) % n) * R + (b - 1);
+            else
+              id = 1 + n * R + s * R * R + (b - 1) * R + (a - 1);
+            v[c] = (ss_idx)(id + k * np);
+            v[c + 4] = (ss_idx)(id + (k + 1) * np);
+          }
+          if (ss_cx_add_cell(cx, SS_HEX, v, 0, &err)) abort();
+        }
+  return cx;
+}
+
+static void jitter(ss_cx *cx, double amp, unsigned seed) {
+  srand(seed);
+  for (size_t i = 0; i < cx->nv * 3; i++)
+    cx->x[i] += amp * (2.0 * rand() / RAND_MAX - 1.0);
+}
+
+/* ---- independent references ---- */
+
+/* Tricubic B-spline of a 4x4x4 net by the basis matrix of the uniform cubic
+ * B-spline, (1/6) [1 4 1 0; -3 0 3 0; 3 -6 3 0; -1 3 -3 1], in power form. */
+static void bspline_ref(const double (*net)[3], const double x[3], double p[3]) {
+  static const double B[4][4] = {
+      {1, 4, 1, 0}, {-3, 0, 3, 0}, {3, -6, 3, 0}, {-1, 3, -3, 1}};
+  double b[3][4];
+  for (int a = 0; a < 3; a++)
+    for (int i = 0; i < 4; i++) {
+      double t = 1.0;
+      b[a][i] = 0.0;
+      for (int e = 0; e < 4; e++, t *= x[a])
+        b[a][i] += t * B[e][i] / 6.0;
+    }
+  p[0] = p[1] = p[2] = 0.0;
+  for (int k = 0; k < 4; k++)
+    for (int j = 0; j < 4; j++)
+      for (int i = 0; i < 4; i++)
+        for (int d = 0; d < 3; d++)
+          p[d] += b[0][i] * b[1][j] * b[2][k] * net[i + 4 * j + 16 * k][d];
+}
+
+/* The vertex of `mesh` refined L times at the corner `corner` (bits) of the
+ * level-L sub-cell of cell c holding the dyadic point x (each coordinate a
+ * multiple of 2^-L): its position converges to the limit at x. */
+static int fine_vertex(const ss_scheme *s, const ss_cx *mesh, size_t c, const double x[3],
+                       int L, double out[3]) {
+  ss_cx *fine;
+  ss_error err = {0};
+  if (ss_scheme_refine_levels(s, mesh, L, &fine, &err)) {
+    fprintf(stderr, "refine: %s\n", err.msg);
+    return 1;
+  }
+  double y[3] = {x[0], x[1], x[2]};
+  unsigned corner = 0;
+  for (int l = 0; l < L; l++) {
+    unsigned b = 0;
+    for (int a = 0; a < 3; a++)
+      if (y[a] >= 0.5 && !(l == L - 1 && y[a] == 1.0 && 0)) b |= 1u << a;
+    /* keep the point at the child's corner 0 unless it is at 1 */
+    for (int a = 0; a < 3; a++)
+      y[a] = 2.0 * y[a] - ((b >> a) & 1u);
+    c = c * 8 + (size_t)ss_cube_corner_index(3, b);
+  }
+  for (int a = 0; a < 3; a++)
+    if (y[a] != 0.0) corner |= 1u << a;
+  ss_idx v = ss_cx_cell(fine, SS_HEX, c)[ss_cube_corner_index(3, corner)];
+  memcpy(out, fine->x + 3 * (size_t)v, 3 * sizeof(double));
+  ss_cx_free(fine);
+  return 0;
+}
+
+static double dist(const double a[3], const double b[3]) {
+  return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+              (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* ---- tests ---- */
+
+static void test_regular(const ss_scheme *s) {
+  ss_error err = {0};
+  ss_cx *g = grid(5, 5, 5);
+  jitter(g, 0.2, 7);
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, g, &L, &err), &err);
+  const double xs[][3] = {
+      {0, 0, 0}, {1, 1, 1}, {0.3, 0.7, 0.1}, {0.5, 0.25, 1}, {0.9, 0.01, 0.6}};
+  double worst = 0.0;
+  for (int ci = 1; ci <= 3; ci++)
+    for (size_t q = 0; q < sizeof xs / sizeof xs[0]; q++) {
+      size_t c = grid_cell(5, 5, ci, 2, 3 - (ci == 3));
+      double net[64][3];
+      int cj = 2, ck = 3 - (ci == 3);
+      for (int k = 0; k < 4; k++)
+        for (int j = 0; j < 4; j++)
+          for (int i = 0; i < 4; i++) {
+            int vi = ci - 1 + i, vj = cj - 1 + j, vk = ck - 1 + k;
+            memcpy(net[i + 4 * j + 16 * k], g->x + 3 * (size_t)(vi + 6 * (vj + 6 * vk)),
+                   sizeof net[0]);
+          }
+      double want[3];
+      bspline_ref((const double(*)[3])net, xs[q], want);
+      ss_limit_point p;
+      REQUIRE_OK_VOID(ss_limit_eval(L, c, xs[q][0], xs[q][1], xs[q][2], 1, &p, &err),
+                      &err);
+      double e = dist(p.p, want);
+      if (e > worst) worst = e;
+      CHECK(e <= 1e-12, "regular cell %zu at (%g %g %g): off by %g", c, xs[q][0],
+            xs[q][1], xs[q][2], e);
+      CHECK(p.products == 0, "a regular cell took %d products", p.products);
+    }
+  printf("regular grid: largest |limit - tricubic B-spline| = %.2e\n", worst);
+  ss_limit_free(L);
+  ss_cx_free(g);
+}
+
+/* An affine image of a grid is its own limit (linear precision), in every
+ * cell, boundary-touching ones included; a constant net gives the constant. */
+static void test_affine(const ss_scheme *s) {
+  ss_error err = {0};
+  ss_cx *g = grid(4, 4, 4);
+  const double A[3][3] = {{1.2, 0.3, -0.1}, {0.2, 0.9, 0.4}, {-0.3, 0.1, 1.1}};
+  const double b[3] = {0.5, -2, 3};
+  for (size_t v = 0; v < g->nv; v++) {
+    double y[3];
+    for (int i = 0; i < 3; i++) {
+      y[i] = b[i];
+      for (int j = 0; j < 3; j++)
+        y[i] += A[i][j] * g->x[3 * v + (size_t)j];
+    }
+    memcpy(g->x + 3 * v, y, sizeof y);
+  }
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, g, &L, &err), &err);
+  const size_t c = grid_cell(4, 4, 1, 2, 1); /* interior, regular */
+  const double x[3] = {0.3, 0.6, 0.8};
+  ss_limit_point p;
+  REQUIRE_OK_VOID(ss_limit_eval(L, c, x[0], x[1], x[2], 1, &p, &err), &err);
+  for (int i = 0; i < 3; i++) {
+    double want = b[i];
+    for (int j = 0; j < 3; j++)
+      want += A[i][j] * ((j == 0 ? 1 : j == 1 ? 2 : 1) + x[j]);
+    CHECK_CLOSE(p.p[i], want, 1e-12, "affine grid coordinate %d", i);
+    for (int j = 0; j < 3; j++)
+      CHECK_CLOSE(p.jac[j][i], A[i][j], 1e-12, "affine grid Jacobian (%d, %d)", j, i);
+  }
+  ss_limit_free(L);
+  ss_cx_free(g);
+}
+
+/* Limit of a mesh whose every point is the same: that point, everywhere. */
+static void test_constant(const ss_scheme *s, const ss_cx *m, size_t c,
+                          const char *what) {
+  ss_error err = {0};
+  ss_cx *k;
+  if (ss_cx_copy(m, &k, &err)) abort();
+  for (size_t v = 0; v < k->nv; v++) {
+    k->x[3 * v] = 1.25;
+    k->x[3 * v + 1] = -3.5;
+    k->x[3 * v + 2] = 7;
+  }
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, k, &L, &err), &err);
+  const double xs[][3] = {{0.001, 0.002, 0.003}, {0.3, 1e-9, 1e-9}, {0.6, 0.2, 0.9}};
+  for (int q = 0; q < 3; q++) {
+    ss_limit_point p;
+    REQUIRE_OK_VOID(ss_limit_eval(L, c, xs[q][0], xs[q][1], xs[q][2], 0, &p, &err), &err);
+    CHECK(fabs(p.p[0] - 1.25) <= 1e-12 && fabs(p.p[1] + 3.5) <= 1e-12 &&
+              fabs(p.p[2] - 7) <= 1e-12,
+          "%s: partition of unity at point %d: (%.17g %.17g %.17g)", what, q, p.p[0],
+          p.p[1], p.p[2]);
+  }
+  ss_limit_free(L);
+  ss_cx_free(k);
+}
+
+/* Cached walk against the reference; derivatives against central
+ * differences of the limit itself. */
+static void test_direct_vs_reference(const ss_scheme *s, const ss_cx *m,
+                                     const size_t *cells, int ncells, const char *what) {
+  ss_error err = {0};
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, m, &L, &err), &err);
+  const double xs[][3] = {{0.01, 0.02, 0.03},   {0.2, 0.1, 0.15},  {0.4, 0.001, 0.0004},
+                          {0.7, 0.0001, 0.003}, {0.3, 0.45, 0.05}, {0.125, 0.0625, 0.3},
+                          {1e-5, 2e-5, 3e-6},   {0.6, 0.3, 0.2}};
+  double worst = 0.0, worst_fd = 0.0;
+  for (int ci = 0; ci < ncells; ci++)
+    for (size_t q = 0; q < sizeof xs / sizeof xs[0]; q++) {
+      ss_limit_point a, r;
+      REQUIRE_OK_VOID(
+          ss_limit_eval(L, cells[ci], xs[q][0], xs[q][1], xs[q][2], 1, &a, &err), &err);
+      REQUIRE_OK_VOID(ss_limit_eval_reference(L, cells[ci], xs[q][0], xs[q][1], xs[q][2],
+                                              1, 60, &r, &err),
+                      &err);
+      double e = dist(a.p, r.p), scale = 1.0;
+      if (e > worst) worst = e;
+      CHECK(e <= 1e-12 * scale, "%s cell %zu at (%g %g %g): direct - reference = %g",
+            what, cells[ci], xs[q][0], xs[q][1], xs[q][2], e);
+      for (int i = 0; i < 3; i++)
+        for (int d = 0; d < 3; d++) {
+          double jr = fabs(r.jac[i][d]) > 1 ? fabs(r.jac[i][d]) : 1;
+          CHECK(fabs(a.jac[i][d] - r.jac[i][d]) <= 1e-9 * jr,
+                "%s cell %zu: Jacobian (%d,%d) direct %.17g reference %.17g", what,
+                cells[ci], i, d, a.jac[i][d], r.jac[i][d]);
+        }
+      /* central differences with steps well inside the point's sub-cell */
+      for (int i = 0; i < 3; i++) {
+        double h = 1e-6 * (xs[q][i] > 1e-3 ? 1 : xs[q][i] * 100);
+        double xp[3] = {xs[q][0], xs[q][1], xs[q][2]}, xm[3];
+        memcpy(xm, xp, sizeof xm);
+        xp[i] += h;
+        xm[i] -= h;
+        ss_limit_point pp, pm;
+        REQUIRE_OK_VOID(ss_limit_eval(L, cells[ci], xp[0], xp[1], xp[2], 0, &pp, &err),
+                        &err);
+        REQUIRE_OK_VOID(ss_limit_eval(L, cells[ci], xm[0], xm[1], xm[2], 0, &pm, &err),
+                        &err);
+        for (int d = 0; d < 3; d++) {
+          double fd = (pp.p[d] - pm.p[d]) / (2 * h);
+          double sc = fabs(a.jac[i][d]) > 1 ? fabs(a.jac[i][d]) : 1;
+          double e2 = fabs(fd - a.jac[i][d]) / sc;
+          if (e2 > worst_fd) worst_fd = e2;
+          CHECK(e2 <= 1e-5,
+                "%s cell %zu at (%g %g %g): d/dx%d coordinate %d: %.10g vs FD %.10g",
+                what, cells[ci], xs[q][0], xs[q][1], xs[q][2], i, d, a.jac[i][d], fd);
+        }
+      }
+    }
+  ss_limit_stats st = ss_limit_get_stats(L);
+  printf("%s: direct vs reference max %.2e, Jacobian vs central differences max %.2e "
+         "(relative); %zu keys, %zu transitions, %zu eigen-solves\n",
+         what, worst, worst_fd, st.keys, st.transitions, st.eigs);
+  ss_limit_free(L);
+}
+
+/* |fine vertex after L global levels - limit| for growing L must fall like
+ * C lambda^L; prints the decay. */
+static void test_decay(const ss_scheme *s, const ss_cx *m, size_t c, const double x[3],
+                       int Lmax, const char *what) {
+  ss_error err = {0};
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, m, &L, &err), &err);
+  ss_limit_point p;
+  REQUIRE_OK_VOID(ss_limit_eval(L, c, x[0], x[1], x[2], 0, &p, &err), &err);
+  double prev = 0.0;
+  printf("%s: |level-L vertex - limit| at (%g %g %g):", what, x[0], x[1], x[2]);
+  for (int l = 1; l <= Lmax; l++) {
+    double f[3];
+    if (fine_vertex(s, m, c, x, l, f)) {
+      CHECK(0, "refine failed");
+      break;
+    }
+    double e = dist(f, p.p);
+    printf(" L=%d %.3e", l, e);
+    if (l >= 3)
+      CHECK(e <= 0.8 * prev, "%s: no decay from level %d to %d: %g -> %g", what, l - 1, l,
+            prev, e);
+    prev = e;
+  }
+  printf("\n");
+  CHECK(prev < 0.02, "%s: level %d still %g from the limit", what, Lmax, prev);
+  ss_limit_free(L);
+}
+
+static void test_bad_input(const ss_scheme *s) {
+  ss_error err = {0};
+  ss_cx *g = grid(3, 3, 3);
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, g, &L, &err), &err);
+  ss_limit_point p;
+  CHECK(ss_limit_eval(L, 27, 0.5, 0.5, 0.5, 0, &p, &err) == SS_EINPUT, "unknown cell");
+  CHECK(strstr(err.msg, "cell 28"), "message names the cell: %s", err.msg);
+  CHECK(ss_limit_eval(L, 0, 1.5, 0.5, 0.5, 0, &p, &err) == SS_EINPUT, "u > 1");
+  CHECK(ss_limit_eval(L, 0, 0.5, -1e-300, 0.5, 0, &p, &err) == SS_EINPUT, "v < 0");
+  CHECK(ss_limit_eval(L, 0, 0.5, 0.5, NAN, 0, &p, &err) == SS_EINPUT, "w NaN");
+  /* a point on the boundary surface: every double is dyadic, so after its
+   * binary digits the point is a corner of a sub-cell, a fixed point of a run;
+   * the value is continuous with the interior's, the Jacobian refused */
+  ss_limit_point q;
+  CHECK(ss_limit_eval(L, 0, 0.3, 0.7, 0.0, 0, &p, &err) == SS_OK, "boundary point: %s",
+        err.msg);
+  CHECK(ss_limit_eval(L, 0, 0.3, 0.7, ldexp(1, -40), 0, &q, &err) == SS_OK, "near it: %s",
+        err.msg);
+  CHECK(dist(p.p, q.p) <= 1e-10, "boundary value not continuous: %g", dist(p.p, q.p));
+  CHECK(ss_limit_eval(L, 0, 0.3, 0.7, 0.0, 1, &p, &err) == SS_ENUMERIC,
+        "Jacobian on the boundary refused");
+  ss_limit_free(L);
+  ss_cx_free(g);
+  /* tetrahedra */
+  ss_cx *t = tm_kuhn(1);
+  ss_cx *t3;
+  if (ss_cx_copy(t, &t3, &err)) abort();
+  CHECK(ss_limit_new(s, t3, &L, &err) == SS_EINPUT, "tet mesh refused");
+  ss_cx_free(t);
+  ss_cx_free(t3);
+}
+
+/* The same mesh with vertices and cells renumbered: the same limit. */
+static void test_relabel(const ss_scheme *s, const ss_cx *m, size_t c) {
+  ss_error err = {0};
+  ss_cx *r;
+  if (ss_cx_new(3, &r, &err)) abort();
+  size_t nv = m->nv, nh = m->nc[SS_HEX];
+  size_t *pv = malloc(nv * sizeof *pv), *pc = malloc(nh * sizeof *pc);
+  for (size_t i = 0; i < nv; i++)
+    pv[i] = (i * 37 + 11) % nv;
+  for (size_t i = 0; i < nh; i++)
+    pc[i] = (i * 13 + 5) % nh;
+  /* pv, pc are bijections when gcd(37, nv) = gcd(13, nh) = 1 */
+  double *x = malloc(nv * 3 * sizeof *x);
+  for (size_t i = 0; i < nv; i++)
+    memcpy(x + 3 * pv[i], m->x + 3 * i, 3 * sizeof *x);
+  for (size_t i = 0; i < nv; i++)
+    ss_cx_add_vertex(r, x + 3 * i, 0, &err);
+  ss_idx *cells = malloc(nh * 8 * sizeof *cells);
+  for (size_t i = 0; i < nh; i++)
+    for (int j = 0; j < 8; j++)
+      cells[pc[i] * 8 + (size_t)j] = (ss_idx)pv[ss_cx_cell(m, SS_HEX, i)[j]];
+  for (size_t i = 0; i < nh; i++)
+    ss_cx_add_cell(r, SS_HEX, cells + 8 * i, 0, &err);
+  ss_limit *A, *B;
+  REQUIRE_OK_VOID(ss_limit_new(s, m, &A, &err), &err);
+  REQUIRE_OK_VOID(ss_limit_new(s, r, &B, &err), &err);
+  const double xs[][3] = {{0.01, 0.02, 0.03}, {0.4, 0.001, 0.0004}, {0.3, 0.45, 0.05}};
+  for (int q = 0; q < 3; q++) {
+    ss_limit_point a, b;
+    REQUIRE_OK_VOID(ss_limit_eval(A, c, xs[q][0], xs[q][1], xs[q][2], 0, &a, &err), &err);
+    REQUIRE_OK_VOID(ss_limit_eval(B, pc[c], xs[q][0], xs[q][1], xs[q][2], 0, &b, &err),
+                    &err);
+    CHECK(dist(a.p, b.p) <= 1e-13, "relabelled mesh: point %d differs by %g", q,
+          dist(a.p, b.p));
+  }
+  ss_limit_free(A);
+  ss_limit_free(B);
+  ss_cx_free(r);
+  free(pv);
+  free(pc);
+  free(x);
+  free(cells);
+}
+
+int main(int argc, char **argv) {
+  const char *name = argc > 1 ? argv[1] : "mlca";
+  ss_error err = {0};
+  ss_scheme *s;
+  REQUIRE_OK(ss_scheme_new(name, &s, &err), &err);
+  printf("scheme %s\n", name);
+  test_regular(s);
+  test_affine(s);
+  test_bad_input(s);
+
+  /* an edge of valence 3 and 5, interior cells along it */
+  for (int n = 3; n <= 5; n += 2) {
+    ss_cx *e = edge_ring(n, 3, 6);
+    jitter(e, 0.05, 3);
+    size_t cells[2] = {(size_t)((3 * n + 0) * 3 + 0) * 3 + 0,
+                       (size_t)((2 * n + 1) * 3 + 0) * 3 + 0};
+    char what[64];
+    snprintf(what, sizeof what, "edge of valence %d", n);
+    test_direct_vs_reference(s, e, cells, 2, what);
+    test_constant(s, e, cells[0], what);
+    const double x[3] = {0.25, 0.125, 0.5}, on[3] = {0, 0, 0.5};
+    test_decay(s, e, cells[0], x, 4, what);
+    test_decay(s, e, cells[0], on, 4, what); /* on the edge: a fixed point */
+    if (n == 5) test_relabel(s, e, cells[0]);
+    ss_cx_free(e);
+  }
+  /* the vertex with the icosahedron link (every edge at it of valence 5) */
+  {
+    tm_link *l = tm_link_named("icosahedron");
+    ss_cx *h = tm_hex_star(l);
+    jitter(h, 0.05, 5); /* no symmetry to make the centre's limit trivially 0 */
+    size_t cells[2] = {0, 7};
+    test_direct_vs_reference(s, h, cells, 2, "icosahedron vertex");
+    test_constant(s, h, 3, "icosahedron vertex");
+    const double x[3] = {0.125, 0.0625, 0.1875}, o[3] = {0, 0, 0};
+    test_decay(s, h, 0, x, 4, "icosahedron vertex");
+    test_decay(s, h, 0, o, 4, "icosahedron vertex"); /* the vertex itself */
+    test_relabel(s, h, 0);
+    ss_cx_free(h);
+    tm_link_free(l);
+  }
+  ss_scheme_free(s);
+  return ss_test_done("limit");
+}
