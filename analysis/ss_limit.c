@@ -34,6 +34,8 @@ typedef struct {
 typedef struct {
   size_t state; /* SIZE_MAX until first used */
   ss_idx *src;  /* the patch's mesh vertices, in the patch's numbering */
+  lim_frame g;  /* the patch's canonical frame relative to the cell's stored
+                   vertex order (isomorphic cells share their transitions) */
 } lim_cell;
 
 struct ss_limit {
@@ -243,14 +245,13 @@ fail:
   return st;
 }
 
-/* The state of coarse cell c (its patch in the stored frame). */
+/* The state of coarse cell c (its patch in its canonical frame). */
 static ss_status cell_state(ss_limit *L, size_t c, ss_error *err) {
   if (L->cell[c].state != SIZE_MAX) return SS_OK;
   ss_status st;
   lim_patch p;
   ss_cx *cx = NULL;
-  lim_frame id = lim_frame_id();
-  if ((st = lim_patch_build(&L->adj, c, &id, L->loc, &p, err))) return st;
+  if ((st = lim_patch_canonical(&L->adj, c, L->loc, &p, &L->cell[c].g, err))) return st;
   ss_idx *src = malloc((p.nv + 1) * sizeof *src);
   if (!src) {
     lim_patch_free(&p);
@@ -316,49 +317,100 @@ static ss_status check_args(const ss_limit *L, size_t cell, const double x[3],
   return SS_OK;
 }
 
-/* The child holding x: bit a set iff x_a >= 1/2. */
-static int child_of(const double x[3]) {
+/* A point in the current sub-cell, exactly: coordinate a is d[a] from the
+ * corner side s[a] (x = s ? 1 - d : d), with d <= 1/2.  Doubling, picking a
+ * child and turning the frame (a reflection only flips s) are then exact in
+ * binary floating point, so a point 1e-300 from an extraordinary vertex stays
+ * that far through any frame; x itself (with rounding) is formed only for the
+ * B-spline of a regular sub-cell. */
+typedef struct {
+  int s[3];    /* the corner side each coordinate is measured from */
+  double d[3]; /* the distance from it, in [0, 1/2] */
+} lim_pt;
+
+static void pt_normalize(lim_pt *p) {
+  for (int a = 0; a < 3; a++)
+    if (p->d[a] > 0.5) {
+      p->s[a] ^= 1;
+      p->d[a] = 1.0 - p->d[a]; /* exact: Sterbenz */
+    }
+}
+
+static lim_pt pt_make(const double x[3]) {
+  lim_pt p;
+  for (int a = 0; a < 3; a++) {
+    p.s[a] = 0;
+    p.d[a] = x[a];
+  }
+  pt_normalize(&p);
+  return p;
+}
+
+static void pt_x(const lim_pt *p, double x[3]) {
+  for (int a = 0; a < 3; a++)
+    x[a] = p->s[a] ? 1.0 - p->d[a] : p->d[a];
+}
+
+/* The child holding the point: bit a set iff x_a >= 1/2. */
+static int child_of(const lim_pt *p) {
   unsigned b = 0;
   for (int a = 0; a < 3; a++)
-    if (x[a] >= 0.5) b |= 1u << a;
+    if (p->s[a] || p->d[a] == 0.5) b |= 1u << a;
   return ss_cube_corner_index(3, b);
 }
 
-/* How many consecutive steps from x go into child bits b (LONG_MAX: for
- * ever); exact, from the binary exponents of the distances to the corner. */
-static long run_length(const double x[3], unsigned b, double d[3]) {
+/* How many consecutive steps from p go into child bits b (-1: for ever);
+ * exact, from the binary exponents of the distances to that corner. */
+static long run_length(const lim_pt *p, unsigned b) {
   long m = -1;
   for (int a = 0; a < 3; a++) {
     int bit = (int)((b >> a) & 1u), e;
-    d[a] = bit ? 1.0 - x[a] : x[a]; /* exact: Sterbenz */
-    if (d[a] == 0.0) continue;
-    double f = frexp(d[a], &e);
+    double dist = p->s[a] == bit ? p->d[a] : 1.0 - p->d[a];
+    if (dist == 0.0) continue;
+    double f = frexp(dist, &e);
     long ma = bit && f == 0.5 ? 1L - e : -(long)e;
     if (m < 0 || ma < m) m = ma;
   }
-  return m; /* -1: every distance is 0 */
+  return m;
 }
 
-/* x <- 2x - b under frame g; M <- G 2 M. */
-static void advance(double x[3], int k, const lim_frame *g, double M[3][3]) {
-  unsigned b = ss_cube_corner_bits(3, k);
-  double y[3], G[3][3], N[3][3];
-  for (int a = 0; a < 3; a++)
-    y[a] = 2.0 * x[a] - (double)((b >> a) & 1u);
-  lim_frame_apply(g, y, x, G);
+/* m steps into child bits b: the distance to that corner times 2^m. */
+static void pt_jump(lim_pt *p, unsigned b, long m) {
+  for (int a = 0; a < 3; a++) {
+    int bit = (int)((b >> a) & 1u);
+    double dist = p->s[a] == bit ? p->d[a] : 1.0 - p->d[a];
+    p->s[a] = bit;
+    p->d[a] = ldexp(dist, (int)m);
+  }
+  pt_normalize(p);
+}
+
+/* One step into child k, then frame g; M <- G 2 M. */
+static void advance(lim_pt *p, int k, const lim_frame *g, double M[3][3]) {
+  pt_jump(p, ss_cube_corner_bits(3, k), 1);
+  lim_pt q;
+  double G[3][3], N[3][3];
+  for (int a = 0; a < 3; a++) {
+    q.s[a] = p->s[g->perm[a]] ^ g->flip[a];
+    q.d[a] = p->d[g->perm[a]];
+  }
+  *p = q;
+  double zero[3] = {0, 0, 0}, unused[3];
+  lim_frame_apply(g, zero, unused, G);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
       N[i][j] = 0.0;
-      for (int q = 0; q < 3; q++)
-        N[i][j] += 2.0 * G[i][q] * M[q][j];
+      for (int r = 0; r < 3; r++)
+        N[i][j] += 2.0 * G[i][r] * M[r][j];
     }
   memcpy(M, N, sizeof N);
 }
 
 /* Point and Jacobian from a regular patch's points P (patch numbering). */
-static void finish_regular(const lim_patch *p, const double *P, const double x[3],
+static void finish_regular(const lim_patch *p, const double *P, const lim_pt *pt,
                            double M[3][3], int derivatives, ss_limit_point *out) {
-  double net[64][3], J[3][3];
+  double net[64][3], J[3][3], x[3];
+  pt_x(pt, x);
   for (int i = 0; i < 64; i++)
     memcpy(net[i], P + (size_t)p->net[i] * 3, sizeof net[i]);
   ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], out->p, J);
@@ -400,10 +452,19 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
 ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
                         int derivatives, ss_limit_point *out, ss_error *err) {
   ss_status st;
-  double x[3] = {u, v, w}, M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  double x[3] = {u, v, w}, M[3][3];
   double *P = NULL;
   memset(out, 0, sizeof *out);
   if ((st = check_args(L, cell, x, err)) || (st = cell_state(L, cell, err))) return st;
+  /* the cell's canonical frame: turned, not recomputed (exact) */
+  const lim_frame *g0 = &L->cell[cell].g;
+  lim_pt pt = pt_make(x), q;
+  for (int a = 0; a < 3; a++) {
+    q.s[a] = pt.s[g0->perm[a]] ^ g0->flip[a];
+    q.d[a] = pt.d[g0->perm[a]];
+  }
+  pt = q;
+  lim_frame_apply(g0, x, x, M);
   size_t s = L->cell[cell].state;
   const size_t K0 = L->st[s]->patch.nv;
   P = malloc((K0 * 3 + 1) * sizeof *P);
@@ -414,16 +475,15 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
   for (;;) {
     lim_state *S = L->st[s];
     if (S->patch.regular) {
-      finish_regular(&S->patch, P, x, M, derivatives, out);
+      finish_regular(&S->patch, P, &pt, M, derivatives, out);
       break;
     }
-    int k = child_of(x);
+    int k = child_of(&pt);
     lim_trans *t = NULL;
     if ((st = transition(L, s, k, &t, err))) goto done;
     S = L->st[s];
     if (t->next == s && lim_frame_is_id(&t->g)) {
-      double d[3];
-      long m = run_length(x, ss_cube_corner_bits(3, k), d);
+      long m = run_length(&pt, ss_cube_corner_bits(3, k));
       if (m < 0 || m >= JUMP_MIN) {
         if (!t->eig) {
           if ((st = lim_eig_new(t->W, S->patch.nv, &t->eig, err))) goto done;
@@ -442,19 +502,16 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
                               cell + 1, u, v, w);
           goto done;
         }
-        unsigned b = ss_cube_corner_bits(3, k);
-        for (int a = 0; a < 3; a++) {
-          double y = ldexp(d[a], (int)m);
-          x[a] = (b >> a) & 1u ? 1.0 - y : y;
+        pt_jump(&pt, ss_cube_corner_bits(3, k), m);
+        for (int a = 0; a < 3; a++)
           for (int j = 0; j < 3; j++)
             M[a][j] = ldexp(M[a][j], (int)m);
-        }
         out->steps += (int)m;
         continue;
       }
     }
     if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, &P, err))) goto done;
-    advance(x, k, &t->g, M);
+    advance(&pt, k, &t->g, M);
     out->steps++;
     out->products++;
     s = t->next;
@@ -473,6 +530,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
                                   ss_error *err) {
   ss_status st;
   double x[3] = {u, v, w}, M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  lim_pt pt = pt_make(x);
   lim_patch p;
   ss_cx *pcx = NULL;
   double *P = NULL;
@@ -489,7 +547,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
         goto done;
       }
       memcpy(P, pcx->x, p.nv * 3 * sizeof *P);
-      finish_regular(&p, P, x, M, derivatives, out);
+      finish_regular(&p, P, &pt, M, derivatives, out);
       break;
     }
     if (depth >= max_depth) {
@@ -501,7 +559,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
           cell + 1, max_depth, max_depth);
       goto done;
     }
-    int k = child_of(x);
+    int k = child_of(&pt);
     lim_patch child;
     ss_cx *ccx;
     if ((st = lim_step(L->s, pcx, k, 0, &child, &g, &ccx, NULL, err))) goto done;
@@ -509,7 +567,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
     ss_cx_free(pcx);
     p = child;
     pcx = ccx;
-    advance(x, k, &g, M);
+    advance(&pt, k, &g, M);
     out->steps++;
     out->products++;
   }
