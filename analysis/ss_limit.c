@@ -251,7 +251,15 @@ static ss_status cell_state(ss_limit *L, size_t c, ss_error *err) {
   ss_status st;
   lim_patch p;
   ss_cx *cx = NULL;
-  if ((st = lim_patch_canonical(&L->adj, c, L->loc, &p, &L->cell[c].g, err))) return st;
+  /* a regular patch needs no canonical frame (every frame gives the same
+   * grid walk up to the B-spline's symmetry, and it has no transitions):
+   * most cells of a mesh are, and the 48 walks would dominate a first pass */
+  L->cell[c].g = lim_frame_id();
+  if ((st = lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
+  if (!p.regular) {
+    lim_patch_free(&p);
+    if ((st = lim_patch_canonical(&L->adj, c, L->loc, &p, &L->cell[c].g, err))) return st;
+  }
   ss_idx *src = malloc((p.nv + 1) * sizeof *src);
   if (!src) {
     lim_patch_free(&p);
