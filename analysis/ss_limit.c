@@ -88,6 +88,88 @@ void ss_limit_free(ss_limit *L) {
   free(L);
 }
 
+/* Regular patches are evaluated by the tricubic B-spline, which is right only
+ * if the scheme's rule on a regular grid is the tricubic B-spline's: check it
+ * on the 3x3x3 block, child by child (the 1D rows are the cubic B-spline's
+ * midpoint 1/2 1/2 and vertex 1/8 3/4 1/8 rules; the 3D rows their tensor
+ * product).  A stencil file with other hex weights is refused here instead
+ * of evaluated wrongly. */
+static ss_status check_bspline(const ss_scheme *s, ss_error *err) {
+  static const double A[2][4][4] = {{{0.5, 0.5, 0, 0},
+                                     {0.125, 0.75, 0.125, 0},
+                                     {0, 0.5, 0.5, 0},
+                                     {0, 0.125, 0.75, 0.125}},
+                                    {{0.125, 0.75, 0.125, 0},
+                                     {0, 0.5, 0.5, 0},
+                                     {0, 0.125, 0.75, 0.125},
+                                     {0, 0, 0.5, 0.5}}};
+  ss_status st;
+  ss_cx *g = NULL, *pcx = NULL, *ccx = NULL;
+  lim_adj adj = {0};
+  lim_patch p = {0}, c = {0};
+  double *W = NULL;
+  int64_t loc[64];
+  if ((st = ss_cx_new(3, &g, err))) return st;
+  for (int k = 0; k < 4 && !st; k++)
+    for (int j = 0; j < 4 && !st; j++)
+      for (int i = 0; i < 4 && !st; i++) {
+        double x[3] = {i, j, k};
+        st = ss_cx_add_vertex(g, x, 0, err);
+      }
+  /* the centre cell first, so that it is hex 0 */
+  for (int q = 0; q < 27 && !st; q++) {
+    int r = (q + 13) % 27, i = r % 3, j = (r / 3) % 3, k = r / 9;
+    ss_idx v[8];
+    for (int b = 0; b < 8; b++) {
+      unsigned bits = ss_cube_corner_bits(3, b);
+      v[b] = (ss_idx)((i + (int)(bits & 1u)) + 4 * ((j + (int)((bits >> 1) & 1u)) +
+                                                    4 * (k + (int)((bits >> 2) & 1u))));
+    }
+    st = ss_cx_add_cell(g, SS_HEX, v, 0, err);
+  }
+  for (int v = 0; v < 64; v++)
+    loc[v] = -1;
+  lim_frame id = lim_frame_id(), gk;
+  if (st || (st = lim_adj_build(g, &adj, err)) ||
+      (st = lim_patch_build(&adj, 0, &id, loc, &p, err)) ||
+      (st = lim_patch_complex(g, &p, &pcx, err)))
+    goto done;
+  double worst = 0.0;
+  for (int k = 0; k < 8 && p.regular; k++) {
+    if ((st = lim_step(s, pcx, k, 0, &c, &gk, &ccx, &W, err))) goto done;
+    unsigned b = ss_cube_corner_bits(3, k);
+    for (int q = 0; q < 64 && c.regular; q++)
+      for (int r = 0; r < 64; r++) {
+        double want = A[b & 1u][q % 4][r % 4] *
+                      A[(b >> 1) & 1u][(q / 4) % 4][(r / 4) % 4] *
+                      A[(b >> 2) & 1u][q / 16][r / 16];
+        double e = fabs(W[(size_t)c.net[q] * 64 + p.net[r]] - want);
+        if (e > worst) worst = e;
+      }
+    if (!c.regular) worst = 1.0;
+    lim_patch_free(&c);
+    ss_cx_free(ccx);
+    ccx = NULL;
+    free(W);
+    W = NULL;
+  }
+  if (!p.regular || worst > 1e-12)
+    st = ss_error_set(err, SS_EINPUT,
+                      "scheme %s does not refine a regular hex grid by the tricubic "
+                      "B-spline rules (a weight is off by %.3g), which limit evaluation "
+                      "assumes on regular cells",
+                      ss_scheme_name(s), worst);
+done:
+  free(W);
+  lim_patch_free(&c);
+  lim_patch_free(&p);
+  ss_cx_free(ccx);
+  ss_cx_free(pcx);
+  lim_adj_free(&adj);
+  ss_cx_free(g);
+  return st;
+}
+
 ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
                        ss_error *err) {
   ss_status st;
@@ -130,6 +212,7 @@ ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
     L->loc[v] = -1;
   for (size_t c = 0; c < mesh->nc[SS_HEX]; c++)
     L->cell[c].state = SIZE_MAX;
+  st = check_bspline(s, err);
 done:
   if (st)
     ss_limit_free(L);

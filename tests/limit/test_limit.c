@@ -297,6 +297,20 @@ static void test_bad_input(const ss_scheme *s) {
         "Jacobian on the boundary refused");
   ss_limit_free(L);
   ss_cx_free(g);
+  /* an averaging scheme whose hex weights are not the tricubic B-spline's:
+   * regular cells would be evaluated wrongly, so it is refused up front */
+  ss_averaging av = {.split = SS_SPLIT_MULTILINEAR};
+  av.accepts[SS_HEX] = 1;
+  av.mask[SS_HEX][0] = 1.0 / 8.0 + 0.01;
+  av.mask[SS_HEX][1] = av.mask[SS_HEX][2] = 1.0 / 8.0;
+  av.mask[SS_HEX][3] = 1.0 / 8.0 - 0.01;
+  ss_scheme *bad;
+  REQUIRE_OK_VOID(ss_scheme_averaging_new("mutated", &av, &bad, &err), &err);
+  g = tm_hex_grid(3, 3, 3);
+  CHECK(ss_limit_new(bad, g, &L, &err) == SS_EINPUT && strstr(err.msg, "tricubic"),
+        "a scheme that is no B-spline on grids refused: %s", err.msg);
+  ss_cx_free(g);
+  ss_scheme_free(bad);
   /* tetrahedra */
   ss_cx *t = tm_kuhn(1);
   ss_cx *t3;
