@@ -14,6 +14,8 @@
  * plain steps (V^-1 P and V y, complex), so it pays from three steps on. */
 #define JUMP_MIN 3
 
+#define LIM_RECENT 64 /* coarse-only states whose transitions are kept */
+
 /* A cached (key, child) transition. */
 typedef struct {
   size_t next;  /* state of the child patch */
@@ -28,6 +30,9 @@ typedef struct {
   ss_cx *cx;        /* an instance of the patch as a complex (for refining) */
   uint64_t hash;    /* lim_patch_hash */
   lim_trans *tr[8]; /* per child, NULL until computed */
+  int coarse_only;  /* 1 while only coarse cells have this patch (no transition
+                       leads to it): its transitions may be evicted */
+  int held;         /* 1 while its transitions are in the ring of recent ones */
 } lim_state;
 
 /* Per coarse cell: its patch's state and where its points come from. */
@@ -48,6 +53,12 @@ struct ss_limit {
   size_t nst, capst;  /* their number and room */
   size_t *tab;        /* hash table of states: index + 1, 0 empty */
   size_t captab;      /* its size, a power of 2 */
+  /* Coarse-only states' transitions are kept for the LIM_RECENT most recent
+   * ones only: on an unstructured mesh nearly every irregular coarse cell has
+   * a patch of its own, and keeping all their W (~80 KB each) would grow
+   * with the mesh; points are usually asked cell by cell. */
+  size_t recent[LIM_RECENT]; /* ring of coarse-only states holding transitions */
+  size_t nrecent;            /* entries ever pushed (the ring's head) */
   ss_limit_stats stats;
 };
 
@@ -59,16 +70,21 @@ ss_limit_stats ss_limit_get_stats(const ss_limit *L) {
   return L->stats;
 }
 
-static void state_free(lim_state *s) {
-  if (!s) return;
-  lim_patch_free(&s->patch);
-  ss_cx_free(s->cx);
+static void drop_transitions(lim_state *s) {
   for (int k = 0; k < 8; k++)
     if (s->tr[k]) {
       free(s->tr[k]->W);
       lim_eig_free(s->tr[k]->eig);
       free(s->tr[k]);
+      s->tr[k] = NULL;
     }
+}
+
+static void state_free(lim_state *s) {
+  if (!s) return;
+  lim_patch_free(&s->patch);
+  ss_cx_free(s->cx);
+  drop_transitions(s);
   free(s);
 }
 
@@ -354,11 +370,12 @@ static ss_status cell_state(ss_limit *L, size_t c, ss_error *err) {
     lim_patch_free(&p);
     return st;
   }
-  size_t s;
+  size_t s, before = L->nst;
   if ((st = state_of(L, &p, cx, &s, err))) {
     free(src);
     return st;
   }
+  if (L->nst > before) L->st[s]->coarse_only = 1;
   L->cell[c].src = src;
   L->cell[c].state = s;
   return SS_OK;
@@ -388,6 +405,18 @@ static ss_status transition(ss_limit *L, size_t i, int k, lim_trans **out,
   }
   L->st[i]->tr[k] = t; /* L->st may have moved, the state has not */
   L->stats.transitions++;
+  L->st[t->next]->coarse_only = 0; /* a child's patch: keep its transitions */
+  if (s->coarse_only && !s->held) {
+    size_t slot = L->nrecent % LIM_RECENT;
+    if (L->nrecent >= LIM_RECENT) {
+      lim_state *old = L->st[L->recent[slot]];
+      if (old->coarse_only) drop_transitions(old);
+      old->held = 0;
+    }
+    L->recent[slot] = i;
+    L->nrecent++;
+    s->held = 1;
+  }
   *out = t;
   return SS_OK;
 }
