@@ -569,33 +569,114 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
   (void)L;
 }
 
-ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
-                        int derivatives, ss_limit_point *out, ss_error *err) {
-  ss_status st;
-  double x[3] = {u, v, w}, M[3][3];
-  double *P = NULL;
-  memset(out, 0, sizeof *out);
-  if ((st = check_args(L, cell, x, err)) || (st = cell_state(L, cell, err))) return st;
-  /* the cell's canonical frame: turned, not recomputed (exact) */
-  const lim_frame *g0 = &L->cell[cell].g;
-  lim_pt pt = pt_make(x), q;
-  for (int a = 0; a < 3; a++) {
-    q.s[a] = pt.s[g0->perm[a]] ^ g0->flip[a];
-    q.d[a] = pt.d[g0->perm[a]];
+static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
+                      double M[3][3], int derivatives, size_t cell, ss_limit_point *out,
+                      ss_error *err);
+
+/* The Jacobian at a fixed point: corner b (bits) of state s, whose run
+ * matrix has eigen-decomposition e, patch points P.  With P = sum_i v_i c_i^T
+ * and phi_i the limit of the net v_i, phi_i(b + (y - b)/2) = lambda_i
+ * phi_i(y): a component with |lambda| < 1/2 has derivative 0 at b, one with
+ * lambda = 1/2 (real, not defective) is homogeneous of degree 1 along rays,
+ * so its derivative along axis a is 2 phi_i(b moved 1/2 along a), signed;
+ * any other component with |lambda| >= 1/2 makes the Jacobian unbounded or
+ * direction-dependent, and is refused.  J receives rows d/dx_a in the
+ * current frame. */
+static ss_status fixed_jacobian(ss_limit *L, size_t s, const lim_eig *e, unsigned b,
+                                const double *P, size_t cell, double J[3][3],
+                                ss_error *err) {
+  ss_status st = SS_OK;
+  const size_t K = e->K;
+  double *Q = NULL;
+  if (e->pw)
+    return ss_error_set(
+        err, SS_ENUMERIC,
+        "cell %zu: the Jacobian at this point (an extraordinary vertex or "
+        "edge, or the boundary) needs the eigenvectors of a defective "
+        "matrix: %s",
+        cell + 1, e->why);
+  Q = calloc(K * 3 + 1, sizeof *Q);
+  if (!Q) return ss_error_nomem(err, "fixed-point Jacobian");
+  double scale = 0.0;
+  for (size_t j = 0; j < K * 3; j++)
+    if (fabs(P[j] - P[j % 3]) > scale) scale = fabs(P[j] - P[j % 3]);
+  for (size_t i = 0; i < K; i++) {
+    double complex c[3] = {0, 0, 0};
+    for (size_t j = 0; j < K; j++)
+      for (int d = 0; d < 3; d++)
+        c[d] += e->Vinv[j * K + i] * P[j * 3 + (size_t)d];
+    double cn = cabs(c[0]) + cabs(c[1]) + cabs(c[2]), al = cabs(e->lam[i]);
+    if (i == e->one || cn <= 1e-9 * scale || al < 0.5 - 1e-8) continue;
+    if (fabs(al - 0.5) <= 1e-8 && fabs(cimag(e->lam[i])) <= 1e-8) {
+      for (size_t r = 0; r < K; r++)
+        for (int d = 0; d < 3; d++)
+          Q[r * 3 + (size_t)d] += creal(e->V[i * K + r] * c[d]);
+      continue;
+    }
+    st =
+        ss_error_set(err, SS_ENUMERIC,
+                     "cell %zu: the parametric Jacobian is not defined at this point (an "
+                     "extraordinary vertex or edge, or the boundary): the eigenvalue "
+                     "%.6g%+.6gi of its run has modulus >= 1/2 and is not 1/2",
+                     cell + 1, creal(e->lam[i]), cimag(e->lam[i]));
+    goto done;
   }
-  pt = q;
-  lim_frame_apply(g0, x, x, M);
-  size_t s = L->cell[cell].state;
-  const size_t K0 = L->st[s]->patch.nv;
-  P = malloc((K0 * 3 + 1) * sizeof *P);
-  if (!P) return ss_error_nomem(err, "patch points");
-  for (size_t i = 0; i < K0; i++)
-    memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
+  for (int a = 0; a < 3; a++) {
+    lim_pt y;
+    for (int d = 0; d < 3; d++) {
+      y.s[d] = (int)((b >> d) & 1u);
+      y.d[d] = d == a ? 0.5 : 0.0;
+    }
+    double *Qa = malloc((K * 3 + 1) * sizeof *Qa),
+           I3[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    if (!Qa) {
+      st = ss_error_nomem(err, "fixed-point Jacobian");
+      goto done;
+    }
+    memcpy(Qa, Q, K * 3 * sizeof *Qa);
+    ss_limit_point phi;
+    double oq[3] = {0, 0, 0};
+    memset(&phi, 0, sizeof phi);
+    if ((st = walk(L, s, Qa, oq, y, I3, 0, cell, &phi, err))) goto done;
+    const double sign = (b >> a) & 1u ? -2.0 : 2.0;
+    for (int d = 0; d < 3; d++)
+      J[a][d] = sign * phi.p[d];
+  }
+done:
+  free(Q);
+  return st;
+}
+
+/* Move the origin o to the first of K points P (3 coordinates each) and make
+ * P relative to it.  The rows of W sum to 1, so W (P - o) = W P - o: a shift
+ * commutes with every step, and keeping the points relative to a point of
+ * the current sub-cell keeps their differences -- of the order of the
+ * sub-cell's size, 2^-m after m steps -- to full relative precision, which
+ * absolute coordinates would lose (an error of eps |P| 2^m in the Jacobian). */
+static void recentre(double *P, size_t K, double o[3]) {
+  double c[3] = {P[0], P[1], P[2]};
+  for (size_t i = 0; i < K; i++)
+    for (int d = 0; d < 3; d++)
+      P[i * 3 + (size_t)d] -= c[d];
+  for (int d = 0; d < 3; d++)
+    o[d] += c[d];
+}
+
+/* The walk from state s with patch points P (taken over and freed), relative
+ * to the origin o (recentred on the way; out->p is absolute). */
+static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
+                      double M[3][3], int derivatives, size_t cell, ss_limit_point *out,
+                      ss_error *err) {
+  ss_status st = SS_OK;
+  double *P0 = NULL;
   int plain = 0;
+  recentre(P, L->st[s]->patch.nv, o);
   for (;;) {
     lim_state *S = L->st[s];
     if (S->patch.regular) {
       finish_regular(&S->patch, P, &pt, M, derivatives, out);
+      for (int d = 0; d < 3; d++)
+        out->p[d] += o[d];
       break;
     }
     int k = child_of(&pt);
@@ -609,17 +690,32 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
           if ((st = lim_eig_new(t->W, S->patch.nv, &t->eig, err))) goto done;
           L->stats.eigs++;
         }
+        if (m < 0 && derivatives) {
+          P0 = malloc((S->patch.nv * 3 + 1) * sizeof *P0);
+          if (!P0) {
+            st = ss_error_nomem(err, "patch points");
+            goto done;
+          }
+          memcpy(P0, P, S->patch.nv * 3 * sizeof *P0);
+        }
         if ((st = lim_eig_power(t->eig, m, P, err))) goto done;
         out->products++;
         if (m < 0) {
           /* a fixed point: every patch point is its limit */
-          memcpy(out->p, P, sizeof out->p);
-          if (derivatives)
-            st = ss_error_set(err, SS_ENUMERIC,
-                              "cell %zu: (%g, %g, %g) is an extraordinary vertex or lies "
-                              "on an extraordinary edge or the boundary, where the "
-                              "parametric Jacobian is not defined (0 or unbounded)",
-                              cell + 1, u, v, w);
+          for (int d = 0; d < 3; d++)
+            out->p[d] = o[d] + P[d];
+          if (derivatives) {
+            double J[3][3];
+            if ((st = fixed_jacobian(L, s, t->eig, ss_cube_corner_bits(3, k), P0, cell, J,
+                                     err)))
+              goto done;
+            for (int i = 0; i < 3; i++)
+              for (int d = 0; d < 3; d++) {
+                out->jac[i][d] = 0.0;
+                for (int a = 0; a < 3; a++)
+                  out->jac[i][d] += J[a][d] * M[a][i];
+              }
+          }
           goto done;
         }
         pt_jump(&pt, ss_cube_corner_bits(3, k), m);
@@ -627,6 +723,7 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
           for (int j = 0; j < 3; j++)
             M[a][j] = ldexp(M[a][j], (int)m);
         out->steps += (int)m;
+        recentre(P, S->patch.nv, o);
         continue;
       }
     }
@@ -635,14 +732,40 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
     out->steps++;
     out->products++;
     s = t->next;
+    recentre(P, L->st[s]->patch.nv, o);
     if (++plain > SS_LIMIT_MAXSTEPS) {
       st = not_reached(L, cell, plain, err);
       goto done;
     }
   }
 done:
+  free(P0);
   free(P);
   return st;
+}
+
+ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
+                        int derivatives, ss_limit_point *out, ss_error *err) {
+  ss_status st;
+  double x[3] = {u, v, w}, M[3][3];
+  memset(out, 0, sizeof *out);
+  if ((st = check_args(L, cell, x, err)) || (st = cell_state(L, cell, err))) return st;
+  /* the cell's canonical frame: turned, not recomputed (exact) */
+  const lim_frame *g0 = &L->cell[cell].g;
+  lim_pt pt = pt_make(x), q;
+  for (int a = 0; a < 3; a++) {
+    q.s[a] = pt.s[g0->perm[a]] ^ g0->flip[a];
+    q.d[a] = pt.d[g0->perm[a]];
+  }
+  lim_frame_apply(g0, x, x, M);
+  size_t s = L->cell[cell].state;
+  const size_t K0 = L->st[s]->patch.nv;
+  double *P = malloc((K0 * 3 + 1) * sizeof *P);
+  if (!P) return ss_error_nomem(err, "patch points");
+  for (size_t i = 0; i < K0; i++)
+    memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
+  double o[3] = {0, 0, 0};
+  return walk(L, s, P, o, q, M, derivatives, cell, out, err);
 }
 
 ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
@@ -659,7 +782,9 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
   lim_frame g = lim_frame_id();
   if ((st = lim_patch_build(&L->adj, cell, &g, L->loc, &p, err))) return st;
   if ((st = lim_patch_complex(L->mesh, &p, &pcx, err))) goto done;
+  double o[3] = {0, 0, 0}; /* the patch is kept relative to o (recentre) */
   for (int depth = 0;; depth++) {
+    recentre(pcx->x, pcx->nv, o);
     if (p.regular) {
       P = malloc((p.nv * 3 + 1) * sizeof *P);
       if (!P) {
@@ -668,6 +793,8 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
       }
       memcpy(P, pcx->x, p.nv * 3 * sizeof *P);
       finish_regular(&p, P, &pt, M, derivatives, out);
+      for (int d = 0; d < 3; d++)
+        out->p[d] += o[d];
       break;
     }
     if (depth >= max_depth) {

@@ -44,9 +44,20 @@
  *     about 53 per coordinate in double precision, each a K x K product
  *     (K ~ 100 patch points).  Bounded, not constant.
  * Boundary cells are walked the same way (the patch holds the boundary rule's
- * cells); points on the boundary surface itself never reach a regular patch
- * and are refused (SS_EINPUT: not supported yet), except boundary vertices
- * reached by an infinite run.
+ * cells).  A point on the boundary surface (or exactly on an extraordinary
+ * vertex or edge) never reaches a regular patch: every double is dyadic, so
+ * once its binary digits have run out it is a corner of its sub-cell, the
+ * fixed point of an infinite run.  Its Jacobian comes from that run's
+ * eigenvectors: components with |lambda| < 1/2 have derivative 0 there,
+ * those with lambda = 1/2 are linear along rays (their derivative is read
+ * from one more evaluation per axis); any other |lambda| >= 1/2 (besides the
+ * constant 1), or a defective run, makes the parametric Jacobian unbounded or
+ * undefined there: SS_ENUMERIC.
+ *
+ * Precision: patch points are kept relative to a point of the current
+ * sub-cell (the rows of W sum to 1, so a shift commutes with every step);
+ * their differences, of the size of the sub-cell, keep full relative
+ * precision, and the Jacobian after m steps does not lose a factor 2^m.
  *
  * Defective eigenstructure (a run's W not diagonalisable to working accuracy:
  * condition of V above SS_LIMIT_MAXCOND) is SS_ENUMERIC with the reason, never
@@ -106,10 +117,11 @@ ss_limit_stats ss_limit_get_stats(const ss_limit *L);
 /* The limit point of cell `cell` (0-based) at (u, v, w) in [0,1]^3 (u along
  * corner 0 -> 1, v along 0 -> 3, w along 0 -> 4; ss_cx.h), and with
  * `derivatives` the Jacobian, by the walk above.  SS_EINPUT for an unknown
- * cell, a parameter outside [0,1] or not finite, a point on the boundary
- * surface; SS_ENUMERIC for a defective run, or derivatives asked at a point
- * reached only by an infinite run (an extraordinary vertex or edge, where
- * the parametric Jacobian is 0 or unbounded); SS_ENOMEM. */
+ * cell, a parameter outside [0,1] or not finite, a walk that does not end
+ * within SS_LIMIT_MAXSTEPS plain steps; SS_ENUMERIC for a fixed point whose
+ * limit is not defined (eigenvalue 1 not simple), or derivatives asked at a
+ * fixed point where the parametric Jacobian is unbounded or undefined (see
+ * above); SS_ENOMEM. */
 ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
                         int derivatives, ss_limit_point *out, ss_error *err);
 

@@ -56,11 +56,17 @@ static const char *const usage_text =
     "double precision): the edges of Joy-MacCracken solids are no tensor product,\n"
     "so the paper's O(1) edge formula does not hold for every scheme.\n"
     "\n"
+    "Points exactly on an extraordinary vertex or edge or on the boundary are\n"
+    "fixed points of a run; their Jacobian is read from the run's eigenvalue-1/2\n"
+    "part (eigenvalues below 1/2 contribute 0: MLCA's limit of a pure hex mesh\n"
+    "has a zero normal derivative on the boundary).\n"
+    "\n"
     "Exit status: 0 all points evaluated; 1 a numerical failure (a Jacobian asked\n"
-    "exactly at an extraordinary vertex or edge or on the boundary, where it is\n"
-    "not defined; a run whose limit is not defined); 2 bad usage or input (unknown\n"
-    "cell, parameter outside [0,1], a mesh with cells other than hexahedra or not\n"
-    "manifold, a scheme that does not split hexahedra).\n";
+    "at a fixed point with an eigenvalue of modulus >= 1/2 other than 1/2 or 1,\n"
+    "where it is unbounded, e.g. at an extraordinary vertex; a run whose limit\n"
+    "is not defined); 2 bad usage or input (unknown cell, parameter outside\n"
+    "[0,1], a mesh with cells other than hexahedra or not manifold, a scheme\n"
+    "that does not split hexahedra or is no tricubic B-spline on grids).\n";
 
 /* One point to evaluate and its result. */
 typedef struct {

@@ -49,6 +49,6 @@ expect 2 "--gauss '0'" "$exe" limit --scheme mlca "$mesh" --gauss 0
 expect 2 "--format" "$exe" limit --scheme mlca "$mesh" --gauss 1 --format xml
 expect 2 "No such file" "$exe" limit --scheme mlca /nonexistent.mesh --gauss 1
 # the Jacobian exactly at the extraordinary vertex is not defined: exit 1
-expect 1 "Jacobian is not defined" "$exe" limit --scheme mlca "$mesh" --at "1 0 0 0" --derivatives
+expect 1 "Jacobian" "$exe" limit --scheme mlca "$mesh" --at "1 0 0 0" --derivatives
 expect 0 "" "$exe" limit --scheme mlca "$mesh" --at "1 0 0 0"
 expect_done limit_cli
