@@ -698,7 +698,10 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
           }
           memcpy(P0, P, S->patch.nv * 3 * sizeof *P0);
         }
-        if ((st = lim_eig_power(t->eig, m, P, err))) goto done;
+        double shift[3];
+        if ((st = lim_eig_power(t->eig, m, P, shift, err))) goto done;
+        for (int d = 0; d < 3; d++)
+          o[d] += shift[d];
         out->products++;
         if (m < 0) {
           /* a fixed point: every patch point is its limit */

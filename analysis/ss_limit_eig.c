@@ -164,7 +164,8 @@ done:
   return st;
 }
 
-ss_status lim_eig_power(const lim_eig *e, long m, double *P, ss_error *err) {
+ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
+                        ss_error *err) {
   const size_t K = e->K;
   if (!e->ok) return ss_error_set(err, SS_ENUMERIC, "%s", e->why);
   if (m < 0 && e->one == SIZE_MAX)
@@ -172,6 +173,7 @@ ss_status lim_eig_power(const lim_eig *e, long m, double *P, ss_error *err) {
         err, SS_ENUMERIC,
         "the limit at a fixed point needs the eigenvalue 1 simple and all "
         "others inside the unit circle; this run's matrix has not");
+  if (shift) shift[0] = shift[1] = shift[2] = 0.0;
   if (e->pw) {
     /* W^m by the binary digits of m; the limit as W^(2^(LIM_NPOW-1)) applied
      * until |lambda_1|^(2^i) has vanished */
@@ -200,7 +202,11 @@ ss_status lim_eig_power(const lim_eig *e, long m, double *P, ss_error *err) {
   }
   double complex *y = malloc((3 * K + 1) * sizeof *y);
   if (!y) return ss_error_nomem(err, "eigen power");
-  /* y = diag(lam^m) V^-1 P */
+  /* y = diag(lam^m) V^-1 P; for finite m the eigenvalue-1 part (a uniform
+   * translation: its eigenvector is constant) goes to shift, not into P, so
+   * that its rounding (eps cond |P|, which does not shrink with m) does not
+   * swamp the differences of the result (|lambda_1|^m |P|) */
+  double sh[3] = {0, 0, 0};
   for (size_t i = 0; i < K; i++) {
     double complex acc[3] = {0, 0, 0};
     double complex f;
@@ -216,6 +222,17 @@ ss_status lim_eig_power(const lim_eig *e, long m, double *P, ss_error *err) {
         for (int d = 0; d < 3; d++)
           acc[d] += vij * P[j * 3 + (size_t)d];
       }
+    if (m >= 0 && i == e->one && shift) {
+      double vbar = 0.0;
+      for (size_t r = 0; r < K; r++)
+        vbar += creal(e->V[i * K + r]);
+      vbar /= (double)K;
+      for (int d = 0; d < 3; d++) {
+        sh[d] = vbar * creal(acc[d]);
+        y[i * 3 + (size_t)d] = 0.0;
+      }
+      continue;
+    }
     for (int d = 0; d < 3; d++)
       y[i * 3 + (size_t)d] = f * acc[d];
   }
@@ -231,6 +248,7 @@ ss_status lim_eig_power(const lim_eig *e, long m, double *P, ss_error *err) {
     for (int d = 0; d < 3; d++)
       P[r * 3 + (size_t)d] = creal(acc[d]);
   }
+  if (shift) memcpy(shift, sh, sizeof sh);
   free(y);
   return SS_OK;
 }

@@ -112,7 +112,12 @@ ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err);
 void lim_eig_free(lim_eig *e);
 /* P (K x 3, row-major) <- W^m P; m < 0 means the limit m -> infinity (the
  * projection on the eigenvalue 1, which must be simple and every other
- * |lambda| < 1).  SS_ENUMERIC when that does not hold; SS_ENOMEM. */
-ss_status lim_eig_power(const lim_eig *e, long m, double *P, ss_error *err);
+ * |lambda| < 1).  With shift not NULL and m >= 0, the eigenvalue-1 part of
+ * the result (a translation, the same for every point) is left out of P and
+ * written to shift instead (zero when W^m is formed from powers): W^m P =
+ * P + shift, row by row.  SS_ENUMERIC when the limit is not defined;
+ * SS_ENOMEM. */
+ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
+                        ss_error *err);
 
 #endif
