@@ -182,7 +182,8 @@ static void test_fixed_point_jacobian(const ss_scheme *s) {
   ss_cx_free(g);
 }
 
-/* Limit of a mesh whose every point is the same: that point, everywhere. */
+/* Limit of a mesh whose every point is the same: that point, everywhere;
+ * and of an affine image of the mesh: the affine image of the limit. */
 static void test_constant(const ss_scheme *s, const ss_cx *m, size_t c,
                           const char *what) {
   ss_error err = {0};
@@ -196,6 +197,45 @@ static void test_constant(const ss_scheme *s, const ss_cx *m, size_t c,
   ss_limit *L;
   REQUIRE_OK_VOID(ss_limit_new(s, k, &L, &err), &err);
   const double xs[][3] = {{0.001, 0.002, 0.003}, {0.3, 1e-9, 1e-9}, {0.6, 0.2, 0.9}};
+  /* affine covariance: the limit of A X + b is A (limit of X) + b */
+  {
+    const double A[3][3] = {{0.8, -0.3, 0.2}, {0.1, 1.3, -0.4}, {0.5, 0.2, 0.9}};
+    const double b[3] = {-1, 2.5, 0.25};
+    ss_cx *y;
+    ss_limit *LX, *LY;
+    if (ss_cx_copy(m, &y, &err)) abort();
+    for (size_t v = 0; v < y->nv; v++)
+      for (int i = 0; i < 3; i++) {
+        y->x[3 * v + (size_t)i] = b[i];
+        for (int j = 0; j < 3; j++)
+          y->x[3 * v + (size_t)i] += A[i][j] * m->x[3 * v + (size_t)j];
+      }
+    REQUIRE_OK_VOID(ss_limit_new(s, m, &LX, &err), &err);
+    REQUIRE_OK_VOID(ss_limit_new(s, y, &LY, &err), &err);
+    for (int q = 0; q < 3; q++) {
+      ss_limit_point px, py;
+      REQUIRE_OK_VOID(ss_limit_eval(LX, c, xs[q][0], xs[q][1], xs[q][2], 1, &px, &err),
+                      &err);
+      REQUIRE_OK_VOID(ss_limit_eval(LY, c, xs[q][0], xs[q][1], xs[q][2], 1, &py, &err),
+                      &err);
+      for (int i = 0; i < 3; i++) {
+        double want = b[i];
+        for (int j = 0; j < 3; j++)
+          want += A[i][j] * px.p[j];
+        CHECK_CLOSE(py.p[i], want, 1e-12, "%s: affine covariance at point %d", what, q);
+        for (int r = 0; r < 3; r++) {
+          double wj = 0.0;
+          for (int j = 0; j < 3; j++)
+            wj += A[i][j] * px.jac[r][j];
+          CHECK_CLOSE(py.jac[r][i], wj, 1e-10, "%s: affine covariance of J at point %d",
+                      what, q);
+        }
+      }
+    }
+    ss_limit_free(LX);
+    ss_limit_free(LY);
+    ss_cx_free(y);
+  }
   for (int q = 0; q < 3; q++) {
     ss_limit_point p;
     REQUIRE_OK_VOID(ss_limit_eval(L, c, xs[q][0], xs[q][1], xs[q][2], 0, &p, &err), &err);
