@@ -436,6 +436,75 @@ static void test_relabel(const ss_scheme *s, const ss_cx *m, size_t c) {
   free(cells);
 }
 
+/* The same mesh with vertices and cells permuted and every cell's vertex list
+ * turned by a random orientation-preserving symmetry (tm_permuted): the same
+ * limit at the corresponding parameters, and Jacobian rows permuted and
+ * signed accordingly.  Exercises the canonical frames of coarse cells. */
+static void test_rotated(const ss_scheme *s, const ss_cx *m, const char *what) {
+  ss_error err = {0};
+  ss_cx *r = tm_permuted(m, 4242);
+  size_t nv = m->nv, nh = m->nc[SS_HEX];
+  size_t *old_of = malloc(nv * sizeof *old_of);
+  for (size_t i = 0; i < nv; i++) {
+    old_of[i] = SIZE_MAX;
+    for (size_t j = 0; j < nv && old_of[i] == SIZE_MAX; j++)
+      if (!memcmp(r->x + 3 * i, m->x + 3 * j, 3 * sizeof(double))) old_of[i] = j;
+  }
+  ss_limit *A, *B;
+  REQUIRE_OK_VOID(ss_limit_new(s, m, &A, &err), &err);
+  REQUIRE_OK_VOID(ss_limit_new(s, r, &B, &err), &err);
+  const double xs[][3] = {{0.01, 0.02, 0.03}, {0.4, 0.001, 0.0004}, {0.3, 0.45, 0.95}};
+  double worst = 0.0;
+  for (size_t cn = 0; cn < nh; cn += 7) {
+    const ss_idx *w = ss_cx_cell(r, SS_HEX, cn);
+    size_t co = SIZE_MAX;
+    int sigma[8];
+    for (size_t c = 0; c < nh && co == SIZE_MAX; c++) {
+      const ss_idx *v = ss_cx_cell(m, SS_HEX, c);
+      int hits = 0;
+      for (int i = 0; i < 8; i++)
+        for (int k = 0; k < 8; k++)
+          if (v[k] == old_of[w[i]]) {
+            sigma[i] = k;
+            hits++;
+          }
+      if (hits == 8) co = c;
+    }
+    CHECK(co != SIZE_MAX, "%s: permuted cell %zu not found", what, cn);
+    if (co == SIZE_MAX) continue;
+    unsigned b0 = ss_cube_corner_bits(3, sigma[0]);
+    int axis[3];
+    for (int a = 0; a < 3; a++) {
+      unsigned d = ss_cube_corner_bits(3, sigma[ss_cube_corner_index(3, 1u << a)]) ^ b0;
+      axis[a] = d == 1u ? 0 : d == 2u ? 1 : 2;
+    }
+    for (int q = 0; q < 3; q++) {
+      double xo[3];
+      for (int a = 0; a < 3; a++)
+        xo[axis[a]] = (b0 >> axis[a]) & 1u ? 1.0 - xs[q][a] : xs[q][a];
+      ss_limit_point pn, po;
+      REQUIRE_OK_VOID(ss_limit_eval(B, cn, xs[q][0], xs[q][1], xs[q][2], 1, &pn, &err),
+                      &err);
+      REQUIRE_OK_VOID(ss_limit_eval(A, co, xo[0], xo[1], xo[2], 1, &po, &err), &err);
+      double e = dist(pn.p, po.p);
+      if (e > worst) worst = e;
+      CHECK(e <= 1e-13, "%s: turned cell %zu (cell %zu) point %d differs by %g", what, cn,
+            co, q, e);
+      for (int a = 0; a < 3; a++)
+        for (int d = 0; d < 3; d++) {
+          double sgn = (b0 >> axis[a]) & 1u ? -1.0 : 1.0;
+          CHECK_CLOSE(pn.jac[a][d], sgn * po.jac[axis[a]][d], 1e-10,
+                      "%s: turned cell %zu Jacobian (%d,%d)", what, cn, a, d);
+        }
+    }
+  }
+  printf("%s: turned and renumbered cells: largest difference %.2e\n", what, worst);
+  ss_limit_free(A);
+  ss_limit_free(B);
+  ss_cx_free(r);
+  free(old_of);
+}
+
 static void test_scheme(ss_scheme *s) {
   test_regular(s);
   test_fixed_point_jacobian(s);
@@ -456,6 +525,7 @@ static void test_scheme(ss_scheme *s) {
     test_decay(s, e, cells[0], x, 4, what);
     test_decay(s, e, cells[0], on, 4, what); /* on the edge: a fixed point */
     if (n == 5) test_relabel(s, e, cells[0]);
+    if (n == 3) test_rotated(s, e, what);
     ss_cx_free(e);
   }
   /* the vertex with the icosahedron link (every edge at it of valence 5) */
@@ -470,6 +540,7 @@ static void test_scheme(ss_scheme *s) {
     test_decay(s, h, 0, x, 4, "icosahedron vertex");
     test_decay(s, h, 0, o, 4, "icosahedron vertex"); /* the vertex itself */
     test_relabel(s, h, 0);
+    test_rotated(s, h, "icosahedron vertex");
     ss_cx_free(h);
     tm_link_free(l);
   }
