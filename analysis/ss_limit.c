@@ -33,6 +33,8 @@ typedef struct {
   int coarse_only;  /* 1 while only coarse cells have this patch (no transition
                        leads to it): its transitions may be evicted */
   int held;         /* 1 while its transitions are in the ring of recent ones */
+  size_t src_cell;  /* coarse-only: a mesh cell with this patch, to rebuild the
+                       instance cx from (it is dropped with the transitions) */
 } lim_state;
 
 /* Per coarse cell: its patch's state and where its points come from. */
@@ -375,7 +377,14 @@ static ss_status cell_state(ss_limit *L, size_t c, ss_error *err) {
     free(src);
     return st;
   }
-  if (L->nst > before) L->st[s]->coarse_only = 1;
+  if (L->nst > before) {
+    /* a coarse-only patch keeps no instance until its transitions are
+     * needed: one per irregular cell would grow with the mesh */
+    L->st[s]->coarse_only = 1;
+    L->st[s]->src_cell = c;
+    ss_cx_free(L->st[s]->cx);
+    L->st[s]->cx = NULL;
+  }
   L->cell[c].src = src;
   L->cell[c].state = s;
   return SS_OK;
@@ -389,6 +398,16 @@ static ss_status transition(ss_limit *L, size_t i, int k, lim_trans **out,
   if (s->tr[k]) {
     *out = s->tr[k];
     return SS_OK;
+  }
+  if (!s->cx) {
+    lim_patch p;
+    size_t c = s->src_cell;
+    if ((st = lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
+    int same = lim_patch_same(&p, &s->patch);
+    st = same ? lim_patch_complex(L->mesh, &p, &s->cx, err)
+              : ss_error_set(err, SS_EINTERNAL, "limit: cell %zu's patch changed", c + 1);
+    lim_patch_free(&p);
+    if (st) return st;
   }
   lim_trans *t = calloc(1, sizeof *t);
   if (!t) return ss_error_nomem(err, "transition");
@@ -410,7 +429,11 @@ static ss_status transition(ss_limit *L, size_t i, int k, lim_trans **out,
     size_t slot = L->nrecent % LIM_RECENT;
     if (L->nrecent >= LIM_RECENT) {
       lim_state *old = L->st[L->recent[slot]];
-      if (old->coarse_only) drop_transitions(old);
+      if (old->coarse_only) {
+        drop_transitions(old);
+        ss_cx_free(old->cx);
+        old->cx = NULL;
+      }
       old->held = 0;
     }
     L->recent[slot] = i;

@@ -505,8 +505,60 @@ static void test_rotated(const ss_scheme *s, const ss_cx *m, const char *what) {
   free(old_of);
 }
 
+/* More irregular coarse patches than the evaluator keeps transitions for
+ * (the disjoint union of edge rings of valence 3..44, each cell at its
+ * edge, so every valence has patches of its own): a second pass over
+ * every cell, after their transitions were evicted and rebuilt, gives the
+ * same points. */
+static void test_eviction(const ss_scheme *s) {
+  ss_error err = {0};
+  ss_cx *u;
+  if (ss_cx_new(3, &u, &err)) abort();
+  for (int n = 3; n <= 44; n++) {
+    ss_cx *e = tm_edge_ring(n, 1, 3);
+    jitter(e, 0.05, (unsigned)n);
+    ss_idx off = (ss_idx)u->nv;
+    for (size_t v = 0; v < e->nv; v++) {
+      double x[3] = {e->x[3 * v] + 10.0 * n, e->x[3 * v + 1], e->x[3 * v + 2]};
+      if (ss_cx_add_vertex(u, x, 0, &err)) abort();
+    }
+    for (size_t c = 0; c < e->nc[SS_HEX]; c++) {
+      ss_idx w[8];
+      for (int i = 0; i < 8; i++)
+        w[i] = ss_cx_cell(e, SS_HEX, c)[i] + off;
+      if (ss_cx_add_cell(u, SS_HEX, w, 0, &err)) abort();
+    }
+    ss_cx_free(e);
+  }
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, u, &L, &err), &err);
+  size_t nc = ss_limit_ncells(L);
+  double(*first)[3] = malloc(nc * sizeof *first);
+  int same = 1;
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t c = 0; c < nc; c++) {
+      ss_limit_point p;
+      REQUIRE_OK_VOID(ss_limit_eval(L, c, 0.3, 0.01, 0.6, 0, &p, &err), &err);
+      if (pass == 0)
+        memcpy(first[c], p.p, sizeof p.p);
+      else if (dist(first[c], p.p) > 0.0)
+        same = 0;
+    }
+  ss_limit_stats st = ss_limit_get_stats(L);
+  CHECK(st.keys > 80, "only %zu patch topologies: the ring of 64 is not exercised",
+        st.keys);
+  CHECK(same, "a second pass after eviction differs");
+  printf("eviction: %zu cells, %zu patch topologies, %zu transitions computed over two "
+         "passes\n",
+         nc, st.keys, st.transitions);
+  free(first);
+  ss_limit_free(L);
+  ss_cx_free(u);
+}
+
 static void test_scheme(ss_scheme *s) {
   test_regular(s);
+  test_eviction(s);
   test_fixed_point_jacobian(s);
   test_affine(s);
   test_bad_input(s);
