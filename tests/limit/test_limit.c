@@ -556,6 +556,44 @@ static void test_eviction(const ss_scheme *s) {
   ss_cx_free(u);
 }
 
+/* Neighbouring cells agree on their common face: around the edge of valence
+ * n of tm_edge_ring(n, R, nz), cell (s, 0, 0, k) at (0, t, w) is cell
+ * (s + 1, 0, 0, k) at (t, 0, w), and at (u, v, 1) cell (s, 0, 0, k + 1) at
+ * (u, v, 0). */
+static void test_faces(const ss_scheme *s, int n) {
+  ss_error err = {0};
+  const int R = 3, nz = 6;
+  ss_cx *e = tm_edge_ring(n, R, nz);
+  jitter(e, 0.05, 17);
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, e, &L, &err), &err);
+#define CELL(sec, k) ((size_t)((((k)*n + (sec)) * R + 0) * R + 0))
+  const double ts[] = {0.3, 1e-7, 0.75, 0.5};
+  double worst = 0.0;
+  for (int q = 0; q < 4; q++)
+    for (int sec = 0; sec < n; sec++) {
+      ss_limit_point a, b;
+      double w = ts[(q + 1) % 4];
+      REQUIRE_OK_VOID(ss_limit_eval(L, CELL(sec, 2), 0, ts[q], w, 0, &a, &err), &err);
+      REQUIRE_OK_VOID(ss_limit_eval(L, CELL((sec + 1) % n, 2), ts[q], 0, w, 0, &b, &err),
+                      &err);
+      double d = dist(a.p, b.p);
+      if (d > worst) worst = d;
+      CHECK(d <= 1e-13, "valence %d: sectors %d|%d disagree by %g at t = %g", n, sec,
+            (sec + 1) % n, d, ts[q]);
+      REQUIRE_OK_VOID(ss_limit_eval(L, CELL(sec, 2), ts[q], w, 1, 0, &a, &err), &err);
+      REQUIRE_OK_VOID(ss_limit_eval(L, CELL(sec, 3), ts[q], w, 0, 0, &b, &err), &err);
+      d = dist(a.p, b.p);
+      if (d > worst) worst = d;
+      CHECK(d <= 1e-13, "valence %d: layers 2|3 disagree by %g", n, d);
+    }
+#undef CELL
+  printf("edge of valence %d: common faces of neighbouring cells agree to %.1e\n", n,
+         worst);
+  ss_limit_free(L);
+  ss_cx_free(e);
+}
+
 static void test_scheme(ss_scheme *s) {
   test_regular(s);
   test_eviction(s);
@@ -578,6 +616,7 @@ static void test_scheme(ss_scheme *s) {
     test_decay(s, e, cells[0], on, 4, what); /* on the edge: a fixed point */
     if (n == 5) test_relabel(s, e, cells[0]);
     if (n == 3) test_rotated(s, e, what);
+    test_faces(s, n);
     ss_cx_free(e);
   }
   /* the vertex with the icosahedron link (every edge at it of valence 5) */
