@@ -357,18 +357,25 @@ static ss_status ccsolid_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
   w.bnd = calloc(nc + 1, 1);
   w.on = calloc(nf + 1, 1);
   w.expl = calloc(nf + 1, 1);
-  /* surface quads: the explicit ones and 4 per boundary face (<= 6 per hex) */
-  w.quads = malloc((4 * (fine->nc[SS_QUAD] + 24 * w.nhex) + 1) * sizeof *w.quads);
   w.lptr = malloc((nf + 1) * sizeof *w.lptr);
   ss_status st = SS_OK;
   if (!w.lat || !w.uf || !w.nhexat || !w.pair || !w.nfaceat || !w.nedgeat || !w.bnd ||
-      !w.on || !w.expl || !w.quads || !w.lptr) {
+      !w.on || !w.expl || !w.lptr) {
     st = ss_error_nomem(err, "ccsolid rule");
     goto done;
   }
   build_lattices(fine, &w);
   for (size_t i = 0; i < w.nhex * NLAT; i++)
     w.nhexat[w.lat[i]]++;
+  /* surface quads: the explicit ones and 4 per boundary face */
+  size_t nbface = 0;
+  for (size_t i = 0; i < w.nhex * NLAT; i++)
+    nbface += lat_kind((int)(i % NLAT)) == 2 && w.nhexat[w.lat[i]] == 1;
+  w.quads = malloc((4 * (fine->nc[SS_QUAD] + 4 * nbface) + 1) * sizeof *w.quads);
+  if (!w.quads) {
+    st = ss_error_nomem(err, "ccsolid surface");
+    goto done;
+  }
   if ((st = check_manifold(fine, L, &w, err))) goto done;
   if ((st = surface_rule(fine, L, &w, k, err))) goto done;
   volume_rule(fine, L, &w, k);
