@@ -914,6 +914,14 @@ static void test_bad_input(void) {
   if (ss_cx_add_cell(c, SS_HEX, h, 0, &err)) exit(1);
   expect_refused(c, "lies in 3 hexahedra", "a face in three hexes");
   ss_cx_free(c);
+  /* the 2 x 2 x 2 block about the origin without two opposite cubes: the six
+   * left are joined through faces at the origin, but their link there is an
+   * annulus (the octahedron without two opposite triangles, chi = 0) */
+  const int ann[6][3] = {{-1, 0, 0},  {0, -1, 0},  {0, 0, -1},
+                         {-1, -1, 0}, {-1, 0, -1}, {0, -1, -1}};
+  ss_cx *e = cubes(6, ann);
+  expect_refused(e, "Euler characteristic 0", "six cubes with an annulus link");
+  ss_cx_free(e);
   ss_cx *k = tm_kuhn(1);
   expect_refused(k, "does not take tetrahedra", "tets");
   ss_cx_free(k);
