@@ -25,12 +25,14 @@ static const entry registry[] = {
     {"loop", ss_scheme_loop_new},
     {"boxspline", ss_scheme_boxspline_new},
     {"boxspline-avg", ss_scheme_boxspline_avg_new},
+    {"ccsolid", ss_scheme_ccsolid_new},
 };
 #define NREG (sizeof registry / sizeof registry[0])
 
 const char *const *ss_scheme_names(void) {
-  static const char *const names[NREG + 1] = {
-      "mlca", "tetoct", "catmull-clark", "loop", "boxspline", "boxspline-avg", NULL};
+  static const char *const names[NREG + 1] = {"mlca",    "tetoct",    "catmull-clark",
+                                              "loop",    "boxspline", "boxspline-avg",
+                                              "ccsolid", NULL};
   return names;
 }
 
@@ -40,7 +42,7 @@ ss_status ss_scheme_new(const char *name, ss_scheme **out, ss_error *err) {
     if (strcmp(name, registry[i].name) == 0) return registry[i].make(out, err);
   return ss_error_set(err, SS_EINPUT,
                       "unknown scheme '%s' (known: mlca, tetoct, catmull-clark, loop, "
-                      "boxspline, boxspline-avg)",
+                      "boxspline, boxspline-avg, ccsolid)",
                       name);
 }
 
@@ -136,8 +138,7 @@ static double bad_value(const double *y, size_t f, size_t dim) {
   return 0.0;
 }
 
-/* "a, b and c": 1-based vertex numbers into buf. */
-static void list_vertices(const ss_idx *v, size_t n, char *buf, size_t cap) {
+void ss_scheme_list_vertices(const ss_idx *v, size_t n, char *buf, size_t cap) {
   size_t len = 0;
   buf[0] = '\0';
   for (size_t j = 0; j < n && len < cap; j++) {
@@ -233,7 +234,7 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
       memcpy(y + f * dim, fine->x + f * dim, dim * sizeof *y);
     }
     char par[128];
-    list_vertices(L->parent + L->ptr[f], ss_split_npar(L, f), par, sizeof par);
+    ss_scheme_list_vertices(L->parent + L->ptr[f], ss_split_npar(L, f), par, sizeof par);
     st = ss_error_set(err, SS_EINPUT,
                       "refined vertex %zu has a non-finite coordinate (%g); it derives "
                       "from %s %s of the mesh refined; %s",
@@ -334,7 +335,7 @@ ss_status ss_scheme_explain_nonfinite(const ss_scheme *s, const ss_cx *input, in
       big = i / dim;
     }
   char list[128];
-  list_vertices(anc, n, list, sizeof list);
+  ss_scheme_list_vertices(anc, n, list, sizeof list);
   return ss_error_set(err, SS_EINPUT,
                       "level %d: refined vertex %zu has a non-finite coordinate; it "
                       "derives from input %s %s (numbered as in the file); the "

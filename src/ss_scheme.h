@@ -15,6 +15,8 @@
  *   loop           triangle surfaces; boundaries and segments as B-spline creases
  *   boxspline      box-spline solids over the tet/oct split (ss_scheme_boxspline.c)
  *   boxspline-avg  the same averaged over the three diagonal directions
+ *   ccsolid        Catmull-Clark solids (Joy-MacCracken rules) on hex meshes;
+ *                  boundaries as Catmull-Clark surfaces (ss_scheme_ccsolid.c)
  * plus the `averaging` family (split + one mask per cell type) that stencil files
  * describe. */
 #ifndef SS_SCHEME_H
@@ -62,7 +64,8 @@ ss_split_kind ss_scheme_split_kind(const ss_scheme *s);
 int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t);
 
 /* How far a fine vertex's rule reaches: 1 if it reads only the coarse cells
- * holding the fine vertex (the averaging family, Catmull–Clark, Loop), 2 if
+ * holding the fine vertex (the averaging family, Catmull–Clark, Loop,
+ * Catmull–Clark solids), 2 if
  * it also reads the coarse neighbourhoods of the vertices it combines (the
  * box-spline rules: rho(e) needs all neighbours of both ends).  Local-matrix
  * extraction uses it to know which rows of a truncated patch are complete. */

@@ -14,23 +14,23 @@
 #include "ss_crease.h"
 #include "ss_scheme_impl.h"
 
-static ss_status cc_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
-                         const ss_split *L, ss_sink *k, ss_error *err) {
-  (void)coarse; /* the split complex and L say all this rule needs */
-  (void)s;
+ss_status ss_scheme_catmull_clark_emit(const ss_cx *surf, const ss_split *L,
+                                       const unsigned char *on, ss_sink *k,
+                                       ss_error *err) {
   ss_crease *c = NULL;
-  ss_status st = ss_crease_classify(fine, L, SS_QUAD, 2, &c, err);
+  ss_status st = ss_crease_classify(surf, L, SS_QUAD, 2, &c, err);
   if (st) return st;
   const size_t nc = L->ncoarse;
-  for (size_t x = nc; x < fine->nv; x++) {
+  for (size_t x = nc; x < surf->nv; x++) {
+    if (on && !on[x]) continue;
     size_t np = ss_split_npar(L, x);
     if (np != 2 || c->sharp[x])
       ss_sink_emit(k, x, x, 1.0); /* face point or crease */
     else
       ss_sink_emit(k, x, x, 0.5);
   }
-  for (size_t q = 0; q < fine->nc[SS_QUAD]; q++) {
-    const ss_idx *v = ss_cx_cell(fine, SS_QUAD, q);
+  for (size_t q = 0; q < surf->nc[SS_QUAD]; q++) {
+    const ss_idx *v = ss_cx_cell(surf, SS_QUAD, q);
     ss_idx F = SS_IDX_NONE;
     for (int i = 0; i < 4; i++)
       if (ss_split_npar(L, v[i]) == 4) F = v[i];
@@ -48,8 +48,8 @@ static ss_status cc_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *f
       }
     }
   }
-  for (size_t x = nc; x < fine->nv; x++) {
-    if (ss_split_npar(L, x) != 2) continue;
+  for (size_t x = nc; x < surf->nv; x++) {
+    if (ss_split_npar(L, x) != 2 || (on && !on[x])) continue;
     for (size_t p = L->ptr[x]; p < L->ptr[x + 1]; p++) {
       ss_idx a = L->parent[p], b = ss_crease_other(L, x, a);
       if (c->kind[a] == SS_SMOOTH) {
@@ -61,6 +61,7 @@ static ss_status cc_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *f
     }
   }
   for (size_t v = 0; v < nc; v++) {
+    if (on && !on[v]) continue;
     double n = (double)c->nedge[v];
     double self = c->kind[v] == SS_SMOOTH   ? (n - 2.0) / n
                   : c->kind[v] == SS_CREASE ? 3.0 / 4.0
@@ -69,6 +70,13 @@ static ss_status cc_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *f
   }
   ss_crease_free(c);
   return SS_OK;
+}
+
+static ss_status cc_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                         const ss_split *L, ss_sink *k, ss_error *err) {
+  (void)coarse; /* the split complex and L say all this rule needs */
+  (void)s;
+  return ss_scheme_catmull_clark_emit(fine, L, NULL, k, err);
 }
 
 ss_status ss_scheme_catmull_clark_new(ss_scheme **out, ss_error *err) {

@@ -28,6 +28,10 @@ struct ss_scheme {
 ss_status ss_scheme_alloc(const char *name, ss_split_kind split, unsigned accepts,
                           ss_rule_fn rule, ss_scheme **out, ss_error *err);
 
+/* "a, b and c": the n vertices v, 1-based, into buf (cap bytes, truncated),
+ * for messages. */
+void ss_scheme_list_vertices(const ss_idx *v, size_t n, char *buf, size_t cap);
+
 /* Constructors of the built-in schemes, one per file. */
 ss_status ss_scheme_mlca_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_tetoct_new(ss_scheme **out, ss_error *err);
@@ -35,5 +39,18 @@ ss_status ss_scheme_catmull_clark_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_loop_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err);
+ss_status ss_scheme_ccsolid_new(ss_scheme **out, ss_error *err);
+
+/* The Catmull-Clark surface rule (ss_scheme_catmull_clark.c) on the quads,
+ * segments and vertex cells of `surf`, a complex over the fine vertices of the
+ * split L whose cells are split cells (a subset of the fine complex's, or the
+ * fine boundary faces of a volume); creases by ss_crease.h, classified on
+ * surf and L (a fine vertex that should not count as an edge of the surface
+ * must have no parents in L).  Emits the rows of the fine vertices x with
+ * on[x] != 0 (all when on is NULL) into k, whose own split gives the parents
+ * of the sources.  SS_ENOMEM. */
+ss_status ss_scheme_catmull_clark_emit(const ss_cx *surf, const ss_split *L,
+                                       const unsigned char *on, ss_sink *k,
+                                       ss_error *err);
 
 #endif

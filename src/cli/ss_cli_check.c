@@ -1,4 +1,6 @@
-/* ss_cli_check.c — `subspectra check STENCIL`: the CI gate for new stencils.
+/* ss_cli_check.c — `subspectra check STENCIL`: the CI gate for new stencils
+ * (and, with --scheme, for a built-in scheme such as ccsolid, which no
+ * stencil family describes).
  * Runs every case asked for (every link of the vertex range, every edge
  * valence, the face) through extraction, eigenstructure and the regularity
  * test, prints a summary and the cases that do not pass, and exits 0 when all
@@ -16,8 +18,9 @@
 #include "ss_stencil.h"
 
 static const char *const usage_text =
-    "usage: subspectra check STENCIL.ini [--vertices A..B] [--edges A..B] [--face]\n"
-    "                        [--tol T] [--depth D] [--certify] [--max-memory SIZE]\n"
+    "usage: subspectra check (STENCIL.ini | --scheme S) [--vertices A..B]\n"
+    "                        [--edges A..B] [--face] [--tol T] [--depth D]\n"
+    "                        [--certify] [--max-memory SIZE]\n"
     "\n"
     "The CI gate for a new stencil: analyse every case and pass only if all pass.\n"
     "Each case: the local subdivision matrix from the stencil's global rule, its\n"
@@ -30,6 +33,8 @@ static const char *const usage_text =
     "                    hex stars for split multilinear, tet stars for tetoct)\n"
     "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
     "  --face            the face of two tets (split tetoct only)\n"
+    "  --scheme S        a built-in scheme instead of a stencil file (mlca, tetoct,\n"
+    "                    boxspline, boxspline-avg, ccsolid)\n"
     "  --certify         prove every verdict (exact spectrum, interval Jacobians);\n"
     "                    a verdict that cannot be proven counts as undecided\n"
     "  --max-memory SIZE memory budget of one case (K, M, G, T: powers of 1000;\n"
@@ -106,11 +111,13 @@ int ss_cli_check(int argc, char **argv) {
                                        {"depth", required_argument, NULL, 'd'},
                                        {"certify", no_argument, NULL, 'c'},
                                        {"max-memory", required_argument, NULL, 'm'},
+                                       {"scheme", required_argument, NULL, 's'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   long va = 0, vb = -1, ea = 0, eb = -1, depth = SS_JAC_DEPTH;
   int face = 0, any = 0, certify = 0;
   double tol = 1e-6, max_memory = 0.0;
+  const char *scheme = NULL;
   optind = 1;
   opterr = 0;
   int c;
@@ -147,6 +154,9 @@ int ss_cli_check(int argc, char **argv) {
     case 'c':
       certify = 1;
       break;
+    case 's':
+      scheme = optarg;
+      break;
     case 'm':
       if (ss_cli_parse_bytes(optarg, &max_memory))
         return ss_cli_usage_error(
@@ -159,25 +169,32 @@ int ss_cli_check(int argc, char **argv) {
       return ss_cli_option_error("check", c, argv);
     }
   }
-  if (optind + 1 != argc)
+  if (scheme && optind != argc)
+    return ss_cli_usage_error("check", "a stencil file and --scheme: give one of them");
+  if (!scheme && optind + 1 != argc)
     return ss_cli_usage_error("check", optind == argc ? "no stencil file given"
                                                       : "more than one stencil file");
-  const char *path = argv[optind];
+  const char *path = scheme ? "--scheme" : argv[optind];
   ss_error err = {0};
   ss_scheme *s = NULL;
-  if (ss_stencil_load(path, &s, NULL, &err)) {
+  if (scheme ? ss_scheme_new(scheme, &s, &err) : ss_stencil_load(path, &s, NULL, &err)) {
     fprintf(stderr, "subspectra check: %s\n", err.msg);
     return SS_EXIT_USAGE; /* a bad stencil file, or out of memory */
   }
   const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
   if (face && !tetoct) {
     ss_scheme_free(s);
-    return ss_cli_usage_error("check", "--face: the stencil's split is not tetoct");
+    return ss_cli_usage_error("check", "--face: the %s's split is not tetoct",
+                              scheme ? "scheme" : "stencil");
   }
   if (!any) va = 4, vb = 6, ea = 3, eb = 6, face = tetoct;
   gate g = {s, tol, (int)depth, certify, ss_cli_budget(max_memory), 0, 0, 0, 0, 0, 0};
-  printf("check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
-         ss_scheme_name(s), tol, depth, certify ? ", certified verdicts" : "");
+  if (scheme)
+    printf("check scheme %s: relative tolerance %g, hex depth %ld%s\n", ss_scheme_name(s),
+           tol, depth, certify ? ", certified verdicts" : "");
+  else
+    printf("check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
+           ss_scheme_name(s), tol, depth, certify ? ", certified verdicts" : "");
   if (vb >= va) {
     ss_enum_opts eo = {(int)va, (int)vb, 0, 1};
     if (ss_enum_links(&eo, visit, &g, NULL, &err)) {

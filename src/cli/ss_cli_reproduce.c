@@ -58,6 +58,8 @@ typedef struct {
   int neig;            /* > 0: show lambda1..neig; 0: lambda1..m and |lambda_m+1| */
   const char *command; /* the equivalent `analyze` commands */
   const char *note;    /* paragraph under the header, or NULL */
+  const char *vs;      /* another scheme run on the same cases and shown side by
+                          side (its results are not written separately), or NULL */
 } table_spec;
 
 #define RANDOM_CMD(S, D)                                                                 \
@@ -71,7 +73,8 @@ static const table_spec tables[] = {
      "--vertex - --format json",
      "Cells = hexes around the vertex (2k − 4). λ1..λ3 and \\|λ4\\| are the leading "
      "eigenvalues of the two-ring matrix after λ0 = 1. The one differing row is "
-     "finding 1 of reports/README.md."},
+     "finding 1 of reports/README.md.",
+     NULL},
     {"mlca-vertices-k9-10",
      "MLCA: every vertex one-ring with k = 9 and 10 (14 and 16 hexes)", "mlca",
      SS_CASE_VERTEX, SRC_LINKS, 9, 10, SS_DIAG_BFS, 0,
@@ -79,28 +82,31 @@ static const table_spec tables[] = {
      "--vertex - --format json",
      "Inside the range the MLCA paper says it analysed exhaustively (val ≤ 12 edges at "
      "the vertex, i.e. k ≤ 12), beyond what earlier versions of this project swept. "
-     "Cells = hexes around the vertex (2k − 4). See reports/README.md, finding 5."},
+     "Cells = hexes around the vertex (2k − 4). See reports/README.md, finding 5.",
+     NULL},
     {"tetoct-vertices-k8-10", "tet/oct: every vertex one-ring with k = 8..10", "tetoct",
      SS_CASE_VERTEX, SRC_LINKS, 8, 10, SS_DIAG_BFS, 0,
      "subspectra enumerate links --vertices 8..10 | subspectra analyze --scheme tetoct "
      "--vertex - --format json",
-     "Beyond the paper's tested links. Cells = tets around the vertex (2k − 4)."},
+     "Beyond the paper's tested links. Cells = tets around the vertex (2k − 4).", NULL},
     {"tetoct-vertices-k4-7", "tet/oct: every vertex one-ring with k ≤ 7", "tetoct",
      SS_CASE_VERTEX, SRC_LINKS, 4, 7, SS_DIAG_BFS, 0,
      "subspectra enumerate links --vertices 4..7 | subspectra analyze --scheme tetoct "
      "--vertex - --format json",
-     "Cells = tets around the vertex (2k − 4)."},
+     "Cells = tets around the vertex (2k − 4).", NULL},
     {"tetoct-edges-3-10", "tet/oct: points on extraordinary edges, valence 3..10",
      "tetoct", SS_CASE_EDGE, SRC_VALENCES, 3, 10, SS_DIAG_BFS, 0,
      "for n in 3 4 5 6 7 8 9 10; do subspectra analyze --scheme tetoct --edge $n "
      "--format json; done",
      "The paper gives the spectrum the form 1, λ1, λ1, 1/2, … (Appendix A). It holds "
      "in that order from valence 6 on; for valences 3..5 the eigenvalue 1/2 (along the "
-     "edge) comes first and the double pair is smaller, so those rows differ."},
+     "edge) comes first and the double pair is smaller, so those rows differ.",
+     NULL},
     {"tetoct-face", "tet/oct: a point inside the face shared by two tets", "tetoct",
      SS_CASE_FACE, SRC_FACE, 0, 0, SS_DIAG_BFS, 9,
      "subspectra analyze --scheme tetoct --face --format json",
-     "The face case of the paper's Appendix A (equation (3)). λ1..λ9 follow λ0 = 1."},
+     "The face case of the paper's Appendix A (equation (3)). λ1..λ9 follow λ0 = 1.",
+     NULL},
     {"mlca-edges-3-8", "MLCA: points on extraordinary edges, valence 3..8", "mlca",
      SS_CASE_EDGE, SRC_VALENCES, 3, 8, SS_DIAG_BFS, 0,
      "for n in 3 4 5 6 7 8; do subspectra analyze --scheme mlca --edge $n --format "
@@ -113,19 +119,22 @@ static const table_spec tables[] = {
      "n = 8 and above it (a double eigenvalue) for n > 8. So the eigenvalue condition "
      "λ3 > \\|λ4\\| holds only up to valence 7 — see reports/README.md, finding 2. The "
      "paper proves C¹ along edges by the tensor-product structure, not by this test, "
-     "so nothing here is compared."},
+     "so nothing here is compared.",
+     NULL},
     {"mlca-surface-vertices-3-8", "MLCA surfaces: extraordinary vertices, valence 3..8",
      "mlca", SS_CASE_SURFACE_VERTEX, SRC_VALENCES, 3, 8, SS_DIAG_BFS, 0,
      "for n in 3 4 5 6 7 8; do subspectra analyze --scheme mlca --surface-vertex $n "
      "--format json; done",
-     "The 2D scheme of the MLCA paper, section 4.1: λ1, λ2 and \\|λ3\\| after λ0 = 1."},
+     "The 2D scheme of the MLCA paper, section 4.1: λ1, λ2 and \\|λ3\\| after λ0 = 1.",
+     NULL},
     {"catmull-clark-surface-vertices-3-8",
      "Catmull–Clark surfaces: extraordinary vertices, valence 3..8", "catmull-clark",
      SS_CASE_SURFACE_VERTEX, SRC_VALENCES, 3, 8, SS_DIAG_BFS, 0,
      "for n in 3 4 5 6 7 8; do subspectra analyze --scheme catmull-clark "
      "--surface-vertex $n --format json; done",
      "The 2D baseline the MLCA paper compares with (section 4.1, after Reif and "
-     "Peters)."},
+     "Peters).",
+     NULL},
     {"boxspline-vertices-5-22",
      "box-spline solids: extraordinary vertices of valence 5..22", "boxspline",
      SS_CASE_VERTEX, SRC_RANDOM, 5, 22, SS_DIAG_BFS, 6, RANDOM_CMD("boxspline", ""),
@@ -133,7 +142,8 @@ static const table_spec tables[] = {
      "first random link with k vertices for seed 1 (the convex hull of k random points "
      "on the sphere). Major diagonals by Algorithm 2 (`--diagonals bfs`). Cells = tets "
      "around the vertex (2k − 4). λ1..λ6 follow λ0 = 1. The paper's Table 2 is "
-     "withheld; its matrix sizes are compared."},
+     "withheld; its matrix sizes are compared.",
+     NULL},
     {"boxspline-vertices-5-22-proper",
      "box-spline solids: extraordinary vertices of valence 5..22, proper diagonals",
      "boxspline", SS_CASE_VERTEX, SRC_RANDOM, 5, 22, SS_DIAG_PROPER, 6,
@@ -141,7 +151,8 @@ static const table_spec tables[] = {
      "The links of boxspline-vertices-5-22.md, with diagonals chosen by `--diagonals "
      "proper` (Algorithm 2's search made to match neighbours instead of avoiding them; "
      "not the paper's algorithm) instead of Algorithm 2: compare the improper-pair "
-     "counts and the outer eigenvalues. λ1..λ6 follow λ0 = 1."},
+     "counts and the outer eigenvalues. λ1..λ6 follow λ0 = 1.",
+     NULL},
     {"boxspline-edges-4-9-skew",
      "box-spline solids: extraordinary edges of valence 4..9, diagonals 'skew'",
      "boxspline", SS_CASE_EDGE, SRC_VALENCES, 4, 9, SS_DIAG_SKEW, 6,
@@ -153,7 +164,8 @@ static const table_spec tables[] = {
      "(4k + 3 points) acts on the once-subdivided star of a finite edge; our two-ring "
      "is the support neighbourhood of a point on an edge in the stationary regime, a "
      "larger set, so the two-ring sizes differ while the one-ring blocks (2k + 3) "
-     "agree."},
+     "agree.",
+     NULL},
     {"boxspline-edges-4-9-center",
      "box-spline solids: extraordinary edges of valence 4..9, diagonals 'center'",
      "boxspline", SS_CASE_EDGE, SRC_VALENCES, 4, 9, SS_DIAG_CENTER, 6,
@@ -162,20 +174,43 @@ static const table_spec tables[] = {
      "Major diagonals around the edge: toward the centre — the pair v0 v1, c_i c_i+1 "
      "in every tet (figure 23, second row). λ1..λ6 follow λ0 = 1. The two-ring sizes "
      "differ from the paper's S_e for the reason given in "
-     "boxspline-edges-4-9-skew.md."},
+     "boxspline-edges-4-9-skew.md.",
+     NULL},
     {"boxspline-avg-vertices-5-22",
      "averaged box-spline solids: extraordinary vertices of valence 5..22",
      "boxspline-avg", SS_CASE_VERTEX, SRC_RANDOM, 5, 22, SS_DIAG_BFS, 6,
      RANDOM_CMD("boxspline-avg", ""),
      "The links of boxspline-vertices-5-22.md (the first random link with k vertices "
      "for seed 1). The averaged scheme reads no diagonals. λ1..λ6 follow λ0 = 1. The "
-     "paper (Appendix A) states no result for it at extraordinary points."},
+     "paper (Appendix A) states no result for it at extraordinary points.",
+     NULL},
     {"boxspline-avg-edges-4-9",
      "averaged box-spline solids: extraordinary edges of valence 4..9", "boxspline-avg",
      SS_CASE_EDGE, SRC_VALENCES, 4, 9, SS_DIAG_BFS, 6,
      "for n in 4 5 6 7 8 9; do subspectra analyze --scheme boxspline-avg --edge $n "
      "--format json; done",
-     "No diagonals: one table replaces the two of boxspline. λ1..λ6 follow λ0 = 1."},
+     "No diagonals: one table replaces the two of boxspline. λ1..λ6 follow λ0 = 1.",
+     NULL},
+    {"ccsolid-vertices-k4-9",
+     "Catmull–Clark solids: every vertex one-ring with k ≤ 9, beside MLCA", "ccsolid",
+     SS_CASE_VERTEX, SRC_LINKS, 4, 9, SS_DIAG_BFS, 0,
+     "subspectra enumerate links --vertices 4..9 | subspectra analyze --scheme ccsolid "
+     "--vertex - --format json",
+     "The Joy–MacCracken rules (README, \"Catmull–Clark solids\"); no paper tabulates "
+     "them. Cells = hexes around the vertex (2k − 4). The second table puts the MLCA "
+     "results for the same links beside them.",
+     "mlca"},
+    {"ccsolid-edges-3-10",
+     "Catmull–Clark solids: points on extraordinary edges, valence 3..10, beside MLCA",
+     "ccsolid", SS_CASE_EDGE, SRC_VALENCES, 3, 10, SS_DIAG_BFS, 0,
+     "for n in 3 4 5 6 7 8 9 10; do subspectra analyze --scheme ccsolid --edge $n "
+     "--format json; done",
+     "Along an edge the spectrum is not the tensor product of the Catmull–Clark "
+     "surface's and the cubic curve's: the modes that turn about the edge (w ≠ 0) are "
+     "the tensor product's, the rotation-invariant ones differ for n ≠ 4 (README, "
+     "\"Catmull–Clark solids\"). λ1..λ3 are 1/2 and the surface pair, as for MLCA, "
+     "so the eigenvalue condition fails from valence 8 on in both.",
+     "mlca"},
 };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
@@ -539,9 +574,74 @@ typedef struct {
   size_t certified;     /* cases whose verdict is proven (ss_result_certified) */
 } tally;
 
-/* Write NAME.md, NAME.tsv and data/NAME.jsonl for table t. */
+/* The verdict of r in a few words: "pass", or the first condition that does
+ * not pass and how. */
+static const char *verdict_words(const ss_result *r) {
+  const ss_verdict_kind v = ss_result_verdict(r);
+  if (v == SS_PASS) return "pass";
+  const int und = v == SS_UNDECIDED;
+  if (r->cond.verdict != SS_PASS)
+    return und ? "undecided: eigenvalue condition" : "fail: eigenvalue condition";
+  if (r->reg.verdict != SS_PASS)
+    return und ? "undecided: regularity" : "fail: regularity";
+  return und ? "undecided: injectivity" : "fail: injectivity";
+}
+
+/* lambda1..lambda3 and |lambda4| of r as Markdown cells. */
+static void sb_leading(strbuf *md, const ss_result *r) {
+  char buf[64];
+  for (int e = 1; e <= 3; e++) {
+    if (e < r->neig) {
+      eig_text(r->eig + e, buf, sizeof buf);
+      sb_printf(md, " %s |", buf);
+    } else
+      sb_printf(md, " |");
+  }
+  if (4 < r->neig)
+    sb_printf(md, " %.6f |", hypot(r->eig[4].re, r->eig[4].im));
+  else
+    sb_printf(md, " |");
+}
+
+/* The section of table t that shows the results l of t's scheme beside the
+ * results v of scheme t->vs on the same cases (same order). */
+static void side_by_side(strbuf *md, const table_spec *t, const result_list *l,
+                         const result_list *v) {
+  size_t both = 0, only_a = 0, only_b = 0;
+  sb_printf(md,
+            "\n## Beside %s\n\nThe same cases with `--scheme %s`: λ1..λ3 and \\|λ4\\| "
+            "after λ0 = 1 and the verdict of each.\n\n| # | case | %s λ1 | λ2 | λ3 | "
+            "\\|λ4\\| | %s verdict | %s λ1 | λ2 | λ3 | \\|λ4\\| | %s verdict |\n"
+            "|--:|---|--:|--:|--:|--:|---|--:|--:|--:|--:|---|\n",
+            t->vs, t->vs, t->scheme, t->scheme, t->vs, t->vs);
+  for (size_t i = 0; i < l->n && i < v->n; i++) {
+    const ss_result *a = l->r + i, *b = v->r + i;
+    char buf[64];
+    if (ss_result_has_link(a))
+      sb_printf(md, "| %zu | `%s`%s |", i + 1, a->link,
+                a->kind == SS_CASE_EDGE_POINT ? " (edge point)" : "");
+    else
+      sb_printf(md, "| %zu | %s |", i + 1, case_label(a, buf, sizeof buf));
+    sb_leading(md, a);
+    sb_printf(md, " %s |", verdict_words(a));
+    sb_leading(md, b);
+    sb_printf(md, " %s |\n", verdict_words(b));
+    const int pa = ss_result_verdict(a) == SS_PASS, pb = ss_result_verdict(b) == SS_PASS;
+    both += (size_t)(pa && pb);
+    only_a += (size_t)(pa && !pb);
+    only_b += (size_t)(!pa && pb);
+  }
+  sb_printf(md,
+            "\n**Side by side:** of %zu cases %zu pass under both schemes, %zu under %s "
+            "only, %zu under %s only.\n",
+            l->n, both, only_a, t->scheme, only_b, t->vs);
+}
+
+/* Write NAME.md, NAME.tsv and data/NAME.jsonl for table t; vs (NULL unless
+ * t->vs) holds the other scheme's results on the same cases. */
 static ss_status write_table(const char *dir, const table_spec *t, const result_list *l,
-                             const ss_ref *ref, tally *ty, ss_error *err) {
+                             const result_list *vs, const ss_ref *ref, tally *ty,
+                             ss_error *err) {
   ss_status st = SS_OK;
   strbuf md = {0}, tsv = {0}, js = {0};
   comparison *cmp = NULL;
@@ -708,6 +808,7 @@ static ss_status write_table(const char *dir, const table_spec *t, const result_
       ty->pass, ty->cases, ty->quoted, ty->match, ty->quoted - ty->match, ty->unquoted,
       ty->cases, tol);
   if (t->src == SRC_LINKS) per_k(&md, l);
+  if (vs) side_by_side(&md, t, l, vs);
   if (ncmp) {
     sb_printf(&md, "\n## Quoted values\n\n| # | case | quantity | quoted | computed | "
                    "computed − quoted | tolerance | status | source |\n"
@@ -996,12 +1097,13 @@ int ss_cli_reproduce(int argc, char **argv) {
   for (size_t i = 0; i < NTABLES && rc == SS_EXIT_OK; i++) {
     const table_spec *t = tables + i;
     const double t1 = ss_cli_now();
-    ss_scheme *s = NULL;
-    result_list l = {0};
-    l.o = ro;
+    ss_scheme *s = NULL, *sv = NULL;
+    result_list l = {0}, lv = {0};
+    l.o = lv.o = ro;
     tally ty;
     if (ss_scheme_new(t->scheme, &s, &err) || compute_table(t, s, &l, &err) ||
-        write_table(out, t, &l, &ref, &ty, &err)) {
+        (t->vs && (ss_scheme_new(t->vs, &sv, &err) || compute_table(t, sv, &lv, &err))) ||
+        write_table(out, t, &l, t->vs ? &lv : NULL, &ref, &ty, &err)) {
       fprintf(stderr, "subspectra %s: %s: %s\n", cmd, t->name, err.msg);
       rc = exit_for(&err);
     } else {
@@ -1017,7 +1119,9 @@ int ss_cli_reproduce(int argc, char **argv) {
       tmatch += ty.match;
     }
     results_free(&l);
+    results_free(&lv);
     ss_scheme_free(s);
+    ss_scheme_free(sv);
   }
   if (rc != SS_EXIT_OK) goto done;
   const double t2 = ss_cli_now();

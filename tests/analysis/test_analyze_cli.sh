@@ -254,4 +254,18 @@ if ! ldd "$exe" 2>/dev/null | grep -q libasan; then
   expect_in 2 "out of memory" "" bash -c "ulimit -v 200000; exec \"\$0\" matrix --scheme mlca --surface-vertex 1000 --max-memory 100G" "$exe"
 fi
 
+# Catmull-Clark solids through the same machinery (the tests in
+# tests/scheme/test_ccsolid.c check the matrices themselves)
+expect_in 0 "two-ring 125 points, one-ring 27" "" "$exe" analyze --scheme ccsolid --vertex octahedron
+expect_in 0 '"two_ring_size":155' "" "$exe" analyze --scheme ccsolid --edge 5 --format json
+expect_in 0 "MatrixMarket" "" "$exe" matrix --scheme ccsolid --edge 3 --format mtx
+expect_in 0 "6 cases: 6 pass" "" "$exe" check --scheme ccsolid --vertices 5..6 --edges 3..5
+expect_in 1 "fail       vertex 4 bcd,adc,abd,acb: eigenvalue condition" "" "$exe" check --scheme ccsolid --vertices 4..4 --edges 4..4
+expect_in 2 "a stencil file and --scheme" "" "$exe" check --scheme ccsolid "$st/mlca.ini"
+expect_in 2 "--face: the scheme's split is not tetoct" "" "$exe" check --scheme ccsolid --face
+ctmp=$(mktemp -d)
+expect_in 0 "wrote $ctmp/c.png \\(regularity pass\\)" "" "$exe" draw --scheme ccsolid --edge 5 -o "$ctmp/c.png" --size 300x200
+expect_in 0 "4 cases of ccsolid" "" "$exe" sweep --scheme ccsolid --vertices 5..6 --edges 4..4 --db "$ctmp/s.db"
+rm -rf "$ctmp"
+
 expect_done "analyze_cli"

@@ -746,8 +746,8 @@ static double peak_bytes(const ss_scheme *s, ss_case c) {
 #endif
 
 static void test_estimate(void) {
-  static const char *const names[] = {"mlca",          "tetoct",        "boxspline",
-                                      "boxspline-avg", "catmull-clark", "loop"};
+  static const char *const names[] = {
+      "mlca", "tetoct", "boxspline", "boxspline-avg", "catmull-clark", "loop", "ccsolid"};
   static const char *const links[] = {"tetrahedron", "octahedron", "icosahedron",
                                       "bipyramid:5"};
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);

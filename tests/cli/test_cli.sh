@@ -122,4 +122,17 @@ if [ "$(grep -c '^12 ' <<<"$r1")" -ne 3 ] || [ "$(wc -l <<<"$r1")" -ne 3 ] || [ 
 fi
 expect 0 '^\{"vertices":12,"seed":7,"sample":2,"link":"12 ' "$exe" enumerate random --vertices 12 --samples 3 --seed 7 --format json
 
+# Catmull-Clark solids: the shipped hex meshes; tets and non-manifold hex meshes refused
+expect 0 "ccsolid level 2: 1809 vertices, 1280 hexahedra" "$exe" subdivide --scheme ccsolid --levels 2 "$m/hexstar-icosahedron.mesh" -o "$tmp/cs.mesh"
+expect 0 "ccsolid level 1: 27 vertices, 24 quadrilaterals, 8 hexahedra" "$exe" subdivide --scheme ccsolid "$m/cube-creased.mesh" -o "$tmp/cs.vtk"
+expect 2 "scheme ccsolid does not take tetrahedra" "$exe" subdivide --scheme ccsolid "$m/cube-6tets.mesh" -o "$tmp/cs.mesh"
+{
+  printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n15\n'
+  for z in 0 1; do for y in 0 1; do for x in 0 1; do echo "$x $y $z 0"; done; done; done
+  for z in 1 2; do for y in 1 2; do for x in 1 2; do [ "$x$y$z" = 111 ] || echo "$x $y $z 0"; done; done; done
+  printf 'Hexahedra\n2\n1 2 4 3 5 6 8 7 0\n8 9 11 10 12 13 15 14 0\nEnd\n'
+} >"$tmp/pinch.mesh"
+expect 0 "2 hexahedra" "$exe" subdivide --scheme mlca "$tmp/pinch.mesh" -o "$tmp/p.mesh"
+expect 2 "the hexahedra at vertex 8 do not form one ball or half-ball .*non-manifold" "$exe" subdivide --scheme ccsolid "$tmp/pinch.mesh" -o "$tmp/p.mesh"
+
 expect_done "cli"

@@ -1,0 +1,402 @@
+/* ss_scheme_ccsolid.c — Catmull-Clark solids: the refinement rules of Joy and
+ * MacCracken (K. I. Joy, R. MacCracken, "The refinement rules for
+ * Catmull-Clark solids", UC Davis tech. rep. CSE-96-1, 1996; R. MacCracken,
+ * K. I. Joy, "Free-form deformations with lattices of arbitrary topology",
+ * SIGGRAPH 96), the scheme whose limit the direct-evaluation paper
+ * (papers/direct-limit-volumes-catmull-clark-solids.txt) evaluates.
+ *
+ * On the multilinear split of a hex mesh, with every average taken over the
+ * coarse complex and every count read from it (never typed per topology):
+ *   cell point    the centroid of the hex's 8 vertices;
+ *   face point    (C0 + 2 A + C1) / 4 for a face in two hexes, A the face
+ *                 centroid, C0, C1 the new cell points of the two hexes;
+ *   edge point    (C + 2 A + (n - 3) M) / n for an edge in n faces (= n hexes
+ *                 around an interior edge), C the mean of the new cell points
+ *                 of the hexes at the edge, A the mean of the centroids of the
+ *                 faces at it, M its midpoint;
+ *   vertex point  (C + 3 A + 3 E + (n - 7) P) / n for a vertex in n hexes, C
+ *                 the mean of the new cell points of the hexes at P, A the
+ *                 mean of the centroids of the faces at P, E the mean of the
+ *                 midpoints of the edges at P.
+ * On a regular grid these are the tricubic B-spline rules (vertex 27/64 on P,
+ * edge 9/32 on M, face 3/16 on A).  Along an extraordinary edge they are not
+ * a tensor product of the Catmull-Clark surface rule and the cubic curve
+ * rule (README, "Catmull-Clark solids").
+ *
+ * Boundaries and creases.  The "surface" of the mesh is its boundary faces
+ * (quads of exactly one hex) together with the quad cells given explicitly
+ * in the mesh.  Every vertex on the surface, on a segment cell or a vertex
+ * cell is refined by the Catmull-Clark surface rule on the surface quads
+ * (ss_scheme_catmull_clark_emit), with creases after Hoppe et al.
+ * (ss_crease.h): segment cells and surface edges in other than two surface
+ * quads are cubic B-spline crease curves, vertex cells and vertices with
+ * three or more crease edges are interpolated.  This is the boundary rule of
+ * Joy and MacCracken (the boundary of a Catmull-Clark solid is a
+ * Catmull-Clark surface).  Explicit interior quads are our choice for
+ * lower-dimensional cells, as MLCA treats them: a crease surface inside the
+ * volume, refined like a boundary (its edges where it meets the boundary are
+ * in three surface quads, hence crease curves).  Segment cells off the
+ * surface are crease curves too; the vertex where such a curve ends inside
+ * the volume is interpolated (it has one crease edge in no surface quad).
+ *
+ * Input must be manifold where the volume rules act: a quad face in more
+ * than two hexes, an edge whose hexes do not form one fan (a cycle, or a path
+ * ending on the boundary), or a vertex whose hexes do not form a ball or a
+ * half-ball (hexes not connected through faces at the vertex, or a link of
+ * Euler characteristic other than 2, closed, or 1, with boundary) is refused
+ * (SS_EINPUT, naming the vertices).  All of this is read from the cells
+ * holding a fine vertex, so the rule reaches one ring (ss_scheme_reach 1). */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "ss_scheme_impl.h"
+
+#define NLAT 27 /* lattice points {0,1,2}^3 of a split hex */
+
+/* Lattice index of the point with digits t[0..3). */
+static int lat_index(const int *t) {
+  return t[0] + 3 * t[1] + 9 * t[2];
+}
+
+static void lat_digits(int p, int *t) {
+  t[0] = p % 3;
+  t[1] = (p / 3) % 3;
+  t[2] = p / 9;
+}
+
+/* Number of digits equal to 1: 0 corner, 1 edge, 2 face, 3 cell centre. */
+static int lat_kind(int p) {
+  int t[3];
+  lat_digits(p, t);
+  return (t[0] == 1) + (t[1] == 1) + (t[2] == 1);
+}
+
+/* Workspace of one refinement. */
+typedef struct {
+  size_t nhex;         /* coarse hexes */
+  ss_idx *lat;         /* nhex * NLAT fine vertices: the split lattice of each */
+  uint32_t *nhexat;    /* per fine vertex: coarse hexes holding it */
+  uint32_t *uf;        /* union-find over (hex, lattice point) nodes */
+  uint32_t *pair;      /* per fine vertex: first node seen (faces), or root */
+  uint32_t *nfaceat;   /* per coarse vertex: faces in a hex at it */
+  uint32_t *nedgeat;   /* per coarse vertex: edges in a hex at it */
+  unsigned char *bnd;  /* per coarse vertex: on a face of one hex */
+  unsigned char *on;   /* per fine vertex: refined by the surface rule */
+  unsigned char *expl; /* per fine vertex: centre of an explicit quad */
+  ss_idx *quads;       /* fine surface quads, 4 each */
+  size_t nquads;       /* surface quads held */
+  size_t *lptr;        /* restricted split: parent offsets */
+} cs_work;
+
+static uint32_t uf_find(uint32_t *uf, uint32_t a) {
+  while (uf[a] != a) {
+    uf[a] = uf[uf[a]];
+    a = uf[a];
+  }
+  return a;
+}
+
+static void uf_union(uint32_t *uf, uint32_t a, uint32_t b) {
+  a = uf_find(uf, a);
+  b = uf_find(uf, b);
+  if (a != b) uf[a < b ? b : a] = a < b ? a : b;
+}
+
+/* "a, b, c and d": the parents of fine vertex x, 1-based. */
+static void name_parents(const ss_split *L, size_t x, char *buf, size_t cap) {
+  ss_scheme_list_vertices(L->parent + L->ptr[x], ss_split_npar(L, x), buf, cap);
+}
+
+/* The lattices of the coarse hexes: child kc of hex h (fine hex 8h + kc,
+ * octant bits(kc)) holds at its corner k the lattice point bits(kc) +
+ * bits(k) (ss_split.h). */
+static void build_lattices(const ss_cx *fine, cs_work *w) {
+  for (size_t h = 0; h < w->nhex; h++)
+    for (int kc = 0; kc < 8; kc++) {
+      const ss_idx *v = ss_cx_cell(fine, SS_HEX, 8 * h + (size_t)kc);
+      const unsigned o = ss_cube_corner_bits(3, kc);
+      for (int k = 0; k < 8; k++) {
+        const unsigned b = ss_cube_corner_bits(3, k);
+        int t[3];
+        for (int i = 0; i < 3; i++)
+          t[i] = (int)((o >> i & 1u) + (b >> i & 1u));
+        w->lat[h * NLAT + (size_t)lat_index(t)] = v[k];
+      }
+    }
+}
+
+/* The 9 lattice points of the face with lattice point f (two digits 1). */
+static void face_points(int f, int *pts) {
+  int t[3], fixed = 0;
+  lat_digits(f, t);
+  while (t[fixed] == 1)
+    fixed++;
+  const int i = (fixed + 1) % 3, j = (fixed + 2) % 3;
+  int n = 0;
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) {
+      int u[3];
+      u[fixed] = t[fixed];
+      u[i] = a;
+      u[j] = b;
+      pts[n++] = lat_index(u);
+    }
+}
+
+/* The manifold checks of the header, SS_EINPUT on the first failure. */
+static ss_status check_manifold(const ss_cx *fine, const ss_split *L, cs_work *w,
+                                ss_error *err) {
+  const size_t nf = fine->nv, nc = L->ncoarse;
+  char names[160];
+  for (size_t x = nc; x < nf; x++)
+    if (ss_split_npar(L, x) == 4 && w->nhexat[x] > 2) {
+      name_parents(L, x, names, sizeof names);
+      return ss_error_set(err, SS_EINPUT,
+                          "scheme ccsolid: the quadrilateral face with vertices %s lies "
+                          "in %u hexahedra; a Catmull-Clark solid takes at most 2 "
+                          "(non-manifold mesh)",
+                          names, (unsigned)w->nhexat[x]);
+    }
+  /* join the lattice points of two hexes across every face they share */
+  const size_t nnode = w->nhex * NLAT;
+  for (size_t q = 0; q < nnode; q++)
+    w->uf[q] = (uint32_t)q;
+  for (size_t x = 0; x < nf; x++)
+    w->pair[x] = UINT32_MAX;
+  for (size_t h = 0; h < w->nhex; h++)
+    for (int p = 0; p < NLAT; p++) {
+      if (lat_kind(p) != 2) continue;
+      const ss_idx f = w->lat[h * NLAT + (size_t)p];
+      if (w->pair[f] == UINT32_MAX) {
+        w->pair[f] = (uint32_t)(h * NLAT + (size_t)p);
+        continue;
+      }
+      const size_t g = w->pair[f] / NLAT;
+      int mine[9], theirs[9];
+      face_points(p, mine);
+      face_points((int)(w->pair[f] % NLAT), theirs);
+      for (int a = 0; a < 9; a++)
+        for (int b = 0; b < 9; b++)
+          if (w->lat[h * NLAT + (size_t)mine[a]] == w->lat[g * NLAT + (size_t)theirs[b]])
+            uf_union(w->uf, (uint32_t)(h * NLAT + (size_t)mine[a]),
+                     (uint32_t)(g * NLAT + (size_t)theirs[b]));
+    }
+  /* every vertex and edge: one class of hexes joined through faces at it */
+  for (size_t x = 0; x < nf; x++)
+    w->pair[x] = UINT32_MAX;
+  for (size_t h = 0; h < w->nhex; h++)
+    for (int p = 0; p < NLAT; p++) {
+      if (lat_kind(p) > 1) continue;
+      const ss_idx x = w->lat[h * NLAT + (size_t)p];
+      const uint32_t r = uf_find(w->uf, (uint32_t)(h * NLAT + (size_t)p));
+      if (w->pair[x] == UINT32_MAX) {
+        w->pair[x] = r;
+      } else if (w->pair[x] != r) {
+        name_parents(L, x, names, sizeof names);
+        return ss_error_set(err, SS_EINPUT,
+                            "scheme ccsolid: the hexahedra at %s %s do not form one %s "
+                            "through faces at it (non-manifold mesh)",
+                            lat_kind(p) ? "the edge between vertices" : "vertex", names,
+                            lat_kind(p) ? "fan" : "ball or half-ball");
+      }
+    }
+  /* Euler characteristic of each vertex's link: 2 (sphere) or 1 (disk) */
+  for (size_t x = nc; x < nf; x++) {
+    const size_t np = ss_split_npar(L, x);
+    if (w->nhexat[x] == 0 || (np != 2 && np != 4)) continue;
+    for (size_t q = L->ptr[x]; q < L->ptr[x + 1]; q++) {
+      const ss_idx a = L->parent[q];
+      if (np == 2) w->nedgeat[a]++;
+      if (np == 4) w->nfaceat[a]++;
+      if (np == 4 && w->nhexat[x] == 1) w->bnd[a] = 1;
+    }
+  }
+  for (size_t v = 0; v < nc; v++) {
+    if (!w->nhexat[v]) continue;
+    const long chi = (long)w->nedgeat[v] - (long)w->nfaceat[v] + (long)w->nhexat[v];
+    if (chi != (w->bnd[v] ? 1 : 2))
+      return ss_error_set(err, SS_EINPUT,
+                          "scheme ccsolid: the hexahedra at vertex %zu do not form a "
+                          "%s (their link has Euler characteristic %ld; non-manifold "
+                          "mesh)",
+                          v + 1, w->bnd[v] ? "half-ball" : "ball", chi);
+  }
+  return SS_OK;
+}
+
+/* Add the 4 fine quads of the boundary face f (lattice point) of hex h. */
+static void add_face_children(cs_work *w, size_t h, int f) {
+  int pts[9];
+  face_points(f, pts); /* pts[3 a + b], a, b in 0..2 over two free digits */
+  for (int a = 0; a < 2; a++)
+    for (int b = 0; b < 2; b++) {
+      ss_idx *q = w->quads + 4 * w->nquads++;
+      q[0] = w->lat[h * NLAT + (size_t)pts[3 * a + b]];
+      q[1] = w->lat[h * NLAT + (size_t)pts[3 * (a + 1) + b]];
+      q[2] = w->lat[h * NLAT + (size_t)pts[3 * (a + 1) + b + 1]];
+      q[3] = w->lat[h * NLAT + (size_t)pts[3 * a + b + 1]];
+    }
+}
+
+/* The surface (header): its fine quads, the marks `on`, and the surface rule
+ * on a split restricted to the marked vertices. */
+static ss_status surface_rule(const ss_cx *fine, const ss_split *L, cs_work *w,
+                              ss_sink *k, ss_error *err) {
+  const size_t nf = fine->nv;
+  for (size_t q = 0; q < fine->nc[SS_QUAD]; q++) {
+    const ss_idx *v = ss_cx_cell(fine, SS_QUAD, q);
+    for (int i = 0; i < 4; i++)
+      if (ss_split_npar(L, v[i]) == 4) w->expl[v[i]] = 1;
+  }
+  for (size_t i = 0; i < fine->nc[SS_QUAD] * 4; i++)
+    w->quads[i] = fine->cells[SS_QUAD][i];
+  w->nquads = fine->nc[SS_QUAD];
+  for (size_t h = 0; h < w->nhex; h++)
+    for (int p = 0; p < NLAT; p++) {
+      if (lat_kind(p) != 2) continue;
+      const ss_idx f = w->lat[h * NLAT + (size_t)p];
+      if (w->nhexat[f] == 1 && !w->expl[f]) add_face_children(w, h, p);
+    }
+  for (size_t i = 0; i < w->nquads * 4; i++)
+    w->on[w->quads[i]] = 1;
+  for (size_t i = 0; i < fine->nc[SS_SEGMENT] * 2; i++)
+    w->on[fine->cells[SS_SEGMENT][i]] = 1;
+  for (size_t i = 0; i < fine->nc[SS_VERTEX]; i++)
+    w->on[fine->cells[SS_VERTEX][i]] = 1;
+  /* a fine vertex off the surface is no edge or face of it: no parents */
+  w->lptr[0] = 0;
+  size_t m = 0;
+  ss_idx *par = malloc((L->ptr[nf] + 1) * sizeof *par);
+  if (!par) return ss_error_nomem(err, "ccsolid surface");
+  for (size_t x = 0; x < nf; x++) {
+    if (w->on[x])
+      for (size_t q = L->ptr[x]; q < L->ptr[x + 1]; q++)
+        par[m++] = L->parent[q];
+    w->lptr[x + 1] = m;
+  }
+  ss_split Ls = {L->ncoarse, nf, w->lptr, par};
+  ss_cx surf = {0};
+  surf.dim = fine->dim;
+  surf.nv = nf;
+  surf.nc[SS_QUAD] = w->nquads;
+  surf.cells[SS_QUAD] = w->quads;
+  surf.nc[SS_SEGMENT] = fine->nc[SS_SEGMENT];
+  surf.cells[SS_SEGMENT] = fine->cells[SS_SEGMENT];
+  surf.nc[SS_VERTEX] = fine->nc[SS_VERTEX];
+  surf.cells[SS_VERTEX] = fine->cells[SS_VERTEX];
+  ss_status st = ss_scheme_catmull_clark_emit(&surf, &Ls, w->on, k, err);
+  free(par);
+  return st;
+}
+
+/* The volume rules of the header for every fine vertex off the surface. */
+static void volume_rule(const ss_cx *fine, const ss_split *L, const cs_work *w,
+                        ss_sink *k) {
+  const size_t nf = fine->nv;
+  for (size_t x = 0; x < nf; x++) {
+    if (w->on[x]) continue;
+    const size_t np = ss_split_npar(L, x);
+    const double n = (double)w->nhexat[x];
+    if (np == 8 || w->nhexat[x] == 0)
+      ss_sink_emit(k, x, x, 1.0); /* cell point, or a vertex in no cell */
+    else if (np == 4)
+      ss_sink_emit(k, x, x, 0.5);
+    else
+      ss_sink_emit(k, x, x, (n - (np == 2 ? 3.0 : 7.0)) / n);
+  }
+  for (size_t h = 0; h < w->nhex; h++) {
+    const ss_idx *lat = w->lat + h * NLAT;
+    const ss_idx c = lat[13]; /* the cell point, lattice (1, 1, 1) */
+    for (int p = 0; p < NLAT; p++) {
+      const ss_idx x = lat[p];
+      const int kind = lat_kind(p);
+      if (kind == 3 || w->on[x]) continue;
+      const double n = (double)w->nhexat[x];
+      int t[3];
+      lat_digits(p, t);
+      if (kind == 2) { /* face: C0 / 4 + C1 / 4 */
+        ss_sink_emit(k, x, c, 0.25);
+      } else if (kind == 1) { /* edge: its n faces are this hex's 2, twice */
+        ss_sink_emit(k, x, c, 1.0 / (n * n));
+        for (int i = 0; i < 3; i++) {
+          if (t[i] == 1) continue;
+          int u[3] = {t[0], t[1], t[2]};
+          u[i] = 1;
+          /* 2 A / n over n faces, each seen from its 2 hexes */
+          ss_sink_emit(k, x, lat[lat_index(u)], 1.0 / (n * n));
+        }
+      } else { /* vertex */
+        ss_sink_emit(k, x, c, 1.0 / (n * n));
+        const double nfa = (double)w->nfaceat[x], ned = (double)w->nedgeat[x];
+        for (int i = 0; i < 3; i++) {
+          int u[3] = {t[0], t[1], t[2]};
+          u[i] = 1;
+          const ss_idx e = lat[lat_index(u)];
+          ss_sink_emit(k, x, e, 3.0 / (n * ned * (double)w->nhexat[e]));
+          u[(i + 1) % 3] = 1; /* the face spanned by directions i, i + 1 */
+          ss_sink_emit(k, x, lat[lat_index(u)], 3.0 / (n * nfa * 2.0));
+        }
+      }
+    }
+  }
+}
+
+static ss_status ccsolid_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                              const ss_split *L, ss_sink *k, ss_error *err) {
+  (void)s;
+  (void)coarse; /* the split complex and L say all this rule needs */
+  const size_t nf = fine->nv, nc = L->ncoarse;
+  cs_work w = {0};
+  w.nhex = fine->nc[SS_HEX] / 8;
+  w.lat = malloc((w.nhex * NLAT + 1) * sizeof *w.lat);
+  w.uf = malloc((w.nhex * NLAT + 1) * sizeof *w.uf);
+  w.nhexat = calloc(nf + 1, sizeof *w.nhexat);
+  w.pair = malloc((nf + 1) * sizeof *w.pair);
+  w.nfaceat = calloc(nc + 1, sizeof *w.nfaceat);
+  w.nedgeat = calloc(nc + 1, sizeof *w.nedgeat);
+  w.bnd = calloc(nc + 1, 1);
+  w.on = calloc(nf + 1, 1);
+  w.expl = calloc(nf + 1, 1);
+  w.lptr = malloc((nf + 1) * sizeof *w.lptr);
+  ss_status st = SS_OK;
+  if (!w.lat || !w.uf || !w.nhexat || !w.pair || !w.nfaceat || !w.nedgeat || !w.bnd ||
+      !w.on || !w.expl || !w.lptr) {
+    st = ss_error_nomem(err, "ccsolid rule");
+    goto done;
+  }
+  build_lattices(fine, &w);
+  for (size_t i = 0; i < w.nhex * NLAT; i++)
+    w.nhexat[w.lat[i]]++;
+  /* surface quads: the explicit ones and 4 per boundary face */
+  size_t nbface = 0;
+  for (size_t i = 0; i < w.nhex * NLAT; i++)
+    nbface += lat_kind((int)(i % NLAT)) == 2 && w.nhexat[w.lat[i]] == 1;
+  w.quads = malloc((4 * (fine->nc[SS_QUAD] + 4 * nbface) + 1) * sizeof *w.quads);
+  if (!w.quads) {
+    st = ss_error_nomem(err, "ccsolid surface");
+    goto done;
+  }
+  if ((st = check_manifold(fine, L, &w, err))) goto done;
+  if ((st = surface_rule(fine, L, &w, k, err))) goto done;
+  volume_rule(fine, L, &w, k);
+done:
+  free(w.lat);
+  free(w.uf);
+  free(w.nhexat);
+  free(w.pair);
+  free(w.nfaceat);
+  free(w.nedgeat);
+  free(w.bnd);
+  free(w.on);
+  free(w.expl);
+  free(w.quads);
+  free(w.lptr);
+  return st;
+}
+
+ss_status ss_scheme_ccsolid_new(ss_scheme **out, ss_error *err) {
+  unsigned accepts =
+      (1u << SS_VERTEX) | (1u << SS_SEGMENT) | (1u << SS_QUAD) | (1u << SS_HEX);
+  return ss_scheme_alloc("ccsolid", SS_SPLIT_MULTILINEAR, accepts, ccsolid_rule, out,
+                         err);
+}
