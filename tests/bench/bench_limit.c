@@ -80,11 +80,14 @@ static void per_point(const ss_scheme *s, ss_cx *m, size_t cell, const double ba
   ss_limit_free(L);
 }
 
-int main(void) {
+static int run(const char *name) {
   ss_error err = {0};
   ss_scheme *s;
-  if (ss_scheme_new("mlca", &s, &err)) return 1;
-  printf("bench_limit: scheme mlca; times per point, best of several rounds\n");
+  if (ss_scheme_new(name, &s, &err)) {
+    fprintf(stderr, "bench_limit: %s\n", err.msg);
+    return 1;
+  }
+  printf("\n==== scheme %s; times per point, best of several rounds\n", name);
 
   /* an extraordinary vertex (icosahedron link: 12 edges of valence 5 at it) */
   tm_link *l = tm_link_named("icosahedron");
@@ -140,4 +143,8 @@ int main(void) {
   ss_cx_free(big);
   ss_scheme_free(s);
   return 0;
+}
+
+int main(void) {
+  return run("mlca") || run("ccsolid");
 }
