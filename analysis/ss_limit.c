@@ -623,17 +623,24 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const lim_eig *e, unsigne
   double scale = 0.0;
   for (size_t j = 0; j < K * 3; j++)
     if (fabs(P[j] - P[j % 3]) > scale) scale = fabs(P[j] - P[j % 3]);
+  double *C = malloc((K * 3 + 1) * sizeof *C);
+  if (!C) {
+    free(Q);
+    return ss_error_nomem(err, "fixed-point Jacobian");
+  }
+  lim_eig_coef(e, P, C);
   for (size_t i = 0; i < K; i++) {
-    double complex c[3] = {0, 0, 0};
-    for (size_t j = 0; j < K; j++)
-      for (int d = 0; d < 3; d++)
-        c[d] += e->Vinv[j * K + i] * P[j * 3 + (size_t)d];
-    double cn = cabs(c[0]) + cabs(c[1]) + cabs(c[2]), al = cabs(e->lam[i]);
-    if (i == e->one || cn <= 1e-9 * scale || al < 0.5 - 1e-8) continue;
-    if (fabs(al - 0.5) <= 1e-8 && fabs(cimag(e->lam[i])) <= 1e-8) {
+    const double *c = C + i * 3;
+    double cn = fabs(c[0]) + fabs(c[1]) + fabs(c[2]), al = cabs(e->lam[i]);
+    if (e->pair[i] == 1) cn += fabs(c[3]) + fabs(c[4]) + fabs(c[5]);
+    if (i == e->one || cn <= 1e-9 * scale || al < 0.5 - 1e-8) {
+      if (e->pair[i] == 1) i++;
+      continue;
+    }
+    if (fabs(al - 0.5) <= 1e-8 && e->pair[i] == 0) {
       for (size_t r = 0; r < K; r++)
         for (int d = 0; d < 3; d++)
-          Q[r * 3 + (size_t)d] += creal(e->V[i * K + r] * c[d]);
+          Q[r * 3 + (size_t)d] += e->V[i * K + r] * c[d];
       continue;
     }
     st =
@@ -642,8 +649,10 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const lim_eig *e, unsigne
                      "extraordinary vertex or edge, or the boundary): the eigenvalue "
                      "%.6g%+.6gi of its run has modulus >= 1/2 and is not 1/2",
                      cell + 1, creal(e->lam[i]), cimag(e->lam[i]));
+    free(C);
     goto done;
   }
+  free(C);
   for (int a = 0; a < 3; a++) {
     lim_pt y;
     for (int d = 0; d < 3; d++) {

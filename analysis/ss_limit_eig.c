@@ -17,6 +17,7 @@ void lim_eig_free(lim_eig *e) {
   free(e->V);
   free(e->Vinv);
   free(e->lam);
+  free(e->pair);
   free(e);
 }
 
@@ -57,13 +58,13 @@ static void matvec(const double *A, size_t K, double *P, double *tmp) {
   memcpy(P, tmp, K * 3 * sizeof *P);
 }
 
-/* 1-norm of a K x K column-major complex matrix. */
-static double norm1(const double complex *A, size_t K) {
+/* 1-norm of a K x K matrix. */
+static double norm1(const double *A, size_t K) {
   double m = 0.0;
   for (size_t j = 0; j < K; j++) {
     double s = 0.0;
     for (size_t i = 0; i < K; i++)
-      s += cabs(A[j * K + i]);
+      s += fabs(A[j * K + i]);
     if (s > m) m = s;
   }
   return m;
@@ -86,7 +87,8 @@ ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err) {
   e->V = malloc((K * K + 1) * sizeof *e->V);
   e->Vinv = malloc((K * K + 1) * sizeof *e->Vinv);
   e->lam = malloc((K + 1) * sizeof *e->lam);
-  if (!e->V || !e->Vinv || !e->lam) {
+  e->pair = calloc(K + 1, sizeof *e->pair);
+  if (!e->V || !e->Vinv || !e->lam || !e->pair) {
     st = ss_error_nomem(err, "eigen-decomposition");
     goto done;
   }
@@ -99,36 +101,33 @@ ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err) {
                      (int)info, K, K);
     goto done;
   }
-  /* complex eigenvectors from dgeev's packed pairs (row-major vr: column j) */
+  /* V real (column-major): a real eigenvalue's eigenvector, or for a pair
+   * a +- ib the real and imaginary parts x, y of x + iy (W [x y] = [x y]
+   * [a b; -b a]), each column or pair scaled to unit norm */
   for (size_t j = 0; j < K; j++) {
     e->lam[j] = CMPLX(wr[j], wi[j]);
-    if (wi[j] != 0.0 && j + 1 < K) {
-      for (size_t i = 0; i < K; i++) {
-        double re = vr[i * K + j], im = vr[i * K + j + 1];
-        e->V[j * K + i] = CMPLX(re, im);
-        e->V[(j + 1) * K + i] = CMPLX(re, -im);
-      }
-      e->lam[j + 1] = CMPLX(wr[j + 1], wi[j + 1]);
-      j++;
-    } else {
+    int pair = wi[j] != 0.0 && j + 1 < K;
+    size_t w = pair ? 2 : 1;
+    double s = 0.0;
+    for (size_t c = j; c < j + w; c++)
       for (size_t i = 0; i < K; i++)
-        e->V[j * K + i] = vr[i * K + j];
+        s += vr[i * K + c] * vr[i * K + c];
+    s = s > 0.0 ? sqrt(s) : 1.0;
+    for (size_t c = j; c < j + w; c++)
+      for (size_t i = 0; i < K; i++)
+        e->V[c * K + i] = vr[i * K + c] / s;
+    if (pair) {
+      e->lam[j + 1] = CMPLX(wr[j + 1], wi[j + 1]);
+      e->pair[j] = 1;
+      e->pair[j + 1] = 2;
+      j++;
     }
   }
-  /* unit columns, then the inverse */
-  for (size_t j = 0; j < K; j++) {
-    double s = 0.0;
-    for (size_t i = 0; i < K; i++)
-      s += creal(e->V[j * K + i] * conj(e->V[j * K + i]));
-    s = sqrt(s);
-    for (size_t i = 0; i < K; i++)
-      e->V[j * K + i] /= s > 0.0 ? s : 1.0;
-  }
   memcpy(e->Vinv, e->V, K * K * sizeof *e->V);
-  info = LAPACKE_zgetrf(LAPACK_COL_MAJOR, (lapack_int)K, (lapack_int)K, e->Vinv,
+  info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, (lapack_int)K, (lapack_int)K, e->Vinv,
                         (lapack_int)K, ipiv);
   if (info == 0)
-    info = LAPACKE_zgetri(LAPACK_COL_MAJOR, (lapack_int)K, e->Vinv, (lapack_int)K, ipiv);
+    info = LAPACKE_dgetri(LAPACK_COL_MAJOR, (lapack_int)K, e->Vinv, (lapack_int)K, ipiv);
   e->cond = info ? HUGE_VAL : norm1(e->V, K) * norm1(e->Vinv, K);
   if (!(e->cond <= SS_LIMIT_MAXCOND)) {
     snprintf(e->why, sizeof e->why,
@@ -162,6 +161,20 @@ done:
   else
     *out = e;
   return st;
+}
+
+void lim_eig_coef(const lim_eig *e, const double *P, double *C) {
+  const size_t K = e->K;
+  memset(C, 0, K * 3 * sizeof *C);
+  for (size_t j = 0; j < K; j++) {
+    const double *col = e->Vinv + j * K, *p = P + j * 3;
+    for (size_t i = 0; i < K; i++) {
+      double v = col[i];
+      C[i * 3] += v * p[0];
+      C[i * 3 + 1] += v * p[1];
+      C[i * 3 + 2] += v * p[2];
+    }
+  }
 }
 
 ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
@@ -200,55 +213,59 @@ ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
     free(tmp);
     return SS_OK;
   }
-  double complex *y = malloc((3 * K + 1) * sizeof *y);
-  if (!y) return ss_error_nomem(err, "eigen power");
-  /* y = diag(lam^m) V^-1 P; for finite m the eigenvalue-1 part (a uniform
-   * translation: its eigenvector is constant) goes to shift, not into P, so
-   * that its rounding (eps cond |P|, which does not shrink with m) does not
-   * swamp the differences of the result (|lambda_1|^m |P|) */
+  /* C = V^-1 P, then diag-block(lambda)^m C, then P = V C; for finite m
+   * the eigenvalue-1 part (a uniform translation: its eigenvector is
+   * constant) goes to shift, not into P, so that its rounding (eps cond |P|,
+   * which does not shrink with m) does not swamp the differences of the
+   * result (|lambda_1|^m |P|) */
   double sh[3] = {0, 0, 0};
+  double *C = malloc((K * 3 + 1) * sizeof *C);
+  if (!C) return ss_error_nomem(err, "eigen power");
+  lim_eig_coef(e, P, C);
   for (size_t i = 0; i < K; i++) {
-    double complex acc[3] = {0, 0, 0};
-    double complex f;
-    if (m < 0)
-      f = i == e->one ? 1.0 : 0.0;
-    else if (cimag(e->lam[i]) == 0.0)
-      f = pow(creal(e->lam[i]), (double)m);
-    else
-      f = cpow(e->lam[i], (double)m);
-    if (f != 0.0)
-      for (size_t j = 0; j < K; j++) {
-        double complex vij = e->Vinv[j * K + i];
-        for (int d = 0; d < 3; d++)
-          acc[d] += vij * P[j * 3 + (size_t)d];
-      }
-    if (m >= 0 && i == e->one && shift) {
+    double *c = C + i * 3;
+    if (m < 0) {
+      if (i != e->one) c[0] = c[1] = c[2] = 0.0;
+      continue;
+    }
+    if (i == e->one && shift) {
       double vbar = 0.0;
       for (size_t r = 0; r < K; r++)
-        vbar += creal(e->V[i * K + r]);
+        vbar += e->V[i * K + r];
       vbar /= (double)K;
       for (int d = 0; d < 3; d++) {
-        sh[d] = vbar * creal(acc[d]);
-        y[i * 3 + (size_t)d] = 0.0;
+        sh[d] = vbar * c[d];
+        c[d] = 0.0;
       }
       continue;
     }
-    for (int d = 0; d < 3; d++)
-      y[i * 3 + (size_t)d] = f * acc[d];
-  }
-  /* P = Re(V y) */
-  for (size_t r = 0; r < K; r++) {
-    double complex acc[3] = {0, 0, 0};
-    for (size_t i = 0; i < K; i++) {
-      double complex vri = e->V[i * K + r];
-      if (y[i * 3] == 0.0 && y[i * 3 + 1] == 0.0 && y[i * 3 + 2] == 0.0) continue;
-      for (int d = 0; d < 3; d++)
-        acc[d] += vri * y[i * 3 + (size_t)d];
+    if (e->pair[i] == 1) {
+      /* [c_i; c_i+1] <- r^m [cos m t, sin m t; -sin m t, cos m t] [c_i; c_i+1] */
+      double r = pow(cabs(e->lam[i]), (double)m), t = (double)m * carg(e->lam[i]);
+      double cs = r * cos(t), sn = r * sin(t), *c2 = c + 3;
+      for (int d = 0; d < 3; d++) {
+        double x = c[d], y = c2[d];
+        c[d] = cs * x + sn * y;
+        c2[d] = -sn * x + cs * y;
+      }
+      i++;
+      continue;
     }
+    double f = pow(creal(e->lam[i]), (double)m);
     for (int d = 0; d < 3; d++)
-      P[r * 3 + (size_t)d] = creal(acc[d]);
+      c[d] *= f;
   }
+  memset(P, 0, K * 3 * sizeof *P);
+  for (size_t i = 0; i < K; i++) {
+    const double *col = e->V + i * K, *c = C + i * 3;
+    if (c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0) continue;
+    for (size_t r = 0; r < K; r++) {
+      P[r * 3] += col[r] * c[0];
+      P[r * 3 + 1] += col[r] * c[1];
+      P[r * 3 + 2] += col[r] * c[2];
+    }
+  }
+  free(C);
   if (shift) memcpy(shift, sh, sizeof sh);
-  free(y);
   return SS_OK;
 }

@@ -87,17 +87,21 @@ ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
 /* Eigen-decomposition of a stationary run's matrix W (K x K, row-major):
  * W = V diag(lam) V^-1. */
 typedef struct {
-  size_t K;             /* size */
-  int ok;               /* 1 if usable; 0: why says why */
-  char why[256];        /* reason it is not */
-  double cond;          /* ||V||_1 ||V^-1||_1 with unit columns */
-  double complex *V;    /* K x K, column-major */
-  double complex *Vinv; /* K x K, column-major */
-  double complex *lam;  /* K eigenvalues */
-  size_t one;           /* index of the eigenvalue 1, or SIZE_MAX if not simple */
-  double second;        /* largest |lambda| other than 1 */
-  double *pw;           /* cond > SS_LIMIT_MAXCOND: W^(2^i), i < LIM_NPOW, each
-                           K x K row-major; else NULL */
+  size_t K;            /* size */
+  int ok;              /* 1 if usable; 0: why says why */
+  char why[256];       /* reason it is not */
+  double cond;         /* ||V||_1 ||V^-1||_1 with unit columns */
+  double *V;           /* K x K, column-major: column j the eigenvector of a
+                          real lam[j]; for a pair a +- ib (pair 1, 2) the
+                          real and imaginary parts x, y of x + iy, so that
+                          W [x y] = [x y] [a b; -b a] */
+  double *Vinv;        /* K x K, column-major: V^-1 */
+  double complex *lam; /* K eigenvalues */
+  int *pair;           /* K: 0 real, 1 first of a complex pair, 2 second */
+  size_t one;          /* index of the eigenvalue 1, or SIZE_MAX if not simple */
+  double second;       /* largest |lambda| other than 1 */
+  double *pw;          /* cond > SS_LIMIT_MAXCOND: W^(2^i), i < LIM_NPOW, each
+                          K x K row-major; else NULL */
 } lim_eig;
 
 #define LIM_NPOW                                                                         \
@@ -110,6 +114,9 @@ typedef struct {
  * LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK fails outright. */
 ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err);
 void lim_eig_free(lim_eig *e);
+/* C (K x 3) = V^-1 P (P K x 3, row-major): the coefficients of P's points on
+ * the eigenvectors (real ones, and x, y of a pair). */
+void lim_eig_coef(const lim_eig *e, const double *P, double *C);
 /* P (K x 3, row-major) <- W^m P; m < 0 means the limit m -> infinity (the
  * projection on the eigenvalue 1, which must be simple and every other
  * |lambda| < 1).  With shift not NULL and m >= 0, the eigenvalue-1 part of

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "ss_limit.h"
+#include "ss_limit_impl.h"
 #include "ss_scheme.h"
 #include "ss_test.h"
 #include "ss_testmesh.h"
@@ -594,6 +595,64 @@ static void test_faces(const ss_scheme *s, int n) {
   ss_cx_free(e);
 }
 
+/* W^m by the eigen-decomposition against repeated products, for a matrix
+ * with a complex pair (0.6 e^(+-0.7i)), the eigenvalue 1 and real ones:
+ * the real 2x2 blocks of the pairs must rotate by m theta. */
+static void test_eig_power(void) {
+  ss_error err = {0};
+  enum { K = 5 };
+  const double r = 0.6, th = 0.7;
+  const double D[K][K] = {{r * cos(th), r * sin(th), 0, 0, 0},
+                          {-r * sin(th), r * cos(th), 0, 0, 0},
+                          {0, 0, 1, 0, 0},
+                          {0, 0, 0, 0.3, 0},
+                          {0, 0, 0, 0, -0.2}};
+  double T[K][K], Ti[K][K], W[K * K];
+  /* T unit lower triangular plus a little: its inverse by substitution */
+  for (int i = 0; i < K; i++)
+    for (int j = 0; j < K; j++)
+      T[i][j] = i == j ? 1.0 : j < i ? 0.3 * (i + 2 * j + 1) / K : 0.0;
+  for (int j = 0; j < K; j++)
+    for (int i = 0; i < K; i++) {
+      double v = i == j ? 1.0 : 0.0;
+      for (int q = 0; q < i; q++)
+        v -= T[i][q] * Ti[q][j];
+      Ti[i][j] = v;
+    }
+  for (int i = 0; i < K; i++)
+    for (int j = 0; j < K; j++) {
+      double v = 0.0;
+      for (int a = 0; a < K; a++)
+        for (int b = 0; b < K; b++)
+          v += T[i][a] * D[a][b] * Ti[b][j];
+      W[i * K + j] = v;
+    }
+  lim_eig *e;
+  REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+  CHECK(e->ok && !e->pw, "a diagonalisable matrix: %s", e->why);
+  int pairs = 0;
+  for (int i = 0; i < K; i++)
+    pairs += e->pair[i] == 1;
+  CHECK(pairs == 1, "one complex pair found, not %d", pairs);
+  for (long m = 0; m <= 9; m += 3) {
+    double P[K * 3], Q[K * 3];
+    for (int i = 0; i < K * 3; i++)
+      P[i] = Q[i] = sin(1.0 + i);
+    REQUIRE_OK_VOID(lim_eig_power(e, m, P, NULL, &err), &err);
+    for (long step = 0; step < m; step++) {
+      double N[K * 3] = {0};
+      for (int i = 0; i < K; i++)
+        for (int j = 0; j < K; j++)
+          for (int d = 0; d < 3; d++)
+            N[i * 3 + d] += W[i * K + j] * Q[j * 3 + d];
+      memcpy(Q, N, sizeof N);
+    }
+    for (int i = 0; i < K * 3; i++)
+      CHECK_CLOSE(P[i], Q[i], 1e-13, "W^%ld P entry %d", m, i);
+  }
+  lim_eig_free(e);
+}
+
 static void test_scheme(ss_scheme *s) {
   test_regular(s);
   test_eviction(s);
@@ -649,6 +708,7 @@ static void test_scheme(ss_scheme *s) {
 /* Every scheme named on the command line; a name ending in '?' is skipped
  * when it is not built in (ccsolid, before it lands). */
 int main(int argc, char **argv) {
+  test_eig_power();
   for (int i = 1; i < argc; i++) {
     char name[64];
     snprintf(name, sizeof name, "%s", argv[i]);
