@@ -24,6 +24,27 @@ typedef struct {
   lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
 } lim_trans;
 
+/* The layered structure of a patch around an extraordinary edge (the
+ * paper's eq. (1)): the patch points in 4 layers along the edge, columns
+ * across them, and whether both stationary halves W_b factor as A_b (x) T,
+ * A_b the cubic B-spline's 4 x 4 left/right matrices. */
+typedef struct {
+  int status;         /* 1 factors, -1 does not (or no edge here) */
+  int axis;           /* the edge's axis in the patch's frame */
+  int *layer;         /* K: 0..3, the B-spline index along the axis */
+  size_t *col;        /* K: the column of each point */
+  size_t ncol;        /* columns */
+  size_t (*colpt)[4]; /* ncol x 4: the point of each column in each layer */
+} lim_tensor;
+
+static void tensor_free(lim_tensor *t) {
+  if (!t) return;
+  free(t->layer);
+  free(t->col);
+  free(t->colpt);
+  free(t);
+}
+
 /* A patch topology met so far. */
 typedef struct {
   lim_patch patch;  /* key, regularity and net (src: of the instance below) */
@@ -33,6 +54,7 @@ typedef struct {
   int coarse_only;  /* 1 while only coarse cells have this patch (no transition
                        leads to it): its transitions may be evicted */
   int held;         /* 1 while its transitions are in the ring of recent ones */
+  lim_tensor *ten;  /* the layered structure, computed on first need */
   size_t src_cell;  /* coarse-only: a mesh cell with this patch, to rebuild the
                        instance cx from (it is dropped with the transitions) */
 } lim_state;
@@ -61,6 +83,8 @@ struct ss_limit {
    * with the mesh; points are usually asked cell by cell. */
   size_t recent[LIM_RECENT]; /* ring of coarse-only states holding transitions */
   size_t nrecent;            /* entries ever pushed (the ring's head) */
+  int tensor;                /* use eq. (1) where an edge's runs factor (default
+                                1; ss_limit_set_tensor) */
   ss_limit_stats stats;
 };
 
@@ -70,6 +94,10 @@ size_t ss_limit_ncells(const ss_limit *L) {
 
 ss_limit_stats ss_limit_get_stats(const ss_limit *L) {
   return L->stats;
+}
+
+void ss_limit_set_tensor(ss_limit *L, int on) {
+  L->tensor = on != 0;
 }
 
 static void drop_transitions(lim_state *s) {
@@ -87,6 +115,7 @@ static void state_free(lim_state *s) {
   lim_patch_free(&s->patch);
   ss_cx_free(s->cx);
   drop_transitions(s);
+  tensor_free(s->ten);
   free(s);
 }
 
@@ -216,6 +245,7 @@ ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
   ss_limit *L = calloc(1, sizeof *L);
   if (!L) return ss_error_nomem(err, "limit evaluator");
   L->s = s;
+  L->tensor = 1;
   if ((st = ss_cx_copy(mesh, &L->mesh, err))) goto done;
   if ((st = lim_adj_build(L->mesh, &L->adj, err))) goto done;
   L->loc = malloc((mesh->nv + 1) * sizeof *L->loc);
@@ -593,8 +623,8 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
 }
 
 static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
-                      double M[3][3], int derivatives, size_t cell, ss_limit_point *out,
-                      ss_error *err);
+                      double M[3][3], int derivatives, int no_tensor, size_t cell,
+                      ss_limit_point *out, ss_error *err);
 
 /* The Jacobian at a fixed point: corner b (bits) of state s, whose run
  * matrix has eigen-decomposition e, patch points P.  With P = sum_i v_i c_i^T
@@ -669,7 +699,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const lim_eig *e, unsigne
     ss_limit_point phi;
     double oq[3] = {0, 0, 0};
     memset(&phi, 0, sizeof phi);
-    if ((st = walk(L, s, Qa, oq, y, I3, 0, cell, &phi, err))) goto done;
+    if ((st = walk(L, s, Qa, oq, y, I3, 0, 1, cell, &phi, err))) goto done;
     const double sign = (b >> a) & 1u ? -2.0 : 2.0;
     for (int d = 0; d < 3; d++)
       J[a][d] = sign * phi.p[d];
@@ -694,11 +724,190 @@ static void recentre(double *P, size_t K, double o[3]) {
     o[d] += c[d];
 }
 
+/* Cubic B-spline rows of the left (b = 0) and right (b = 1) halves. */
+static const double bspline_half[2][4][4] = {{{0.5, 0.5, 0, 0},
+                                              {0.125, 0.75, 0.125, 0},
+                                              {0, 0.5, 0.5, 0},
+                                              {0, 0.125, 0.75, 0.125}},
+                                             {{0.125, 0.75, 0.125, 0},
+                                              {0, 0.5, 0.5, 0},
+                                              {0, 0.125, 0.75, 0.125},
+                                              {0, 0, 0.5, 0.5}}};
+
+static size_t uf_find(size_t *p, size_t i) {
+  while (p[i] != i)
+    i = p[i] = p[p[i]];
+  return i;
+}
+
+/* The layered structure of state i, whose child k is a stationary run: it
+ * is an extraordinary edge's when exactly one neighbour k ^ (1 << a) of k is
+ * a stationary run too (a vertex has none, a boundary face two), the
+ * positions along a are consistent, the points form columns of 4 layers
+ * across a, and both runs' W factor as A_b (x) T to 1e-12. */
+static ss_status tensor_of(ss_limit *L, size_t i, int k, lim_tensor **out,
+                           ss_error *err) {
+  ss_status st = SS_OK;
+  lim_state *S = L->st[i];
+  if (S->ten) {
+    *out = S->ten;
+    return SS_OK;
+  }
+  lim_tensor *T = calloc(1, sizeof *T);
+  size_t *uf = NULL;
+  double *F = NULL;
+  if (!T) return ss_error_nomem(err, "layers");
+  T->status = -1;
+  const size_t K = S->patch.nv;
+  unsigned bk = ss_cube_corner_bits(3, k);
+  int axis = -1, runs = 0;
+  lim_trans *tr[2] = {NULL, NULL};
+  for (int a = 0; a < 3; a++) {
+    lim_trans *t;
+    if ((st = transition(L, i, ss_cube_corner_index(3, bk ^ (1u << a)), &t, err)))
+      goto done;
+    if (t->next == i && lim_frame_is_id(&t->g)) {
+      runs++;
+      axis = a;
+      tr[(bk >> a) & 1u ? 0 : 1] = t;
+    }
+  }
+  S = L->st[i];
+  if (runs != 1 || (S->patch.posbad >> axis) & 1u) goto done;
+  tr[(bk >> axis) & 1u] = S->tr[k];
+  T->axis = axis;
+  T->layer = malloc((K + 1) * sizeof *T->layer);
+  T->col = malloc((K + 1) * sizeof *T->col);
+  T->colpt = malloc((K + 1) * sizeof *T->colpt);
+  uf = malloc((K + 1) * sizeof *uf);
+  if (!T->layer || !T->col || !T->colpt || !uf) {
+    st = ss_error_nomem(err, "layers");
+    goto done;
+  }
+  for (size_t v = 0; v < K; v++) {
+    int l = S->patch.pos[v][axis] + 1;
+    if (l < 0 || l > 3) goto done;
+    T->layer[v] = l;
+    uf[v] = v;
+  }
+  /* columns: the ends of every cell edge along the axis */
+  for (size_t c = 0; c < S->patch.ncells; c++)
+    for (unsigned b = 0; b < 8; b++)
+      if (!((b >> axis) & 1u)) {
+        size_t u = S->patch.key[c * 8 + (size_t)ss_cube_corner_index(3, b)];
+        size_t w =
+            S->patch.key[c * 8 + (size_t)ss_cube_corner_index(3, b | (1u << axis))];
+        uf[uf_find(uf, u)] = uf_find(uf, w);
+      }
+  for (size_t v = 0; v < K; v++)
+    T->col[v] = SIZE_MAX;
+  for (size_t v = 0; v < K; v++) {
+    size_t r = uf_find(uf, v);
+    if (T->col[r] == SIZE_MAX) {
+      T->col[r] = T->ncol;
+      for (int l = 0; l < 4; l++)
+        T->colpt[T->ncol][l] = SIZE_MAX;
+      T->ncol++;
+    }
+    T->col[v] = T->col[r];
+  }
+  for (size_t v = 0; v < K; v++) {
+    size_t *slot = &T->colpt[T->col[v]][T->layer[v]];
+    if (*slot != SIZE_MAX) goto done; /* two points of a column in one layer */
+    *slot = v;
+  }
+  for (size_t c = 0; c < T->ncol; c++)
+    for (int l = 0; l < 4; l++)
+      if (T->colpt[c][l] == SIZE_MAX) goto done;
+  /* both halves: W[u][w] = A_b[layer u][layer w] F[col u][col w] */
+  F = malloc((T->ncol * T->ncol + 1) * sizeof *F);
+  if (!F) {
+    st = ss_error_nomem(err, "layers");
+    goto done;
+  }
+  for (int b = 0; b < 2; b++) {
+    const double *W = tr[b]->W;
+    for (size_t p = 0; p < T->ncol; p++)
+      for (size_t q = 0; q < T->ncol; q++)
+        F[p * T->ncol + q] =
+            W[T->colpt[p][1] * K + T->colpt[q][1]] / bspline_half[b][1][1];
+    for (size_t u = 0; u < K; u++)
+      for (size_t w = 0; w < K; w++) {
+        double want = bspline_half[b][T->layer[u]][T->layer[w]] *
+                      F[T->col[u] * T->ncol + T->col[w]];
+        if (!(fabs(W[u * K + w] - want) <= 1e-12)) goto done;
+      }
+  }
+  T->status = 1;
+  L->stats.tensor++;
+done:
+  free(uf);
+  free(F);
+  if (st) {
+    tensor_free(T);
+    return st;
+  }
+  L->st[i]->ten = T;
+  *out = T;
+  return SS_OK;
+}
+
+/* The point and Jacobian at pt of state s (whose child k is a stationary
+ * run along a factoring edge, T) by the paper's eq. (1): the limit is
+ * sum_(l,c) P[l,c] N_l(x_a) phi_c(y), so the net Q_c = sum_l N_l(x_a) P[l,c],
+ * put in every layer, has the same limit at (0, y) -- a corner along the
+ * edge, reached by one jump whatever x_a's digits; and the derivative along
+ * the edge is the limit at (0, y) of the net with N_l'. */
+static ss_status tensor_eval(ss_limit *L, size_t s, const lim_tensor *T, const double *P,
+                             const double o[3], lim_pt pt, double M[3][3],
+                             int derivatives, size_t cell, ss_limit_point *out,
+                             ss_error *err) {
+  ss_status st;
+  const size_t K = L->st[s]->patch.nv;
+  const int a = T->axis;
+  double x[3], bw[2][4];
+  pt_x(&pt, x);
+  basis(x[a], bw[0], bw[1]);
+  lim_pt p0 = pt;
+  p0.s[a] = 0;
+  p0.d[a] = 0.0;
+  for (int pass = 0; pass < (derivatives ? 2 : 1); pass++) {
+    double *Q = malloc((K * 3 + 1) * sizeof *Q), oq[3] = {0, 0, 0}, M2[3][3];
+    if (!Q) return ss_error_nomem(err, "layered net");
+    for (size_t v = 0; v < K; v++)
+      for (int d = 0; d < 3; d++) {
+        double acc = 0.0;
+        for (int l = 0; l < 4; l++)
+          acc += bw[pass][l] * P[T->colpt[T->col[v]][l] * 3 + (size_t)d];
+        Q[v * 3 + (size_t)d] = acc;
+      }
+    if (pass == 0)
+      for (int d = 0; d < 3; d++)
+        oq[d] = o[d];
+    memcpy(M2, M, sizeof M2);
+    ss_limit_point r;
+    memset(&r, 0, sizeof r);
+    if ((st = walk(L, s, Q, oq, p0, M2, pass == 0 ? derivatives : 0, 1, cell, &r, err)))
+      return st;
+    if (pass == 0) {
+      *out = r;
+      out->products++;
+    } else {
+      out->products += r.products + 1;
+      /* d/dx_a in the current frame, then through M like the other rows */
+      for (int i = 0; i < 3; i++)
+        for (int d = 0; d < 3; d++)
+          out->jac[i][d] += r.p[d] * M[a][i];
+    }
+  }
+  return SS_OK;
+}
+
 /* The walk from state s with patch points P (taken over and freed), relative
  * to the origin o (recentred on the way; out->p is absolute). */
 static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
-                      double M[3][3], int derivatives, size_t cell, ss_limit_point *out,
-                      ss_error *err) {
+                      double M[3][3], int derivatives, int no_tensor, size_t cell,
+                      ss_limit_point *out, ss_error *err) {
   ss_status st = SS_OK;
   double *P0 = NULL;
   int plain = 0;
@@ -716,6 +925,17 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
     if ((st = transition(L, s, k, &t, err))) goto done;
     S = L->st[s];
     if (t->next == s && lim_frame_is_id(&t->g)) {
+      if (!no_tensor && L->tensor) {
+        lim_tensor *T = NULL;
+        if ((st = tensor_of(L, s, k, &T, err))) goto done;
+        if (T->status == 1) {
+          int steps = out->steps, products = out->products;
+          st = tensor_eval(L, s, T, P, o, pt, M, derivatives, cell, out, err);
+          out->steps += steps;
+          out->products += products;
+          goto done;
+        }
+      }
       long m = run_length(&pt, ss_cube_corner_bits(3, k));
       if (m < 0 || m >= JUMP_MIN) {
         if (!t->eig) {
@@ -800,7 +1020,7 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
   for (size_t i = 0; i < K0; i++)
     memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
   double o[3] = {0, 0, 0};
-  return walk(L, s, P, o, q, M, derivatives, cell, out, err);
+  return walk(L, s, P, o, q, M, derivatives, 0, cell, out, err);
 }
 
 ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,

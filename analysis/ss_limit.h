@@ -95,6 +95,7 @@ typedef struct {
   size_t keys;        /* distinct patch topologies met */
   size_t transitions; /* (key, child) transitions computed */
   size_t eigs;        /* eigen-decompositions computed (stationary runs) */
+  size_t tensor;      /* extraordinary-edge patches found to factor (eq. (1)) */
 } ss_limit_stats;
 
 /* An evaluator for the limit of `mesh` under scheme s.  The scheme is
@@ -113,6 +114,12 @@ size_t ss_limit_ncells(const ss_limit *L);
 
 /* What the caches hold. */
 ss_limit_stats ss_limit_get_stats(const ss_limit *L);
+
+/* Whether to evaluate near extraordinary edges whose stationary halves factor
+ * as A_b (x) T (MLCA's do, Joy--MacCracken's do not) by the paper's eq. (1),
+ * in constant time (on, the default), or by the generic digit walk (off: for
+ * comparison; both give the same point). */
+void ss_limit_set_tensor(ss_limit *L, int on);
 
 /* The limit point of cell `cell` (0-based) at (u, v, w) in [0,1]^3 (u along
  * corner 0 -> 1, v along 0 -> 3, w along 0 -> 4; ss_cx.h), and with

@@ -36,6 +36,11 @@ typedef struct {
   uint32_t *key;    /* ncells * 8: framed cells as patch vertex numbers; cell 0
                        is the target in its frame */
   ss_idx *src;      /* nv vertex indices in the complex the patch was cut from */
+  int (*pos)[3];    /* nv grid positions relative to the target cell (its
+                       corners at 0 and 1), as the walk first met each vertex */
+  unsigned posbad;  /* bit d set if some vertex was met at two different
+                       positions along axis d (around an extraordinary edge
+                       the positions across it disagree, along it they do not) */
   int regular;      /* 1 if the patch is the 3x3x3 block of a grid */
   uint32_t net[64]; /* regular: patch vertex at grid position i + 4j + 16k,
                        position (i - 1, j - 1, k - 1) */

@@ -123,6 +123,7 @@ void lim_patch_free(lim_patch *p) {
   if (!p) return;
   free(p->key);
   free(p->src);
+  free(p->pos);
   memset(p, 0, sizeof *p);
 }
 
@@ -170,11 +171,11 @@ ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_
     cap += a->vptr[tv[i] + 1] - a->vptr[tv[i]];
   size_t *mem = malloc((cap + 1) * sizeof *mem);
   walk_cell *q = malloc((cap + 1) * sizeof *q);
-  int pos[8 * 64][3];
   int posok = 1;
   out->key = malloc((cap * 8 + 1) * sizeof *out->key);
   out->src = malloc((cap * 8 + 1) * sizeof *out->src);
-  if (!mem || !q || !out->key || !out->src) {
+  out->pos = malloc((cap * 8 + 1) * sizeof *out->pos);
+  if (!mem || !q || !out->key || !out->src || !out->pos) {
     st = ss_error_nomem(err, "patch");
     goto done;
   }
@@ -202,13 +203,15 @@ ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_
       if (loc[v] < 0) {
         loc[v] = (int64_t)out->nv;
         out->src[out->nv] = v;
-        if (out->nv < 8 * 64)
-          for (int d = 0; d < 3; d++)
-            pos[out->nv][d] = A->off[d] + (int)((b >> d) & 1u);
-        out->nv++;
-      } else if ((size_t)loc[v] < 8 * 64) {
         for (int d = 0; d < 3; d++)
-          if (pos[loc[v]][d] != A->off[d] + (int)((b >> d) & 1u)) posok = 0;
+          out->pos[out->nv][d] = A->off[d] + (int)((b >> d) & 1u);
+        out->nv++;
+      } else {
+        for (int d = 0; d < 3; d++)
+          if (out->pos[loc[v]][d] != A->off[d] + (int)((b >> d) & 1u)) {
+            posok = 0;
+            out->posbad |= 1u << d;
+          }
       }
       out->key[head * 8 + (size_t)i] = (uint32_t)loc[v];
     }
@@ -276,7 +279,7 @@ ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_
   if (tail == 27 && out->nv == 64 && posok) {
     int filled[64] = {0}, ok = 1;
     for (size_t v = 0; v < 64 && ok; v++) {
-      int i = pos[v][0] + 1, j = pos[v][1] + 1, k = pos[v][2] + 1;
+      int i = out->pos[v][0] + 1, j = out->pos[v][1] + 1, k = out->pos[v][2] + 1;
       if (i < 0 || i > 3 || j < 0 || j > 3 || k < 0 || k > 3 ||
           filled[i + 4 * j + 16 * k])
         ok = 0;

@@ -304,8 +304,8 @@ static void test_direct_vs_reference(const ss_scheme *s, const ss_cx *m,
     }
   ss_limit_stats st = ss_limit_get_stats(L);
   printf("%s: direct vs reference max %.2e, Jacobian vs central differences max %.2e "
-         "(relative); %zu keys, %zu transitions, %zu eigen-solves\n",
-         what, worst, worst_fd, st.keys, st.transitions, st.eigs);
+         "(relative); %zu keys, %zu transitions, %zu eigen-solves, %zu factoring edges\n",
+         what, worst, worst_fd, st.keys, st.transitions, st.eigs, st.tensor);
   ss_limit_free(L);
 }
 
@@ -653,6 +653,54 @@ static void test_eig_power(void) {
   lim_eig_free(e);
 }
 
+/* Near and on an extraordinary edge: the paper's eq. (1) (where the edge's
+ * halves factor) and the generic digit walk give the same points and
+ * Jacobians; MLCA's edges factor (O(1)), Joy--MacCracken's do not (the
+ * ccsolid finding: only the rows of points on the edge differ). */
+static void test_tensor(const ss_scheme *s, const ss_cx *m, size_t c, const char *what) {
+  ss_error err = {0};
+  ss_limit *A, *B;
+  REQUIRE_OK_VOID(ss_limit_new(s, m, &A, &err), &err);
+  REQUIRE_OK_VOID(ss_limit_new(s, m, &B, &err), &err);
+  ss_limit_set_tensor(B, 0);
+  const double xs[][3] = {{1e-3, 2e-3, 0.3},    {1e-9, 3e-9, 0.7131}, {0.01, 0.02, 0.03},
+                          {2e-13, 1e-13, 0.49}, {0.3, 0.2, 0.6},      {0, 0, 0.3}};
+  int maxprod = 0;
+  for (int q = 0; q < 6; q++) {
+    ss_limit_point a, b;
+    ss_status sa = ss_limit_eval(A, c, xs[q][0], xs[q][1], xs[q][2], 1, &a, &err);
+    ss_status sb = ss_limit_eval(B, c, xs[q][0], xs[q][1], xs[q][2], 1, &b, &err);
+    CHECK(sa == sb, "%s: point %d: status %d with eq. (1), %d without", what, q, sa, sb);
+    if (sa || sb) {
+      REQUIRE_OK_VOID(ss_limit_eval(A, c, xs[q][0], xs[q][1], xs[q][2], 0, &a, &err),
+                      &err);
+      REQUIRE_OK_VOID(ss_limit_eval(B, c, xs[q][0], xs[q][1], xs[q][2], 0, &b, &err),
+                      &err);
+    }
+    CHECK(dist(a.p, b.p) <= 1e-13, "%s: point %d: eq. (1) and the walk differ by %g",
+          what, q, dist(a.p, b.p));
+    if (!sa && !sb)
+      for (int i = 0; i < 3; i++)
+        for (int d = 0; d < 3; d++)
+          CHECK_CLOSE(a.jac[i][d], b.jac[i][d], 1e-10, "%s: point %d Jacobian (%d,%d)",
+                      what, q, i, d);
+    if (a.products > maxprod) maxprod = a.products;
+  }
+  ss_limit_stats st = ss_limit_get_stats(A);
+  if (!strcmp(ss_scheme_name(s), "mlca"))
+    CHECK(st.tensor >= 1 && maxprod <= 8,
+          "%s: MLCA's edge should factor (eq. (1), constant products): %zu, %d products",
+          what, st.tensor, maxprod);
+  if (!strcmp(ss_scheme_name(s), "ccsolid"))
+    CHECK(st.tensor == 0, "%s: a Joy-MacCracken edge factored", what);
+  printf("%s: eq. (1) %s, at most %d products per point\n", what,
+         st.tensor ? "applies (the halves factor)"
+                   : "does not apply (no factoring halves)",
+         maxprod);
+  ss_limit_free(A);
+  ss_limit_free(B);
+}
+
 static void test_scheme(ss_scheme *s) {
   test_regular(s);
   test_eviction(s);
@@ -676,6 +724,7 @@ static void test_scheme(ss_scheme *s) {
     if (n == 5) test_relabel(s, e, cells[0]);
     if (n == 3) test_rotated(s, e, what);
     test_faces(s, n);
+    test_tensor(s, e, cells[0], what);
     ss_cx_free(e);
   }
   /* the vertex with the icosahedron link (every edge at it of valence 5) */
