@@ -135,6 +135,17 @@ void ss_limit_free(ss_limit *L) {
   free(L);
 }
 
+/* Cubic B-spline rows of the left (b = 0) and right (b = 1) halves: child
+ * points at positions -1..2 of the half from the parent's at -1..2. */
+static const double bspline_half[2][4][4] = {{{0.5, 0.5, 0, 0},
+                                              {0.125, 0.75, 0.125, 0},
+                                              {0, 0.5, 0.5, 0},
+                                              {0, 0.125, 0.75, 0.125}},
+                                             {{0.125, 0.75, 0.125, 0},
+                                              {0, 0.5, 0.5, 0},
+                                              {0, 0.125, 0.75, 0.125},
+                                              {0, 0, 0.5, 0.5}}};
+
 /* Regular patches are evaluated by the tricubic B-spline, which is right only
  * if the scheme's rule on a regular grid is the tricubic B-spline's: check it
  * on the 3x3x3 block, child by child (the 1D rows are the cubic B-spline's
@@ -142,14 +153,7 @@ void ss_limit_free(ss_limit *L) {
  * product).  A stencil file with other hex weights is refused here instead
  * of evaluated wrongly. */
 static ss_status check_bspline(const ss_scheme *s, ss_error *err) {
-  static const double A[2][4][4] = {{{0.5, 0.5, 0, 0},
-                                     {0.125, 0.75, 0.125, 0},
-                                     {0, 0.5, 0.5, 0},
-                                     {0, 0.125, 0.75, 0.125}},
-                                    {{0.125, 0.75, 0.125, 0},
-                                     {0, 0.5, 0.5, 0},
-                                     {0, 0.125, 0.75, 0.125},
-                                     {0, 0, 0.5, 0.5}}};
+  const double(*A)[4][4] = bspline_half;
   ss_status st;
   ss_cx *g = NULL, *pcx = NULL, *ccx = NULL;
   lim_adj adj = {0};
@@ -723,16 +727,6 @@ static void recentre(double *P, size_t K, double o[3]) {
   for (int d = 0; d < 3; d++)
     o[d] += c[d];
 }
-
-/* Cubic B-spline rows of the left (b = 0) and right (b = 1) halves. */
-static const double bspline_half[2][4][4] = {{{0.5, 0.5, 0, 0},
-                                              {0.125, 0.75, 0.125, 0},
-                                              {0, 0.5, 0.5, 0},
-                                              {0, 0.125, 0.75, 0.125}},
-                                             {{0.125, 0.75, 0.125, 0},
-                                              {0, 0.5, 0.5, 0},
-                                              {0, 0.125, 0.75, 0.125},
-                                              {0, 0, 0.5, 0.5}}};
 
 static size_t uf_find(size_t *p, size_t i) {
   while (p[i] != i)
