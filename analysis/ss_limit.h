@@ -37,12 +37,17 @@
  *   - cells at an extraordinary vertex, the point in the cells around it:
  *     O(1) -- one step to level 1, one jump over the run, one step out, the
  *     B-spline (constant independent of the distance to the vertex);
- *   - near an extraordinary edge: the scheme-generic method.  The edge is not
- *     a tensor product for every scheme (Joy--MacCracken is not), so the walk
- *     follows the binary digits of the point; runs of equal digits are
- *     jumps, so the steps are bounded by the number of digit changes, at most
- *     about 53 per coordinate in double precision, each a K x K product
- *     (K ~ 100 patch points).  Bounded, not constant.
+ *   - near an extraordinary edge whose stationary halves factor as
+ *     A_b (x) T (checked on the patch; MLCA's do): O(1) by the paper's
+ *     eq. (1) -- the net summed along the edge with the cubic B-spline
+ *     weights, copied into every layer, has the same limit at the edge's
+ *     end, one jump away;
+ *   - near any other extraordinary edge (Joy--MacCracken's do not factor:
+ *     only the rows of the points on the edge differ): the walk follows the
+ *     binary digits of the point; runs of equal digits are jumps, so the
+ *     steps are bounded by the number of digit changes, at most about 53 per
+ *     coordinate in double precision, each a K x K product (K ~ 100 patch
+ *     points).  Bounded, not constant.
  * Boundary cells are walked the same way (the patch holds the boundary rule's
  * cells).  A point on the boundary surface (or exactly on an extraordinary
  * vertex or edge) never reaches a regular patch: every double is dyadic, so
