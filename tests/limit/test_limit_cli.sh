@@ -28,6 +28,11 @@ a=$("$exe" limit --scheme mlca "$mesh" --at "5 0.01 0.3 0.002" --at "7 0.6 0.1 0
 b=$("$exe" limit --scheme mlca "$mesh" --at "5 0.01 0.3 0.002" --at "7 0.6 0.1 0.9" --reference)
 d=$(paste <(echo "$a") <(echo "$b") | awk '{for (i = 5; i <= 7; i++) {e = $i - $(i + 7); if (e < 0) e = -e; if (e > m) m = e}} END {print (m <= 1e-12) ? "ok" : m}')
 checks=$((checks + 1)); [ "$d" = "ok" ] || fail "direct vs reference differ by $d"
+# the same for ccsolid
+a=$("$exe" limit --scheme ccsolid "$mesh" --at "5 0.01 0.3 0.002" --at "7 0.6 0.1 0.9")
+b=$("$exe" limit --scheme ccsolid "$mesh" --at "5 0.01 0.3 0.002" --at "7 0.6 0.1 0.9" --reference)
+d=$(paste <(echo "$a") <(echo "$b") | awk '{for (i = 5; i <= 7; i++) {e = $i - $(i + 7); if (e < 0) e = -e; if (e > m) m = e}} END {print (m <= 1e-12) ? "ok" : m}')
+checks=$((checks + 1)); [ "$d" = "ok" ] || fail "ccsolid: direct vs reference differ by $d"
 # VTK with -o: the sampled volume as hexahedra (20 cells x 2^3)
 expect 0 "" "$exe" limit --scheme mlca "$mesh" --samples 3 --format vtk -o "$tmp/v.vtk"
 checks=$((checks + 1)); grep -q "^CELLS 160 1440" "$tmp/v.vtk" || fail "vtk: no 160 hexahedra"
