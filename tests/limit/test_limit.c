@@ -384,6 +384,34 @@ static void test_bad_input(const ss_scheme *s) {
         "a scheme that is no B-spline on grids refused: %s", err.msg);
   ss_cx_free(g);
   ss_scheme_free(bad);
+  /* two cubes sharing only a vertex (non-manifold there), and three hexes
+   * on one face */
+  {
+    ss_cx *pin;
+    if (ss_cx_new(3, &pin, &err)) abort();
+    for (int c = 0; c < 2; c++)
+      for (int k = 0; k < 8; k++) {
+        unsigned b = ss_cube_corner_bits(3, k);
+        double x[3] = {(double)(b & 1u), (double)((b >> 1) & 1u),
+                       (double)((b >> 2) & 1u)};
+        if (c) x[0] = -x[0], x[1] = -x[1], x[2] = -x[2];
+        if (!(c && k == 0) && ss_cx_add_vertex(pin, x, 0, &err)) abort();
+      }
+    ss_idx h0[8] = {0, 1, 2, 3, 4, 5, 6, 7}, h1[8] = {0, 8, 9, 10, 11, 12, 13, 14};
+    ss_cx_add_cell(pin, SS_HEX, h0, 0, &err);
+    ss_cx_add_cell(pin, SS_HEX, h1, 0, &err);
+    REQUIRE_OK_VOID(ss_limit_new(s, pin, &L, &err), &err);
+    CHECK(ss_limit_eval(L, 0, 0.5, 0.5, 0.5, 0, &p, &err) == SS_EINPUT &&
+              strstr(err.msg, "not connected through faces"),
+          "pinched vertex refused: %s", err.msg);
+    ss_limit_free(L);
+    ss_idx h2[8] = {0, 1, 2, 3, 11, 12, 13, 14}, h3[8] = {0, 1, 2, 3, 8, 9, 10, 4};
+    ss_cx_add_cell(pin, SS_HEX, h2, 0, &err);
+    ss_cx_add_cell(pin, SS_HEX, h3, 0, &err);
+    CHECK(ss_limit_new(s, pin, &L, &err) == SS_EINPUT && strstr(err.msg, "more than two"),
+          "a face in three hexahedra refused: %s", err.msg);
+    ss_cx_free(pin);
+  }
   /* tetrahedra */
   ss_cx *t = tm_kuhn(1);
   ss_cx *t3;
