@@ -1,7 +1,8 @@
 /* ss_limit.h — the limit volume of a hex mesh: point and Jacobian at parameters
  * (u, v, w) of a cell, for any scheme with the multilinear split whose rule
  * reads only the coarse cells holding a fine vertex's birth element
- * (ss_scheme_reach == 1: mlca, ccsolid and the averaging family).
+ * (ss_scheme_reach == 1: mlca, ccsolid and the averaging family) and which
+ * is the tricubic B-spline on regular grids (checked by ss_limit_new).
  *
  * Why analysis/: the evaluator reads local subdivision matrices from the
  * scheme's global rule and eigen-decomposes them (LAPACK), like ss_local and
@@ -65,8 +66,16 @@
  * precision, and the Jacobian after m steps does not lose a factor 2^m.
  *
  * Defective eigenstructure (a run's W not diagonalisable to working accuracy:
- * condition of V above SS_LIMIT_MAXCOND) is SS_ENUMERIC with the reason, never
- * a silent wrong point.
+ * condition of V above SS_LIMIT_MAXCOND, as MLCA's icosahedron vertex, where
+ * 1/8 has a Jordan block): W^m is then formed from the cached powers
+ * W^(2^i) (at most 12 products, exact to rounding), and only a Jacobian at
+ * such a run's fixed point, which needs its eigenvectors, is refused
+ * (SS_ENUMERIC with the reason) -- never a silent wrong point.
+ *
+ * Memory: the transitions of patches that only coarse cells have are kept
+ * for the 64 most recent ones (and rebuilt when needed again); first use of
+ * an irregular coarse cell costs about a millisecond (its canonical frame and
+ * one refinement of its patch per child visited).
  *
  * The evaluator caches what it learns and is therefore not thread-safe: give
  * each thread its own. */
@@ -107,7 +116,8 @@ typedef struct {
  * borrowed (it must outlive the evaluator; schemes are immutable); the mesh
  * is copied.  SS_EINPUT when the mesh is not 3D, holds cells other than
  * hexahedra, has a face shared by more than two cells, or the scheme does not
- * split hexes multilinearly with a reach-1 rule; SS_ENOMEM.  O(cells). */
+ * split hexes multilinearly with a reach-1 rule or is not the tricubic
+ * B-spline on a regular grid; SS_ENOMEM.  O(cells). */
 ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
                        ss_error *err);
 
