@@ -734,11 +734,32 @@ static size_t uf_find(size_t *p, size_t i) {
   return i;
 }
 
+/* Whether W (Kc child points x T's K parent points, row-major) is A_b (x) F
+ * for some F: child point u in layer lc[u] of column cc[u] (ncc columns,
+ * cpt[c][l] the point of column c in layer l), parent points as T says;
+ * F (ncc x T->ncol) is scratch.  To 1e-12. */
+static int factors(const double *W, size_t Kc, const int *lc, const size_t *cc,
+                   size_t ncc, const size_t (*cpt)[4], const lim_tensor *T, int b,
+                   double *F) {
+  const size_t K = T->ncol * 4, n = T->ncol;
+  for (size_t p = 0; p < ncc; p++)
+    for (size_t q = 0; q < n; q++)
+      F[p * n + q] = W[cpt[p][1] * K + T->colpt[q][1]] / bspline_half[b][1][1];
+  for (size_t u = 0; u < Kc; u++)
+    for (size_t w = 0; w < K; w++) {
+      double want = bspline_half[b][lc[u]][T->layer[w]] * F[cc[u] * n + T->col[w]];
+      if (!(fabs(W[u * K + w] - want) <= 1e-12)) return 0;
+    }
+  return 1;
+}
+
 /* The layered structure of state i, whose child k is a stationary run: it
  * is an extraordinary edge's when exactly one neighbour k ^ (1 << a) of k is
  * a stationary run too (a vertex has none, a boundary face two), the
  * positions along a are consistent, the points form columns of 4 layers
- * across a, and both runs' W factor as A_b (x) T to 1e-12. */
+ * across a, both runs' W factor as A_b (x) T to 1e-12, and every other child
+ * is regular with its net factoring likewise -- then every basis function on
+ * the cell is a product N_l(x_a) phi_c(y), which eq. (1) needs. */
 static ss_status tensor_of(ss_limit *L, size_t i, int k, lim_tensor **out,
                            ss_error *err) {
   ss_status st = SS_OK;
@@ -814,23 +835,41 @@ static ss_status tensor_of(ss_limit *L, size_t i, int k, lim_tensor **out,
     for (int l = 0; l < 4; l++)
       if (T->colpt[c][l] == SIZE_MAX) goto done;
   /* both halves: W[u][w] = A_b[layer u][layer w] F[col u][col w] */
-  F = malloc((T->ncol * T->ncol + 1) * sizeof *F);
+  F = malloc((T->ncol * T->ncol + 64 * T->ncol + 1) * sizeof *F);
   if (!F) {
     st = ss_error_nomem(err, "layers");
     goto done;
   }
-  for (int b = 0; b < 2; b++) {
-    const double *W = tr[b]->W;
-    for (size_t p = 0; p < T->ncol; p++)
-      for (size_t q = 0; q < T->ncol; q++)
-        F[p * T->ncol + q] =
-            W[T->colpt[p][1] * K + T->colpt[q][1]] / bspline_half[b][1][1];
-    for (size_t u = 0; u < K; u++)
-      for (size_t w = 0; w < K; w++) {
-        double want = bspline_half[b][T->layer[u]][T->layer[w]] *
-                      F[T->col[u] * T->ncol + T->col[w]];
-        if (!(fabs(W[u * K + w] - want) <= 1e-12)) goto done;
-      }
+  for (int b = 0; b < 2; b++)
+    if (!factors(tr[b]->W, K, T->layer, T->col, T->ncol, (const size_t(*)[4])T->colpt, T,
+                 b, F))
+      goto done;
+  /* every other child: regular (a tricubic B-spline, a tensor product) with
+   * its net factoring the same way, its layers along the edge's axis */
+  for (int kk = 0; kk < 8; kk++) {
+    unsigned bb = ss_cube_corner_bits(3, kk);
+    if (((bb ^ bk) & ~(1u << axis)) == 0) continue; /* the two runs */
+    lim_trans *t;
+    if ((st = transition(L, i, kk, &t, err))) goto done;
+    const lim_patch *cp = &L->st[t->next]->patch;
+    if (!cp->regular) goto done;
+    int ca = 0; /* the child's framed axis along the edge */
+    while (t->g.perm[ca] != axis)
+      ca++;
+    int lay[64];
+    size_t col[64], colpt[16][4];
+    for (int g = 0; g < 64; g++) {
+      int ix[3] = {g % 4, (g / 4) % 4, g / 16};
+      int o1 = (ca + 1) % 3, o2 = (ca + 2) % 3;
+      int l = t->g.flip[ca] ? 3 - ix[ca] : ix[ca];
+      size_t v = cp->net[g];
+      lay[v] = l;
+      col[v] = (size_t)(4 * ix[o1] + ix[o2]);
+      colpt[col[v]][l] = v;
+    }
+    if (!factors(t->W, 64, lay, col, 16, (const size_t(*)[4])colpt, T,
+                 (int)((bb >> axis) & 1u), F))
+      goto done;
   }
   T->status = 1;
   L->stats.tensor++;
