@@ -529,3 +529,80 @@ int tm_same_geometry(const ss_cx *a, const ss_cx *b, double tol) {
   free(bmap);
   return bad;
 }
+
+/* nx x ny x nz unit hexes; vertex (i, j, k) at (i, j, k). */
+ss_cx *tm_hex_grid(int nx, int ny, int nz) {
+  ss_cx *cx;
+  ss_error err = {0};
+  if (ss_cx_new(3, &cx, &err)) abort();
+  for (int k = 0; k <= nz; k++)
+    for (int j = 0; j <= ny; j++)
+      for (int i = 0; i <= nx; i++) {
+        double x[3] = {i, j, k};
+        if (ss_cx_add_vertex(cx, x, 0, &err)) abort();
+      }
+#define GV(i, j, k) (ss_idx)((i) + (nx + 1) * ((j) + (ny + 1) * (k)))
+  for (int k = 0; k < nz; k++)
+    for (int j = 0; j < ny; j++)
+      for (int i = 0; i < nx; i++) {
+        ss_idx v[8] = {GV(i, j, k),
+                       GV(i + 1, j, k),
+                       GV(i + 1, j + 1, k),
+                       GV(i, j + 1, k),
+                       GV(i, j, k + 1),
+                       GV(i + 1, j, k + 1),
+                       GV(i + 1, j + 1, k + 1),
+                       GV(i, j + 1, k + 1)};
+        if (ss_cx_add_cell(cx, SS_HEX, v, 0, &err)) abort();
+      }
+#undef GV
+  return cx;
+}
+
+/* n sectors of R x R quads around the z axis (sector s between the unit rays
+ * at angles 2 pi s / n and 2 pi (s + 1) / n; its point (i, j) at i e_s +
+ * j e_s+1), extruded into nz layers: the z axis is an edge of valence n.
+ * Cell (s, i, j, k) (i, j < R) is cell ((k * n + s) * R + j) * R + i. */
+ss_cx *tm_edge_ring(int n, int R, int nz) {
+  ss_cx *cx;
+  ss_error err = {0};
+  if (ss_cx_new(3, &cx, &err)) abort();
+  /* 2D points: centre, n rays of R points, n sectors of R x R interior points */
+  int np = 1 + n * R + n * R * R;
+  for (int k = 0; k <= nz; k++)
+    for (int p = 0; p < np; p++) {
+      double x[3] = {0, 0, k};
+      if (p > 0 && p <= n * R) {
+        int s = (p - 1) / R, i = (p - 1) % R + 1;
+        x[0] = i * cos(2 * PI * s / n);
+        x[1] = i * sin(2 * PI * s / n);
+      } else if (p > n * R) {
+        int q = p - 1 - n * R, s = q / (R * R), i = q % R + 1, j = (q / R) % R + 1;
+        x[0] = i * cos(2 * PI * s / n) + j * cos(2 * PI * (s + 1) / n);
+        x[1] = i * sin(2 * PI * s / n) + j * sin(2 * PI * (s + 1) / n);
+      }
+      if (ss_cx_add_vertex(cx, x, 0, &err)) abort();
+    }
+  for (int k = 0; k < nz; k++)
+    for (int s = 0; s < n; s++)
+      for (int j = 0; j < R; j++)
+        for (int i = 0; i < R; i++) {
+          int q[4][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}};
+          ss_idx v[8];
+          for (int c = 0; c < 4; c++) {
+            int a = q[c][0], b = q[c][1], id;
+            if (a == 0 && b == 0)
+              id = 0;
+            else if (b == 0)
+              id = 1 + s * R + (a - 1);
+            else if (a == 0)
+              id = 1 + ((s + 1) % n) * R + (b - 1);
+            else
+              id = 1 + n * R + s * R * R + (b - 1) * R + (a - 1);
+            v[c] = (ss_idx)(id + k * np);
+            v[c + 4] = (ss_idx)(id + (k + 1) * np);
+          }
+          if (ss_cx_add_cell(cx, SS_HEX, v, 0, &err)) abort();
+        }
+  return cx;
+}

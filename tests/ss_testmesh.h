@@ -36,6 +36,15 @@ ss_cx *tm_link_surface(const tm_link *l);
 ss_cx *tm_link_quads(const tm_link *l);
 /* N^3 unit cubes, each cut into 6 tets about its main diagonal (Kuhn). */
 ss_cx *tm_kuhn(int N);
+/* nx x ny x nz unit hexes; vertex i + (nx+1) (j + (ny+1) k) at (i, j, k), hex
+ * i + nx (j + ny k) at (i, j, k). */
+ss_cx *tm_hex_grid(int nx, int ny, int nz);
+/* n sectors of R x R quads around the z axis (sector s between the unit rays
+ * at angles 2 pi s / n and 2 pi (s + 1) / n), extruded into nz unit layers:
+ * the z axis is an edge of valence n.  Hex ((k n + s) R + j) R + i is the
+ * sector's quad (i, j) in layer k; i = j = 0 touches the axis, with its
+ * corner 0 on it and w along it. */
+ss_cx *tm_edge_ring(int n, int R, int nz);
 /* Move every vertex by a pseudo-random offset of size <= amp (seeded). */
 void tm_jitter(ss_cx *cx, double amp, unsigned long seed);
 /* A relabelled copy: vertices and cells permuted, each cell's vertex list turned

@@ -9,7 +9,7 @@
 #             canonical (links that parse with more than 7 vertices only to
 #             canonical, more than 64 are not written: they are slow by design)
 #   meshes    subdivide --levels 1 (a random scheme and output format),
-#             enumerate mesh
+#             enumerate mesh, limit --gauss 1 -d
 #   stencils  analyze --stencil at the tetrahedron link, check --vertices 4..4
 # and every iteration also runs a command with one option set to a bad value
 # (empty, -1, -0, nan, inf, 1e308, huge integers, control bytes, ...).
@@ -148,6 +148,11 @@ templates=(
   'subdivide --scheme @ M/cube-6tets.mesh -o O/o.mesh'
   'subdivide --scheme tetoct M/cube-6tets.mesh -o @'
   'subdivide --scheme tetoct --format @ M/cube-6tets.mesh -o O/o.mesh'
+  'limit --scheme mlca M/hexstar-icosahedron.mesh --at @'
+  'limit --scheme mlca M/hexstar-icosahedron.mesh --gauss @'
+  'limit --scheme mlca M/hexstar-icosahedron.mesh --samples @'
+  'limit --scheme @ M/hexstar-icosahedron.mesh --gauss 1'
+  'limit --scheme mlca M/hexstar-icosahedron.mesh --gauss 1 --format @'
   'enumerate links --count --vertices @'
   'enumerate links --vertices 4..6 --part @'
   'enumerate random --samples 1 --vertices @'
@@ -203,6 +208,7 @@ for ((i = 0; i < n; i++)); do
       check mesh "$i" "$f" "$exe" subdivide --scheme "$(pick mlca tetoct boxspline loop catmull-clark)" \
         --levels 1 "$tmp/m.$ext" -o "$tmp/out/o.$(pick mesh vtk obj)"
       check mesh "$i" "$f" "$exe" enumerate mesh "$tmp/m.$ext"
+      check mesh "$i" "$f" "$exe" limit --scheme mlca --gauss 1 -d "$tmp/m.$ext"
       ;;
     *.ini)
       cp "$f" "$tmp/s.ini"

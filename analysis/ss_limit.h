@@ -1,0 +1,166 @@
+/* ss_limit.h — the limit volume of a hex mesh: point and Jacobian at parameters
+ * (u, v, w) of a cell, for any scheme with the multilinear split whose rule
+ * reads only the coarse cells holding a fine vertex's birth element
+ * (ss_scheme_reach == 1: mlca, ccsolid and the averaging family) and which
+ * is the tricubic B-spline on regular grids (checked by ss_limit_new).
+ *
+ * Why analysis/: the evaluator reads local subdivision matrices from the
+ * scheme's global rule and eigen-decomposes them (LAPACK), like ss_local and
+ * ss_eig; it is a consumer of the same machinery, not a new top level.
+ *
+ * Patches.  The limit on a cell c is determined by the control points of its
+ * patch: c and every cell sharing a vertex with c.  Refining the patch once
+ * gives, exactly as the whole mesh would, the patch of each of c's eight
+ * children (a child's patch reads only the coarse cells at the corner it
+ * sits at, all inside c's patch).  A patch is numbered canonically by a
+ * breadth-first walk over face neighbours from c, every cell carrying the
+ * frame its neighbour hands on across the shared face; its *key* (the framed
+ * cells as vertex numbers) names its topology.  A patch is regular when it is
+ * the 3x3x3 block of a grid (c's eight corners are interior vertices with
+ * the octahedron link): then the limit is the tricubic B-spline of its 64
+ * points (written here from the uniform cubic basis, not from the scheme).
+ *
+ * The walk.  Evaluate at x in c: while the patch is not regular, step into
+ * the child holding x (bit a of the child = x_a >= 1/2; x <- 2x - bits), the
+ * new patch's points being W times the old ones, W read from the rows of the
+ * patch's refinement operator.  Every (key, child) transition is computed
+ * once and cached with its W and the canonical frame of the child (the
+ * smallest key over the 48 cube symmetries, the inherited frame first).
+ * Runs: a transition that maps a key to itself in the inherited frame is
+ * stationary (the child at an extraordinary vertex after one step, or the
+ * left/right child along an extraordinary edge); a run of m equal steps is
+ * W^m = V diag(lambda)^m V^-1, one eigen-solve per such transition (Stam's
+ * idea), and m = infinity (a point exactly on the vertex, or an edge point
+ * whose remaining digits vanish) is the projection on the eigenvalue 1.
+ *
+ * Cost per point (the finding, README "Limit evaluation"):
+ *   - regular cells: O(1), the B-spline;
+ *   - cells at an extraordinary vertex, the point in the cells around it:
+ *     O(1) -- one step to level 1, one jump over the run, one step out, the
+ *     B-spline (constant independent of the distance to the vertex);
+ *   - near an extraordinary edge whose stationary halves factor as
+ *     A_b (x) T (checked on the patch; MLCA's do): O(1) by the paper's
+ *     eq. (1) -- the net summed along the edge with the cubic B-spline
+ *     weights, copied into every layer, has the same limit at the edge's
+ *     end, one jump away;
+ *   - near any other extraordinary edge (Joy--MacCracken's do not factor:
+ *     only the rows of the points on the edge differ): the walk follows the
+ *     binary digits of the point; runs of equal digits are jumps, so the
+ *     steps are bounded by the number of digit changes, at most about 53 per
+ *     coordinate in double precision, each a K x K product (K ~ 100 patch
+ *     points).  Bounded, not constant.
+ * Boundary cells are walked the same way (the patch holds the boundary rule's
+ * cells).  A point on the boundary surface (or exactly on an extraordinary
+ * vertex or edge) never reaches a regular patch: every double is dyadic, so
+ * once its binary digits have run out it is a corner of its sub-cell, the
+ * fixed point of an infinite run.  Its Jacobian comes from that run's
+ * eigenvectors: components with |lambda| < 1/2 have derivative 0 there,
+ * those with lambda = 1/2 are linear along rays (their derivative is read
+ * from one more evaluation per axis); any other |lambda| >= 1/2 (besides the
+ * constant 1), or a defective run, makes the parametric Jacobian unbounded or
+ * undefined there: SS_ENUMERIC.
+ *
+ * Precision: patch points are kept relative to a point of the current
+ * sub-cell (the rows of W sum to 1, so a shift commutes with every step);
+ * their differences, of the size of the sub-cell, keep full relative
+ * precision, and the Jacobian after m steps does not lose a factor 2^m.
+ *
+ * Defective eigenstructure (a run's W not diagonalisable to working accuracy:
+ * condition of V above SS_LIMIT_MAXCOND, as MLCA's icosahedron vertex, where
+ * 1/8 has a Jordan block): W^m is then formed from the cached powers
+ * W^(2^i) (at most 12 products, exact to rounding), and only a Jacobian at
+ * such a run's fixed point, which needs its eigenvectors, is refused
+ * (SS_ENUMERIC with the reason) -- never a silent wrong point.
+ *
+ * Memory: the transitions of patches that only coarse cells have are kept
+ * for the 64 most recent ones (and rebuilt when needed again); first use of
+ * an irregular coarse cell costs about a millisecond (its canonical frame and
+ * one refinement of its patch per child visited).
+ *
+ * The evaluator caches what it learns and is therefore not thread-safe: give
+ * each thread its own. */
+#ifndef SS_LIMIT_H
+#define SS_LIMIT_H
+
+#include <stddef.h>
+
+#include "ss_cx.h"
+#include "ss_error.h"
+#include "ss_scheme.h"
+
+typedef struct ss_limit ss_limit; /* opaque: the mesh, its adjacency and the caches */
+
+/* Largest condition number ||V|| ||V^-1|| (1-norms, unit columns) of a run's
+ * eigenvector matrix accepted before the run is declared defective. */
+#define SS_LIMIT_MAXCOND 1e6
+/* Most plain (non-jump) steps of one evaluation before it gives up. */
+#define SS_LIMIT_MAXSTEPS 400
+
+/* One evaluated point. */
+typedef struct {
+  double p[3];      /* the limit point */
+  double jac[3][3]; /* with derivatives: rows d/du, d/dv, d/dw of p */
+  int steps;        /* subdivision steps walked (a jump counts its run) */
+  int products;     /* matrix products done (plain steps + jumps) */
+} ss_limit_point;
+
+/* Counters of what the caches hold. */
+typedef struct {
+  size_t keys;        /* distinct patch topologies met */
+  size_t transitions; /* (key, child) transitions computed */
+  size_t eigs;        /* eigen-decompositions computed (stationary runs) */
+  size_t tensor;      /* extraordinary-edge patches found to factor (eq. (1)) */
+} ss_limit_stats;
+
+/* An evaluator for the limit of `mesh` under scheme s.  The scheme is
+ * borrowed (it must outlive the evaluator; schemes are immutable); the mesh
+ * is copied.  SS_EINPUT when the mesh is not 3D, holds cells other than
+ * hexahedra, has a face shared by more than two cells, or the scheme does not
+ * split hexes multilinearly with a reach-1 rule or is not the tricubic
+ * B-spline on a regular grid; SS_ENOMEM.  O(cells). */
+ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
+                       ss_error *err);
+
+/* Free; NULL is a no-op. */
+void ss_limit_free(ss_limit *L);
+
+/* Number of cells (hexahedra) of the mesh. */
+size_t ss_limit_ncells(const ss_limit *L);
+
+/* What the caches hold. */
+ss_limit_stats ss_limit_get_stats(const ss_limit *L);
+
+/* Whether to evaluate near extraordinary edges whose stationary halves factor
+ * as A_b (x) T (MLCA's do, Joy--MacCracken's do not) by the paper's eq. (1),
+ * in constant time (on, the default), or by the generic digit walk (off: for
+ * comparison; both give the same point). */
+void ss_limit_set_tensor(ss_limit *L, int on);
+
+/* The limit point of cell `cell` (0-based) at (u, v, w) in [0,1]^3 (u along
+ * corner 0 -> 1, v along 0 -> 3, w along 0 -> 4; ss_cx.h), and with
+ * `derivatives` the Jacobian, by the walk above.  SS_EINPUT for an unknown
+ * cell, a parameter outside [0,1] or not finite, a walk that does not end
+ * within SS_LIMIT_MAXSTEPS plain steps; SS_ENUMERIC for a fixed point whose
+ * limit is not defined (eigenvalue 1 not simple), or derivatives asked at a
+ * fixed point where the parametric Jacobian is unbounded or undefined (see
+ * above); SS_ENOMEM. */
+ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
+                        int derivatives, ss_limit_point *out, ss_error *err);
+
+/* The reference: the same point by repeated local subdivision of the actual
+ * patch (refine, keep the child's patch, until it is regular; nothing cached,
+ * no eigenvalues), at most max_depth steps (SS_ENUMERIC beyond: the point
+ * lies on or within 2^-max_depth of an extraordinary vertex or edge).  This is
+ * the paper's alternative [BHU10] and the benchmark's baseline.  Errors
+ * otherwise as ss_limit_eval. */
+ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
+                                  int derivatives, int max_depth, ss_limit_point *out,
+                                  ss_error *err);
+
+/* The tricubic B-spline of a 4x4x4 net at (u, v, w) in [0,1]^3: net[i + 4j +
+ * 16k] is the control point at grid position (i - 1, j - 1, k - 1), the cell
+ * being [0,1]^3.  jac (may be NULL) receives rows d/du, d/dv, d/dw. */
+void ss_limit_bspline(const double (*net)[3], double u, double v, double w, double p[3],
+                      double jac[3][3]);
+
+#endif

@@ -1,0 +1,420 @@
+/* ss_limit_patch.c — patches of hex cells: adjacency, the framed walk that
+ * numbers them canonically, and one step of local refinement. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_hash.h"
+#include "ss_limit_impl.h"
+
+/* Stored corner index of the corner with binary coordinates b. */
+static int cidx(unsigned b) {
+  return ss_cube_corner_index(3, b);
+}
+static unsigned cbits(int k) {
+  return ss_cube_corner_bits(3, k);
+}
+
+void lim_adj_free(lim_adj *a) {
+  if (!a) return;
+  free(a->vptr);
+  free(a->vcell);
+  free(a->nb);
+  memset(a, 0, sizeof *a);
+}
+
+static int cmp_u32(const void *x, const void *y) {
+  uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+  return (a > b) - (a < b);
+}
+
+ss_status lim_adj_build(const ss_cx *cx, lim_adj *a, ss_error *err) {
+  ss_status st = SS_OK;
+  ss_hash *h = NULL;
+  memset(a, 0, sizeof *a);
+  a->cx = cx;
+  a->nh = cx->nc[SS_HEX];
+  a->vptr = calloc(cx->nv + 1, sizeof *a->vptr);
+  a->vcell = malloc((a->nh * 8 + 1) * sizeof *a->vcell);
+  a->nb = malloc((a->nh * 6 + 1) * sizeof *a->nb);
+  if (!a->vptr || !a->vcell || !a->nb) {
+    st = ss_error_nomem(err, "hex adjacency");
+    goto done;
+  }
+  for (size_t c = 0; c < a->nh; c++)
+    for (int i = 0; i < 8; i++)
+      a->vptr[ss_cx_cell(cx, SS_HEX, c)[i] + 1]++;
+  for (size_t v = 0; v < cx->nv; v++)
+    a->vptr[v + 1] += a->vptr[v];
+  for (size_t c = 0; c < a->nh; c++)
+    for (int i = 0; i < 8; i++)
+      a->vcell[a->vptr[ss_cx_cell(cx, SS_HEX, c)[i]]++] = c;
+  for (size_t v = cx->nv; v > 0; v--)
+    a->vptr[v] = a->vptr[v - 1];
+  a->vptr[0] = 0;
+  for (size_t i = 0; i < a->nh * 6; i++)
+    a->nb[i] = -1;
+  if ((st = ss_hash_new(4, a->nh * 3 + 1, &h, err))) goto done;
+  /* each face by its sorted corners; the value is the first (cell, face) */
+  for (size_t c = 0; c < a->nh; c++) {
+    const ss_idx *v = ss_cx_cell(cx, SS_HEX, c);
+    for (int f = 0; f < 6; f++) {
+      int axis = f / 2, side = f % 2, n = 0;
+      uint32_t key[4];
+      for (unsigned b = 0; b < 8; b++)
+        if ((int)((b >> axis) & 1u) == side) key[n++] = v[cidx(b)];
+      qsort(key, 4, sizeof key[0], cmp_u32);
+      uint32_t found;
+      int ins;
+      if ((st = ss_hash_insert(h, key, (uint32_t)(c * 6 + (size_t)f), &found, &ins, err)))
+        goto done;
+      if (ins) continue;
+      size_t oc = found / 6;
+      int of = (int)(found % 6);
+      if (a->nb[oc * 6 + (size_t)of] >= 0 || oc == c) {
+        st = ss_error_set(err, SS_EINPUT,
+                          "hexahedron %zu: a face is shared by more than two hexahedra "
+                          "(non-manifold meshes are not supported by limit evaluation)",
+                          c + 1);
+        goto done;
+      }
+      a->nb[oc * 6 + (size_t)of] = (int64_t)c;
+      a->nb[c * 6 + (size_t)f] = (int64_t)oc;
+    }
+  }
+done:
+  ss_hash_free(h);
+  if (st) lim_adj_free(a);
+  return st;
+}
+
+lim_frame lim_frame_id(void) {
+  lim_frame g = {{0, 1, 2}, {0, 0, 0}};
+  return g;
+}
+
+int lim_frame_is_id(const lim_frame *g) {
+  for (int a = 0; a < 3; a++)
+    if (g->perm[a] != a || g->flip[a]) return 0;
+  return 1;
+}
+
+void lim_frame_apply(const lim_frame *g, const double xs[3], double xf[3],
+                     double G[3][3]) {
+  double y[3];
+  for (int a = 0; a < 3; a++)
+    y[a] = g->flip[a] ? 1.0 - xs[g->perm[a]] : xs[g->perm[a]];
+  if (G) {
+    memset(G, 0, 9 * sizeof(double));
+    for (int a = 0; a < 3; a++)
+      G[a][g->perm[a]] = g->flip[a] ? -1.0 : 1.0;
+  }
+  memcpy(xf, y, sizeof y);
+}
+
+/* Stored bits of framed bits b under frame g. */
+static unsigned frame_bits(const lim_frame *g, unsigned b) {
+  unsigned s = 0;
+  for (int a = 0; a < 3; a++)
+    s |= (((b >> a) & 1u) ^ (unsigned)g->flip[a]) << g->perm[a];
+  return s;
+}
+
+void lim_patch_free(lim_patch *p) {
+  if (!p) return;
+  free(p->key);
+  free(p->src);
+  free(p->pos);
+  memset(p, 0, sizeof *p);
+}
+
+uint64_t lim_patch_hash(const lim_patch *p) {
+  uint64_t h = 1469598103934665603ull ^ p->ncells;
+  for (size_t i = 0; i < p->ncells * 8; i++) {
+    h ^= p->key[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+int lim_patch_same(const lim_patch *p, const lim_patch *q) {
+  return p->ncells == q->ncells && p->nv == q->nv &&
+         !memcmp(p->key, q->key, p->ncells * 8 * sizeof *p->key);
+}
+
+/* One cell of the walk: which cell, the stored corner of each framed corner
+ * (by framed bits), and its grid offset. */
+typedef struct {
+  size_t cell;
+  int sig[8];
+  int off[3];
+} walk_cell;
+
+/* Whether hex c shares a vertex with the 8 vertices tv. */
+static int touches(const ss_cx *cx, size_t c, const ss_idx *tv) {
+  const ss_idx *v = ss_cx_cell(cx, SS_HEX, c);
+  for (int i = 0; i < 8; i++)
+    for (int j = 0; j < 8; j++)
+      if (v[i] == tv[j]) return 1;
+  return 0;
+}
+
+ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_t *loc,
+                          lim_patch *out, ss_error *err) {
+  ss_status st = SS_OK;
+  const ss_cx *cx = a->cx;
+  const ss_idx *tv = ss_cx_cell(cx, SS_HEX, t);
+  memset(out, 0, sizeof *out);
+  /* the member cells: every hex at a corner of t (counted, to check that the
+   * walk reaches them all) */
+  size_t nmem = 0, cap = 0;
+  for (int i = 0; i < 8; i++)
+    cap += a->vptr[tv[i] + 1] - a->vptr[tv[i]];
+  size_t *mem = malloc((cap + 1) * sizeof *mem);
+  walk_cell *q = malloc((cap + 1) * sizeof *q);
+  int posok = 1;
+  out->key = malloc((cap * 8 + 1) * sizeof *out->key);
+  out->src = malloc((cap * 8 + 1) * sizeof *out->src);
+  out->pos = malloc((cap * 8 + 1) * sizeof *out->pos);
+  if (!mem || !q || !out->key || !out->src || !out->pos) {
+    st = ss_error_nomem(err, "patch");
+    goto done;
+  }
+  for (int i = 0; i < 8; i++)
+    for (size_t j = a->vptr[tv[i]]; j < a->vptr[tv[i] + 1]; j++) {
+      size_t c = a->vcell[j];
+      int seen = 0;
+      for (size_t m = 0; m < nmem && !seen; m++)
+        seen = mem[m] == c;
+      if (!seen) mem[nmem++] = c;
+    }
+  /* the walk */
+  size_t head = 0, tail = 0;
+  q[tail].cell = t;
+  for (unsigned b = 0; b < 8; b++)
+    q[tail].sig[b] = cidx(frame_bits(g, b));
+  q[tail].off[0] = q[tail].off[1] = q[tail].off[2] = 0;
+  tail++;
+  while (head < tail) {
+    walk_cell *A = &q[head];
+    const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
+    for (int i = 0; i < 8; i++) {
+      unsigned b = cbits(i);
+      ss_idx v = av[A->sig[b]];
+      if (loc[v] < 0) {
+        loc[v] = (int64_t)out->nv;
+        out->src[out->nv] = v;
+        for (int d = 0; d < 3; d++)
+          out->pos[out->nv][d] = A->off[d] + (int)((b >> d) & 1u);
+        out->nv++;
+      } else {
+        for (int d = 0; d < 3; d++)
+          if (out->pos[loc[v]][d] != A->off[d] + (int)((b >> d) & 1u)) {
+            posok = 0;
+            out->posbad |= 1u << d;
+          }
+      }
+      out->key[head * 8 + (size_t)i] = (uint32_t)loc[v];
+    }
+    for (int axis = 0; axis < 3; axis++)
+      for (unsigned side = 0; side < 2; side++) {
+        /* the stored face holding the framed face (axis, side) */
+        unsigned fb[4];
+        int n = 0;
+        for (unsigned b = 0; b < 8; b++)
+          if (((b >> axis) & 1u) == side) fb[n++] = b;
+        unsigned s0 = cbits(A->sig[fb[0]]), agree = 7u;
+        for (int j = 1; j < 4; j++)
+          agree &= ~(cbits(A->sig[fb[j]]) ^ s0);
+        int saxis = agree & 1u ? 0 : agree & 2u ? 1 : 2;
+        int sside = (int)((s0 >> saxis) & 1u);
+        int64_t B = a->nb[A->cell * 6 + (size_t)(2 * saxis + sside)];
+        if (B < 0 || !touches(cx, (size_t)B, tv)) continue;
+        int seen = 0;
+        for (size_t m = 0; m < tail && !seen; m++)
+          seen = q[m].cell == (size_t)B;
+        if (seen) continue;
+        walk_cell *C = &q[tail];
+        C->cell = (size_t)B;
+        const ss_idx *bv = ss_cx_cell(cx, SS_HEX, (size_t)B);
+        /* shared corners: B's framed b (bit axis = 1 - side) is A's b ^ axis */
+        unsigned shared_bits = 0, sb0 = 0;
+        for (int j = 0; j < 4; j++) {
+          unsigned bb = fb[j] ^ (1u << axis);
+          ss_idx v = av[A->sig[fb[j]]];
+          int k = -1;
+          for (int m = 0; m < 8; m++)
+            if (bv[m] == v) k = m;
+          if (k < 0) {
+            st = ss_error_set(err, SS_EINTERNAL,
+                              "patch walk: face vertex not in neighbour");
+            goto done;
+          }
+          C->sig[bb] = k;
+          if (j == 0)
+            sb0 = cbits(k), shared_bits = 7u;
+          else
+            shared_bits &= ~(cbits(k) ^ sb0);
+        }
+        int naxis = shared_bits & 1u ? 0 : shared_bits & 2u ? 1 : 2;
+        for (int j = 0; j < 4; j++) {
+          unsigned bb = fb[j] ^ (1u << axis);
+          C->sig[fb[j]] = cidx(cbits(C->sig[bb]) ^ (1u << naxis));
+        }
+        for (int d = 0; d < 3; d++)
+          C->off[d] = A->off[d] + (d == axis ? (side ? 1 : -1) : 0);
+        tail++;
+      }
+    head++;
+  }
+  out->ncells = tail;
+  if (tail != nmem) {
+    st = ss_error_set(err, SS_EINPUT,
+                      "hexahedron %zu: the cells at its corners are not connected "
+                      "through faces (a non-manifold vertex; limit evaluation needs "
+                      "manifold meshes)",
+                      t + 1);
+    goto done;
+  }
+  /* regular: 27 cells, 64 vertices on distinct grid positions in [-1, 2]^3 */
+  if (tail == 27 && out->nv == 64 && posok) {
+    int filled[64] = {0}, ok = 1;
+    for (size_t v = 0; v < 64 && ok; v++) {
+      int i = out->pos[v][0] + 1, j = out->pos[v][1] + 1, k = out->pos[v][2] + 1;
+      if (i < 0 || i > 3 || j < 0 || j > 3 || k < 0 || k > 3 ||
+          filled[i + 4 * j + 16 * k])
+        ok = 0;
+      else {
+        filled[i + 4 * j + 16 * k] = 1;
+        out->net[i + 4 * j + 16 * k] = (uint32_t)v;
+      }
+    }
+    out->regular = ok;
+  }
+done:
+  for (size_t v = 0; v < out->nv; v++)
+    loc[out->src[v]] = -1;
+  free(mem);
+  free(q);
+  if (st) lim_patch_free(out);
+  return st;
+}
+
+ss_status lim_patch_canonical(const lim_adj *a, size_t t, int64_t *loc, lim_patch *out,
+                              lim_frame *g, ss_error *err) {
+  static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                  {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  ss_status st;
+  memset(out, 0, sizeof *out);
+  for (int p = 0; p < 6; p++)
+    for (int f = 0; f < 8; f++) {
+      lim_frame h;
+      for (int d = 0; d < 3; d++) {
+        h.perm[d] = perms[p][d];
+        h.flip[d] = (f >> d) & 1;
+      }
+      lim_patch cand;
+      if ((st = lim_patch_build(a, t, &h, loc, &cand, err))) {
+        lim_patch_free(out);
+        return st;
+      }
+      int better = out->key == NULL;
+      if (!better && cand.ncells == out->ncells)
+        better = memcmp(cand.key, out->key, cand.ncells * 8 * sizeof *cand.key) < 0;
+      if (better) {
+        lim_patch_free(out);
+        *out = cand;
+        *g = h;
+      } else {
+        lim_patch_free(&cand);
+      }
+    }
+  return SS_OK;
+}
+
+ss_status lim_patch_complex(const ss_cx *cx, const lim_patch *p, ss_cx **out,
+                            ss_error *err) {
+  ss_status st;
+  ss_cx *c = NULL;
+  *out = NULL;
+  if ((st = ss_cx_new(cx->dim, &c, err))) return st;
+  if ((st = ss_cx_reserve_vertices(c, p->nv, err)) ||
+      (st = ss_cx_reserve_cells(c, SS_HEX, p->ncells, err)))
+    goto done;
+  for (size_t v = 0; v < p->nv; v++)
+    if ((st = ss_cx_add_vertex(c, cx->x + (size_t)p->src[v] * (size_t)cx->dim, 0, err)))
+      goto done;
+  for (size_t k = 0; k < p->ncells; k++) {
+    ss_idx v[8];
+    for (int i = 0; i < 8; i++)
+      v[i] = p->key[k * 8 + (size_t)i];
+    if ((st = ss_cx_add_cell(c, SS_HEX, v, 0, err))) goto done;
+  }
+done:
+  if (st)
+    ss_cx_free(c);
+  else
+    *out = c;
+  return st;
+}
+
+ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
+                   lim_patch *child, lim_frame *g, ss_cx **ccx, double **W,
+                   ss_error *err) {
+  ss_status st;
+  ss_cx *fine = NULL;
+  gsl_spmatrix *R = NULL;
+  lim_adj fa = {0};
+  int64_t *loc = NULL;
+  memset(child, 0, sizeof *child);
+  *ccx = NULL;
+  if (W) *W = NULL;
+  if ((st = ss_scheme_refine(s, pcx, &fine, W ? &R : NULL, err))) goto done;
+  /* child k of cell 0 is fine hex k, holding coarse corner k at its corner k */
+  if (fine->nc[SS_HEX] < 8 ||
+      ss_cx_cell(fine, SS_HEX, (size_t)k)[k] != ss_cx_cell(pcx, SS_HEX, 0)[k]) {
+    st = ss_error_set(err, SS_EINTERNAL,
+                      "limit: the split did not put child %d at corner %d of its parent",
+                      k, k);
+    goto done;
+  }
+  if ((st = lim_adj_build(fine, &fa, err))) goto done;
+  loc = malloc((fine->nv + 1) * sizeof *loc);
+  if (!loc) {
+    st = ss_error_nomem(err, "patch scratch");
+    goto done;
+  }
+  for (size_t v = 0; v < fine->nv; v++)
+    loc[v] = -1;
+  if (canonical)
+    st = lim_patch_canonical(&fa, (size_t)k, loc, child, g, err);
+  else {
+    *g = lim_frame_id();
+    st = lim_patch_build(&fa, (size_t)k, g, loc, child, err);
+  }
+  if (st || (st = lim_patch_complex(fine, child, ccx, err))) goto done;
+  if (W) {
+    size_t K = pcx->nv, Kc = child->nv;
+    double *w = calloc(Kc * K + 1, sizeof *w);
+    if (!w) {
+      st = ss_error_nomem(err, "patch operator");
+      goto done;
+    }
+    for (size_t i = 0; i < Kc; i++) {
+      size_t r = child->src[i];
+      for (int q = R->p[r]; q < R->p[r + 1]; q++)
+        w[i * K + (size_t)R->i[q]] = R->data[q];
+    }
+    *W = w;
+  }
+done:
+  if (st) {
+    lim_patch_free(child);
+    ss_cx_free(*ccx);
+    *ccx = NULL;
+  }
+  free(loc);
+  lim_adj_free(&fa);
+  if (R) gsl_spmatrix_free(R);
+  ss_cx_free(fine);
+  return st;
+}
