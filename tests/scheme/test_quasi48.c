@@ -1,0 +1,225 @@
+/* test_quasi48.c — the quasi 4-8 scheme (Velho & Gomes) against closed forms
+ * derived by hand, and its section 3.3 claims measured on real meshes.
+ *
+ * Regular planar 4-8 lattice (vertices Z^2, valence 8 on x+y even, every unit
+ * square cut by the diagonal joining its even corners).  One level splits all
+ * diagonals (the longest edges, length sqrt 2) and smooths:
+ *   centre of a square   1/4 of its corners;
+ *   old vertex           1/2 v + 1/8 sum of its 4 new neighbours
+ *                        = 5/8 v + 1/16 (axis neighbours) + 1/32 (diagonal),
+ * the same for both vertex classes.  With c1 = cos(w1/2), c2 = cos(w2/2) its
+ * symbol is 1/2 + c1 c2 + 1/2 c1^2 c2^2 = 2 ((1 + c1 c2)/2)^2.  The second
+ * level is the same on the lattice turned by 45 degrees (new points at
+ * (1/2, 0) offsets), symbol 2 ((1 + (c1 + c2)/2)/2)^2.  The two-level
+ * (dyadic) operator therefore has the normalized symbol
+ *   M(w) = ((1 + c1 c2)/2)^2 ((1 + (c1 + c2)/2)/2)^2,
+ * i.e. mask 4 (h1 * h1 * h2 * h2) on (Z/2)^2 with h1 = 1/2 at 0 and 1/8 at
+ * (+-1/2, +-1/2), h2 = 1/2 at 0 and 1/8 at (+-1/2, 0), (0, +-1/2).  M vanishes
+ * only at isolated points (c1 c2 = -1 or c1 = c2 = -1), while the subdivision
+ * symbol of any box spline vanishes along whole lines: the scheme reproduces
+ * no box spline.  Here the operator R that the library builds is compared with
+ * that mask entry by entry (at both vertex classes), with the symmetries of
+ * the lattice, and with linear precision. */
+#include <stdint.h>
+#include <string.h>
+
+#include "ss_mesh.h"
+#include "ss_optest.h"
+#include "ss_split.h"
+
+#define HALF 6  /* the patch is [-HALF, HALF]^2 */
+#define G    17 /* mask grid: offsets -4..4 in steps of 1/2, index 2x + 8 */
+
+/* The regular 4-8 patch [-HALF, HALF]^2; vertex (i, j) has index
+ * (i + HALF) * (2 HALF + 1) + (j + HALF). */
+static ss_cx *lattice48(void) {
+  ss_error err = {0};
+  ss_cx *cx = NULL;
+  const int n = 2 * HALF + 1;
+  if (ss_cx_new(2, &cx, &err)) exit(1);
+  for (int i = -HALF; i <= HALF; i++)
+    for (int j = -HALF; j <= HALF; j++) {
+      double x[2] = {i, j};
+      if (ss_cx_add_vertex(cx, x, 0, &err)) exit(1);
+    }
+#define VID(i, j) ((ss_idx)(((i) + HALF) * n + ((j) + HALF)))
+  for (int i = -HALF; i < HALF; i++)
+    for (int j = -HALF; j < HALF; j++) {
+      ss_idx a = VID(i, j), b = VID(i + 1, j), c = VID(i + 1, j + 1), d = VID(i, j + 1);
+      /* the diagonal joins the even corners (valence 8) */
+      int even = ((i + j) % 2 + 2) % 2 == 0;
+      ss_idx t0[3] = {a, b, even ? c : d}, t1[3] = {even ? a : b, c, d};
+      if (ss_cx_add_cell(cx, SS_TRIANGLE, t0, 0, &err) ||
+          ss_cx_add_cell(cx, SS_TRIANGLE, t1, 0, &err))
+        exit(1);
+    }
+#undef VID
+  return cx;
+}
+
+/* out = a * b on the half-integer grid (both G x G, centred). */
+static void convolve(const double *a, const double *b, double *out) {
+  memset(out, 0, G * G * sizeof *out);
+  for (int p = 0; p < G * G; p++)
+    for (int q = 0; q < G * G; q++) {
+      if (a[p] == 0 || b[q] == 0) continue;
+      int x = p / G + q / G - 8, y = p % G + q % G - 8;
+      if (x >= 0 && x < G && y >= 0 && y < G) out[x * G + y] += a[p] * b[q];
+    }
+}
+
+/* Split level by level with the scheme, keeping the nominal position of each
+ * vertex (a new vertex at the mean of its parents' nominal positions), so that
+ * fine vertices can be named by lattice points independently of smoothing. */
+static ss_cx *refine2(const ss_cx *c0, double **R, double **nominal) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  ss_cx *f1 = NULL, *f2 = NULL;
+  gsl_spmatrix *R1 = NULL, *R2 = NULL;
+  ss_split *L1 = NULL, *L2 = NULL;
+  if (ss_scheme_new("quasi48", &s, &err) ||
+      ss_scheme_refine_split(s, c0, &f1, &R1, &L1, &err) ||
+      ss_scheme_refine_split(s, f1, &f2, &R2, &L2, &err)) {
+    fprintf(stderr, "quasi48 refine: %s\n", err.msg);
+    exit(1);
+  }
+  double *x1 = malloc(f1->nv * 2 * sizeof *x1), *x2 = malloc(f2->nv * 2 * sizeof *x2);
+  for (size_t v = 0; v < f1->nv; v++)
+    for (int r = 0; r < 2; r++) {
+      double sum = 0;
+      for (size_t q = L1->ptr[v]; q < L1->ptr[v + 1]; q++)
+        sum += c0->x[2 * L1->parent[q] + (size_t)r];
+      x1[2 * v + (size_t)r] = sum / (double)ss_split_npar(L1, v);
+    }
+  for (size_t v = 0; v < f2->nv; v++)
+    for (int r = 0; r < 2; r++) {
+      double sum = 0;
+      for (size_t q = L2->ptr[v]; q < L2->ptr[v + 1]; q++)
+        sum += x1[2 * L2->parent[q] + (size_t)r];
+      x2[2 * v + (size_t)r] = sum / (double)ss_split_npar(L2, v);
+    }
+  /* R = R2 R1, dense (the patch is small) */
+  double *P = calloc(R2->size1 * R1->size2, sizeof *P);
+  for (size_t f = 0; f < R2->size1; f++)
+    for (int q = R2->p[f]; q < R2->p[f + 1]; q++)
+      for (int r = R1->p[R2->i[q]]; r < R1->p[R2->i[q] + 1]; r++)
+        P[f * R1->size2 + (size_t)R1->i[r]] += R2->data[q] * R1->data[r];
+  *R = P;
+  *nominal = x2;
+  gsl_spmatrix_free(R1);
+  gsl_spmatrix_free(R2);
+  ss_split_free(L1);
+  ss_split_free(L2);
+  ss_cx_free(f1);
+  free(x1);
+  ss_scheme_free(s);
+  return f2;
+}
+
+static void test_lattice(void) {
+  ss_cx *c0 = lattice48();
+  gsl_spmatrix *R1 = NULL;
+  double *R = NULL, *nom = NULL;
+  /* one level: the figure 6 mask at a valence-8 vertex, by hand above */
+  ss_cx *f1 = op_refine("quasi48", c0, &R1);
+  const int n = 2 * HALF + 1;
+  for (int cls = 0; cls < 2; cls++) {
+    ss_idx v = (ss_idx)(HALF * n + HALF + cls); /* (0,0) even, (0,1) odd */
+    double self = gsl_spmatrix_get(R1, v, v);
+    double ax = gsl_spmatrix_get(R1, v, v + 1), dg = gsl_spmatrix_get(R1, v, v + 1 + n);
+    CHECK_CLOSE(self, 5.0 / 8.0, 1e-15, "level 1, class %d: centre", cls);
+    CHECK_CLOSE(ax, 1.0 / 16.0, 1e-15, "level 1, class %d: axis neighbour", cls);
+    CHECK_CLOSE(dg, 1.0 / 32.0, 1e-15, "level 1, class %d: diagonal neighbour", cls);
+  }
+  check_row_sums(R1, "quasi48 level 1");
+  ss_cx_free(f1);
+  gsl_spmatrix_free(R1);
+
+  ss_cx *f2 = refine2(c0, &R, &nom);
+  const size_t nc0 = c0->nv;
+  size_t rows_bad = 0;
+  for (size_t f = 0; f < f2->nv; f++) {
+    double sum = 0;
+    for (size_t a = 0; a < nc0; a++)
+      sum += R[f * nc0 + a];
+    rows_bad += fabs(sum - 1) > 1e-14;
+  }
+  CHECK(rows_bad == 0, "%zu rows of the two-level operator do not sum to 1", rows_bad);
+  /* the closed-form mask 4 (h1*h1*h2*h2) */
+  static double h1[G * G], h2[G * G], t[G * G], u[G * G], mask[G * G];
+  h1[8 * G + 8] = h2[8 * G + 8] = 0.5;
+  for (int s1 = -1; s1 <= 1; s1 += 2)
+    for (int s2 = -1; s2 <= 1; s2 += 2)
+      h1[(8 + s1) * G + 8 + s2] = 1.0 / 8.0;
+  h2[9 * G + 8] = h2[7 * G + 8] = h2[8 * G + 9] = h2[8 * G + 7] = 1.0 / 8.0;
+  convolve(h1, h1, t);
+  convolve(t, h2, u);
+  convolve(u, h2, mask);
+  /* fine vertex by its nominal lattice point (2x, 2y integers) */
+  const int m = 4 * HALF + 1;
+  size_t *at = malloc((size_t)m * (size_t)m * sizeof *at);
+  for (int k = 0; k < m * m; k++)
+    at[k] = SIZE_MAX;
+  int offgrid = 0;
+  for (size_t v = 0; v < f2->nv; v++) {
+    double X = 2 * nom[2 * v], Y = 2 * nom[2 * v + 1];
+    long ix = lround(X), iy = lround(Y);
+    if (fabs(X - (double)ix) > 1e-12 || fabs(Y - (double)iy) > 1e-12) offgrid++;
+    at[(ix + 2 * HALF) * m + (iy + 2 * HALF)] = v;
+  }
+  CHECK(offgrid == 0 && f2->nv == (size_t)(m * m),
+        "two levels of the regular patch give the half lattice: %zu vertices, %d off it",
+        f2->nv, offgrid);
+  /* interior coarse vertices of both classes: every fine row within reach */
+  double worst = 0.0;
+  int sym_bad = 0;
+  for (int ci = -1; ci <= 1; ci++)
+    for (int cj = -1; cj <= 1; cj++) {
+      ss_idx a = (ss_idx)((ci + HALF) * n + (cj + HALF));
+      for (int dx = -8; dx <= 8; dx++)
+        for (int dy = -8; dy <= 8; dy++) {
+          size_t f = at[(2 * ci + dx + 2 * HALF) * m + (2 * cj + dy + 2 * HALF)];
+          double got = R[f * nc0 + a];
+          double want = 4.0 * mask[(dx + 8) * G + (dy + 8)];
+          if (fabs(got - want) > worst) worst = fabs(got - want);
+          /* the 8 symmetries of the square lattice fix the mask */
+          int img[8][2] = {{dx, dy}, {-dx, dy}, {dx, -dy}, {-dx, -dy},
+                           {dy, dx}, {-dy, dx}, {dy, -dx}, {-dy, -dx}};
+          for (int g = 0; g < 8; g++) {
+            size_t fg =
+                at[(2 * ci + img[g][0] + 2 * HALF) * m + (2 * cj + img[g][1] + 2 * HALF)];
+            if (fabs(R[fg * nc0 + a] - got) > 1e-15) sym_bad++;
+          }
+        }
+    }
+  CHECK(worst <= 1e-15,
+        "two-level operator differs from the closed-form symbol's mask by %g", worst);
+  CHECK(sym_bad == 0, "%d mask entries break the square lattice's symmetry", sym_bad);
+  /* the mask's centre and extent, from the convolution by hand: 4 (1/2)^4 ... */
+  printf("two-level mask at a lattice vertex: centre %.17g, (1/2,0) %.17g, "
+         "(1/2,1/2) %.17g, (1,0) %.17g\n",
+         4 * mask[8 * G + 8], 4 * mask[9 * G + 8], 4 * mask[9 * G + 9],
+         4 * mask[10 * G + 8]);
+  /* linear precision: interior fine vertices of x and y stay on their points */
+  double lin = 0.0;
+  for (size_t v = 0; v < f2->nv; v++) {
+    if (fabs(nom[2 * v]) > HALF - 3 || fabs(nom[2 * v + 1]) > HALF - 3) continue;
+    for (int r = 0; r < 2; r++) {
+      double e = fabs(f2->x[2 * v + (size_t)r] - nom[2 * v + (size_t)r]);
+      if (e > lin) lin = e;
+    }
+  }
+  CHECK(lin <= 1e-13, "linear functions are not reproduced: error %g", lin);
+  free(at);
+  free(nom);
+  free(R);
+  ss_cx_free(f2);
+  ss_cx_free(c0);
+}
+
+int main(int argc, char **argv) {
+  (void)argc;
+  (void)argv;
+  test_lattice();
+  return ss_test_done("test_quasi48");
+}
