@@ -26,6 +26,7 @@
 #include "ss_mesh.h"
 #include "ss_optest.h"
 #include "ss_split.h"
+#include "ss_triedge.h"
 
 #define HALF 6  /* the patch is [-HALF, HALF]^2 */
 #define G    17 /* mask grid: offsets -4..4 in steps of 1/2, index 2x + 8 */
@@ -217,9 +218,243 @@ static void test_lattice(void) {
   ss_cx_free(c0);
 }
 
+/* ---- section 3.3 claims on real meshes ---- */
+
+static ss_triedge *edges_of(const ss_cx *cx) {
+  ss_error err = {0};
+  ss_triedge *te = NULL;
+  if (ss_triedge_new(cx, &te, &err)) {
+    fprintf(stderr, "edge table: %s\n", err.msg);
+    exit(1);
+  }
+  return te;
+}
+
+static size_t valence(const ss_triedge *te, size_t v) {
+  return te->vptr[v + 1] - te->vptr[v];
+}
+
+static int cmp_sz(const void *a, const void *b) {
+  size_t x = *(const size_t *)a, y = *(const size_t *)b;
+  return (x > y) - (x < y);
+}
+
+/* A fingerprint of the 2-ring structure of v: its valence, the sorted
+ * valences of its 1-ring and those of the vertices at distance 2 (FNV-1a). */
+static uint64_t ring2_signature(const ss_triedge *te, size_t v, size_t *mark,
+                                size_t stamp) {
+  size_t ring1[64], ring2[1024], n1 = 0, n2 = 0;
+  mark[v] = stamp;
+  for (size_t q = te->vptr[v]; q < te->vptr[v + 1] && n1 < 64; q++) {
+    ring1[n1++] = te->vnbr[q];
+    mark[te->vnbr[q]] = stamp;
+  }
+  for (size_t i = 0; i < n1; i++)
+    for (size_t q = te->vptr[ring1[i]]; q < te->vptr[ring1[i] + 1]; q++) {
+      size_t w = te->vnbr[q];
+      if (mark[w] == stamp || n2 == 1024) continue;
+      mark[w] = stamp;
+      ring2[n2++] = valence(te, w);
+    }
+  for (size_t i = 0; i < n1; i++)
+    ring1[i] = valence(te, ring1[i]);
+  qsort(ring1, n1, sizeof *ring1, cmp_sz);
+  qsort(ring2, n2, sizeof *ring2, cmp_sz);
+  uint64_t h = 1469598103934665603ull;
+#define MIX(x) (h = (h ^ (uint64_t)(x)) * 1099511628211ull)
+  MIX(valence(te, v));
+  MIX(1000 + n1);
+  for (size_t i = 0; i < n1; i++)
+    MIX(ring1[i]);
+  MIX(2000 + n2);
+  for (size_t i = 0; i < n2; i++)
+    MIX(ring2[i]);
+#undef MIX
+  return h;
+}
+
+/* Refine `levels` times and measure the claims of section 3.3 level by level:
+ * (1) new interior vertices have valence 4 (checked: the construction
+ * guarantees it); (2) old interior vertices of valence 4 become 8 and (3) of
+ * valence 8 stay 8 (measured and printed: a failure is a finding); the share
+ * of valence-4/8 vertices; and the share of vertices whose 2-ring structure
+ * is the same two levels (one 4-8 cycle) later. */
+static void claims(const char *name, const ss_cx *input, int levels) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  if (ss_scheme_new("quasi48", &s, &err)) exit(1);
+  ss_cx *cur = NULL;
+  if (ss_cx_copy(input, &cur, &err)) exit(1);
+  ss_triedge *te = edges_of(cur);
+  uint64_t *sig[64] = {NULL};
+  size_t nvl[64] = {0};
+  printf("%s: %zu vertices, %zu triangles\n", name, cur->nv, cur->nc[SS_TRIANGLE]);
+  for (int l = 0; l <= levels; l++) {
+    size_t *mark = calloc(cur->nv + 1, sizeof *mark);
+    sig[l] = malloc((cur->nv + 1) * sizeof *sig[l]);
+    nvl[l] = cur->nv;
+    size_t n48 = 0;
+    for (size_t v = 0; v < cur->nv; v++) {
+      sig[l][v] = ring2_signature(te, v, mark, v + 1);
+      n48 += valence(te, v) == 4 || valence(te, v) == 8;
+    }
+    free(mark);
+    if (l >= 2) {
+      size_t same = 0;
+      for (size_t v = 0; v < nvl[l - 2]; v++)
+        same += sig[l][v] == sig[l - 2][v];
+      printf("  level %d: %zu vertices, %.4f of valence 4 or 8; 2-ring unchanged "
+             "since level %d: %.4f of %zu\n",
+             l, cur->nv, (double)n48 / (double)cur->nv, l - 2,
+             (double)same / (double)nvl[l - 2], nvl[l - 2]);
+    }
+    if (l == levels) break;
+    ss_cx *next = NULL;
+    if (ss_scheme_refine(s, cur, &next, NULL, &err)) {
+      fprintf(stderr, "%s level %d: %s\n", name, l + 1, err.msg);
+      exit(1);
+    }
+    ss_triedge *tn = edges_of(next);
+    size_t new_bad = 0, n4 = 0, n4to8 = 0, n8 = 0, n8kept = 0;
+    for (size_t v = cur->nv; v < next->nv; v++)
+      if (!tn->vbnd[v] && valence(tn, v) != 4) new_bad++;
+    for (size_t v = 0; v < cur->nv; v++) {
+      if (te->vbnd[v]) continue;
+      if (valence(te, v) == 4) n4++, n4to8 += valence(tn, v) == 8;
+      if (valence(te, v) == 8) n8++, n8kept += valence(tn, v) == 8;
+    }
+    CHECK(new_bad == 0, "%s level %d: %zu new interior vertices of valence != 4", name,
+          l + 1, new_bad);
+    printf("  step %d: %zu new vertices (all interior ones of valence 4: %s); "
+           "valence 4 -> 8: %zu of %zu; valence 8 kept: %zu of %zu\n",
+           l + 1, next->nv - cur->nv, new_bad ? "NO" : "yes", n4to8, n4, n8kept, n8);
+    ss_triedge_free(te);
+    te = tn;
+    ss_cx_free(cur);
+    cur = next;
+  }
+  for (int l = 0; l <= levels; l++)
+    free(sig[l]);
+  ss_triedge_free(te);
+  ss_cx_free(cur);
+  ss_scheme_free(s);
+}
+
+/* The fan of n triangles about the origin with corners on the unit circle,
+ * corners numbered in turn (the paper's section 3.3 example). */
+static ss_cx *fan(int n) {
+  ss_error err = {0};
+  ss_cx *cx = NULL;
+  const double pi = 3.14159265358979323846;
+  double o[2] = {0, 0};
+  if (ss_cx_new(2, &cx, &err) || ss_cx_add_vertex(cx, o, 0, &err)) exit(1);
+  for (int i = 0; i < n; i++) {
+    double x[2] = {cos(2 * pi * i / n), sin(2 * pi * i / n)};
+    if (ss_cx_add_vertex(cx, x, 0, &err)) exit(1);
+  }
+  for (int i = 0; i < n; i++) {
+    ss_idx t[3] = {0, (ss_idx)(1 + i), (ss_idx)(1 + (i + 1) % n)};
+    if (ss_cx_add_cell(cx, SS_TRIANGLE, t, 0, &err)) exit(1);
+  }
+  return cx;
+}
+
+/* Section 3.3: after one level the centre of a regular n-gon fan has valence
+ * 2n for n < 6 (the boundary edges are longest), n for even n > 6 (every
+ * other spoke splits) and n + 1 for odd n > 6 (one boundary edge too). */
+static void test_fans(void) {
+  const int ns[] = {3, 4, 5, 7, 8, 9, 11, 12, 16};
+  for (size_t i = 0; i < sizeof ns / sizeof *ns; i++) {
+    int n = ns[i];
+    ss_cx *c = fan(n);
+    gsl_spmatrix *R = NULL;
+    ss_cx *f = op_refine("quasi48", c, &R);
+    ss_triedge *te = edges_of(f);
+    size_t want = n < 6 ? (size_t)(2 * n) : n % 2 == 0 ? (size_t)n : (size_t)n + 1;
+    CHECK(valence(te, 0) == want,
+          "fan n=%d: centre valence %zu after one level, the "
+          "paper says %zu",
+          n, valence(te, 0), want);
+    /* and the boundary corners stayed where they were */
+    double moved = 0;
+    for (size_t v = 1; v <= (size_t)n; v++)
+      for (int r = 0; r < 2; r++)
+        moved = fmax(moved, fabs(f->x[2 * v + (size_t)r] - c->x[2 * v + (size_t)r]));
+    CHECK(moved == 0.0, "fan n=%d: a boundary corner moved by %g", n, moved);
+    ss_triedge_free(te);
+    gsl_spmatrix_free(R);
+    ss_cx_free(f);
+    ss_cx_free(c);
+  }
+}
+
+/* Non-manifold and zero-length edges and quadrilaterals are refused, each
+ * with a message naming the problem. */
+static void test_bad_input(void) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  ss_cx *cx = NULL, *f = NULL;
+  if (ss_scheme_new("quasi48", &s, &err)) exit(1);
+  const double x[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}};
+  /* three triangles on the edge (1, 2) */
+  if (ss_cx_new(3, &cx, &err)) exit(1);
+  for (int i = 0; i < 4; i++)
+    if (ss_cx_add_vertex(cx, x[i], 0, &err)) exit(1);
+  double y[3] = {0, -1, 0};
+  if (ss_cx_add_vertex(cx, y, 0, &err)) exit(1);
+  const ss_idx t[3][3] = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  for (int i = 0; i < 3; i++)
+    if (ss_cx_add_cell(cx, SS_TRIANGLE, t[i], 0, &err)) exit(1);
+  ss_status st = ss_scheme_refine(s, cx, &f, NULL, &err);
+  CHECK(st == SS_EINPUT && strstr(err.msg, "non-manifold edge") &&
+            strstr(err.msg, "vertices 1 and 2"),
+        "non-manifold edge: status %d, '%s'", (int)st, err.msg);
+  CHECK(f == NULL, "no result on bad input");
+  ss_cx_free(cx);
+  /* vertex 5 sits on vertex 2: the edge (2, 5) has length zero */
+  if (ss_cx_new(3, &cx, &err)) exit(1);
+  for (int i = 0; i < 5; i++)
+    if (ss_cx_add_vertex(cx, x[i], 0, &err)) exit(1);
+  const ss_idx u[2][3] = {{0, 1, 2}, {1, 4, 3}};
+  for (int i = 0; i < 2; i++)
+    if (ss_cx_add_cell(cx, SS_TRIANGLE, u[i], 0, &err)) exit(1);
+  st = ss_scheme_refine(s, cx, &f, NULL, &err);
+  CHECK(st == SS_EINPUT && strstr(err.msg, "zero-length") &&
+            strstr(err.msg, "vertices 2 and 5"),
+        "zero-length edge: status %d, '%s'", (int)st, err.msg);
+  ss_cx_free(cx);
+  /* quadrilaterals */
+  ss_cx *q = tm_torus(2, 3);
+  st = ss_scheme_refine(s, q, &f, NULL, &err);
+  CHECK(st == SS_EINPUT && strstr(err.msg, "does not take quadrilaterals"),
+        "quads: status %d, '%s'", (int)st, err.msg);
+  ss_cx_free(q);
+  ss_scheme_free(s);
+}
+
 int main(int argc, char **argv) {
-  (void)argc;
-  (void)argv;
   test_lattice();
+  test_fans();
+  test_bad_input();
+  if (argc < 2) {
+    fprintf(stderr, "usage: test_quasi48 MESHDIR\n");
+    return 1;
+  }
+  char path[4096];
+  ss_error err = {0};
+  ss_cx *ico = NULL, *big = NULL;
+  snprintf(path, sizeof path, "%s/icosahedron.obj", argv[1]);
+  REQUIRE_OK(ss_mesh_read(path, SS_MESH_AUTO, &ico, &err), &err);
+  claims("icosahedron.obj", ico, 10);
+  /* a >= 5000-triangle surface: the icosahedron after 4 Loop levels (5120) */
+  ss_scheme *loop = NULL;
+  REQUIRE_OK(ss_scheme_new("loop", &loop, &err), &err);
+  REQUIRE_OK(ss_scheme_refine_levels(loop, ico, 4, &big, &err), &err);
+  CHECK(big->nc[SS_TRIANGLE] == 5120, "Loop^4 icosahedron: %zu triangles",
+        big->nc[SS_TRIANGLE]);
+  claims("icosahedron after 4 Loop levels", big, 6);
+  ss_scheme_free(loop);
+  ss_cx_free(big);
+  ss_cx_free(ico);
   return ss_test_done("test_quasi48");
 }
