@@ -94,7 +94,7 @@ static void help(const char *cmd) {
       "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
       "options:\n"
       "  --scheme S             mlca, tetoct, boxspline, boxspline-avg, catmull-clark,\n"
-      "                         loop, ccsolid\n"
+      "                         loop, ccsolid (quasi48: not yet)\n"
       "  --diagonals D          major diagonals of tet stars (boxspline): bfs\n"
       "                         (Algorithm 2, default), or around the edge of\n"
       "                         --edge: skew (the same turn all round) or center\n"
@@ -914,6 +914,16 @@ static int run(int argc, char **argv, const char *cmd) {
     fprintf(stderr, "subspectra %s: %s%s\n", cmd,
             o.stencil ? "--stencil " : "--scheme: ", err.msg);
     return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
+  }
+  if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT) {
+    /* its split depends on positions, so a star refined alone is not the
+     * mesh's neighbourhood: the local matrices need their own derivation */
+    fprintf(stderr,
+            "subspectra %s: scheme %s: local subdivision matrices of its geometry-"
+            "sensitive (bisection) split are not implemented yet\n",
+            cmd, ss_scheme_name(s));
+    ss_scheme_free(s);
+    return SS_EXIT_USAGE;
   }
   int rc = SS_EXIT_OK, header = 0;
   if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {
