@@ -915,13 +915,7 @@ static int run(int argc, char **argv, const char *cmd) {
             o.stencil ? "--stencil " : "--scheme: ", err.msg);
     return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
   }
-  if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT) {
-    /* its split depends on positions, so a star refined alone is not the
-     * mesh's neighbourhood: the local matrices need their own derivation */
-    fprintf(stderr,
-            "subspectra %s: scheme %s: local subdivision matrices of its geometry-"
-            "sensitive (bisection) split are not implemented yet\n",
-            cmd, ss_scheme_name(s));
+  if (ss_cli_refuse_local(cmd, s)) {
     ss_scheme_free(s);
     return SS_EXIT_USAGE;
   }
