@@ -23,6 +23,10 @@
 #include <stdint.h>
 #include <string.h>
 
+#include <gsl/gsl_complex_math.h>
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_matrix.h>
+
 #include "ss_mesh.h"
 #include "ss_optest.h"
 #include "ss_split.h"
@@ -201,6 +205,61 @@ static void test_lattice(void) {
          "(1/2,1/2) %.17g, (1,0) %.17g\n",
          4 * mask[8 * G + 8], 4 * mask[9 * G + 8], 4 * mask[9 * G + 9],
          4 * mask[10 * G + 8]);
+  /* The local subdivision matrix of two levels at a lattice vertex: the 9 x 9
+   * block of lattice points around it maps onto the points at half their
+   * coordinates (the mask reaches 2, so the block is closed).  Each of the
+   * symbol M's other cosets ((2pi,0), (0,2pi), (2pi,2pi)) is a zero of order 4:
+   * near (2pi,0), (1 + c1 c2)/2 ~ |e|^2/16 and is squared; near (2pi,2pi),
+   * (1 + (c1 + c2)/2)/2 ~ |e|^2/32 and is squared.  So the scheme generates
+   * cubics and S has the eigenvalues 2^-k with multiplicity k + 1, k = 0..3
+   * (1, 1/2 twice, 1/4 three times, 1/8 four times). */
+  {
+    const int r = 4, w = 2 * r + 1, nn = w * w;
+    gsl_matrix *S = gsl_matrix_alloc((size_t)nn, (size_t)nn);
+    for (int i = 0; i < nn; i++) {
+      int ax = i / w - r, ay = i % w - r; /* fine point (ax/2, ay/2) */
+      size_t f = at[(ax + 2 * HALF) * m + (ay + 2 * HALF)];
+      double sum = 0;
+      for (int j = 0; j < nn; j++) {
+        int bx = j / w - r, by = j % w - r;
+        size_t a = (size_t)((bx + HALF) * n + (by + HALF));
+        gsl_matrix_set(S, (size_t)i, (size_t)j, R[f * nc0 + a]);
+        sum += R[f * nc0 + a];
+      }
+      CHECK_CLOSE(sum, 1.0, 1e-14, "local matrix row %d is not closed", i);
+    }
+    gsl_vector_complex *ev = gsl_vector_complex_alloc((size_t)nn);
+    gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc((size_t)nn);
+    CHECK(gsl_eigen_nonsymm(S, ev, ws) == 0, "eigenvalues of the local matrix");
+    double mags[81];
+    for (int i = 0; i < nn; i++)
+      mags[i] = gsl_complex_abs(gsl_vector_complex_get(ev, (size_t)i));
+    for (int k = 0; k <= 3; k++) {
+      int count = 0;
+      for (int i = 0; i < nn; i++) {
+        gsl_complex z = gsl_vector_complex_get(ev, (size_t)i);
+        /* repeated eigenvalues of a non-normal matrix move by ~sqrt(eps) */
+        count += fabs(GSL_REAL(z) - ldexp(1.0, -k)) < 1e-7 && fabs(GSL_IMAG(z)) < 1e-7;
+      }
+      CHECK(count == k + 1, "eigenvalue 2^-%d: multiplicity %d, expected %d", k, count,
+            k + 1);
+    }
+    /* and nothing else as large as 1/8 (printed: the next one) */
+    int above = 0;
+    double next = 0;
+    for (int i = 0; i < nn; i++) {
+      above += mags[i] > 0.125 + 1e-7;
+      if (mags[i] < 0.125 - 1e-7 && mags[i] > next) next = mags[i];
+    }
+    CHECK(above == 6, "%d eigenvalues above 1/8, expected 6 (1, 1/2, 1/2, 1/4 x3)",
+          above);
+    printf("two-level local matrix at a regular vertex (81 points): 1, 1/2 x2, "
+           "1/4 x3, 1/8 x4 found; next |lambda| = %.6f\n",
+           next);
+    gsl_eigen_nonsymm_free(ws);
+    gsl_vector_complex_free(ev);
+    gsl_matrix_free(S);
+  }
   /* linear precision: interior fine vertices of x and y stay on their points */
   double lin = 0.0;
   for (size_t v = 0; v < f2->nv; v++) {
