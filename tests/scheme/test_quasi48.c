@@ -447,6 +447,29 @@ static void test_fans(void) {
   }
 }
 
+/* Without ties (a jittered mesh) the refinement depends on the geometry only:
+ * relabelling vertices and turning triangles changes nothing. */
+static void test_relabel(const ss_cx *ico) {
+  ss_error err = {0};
+  ss_cx *j = NULL, *a = NULL, *b = NULL;
+  ss_scheme *s = NULL;
+  if (ss_cx_copy(ico, &j, &err) || ss_scheme_new("quasi48", &s, &err)) exit(1);
+  tm_jitter(j, 0.05, 7);
+  ss_cx *p = tm_permuted(j, 11);
+  if (ss_scheme_refine_levels(s, j, 4, &a, &err) ||
+      ss_scheme_refine_levels(s, p, 4, &b, &err)) {
+    fprintf(stderr, "relabel: %s\n", err.msg);
+    exit(1);
+  }
+  CHECK(tm_same_geometry(a, b, 1e-12) == 0,
+        "4 levels of a jittered icosahedron depend on its labelling");
+  ss_cx_free(a);
+  ss_cx_free(b);
+  ss_cx_free(p);
+  ss_cx_free(j);
+  ss_scheme_free(s);
+}
+
 /* Non-manifold and zero-length edges and quadrilaterals are refused, each
  * with a message naming the problem. */
 static void test_bad_input(void) {
@@ -505,6 +528,7 @@ int main(int argc, char **argv) {
   snprintf(path, sizeof path, "%s/icosahedron.obj", argv[1]);
   REQUIRE_OK(ss_mesh_read(path, SS_MESH_AUTO, &ico, &err), &err);
   claims("icosahedron.obj", ico, 10);
+  test_relabel(ico);
   /* a >= 5000-triangle surface: the icosahedron after 4 Loop levels (5120) */
   ss_scheme *loop = NULL;
   REQUIRE_OK(ss_scheme_new("loop", &loop, &err), &err);
