@@ -27,6 +27,10 @@
 #include "ss_scheme_impl.h"
 #include "ss_triedge.h"
 
+/* Weight of each of an interior new vertex's four neighbours (figure 5); the
+ * cascade of the old vertices reads p'(x) through the same weight. */
+static const double new_weight = 0.25;
+
 static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
                               const ss_split *L, ss_sink *k, ss_error *err) {
   (void)s;
@@ -49,7 +53,7 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
                           "quasi48: new vertex %zu has valence %zu, not 4", x + 1, val);
     }
     for (size_t q = te->vptr[x]; q < te->vptr[x + 1]; q++)
-      ss_sink_emit(k, x, te->vnbr[q], 0.25);
+      ss_sink_emit(k, x, te->vnbr[q], new_weight);
   }
   for (size_t v = 0; v < nc; v++) {
     size_t n = 0;
@@ -69,7 +73,7 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
         continue;
       }
       for (size_t r = te->vptr[x]; r < te->vptr[x + 1]; r++)
-        ss_sink_emit(k, v, te->vnbr[r], 0.25 * w);
+        ss_sink_emit(k, v, te->vnbr[r], new_weight * w);
     }
   }
   ss_triedge_free(te);
