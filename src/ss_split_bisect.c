@@ -22,7 +22,9 @@
  * their edges split.
  *
  * Refused (SS_EINPUT): an edge held by more than two triangles (non-manifold:
- * its cluster is undefined) and a zero-length edge (the longest-edge order is
+ * its cluster is undefined), two triangles on an edge with the same third
+ * corner (a doubled triangle: the split point would not have the four
+ * neighbours of section 3.2) and a zero-length edge (the longest-edge order is
  * undefined among its triangle's edges).  Vertex cells are copied; the split
  * takes no other cells. */
 #include <math.h>
@@ -77,6 +79,27 @@ ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_ou
     goto done;
   }
   const size_t ne = te->ne;
+  /* two triangles on one edge with the same third corner (a doubled triangle)
+   * would give the split point 3 neighbours, not the 4 of section 3.2 */
+  for (size_t e = 0; e < ne; e++) {
+    if (te->nface[e] != 2) continue;
+    ss_idx opp[2];
+    for (int j = 0; j < 2; j++) {
+      size_t t = te->face[2 * e + (size_t)j];
+      int k = 0;
+      while (k < 2 && te->tedge[3 * t + (size_t)k] != e)
+        k++;
+      opp[j] = ss_cx_cell(coarse, SS_TRIANGLE, t)[k];
+    }
+    if (opp[0] == opp[1]) {
+      st = ss_error_set(err, SS_EINPUT,
+                        "doubled triangle: both triangles on the edge between vertices "
+                        "%lu and %lu have the third corner %lu",
+                        (unsigned long)te->end[2 * e] + 1,
+                        (unsigned long)te->end[2 * e + 1] + 1, (unsigned long)opp[0] + 1);
+      goto done;
+    }
+  }
   order = malloc((ne + 1) * sizeof *order);
   marked = calloc(ne + 1, 1);
   mid = malloc((ne + 1) * sizeof *mid);

@@ -51,7 +51,7 @@ static const char *const usage_text =
     "  quasi48        quasi 4-8 surfaces (Velho-Gomes): triangles; one level is\n"
     "                 one longest-edge bisection pass (two make a 4-8 step);\n"
     "                 boundaries stay fixed; non-manifold and zero-length\n"
-    "                 edges are refused\n"
+    "                 edges and doubled triangles are refused\n"
     "\n"
     "The input is checked: malformed files, cells a scheme does not take, and\n"
     "flat, folded or inverted cells are errors (exit status 2), and so is a\n"

@@ -48,6 +48,8 @@ expect 0 "quasi48 level 2" "$exe" subdivide --scheme quasi48 --levels 2 "$m/icos
 expect 2 "does not take quadrilaterals" "$exe" subdivide --scheme quasi48 "$m/cube-surface.obj" -o "$tmp/q.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' > "$tmp/nm.obj"
 expect 2 "non-manifold edge: the edge between vertices 1 and 2 is held by 3 triangles" "$exe" subdivide --scheme quasi48 "$tmp/nm.obj" -o "$tmp/q.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 1 3\n' > "$tmp/pillow.obj"
+expect 2 "doubled triangle: both triangles on the edge between vertices 1 and 2 have the third corner 3" "$exe" subdivide --scheme quasi48 "$tmp/pillow.obj" -o "$tmp/q.obj"
 expect 2 "not implemented yet" "$exe" analyze --scheme quasi48 --surface-vertex 5
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/patch3x3.mesh" -o "$tmp/f.mesh"
 expect 0 "tetoct level 1" "$exe" subdivide --scheme tetoct "$m/tetstar-icosahedron.mesh" -o "$tmp/g.mesh"
