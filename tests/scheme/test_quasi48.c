@@ -358,14 +358,16 @@ static void claims(const char *name, const ss_cx *input, int levels) {
       n48 += valence(te, v) == 4 || valence(te, v) == 8;
     }
     free(mark);
-    if (l >= 2) {
+    /* a vertex born at level l0 has valence 4 there and 8 from l0 + 1 on, so
+     * compare over one 4-8 cycle (l - 2 to l) only vertices born by l - 3 */
+    if (l >= 3) {
       size_t same = 0;
-      for (size_t v = 0; v < nvl[l - 2]; v++)
+      for (size_t v = 0; v < nvl[l - 3]; v++)
         same += sig[l][v] == sig[l - 2][v];
-      printf("  level %d: %zu vertices, %.4f of valence 4 or 8; 2-ring unchanged "
-             "since level %d: %.4f of %zu\n",
-             l, cur->nv, (double)n48 / (double)cur->nv, l - 2,
-             (double)same / (double)nvl[l - 2], nvl[l - 2]);
+      printf("  level %d: %zu vertices, %.4f of valence 4 or 8; of the %zu vertices "
+             "born by level %d, %.4f have the same 2-ring at levels %d and %d\n",
+             l, cur->nv, (double)n48 / (double)cur->nv, nvl[l - 3], l - 3,
+             (double)same / (double)nvl[l - 3], l - 2, l);
     }
     if (l == levels) break;
     ss_cx *next = NULL;
@@ -445,6 +447,54 @@ static void test_fans(void) {
     ss_cx_free(f);
     ss_cx_free(c);
   }
+}
+
+/* Figure 13: a triangulated cube after 4 levels, whose only extraordinary
+ * vertices the paper says are the 8 corners.  Each quad of cube-surface.obj
+ * is cut along its diagonal (0, 2).  Printed: how many vertices besides the
+ * corners have a valence other than 4 or 8 (a finding if not 0). */
+static ss_cx *cube_triangles(const ss_cx *quads) {
+  ss_error err = {0};
+  ss_cx *cx = NULL;
+  if (ss_cx_new(quads->dim, &cx, &err)) exit(1);
+  for (size_t v = 0; v < quads->nv; v++)
+    if (ss_cx_add_vertex(cx, quads->x + v * (size_t)quads->dim, 0, &err)) exit(1);
+  for (size_t q = 0; q < quads->nc[SS_QUAD]; q++) {
+    const ss_idx *v = ss_cx_cell(quads, SS_QUAD, q);
+    const ss_idx t0[3] = {v[0], v[1], v[2]}, t1[3] = {v[0], v[2], v[3]};
+    if (ss_cx_add_cell(cx, SS_TRIANGLE, t0, 0, &err) ||
+        ss_cx_add_cell(cx, SS_TRIANGLE, t1, 0, &err))
+      exit(1);
+  }
+  return cx;
+}
+
+static void cube_claim(const ss_cx *cx) {
+  ss_error err = {0};
+  ss_cx *f = NULL;
+  ss_scheme *s = NULL;
+  if (ss_scheme_new("quasi48", &s, &err)) exit(1);
+  if (ss_scheme_refine_levels(s, cx, 4, &f, &err)) {
+    fprintf(stderr, "cube: %s\n", err.msg);
+    exit(1);
+  }
+  ss_triedge *te = edges_of(f);
+  size_t extra = 0, corners = 0;
+  for (size_t v = 0; v < f->nv; v++) {
+    size_t d = valence(te, v);
+    if (d == 4 || d == 8) continue;
+    if (v < cx->nv)
+      corners++;
+    else
+      extra++;
+  }
+  printf("triangulated cube (figure 13), 4 levels: %zu vertices; extraordinary: %zu "
+         "of the 8 corners, %zu others%s\n",
+         f->nv, corners, extra, extra ? " (the paper says none)" : "");
+  CHECK(f->nc[SS_TRIANGLE] > cx->nc[SS_TRIANGLE], "the cube was refined");
+  ss_triedge_free(te);
+  ss_cx_free(f);
+  ss_scheme_free(s);
 }
 
 /* Without ties (a jittered mesh) the refinement depends on the geometry only:
@@ -529,6 +579,14 @@ int main(int argc, char **argv) {
   REQUIRE_OK(ss_mesh_read(path, SS_MESH_AUTO, &ico, &err), &err);
   claims("icosahedron.obj", ico, 10);
   test_relabel(ico);
+  ss_cx *cube = NULL;
+  snprintf(path, sizeof path, "%s/cube-surface.obj", argv[1]);
+  REQUIRE_OK(ss_mesh_read(path, SS_MESH_AUTO, &cube, &err), &err);
+  ss_cx *tcube = cube_triangles(cube);
+  cube_claim(tcube);
+  claims("cube-surface.obj, quads cut along (0, 2)", tcube, 8);
+  ss_cx_free(tcube);
+  ss_cx_free(cube);
   /* a >= 5000-triangle surface: the icosahedron after 4 Loop levels (5120) */
   ss_scheme *loop = NULL;
   REQUIRE_OK(ss_scheme_new("loop", &loop, &err), &err);
