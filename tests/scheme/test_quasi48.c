@@ -497,6 +497,67 @@ static void cube_claim(const ss_cx *cx) {
   ss_scheme_free(s);
 }
 
+/* The bisect split alone, on a closed surface: the fine triangles cover the
+ * coarse ones (total area kept), each coarse triangle is halved at most once
+ * (T + sum over split edges of their triangles fine triangles), and the
+ * clusters are maximal: every edge that did not split shares a triangle with
+ * one that did (Algorithm 1 splits every unmarked edge). */
+static void test_split(const ss_cx *cx) {
+  ss_error err = {0};
+  ss_cx *f = NULL;
+  ss_split *L = NULL;
+  if (ss_split_refine(SS_SPLIT_BISECT, cx, &f, &L, &err)) {
+    fprintf(stderr, "bisect split: %s\n", err.msg);
+    exit(1);
+  }
+  ss_triedge *te = edges_of(cx);
+  unsigned char *split = calloc(te->ne + 1, 1), *touched = calloc(te->ne + 1, 1);
+  size_t want = cx->nc[SS_TRIANGLE];
+  for (size_t x = L->ncoarse; x < L->nfine; x++) {
+    ss_idx a = L->parent[L->ptr[x]], b = L->parent[L->ptr[x] + 1];
+    size_t e = 0;
+    while (e < te->ne && !(te->end[2 * e] == a && te->end[2 * e + 1] == b))
+      e++;
+    CHECK(e < te->ne && ss_split_npar(L, x) == 2, "new vertex %zu is no edge midpoint",
+          x);
+    if (e == te->ne) continue;
+    split[e] = 1;
+    want += te->nface[e];
+  }
+  for (size_t e = 0; e < te->ne; e++)
+    if (split[e])
+      for (size_t j = 0; j < te->nface[e]; j++)
+        for (int k = 0; k < 3; k++)
+          touched[te->tedge[3 * te->face[2 * e + j] + (size_t)k]] = 1;
+  size_t lonely = 0;
+  for (size_t e = 0; e < te->ne; e++)
+    lonely += !touched[e];
+  CHECK(f->nc[SS_TRIANGLE] == want, "%zu fine triangles, expected %zu",
+        f->nc[SS_TRIANGLE], want);
+  CHECK(lonely == 0, "%zu edges neither split nor next to a split edge", lonely);
+  double area[2] = {0, 0};
+  for (int lev = 0; lev < 2; lev++) {
+    const ss_cx *c = lev ? f : cx;
+    for (size_t t = 0; t < c->nc[SS_TRIANGLE]; t++) {
+      const ss_idx *v = ss_cx_cell(c, SS_TRIANGLE, t);
+      const double *p0 = c->x + 3 * v[0], *p1 = c->x + 3 * v[1], *p2 = c->x + 3 * v[2];
+      double u[3], w[3];
+      for (int r = 0; r < 3; r++)
+        u[r] = p1[r] - p0[r], w[r] = p2[r] - p0[r];
+      double cx_ = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2],
+             cz = u[0] * w[1] - u[1] * w[0];
+      area[lev] += 0.5 * sqrt(cx_ * cx_ + cy * cy + cz * cz);
+    }
+  }
+  CHECK(fabs(area[1] - area[0]) <= 1e-12 * area[0], "area %g after the split, %g before",
+        area[1], area[0]);
+  free(split);
+  free(touched);
+  ss_triedge_free(te);
+  ss_split_free(L);
+  ss_cx_free(f);
+}
+
 /* Without ties (a jittered mesh) the refinement depends on the geometry only:
  * relabelling vertices and turning triangles changes nothing. */
 static void test_relabel(const ss_cx *ico) {
@@ -593,6 +654,8 @@ int main(int argc, char **argv) {
   REQUIRE_OK(ss_scheme_refine_levels(loop, ico, 4, &big, &err), &err);
   CHECK(big->nc[SS_TRIANGLE] == 5120, "Loop^4 icosahedron: %zu triangles",
         big->nc[SS_TRIANGLE]);
+  test_split(ico);
+  test_split(big);
   claims("icosahedron after 4 Loop levels", big, 6);
   ss_scheme_free(loop);
   ss_cx_free(big);
