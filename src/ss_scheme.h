@@ -17,6 +17,8 @@
  *   boxspline-avg  the same averaged over the three diagonal directions
  *   ccsolid        Catmull-Clark solids (Joy-MacCracken rules) on hex meshes;
  *                  boundaries as Catmull-Clark surfaces (ss_scheme_ccsolid.c)
+ *   quasi48        quasi 4-8 surfaces: longest-edge bisection (a geometry-
+ *                  sensitive split) + cascade convolution (ss_scheme_quasi48.c)
  * plus the `averaging` family (split + one mask per cell type) that stencil files
  * describe. */
 #ifndef SS_SCHEME_H

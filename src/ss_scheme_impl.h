@@ -40,6 +40,7 @@ ss_status ss_scheme_loop_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_ccsolid_new(ss_scheme **out, ss_error *err);
+ss_status ss_scheme_quasi48_new(ss_scheme **out, ss_error *err);
 
 /* The Catmull-Clark surface rule (ss_scheme_catmull_clark.c) on the quads,
  * segments and vertex cells of `surf`, a complex over the fine vertices of the

@@ -27,6 +27,11 @@
  *    parallel to its parent's (corner children are scaled copies, and an
  *    octahedron's tet (c, B, ., .) with B = m(s1,s2) puts first the pair
  *    whose octahedron lies along the parent's axis (0,3)).
+ *  - bisect (quasi 4-8 paper, Algorithm 1): one pass of longest-edge
+ *    bisection of a triangle surface, at most one split edge per triangle,
+ *    which halves the triangles holding it (ss_split_bisect.c).  Unlike the
+ *    others this split reads the coarse positions (the complex's x): which
+ *    edges split depends on their lengths; ties are broken by vertex index.
  * Vertex cells are copied.  Every child keeps the parent's reference.
  *
  * Fine cells of coarse cell i of type t occupy a contiguous block, in coarse
@@ -43,7 +48,8 @@
 
 typedef enum {
   SS_SPLIT_MULTILINEAR = 0, /* vertices, segments, quads, hexes */
-  SS_SPLIT_TETOCT           /* vertices, segments, triangles, tets, octahedra */
+  SS_SPLIT_TETOCT,          /* vertices, segments, triangles, tets, octahedra */
+  SS_SPLIT_BISECT           /* vertices, triangles: longest-edge bisection */
 } ss_split_kind;
 
 /* The linear refinement operator L in parent-list form. */
@@ -61,13 +67,14 @@ static inline size_t ss_split_npar(const ss_split *L, size_t f) {
 
 /* Whether a split accepts cells of type t. */
 int ss_split_accepts(ss_split_kind kind, ss_cell_type t);
-/* Name of a split ("multilinear", "tetoct"). */
+/* Name of a split ("multilinear", "tetoct", "bisect"). */
 const char *ss_split_name(ss_split_kind kind);
 
 /* Refine `coarse` once: *fine receives the refined complex with new vertices at
  * their linear (centroid) positions, *L the operator.  Both are owned by the
  * caller.  SS_EINPUT if the complex holds a cell type the split does not accept
- * or a malformed cell; SS_ENOMEM.  Cost: linear in the size of the complex. */
+ * or a malformed cell, and for the bisect split a non-manifold or zero-length
+ * edge; SS_ENOMEM.  Cost: linear in the size of the complex. */
 ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
                           ss_split **L, ss_error *err);
 

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "ss_error.h"
+#include "ss_scheme.h"
 
 enum { SS_EXIT_OK = 0, SS_EXIT_FAIL = 1, SS_EXIT_USAGE = 2 };
 
@@ -36,6 +37,12 @@ int ss_cli_fail(const ss_error *err);
  * SS_EINPUT, SS_EIO and SS_ENOMEM (out of memory is never "a check fails"),
  * 1 for SS_ENUMERIC and SS_EINTERNAL. */
 int ss_cli_exit_status(ss_status st);
+
+/* For commands that read local subdivision matrices (analyze, matrix, check,
+ * sweep): if scheme s has no local-matrix derivation yet (the geometry-
+ * sensitive bisect split of quasi48), print why on stderr, prefixed by
+ * "subspectra CMD: ", and return 1; otherwise 0. */
+int ss_cli_refuse_local(const char *cmd, const ss_scheme *s);
 /* Parse a memory size: a positive number with an optional suffix K, M, G or T
  * (powers of 1000, as the messages print them; a trailing B is allowed:
  * "8G", "1.5GB", "500M").  0 on success, -1 otherwise. */

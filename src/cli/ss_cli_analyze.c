@@ -94,7 +94,7 @@ static void help(const char *cmd) {
       "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
       "options:\n"
       "  --scheme S             mlca, tetoct, boxspline, boxspline-avg, catmull-clark,\n"
-      "                         loop, ccsolid\n"
+      "                         loop, ccsolid (quasi48: not yet)\n"
       "  --diagonals D          major diagonals of tet stars (boxspline): bfs\n"
       "                         (Algorithm 2, default), or around the edge of\n"
       "                         --edge: skew (the same turn all round) or center\n"
@@ -914,6 +914,10 @@ static int run(int argc, char **argv, const char *cmd) {
     fprintf(stderr, "subspectra %s: %s%s\n", cmd,
             o.stencil ? "--stencil " : "--scheme: ", err.msg);
     return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
+  }
+  if (ss_cli_refuse_local(cmd, s)) {
+    ss_scheme_free(s);
+    return SS_EXIT_USAGE;
   }
   int rc = SS_EXIT_OK, header = 0;
   if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {

@@ -181,6 +181,10 @@ int ss_cli_check(int argc, char **argv) {
     fprintf(stderr, "subspectra check: %s\n", err.msg);
     return SS_EXIT_USAGE; /* a bad stencil file, or out of memory */
   }
+  if (ss_cli_refuse_local("check", s)) {
+    ss_scheme_free(s);
+    return SS_EXIT_USAGE;
+  }
   const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
   if (face && !tetoct) {
     ss_scheme_free(s);

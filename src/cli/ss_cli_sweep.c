@@ -529,6 +529,10 @@ int ss_cli_sweep(int argc, char **argv) {
             stencil ? "--stencil " : "--scheme: ", err.msg);
     return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
   }
+  if (ss_cli_refuse_local("sweep", s)) {
+    ss_scheme_free(s);
+    return SS_EXIT_USAGE;
+  }
   const int volume = ss_scheme_accepts(s, SS_HEX) || ss_scheme_accepts(s, SS_TET);
   const int reads = ss_scheme_reads_diagonals(s);
   const char *bad = NULL;

@@ -156,3 +156,14 @@ int ss_cli_parse_part(const char *s, long *part, long *nparts) {
     return -1;
   return 0;
 }
+
+int ss_cli_refuse_local(const char *cmd, const ss_scheme *s) {
+  if (ss_scheme_split_kind(s) != SS_SPLIT_BISECT) return 0;
+  /* its split depends on positions, so a star refined alone need not be the
+   * mesh's neighbourhood: the local matrices need their own derivation */
+  fprintf(stderr,
+          "subspectra %s: scheme %s: local subdivision matrices of its geometry-"
+          "sensitive (bisection) split are not implemented yet\n",
+          cmd, ss_scheme_name(s));
+  return 1;
+}

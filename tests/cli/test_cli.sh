@@ -43,6 +43,14 @@ expect 0 "wrote" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --split-o
 expect 0 "read .*c.mesh: .* 48 tetrahedra" "$exe" subdivide --scheme tetoct --levels 0 "$tmp/c.mesh" -o "$tmp/c2.mesh"
 expect 0 "catmull-clark level 3: 386 vertices, 384 quadrilaterals" "$exe" subdivide --scheme catmull-clark --levels 3 "$m/cube-surface.obj" -o "$tmp/d.obj"
 expect 0 "loop level 2: 162 vertices, 320 triangles" "$exe" subdivide --scheme loop --levels 2 "$m/icosahedron.obj" -o "$tmp/e.obj"
+# quasi 4-8 surfaces: triangles only; non-manifold edges refused by name
+expect 0 "quasi48 level 2" "$exe" subdivide --scheme quasi48 --levels 2 "$m/icosahedron.obj" -o "$tmp/q.obj"
+expect 2 "does not take quadrilaterals" "$exe" subdivide --scheme quasi48 "$m/cube-surface.obj" -o "$tmp/q.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' > "$tmp/nm.obj"
+expect 2 "non-manifold edge: the edge between vertices 1 and 2 is held by 3 triangles" "$exe" subdivide --scheme quasi48 "$tmp/nm.obj" -o "$tmp/q.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 1 3\n' > "$tmp/pillow.obj"
+expect 2 "doubled triangle: both triangles on the edge between vertices 1 and 2 have the third corner 3" "$exe" subdivide --scheme quasi48 "$tmp/pillow.obj" -o "$tmp/q.obj"
+expect 2 "not implemented yet" "$exe" analyze --scheme quasi48 --surface-vertex 5
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/patch3x3.mesh" -o "$tmp/f.mesh"
 expect 0 "tetoct level 1" "$exe" subdivide --scheme tetoct "$m/tetstar-icosahedron.mesh" -o "$tmp/g.mesh"
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/hexstar-icosahedron.mesh" -o "$tmp/h.mesh"

@@ -1,0 +1,182 @@
+/* ss_split_bisect.c — one pass of the quasi 4-8 refinement (Velho & Gomes,
+ * "Quasi 4-8 subdivision surfaces", Algorithm 1): bisect the longest edges,
+ * at most one per triangle, and halve every triangle holding a split edge.
+ *
+ * This split is geometry-sensitive: it reads the coarse positions (coarse->x)
+ * to rank edges by length.  The paper leaves open how ties are broken
+ * ("sorts edges by decreasing length and radially around each vertex"); here
+ * the order is deterministic:
+ *  - lengths are compared after rounding the squared length to 2^-36 of the
+ *    mesh's largest squared edge length, so that edges equal in exact
+ *    arithmetic but not in floating point (a regular polygon's spokes) tie;
+ *  - among tied edges the one with the smaller lower endpoint goes first, then
+ *    the smaller higher endpoint.  Around a vertex whose neighbours are
+ *    numbered in turn this takes every other spoke, the paper's "radial"
+ *    choice for a regular n-gon fan (section 3.3).
+ * Processing edges in that order, an unmarked edge splits and marks its
+ * cluster: itself and every edge of the (at most two) triangles holding it
+ * (mark_cluster, figure 4), so no triangle has two split edges.  A triangle
+ * (p, a, c) whose edge (a, c) opposite corner p split at m becomes (p, a, m)
+ * and (p, m, c), both oriented as the parent; other triangles are
+ * copied.  New vertices (midpoints, two parents) are numbered in the order
+ * their edges split.
+ *
+ * Refused (SS_EINPUT): an edge held by more than two triangles (non-manifold:
+ * its cluster is undefined), two triangles on an edge with the same third
+ * corner (a doubled triangle: the split point would not have the four
+ * neighbours of section 3.2) and a zero-length edge (the longest-edge order is
+ * undefined among its triangle's edges).  Vertex cells are copied; the split
+ * takes no other cells. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "ss_split_impl.h"
+#include "ss_triedge.h"
+
+typedef struct {
+  uint64_t key; /* rounded squared length */
+  ss_idx lo, hi;
+  size_t e; /* edge index */
+} ranked;
+
+/* Longest first, then ascending endpoints. */
+static int cmp_ranked(const void *a, const void *b) {
+  const ranked *x = a, *y = b;
+  if (x->key != y->key) return (x->key < y->key) - (x->key > y->key);
+  if (x->lo != y->lo) return (x->lo > y->lo) - (x->lo < y->lo);
+  return (x->hi > y->hi) - (x->hi < y->hi);
+}
+
+static double len2(const ss_cx *cx, ss_idx a, ss_idx b) {
+  const size_t dim = (size_t)cx->dim;
+  double s = 0.0;
+  for (size_t r = 0; r < dim; r++) {
+    double d = cx->x[(size_t)a * dim + r] - cx->x[(size_t)b * dim + r];
+    s += d * d;
+  }
+  return s;
+}
+
+ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
+                          ss_error *err) {
+  ss_split_builder b = {0};
+  ss_cx *fine = NULL;
+  ss_triedge *te = NULL;
+  ranked *order = NULL;
+  unsigned char *marked = NULL;
+  ss_idx *mid = NULL;
+  const size_t nt = coarse->nc[SS_TRIANGLE];
+  ss_status st = ss_triedge_new(coarse, &te, err);
+  if (st) goto done;
+  size_t bad = ss_triedge_nonmanifold(te);
+  if (bad != SIZE_MAX) {
+    st = ss_error_set(err, SS_EINPUT,
+                      "non-manifold edge: the edge between vertices %lu and %lu is "
+                      "held by %zu triangles (at most 2 allowed)",
+                      (unsigned long)te->end[2 * bad] + 1,
+                      (unsigned long)te->end[2 * bad + 1] + 1, te->nface[bad]);
+    goto done;
+  }
+  const size_t ne = te->ne;
+  /* two triangles on one edge with the same third corner (a doubled triangle)
+   * would give the split point 3 neighbours, not the 4 of section 3.2 */
+  for (size_t e = 0; e < ne; e++) {
+    if (te->nface[e] != 2) continue;
+    ss_idx opp[2];
+    for (int j = 0; j < 2; j++) {
+      size_t t = te->face[2 * e + (size_t)j];
+      int k = 0;
+      while (k < 2 && te->tedge[3 * t + (size_t)k] != e)
+        k++;
+      opp[j] = ss_cx_cell(coarse, SS_TRIANGLE, t)[k];
+    }
+    if (opp[0] == opp[1]) {
+      st = ss_error_set(err, SS_EINPUT,
+                        "doubled triangle: both triangles on the edge between vertices "
+                        "%lu and %lu have the third corner %lu",
+                        (unsigned long)te->end[2 * e] + 1,
+                        (unsigned long)te->end[2 * e + 1] + 1, (unsigned long)opp[0] + 1);
+      goto done;
+    }
+  }
+  order = malloc((ne + 1) * sizeof *order);
+  marked = calloc(ne + 1, 1);
+  mid = malloc((ne + 1) * sizeof *mid);
+  if (!order || !marked || !mid) {
+    st = ss_error_nomem(err, "bisection split");
+    goto done;
+  }
+  double big = 0.0;
+  for (size_t e = 0; e < ne; e++) {
+    double l = len2(coarse, te->end[2 * e], te->end[2 * e + 1]);
+    if (!(l > 0.0)) {
+      st = ss_error_set(err, SS_EINPUT,
+                        "degenerate edge: vertices %lu and %lu coincide (zero-length "
+                        "edge), so the longest edge of its triangles is undefined",
+                        (unsigned long)te->end[2 * e] + 1,
+                        (unsigned long)te->end[2 * e + 1] + 1);
+      goto done;
+    }
+    if (!isfinite(l)) {
+      st = ss_error_set(err, SS_EINPUT,
+                        "the edge between vertices %lu and %lu has no finite length "
+                        "(coordinates too large or not finite)",
+                        (unsigned long)te->end[2 * e] + 1,
+                        (unsigned long)te->end[2 * e + 1] + 1);
+      goto done;
+    }
+    if (l > big) big = l;
+    mid[e] = SS_IDX_NONE;
+  }
+  for (size_t e = 0; e < ne; e++) {
+    double q = len2(coarse, te->end[2 * e], te->end[2 * e + 1]) / big;
+    order[e] =
+        (ranked){(uint64_t)llround(ldexp(q, 36)), te->end[2 * e], te->end[2 * e + 1], e};
+  }
+  qsort(order, ne, sizeof *order, cmp_ranked);
+  if ((st = ss_split_builder_init(&b, coarse->nv, ne / 3 + 1, err))) goto done;
+  for (size_t i = 0; i < ne; i++) {
+    size_t e = order[i].e;
+    if (marked[e]) continue;
+    ss_idx par[2] = {te->end[2 * e], te->end[2 * e + 1]};
+    if ((st = ss_split_builder_add(&b, par, 2, &mid[e], err))) goto done;
+    marked[e] = 1;
+    for (size_t j = 0; j < te->nface[e]; j++)
+      for (int k = 0; k < 3; k++)
+        marked[te->tedge[3 * te->face[2 * e + j] + (size_t)k]] = 1;
+  }
+  if ((st = ss_cx_new(coarse->dim, &fine, err))) goto done;
+  if ((st = ss_cx_reserve_cells(fine, SS_VERTEX, coarse->nc[SS_VERTEX], err)) ||
+      (st = ss_cx_reserve_cells(fine, SS_TRIANGLE, 2 * nt, err)))
+    goto done;
+  for (size_t c = 0; c < coarse->nc[SS_VERTEX]; c++)
+    if ((st = ss_cx_add_cell(fine, SS_VERTEX, ss_cx_cell(coarse, SS_VERTEX, c),
+                             coarse->cref[SS_VERTEX][c], err)))
+      goto done;
+  for (size_t t = 0; t < nt; t++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_TRIANGLE, t);
+    const int32_t ref = coarse->cref[SS_TRIANGLE][t];
+    int k = 0;
+    while (k < 3 && mid[te->tedge[3 * t + (size_t)k]] == SS_IDX_NONE)
+      k++;
+    if (k == 3) {
+      if ((st = ss_cx_add_cell(fine, SS_TRIANGLE, v, ref, err))) goto done;
+      continue;
+    }
+    /* the split edge is opposite corner k: (v[k+1], v[k+2]) */
+    ss_idx m = mid[te->tedge[3 * t + (size_t)k]];
+    ss_idx a = v[(k + 1) % 3], c = v[(k + 2) % 3], apex = v[k];
+    const ss_idx c0[3] = {apex, a, m}, c1[3] = {apex, m, c};
+    if ((st = ss_cx_add_cell(fine, SS_TRIANGLE, c0, ref, err)) ||
+        (st = ss_cx_add_cell(fine, SS_TRIANGLE, c1, ref, err)))
+      goto done;
+  }
+  st = ss_split_builder_finish(&b, coarse, fine, err);
+done:
+  ss_triedge_free(te);
+  free(order);
+  free(marked);
+  free(mid);
+  return ss_split_builder_hand_over(&b, st, fine, fine_out, L_out);
+}
