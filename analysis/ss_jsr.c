@@ -15,7 +15,7 @@
 #include "ss_jsr_cert.h"
 
 ss_jsr_opts ss_jsr_defaults(void) {
-  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_INF, 10000000, 0.0, 0};
+  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_INF, 10000000, 0.0, 0, 1};
   return o;
 }
 
@@ -43,8 +43,18 @@ typedef struct {
   double *a;              /* n * n: scratch copy for LAPACK (destroyed) */
   double *wr, *wi, *sv;   /* n each: eigenvalues and singular values */
   double *sb;             /* n: dgesvd's superdiagonal scratch */
-  double *ynorm;          /* m: rigorous upper bounds of ||Y_i||_inf */
+  double *ynorm;          /* m: rigorous upper bounds of ||Y_i||_inf (of the
+                             exact matrices the stored Y_i approximate) */
+  double *delta;          /* m: rigorous bound on ||exact - stored Y_i||_inf:
+                             0 for the inputs, rounding of the scaled copies */
+  double *zbuf;           /* m * n * n: the diagonally scaled copies */
+  const double **zptr;    /* m: pointers into zbuf */
+  double *d;              /* n: the diagonal scaling (candidate) */
+  double *vl;             /* n * n: dgeev's eigenvectors */
   double gam;             /* gamma_n = n u / (1 - n u), u the unit roundoff */
+  double tiny;            /* n^2 times the smallest subnormal: the absolute
+                             rounding error of a row sum of a product
+                             through underflow */
   double lower;           /* best rho(Y_w)^{1/|w|} found so far (floating point) */
   int lower_len;          /* its word's length */
   int *lower_word;        /* cap: its word */
@@ -87,6 +97,11 @@ static void ws_free(jsr_ws *w) {
   free(w->sv);
   free(w->sb);
   free(w->ynorm);
+  free(w->delta);
+  free(w->zbuf);
+  free(w->zptr);
+  free(w->d);
+  free(w->vl);
   free(w->lower_word);
 }
 
@@ -124,9 +139,12 @@ static double norm_inf(const double *a, size_t n) {
 }
 
 /* Form the product at level k: Y_i, or Y_i times level k - 1, with its
- * rigorous error bound.  fl(Y P^) = Y P^ + F, |F| <= gamma_n |Y| |P^|
- * (Higham, Accuracy and Stability, 3.5), so E_k = P_k - P^_k = Y E_{k-1} - F and
- * ||E_k||_inf <= ||Y||_inf (||E_{k-1}||_inf + gamma_n ||P^_{k-1}||_inf). */
+ * rigorous error bound.  With Y the stored matrix, Y + Delta the exact one
+ * (||Delta||_inf <= delta), fl(Y P^) = Y P^ + F, |F| <= gamma_n |Y| |P^|
+ * (Higham, Accuracy and Stability, 3.5), so
+ *   E_k = P_k - P^_k = (Y + Delta) E_{k-1} + Delta P^_{k-1} - F,
+ *   ||E_k||_inf <= ||Y + Delta|| e_{k-1} + (delta + gamma_n ||Y||) ||P^_{k-1}||,
+ * plus w->tiny for underflow, where the relative bound on F does not hold. */
 static void ws_push(jsr_ws *w, int k, size_t i) {
   const size_t n = w->n, nn = n * n;
   double *p = w->prod + (size_t)k * nn;
@@ -150,7 +168,10 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
           pr[c] += yrt * qt[c];
       }
     }
-    w->err_inf[k] = up(w->ynorm[i] * up(w->err_inf[k - 1] + w->gam * w->nhat_inf[k - 1]));
+    w->err_inf[k] =
+        up(up(up(w->ynorm[i] * w->err_inf[k - 1]) +
+              up(up(w->delta[i] + w->gam * w->ynorm[i]) * w->nhat_inf[k - 1])) +
+           w->tiny);
   }
   w->nhat_inf[k] = norm_inf(p, n);
 }
@@ -167,6 +188,7 @@ static double ws_norm_inf_up(const jsr_ws *w, int k) {
  * same singular values. */
 static double ws_norm_2(jsr_ws *w, int k) {
   const size_t n = w->n, nn = n * n;
+  if (!isfinite(w->nhat_inf[k])) return INFINITY; /* overflow */
   memcpy(w->a, w->prod + (size_t)k * nn, nn * sizeof *w->a);
   if (n == 1) return fabs(w->a[0]);
   lapack_int info =
@@ -201,7 +223,7 @@ static double ws_specrad(jsr_ws *w, int k) {
  * the eigenvalue computation is skipped when the norm cannot beat the bound. */
 static void ws_offer_lower(jsr_ws *w, int k) {
   const double lim = pow(w->lower, (double)(k + 1));
-  if (w->nhat_inf[k] <= lim) return;
+  if (w->nhat_inf[k] <= lim || !isfinite(w->nhat_inf[k])) return;
   const double r = ws_specrad(w, k);
   if (r <= lim) return;
   const double v = pow(r, 1.0 / (k + 1));
@@ -210,6 +232,29 @@ static void ws_offer_lower(jsr_ws *w, int k) {
     w->lower_len = k + 1;
     memcpy(w->lower_word, w->word, (size_t)(k + 1) * sizeof *w->word);
   }
+}
+
+/* Use the exact similarity D^{-1} Y_i D, D = diag(d), for the words formed
+ * from now on (d = NULL: the inputs).  The scaled entries y_rc (d_c / d_r)
+ * are rounded twice, so the stored copy differs from the exact one by at
+ * most 2.0001 u |z| entrywise; delta bounds that in the inf-norm. */
+static void ws_scale(jsr_ws *w, const double *const *Y, const double *d) {
+  const size_t n = w->n, nn = n * n;
+  for (size_t i = 0; i < w->m; i++) {
+    if (!d) {
+      w->zptr[i] = Y[i];
+      w->delta[i] = 0;
+    } else {
+      double *z = w->zbuf + i * nn;
+      for (size_t r = 0; r < n; r++)
+        for (size_t c = 0; c < n; c++)
+          z[r * n + c] = Y[i][r * n + c] * (d[c] / d[r]);
+      w->zptr[i] = z;
+      w->delta[i] = up(3 * U * up(norm_inf(z, n) * (1 + 2 * w->gam))) + w->tiny;
+    }
+    w->ynorm[i] = up(up(norm_inf(w->zptr[i], n) * (1 + 2 * w->gam)) + w->delta[i]);
+  }
+  w->Y = (const double *const *)w->zptr;
 }
 
 /* Step the depth-first walk to the next sibling at level *k, backtracking
@@ -244,6 +289,95 @@ static void brute_force(jsr_ws *w, int K, double *rho_inf, double *rho_2,
   }
   for (k = 0; k < K; k++)
     rho_cert[k] = root_up(rho_cert[k], k + 1);
+}
+
+/* min over k <= s of the rigorous max_{|w| = k} ||Y_w||_inf^{1/k} for the
+ * current (scaled) matrices: an upper bound on rho(Y), used to rank the
+ * scalings. */
+static double scaling_score(jsr_ws *w, int s) {
+  double best = INFINITY, mx[64] = {0};
+  int k = 0;
+  w->word[0] = -1;
+  while (ws_next(w, &k)) {
+    ws_push(w, k, (size_t)w->word[k]);
+    mx[k] = fmax(mx[k], ws_norm_inf_up(w, k));
+    if (k + 1 < s) w->word[++k] = -1;
+  }
+  for (k = 0; k < s; k++)
+    best = fmin(best, root_up(mx[k], k + 1));
+  return best;
+}
+
+/* d = |v| for v the eigenvector of the largest eigenvalue (in modulus) of the
+ * product of the lower bound's word rotated to start at letter r, floored at
+ * 1e-6 of its maximum; the inputs must be active (ws_scale(w, Y, NULL)).
+ * Returns 0 if LAPACK fails.  The eigenvectors of P^T that dgeev returns as
+ * left vectors for the row-major buffer are conjugates of P's right ones. */
+static int perron_vector(jsr_ws *w, int r, double *d) {
+  const int len = w->lower_len;
+  const size_t n = w->n, nn = n * n;
+  int *rot = w->word + len; /* scratch: the stack has room for 2 len */
+  for (int k = 0; k < len; k++)
+    rot[k] = w->lower_word[(r + k) % len];
+  for (int k = 0; k < len; k++)
+    ws_push(w, k, (size_t)rot[k]);
+  memcpy(w->a, w->prod + (size_t)(len - 1) * nn, nn * sizeof *w->a);
+  if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'V', 'N', (lapack_int)n, w->a, (lapack_int)n, w->wr,
+                    w->wi, w->vl, (lapack_int)n, NULL, 1) != 0)
+    return 0;
+  size_t j = 0;
+  for (size_t t = 1; t < n; t++)
+    if (hypot(w->wr[t], w->wi[t]) > hypot(w->wr[j], w->wi[j])) j = t;
+  if (w->wi[j] < 0) j--; /* the pair's second: its vector is re - i im */
+  double mx = 0;
+  for (size_t t = 0; t < n; t++) {
+    const double re = w->vl[j * n + t], im = w->wi[j] != 0 ? w->vl[(j + 1) * n + t] : 0;
+    d[t] = hypot(re, im);
+    mx = fmax(mx, d[t]);
+  }
+  if (!(mx > 0) || !isfinite(mx)) return 0;
+  for (size_t t = 0; t < n; t++)
+    d[t] = fmax(d[t] / mx, 1e-6);
+  return 1;
+}
+
+/* Choose the diagonal scaling of the inf-norm for the branch and bound: the
+ * identity, or |eigenvector| of the products of the lower bound's word and
+ * its rotations (for a nonnegative product P with Perron vector v,
+ * ||D^{-1} P D||_inf = rho(P) with D = diag(v)), or their sum; the one with
+ * the smallest scaling_score wins and stays active (ws_scale).  Any choice
+ * is an exact similarity, so every choice gives valid bounds. */
+static void choose_scaling(jsr_ws *w, const double *const *Y, int K, double *best_d,
+                           int *have) {
+  int s = 1;
+  double cnt = (double)w->m;
+  while (s < K && s < 3 && cnt * (double)w->m <= 4096)
+    s++, cnt *= (double)w->m;
+  ws_scale(w, Y, NULL);
+  double best = scaling_score(w, s);
+  *have = 0;
+  const int len = w->lower_len, nrot = len < 8 ? len : 8;
+  double *sum = w->d + w->n;
+  for (size_t t = 0; t < w->n; t++)
+    sum[t] = 0;
+  for (int r = 0; r <= nrot && len > 0; r++) {
+    ws_scale(w, Y, NULL);
+    if (r < nrot) {
+      if (!perron_vector(w, r, w->d)) continue;
+      for (size_t t = 0; t < w->n; t++)
+        sum[t] += w->d[t];
+    } else {
+      memcpy(w->d, sum, w->n * sizeof *w->d);
+    }
+    ws_scale(w, Y, w->d);
+    const double sc = scaling_score(w, s);
+    if (sc < best) {
+      best = sc;
+      memcpy(best_d, w->d, w->n * sizeof *best_d);
+      *have = 1;
+    }
+  }
+  ws_scale(w, Y, *have ? best_d : NULL);
 }
 
 /* One pass of the branch and bound to depth L.  The bound of a word w is
@@ -320,27 +454,34 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
 
   ss_status st = SS_OK;
   const int K = o->depth;
-  double *rho_cert = NULL;
+  double *rho_cert = NULL, *best_d = NULL;
   jsr_ws w;
   memset(&w, 0, sizeof w);
   w.m = m, w.n = n, w.Y = Y;
   w.gam = (double)n * U / (1 - (double)n * U);
+  w.tiny = (double)n * (double)n * DBL_TRUE_MIN;
   w.a = malloc(n * n * sizeof *w.a);
   w.wr = malloc(n * sizeof *w.wr);
   w.wi = malloc(n * sizeof *w.wi);
   w.sv = malloc(n * sizeof *w.sv);
   w.sb = malloc(n * sizeof *w.sb);
   w.ynorm = malloc(m * sizeof *w.ynorm);
+  w.delta = malloc(m * sizeof *w.delta);
+  w.zbuf = malloc(m * n * n * sizeof *w.zbuf);
+  w.zptr = malloc(m * sizeof *w.zptr);
+  w.d = malloc(2 * n * sizeof *w.d);
+  w.vl = malloc(n * n * sizeof *w.vl);
+  best_d = malloc(n * sizeof *best_d);
   out->rho_inf = calloc((size_t)K, sizeof *out->rho_inf);
   out->rho_2 = calloc((size_t)K, sizeof *out->rho_2);
   rho_cert = calloc((size_t)K, sizeof *rho_cert);
-  if (!w.a || !w.wr || !w.wi || !w.sv || !w.sb || !w.ynorm || !out->rho_inf ||
-      !out->rho_2 || !rho_cert || !ws_reserve(&w, K)) {
+  if (!w.a || !w.wr || !w.wi || !w.sv || !w.sb || !w.ynorm || !w.delta || !w.zbuf ||
+      !w.zptr || !w.d || !w.vl || !best_d || !out->rho_inf || !out->rho_2 || !rho_cert ||
+      !ws_reserve(&w, K)) {
     st = ss_error_nomem(err, "jsr workspace");
     goto done;
   }
-  for (size_t i = 0; i < m; i++)
-    w.ynorm[i] = up(norm_inf(Y[i], n) * (1 + 2 * w.gam));
+  ws_scale(&w, Y, NULL);
   out->depth = K;
 
   brute_force(&w, K, out->rho_inf, out->rho_2, rho_cert);
@@ -356,6 +497,17 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
       if (out->rho_2[k] * (1 + 1e-14) < upper)
         upper = out->rho_2[k] * (1 + 1e-14), upper_rigorous = 0;
   const size_t brute_nodes = w.nodes;
+  /* the inf-norm branch and bound may run in a diagonally weighted inf-norm
+   * (an exact similarity; the profile rho_inf stays the plain inf-norm) */
+  int have = 0;
+  if (o->weighted && o->norm == SS_JSR_NORM_INF && upper > w.lower * (1 + o->gap)) {
+    if (!ws_reserve(&w, 2 * w.lower_len)) {
+      st = ss_error_nomem(err, "jsr scaling");
+      goto done;
+    }
+    choose_scaling(&w, Y, K, best_d, &have);
+    if (w.st != SS_OK) goto lapack_failed;
+  }
 
   /* branch and bound by iterative deepening: each pass's leaves give a valid
    * bound, deeper passes refine it; recomputing the shallow levels costs a
@@ -369,11 +521,29 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
       goto done;
     }
     double u;
-    if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u)) break;
+    int stop = 0;
+    if (L == K && have) {
+      /* the weighting is a heuristic: it stays only if its first pass
+       * beats the plain inf-norm's */
+      double u0;
+      ws_scale(&w, Y, NULL);
+      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u0)) break;
+      ws_scale(&w, Y, best_d);
+      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u))
+        u = INFINITY, stop = 1;
+      if (u0 <= u) {
+        u = u0, have = 0;
+        ws_scale(&w, Y, NULL);
+      }
+    } else if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u)) {
+      break;
+    }
     if (w.st != SS_OK) goto lapack_failed;
     out->bnb_depth = L;
     if (u < upper) upper = u, upper_rigorous = o->norm == SS_JSR_NORM_INF;
+    if (stop) break;
   }
+  out->weighted = have;
   if (w.st != SS_OK) goto lapack_failed;
   out->nodes = w.nodes - brute_nodes;
 
@@ -407,6 +577,7 @@ lapack_failed:
 done:
   ws_free(&w);
   free(rho_cert);
+  free(best_d);
   if (st != SS_OK) ss_jsr_result_clear(out);
   return st;
 }

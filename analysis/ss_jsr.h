@@ -36,6 +36,8 @@ typedef struct {
   double max_seconds; /* wall-clock limit of the branch and bound; <= 0: none */
   int max_depth;      /* longest word the branch and bound forms; 0: no limit
                          besides max_nodes / max_seconds (>= depth to matter) */
+  int weighted;       /* 1: the inf-norm branch and bound may switch to a
+                         diagonally weighted inf-norm (default); 0: never */
 } ss_jsr_opts;
 
 /* Defaults: depth 8, gap 1e-3, inf-norm, 10^7 nodes, no time or depth limit. */
@@ -55,6 +57,8 @@ typedef struct {
   size_t nodes;    /* products formed by the branch and bound */
   int bnb_depth;   /* word length of the last completed branch-and-bound pass
                       (0 if none completed) */
+  int weighted;    /* 1 if that branch and bound used a diagonally weighted
+                      inf-norm (ss_jsr.c: choose_scaling) */
   double seconds;  /* wall-clock time of the computation */
   int certified;   /* 1 if both bounds account for rounding (ball arithmetic
                       or a rigorous floating-point error bound) */

@@ -332,9 +332,21 @@ static void test_brute(gsl_rng *rng) {
     o.depth = K;
     o.max_depth = K;
     o.gap = 0;
+    o.weighted = 0;
     int ok;
     ss_jsr_result r = run(m, n, Y, o, &ok);
     if (!ok) continue;
+    /* a diagonal weighting of the norm, when it helps, only lowers the
+     * bound: it is kept only if its pass beats the plain one */
+    o.weighted = 1;
+    ss_jsr_result rw = run(m, n, Y, o, &ok);
+    if (ok) {
+      CHECK(rw.upper <= r.upper, "trial %d: weighted %.17g above plain %.17g", trial,
+            rw.upper, r.upper);
+      CHECK(rw.lower <= rw.upper, "trial %d: weighted lower above upper", trial);
+      CHECK(r.weighted == 0, "trial %d: weighting used though disabled", trial);
+    }
+    ss_jsr_result_clear(&rw);
     double rmin = INFINITY;
     for (int k = 0; k < K; k++) {
       const double want = pow(br.rho[k], 1.0 / (k + 1));
