@@ -219,11 +219,27 @@ static double ws_specrad(jsr_ws *w, int k) {
   return r;
 }
 
+/* 1 if the word w[0..len-1] is a Lyndon word (strictly smaller than all its
+ * proper rotations; Duval's test).  Every word is a rotation of a power of a
+ * Lyndon word, and rho(Y_w)^{1/|w|} is the same for rotations and powers,
+ * so the lower bound needs the eigenvalues of Lyndon words only: about
+ * 1/len of all words. */
+static int is_lyndon(const int *w, int len) {
+  int i = 0, j = 1;
+  while (j < len && w[i] <= w[j]) {
+    i = w[i] < w[j] ? 0 : i + 1;
+    j++;
+  }
+  return i == 0 && j == len;
+}
+
 /* Offer the word at levels 0..k to the lower bound.  rho(P) <= ||P||_inf, so
- * the eigenvalue computation is skipped when the norm cannot beat the bound. */
+ * the eigenvalue computation is skipped when the norm cannot beat the bound,
+ * and for words that are not Lyndon words (is_lyndon). */
 static void ws_offer_lower(jsr_ws *w, int k) {
   const double lim = pow(w->lower, (double)(k + 1));
   if (w->nhat_inf[k] <= lim || !isfinite(w->nhat_inf[k])) return;
+  if (!is_lyndon(w->word, k + 1)) return;
   const double r = ws_specrad(w, k);
   if (r <= lim) return;
   const double v = pow(r, 1.0 / (k + 1));
