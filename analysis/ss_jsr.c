@@ -39,6 +39,8 @@ typedef struct {
   double *prod;           /* cap * n * n: the computed products, row-major */
   double *err_inf;        /* cap: rigorous bound on ||exact - computed||_inf */
   double *nhat_inf;       /* cap: ||computed product||_inf (floating point) */
+  double *nf_up;          /* cap: rigorous bound on ||computed product||_F */
+  double *err_2;          /* cap: rigorous bound on ||exact - computed||_2 */
   double *bnd;            /* cap: the branch and bound's value of the prefix */
   double *a;              /* n * n: scratch copy for LAPACK (destroyed) */
   double *wr, *wi, *sv;   /* n each: eigenvalues and singular values */
@@ -51,6 +53,8 @@ typedef struct {
   const double **zptr;    /* m: pointers into zbuf */
   double *d;              /* n: the diagonal scaling (candidate) */
   double *vl;             /* n * n: dgeev's eigenvectors */
+  double *v, *t2;         /* n * n each: the 2-norm certificate's V and A V */
+  double *y2, *yf;        /* m each: rigorous ||Y_i + Delta||_2 and ||Y_i||_F */
   double gam;             /* gamma_n = n u / (1 - n u), u the unit roundoff */
   double tiny;            /* n^2 times the smallest subnormal: the absolute
                              rounding error of a row sum of a product
@@ -102,6 +106,12 @@ static void ws_free(jsr_ws *w) {
   free(w->zptr);
   free(w->d);
   free(w->vl);
+  free(w->v);
+  free(w->t2);
+  free(w->y2);
+  free(w->yf);
+  free(w->nf_up);
+  free(w->err_2);
   free(w->lower_word);
 }
 
@@ -117,11 +127,15 @@ static int ws_reserve(jsr_ws *w, int levels) {
   if (e) w->err_inf = e;
   double *h = realloc(w->nhat_inf, L * sizeof *h);
   if (h) w->nhat_inf = h;
+  double *f = realloc(w->nf_up, L * sizeof *f);
+  if (f) w->nf_up = f;
+  double *e2 = realloc(w->err_2, L * sizeof *e2);
+  if (e2) w->err_2 = e2;
   double *b = realloc(w->bnd, L * sizeof *b);
   if (b) w->bnd = b;
   int *lw = realloc(w->lower_word, L * sizeof *lw);
   if (lw) w->lower_word = lw;
-  if (!wd || !p || !e || !h || !b || !lw) return 0;
+  if (!wd || !p || !e || !h || !f || !e2 || !b || !lw) return 0;
   w->cap = levels;
   return 1;
 }
@@ -136,6 +150,16 @@ static double norm_inf(const double *a, size_t n) {
     if (s > mx) mx = s;
   }
   return mx;
+}
+
+/* A rigorous upper bound of the Frobenius norm of the len entries a: the
+ * computed sum of squares has relative error <= gamma_{len+1}. */
+static double norm_f_up(const double *a, size_t len) {
+  double s = 0;
+  for (size_t e = 0; e < len; e++)
+    s += a[e] * a[e];
+  const double g = (double)(len + 2) * U / (1 - (double)(len + 2) * U);
+  return up(sqrt(up(s * (1 + 2 * g))) + DBL_TRUE_MIN * (double)len);
 }
 
 /* Form the product at level k: Y_i, or Y_i times level k - 1, with its
@@ -154,6 +178,7 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
   if (k == 0) {
     memcpy(p, y, nn * sizeof *p);
     w->err_inf[0] = 0;
+    w->err_2[0] = up(w->delta[i] * sqrt((double)n));
   } else {
     const double *q = p - nn;
     for (size_t r = 0; r < n; r++) {
@@ -172,8 +197,15 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
         up(up(up(w->ynorm[i] * w->err_inf[k - 1]) +
               up(up(w->delta[i] + w->gam * w->ynorm[i]) * w->nhat_inf[k - 1])) +
            w->tiny);
+    /* the same in the 2-norm: ||Delta||_2 <= sqrt(n) delta, ||F||_2 <=
+     * ||F||_F <= gamma_n ||Y||_F ||P^||_F */
+    w->err_2[k] = up(
+        up(up(w->y2[i] * w->err_2[k - 1]) +
+           up(up(w->delta[i] * sqrt((double)n) + w->gam * w->yf[i]) * w->nf_up[k - 1])) +
+        w->tiny);
   }
   w->nhat_inf[k] = norm_inf(p, n);
+  w->nf_up[k] = norm_f_up(p, nn);
 }
 
 /* A rigorous upper bound of ||exact product at level k||_inf: the computed
@@ -181,6 +213,72 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
  * product's error bound. */
 static double ws_norm_inf_up(const jsr_ws *w, int k) {
   return up(up(w->nhat_inf[k] * (1 + 2 * w->gam)) + w->err_inf[k]);
+}
+
+/* A rigorous upper bound of ||exact product at level k||_2.  With V the
+ * (approximately orthogonal) right singular vectors of the computed A = P^
+ * from LAPACK, x = V y gives ||A x|| / ||x|| <= ||A V||_2 / sigma_min(V), and
+ *   ||A V||_2 <= ||W||_2 + gamma_n ||A||_F ||V||_F,  W = fl(A V),
+ *   ||W||_2^2 = lambda_max(W^T W) <= Gershgorin(M) + gamma_n ||W||_F^2,
+ *       M = fl(W^T W) made symmetric (its off-diagonal is O(u) ||A||^2),
+ *   sigma_min(V)^2 >= 1 - ||V^T V - I||_2 >= 1 - (||fl(V^T V) - I||_F +
+ *       gamma_n ||V||_F^2),
+ * all rounded upwards (Higham 3.5 for each product); then the product's
+ * error bound err_2 is added.  INFINITY if LAPACK fails or V is far from
+ * orthogonal (never happens with a converged SVD). */
+static double ws_norm_2_up(jsr_ws *w, int k) {
+  const size_t n = w->n, nn = n * n;
+  const double *A = w->prod + (size_t)k * nn;
+  if (!isfinite(w->nhat_inf[k])) return INFINITY;
+  double sv2;
+  if (n == 1) {
+    sv2 = fabs(A[0]);
+  } else {
+    memcpy(w->a, A, nn * sizeof *w->a);
+    /* the buffer read column-major is A^T = U' S V'^T, so A's right
+     * singular vectors are the columns of U': V[r][c] = u'[c n + r] */
+    if (LAPACKE_dgesvd(LAPACK_COL_MAJOR, 'A', 'N', (lapack_int)n, (lapack_int)n, w->a,
+                       (lapack_int)n, w->sv, w->vl, (lapack_int)n, NULL, 1, w->sb) != 0)
+      return INFINITY;
+    for (size_t r = 0; r < n; r++)
+      for (size_t c = 0; c < n; c++)
+        w->v[r * n + c] = w->vl[c * n + r];
+    double *W = w->t2;
+    for (size_t r = 0; r < n; r++)
+      for (size_t c = 0; c < n; c++) {
+        double acc = 0;
+        for (size_t t = 0; t < n; t++)
+          acc += A[r * n + t] * w->v[t * n + c];
+        W[r * n + c] = acc;
+      }
+    const double vf = norm_f_up(w->v, nn), wf = norm_f_up(W, nn), af = w->nf_up[k];
+    double gersh = 0, gi = 0;
+    for (size_t i = 0; i < n; i++) {
+      double row = 0;
+      for (size_t j = 0; j < n; j++) {
+        double mij = 0, gij = 0;
+        const size_t a = i < j ? i : j, b = i < j ? j : i; /* symmetric order */
+        for (size_t r = 0; r < n; r++) {
+          mij += W[r * n + a] * W[r * n + b];
+          gij += w->v[r * n + a] * w->v[r * n + b];
+        }
+        row += fabs(mij);
+        if (i == j) gij -= 1; /* exact: gij is near 1 (Sterbenz) */
+        gi += gij * gij;
+      }
+      gersh = fmax(gersh, row);
+    }
+    const double g = w->gam, gn2 = (double)(nn + 2) * U / (1 - (double)(nn + 2) * U);
+    gersh = up(gersh * (1 + 2 * g));
+    const double eps_v =
+        up(up(sqrt(up(gi * (1 + 2 * gn2)))) + up(g * up(vf * vf))) + 4 * w->tiny;
+    if (!(eps_v < 0.5)) return INFINITY;
+    const double w2 = up(sqrt(up(gersh + up(g * up(wf * wf)) + w->tiny)));
+    const double av = up(w2 + up(g * up(af * vf)) + w->tiny);
+    const double lo = sqrt(1 - eps_v) * (1 - 4 * U); /* rounded down */
+    sv2 = up(av / lo);
+  }
+  return up(sv2 + w->err_2[k]);
 }
 
 /* Largest singular value of the product at level k (LAPACK, floating point).
@@ -269,6 +367,9 @@ static void ws_scale(jsr_ws *w, const double *const *Y, const double *d) {
       w->delta[i] = up(3 * U * up(norm_inf(z, n) * (1 + 2 * w->gam))) + w->tiny;
     }
     w->ynorm[i] = up(up(norm_inf(w->zptr[i], n) * (1 + 2 * w->gam)) + w->delta[i]);
+    /* ||Y||_2 <= ||Y||_F; the 2-norm error recursion needs only a bound */
+    w->yf[i] = norm_f_up(w->zptr[i], nn);
+    w->y2[i] = up(w->yf[i] + up(w->delta[i] * sqrt((double)n)));
   }
   w->Y = (const double *const *)w->zptr;
 }
@@ -418,10 +519,17 @@ static int bnb_pass(jsr_ws *w, int L, ss_jsr_norm norm, double gap, size_t max_n
       return 0;
     ws_push(w, k, (size_t)w->word[k]);
     ws_offer_lower(w, k);
-    const double nv =
-        norm == SS_JSR_NORM_2 ? ws_norm_2(w, k) * (1 + 1e-14) : ws_norm_inf_up(w, k);
-    double b = root_up(nv, k + 1);
-    if (k > 0) b = fmin(b, w->bnd[k - 1]);
+    double b;
+    if (norm == SS_JSR_NORM_INF) {
+      b = root_up(ws_norm_inf_up(w, k), k + 1);
+      if (k > 0) b = fmin(b, w->bnd[k - 1]);
+    } else {
+      /* the certified 2-norm costs an SVD with vectors and three products:
+       * formed only where the floating-point value would lower the bound */
+      b = k > 0 ? w->bnd[k - 1] : (double)INFINITY;
+      if (pow(ws_norm_2(w, k), 1.0 / (k + 1)) * (1 - 1e-12) < b)
+        b = fmin(b, root_up(ws_norm_2_up(w, k), k + 1));
+    }
     w->bnd[k] = b;
     const double target = w->lower * (1 + gap);
     if (b <= target || k + 1 == L) {
@@ -487,13 +595,17 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   w.zptr = malloc(m * sizeof *w.zptr);
   w.d = malloc(2 * n * sizeof *w.d);
   w.vl = malloc(n * n * sizeof *w.vl);
+  w.v = malloc(n * n * sizeof *w.v);
+  w.t2 = malloc(n * n * sizeof *w.t2);
+  w.y2 = malloc(m * sizeof *w.y2);
+  w.yf = malloc(m * sizeof *w.yf);
   best_d = malloc(n * sizeof *best_d);
   out->rho_inf = calloc((size_t)K, sizeof *out->rho_inf);
   out->rho_2 = calloc((size_t)K, sizeof *out->rho_2);
   rho_cert = calloc((size_t)K, sizeof *rho_cert);
   if (!w.a || !w.wr || !w.wi || !w.sv || !w.sb || !w.ynorm || !w.delta || !w.zbuf ||
-      !w.zptr || !w.d || !w.vl || !best_d || !out->rho_inf || !out->rho_2 || !rho_cert ||
-      !ws_reserve(&w, K)) {
+      !w.zptr || !w.d || !w.vl || !w.v || !w.t2 || !w.y2 || !w.yf || !best_d ||
+      !out->rho_inf || !out->rho_2 || !rho_cert || !ws_reserve(&w, K)) {
     st = ss_error_nomem(err, "jsr workspace");
     goto done;
   }
@@ -502,16 +614,12 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
 
   brute_force(&w, K, out->rho_inf, out->rho_2, rho_cert);
   if (w.st != SS_OK) goto lapack_failed;
-  /* min_k rho_k bounds rho(Y) in every norm; the rigorous inf-norm profile
-   * is the certified part */
+  /* min_k rho_k bounds rho(Y); the rigorous inf-norm profile is used (the
+   * branch and bound's first pass, at depth K, is at least as good in its
+   * own norm: max over words of the min over prefixes <= min_k rho_k) */
   double upper = INFINITY;
-  int upper_rigorous = 0;
   for (int k = 0; k < K; k++)
-    if (rho_cert[k] < upper) upper = rho_cert[k], upper_rigorous = 1;
-  if (o->norm == SS_JSR_NORM_2)
-    for (int k = 0; k < K; k++)
-      if (out->rho_2[k] * (1 + 1e-14) < upper)
-        upper = out->rho_2[k] * (1 + 1e-14), upper_rigorous = 0;
+    if (rho_cert[k] < upper) upper = rho_cert[k];
   const size_t brute_nodes = w.nodes;
   /* the inf-norm branch and bound may run in a diagonally weighted inf-norm
    * (an exact similarity; the profile rho_inf stays the plain inf-norm) */
@@ -556,7 +664,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     }
     if (w.st != SS_OK) goto lapack_failed;
     out->bnb_depth = L;
-    if (u < upper) upper = u, upper_rigorous = o->norm == SS_JSR_NORM_INF;
+    if (u < upper) upper = u;
     if (stop) break;
   }
   out->weighted = have;
@@ -580,7 +688,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     lower_rigorous = ss_jsr_cert_lower(n, Y, w.lower_word, w.lower_len, &lower_cert);
   out->lower = lower_rigorous ? lower_cert : w.lower;
   out->upper = upper;
-  out->certified = lower_rigorous && upper_rigorous;
+  /* every upper bound above is rigorous (rounding carried in both norms) */
+  out->certified = lower_rigorous;
   out->converged = out->upper <= out->lower * (1 + o->gap);
   out->seconds = now_seconds() - t0;
   goto done;
