@@ -41,6 +41,9 @@ typedef struct {
   double *nhat_inf;       /* cap: ||computed product||_inf (floating point) */
   double *nf_up;          /* cap: rigorous bound on ||computed product||_F */
   double *err_2;          /* cap: rigorous bound on ||exact - computed||_2 */
+  double *qabs;           /* cap * n * n: products of |Y_i| along the word,
+                             for the componentwise error bound (ws_push) */
+  int *qvalid;            /* cap: 1 if that level of qabs is formed */
   double *bnd;            /* cap: the branch and bound's value of the prefix */
   double *a;              /* n * n: scratch copy for LAPACK (destroyed) */
   double *wr, *wi, *sv;   /* n each: eigenvalues and singular values */
@@ -111,6 +114,8 @@ static void ws_free(jsr_ws *w) {
   free(w->y2);
   free(w->yf);
   free(w->nf_up);
+  free(w->qabs);
+  free(w->qvalid);
   free(w->err_2);
   free(w->lower_word);
 }
@@ -131,11 +136,15 @@ static int ws_reserve(jsr_ws *w, int levels) {
   if (f) w->nf_up = f;
   double *e2 = realloc(w->err_2, L * sizeof *e2);
   if (e2) w->err_2 = e2;
+  double *qa = realloc(w->qabs, L * nn * sizeof *qa);
+  if (qa) w->qabs = qa;
+  int *qv = realloc(w->qvalid, L * sizeof *qv);
+  if (qv) w->qvalid = qv;
   double *b = realloc(w->bnd, L * sizeof *b);
   if (b) w->bnd = b;
   int *lw = realloc(w->lower_word, L * sizeof *lw);
   if (lw) w->lower_word = lw;
-  if (!wd || !p || !e || !h || !f || !e2 || !b || !lw) return 0;
+  if (!wd || !p || !e || !h || !f || !e2 || !qa || !qv || !b || !lw) return 0;
   w->cap = levels;
   return 1;
 }
@@ -162,6 +171,41 @@ static double norm_f_up(const double *a, size_t len) {
   return up(sqrt(up(s * (1 + 2 * g))) + DBL_TRUE_MIN * (double)len);
 }
 
+/* c = a b for n x n row-major matrices, |a| instead of a when absa */
+static void matmul(size_t n, const double *a, const double *b, double *c, int absa) {
+  for (size_t r = 0; r < n; r++) {
+    double *cr = c + r * n;
+    for (size_t col = 0; col < n; col++)
+      cr[col] = 0;
+    for (size_t t = 0; t < n; t++) {
+      const double art = absa ? fabs(a[r * n + t]) : a[r * n + t];
+      if (art == 0) continue;
+      const double *bt = b + t * n;
+      for (size_t col = 0; col < n; col++)
+        cr[col] += art * bt[col];
+    }
+  }
+}
+
+/* The componentwise error bound at level k (qabs formed up to k).  With
+ * M_k = |Y_{w_k}| ... |Y_{w_1}| (exact) and g = gamma_n + 4u (the product's
+ * rounding and the scaled copies' 3u),
+ *   |E_k| <= (1 + g) |Y| |E_{k-1}| + g M_k  ==>  |E_k| <= ((1 + g)^k - 1) M_k
+ * by induction, and the computed qabs (nonnegative sums) is at least
+ * M_k (1 - gamma_n)^{k-1}.  Unlike the normwise recursion this does not grow
+ * like prod ||Y_i|| when that is much larger than the products' norms. */
+static void ws_err_componentwise(jsr_ws *w, int k) {
+  const size_t n = w->n, nn = n * n;
+  const double K1 = (double)(k + 1), g = w->gam + 4 * U;
+  if (K1 * g >= 0.05) return;
+  const double c = up(K1 * g * (1 + 2 * K1 * g) * (1 + 2 * K1 * w->gam));
+  const double *q = w->qabs + (size_t)k * nn;
+  const double ei = up(c * up(norm_inf(q, n) * (1 + 2 * w->gam))) + K1 * w->tiny;
+  const double e2 = up(c * norm_f_up(q, nn)) + K1 * w->tiny;
+  w->err_inf[k] = fmin(w->err_inf[k], ei);
+  w->err_2[k] = fmin(w->err_2[k], e2);
+}
+
 /* Form the product at level k: Y_i, or Y_i times level k - 1, with its
  * rigorous error bound.  With Y the stored matrix, Y + Delta the exact one
  * (||Delta||_inf <= delta), fl(Y P^) = Y P^ + F, |F| <= gamma_n |Y| |P^|
@@ -177,22 +221,11 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
   w->nodes++;
   if (k == 0) {
     memcpy(p, y, nn * sizeof *p);
-    w->err_inf[0] = 0;
+    w->err_inf[0] = w->delta[i];
     w->err_2[0] = up(w->delta[i] * sqrt((double)n));
+    w->qvalid[0] = 0;
   } else {
-    const double *q = p - nn;
-    for (size_t r = 0; r < n; r++) {
-      double *pr = p + r * n;
-      for (size_t c = 0; c < n; c++)
-        pr[c] = 0;
-      for (size_t t = 0; t < n; t++) {
-        const double yrt = y[r * n + t];
-        if (yrt == 0) continue;
-        const double *qt = q + t * n;
-        for (size_t c = 0; c < n; c++)
-          pr[c] += yrt * qt[c];
-      }
-    }
+    matmul(n, y, p - nn, p, 0);
     w->err_inf[k] =
         up(up(up(w->ynorm[i] * w->err_inf[k - 1]) +
               up(up(w->delta[i] + w->gam * w->ynorm[i]) * w->nhat_inf[k - 1])) +
@@ -206,6 +239,27 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
   }
   w->nhat_inf[k] = norm_inf(p, n);
   w->nf_up[k] = norm_f_up(p, nn);
+  /* the normwise bound grows like prod ||Y_i||; where it starts to matter
+   * (1e-12 of the norm) the products of |Y_i| are formed along the word, and
+   * kept for the descendants, for the componentwise bound */
+  if (k == 0) return;
+  w->qvalid[k] = 0;
+  if (!w->qvalid[k - 1]) {
+    if (!(w->err_inf[k] > 1e-12 * w->nhat_inf[k])) return;
+    for (int j = 0; j < k; j++) {
+      double *qj = w->qabs + (size_t)j * nn;
+      const double *yj = w->Y[w->word[j]];
+      if (j == 0)
+        for (size_t e = 0; e < nn; e++)
+          qj[e] = fabs(yj[e]);
+      else
+        matmul(n, yj, qj - nn, qj, 1);
+      w->qvalid[j] = 1;
+    }
+  }
+  matmul(n, y, w->qabs + (size_t)(k - 1) * nn, w->qabs + (size_t)k * nn, 1);
+  w->qvalid[k] = 1;
+  ws_err_componentwise(w, k);
 }
 
 /* A rigorous upper bound of ||exact product at level k||_inf: the computed

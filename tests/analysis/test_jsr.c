@@ -294,6 +294,85 @@ static void test_triangular(gsl_rng *rng) {
   }
 }
 
+/* One matrix: JSR = rho(A).  A scaled rotation (normal: ||A||_2 = rho) meets
+ * it at once in the 2-norm; a Jordan block J = [[a, 1], [0, a]] has a double
+ * eigenvalue, whose certified enclosure needs the cluster method, and
+ * ||J^k||^{1/k} -> a only like (k a^{k-1})^{1/k}. */
+static void test_single(void) {
+  const double a = 0.75, c = 0.6 * a, s = 0.8 * a;
+  const double R[4] = {c, -s, s, c}, J[4] = {a, 1, 0, a};
+  const double *YR[1] = {R}, *YJ[1] = {J};
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.norm = SS_JSR_NORM_2;
+  int ok;
+  ss_jsr_result r = run(1, 2, YR, o, &ok);
+  if (ok) {
+    CHECK(r.lower <= a && a <= r.upper, "rotation: [%.17g, %.17g]", r.lower, r.upper);
+    CHECK(r.upper - r.lower <= 1e-13, "rotation: gap %g", r.upper - r.lower);
+    CHECK(r.certified && r.converged, "rotation: certified %d converged %d", r.certified,
+          r.converged);
+  }
+  ss_jsr_result_clear(&r);
+  o = ss_jsr_defaults();
+  o.max_depth = 64;
+  o.weighted = 0;
+  r = run(1, 2, YJ, o, &ok);
+  if (ok) {
+    CHECK(r.lower <= a && a <= r.upper, "Jordan: [%.17g, %.17g]", r.lower, r.upper);
+    CHECK(r.lower >= a * (1 - 1e-6), "Jordan: certified lower %.17g", r.lower);
+    CHECK(r.certified, "Jordan: the double eigenvalue's enclosure failed");
+    /* ||J^k||_inf = a^k + k a^{k-1}: the branch and bound's value at depth
+     * 64 (one word per length) is the minimum over k <= 64 */
+    double best = INFINITY;
+    for (int k = 1; k <= 64; k++)
+      best = fmin(best, pow(pow(a, k) + k * pow(a, k - 1), 1.0 / k));
+    CHECK_CLOSE(r.upper, best, 1e-12, "Jordan: upper at depth 64");
+  }
+  ss_jsr_result_clear(&r);
+  /* weighted: D = diag(1, 1e-6) (the eigenvector (1, 0), floored) shrinks the
+   * 1 to 1e-6, so ||D^-1 J D||_inf = a + 1e-6 */
+  o.weighted = 1;
+  r = run(1, 2, YJ, o, &ok);
+  if (ok) {
+    CHECK(r.weighted, "Jordan: the weighting was not used");
+    CHECK(a <= r.upper && r.upper <= a + 1.001e-6, "Jordan weighted: upper %.17g",
+          r.upper);
+  }
+  ss_jsr_result_clear(&r);
+}
+
+/* Limits stop the branch and bound with valid bounds: converged = 0,
+ * lower <= upper, the node count near the limit. */
+static void test_limits(gsl_rng *rng) {
+  enum { n = 12, m = 3 };
+  static double mats[m][n * n];
+  const double *Y[m] = {mats[0], mats[1], mats[2]};
+  for (int i = 0; i < m; i++)
+    for (int e = 0; e < n * n; e++)
+      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.depth = 3;
+  o.gap = 1e-9;
+  o.max_nodes = 2000;
+  int ok;
+  ss_jsr_result r = run(m, n, Y, o, &ok);
+  if (ok) {
+    CHECK(!r.converged, "node limit: converged at gap 1e-9");
+    CHECK(r.lower <= r.upper, "node limit: [%g, %g]", r.lower, r.upper);
+    CHECK(r.nodes <= 2000 + 1, "node limit: %zu nodes", r.nodes);
+    CHECK(r.upper <= r.rho_inf[2] * (1 + 1e-12), "node limit: upper above rho_3");
+  }
+  ss_jsr_result_clear(&r);
+  o.max_nodes = 0;
+  o.max_seconds = 0.2;
+  r = run(m, n, Y, o, &ok);
+  if (ok) {
+    CHECK(!r.converged && r.lower <= r.upper, "time limit: [%g, %g]", r.lower, r.upper);
+    CHECK(r.seconds < 5, "time limit: %g s", r.seconds);
+  }
+  ss_jsr_result_clear(&r);
+}
+
 /* ---- brute force, independently ------------------------------------------- */
 
 typedef struct {
@@ -464,6 +543,8 @@ int main(void) {
   test_golden();
   test_commuting();
   test_triangular(rng);
+  test_single();
+  test_limits(rng);
   test_brute(rng);
   test_permutation(rng);
   test_bad_input();
