@@ -40,6 +40,8 @@ typedef struct {
   double *err_inf;        /* cap: rigorous bound on ||exact - computed||_inf */
   double *nhat_inf;       /* cap: ||computed product||_inf (floating point) */
   double *nf_up;          /* cap: rigorous bound on ||computed product||_F */
+  double *cap2;           /* cap: min(sqrt(||P^||_1 ||P^||_inf), ||P^||_F) >=
+                             ||P^||_2 >= rho(P^) (floating point) */
   double *err_2;          /* cap: rigorous bound on ||exact - computed||_2 */
   double *qabs;           /* cap * n * n: products of |Y_i| along the word,
                              for the componentwise error bound (ws_push) */
@@ -114,6 +116,7 @@ static void ws_free(jsr_ws *w) {
   free(w->y2);
   free(w->yf);
   free(w->nf_up);
+  free(w->cap2);
   free(w->qabs);
   free(w->qvalid);
   free(w->err_2);
@@ -134,6 +137,8 @@ static int ws_reserve(jsr_ws *w, int levels) {
   if (h) w->nhat_inf = h;
   double *f = realloc(w->nf_up, L * sizeof *f);
   if (f) w->nf_up = f;
+  double *c2 = realloc(w->cap2, L * sizeof *c2);
+  if (c2) w->cap2 = c2;
   double *e2 = realloc(w->err_2, L * sizeof *e2);
   if (e2) w->err_2 = e2;
   double *qa = realloc(w->qabs, L * nn * sizeof *qa);
@@ -144,7 +149,7 @@ static int ws_reserve(jsr_ws *w, int levels) {
   if (b) w->bnd = b;
   int *lw = realloc(w->lower_word, L * sizeof *lw);
   if (lw) w->lower_word = lw;
-  if (!wd || !p || !e || !h || !f || !e2 || !qa || !qv || !b || !lw) return 0;
+  if (!wd || !p || !e || !h || !f || !c2 || !e2 || !qa || !qv || !b || !lw) return 0;
   w->cap = levels;
   return 1;
 }
@@ -158,6 +163,19 @@ static double norm_inf(const double *a, size_t n) {
       s += fabs(a[r * n + c]);
     if (s > mx) mx = s;
   }
+  return mx;
+}
+
+/* Maximum absolute column sum of the n x n row-major matrix a. */
+static double norm_one(const double *a, size_t n, double *colsum) {
+  for (size_t c = 0; c < n; c++)
+    colsum[c] = 0;
+  for (size_t r = 0; r < n; r++)
+    for (size_t c = 0; c < n; c++)
+      colsum[c] += fabs(a[r * n + c]);
+  double mx = 0;
+  for (size_t c = 0; c < n; c++)
+    mx = fmax(mx, colsum[c]);
   return mx;
 }
 
@@ -239,6 +257,7 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
   }
   w->nhat_inf[k] = norm_inf(p, n);
   w->nf_up[k] = norm_f_up(p, nn);
+  w->cap2[k] = fmin(sqrt(norm_one(p, n, w->sb) * w->nhat_inf[k]), w->nf_up[k]);
   /* the normwise bound grows like prod ||Y_i||; where it starts to matter
    * (1e-12 of the norm) the products of |Y_i| are formed along the word, and
    * kept for the descendants, for the componentwise bound */
@@ -390,7 +409,8 @@ static int is_lyndon(const int *w, int len) {
  * and for words that are not Lyndon words (is_lyndon). */
 static void ws_offer_lower(jsr_ws *w, int k) {
   const double lim = pow(w->lower, (double)(k + 1));
-  if (w->nhat_inf[k] <= lim || !isfinite(w->nhat_inf[k])) return;
+  if (fmin(w->nhat_inf[k], w->cap2[k]) * (1 + 1e-12) <= lim || !isfinite(w->nhat_inf[k]))
+    return;
   if (!is_lyndon(w->word, k + 1)) return;
   const double r = ws_specrad(w, k);
   if (r <= lim) return;
@@ -450,10 +470,9 @@ static void brute_force(jsr_ws *w, int K, double *rho_inf, double *rho_2,
     const double p = 1.0 / (k + 1);
     rho_inf[k] = fmax(rho_inf[k], pow(w->nhat_inf[k], p));
     rho_cert[k] = fmax(rho_cert[k], ws_norm_inf_up(w, k));
-    /* ||P||_2 <= ||P||_inf^{1/2} ||P||_1^{1/2} is not cheap; sqrt(n) ||P||_inf
-     * bounds ||P||_2 and skips the SVD when it cannot raise the maximum */
-    const double two_cap = sqrt((double)w->n) * w->nhat_inf[k];
-    if (two_cap * (1 + 1e-12) > pow(rho_2[k], (double)(k + 1)))
+    /* ||P||_2 <= min(sqrt(||P||_1 ||P||_inf), ||P||_F) skips the SVD when
+     * it cannot raise the maximum */
+    if (w->cap2[k] * (1 + 1e-12) > pow(rho_2[k], (double)(k + 1)))
       rho_2[k] = fmax(rho_2[k], pow(ws_norm_2(w, k), p));
     ws_offer_lower(w, k);
     if (k + 1 < K) w->word[++k] = -1;
