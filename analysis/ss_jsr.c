@@ -651,7 +651,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
 
   ss_status st = SS_OK;
   const int K = o->depth;
-  double *rho_cert = NULL, *best_d = NULL;
+  double *rho_cert = NULL, *best_d = NULL, *ybuf = NULL;
+  const double **yn = NULL;
   jsr_ws w;
   memset(&w, 0, sizeof w);
   w.m = m, w.n = n, w.Y = Y;
@@ -682,6 +683,35 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     st = ss_error_nomem(err, "jsr workspace");
     goto done;
   }
+  /* JSR(2^e Y) = 2^e JSR(Y): the inputs are scaled by the power of two that
+   * brings the largest norm near 1 (exactly, or not at all), so that long
+   * products neither overflow nor underflow for inputs of any size; the
+   * results are scaled back exactly at the end */
+  int ex = 0;
+  {
+    double mx = 0;
+    for (size_t i = 0; i < m; i++)
+      mx = fmax(mx, norm_inf(Y[i], n));
+    if (mx > 0 && isfinite(mx)) ex = -ilogb(mx);
+    if (ex != 0) {
+      ybuf = malloc(m * n * n * sizeof *ybuf);
+      yn = malloc(m * sizeof *yn);
+      if (!ybuf || !yn) {
+        st = ss_error_nomem(err, "jsr scaled inputs");
+        goto done;
+      }
+      for (size_t i = 0; i < m && ex != 0; i++) {
+        for (size_t e = 0; e < n * n && ex != 0; e++) {
+          const double z = ldexp(Y[i][e], ex);
+          if (ldexp(z, -ex) != Y[i][e]) ex = 0; /* underflow: not exact */
+          ybuf[i * n * n + e] = z;
+        }
+        yn[i] = ybuf + i * n * n;
+      }
+    }
+    if (ex != 0) Y = (const double *const *)yn;
+  }
+  w.Y = Y;
   ws_scale(&w, Y, NULL);
   out->depth = K;
 
@@ -724,7 +754,10 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
        * beats the plain inf-norm's */
       double u0;
       ws_scale(&w, Y, NULL);
-      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u0)) break;
+      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u0)) {
+        have = 0; /* no weighted pass completed */
+        break;
+      }
       ws_scale(&w, Y, best_d);
       if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u))
         u = INFINITY, stop = 1;
@@ -759,8 +792,17 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     lower_rigorous = 1; /* no product has a nonzero spectral radius: 0 */
   else
     lower_rigorous = ss_jsr_cert_lower(n, Y, w.lower_word, w.lower_len, &lower_cert);
-  out->lower = lower_rigorous ? lower_cert : w.lower;
-  out->upper = upper;
+  /* the bounds are of the scaled inputs; scaling back by 2^-ex is exact
+   * unless the result is subnormal, where one rounding is undone by a step
+   * outwards */
+  out->lower = ldexp(lower_rigorous ? lower_cert : w.lower, -ex);
+  out->upper = ldexp(upper, -ex);
+  if (out->lower < DBL_MIN) out->lower = nextafter(out->lower, 0.0);
+  if (out->upper < DBL_MIN) out->upper = nextafter(out->upper, INFINITY);
+  for (int k = 0; k < K; k++) {
+    out->rho_inf[k] = ldexp(out->rho_inf[k], -ex);
+    out->rho_2[k] = ldexp(out->rho_2[k], -ex);
+  }
   /* every upper bound above is rigorous (rounding carried in both norms) */
   out->certified = lower_rigorous;
   out->converged = out->upper <= out->lower * (1 + o->gap);
@@ -776,6 +818,8 @@ done:
   ws_free(&w);
   free(rho_cert);
   free(best_d);
+  free(ybuf);
+  free(yn);
   if (st != SS_OK) ss_jsr_result_clear(out);
   return st;
 }

@@ -490,6 +490,39 @@ static void test_permutation(gsl_rng *rng) {
   }
 }
 
+/* JSR(c Y) = |c| JSR(Y): scaling by a power of two is exact, so the bounds
+ * scale with it (to the rounding of the k-th roots), far into the ranges
+ * where products of the scaled matrices under- and overflow gracefully. */
+static void test_scaling(gsl_rng *rng) {
+  enum { n = 4, m = 3 };
+  double mats[m][n * n], sc[m][n * n];
+  const double *Y[m] = {mats[0], mats[1], mats[2]}, *Z[m] = {sc[0], sc[1], sc[2]};
+  for (int i = 0; i < m; i++)
+    for (int e = 0; e < n * n; e++)
+      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.depth = 4;
+  o.max_depth = 8;
+  int ok;
+  ss_jsr_result r = run(m, n, Y, o, &ok);
+  if (!ok) return;
+  static const int ex[] = {-100, 100, -240, 240};
+  for (int t = 0; t < 4; t++) {
+    const double c = ldexp(1.0, ex[t]);
+    for (int i = 0; i < m; i++)
+      for (int e = 0; e < n * n; e++)
+        sc[i][e] = (i == 1 ? -c : c) * mats[i][e];
+    ss_jsr_result s2 = run(m, n, Z, o, &ok);
+    if (ok) {
+      CHECK_CLOSE(s2.lower / c, r.lower, 1e-12, "scale 2^%d: lower", ex[t]);
+      CHECK_CLOSE(s2.upper / c, r.upper, 1e-12, "scale 2^%d: upper", ex[t]);
+      CHECK(s2.certified, "scale 2^%d: certified", ex[t]);
+    }
+    ss_jsr_result_clear(&s2);
+  }
+  ss_jsr_result_clear(&r);
+}
+
 /* ---- bad input ---------------------------------------------------------------- */
 
 static void expect_einput(size_t m, size_t n, const double *const *Y,
@@ -547,6 +580,7 @@ int main(void) {
   test_limits(rng);
   test_brute(rng);
   test_permutation(rng);
+  test_scaling(rng);
   test_bad_input();
   gsl_rng_free(rng);
   return ss_test_done("test_jsr");
