@@ -797,8 +797,9 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
    * outwards */
   out->lower = ldexp(lower_rigorous ? lower_cert : w.lower, -ex);
   out->upper = ldexp(upper, -ex);
-  if (out->lower < DBL_MIN) out->lower = nextafter(out->lower, 0.0);
-  if (out->upper < DBL_MIN) out->upper = nextafter(out->upper, INFINITY);
+  if (out->lower > 0 && out->lower < DBL_MIN) out->lower = nextafter(out->lower, 0.0);
+  if (out->upper > 0 && out->upper < DBL_MIN)
+    out->upper = nextafter(out->upper, INFINITY);
   for (int k = 0; k < K; k++) {
     out->rho_inf[k] = ldexp(out->rho_inf[k], -ex);
     out->rho_2[k] = ldexp(out->rho_2[k], -ex);
