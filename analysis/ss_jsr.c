@@ -15,7 +15,7 @@
 #include "ss_jsr_cert.h"
 
 ss_jsr_opts ss_jsr_defaults(void) {
-  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_INF, 10000000, 0.0, 0, 1};
+  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_AUTO, 10000000, 0.0, 0, 1};
   return o;
 }
 
@@ -633,7 +633,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   if (!(o->gap >= 0) || !isfinite(o->gap))
     return ss_error_set(err, SS_EINPUT, "jsr: gap %g is not a finite number >= 0",
                         o->gap);
-  if (o->norm != SS_JSR_NORM_INF && o->norm != SS_JSR_NORM_2)
+  if (o->norm != SS_JSR_NORM_INF && o->norm != SS_JSR_NORM_2 &&
+      o->norm != SS_JSR_NORM_AUTO)
     return ss_error_set(err, SS_EINPUT, "jsr: unknown norm %d", (int)o->norm);
   if (isnan(o->max_seconds))
     return ss_error_set(err, SS_EINPUT, "jsr: max_seconds is NaN");
@@ -727,7 +728,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   /* the inf-norm branch and bound may run in a diagonally weighted inf-norm
    * (an exact similarity; the profile rho_inf stays the plain inf-norm) */
   int have = 0;
-  if (o->weighted && o->norm == SS_JSR_NORM_INF && upper > w.lower * (1 + o->gap)) {
+  if (o->weighted && o->norm != SS_JSR_NORM_2 && upper > w.lower * (1 + o->gap)) {
     if (!ws_reserve(&w, 2 * w.lower_len)) {
       st = ss_error_nomem(err, "jsr scaling");
       goto done;
@@ -740,6 +741,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
    * bound, deeper passes refine it; recomputing the shallow levels costs a
    * factor of about m / (m - 1) at most */
   const double deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;
+  ss_jsr_norm active = o->norm == SS_JSR_NORM_2 ? SS_JSR_NORM_2 : SS_JSR_NORM_INF;
   const size_t max_nodes = o->max_nodes ? brute_nodes + o->max_nodes : 0;
   for (int L = K; upper > w.lower * (1 + o->gap); L++) {
     if (o->max_depth && L > o->max_depth) break;
@@ -749,23 +751,37 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     }
     double u;
     int stop = 0;
-    if (L == K && have) {
-      /* the weighting is a heuristic: it stays only if its first pass
-       * beats the plain inf-norm's */
-      double u0;
-      ws_scale(&w, Y, NULL);
-      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u0)) {
-        have = 0; /* no weighted pass completed */
+    if (L == K && (have || o->norm == SS_JSR_NORM_AUTO)) {
+      /* the first pass tries the candidate norms (plain inf-norm, weighted
+       * inf-norm if one was found, 2-norm if AUTO) and the rest keep the one
+       * with the lowest bound: every candidate's bound is valid */
+      const int ncand = 3;
+      const ss_jsr_norm cn[3] = {o->norm == SS_JSR_NORM_2 ? SS_JSR_NORM_2
+                                                          : SS_JSR_NORM_INF,
+                                 SS_JSR_NORM_INF, SS_JSR_NORM_2};
+      const int cw[3] = {0, 1, 0};
+      const int use[3] = {1, have, o->norm == SS_JSR_NORM_AUTO};
+      int best = -1;
+      u = INFINITY;
+      for (int c = 0; c < ncand && !stop; c++) {
+        if (!use[c]) continue;
+        double uc;
+        ws_scale(&w, Y, cw[c] ? best_d : NULL);
+        if (!bnb_pass(&w, L, cn[c], o->gap, max_nodes, deadline, &uc)) {
+          stop = 1;
+          break;
+        }
+        if (w.st != SS_OK) goto lapack_failed;
+        if (uc < u) u = uc, best = c;
+      }
+      if (best < 0) {
+        have = 0;
         break;
       }
-      ws_scale(&w, Y, best_d);
-      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u))
-        u = INFINITY, stop = 1;
-      if (u0 <= u) {
-        u = u0, have = 0;
-        ws_scale(&w, Y, NULL);
-      }
-    } else if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u)) {
+      have = cw[best];
+      active = cn[best];
+      ws_scale(&w, Y, have ? best_d : NULL);
+    } else if (!bnb_pass(&w, L, active, o->gap, max_nodes, deadline, &u)) {
       break;
     }
     if (w.st != SS_OK) goto lapack_failed;
@@ -774,6 +790,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     if (stop) break;
   }
   out->weighted = have;
+  out->norm = active;
   if (w.st != SS_OK) goto lapack_failed;
   out->nodes = w.nodes - brute_nodes;
 

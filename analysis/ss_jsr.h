@@ -24,7 +24,9 @@
  *    L grows by iterative deepening from K (each pass recomputes its shallow
  *    levels, about m / (m - 1) times the last level's work when the tree is
  *    bushy) until upper <= lower (1 + gap) or a limit stops it; a pass cut
- *    short by a limit is discarded.  In the inf-norm the pass may run in a
+ *    short by a limit is discarded.  With norm AUTO the first pass runs in the
+ *    inf-norm (plain and weighted) and the 2-norm and the rest keep the
+ *    norm with the lowest bound.  In the inf-norm the pass may run in a
  *    diagonally weighted inf-norm ||D^{-1} X D||_inf (D from |eigenvectors|
  *    of the lower bound's product and its rotations; kept only when its
  *    first pass beats the plain one): an exact similarity, so the bound
@@ -56,7 +58,10 @@
 
 typedef enum {
   SS_JSR_NORM_INF = 0, /* maximum absolute row sum (the tet/oct paper's norm) */
-  SS_JSR_NORM_2 = 1    /* spectral norm (largest singular value) */
+  SS_JSR_NORM_2 = 1,   /* spectral norm (largest singular value) */
+  SS_JSR_NORM_AUTO = 2 /* branch and bound: the first pass runs in both (the
+                          inf-norm possibly weighted), the rest in the one
+                          with the lower bound */
 } ss_jsr_norm;
 
 typedef struct {
@@ -64,7 +69,8 @@ typedef struct {
                          bound (brute force over m^k words for k <= K) */
   double gap;         /* the branch and bound stops when upper <= lower * (1 +
                          gap) (relative; e.g. 1e-3) */
-  ss_jsr_norm norm;   /* the norm of the branch and bound's upper bound */
+  ss_jsr_norm norm;   /* the norm of the branch and bound (AUTO: chosen by
+                         its first pass; see ss_jsr_norm) */
   size_t max_nodes;   /* most products the branch and bound may form; 0: no
                          limit besides max_seconds */
   double max_seconds; /* wall-clock limit of the branch and bound; <= 0: none */
@@ -74,34 +80,36 @@ typedef struct {
                          diagonally weighted inf-norm (default); 0: never */
 } ss_jsr_opts;
 
-/* Defaults: depth 8, gap 1e-3, inf-norm, 10^7 nodes, no time or depth limit. */
+/* Defaults: depth 8, gap 1e-3, norm AUTO, 10^7 nodes, no time or depth limit,
+ * weighting allowed. */
 ss_jsr_opts ss_jsr_defaults(void);
 
 typedef struct {
-  int depth;       /* K, the length of rho_inf and rho_2 */
-  double *rho_inf; /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k}, k = 1..K
-                      (floating point, the plain inf-norm of the inputs) */
-  double *rho_2;   /* the same in the 2-norm (LAPACK's singular values) */
-  double lower;    /* lower bound: max over the words of length <= K (and the
-                      Lyndon words the branch and bound met) of
-                      rho(Y_w)^{1/|w|}, certified by ball arithmetic (see
-                      certified) */
-  int lower_len;   /* length of the word attaining `lower` */
-  int *lower_word; /* that word, indices 0..m-1, lower_len of them (first
-                      factor applied first) */
-  double upper;    /* proven upper bound on rho(Y): min of the rigorous
-                      inf-norm profile and the branch and bound in o->norm */
-  int converged;   /* 1 if upper <= lower * (1 + gap) */
-  size_t nodes;    /* products formed by the branch and bound (including
-                      ranking the weightings), not by the brute force */
-  int bnb_depth;   /* word length of the last completed branch-and-bound pass
-                      (0 if none completed) */
-  int weighted;    /* 1 if that branch and bound used a diagonally weighted
-                      inf-norm (ss_jsr.c: choose_scaling) */
-  double seconds;  /* wall-clock time of the computation */
-  int certified;   /* 1 if both bounds account for rounding: upper always
-                      does; 0 only if the ball enclosure of the lower bound's
-                      eigenvalue failed */
+  int depth;        /* K, the length of rho_inf and rho_2 */
+  double *rho_inf;  /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k}, k = 1..K
+                       (floating point, the plain inf-norm of the inputs) */
+  double *rho_2;    /* the same in the 2-norm (LAPACK's singular values) */
+  double lower;     /* lower bound: max over the words of length <= K (and the
+                       Lyndon words the branch and bound met) of
+                       rho(Y_w)^{1/|w|}, certified by ball arithmetic (see
+                       certified) */
+  int lower_len;    /* length of the word attaining `lower` */
+  int *lower_word;  /* that word, indices 0..m-1, lower_len of them (first
+                       factor applied first) */
+  double upper;     /* proven upper bound on rho(Y): min of the rigorous
+                       inf-norm profile and the branch and bound in o->norm */
+  int converged;    /* 1 if upper <= lower * (1 + gap) */
+  size_t nodes;     /* products formed by the branch and bound (including
+                       ranking the weightings), not by the brute force */
+  int bnb_depth;    /* word length of the last completed branch-and-bound pass
+                       (0 if none completed) */
+  int weighted;     /* 1 if that branch and bound used a diagonally weighted
+                       inf-norm (ss_jsr.c: choose_scaling) */
+  ss_jsr_norm norm; /* the norm it used (INF or 2; AUTO resolved) */
+  double seconds;   /* wall-clock time of the computation */
+  int certified;    /* 1 if both bounds account for rounding: upper always
+                       does; 0 only if the ball enclosure of the lower bound's
+                       eigenvalue failed */
 } ss_jsr_result;
 
 /* Bounds on the joint spectral radius of the m matrices Y[0..m-1], each n x n,

@@ -167,8 +167,8 @@ static void test_bspline(void) {
     const double *Y[2] = {AL, AR};
     ss_jsr_opts o = ss_jsr_defaults();
     o.depth = 6;
-    for (int nm = 0; nm < 2; nm++) {
-      o.norm = nm ? SS_JSR_NORM_2 : SS_JSR_NORM_INF;
+    for (int nm = 0; nm < 3; nm++) {
+      o.norm = (ss_jsr_norm)nm; /* inf, 2, auto */
       int ok;
       ss_jsr_result r = run(2, (size_t)q, Y, o, &ok);
       if (!ok) continue;
@@ -316,6 +316,7 @@ static void test_single(void) {
   o = ss_jsr_defaults();
   o.max_depth = 64;
   o.weighted = 0;
+  o.norm = SS_JSR_NORM_INF;
   r = run(1, 2, YJ, o, &ok);
   if (ok) {
     CHECK(r.lower <= a && a <= r.upper, "Jordan: [%.17g, %.17g]", r.lower, r.upper);
@@ -415,12 +416,14 @@ static void test_brute(gsl_rng *rng) {
     o.max_depth = K;
     o.gap = 0;
     o.weighted = 0;
+    o.norm = SS_JSR_NORM_INF;
     int ok;
     ss_jsr_result r = run(m, n, Y, o, &ok);
     if (!ok) continue;
-    /* a diagonal weighting of the norm, when it helps, only lowers the
-     * bound: it is kept only if its pass beats the plain one */
+    /* a diagonal weighting of the norm, or the 2-norm (AUTO), only lowers
+     * the bound: it is kept only if its pass beats the plain one */
     o.weighted = 1;
+    o.norm = (trial % 2) ? SS_JSR_NORM_AUTO : SS_JSR_NORM_INF;
     ss_jsr_result rw = run(m, n, Y, o, &ok);
     if (ok) {
       CHECK(rw.upper <= r.upper, "trial %d: weighted %.17g above plain %.17g", trial,
