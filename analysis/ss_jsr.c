@@ -630,6 +630,18 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
                         n);
   if (o->depth < 1 || o->depth > 64)
     return ss_error_set(err, SS_EINPUT, "jsr: depth %d not in 1..64", o->depth);
+  {
+    /* brute force forms every word of length <= depth: refuse what could
+     * not finish rather than run for years */
+    double words = 0, p = 1;
+    for (int k = 1; k <= o->depth && words <= 1e10; k++)
+      words += (p *= (double)m);
+    if (words > 1e10)
+      return ss_error_set(err, SS_EINPUT,
+                          "jsr: depth %d with %zu matrices means more than 10^10 "
+                          "products of brute force; lower the depth",
+                          o->depth, m);
+  }
   if (!(o->gap >= 0) || !isfinite(o->gap))
     return ss_error_set(err, SS_EINPUT, "jsr: gap %g is not a finite number >= 0",
                         o->gap);

@@ -118,7 +118,8 @@ typedef struct {
  * failure it is left cleared).  SS_EINPUT (message naming the problem) for
  * m < 1, n < 1, Y or a Y[i] NULL, a non-finite entry (matrix and entry
  * named), depth outside 1..64, gap negative or not finite, an unknown norm,
- * max_depth < 0, max_seconds NaN; SS_ENOMEM; SS_ENUMERIC if LAPACK's
+ * max_depth < 0, max_seconds NaN, more than 10^10 brute-force words
+ * (m + ... + m^K); SS_ENOMEM; SS_ENUMERIC if LAPACK's
  * eigenvalue or singular value computation fails.  Cost: (m^{K+1} - m) /
  * (m - 1) products with a norm each (an SVD for rho_2) for the profiles, then
  * the branch and bound within max_nodes / max_seconds / max_depth

@@ -551,6 +551,10 @@ static void test_bad_input(void) {
   expect_einput(2, 2, NULL, &o, "no matrices", "no matrices");
   o.depth = 0;
   expect_einput(2, 2, Y, &o, "depth 0", "depth 0");
+  o.depth = 34; /* 2^35 - 2 words */
+  expect_einput(2, 2, Y, &o, "depth 34", "more than 10^10");
+  o.depth = 32; /* 2^33 - 2 words pass, and the NaN is found after */
+  expect_einput(2, 2, YN, &o, "depth 32", "not finite");
   o = ss_jsr_defaults();
   o.gap = -1;
   expect_einput(2, 2, Y, &o, "gap", "gap");
