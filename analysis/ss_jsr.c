@@ -33,7 +33,8 @@ void ss_jsr_result_clear(ss_jsr_result *r) {
  * allocated once (grown by ws_reserve when the branch and bound deepens). */
 typedef struct {
   size_t m, n;            /* number and order of the matrices */
-  const double *const *Y; /* the input matrices (not owned) */
+  const double *const *Y; /* the matrices in use: the (normalised) inputs or
+                             their weighted copies in zbuf (not owned) */
   int cap;                /* levels the stacks hold */
   int *word;              /* cap: the current word, word[k] in 0..m-1 */
   double *prod;           /* cap * n * n: the computed products, row-major */
@@ -49,14 +50,15 @@ typedef struct {
   double *bnd;            /* cap: the branch and bound's value of the prefix */
   double *a;              /* n * n: scratch copy for LAPACK (destroyed) */
   double *wr, *wi, *sv;   /* n each: eigenvalues and singular values */
-  double *sb;             /* n: dgesvd's superdiagonal scratch */
+  double *sb;             /* n: dgesvd's superdiagonal scratch, column sums */
   double *ynorm;          /* m: rigorous upper bounds of ||Y_i||_inf (of the
                              exact matrices the stored Y_i approximate) */
   double *delta;          /* m: rigorous bound on ||exact - stored Y_i||_inf:
                              0 for the inputs, rounding of the scaled copies */
   double *zbuf;           /* m * n * n: the diagonally scaled copies */
   const double **zptr;    /* m: pointers into zbuf */
-  double *d;              /* n: the diagonal scaling (candidate) */
+  double *d;              /* 2 n: a candidate weighting and the sum of the
+                             rotations' candidates (choose_scaling) */
   double *vl;             /* n * n: dgeev's eigenvectors */
   double *v, *t2;         /* n * n each: the 2-norm certificate's V and A V */
   double *y2, *yf;        /* m each: rigorous ||Y_i + Delta||_2 and ||Y_i||_F */
