@@ -34,9 +34,11 @@ typedef struct {
   size_t max_nodes;   /* most products the branch and bound may form; 0: no
                          limit besides max_seconds */
   double max_seconds; /* wall-clock limit of the branch and bound; <= 0: none */
+  int max_depth;      /* longest word the branch and bound forms; 0: no limit
+                         besides max_nodes / max_seconds (>= depth to matter) */
 } ss_jsr_opts;
 
-/* Defaults: depth 8, gap 1e-3, inf-norm, 10^7 nodes, no time limit. */
+/* Defaults: depth 8, gap 1e-3, inf-norm, 10^7 nodes, no time or depth limit. */
 ss_jsr_opts ss_jsr_defaults(void);
 
 typedef struct {
@@ -51,6 +53,8 @@ typedef struct {
   double upper;    /* certified upper bound on rho(Y) */
   int converged;   /* 1 if upper <= lower * (1 + gap) */
   size_t nodes;    /* products formed by the branch and bound */
+  int bnb_depth;   /* word length of the last completed branch-and-bound pass
+                      (0 if none completed) */
   double seconds;  /* wall-clock time of the computation */
   int certified;   /* 1 if both bounds account for rounding (ball arithmetic
                       or a rigorous floating-point error bound) */
