@@ -10,9 +10,10 @@
 
 #include "ss_eig.h"
 
-#define MAXLEV     9     /* levels of the star refined at most */
-#define PEEL       12    /* cells farther than this from the centre (grid
-                            units, max-norm of the chart) are dropped before
+#define MAXLEV 9 /* levels of the star refined at most */
+#define PEEL                                                                             \
+  12                     /* cells farther than this from the centre (grid                \
+                            units, max-norm of the chart) are dropped before             \
                             each refinement from level 1 on */
 #define STAT_TOL   1e-12 /* S_i on consecutive levels must agree to this */
 #define ROWSUM_TOL 1e-12 /* rows of S_i must sum to 1 to this */
@@ -354,8 +355,8 @@ static int read_maps(const work *W, int l, ss_star_coord **P_out, size_t *n_out,
         for (size_t k = 0; k <= i; k++)
           free(S[k]), S[k] = NULL;
         free(P);
-        return ss_error_set(err, SS_EINTERNAL, "row %zu of S_%zu sums to %.17g, not 1",
-                            r, i + 1, sum),
+        return ss_error_set(err, SS_EINTERNAL, "row %zu of S_%zu sums to %.17g, not 1", r,
+                            i + 1, sum),
                HARD;
       }
     }
@@ -502,17 +503,19 @@ static int by_modulus_desc(const void *a, const void *b) {
   return x->re > y->re ? -1 : (x->re < y->re);
 }
 
-/* Edge: the eigenvectors of S_1 for its four dominant eigenvalues, which must
- * be 1, lambda, lambda, 1/2 (in some order after the 1).  Sets lambda1 and
- * the threshold lambda_3 = the smallest of the three subdominant ones. */
-static ss_status edge_subspace(ss_levin *L, double *V, ss_error *err) {
-  const size_t n = L->n;
+/* The eigenvectors of S_1 for its r dominant eigenvalues, which must be
+ * 1, lambda, lambda, 1/2 in some order after the 1 (edge, r = 4; sets lambda1
+ * and the threshold lambda_3 = the smallest of the three subdominant ones)
+ * or 1, 1/2 x3, 1/4 x6 (face, r = 10), all real, with |the next| below the
+ * last (a gap, so the subspace is well defined). */
+static ss_status dominant_subspace(ss_levin *L, double *V, ss_error *err) {
+  const size_t n = L->n, r = L->r;
   ss_status st = SS_OK;
   double *A = malloc(n * n * sizeof *A), *wr = malloc(n * sizeof *wr);
   double *wi = malloc(n * sizeof *wi), *vr = malloc(n * n * sizeof *vr);
   eigval *ev = malloc(n * sizeof *ev);
   if (!A || !wr || !wi || !vr || !ev) {
-    st = ss_error_nomem(err, "edge eigenvectors");
+    st = ss_error_nomem(err, "dominant eigenvectors");
     goto done;
   }
   memcpy(A, L->S[0], n * n * sizeof *A);
@@ -525,29 +528,44 @@ static ss_status edge_subspace(ss_levin *L, double *V, ss_error *err) {
     ev[k] = (eigval){wr[k], wi[k], k};
   qsort(ev, n, sizeof *ev, by_modulus_desc);
   const double tol = 1e-8;
-  int ok = n > 4 && fabs(ev[0].re - 1) <= tol;
-  for (int k = 0; k < 4 && ok; k++)
+  int ok = n > r && fabs(ev[0].re - 1) <= tol;
+  for (size_t k = 0; k < r && ok; k++)
     ok = fabs(ev[k].im) <= tol;
-  int half = -1;
-  for (int k = 1; k < 4 && ok; k++)
-    if (fabs(ev[k].re - 0.5) <= tol && half < 0) half = k;
-  double pair[2];
-  int np = 0;
-  for (int k = 1; k < 4 && ok && half > 0; k++)
-    if (k != half) pair[np++] = ev[k].re;
-  if (!ok || half < 0 || fabs(pair[0] - pair[1]) > tol * fmax(1, fabs(pair[0]))) {
+  if (ok && L->kind == SS_CASE_FACE) {
+    for (size_t k = 1; k < r && ok; k++)
+      ok = fabs(ev[k].re - (k < 4 ? 0.5 : 0.25)) <= tol;
+    ok = ok && hypot(ev[r].re, ev[r].im) < 0.25 - tol;
+  } else if (ok) {
+    int half = -1;
+    for (int k = 1; k < 4; k++)
+      if (fabs(ev[k].re - 0.5) <= tol && half < 0) half = k;
+    double pair[2] = {0, 0};
+    int np = 0;
+    for (int k = 1; k < 4 && half > 0; k++)
+      if (k != half) pair[np++] = ev[k].re;
+    ok = half > 0 && fabs(pair[0] - pair[1]) <= tol * fmax(1, fabs(pair[0]));
+    L->lambda1 = 0.5 * (pair[0] + pair[1]);
+    L->threshold = fmin(L->lambda1, 0.5);
+    ok = ok && hypot(ev[r].re, ev[r].im) < L->threshold - tol;
+  }
+  if (!ok) {
+    char buf[512];
+    size_t used = 0;
+    for (size_t k = 0; k <= r && k < n && used < sizeof buf; k++)
+      used += (size_t)snprintf(buf + used, sizeof buf - used, "%s%.6g%+.2gi",
+                               k ? ", " : "", ev[k].re, ev[k].im);
     st = ss_error_set(err, SS_EINTERNAL,
-                      "the dominant eigenvalues of the edge's S_1 are not 1, lambda, "
-                      "lambda, 1/2: %.6g%+.3gi, %.6g%+.3gi, %.6g%+.3gi, %.6g%+.3gi",
-                      ev[0].re, ev[0].im, ev[1].re, ev[1].im, ev[2].re, ev[2].im,
-                      ev[3].re, ev[3].im);
+                      "the %zu dominant eigenvalues of S_1 are not %s (then %s the "
+                      "next): %s",
+                      r,
+                      L->kind == SS_CASE_FACE ? "1, 1/2 x3, 1/4 x6"
+                                              : "1, lambda, lambda, 1/2 in some order",
+                      "strictly above", buf);
     goto done;
   }
-  L->lambda1 = 0.5 * (pair[0] + pair[1]);
-  L->threshold = fmin(L->lambda1, 0.5);
   for (size_t i = 0; i < n; i++)
-    for (int k = 0; k < 4; k++)
-      V[i * 4 + k] = vr[i * n + ev[k].k];
+    for (size_t k = 0; k < r; k++)
+      V[i * r + k] = vr[i * n + ev[k].k];
 done:
   free(A), free(wr), free(wi), free(vr), free(ev);
   return st;
@@ -681,13 +699,22 @@ ss_status ss_levin_new(const ss_scheme *s, const ss_case *c, ss_levin **out,
   }
   for (size_t i = 0; i < L->n; i++)
     ss_star_coord_position(W.star, L->label + i, 1.0, L->pos + 3 * i);
+  /* face: the quadratic polynomials, if the scheme keeps them; otherwise (and
+   * for edges) the dominant eigenvectors of S_1, as the paper builds W */
+  L->basis = "eigenvectors";
   if (c->kind == SS_CASE_FACE) {
-    quadratics(L, L->V);
     L->threshold = 0.25;
     L->lambda1 = 0.5;
-  } else if ((st = edge_subspace(L, L->V, err))) {
-    goto done;
+    quadratics(L, L->V);
+    ss_error e2 = {0};
+    if (!ss_levin_reduce(L->m, L->n, (const double *const *)L->S, L->V, L->r,
+                         SS_LEVIN_TOL, L->Y, &L->defect, &e2)) {
+      L->basis = "quadratics";
+      st = theta(L, err);
+      goto done;
+    }
   }
+  if ((st = dominant_subspace(L, L->V, err))) goto done;
   if ((st = ss_levin_reduce(L->m, L->n, (const double *const *)L->S, L->V, L->r,
                             SS_LEVIN_TOL, L->Y, &L->defect, err)))
     goto done;

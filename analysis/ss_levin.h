@@ -38,7 +38,11 @@
  *     star's chart mapped to space, ss_star_coord_position), r = 10: 1, x, y,
  *     z and their 6 products, whose restrictions to level j + 1 are, up to
  *     lower degree, the same polynomials at half scale: S_i's eigenvalues
- *     on span(V) are 1, 1/2 x3, 1/4 x6;
+ *     on span(V) are 1, 1/2 x3, 1/4 x6.  If these are not invariant (the
+ *     box-spline rules: the chart's mirror-symmetric embedding of the two
+ *     tets need not be the affine structure the rules keep), the paper's
+ *     own construction: the eigenvectors of S_1 for 1, 1/2 x3, 1/4 x6
+ *     (checked: these must be its 10 dominant eigenvalues);
  *   edge: the eigenvectors of S_1 for its four dominant eigenvalues, which
  *     must be 1, lambda_1, lambda_1, 1/2 (the paper's "1, lambda1, lambda1,
  *     1/2, ..."): constants, the two maps around the edge, the map along it.
@@ -87,6 +91,8 @@ typedef struct {
                                   descending (real parts) */
   double threshold;            /* 1/4 (face) or lambda_3 (edge) */
   double lambda1;              /* edge: lambda_1 (double eigenvalue); face: 1/2 */
+  const char *basis;           /* how V was formed: "quadratics" or
+                                  "eigenvectors" (static string) */
 } ss_levin;
 
 /* Relative tolerance of the invariance check. */
