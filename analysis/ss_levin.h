@@ -58,8 +58,10 @@
  * spectral radius and the lower bounds, are unchanged, and each norm
  * profile rho_k changes at most by cond(G)^{1/k}, which tends to 1.  A change
  * of V's basis (V -> V B) does not change Y_i at all.  Relabelling the
- * support (a permutation P) maps S_i -> P S_i P^T, V -> P V, Q_2 -> P Q_2:
- * the same Y_i.
+ * support (a permutation P) maps S_i -> P S_i P^T, V -> P V, and the QR
+ * factorisation of P V gives another orthonormal complement: Y_i -> G^T Y_i G
+ * with G orthogonal, so the 2-norm profile and the spectral radii are
+ * unchanged and the inf-norm profile changes by at most n^{1/k}.
  *
  * The threshold: 1/4 for the face (C^2: the JSR must lie below the sixfold
  * quadratic eigenvalue); for an edge lambda_3, the third subdominant
