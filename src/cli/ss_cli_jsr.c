@@ -143,9 +143,10 @@ int ss_cli_jsr(int argc, char **argv) {
                         : r.lower >= L->threshold ? "fail"
                                                   : "undecided";
   rc = strcmp(verdict, "pass") ? SS_EXIT_FAIL : SS_EXIT_OK;
-  const char *thr_name = c.kind == SS_CASE_FACE ? "1/4 (C^2 across the face)"
-                         : L->lambda1 < 0.5     ? "lambda3 = lambda1 (< 1/2)"
-                                                : "lambda3 = 1/2 (<= lambda1)";
+  const char *thr_name = c.kind == SS_CASE_FACE           ? "1/4 (C^2 across the face)"
+                         : fabs(L->lambda1 - 0.5) <= 1e-8 ? "lambda3 = lambda1 = 1/2"
+                         : L->lambda1 < 0.5               ? "lambda3 = lambda1 (< 1/2)"
+                                                          : "lambda3 = 1/2 (< lambda1)";
   if (json) {
     json_object *j = json_object_new_object(), *rk = json_object_new_array(),
                 *r2 = json_object_new_array(), *th = json_object_new_array(),
