@@ -242,6 +242,73 @@ static void edge_tetoct(int nv) {
   ss_scheme_free(s);
 }
 
+/* S_1 fixes the patch's corner, a vertex inside the face: its eigenvalues of
+ * modulus >= 1/8 are eigenvalues of ss_local's face matrix (an independent
+ * extraction around that vertex). */
+static void face_against_local(const char *name, ss_diag_mode diag) {
+  ss_scheme *s = scheme(name);
+  ss_error err = {0};
+  ss_case c = {0};
+  c.kind = SS_CASE_FACE;
+  c.diag = diag;
+  ss_levin *L = NULL;
+  ss_local *M = NULL;
+  REQUIRE_OK_VOID(ss_levin_new(s, &c, &L, &err), &err);
+  REQUIRE_OK_VOID(ss_local_new(s, &c, &M, &err), &err);
+  double *re = malloc(M->n2 * sizeof *re), *im = malloc(M->n2 * sizeof *im);
+  double *r1 = malloc(L->n * sizeof *r1), *i1 = malloc(L->n * sizeof *i1);
+  REQUIRE_OK_VOID(ss_eig_dense(M->S, M->n2, re, im, &err), &err);
+  REQUIRE_OK_VOID(ss_eig_dense(L->S[0], L->n, r1, i1, &err), &err);
+  int big = 0;
+  for (size_t k = 0; k < L->n; k++) {
+    if (hypot(r1[k], i1[k]) < 0.125 + 1e-9) continue;
+    big++;
+    double best = INFINITY;
+    for (size_t q = 0; q < M->n2; q++)
+      best = fmin(best, hypot(re[q] - r1[k], im[q] - i1[k]));
+    CHECK(best < 1e-7, "%s face: eigenvalue %.12g of S_1 not in the face matrix (%.3g)",
+          name, r1[k], best);
+  }
+  CHECK(big >= 10, "%s face: %d eigenvalues >= 1/8", name, big);
+  const double want[10] = {1, .5, .5, .5, .25, .25, .25, .25, .25, .25};
+  for (int k = 0; k < 10; k++)
+    CHECK_CLOSE(L->theta[k], want[k], 1e-10, "%s face theta %d", name, k);
+  free(re), free(im), free(r1), free(i1);
+  ss_local_free(M);
+  ss_levin_free(L);
+  ss_scheme_free(s);
+}
+
+/* The box-spline edge of valence 4 with proper diagonals lies in the uniform
+ * lattice: linear precision gives 1, 1/2, 1/2, 1/2 on the subspace, and the
+ * quadratics left in Y_1 give it the eigenvalue 1/4, so the lower bound is at
+ * least 1/4, exactly 1/4 from words of length 1. */
+static void regular_edge(void) {
+  ss_scheme *s = scheme("boxspline");
+  ss_error err = {0};
+  ss_case c = {0};
+  c.kind = SS_CASE_EDGE;
+  c.n = 4;
+  c.diag = SS_DIAG_PROPER;
+  ss_levin *L = NULL;
+  REQUIRE_OK_VOID(ss_levin_new(s, &c, &L, &err), &err);
+  const double want[4] = {1, .5, .5, .5};
+  for (int k = 0; k < 4; k++)
+    CHECK_CLOSE(L->theta[k], want[k], 1e-10, "regular edge theta %d", k);
+  CHECK_CLOSE(L->threshold, 0.5, 1e-10, "regular edge threshold");
+  double *Yd = malloc((L->n - 4) * (L->n - 4) * sizeof *Yd);
+  double *re = malloc((L->n - 4) * sizeof *re), *im = malloc((L->n - 4) * sizeof *im);
+  memcpy(Yd, L->Y[0], (L->n - 4) * (L->n - 4) * sizeof *Yd);
+  REQUIRE_OK_VOID(ss_eig_dense(Yd, L->n - 4, re, im, &err), &err);
+  double rho = 0;
+  for (size_t k = 0; k < L->n - 4; k++)
+    rho = fmax(rho, hypot(re[k], im[k]));
+  CHECK_CLOSE(rho, 0.25, 1e-10, "spectral radius of Y_1 at the regular edge");
+  free(Yd), free(re), free(im);
+  ss_levin_free(L);
+  ss_scheme_free(s);
+}
+
 static void bad_input(void) {
   ss_error err = {0};
   ss_scheme *s = scheme("mlca");
@@ -269,6 +336,9 @@ int main(void) {
   relabel_and_mutate();
   edge_tetoct(3);
   edge_tetoct(5);
+  face_against_local("tetoct", SS_DIAG_BFS);
+  face_against_local("boxspline", SS_DIAG_PROPER);
+  regular_edge();
   bad_input();
   return ss_test_done("test_levin");
 }
