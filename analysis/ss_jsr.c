@@ -388,7 +388,9 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
    * same word when the ball-arithmetic enclosure succeeds */
   double lower_cert = 0;
   int lower_rigorous = 0;
-  if (w.lower_len > 0)
+  if (w.lower_len == 0)
+    lower_rigorous = 1; /* no product has a nonzero spectral radius: 0 */
+  else
     lower_rigorous = ss_jsr_cert_lower(n, Y, w.lower_word, w.lower_len, &lower_cert);
   out->lower = lower_rigorous ? lower_cert : w.lower;
   out->upper = upper;

@@ -1,0 +1,457 @@
+/* test_jsr.c — bounds on the joint spectral radius (ss_jsr) against values
+ * known in closed form, an independent brute force, and invariance.
+ *
+ * Closed forms used:
+ *  - Cubic B-spline subdivision (mask 1/8 (1, 4, 6, 4, 1)): the k-th
+ *    differences of the control points of one segment are mapped to those of
+ *    its two halves by 2 matrices A_L, A_R of order 4 - k, derived below from
+ *    the point rules (A = D S D^+, with D S = A D checked).  The k-th
+ *    difference scheme has the symbol (1 + z)^{4-k} / 8, whose even and odd
+ *    coefficients are both nonnegative and sum to 2^{3-k} / 8 = 2^{-k}: every
+ *    row of A_L, A_R is nonnegative with sum 2^{-k}.  A nonnegative matrix
+ *    with constant row sum r has ||A||_inf = r and A 1 = r 1, so rho(A) = r;
+ *    hence JSR = 2^{-k} exactly: lower and upper bounds meet at depth 1.
+ *    The Levin-Levin C^2 test compares the JSR on the complement of the
+ *    quadratics (the 3rd differences, 1/8) with 1/4: pass; the 2nd
+ *    differences (complement of the linears) have JSR exactly 1/4 (the
+ *    spline is C^2 but not C^{2+a}, a > 0, where the 3rd derivative jumps).
+ *  - A = [[1,1],[0,1]], B = [[1,0],[1,1]]: ||A||_2 = ||B||_2 = phi (singular
+ *    values phi, 1/phi) and rho(AB) = rho([[2,1],[1,1]]) = phi^2, so
+ *    JSR = phi = (1 + sqrt 5) / 2 (Jungers, The Joint Spectral Radius,
+ *    Springer 2009, ex. 1.3 and its golden-ratio pair).
+ *  - Commuting pair Q diag(a) Q^{-1}, Q diag(b) Q^{-1}: every product is
+ *    Q diag(prod) Q^{-1}, so JSR = max_i max(|a_i|, |b_i|).
+ *  - Upper-triangular pair: products are upper triangular with the products
+ *    of the diagonal entries on the diagonal, and the off-diagonal part only
+ *    adds polynomial growth, so JSR = max over positions and matrices of
+ *    |diagonal entry|.
+ * The brute-force checks recompute the norm profile and the branch and
+ * bound's bound with products formed here, by recursion over words. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_rng.h>
+
+#include "ss_jsr.h"
+#include "ss_test.h"
+
+#define NMAX 8
+
+/* c = a b for n x n row-major matrices (c may not alias) */
+static void matmul(size_t n, const double *a, const double *b, double *c) {
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = 0; j < n; j++) {
+      double s = 0;
+      for (size_t t = 0; t < n; t++)
+        s += a[i * n + t] * b[t * n + j];
+      c[i * n + j] = s;
+    }
+}
+
+static double ninf(size_t n, const double *a) {
+  double mx = 0;
+  for (size_t i = 0; i < n; i++) {
+    double s = 0;
+    for (size_t j = 0; j < n; j++)
+      s += fabs(a[i * n + j]);
+    mx = fmax(mx, s);
+  }
+  return mx;
+}
+
+static ss_jsr_result run(size_t m, size_t n, const double *const *Y, ss_jsr_opts o,
+                         int *ok) {
+  ss_jsr_result r;
+  ss_error e = {0};
+  *ok = ss_jsr_compute(m, n, Y, &o, &r, &e) == SS_OK;
+  CHECK(*ok, "ss_jsr_compute failed: %s", e.msg);
+  return r;
+}
+
+/* ---- cubic B-spline difference schemes ---------------------------------- */
+
+/* Solve the k x k system g x = rhs in place (Gauss-Jordan, partial pivoting;
+ * k <= 3 here). */
+static void solve(int k, double *g, double *rhs) {
+  for (int c = 0; c < k; c++) {
+    int p = c;
+    for (int r = c + 1; r < k; r++)
+      if (fabs(g[r * k + c]) > fabs(g[p * k + c])) p = r;
+    for (int j = 0; j < k; j++) {
+      double t = g[c * k + j];
+      g[c * k + j] = g[p * k + j], g[p * k + j] = t;
+    }
+    double t = rhs[c];
+    rhs[c] = rhs[p], rhs[p] = t;
+    for (int r = 0; r < k; r++) {
+      if (r == c) continue;
+      const double f = g[r * k + c] / g[c * k + c];
+      for (int j = 0; j < k; j++)
+        g[r * k + j] -= f * g[c * k + j];
+      rhs[r] -= f * rhs[c];
+    }
+  }
+  for (int c = 0; c < k; c++)
+    rhs[c] /= g[c * k + c];
+}
+
+/* The matrices of the k-th differences: S (4 x 4) maps the control points
+ * p_{i-1}, p_i, p_{i+1}, p_{i+2} of a segment to those of one half; D the
+ * (4-k) x 4 k-th forward differences; A = D S D^T (D D^T)^{-1}. */
+static void diff_matrices(int k, const double S[2][16], double *A[2]) {
+  const int q = 4 - k;
+  double D[3 * 4] = {0};
+  static const double binom[4][4] = {{1}, {-1, 1}, {1, -2, 1}, {-1, 3, -3, 1}};
+  for (int r = 0; r < q; r++)
+    for (int j = 0; j <= k; j++)
+      D[r * 4 + r + j] = binom[k][j];
+  for (int s = 0; s < 2; s++) {
+    double DS[3 * 4] = {0};
+    for (int r = 0; r < q; r++)
+      for (int c = 0; c < 4; c++)
+        for (int t = 0; t < 4; t++)
+          DS[r * 4 + c] += D[r * 4 + t] * S[s][t * 4 + c];
+    /* row r of A solves (D D^T) a_r = D (DS)_r^T (the Gram system) */
+    for (int r = 0; r < q; r++) {
+      double g[9], rhs[3];
+      for (int i = 0; i < q; i++) {
+        rhs[i] = 0;
+        for (int c = 0; c < 4; c++)
+          rhs[i] += D[i * 4 + c] * DS[r * 4 + c];
+        for (int j = 0; j < q; j++) {
+          g[i * q + j] = 0;
+          for (int c = 0; c < 4; c++)
+            g[i * q + j] += D[i * 4 + c] * D[j * 4 + c];
+        }
+      }
+      solve(q, g, rhs);
+      for (int j = 0; j < q; j++)
+        A[s][r * q + j] = rhs[j];
+    }
+    /* the reduction exists: D S = A D */
+    double res = 0;
+    for (int r = 0; r < q; r++)
+      for (int c = 0; c < 4; c++) {
+        double ad = 0;
+        for (int t = 0; t < q; t++)
+          ad += A[s][r * q + t] * D[t * 4 + c];
+        res = fmax(res, fabs(ad - DS[r * 4 + c]));
+      }
+    CHECK(res < 1e-14, "k = %d, half %d: D S != A D (residual %g)", k, s, res);
+  }
+}
+
+static void test_bspline(void) {
+  /* one step of 1/8 (1, 4, 6, 4, 1): p'_{2i} = (p_{i-1} + 6 p_i + p_{i+1}) / 8,
+   * p'_{2i+1} = (p_i + p_{i+1}) / 2; left half p'_{2i-1..2i+2}, right half
+   * p'_{2i..2i+3} */
+  const double e = 1.0 / 8, h = 0.5, s6 = 6.0 / 8;
+  const double S[2][16] = {{h, h, 0, 0, e, s6, e, 0, 0, h, h, 0, 0, e, s6, e},
+                           {e, s6, e, 0, 0, h, h, 0, 0, e, s6, e, 0, 0, h, h}};
+  for (int k = 1; k <= 3; k++) {
+    const int q = 4 - k;
+    double AL[9], AR[9];
+    double *A[2] = {AL, AR};
+    diff_matrices(k, S, A);
+    const double value = ldexp(1.0, -k);
+    for (int s = 0; s < 2; s++)
+      for (int r = 0; r < q; r++) {
+        double sum = 0;
+        for (int c = 0; c < q; c++) {
+          CHECK(A[s][r * q + c] >= -1e-15, "k = %d: negative entry", k);
+          sum += A[s][r * q + c];
+        }
+        CHECK_CLOSE(sum, value, 1e-14, "k = %d: row sum of the difference matrix", k);
+      }
+    const double *Y[2] = {AL, AR};
+    ss_jsr_opts o = ss_jsr_defaults();
+    o.depth = 6;
+    for (int nm = 0; nm < 2; nm++) {
+      o.norm = nm ? SS_JSR_NORM_2 : SS_JSR_NORM_INF;
+      int ok;
+      ss_jsr_result r = run(2, (size_t)q, Y, o, &ok);
+      if (!ok) continue;
+      CHECK(r.lower <= value && value <= r.upper, "k = %d: [%.17g, %.17g] misses 2^-k", k,
+            r.lower, r.upper);
+      CHECK(r.upper - r.lower <= 1e-12 * value, "k = %d: gap %g", k, r.upper - r.lower);
+      CHECK(r.converged, "k = %d: not converged", k);
+      if (nm == 0) CHECK(r.certified, "k = %d: inf-norm bounds not certified", k);
+      for (int d = 0; d < r.depth; d++)
+        CHECK_CLOSE(r.rho_inf[d], value, 1e-14, "k = %d: rho_inf[%d]", k, d + 1);
+      if (k == 3) CHECK(r.upper < 0.25, "C^2 test: 3rd differences %.17g", r.upper);
+      if (k == 2) CHECK(r.lower >= 0.25 * (1 - 1e-14), "2nd differences %.17g", r.lower);
+      ss_jsr_result_clear(&r);
+    }
+  }
+}
+
+/* ---- known pairs ---------------------------------------------------------- */
+
+static void test_golden(void) {
+  const double A[4] = {1, 1, 0, 1}, B[4] = {1, 0, 1, 1};
+  const double *Y[2] = {A, B};
+  const double phi = (1 + sqrt(5.0)) / 2;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.norm = SS_JSR_NORM_2;
+  o.depth = 2;
+  int ok;
+  ss_jsr_result r = run(2, 2, Y, o, &ok);
+  if (ok) {
+    CHECK(r.lower <= phi && phi <= r.upper * (1 + 1e-15), "[%.17g, %.17g]", r.lower,
+          r.upper);
+    CHECK_CLOSE(r.lower, phi, 1e-14, "lower from AB");
+    CHECK_CLOSE(r.upper, phi, 1e-12, "2-norm upper");
+    CHECK(r.lower_len == 2 && r.lower_word[0] != r.lower_word[1], "attained by AB or BA");
+    /* the 2-norm comes from LAPACK's SVD without a proven error bound, so
+     * a 2-norm upper bound below the inf-norm one is not claimed certified */
+    CHECK(!r.certified, "2-norm upper bound claimed certified");
+  }
+  ss_jsr_result_clear(&r);
+  /* inf-norm: ||A||_inf = 2; the bound tightens with the depth of the
+   * branch and bound and always brackets phi */
+  o.norm = SS_JSR_NORM_INF;
+  double prev = INFINITY;
+  for (int d = 2; d <= 32; d *= 2) {
+    o.max_depth = d;
+    r = run(2, 2, Y, o, &ok);
+    if (!ok) continue;
+    CHECK(r.lower <= phi && phi <= r.upper, "depth %d: [%.17g, %.17g]", d, r.lower,
+          r.upper);
+    CHECK(r.certified, "depth %d: inf-norm bounds certified", d);
+    CHECK(r.upper <= prev, "depth %d: upper %.17g rose from %.17g", d, r.upper, prev);
+    if (d >= 8)
+      CHECK(r.upper < prev, "depth %d: upper %.17g did not improve", d, r.upper);
+    prev = r.upper;
+    ss_jsr_result_clear(&r);
+  }
+  CHECK(prev < phi * 1.03, "inf-norm upper at depth 32: %.17g", prev);
+}
+
+static void test_commuting(void) {
+  /* Q unimodular, so Q^{-1} is an integer matrix and the products below are
+   * exact in floating point */
+  const double Q[9] = {1, 1, 0, 0, 1, 1, 0, 0, 1}, Qi[9] = {1, -1, 1, 0, 1, -1, 0, 0, 1};
+  const double a[3] = {0.75, -0.5, 0.25}, b[3] = {0.25, 0.5, -0.875};
+  double A[9], B[9], t[9], DA[9] = {0}, DB[9] = {0};
+  for (int i = 0; i < 3; i++)
+    DA[4 * i] = a[i], DB[4 * i] = b[i];
+  matmul(3, Q, DA, t);
+  matmul(3, t, Qi, A);
+  matmul(3, Q, DB, t);
+  matmul(3, t, Qi, B);
+  double AB[9], BA[9];
+  matmul(3, A, B, AB);
+  matmul(3, B, A, BA);
+  for (int i = 0; i < 9; i++)
+    CHECK(AB[i] == BA[i], "the pair commutes (entry %d)", i);
+  const double value = 0.875;
+  const double *Y[2] = {A, B};
+  ss_jsr_opts o = ss_jsr_defaults();
+  double prev = INFINITY;
+  for (int d = 1; d <= 16; d *= 2) {
+    o.depth = d < 8 ? d : 8;
+    o.max_depth = d;
+    int ok;
+    ss_jsr_result r = run(2, 3, Y, o, &ok);
+    if (!ok) continue;
+    CHECK(r.lower <= value && value <= r.upper, "depth %d: [%.17g, %.17g]", d, r.lower,
+          r.upper);
+    CHECK_CLOSE(r.lower, value, 1e-14, "depth %d: lower = rho(B)", d);
+    CHECK(r.upper <= prev, "depth %d: upper rose", d);
+    prev = r.upper;
+    ss_jsr_result_clear(&r);
+  }
+  CHECK(prev < value * 1.1, "commuting: upper at depth 16 = %.17g", prev);
+}
+
+static void test_triangular(gsl_rng *rng) {
+  for (int trial = 0; trial < 5; trial++) {
+    const size_t n = 2 + (size_t)trial % 3;
+    double A[NMAX * NMAX] = {0}, B[NMAX * NMAX] = {0};
+    double value = 0;
+    for (size_t i = 0; i < n; i++)
+      for (size_t j = i; j < n; j++) {
+        A[i * n + j] = 2 * gsl_rng_uniform(rng) - 1;
+        B[i * n + j] = 2 * gsl_rng_uniform(rng) - 1;
+        if (i == j) value = fmax(value, fmax(fabs(A[i * n + j]), fabs(B[i * n + j])));
+      }
+    const double *Y[2] = {A, B};
+    ss_jsr_opts o = ss_jsr_defaults();
+    o.depth = 6;
+    o.max_depth = 24;
+    int ok;
+    ss_jsr_result r = run(2, n, Y, o, &ok);
+    if (!ok) continue;
+    CHECK(r.lower <= value * (1 + 1e-15) && value <= r.upper,
+          "trial %d: [%.17g, %.17g] vs %.17g", trial, r.lower, r.upper, value);
+    CHECK_CLOSE(r.lower, value, 1e-13, "trial %d: lower = largest diagonal entry", trial);
+    CHECK(r.certified, "trial %d: certified", trial);
+    ss_jsr_result_clear(&r);
+  }
+}
+
+/* ---- brute force, independently ------------------------------------------- */
+
+typedef struct {
+  size_t m, n;
+  const double *const *Y;
+  double rho[NMAX]; /* max over words of length k + 1 of ||Y_w||_inf */
+  double bnb[NMAX]; /* max over words of length k + 1 of min over prefixes of
+                       ||Y_u||_inf^{1/|u|} */
+} brute;
+
+/* all words extending the product P (length k, prefix bound b) */
+static void brute_rec(brute *br, int K, int k, const double *P, double b) {
+  double Q[NMAX * NMAX];
+  for (size_t i = 0; i < br->m; i++) {
+    if (k == 0)
+      memcpy(Q, br->Y[i], br->n * br->n * sizeof *Q);
+    else
+      matmul(br->n, br->Y[i], P, Q);
+    const double nv = ninf(br->n, Q);
+    const double bb = fmin(b, pow(nv, 1.0 / (k + 1)));
+    br->rho[k] = fmax(br->rho[k], nv);
+    br->bnb[k] = fmax(br->bnb[k], bb);
+    if (k + 1 < K) brute_rec(br, K, k + 1, Q, bb);
+  }
+}
+
+static void test_brute(gsl_rng *rng) {
+  for (int trial = 0; trial < 12; trial++) {
+    const size_t m = 2 + (size_t)trial % 2, n = 2 + (size_t)(trial / 2) % 3;
+    const int K = 4 + trial % 3;
+    double mats[3][NMAX * NMAX];
+    const double *Y[3] = {mats[0], mats[1], mats[2]};
+    for (size_t i = 0; i < m; i++)
+      for (size_t e = 0; e < n * n; e++)
+        mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+    brute br = {m, n, Y, {0}, {0}};
+    brute_rec(&br, K, 0, NULL, INFINITY);
+    ss_jsr_opts o = ss_jsr_defaults();
+    o.depth = K;
+    o.max_depth = K;
+    o.gap = 0;
+    int ok;
+    ss_jsr_result r = run(m, n, Y, o, &ok);
+    if (!ok) continue;
+    double rmin = INFINITY;
+    for (int k = 0; k < K; k++) {
+      const double want = pow(br.rho[k], 1.0 / (k + 1));
+      CHECK_CLOSE(r.rho_inf[k], want, 1e-13, "trial %d: rho_inf[%d]", trial, k + 1);
+      rmin = fmin(rmin, want);
+    }
+    /* gap 0: nothing at or above the JSR is pruned, so the pass at depth K
+     * equals the brute-force max-min, which is <= min_k rho_k */
+    CHECK(br.bnb[K - 1] <= rmin * (1 + 1e-15), "trial %d: max-min above min-max", trial);
+    CHECK_CLOSE(r.upper, br.bnb[K - 1], 1e-13, "trial %d: branch and bound at depth %d",
+                trial, K);
+    CHECK(r.bnb_depth == K, "trial %d: bnb_depth %d", trial, r.bnb_depth);
+    CHECK(r.lower <= r.upper, "trial %d: lower above upper", trial);
+    ss_jsr_result_clear(&r);
+  }
+}
+
+/* ---- relabelling ------------------------------------------------------------ */
+
+static void test_permutation(gsl_rng *rng) {
+  for (int trial = 0; trial < 6; trial++) {
+    const size_t m = 2 + (size_t)trial % 3, n = 3 + (size_t)trial % 4;
+    double mats[4][NMAX * NMAX], perm[4][NMAX * NMAX];
+    const double *Y[4] = {mats[0], mats[1], mats[2], mats[3]};
+    const double *Z[4] = {perm[0], perm[1], perm[2], perm[3]};
+    size_t p[NMAX];
+    for (size_t i = 0; i < n; i++)
+      p[i] = i;
+    for (size_t i = n - 1; i > 0; i--) {
+      size_t j = (size_t)gsl_rng_uniform_int(rng, i + 1), t = p[i];
+      p[i] = p[j], p[j] = t;
+    }
+    for (size_t i = 0; i < m; i++)
+      for (size_t e = 0; e < n * n; e++)
+        mats[i][e] = (2 * gsl_rng_uniform(rng) - 1) / (double)n;
+    /* Z_i = P Y_i P^T: entry (p(r), p(c)) of Z is entry (r, c) of Y */
+    for (size_t i = 0; i < m; i++)
+      for (size_t rr = 0; rr < n; rr++)
+        for (size_t c = 0; c < n; c++)
+          perm[i][p[rr] * n + p[c]] = mats[i][rr * n + c];
+    ss_jsr_opts o = ss_jsr_defaults();
+    o.depth = 5;
+    o.max_depth = 10;
+    for (int nm = 0; nm < 2; nm++) {
+      o.norm = nm ? SS_JSR_NORM_2 : SS_JSR_NORM_INF;
+      int ok1, ok2;
+      ss_jsr_result a = run(m, n, Y, o, &ok1), b = run(m, n, Z, o, &ok2);
+      if (ok1 && ok2) {
+        CHECK_CLOSE(a.lower, b.lower, 1e-12, "trial %d norm %d: lower", trial, nm);
+        CHECK_CLOSE(a.upper, b.upper, 1e-12, "trial %d norm %d: upper", trial, nm);
+        for (int k = 0; k < o.depth; k++) {
+          CHECK_CLOSE(a.rho_inf[k], b.rho_inf[k], 1e-12, "trial %d: rho_inf", trial);
+          CHECK_CLOSE(a.rho_2[k], b.rho_2[k], 1e-12, "trial %d: rho_2", trial);
+        }
+      }
+      ss_jsr_result_clear(&a);
+      ss_jsr_result_clear(&b);
+    }
+  }
+}
+
+/* ---- bad input ---------------------------------------------------------------- */
+
+static void expect_einput(size_t m, size_t n, const double *const *Y,
+                          const ss_jsr_opts *o, const char *what, const char *needle) {
+  ss_jsr_result r;
+  ss_error e = {0};
+  const ss_status st = ss_jsr_compute(m, n, Y, o, &r, &e);
+  CHECK(st == SS_EINPUT, "%s: status %d", what, (int)st);
+  CHECK(strstr(e.msg, needle) != NULL, "%s: message '%s' lacks '%s'", what, e.msg,
+        needle);
+  CHECK(r.rho_inf == NULL && r.lower_word == NULL, "%s: result not cleared", what);
+}
+
+static void test_bad_input(void) {
+  double A[4] = {1, 0, 0, 1}, N[4] = {1, NAN, 0, 1}, I[4] = {1, 0, INFINITY, 1};
+  const double *Y[2] = {A, A}, *YN[2] = {A, N}, *YI[2] = {I, A}, *Y0[2] = {A, NULL};
+  ss_jsr_opts o = ss_jsr_defaults();
+  expect_einput(0, 2, Y, &o, "m = 0", "m = 0");
+  expect_einput(2, 0, Y, &o, "n = 0", "n = 0");
+  expect_einput(2, 2, YN, &o, "NaN", "matrix 2, entry (1, 2)");
+  expect_einput(2, 2, YI, &o, "inf", "matrix 1, entry (2, 1)");
+  expect_einput(2, 2, Y0, &o, "missing", "matrix 2 is missing");
+  expect_einput(2, 2, NULL, &o, "no matrices", "no matrices");
+  o.depth = 0;
+  expect_einput(2, 2, Y, &o, "depth 0", "depth 0");
+  o = ss_jsr_defaults();
+  o.gap = -1;
+  expect_einput(2, 2, Y, &o, "gap", "gap");
+  o.gap = NAN;
+  expect_einput(2, 2, Y, &o, "gap NaN", "gap");
+  o = ss_jsr_defaults();
+  o.norm = (ss_jsr_norm)7;
+  expect_einput(2, 2, Y, &o, "norm", "norm");
+  /* the zero matrix: JSR 0, both bounds 0 */
+  double Zm[4] = {0};
+  const double *YZ[1] = {Zm};
+  ss_jsr_opts oz = ss_jsr_defaults();
+  int ok;
+  ss_jsr_result r = run(1, 2, YZ, oz, &ok);
+  if (ok)
+    CHECK(r.lower == 0 && r.upper == 0 && r.converged && r.certified,
+          "zero matrix: [%g, %g]", r.lower, r.upper);
+  ss_jsr_result_clear(&r);
+  ss_jsr_result_clear(NULL);
+}
+
+int main(void) {
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, 18);
+  test_bspline();
+  test_golden();
+  test_commuting();
+  test_triangular(rng);
+  test_brute(rng);
+  test_permutation(rng);
+  test_bad_input();
+  gsl_rng_free(rng);
+  return ss_test_done("test_jsr");
+}
