@@ -128,7 +128,8 @@ static double margin(const work *W, const ss_star_coord *c, int l) {
 }
 
 /* Drop the cells of level l with a corner farther than PEEL from the centre
- * (their vertices stay, in no cell; margin keeps every row read away). */
+ * (their vertices stay, in no cell, and get the identity row; margin keeps
+ * every row read away from them). */
 static void peel(work *W, int l) {
   level *L = W->L + l;
   ss_cx *cx = L->cx;
@@ -176,7 +177,11 @@ static ss_status add_level(work *W, ss_error *err) {
   ss_status st = ss_scheme_refine_split(W->s, C->cx, &F->cx, &C->R, &F->split, err);
   if (st) return st;
   W->nlev++;
-  F->clean = 2 * (C->clean - 1);
+  /* a vertex within clean - 2 of the centre has all its cells (the corners of
+   * a cell differ by at most 2 in a chart coordinate: 2 along an edge star's
+   * edge, 1 otherwise), so every fine cell within 2 (clean - 2) lies in a
+   * present coarse cell */
+  F->clean = 2 * (C->clean - 2);
   const size_t nf = F->cx->nv;
   F->x = malloc((nf + 1) * sizeof *F->x);
   if (!F->x) return ss_error_nomem(err, "chart coordinates");
