@@ -15,7 +15,7 @@
 #include "ss_jsr_cert.h"
 
 ss_jsr_opts ss_jsr_defaults(void) {
-  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_INF, 10000000, 0.0, 0};
+  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_INF, 10000000, 0.0, 0, 1};
   return o;
 }
 
@@ -39,12 +39,31 @@ typedef struct {
   double *prod;           /* cap * n * n: the computed products, row-major */
   double *err_inf;        /* cap: rigorous bound on ||exact - computed||_inf */
   double *nhat_inf;       /* cap: ||computed product||_inf (floating point) */
+  double *nf_up;          /* cap: rigorous bound on ||computed product||_F */
+  double *cap2;           /* cap: min(sqrt(||P^||_1 ||P^||_inf), ||P^||_F) >=
+                             ||P^||_2 >= rho(P^) (floating point) */
+  double *err_2;          /* cap: rigorous bound on ||exact - computed||_2 */
+  double *qabs;           /* cap * n * n: products of |Y_i| along the word,
+                             for the componentwise error bound (ws_push) */
+  int *qvalid;            /* cap: 1 if that level of qabs is formed */
   double *bnd;            /* cap: the branch and bound's value of the prefix */
   double *a;              /* n * n: scratch copy for LAPACK (destroyed) */
   double *wr, *wi, *sv;   /* n each: eigenvalues and singular values */
   double *sb;             /* n: dgesvd's superdiagonal scratch */
-  double *ynorm;          /* m: rigorous upper bounds of ||Y_i||_inf */
+  double *ynorm;          /* m: rigorous upper bounds of ||Y_i||_inf (of the
+                             exact matrices the stored Y_i approximate) */
+  double *delta;          /* m: rigorous bound on ||exact - stored Y_i||_inf:
+                             0 for the inputs, rounding of the scaled copies */
+  double *zbuf;           /* m * n * n: the diagonally scaled copies */
+  const double **zptr;    /* m: pointers into zbuf */
+  double *d;              /* n: the diagonal scaling (candidate) */
+  double *vl;             /* n * n: dgeev's eigenvectors */
+  double *v, *t2;         /* n * n each: the 2-norm certificate's V and A V */
+  double *y2, *yf;        /* m each: rigorous ||Y_i + Delta||_2 and ||Y_i||_F */
   double gam;             /* gamma_n = n u / (1 - n u), u the unit roundoff */
+  double tiny;            /* n^2 times the smallest subnormal: the absolute
+                             rounding error of a row sum of a product
+                             through underflow */
   double lower;           /* best rho(Y_w)^{1/|w|} found so far (floating point) */
   int lower_len;          /* its word's length */
   int *lower_word;        /* cap: its word */
@@ -87,6 +106,20 @@ static void ws_free(jsr_ws *w) {
   free(w->sv);
   free(w->sb);
   free(w->ynorm);
+  free(w->delta);
+  free(w->zbuf);
+  free(w->zptr);
+  free(w->d);
+  free(w->vl);
+  free(w->v);
+  free(w->t2);
+  free(w->y2);
+  free(w->yf);
+  free(w->nf_up);
+  free(w->cap2);
+  free(w->qabs);
+  free(w->qvalid);
+  free(w->err_2);
   free(w->lower_word);
 }
 
@@ -102,11 +135,21 @@ static int ws_reserve(jsr_ws *w, int levels) {
   if (e) w->err_inf = e;
   double *h = realloc(w->nhat_inf, L * sizeof *h);
   if (h) w->nhat_inf = h;
+  double *f = realloc(w->nf_up, L * sizeof *f);
+  if (f) w->nf_up = f;
+  double *c2 = realloc(w->cap2, L * sizeof *c2);
+  if (c2) w->cap2 = c2;
+  double *e2 = realloc(w->err_2, L * sizeof *e2);
+  if (e2) w->err_2 = e2;
+  double *qa = realloc(w->qabs, L * nn * sizeof *qa);
+  if (qa) w->qabs = qa;
+  int *qv = realloc(w->qvalid, L * sizeof *qv);
+  if (qv) w->qvalid = qv;
   double *b = realloc(w->bnd, L * sizeof *b);
   if (b) w->bnd = b;
   int *lw = realloc(w->lower_word, L * sizeof *lw);
   if (lw) w->lower_word = lw;
-  if (!wd || !p || !e || !h || !b || !lw) return 0;
+  if (!wd || !p || !e || !h || !f || !c2 || !e2 || !qa || !qv || !b || !lw) return 0;
   w->cap = levels;
   return 1;
 }
@@ -123,10 +166,71 @@ static double norm_inf(const double *a, size_t n) {
   return mx;
 }
 
+/* Maximum absolute column sum of the n x n row-major matrix a. */
+static double norm_one(const double *a, size_t n, double *colsum) {
+  for (size_t c = 0; c < n; c++)
+    colsum[c] = 0;
+  for (size_t r = 0; r < n; r++)
+    for (size_t c = 0; c < n; c++)
+      colsum[c] += fabs(a[r * n + c]);
+  double mx = 0;
+  for (size_t c = 0; c < n; c++)
+    mx = fmax(mx, colsum[c]);
+  return mx;
+}
+
+/* A rigorous upper bound of the Frobenius norm of the len entries a: the
+ * computed sum of squares has relative error <= gamma_{len+1}. */
+static double norm_f_up(const double *a, size_t len) {
+  double s = 0;
+  for (size_t e = 0; e < len; e++)
+    s += a[e] * a[e];
+  const double g = (double)(len + 2) * U / (1 - (double)(len + 2) * U);
+  return up(sqrt(up(s * (1 + 2 * g))) + DBL_TRUE_MIN * (double)len);
+}
+
+/* c = a b for n x n row-major matrices, |a| instead of a when absa */
+static void matmul(size_t n, const double *a, const double *b, double *c, int absa) {
+  for (size_t r = 0; r < n; r++) {
+    double *cr = c + r * n;
+    for (size_t col = 0; col < n; col++)
+      cr[col] = 0;
+    for (size_t t = 0; t < n; t++) {
+      const double art = absa ? fabs(a[r * n + t]) : a[r * n + t];
+      if (art == 0) continue;
+      const double *bt = b + t * n;
+      for (size_t col = 0; col < n; col++)
+        cr[col] += art * bt[col];
+    }
+  }
+}
+
+/* The componentwise error bound at level k (qabs formed up to k).  With
+ * M_k = |Y_{w_k}| ... |Y_{w_1}| (exact) and g = gamma_n + 4u (the product's
+ * rounding and the scaled copies' 3u),
+ *   |E_k| <= (1 + g) |Y| |E_{k-1}| + g M_k  ==>  |E_k| <= ((1 + g)^k - 1) M_k
+ * by induction, and the computed qabs (nonnegative sums) is at least
+ * M_k (1 - gamma_n)^{k-1}.  Unlike the normwise recursion this does not grow
+ * like prod ||Y_i|| when that is much larger than the products' norms. */
+static void ws_err_componentwise(jsr_ws *w, int k) {
+  const size_t n = w->n, nn = n * n;
+  const double K1 = (double)(k + 1), g = w->gam + 4 * U;
+  if (K1 * g >= 0.05) return;
+  const double c = up(K1 * g * (1 + 2 * K1 * g) * (1 + 2 * K1 * w->gam));
+  const double *q = w->qabs + (size_t)k * nn;
+  const double ei = up(c * up(norm_inf(q, n) * (1 + 2 * w->gam))) + K1 * w->tiny;
+  const double e2 = up(c * norm_f_up(q, nn)) + K1 * w->tiny;
+  w->err_inf[k] = fmin(w->err_inf[k], ei);
+  w->err_2[k] = fmin(w->err_2[k], e2);
+}
+
 /* Form the product at level k: Y_i, or Y_i times level k - 1, with its
- * rigorous error bound.  fl(Y P^) = Y P^ + F, |F| <= gamma_n |Y| |P^|
- * (Higham, Accuracy and Stability, 3.5), so E_k = P_k - P^_k = Y E_{k-1} - F and
- * ||E_k||_inf <= ||Y||_inf (||E_{k-1}||_inf + gamma_n ||P^_{k-1}||_inf). */
+ * rigorous error bound.  With Y the stored matrix, Y + Delta the exact one
+ * (||Delta||_inf <= delta), fl(Y P^) = Y P^ + F, |F| <= gamma_n |Y| |P^|
+ * (Higham, Accuracy and Stability, 3.5), so
+ *   E_k = P_k - P^_k = (Y + Delta) E_{k-1} + Delta P^_{k-1} - F,
+ *   ||E_k||_inf <= ||Y + Delta|| e_{k-1} + (delta + gamma_n ||Y||) ||P^_{k-1}||,
+ * plus w->tiny for underflow, where the relative bound on F does not hold. */
 static void ws_push(jsr_ws *w, int k, size_t i) {
   const size_t n = w->n, nn = n * n;
   double *p = w->prod + (size_t)k * nn;
@@ -135,24 +239,46 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
   w->nodes++;
   if (k == 0) {
     memcpy(p, y, nn * sizeof *p);
-    w->err_inf[0] = 0;
+    w->err_inf[0] = w->delta[i];
+    w->err_2[0] = up(w->delta[i] * sqrt((double)n));
+    w->qvalid[0] = 0;
   } else {
-    const double *q = p - nn;
-    for (size_t r = 0; r < n; r++) {
-      double *pr = p + r * n;
-      for (size_t c = 0; c < n; c++)
-        pr[c] = 0;
-      for (size_t t = 0; t < n; t++) {
-        const double yrt = y[r * n + t];
-        if (yrt == 0) continue;
-        const double *qt = q + t * n;
-        for (size_t c = 0; c < n; c++)
-          pr[c] += yrt * qt[c];
-      }
-    }
-    w->err_inf[k] = up(w->ynorm[i] * up(w->err_inf[k - 1] + w->gam * w->nhat_inf[k - 1]));
+    matmul(n, y, p - nn, p, 0);
+    w->err_inf[k] =
+        up(up(up(w->ynorm[i] * w->err_inf[k - 1]) +
+              up(up(w->delta[i] + w->gam * w->ynorm[i]) * w->nhat_inf[k - 1])) +
+           w->tiny);
+    /* the same in the 2-norm: ||Delta||_2 <= sqrt(n) delta, ||F||_2 <=
+     * ||F||_F <= gamma_n ||Y||_F ||P^||_F */
+    w->err_2[k] = up(
+        up(up(w->y2[i] * w->err_2[k - 1]) +
+           up(up(w->delta[i] * sqrt((double)n) + w->gam * w->yf[i]) * w->nf_up[k - 1])) +
+        w->tiny);
   }
   w->nhat_inf[k] = norm_inf(p, n);
+  w->nf_up[k] = norm_f_up(p, nn);
+  w->cap2[k] = fmin(sqrt(norm_one(p, n, w->sb) * w->nhat_inf[k]), w->nf_up[k]);
+  /* the normwise bound grows like prod ||Y_i||; where it starts to matter
+   * (1e-12 of the norm) the products of |Y_i| are formed along the word, and
+   * kept for the descendants, for the componentwise bound */
+  if (k == 0) return;
+  w->qvalid[k] = 0;
+  if (!w->qvalid[k - 1]) {
+    if (!(w->err_inf[k] > 1e-12 * w->nhat_inf[k])) return;
+    for (int j = 0; j < k; j++) {
+      double *qj = w->qabs + (size_t)j * nn;
+      const double *yj = w->Y[w->word[j]];
+      if (j == 0)
+        for (size_t e = 0; e < nn; e++)
+          qj[e] = fabs(yj[e]);
+      else
+        matmul(n, yj, qj - nn, qj, 1);
+      w->qvalid[j] = 1;
+    }
+  }
+  matmul(n, y, w->qabs + (size_t)(k - 1) * nn, w->qabs + (size_t)k * nn, 1);
+  w->qvalid[k] = 1;
+  ws_err_componentwise(w, k);
 }
 
 /* A rigorous upper bound of ||exact product at level k||_inf: the computed
@@ -162,11 +288,78 @@ static double ws_norm_inf_up(const jsr_ws *w, int k) {
   return up(up(w->nhat_inf[k] * (1 + 2 * w->gam)) + w->err_inf[k]);
 }
 
+/* A rigorous upper bound of ||exact product at level k||_2.  With V the
+ * (approximately orthogonal) right singular vectors of the computed A = P^
+ * from LAPACK, x = V y gives ||A x|| / ||x|| <= ||A V||_2 / sigma_min(V), and
+ *   ||A V||_2 <= ||W||_2 + gamma_n ||A||_F ||V||_F,  W = fl(A V),
+ *   ||W||_2^2 = lambda_max(W^T W) <= Gershgorin(M) + gamma_n ||W||_F^2,
+ *       M = fl(W^T W) made symmetric (its off-diagonal is O(u) ||A||^2),
+ *   sigma_min(V)^2 >= 1 - ||V^T V - I||_2 >= 1 - (||fl(V^T V) - I||_F +
+ *       gamma_n ||V||_F^2),
+ * all rounded upwards (Higham 3.5 for each product); then the product's
+ * error bound err_2 is added.  INFINITY if LAPACK fails or V is far from
+ * orthogonal (never happens with a converged SVD). */
+static double ws_norm_2_up(jsr_ws *w, int k) {
+  const size_t n = w->n, nn = n * n;
+  const double *A = w->prod + (size_t)k * nn;
+  if (!isfinite(w->nhat_inf[k])) return INFINITY;
+  double sv2;
+  if (n == 1) {
+    sv2 = fabs(A[0]);
+  } else {
+    memcpy(w->a, A, nn * sizeof *w->a);
+    /* the buffer read column-major is A^T = U' S V'^T, so A's right
+     * singular vectors are the columns of U': V[r][c] = u'[c n + r] */
+    if (LAPACKE_dgesvd(LAPACK_COL_MAJOR, 'A', 'N', (lapack_int)n, (lapack_int)n, w->a,
+                       (lapack_int)n, w->sv, w->vl, (lapack_int)n, NULL, 1, w->sb) != 0)
+      return INFINITY;
+    for (size_t r = 0; r < n; r++)
+      for (size_t c = 0; c < n; c++)
+        w->v[r * n + c] = w->vl[c * n + r];
+    double *W = w->t2;
+    for (size_t r = 0; r < n; r++)
+      for (size_t c = 0; c < n; c++) {
+        double acc = 0;
+        for (size_t t = 0; t < n; t++)
+          acc += A[r * n + t] * w->v[t * n + c];
+        W[r * n + c] = acc;
+      }
+    const double vf = norm_f_up(w->v, nn), wf = norm_f_up(W, nn), af = w->nf_up[k];
+    double gersh = 0, gi = 0;
+    for (size_t i = 0; i < n; i++) {
+      double row = 0;
+      for (size_t j = 0; j < n; j++) {
+        double mij = 0, gij = 0;
+        const size_t a = i < j ? i : j, b = i < j ? j : i; /* symmetric order */
+        for (size_t r = 0; r < n; r++) {
+          mij += W[r * n + a] * W[r * n + b];
+          gij += w->v[r * n + a] * w->v[r * n + b];
+        }
+        row += fabs(mij);
+        if (i == j) gij -= 1; /* exact: gij is near 1 (Sterbenz) */
+        gi += gij * gij;
+      }
+      gersh = fmax(gersh, row);
+    }
+    const double g = w->gam, gn2 = (double)(nn + 2) * U / (1 - (double)(nn + 2) * U);
+    gersh = up(gersh * (1 + 2 * g));
+    const double eps_v =
+        up(up(sqrt(up(gi * (1 + 2 * gn2)))) + up(g * up(vf * vf))) + 4 * w->tiny;
+    if (!(eps_v < 0.5)) return INFINITY;
+    const double w2 = up(sqrt(up(gersh + up(g * up(wf * wf)) + w->tiny)));
+    const double av = up(w2 + up(g * up(af * vf)) + w->tiny);
+    const double lo = sqrt(1 - eps_v) * (1 - 4 * U); /* rounded down */
+    sv2 = up(av / lo);
+  }
+  return up(sv2 + w->err_2[k]);
+}
+
 /* Largest singular value of the product at level k (LAPACK, floating point).
  * The row-major buffer read as column-major is the transpose, which has the
  * same singular values. */
 static double ws_norm_2(jsr_ws *w, int k) {
   const size_t n = w->n, nn = n * n;
+  if (!isfinite(w->nhat_inf[k])) return INFINITY; /* overflow */
   memcpy(w->a, w->prod + (size_t)k * nn, nn * sizeof *w->a);
   if (n == 1) return fabs(w->a[0]);
   lapack_int info =
@@ -197,11 +390,28 @@ static double ws_specrad(jsr_ws *w, int k) {
   return r;
 }
 
+/* 1 if the word w[0..len-1] is a Lyndon word (strictly smaller than all its
+ * proper rotations; Duval's test).  Every word is a rotation of a power of a
+ * Lyndon word, and rho(Y_w)^{1/|w|} is the same for rotations and powers,
+ * so the lower bound needs the eigenvalues of Lyndon words only: about
+ * 1/len of all words. */
+static int is_lyndon(const int *w, int len) {
+  int i = 0, j = 1;
+  while (j < len && w[i] <= w[j]) {
+    i = w[i] < w[j] ? 0 : i + 1;
+    j++;
+  }
+  return i == 0 && j == len;
+}
+
 /* Offer the word at levels 0..k to the lower bound.  rho(P) <= ||P||_inf, so
- * the eigenvalue computation is skipped when the norm cannot beat the bound. */
+ * the eigenvalue computation is skipped when the norm cannot beat the bound,
+ * and for words that are not Lyndon words (is_lyndon). */
 static void ws_offer_lower(jsr_ws *w, int k) {
   const double lim = pow(w->lower, (double)(k + 1));
-  if (w->nhat_inf[k] <= lim) return;
+  if (fmin(w->nhat_inf[k], w->cap2[k]) * (1 + 1e-12) <= lim || !isfinite(w->nhat_inf[k]))
+    return;
+  if (!is_lyndon(w->word, k + 1)) return;
   const double r = ws_specrad(w, k);
   if (r <= lim) return;
   const double v = pow(r, 1.0 / (k + 1));
@@ -210,6 +420,32 @@ static void ws_offer_lower(jsr_ws *w, int k) {
     w->lower_len = k + 1;
     memcpy(w->lower_word, w->word, (size_t)(k + 1) * sizeof *w->word);
   }
+}
+
+/* Use the exact similarity D^{-1} Y_i D, D = diag(d), for the words formed
+ * from now on (d = NULL: the inputs).  The scaled entries y_rc (d_c / d_r)
+ * are rounded twice, so the stored copy differs from the exact one by at
+ * most 2.0001 u |z| entrywise; delta bounds that in the inf-norm. */
+static void ws_scale(jsr_ws *w, const double *const *Y, const double *d) {
+  const size_t n = w->n, nn = n * n;
+  for (size_t i = 0; i < w->m; i++) {
+    if (!d) {
+      w->zptr[i] = Y[i];
+      w->delta[i] = 0;
+    } else {
+      double *z = w->zbuf + i * nn;
+      for (size_t r = 0; r < n; r++)
+        for (size_t c = 0; c < n; c++)
+          z[r * n + c] = Y[i][r * n + c] * (d[c] / d[r]);
+      w->zptr[i] = z;
+      w->delta[i] = up(3 * U * up(norm_inf(z, n) * (1 + 2 * w->gam))) + w->tiny;
+    }
+    w->ynorm[i] = up(up(norm_inf(w->zptr[i], n) * (1 + 2 * w->gam)) + w->delta[i]);
+    /* ||Y||_2 <= ||Y||_F; the 2-norm error recursion needs only a bound */
+    w->yf[i] = norm_f_up(w->zptr[i], nn);
+    w->y2[i] = up(w->yf[i] + up(w->delta[i] * sqrt((double)n)));
+  }
+  w->Y = (const double *const *)w->zptr;
 }
 
 /* Step the depth-first walk to the next sibling at level *k, backtracking
@@ -234,16 +470,104 @@ static void brute_force(jsr_ws *w, int K, double *rho_inf, double *rho_2,
     const double p = 1.0 / (k + 1);
     rho_inf[k] = fmax(rho_inf[k], pow(w->nhat_inf[k], p));
     rho_cert[k] = fmax(rho_cert[k], ws_norm_inf_up(w, k));
-    /* ||P||_2 <= ||P||_inf^{1/2} ||P||_1^{1/2} is not cheap; sqrt(n) ||P||_inf
-     * bounds ||P||_2 and skips the SVD when it cannot raise the maximum */
-    const double two_cap = sqrt((double)w->n) * w->nhat_inf[k];
-    if (two_cap * (1 + 1e-12) > pow(rho_2[k], (double)(k + 1)))
+    /* ||P||_2 <= min(sqrt(||P||_1 ||P||_inf), ||P||_F) skips the SVD when
+     * it cannot raise the maximum */
+    if (w->cap2[k] * (1 + 1e-12) > pow(rho_2[k], (double)(k + 1)))
       rho_2[k] = fmax(rho_2[k], pow(ws_norm_2(w, k), p));
     ws_offer_lower(w, k);
     if (k + 1 < K) w->word[++k] = -1;
   }
   for (k = 0; k < K; k++)
     rho_cert[k] = root_up(rho_cert[k], k + 1);
+}
+
+/* min over k <= s of the rigorous max_{|w| = k} ||Y_w||_inf^{1/k} for the
+ * current (scaled) matrices: an upper bound on rho(Y), used to rank the
+ * scalings. */
+static double scaling_score(jsr_ws *w, int s) {
+  double best = INFINITY, mx[64] = {0};
+  int k = 0;
+  w->word[0] = -1;
+  while (ws_next(w, &k)) {
+    ws_push(w, k, (size_t)w->word[k]);
+    mx[k] = fmax(mx[k], ws_norm_inf_up(w, k));
+    if (k + 1 < s) w->word[++k] = -1;
+  }
+  for (k = 0; k < s; k++)
+    best = fmin(best, root_up(mx[k], k + 1));
+  return best;
+}
+
+/* d = |v| for v the eigenvector of the largest eigenvalue (in modulus) of the
+ * product of the lower bound's word rotated to start at letter r, floored at
+ * 1e-6 of its maximum; the inputs must be active (ws_scale(w, Y, NULL)).
+ * Returns 0 if LAPACK fails.  The eigenvectors of P^T that dgeev returns as
+ * left vectors for the row-major buffer are conjugates of P's right ones. */
+static int perron_vector(jsr_ws *w, int r, double *d) {
+  const int len = w->lower_len;
+  const size_t n = w->n, nn = n * n;
+  int *rot = w->word + len; /* scratch: the stack has room for 2 len */
+  for (int k = 0; k < len; k++)
+    rot[k] = w->lower_word[(r + k) % len];
+  for (int k = 0; k < len; k++)
+    ws_push(w, k, (size_t)rot[k]);
+  memcpy(w->a, w->prod + (size_t)(len - 1) * nn, nn * sizeof *w->a);
+  if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'V', 'N', (lapack_int)n, w->a, (lapack_int)n, w->wr,
+                    w->wi, w->vl, (lapack_int)n, NULL, 1) != 0)
+    return 0;
+  size_t j = 0;
+  for (size_t t = 1; t < n; t++)
+    if (hypot(w->wr[t], w->wi[t]) > hypot(w->wr[j], w->wi[j])) j = t;
+  if (w->wi[j] < 0) j--; /* the pair's second: its vector is re - i im */
+  double mx = 0;
+  for (size_t t = 0; t < n; t++) {
+    const double re = w->vl[j * n + t], im = w->wi[j] != 0 ? w->vl[(j + 1) * n + t] : 0;
+    d[t] = hypot(re, im);
+    mx = fmax(mx, d[t]);
+  }
+  if (!(mx > 0) || !isfinite(mx)) return 0;
+  for (size_t t = 0; t < n; t++)
+    d[t] = fmax(d[t] / mx, 1e-6);
+  return 1;
+}
+
+/* Choose the diagonal scaling of the inf-norm for the branch and bound: the
+ * identity, or |eigenvector| of the products of the lower bound's word and
+ * its rotations (for a nonnegative product P with Perron vector v,
+ * ||D^{-1} P D||_inf = rho(P) with D = diag(v)), or their sum; the one with
+ * the smallest scaling_score wins and stays active (ws_scale).  Any choice
+ * is an exact similarity, so every choice gives valid bounds. */
+static void choose_scaling(jsr_ws *w, const double *const *Y, int K, double *best_d,
+                           int *have) {
+  int s = 1;
+  double cnt = (double)w->m;
+  while (s < K && s < 3 && cnt * (double)w->m <= 4096)
+    s++, cnt *= (double)w->m;
+  ws_scale(w, Y, NULL);
+  double best = scaling_score(w, s);
+  *have = 0;
+  const int len = w->lower_len, nrot = len < 8 ? len : 8;
+  double *sum = w->d + w->n;
+  for (size_t t = 0; t < w->n; t++)
+    sum[t] = 0;
+  for (int r = 0; r <= nrot && len > 0; r++) {
+    ws_scale(w, Y, NULL);
+    if (r < nrot) {
+      if (!perron_vector(w, r, w->d)) continue;
+      for (size_t t = 0; t < w->n; t++)
+        sum[t] += w->d[t];
+    } else {
+      memcpy(w->d, sum, w->n * sizeof *w->d);
+    }
+    ws_scale(w, Y, w->d);
+    const double sc = scaling_score(w, s);
+    if (sc < best) {
+      best = sc;
+      memcpy(best_d, w->d, w->n * sizeof *best_d);
+      *have = 1;
+    }
+  }
+  ws_scale(w, Y, *have ? best_d : NULL);
 }
 
 /* One pass of the branch and bound to depth L.  The bound of a word w is
@@ -268,10 +592,17 @@ static int bnb_pass(jsr_ws *w, int L, ss_jsr_norm norm, double gap, size_t max_n
       return 0;
     ws_push(w, k, (size_t)w->word[k]);
     ws_offer_lower(w, k);
-    const double nv =
-        norm == SS_JSR_NORM_2 ? ws_norm_2(w, k) * (1 + 1e-14) : ws_norm_inf_up(w, k);
-    double b = root_up(nv, k + 1);
-    if (k > 0) b = fmin(b, w->bnd[k - 1]);
+    double b;
+    if (norm == SS_JSR_NORM_INF) {
+      b = root_up(ws_norm_inf_up(w, k), k + 1);
+      if (k > 0) b = fmin(b, w->bnd[k - 1]);
+    } else {
+      /* the certified 2-norm costs an SVD with vectors and three products:
+       * formed only where the floating-point value would lower the bound */
+      b = k > 0 ? w->bnd[k - 1] : (double)INFINITY;
+      if (pow(ws_norm_2(w, k), 1.0 / (k + 1)) * (1 - 1e-12) < b)
+        b = fmin(b, root_up(ws_norm_2_up(w, k), k + 1));
+    }
     w->bnd[k] = b;
     const double target = w->lower * (1 + gap);
     if (b <= target || k + 1 == L) {
@@ -320,42 +651,90 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
 
   ss_status st = SS_OK;
   const int K = o->depth;
-  double *rho_cert = NULL;
+  double *rho_cert = NULL, *best_d = NULL, *ybuf = NULL;
+  const double **yn = NULL;
   jsr_ws w;
   memset(&w, 0, sizeof w);
   w.m = m, w.n = n, w.Y = Y;
   w.gam = (double)n * U / (1 - (double)n * U);
+  w.tiny = (double)n * (double)n * DBL_TRUE_MIN;
   w.a = malloc(n * n * sizeof *w.a);
   w.wr = malloc(n * sizeof *w.wr);
   w.wi = malloc(n * sizeof *w.wi);
   w.sv = malloc(n * sizeof *w.sv);
   w.sb = malloc(n * sizeof *w.sb);
   w.ynorm = malloc(m * sizeof *w.ynorm);
+  w.delta = malloc(m * sizeof *w.delta);
+  w.zbuf = malloc(m * n * n * sizeof *w.zbuf);
+  w.zptr = malloc(m * sizeof *w.zptr);
+  w.d = malloc(2 * n * sizeof *w.d);
+  w.vl = malloc(n * n * sizeof *w.vl);
+  w.v = malloc(n * n * sizeof *w.v);
+  w.t2 = malloc(n * n * sizeof *w.t2);
+  w.y2 = malloc(m * sizeof *w.y2);
+  w.yf = malloc(m * sizeof *w.yf);
+  best_d = malloc(n * sizeof *best_d);
   out->rho_inf = calloc((size_t)K, sizeof *out->rho_inf);
   out->rho_2 = calloc((size_t)K, sizeof *out->rho_2);
   rho_cert = calloc((size_t)K, sizeof *rho_cert);
-  if (!w.a || !w.wr || !w.wi || !w.sv || !w.sb || !w.ynorm || !out->rho_inf ||
-      !out->rho_2 || !rho_cert || !ws_reserve(&w, K)) {
+  if (!w.a || !w.wr || !w.wi || !w.sv || !w.sb || !w.ynorm || !w.delta || !w.zbuf ||
+      !w.zptr || !w.d || !w.vl || !w.v || !w.t2 || !w.y2 || !w.yf || !best_d ||
+      !out->rho_inf || !out->rho_2 || !rho_cert || !ws_reserve(&w, K)) {
     st = ss_error_nomem(err, "jsr workspace");
     goto done;
   }
-  for (size_t i = 0; i < m; i++)
-    w.ynorm[i] = up(norm_inf(Y[i], n) * (1 + 2 * w.gam));
+  /* JSR(2^e Y) = 2^e JSR(Y): the inputs are scaled by the power of two that
+   * brings the largest norm near 1 (exactly, or not at all), so that long
+   * products neither overflow nor underflow for inputs of any size; the
+   * results are scaled back exactly at the end */
+  int ex = 0;
+  {
+    double mx = 0;
+    for (size_t i = 0; i < m; i++)
+      mx = fmax(mx, norm_inf(Y[i], n));
+    if (mx > 0 && isfinite(mx)) ex = -ilogb(mx);
+    if (ex != 0) {
+      ybuf = malloc(m * n * n * sizeof *ybuf);
+      yn = malloc(m * sizeof *yn);
+      if (!ybuf || !yn) {
+        st = ss_error_nomem(err, "jsr scaled inputs");
+        goto done;
+      }
+      for (size_t i = 0; i < m && ex != 0; i++) {
+        for (size_t e = 0; e < n * n && ex != 0; e++) {
+          const double z = ldexp(Y[i][e], ex);
+          if (ldexp(z, -ex) != Y[i][e]) ex = 0; /* underflow: not exact */
+          ybuf[i * n * n + e] = z;
+        }
+        yn[i] = ybuf + i * n * n;
+      }
+    }
+    if (ex != 0) Y = (const double *const *)yn;
+  }
+  w.Y = Y;
+  ws_scale(&w, Y, NULL);
   out->depth = K;
 
   brute_force(&w, K, out->rho_inf, out->rho_2, rho_cert);
   if (w.st != SS_OK) goto lapack_failed;
-  /* min_k rho_k bounds rho(Y) in every norm; the rigorous inf-norm profile
-   * is the certified part */
+  /* min_k rho_k bounds rho(Y); the rigorous inf-norm profile is used (the
+   * branch and bound's first pass, at depth K, is at least as good in its
+   * own norm: max over words of the min over prefixes <= min_k rho_k) */
   double upper = INFINITY;
-  int upper_rigorous = 0;
   for (int k = 0; k < K; k++)
-    if (rho_cert[k] < upper) upper = rho_cert[k], upper_rigorous = 1;
-  if (o->norm == SS_JSR_NORM_2)
-    for (int k = 0; k < K; k++)
-      if (out->rho_2[k] * (1 + 1e-14) < upper)
-        upper = out->rho_2[k] * (1 + 1e-14), upper_rigorous = 0;
+    if (rho_cert[k] < upper) upper = rho_cert[k];
   const size_t brute_nodes = w.nodes;
+  /* the inf-norm branch and bound may run in a diagonally weighted inf-norm
+   * (an exact similarity; the profile rho_inf stays the plain inf-norm) */
+  int have = 0;
+  if (o->weighted && o->norm == SS_JSR_NORM_INF && upper > w.lower * (1 + o->gap)) {
+    if (!ws_reserve(&w, 2 * w.lower_len)) {
+      st = ss_error_nomem(err, "jsr scaling");
+      goto done;
+    }
+    choose_scaling(&w, Y, K, best_d, &have);
+    if (w.st != SS_OK) goto lapack_failed;
+  }
 
   /* branch and bound by iterative deepening: each pass's leaves give a valid
    * bound, deeper passes refine it; recomputing the shallow levels costs a
@@ -369,11 +748,32 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
       goto done;
     }
     double u;
-    if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u)) break;
+    int stop = 0;
+    if (L == K && have) {
+      /* the weighting is a heuristic: it stays only if its first pass
+       * beats the plain inf-norm's */
+      double u0;
+      ws_scale(&w, Y, NULL);
+      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u0)) {
+        have = 0; /* no weighted pass completed */
+        break;
+      }
+      ws_scale(&w, Y, best_d);
+      if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u))
+        u = INFINITY, stop = 1;
+      if (u0 <= u) {
+        u = u0, have = 0;
+        ws_scale(&w, Y, NULL);
+      }
+    } else if (!bnb_pass(&w, L, o->norm, o->gap, max_nodes, deadline, &u)) {
+      break;
+    }
     if (w.st != SS_OK) goto lapack_failed;
     out->bnb_depth = L;
-    if (u < upper) upper = u, upper_rigorous = o->norm == SS_JSR_NORM_INF;
+    if (u < upper) upper = u;
+    if (stop) break;
   }
+  out->weighted = have;
   if (w.st != SS_OK) goto lapack_failed;
   out->nodes = w.nodes - brute_nodes;
 
@@ -392,9 +792,20 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     lower_rigorous = 1; /* no product has a nonzero spectral radius: 0 */
   else
     lower_rigorous = ss_jsr_cert_lower(n, Y, w.lower_word, w.lower_len, &lower_cert);
-  out->lower = lower_rigorous ? lower_cert : w.lower;
-  out->upper = upper;
-  out->certified = lower_rigorous && upper_rigorous;
+  /* the bounds are of the scaled inputs; scaling back by 2^-ex is exact
+   * unless the result is subnormal, where one rounding is undone by a step
+   * outwards */
+  out->lower = ldexp(lower_rigorous ? lower_cert : w.lower, -ex);
+  out->upper = ldexp(upper, -ex);
+  if (out->lower > 0 && out->lower < DBL_MIN) out->lower = nextafter(out->lower, 0.0);
+  if (out->upper > 0 && out->upper < DBL_MIN)
+    out->upper = nextafter(out->upper, INFINITY);
+  for (int k = 0; k < K; k++) {
+    out->rho_inf[k] = ldexp(out->rho_inf[k], -ex);
+    out->rho_2[k] = ldexp(out->rho_2[k], -ex);
+  }
+  /* every upper bound above is rigorous (rounding carried in both norms) */
+  out->certified = lower_rigorous;
   out->converged = out->upper <= out->lower * (1 + o->gap);
   out->seconds = now_seconds() - t0;
   goto done;
@@ -407,6 +818,9 @@ lapack_failed:
 done:
   ws_free(&w);
   free(rho_cert);
+  free(best_d);
+  free(ybuf);
+  free(yn);
   if (st != SS_OK) ss_jsr_result_clear(out);
   return st;
 }

@@ -4,12 +4,46 @@
  * For matrices Y_1..Y_m (n x n) the joint spectral radius is
  *   rho(Y) = lim_k max_{|w| = k} ||Y_{w_k} ... Y_{w_1}||^{1/k},
  * independent of the norm.  For every k
- *   max_{|w| = k} rho(Y_w)^{1/k}  <=  rho(Y)  <=  max_{|w| = k} ||Y_w||^{1/k},
- * so products of length <= K give a lower bound (spectral radii) and the
- * k-th norm profile rho_k an upper bound for each k.  A branch and bound over
- * products (Gripenberg 1996) tightens the upper bound without enumerating
- * all m^K words: a word w whose bound max(||Y_w||^{1/|w|}, ...) is already below
- * the current lower bound + gap is not extended.
+ *   max_{|w| = k} rho(Y_w)^{1/k}  <=  rho(Y)  <=  max_{|w| = k} ||Y_w||^{1/k}.
+ *
+ * Method (ss_jsr.c).
+ *  - Brute force over the m + m^2 + ... + m^K words of length <= K, depth
+ *    first, each product formed from its prefix's (one matrix product per
+ *    word): the profiles rho_inf, rho_2 and the lower bound.  Eigenvalues are
+ *    computed for Lyndon words only (rho(Y_w)^{1/|w|} is invariant under
+ *    rotating w and under powers) and only when ||Y_w||_inf could beat the
+ *    current lower bound.
+ *  - Upper bound: Gripenberg's branch and bound (Linear Algebra Appl. 234,
+ *    1996).  A word w gets the bound b(w) = min over its prefixes u of
+ *    ||Y_u||^{1/|u|}; words with b(w) <= lower (1 + gap) are not extended,
+ *    the others are extended up to length L.  The words not extended form a
+ *    complete prefix set (every infinite word has one as a prefix), so every
+ *    long product is a product of their prefix-minimising pieces and a
+ *    bounded remainder, and submultiplicativity gives
+ *      rho(Y) <= max over the unextended words of b(w).
+ *    L grows by iterative deepening from K (each pass recomputes its shallow
+ *    levels, about m / (m - 1) times the last level's work when the tree is
+ *    bushy) until upper <= lower (1 + gap) or a limit stops it; a pass cut
+ *    short by a limit is discarded.  In the inf-norm the pass may run in a
+ *    diagonally weighted inf-norm ||D^{-1} X D||_inf (D from |eigenvectors|
+ *    of the lower bound's product and its rotations; kept only when its
+ *    first pass beats the plain one): an exact similarity, so the bound
+ *    stays valid.
+ *
+ * Certification.
+ *  - Upper bounds (both norms): every product carries a rigorous bound on
+ *    its rounding error (|fl(AB) - AB| <= gamma_n |A| |B|, gamma_n =
+ *    n u / (1 - n u), propagated along the word, plus an absolute term for
+ *    underflow); the inf-norm of a computed product is bounded with the
+ *    error of its row sums, the 2-norm by ||P V||_2 / sigma_min(V) from
+ *    LAPACK's singular vectors V with Gershgorin and rounding bounds; the
+ *    k-th root is rounded up.  So `upper` is a proven upper bound of the
+ *    JSR of the exact double inputs.
+ *  - Lower bound: the word found in floating point is multiplied in arb
+ *    ball arithmetic and its eigenvalues enclosed (Rump's method, simple then
+ *    clustered eigenvalues; fallback |trace(P^j)| <= n rho(P)^j), giving a
+ *    proven lower bound of rho(Y_w)^{1/|w|}.  If every enclosure fails,
+ *    `lower` is the floating-point value and certified = 0.
  *
  * This header is the interface shared by the algorithms (ss_jsr.c) and the
  * Levin-Levin reduction that builds Y_i from a scheme's global rule. */
@@ -26,7 +60,7 @@ typedef enum {
 } ss_jsr_norm;
 
 typedef struct {
-  int depth;          /* K >= 1: products of length 1..K for rho_k and the lower
+  int depth;          /* K in 1..64: products of length 1..K for rho_k and the lower
                          bound (brute force over m^k words for k <= K) */
   double gap;         /* the branch and bound stops when upper <= lower * (1 +
                          gap) (relative; e.g. 1e-3) */
@@ -36,6 +70,8 @@ typedef struct {
   double max_seconds; /* wall-clock limit of the branch and bound; <= 0: none */
   int max_depth;      /* longest word the branch and bound forms; 0: no limit
                          besides max_nodes / max_seconds (>= depth to matter) */
+  int weighted;       /* 1: the inf-norm branch and bound may switch to a
+                         diagonally weighted inf-norm (default); 0: never */
 } ss_jsr_opts;
 
 /* Defaults: depth 8, gap 1e-3, inf-norm, 10^7 nodes, no time or depth limit. */
@@ -43,29 +79,42 @@ ss_jsr_opts ss_jsr_defaults(void);
 
 typedef struct {
   int depth;       /* K, the length of rho_inf and rho_2 */
-  double *rho_inf; /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k}, k = 1..K */
-  double *rho_2;   /* the same in the 2-norm */
-  double lower;    /* certified lower bound: max over the words of length <= K
-                      (and those the branch and bound met) of rho(Y_w)^{1/|w|} */
+  double *rho_inf; /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k}, k = 1..K
+                      (floating point, the plain inf-norm of the inputs) */
+  double *rho_2;   /* the same in the 2-norm (LAPACK's singular values) */
+  double lower;    /* lower bound: max over the words of length <= K (and the
+                      Lyndon words the branch and bound met) of
+                      rho(Y_w)^{1/|w|}, certified by ball arithmetic (see
+                      certified) */
   int lower_len;   /* length of the word attaining `lower` */
   int *lower_word; /* that word, indices 0..m-1, lower_len of them (first
                       factor applied first) */
-  double upper;    /* certified upper bound on rho(Y) */
+  double upper;    /* proven upper bound on rho(Y): min of the rigorous
+                      inf-norm profile and the branch and bound in o->norm */
   int converged;   /* 1 if upper <= lower * (1 + gap) */
-  size_t nodes;    /* products formed by the branch and bound */
+  size_t nodes;    /* products formed by the branch and bound (including
+                      ranking the weightings), not by the brute force */
   int bnb_depth;   /* word length of the last completed branch-and-bound pass
                       (0 if none completed) */
+  int weighted;    /* 1 if that branch and bound used a diagonally weighted
+                      inf-norm (ss_jsr.c: choose_scaling) */
   double seconds;  /* wall-clock time of the computation */
-  int certified;   /* 1 if both bounds account for rounding (ball arithmetic
-                      or a rigorous floating-point error bound) */
+  int certified;   /* 1 if both bounds account for rounding: upper always
+                      does; 0 only if the ball enclosure of the lower bound's
+                      eigenvalue failed */
 } ss_jsr_result;
 
 /* Bounds on the joint spectral radius of the m matrices Y[0..m-1], each n x n,
- * row-major (Y[i][r * n + c]).  The inputs are not kept.  *out is filled; free
- * its arrays with ss_jsr_result_clear.  SS_EINPUT for m < 1, n < 1 or a
- * non-finite entry; SS_ENOMEM; SS_ENUMERIC if an eigenvalue or singular value
- * computation fails.  Cost: m^K products for rho_k, then the branch and bound
- * within max_nodes / max_seconds (converged = 0 when a limit stops it). */
+ * row-major (Y[i][r * n + c]); o = NULL means ss_jsr_defaults().  The inputs
+ * are not kept.  *out is filled; free its arrays with ss_jsr_result_clear (on
+ * failure it is left cleared).  SS_EINPUT (message naming the problem) for
+ * m < 1, n < 1, Y or a Y[i] NULL, a non-finite entry (matrix and entry
+ * named), depth outside 1..64, gap negative or not finite, an unknown norm,
+ * max_depth < 0, max_seconds NaN; SS_ENOMEM; SS_ENUMERIC if LAPACK's
+ * eigenvalue or singular value computation fails.  Cost: (m^{K+1} - m) /
+ * (m - 1) products with a norm each (an SVD for rho_2) for the profiles, then
+ * the branch and bound within max_nodes / max_seconds / max_depth
+ * (converged = 0 when a limit stops it); memory O((K + L) n^2 + m n^2). */
 ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_jsr_opts *o,
                          ss_jsr_result *out, ss_error *err);
 

@@ -203,9 +203,7 @@ static void test_golden(void) {
     CHECK_CLOSE(r.lower, phi, 1e-14, "lower from AB");
     CHECK_CLOSE(r.upper, phi, 1e-12, "2-norm upper");
     CHECK(r.lower_len == 2 && r.lower_word[0] != r.lower_word[1], "attained by AB or BA");
-    /* the 2-norm comes from LAPACK's SVD without a proven error bound, so
-     * a 2-norm upper bound below the inf-norm one is not claimed certified */
-    CHECK(!r.certified, "2-norm upper bound claimed certified");
+    CHECK(r.certified, "2-norm bounds certified");
   }
   ss_jsr_result_clear(&r);
   /* inf-norm: ||A||_inf = 2; the bound tightens with the depth of the
@@ -279,16 +277,100 @@ static void test_triangular(gsl_rng *rng) {
     const double *Y[2] = {A, B};
     ss_jsr_opts o = ss_jsr_defaults();
     o.depth = 6;
-    o.max_depth = 24;
-    int ok;
-    ss_jsr_result r = run(2, n, Y, o, &ok);
-    if (!ok) continue;
-    CHECK(r.lower <= value * (1 + 1e-15) && value <= r.upper,
-          "trial %d: [%.17g, %.17g] vs %.17g", trial, r.lower, r.upper, value);
-    CHECK_CLOSE(r.lower, value, 1e-13, "trial %d: lower = largest diagonal entry", trial);
-    CHECK(r.certified, "trial %d: certified", trial);
-    ss_jsr_result_clear(&r);
+    for (int nm = 0; nm < 2; nm++) {
+      o.norm = nm ? SS_JSR_NORM_2 : SS_JSR_NORM_INF;
+      o.max_depth = nm ? 10 : 24; /* the certified 2-norm costs more per node */
+      int ok;
+      ss_jsr_result r = run(2, n, Y, o, &ok);
+      if (!ok) continue;
+      CHECK(r.lower <= value * (1 + 1e-15) && value <= r.upper,
+            "trial %d norm %d: [%.17g, %.17g] vs %.17g", trial, nm, r.lower, r.upper,
+            value);
+      CHECK_CLOSE(r.lower, value, 1e-13, "trial %d: lower = largest diagonal entry",
+                  trial);
+      CHECK(r.certified, "trial %d: certified", trial);
+      ss_jsr_result_clear(&r);
+    }
   }
+}
+
+/* One matrix: JSR = rho(A).  A scaled rotation (normal: ||A||_2 = rho) meets
+ * it at once in the 2-norm; a Jordan block J = [[a, 1], [0, a]] has a double
+ * eigenvalue, whose certified enclosure needs the cluster method, and
+ * ||J^k||^{1/k} -> a only like (k a^{k-1})^{1/k}. */
+static void test_single(void) {
+  const double a = 0.75, c = 0.6 * a, s = 0.8 * a;
+  const double R[4] = {c, -s, s, c}, J[4] = {a, 1, 0, a};
+  const double *YR[1] = {R}, *YJ[1] = {J};
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.norm = SS_JSR_NORM_2;
+  int ok;
+  ss_jsr_result r = run(1, 2, YR, o, &ok);
+  if (ok) {
+    CHECK(r.lower <= a && a <= r.upper, "rotation: [%.17g, %.17g]", r.lower, r.upper);
+    CHECK(r.upper - r.lower <= 1e-13, "rotation: gap %g", r.upper - r.lower);
+    CHECK(r.certified && r.converged, "rotation: certified %d converged %d", r.certified,
+          r.converged);
+  }
+  ss_jsr_result_clear(&r);
+  o = ss_jsr_defaults();
+  o.max_depth = 64;
+  o.weighted = 0;
+  r = run(1, 2, YJ, o, &ok);
+  if (ok) {
+    CHECK(r.lower <= a && a <= r.upper, "Jordan: [%.17g, %.17g]", r.lower, r.upper);
+    CHECK(r.lower >= a * (1 - 1e-6), "Jordan: certified lower %.17g", r.lower);
+    CHECK(r.certified, "Jordan: the double eigenvalue's enclosure failed");
+    /* ||J^k||_inf = a^k + k a^{k-1}: the branch and bound's value at depth
+     * 64 (one word per length) is the minimum over k <= 64 */
+    double best = INFINITY;
+    for (int k = 1; k <= 64; k++)
+      best = fmin(best, pow(pow(a, k) + k * pow(a, k - 1), 1.0 / k));
+    CHECK_CLOSE(r.upper, best, 1e-12, "Jordan: upper at depth 64");
+  }
+  ss_jsr_result_clear(&r);
+  /* weighted: D = diag(1, 1e-6) (the eigenvector (1, 0), floored) shrinks the
+   * 1 to 1e-6, so ||D^-1 J D||_inf = a + 1e-6 */
+  o.weighted = 1;
+  r = run(1, 2, YJ, o, &ok);
+  if (ok) {
+    CHECK(r.weighted, "Jordan: the weighting was not used");
+    CHECK(a <= r.upper && r.upper <= a + 1.001e-6, "Jordan weighted: upper %.17g",
+          r.upper);
+  }
+  ss_jsr_result_clear(&r);
+}
+
+/* Limits stop the branch and bound with valid bounds: converged = 0,
+ * lower <= upper, the node count near the limit. */
+static void test_limits(gsl_rng *rng) {
+  enum { n = 12, m = 3 };
+  static double mats[m][n * n];
+  const double *Y[m] = {mats[0], mats[1], mats[2]};
+  for (int i = 0; i < m; i++)
+    for (int e = 0; e < n * n; e++)
+      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.depth = 3;
+  o.gap = 1e-9;
+  o.max_nodes = 2000;
+  int ok;
+  ss_jsr_result r = run(m, n, Y, o, &ok);
+  if (ok) {
+    CHECK(!r.converged, "node limit: converged at gap 1e-9");
+    CHECK(r.lower <= r.upper, "node limit: [%g, %g]", r.lower, r.upper);
+    CHECK(r.nodes <= 2000 + 1, "node limit: %zu nodes", r.nodes);
+    CHECK(r.upper <= r.rho_inf[2] * (1 + 1e-12), "node limit: upper above rho_3");
+  }
+  ss_jsr_result_clear(&r);
+  o.max_nodes = 0;
+  o.max_seconds = 0.2;
+  r = run(m, n, Y, o, &ok);
+  if (ok) {
+    CHECK(!r.converged && r.lower <= r.upper, "time limit: [%g, %g]", r.lower, r.upper);
+    CHECK(r.seconds < 5, "time limit: %g s", r.seconds);
+  }
+  ss_jsr_result_clear(&r);
 }
 
 /* ---- brute force, independently ------------------------------------------- */
@@ -332,9 +414,21 @@ static void test_brute(gsl_rng *rng) {
     o.depth = K;
     o.max_depth = K;
     o.gap = 0;
+    o.weighted = 0;
     int ok;
     ss_jsr_result r = run(m, n, Y, o, &ok);
     if (!ok) continue;
+    /* a diagonal weighting of the norm, when it helps, only lowers the
+     * bound: it is kept only if its pass beats the plain one */
+    o.weighted = 1;
+    ss_jsr_result rw = run(m, n, Y, o, &ok);
+    if (ok) {
+      CHECK(rw.upper <= r.upper, "trial %d: weighted %.17g above plain %.17g", trial,
+            rw.upper, r.upper);
+      CHECK(rw.lower <= rw.upper, "trial %d: weighted lower above upper", trial);
+      CHECK(r.weighted == 0, "trial %d: weighting used though disabled", trial);
+    }
+    ss_jsr_result_clear(&rw);
     double rmin = INFINITY;
     for (int k = 0; k < K; k++) {
       const double want = pow(br.rho[k], 1.0 / (k + 1));
@@ -396,6 +490,39 @@ static void test_permutation(gsl_rng *rng) {
   }
 }
 
+/* JSR(c Y) = |c| JSR(Y): scaling by a power of two is exact, so the bounds
+ * scale with it (to the rounding of the k-th roots), far into the ranges
+ * where products of the scaled matrices under- and overflow gracefully. */
+static void test_scaling(gsl_rng *rng) {
+  enum { n = 4, m = 3 };
+  double mats[m][n * n], sc[m][n * n];
+  const double *Y[m] = {mats[0], mats[1], mats[2]}, *Z[m] = {sc[0], sc[1], sc[2]};
+  for (int i = 0; i < m; i++)
+    for (int e = 0; e < n * n; e++)
+      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.depth = 4;
+  o.max_depth = 8;
+  int ok;
+  ss_jsr_result r = run(m, n, Y, o, &ok);
+  if (!ok) return;
+  static const int ex[] = {-100, 100, -240, 240};
+  for (int t = 0; t < 4; t++) {
+    const double c = ldexp(1.0, ex[t]);
+    for (int i = 0; i < m; i++)
+      for (int e = 0; e < n * n; e++)
+        sc[i][e] = (i == 1 ? -c : c) * mats[i][e];
+    ss_jsr_result s2 = run(m, n, Z, o, &ok);
+    if (ok) {
+      CHECK_CLOSE(s2.lower / c, r.lower, 1e-12, "scale 2^%d: lower", ex[t]);
+      CHECK_CLOSE(s2.upper / c, r.upper, 1e-12, "scale 2^%d: upper", ex[t]);
+      CHECK(s2.certified, "scale 2^%d: certified", ex[t]);
+    }
+    ss_jsr_result_clear(&s2);
+  }
+  ss_jsr_result_clear(&r);
+}
+
 /* ---- bad input ---------------------------------------------------------------- */
 
 static void expect_einput(size_t m, size_t n, const double *const *Y,
@@ -449,8 +576,11 @@ int main(void) {
   test_golden();
   test_commuting();
   test_triangular(rng);
+  test_single();
+  test_limits(rng);
   test_brute(rng);
   test_permutation(rng);
+  test_scaling(rng);
   test_bad_input();
   gsl_rng_free(rng);
   return ss_test_done("test_jsr");
