@@ -34,6 +34,7 @@ static const command commands[] = {
     {"merge", ss_cli_merge, "join the stores of sweep parts into one"},
     {"report", ss_cli_report, "tables (md, csv, tex, json) and plots of a store"},
     {"reproduce", ss_cli_reproduce, "the papers' tables beside the values they quote"},
+    {"jsr", ss_cli_jsr, "Levin-Levin joint-spectral-radius test of a face or an edge"},
 };
 
 static void overview(FILE *f) {

@@ -23,6 +23,7 @@ int ss_cli_sweep(int argc, char **argv);
 int ss_cli_merge(int argc, char **argv);
 int ss_cli_report(int argc, char **argv);
 int ss_cli_reproduce(int argc, char **argv);
+int ss_cli_jsr(int argc, char **argv);
 /* `enumerate` sub-subcommands (argv[0] = "links", "canonical", ...). */
 int ss_cli_enumerate_links(int argc, char **argv);
 int ss_cli_enumerate_canonical(int argc, char **argv);

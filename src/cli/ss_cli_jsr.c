@@ -1,0 +1,214 @@
+/* ss_cli_jsr.c — `subspectra jsr`: the Levin-Levin joint-spectral-radius
+ * test across a tet/oct face or along an edge (ss_levin.h, ss_jsr.h). */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <json-c/json.h>
+
+#include "ss_cli.h"
+#include "ss_diag.h"
+#include "ss_jsr.h"
+#include "ss_levin.h"
+
+static void usage(FILE *f) {
+  fprintf(
+      f,
+      "usage: subspectra jsr --scheme S (--face | --edge N) [--depth K] [--gap G]\n"
+      "                      [--diagonals D] [--max-seconds T] [--format text|json]\n\n"
+      "The Levin-Levin smoothness test (tet/oct paper, appendix A).  From the scheme's\n"
+      "global rule: the patch (face: the tet/tet + oct/oct pair of figure 10, a unit\n"
+      "square of the face's grid; edge: a segment between two edge vertices), its\n"
+      "support (the points whose basis functions do not vanish on it) and the maps\n"
+      "S_i to the supports of its sub-patches after one step (4 for the face, 2 for\n"
+      "an edge).  W = [V Q2] with V spanning the subspace the smoothness order needs\n"
+      "(face: the quadratic polynomials, eigenvalues 1, 1/2 x3, 1/4 x6, or S_1's\n"
+      "eigenvectors for those when the quadratics are not invariant; edge: S_1's\n"
+      "eigenvectors for 1, lambda1, lambda1, 1/2), which must be invariant under\n"
+      "every S_i, and Q2 an orthonormal complement; Y_i = Q2^T S_i Q2, the lower\n"
+      "right block of W^-1 S_i W.  Another complement changes every Y_i by the same\n"
+      "similarity, so the joint spectral radius does not depend on it.\n\n"
+      "Printed: the sizes, rho_k = max ||Y_w||^(1/k) over the words of length k =\n"
+      "1..K in the inf-norm and the 2-norm, lower and upper bounds on the joint\n"
+      "spectral radius (ss_jsr: spectral radii of products; branch and bound), the\n"
+      "threshold (face: 1/4, C^2 across the face; edge: lambda3, the third\n"
+      "subdominant eigenvalue of S_1 = min(lambda1, 1/2)) and the verdict: pass if\n"
+      "upper < threshold, fail if lower >= threshold, otherwise undecided.\n"
+      "\"certified\": the bounds account for the rounding in the products of the\n"
+      "computed Y_i (not for the rounding in forming Y_i from S_i).\n\n"
+      "  --scheme S        tetoct or boxspline (schemes with the tet/oct split)\n"
+      "  --face            the face shared by two tets\n"
+      "  --edge N          an edge of valence N (3..64)\n"
+      "  --depth K         word length of rho_k and the lower bound (1..12, default 8)\n"
+      "  --gap G           relative gap of the branch and bound (default 1e-3)\n"
+      "  --diagonals D     major diagonals of tet stars (boxspline): bfs (default),\n"
+      "                    proper; skew and center for edges only\n"
+      "  --max-seconds T   time limit of the branch and bound (default 60)\n"
+      "  --format F        text (default) or json (keys: lower, upper, threshold,\n"
+      "                    rho_k, rho_k_2, verdict, certified, ...)\n\n"
+      "Exit status: 0 pass, 1 fail or undecided (or the reduction does not apply:\n"
+      "the spectrum of S_1 is not of the required form, the subspace is not\n"
+      "invariant), 2 bad usage or bad input.\n");
+}
+
+enum { O_FACE = 256, O_EDGE, O_DEPTH, O_GAP, O_DIAG, O_SECONDS, O_FORMAT, O_SCHEME };
+
+int ss_cli_jsr(int argc, char **argv) {
+  static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
+                                     {"face", no_argument, 0, O_FACE},
+                                     {"edge", required_argument, 0, O_EDGE},
+                                     {"depth", required_argument, 0, O_DEPTH},
+                                     {"gap", required_argument, 0, O_GAP},
+                                     {"diagonals", required_argument, 0, O_DIAG},
+                                     {"max-seconds", required_argument, 0, O_SECONDS},
+                                     {"format", required_argument, 0, O_FORMAT},
+                                     {"help", no_argument, 0, 'h'},
+                                     {0, 0, 0, 0}};
+  const char *cmd = "jsr", *scheme_name = NULL;
+  ss_case c = {0};
+  int have_case = 0, json = 0;
+  long v;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.max_seconds = 60;
+  optind = 1;
+  opterr = 0;
+  for (int ch; (ch = getopt_long(argc, argv, ":h", lo, NULL)) != -1;) {
+    char *end = NULL;
+    switch (ch) {
+    case 'h':
+      usage(stdout);
+      return SS_EXIT_OK;
+    case O_SCHEME:
+      scheme_name = optarg;
+      break;
+    case O_FACE:
+      if (have_case) return ss_cli_usage_error(cmd, "give one of --face and --edge");
+      c.kind = SS_CASE_FACE, have_case = 1;
+      break;
+    case O_EDGE:
+      if (have_case) return ss_cli_usage_error(cmd, "give one of --face and --edge");
+      if (ss_cli_parse_int(optarg, 3, 64, &v))
+        return ss_cli_usage_error(cmd, "--edge: expected a valence 3..64, not '%s'",
+                                  optarg);
+      c.kind = SS_CASE_EDGE, c.n = (int)v, have_case = 1;
+      break;
+    case O_DEPTH:
+      if (ss_cli_parse_int(optarg, 1, 12, &v))
+        return ss_cli_usage_error(cmd, "--depth: expected 1..12, not '%s'", optarg);
+      o.depth = (int)v;
+      break;
+    case O_GAP:
+      o.gap = strtod(optarg, &end);
+      if (end == optarg || *end || !(o.gap > 0 && o.gap < 1))
+        return ss_cli_usage_error(cmd, "--gap: expected a number in (0, 1), not '%s'",
+                                  optarg);
+      break;
+    case O_SECONDS:
+      o.max_seconds = strtod(optarg, &end);
+      if (end == optarg || *end || !(o.max_seconds > 0 && o.max_seconds < 1e7))
+        return ss_cli_usage_error(cmd,
+                                  "--max-seconds: expected a positive number, not "
+                                  "'%s'",
+                                  optarg);
+      break;
+    case O_DIAG:
+      if (ss_diag_parse(optarg, &c.diag))
+        return ss_cli_usage_error(
+            cmd, "--diagonals: expected bfs, proper, skew or center, not '%s'", optarg);
+      break;
+    case O_FORMAT:
+      if (ss_cli_format_option(cmd, optarg, &json)) return SS_EXIT_USAGE;
+      break;
+    default:
+      return ss_cli_option_error(cmd, ch, argv);
+    }
+  }
+  if (optind < argc)
+    return ss_cli_usage_error(cmd, "unexpected argument '%s'", argv[optind]);
+  if (!scheme_name) return ss_cli_usage_error(cmd, "--scheme is required");
+  if (!have_case) return ss_cli_usage_error(cmd, "give --face or --edge N");
+
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  ss_levin *L = NULL;
+  ss_jsr_result r;
+  memset(&r, 0, sizeof r);
+  int rc = SS_EXIT_OK;
+  if (ss_scheme_new(scheme_name, &s, &err) || ss_levin_new(s, &c, &L, &err) ||
+      ss_jsr_compute(L->m, L->n - L->r, (const double *const *)L->Y, &o, &r, &err)) {
+    rc = ss_cli_fail(&err);
+    goto done;
+  }
+  const char *verdict = r.upper < L->threshold    ? "pass"
+                        : r.lower >= L->threshold ? "fail"
+                                                  : "undecided";
+  rc = strcmp(verdict, "pass") ? SS_EXIT_FAIL : SS_EXIT_OK;
+  const char *thr_name = c.kind == SS_CASE_FACE           ? "1/4 (C^2 across the face)"
+                         : fabs(L->lambda1 - 0.5) <= 1e-8 ? "lambda3 = lambda1 = 1/2"
+                         : L->lambda1 < 0.5               ? "lambda3 = lambda1 (< 1/2)"
+                                                          : "lambda3 = 1/2 (< lambda1)";
+  if (json) {
+    json_object *j = json_object_new_object(), *rk = json_object_new_array(),
+                *r2 = json_object_new_array(), *th = json_object_new_array(),
+                *w = json_object_new_array();
+    json_object_object_add(j, "scheme", json_object_new_string(scheme_name));
+    json_object_object_add(j, "case", json_object_new_string(ss_case_name(c.kind)));
+    if (c.kind == SS_CASE_EDGE) json_object_object_add(j, "n", json_object_new_int(c.n));
+    json_object_object_add(j, "diagonals", json_object_new_string(ss_diag_name(c.diag)));
+    json_object_object_add(j, "level", json_object_new_int(L->level));
+    json_object_object_add(j, "maps", json_object_new_int64((int64_t)L->m));
+    json_object_object_add(j, "support", json_object_new_int64((int64_t)L->n));
+    json_object_object_add(j, "subspace", json_object_new_int64((int64_t)L->r));
+    json_object_object_add(j, "subspace_basis", json_object_new_string(L->basis));
+    json_object_object_add(j, "invariance_defect", json_object_new_double(L->defect));
+    for (size_t i = 0; i < L->r; i++)
+      json_object_array_add(th, json_object_new_double(L->theta[i]));
+    json_object_object_add(j, "theta", th);
+    if (c.kind == SS_CASE_EDGE)
+      json_object_object_add(j, "lambda1", json_object_new_double(L->lambda1));
+    for (int k = 0; k < r.depth; k++) {
+      json_object_array_add(rk, json_object_new_double(r.rho_inf[k]));
+      json_object_array_add(r2, json_object_new_double(r.rho_2[k]));
+    }
+    json_object_object_add(j, "rho_k", rk);
+    json_object_object_add(j, "rho_k_2", r2);
+    json_object_object_add(j, "lower", json_object_new_double(r.lower));
+    for (int k = 0; k < r.lower_len; k++)
+      json_object_array_add(w, json_object_new_int(r.lower_word[k] + 1));
+    json_object_object_add(j, "lower_word", w);
+    json_object_object_add(j, "upper", json_object_new_double(r.upper));
+    json_object_object_add(j, "threshold", json_object_new_double(L->threshold));
+    json_object_object_add(j, "threshold_name", json_object_new_string(thr_name));
+    json_object_object_add(j, "verdict", json_object_new_string(verdict));
+    json_object_object_add(j, "certified", json_object_new_boolean(r.certified));
+    json_object_object_add(j, "converged", json_object_new_boolean(r.converged));
+    json_object_object_add(j, "nodes", json_object_new_int64((int64_t)r.nodes));
+    printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
+    json_object_put(j);
+  } else {
+    printf("scheme %s, %s", scheme_name, ss_case_name(c.kind));
+    if (c.kind == SS_CASE_EDGE) printf(" of valence %d", c.n);
+    printf(" (diagonals %s)\n", ss_diag_name(c.diag));
+    printf("maps S_1..S_%zu: %zu x %zu (support on level %d); subspace of dimension "
+           "%zu (%s,\n  invariant under every S_i to %.2g); Y_i: %zu x %zu\n",
+           L->m, L->n, L->n, L->level, L->r, L->basis, L->defect, L->n - L->r,
+           L->n - L->r);
+    printf("eigenvalues of S_1 on the subspace:");
+    for (size_t i = 0; i < L->r; i++)
+      printf(" %.6g", L->theta[i]);
+    printf("\n%-4s %-12s %-12s\n", "k", "rho_k (inf)", "rho_k (2)");
+    for (int k = 0; k < r.depth; k++)
+      printf("%-4d %-12.6g %-12.6g\n", k + 1, r.rho_inf[k], r.rho_2[k]);
+    printf("joint spectral radius in [%.6g, %.6g] (%s; %s, %zu products)\n", r.lower,
+           r.upper, r.certified ? "certified" : "not certified",
+           r.converged ? "gap reached" : "gap not reached", r.nodes);
+    printf("threshold %.6g: %s\nverdict: %s\n", L->threshold, thr_name, verdict);
+  }
+done:
+  ss_jsr_result_clear(&r);
+  ss_levin_free(L);
+  ss_scheme_free(s);
+  return rc;
+}

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# test_jsr_cli.sh EXE — `subspectra jsr` from the outside: the JSON keys the
+# issue names, the verdict agreeing with the bounds and the threshold, the
+# edge threshold lambda3 = min(lambda1, 1/2), and exit status 2 with a message
+# for bad usage.
+set -u
+exe=$1
+SS_EXPECT_TIMEOUT=120
+. "$(dirname "$0")/../ss_expect.sh"
+
+expect_in 0 "Levin-Levin smoothness test" "" "$exe" jsr --help
+expect_in 0 "jsr " "" "$exe" --help
+expect_in 2 "--scheme is required" "" "$exe" jsr --face
+expect_in 2 "give --face or --edge N" "" "$exe" jsr --scheme tetoct
+expect_in 2 "give one of --face and --edge" "" "$exe" jsr --scheme tetoct --face --edge 4
+expect_in 2 "--edge: expected a valence 3..64, not '2'" "" "$exe" jsr --scheme tetoct --edge 2
+expect_in 2 "--depth: expected 1..12" "" "$exe" jsr --scheme tetoct --face --depth 0
+expect_in 2 "--gap: expected a number in" "" "$exe" jsr --scheme tetoct --face --gap 2
+expect_in 2 "--diagonals: expected bfs" "" "$exe" jsr --scheme boxspline --face --diagonals x
+expect_in 2 "unknown scheme 'nope'" "" "$exe" jsr --scheme nope --face
+expect_in 2 "the face case exists only for schemes with the tet/oct split" "" "$exe" jsr --scheme mlca --face
+expect_in 2 "tet stars only" "" "$exe" jsr --scheme mlca --edge 4
+expect_in 2 "defined around an edge" "" "$exe" jsr --scheme boxspline --face --diagonals skew
+expect_in 2 "unexpected argument 'x'" "" "$exe" jsr --scheme tetoct --face x
+# the face of tet/oct: C^2 (threshold 1/4), quadratics as the subspace
+out=$("$exe" jsr --scheme tetoct --face --depth 3 --max-seconds 5 --format json)
+checks=$((checks + 1))
+python3 - "$out" <<'PY' || fail "tetoct face JSON: $out"
+import json, sys
+j = json.loads(sys.argv[1])
+for k in ("lower", "upper", "threshold", "rho_k", "verdict", "certified"):
+    assert k in j, k
+assert j["threshold"] == 0.25 and len(j["rho_k"]) == 3 and len(j["rho_k_2"]) == 3
+assert j["subspace"] == 10 and j["subspace_basis"] == "quadratics"
+assert j["lower"] <= j["upper"] <= j["rho_k"][2] + 1e-12
+want = "pass" if j["upper"] < 0.25 else "fail" if j["lower"] >= 0.25 else "undecided"
+assert j["verdict"] == want
+assert abs(j["theta"][9] - 0.25) < 1e-10 and abs(j["theta"][1] - 0.5) < 1e-10
+PY
+# an edge: threshold lambda3 = min(lambda1, 1/2), lambda1 < 1/2 for valence 3
+out=$("$exe" jsr --scheme tetoct --edge 3 --depth 3 --max-seconds 2 --format json)
+checks=$((checks + 1))
+python3 - "$out" <<'PY' || fail "tetoct edge 3 JSON: $out"
+import json, sys
+j = json.loads(sys.argv[1])
+assert j["maps"] == 2 and j["subspace"] == 4
+assert j["lambda1"] < 0.5 and j["threshold"] == j["lambda1"]
+assert sorted(j["theta"], reverse=True)[0] == 1 or abs(j["theta"][0] - 1) < 1e-10
+PY
+# box-spline faces with the diagonals of Algorithm 2 have the eigenvalue
+# 0.512 > 1/2: the reduction does not apply, exit 1 with the spectrum
+expect_in 1 "are not 1, 1/2 x3, 1/4 x6" "" "$exe" jsr --scheme boxspline --face --depth 2 --max-seconds 1
+expect_done test_jsr_cli
