@@ -31,7 +31,7 @@ typedef struct {
  * the face has 4 maps (4 + ... + 4^K products), an edge 2.  The branch and
  * bound forms at most JSR_NODES products and has no time limit, so the
  * tables are the same on every run and machine speed. */
-enum { FACE_DEPTH = 6, EDGE_DEPTH = 10, JSR_NODES = 20000 };
+enum { FACE_DEPTH = 6, EDGE_DEPTH = 8, JSR_NODES = 10000 };
 static const double JSR_GAP = 1e-3;
 
 static const jsr_table tables[] = {
