@@ -37,7 +37,8 @@ void ss_report_ref_free(ss_ref *ref) {
 
 int ss_report_ref_quantity(const char *name, int *index) {
   static const char *const plain[] = {"two_ring",        "one_ring",   "verdict",
-                                      "eigen_condition", "regularity", NULL};
+                                      "eigen_condition", "regularity", "jsr_threshold",
+                                      "jsr_verdict",     NULL};
   *index = 0;
   for (int i = 0; plain[i]; i++)
     if (!strcmp(name, plain[i])) return 1;
@@ -226,15 +227,15 @@ static ss_status parse_row(char **f, const char *path, long lineno, ss_ref_row *
   if (!ss_report_ref_quantity(f[6], &index))
     return ss_error_set(err, SS_EINPUT,
                         "%s:%ld: quantity '%s': expected lambda1..lambda15, "
-                        "mult1..mult15, two_ring, one_ring, verdict, eigen_condition "
-                        "or regularity",
+                        "mult1..mult15, two_ring, one_ring, verdict, eigen_condition, "
+                        "regularity, jsr_threshold or jsr_verdict",
                         path, lineno, f[6]);
   ss_ref_value v;
   ss_error e2 = {0};
   if (ss_report_ref_eval(f[7], r->kind == SS_CASE_FACE ? 0 : r->lo, &v, &e2))
     return ss_error_set(err, SS_EINPUT, "%s:%ld: %s", path, lineno, e2.msg);
   const int is_verdict = !strcmp(f[6], "verdict") || !strcmp(f[6], "eigen_condition") ||
-                         !strcmp(f[6], "regularity");
+                         !strcmp(f[6], "regularity") || !strcmp(f[6], "jsr_verdict");
   if (is_verdict != (v.kind == SS_REF_VERDICT))
     return ss_error_set(err, SS_EINPUT, "%s:%ld: quantity %s takes %s, not '%s'", path,
                         lineno, f[6], is_verdict ? "pass, fail or undecided" : "a number",

@@ -15,7 +15,9 @@
  *   quantity   lambdaI (I = 1..15: the real eigenvalue lambda_I after
  *              lambda0 = 1), multI (size of lambda_I's group of equal
  *              eigenvalues), two_ring, one_ring (matrix sizes), verdict (both
- *              conditions), eigen_condition, regularity
+ *              conditions), eigen_condition, regularity; jsr_threshold and
+ *              jsr_verdict (the joint spectral radius test's threshold and
+ *              verdict: compared only by the JSR tables, ss_cli_reproduce_jsr)
  *   value      the quoted value as compared: a decimal as printed ("0.4101"),
  *              an exact fraction or integer ("1/2", "2"), a closed form
  *              linear in k or n ("5k-5", "2n+3"), a bound (">1/4") or a

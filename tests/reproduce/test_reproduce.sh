@@ -27,7 +27,7 @@ expect 2 "badref/mlca-hexahedral-subdivision.tsv:$line: value '0.5.1'" "$exe" re
 
 # the full run (about 10 s)
 out=$tmp/out
-SS_EXPECT_TIMEOUT=280 expect 0 "reproduce: wrote 17 tables" "$exe" reproduce --reference "$ref" --out "$out"
+SS_EXPECT_TIMEOUT=280 expect 0 "reproduce: wrote 19 tables" "$exe" reproduce --reference "$ref" --out "$out"
 
 tables="mlca-vertices-k4-8 mlca-vertices-k9-10 tetoct-vertices-k4-7 tetoct-vertices-k8-10 tetoct-edges-3-10 tetoct-face
 mlca-edges-3-8 mlca-surface-vertices-3-8 catmull-clark-surface-vertices-3-8
@@ -49,7 +49,7 @@ for f in mlca-vertex-k4 mlca-vertex-k5 mlca-vertex-regular mlca-vertex-k7-bipyra
   head -c 8 "$out/figures/$f.png" 2>/dev/null | grep -q PNG || fail "figure $f.png missing"
 done
 checks=$((checks + 1))
-[ "$(ls "$out"/data/*.jsonl | wc -l)" -eq 17 ] || fail "expected 17 JSON-lines files"
+[ "$(ls "$out"/data/*.jsonl | wc -l)" -eq 19 ] || fail "expected 19 JSON-lines files"
 # the ccsolid tables put MLCA beside every case
 for t in ccsolid-vertices-k4-9 ccsolid-edges-3-10; do
   checks=$((checks + 1))
@@ -62,6 +62,28 @@ grep -q '"scheme":"mlca","case":"vertex","link":"4 bcd,adc,abd,acb","k":4,"two_r
   fail "mlca-vertices-k4-8.jsonl: keys"
 grep -q '"eigen_condition":{"verdict":"pass","certified":false,"reason":"","tolerance":' "$out/data/tetoct-face.jsonl" ||
   fail "tetoct-face.jsonl: eigen_condition"
+
+# the joint spectral radius tables: derived independently, not pasted output.
+# The face threshold is 1/4 exactly (C^2: below the sixfold 1/4); every row's
+# verdict must agree with its bounds (pass iff upper < threshold, fail iff
+# lower >= threshold), lower <= upper, and the budget is printed.
+for t in tetoct-jsr boxspline-jsr; do
+  checks=$((checks + 1))
+  for f in "$out/$t.md" "$out/$t.tsv" "$out/data/$t.jsonl"; do
+    [ -s "$f" ] || fail "$f missing or empty"
+  done
+  grep -q 'at most 10000 products' "$out/$t.md" || fail "$t.md: no node budget"
+  awk -F'\t' '!/^#/ && $1 != "case" && $9 != "n/a" && NF == 13 {
+    lo = $6 + 0; up = $7 + 0; th = $8 + 0
+    want = up < th ? "pass" : (lo >= th ? "fail" : "undecided")
+    if ($9 != want || lo > up) { print "bad row: " $0; bad = 1 }
+    if ($1 ~ /^face/ && $8 != "0.25") { print "face threshold " $8; bad = 1 } }
+    END { exit bad }' "$out/$t.tsv" || fail "$t.tsv: verdict or threshold inconsistent"
+done
+checks=$((checks + 1))
+grep -q '^face (bfs)	jsr_verdict	pass	pass	match' "$out/tetoct-jsr.tsv" &&
+  grep -q '^face (bfs)	jsr_threshold	1/4	0.25	match' "$out/tetoct-jsr.tsv" ||
+  fail "tetoct-jsr.tsv: the paper's face statement not compared"
 
 # each table's summary: cases passing both conditions, quoted values compared
 # and matching, rows not quoted
