@@ -116,11 +116,6 @@ static face make_face(ss_idx a, ss_idx b, ss_idx c) {
   return f;
 }
 
-static double loop_beta(double n) {
-  const double t = 3.0 / 8.0 + cos(2.0 * M_PI / n) / 4.0;
-  return (5.0 / 8.0 - t * t) / n;
-}
-
 /* The coarse complex's neighbourhoods, shared by both variants. */
 typedef struct {
   adjacency nb;       /* boxspline: rho (edges and diagonals); avg: edges */
@@ -279,11 +274,8 @@ nomem:
 
 /* Loop's boundary rule for an old vertex on the boundary. */
 static void boundary_vertex(const topo *T, size_t x, ss_sink *k) {
-  const size_t n = T->bnd.ptr[x + 1] - T->bnd.ptr[x];
-  const double beta = n ? loop_beta((double)n) : 0.0;
-  ss_sink_emit(k, x, x, 1.0 - (double)n * beta);
-  for (size_t q = T->bnd.ptr[x]; q < T->bnd.ptr[x + 1]; q++)
-    ss_sink_emit(k, x, T->bnd.nb[q], beta);
+  ss_scheme_loop_vertex_emit(k, x, T->bnd.nb + T->bnd.ptr[x],
+                             T->bnd.ptr[x + 1] - T->bnd.ptr[x]);
 }
 
 /* Loop's boundary rule for the edge point f of (a, b) if both ends are on the
@@ -300,10 +292,7 @@ static int boundary_edge(const topo *T, size_t f, ss_idx a, ss_idx b, ss_sink *k
     if (hit && hit->opp) T->common[m++] = c;
   }
   if (m == 0) return 0;
-  ss_sink_emit(k, f, a, 3.0 / 8.0);
-  ss_sink_emit(k, f, b, 3.0 / 8.0);
-  for (size_t i = 0; i < m; i++)
-    ss_sink_emit(k, f, T->common[i], 0.25 / (double)m);
+  ss_scheme_loop_edge_emit(k, f, a, b, T->common, m);
   return 1;
 }
 

@@ -54,4 +54,17 @@ ss_status ss_scheme_catmull_clark_emit(const ss_cx *surf, const ss_split *L,
                                        const unsigned char *on, ss_sink *k,
                                        ss_error *err);
 
+/* Loop's rules (ss_scheme_loop.c), for schemes whose boundary surfaces refine
+ * by Loop (the box-spline solids, figure 14).  ss_scheme_loop_beta: Loop's
+ * vertex weight b = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n for a vertex of
+ * valence n >= 1.  ss_scheme_loop_vertex_emit: the row of vertex x on a
+ * coarse surface, (1 - n b) x + b sum of its n neighbours nb (x alone if
+ * n = 0).  ss_scheme_loop_edge_emit: the edge point f of (a, b), 3/8 each end
+ * and 1/4 shared by the m >= 1 vertices opposite the edge (Loop's 1/8 each
+ * when m = 2). */
+double ss_scheme_loop_beta(size_t n);
+void ss_scheme_loop_vertex_emit(ss_sink *k, ss_idx x, const ss_idx *nb, size_t n);
+void ss_scheme_loop_edge_emit(ss_sink *k, ss_idx f, ss_idx a, ss_idx b, const ss_idx *opp,
+                              size_t m);
+
 #endif

@@ -14,11 +14,28 @@
 #include "ss_crease.h"
 #include "ss_scheme_impl.h"
 
-/* Loop's vertex weight for a smooth vertex of valence n. */
-static double loop_beta(double n) {
-  const double pi = 3.14159265358979323846;
-  double t = 3.0 / 8.0 + cos(2.0 * pi / n) / 4.0;
-  return (5.0 / 8.0 - t * t) / n;
+/* The edge point: each end, and all opposite vertices together. */
+static const double loop_edge_end = 3.0 / 8.0;
+static const double loop_edge_opposite = 1.0 / 4.0;
+
+double ss_scheme_loop_beta(size_t n) {
+  const double t = 3.0 / 8.0 + cos(2.0 * M_PI / (double)n) / 4.0;
+  return (5.0 / 8.0 - t * t) / (double)n;
+}
+
+void ss_scheme_loop_vertex_emit(ss_sink *k, ss_idx x, const ss_idx *nb, size_t n) {
+  const double beta = n ? ss_scheme_loop_beta(n) : 0.0;
+  ss_sink_emit(k, x, x, 1.0 - (double)n * beta);
+  for (size_t q = 0; q < n; q++)
+    ss_sink_emit(k, x, nb[q], beta);
+}
+
+void ss_scheme_loop_edge_emit(ss_sink *k, ss_idx f, ss_idx a, ss_idx b, const ss_idx *opp,
+                              size_t m) {
+  ss_sink_emit(k, f, a, loop_edge_end);
+  ss_sink_emit(k, f, b, loop_edge_end);
+  for (size_t i = 0; i < m; i++)
+    ss_sink_emit(k, f, opp[i], loop_edge_opposite / (double)m);
 }
 
 /* The coarse vertex two edge midpoints share (they are edges of one triangle). */
@@ -37,7 +54,7 @@ static ss_status loop_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx 
   if (st) return st;
   const size_t nc = L->ncoarse;
   for (size_t x = nc; x < fine->nv; x++)
-    ss_sink_emit(k, x, x, c->sharp[x] ? 1.0 : 3.0 / 4.0);
+    ss_sink_emit(k, x, x, c->sharp[x] ? 1.0 : 2.0 * loop_edge_end); /* x = (a + b) / 2 */
   /* the middle triangle of each coarse triangle holds its three edge midpoints */
   for (size_t t = 0; t < fine->nc[SS_TRIANGLE]; t++) {
     const ss_idx *v = ss_cx_cell(fine, SS_TRIANGLE, t);
@@ -47,21 +64,21 @@ static ss_status loop_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx 
       if (c->sharp[x]) continue;
       ss_idx opp = common_parent(L, v[(i + 1) % 3], v[(i + 2) % 3]);
       double m = (double)c->nface[x] / 3.0; /* coarse triangles at this edge */
-      ss_sink_emit(k, x, opp, 1.0 / (4.0 * m));
+      ss_sink_emit(k, x, opp, loop_edge_opposite / m);
     }
   }
   for (size_t x = nc; x < fine->nv; x++) {
     for (size_t p = L->ptr[x]; p < L->ptr[x + 1]; p++) {
       ss_idx a = L->parent[p], b = ss_crease_other(L, x, a);
       if (c->kind[a] == SS_SMOOTH)
-        ss_sink_emit(k, a, b, loop_beta((double)c->nedge[a]));
+        ss_sink_emit(k, a, b, ss_scheme_loop_beta(c->nedge[a]));
       else if (c->kind[a] == SS_CREASE && c->sharp[x])
         ss_sink_emit(k, a, b, 1.0 / 8.0);
     }
   }
   for (size_t v = 0; v < nc; v++) {
-    double n = (double)c->nedge[v];
-    double self = c->kind[v] == SS_SMOOTH   ? 1.0 - n * loop_beta(n)
+    const size_t n = c->nedge[v];
+    double self = c->kind[v] == SS_SMOOTH   ? 1.0 - (double)n * ss_scheme_loop_beta(n)
                   : c->kind[v] == SS_CREASE ? 3.0 / 4.0
                                             : 1.0;
     ss_sink_emit(k, v, v, self);
