@@ -406,9 +406,8 @@ static void test_mlca_k8(void) {
     return;
   }
   const double gap = (r.e->val[3].re - r.e->val[4].re) / r.e->val[3].re;
-  CHECK(r.e->cond.verdict == SS_PASS && gap > 1e-3 && gap < 2e-3,
-        "k8 link: condition %s, relative gap lambda3/lambda4 %.3g",
-        ss_verdict_name(r.e->cond.verdict), gap);
+  CHECK(r.e->cond.verdict == SS_PASS, "k8 link: condition %s",
+        ss_verdict_name(r.e->cond.verdict));
   CHECK(r.r.verdict.verdict == SS_FAIL, "k8 link: regularity %s",
         ss_verdict_name(r.r.verdict.verdict));
   const size_t n = r.M->n2;
@@ -432,6 +431,13 @@ static void test_mlca_k8(void) {
     }
     idx[k] = best;
   }
+  /* The near-tie, from the dense spectrum: the same relative gap as the block
+   * solver's, a genuine near-tie (below 10^-2) and still far above the verdict
+   * tolerance (which would otherwise merge lambda3 and lambda4). */
+  const double dgap = (wr[idx[3]] - wr[idx[4]]) / wr[idx[3]];
+  CHECK(fabs(dgap - gap) <= 1e-6 * gap && dgap < 1e-2 && dgap > 100 * r.e->tol,
+        "k8 link: relative gap lambda3/lambda4 %.6g (dense %.6g, tolerance %g)", gap,
+        dgap, r.e->tol);
   for (int third = 3; third <= 4; third++) {
     ss_eig e;
     ss_eigval val[4];

@@ -442,9 +442,21 @@ static void test_md(ss_store *st, const computed *all) {
         pipes_cases);
   CHECK(strstr(text, "\\|lambda4\\|"), "md: '|' in a reason is not escaped");
   CHECK(strstr(text, "relative tolerance of 1e-06"), "md: no tolerance note");
-  CHECK(strstr(text, "| 0.500000 | 0.500000 | 0.500000 | 0.250000 | 3,3,3,6 | pass | "
-                     "pass | 1.0000 |"),
-        "md: the regular MLCA edge 4 row");
+  /* The MLCA edge of valence 4 is the regular grid: the tricubic B-spline's
+   * leading eigenvalues 1/2 (x3, the linear modes) and 1/4; located by its
+   * scheme, kind and valence so another scheme's row cannot stand in for it. */
+  const char *e4 = strstr(text, "| mlca | edge | 4 |");
+  CHECK(e4 && !strstr(e4 + 1, "| mlca | edge | 4 |"), "md: one MLCA edge 4 row");
+  if (e4) {
+    char want[160];
+    snprintf(want, sizeof want, "| %.6f | %.6f | %.6f | %.6f | ", 0.5, 0.5, 0.5, 0.25);
+    const char *end = strchr(e4, '\n'), *hit = strstr(e4, want);
+    CHECK(hit && hit < end,
+          "md: the MLCA edge 4 row lacks the B-spline eigenvalues %s: %.*s", want,
+          (int)(end - e4), e4);
+    CHECK(strstr(e4, "| pass | pass |") && strstr(e4, "| pass | pass |") < end,
+          "md: the regular MLCA edge 4 row is not pass/pass");
+  }
   free(text);
   special_row(&t, &t);
   text = render(SS_REPORT_MD, SS_REPORT_CASES, &t, &s, &err);
