@@ -4,6 +4,10 @@
 set -u
 cf=$1
 src=$2
+if [ -z "$cf" ]; then
+  echo "format: SKIPPED — clang-format not found (./run installs it)"
+  exit 77
+fi
 cd "$src" || exit 1
 files=$(find src enumerate analysis reports tests -name '*.[ch]' | sort)
 n=$(wc -w <<<"$files")
