@@ -13,22 +13,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 command -v sqlite3 >/dev/null || { echo "test_sweep: sqlite3 not installed (./run installs it)"; exit 1; }
-q() { sqlite3 "$@"; }  # (expect runs programs: call sqlite3 there)
-# every column that a result's mathematics determines (not the timing)
-rows() {
-  q "$1" "SELECT s.identity, kind, k, link, cells, two_ring, one_ring, eigenvalues,
-          eigen_condition, eigen_reason, tolerance, regularity, regularity_reason,
-          quote(min_scaled_jacobian), r.depth, quote(improper_pairs), quote(adjacent_pairs),
-          quote(lambda1), quote(lambda4)
-          FROM result r JOIN scheme s ON s.id = r.scheme_id ORDER BY 1, 2, 3, 4"
-}
-same() { # same NAME DB1 DB2: equal rows, and not vacuously
-  checks=$((checks + 1))
-  local a b
-  a=$(rows "$2")
-  b=$(rows "$3")
-  [ -n "$a" ] && [ "$a" = "$b" ] || fail "$1: stores differ ($(diff <(echo "$a") <(echo "$b") | head -3))"
-}
+. "$src/tests/sweep/ss_store_rows.sh"
 
 # the reference: all 306 links with 4..10 vertices and edges 3..8, one thread
 expect 1 "312 cases of mlca tol=1e-06 depth=6 rings=3 .*312 computed.*1 thread.*0 already stored" \
@@ -170,25 +155,6 @@ expect 2 "noise.db: not a subspectra results store" "$exe" merge "$tmp/m2.db" "$
 expect 2 "foreign.db: a foreign SQLite database" "$exe" merge "$tmp/m2.db" "$tmp/foreign.db"
 expect 2 "nothere.db: no such results store" "$exe" merge "$tmp/m2.db" "$tmp/nothere.db"
 
-# a store in a directory the reader may not write (WAL wants a -shm file
-# beside it) is still read; needs root to play another user, else skipped
-if [ "$(id -u)" = 0 ] && command -v su >/dev/null &&
-  su nobody -s /bin/sh -c "'$exe' --version" >/dev/null 2>&1; then
-  ro=$(mktemp -d /tmp/ss_ro.XXXXXX)
-  sqlite3 "$tmp/merged.db" "PRAGMA wal_checkpoint(TRUNCATE)" >/dev/null
-  cp "$tmp/merged.db" "$ro/s.db"
-  chmod 644 "$ro/s.db"
-  chmod 555 "$ro"
-  checks=$((checks + 1))
-  # (233 links with 10 vertices: 232 vertices and the bipyramid over 8, an edge point)
-  out=$(su nobody -s /bin/sh -c "'$exe' report --db '$ro/s.db' --format csv --table summary" 2>&1)
-  grep -q "^mlca tol=1e-06 depth=6 rings=3,mlca,vertex,10,232," <<<"$out" ||
-    fail "read-only directory: $(head -3 <<<"$out")"
-  [ -z "$(ls "$ro" | grep -v '^s.db$')" ] || fail "files left beside a read-only store: $(ls "$ro")"
-  chmod 755 "$ro"
-  rm -rf "$ro"
-fi
-
 # merge conflicts: the same case with other values is reported, OUT's row
 # kept, exit 1, the other rows merged; --prefer old keeps, --prefer new
 # replaces; a different timing alone is no conflict
@@ -250,53 +216,6 @@ expect 2 "lock.db: the results store is locked by another process" \
   "$exe" sweep --scheme mlca --edges 3..3 --db "$tmp/lock.db"
 kill "$lockpid" 2>/dev/null
 wait "$lockpid" 2>/dev/null
-
-# stores on a read-only file system (a read-only bind mount in a mount
-# namespace of our own: needs root and unshare): merge reads them, sweep says
-# why it cannot write them
-rodir=$(mktemp -d /tmp/ss_rofs.XXXXXX)
-sqlite3 "$tmp/p1.db" "PRAGMA wal_checkpoint(TRUNCATE)" >/dev/null
-cp "$tmp/p1.db" "$rodir/s.db"
-roenv=(unshare -m sh -c 'd=$1; shift; mount --bind "$d" "$d" && mount -o remount,ro,bind "$d" && exec "$@"' sh "$rodir")
-if [ "$(id -u)" = 0 ] && command -v unshare >/dev/null && "${roenv[@]}" sh -c "! touch '$rodir/x'" 2>/dev/null; then
-  expect 0 "s.db: [0-9]+ results added, 0 already in" "${roenv[@]}" "$exe" merge "$tmp/rofs_out.db" "$rodir/s.db"
-  same "merged from a read-only file system" "$tmp/p1.db" "$tmp/rofs_out.db"
-  expect 2 "s.db: cannot write the results store: a read-only file system" \
-    "${roenv[@]}" "$exe" sweep --scheme mlca --edges 3..3 --db "$rodir/s.db"
-  expect 2 "new.db: cannot create the results store: directory .*: a read-only file system" \
-    "${roenv[@]}" "$exe" sweep --scheme mlca --edges 3..3 --db "$rodir/new.db"
-  checks=$((checks + 1))
-  [ "$(ls "$rodir")" = s.db ] || fail "files left on the read-only file system: $(ls "$rodir")"
-else
-  echo "test_sweep: skipped the read-only file system checks (needs root and unshare -m)"
-fi
-rm -rf "$rodir"
-# the same by permissions, as a user who may not write (needs root to be nobody)
-if [ "$(id -u)" = 0 ] && command -v su >/dev/null &&
-  su nobody -s /bin/sh -c "'$exe' --version" >/dev/null 2>&1; then
-  ro=$(mktemp -d /tmp/ss_ro.XXXXXX)
-  wr=$(mktemp -d /tmp/ss_wr.XXXXXX)
-  cp "$tmp/p1.db" "$ro/s.db"
-  chmod 644 "$ro/s.db"
-  chmod 555 "$ro"
-  chmod 777 "$wr"
-  checks=$((checks + 1))
-  out=$(su nobody -s /bin/sh -c "'$exe' merge '$wr/o.db' '$ro/s.db'" 2>&1) ||
-    fail "merge from a directory the user may not write: $out"
-  same "merged from a read-only directory" "$tmp/p1.db" "$wr/o.db"
-  checks=$((checks + 1))
-  out=$(su nobody -s /bin/sh -c "'$exe' sweep --scheme mlca --edges 3..3 --db '$ro/s.db'" 2>&1)
-  [ $? = 2 ] && grep -q "s.db: cannot write the results store: no write permission on the file" <<<"$out" ||
-    fail "sweep into a store the user may not write: $out"
-  checks=$((checks + 1))
-  out=$(su nobody -s /bin/sh -c "'$exe' sweep --scheme mlca --edges 3..3 --db '$ro/new.db'" 2>&1)
-  [ $? = 2 ] && grep -q "new.db: cannot create the results store: directory .*: no write permission" <<<"$out" ||
-    fail "sweep into a directory the user may not write: $out"
-  chmod 755 "$ro"
-  rm -rf "$ro" "$wr"
-else
-  echo "test_sweep: skipped the permission checks (needs root to run as nobody)"
-fi
 
 # SIGTERM while the cases are counted (before the first is computed): said
 # so, the store left sound, death by the signal
