@@ -272,13 +272,15 @@ static void condition(ss_eig *e, int m, double tol, double req) {
 
 /* Orthonormal basis (first m columns of q, n x n column-major) of the invariant
  * subspace of the n x n column-major a (overwritten by its Schur form T) for
- * the eigenvalues nearest to target[0..m).  Returns 0, or -1 on failure. */
+ * the eigenvalues nearest to target[0..m).  Returns 0, -1 on failure, -2 when
+ * an allocation failed. */
 static int schur_basis(double *a, size_t n, const ss_eigval *target, int m, double *q) {
   const lapack_int nn = (lapack_int)n;
   double *wr = malloc(n * sizeof *wr), *wi = malloc(n * sizeof *wi);
   lapack_logical *sel = calloc(n, sizeof *sel);
-  int rc = -1;
+  int rc = -2;
   if (!wr || !wi || !sel) goto done;
+  rc = -1;
   lapack_int sdim = 0;
   if (LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', NULL, nn, a, nn, &sdim, wr, wi, q, nn))
     goto done;
@@ -577,11 +579,12 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     st = ss_error_nomem(err, "subdominant basis");
     goto done;
   }
-  int ok = 0;
+  int ok = 0, nomem = 0; /* an allocation failure is no numerical failure */
   if (!outer && !clustered) {
     /* right eigenvectors of A: the columns of the leading real eigenvalues */
     unsigned char *used = calloc(n1 + 1, 1);
     ok = used != NULL;
+    nomem = !used;
     for (int i = 1; ok && i <= m; i++) {
       size_t best = SIZE_MAX;
       double bd = INFINITY;
@@ -603,7 +606,9 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   } else if (!outer) {
     q = malloc((n1 * n1 + 1) * sizeof *q);
     if (q) colmajor(S, n, n1, a); /* dgeevx overwrote the first copy */
-    ok = q && schur_basis(a, n1, e->val + 1, m, q) == 0;
+    const int sb = q ? schur_basis(a, n1, e->val + 1, m, q) : -2;
+    ok = sb == 0;
+    nomem = sb == -2;
     if (ok) {
       memcpy(x1, q, n1 * (size_t)m * sizeof *x1);
       for (int i = 0; i < m; i++)
@@ -629,18 +634,21 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
       ok = outer_solve(&A, n1, &K, t[j * m + j], r, e->basis + (size_t)j * n + n1, bw,
                        piv) == 0;
     }
-    if (!r) ok = 0;
+    if (!r) ok = 0, nomem = 1;
     free(r);
   }
-  if (!ok) {
+  if (!ok && !nomem) {
     /* a leading eigenvalue in the outer block, or extension impossible: Schur
      * form of the whole matrix */
     full = malloc((n * n + 1) * sizeof *full);
     free(q);
     q = malloc((n * n + 1) * sizeof *q);
-    if (full && q) {
+    nomem = !full || !q;
+    if (!nomem) {
       colmajor(S, n, n, full);
-      ok = schur_basis(full, n, e->val + 1, m, q) == 0;
+      const int sb = schur_basis(full, n, e->val + 1, m, q);
+      ok = sb == 0;
+      nomem = sb == -2;
       if (ok) {
         memcpy(e->basis, q, n * (size_t)m * sizeof *e->basis);
         for (int i = 0; i < m; i++)
@@ -662,7 +670,9 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     free(e->basis);
     e->basis = NULL;
     e->basis_kind = "";
-    st = ss_error_set(err, SS_ENUMERIC, "no basis of the subdominant invariant subspace");
+    st = nomem ? ss_error_nomem(err, "subdominant basis")
+               : ss_error_set(err, SS_ENUMERIC,
+                              "no basis of the subdominant invariant subspace");
   }
 done:
   free(a);
