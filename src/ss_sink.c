@@ -1,6 +1,8 @@
 /* ss_sink.c — accumulating rule weights into the refinement operator. */
 #include "ss_sink.h"
 
+#include "ss_gsl.h"
+
 #include <stdlib.h>
 
 /* Room for m more triplets; 0, or -1 (and k->st set) without memory. */
@@ -144,8 +146,7 @@ ss_status ss_triplets_csr(const ss_triplets *t, size_t nrows, size_t ncols,
     ptr[r] = start; /* bucket r is consumed; ptr[r] now starts CSR row r */
   }
   free(slot);
-  gsl_spmatrix *R =
-      gsl_spmatrix_alloc_nzmax(nrows, ncols ? ncols : 1, nnz ? nnz : 1, GSL_SPMATRIX_CSR);
+  gsl_spmatrix *R = ss_gsl_csr_alloc(nrows, ncols ? ncols : 1, nnz ? nnz : 1);
   if (!R) {
     free(ptr), free(col), free(w);
     return ss_error_nomem(err, "refinement operator");

@@ -22,6 +22,9 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <gsl/gsl_errno.h>
+
+#include "ss_gsl.h"
 #include "ss_link.h"
 #include "ss_mesh.h"
 #include "ss_result.h"
@@ -201,7 +204,29 @@ static ss_status op_store(const void *arg, double *digest, ss_error *err) {
   return s;
 }
 
+/* GSL at the library boundary (ss_gsl.h): a GSL error inside the library does
+ * not abort although this program never touched GSL's handler (GSL's own
+ * allocations cannot be made to fail from here, a refused dimension calls the
+ * same handler); a handler the caller installed stays. */
+static int custom_calls;
+static void custom_handler(const char *reason, const char *file, int line,
+                           int gsl_errno) {
+  (void)reason, (void)file, (void)line, (void)gsl_errno;
+  custom_calls++;
+}
+
+static void test_gsl_boundary(void) {
+  CHECK(ss_gsl_csr_alloc(0, 1, 1) == NULL, "a 0 x 1 matrix: GSL refuses, NULL returned");
+  gsl_error_handler_t *now = gsl_set_error_handler(custom_handler);
+  CHECK(now != NULL, "GSL's aborting default handler is still installed");
+  ss_gsl_init();
+  CHECK(ss_gsl_csr_alloc(0, 1, 1) == NULL && custom_calls == 1,
+        "the caller's handler was replaced (%d calls)", custom_calls);
+  gsl_set_error_handler(now);
+}
+
 int main(int argc, char **argv) {
+  test_gsl_boundary();
   walk_all = argc > 1 && !strcmp(argv[1], "--all");
   const char *src = SS_OOM_SRC;
   char path[4096];

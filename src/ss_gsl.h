@@ -1,0 +1,28 @@
+/* ss_gsl.h — GSL at the library boundary.
+ *
+ * GSL's default error handler aborts the process, and GSL's allocation
+ * functions call it when malloc fails: a library that never aborts cannot leave
+ * that to its caller's main().  Every GSL allocation of the library goes
+ * through the functions here, which make sure, once per process and
+ * thread-safely, that GSL's handler does not abort: the default handler is
+ * switched off (gsl_set_error_handler_off), so a failed allocation returns
+ * NULL and becomes SS_ENOMEM; a handler the caller installed before is left
+ * in place (it is the caller's choice what a GSL error does). */
+#ifndef SS_GSL_H
+#define SS_GSL_H
+
+#include <stddef.h>
+
+#include <gsl/gsl_spmatrix.h>
+
+/* Make GSL's error handler safe for the library as described above.
+ * Idempotent and thread-safe; called by the allocation below, and by nothing
+ * else that needs it to be public. */
+void ss_gsl_init(void);
+
+/* gsl_spmatrix_alloc_nzmax(nrows, ncols, nnz, GSL_SPMATRIX_CSR) (each must be
+ * at least 1, as GSL requires) after ss_gsl_init: NULL when memory is short,
+ * never an abort. */
+gsl_spmatrix *ss_gsl_csr_alloc(size_t nrows, size_t ncols, size_t nnz);
+
+#endif
