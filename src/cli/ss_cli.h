@@ -77,6 +77,17 @@ int ss_cli_format_option(const char *cmd, const char *arg, int *json);
 int ss_cli_option_error(const char *cmd, int c, char **argv);
 /* Parse a whole decimal integer in [lo, hi]; 0 on success, -1 otherwise. */
 int ss_cli_parse_int(const char *s, long lo, long hi, long *out);
+
+/* The shared options (ss_cli_opt.c), one definition each: 0 and *out set, or
+ * the usage error's exit status (2) after the message.  --tol: a relative
+ * tolerance in (0, SS_CLI_TOL_MAX); --depth: the hex depth limit
+ * 0..SS_CLI_DEPTH_MAX; the scheme source: exactly one of --scheme and
+ * --stencil (NULL when absent). */
+#define SS_CLI_TOL_MAX   0.1
+#define SS_CLI_DEPTH_MAX 12
+int ss_cli_opt_tol(const char *cmd, const char *arg, double *out);
+int ss_cli_opt_depth(const char *cmd, const char *arg, long *out);
+int ss_cli_opt_scheme_source(const char *cmd, const char *scheme, const char *stencil);
 /* Parse "A" or "A..B" (integers 0..1000000) into *a, *b; 0 or -1. */
 int ss_cli_parse_range(const char *s, long *a, long *b);
 /* Parse "I/N" (--part) with integers 0 <= I < N <= 10^9; 0 or -1. */

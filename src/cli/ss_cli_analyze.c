@@ -236,14 +236,9 @@ static int parse(int argc, char **argv, opts *o) {
       o->kind = SS_CASE_FACE;
       o->ncase++;
       break;
-    case O_TOL: {
-      char *end;
-      o->tol = strtod(optarg, &end);
-      if (*optarg == '\0' || *end != '\0' || !(o->tol > 0.0 && o->tol < 0.1))
-        return ss_cli_usage_error(
-            o->cmd, "--tol: expected a number in (0, 0.1), not '%s'", optarg);
+    case O_TOL:
+      if (ss_cli_opt_tol(o->cmd, optarg, &o->tol)) return SS_EXIT_USAGE;
       break;
-    }
     case O_NEIG:
       if (m || ss_cli_parse_int(optarg, 1, 1000000, &v))
         return ss_cli_usage_error(o->cmd,
@@ -279,9 +274,8 @@ static int parse(int argc, char **argv, opts *o) {
             optarg);
       break;
     case O_DEPTH:
-      if (m || ss_cli_parse_int(optarg, 0, 12, &v))
-        return ss_cli_usage_error(
-            o->cmd, "--depth: expected an integer in 0..12, not '%s'", optarg);
+      if (m) return ss_cli_usage_error(o->cmd, "--depth is not an option of matrix");
+      if (ss_cli_opt_depth(o->cmd, optarg, &v)) return SS_EXIT_USAGE;
       o->depth = (int)v;
       break;
     case O_CERTIFY:
@@ -341,8 +335,7 @@ static int parse(int argc, char **argv, opts *o) {
   }
   if (optind < argc)
     return ss_cli_usage_error(o->cmd, "unexpected argument '%s'", argv[optind]);
-  if (!o->scheme == !o->stencil)
-    return ss_cli_usage_error(o->cmd, "give exactly one of --scheme and --stencil");
+  if (ss_cli_opt_scheme_source(o->cmd, o->scheme, o->stencil)) return SS_EXIT_USAGE;
   if (o->ncase != 1)
     return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
                                       "--surface-vertex");

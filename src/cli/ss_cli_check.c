@@ -24,7 +24,7 @@ static const char *const usage_text =
     "\n"
     "The CI gate for a new stencil: analyse every case and pass only if all pass.\n"
     "Each case: the local subdivision matrix from the stencil's global rule, its\n"
-    "eigenvalue condition (relative tolerance T, default 1e-6) and the\n"
+    "eigenvalue condition (relative tolerance T in (0, 0.1), default 1e-6) and the\n"
     "regularity of its characteristic map (hex subdivision depth D, default 6),\n"
     "exactly as `subspectra analyze` does.  Prints one line per case that fails\n"
     "or is undecided, then a summary.\n"
@@ -138,18 +138,11 @@ int ss_cli_check(int argc, char **argv) {
     case 'f':
       face = any = 1;
       break;
-    case 't': {
-      char *end;
-      tol = strtod(optarg, &end);
-      if (*end || !(tol > 0.0 && tol <= 1e-2))
-        return ss_cli_usage_error("check", "--tol '%s' is not a number in (0, 0.01]",
-                                  optarg);
+    case 't':
+      if (ss_cli_opt_tol("check", optarg, &tol)) return SS_EXIT_USAGE;
       break;
-    }
     case 'd':
-      if (ss_cli_parse_int(optarg, 0, 12, &depth))
-        return ss_cli_usage_error("check", "--depth '%s' is not an integer in 0..12",
-                                  optarg);
+      if (ss_cli_opt_depth("check", optarg, &depth)) return SS_EXIT_USAGE;
       break;
     case 'c':
       certify = 1;

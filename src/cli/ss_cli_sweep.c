@@ -474,18 +474,11 @@ int ss_cli_sweep(int argc, char **argv) {
         return ss_cli_usage_error("sweep", "--part '%s': need integers 0 <= I < N",
                                   optarg);
       break;
-    case O_TOL: {
-      char *end;
-      tol = strtod(optarg, &end);
-      if (*optarg == '\0' || *end || !(tol > 0.0 && tol < 0.1))
-        return ss_cli_usage_error("sweep", "--tol '%s' is not a number in (0, 0.1)",
-                                  optarg);
+    case O_TOL:
+      if (ss_cli_opt_tol("sweep", optarg, &tol)) return SS_EXIT_USAGE;
       break;
-    }
     case O_DEPTH:
-      if (ss_cli_parse_int(optarg, 0, 12, &depth))
-        return ss_cli_usage_error("sweep", "--depth '%s' is not an integer in 0..12",
-                                  optarg);
+      if (ss_cli_opt_depth("sweep", optarg, &depth)) return SS_EXIT_USAGE;
       break;
     case O_DIAG:
       if (ss_diag_parse(optarg, &diag))
@@ -515,8 +508,7 @@ int ss_cli_sweep(int argc, char **argv) {
   }
   if (optind < argc)
     return ss_cli_usage_error("sweep", "unexpected argument '%s'", argv[optind]);
-  if (!scheme == !stencil)
-    return ss_cli_usage_error("sweep", "give exactly one of --scheme and --stencil");
+  if (ss_cli_opt_scheme_source("sweep", scheme, stencil)) return SS_EXIT_USAGE;
   if (!vtext && eb < ea && !face && !links)
     return ss_cli_usage_error("sweep",
                               "no cases: give --vertices, --edges, --face or --links");

@@ -143,4 +143,22 @@ expect 2 "scheme ccsolid does not take tetrahedra" "$exe" subdivide --scheme ccs
 expect 0 "2 hexahedra" "$exe" subdivide --scheme mlca "$tmp/pinch.mesh" -o "$tmp/p.mesh"
 expect 2 "the hexahedra at vertex 8 do not form one ball or half-ball .*non-manifold" "$exe" subdivide --scheme ccsolid "$tmp/pinch.mesh" -o "$tmp/p.mesh"
 
+# the shared options (ss_cli_opt.c): one range and one message in every
+# command that takes them; the bounds themselves are refused
+for cmd in "analyze --scheme mlca --edge 4" "check --scheme mlca --edges 4..4" \
+  "sweep --scheme mlca --edges 4..4 --db $tmp/opt.db"; do
+  name=${cmd%% *}
+  for t in 0 0.1 -1e-6 1e-6x ""; do
+    expect 2 "subspectra $name: --tol '$t' is not a number in \(0, 0.1\)" "$exe" $cmd --tol "$t"
+  done
+  for d in -1 13 x; do
+    expect 2 "subspectra $name: --depth '$d' is not an integer in 0..12" "$exe" $cmd --depth "$d"
+  done
+done
+expect 0 "1 cases: 1 pass" "$exe" check --scheme mlca --edges 4..4 --tol 0.05 --depth 0
+for cmd in analyze sweep; do
+  expect 2 "subspectra $cmd: give exactly one of --scheme and --stencil" "$exe" $cmd --scheme mlca \
+    --stencil "$src/data/stencils/mlca.ini" --edge 4
+done
+
 expect_done "cli"
