@@ -45,7 +45,8 @@ static void overview(FILE *f) {
           SS_VERSION);
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
-  fprintf(f, "\n'subspectra COMMAND --help' describes a command.\n"
+  fprintf(f, "\n'subspectra COMMAND --help' describes a command; 'subspectra [COMMAND] "
+             "--version'\nprints the version.\n"
              "Exit status: 0 ran and everything checked holds, 1 ran and something "
              "checked fails,\n2 bad usage or bad input.\n");
 }
@@ -111,6 +112,13 @@ static int run(int argc, char **argv) {
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     if (!strcmp(argv[1], commands[i].name)) {
+      /* --version anywhere among a command's options, as every command's
+       * --help says: one place instead of one option per command */
+      for (int a = 2; a < argc && strcmp(argv[a], "--"); a++)
+        if (!strcmp(argv[a], "--version")) {
+          printf("subspectra %s\n", SS_VERSION);
+          return SS_EXIT_OK;
+        }
       const int rc = commands[i].run(argc - 1, argv + 1);
       flint_cleanup_master(); /* FLINT's caches (the exact path, --certify) */
       return rc;

@@ -161,4 +161,11 @@ for cmd in analyze sweep; do
     --stencil "$src/data/stencils/mlca.ini" --edge 4
 done
 
+# --version on every command (and before any)
+ver=$("$exe" --version)
+for cmd in analyze matrix draw enumerate subdivide limit check sweep merge report reproduce jsr; do
+  expect 0 "^$ver\$" "$exe" $cmd --version
+done
+expect 0 "^$ver\$" "$exe" analyze --scheme mlca --version
+
 expect_done "cli"
