@@ -255,6 +255,11 @@ ss_status ss_link_parse(const char *text, ss_link **out, ss_error *err) {
   *out = NULL;
   while (isspace((unsigned char)*text))
     text++;
+  /* plantri's default output is binary; only its ASCII form (-a) is a text */
+  if (!strncmp(text, ">>planar_code", 13))
+    return ss_error_set(err, SS_EINPUT,
+                        "this is plantri's binary planar_code (its default output): run "
+                        "plantri with -a to write links as ASCII text");
   if (isalpha((unsigned char)*text)) {
     char name[64];
     size_t n = strcspn(text, " \t\r\n");

@@ -161,6 +161,16 @@ for cmd in analyze sweep; do
     --stencil "$src/data/stencils/mlca.ini" --edge 4
 done
 
+# plantri's binary planar_code (its default output) is refused with the hint to use -a
+printf '>>planar_code<<\004\002\003\004\000\001\004\003\000' >"$tmp/pc.bin"
+for cmd in "analyze --scheme mlca --vertex -" "enumerate canonical"; do
+  checks=$((checks + 1))
+  out=$("$exe" $cmd <"$tmp/pc.bin" 2>&1)
+  rc=$?
+  [ $rc = 2 ] && grep -q "stdin:1: this is plantri's binary planar_code .*run plantri with -a" <<<"$out" ||
+    fail "$cmd on planar_code: status $rc, $out"
+done
+
 # --version on every command (and before any)
 ver=$("$exe" --version)
 for cmd in analyze matrix draw enumerate subdivide limit check sweep merge report reproduce jsr; do
