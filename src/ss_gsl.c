@@ -19,5 +19,5 @@ void ss_gsl_init(void) {
 
 gsl_spmatrix *ss_gsl_csr_alloc(size_t nrows, size_t ncols, size_t nnz) {
   ss_gsl_init();
-  return gsl_spmatrix_alloc_nzmax(nrows, ncols, nnz, GSL_SPMATRIX_CSR);
+  return gsl_spmatrix_alloc_nzmax(nrows, ncols, nnz ? nnz : 1, GSL_SPMATRIX_CSR);
 }

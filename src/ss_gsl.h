@@ -16,13 +16,12 @@
 #include <gsl/gsl_spmatrix.h>
 
 /* Make GSL's error handler safe for the library as described above.
- * Idempotent and thread-safe; called by the allocation below, and by nothing
- * else that needs it to be public. */
+ * Idempotent and thread-safe; the allocation below calls it first. */
 void ss_gsl_init(void);
 
-/* gsl_spmatrix_alloc_nzmax(nrows, ncols, nnz, GSL_SPMATRIX_CSR) (each must be
- * at least 1, as GSL requires) after ss_gsl_init: NULL when memory is short,
- * never an abort. */
+/* gsl_spmatrix_alloc_nzmax(nrows, ncols, max(nnz, 1), GSL_SPMATRIX_CSR) after
+ * ss_gsl_init (GSL wants room for one entry even in an empty matrix; nrows and
+ * ncols must be at least 1): NULL when memory is short, never an abort. */
 gsl_spmatrix *ss_gsl_csr_alloc(size_t nrows, size_t ncols, size_t nnz);
 
 #endif

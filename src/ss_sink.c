@@ -146,7 +146,7 @@ ss_status ss_triplets_csr(const ss_triplets *t, size_t nrows, size_t ncols,
     ptr[r] = start; /* bucket r is consumed; ptr[r] now starts CSR row r */
   }
   free(slot);
-  gsl_spmatrix *R = ss_gsl_csr_alloc(nrows, ncols ? ncols : 1, nnz ? nnz : 1);
+  gsl_spmatrix *R = ss_gsl_csr_alloc(nrows, ncols ? ncols : 1, nnz);
   if (!R) {
     free(ptr), free(col), free(w);
     return ss_error_nomem(err, "refinement operator");

@@ -148,7 +148,7 @@ ss_status ss_split_builder_finish(ss_split_builder *b, const ss_cx *coarse, ss_c
 ss_status ss_split_matrix(const ss_split *L, gsl_spmatrix **out, ss_error *err) {
   *out = NULL;
   size_t nnz = L->ptr[L->nfine];
-  gsl_spmatrix *M = ss_gsl_csr_alloc(L->nfine, L->ncoarse, nnz ? nnz : 1);
+  gsl_spmatrix *M = ss_gsl_csr_alloc(L->nfine, L->ncoarse, nnz);
   if (!M) return ss_error_nomem(err, "split matrix");
   for (size_t f = 0; f <= L->nfine; f++)
     M->p[f] = (int)L->ptr[f];
