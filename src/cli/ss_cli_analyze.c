@@ -87,8 +87,7 @@ static void help(const char *cmd) {
       "cases (exactly one):\n"
       "  --vertex LINK          a 3D vertex whose link is LINK: plantri ASCII\n"
       "                         ('4 bcd,adc,abd,acb') or a name (tetrahedron,\n"
-      "                         octahedron, icosahedron, bipyramid:N); '-' reads one\n"
-      "                         link per line on standard input%s\n"
+      "                         octahedron, icosahedron, bipyramid:N); '-' reads %s\n"
       "  --edge N               a point on an edge of valence N (3..1000)\n"
       "  --face                 a point inside the face of two tets (tet/oct split)\n"
       "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
@@ -99,7 +98,10 @@ static void help(const char *cmd) {
       "                         (Algorithm 2, default), or around the edge of\n"
       "                         --edge: skew (the same turn all round) or center\n"
       "                         (all toward the edge)\n",
-      m || d ? "" : " (one result\n                         per line)");
+      m || d
+          ? "the\n                         link from standard input (exactly one)"
+          : "one link per\n                         line on standard input (one result "
+            "per line)");
   if (m)
     printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "
            "2)\n"
@@ -339,9 +341,6 @@ static int parse(int argc, char **argv, opts *o) {
   if (o->ncase != 1)
     return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
                                       "--surface-vertex");
-  if ((m || d) && o->link && !strcmp(o->link, "-"))
-    return ss_cli_usage_error(o->cmd, "--vertex -: %s takes one link, not a stream",
-                              o->cmd);
   if (d && !o->out) return ss_cli_usage_error(o->cmd, "-o FILE is required");
   return 0;
 }
@@ -876,6 +875,40 @@ done:
   return rc;
 }
 
+/* matrix and draw write one case: `--vertex -` reads exactly one link from
+ * standard input, and refuses a second one before writing anything (a stream
+ * of results belongs to analyze). */
+static int one_case_stdin(const opts *o, const ss_scheme *s, int *header) {
+  char *line = NULL, *first = NULL;
+  size_t cap = 0;
+  long lineno = 0, firstline = 0;
+  int rc = SS_EXIT_USAGE;
+  char *p = ss_cli_next_item(stdin, &line, &cap, &lineno);
+  if (!p) {
+    fprintf(stderr, "subspectra %s: stdin: no links read\n", o->cmd);
+    goto done;
+  }
+  firstline = lineno;
+  if (!(first = strdup(p))) {
+    fprintf(stderr, "subspectra %s: out of memory\n", o->cmd);
+    goto done;
+  }
+  if (ss_cli_next_item(stdin, &line, &cap, &lineno)) {
+    fprintf(stderr,
+            "subspectra %s: stdin:%ld: a second link: %s writes one case (analyze "
+            "takes a stream of links)\n",
+            o->cmd, lineno, o->cmd);
+    goto done;
+  }
+  char where[48];
+  snprintf(where, sizeof where, "stdin:%ld: ", firstline);
+  rc = one_case(o, s, first, where, header);
+done:
+  free(first);
+  free(line);
+  return rc;
+}
+
 static int run(int argc, char **argv, const char *cmd) {
   opts o = {cmd,
             NULL,
@@ -913,7 +946,9 @@ static int run(int argc, char **argv, const char *cmd) {
     return SS_EXIT_USAGE;
   }
   int rc = SS_EXIT_OK, header = 0;
-  if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {
+  if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-") && strcmp(cmd, "analyze"))
+    rc = one_case_stdin(&o, s, &header);
+  else if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {
     char *line = NULL;
     size_t cap = 0;
     long lineno = 0, nread = 0;

@@ -165,7 +165,18 @@ expect_in 2 "unknown picture format" "" "$exe" draw --scheme mlca --edge 4 -o "$
 expect_in 2 "cannot" "" "$exe" draw --scheme mlca --edge 4 -o /nonexistent/dir/x.png
 expect_in 2 "--size" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --size 10x10
 expect_in 2 "--view" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --view 10
-expect_in 2 "takes one link" "" "$exe" draw --scheme mlca --vertex - -o "$tmp/x.png"
+# matrix and draw take exactly one link on standard input
+expect_in 2 "no links read" "" "$exe" draw --scheme mlca --vertex - -o "$tmp/x.png"
+expect_in 2 "stdin:3: a second link" "octahedron
+# a comment
+tetrahedron
+" "$exe" draw --scheme mlca --vertex - -o "$tmp/x.png"
+checks=$((checks + 1))
+[ -e "$tmp/x.png" ] && fail "draw wrote a picture for a stream of two links"
+checks=$((checks + 1))
+[ "$(printf '# one\n\n  octahedron  \n' | "$exe" matrix --scheme mlca --vertex -)" = \
+  "$("$exe" matrix --scheme mlca --vertex octahedron)" ] ||
+  fail "matrix --vertex - differs from the same link given by name"
 checks=$((checks + 1))
 [ -s "$tmp/t.png" ] && [ -s "$tmp/t.svg" ] && grep -q "^CELL_TYPES" "$tmp/t.vtk" || fail "draw outputs"
 rm -rf "$tmp"
