@@ -5,7 +5,8 @@
  * A reference file is UTF-8 text, one quoted value per line, ten fields
  * separated by tabs; lines starting with '#' and blank lines are comments:
  *
- *   paper      the paper's file name (papers/ of the shared folder)
+ *   paper      the name of the paper's text (the texts are not in the
+ *              repository; docs/references.bib cites the papers)
  *   location   table, figure, section or equation of the quote
  *   scheme     scheme name (ss_scheme.h): mlca, tetoct, boxspline, ...
  *   case       vertex, edge, face or surface-vertex

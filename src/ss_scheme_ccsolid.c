@@ -3,7 +3,7 @@
  * Catmull-Clark solids", UC Davis tech. rep. CSE-96-1, 1996; R. MacCracken,
  * K. I. Joy, "Free-form deformations with lattices of arbitrary topology",
  * SIGGRAPH 96), the scheme whose limit the direct-evaluation paper
- * (papers/direct-limit-volumes-catmull-clark-solids.txt) evaluates.
+ * (altenhofen2018direct in docs/references.bib) evaluates.
  *
  * On the multilinear split of a hex mesh, with every average taken over the
  * coarse complex and every count read from it (never typed per topology):
