@@ -10,7 +10,8 @@
 #  2. docs/DESIGN.md names, in backquotes, a repository path that does not exist
 #     (a span that looks like a path: no spaces, and a '/' or a file extension;
 #     globs must match something; placeholders in capitals such as DIR/NAME.md
-#     or FILE.png are skipped), or links (markdown) to a file that does not exist;
+#     or FILE.png are skipped), or links (markdown) to a file that does not
+#     exist or to a heading a Markdown file does not have;
 #  3. a file cites "DESIGN section N" for a section docs/DESIGN.md does not have.
 #
 # Before checking SRCDIR it checks itself on two small trees, one clean and one
@@ -31,6 +32,14 @@ list_files() {
     (cd "$1" && find . -path ./.git -prune -o -path './build*' -prune -o -type f -print |
       sed 's|^\./||')
   fi
+}
+
+# anchors FILE.md: the anchors of its headings as GitHub makes them (lower
+# case; letters, digits, spaces, '-' and '_' kept, spaces turned into '-'; this
+# drops non-ASCII letters too, which the project's headings do not use).
+anchors() {
+  grep -E '^#{1,6} ' "$1" | sed -E 's/^#+ +//' | tr '[:upper:]' '[:lower:]' |
+    LC_ALL=C sed 's/[^a-z0-9 _-]//g; s/ /-/g'
 }
 
 # check_tree DIR: print one line per fault; return 1 if there was any.
@@ -81,10 +90,14 @@ check_tree() {
     done < <(grep -o '`[^`]*`' "$design" | tr -d '`' | sort -u)
     while IFS= read -r span; do
       p=${span%%#*}
-      [ -z "$p" ] && continue
       [[ "$p" =~ ^[a-z]+: ]] && continue # http:, https:, mailto:
+      [ -z "$p" ] && p=DESIGN.md
       if [ ! -e "$root/docs/$p" ]; then
         echo "docs/DESIGN.md links to $span, which does not exist"
+        bad=1
+      elif [[ "$span" == *'#'* && "$p" == *.md ]] &&
+        ! anchors "$root/docs/$p" | grep -q -x -F "${span#*#}"; then
+        echo "docs/DESIGN.md links to $span: $p has no such heading"
         bad=1
       fi
     done < <(grep -o '\]([^)]*)' "$design" | sed 's/^\](//; s/)$//' | sort -u)
@@ -110,13 +123,13 @@ self_test() {
   local t out status=0
   t=$(mktemp -d) || return 1
   mkdir -p "$t/good/docs" "$t/good/src" "$t/bad/docs" "$t/bad/src"
-  printf '# D\n## 1. One\nSee `src/a.c`, `src/*.c`, `a.c`, `DIR/NAME.md`, `1/2`, [r](../README.md#x).\n' \
+  printf '# D\n## 1. One\nSee `src/a.c`, `src/*.c`, `a.c`, `DIR/NAME.md`, `1/2`, [r](../README.md#the-x-y).\n' \
     >"$t/good/docs/DESIGN.md"
   printf '/* a.c (DESIGN section 1) */\n' >"$t/good/src/a.c"
-  echo readme >"$t/good/README.md"
+  printf '# R\n## The `x` (y)\n' >"$t/good/README.md"
   cp -r "$t/good/." "$t/bad/"
   printf '/* b.c: see %s (DESIGN sections 1 and 7) */\n' "/wo""rk/shared/x" >"$t/bad/src/b.c"
-  printf 'See `src/missing.c`, `data/*.tsv` and [m](../MISSING.md).\n' >>"$t/bad/docs/DESIGN.md"
+  printf 'See `src/missing.c`, `data/*.tsv` and [m](../MISSING.md), [z](../README.md#zz).\n' >>"$t/bad/docs/DESIGN.md"
   if ! out=$(check_tree "$t/good"); then
     echo "self-test: a clean tree was refused:"
     echo "$out"
@@ -126,7 +139,7 @@ self_test() {
     echo "self-test: a tree with faults passed"
     status=1
   }
-  for want in "outside path: src/b.c" "src/missing.c" "data/\*.tsv" "MISSING.md" \
+  for want in "outside path: src/b.c" "src/missing.c" "data/\*.tsv" "MISSING.md" "README.md#zz: ../README.md has no such heading" \
     "DESIGN section 7"; do
     if ! grep -q "$want" <<<"$out"; then
       echo "self-test: the fault '$want' was not found; the checker said:"
