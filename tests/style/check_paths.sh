@@ -34,6 +34,16 @@ list_files() {
   fi
 }
 
+# in_files ROOT FILES COMMAND...: run COMMAND on those of FILES (one per line,
+# relative to ROOT) that are regular files, from ROOT, as few times as xargs can.
+in_files() {
+  local root=$1 files=$2
+  shift 2
+  (cd "$root" && while IFS= read -r f; do
+    [ -f "$f" ] && printf '%s\0' "$f"
+  done <<<"$files" | xargs -0 -r "$@" 2>/dev/null)
+}
+
 # anchors FILE.md: the anchors of its headings as GitHub makes them (lower
 # case; letters, digits, spaces, '-' and '_' kept, spaces turned into '-'; this
 # drops non-ASCII letters too, which the project's headings do not use).
@@ -47,14 +57,11 @@ check_tree() {
   local root=$1 bad=0 files f span p n line
   files=$(list_files "$root" | sort)
 
-  # 1. paths outside the repository
-  while IFS= read -r f; do
-    [ -f "$root/$f" ] || continue
-    while IFS= read -r line; do
-      echo "outside path: $f:$line"
-      bad=1
-    done < <(grep -I -n -E "$outside_re" "$root/$f" 2>/dev/null | cut -c1-160)
-  done <<<"$files"
+  # 1. paths outside the repository (one grep over all files: FILE:LINE:text)
+  while IFS= read -r line; do
+    echo "outside path: $line"
+    bad=1
+  done < <(in_files "$root" "$files" grep -I -n -H -E "$outside_re" | cut -c1-160)
 
   # 2. paths and links in docs/DESIGN.md
   local design="$root/docs/DESIGN.md"
@@ -110,10 +117,8 @@ check_tree() {
         echo "DESIGN section $n is cited but docs/DESIGN.md has no section $n"
         bad=1
       fi
-    done < <(while IFS= read -r f; do
-      [ -f "$root/$f" ] && grep -I -o -h -E 'DESIGN sections? [0-9]+((, | and )[0-9]+)*' \
-        "$root/$f" 2>/dev/null
-    done <<<"$files" | grep -o -E '[0-9]+' | sort -un)
+    done < <(in_files "$root" "$files" grep -I -o -h -E \
+      'DESIGN sections? [0-9]+((, | and )[0-9]+)*' | grep -o -E '[0-9]+' | sort -un)
   fi
   return $bad
 }
