@@ -14,6 +14,7 @@
 #include "ss_certify.h"
 #include "ss_charmap.h"
 #include "ss_cli.h"
+#include "ss_cli_eigvec.h"
 #include "ss_eig.h"
 #include "ss_link.h"
 #include "ss_local.h"
@@ -46,6 +47,9 @@ typedef struct {
   int force;                /* draw --force: a map even when the condition fails */
   double max_memory;        /* --max-memory in bytes, 0: the default budget */
   int progress;             /* --progress: progress lines on stderr */
+  int nvec;                 /* --eigenvectors K: export the K leading eigenpairs
+                               (analyze: JSON; matrix: Matrix Market); 0: none */
+  int left;                 /* matrix --left: the left eigenvectors */
 } opts;
 
 static void help(const char *cmd) {
@@ -107,7 +111,16 @@ static void help(const char *cmd) {
            "2)\n"
            "  --format mtx           Matrix Market (the only format)\n"
            "  -o FILE                write to FILE instead of standard output (whole or\n"
-           "                         not at all: an old FILE stays if writing fails)\n");
+           "                         not at all: an old FILE stays if writing fails)\n"
+           "  --eigenvectors K       instead of S (or A with --ring 1): the right\n"
+           "                         eigenvectors of its K leading eigenvalues, a dense\n"
+           "                         Matrix Market array, one column each (a conjugate\n"
+           "                         pair or a tie cut by K is kept whole; maximum\n"
+           "                         modulus 1, that entry positive)\n"
+           "  --left                 with --eigenvectors: the left eigenvectors instead\n"
+           "                         (l^T S = lambda l^T, L^T R = I within a tie): the\n"
+           "                         first is the limit-position mask, the next the\n"
+           "                         tangent masks\n");
   else
     printf(
         "  --tol T                relative tolerance for equal eigenvalues (default "
@@ -125,6 +138,16 @@ static void help(const char *cmd) {
         "                         interval arithmetic; what cannot be proven becomes\n"
         "                         undecided (\"not certified: ...\")\n",
         SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels);
+  if (!m && !d)
+    printf(
+        "  --eigenvectors K       with --format json: the right and left eigenvectors\n"
+        "                         of the K leading eigenvalues of S (key\n"
+        "                         \"eigenvectors\"; ties and conjugate pairs cut by K\n"
+        "                         kept whole) and, when the eigenvalue condition\n"
+        "                         holds, the limit masks: the limit-position mask\n"
+        "                         (left eigenvector of lambda0 = 1, summing to 1) and\n"
+        "                         the tangent masks (left eigenvectors of the\n"
+        "                         subdominant eigenvalues, L^T R = I within a tie)\n");
   if (d)
     printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk (whole\n"
            "                         or not at all: an old FILE stays if writing fails)\n"
@@ -180,7 +203,9 @@ static int parse(int argc, char **argv, opts *o) {
     O_RINGS,
     O_CERTIFY,
     O_MAXMEM,
-    O_PROGRESS
+    O_PROGRESS,
+    O_EIGVEC,
+    O_LEFT
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -201,6 +226,8 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"certify", no_argument, 0, O_CERTIFY},
                                      {"max-memory", required_argument, 0, O_MAXMEM},
                                      {"progress", no_argument, 0, O_PROGRESS},
+                                     {"eigenvectors", required_argument, 0, O_EIGVEC},
+                                     {"left", no_argument, 0, O_LEFT},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -280,6 +307,19 @@ static int parse(int argc, char **argv, opts *o) {
       if (ss_cli_opt_depth(o->cmd, optarg, &v)) return SS_EXIT_USAGE;
       o->depth = (int)v;
       break;
+    case O_EIGVEC:
+      if (d || ss_cli_parse_int(optarg, 1, 1000000, &v))
+        return ss_cli_usage_error(o->cmd,
+                                  d ? "--eigenvectors is an option of analyze and matrix"
+                                    : "--eigenvectors: expected a positive integer, not "
+                                      "'%s'",
+                                  optarg);
+      o->nvec = (int)v;
+      break;
+    case O_LEFT:
+      if (!m) return ss_cli_usage_error(o->cmd, "--left is an option of matrix");
+      o->left = 1;
+      break;
     case O_CERTIFY:
       if (m || d) return ss_cli_usage_error(o->cmd, "--certify is an option of analyze");
       o->certify = 1;
@@ -342,6 +382,12 @@ static int parse(int argc, char **argv, opts *o) {
     return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
                                       "--surface-vertex");
   if (d && !o->out) return ss_cli_usage_error(o->cmd, "-o FILE is required");
+  if (o->left && !o->nvec)
+    return ss_cli_usage_error(o->cmd, "--left needs --eigenvectors K");
+  if (o->nvec && !m && !d && o->format != FMT_JSON)
+    return ss_cli_usage_error(o->cmd,
+                              "--eigenvectors: analyze writes them with --format "
+                              "json (matrix --eigenvectors writes Matrix Market)");
   return 0;
 }
 
@@ -420,7 +466,7 @@ static json_object *regularity_json(const ss_regularity *reg) {
 static void print_json(const opts *o, const char *scheme, const char *canon, int k,
                        const ss_local *M, const ss_eig *e, const ss_regularity *reg,
                        const ss_charmap_inj *inj, const diag_info *di,
-                       const cert_info *ci) {
+                       const cert_info *ci, json_object *eigvec) {
   json_object *r = json_object_new_object();
   json_object_object_add(r, "scheme", json_object_new_string(scheme));
   json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
@@ -489,6 +535,7 @@ static void print_json(const opts *o, const char *scheme, const char *canon, int
   json_object_object_add(in, "degree", json_object_new_int(inj->degree));
   json_object_object_add(in, "overlaps", json_object_new_int64((int64_t)inj->overlaps));
   json_object_object_add(r, "injectivity", in);
+  if (eigvec) json_object_object_add(r, "eigenvectors", eigvec);
   printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
                                                        JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(r);
@@ -615,10 +662,9 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
 }
 
 static void print_label(FILE *f, const ss_star_coord *c) {
-  fputc('(', f);
-  for (int i = 0; i < c->n; i++)
-    fprintf(f, "%s%d:%d", i ? " " : "", c->idx[i], c->val[i]);
-  fputc(')', f);
+  char buf[256];
+  ss_cli_label_text(c, buf, sizeof buf);
+  fputs(buf, f);
 }
 
 static int write_mtx(const opts *o, const char *scheme, const char *canon,
@@ -662,6 +708,74 @@ static int write_mtx(const opts *o, const char *scheme, const char *canon,
         fprintf(f, "%zu %zu %.17g\n", i + 1, j + 1, M->S[i * M->n2 + j]);
   if (ss_outfile_commit(out, &err)) return ss_cli_fail(&err);
   return SS_EXIT_OK;
+}
+
+/* The K leading eigenpairs of S, or of A with --ring 1 (ss_eigvec); NULL
+ * after saying why. */
+static ss_eigvec *eigvec_of(const opts *o, const ss_local *M, size_t n,
+                            const char *where) {
+  ss_error err = {0};
+  ss_eigvec *v = NULL;
+  double *A = NULL;
+  if ((size_t)o->nvec > n) {
+    fprintf(stderr, "subspectra %s: %s--eigenvectors %d: the matrix has only %zu rows\n",
+            o->cmd, where, o->nvec, n);
+    return NULL;
+  }
+  if (n != M->n2) { /* the one-ring block, contiguous */
+    if (!(A = malloc(n * n * sizeof *A))) {
+      fprintf(stderr, "subspectra %s: out of memory\n", o->cmd);
+      return NULL;
+    }
+    for (size_t i = 0; i < n; i++)
+      memcpy(A + i * n, M->S + i * M->n2, n * sizeof *A);
+  }
+  if (ss_eigvec_new(A ? A : M->S, n, o->nvec, o->tol, &v, &err))
+    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
+  free(A);
+  return v;
+}
+
+static int write_eigvec_mtx(const opts *o, const char *scheme, const char *canon,
+                            const ss_local *M) {
+  const size_t n = o->ring == 1 ? M->n1 : M->n2;
+  ss_eigvec *v = eigvec_of(o, M, n, "");
+  if (!v) return SS_EXIT_USAGE;
+  ss_outfile *out = NULL;
+  ss_error err = {0};
+  if (o->out && ss_outfile_open(o->out, &out, &err)) {
+    ss_eigvec_free(v);
+    return ss_cli_fail(&err);
+  }
+  char head[256], buf[32];
+  snprintf(head, sizeof head,
+           "%% subspectra local subdivision matrix: scheme %s, %s case %s, %s", scheme,
+           ss_case_name(o->kind), param_text(o, canon, buf, sizeof buf),
+           o->ring == 1 ? "one-ring block A" : "whole two-ring S");
+  ss_cli_eigvec_mtx(out ? ss_outfile_file(out) : stdout, v, M, o->left, head);
+  ss_eigvec_free(v);
+  if (ss_outfile_commit(out, &err)) return ss_cli_fail(&err);
+  return SS_EXIT_OK;
+}
+
+/* analyze's "eigenvectors" object: 0, or the exit status after saying why
+ * not.  The limit masks need the eigenvalue condition (cond). */
+static int eigvec_json(const opts *o, const ss_local *M, const ss_eig *e,
+                       const ss_verdict *cond, const char *where, json_object **out) {
+  ss_eigvec *v = eigvec_of(o, M, M->n2, where);
+  if (!v) return SS_EXIT_USAGE;
+  const int limit = ss_eigvec_has_limit(v, e->tol);
+  const int ok = cond->verdict == SS_PASS && limit;
+  *out = ss_cli_eigvec_json(v, M, M->dim, ok,
+                            !limit ? "lambda0 = 1 is not simple with a constant "
+                                     "eigenvector"
+                                   : "the eigenvalue condition does not hold");
+  ss_eigvec_free(v);
+  if (!*out) {
+    fprintf(stderr, "subspectra %s: out of memory\n", o->cmd);
+    return SS_EXIT_USAGE;
+  }
+  return 0;
 }
 
 /* ---- one case ---- */
@@ -779,6 +893,10 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     ss_star_free(star);
     di.shown = 1;
   }
+  if (o->format == FMT_MTX && o->nvec) {
+    rc = write_eigvec_mtx(o, ss_scheme_name(s), canon ? canon : "", M);
+    goto done;
+  }
   if (o->format == FMT_MTX) {
     rc = write_mtx(o, ss_scheme_name(s), canon ? canon : "", M, &di);
     goto done;
@@ -854,9 +972,12 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
             ss_verdict_name(reg.verdict.verdict), reg.verdict.reason[0] ? ": " : "",
             reg.verdict.reason);
     if (forced) rc = SS_EXIT_FAIL;
-  } else if (o->format == FMT_JSON)
-    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci);
-  else if (o->format == FMT_TSV)
+  } else if (o->format == FMT_JSON) {
+    json_object *evj = NULL;
+    if (o->nvec && (rc = eigvec_json(o, M, e, &ci.c.cond, where, &evj))) goto done;
+    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci,
+               evj);
+  } else if (o->format == FMT_TSV)
     print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, &inj, &ci,
               (*header)++ == 0);
   else
@@ -929,6 +1050,8 @@ static int run(int argc, char **argv, const char *cmd) {
             SS_DIAG_BFS,
             0,
             0.0,
+            0,
+            0,
             0};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
   int r = parse(argc, argv, &o);

@@ -212,6 +212,52 @@ assert abs(sum(e["re"] for e in ev) - trace) < 1e-9, (trace, sum(e["re"] for e i
 PY
 expect_in 0 "^9 9 " "" "$exe" matrix --scheme mlca --surface-vertex 4 --ring 1
 
+# Eigenvectors (issue 21): SciPy reads the Matrix Market arrays; with S they
+# satisfy S R = R diag(lambda), L^T S = diag(lambda) L^T and L^T R = I (the
+# lambda0 and the tied lambda1 = lambda2 groups); analyze's JSON carries the
+# same vectors and the limit masks; MLCA's edge 4 is the tensor product of
+# cubic B-splines, whose limit-position mask at a vertex is 1/6 (1, 4, 1):
+# here the centre's weight is (4/6)^3 = 8/27 (derived, not read off a run).
+edir=$(mktemp -d)
+"$exe" matrix --scheme catmull-clark --surface-vertex 5 -o "$edir/S.mtx"
+"$exe" matrix --scheme catmull-clark --surface-vertex 5 --eigenvectors 3 -o "$edir/R.mtx"
+"$exe" matrix --scheme catmull-clark --surface-vertex 5 --eigenvectors 3 --left -o "$edir/L.mtx"
+"$exe" analyze --scheme catmull-clark --surface-vertex 5 --eigenvectors 3 --format json >"$edir/a.json"
+"$exe" analyze --scheme mlca --edge 4 --eigenvectors 4 --format json >"$edir/e4.json"
+"$exe" analyze --scheme mlca --edge 4 --eigenvectors 1 --format json >"$edir/e1.json"
+checks=$((checks + 1))
+/usr/bin/python3 - "$edir" <<'PY' || fail "eigenvector export (SciPy)"
+import json, sys
+import numpy as np
+from scipy.io import mmread
+d = sys.argv[1]
+S = mmread(d + "/S.mtx").toarray()
+R = np.asarray(mmread(d + "/R.mtx"))
+L = np.asarray(mmread(d + "/L.mtx"))
+a = json.load(open(d + "/a.json"))["eigenvectors"]
+lam = np.array([e["re"] for e in a["eigenvalues"]])
+assert R.shape == L.shape == (31, 3), (R.shape, L.shape)
+assert np.abs(S @ R - R * lam).max() < 1e-13, np.abs(S @ R - R * lam).max()
+assert np.abs(L.T @ S - lam[:, None] * L.T).max() < 1e-13
+assert np.abs(L.T @ R - np.eye(3)).max() < 1e-12, L.T @ R
+assert np.array_equal(R, np.array(a["right"]).T) and np.array_equal(L, np.array(a["left"]).T)
+m = a["limit_masks"]
+assert np.array_equal(np.array(m["position"]), L[:, 0]) and abs(sum(m["position"]) - 1) < 1e-14
+assert np.array_equal(np.array(m["tangent"]), L[:, 1:].T) and len(a["points"]) == 31
+e4 = json.load(open(d + "/e4.json"))["eigenvectors"]
+assert e4["points"][0] == "()" and abs(e4["limit_masks"]["position"][0] - 8 / 27) < 1e-14, e4["limit_masks"]
+e1 = json.load(open(d + "/e1.json"))["eigenvectors"]
+assert e1["k"] == 1 and e1["limit_masks"] is None, e1["limit_masks"]
+assert e1["limit_masks_reason"] == "the masks need --eigenvectors 4 or more", e1
+PY
+rm -rf "$edir"
+expect_in 2 "analyze writes them with --format json" "" "$exe" analyze --scheme loop --surface-vertex 5 --eigenvectors 2
+expect_in 2 "--eigenvectors: expected a positive integer" "" "$exe" matrix --scheme loop --surface-vertex 5 --eigenvectors 0
+expect_in 2 "--eigenvectors 11: the matrix has only 10 rows" "" "$exe" matrix --scheme loop --surface-vertex 3 --eigenvectors 11
+expect_in 2 "--left needs --eigenvectors K" "" "$exe" matrix --scheme loop --surface-vertex 3 --left
+expect_in 2 "--left is an option of matrix" "" "$exe" analyze --scheme loop --surface-vertex 3 --left
+expect_in 2 "--eigenvectors is an option of analyze and matrix" "" "$exe" draw --scheme loop --surface-vertex 3 --eigenvectors 2 -o "$tmp/x.png"
+
 # a tolerance below the eigenvalues' rounding error is raised to it and says so
 # (at 1e-15 the computed lambda0 = 1 - 1.1e-15 "was not 1"); JSON carries both
 expect_in 0 "eigenvalue condition: pass \(equal within relative tolerance [0-9.]*e-1[0-4]: the requested 1.0e-15 is below the eigenvalues. rounding error bound\)" "" "$exe" analyze --scheme mlca --vertex octahedron --tol 1e-15
