@@ -88,6 +88,21 @@ static int exec(ss_store *st, const char *sql) {
   return sqlite3_exec(st->db, sql, NULL, NULL, NULL);
 }
 
+/* exec, retried while the database is busy, up to about ms milliseconds.
+ * Switching to WAL needs an exclusive lock, and where two connections would
+ * deadlock on a lock upgrade SQLite returns SQLITE_BUSY at once without
+ * calling the busy handler (seen when several sweeps create one store at
+ * once on a loaded machine): so wait here, 10 ms at a time. */
+static int exec_retry(ss_store *st, const char *sql, int ms) {
+  int rc;
+  const struct timespec pause = {0, 10 * 1000 * 1000};
+  for (int waited = 0;; waited += 10) {
+    rc = exec(st, sql);
+    if ((rc != SQLITE_BUSY && rc != SQLITE_LOCKED) || waited >= ms) return rc;
+    nanosleep(&pause, NULL);
+  }
+}
+
 /* One integer from a one-row query; -1 on error. */
 static int64_t query_int(ss_store *st, const char *sql, int *rc) {
   sqlite3_stmt *q = NULL;
@@ -339,7 +354,7 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
     /* WAL: readers never block the writer, and a killed writer leaves a log
      * that the next open replays; NORMAL syncs at checkpoints, enough
      * against a process being killed (not against power loss). */
-    if (exec(st, "PRAGMA journal_mode=WAL") != SQLITE_OK ||
+    if (exec_retry(st, "PRAGMA journal_mode=WAL", 30000) != SQLITE_OK ||
         exec(st, "PRAGMA synchronous=NORMAL") != SQLITE_OK) {
       s = db_error(st, err, "cannot set the journal mode");
       goto fail;
