@@ -448,39 +448,87 @@ static void tex_caption_tol(FILE *f, const ss_report_row *rows, size_t n) {
   }
 }
 
-static void tex_cases(FILE *f, const ss_report_row *rows, size_t n) {
-  const int diag = any_diag(rows, n);
-  fputs("\\begin{table}[htbp]\n\\centering\n\\scriptsize\n", f);
-  fprintf(f, "\\begin{tabular}{llrrlrrrrlp{3.6cm}p{3.6cm}r%s}\n\\toprule\n",
+/* A link in \texttt, breakable after each comma (a k = 9 link is 60
+ * characters: it has to wrap in its column). */
+static void tex_link(FILE *f, const char *link) {
+  fputs("\\texttt{", f);
+  char one[2] = {0, 0};
+  for (const char *p = link; *p; p++) {
+    one[0] = *p;
+    tex_put(f, one);
+    if (*p == ',') fputs("\\allowbreak{}", f);
+  }
+  fputs("}", f);
+}
+
+/* The cases table as a longtable (it runs over pages; the header repeats),
+ * \\scriptsize with narrow column gaps.  Each case is one line of numbers
+ * and verdicts, followed by a full-width line with what is long — the link
+ * and the verdicts' reasons — so that the table fits \\linewidth of a
+ * one-column article (checked with pdflatex in
+ * tests/reports/test_report_tex.sh). */
+/* A verdict in a narrow column: "undecided" is shortened (the caption says so). */
+static const char *tex_verdict(ss_verdict_kind v) {
+  return v == SS_UNDECIDED ? "undec." : ss_verdict_name(v);
+}
+
+static void tex_cases(FILE *f, const ss_report_row *rows, size_t n, const char *label) {
+  /* one scheme: named in the caption instead of a column */
+  int one = n > 0;
+  for (size_t i = 1; i < n && one; i++)
+    one = !strcmp(rows[i].scheme, rows[0].scheme);
+  const int diag = any_diag(rows, n), ncol = 11 + diag + !one;
+  const char *head = "case & $k$ & cells & $\\lambda_1$ & $\\lambda_2$ & "
+                     "$\\lambda_3$ & $\\lambda_4$ & mult. & eig.\\ cond. & "
+                     "regularity & min.\\ SJ";
+  fputs("{\\scriptsize\n\\setlength{\\tabcolsep}{2pt}\n", f);
+  fprintf(f, "\\begin{longtable}{@{}%slrrrrrrlllr%s@{}}\n", one ? "" : "l",
           diag ? "r" : "");
-  fputs("scheme & case & $k$ & cells & link & $\\lambda_1$ & $\\lambda_2$ & "
-        "$\\lambda_3$ & $\\lambda_4$ & mult. & eigenvalue condition & regularity & "
-        "min.\\ SJ",
+  fputs("\\caption{", f);
+  if (one) {
+    fputs("Scheme \\texttt{", f);
+    tex_put(f, rows[0].scheme);
+    fputs("}.  ", f);
+  }
+  fputs("Cases: leading eigenvalues "
+        "$\\lambda_1,\\dots,\\lambda_4$ of the local subdivision matrix on the "
+        "two-ring, by decreasing modulus, with multiplicities (",
         f);
-  fputs(diag ? " & improper \\\\\n\\midrule\n" : " \\\\\n\\midrule\n", f);
+  tex_caption_tol(f, rows, n);
+  fputs("); verdicts of the eigenvalue condition and of the regularity of the "
+        "characteristic map; minimum scaled Jacobian (--: no map)",
+        f);
+  fputs(diag ? "; improper pairs of major diagonals among adjacent cell pairs (impr.)"
+             : "",
+        f);
+  fputs(".  Below each case: its link (vertex cases) and the reasons of verdicts "
+        "that do not pass (undec.: undecided).}",
+        f);
+  fprintf(f,
+          "\\label{tab:%s-cases}\\\\\n\\toprule\n%s%s%s\\\\\n\\midrule\n"
+          "\\endfirsthead\n",
+          label, one ? "" : "scheme & ", head, diag ? " & impr." : "");
+  fprintf(f,
+          "\\multicolumn{%d}{@{}l}{\\tablename~\\thetable{} (continued)}\\\\\n"
+          "\\toprule\n%s%s%s\\\\\n\\midrule\n\\endhead\n\\bottomrule\n\\endfoot\n",
+          ncol, one ? "" : "scheme & ", head, diag ? " & impr." : "");
   char buf[600];
   for (size_t i = 0; i < n; i++) {
     const ss_result *r = &rows[i].r;
-    tex_put(f, rows[i].scheme);
-    fprintf(f, " & %s & ", ss_case_name(r->kind));
-    fmt_k(buf, sizeof buf, r, "--");
-    fprintf(f, "%s & %zu & ", buf, r->cells);
-    if (r->link[0]) {
-      fputs("\\texttt{", f);
-      tex_put(f, r->link);
-      fputs("}", f);
+    if (!one) {
+      tex_put(f, rows[i].scheme);
+      fputs(" & ", f);
     }
+    fprintf(f, "%s & ", ss_case_name(r->kind));
+    fmt_k(buf, sizeof buf, r, "--");
+    fprintf(f, "%s & %zu", buf, r->cells);
     for (int j = 1; j <= NLAMBDA; j++) {
       fmt_lambda(buf, sizeof buf, r, j, 1);
       fprintf(f, " & %s", buf);
     }
     fmt_mult(buf, sizeof buf, r);
-    fprintf(f, " & %s & ", buf);
-    fmt_verdict(buf, sizeof buf, &r->cond);
-    tex_put(f, buf);
-    fputs(" & ", f);
-    fmt_verdict(buf, sizeof buf, &r->reg);
-    tex_put(f, buf);
+    fprintf(f, " & %s & %s & %s", buf, tex_verdict(r->cond.verdict),
+            tex_verdict(r->reg.verdict));
     fmt_short(buf, sizeof buf, r->min_sj, 1, "--");
     fprintf(f, " & %s", buf);
     if (diag) {
@@ -490,28 +538,50 @@ static void tex_cases(FILE *f, const ss_report_row *rows, size_t n) {
         fputs(" & --", f);
     }
     fputs(" \\\\\n", f);
+    if (!r->link[0] && !r->cond.reason[0] && !r->reg.reason[0]) continue;
+    fprintf(f, "\\multicolumn{%d}{@{\\quad}p{\\dimexpr\\linewidth-1em\\relax}@{}}{",
+            ncol);
+    const char *sep = "";
+    if (r->link[0]) {
+      fputs("link ", f);
+      tex_link(f, r->link);
+      sep = "; ";
+    }
+    if (r->cond.reason[0]) {
+      fprintf(f, "%seigenvalue condition: ", sep);
+      tex_put(f, r->cond.reason);
+      sep = "; ";
+    }
+    if (r->reg.reason[0]) {
+      fprintf(f, "%sregularity: ", sep);
+      tex_put(f, r->reg.reason);
+    }
+    fputs("} \\\\[2pt]\n", f);
   }
-  fputs("\\bottomrule\n\\end{tabular}\n\\caption{Cases: leading eigenvalues "
-        "$\\lambda_1,\\dots,\\lambda_4$ of the local subdivision matrix on the "
-        "two-ring, by decreasing modulus, with multiplicities (",
-        f);
-  tex_caption_tol(f, rows, n);
-  fputs("); verdicts of the eigenvalue condition and of the regularity of the "
-        "characteristic map; minimum scaled Jacobian (--: no map)",
-        f);
-  fputs(diag ? "; improper pairs of major diagonals among adjacent cell pairs.}\n"
-             : ".}\n",
-        f);
-  fputs("\\end{table}\n", f);
+  fputs("\\end{longtable}\n}\n", f);
 }
 
+/* The summary, a longtable as well (a sweep over many k is longer than a
+ * page); the scheme identity (with its options) wraps in its column. */
 static void tex_summary(FILE *f, const ss_report_summary *s, size_t ns,
-                        const ss_report_row *rows, size_t n) {
-  fputs("\\begin{table}[htbp]\n\\centering\n\\small\n"
-        "\\begin{tabular}{llrrrrrrl}\n\\toprule\n"
-        "scheme identity & case & $k$ & cases & pass & fail & undecided & "
-        "worst min.\\ SJ & $|\\lambda_1|$ \\\\\n\\midrule\n",
+                        const ss_report_row *rows, size_t n, const char *label) {
+  const char *head = "scheme identity & case & $k$ & cases & pass & fail & undec. & "
+                     "min.\\ SJ & $|\\lambda_1|$ \\\\\n\\midrule\n";
+  fputs("{\\footnotesize\n\\setlength{\\tabcolsep}{3pt}\n"
+        "\\begin{longtable}{@{}>{\\raggedright\\arraybackslash}p{0.22\\linewidth}"
+        "lrrrrrrl@{}}\n"
+        "\\caption{Summary per scheme, case and $k$ "
+        "(vertex: link vertices; edge: valence): cases that pass both the eigenvalue "
+        "condition and regularity, that fail either, or are undecided (undec.); the "
+        "worst minimum scaled Jacobian (min.\\ SJ) and the range of $|\\lambda_1|$ (",
         f);
+  tex_caption_tol(f, rows, n);
+  fprintf(f, ").}\\label{tab:%s-summary}\\\\\n\\toprule\n%s\\endfirsthead\n", label,
+          head);
+  fprintf(f,
+          "\\multicolumn{9}{@{}l}{\\tablename~\\thetable{} (continued)}\\\\\n"
+          "\\toprule\n%s\\endhead\n\\bottomrule\n\\endfoot\n",
+          head);
   char buf[128];
   for (size_t i = 0; i < ns; i++) {
     const ss_report_summary *g = &s[i];
@@ -537,13 +607,7 @@ static void tex_summary(FILE *f, const ss_report_summary *s, size_t ns,
     }
     fputs(" \\\\\n", f);
   }
-  fputs("\\bottomrule\n\\end{tabular}\n\\caption{Summary per scheme, case and $k$ "
-        "(vertex: link vertices; edge: valence): cases that pass both the eigenvalue "
-        "condition and regularity, that fail either, or are undecided; the smallest "
-        "minimum scaled Jacobian and the range of $|\\lambda_1|$ (",
-        f);
-  tex_caption_tol(f, rows, n);
-  fputs(").}\n\\end{table}\n", f);
+  fputs("\\end{longtable}\n}\n", f);
 }
 
 /* ---- CSV ---- */
@@ -739,7 +803,8 @@ static ss_status write_json(FILE *f, unsigned tables, const ss_report_row *rows,
 
 ss_status ss_report_table_write(FILE *f, ss_report_format fmt, unsigned tables,
                                 const ss_report_row *rows, size_t n,
-                                const ss_report_summary *sum, size_t ns, ss_error *err) {
+                                const ss_report_summary *sum, size_t ns,
+                                const char *label, ss_error *err) {
   tables &= SS_REPORT_BOTH;
   if (!tables) return ss_error_set(err, SS_EINPUT, "report: no table chosen");
   if (fmt == SS_REPORT_CSV && tables == SS_REPORT_BOTH)
@@ -764,9 +829,10 @@ ss_status ss_report_table_write(FILE *f, ss_report_format fmt, unsigned tables,
             n ? tol : "", n ? " are grouped (mult.)" : " (mult.)");
     break;
   case SS_REPORT_TEX:
-    fputs("% subspectra report: needs \\usepackage{booktabs}\n", f);
-    if (tables & SS_REPORT_CASES) tex_cases(f, rows, n);
-    if (tables & SS_REPORT_SUMMARY) tex_summary(f, sum, ns, rows, n);
+    if (!label) label = "subspectra";
+    fputs("% subspectra report: needs \\usepackage{booktabs,longtable,array}\n", f);
+    if (tables & SS_REPORT_CASES) tex_cases(f, rows, n, label);
+    if (tables & SS_REPORT_SUMMARY) tex_summary(f, sum, ns, rows, n, label);
     break;
   case SS_REPORT_CSV:
     if (tables & SS_REPORT_CASES)

@@ -64,7 +64,7 @@ typedef struct {
 typedef enum {
   SS_REPORT_MD = 0, /* GitHub Markdown */
   SS_REPORT_CSV,    /* RFC 4180: CRLF line ends, quoted when needed */
-  SS_REPORT_TEX,    /* LaTeX table floats with booktabs rules */
+  SS_REPORT_TEX,    /* LaTeX with booktabs rules: a longtable and a float */
   SS_REPORT_JSON    /* {"cases": [...], "summary": [...]} */
 } ss_report_format;
 
@@ -110,12 +110,17 @@ int ss_report_tables_parse(const char *name, unsigned *tables);
 
 /* Write the tables chosen by `tables` (SS_REPORT_CASES, SS_REPORT_SUMMARY or
  * both) of rows[0..n) and their summary sum[0..ns) (ss_report_summarize) to f
- * in format fmt.  Empty inputs give empty tables (headers only; JSON empty
+ * in format fmt.  LaTeX: the cases table is a longtable (needs the packages
+ * longtable and array besides booktabs), the summary a table float; they are
+ * labelled tab:LABEL-cases and tab:LABEL-summary (label NULL: "subspectra";
+ * only letters, digits, '-', '_', ':' and '.' keep it a valid label, which the
+ * caller checks).  Empty inputs give empty tables (headers only; JSON empty
  * arrays).  CSV holds one table: SS_EINPUT when both are asked for.  SS_EIO
  * when writing to f fails; SS_ENOMEM. */
 ss_status ss_report_table_write(FILE *f, ss_report_format fmt, unsigned tables,
                                 const ss_report_row *rows, size_t n,
-                                const ss_report_summary *sum, size_t ns, ss_error *err);
+                                const ss_report_summary *sum, size_t ns,
+                                const char *label, ss_error *err);
 
 /* The kept eigenvalues of r as a JSON array of {"re", "im", "multiplicity"}
  * (the key names of `analyze --format json`); the caller owns it

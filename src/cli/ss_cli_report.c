@@ -16,7 +16,7 @@
 static const char *const usage_text =
     "usage: subspectra report --db FILE [--format md|csv|tex|json]\n"
     "                         [--table cases|summary|both] [--where EXPR]\n"
-    "                         [--plot FILE.png|FILE.svg] [--size WxH]\n"
+    "                         [--plot FILE.png|FILE.svg] [--size WxH] [--label NAME]\n"
     "\n"
     "Tables of the cases in a results store (written by `subspectra sweep`):\n"
     "  cases    one row per case: scheme, case, k (link vertices) or valence,\n"
@@ -31,9 +31,13 @@ static const char *const usage_text =
     "\n"
     "  --db FILE          the results store (SQLite)\n"
     "  --format F         md (GitHub Markdown, default), csv (RFC 4180, one table,\n"
-    "                     numbers to 17 digits), tex (booktabs: paste into a paper\n"
-    "                     with \\usepackage{booktabs}), json ({\"cases\": [...],\n"
-    "                     \"summary\": [...]}, numbers as numbers)\n"
+    "                     numbers to 17 digits), tex (paste into a paper with\n"
+    "                     \\usepackage{booktabs,longtable,array}: the cases in a\n"
+    "                     longtable that runs over pages, the summary in a table\n"
+    "                     float, both within \\linewidth), json ({\"cases\":\n"
+    "                     [...], \"summary\": [...]}, numbers as numbers)\n"
+    "  --label NAME       tex: the tables' labels tab:NAME-cases and\n"
+    "                     tab:NAME-summary (default subspectra)\n"
     "  --table T          cases, summary or both (default both; csv: cases)\n"
     "  --where EXPR       an SQL expression over the columns of the view `cases`:\n"
     "                     scheme, identity, kind, k, link, cells, two_ring,\n"
@@ -65,7 +69,7 @@ static int report_fail(const ss_error *err) {
 }
 
 int ss_cli_report(int argc, char **argv) {
-  enum { O_DB = 256, O_FORMAT, O_TABLE, O_WHERE, O_PLOT, O_SIZE, O_FAILONFAIL };
+  enum { O_DB = 256, O_FORMAT, O_TABLE, O_WHERE, O_PLOT, O_SIZE, O_FAILONFAIL, O_LABEL };
   static const struct option opts[] = {{"db", required_argument, NULL, O_DB},
                                        {"format", required_argument, NULL, O_FORMAT},
                                        {"table", required_argument, NULL, O_TABLE},
@@ -73,9 +77,10 @@ int ss_cli_report(int argc, char **argv) {
                                        {"plot", required_argument, NULL, O_PLOT},
                                        {"size", required_argument, NULL, O_SIZE},
                                        {"fail-on-fail", no_argument, NULL, O_FAILONFAIL},
+                                       {"label", required_argument, NULL, O_LABEL},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
-  const char *db = NULL, *where = NULL, *plot = NULL;
+  const char *db = NULL, *where = NULL, *plot = NULL, *label = NULL;
   ss_report_format fmt = SS_REPORT_MD;
   int have_format = 0, fail_on_fail = 0;
   unsigned tables = 0;
@@ -119,6 +124,16 @@ int ss_cli_report(int argc, char **argv) {
     case O_FAILONFAIL:
       fail_on_fail = 1;
       break;
+    case O_LABEL:
+      if (!*optarg ||
+          strspn(optarg, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                         "0123456789-_:.") != strlen(optarg))
+        return ss_cli_usage_error("report",
+                                  "--label '%s': use letters, digits, '-', '_', ':' "
+                                  "and '.' only",
+                                  optarg);
+      label = optarg;
+      break;
     case 'h':
       fputs(usage_text, stdout);
       return SS_EXIT_OK;
@@ -129,6 +144,8 @@ int ss_cli_report(int argc, char **argv) {
   if (optind < argc)
     return ss_cli_usage_error("report", "unexpected argument '%s'", argv[optind]);
   if (!db) return ss_cli_usage_error("report", "no results store given (--db FILE)");
+  if (label && fmt != SS_REPORT_TEX)
+    return ss_cli_usage_error("report", "--label is for --format tex");
   if ((po.width || po.height) && !plot)
     return ss_cli_usage_error("report", "--size needs --plot");
   /* --plot alone prints no table */
@@ -160,8 +177,8 @@ int ss_cli_report(int argc, char **argv) {
   if (rows.n == 0)
     fprintf(stderr, "subspectra report: %s: no cases selected%s\n", db,
             where ? " by --where" : " (an empty store)");
-  if (print &&
-      ss_report_table_write(stdout, fmt, tables, rows.row, rows.n, sum, ns, &err)) {
+  if (print && ss_report_table_write(stdout, fmt, tables, rows.row, rows.n, sum, ns,
+                                     label, &err)) {
     /* standard output failed: main reports it, with the reason */
     if (!(err.status == SS_EIO && ferror(stdout))) rc = report_fail(&err);
     goto done;

@@ -134,7 +134,7 @@ static char *render(ss_report_format fmt, unsigned tables, const ss_report_rows 
   size_t len = 0;
   FILE *f = open_memstream(&buf, &len);
   *st = ss_report_summarize(t->row, t->n, &sum, &ns, err);
-  if (!*st) *st = ss_report_table_write(f, fmt, tables, t->row, t->n, sum, ns, err);
+  if (!*st) *st = ss_report_table_write(f, fmt, tables, t->row, t->n, sum, ns, NULL, err);
   fclose(f);
   free(sum);
   return buf;
@@ -473,33 +473,50 @@ static void test_tex(ss_store *st, const computed *all) {
   special_row(&t, &t);
   char *text = render(SS_REPORT_TEX, SS_REPORT_BOTH, &t, &s, &err);
   CHECK(s == SS_OK, "tex: %s", err.msg);
-  CHECK(count_str(text, "\\toprule") == 2 && count_str(text, "\\midrule") == 2 &&
-            count_str(text, "\\bottomrule") == 2,
-        "tex: booktabs rules");
-  CHECK(count_str(text, "\\begin{tabular}") == 2 &&
-            count_str(text, "\\end{tabular}") == 2,
-        "tex: two tabulars");
+  /* two longtables, each with its first head and its repeated head */
+  CHECK(count_str(text, "\\toprule") == 4 && count_str(text, "\\midrule") == 4 &&
+            count_str(text, "\\bottomrule") == 2 && count_str(text, "\\endhead") == 2 &&
+            count_str(text, "\\endfirsthead") == 2 && count_str(text, "(continued)") == 2,
+        "tex: booktabs rules and repeated heads");
+  CHECK(count_str(text, "\\begin{longtable}") == 2 &&
+            count_str(text, "\\end{longtable}") == 2,
+        "tex: two longtables");
+  CHECK(strstr(text, "\\label{tab:subspectra-cases}") &&
+            strstr(text, "\\label{tab:subspectra-summary}"),
+        "tex: labels");
   CHECK(!strstr(text, "\\hline"), "tex: \\hline with booktabs");
-  /* rows: lines ending in \\ between \midrule and \bottomrule, each with one
-   * '&' fewer than columns */
-  int rows[2] = {0, 0}, amp[2] = {14 - 1, 9 - 1}, table = -1, inbody = 0;
+  /* body rows: lines between \endfoot and \end{longtable}; a case row has one
+   * '&' fewer than columns (13 with two schemes and the diagonals column: the
+   * scheme column is there), a detail line below it spans the table */
+  int rows[2] = {0, 0}, amp[2] = {13 - 1, 9 - 1}, table = -1, inbody = 0, detail = 0,
+      after_row = 0;
   for (char *p = text, *e; *p; p = e + 1) {
     e = strchr(p, '\n');
     if (!e) break;
-    if (!strncmp(p, "\\begin{tabular}", 15)) table++;
-    if (!strncmp(p, "\\midrule", 8)) {
+    if (!strncmp(p, "\\begin{longtable}", 17)) table++;
+    if (!strncmp(p, "\\endfoot", 8)) {
       inbody = 1;
       continue;
     }
-    if (!strncmp(p, "\\bottomrule", 11)) inbody = 0;
+    if (!strncmp(p, "\\end{longtable}", 15)) inbody = 0;
     if (!inbody) continue;
+    if (!strncmp(p, "\\multicolumn{", 13)) {
+      CHECK(table == 0 && after_row, "tex: a detail line not below a case row");
+      CHECK(!strncmp(p, "\\multicolumn{13}", 16), "tex: detail line spans %.20s", p);
+      CHECK(e - p > 9 && !strncmp(e - 9, "} \\\\[2pt]", 9), "tex detail line end");
+      detail++;
+      after_row = 0;
+      continue;
+    }
     rows[table]++;
+    after_row = 1;
     const int na = count_unescaped(p, (size_t)(e - p), '&');
     CHECK(na == amp[table], "tex row with %d '&', not %d: %.70s", na, amp[table], p);
     CHECK(e - p > 3 && !strncmp(e - 3, " \\\\", 3), "tex row does not end in \\\\");
   }
   CHECK(rows[0] == (int)all->n + 1 && rows[1] == 16 + 1, "tex: %d and %d rows", rows[0],
         rows[1]);
+  CHECK(detail > 0 && detail <= rows[0], "tex: %d detail lines", detail);
   CHECK(strstr(text, "we\\textbar{}ird\\_\\&\\%\\#\\$\\{\\}\\textasciitilde{}"
                      "\\textasciicircum{}\\textbackslash{}\\textless{}\\textgreater{}"),
         "tex: specials not escaped");

@@ -177,8 +177,9 @@ checks=$((checks + 1))
 # LaTeX: booktabs, escaped reason, one row per case
 tex=$("$exe" report --db "$db" --format tex)
 checks=$((checks + 1))
-[ "$(grep -c '^\\toprule$' <<<"$tex")" -eq 2 ] && [ "$(grep -c '^\\bottomrule$' <<<"$tex")" -eq 2 ] &&
-  [ "$(grep -c '^\\midrule$' <<<"$tex")" -eq 2 ] || fail "tex: booktabs rules"
+# (two longtables, each with a first and a repeated head)
+[ "$(grep -c '^\\toprule$' <<<"$tex")" -eq 4 ] && [ "$(grep -c '^\\bottomrule$' <<<"$tex")" -eq 2 ] &&
+  [ "$(grep -c '^\\midrule$' <<<"$tex")" -eq 4 ] || fail "tex: booktabs rules"
 checks=$((checks + 1))
 [ "$(grep -c '^mlca & \|^tetoct & ' <<<"$tex")" -eq 32 ] || fail "tex: not 32 case rows"
 checks=$((checks + 1))
