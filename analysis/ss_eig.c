@@ -407,6 +407,204 @@ static void memo_free(memo *M) {
   free(M->cb);
 }
 
+/* The eigenvalues of the outer blocks (the diagonal blocks of C in Tarjan's
+ * order K), into val[0 .. n - n1): 1 x 1 blocks read off the diagonal, each
+ * distinct larger block solved once (memo).  blk holds K->largest^2 doubles
+ * of scratch.  SS_ENOMEM, SS_ENUMERIC. */
+static ss_status outer_eigenvalues(const double *S, size_t n, size_t n1, const ss_scc *K,
+                                   blockws *ws, double *blk, const ss_progress *progress,
+                                   ss_eigval *val, ss_error *err) {
+  ss_status st = SS_OK;
+  const size_t nc = n - n1, big = K->largest, nsolve = 1 + (size_t)K->n;
+  memo M = {0};
+  M.sz = malloc(((size_t)K->n + 1) * sizeof *M.sz);
+  M.at = malloc(((size_t)K->n + 1) * sizeof *M.at);
+  M.res = malloc(((size_t)K->n + 1) * sizeof *M.res);
+  M.mat = malloc((big * nc + 1) * sizeof *M.mat);
+  M.re = malloc((nc + 1) * sizeof *M.re);
+  M.im = malloc((nc + 1) * sizeof *M.im);
+  M.rc = malloc((nc + 1) * sizeof *M.rc);
+  M.eb = malloc((nc + 1) * sizeof *M.eb);
+  M.cb = malloc((nc + 1) * sizeof *M.cb);
+  if (!M.sz || !M.at || !M.res || !M.mat || !M.re || !M.im || !M.rc || !M.eb || !M.cb) {
+    st = ss_error_nomem(err, "outer blocks");
+    goto done;
+  }
+  size_t k = 0;
+  for (long c = 0; c < K->n; c++) {
+    const size_t b = K->start[c], sz = K->start[c + 1] - b;
+    if (sz == 1) {
+      const size_t i = n1 + K->comp[b];
+      val[k++] = (ss_eigval){S[i * n + i],
+                             0.0,
+                             1.0,
+                             (int)c + 1,
+                             0,
+                             0,
+                             4.0 * DBL_EPSILON * fabs(S[i * n + i]),
+                             4.0 * DBL_EPSILON * fabs(S[i * n + i])};
+      continue;
+    }
+    ss_progress_step(progress, "eigen-solve, block", 2 + (size_t)c, nsolve);
+    double *mat = M.mat + M.matfill;
+    for (size_t r = 0; r < sz; r++)
+      for (size_t q = 0; q < sz; q++)
+        mat[q * sz + r] = S[(n1 + K->comp[b + r]) * n + n1 + K->comp[b + q]];
+    size_t hit = SIZE_MAX;
+    for (size_t h = 0; h < M.n && hit == SIZE_MAX; h++)
+      if (M.sz[h] == sz && !memcmp(M.mat + M.at[h], mat, sz * sz * sizeof *mat)) hit = h;
+    if (hit == SIZE_MAX) { /* a new block: solve a copy, keep the matrix */
+      memcpy(blk, mat, sz * sz * sizeof *blk);
+      if ((st = block_eig(ws, blk, sz, M.re + M.resfill, M.im + M.resfill,
+                          M.rc + M.resfill, M.eb + M.resfill, M.cb + M.resfill, NULL,
+                          err)))
+        goto done;
+      hit = M.n++;
+      M.sz[hit] = sz;
+      M.at[hit] = M.matfill;
+      M.res[hit] = M.resfill;
+      M.matfill += sz * sz;
+      M.resfill += sz;
+    }
+    for (size_t r = 0, at = M.res[hit]; r < sz; r++)
+      val[k++] = (ss_eigval){M.re[at + r], M.im[at + r], M.rc[at + r], (int)c + 1, 0, 0,
+                             M.eb[at + r], M.cb[at + r]};
+  }
+  ss_progress_step(progress, "eigen-solve, block", nsolve, nsolve);
+done:
+  memo_free(&M);
+  return st;
+}
+
+/* The subdominant basis of e (section "The subdominant basis" of ss_eig.h)
+ * into e->basis, e->T, e->basis_kind and e->defective: right eigenvectors of
+ * A when lambda_1..m are distinct by more than cluster (relative) and in the
+ * one-ring block, else a Schur basis of A, extended to the two-ring through
+ * the outer blocks; failing that, a Schur basis of the whole S.  awr, awi, vr:
+ * A's eigenvalues and right eigenvectors as block_eig left them; a: n1 x n1
+ * scratch; bw, piv: outer_solve's workspaces.  SS_ENOMEM, SS_ENUMERIC (no
+ * basis). */
+static ss_status subdominant_basis(const double *S, size_t n, size_t n1, const ss_csr *A,
+                                   const ss_scc *K, const double *awr, const double *awi,
+                                   const double *vr, double *a, double cluster,
+                                   double *bw, lapack_int *piv, ss_eig *e,
+                                   ss_error *err) {
+  const size_t nc = n - n1;
+  const int m = e->m;
+  int outer = 0, clustered = 0;
+  for (int i = 1; i <= m; i++) {
+    outer |= e->val[i].block != 0;
+    for (int j = i + 1; j <= m; j++)
+      clustered |= fabs(e->val[i].re - e->val[j].re) <= cluster * e->val[i].re;
+  }
+  e->basis = calloc(n * (size_t)m + 1, sizeof *e->basis);
+  double *t = calloc((size_t)(m * m), sizeof *t);
+  double *x1 = calloc(n1 * (size_t)m + 1, sizeof *x1);
+  double *full = NULL, *q = NULL;
+  if (!e->basis || !t || !x1) {
+    free(t);
+    free(x1);
+    return ss_error_nomem(err, "subdominant basis");
+  }
+  int ok = 0, nomem = 0; /* an allocation failure is no numerical failure */
+  if (!outer && !clustered) {
+    /* right eigenvectors of A: the columns of the leading real eigenvalues */
+    unsigned char *used = calloc(n1 + 1, 1);
+    ok = used != NULL;
+    nomem = !used;
+    for (int i = 1; ok && i <= m; i++) {
+      size_t best = SIZE_MAX;
+      double bd = INFINITY;
+      for (size_t c = 0; c < n1; c++) {
+        if (used[c] || awi[c] != 0.0) continue;
+        double d = fabs(awr[c] - e->val[i].re);
+        if (d < bd) bd = d, best = c;
+      }
+      if (best == SIZE_MAX) {
+        ok = 0;
+        break;
+      }
+      used[best] = 1;
+      memcpy(x1 + (size_t)(i - 1) * n1, vr + best * n1, n1 * sizeof *x1);
+      t[(i - 1) * m + (i - 1)] = e->val[i].re;
+    }
+    free(used);
+    if (ok) e->basis_kind = "eigenvectors";
+  } else if (!outer) {
+    q = malloc((n1 * n1 + 1) * sizeof *q);
+    if (q) colmajor(S, n, n1, a); /* dgeevx overwrote the first copy */
+    const int sb = q ? schur_basis(a, n1, e->val + 1, m, q) : -2;
+    ok = sb == 0;
+    nomem = sb == -2;
+    if (ok) {
+      memcpy(x1, q, n1 * (size_t)m * sizeof *x1);
+      for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+          t[j * m + i] = a[(size_t)j * n1 + (size_t)i]; /* T11, column-major */
+      e->basis_kind = "schur";
+    }
+  }
+  if (ok) {
+    /* extend: (C - T_jj) x2_j = sum_{i<j} T_ij x2_i - B x1_j */
+    double *r = malloc((nc + 1) * sizeof *r);
+    for (int j = 0; ok && r && j < m; j++) {
+      for (size_t i = 0; i < nc; i++) {
+        double s = 0.0;
+        for (size_t p = A->ptr[n1 + i]; p < A->mid[n1 + i]; p++)
+          s -= A->val[p] * x1[(size_t)j * n1 + A->col[p]];
+        for (int l = 0; l < j; l++)
+          s += t[j * m + l] * e->basis[(size_t)l * n + n1 + i];
+        r[i] = s;
+      }
+      for (size_t i = 0; i < n1; i++)
+        e->basis[(size_t)j * n + i] = x1[(size_t)j * n1 + i];
+      ok = outer_solve(A, n1, K, t[j * m + j], r, e->basis + (size_t)j * n + n1, bw,
+                       piv) == 0;
+    }
+    if (!r) ok = 0, nomem = 1;
+    free(r);
+  }
+  if (!ok && !nomem) {
+    /* a leading eigenvalue in the outer block, or extension impossible: Schur
+     * form of the whole matrix */
+    full = malloc((n * n + 1) * sizeof *full);
+    free(q);
+    q = malloc((n * n + 1) * sizeof *q);
+    nomem = !full || !q;
+    if (!nomem) {
+      colmajor(S, n, n, full);
+      const int sb = schur_basis(full, n, e->val + 1, m, q);
+      ok = sb == 0;
+      nomem = sb == -2;
+      if (ok) {
+        memcpy(e->basis, q, n * (size_t)m * sizeof *e->basis);
+        for (int i = 0; i < m; i++)
+          for (int j = 0; j < m; j++)
+            t[j * m + i] = full[(size_t)j * n + (size_t)i];
+        e->basis_kind = "schur";
+      }
+    }
+  }
+  free(full);
+  free(q);
+  free(x1);
+  ss_status st = SS_OK;
+  if (ok) {
+    e->T = t;
+    e->defective = defective(e, e->tol);
+    if (e->defective < 0) st = ss_error_nomem(err, "subdominant basis");
+  } else {
+    free(t);
+    free(e->basis);
+    e->basis = NULL;
+    e->basis_kind = "";
+    st = nomem ? ss_error_nomem(err, "subdominant basis")
+               : ss_error_set(err, SS_ENUMERIC,
+                              "no basis of the subdominant invariant subspace");
+  }
+  return st;
+}
+
 /* ---- the driver ---- */
 
 ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
@@ -470,66 +668,8 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
     awi[i] = wi[i];
   }
   /* the outer blocks' eigenvalues */
-  memo M = {0};
-  M.sz = malloc(((size_t)K.n + 1) * sizeof *M.sz);
-  M.at = malloc(((size_t)K.n + 1) * sizeof *M.at);
-  M.res = malloc(((size_t)K.n + 1) * sizeof *M.res);
-  M.mat = malloc((big * nc + 1) * sizeof *M.mat);
-  M.re = malloc((nc + 1) * sizeof *M.re);
-  M.im = malloc((nc + 1) * sizeof *M.im);
-  M.rc = malloc((nc + 1) * sizeof *M.rc);
-  M.eb = malloc((nc + 1) * sizeof *M.eb);
-  M.cb = malloc((nc + 1) * sizeof *M.cb);
-  if (!M.sz || !M.at || !M.res || !M.mat || !M.re || !M.im || !M.rc || !M.eb || !M.cb) {
-    memo_free(&M);
-    st = ss_error_nomem(err, "outer blocks");
+  if ((st = outer_eigenvalues(S, n, n1, &K, &ws, blk, &opts->progress, e->val + n1, err)))
     goto done;
-  }
-  size_t k = n1;
-  for (long c = 0; c < K.n; c++) {
-    const size_t b = K.start[c], sz = K.start[c + 1] - b;
-    if (sz == 1) {
-      const size_t i = n1 + K.comp[b];
-      e->val[k++] = (ss_eigval){S[i * n + i],
-                                0.0,
-                                1.0,
-                                (int)c + 1,
-                                0,
-                                0,
-                                4.0 * DBL_EPSILON * fabs(S[i * n + i]),
-                                4.0 * DBL_EPSILON * fabs(S[i * n + i])};
-      continue;
-    }
-    ss_progress_step(&opts->progress, "eigen-solve, block", 2 + (size_t)c, nsolve);
-    double *mat = M.mat + M.matfill;
-    for (size_t r = 0; r < sz; r++)
-      for (size_t q = 0; q < sz; q++)
-        mat[q * sz + r] = S[(n1 + K.comp[b + r]) * n + n1 + K.comp[b + q]];
-    size_t hit = SIZE_MAX;
-    for (size_t h = 0; h < M.n && hit == SIZE_MAX; h++)
-      if (M.sz[h] == sz && !memcmp(M.mat + M.at[h], mat, sz * sz * sizeof *mat)) hit = h;
-    if (hit == SIZE_MAX) { /* a new block: solve a copy, keep the matrix */
-      memcpy(blk, mat, sz * sz * sizeof *blk);
-      if ((st = block_eig(&ws, blk, sz, M.re + M.resfill, M.im + M.resfill,
-                          M.rc + M.resfill, M.eb + M.resfill, M.cb + M.resfill, NULL,
-                          err))) {
-        memo_free(&M);
-        goto done;
-      }
-      hit = M.n++;
-      M.sz[hit] = sz;
-      M.at[hit] = M.matfill;
-      M.res[hit] = M.resfill;
-      M.matfill += sz * sz;
-      M.resfill += sz;
-    }
-    for (size_t r = 0, at = M.res[hit]; r < sz; r++)
-      e->val[k++] =
-          (ss_eigval){M.re[at + r], M.im[at + r], M.rc[at + r], (int)c + 1, 0, 0,
-                      M.eb[at + r], M.cb[at + r]};
-  }
-  memo_free(&M);
-  ss_progress_step(&opts->progress, "eigen-solve, block", nsolve, nsolve);
   /* the tolerance: at least the rounding floor of the leading m + 2 */
   qsort(e->val, n, sizeof *e->val, by_modulus);
   e->rounding = rounding_floor(e->val, n, e->m);
@@ -562,118 +702,8 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   if (!opts->basis || (size_t)e->m >= n ||
       (e->cond.verdict != SS_PASS && !(opts->force && real_positive)))
     goto done;
-  const int m = e->m;
-  int outer = 0, clustered = 0;
-  for (int i = 1; i <= m; i++) {
-    outer |= e->val[i].block != 0;
-    for (int j = i + 1; j <= m; j++)
-      clustered |= fabs(e->val[i].re - e->val[j].re) <= opts->cluster * e->val[i].re;
-  }
-  e->basis = calloc(n * (size_t)m + 1, sizeof *e->basis);
-  double *t = calloc((size_t)(m * m), sizeof *t);
-  double *x1 = calloc(n1 * (size_t)m + 1, sizeof *x1);
-  double *full = NULL, *q = NULL;
-  if (!e->basis || !t || !x1) {
-    free(t);
-    free(x1);
-    st = ss_error_nomem(err, "subdominant basis");
-    goto done;
-  }
-  int ok = 0, nomem = 0; /* an allocation failure is no numerical failure */
-  if (!outer && !clustered) {
-    /* right eigenvectors of A: the columns of the leading real eigenvalues */
-    unsigned char *used = calloc(n1 + 1, 1);
-    ok = used != NULL;
-    nomem = !used;
-    for (int i = 1; ok && i <= m; i++) {
-      size_t best = SIZE_MAX;
-      double bd = INFINITY;
-      for (size_t c = 0; c < n1; c++) {
-        if (used[c] || awi[c] != 0.0) continue;
-        double d = fabs(awr[c] - e->val[i].re);
-        if (d < bd) bd = d, best = c;
-      }
-      if (best == SIZE_MAX) {
-        ok = 0;
-        break;
-      }
-      used[best] = 1;
-      memcpy(x1 + (size_t)(i - 1) * n1, vr + best * n1, n1 * sizeof *x1);
-      t[(i - 1) * m + (i - 1)] = e->val[i].re;
-    }
-    free(used);
-    if (ok) e->basis_kind = "eigenvectors";
-  } else if (!outer) {
-    q = malloc((n1 * n1 + 1) * sizeof *q);
-    if (q) colmajor(S, n, n1, a); /* dgeevx overwrote the first copy */
-    const int sb = q ? schur_basis(a, n1, e->val + 1, m, q) : -2;
-    ok = sb == 0;
-    nomem = sb == -2;
-    if (ok) {
-      memcpy(x1, q, n1 * (size_t)m * sizeof *x1);
-      for (int i = 0; i < m; i++)
-        for (int j = 0; j < m; j++)
-          t[j * m + i] = a[(size_t)j * n1 + (size_t)i]; /* T11, column-major */
-      e->basis_kind = "schur";
-    }
-  }
-  if (ok) {
-    /* extend: (C - T_jj) x2_j = sum_{i<j} T_ij x2_i - B x1_j */
-    double *r = malloc((nc + 1) * sizeof *r);
-    for (int j = 0; ok && r && j < m; j++) {
-      for (size_t i = 0; i < nc; i++) {
-        double s = 0.0;
-        for (size_t p = A.ptr[n1 + i]; p < A.mid[n1 + i]; p++)
-          s -= A.val[p] * x1[(size_t)j * n1 + A.col[p]];
-        for (int l = 0; l < j; l++)
-          s += t[j * m + l] * e->basis[(size_t)l * n + n1 + i];
-        r[i] = s;
-      }
-      for (size_t i = 0; i < n1; i++)
-        e->basis[(size_t)j * n + i] = x1[(size_t)j * n1 + i];
-      ok = outer_solve(&A, n1, &K, t[j * m + j], r, e->basis + (size_t)j * n + n1, bw,
-                       piv) == 0;
-    }
-    if (!r) ok = 0, nomem = 1;
-    free(r);
-  }
-  if (!ok && !nomem) {
-    /* a leading eigenvalue in the outer block, or extension impossible: Schur
-     * form of the whole matrix */
-    full = malloc((n * n + 1) * sizeof *full);
-    free(q);
-    q = malloc((n * n + 1) * sizeof *q);
-    nomem = !full || !q;
-    if (!nomem) {
-      colmajor(S, n, n, full);
-      const int sb = schur_basis(full, n, e->val + 1, m, q);
-      ok = sb == 0;
-      nomem = sb == -2;
-      if (ok) {
-        memcpy(e->basis, q, n * (size_t)m * sizeof *e->basis);
-        for (int i = 0; i < m; i++)
-          for (int j = 0; j < m; j++)
-            t[j * m + i] = full[(size_t)j * n + (size_t)i];
-        e->basis_kind = "schur";
-      }
-    }
-  }
-  free(full);
-  free(q);
-  free(x1);
-  if (ok) {
-    e->T = t;
-    e->defective = defective(e, tol);
-    if (e->defective < 0) st = ss_error_nomem(err, "subdominant basis");
-  } else {
-    free(t);
-    free(e->basis);
-    e->basis = NULL;
-    e->basis_kind = "";
-    st = nomem ? ss_error_nomem(err, "subdominant basis")
-               : ss_error_set(err, SS_ENUMERIC,
-                              "no basis of the subdominant invariant subspace");
-  }
+  st = subdominant_basis(S, n, n1, &A, &K, awr, awi, vr, a, opts->cluster, bw, piv, e,
+                         err);
 done:
   free(a);
   free(vr);
