@@ -219,6 +219,69 @@ static ss_status pick_cell_type(const ss_cx *cx, ss_cell_type *t, ss_error *err)
   return SS_OK;
 }
 
+/* The link of one vertex in m cells, whose (cell, corner) incidences are
+ * inc[0..m) (flat indices into cells, n corners a cell; nb[corner] the
+ * corners opposite it): its triangles on mesh vertices (s->gtri), the mesh
+ * vertices sorted (s->loc[0..k)), the triangles renumbered 0..k-1 (s->tri)
+ * and the triangles at each link vertex (s->toff, s->tlist).  Returns k. */
+static int link_triangles(scratch *s, const ss_idx *cells, int n, int nb[8][3],
+                          const size_t *inc, int m) {
+  const size_t mm = (size_t)m;
+  for (int i = 0; i < m; i++) {
+    size_t f = inc[i];
+    const ss_idx *c = cells + f - f % (size_t)n;
+    int corner = (int)(f % (size_t)n);
+    for (int j = 0; j < 3; j++)
+      s->gtri[3 * i + j] = c[nb[corner][j]];
+  }
+  memcpy(s->loc, s->gtri, 3 * mm * sizeof *s->loc);
+  qsort(s->loc, 3 * mm, sizeof *s->loc, cmp_idx);
+  int k = 0;
+  for (int i = 0; i < 3 * m; i++)
+    if (k == 0 || s->loc[i] != s->loc[k - 1]) s->loc[k++] = s->loc[i];
+  for (int i = 0; i < 3 * m; i++) {
+    const ss_idx *p = bsearch(&s->gtri[i], s->loc, (size_t)k, sizeof *s->loc, cmp_idx);
+    s->tri[i] = (int)(p - s->loc);
+  }
+  /* triangles at each link vertex */
+  memset(s->toff, 0, (size_t)(k + 1) * sizeof *s->toff);
+  for (int i = 0; i < 3 * m; i++)
+    s->toff[s->tri[i] + 1]++;
+  for (int w = 0; w < k; w++)
+    s->toff[w + 1] += s->toff[w];
+  for (int i = 0; i < 3 * m; i++)
+    s->tlist[s->toff[s->tri[i]]++] = i / 3;
+  for (int w = k; w > 0; w--)
+    s->toff[w] = s->toff[w - 1];
+  s->toff[0] = 0;
+  return k;
+}
+
+/* The vertex's link as canonical text, added to set when it is a sphere
+ * (*interior = 1); a closed link that is no sphere is non-manifold
+ * (*interior = 0, SS_OK).  SS_ENOMEM. */
+static ss_status vertex_link(const scratch *s, int k, int m, size_t v, linkset *set,
+                             int *interior, ss_error *err) {
+  ss_error lerr = {0};
+  ss_link *l = NULL, *cl = NULL;
+  char *text = NULL;
+  *interior = 0;
+  ss_status st = ss_link_from_triangles(k, m, s->tri, &l, &lerr);
+  if (st == SS_OK) {
+    *interior = 1;
+    st = ss_link_canonical(l, &cl, NULL, err);
+    if (st == SS_OK) st = ss_link_format(cl, &text, err);
+    if (st == SS_OK) st = linkset_add(set, text, k, v, err);
+  } else if (st == SS_EINPUT) {
+    st = SS_OK; /* closed but not a sphere: non-manifold */
+  } else if (err) {
+    *err = lerr;
+  }
+  ss_link_free(l);
+  ss_link_free(cl);
+  return st;
+}
+
 ss_status ss_meshlinks_compute(const ss_cx *cx, ss_meshlinks **out, ss_error *err) {
   *out = NULL;
   ss_cell_type t = SS_TET;
@@ -301,34 +364,7 @@ ss_status ss_meshlinks_compute(const ss_cx *cx, ss_meshlinks **out, ss_error *er
       ml->nv_unused++;
       continue;
     }
-    /* link triangles on mesh vertices, then renumbered 0..k-1 */
-    for (int i = 0; i < m; i++) {
-      size_t f = inc[off[v] + (size_t)i];
-      const ss_idx *c = cells + f - f % (size_t)n;
-      int corner = (int)(f % (size_t)n);
-      for (int j = 0; j < 3; j++)
-        s.gtri[3 * i + j] = c[nb[corner][j]];
-    }
-    memcpy(s.loc, s.gtri, 3 * mm * sizeof *s.loc);
-    qsort(s.loc, 3 * mm, sizeof *s.loc, cmp_idx);
-    int k = 0;
-    for (int i = 0; i < 3 * m; i++)
-      if (k == 0 || s.loc[i] != s.loc[k - 1]) s.loc[k++] = s.loc[i];
-    for (int i = 0; i < 3 * m; i++) {
-      const ss_idx *p = bsearch(&s.gtri[i], s.loc, (size_t)k, sizeof *s.loc, cmp_idx);
-      s.tri[i] = (int)(p - s.loc);
-    }
-    /* triangles at each link vertex */
-    memset(s.toff, 0, (size_t)(k + 1) * sizeof *s.toff);
-    for (int i = 0; i < 3 * m; i++)
-      s.toff[s.tri[i] + 1]++;
-    for (int w = 0; w < k; w++)
-      s.toff[w + 1] += s.toff[w];
-    for (int i = 0; i < 3 * m; i++)
-      s.tlist[s.toff[s.tri[i]]++] = i / 3;
-    for (int w = k; w > 0; w--)
-      s.toff[w] = s.toff[w - 1];
-    s.toff[0] = 0;
+    const int k = link_triangles(&s, cells, n, nb, inc + off[v], m);
 
     /* edges at v: classify each; count those to larger vertices */
     int any_triple = 0, any_single = 0;
@@ -352,25 +388,9 @@ ss_status ss_meshlinks_compute(const ss_cx *cx, ss_meshlinks **out, ss_error *er
 
     /* the vertex */
     int interior = 0;
-    if (!any_triple && !any_single) {
-      ss_error lerr = {0};
-      ss_link *l = NULL, *cl = NULL;
-      char *text = NULL;
-      st = ss_link_from_triangles(k, m, s.tri, &l, &lerr);
-      if (st == SS_OK) {
-        interior = 1;
-        st = ss_link_canonical(l, &cl, NULL, err);
-        if (st == SS_OK) st = ss_link_format(cl, &text, err);
-        if (st == SS_OK) st = linkset_add(&set, text, k, v, err);
-      } else if (st == SS_EINPUT) {
-        st = SS_OK; /* closed but not a sphere: non-manifold */
-      } else if (err) {
-        *err = lerr;
-      }
-      ss_link_free(l);
-      ss_link_free(cl);
-      if (st) goto done;
-    }
+    if (!any_triple && !any_single &&
+        (st = vertex_link(&s, k, m, v, &set, &interior, err)))
+      goto done;
     if (interior) {
       ml->nv_interior++;
       vsum += k;
