@@ -13,6 +13,7 @@
 #include <lapacke.h>
 
 #include "ss_jsr_cert.h"
+#include "ss_jsr_ellipsoid.h"
 
 ss_jsr_opts ss_jsr_defaults(void) {
   ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_AUTO, 10000000, 0.0, 0, 1};
@@ -62,6 +63,13 @@ typedef struct {
   double *vl;             /* n * n: dgeev's eigenvectors */
   double *v, *t2;         /* n * n each: the 2-norm certificate's V and A V */
   double *y2, *yf;        /* m each: rigorous ||Y_i + Delta||_2 and ||Y_i||_F */
+  double *ebuf;           /* m * n * n: the ellipsoidal copies L^T Y_i L^{-T}
+                             (ss_jsr_ellipsoid.h), NULL until fitted */
+  const double **eptr;    /* m: pointers into ebuf */
+  double *edelta;         /* m: rigorous ||exact - stored||_inf of those */
+  int ecw;                /* 1 if their entries are within 3u (componentwise) */
+  int cw_ok;              /* 1 if the active copies are within 3u of the exact
+                             matrices entrywise (ws_err_componentwise) */
   double gam;             /* gamma_n = n u / (1 - n u), u the unit roundoff */
   double tiny;            /* n^2 times the smallest subnormal: the absolute
                              rounding error of a row sum of a product
@@ -74,6 +82,10 @@ typedef struct {
 } jsr_ws;
 
 static const double U = DBL_EPSILON / 2;
+
+/* AUTO tries the ellipsoidal norm up to this order (the tet/oct face is 30,
+ * its edges 3..10 up to 50; the fit costs O(m n^3) per L-BFGS step). */
+enum { ELL_AUTO_MAX_N = 64 };
 
 /* x rounded away from 0 by a few units: covers the rounding of the handful of
  * floating-point operations on nonnegative numbers that produced x. */
@@ -123,6 +135,9 @@ static void ws_free(jsr_ws *w) {
   free(w->qvalid);
   free(w->err_2);
   free(w->lower_word);
+  free(w->ebuf);
+  free(w->eptr);
+  free(w->edelta);
 }
 
 /* Make the stacks hold `levels` levels; keeps their contents. */
@@ -217,7 +232,7 @@ static void matmul(size_t n, const double *a, const double *b, double *c, int ab
 static void ws_err_componentwise(jsr_ws *w, int k) {
   const size_t n = w->n, nn = n * n;
   const double K1 = (double)(k + 1), g = w->gam + 4 * U;
-  if (K1 * g >= 0.05) return;
+  if (K1 * g >= 0.05 || !w->cw_ok) return;
   const double c = up(K1 * g * (1 + 2 * K1 * g) * (1 + 2 * K1 * w->gam));
   const double *q = w->qabs + (size_t)k * nn;
   const double ei = up(c * up(norm_inf(q, n) * (1 + 2 * w->gam))) + K1 * w->tiny;
@@ -425,13 +440,19 @@ static void ws_offer_lower(jsr_ws *w, int k) {
 }
 
 /* Use the exact similarity D^{-1} Y_i D, D = diag(d), for the words formed
- * from now on (d = NULL: the inputs).  The scaled entries y_rc (d_c / d_r)
+ * from now on (d = NULL: the inputs; Y = w->eptr: the ellipsoidal copies,
+ * with the bounds of their enclosure).  The scaled entries y_rc (d_c / d_r)
  * are rounded twice, so the stored copy differs from the exact one by at
  * most 2.0001 u |z| entrywise; delta bounds that in the inf-norm. */
 static void ws_scale(jsr_ws *w, const double *const *Y, const double *d) {
   const size_t n = w->n, nn = n * n;
+  w->cw_ok = 1;
   for (size_t i = 0; i < w->m; i++) {
-    if (!d) {
+    if (w->eptr && Y == w->eptr) { /* the ellipsoidal copies: as enclosed */
+      w->zptr[i] = Y[i];
+      w->delta[i] = w->edelta[i];
+      w->cw_ok = w->ecw;
+    } else if (!d) {
       w->zptr[i] = Y[i];
       w->delta[i] = 0;
     } else {
@@ -572,6 +593,46 @@ static void choose_scaling(jsr_ws *w, const double *const *Y, int K, double *bes
   ws_scale(w, Y, *have ? best_d : NULL);
 }
 
+/* Make candidate c of the branch and bound active (ss_jsr_compute: 0 the
+ * inputs, 1 the weighted copies, 2 the inputs for the 2-norm, 3 the
+ * ellipsoidal copies). */
+static void ws_select(jsr_ws *w, const double *const *Y, int c, const double *best_d) {
+  if (c == 3)
+    ws_scale(w, (const double *const *)w->eptr, NULL);
+  else
+    ws_scale(w, Y, c == 1 ? best_d : NULL);
+}
+
+/* Fit the ellipsoidal norm to the inputs Y and enclose the similar copies
+ * into w->ebuf (ss_jsr_ellipsoid.h).  Returns 1 if they are ready; 0 if the
+ * fit or the enclosure failed (*st = SS_ENOMEM if memory ran out). */
+static int ws_ellipsoid(jsr_ws *w, const double *const *Y, double deadline,
+                        ss_status *st) {
+  const size_t m = w->m, n = w->n;
+  double *L = malloc(n * n * sizeof *L);
+  w->ebuf = malloc(m * n * n * sizeof *w->ebuf);
+  w->eptr = malloc(m * sizeof *w->eptr);
+  w->edelta = malloc(m * sizeof *w->edelta);
+  int ok = 0;
+  *st = SS_OK;
+  if (!L || !w->ebuf || !w->eptr || !w->edelta) {
+    *st = SS_ENOMEM;
+    goto done;
+  }
+  *st = ss_jsr_ellipsoid_fit(m, n, Y, deadline, L);
+  if (*st != SS_OK) goto done;
+  ok = ss_jsr_ellipsoid_similar(m, n, Y, L, w->ebuf, w->edelta, &w->ecw);
+  for (size_t i = 0; i < m; i++)
+    w->eptr[i] = w->ebuf + i * n * n;
+done:
+  free(L);
+  if (!ok) { /* not usable: ws_scale must not take it for the copies */
+    free(w->eptr);
+    w->eptr = NULL;
+  }
+  return ok;
+}
+
 /* One pass of the branch and bound to depth L.  The bound of a word w is
  *   b(w) = min over the prefixes u of w of N(u)^{1/|u|}
  * with N(u) the norm of Y_u (rigorous for the inf-norm).  The words not
@@ -648,7 +709,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     return ss_error_set(err, SS_EINPUT, "jsr: gap %g is not a finite number >= 0",
                         o->gap);
   if (o->norm != SS_JSR_NORM_INF && o->norm != SS_JSR_NORM_2 &&
-      o->norm != SS_JSR_NORM_AUTO)
+      o->norm != SS_JSR_NORM_AUTO && o->norm != SS_JSR_NORM_ELLIPSOID)
     return ss_error_set(err, SS_EINPUT, "jsr: unknown norm %d", (int)o->norm);
   if (isnan(o->max_seconds))
     return ss_error_set(err, SS_EINPUT, "jsr: max_seconds is NaN");
@@ -742,7 +803,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   /* the inf-norm branch and bound may run in a diagonally weighted inf-norm
    * (an exact similarity; the profile rho_inf stays the plain inf-norm) */
   int have = 0;
-  if (o->weighted && o->norm != SS_JSR_NORM_2 && upper > w.lower * (1 + o->gap)) {
+  if (o->weighted && (o->norm == SS_JSR_NORM_INF || o->norm == SS_JSR_NORM_AUTO) &&
+      upper > w.lower * (1 + o->gap)) {
     if (!ws_reserve(&w, 2 * w.lower_len)) {
       st = ss_error_nomem(err, "jsr scaling");
       goto done;
@@ -750,12 +812,45 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     choose_scaling(&w, Y, K, best_d, &have);
     if (w.st != SS_OK) goto lapack_failed;
   }
+  const double deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;
+  /* the ellipsoidal norm (ss_jsr_ellipsoid.h): fitted, then the similar
+   * copies enclosed; AUTO tries it for orders up to ELL_AUTO_MAX_N (the fit
+   * costs O(m n^3) per step), with at most a quarter of the time limit */
+  int have_ell = 0;
+  if ((o->norm == SS_JSR_NORM_ELLIPSOID ||
+       (o->norm == SS_JSR_NORM_AUTO && n <= ELL_AUTO_MAX_N)) &&
+      upper > w.lower * (1 + o->gap)) {
+    have_ell = ws_ellipsoid(&w, Y, deadline > 0 ? t0 + o->max_seconds / 4 : 0, &st);
+    if (st == SS_ENOMEM) {
+      st = ss_error_nomem(err, "jsr ellipsoidal norm");
+      goto done;
+    }
+    st = SS_OK;
+    if (!have_ell && o->norm == SS_JSR_NORM_ELLIPSOID) {
+      st = ss_error_set(err, SS_ENUMERIC,
+                        "jsr: the ellipsoidal norm could not be fitted or its "
+                        "similarity not enclosed (ill-conditioned)");
+      goto done;
+    }
+  }
 
   /* branch and bound by iterative deepening: each pass's leaves give a valid
    * bound, deeper passes refine it; recomputing the shallow levels costs a
-   * factor of about m / (m - 1) at most */
-  const double deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;
-  ss_jsr_norm active = o->norm == SS_JSR_NORM_2 ? SS_JSR_NORM_2 : SS_JSR_NORM_INF;
+   * factor of about m / (m - 1) at most.  The candidates: the plain
+   * inf-norm, the weighted inf-norm, the 2-norm and the ellipsoidal norm
+   * (the 2-norm of the similar copies), those that o->norm allows; with
+   * more than one the first pass runs each and the rest keep the one with
+   * the lowest bound: every candidate's bound is valid */
+  enum { C_INF, C_WINF, C_2, C_ELL, NCAND };
+  const ss_jsr_norm cn[NCAND] = {SS_JSR_NORM_INF, SS_JSR_NORM_INF, SS_JSR_NORM_2,
+                                 SS_JSR_NORM_2};
+  const int auto_ = o->norm == SS_JSR_NORM_AUTO;
+  const int use[NCAND] = {o->norm == SS_JSR_NORM_INF || auto_, have,
+                          o->norm == SS_JSR_NORM_2 || auto_, have_ell};
+  int ncand = 0, active = C_INF;
+  for (int c = NCAND - 1; c >= 0; c--)
+    if (use[c]) ncand++, active = c;
+  ws_select(&w, Y, active, best_d);
   const size_t max_nodes = o->max_nodes ? brute_nodes + o->max_nodes : 0;
   for (int L = K; upper > w.lower * (1 + o->gap); L++) {
     if (o->max_depth && L > o->max_depth) break;
@@ -765,22 +860,13 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     }
     double u;
     int stop = 0;
-    if (L == K && (have || o->norm == SS_JSR_NORM_AUTO)) {
-      /* the first pass tries the candidate norms (plain inf-norm, weighted
-       * inf-norm if one was found, 2-norm if AUTO) and the rest keep the one
-       * with the lowest bound: every candidate's bound is valid */
-      const int ncand = 3;
-      const ss_jsr_norm cn[3] = {o->norm == SS_JSR_NORM_2 ? SS_JSR_NORM_2
-                                                          : SS_JSR_NORM_INF,
-                                 SS_JSR_NORM_INF, SS_JSR_NORM_2};
-      const int cw[3] = {0, 1, 0};
-      const int use[3] = {1, have, o->norm == SS_JSR_NORM_AUTO};
+    if (L == K && ncand > 1) {
       int best = -1;
       u = INFINITY;
-      for (int c = 0; c < ncand && !stop; c++) {
+      for (int c = 0; c < NCAND && !stop; c++) {
         if (!use[c]) continue;
         double uc;
-        ws_scale(&w, Y, cw[c] ? best_d : NULL);
+        ws_select(&w, Y, c, best_d);
         if (!bnb_pass(&w, L, cn[c], o->gap, max_nodes, deadline, &uc)) {
           stop = 1;
           break;
@@ -788,14 +874,10 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
         if (w.st != SS_OK) goto lapack_failed;
         if (uc < u) u = uc, best = c;
       }
-      if (best < 0) {
-        have = 0;
-        break;
-      }
-      have = cw[best];
-      active = cn[best];
-      ws_scale(&w, Y, have ? best_d : NULL);
-    } else if (!bnb_pass(&w, L, active, o->gap, max_nodes, deadline, &u)) {
+      if (best < 0) break;
+      active = best;
+      ws_select(&w, Y, active, best_d);
+    } else if (!bnb_pass(&w, L, cn[active], o->gap, max_nodes, deadline, &u)) {
       break;
     }
     if (w.st != SS_OK) goto lapack_failed;
@@ -803,8 +885,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     if (u < upper) upper = u;
     if (stop) break;
   }
-  out->weighted = have;
-  out->norm = active;
+  out->weighted = active == C_WINF;
+  out->norm = active == C_ELL ? SS_JSR_NORM_ELLIPSOID : cn[active];
   if (w.st != SS_OK) goto lapack_failed;
   out->nodes = w.nodes - brute_nodes;
 

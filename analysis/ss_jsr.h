@@ -25,12 +25,21 @@
  *    levels, about m / (m - 1) times the last level's work when the tree is
  *    bushy) until upper <= lower (1 + gap) or a limit stops it; a pass cut
  *    short by a limit is discarded.  With norm AUTO the first pass runs in the
- *    inf-norm (plain and weighted) and the 2-norm and the rest keep the
- *    norm with the lowest bound.  In the inf-norm the pass may run in a
- *    diagonally weighted inf-norm ||D^{-1} X D||_inf (D from |eigenvectors|
- *    of the lower bound's product and its rotations; kept only when its
- *    first pass beats the plain one): an exact similarity, so the bound
- *    stays valid.
+ *    inf-norm (plain and weighted), the 2-norm and the ellipsoidal norm,
+ *    and the rest keep the norm with the lowest bound.  In the inf-norm the pass may run
+ * in a diagonally weighted inf-norm ||D^{-1} X D||_inf (D from |eigenvectors| of the
+ * lower bound's product and its rotations; kept only when its first pass beats the plain
+ * one): an exact similarity, so the bound stays valid.
+ *  - Ellipsoidal norm (ss_jsr_ellipsoid.h): ||A||_P = ||L^T A L^{-T}||_2
+ *    with L fitted by L-BFGS to minimise max_i ||L^T Y_i L^{-T}||_2.  Why:
+ *    Gripenberg's bound in a norm ||.|| converges like C^{1/k}, C the
+ *    distance of ||.|| from an extremal norm; the inf- and 2-norms are far
+ *    from it on the tet/oct face (C^{1/k} ~ 1.3 at k = 8), a fitted
+ *    ellipsoid much nearer (on the tet/oct edges it is extremal: upper =
+ *    lower at k = 1).  The similar copies are enclosed in ball arithmetic
+ *    with the exact double L (no inverse is trusted), and their enclosure
+ *    radius enters the rounding bound below like a perturbation of the
+ *    inputs, so the bound stays proven for the inputs.
  *
  * Certification.
  *  - Upper bounds (both norms): every product carries a rigorous bound on
@@ -57,11 +66,15 @@
 #include "ss_error.h"
 
 typedef enum {
-  SS_JSR_NORM_INF = 0, /* maximum absolute row sum (the tet/oct paper's norm) */
-  SS_JSR_NORM_2 = 1,   /* spectral norm (largest singular value) */
-  SS_JSR_NORM_AUTO = 2 /* branch and bound: the first pass runs in both (the
-                          inf-norm possibly weighted), the rest in the one
-                          with the lower bound */
+  SS_JSR_NORM_INF = 0,      /* maximum absolute row sum (the tet/oct paper's norm) */
+  SS_JSR_NORM_2 = 1,        /* spectral norm (largest singular value) */
+  SS_JSR_NORM_AUTO = 2,     /* branch and bound: the first pass runs in each
+                               candidate (inf-norm, weighted inf-norm, 2-norm,
+                               ellipsoidal norm for orders <= 64), the rest in
+                               the one with the lowest bound */
+  SS_JSR_NORM_ELLIPSOID = 3 /* ||x||_P = sqrt(x^T P x), P = L L^T fitted to
+                               the Y_i (ss_jsr_ellipsoid.h): the 2-norm of
+                               the similar L^T Y_i L^{-T}, enclosed */
 } ss_jsr_norm;
 
 typedef struct {
@@ -105,7 +118,7 @@ typedef struct {
                        (0 if none completed) */
   int weighted;     /* 1 if that branch and bound used a diagonally weighted
                        inf-norm (ss_jsr.c: choose_scaling) */
-  ss_jsr_norm norm; /* the norm it used (INF or 2; AUTO resolved) */
+  ss_jsr_norm norm; /* the norm it used (INF, 2 or ELLIPSOID; AUTO resolved) */
   double seconds;   /* wall-clock time of the computation */
   int certified;    /* 1 if both bounds account for rounding: upper always
                        does; 0 only if the ball enclosure of the lower bound's

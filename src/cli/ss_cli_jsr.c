@@ -17,7 +17,8 @@ static void usage(FILE *f) {
   fprintf(
       f,
       "usage: subspectra jsr --scheme S (--face | --edge N) [--depth K] [--gap G]\n"
-      "                      [--diagonals D] [--max-seconds T] [--format text|json]\n\n"
+      "                      [--norm N] [--diagonals D] [--max-seconds T]\n"
+      "                      [--format text|json]\n\n"
       "The Levin-Levin smoothness test (tet/oct paper, appendix A).  From the scheme's\n"
       "global rule: the patch (face: the tet/tet + oct/oct pair of figure 10, a unit\n"
       "square of the face's grid; edge: a segment between two edge vertices), its\n"
@@ -43,6 +44,13 @@ static void usage(FILE *f) {
       "  --edge N          an edge of valence N (3..64)\n"
       "  --depth K         word length of rho_k and the lower bound (1..12, default 8)\n"
       "  --gap G           relative gap of the branch and bound (default 1e-3)\n"
+      "  --norm N          norm of the branch and bound: auto (default: the first\n"
+      "                    pass runs in each of the others, the rest in the best;\n"
+      "                    ellipsoid only for Y_i of order <= 64), inf, 2, or\n"
+      "                    ellipsoid: sqrt(x^T P x), P = L L^T fitted to make\n"
+      "                    max_i ||L^T Y_i L^-T||_2 small (a nearly extremal norm,\n"
+      "                    so the bound converges at short words; the similar\n"
+      "                    matrices are enclosed in ball arithmetic)\n"
       "  --diagonals D     major diagonals of tet stars (boxspline): bfs (default),\n"
       "                    proper; skew and center for edges only\n"
       "  --max-seconds T   time limit of the branch and bound (default 60)\n"
@@ -53,7 +61,19 @@ static void usage(FILE *f) {
       "invariant), 2 bad usage or bad input.\n");
 }
 
-enum { O_FACE = 256, O_EDGE, O_DEPTH, O_GAP, O_DIAG, O_SECONDS, O_FORMAT, O_SCHEME };
+enum {
+  O_FACE = 256,
+  O_EDGE,
+  O_DEPTH,
+  O_GAP,
+  O_DIAG,
+  O_SECONDS,
+  O_FORMAT,
+  O_SCHEME,
+  O_NORM
+};
+
+static const char *const norm_names[] = {"inf", "2", "auto", "ellipsoid"};
 
 int ss_cli_jsr(int argc, char **argv) {
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
@@ -61,6 +81,7 @@ int ss_cli_jsr(int argc, char **argv) {
                                      {"edge", required_argument, 0, O_EDGE},
                                      {"depth", required_argument, 0, O_DEPTH},
                                      {"gap", required_argument, 0, O_GAP},
+                                     {"norm", required_argument, 0, O_NORM},
                                      {"diagonals", required_argument, 0, O_DIAG},
                                      {"max-seconds", required_argument, 0, O_SECONDS},
                                      {"format", required_argument, 0, O_FORMAT},
@@ -105,6 +126,16 @@ int ss_cli_jsr(int argc, char **argv) {
         return ss_cli_usage_error(cmd, "--gap: expected a number in (0, 1), not '%s'",
                                   optarg);
       break;
+    case O_NORM: {
+      int k = 0;
+      while (k < 4 && strcmp(optarg, norm_names[k]))
+        k++;
+      if (k == 4)
+        return ss_cli_usage_error(
+            cmd, "--norm: expected auto, inf, 2 or ellipsoid, not '%s'", optarg);
+      o.norm = (ss_jsr_norm)k;
+      break;
+    }
     case O_SECONDS:
       o.max_seconds = strtod(optarg, &end);
       if (end == optarg || *end || !(o.max_seconds > 0 && o.max_seconds < 1e7))
@@ -185,6 +216,8 @@ int ss_cli_jsr(int argc, char **argv) {
     json_object_object_add(j, "certified", json_object_new_boolean(r.certified));
     json_object_object_add(j, "converged", json_object_new_boolean(r.converged));
     json_object_object_add(j, "nodes", json_object_new_int64((int64_t)r.nodes));
+    json_object_object_add(j, "norm", json_object_new_string(norm_names[r.norm]));
+    json_object_object_add(j, "bnb_depth", json_object_new_int(r.bnb_depth));
     printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
     json_object_put(j);
   } else {
@@ -201,9 +234,11 @@ int ss_cli_jsr(int argc, char **argv) {
     printf("\n%-4s %-12s %-12s\n", "k", "rho_k (inf)", "rho_k (2)");
     for (int k = 0; k < r.depth; k++)
       printf("%-4d %-12.6g %-12.6g\n", k + 1, r.rho_inf[k], r.rho_2[k]);
-    printf("joint spectral radius in [%.6g, %.6g] (%s; %s, %zu products)\n", r.lower,
-           r.upper, r.certified ? "certified" : "not certified",
-           r.converged ? "gap reached" : "gap not reached", r.nodes);
+    printf("joint spectral radius in [%.6g, %.6g] (%s; %s, %zu products, %s-norm%s, "
+           "words to length %d)\n",
+           r.lower, r.upper, r.certified ? "certified" : "not certified",
+           r.converged ? "gap reached" : "gap not reached", r.nodes, norm_names[r.norm],
+           r.weighted ? " weighted" : "", r.bnb_depth);
     printf("threshold %.6g: %s\nverdict: %s\n", L->threshold, thr_name, verdict);
   }
 done:

@@ -456,27 +456,34 @@ static void test_brute(gsl_rng *rng) {
 
 /* ---- relabelling ------------------------------------------------------------ */
 
+/* m random n x n matrices (entries uniform in [-scale, scale)) and their
+ * relabelled copies P Y_i P^T for a random permutation P: entry (p(r), p(c))
+ * of perm[i] is entry (r, c) of mats[i]. */
+static void relabelled_sets(gsl_rng *rng, size_t m, size_t n, double scale,
+                            double mats[][NMAX * NMAX], double perm[][NMAX * NMAX]) {
+  size_t p[NMAX];
+  for (size_t i = 0; i < n; i++)
+    p[i] = i;
+  for (size_t i = n - 1; i > 0; i--) {
+    size_t j = (size_t)gsl_rng_uniform_int(rng, i + 1), t = p[i];
+    p[i] = p[j], p[j] = t;
+  }
+  for (size_t i = 0; i < m; i++)
+    for (size_t e = 0; e < n * n; e++)
+      mats[i][e] = (2 * gsl_rng_uniform(rng) - 1) * scale;
+  for (size_t i = 0; i < m; i++)
+    for (size_t rr = 0; rr < n; rr++)
+      for (size_t c = 0; c < n; c++)
+        perm[i][p[rr] * n + p[c]] = mats[i][rr * n + c];
+}
+
 static void test_permutation(gsl_rng *rng) {
   for (int trial = 0; trial < 6; trial++) {
     const size_t m = 2 + (size_t)trial % 3, n = 3 + (size_t)trial % 4;
     double mats[4][NMAX * NMAX], perm[4][NMAX * NMAX];
     const double *Y[4] = {mats[0], mats[1], mats[2], mats[3]};
     const double *Z[4] = {perm[0], perm[1], perm[2], perm[3]};
-    size_t p[NMAX];
-    for (size_t i = 0; i < n; i++)
-      p[i] = i;
-    for (size_t i = n - 1; i > 0; i--) {
-      size_t j = (size_t)gsl_rng_uniform_int(rng, i + 1), t = p[i];
-      p[i] = p[j], p[j] = t;
-    }
-    for (size_t i = 0; i < m; i++)
-      for (size_t e = 0; e < n * n; e++)
-        mats[i][e] = (2 * gsl_rng_uniform(rng) - 1) / (double)n;
-    /* Z_i = P Y_i P^T: entry (p(r), p(c)) of Z is entry (r, c) of Y */
-    for (size_t i = 0; i < m; i++)
-      for (size_t rr = 0; rr < n; rr++)
-        for (size_t c = 0; c < n; c++)
-          perm[i][p[rr] * n + p[c]] = mats[i][rr * n + c];
+    relabelled_sets(rng, m, n, 1.0 / (double)n, mats, perm);
     ss_jsr_opts o = ss_jsr_defaults();
     o.depth = 5;
     o.max_depth = 10;
@@ -495,6 +502,136 @@ static void test_permutation(gsl_rng *rng) {
       ss_jsr_result_clear(&a);
       ss_jsr_result_clear(&b);
     }
+  }
+}
+
+/* ---- the ellipsoidal norm ---------------------------------------------------- */
+
+/* G^{-1} A G for the unimodular G = I + strictly upper unit entries (G^{-1}
+ * is an integer matrix too), so the scrambled matrix is similar to A and
+ * only rounded once per entry of the two products. */
+static void scramble(size_t n, const double *A, double *out) {
+  double G[NMAX * NMAX] = {0}, Gi[NMAX * NMAX] = {0}, t[NMAX * NMAX];
+  for (size_t i = 0; i < n; i++) {
+    G[i * n + i] = Gi[i * n + i] = 1;
+    if (i + 1 < n) G[i * n + i + 1] = 1, Gi[i * n + i + 1] = -1;
+  }
+  /* (I + N)^{-1} = I - N + N^2 - ... for the shift N */
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = i + 2; j < n; j++)
+      Gi[i * n + j] = ((j - i) % 2) ? -1 : 1;
+  matmul(n, Gi, A, t);
+  matmul(n, t, G, out);
+}
+
+/* The ellipsoidal norm (SS_JSR_NORM_ELLIPSOID) on closed forms: the B-spline
+ * difference matrices and a commuting pair, scrambled by a similarity so
+ * that neither the inf- nor the 2-norm is extremal (JSR unchanged, up to the
+ * rounding of the scrambled entries: relative 1e-12 allowed), must be
+ * bracketed and reach the gap 1e-3 at a small depth; the golden pair.  Then
+ * for random sets: never below the certified lower bound of the inf-norm
+ * run, and a relabelling (permutation similarity) gives the same bounds
+ * (the fit on P Y_i P^T is P's image of the fit in exact arithmetic; the
+ * floating-point L-BFGS trajectories drift apart, by 3e-6 relative in the
+ * bound on these seeds, so 1e-4 is allowed, not bitwise). */
+static void test_ellipsoid(gsl_rng *rng) {
+  const double e = 1.0 / 8, h = 0.5, s6 = 6.0 / 8;
+  const double S[2][16] = {{h, h, 0, 0, e, s6, e, 0, 0, h, h, 0, 0, e, s6, e},
+                           {e, s6, e, 0, 0, h, h, 0, 0, e, s6, e, 0, 0, h, h}};
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.norm = SS_JSR_NORM_ELLIPSOID;
+  o.depth = 2;
+  o.max_depth = 12;
+  for (int k = 1; k <= 2; k++) {
+    const size_t q = (size_t)(4 - k);
+    double AL[9], AR[9], BL[9], BR[9];
+    double *A[2] = {AL, AR};
+    diff_matrices(k, S, A);
+    scramble(q, AL, BL);
+    scramble(q, AR, BR);
+    const double *Y[2] = {BL, BR};
+    const double value = ldexp(1.0, -k);
+    int ok;
+    ss_jsr_result r = run(2, q, Y, o, &ok);
+    if (ok) {
+      CHECK(r.lower <= value * (1 + 1e-12) && value <= r.upper * (1 + 1e-12),
+            "ellipsoid, B-spline k = %d: [%.17g, %.17g] misses 2^-k", k, r.lower,
+            r.upper);
+      CHECK(r.rho_inf[0] > value * 1.25, "k = %d: the scrambled inf-norm is far (%.17g)",
+            k, r.rho_inf[0]);
+      CHECK(r.converged, "ellipsoid, B-spline k = %d: gap not reached: [%.17g, %.17g]", k,
+            r.lower, r.upper);
+      CHECK(r.norm == SS_JSR_NORM_ELLIPSOID, "k = %d: norm %d", k, (int)r.norm);
+      CHECK(r.certified, "k = %d: certified", k);
+    }
+    ss_jsr_result_clear(&r);
+  }
+  {
+    /* commuting: Q diag Q^{-1} with the extremal ellipsoid P = Q^{-T} Q^{-1}:
+     * the fit finds it at word length 1 */
+    const double Q[9] = {1, 1, 0, 0, 1, 1, 0, 0, 1},
+                 Qi[9] = {1, -1, 1, 0, 1, -1, 0, 0, 1};
+    const double DA[9] = {0.75, 0, 0, 0, -0.5, 0, 0, 0, 0.25},
+                 DB[9] = {0.25, 0, 0, 0, 0.5, 0, 0, 0, -0.875};
+    double Am[9], Bm[9], t[9];
+    matmul(3, Q, DA, t);
+    matmul(3, t, Qi, Am);
+    matmul(3, Q, DB, t);
+    matmul(3, t, Qi, Bm);
+    const double *Y[2] = {Am, Bm};
+    o.depth = 1;
+    o.max_depth = 1;
+    int ok;
+    ss_jsr_result r = run(2, 3, Y, o, &ok);
+    if (ok) {
+      CHECK(r.lower <= 0.875 && 0.875 <= r.upper, "ellipsoid, commuting: [%.17g, %.17g]",
+            r.lower, r.upper);
+      CHECK(r.upper <= 0.875 * (1 + 1e-3), "ellipsoid, commuting: upper %.17g at k = 1",
+            r.upper);
+    }
+    ss_jsr_result_clear(&r);
+  }
+  {
+    const double A[4] = {1, 1, 0, 1}, B[4] = {1, 0, 1, 1};
+    const double *Y[2] = {A, B};
+    const double phi = (1 + sqrt(5.0)) / 2;
+    o.depth = 2;
+    o.max_depth = 4;
+    int ok;
+    ss_jsr_result r = run(2, 2, Y, o, &ok);
+    if (ok) {
+      CHECK(r.lower <= phi && phi <= r.upper * (1 + 1e-15),
+            "ellipsoid, golden: [%.17g, %.17g]", r.lower, r.upper);
+      CHECK(r.upper <= phi * (1 + 1e-3), "ellipsoid, golden: upper %.17g", r.upper);
+    }
+    ss_jsr_result_clear(&r);
+  }
+  for (int trial = 0; trial < 4; trial++) {
+    const size_t m = 2 + (size_t)trial % 2, n = 3 + (size_t)trial % 4;
+    double mats[3][NMAX * NMAX], perm[3][NMAX * NMAX];
+    const double *Y[3] = {mats[0], mats[1], mats[2]}, *Z[3] = {perm[0], perm[1], perm[2]};
+    relabelled_sets(rng, m, n, 1.0, mats, perm);
+    ss_jsr_opts oi = ss_jsr_defaults();
+    oi.depth = 6;
+    oi.max_depth = 6;
+    oi.norm = SS_JSR_NORM_INF;
+    o.depth = 3;
+    o.max_depth = 6;
+    o.gap = 0;
+    int ok0, ok1, ok2;
+    ss_jsr_result ri = run(m, n, Y, oi, &ok0), a = run(m, n, Y, o, &ok1),
+                  b = run(m, n, Z, o, &ok2);
+    if (ok0 && ok1 && ok2) {
+      CHECK(a.upper >= ri.lower && a.upper >= a.lower,
+            "trial %d: ellipsoid upper %.17g below a lower bound %.17g", trial, a.upper,
+            fmax(ri.lower, a.lower));
+      CHECK(a.norm == SS_JSR_NORM_ELLIPSOID, "trial %d: norm %d", trial, (int)a.norm);
+      CHECK_CLOSE(a.lower, b.lower, 1e-12, "trial %d: relabelled lower", trial);
+      CHECK_CLOSE(a.upper, b.upper, 1e-4, "trial %d: relabelled ellipsoid upper", trial);
+    }
+    ss_jsr_result_clear(&ri);
+    ss_jsr_result_clear(&a);
+    ss_jsr_result_clear(&b);
   }
 }
 
@@ -592,6 +729,7 @@ int main(void) {
   test_limits(rng);
   test_brute(rng);
   test_permutation(rng);
+  test_ellipsoid(rng);
   test_scaling(rng);
   test_bad_input();
   gsl_rng_free(rng);

@@ -1,0 +1,332 @@
+/* ss_jsr_ellipsoid.c — fitting an ellipsoidal norm to a set of matrices and
+ * the certified similarity into it.  Method: ss_jsr_ellipsoid.h. */
+#include "ss_jsr_ellipsoid.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <arb_mat.h>
+#include <lapacke.h>
+
+enum { LBFGS_MEM = 8, STAGE_ITERS = 150, NSTAGES = 5 };
+static const double STAGE_T[NSTAGES] = {20, 100, 500, 2000, 10000};
+
+/* The objective's workspace. */
+typedef struct {
+  size_t m, n;            /* number and order of the matrices */
+  const double *const *Y; /* the matrices (not owned) */
+  double *li;             /* n^2: L^{-1} */
+  lapack_int *piv;        /* n: LU pivots */
+  double *tmp, *M;        /* n^2 each: Y L^{-T}, then L^T Y L^{-T} */
+  double *dummy;          /* n^2: dgesvd's unused U */
+  double *vt;             /* m n^2: right singular vectors of every Z_i */
+  double *s;              /* m n: squared singular values of every Z_i */
+  double *sb;             /* n: dgesvd's scratch */
+  double *G;              /* n^2: the gradient in P */
+  double *u, *yu;         /* n each: u = L^{-T} v and Y u */
+} fit_ws;
+
+static double now_seconds(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Squared singular values of L^T Y_i L^{-T} (into f->s, vectors into f->vt)
+ * for the n x n row-major L; returns the largest, or -1 if L is singular or
+ * LAPACK fails. */
+static double eval_sv(fit_ws *f, const double *L) {
+  const size_t n = f->n, nn = n * n;
+  memcpy(f->li, L, nn * sizeof *f->li);
+  if (LAPACKE_dgetrf(LAPACK_ROW_MAJOR, (lapack_int)n, (lapack_int)n, f->li, (lapack_int)n,
+                     f->piv) != 0 ||
+      LAPACKE_dgetri(LAPACK_ROW_MAJOR, (lapack_int)n, f->li, (lapack_int)n, f->piv) != 0)
+    return -1;
+  double mx = 0;
+  for (size_t i = 0; i < f->m; i++) {
+    const double *y = f->Y[i];
+    for (size_t r = 0; r < n;
+         r++) /* tmp = Y L^{-T}: tmp[r][c] = sum_t Y[r][t] li[c][t] */
+      for (size_t c = 0; c < n; c++) {
+        double a = 0;
+        for (size_t t = 0; t < n; t++)
+          a += y[r * n + t] * f->li[c * n + t];
+        f->tmp[r * n + c] = a;
+      }
+    for (size_t r = 0; r < n; r++) /* M = L^T tmp */
+      for (size_t c = 0; c < n; c++) {
+        double a = 0;
+        for (size_t t = 0; t < n; t++)
+          a += L[t * n + r] * f->tmp[t * n + c];
+        f->M[r * n + c] = a;
+      }
+    double *s = f->s + i * n;
+    if (LAPACKE_dgesvd(LAPACK_ROW_MAJOR, 'N', 'A', (lapack_int)n, (lapack_int)n, f->M,
+                       (lapack_int)n, s, f->dummy, (lapack_int)n, f->vt + i * nn,
+                       (lapack_int)n, f->sb) != 0)
+      return -1;
+    for (size_t j = 0; j < n; j++) {
+      s[j] *= s[j];
+      mx = fmax(mx, s[j]);
+    }
+  }
+  return isfinite(mx) ? mx : -1;
+}
+
+/* The smoothed objective (c / t) log sum exp(t sigma^2 / c) at L and its
+ * gradient in L (grad, n^2); *mx receives the true maximum of sigma^2.
+ * Returns INFINITY if L is singular or LAPACK fails. */
+static double objective(fit_ws *f, const double *L, double t, double c, double *grad,
+                        double *mx) {
+  const size_t n = f->n, nn = n * n;
+  *mx = eval_sv(f, L);
+  if (*mx < 0) return INFINITY;
+  double z = 0;
+  for (size_t e = 0; e < f->m * n; e++)
+    z += exp(t * (f->s[e] - *mx) / c);
+  memset(f->G, 0, nn * sizeof *f->G);
+  for (size_t i = 0; i < f->m; i++)
+    for (size_t j = 0; j < n; j++) {
+      const double lam = f->s[i * n + j], wt = exp(t * (lam - *mx) / c) / z;
+      if (wt < 1e-300) continue;
+      const double *v = f->vt + i * nn + j * n; /* right singular vector j */
+      for (size_t r = 0; r < n; r++) { /* u = L^{-T} v: u[r] = sum_c li[c][r] v[c] */
+        double a = 0;
+        for (size_t cc = 0; cc < n; cc++)
+          a += f->li[cc * n + r] * v[cc];
+        f->u[r] = a;
+      }
+      const double *y = f->Y[i];
+      for (size_t r = 0; r < n; r++) {
+        double a = 0;
+        for (size_t cc = 0; cc < n; cc++)
+          a += y[r * n + cc] * f->u[cc];
+        f->yu[r] = a;
+      }
+      for (size_t r = 0; r < n; r++)
+        for (size_t cc = 0; cc < n; cc++)
+          f->G[r * n + cc] += wt * (f->yu[r] * f->yu[cc] - lam * f->u[r] * f->u[cc]);
+    }
+  for (size_t r = 0; r < n; r++) /* grad = 2 G L */
+    for (size_t cc = 0; cc < n; cc++) {
+      double a = 0;
+      for (size_t t2 = 0; t2 < n; t2++)
+        a += f->G[r * n + t2] * L[t2 * n + cc];
+      grad[r * n + cc] = 2 * a;
+    }
+  return *mx + c / t * log(z); /* (c / t) log sum exp(t sigma^2 / c) */
+}
+
+static double dot(const double *a, const double *b, size_t len) {
+  double s = 0;
+  for (size_t e = 0; e < len; e++)
+    s += a[e] * b[e];
+  return s;
+}
+
+ss_status ss_jsr_ellipsoid_fit(size_t m, size_t n, const double *const *Y,
+                               double deadline, double *L) {
+  const size_t nn = n * n;
+  fit_ws f = {m, n, Y, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+  ss_status st = SS_OK;
+  f.li = malloc(nn * sizeof *f.li);
+  f.piv = malloc(n * sizeof *f.piv);
+  f.tmp = malloc(nn * sizeof *f.tmp);
+  f.M = malloc(nn * sizeof *f.M);
+  f.dummy = malloc(nn * sizeof *f.dummy);
+  f.vt = malloc(m * nn * sizeof *f.vt);
+  f.s = malloc(m * n * sizeof *f.s);
+  f.sb = malloc(n * sizeof *f.sb);
+  f.G = malloc(nn * sizeof *f.G);
+  f.u = malloc(n * sizeof *f.u);
+  f.yu = malloc(n * sizeof *f.yu);
+  /* L-BFGS state: x, its gradient, the trial point and gradient, the
+   * direction, the memory pairs, and the best L met */
+  double *x = malloc(nn * sizeof *x), *g = malloc(nn * sizeof *g),
+         *xt = malloc(nn * sizeof *xt), *gt = malloc(nn * sizeof *gt),
+         *d = malloc(nn * sizeof *d), *S = malloc(LBFGS_MEM * nn * sizeof *S),
+         *YY = malloc(LBFGS_MEM * nn * sizeof *YY);
+  if (!f.li || !f.piv || !f.tmp || !f.M || !f.dummy || !f.vt || !f.s || !f.sb || !f.G ||
+      !f.u || !f.yu || !x || !g || !xt || !gt || !d || !S || !YY) {
+    st = SS_ENOMEM;
+    goto done;
+  }
+  for (size_t e = 0; e < nn; e++)
+    L[e] = x[e] = e % (n + 1) == 0 ? 1 : 0;
+  double best = eval_sv(&f, x);
+  if (best < 0) {
+    st = SS_ENUMERIC;
+    goto done;
+  }
+  for (int stage = 0; stage < NSTAGES; stage++) {
+    const double t = STAGE_T[stage];
+    double mx, c = 0;
+    c = eval_sv(&f, x);
+    if (c <= 0) break;
+    double fx = objective(&f, x, t, c, g, &mx);
+    if (!isfinite(fx)) break;
+    double rho[LBFGS_MEM], alpha[LBFGS_MEM];
+    int mem = 0, head = 0;
+    for (int it = 0; it < STAGE_ITERS; it++) {
+      if (deadline > 0 && now_seconds() > deadline) goto done;
+      /* two-loop recursion: d = -H g */
+      for (size_t e = 0; e < nn; e++)
+        d[e] = -g[e];
+      for (int q = 0; q < mem; q++) {
+        const int j = (head - 1 - q + LBFGS_MEM) % LBFGS_MEM;
+        alpha[j] = rho[j] * dot(S + (size_t)j * nn, d, nn);
+        for (size_t e = 0; e < nn; e++)
+          d[e] -= alpha[j] * YY[(size_t)j * nn + e];
+      }
+      double gamma = 1;
+      if (mem > 0) {
+        const int j = (head - 1 + LBFGS_MEM) % LBFGS_MEM;
+        const double *yj = YY + (size_t)j * nn;
+        gamma = 1 / (rho[j] * dot(yj, yj, nn));
+      } else { /* first step: move L by about 1% of its size */
+        gamma = 0.01 * sqrt(dot(x, x, nn) / fmax(dot(g, g, nn), 1e-300));
+      }
+      for (size_t e = 0; e < nn; e++)
+        d[e] *= gamma;
+      for (int q = mem - 1; q >= 0; q--) {
+        const int j = (head - 1 - q + LBFGS_MEM) % LBFGS_MEM;
+        const double b = rho[j] * dot(YY + (size_t)j * nn, d, nn);
+        for (size_t e = 0; e < nn; e++)
+          d[e] += (alpha[j] - b) * S[(size_t)j * nn + e];
+      }
+      double gd = dot(g, d, nn);
+      if (!(gd < 0)) { /* not a descent direction: restart along -g */
+        mem = 0;
+        const double sc = 0.01 * sqrt(dot(x, x, nn) / fmax(dot(g, g, nn), 1e-300));
+        for (size_t e = 0; e < nn; e++)
+          d[e] = -sc * g[e];
+        gd = dot(g, d, nn);
+        if (!(gd < 0)) break;
+      }
+      /* Armijo backtracking */
+      double a = 1, ft = INFINITY, mxt = 0;
+      int ok = 0;
+      for (int bt = 0; bt < 30 && !ok; bt++, a *= 0.5) {
+        for (size_t e = 0; e < nn; e++)
+          xt[e] = x[e] + a * d[e];
+        ft = objective(&f, xt, t, c, gt, &mxt);
+        ok = isfinite(ft) && ft <= fx + 1e-4 * a * gd;
+      }
+      if (!ok) break;
+      if (mxt < best) {
+        best = mxt;
+        memcpy(L, xt, nn * sizeof *L);
+      }
+      double *sj = S + (size_t)head * nn, *yj = YY + (size_t)head * nn;
+      for (size_t e = 0; e < nn; e++) {
+        sj[e] = xt[e] - x[e];
+        yj[e] = gt[e] - g[e];
+      }
+      const double sy = dot(sj, yj, nn);
+      if (sy > 1e-12 * sqrt(dot(sj, sj, nn) * dot(yj, yj, nn))) {
+        rho[head] = 1 / sy;
+        head = (head + 1) % LBFGS_MEM;
+        if (mem < LBFGS_MEM) mem++;
+      }
+      const double df = fx - ft;
+      memcpy(x, xt, nn * sizeof *x);
+      memcpy(g, gt, nn * sizeof *g);
+      fx = ft;
+      if (df <= 1e-12 * fabs(fx)) break;
+    }
+    /* the smoothed objective is scale-invariant in L: rescale to keep the
+     * iterate's size near that of the start (no effect on the norm) */
+    double nx = sqrt(dot(x, x, nn) / (double)n);
+    if (nx > 0 && isfinite(nx))
+      for (size_t e = 0; e < nn; e++)
+        x[e] /= nx;
+  }
+done:
+  free(f.li);
+  free(f.piv);
+  free(f.tmp);
+  free(f.M);
+  free(f.dummy);
+  free(f.vt);
+  free(f.s);
+  free(f.sb);
+  free(f.G);
+  free(f.u);
+  free(f.yu);
+  free(x);
+  free(g);
+  free(xt);
+  free(gt);
+  free(d);
+  free(S);
+  free(YY);
+  return st;
+}
+
+int ss_jsr_ellipsoid_similar(size_t m, size_t n, const double *const *Y, const double *L,
+                             double *Z, double *delta, int *cw) {
+  const slong N = (slong)n, prec = 128;
+  const double U = DBL_EPSILON / 2;
+  arb_mat_t Lb, Lt, A, At, X, F;
+  arb_t e;
+  arf_t z, ub;
+  int ok = 1;
+  *cw = 1;
+  arb_mat_init(Lb, N, N);
+  arb_mat_init(Lt, N, N);
+  arb_mat_init(A, N, N);
+  arb_mat_init(At, N, N);
+  arb_mat_init(X, N, N);
+  arb_mat_init(F, N, N);
+  arb_init(e);
+  arf_init(z);
+  arf_init(ub);
+  for (slong r = 0; r < N; r++)
+    for (slong c = 0; c < N; c++) {
+      arb_set_d(arb_mat_entry(Lb, r, c), L[r * N + c]);
+      arb_set_d(arb_mat_entry(Lt, c, r), L[r * N + c]);
+    }
+  for (size_t i = 0; i < m && ok; i++) {
+    for (slong r = 0; r < N; r++)
+      for (slong c = 0; c < N; c++)
+        arb_set_d(arb_mat_entry(F, r, c), Y[i][r * N + c]);
+    arb_mat_mul(A, Lt, F, prec); /* L^T Y_i */
+    arb_mat_transpose(At, A);
+    /* Z_i^T = L^{-1} (L^T Y_i)^T: X = solve(L, A^T) encloses it */
+    if (!arb_mat_solve(X, Lb, At, prec)) {
+      ok = 0;
+      break;
+    }
+    double *zi = Z + i * n * n, mxrow = 0;
+    for (slong r = 0; r < N; r++) {
+      double row = 0;
+      for (slong c = 0; c < N; c++) {
+        const arb_struct *x = arb_mat_entry(X, c, r);
+        const double zd = arf_get_d(arb_midref(x), ARF_RND_NEAR);
+        zi[r * N + c] = zd;
+        arf_set_d(z, zd);
+        arb_sub_arf(e, x, z, prec); /* exact entry - stored entry */
+        arb_get_abs_ubound_arf(ub, e, prec);
+        const double err = arf_get_d(ub, ARF_RND_UP);
+        if (!isfinite(err)) ok = 0;
+        if (!(err <= 3 * U * fabs(zd))) *cw = 0;
+        row += err;
+      }
+      mxrow = fmax(mxrow, row * (1 + (double)(N + 2) * 2 * U));
+    }
+    delta[i] = mxrow + (double)N * DBL_TRUE_MIN;
+  }
+  arf_clear(ub);
+  arf_clear(z);
+  arb_clear(e);
+  arb_mat_clear(F);
+  arb_mat_clear(X);
+  arb_mat_clear(At);
+  arb_mat_clear(A);
+  arb_mat_clear(Lt);
+  arb_mat_clear(Lb);
+  return ok;
+}
