@@ -280,6 +280,7 @@ static void ws_push(jsr_ws *w, int k, size_t i) {
    * kept for the descendants, for the componentwise bound */
   if (k == 0) return;
   w->qvalid[k] = 0;
+  if (!w->cw_ok) return; /* the copies' error is not componentwise: no use */
   if (!w->qvalid[k - 1]) {
     if (!(w->err_inf[k] > 1e-12 * w->nhat_inf[k])) return;
     for (int j = 0; j < k; j++) {

@@ -207,8 +207,10 @@ static ss_status write_all(const jsr_table *t, const char *dir, const jsr_row *r
           "(the paper's ρ^[k]; K = %d for the face, %d for edges: every word).  "
           "*lower*: the largest ρ(Y_w)^(1/|w|) found, enclosed in ball arithmetic; "
           "*upper*: Gripenberg's branch and bound in the norm with the lower first "
-          "pass (inf-norm, weighted inf-norm or 2-norm), every product's rounding "
-          "bounded — both bounds are proven for the computed Y_i (*certified*), not for "
+          "pass (inf-norm, weighted inf-norm, 2-norm or an ellipsoidal norm fitted "
+          "to the Y_i, whose similar copies are enclosed in ball arithmetic; `norm` "
+          "in the JSON lines), every product's rounding bounded — both bounds are proven "
+          "for the computed Y_i (*certified*), not for "
           "the rounding in forming Y_i.  Budget: at most %d products in the branch and "
           "bound, relative gap %g, no time limit (so the table is the same on every "
           "run).  Threshold: ¼ for the face (C² across it), λ3 = min(λ1, ½) for an "
@@ -260,9 +262,14 @@ static ss_status write_all(const jsr_table *t, const char *dir, const jsr_row *r
             L->threshold, w->verdict, r->certified, r->converged, r->nodes, paper);
     fprintf(j,
             "],\"lower\":%.17g,\"upper\":%.17g,\"threshold\":%.17g,\"verdict\":\"%s\","
-            "\"certified\":%s,\"converged\":%s,\"nodes\":%zu,\"bnb_depth\":%d}\n",
+            "\"certified\":%s,\"converged\":%s,\"nodes\":%zu,\"bnb_depth\":%d,"
+            "\"norm\":\"%s\"}\n",
             r->lower, r->upper, L->threshold, w->verdict, r->certified ? "true" : "false",
-            r->converged ? "true" : "false", r->nodes, r->bnb_depth);
+            r->converged ? "true" : "false", r->nodes, r->bnb_depth,
+            r->norm == SS_JSR_NORM_ELLIPSOID ? "ellipsoid"
+            : r->norm == SS_JSR_NORM_2       ? "2"
+            : r->weighted                    ? "weighted inf"
+                                             : "inf");
   }
   free(status);
   fprintf(

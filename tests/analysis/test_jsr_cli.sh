@@ -47,6 +47,19 @@ assert j["maps"] == 2 and j["subspace"] == 4
 assert j["lambda1"] < 0.5 and j["threshold"] == j["lambda1"]
 assert sorted(j["theta"], reverse=True)[0] == 1 or abs(j["theta"][0] - 1) < 1e-10
 PY
+expect_in 2 "--norm: expected auto, inf, 2 or ellipsoid, not 'l1'" "" "$exe" jsr --scheme tetoct --face --norm l1
+# edge 10: undecided in the inf- and 2-norms ([0.4948, 0.5271] against 1/2);
+# the fitted ellipsoidal norm is extremal there (JSR = rho(Y_1)): the bounds
+# meet to the gap at short words and prove the pass
+out=$("$exe" jsr --scheme tetoct --edge 10 --depth 3 --norm ellipsoid --max-seconds 60 --format json)
+checks=$((checks + 1))
+python3 - "$out" <<'PY' || fail "tetoct edge 10 ellipsoid JSON: $out"
+import json, sys
+j = json.loads(sys.argv[1])
+assert j["norm"] == "ellipsoid" and j["converged"] and j["certified"]
+assert j["lower"] <= j["upper"] <= j["lower"] * (1 + 1e-3)
+assert j["threshold"] == 0.5 and j["upper"] < 0.5 and j["verdict"] == "pass"
+PY
 # box-spline faces with the diagonals of Algorithm 2 have the eigenvalue
 # 0.512 > 1/2: the reduction does not apply, exit 1 with the spectrum
 expect_in 1 "are not 1, 1/2 x3, 1/4 x6" "" "$exe" jsr --scheme boxspline --face --depth 2 --max-seconds 1

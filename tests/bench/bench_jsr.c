@@ -67,7 +67,7 @@ static int bench_row(const char *name, size_t m, size_t n, const double *const *
     fprintf(stderr, "bench_jsr: %s\n", e.msg);
     return 1;
   }
-  static const char *nn[] = {"inf", "2", "auto"};
+  static const char *nn[] = {"inf", "2", "auto", "ell"};
   const int L = r.bnb_depth > o.depth ? r.bnb_depth : o.depth;
   const double words = (pow((double)m, L + 1) - (double)m) / ((double)m - 1);
   const double brute = brute_rate(m, n, Y, r.norm) * words;
@@ -119,6 +119,24 @@ int main(int argc, char **argv) {
                      SS_JSR_NORM_AUTO, secs);
     bad |= bench_row("face", L->m, L->n - L->r, (const double *const *)L->Y,
                      SS_JSR_NORM_INF, secs);
+    bad |= bench_row("face", L->m, L->n - L->r, (const double *const *)L->Y,
+                     SS_JSR_NORM_ELLIPSOID, secs);
+  }
+  ss_levin_free(L);
+  L = NULL;
+  /* (c) the tet/oct edge of valence 10 (threshold 1/2) */
+  fc.kind = SS_CASE_EDGE;
+  fc.n = 10;
+  if (!s || ss_levin_new(s, &fc, &L, &err)) {
+    fprintf(stderr, "bench_jsr: tet/oct edge 10: %s\n", err.msg);
+    bad = 1;
+  } else {
+    printf("(c) tet/oct edge 10: %zu blocks of order %zu (threshold %g)\n", L->m,
+           L->n - L->r, L->threshold);
+    bad |= bench_row("edge 10", L->m, L->n - L->r, (const double *const *)L->Y,
+                     SS_JSR_NORM_2, secs);
+    bad |= bench_row("edge 10", L->m, L->n - L->r, (const double *const *)L->Y,
+                     SS_JSR_NORM_ELLIPSOID, secs);
   }
   ss_levin_free(L);
   ss_scheme_free(s);
