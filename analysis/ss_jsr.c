@@ -864,7 +864,11 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     if (L == K && ncand > 1) {
       int best = -1;
       u = INFINITY;
-      for (int c = 0; c < NCAND && !stop; c++) {
+      /* the ellipsoid first: usually the best, and a limit that stops the
+       * pass early should not cut it off */
+      static const int order[NCAND] = {C_ELL, C_WINF, C_INF, C_2};
+      for (int oc = 0; oc < NCAND && !stop; oc++) {
+        const int c = order[oc];
         if (!use[c]) continue;
         double uc;
         ws_select(&w, Y, c, best_d);
