@@ -133,10 +133,14 @@ typedef struct {
  * named), depth outside 1..64, gap negative or not finite, an unknown norm,
  * max_depth < 0, max_seconds NaN, more than 10^10 brute-force words
  * (m + ... + m^K); SS_ENOMEM; SS_ENUMERIC if LAPACK's
- * eigenvalue or singular value computation fails.  Cost: (m^{K+1} - m) /
- * (m - 1) products with a norm each (an SVD for rho_2) for the profiles, then
- * the branch and bound within max_nodes / max_seconds / max_depth
- * (converged = 0 when a limit stops it); memory O((K + L) n^2 + m n^2). */
+ * eigenvalue or singular value computation fails, or if norm ELLIPSOID was
+ * asked for and the fitted L could not be proven invertible (AUTO then just
+ * skips that norm).  Cost: (m^{K+1} - m) / (m - 1) products with a norm
+ * each (an SVD for rho_2) for the profiles; the ellipsoid's fit, at most
+ * 750 L-BFGS steps of O(m n^3) (within a quarter of max_seconds), and its
+ * enclosure, O(m n^3) in 128-bit balls; then the branch and bound within
+ * max_nodes / max_seconds / max_depth (converged = 0 when a limit stops it);
+ * memory O((K + L) n^2 + m n^2), about (26 + 2 m) n^2 more for the fit. */
 ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_jsr_opts *o,
                          ss_jsr_result *out, ss_error *err);
 
