@@ -14,9 +14,21 @@
  * 3e-2 after 60 s in the 2-norm): Gripenberg's bound converges like
  * C^{1/k} unless the norm is nearly extremal.  (b) The tet/oct face:
  * the four blocks Y_i of the Levin-Levin reduction (ss_levin_new), norm
- * AUTO and inf.  Measured with 10 s per row: [0.1368, 0.1755] (AUTO chose
- * the 2-norm, depth 6) and [0.1368, 0.1832] (inf, depth 8); the gap stays
- * near 0.3, so on this case the ratio (0.1, 1.8) does not show pruning yet.
+ * AUTO, inf and ELLIPSOID; (c) the tet/oct edge of valence 10, 2-norm and
+ * ELLIPSOID.  Measured in one run (`bench_jsr 60 0`, 60 s per row, wall
+ * clock on the shared machine at load 12, about a quarter of a core):
+ *   face   a:ell  [0.136817, 0.141422]  gap 3.4e-2  L 8  31722 products  ratio 1.65
+ *   face   inf    [0.136807, 0.183242]  gap 3.4e-1  L 8  124998           ratio 2.18
+ *   face   ell    [0.136807, 0.141422]  gap 3.4e-2  L 8  20604            ratio 1.7
+ *   edge10 2      [0.494787, 0.527089]  gap 6.5e-2  L 11 11112            ratio 4.17
+ *   edge10 ell    [0.494787, 0.494788]  gap 3.2e-7  L 4  2 products, 15 s  ratio 0.08
+ * The face does not reach 1e-3 in any norm (README, "Joint spectral
+ * radius": the fitted ellipsoid is 5% from extremal); the ellipsoid cuts the
+ * gap tenfold against the inf-norm at the same depth.  On edge 10 the fitted
+ * ellipsoid is extremal: the gap is reached at the first pass, the time is
+ * the fit's; brute force "at the same depth" (4) is cheap but its bound
+ * there is rho_4 = 0.648 and still rho_8 = 0.5625 > 1/2, so the ratio < 1
+ * understates it: brute force decides nothing at the depths it reaches.
  *
  * Usage: bench_jsr [seconds per case (default 60)] [cases (default 3)] */
 #include <math.h>
