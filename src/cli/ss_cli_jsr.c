@@ -217,6 +217,7 @@ int ss_cli_jsr(int argc, char **argv) {
     json_object_object_add(j, "converged", json_object_new_boolean(r.converged));
     json_object_object_add(j, "nodes", json_object_new_int64((int64_t)r.nodes));
     json_object_object_add(j, "norm", json_object_new_string(norm_names[r.norm]));
+    json_object_object_add(j, "weighted", json_object_new_boolean(r.weighted));
     json_object_object_add(j, "bnb_depth", json_object_new_int(r.bnb_depth));
     printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
     json_object_put(j);
