@@ -99,5 +99,21 @@ int ss_cli_parse_part(const char *s, long *part, long *nparts);
 char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno);
 /* Monotonic wall-clock seconds. */
 double ss_cli_now(void);
+#ifndef SS_DATADIR
+/* where `meson install` puts data/ (stencils/, reference/, meshes/); meson
+ * defines it from the prefix (src/cli/meson.build) */
+#define SS_DATADIR "/usr/local/share/subspectra"
+#endif
+#ifndef SS_DATADIR_REL
+/* the same, relative to the folder of the installed program ("" if none) */
+#define SS_DATADIR_REL "../share/subspectra"
+#endif
+/* The default folder of the reference values for `reproduce`:
+ * $SUBSPECTRA_DATADIR/reference when that variable is set; else
+ * data/reference when it holds *.tsv files (run from the source tree); else
+ * the installed data beside the program (SS_DATADIR_REL from its folder) when
+ * it holds them; else SS_DATADIR/reference.  Written into buf (cap bytes); returns buf,
+ * or NULL if it does not fit. */
+char *ss_cli_refdir(char *buf, size_t cap);
 
 #endif

@@ -987,7 +987,11 @@ static const char usage[] =
     "formula in k or n) within 1e-9, a verdict when equal.  One progress line\n"
     "per table on standard error.\n\n"
     "  -o, --out DIR        output folder, created if missing (default reports)\n"
-    "  -r, --reference DIR  reference files DIR/*.tsv (default data/reference)\n"
+    "  -r, --reference DIR  reference files DIR/*.tsv; default:\n"
+    "                       $SUBSPECTRA_DATADIR/reference when that is set, else\n"
+    "                       data/reference when run from the source tree, else\n"
+    "                       the installed data beside the program, or\n"
+    "                       " SS_DATADIR "/reference\n"
     "  --certify            prove every verdict (as `analyze --certify`): a proven\n"
     "                       verdict is marked ✓, one that cannot be proven becomes\n"
     "                       undecided; the exhaustive tables count both per k\n"
@@ -1029,7 +1033,8 @@ int ss_cli_reproduce(int argc, char **argv) {
                                        {"certify", no_argument, NULL, 'c'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
-  const char *out = "reports", *refdir = "data/reference";
+  const char *out = "reports", *refdir = NULL;
+  char refbuf[4096];
   ss_result_opts ro = ss_result_defaults();
   optind = 1;
   opterr = 0;
@@ -1056,6 +1061,8 @@ int ss_cli_reproduce(int argc, char **argv) {
     return ss_cli_usage_error(cmd, "unexpected argument '%s'", argv[optind]);
   if (!*out) return ss_cli_usage_error(cmd, "--out: empty folder name");
 
+  if (!refdir && !(refdir = ss_cli_refdir(refbuf, sizeof refbuf)))
+    return ss_cli_usage_error(cmd, "SUBSPECTRA_DATADIR: path too long");
   ss_error err = {0};
   ss_ref ref = {0};
   int rc = SS_EXIT_OK;
@@ -1072,8 +1079,8 @@ int ss_cli_reproduce(int argc, char **argv) {
   sprintf(path, "%s/*.tsv", refdir);
   if (glob(path, 0, NULL, &g) != 0 || g.gl_pathc == 0) {
     fprintf(stderr,
-            "subspectra %s: %s: no reference files (*.tsv); run from the source tree "
-            "or give --reference DIR\n",
+            "subspectra %s: %s: no reference files (*.tsv); run from the source tree, "
+            "set SUBSPECTRA_DATADIR or give --reference DIR\n",
             cmd, refdir);
     rc = SS_EXIT_USAGE;
     goto done;

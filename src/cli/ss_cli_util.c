@@ -4,10 +4,12 @@
 #include <math.h>
 #include <stdarg.h>
 #include <getopt.h>
+#include <glob.h>
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "ss_cli.h"
 #include "ss_local.h"
@@ -166,4 +168,42 @@ int ss_cli_refuse_local(const char *cmd, const ss_scheme *s) {
           "sensitive (bisection) split are not implemented yet\n",
           cmd, ss_scheme_name(s));
   return 1;
+}
+
+/* Whether DIR/reference holds reference files (*.tsv). */
+static int has_reference(const char *dir) {
+  char pat[4200];
+  if ((size_t)snprintf(pat, sizeof pat, "%s/reference/*.tsv", dir) >= sizeof pat)
+    return 0;
+  glob_t g;
+  const int yes = glob(pat, 0, NULL, &g) == 0 && g.gl_pathc > 0;
+  globfree(&g);
+  return yes;
+}
+
+char *ss_cli_refdir(char *buf, size_t cap) {
+  const char *env = getenv("SUBSPECTRA_DATADIR");
+  char dir[4096] = "";
+  if (env && *env)
+    snprintf(dir, sizeof dir, "%s", env);
+  else if (has_reference("data"))
+    /* the source tree first, as before an install existed: a developer's
+     * edits to data/reference must be what reproduce reads */
+    snprintf(dir, sizeof dir, "data");
+  else {
+    /* the installed data beside this program (PREFIX/bin/../share/subspectra),
+     * which also holds in a moved or DESTDIR-staged tree; else the compiled-in
+     * absolute path */
+    char exe[4096];
+    const ssize_t n =
+        SS_DATADIR_REL[0] ? readlink("/proc/self/exe", exe, sizeof exe - 1) : -1;
+    char *slash = n > 0 ? (exe[n] = '\0', strrchr(exe, '/')) : NULL;
+    if (slash) *slash = '\0';
+    if (!slash ||
+        (size_t)snprintf(dir, sizeof dir, "%s/%s", exe, SS_DATADIR_REL) >= sizeof dir ||
+        !has_reference(dir))
+      snprintf(dir, sizeof dir, "%s", SS_DATADIR);
+  }
+  const int n = snprintf(buf, cap, "%s/reference", dir);
+  return n >= 0 && (size_t)n < cap ? buf : NULL;
 }

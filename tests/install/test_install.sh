@@ -1,0 +1,199 @@
+#!/usr/bin/env bash
+# test_install.sh BUILD SRC EXAMPLE PREFIX LIBDIR DATADIR BINDIR MANDIR INCLUDEDIR
+#
+# The installed library as a user meets it (issue 21): `meson install` into a
+# staging folder (DESTDIR), then
+#  - every public header compiles alone from #include <subspectra/NAME.h> with
+#    the installed pkg-config file's --cflags (nothing includes a header that
+#    is not installed);
+#  - the C example examples/analyze_edge.c compiled with
+#    `pkg-config --cflags --libs subspectra`, linked against the shared library
+#    (and run with it: LD_LIBRARY_PATH, the binary must need libsubspectra.so)
+#    and once against the static one (--static; it must not need it); both
+#    print numbers checked against closed forms:
+#      MLCA edge 4 (the regular grid): the tricubic B-spline's spectrum 1,
+#        1/2 (x3), 1/4 (x6) and the two-ring 125, one-ring 27;
+#      MLCA edge 5: the tensor product of the cubic B-spline curve and 2D MLCA
+#        at valence 5, so lambda1 = lambda2 = Catmull-Clark's subdominant
+#        (5 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))))/16, lambda3 = 1/2
+#        and lambda4 = the second Fourier mode's (the same with 4pi/n, 2pi/n);
+#        two-ring 30n + 5, one-ring 6n + 3;
+#  - the man page is installed and names every command;
+#  - `reproduce` run from outside the source tree finds the installed reference
+#    values (beside the program, and through SUBSPECTRA_DATADIR), and its
+#    --help names the compiled-in datadir.
+set -u
+build=$1 src=$2 example=$3 prefix=$4 libdir=$5 datadir=$6 bindir=$7 mandir=$8 incdir=$9
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0
+fail() {
+  echo "FAIL: $*" >&2
+  fails=$((fails + 1))
+}
+ok() { echo "ok: $*"; }
+
+abs() { case $1 in /*) echo "$1" ;; *) echo "$prefix/$1" ;; esac; }
+stage=$tmp/stage
+L=$stage$(abs "$libdir")
+D=$stage$(abs "$datadir")/subspectra
+B=$stage$(abs "$bindir")
+MAN=$stage$(abs "$mandir")
+INC=$stage$(abs "$incdir")
+
+if ! meson install -C "$build" --no-rebuild --destdir "$stage" >"$tmp/install.log" 2>&1; then
+  cat "$tmp/install.log" >&2
+  echo "FAIL: meson install" >&2
+  exit 1
+fi
+ok "meson install --destdir"
+
+for f in "$L/libsubspectra.a" "$L/libsubspectra.so" "$L/pkgconfig/subspectra.pc" \
+  "$INC/subspectra/ss_local.h" "$B/subspectra" "$MAN/man1/subspectra.1"; do
+  [ -e "$f" ] || fail "not installed: ${f#"$stage"}"
+done
+ls "$INC/subspectra" | grep -q '_impl\.h$' && fail "an *_impl.h header is installed"
+for d in stencils reference meshes; do
+  [ -n "$(ls "$D/$d" 2>/dev/null)" ] || fail "not installed: ${D#"$stage"}/$d/"
+done
+
+# pkg-config over the staged tree: the installed subspectra.pc with its prefix
+# moved to the staging folder (PKG_CONFIG_SYSROOT_DIR would move the system
+# packages' paths too, cairo's -I/usr/include/cairo among them)
+mkdir -p "$tmp/pc"
+sed "s|^prefix=.*|prefix=$stage$prefix|" "$L/pkgconfig/subspectra.pc" >"$tmp/pc/subspectra.pc"
+grep -q "^prefix=$prefix\$" "$L/pkgconfig/subspectra.pc" || fail "subspectra.pc: prefix is not $prefix"
+export PKG_CONFIG_PATH=$tmp/pc
+pc_cflags=$(pkg-config --cflags subspectra) || fail "pkg-config --cflags subspectra"
+pc_libs=$(pkg-config --libs subspectra) || fail "pkg-config --libs subspectra"
+pc_static=$(pkg-config --static --libs subspectra) || fail "pkg-config --static --libs"
+echo "cflags: $pc_cflags"
+echo "libs: $pc_libs"
+echo "static libs: $pc_static"
+cc=${CC:-cc}
+cflags=(-std=c11 -Wall -Wextra -Wpedantic -Werror)
+
+# every public header alone
+nh=0
+for h in "$INC"/subspectra/*.h; do
+  printf '#include <subspectra/%s>\nint main(void) { return 0; }\n' "${h##*/}" >"$tmp/h.c"
+  # shellcheck disable=SC2086 # pkg-config's output is a word list
+  "$cc" "${cflags[@]}" -fsyntax-only $pc_cflags "$tmp/h.c" 2>"$tmp/h.log" ||
+    fail "header ${h##*/} does not compile alone: $(head -3 "$tmp/h.log")"
+  nh=$((nh + 1))
+done
+[ "$nh" -ge 10 ] && ok "$nh public headers compile alone" || fail "only $nh headers"
+
+# the example, shared
+# shellcheck disable=SC2086
+if "$cc" "${cflags[@]}" -o "$tmp/ae" "$example" $pc_cflags $pc_libs 2>"$tmp/cc.log"; then
+  ok "example compiled against the shared library"
+else
+  fail "example (shared) does not compile: $(head -5 "$tmp/cc.log")"
+fi
+readelf -d "$tmp/ae" 2>/dev/null | grep -q 'NEEDED.*libsubspectra\.so' ||
+  fail "the shared example does not need libsubspectra.so"
+# the example, static libsubspectra (the system libraries it needs stay shared)
+# shellcheck disable=SC2086
+if "$cc" "${cflags[@]}" -o "$tmp/aes" "$example" $pc_cflags \
+  ${pc_static/-lsubspectra/$L/libsubspectra.a} 2>"$tmp/ccs.log"; then
+  ok "example linked statically"
+else
+  fail "example (static) does not link: $(head -5 "$tmp/ccs.log")"
+fi
+readelf -d "$tmp/aes" 2>/dev/null | grep -q 'libsubspectra' &&
+  fail "the static example still needs libsubspectra"
+
+# check_edge BINARY N: the example's numbers against the closed forms above
+check_edge() {
+  local bin=$1 n=$2 out
+  out=$(cd "$tmp" && LD_LIBRARY_PATH=$L "$bin" mlca "$n" 2>&1)
+  local rc=$?
+  echo "$out" | sed "s|^|  ${bin##*/} $n: |"
+  [ "$rc" -eq 0 ] || fail "${bin##*/} mlca $n: exit $rc (expected 0: pass)"
+  echo "$out" | awk -v n="$n" -v who="${bin##*/} mlca $n" '
+    function near(a, b, what) {
+      if (!(a - b <= 1e-9 * (b < 0 ? -b : b) + 1e-12 && b - a <= 1e-9 * (b < 0 ? -b : b) + 1e-12)) {
+        printf "FAIL: %s: %s = %.15g, closed form %.15g\n", who, what, a, b > "/dev/stderr"; bad = 1
+      }
+    }
+    BEGIN { pi = atan2(0, -1) }
+    $1 == "matrix" { n2 = $2; n1 = $3 }
+    $1 == "lambda" { re[$2] = $3; im[$2] = $4; mu[$2] = $5 }
+    $1 == "verdict" { verdict = $2 }
+    END {
+      want[0] = 1
+      if (n == 4) {
+        for (i = 1; i <= 3; i++) want[i] = 0.5
+        for (i = 4; i <= 7; i++) want[i] = 0.25
+        if (mu[1] != 3 || mu[4] != 6) {
+          printf "FAIL: %s: multiplicities %d, %d (tricubic: 3, 6)\n", who, mu[1], mu[4] > "/dev/stderr"; bad = 1
+        }
+        near(n2, 125, "two-ring"); near(n1, 27, "one-ring")
+      } else {
+        c2 = cos(2 * pi / n); c1 = cos(pi / n)
+        c4 = cos(4 * pi / n)
+        want[1] = want[2] = (5 + c2 + c1 * sqrt(2 * (9 + c2))) / 16
+        want[3] = 0.5
+        want[4] = (5 + c4 + c2 * sqrt(2 * (9 + c4))) / 16
+        near(n2, 30 * n + 5, "two-ring"); near(n1, 6 * n + 3, "one-ring")
+      }
+      for (i = 0; i in want; i++) {
+        near(re[i], want[i], "lambda" i)
+        near(im[i], 0, "Im lambda" i)
+      }
+      if (verdict != "pass") { printf "FAIL: %s: verdict %s\n", who, verdict > "/dev/stderr"; bad = 1 }
+      exit bad
+    }' || fails=$((fails + 1))
+}
+[ -x "$tmp/ae" ] && check_edge "$tmp/ae" 4 && check_edge "$tmp/ae" 5
+[ -x "$tmp/aes" ] && check_edge "$tmp/aes" 4
+
+# the man page: every command of the overview has its section
+man1=$MAN/man1/subspectra.1
+if [ -f "$man1" ]; then
+  for c in $("$B/subspectra" --help | awk '/^commands:/ { on = 1; next } on && /^  [a-z]/ { print $1 } on && /^$/ { exit }'); do
+    grep -q "^\.SS $c\$" "$man1" || fail "man page: no section for $c"
+  done
+  grep -q '^\.SS enumerate links$' "$man1" || fail "man page: no section for enumerate links"
+  if command -v groff >/dev/null; then
+    groff -k -man -Tutf8 -ww -z "$man1" 2>"$tmp/groff.log"
+    [ -s "$tmp/groff.log" ] && fail "groff warns on the man page: $(head -3 "$tmp/groff.log")"
+  fi
+  ok "man page"
+fi
+
+# reproduce from outside the source tree: the reference files are found (they
+# are loaded before the output folder is made, so an output that cannot be
+# made shows that loading got past them without running the whole reproduce)
+mkdir -p "$tmp/elsewhere"
+run_reproduce() { (cd "$tmp/elsewhere" && "$@" reproduce --out /dev/null/x 2>&1); }
+out=$(run_reproduce env -u SUBSPECTRA_DATADIR "$B/subspectra")
+case $out in
+*"cannot create /dev/null/x"*) ok "reproduce finds the data beside the installed program" ;;
+*) fail "installed reproduce: $out" ;;
+esac
+mv "$D" "$tmp/moved"
+out=$(run_reproduce env -u SUBSPECTRA_DATADIR "$B/subspectra")
+case $out in
+*"no reference files"*) ok "without the data: a clear message" ;;
+*) fail "reproduce without its data: $out" ;;
+esac
+out=$(run_reproduce env SUBSPECTRA_DATADIR="$tmp/moved" "$B/subspectra")
+case $out in
+*"cannot create /dev/null/x"*) ok "SUBSPECTRA_DATADIR" ;;
+*) fail "reproduce with SUBSPECTRA_DATADIR: $out" ;;
+esac
+# the source tree keeps its behaviour: data/reference relative to the cwd
+# (the installed data still moved away, so only the source tree can serve)
+out=$(cd "$src" && env -u SUBSPECTRA_DATADIR "$B/subspectra" reproduce --out /dev/null/x 2>&1)
+case $out in
+*"cannot create /dev/null/x"*) ok "source tree" ;;
+*) fail "reproduce in the source tree: $out" ;;
+esac
+mv "$tmp/moved" "$D"
+"$B/subspectra" reproduce --help | tr -s ' \n' ' ' | grep -qF "$(abs "$datadir")/subspectra/reference" ||
+  fail "reproduce --help does not name the installed datadir"
+
+[ "$fails" -eq 0 ] && echo "install: all checks passed"
+[ "$fails" -eq 0 ]
