@@ -19,6 +19,7 @@
 #include "ss_link.h"
 #include "ss_local.h"
 #include "ss_outfile.h"
+#include "ss_report_case.h"
 #include "ss_report_draw.h"
 #include "ss_report_table.h"
 #include "ss_stencil.h"
@@ -414,131 +415,38 @@ typedef struct {
   size_t improper; /* of which improper */
 } diag_info;
 
-static json_object *level_json(const ss_ring_level *L, int l) {
-  json_object *x = json_object_new_object();
-  json_object_object_add(x, "level", json_object_new_int(l));
-  json_object_object_add(x, "cells", json_object_new_int64((int64_t)L->cells));
-  json_object_object_add(x, "positive", json_object_new_int64((int64_t)L->positive));
-  json_object_object_add(x, "negative", json_object_new_int64((int64_t)L->negative));
-  json_object_object_add(x, "folded", json_object_new_int64((int64_t)L->folded));
-  json_object_object_add(x, "inverted", json_object_new_int64((int64_t)L->inverted));
-  json_object_object_add(x, "undecided", json_object_new_int64((int64_t)L->undecided));
-  json_object_object_add(x, "degenerate", json_object_new_int64((int64_t)L->degenerate));
-  json_object_object_add(x, "min_scaled_jacobian",
-                         isfinite(L->min_scaled_jacobian)
-                             ? json_object_new_double(L->min_scaled_jacobian)
-                             : NULL);
-  return x;
-}
-
-/* The regularity object of DESIGN section 7, with the ring's levels. */
-static json_object *regularity_json(const ss_regularity *reg) {
-  /* certified: set by ss_charmap_certify under --certify, else 0 */
-  json_object *g = ss_report_verdict_json(&reg->verdict, reg->certified);
-  json_object_object_add(g, "min_scaled_jacobian",
-                         isfinite(reg->min_scaled_jacobian)
-                             ? json_object_new_double(reg->min_scaled_jacobian)
-                             : NULL);
-  json_object_object_add(
-      g, "cells",
-      json_object_new_int64((int64_t)(reg->npositive + reg->nnegative + reg->nfolded +
-                                      reg->nundecided + reg->ndegenerate)));
-  json_object_object_add(g, "orientation", json_object_new_int(reg->sign));
-  json_object_object_add(g, "folded_cells", json_object_new_int64((int64_t)reg->nfolded));
-  json_object_object_add(g, "inverted_cells",
-                         json_object_new_int64((int64_t)reg->ninverted));
-  json_object_object_add(g, "undecided_cells",
-                         json_object_new_int64((int64_t)reg->nundecided));
-  json_object_object_add(g, "degenerate_cells",
-                         json_object_new_int64((int64_t)reg->ndegenerate));
-  json_object_object_add(g, "centre_corner_folds",
-                         json_object_new_int64((int64_t)reg->centre_corner_folds));
-  json_object_object_add(g, "ring_level", json_object_new_int(reg->ring_level));
-  json_object *lv = json_object_new_array();
-  for (int l = 0; l < reg->nlevels; l++)
-    json_object_array_add(lv, level_json(reg->level + l, l));
-  json_object_object_add(g, "ring_levels", lv);
-  json_object_object_add(g, "shrink", json_object_new_double(reg->shrink));
-  json_object_object_add(g, "depth", json_object_new_int(reg->depth));
-  return g;
-}
-
-static void print_json(const opts *o, const char *scheme, const char *canon, int k,
-                       const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                       const ss_charmap_inj *inj, const diag_info *di,
-                       const cert_info *ci, json_object *eigvec) {
-  json_object *r = json_object_new_object();
-  json_object_object_add(r, "scheme", json_object_new_string(scheme));
-  json_object_object_add(r, "case", json_object_new_string(ss_case_name(o->kind)));
-  if (o->kind == SS_CASE_VERTEX || o->kind == SS_CASE_EDGE_POINT) {
-    json_object_object_add(r, "link", json_object_new_string(canon));
-    json_object_object_add(r, "k", json_object_new_int(k));
+/* The JSON object of DESIGN section 7 (ss_report_case_json), on one line. */
+static int print_json(const opts *o, const char *scheme, const char *canon, int k,
+                      const ss_local *M, const ss_eig *e, const ss_regularity *reg,
+                      const ss_charmap_inj *inj, const diag_info *di, const cert_info *ci,
+                      json_object *eigvec) {
+  const ss_report_case c = {scheme,
+                            o->kind,
+                            canon,
+                            k,
+                            o->n,
+                            o->neig,
+                            M,
+                            e,
+                            reg,
+                            inj,
+                            di->shown,
+                            o->diag,
+                            di->pairs,
+                            di->improper,
+                            ci->on ? &ci->c : NULL,
+                            ci->exact,
+                            eigvec};
+  ss_error err = {0};
+  json_object *r = NULL;
+  if (ss_report_case_json(&c, &r, &err)) {
+    fprintf(stderr, "subspectra %s: %s\n", o->cmd, err.msg);
+    return ss_cli_exit_status(err.status);
   }
-  if (o->kind == SS_CASE_EDGE || o->kind == SS_CASE_SURFACE_VERTEX ||
-      o->kind == SS_CASE_EDGE_POINT)
-    json_object_object_add(r, "valence", json_object_new_int(o->n));
-  json_object_object_add(r, "two_ring_size", json_object_new_int64((int64_t)M->n2));
-  json_object_object_add(r, "one_ring_size", json_object_new_int64((int64_t)M->n1));
-  json_object_object_add(r, "level", json_object_new_int(M->level));
-  if (di->shown) {
-    json_object *d = json_object_new_object();
-    json_object_object_add(d, "choice", json_object_new_string(ss_diag_name(o->diag)));
-    json_object_object_add(d, "pairs", json_object_new_int64((int64_t)di->pairs));
-    json_object_object_add(d, "improper", json_object_new_int64((int64_t)di->improper));
-    json_object_object_add(r, "diagonals", d);
-  }
-  json_object_object_add(r, "outer_blocks", json_object_new_int64((int64_t)e->nblocks));
-  json_object_object_add(r, "largest_outer_block",
-                         json_object_new_int64((int64_t)e->largest_block));
-  json_object *ev = json_object_new_array();
-  for (size_t i = 0; i < e->n && i < (size_t)o->neig; i++) {
-    json_object *x = json_object_new_object();
-    json_object_object_add(x, "re", json_object_new_double(e->val[i].re));
-    json_object_object_add(x, "im", json_object_new_double(e->val[i].im));
-    json_object_object_add(x, "multiplicity", json_object_new_int(e->val[i].mult));
-    json_object_object_add(x, "rcond", json_object_new_double(e->val[i].rcond));
-    json_object_object_add(
-        x, "block", json_object_new_string(e->val[i].block ? "outer" : "one-ring"));
-    json_object_array_add(ev, x);
-  }
-  json_object_object_add(r, "eigenvalues", ev);
-  json_object *c = ss_report_verdict_json(ci->on ? &ci->c.cond : &e->cond,
-                                          ci->on && ci->c.cond_certified);
-  json_object_object_add(c, "tolerance", json_object_new_double(e->tol));
-  json_object_object_add(c, "tolerance_requested",
-                         json_object_new_double(e->tol_requested));
-  json_object_object_add(c, "rounding_bound", json_object_new_double(e->rounding));
-  if (ci->exact) {
-    size_t nr = 0;
-    const ss_exact_root *x = ss_exact_roots(ci->exact, &nr);
-    json_object *a = json_object_new_array();
-    for (size_t i = 0; i < nr && i < (size_t)o->neig; i++) {
-      char poly[256];
-      json_object *q = json_object_new_object();
-      json_object_object_add(q, "re", json_object_new_double(x[i].re));
-      json_object_object_add(q, "im", json_object_new_double(x[i].im));
-      json_object_object_add(q, "radius", json_object_new_double(x[i].rad));
-      json_object_object_add(q, "multiplicity", json_object_new_int(x[i].mult));
-      json_object_object_add(q, "degree", json_object_new_int(x[i].degree));
-      json_object_object_add(
-          q, "minimal_polynomial",
-          json_object_new_string(ss_exact_minpoly(ci->exact, i, poly, sizeof poly)));
-      json_object_array_add(a, q);
-    }
-    json_object_object_add(c, "exact_roots", a);
-    json_object_object_add(c, "exact_seconds", json_object_new_double(ci->c.seconds));
-  }
-  json_object_object_add(r, "eigen_condition", c);
-  json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
-  json_object_object_add(r, "regularity", regularity_json(reg));
-  json_object *in = ss_report_verdict_json(&inj->verdict, inj->certified);
-  json_object_object_add(in, "degree", json_object_new_int(inj->degree));
-  json_object_object_add(in, "overlaps", json_object_new_int64((int64_t)inj->overlaps));
-  json_object_object_add(r, "injectivity", in);
-  if (eigvec) json_object_object_add(r, "eigenvectors", eigvec);
   printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
                                                        JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(r);
+  return SS_EXIT_OK;
 }
 
 static void print_value(FILE *f, const ss_eigval *v) {
@@ -975,8 +883,9 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   } else if (o->format == FMT_JSON) {
     json_object *evj = NULL;
     if (o->nvec && (rc = eigvec_json(o, M, e, &ci.c.cond, where, &evj))) goto done;
-    print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci,
-               evj);
+    if ((rc = print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj,
+                         &di, &ci, evj)))
+      goto done;
   } else if (o->format == FMT_TSV)
     print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, &inj, &ci,
               (*header)++ == 0);

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # test_install.sh BUILD SRC EXAMPLE PREFIX LIBDIR DATADIR BINDIR MANDIR INCLUDEDIR
+#                 PYDIR PYTEST
 #
 # The installed library as a user meets it (issue 21): `meson install` into a
 # staging folder (DESTDIR), then
@@ -21,9 +22,12 @@
 #  - the man page is installed and names every command;
 #  - `reproduce` run from outside the source tree finds the installed reference
 #    values (beside the program, and through SUBSPECTRA_DATADIR), and its
-#    --help names the compiled-in datadir.
+#    --help names the compiled-in datadir;
+#  - the Python package, installed under the platform's site directory (PYDIR,
+#    empty when not built), through test_python.py (PYTEST).
 set -u
 build=$1 src=$2 example=$3 prefix=$4 libdir=$5 datadir=$6 bindir=$7 mandir=$8 incdir=$9
+pydir=${10} pytest=${11}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -194,6 +198,22 @@ esac
 mv "$tmp/moved" "$D"
 "$B/subspectra" reproduce --help | tr -s ' \n' ' ' | grep -qF "$(abs "$datadir")/subspectra/reference" ||
   fail "reproduce --help does not name the installed datadir"
+
+# the Python package (when meson found Debian's python3 with cffi): installed
+# under the platform's site directory, run against the staged library
+if [ -n "$pydir" ]; then
+  P=$stage$(abs "$pydir")
+  if [ -f "$P/subspectra/__init__.py" ] && [ -f "$P/subspectra/_config.py" ]; then
+    grep -q "^LIBRARY = \"$(abs "$libdir")/libsubspectra.so.0\"" "$P/subspectra/_config.py" ||
+      fail "python: _config.py does not name the installed library"
+    (cd "$tmp/elsewhere" && PYTHONPATH=$P SUBSPECTRA_LIBRARY=$L/libsubspectra.so.0 \
+      /usr/bin/python3 "$pytest" "$B/subspectra") || fail "python package"
+  else
+    fail "python package not installed under ${P#"$stage"}"
+  fi
+else
+  echo "python: SKIPPED (no /usr/bin/python3 with cffi at configure time)"
+fi
 
 [ "$fails" -eq 0 ] && echo "install: all checks passed"
 [ "$fails" -eq 0 ]

@@ -1,0 +1,245 @@
+"""subspectra: spectral analysis of subdivision schemes, from Python.
+
+A thin layer over the shared library libsubspectra (cffi in ABI mode: nothing
+is compiled).  A case is one of
+
+    vertex=LINK            a 3D vertex: plantri ASCII ("4 bcd,adc,abd,acb") or a
+                           name (tetrahedron, octahedron, icosahedron, bipyramid:N)
+    edge=N                 a point on an edge of valence N
+    face=True              a point inside the face of two tets
+    surface_vertex=N       a 2D vertex of valence N
+
+with diagonals="bfs"|"proper"|"skew"|"center" for schemes that read major
+diagonals.
+
+    local_matrix(scheme, **case)   the local subdivision matrix S (scipy.sparse CSR)
+    eigenvalues(scheme, **case)    all eigenvalues of S (NumPy complex array,
+                                   by decreasing modulus) and their multiplicities
+    analyze(scheme, **case, **options)
+                                   the dictionary `subspectra analyze --format
+                                   json` prints; options tol, eigenvalues, depth,
+                                   ring_levels, certify as its --tol, ...
+
+The library is looked for in $SUBSPECTRA_LIBRARY, then where `meson install`
+put it, then by the dynamic linker's search (libsubspectra.so.0).
+"""
+import json
+import os
+
+import numpy as np
+import scipy.sparse
+from cffi import FFI
+
+from . import _config
+
+__all__ = ["SubspectraError", "scheme_names", "local_matrix", "eigenvalues", "analyze"]
+
+_ffi = FFI()
+# Declarations as in the installed headers (ss_error.h, ss_scheme.h, ss_link.h,
+# ss_local.h, ss_eig.h, ss_report_case.h).  Enumerations are passed as int.
+# ss_local and ss_eig are read through pointers only, so only their leading
+# fields are declared (in the headers' order; the rest is never touched).
+_ffi.cdef("""
+typedef struct { int status; char msg[512]; } ss_error;
+typedef struct ss_scheme ss_scheme;
+typedef struct ss_link_ ss_link;
+typedef struct { int kind; const ss_link *link; int n; int diag; } ss_case;
+typedef struct {
+  size_t n2; size_t n1; double *S; size_t nnz; void *label;
+  int ncoord; int dim; int level;
+} ss_local;
+typedef struct {
+  double re, im, rcond; int block, group, mult; double err, cluster;
+} ss_eigval;
+typedef struct { size_t n; ss_eigval *val; } ss_eig;
+typedef struct { void *fn; void *ctx; } ss_progress;
+typedef struct {
+  double tol; double cluster; int dim; int basis; int force; ss_progress progress;
+} ss_eig_opts;
+typedef struct { double tol; int neig; int depth; int ring_levels; int certify; }
+  ss_report_analyze_opts;
+
+const char *const *ss_scheme_names(void);
+int ss_scheme_new(const char *name, ss_scheme **out, ss_error *err);
+void ss_scheme_free(ss_scheme *s);
+int ss_link_parse(const char *text, ss_link **out, ss_error *err);
+void ss_link_free(ss_link *l);
+int ss_diag_parse(const char *name, int *out);
+int ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out, ss_error *err);
+void ss_local_free(ss_local *L);
+ss_eig_opts ss_eig_defaults(int dim);
+int ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
+               ss_eig **out, ss_error *err);
+void ss_eig_free(ss_eig *e);
+ss_report_analyze_opts ss_report_analyze_defaults(void);
+int ss_report_analyze(const ss_scheme *s, const ss_case *c,
+                      const ss_report_analyze_opts *o, char **json, ss_error *err);
+void free(void *p);
+""")
+
+# ss_case_kind (ss_local.h)
+_VERTEX, _EDGE, _FACE, _SURFACE_VERTEX = 0, 1, 2, 3
+
+
+def _load():
+    tried = []
+    for path in (os.environ.get("SUBSPECTRA_LIBRARY"), _config.LIBRARY, "libsubspectra.so.0"):
+        if not path:
+            continue
+        try:
+            return _ffi.dlopen(path)
+        except OSError as e:
+            tried.append("%s (%s)" % (path, e))
+    raise OSError("subspectra: cannot load libsubspectra: tried " + "; ".join(tried))
+
+
+_lib = _load()
+_libc = _ffi.dlopen(None)  # free() for the library's malloc'd strings
+
+
+class SubspectraError(Exception):
+    """A library call failed: .status is its ss_status name, str() its message."""
+
+    def __init__(self, status, message):
+        super().__init__(message)
+        self.status = status
+
+
+_STATUS = ["ok", "out of memory", "bad input", "i/o error", "numerical failure",
+           "internal error"]
+
+
+def _check(st, err):
+    if st:
+        name = _STATUS[st] if 0 <= st < len(_STATUS) else str(st)
+        raise SubspectraError(name, _ffi.string(err.msg).decode(errors="replace"))
+
+
+def scheme_names():
+    """The built-in schemes' names."""
+    p = _lib.ss_scheme_names()
+    out = []
+    i = 0
+    while p[i] != _ffi.NULL:
+        out.append(_ffi.string(p[i]).decode())
+        i += 1
+    return out
+
+
+class _Case:
+    """A scheme and a case, built in C; freed on exit (a context manager)."""
+
+    def __init__(self, scheme, vertex=None, edge=None, face=False, surface_vertex=None,
+                 diagonals=None):
+        given = [vertex is not None, edge is not None, bool(face), surface_vertex is not None]
+        if sum(given) != 1:
+            raise ValueError("give exactly one case: vertex=LINK, edge=N, face=True or "
+                             "surface_vertex=N")
+        self.err = _ffi.new("ss_error *")
+        self.c = _ffi.new("ss_case *")
+        self._s = _ffi.new("ss_scheme **")
+        self._l = _ffi.new("ss_link **")
+        self.scheme = None
+        try:
+            _check(_lib.ss_scheme_new(scheme.encode(), self._s, self.err), self.err)
+            self.scheme = self._s[0]
+            if diagonals is not None:
+                d = _ffi.new("int *")
+                if _lib.ss_diag_parse(diagonals.encode(), d):
+                    raise ValueError("diagonals: expected bfs, proper, skew or center, not %r"
+                                     % diagonals)
+                self.c.diag = d[0]
+            if vertex is not None:
+                _check(_lib.ss_link_parse(vertex.encode(), self._l, self.err), self.err)
+                self.c.kind, self.c.link = _VERTEX, self._l[0]
+            elif edge is not None:
+                self.c.kind, self.c.n = _EDGE, int(edge)
+            elif face:
+                self.c.kind = _FACE
+            else:
+                self.c.kind, self.c.n = _SURFACE_VERTEX, int(surface_vertex)
+        except BaseException:
+            self.close()
+            raise
+
+    def close(self):
+        if self._l[0] != _ffi.NULL:
+            _lib.ss_link_free(self._l[0])
+            self._l[0] = _ffi.NULL
+        if self._s[0] != _ffi.NULL:
+            _lib.ss_scheme_free(self._s[0])
+            self._s[0] = _ffi.NULL
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def _with_local(scheme, case, use):
+    with _Case(scheme, **case) as c:
+        pm = _ffi.new("ss_local **")
+        _check(_lib.ss_local_new(c.scheme, c.c, pm, c.err), c.err)
+        try:
+            return use(pm[0], c.err)
+        finally:
+            _lib.ss_local_free(pm[0])
+
+
+def _dense(M):
+    n = M.n2
+    return np.frombuffer(_ffi.buffer(M.S, n * n * 8), dtype=np.float64).reshape(n, n).copy()
+
+
+def local_matrix(scheme, **case):
+    """The local subdivision matrix S of the case (fine point i from coarse
+    point j: S[i, j]; the one-ring's points first; each row sums to 1), as a
+    scipy.sparse.csr_matrix of the two-ring's size."""
+    return _with_local(scheme, case, lambda M, err: scipy.sparse.csr_matrix(_dense(M)))
+
+
+def eigenvalues(scheme, tol=1e-6, **case):
+    """All eigenvalues of S by decreasing modulus (NumPy complex array), and
+    the size of each one's group of equal eigenvalues (within relative tol),
+    as a NumPy int array: (values, multiplicities)."""
+    def use(M, err):
+        opts = _lib.ss_eig_defaults(M.dim)
+        opts.tol = tol
+        po = _ffi.new("ss_eig_opts *", opts)
+        pe = _ffi.new("ss_eig **")
+        _check(_lib.ss_eig_new(M.S, M.n2, M.n1, po, pe, err), err)
+        try:
+            e = pe[0]
+            vals = np.array([complex(e.val[i].re, e.val[i].im) for i in range(e.n)])
+            mult = np.array([e.val[i].mult for i in range(e.n)], dtype=int)
+            return vals, mult
+        finally:
+            _lib.ss_eig_free(pe[0])
+    return _with_local(scheme, case, use)
+
+
+def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, diagonals=None,
+            tol=None, eigenvalues=None, depth=None, ring_levels=None, certify=False):
+    """The dictionary `subspectra analyze --scheme SCHEME CASE --format json`
+    prints (DESIGN section 7): matrix sizes, leading eigenvalues, the
+    eigenvalue condition, regularity and injectivity of the characteristic
+    map; options as analyze's --tol, --eigenvalues, --depth, --ring-levels,
+    --certify."""
+    with _Case(scheme, vertex, edge, face, surface_vertex, diagonals) as c:
+        o = _ffi.new("ss_report_analyze_opts *", _lib.ss_report_analyze_defaults())
+        if tol is not None:
+            o.tol = tol
+        if eigenvalues is not None:
+            o.neig = eigenvalues
+        if depth is not None:
+            o.depth = depth
+        if ring_levels is not None:
+            o.ring_levels = ring_levels
+        o.certify = 1 if certify else 0
+        out = _ffi.new("char **")
+        _check(_lib.ss_report_analyze(c.scheme, c.c, o, out, c.err), c.err)
+        try:
+            return json.loads(_ffi.string(out[0]).decode())
+        finally:
+            _libc.free(out[0])

@@ -1,0 +1,129 @@
+"""test_python.py SUBSPECTRA -- the installed Python package (issue 21).
+
+Run by test_install.sh with the staged package on PYTHONPATH and
+SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
+ - analyze() returns the dictionary of `subspectra analyze --format json` for
+   an edge, a vertex (named link), a face and a surface vertex: the same keys
+   everywhere, the same strings and integers, numbers within a relative 1e-12
+   (both run the same library code, so they agree to rounding or better);
+ - local_matrix() equals the Matrix Market export of `subspectra matrix`, and
+   its rows sum to 1 (partition of unity);
+ - eigenvalues() against closed forms: Catmull-Clark at valence n, lambda1 =
+   lambda2 = (5 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))))/16 (double),
+   and the regular MLCA edge's tricubic spectrum 1, 1/2 (x3), 1/4 (x6);
+ - bad input raises SubspectraError naming the problem.
+"""
+import io
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import scipy.io
+
+import subspectra
+
+exe = sys.argv[1]
+fails = 0
+
+
+def fail(msg):
+    global fails
+    fails += 1
+    print("FAIL: " + msg, file=sys.stderr)
+
+
+def same(a, b, path):
+    """Recursive comparison; numbers within a relative 1e-12."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        if set(a) != set(b):
+            fail("%s: keys differ: %s vs %s" % (path, sorted(set(a) ^ set(b)), ""))
+        for k in set(a) & set(b):
+            same(a[k], b[k], path + "." + k)
+    elif isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            fail("%s: lengths %d vs %d" % (path, len(a), len(b)))
+        for i, (x, y) in enumerate(zip(a, b)):
+            same(x, y, "%s[%d]" % (path, i))
+    elif isinstance(a, float) or isinstance(b, float):
+        if not (isinstance(a, (int, float)) and isinstance(b, (int, float))
+                and abs(a - b) <= 1e-12 * max(abs(a), abs(b), 1e-300)):
+            fail("%s: %r vs %r" % (path, a, b))
+    elif a != b:
+        fail("%s: %r vs %r" % (path, a, b))
+
+
+def cli(*args):
+    p = subprocess.run([exe] + list(args), capture_output=True, text=True)
+    if p.returncode not in (0, 1):
+        fail("%s: exit %d: %s" % (" ".join(args), p.returncode, p.stderr))
+    return p.stdout
+
+
+cases = [
+    ("mlca", {"edge": 5}, ["--edge", "5"]),
+    ("tetoct", {"vertex": "octahedron"}, ["--vertex", "octahedron"]),
+    ("tetoct", {"face": True}, ["--face"]),
+    ("catmull-clark", {"surface_vertex": 3}, ["--surface-vertex", "3"]),
+]
+for scheme, case, args in cases:
+    want = json.loads(cli("analyze", "--scheme", scheme, *args, "--format", "json"))
+    got = subspectra.analyze(scheme, **case)
+    same(got, want, "%s %s" % (scheme, case))
+    print("ok: analyze(%r, %s) == analyze --format json (%s)"
+          % (scheme, case, got["eigen_condition"]["verdict"]))
+# options reach the library: fewer eigenvalues, as --eigenvalues
+got = subspectra.analyze("mlca", edge=5, eigenvalues=4, tol=1e-8)
+want = json.loads(cli("analyze", "--scheme", "mlca", "--edge", "5", "--eigenvalues", "4",
+                      "--tol", "1e-8", "--format", "json"))
+same(got, want, "mlca edge 5 with options")
+if len(got["eigenvalues"]) != 4:
+    fail("eigenvalues=4 gave %d" % len(got["eigenvalues"]))
+
+# the local matrix against the Matrix Market export
+S = subspectra.local_matrix("catmull-clark", surface_vertex=5)
+mtx = cli("matrix", "--scheme", "catmull-clark", "--surface-vertex", "5", "--format", "mtx")
+T = scipy.io.mmread(io.StringIO(mtx))
+T = T.toarray() if hasattr(T, "toarray") else np.asarray(T)
+if S.shape != (31, 31):
+    fail("catmull-clark n=5: shape %s, want (31, 31) (6n + 1)" % (S.shape,))
+elif T.shape != S.shape or np.max(np.abs(S.toarray() - T)) > 1e-15:
+    fail("local_matrix differs from `matrix --format mtx`")
+rows = np.asarray(S.sum(axis=1)).ravel()
+if np.max(np.abs(rows - 1)) > 1e-14:
+    fail("rows do not sum to 1: %g" % np.max(np.abs(rows - 1)))
+print("ok: local_matrix == matrix --format mtx, rows sum to 1")
+
+# eigenvalues against closed forms
+for n in (3, 5, 7):
+    v, m = subspectra.eigenvalues("catmull-clark", surface_vertex=n)
+    c2, c1 = math.cos(2 * math.pi / n), math.cos(math.pi / n)
+    lam = (5 + c2 + c1 * math.sqrt(2 * (9 + c2))) / 16
+    if abs(v[0] - 1) > 1e-12 or abs(v[1] - lam) > 1e-12 * lam or abs(v[2] - lam) > 1e-12 * lam \
+            or m[1] != 2:
+        fail("catmull-clark n=%d: %s (mult %s), want 1, %.15g twice" % (n, v[:3], m[:3], lam))
+v, m = subspectra.eigenvalues("mlca", edge=4)
+want = np.array([1] + [0.5] * 3 + [0.25] * 6)
+if np.max(np.abs(v[:10] - want)) > 1e-12 or list(m[:10]) != [1] + [3] * 3 + [6] * 6:
+    fail("mlca edge 4: %s (mult %s), want the tricubic 1, 1/2 x3, 1/4 x6" % (v[:10], m[:10]))
+print("ok: eigenvalues against closed forms")
+
+# bad input
+for kw, what in (({"edge": 3, "scheme": "nope"}, "unknown scheme 'nope'"),
+                 ({"vertex": "4 bcd,adc", "scheme": "mlca"}, "")):
+    scheme = kw.pop("scheme")
+    try:
+        subspectra.analyze(scheme, **kw)
+        fail("analyze(%r, %s) did not raise" % (scheme, kw))
+    except subspectra.SubspectraError as e:
+        if what not in str(e) or e.status != "bad input":
+            fail("analyze(%r, %s): %s: %s" % (scheme, kw, e.status, e))
+try:
+    subspectra.analyze("mlca", edge=4, face=True)
+    fail("two cases did not raise")
+except ValueError:
+    pass
+print("ok: bad input")
+
+sys.exit(1 if fails else 0)
