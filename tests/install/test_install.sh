@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # test_install.sh BUILD SRC EXAMPLE PREFIX LIBDIR DATADIR BINDIR MANDIR INCLUDEDIR
-#                 PYDIR PYTEST
+#                 PYDIR PYTEST SANITIZE
 #
 # The installed library as a user meets it (issue 21): `meson install` into a
 # staging folder (DESTDIR), then
@@ -27,7 +27,7 @@
 #    empty when not built), through test_python.py (PYTEST).
 set -u
 build=$1 src=$2 example=$3 prefix=$4 libdir=$5 datadir=$6 bindir=$7 mandir=$8 incdir=$9
-pydir=${10} pytest=${11}
+pydir=${10} pytest=${11} sanitize=${12}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -76,6 +76,13 @@ echo "libs: $pc_libs"
 echo "static libs: $pc_static"
 cc=${CC:-cc}
 cflags=(-std=c11 -Wall -Wextra -Wpedantic -Werror)
+# a sanitizer build's library needs its runtime in the programs that load it
+pyenv=()
+if [ "$sanitize" = true ]; then
+  cflags+=(-fsanitize=address,undefined -fno-omit-frame-pointer)
+  pyenv=(LD_PRELOAD="$("$cc" -print-file-name=libasan.so) $("$cc" -print-file-name=libubsan.so)"
+    ASAN_OPTIONS=detect_leaks=0) # the interpreter's own allocations are not ours
+fi
 
 # every public header alone
 nh=0
@@ -206,8 +213,27 @@ if [ -n "$pydir" ]; then
   if [ -f "$P/subspectra/__init__.py" ] && [ -f "$P/subspectra/_config.py" ]; then
     grep -q "^LIBRARY = \"$(abs "$libdir")/libsubspectra.so.0\"" "$P/subspectra/_config.py" ||
       fail "python: _config.py does not name the installed library"
-    (cd "$tmp/elsewhere" && PYTHONPATH=$P SUBSPECTRA_LIBRARY=$L/libsubspectra.so.0 \
-      /usr/bin/python3 "$pytest" "$B/subspectra") || fail "python package"
+    # the layouts the package declares to cffi, as the C compiler sees them
+    cat >"$tmp/layout.c" <<'EOC'
+#include <stddef.h>
+#include <stdio.h>
+#include <subspectra/ss_report_case.h>
+#define SZ(T) printf("sizeof %s %zu\n", #T, sizeof(T))
+#define OFF(T, f) printf("offsetof %s %s %zu\n", #T, #f, offsetof(T, f))
+int main(void) {
+  SZ(ss_error), SZ(ss_case), SZ(ss_eigval), SZ(ss_eig_opts), SZ(ss_report_analyze_opts);
+  OFF(ss_case, link), OFF(ss_case, n), OFF(ss_case, diag);
+  OFF(ss_local, n2), OFF(ss_local, n1), OFF(ss_local, S), OFF(ss_local, nnz);
+  OFF(ss_local, dim), OFF(ss_local, level), OFF(ss_eig, n), OFF(ss_eig, val);
+  OFF(ss_eigval, mult), OFF(ss_eig_opts, tol), OFF(ss_eig_opts, progress);
+  return 0;
+}
+EOC
+    # shellcheck disable=SC2086
+    "$cc" "${cflags[@]}" -o "$tmp/layout" "$tmp/layout.c" $pc_cflags &&
+      "$tmp/layout" >"$tmp/layout.txt" || fail "layout program"
+    (cd "$tmp/elsewhere" && env "${pyenv[@]}" PYTHONPATH="$P" \
+      SUBSPECTRA_LIBRARY="$L/libsubspectra.so.0" /usr/bin/python3 "$pytest" "$B/subspectra" "$tmp/layout.txt") || fail "python package"
   else
     fail "python package not installed under ${P#"$stage"}"
   fi

@@ -1,4 +1,4 @@
-"""test_python.py SUBSPECTRA -- the installed Python package (issue 21).
+"""test_python.py SUBSPECTRA LAYOUT -- the installed Python package (issue 21).
 
 Run by test_install.sh with the staged package on PYTHONPATH and
 SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
@@ -11,7 +11,10 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
  - eigenvalues() against closed forms: Catmull-Clark at valence n, lambda1 =
    lambda2 = (5 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))))/16 (double),
    and the regular MLCA edge's tricubic spectrum 1, 1/2 (x3), 1/4 (x6);
- - bad input raises SubspectraError naming the problem.
+ - bad input raises SubspectraError naming the problem;
+ - the structure layouts the package declares to cffi equal the C compiler's
+   (LAYOUT: lines "sizeof T N" and "offsetof T FIELD N" from the installed
+   headers), so a field added to ss_case or ss_local is caught here.
 """
 import io
 import json
@@ -24,7 +27,7 @@ import scipy.io
 
 import subspectra
 
-exe = sys.argv[1]
+exe, layout = sys.argv[1], sys.argv[2]
 fails = 0
 
 
@@ -60,6 +63,21 @@ def cli(*args):
         fail("%s: exit %d: %s" % (" ".join(args), p.returncode, p.stderr))
     return p.stdout
 
+
+# the declarations against the headers, first: nothing else means anything
+# if they disagree
+with open(layout) as f:
+    for line in f:
+        w = line.split()
+        if w[0] == "sizeof":
+            got, want = subspectra._ffi.sizeof(w[1]), int(w[2])
+        else:
+            got, want = subspectra._ffi.offsetof(w[1], w[2]), int(w[3])
+        if got != want:
+            fail("layout: %s: cffi %d, C %d (update the cdef in subspectra/__init__.py)"
+                 % (" ".join(w[:-1]), got, want))
+if not fails:
+    print("ok: cffi layouts equal the headers'")
 
 cases = [
     ("mlca", {"edge": 5}, ["--edge", "5"]),
