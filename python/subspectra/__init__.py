@@ -15,6 +15,9 @@ diagonals.
     local_matrix(scheme, **case)   the local subdivision matrix S (scipy.sparse CSR)
     eigenvalues(scheme, **case)    all eigenvalues of S (NumPy complex array,
                                    by decreasing modulus) and their multiplicities
+    eigenvectors(scheme, k, **case)
+                                   the k leading ones with right and left
+                                   eigenvectors (limit and tangent masks)
     analyze(scheme, **case, **options)
                                    the dictionary `subspectra analyze --format
                                    json` prints; options tol, eigenvalues, depth,
@@ -32,7 +35,8 @@ from cffi import FFI
 
 from . import _config
 
-__all__ = ["SubspectraError", "scheme_names", "local_matrix", "eigenvalues", "analyze"]
+__all__ = ["SubspectraError", "scheme_names", "local_matrix", "eigenvalues", "eigenvectors",
+           "analyze"]
 
 _ffi = FFI()
 # Declarations as in the installed headers (ss_error.h, ss_scheme.h, ss_link.h,
@@ -58,6 +62,10 @@ typedef struct {
 } ss_eig_opts;
 typedef struct { double tol; int neig; int depth; int ring_levels; int certify; }
   ss_report_analyze_opts;
+typedef struct {
+  size_t n; int k; double *re, *im; int *group; int *biorth;
+  double *right_re; double *right_im; double *left_re; double *left_im; int complex_any;
+} ss_eigvec;
 
 const char *const *ss_scheme_names(void);
 int ss_scheme_new(const char *name, ss_scheme **out, ss_error *err);
@@ -74,6 +82,9 @@ void ss_eig_free(ss_eig *e);
 ss_report_analyze_opts ss_report_analyze_defaults(void);
 int ss_report_analyze(const ss_scheme *s, const ss_case *c,
                       const ss_report_analyze_opts *o, char **json, ss_error *err);
+int ss_eigvec_new(const double *S, size_t n, int k, double tol, ss_eigvec **out,
+                  ss_error *err);
+void ss_eigvec_free(ss_eigvec *v);
 void free(void *p);
 """)
 
@@ -216,6 +227,37 @@ def eigenvalues(scheme, tol=1e-6, **case):
             return vals, mult
         finally:
             _lib.ss_eig_free(pe[0])
+    return _with_local(scheme, case, use)
+
+
+def eigenvectors(scheme, k=4, tol=1e-6, **case):
+    """The k leading eigenvalues of S and their right and left eigenvectors
+    (ss_eigvec.h: S r = lambda r, l^T S = lambda l^T; right vectors scaled to
+    maximum modulus 1, so r_0 = 1; each group of equal eigenvalues made
+    biorthonormal, L^T R = I, unless defective; a tie or conjugate pair cut by
+    k is kept whole, so there may be more than k).  Returns (values, right,
+    left, biorthonormal): NumPy arrays of shapes (k',), (n, k'), (n, k') --
+    complex when an eigenvalue is, else real -- and a bool per eigenvalue.
+    left[:, 0] is the limit-position mask, the next columns the tangent masks."""
+    def use(M, err):
+        pv = _ffi.new("ss_eigvec **")
+        _check(_lib.ss_eigvec_new(M.S, M.n2, int(k), tol, pv, err), err)
+        try:
+            v = pv[0]
+            n, kk = v.n, v.k
+
+            def arr(p, count):
+                return np.frombuffer(_ffi.buffer(p, count * 8), dtype=np.float64).copy()
+
+            vals = arr(v.re, kk) + 1j * arr(v.im, kk)
+            right = (arr(v.right_re, n * kk) + 1j * arr(v.right_im, n * kk)).reshape(kk, n).T
+            left = (arr(v.left_re, n * kk) + 1j * arr(v.left_im, n * kk)).reshape(kk, n).T
+            bi = np.array([bool(v.biorth[i]) for i in range(kk)])
+            if not v.complex_any:
+                vals, right, left = vals.real, right.real.copy(), left.real.copy()
+            return vals, right, left, bi
+        finally:
+            _lib.ss_eigvec_free(pv[0])
     return _with_local(scheme, case, use)
 
 

@@ -217,6 +217,7 @@ if [ -n "$pydir" ]; then
     cat >"$tmp/layout.c" <<'EOC'
 #include <stddef.h>
 #include <stdio.h>
+#include <subspectra/ss_eigvec.h>
 #include <subspectra/ss_report_case.h>
 #define SZ(T) printf("sizeof %s %zu\n", #T, sizeof(T))
 #define OFF(T, f) printf("offsetof %s %s %zu\n", #T, #f, offsetof(T, f))
@@ -226,6 +227,8 @@ int main(void) {
   OFF(ss_local, n2), OFF(ss_local, n1), OFF(ss_local, S), OFF(ss_local, nnz);
   OFF(ss_local, dim), OFF(ss_local, level), OFF(ss_eig, n), OFF(ss_eig, val);
   OFF(ss_eigval, mult), OFF(ss_eig_opts, tol), OFF(ss_eig_opts, progress);
+  SZ(ss_eigvec), OFF(ss_eigvec, k), OFF(ss_eigvec, right_re), OFF(ss_eigvec, left_im);
+  OFF(ss_eigvec, complex_any);
   return 0;
 }
 EOC

@@ -13,6 +13,8 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
  - eigenvalues() against closed forms: Catmull-Clark at valence n, lambda1 =
    lambda2 = (5 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))))/16 (double),
    and the regular MLCA edge's tricubic spectrum 1, 1/2 (x3), 1/4 (x6);
+ - eigenvectors(): S R = R diag(v), L^T S = diag(v) L^T, L^T R = I, r_0 = 1,
+   and Catmull-Clark's closed-form limit-position mask;
  - bad input raises SubspectraError naming the problem;
  - the structure layouts the package declares to cffi equal the C compiler's
    (LAYOUT: lines "sizeof T N" and "offsetof T FIELD N" from the installed
@@ -135,6 +137,24 @@ want = np.array([1] + [0.5] * 3 + [0.25] * 6)
 if np.max(np.abs(v[:10] - want)) > 1e-12 or list(m[:10]) != [1] + [3] * 3 + [6] * 6:
     fail("mlca edge 4: %s (mult %s), want the tricubic 1, 1/2 x3, 1/4 x6" % (v[:10], m[:10]))
 print("ok: eigenvalues against closed forms")
+
+# eigenvectors: eigen-equations, biorthonormality, and Catmull-Clark's
+# closed-form limit-position mask at valence n: the centre n/(n+5), each edge
+# neighbour 4/(n(n+5)), each face neighbour 1/(n(n+5)), the rest 0
+for n in (3, 5, 7):
+    S = subspectra.local_matrix("catmull-clark", surface_vertex=n).toarray()
+    v, R, L, bi = subspectra.eigenvectors("catmull-clark", k=3, surface_vertex=n)
+    scale = np.abs(S).max()
+    res = max(np.abs(S @ R - R * v).max(), np.abs(L.T @ S - v[:, None] * L.T).max())
+    if len(v) != 3 or res > 1e-12 * scale or not bi.all() \
+            or np.abs(L.T @ R - np.eye(len(v))).max() > 1e-12 or np.abs(R[:, 0] - 1).max() > 1e-12:
+        fail("catmull-clark n=%d: eigenvectors (residual %g, biorthonormal %s)" % (n, res, bi))
+    l0 = L[:, 0]
+    got = np.sort(l0[np.abs(l0) > 1e-13])
+    want = np.sort([n / (n + 5)] + [4 / (n * (n + 5))] * n + [1 / (n * (n + 5))] * n)
+    if got.shape != want.shape or np.abs(got - want).max() > 1e-12:
+        fail("catmull-clark n=%d: limit mask %s, closed form %s" % (n, got, want))
+print("ok: eigenvectors, Catmull-Clark's limit-position mask")
 
 # bad input
 for kw, what in (({"edge": 3, "scheme": "nope"}, "unknown scheme 'nope'"),
