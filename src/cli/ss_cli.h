@@ -112,8 +112,8 @@ double ss_cli_now(void);
  * $SUBSPECTRA_DATADIR/reference when that variable is set; else
  * data/reference when it holds *.tsv files (run from the source tree); else
  * the installed data beside the program (SS_DATADIR_REL from its folder) when
- * it holds them; else SS_DATADIR/reference.  Written into buf (cap bytes); returns buf,
- * or NULL if it does not fit. */
+ * it holds them; else SS_DATADIR/reference.  Written into buf (cap bytes);
+ * returns buf, or NULL if it does not fit. */
 char *ss_cli_refdir(char *buf, size_t cap);
 
 #endif

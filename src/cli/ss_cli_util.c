@@ -184,9 +184,10 @@ static int has_reference(const char *dir) {
 char *ss_cli_refdir(char *buf, size_t cap) {
   const char *env = getenv("SUBSPECTRA_DATADIR");
   char dir[4096] = "";
-  if (env && *env)
+  if (env && *env) {
+    if (strlen(env) >= sizeof dir) return NULL;
     snprintf(dir, sizeof dir, "%s", env);
-  else if (has_reference("data"))
+  } else if (has_reference("data"))
     /* the source tree first, as before an install existed: a developer's
      * edits to data/reference must be what reproduce reads */
     snprintf(dir, sizeof dir, "data");
