@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
 
@@ -156,6 +157,8 @@ static void mark_p(cairo_t *cr, const panel *p, double x, double y) {
   cairo_fill(cr);
 }
 
+static void panel_axes(cairo_t *cr, const panel *p, const char *xl, const char *yl);
+
 /* ---- the 3D panel ---- */
 
 static ss_status draw_3d(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
@@ -230,7 +233,7 @@ static ss_status draw_3d(cairo_t *cr, const ss_charmap *cm, const ss_regularity 
     cairo_stroke(cr);
   }
   free(F);
-  mark_p(cr, p, dot3(cm->x, v->r), dot3(cm->x, v->u));
+  mark_p(cr, p, 0.0, 0.0); /* psi(p), the frame's origin */
   return SS_OK;
 }
 
@@ -298,7 +301,7 @@ static void draw_section(cairo_t *cr, const ss_charmap *cm, const ss_regularity 
     for (int i = 0; i < n; i++)
       panel_see(p, pts[i][0], pts[i][1]);
   }
-  panel_see(p, cm->x[0], cm->x[1]);
+  panel_see(p, 0.0, 0.0);
   panel_fit(p);
   for (int pass = 0; pass < 2; pass++) /* bad cells on top */
     for (size_t c = 0; c < cm->ncells; c++) {
@@ -307,7 +310,8 @@ static void draw_section(cairo_t *cr, const ss_charmap *cm, const ss_regularity 
       int n = section(cm, c, pts);
       if (n) polygon(cr, p, n, pts[0], 3, cell_colour(cm, r, c), bad);
     }
-  mark_p(cr, p, cm->x[0], cm->x[1]);
+  panel_axes(cr, p, "z1", "z2"); /* on top: thin, and the numbers readable */
+  mark_p(cr, p, 0.0, 0.0);       /* psi(p), the frame's origin */
 }
 
 /* ---- surfaces: the planar map ---- */
@@ -329,7 +333,154 @@ static void draw_flat(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
       }
       polygon(cr, p, nv < 4 ? nv : 4, xy, 2, cell_colour(cm, r, c), bad);
     }
-  mark_p(cr, p, cm->x[0], cm->x[1]);
+  panel_axes(cr, p, "z1", "z2");
+  mark_p(cr, p, 0.0, 0.0);
+}
+
+/* ---- the picture's frame (ss_report_draw.h) ---- */
+
+void ss_report_draw_frame(const ss_charmap *cm, double *x) {
+  const int d = cm->dim;
+  double e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, scale = 0.0;
+  for (size_t i = 0; i < cm->n; i++)
+    for (int k = 0; k < d; k++)
+      scale = fmax(scale, fabs(cm->x[i * (size_t)d + (size_t)k] - cm->centre[k]));
+  const double eps = 1e-9 * scale;
+  int found = 0;
+  for (size_t i = 0; i < cm->n && found < (d == 3 ? 2 : 1); i++) {
+    double v[3] = {0, 0, 0};
+    for (int k = 0; k < d; k++)
+      v[k] = cm->x[i * (size_t)d + (size_t)k] - cm->centre[k];
+    if (found == 1) { /* orthogonal to e1 */
+      const double c = dot3(v, e[0]);
+      for (int k = 0; k < 3; k++)
+        v[k] -= c * e[0][k];
+    }
+    const double l = sqrt(dot3(v, v));
+    if (!(l > eps)) continue;
+    for (int k = 0; k < 3; k++)
+      e[found][k] = v[k] / l;
+    found++;
+  }
+  if (d == 2 && found == 1) { /* e2: e1 turned by +90 degrees */
+    e[1][0] = -e[0][1], e[1][1] = e[0][0], e[1][2] = 0.0;
+  } else if (d == 3 && found == 2) {
+    e[2][0] = e[0][1] * e[1][2] - e[0][2] * e[1][1];
+    e[2][1] = e[0][2] * e[1][0] - e[0][0] * e[1][2];
+    e[2][2] = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+  } else { /* fewer directions than dimensions: the net as it is */
+    memcpy(x, cm->x, cm->n * (size_t)d * sizeof *x);
+    return;
+  }
+  for (size_t i = 0; i < cm->n; i++) {
+    double v[3] = {0, 0, 0};
+    for (int k = 0; k < d; k++)
+      v[k] = cm->x[i * (size_t)d + (size_t)k] - cm->centre[k];
+    /* rounding is snapped to 0: a face lying in the plane z3 = 0 then lies
+     * in it exactly and the section draws it once (section()) */
+    for (int k = 0; k < d; k++) {
+      const double c = dot3(v, e[k]);
+      x[i * (size_t)d + (size_t)k] = fabs(c) <= 1e-12 * scale ? 0.0 : c;
+    }
+  }
+}
+
+/* A tick step of about span / 5 from 1, 2, 5 x 10^k. */
+static double tick_step(double span) {
+  const double raw = span / 5.0, p = pow(10.0, floor(log10(raw))), f = raw / p;
+  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
+}
+
+/* Axes z1, z2 through the origin of a planar panel, with ticks and numbers. */
+static void panel_axes(cairo_t *cr, const panel *p, const char *xl, const char *yl) {
+  double X0, Y0, X1, Y1;
+  const double lox = p->cx - 0.5 * p->w / p->scale, hix = p->cx + 0.5 * p->w / p->scale;
+  const double loy = p->cy - 0.5 * p->h / p->scale, hiy = p->cy + 0.5 * p->h / p->scale;
+  cairo_set_source_rgb(cr, 0.55, 0.55, 0.55);
+  cairo_set_line_width(cr, 0.8);
+  to_surface(p, lox, 0.0, &X0, &Y0);
+  to_surface(p, hix, 0.0, &X1, &Y1);
+  cairo_move_to(cr, X0 + 4, Y0);
+  cairo_line_to(cr, X1 - 4, Y1);
+  to_surface(p, 0.0, loy, &X0, &Y0);
+  to_surface(p, 0.0, hiy, &X1, &Y1);
+  cairo_move_to(cr, X0, Y0 - 4);
+  cairo_line_to(cr, X1, Y1 + 30);
+  cairo_stroke(cr);
+  cairo_set_font_size(cr, 10.0);
+  const double st = tick_step(fmax(hix - lox, hiy - loy) * 0.8);
+  char t[32];
+  for (int axis = 0; axis < 2; axis++) {
+    const double lo = axis ? loy : lox, hi = axis ? hiy : hix;
+    for (double v = ceil(lo / st) * st; v <= hi; v += st) {
+      if (fabs(v) < 0.5 * st) continue;
+      to_surface(p, axis ? 0.0 : v, axis ? v : 0.0, &X0, &Y0);
+      if ((!axis && (X0 < p->x0 + 20 || X0 > p->x0 + p->w - 20)) ||
+          (axis && (Y0 < p->y0 + 40 || Y0 > p->y0 + p->h - 10)))
+        continue;
+      cairo_move_to(cr, X0 - (axis ? 3 : 0), Y0 - (axis ? 0 : 3));
+      cairo_line_to(cr, X0 + (axis ? 3 : 0), Y0 + (axis ? 0 : 3));
+      cairo_stroke(cr);
+      snprintf(t, sizeof t, "%g", v);
+      cairo_move_to(cr, X0 + (axis ? 5 : -6), Y0 + (axis ? 3 : 13));
+      cairo_show_text(cr, t);
+    }
+  }
+  to_surface(p, hix, 0.0, &X1, &Y1);
+  cairo_set_font_size(cr, 12.0);
+  cairo_move_to(cr, X1 - 22, Y1 - 6);
+  cairo_show_text(cr, xl);
+  to_surface(p, 0.0, hiy, &X1, &Y1);
+  cairo_move_to(cr, X1 + 6, Y1 + 42);
+  cairo_show_text(cr, yl);
+}
+
+/* The frame's axes as a triad in a corner of the 3D panel. */
+static void axis_triad(cairo_t *cr, const panel *p, const view *v) {
+  const double ox = p->x0 + 40, oy = p->y0 + p->h - 40, L = 26.0;
+  const char *name[3] = {"z1", "z2", "z3"};
+  cairo_set_line_width(cr, 1.2);
+  cairo_set_font_size(cr, 11.0);
+  for (int k = 0; k < 3; k++) {
+    double e[3] = {0, 0, 0};
+    e[k] = 1.0;
+    const double X = ox + L * dot3(e, v->r), Y = oy - L * dot3(e, v->u);
+    cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+    cairo_move_to(cr, ox, oy);
+    cairo_line_to(cr, X, Y);
+    cairo_stroke(cr);
+    cairo_move_to(cr, X + 3, Y + 4);
+    cairo_show_text(cr, name[k]);
+  }
+}
+
+/* The colour legend, one swatch per kind of cell, along the bottom of the
+ * drawing area at height y. */
+static void legend(cairo_t *cr, double y, double w) {
+  static const struct {
+    const rgb *c;
+    const char *what;
+  } key[] = {{&col_cell, "regular cell"},
+             {&col_ring, "regular, one-ring"},
+             {&col_bad, "folded or of the minority sign"},
+             {&col_doubt, "undecided or flat"},
+             {&col_centre, "fold at p (decides nothing)"}};
+  cairo_set_font_size(cr, 11.0);
+  double x = 12.0;
+  for (size_t i = 0; i < sizeof key / sizeof key[0]; i++) {
+    cairo_rectangle(cr, x, y - 9, 14, 10);
+    cairo_set_source_rgb(cr, key[i].c->r, key[i].c->g, key[i].c->b);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+    cairo_set_line_width(cr, 0.6);
+    cairo_stroke(cr);
+    cairo_move_to(cr, x + 19, y);
+    cairo_show_text(cr, key[i].what);
+    cairo_text_extents_t te;
+    cairo_text_extents(cr, key[i].what, &te);
+    x += 19 + te.x_advance + 18;
+    if (x > w - 60) break;
+  }
 }
 
 /* ---- the picture ---- */
@@ -358,7 +509,7 @@ static void caption(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
 
 static ss_status paint(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
                        const ss_report_draw_opts *o, ss_error *err) {
-  const double W = o->width, H = o->height, cap = 70.0;
+  const double W = o->width, H = o->height, cap = (o->caption ? 70.0 : 0.0) + 24.0;
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
@@ -369,11 +520,12 @@ static ss_status paint(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r
     panel a = new_panel(0, 0, W / 2, H - cap), b = new_panel(W / 2, 0, W / 2, H - cap);
     if ((st = draw_3d(cr, cm, r, &v, &a, err))) return st;
     draw_section(cr, cm, r, &b);
+    axis_triad(cr, &a, &v);
     char t[120];
     snprintf(t, sizeof t, "two-ring, %zu cells (view %.0f, %.0f)", cm->ncells, o->azimuth,
              o->elevation);
     panel_title(cr, &a, t);
-    panel_title(cr, &b, "cross-section z3 = 0 through p");
+    panel_title(cr, &b, "cross-section z3 = 0 through psi(p)");
     cairo_set_source_rgb(cr, 0.8, 0.8, 0.8);
     cairo_set_line_width(cr, 1.0);
     cairo_move_to(cr, W / 2, 10);
@@ -386,7 +538,8 @@ static ss_status paint(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r
     snprintf(t, sizeof t, "planar characteristic map, %zu cells", cm->ncells);
     panel_title(cr, &a, t);
   }
-  caption(cr, cm, r, o, H - cap, W);
+  legend(cr, H - cap + 16, W);
+  if (o->caption) caption(cr, cm, r, o, H - cap + 24, W);
   return st;
 }
 
@@ -477,19 +630,34 @@ static cairo_status_t canvas_write(void *closure, const unsigned char *data,
   return CAIRO_STATUS_SUCCESS;
 }
 
-ss_status ss_report_cairo_open(const char *path, int png, int width, int height,
+int ss_report_pic_format(const char *path, ss_pic_format *fmt) {
+  if (ss_report_has_ext(path, ".png"))
+    *fmt = SS_PIC_PNG;
+  else if (ss_report_has_ext(path, ".svg"))
+    *fmt = SS_PIC_SVG;
+  else if (ss_report_has_ext(path, ".pdf"))
+    *fmt = SS_PIC_PDF;
+  else
+    return -1;
+  return 0;
+}
+
+ss_status ss_report_cairo_open(const char *path, ss_pic_format fmt, int width, int height,
                                ss_report_canvas *c, ss_error *err) {
-  *c = (ss_report_canvas){NULL, NULL, NULL, png, 0};
+  *c = (ss_report_canvas){NULL, NULL, NULL, fmt, 0};
   ss_status st = ss_outfile_open(path, &c->out, err);
   if (st) return st;
-  c->s = png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height)
-             : cairo_svg_surface_create_for_stream(canvas_write, c, width, height);
+  c->s = fmt == SS_PIC_PNG
+             ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height)
+         : fmt == SS_PIC_SVG
+             ? cairo_svg_surface_create_for_stream(canvas_write, c, width, height)
+             : cairo_pdf_surface_create_for_stream(canvas_write, c, width, height);
   if (cairo_surface_status(c->s) != CAIRO_STATUS_SUCCESS) {
     st = ss_error_set(err, SS_EIO, "%s: %s", path,
                       cairo_status_to_string(cairo_surface_status(c->s)));
     cairo_surface_destroy(c->s);
     ss_outfile_abort(c->out);
-    *c = (ss_report_canvas){NULL, NULL, NULL, png, 0};
+    *c = (ss_report_canvas){NULL, NULL, NULL, fmt, 0};
     return st;
   }
   c->cr = cairo_create(c->s);
@@ -504,16 +672,26 @@ ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
   if (cm->dim != 2 && cm->dim != 3)
     return ss_error_set(err, SS_EINPUT, "draw: a map of dimension %d", cm->dim);
   if (ss_report_has_ext(path, ".vtk")) return write_vtk(cm, path, err);
-  const int png = ss_report_has_ext(path, ".png"), svg = ss_report_has_ext(path, ".svg");
-  if (!png && !svg)
+  ss_pic_format fmt;
+  if (ss_report_pic_format(path, &fmt))
     return ss_error_set(err, SS_EINPUT,
-                        "draw: %s: unknown picture format (use .png, .svg or .vtk)",
+                        "draw: %s: unknown picture format (use .png, .svg, .pdf or .vtk)",
                         path);
+  /* the picture's own frame (see the header): a copy of the net */
+  ss_charmap f = *cm;
+  double *x = malloc((cm->n * (size_t)cm->dim + 1) * sizeof *x);
+  if (!x) return ss_error_nomem(err, "drawing");
+  ss_report_draw_frame(cm, x);
+  f.x = x;
+  memset(f.centre, 0, sizeof f.centre);
   ss_report_canvas c;
-  ss_status st = ss_report_cairo_open(path, png, o->width, o->height, &c, err);
-  if (st) return st;
-  st = paint(c.cr, cm, r, o, err);
-  return ss_report_cairo_close(&c, st, err);
+  ss_status st = ss_report_cairo_open(path, fmt, o->width, o->height, &c, err);
+  if (!st) {
+    st = paint(c.cr, &f, r, o, err);
+    st = ss_report_cairo_close(&c, st, err);
+  }
+  free(x);
+  return st;
 }
 
 ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err) {
@@ -523,8 +701,9 @@ ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err
                       cairo_status_to_string(cairo_status(c->cr)));
   cairo_destroy(c->cr);
   cairo_status_t cs = CAIRO_STATUS_SUCCESS;
-  if (!st && c->png) cs = cairo_surface_write_to_png_stream(c->s, canvas_write, c);
-  /* an SVG surface writes its end here */
+  if (!st && c->fmt == SS_PIC_PNG)
+    cs = cairo_surface_write_to_png_stream(c->s, canvas_write, c);
+  /* an SVG or PDF surface writes its end here */
   cairo_surface_finish(c->s);
   if (cs == CAIRO_STATUS_SUCCESS) cs = cairo_surface_status(c->s);
   cairo_surface_destroy(c->s);
@@ -537,6 +716,6 @@ ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err
     ss_outfile_abort(c->out);
   else
     st = ss_outfile_commit(c->out, err);
-  *c = (ss_report_canvas){NULL, NULL, NULL, 0, 0};
+  *c = (ss_report_canvas){NULL, NULL, NULL, SS_PIC_PNG, 0};
   return st;
 }

@@ -384,11 +384,10 @@ ss_status ss_report_plot(const ss_report_row *rows, size_t n,
                          const ss_report_plot_opts *o, const char *path, size_t *plotted,
                          ss_error *err) {
   if (plotted) *plotted = 0;
-  const int png = ss_report_has_ext(path, ".png"), svg = ss_report_has_ext(path, ".svg");
-  if (!png && !svg)
+  ss_pic_format fmt;
+  if (ss_report_pic_format(path, &fmt))
     return ss_error_set(err, SS_EINPUT,
-                        "--plot %s: unknown picture format (use .png "
-                        "or .svg)",
+                        "--plot %s: unknown picture format (use .png, .svg or .pdf)",
                         path);
   const char *identity = o->identity ? o->identity : n ? rows[0].identity : NULL;
   const ss_report_row **sel = malloc((n ? n : 1) * sizeof *sel);
@@ -416,7 +415,7 @@ ss_status ss_report_plot(const ss_report_row *rows, size_t n,
     goto done;
   }
   ss_report_canvas c;
-  if ((st = ss_report_cairo_open(path, png, W, H, &c, err))) goto done;
+  if ((st = ss_report_cairo_open(path, fmt, W, H, &c, err))) goto done;
   paint(c.cr, sel, m, identity, W, H, v);
   st = ss_report_cairo_close(&c, SS_OK, err);
   if (!st && plotted) *plotted = m;

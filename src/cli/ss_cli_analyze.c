@@ -51,6 +51,7 @@ typedef struct {
   int nvec;                 /* --eigenvectors K: export the K leading eigenpairs
                                (analyze: JSON; matrix: Matrix Market); 0: none */
   int left;                 /* matrix --left: the left eigenvectors */
+  int nocaption;            /* draw --no-caption */
 } opts;
 
 static void help(const char *cmd) {
@@ -61,10 +62,14 @@ static void help(const char *cmd) {
     printf("Draw the characteristic map of one case: its control net on the two-ring\n"
            "(the subdominant eigenvectors, or a basis of their invariant subspace),\n"
            "cells in 3D projection with depth cues beside the cross-section through\n"
-           "the centre by the plane z3 = 0; cells that are not regular in red\n"
-           "(undecided ones orange).  Surface cases are drawn flat.  FILE's extension\n"
-           "picks the format: .png, .svg, or .vtk (for ParaView, with per-cell\n"
-           "Jacobian sign and minimum scaled Jacobian).\n\n");
+           "psi(p) by the plane z3 = 0; cells that are not regular in red\n"
+           "(undecided ones orange), a colour legend, axes.  The net is drawn in a\n"
+           "frame fixed by the case, not by the eigenvector basis: psi(p) at the\n"
+           "origin, z1 toward the first two-ring point, z2 toward the next one not\n"
+           "parallel to it (a tie's arbitrary basis gives the same picture).  Surface\n"
+           "cases are drawn flat.  FILE's extension picks the format: .png, .svg,\n"
+           ".pdf (text as text) or .vtk (for ParaView, with per-cell Jacobian sign\n"
+           "and scaled Jacobian, the normalised net).\n\n");
   else if (m)
     printf("Write the local subdivision matrix S of one case in Matrix Market format,\n"
            "rows and columns labelled (in comments) by their exact coordinates relative\n"
@@ -150,16 +155,20 @@ static void help(const char *cmd) {
         "                         the tangent masks (left eigenvectors of the\n"
         "                         subdominant eigenvalues, L^T R = I within a tie)\n");
   if (d)
-    printf("  -o FILE                the picture: FILE.png, FILE.svg or FILE.vtk (whole\n"
-           "                         or not at all: an old FILE stays if writing fails)\n"
-           "  --size WxH             picture size (default 1200x600)\n"
-           "  --view AZ,EL           view direction in degrees (default 30,25)\n"
-           "  --force                draw the map of the three leading subdominant\n"
-           "                         eigenvectors even when the eigenvalue condition\n"
-           "                         fails (they must be real and positive); with a\n"
-           "                         tie lambda3 = lambda4 the third is an arbitrary\n"
-           "                         vector of the tied eigenspace.  Such a picture is\n"
-           "                         not a characteristic map; the caption says so\n");
+    printf(
+        "  -o FILE                the picture: FILE.png, FILE.svg, FILE.pdf or FILE.vtk\n"
+        "                         (whole or not at all: an old FILE stays if writing\n"
+        "                         fails)\n"
+        "  --no-caption           no caption under the picture (the case, lambdas,\n"
+        "                         verdict), for a document that captions it\n"
+        "  --size WxH             picture size (default 1200x600)\n"
+        "  --view AZ,EL           view direction in degrees (default 30,25)\n"
+        "  --force                draw the map of the three leading subdominant\n"
+        "                         eigenvectors even when the eigenvalue condition\n"
+        "                         fails (they must be real and positive); with a\n"
+        "                         tie lambda3 = lambda4 the third is an arbitrary\n"
+        "                         vector of the tied eigenspace.  Such a picture is\n"
+        "                         not a characteristic map; the caption says so\n");
   else if (!m)
     printf("  --eigenvalues K        how many leading eigenvalues to print (default 16)\n"
            "  --format F             text (default), json (one object per case), tsv\n");
@@ -206,7 +215,8 @@ static int parse(int argc, char **argv, opts *o) {
     O_MAXMEM,
     O_PROGRESS,
     O_EIGVEC,
-    O_LEFT
+    O_LEFT,
+    O_NOCAPTION
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -229,6 +239,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"progress", no_argument, 0, O_PROGRESS},
                                      {"eigenvectors", required_argument, 0, O_EIGVEC},
                                      {"left", no_argument, 0, O_LEFT},
+                                     {"no-caption", no_argument, 0, O_NOCAPTION},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -362,6 +373,10 @@ static int parse(int argc, char **argv, opts *o) {
     case O_FORCE:
       if (!d) return ss_cli_usage_error(o->cmd, "--force is an option of draw only");
       o->force = 1;
+      break;
+    case O_NOCAPTION:
+      if (!d) return ss_cli_usage_error(o->cmd, "--no-caption is an option of draw only");
+      o->nocaption = 1;
       break;
     case O_MAXMEM:
       if (ss_cli_parse_bytes(optarg, &o->max_memory))
@@ -869,7 +884,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
                  ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
                  : "");
     ss_report_draw_opts dopt = o->draw;
-    dopt.caption = caption;
+    dopt.caption = o->nocaption ? NULL : caption;
     if (ss_report_draw(cm, &reg, &dopt, o->out, &err)) {
       fprintf(stderr, "subspectra draw: %s\n", err.msg);
       rc = SS_EXIT_USAGE; /* bad file, i/o or out of memory */
@@ -959,6 +974,7 @@ static int run(int argc, char **argv, const char *cmd) {
             SS_DIAG_BFS,
             0,
             0.0,
+            0,
             0,
             0,
             0};

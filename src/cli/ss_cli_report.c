@@ -6,9 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "ss_cli.h"
+#include "ss_report_draw.h"
 #include "ss_report_plot.h"
 #include "ss_report_table.h"
 #include "ss_store.h"
@@ -16,7 +16,7 @@
 static const char *const usage_text =
     "usage: subspectra report --db FILE [--format md|csv|tex|json]\n"
     "                         [--table cases|summary|both] [--where EXPR]\n"
-    "                         [--plot FILE.png|FILE.svg] [--size WxH] [--label NAME]\n"
+    "                         [--plot FILE.png|.svg|.pdf] [--size WxH] [--label NAME]\n"
     "\n"
     "Tables of the cases in a results store (written by `subspectra sweep`):\n"
     "  cases    one row per case: scheme, case, k (link vertices) or valence,\n"
@@ -47,7 +47,7 @@ static const char *const usage_text =
     "                     seconds.  E.g. --where \"kind = 'vertex' AND k <= 8\",\n"
     "                     --where \"verdict != 'pass'\"\n"
     "  --plot FILE        a figure against k: |lambda1..4| and the minimum scaled\n"
-    "                     Jacobian (failing cases red), PNG or SVG by the\n"
+    "                     Jacobian (failing cases red), PNG, SVG or PDF by the\n"
     "                     extension; one scheme identity (the first selected).\n"
     "                     Alone (without --format or --table) no table is printed\n"
     "  --size WxH         the figure's size (default: 560 per case kind + 20, x 720)\n"
@@ -156,10 +156,10 @@ int ss_cli_report(int argc, char **argv) {
                               "--format csv holds one table: --table cases or summary");
   if (plot) {
     /* the format check before the (possibly long) read of the store */
-    const size_t n = strlen(plot);
-    if (n < 4 || (strcasecmp(plot + n - 4, ".png") && strcasecmp(plot + n - 4, ".svg")))
-      return ss_cli_usage_error("report", "--plot '%s' is not FILE.png or FILE.svg",
-                                plot);
+    ss_pic_format pf;
+    if (ss_report_pic_format(plot, &pf))
+      return ss_cli_usage_error(
+          "report", "--plot '%s' is not FILE.png, FILE.svg or FILE.pdf", plot);
   }
 
   ss_error err = {0};

@@ -899,8 +899,12 @@ done:
 
 /* ---- figures ---- */
 
-/* Draw figure f into path, as `subspectra draw` does. */
-static ss_status draw_figure(const figure_spec *f, const char *path, ss_error *err) {
+/* Draw figure f into path, as `subspectra draw --no-caption` does, and append
+ * its caption (the case, lambda1..m, the regularity verdict) to cap, the
+ * Markdown of figures/README.md: the report captions the pictures, they carry
+ * no text of their own besides axes and legend. */
+static ss_status draw_figure(const figure_spec *f, const char *path, strbuf *cap,
+                             ss_error *err) {
   ss_scheme *s = NULL;
   ss_link *l = NULL, *cl = NULL;
   char *canon = NULL;
@@ -952,9 +956,19 @@ static ss_status draw_figure(const figure_spec *f, const char *path, ss_error *e
              forced
                  ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
                  : "");
-    ss_report_draw_opts o = ss_report_draw_defaults();
-    o.caption = caption;
+    const ss_report_draw_opts o = ss_report_draw_defaults(); /* no caption */
     st = ss_report_draw(cm, &reg, &o, path, err);
+    int bad = sb_printf(cap, "## %s\n\n![%s](%s)\n\n", f->file, f->file, f->file);
+    sb_cell(cap, caption);
+    bad |= sb_printf(cap, ".  λ1..%d =", cm->dim);
+    for (int i = 0; i < cm->dim; i++)
+      bad |= sb_printf(cap, " %.6f", cm->lambda[i]);
+    bad |= sb_printf(cap, "; regularity: %s, minimum scaled Jacobian %.4f%s",
+                     ss_verdict_name(reg.verdict.verdict), reg.min_scaled_jacobian,
+                     reg.verdict.reason[0] ? ": " : "");
+    sb_cell(cap, reg.verdict.reason);
+    bad |= sb_printf(cap, ".\n\n");
+    if (!st && bad) st = ss_error_nomem(err, "figure captions");
   }
   ss_star_free(star);
   ss_charmap_free(cm);
@@ -980,7 +994,8 @@ static const char usage[] =
     "  DIR/NAME.tsv         the comparison, machine-readable\n"
     "  DIR/data/NAME.jsonl  the results, one JSON object per case (keys as in\n"
     "                       `analyze --format json`)\n"
-    "  DIR/figures/*.png    pictures (as `subspectra draw`)\n"
+    "  DIR/figures/*.png    pictures (as `subspectra draw --no-caption`), their\n"
+    "                       captions in DIR/figures/README.md\n"
     "Quoted values are read from the reference files (one TSV per paper; the\n"
     "columns are documented in their header).  A decimal matches when it is\n"
     "within half a unit in its last printed digit, an exact value (fraction,\n"
@@ -1152,6 +1167,17 @@ int ss_cli_reproduce(int argc, char **argv) {
   }
   if (rc != SS_EXIT_OK) goto done;
   const double t2 = ss_cli_now();
+  strbuf cap = {0};
+  if (sb_printf(&cap,
+                "# Figures\n\nWritten by `subspectra reproduce` (as `subspectra draw "
+                "--no-caption`); the captions are here, not in the pictures.  Each "
+                "picture: the characteristic map's control net on the two-ring in 3D "
+                "beside its cross-section z3 = 0 through psi(p) (surfaces: the planar "
+                "map), in the frame fixed by the case (psi(p) at the origin, z1 toward "
+                "the first two-ring point; see `subspectra draw --help`).\n\n")) {
+    ss_error_nomem(&err, "figure captions");
+    rc = ss_cli_fail(&err);
+  }
   for (size_t i = 0; i < NFIGURES && rc == SS_EXIT_OK; i++) {
     sprintf(path, "%s/figures/", out);
     char *full = malloc(strlen(path) + strlen(figures[i].file) + 1);
@@ -1161,12 +1187,17 @@ int ss_cli_reproduce(int argc, char **argv) {
       break;
     }
     sprintf(full, "%s%s", path, figures[i].file);
-    if (draw_figure(figures + i, full, &err)) {
+    if (draw_figure(figures + i, full, &cap, &err)) {
       fprintf(stderr, "subspectra %s: %s\n", cmd, err.msg);
       rc = exit_for(&err);
     }
     free(full);
   }
+  if (rc == SS_EXIT_OK) {
+    sprintf(path, "%s/figures/README.md", out);
+    if (write_file(path, &cap, &err)) rc = ss_cli_fail(&err);
+  }
+  free(cap.s);
   if (rc == SS_EXIT_OK)
     fprintf(stderr,
             "reproduce: figures: %zu pictures in %s/figures (%.1f s)\n"

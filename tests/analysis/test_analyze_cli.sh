@@ -165,6 +165,11 @@ expect_in 2 "unknown picture format" "" "$exe" draw --scheme mlca --edge 4 -o "$
 expect_in 2 "cannot" "" "$exe" draw --scheme mlca --edge 4 -o /nonexistent/dir/x.png
 expect_in 2 "--size" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --size 10x10
 expect_in 2 "--view" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --view 10
+# PDF (text as text: a font with a ToUnicode map), a picture without caption
+expect_in 0 "wrote $tmp/c.pdf \\(regularity pass\\)" "" "$exe" draw --scheme mlca --edge 5 -o "$tmp/c.pdf" --no-caption
+checks=$((checks + 1))
+head -c 5 "$tmp/c.pdf" | grep -q '%PDF-' && grep -aq '/ToUnicode' "$tmp/c.pdf" || fail "draw -o x.pdf"
+expect_in 2 "--no-caption is an option of draw only" "" "$exe" analyze --scheme mlca --edge 5 --no-caption
 # matrix and draw take exactly one link on standard input
 expect_in 2 "no links read" "" "$exe" draw --scheme mlca --vertex - -o "$tmp/x.png"
 expect_in 2 "stdin:3: a second link" "octahedron

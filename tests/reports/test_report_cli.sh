@@ -51,7 +51,7 @@ expect 2 "cut.db" "$exe" report --db "$dir/cut.db"
 expect 2 "--format 'xml' is not md, csv, tex or json" "$exe" report --db "$db" --format xml
 expect 2 "--table 'all'" "$exe" report --db "$db" --table all
 expect 2 "csv holds one table" "$exe" report --db "$db" --format csv --table both
-expect 2 "--plot '.*x.gif' is not FILE.png or FILE.svg" "$exe" report --db "$db" --plot "$dir/x.gif"
+expect 2 "--plot '.*x.gif' is not FILE.png, FILE.svg or FILE.pdf" "$exe" report --db "$db" --plot "$dir/x.gif"
 expect 2 "--size needs --plot" "$exe" report --db "$db" --size 800x600
 expect 2 "--size '10x10'" "$exe" report --db "$db" --plot "$dir/p.png" --size 10x10
 expect 2 "unexpected argument 'extra'" "$exe" report --db "$db" extra

@@ -50,7 +50,15 @@ for f in mlca-vertex-k4 mlca-vertex-k5 mlca-vertex-regular mlca-vertex-k7-bipyra
   boxspline-edge-9-skew boxspline-edge-9-center-forced boxspline-vertex-k5-bipyramid; do
   checks=$((checks + 1))
   head -c 8 "$out/figures/$f.png" 2>/dev/null | grep -q PNG || fail "figure $f.png missing"
+  # its caption is in the report, not in the picture
+  checks=$((checks + 1))
+  grep -q "^!\[$f.png\]($f.png)" "$out/figures/README.md" || fail "no caption for $f.png"
 done
+# the regular MLCA vertex: the tricubic lambda1..3 = 1/2 and a pass (derived, not read off)
+checks=$((checks + 1))
+grep -A2 '^!\[mlca-vertex-regular.png\]' "$out/figures/README.md" |
+  grep -q 'λ1..3 = 0.500000 0.500000 0.500000; regularity: pass' ||
+  fail "caption of the regular MLCA vertex"
 checks=$((checks + 1))
 [ "$(ls "$out"/data/*.jsonl | wc -l)" -eq 19 ] || fail "expected 19 JSON-lines files"
 # the ccsolid tables put MLCA beside every case
