@@ -64,6 +64,26 @@ expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/patch3x3.mesh" -o "$t
 expect 0 "tetoct level 1" "$exe" subdivide --scheme tetoct "$m/tetstar-icosahedron.mesh" -o "$tmp/g.mesh"
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/hexstar-icosahedron.mesh" -o "$tmp/h.mesh"
 
+# read-only formats (tests/mesh/test_mesh_formats.c checks them in full):
+# gmsh .msh and TetGen .node/.ele in, a message and status 2 for bad files,
+# and nothing from gmsh itself on the terminal
+g=$src/tests/mesh/gmsh
+expect 2 "mixed.v4b.msh: mixed mesh \\(6 tetrahedra and 1 hexahedra\\)" "$exe" enumerate mesh "$g/mixed.v4b.msh"
+printf '$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n' > "$tmp/cut.msh"
+expect 2 "^subspectra: [^ ]*cut.msh: Could not read nodes$" "$exe" subdivide --scheme tetoct "$tmp/cut.msh" -o "$tmp/x.mesh"
+checks=$((checks + 1))
+lines=$("$exe" subdivide --scheme tetoct "$tmp/cut.msh" -o "$tmp/x.mesh" 2>&1 | wc -l)
+[ "$lines" -eq 1 ] || fail "a bad .msh: $lines lines of output, want the one message"
+printf 'System "touch %s";\n' "$tmp/MARK" > "$tmp/script.msh"
+expect 2 "script.msh:1: not a gmsh mesh" "$exe" subdivide --scheme tetoct "$tmp/script.msh" -o "$tmp/x.mesh"
+expect 1 "" test -e "$tmp/MARK"
+printf '4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n' > "$tmp/t.node"
+printf '1 4 0\n1 1 2 3 4\n' > "$tmp/t.ele"
+expect 0 "tetoct level 1: 10 vertices, 4 tetrahedra, 1 octahedron" "$exe" subdivide --scheme tetoct "$tmp/t.ele" -o "$tmp/t.vtk"
+printf '1 4 0\n1 1 2 3 9\n' > "$tmp/t.ele"
+expect 2 "t.ele:2: tetrahedron 1: point number 9 is out of range 1..4" "$exe" subdivide --scheme tetoct "$tmp/t.node" -o "$tmp/t.vtk"
+expect 2 "x.stl: cannot tell the mesh format \\(read: .mesh \\(Medit\\), .obj, .msh \\(gmsh\\) or .node/.ele \\(TetGen\\)\\)" "$exe" subdivide --scheme tetoct "$tmp/x.stl" -o "$tmp/x.mesh"
+
 # machine-readable summary
 checks=$((checks + 1))
 json=$("$exe" subdivide --scheme mlca --levels 2 --format json "$m/cube-creased.mesh" -o "$tmp/j.mesh")
