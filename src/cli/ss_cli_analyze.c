@@ -62,8 +62,10 @@ static void help(const char *cmd) {
            "cells in 3D projection with depth cues beside the cross-section through\n"
            "the centre by the plane z3 = 0; cells that are not regular in red\n"
            "(undecided ones orange).  Surface cases are drawn flat.  FILE's extension\n"
-           "picks the format: .png, .svg, or .vtk (for ParaView, with per-cell\n"
-           "Jacobian sign and minimum scaled Jacobian).\n\n");
+           "picks the format: .png, .svg, or .vtk (for ParaView: the two-ring's\n"
+           "cells and the deciding ring level's, with per-cell Jacobian sign and\n"
+           "minimum scaled Jacobian in the map's orientation, as analyze reports\n"
+           "them; see the README).\n\n");
   else if (m)
     printf("Write the local subdivision matrix S of one case in Matrix Market format,\n"
            "rows and columns labelled (in comments) by their exact coordinates relative\n"
