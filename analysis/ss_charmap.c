@@ -301,6 +301,17 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
   ss_ring_level two;
   judge(cm->ncells, cm->ctype, cm->corner, cm->x, dim, o->depth, &two, cm->jac);
   if (nl < 1) {
+    /* no ring level: none is kept either (not an earlier test's) */
+    free(cm->ring_x);
+    free(cm->ring_ctype);
+    free(cm->ring_corner);
+    free(cm->ring_jac);
+    cm->ring_x = NULL;
+    cm->ring_ctype = NULL;
+    cm->ring_corner = NULL;
+    cm->ring_jac = NULL;
+    cm->ring_n = cm->ring_ncells = 0;
+    cm->ring_level = -1;
     r->verdict.verdict = SS_UNDECIDED;
     snprintf(r->verdict.reason, sizeof r->verdict.reason,
              "the local matrix carries no ring to judge the map on");

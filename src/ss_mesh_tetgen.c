@@ -270,8 +270,9 @@ static ss_status read_part(const char *stem, size_t stem_len, const char *ext, p
 
 ss_status ss_mesh_read_tetgen(const char *path, ss_cx **out, ss_error *err) {
   *out = NULL;
-  const char *dot = strrchr(path, '.');
-  const size_t stem_len = dot ? (size_t)(dot - path) : strlen(path);
+  const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+  const size_t stem_len =
+      dot && (!slash || dot > slash) ? (size_t)(dot - path) : strlen(path);
   ss_cx *cx = NULL;
   long long base = 0;
   ss_status st = read_part(path, stem_len, ".node", PART_NODE, 1, &cx, &base, err);
