@@ -13,16 +13,27 @@ ss_charmap_opts ss_charmap_defaults(void) {
   return (ss_charmap_opts){SS_JAC_DEPTH, 3, 0.5};
 }
 
+/* Forget the kept ring level (ss_charmap.h), freeing it. */
+static void drop_ring(ss_charmap *cm) {
+  free(cm->ring_x);
+  free(cm->ring_ctype);
+  free(cm->ring_corner);
+  free(cm->ring_jac);
+  cm->ring_x = NULL;
+  cm->ring_ctype = NULL;
+  cm->ring_corner = NULL;
+  cm->ring_jac = NULL;
+  cm->ring_n = cm->ring_ncells = 0;
+  cm->ring_level = -1;
+}
+
 void ss_charmap_free(ss_charmap *cm) {
   if (!cm) return;
   free(cm->x);
   free(cm->ctype);
   free(cm->corner);
   free(cm->jac);
-  free(cm->ring_x);
-  free(cm->ring_ctype);
-  free(cm->ring_corner);
-  free(cm->ring_jac);
+  drop_ring(cm);
   free(cm);
 }
 
@@ -301,17 +312,7 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
   ss_ring_level two;
   judge(cm->ncells, cm->ctype, cm->corner, cm->x, dim, o->depth, &two, cm->jac);
   if (nl < 1) {
-    /* no ring level: none is kept either (not an earlier test's) */
-    free(cm->ring_x);
-    free(cm->ring_ctype);
-    free(cm->ring_corner);
-    free(cm->ring_jac);
-    cm->ring_x = NULL;
-    cm->ring_ctype = NULL;
-    cm->ring_corner = NULL;
-    cm->ring_jac = NULL;
-    cm->ring_n = cm->ring_ncells = 0;
-    cm->ring_level = -1;
+    drop_ring(cm); /* no ring level: none is kept (not an earlier test's) */
     r->verdict.verdict = SS_UNDECIDED;
     snprintf(r->verdict.reason, sizeof r->verdict.reason,
              "the local matrix carries no ring to judge the map on");
@@ -341,10 +342,7 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
   /* keep the deciding level (the last judged: the loop stops at a clean one)
    * for pictures and files, replacing an earlier test's */
   const ss_local_ring *R = M->ring + r->nlevels - 1;
-  free(cm->ring_x);
-  free(cm->ring_ctype);
-  free(cm->ring_corner);
-  free(cm->ring_jac);
+  drop_ring(cm);
   cm->ring_x = net;
   cm->ring_jac = jac;
   cm->ring_level = r->nlevels - 1;
@@ -353,11 +351,7 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
   cm->ring_ctype = malloc((R->ncells + 1) * sizeof *cm->ring_ctype);
   cm->ring_corner = malloc((R->ncells * SS_MAXCELLVERTS + 1) * sizeof *cm->ring_corner);
   if (!cm->ring_ctype || !cm->ring_corner) {
-    free(cm->ring_ctype);
-    free(cm->ring_corner);
-    cm->ring_ctype = NULL;
-    cm->ring_corner = NULL;
-    cm->ring_ncells = 0;
+    drop_ring(cm);
     return ss_error_nomem(err, "ring cells");
   }
   if (R->ncells) {
