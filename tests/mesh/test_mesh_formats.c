@@ -13,8 +13,10 @@
  * a .geo, written in the four forms, reads the same four times and holds the
  * physical groups as references; malformed files, unsupported elements and a
  * .geo script named .msh (which gmsh would run) are refused with SS_EINPUT
- * naming the file.  TetGen: a cube tetrahedralised by the tetgen binary, read
- * from .node/.ele/.face, equals TetGen's own Medit output (-g) in vertices
+ * naming the file; a tet/oct mesh written as Medit by default (octahedra
+ * split) is read whole by gmsh (converted to binary .msh and read back: the
+ * same tetrahedra, 4 per octahedron).  TetGen: a cube tetrahedralised by the tetgen
+ * binary, read from .node/.ele/.face, equals TetGen's own Medit output (-g) in vertices
  * and tetrahedra, its tets all positive, its .face triangles exactly the
  * boundary faces of the tets; numbering from 0 (-z) reads the same; a 2D
  * Triangle file; malformed files with "file:line: problem". */
@@ -26,7 +28,9 @@
 #include <unistd.h>
 
 #include "ss_mesh.h"
+#include "ss_scheme.h"
 #include "ss_test.h"
+#include "ss_testmesh.h"
 
 static const char *gmsh_exe, *tetgen_exe;
 static char tmpdir[] = "/tmp/ss_mesh_formats_XXXXXX";
@@ -237,6 +241,49 @@ static void test_gmsh_geo(void) {
   ss_cx_free(m);
   for (int i = 0; i < 4; i++)
     ss_cx_free(box[i]);
+}
+
+/* gmsh reads the Medit files subdivide writes by default in full: its
+ * conversion to .msh holds every cell, the octahedra as 4 tets each (with the
+ * Octahedra keyword gmsh dropped them without a word). */
+static void test_gmsh_reads_our_medit(void) {
+  if (!*gmsh_exe) {
+    printf("gmsh binary not found: gmsh reading our Medit output is not checked\n");
+    return;
+  }
+  tm_link *l = tm_link_named("icosahedron");
+  ss_cx *star = tm_tet_star(l), *fine = NULL;
+  ss_scheme *s = NULL;
+  ss_error err = {0};
+  char mesh[1200], msh[1200], cmd[4000], why[200];
+  tm_jitter(star, 0.01, 5);
+  if (ss_scheme_new("tetoct", &s, &err) || ss_scheme_refine(s, star, &fine, NULL, &err)) {
+    CHECK(0, "tetoct refines the star: %s", err.msg);
+    goto done;
+  }
+  snprintf(mesh, sizeof mesh, "%s/star.mesh", tmpdir);
+  snprintf(msh, sizeof msh, "%s/star.msh", tmpdir);
+  CHECK(fine->nc[SS_OCT] == 20, "20 octahedra to split");
+  CHECK(ss_mesh_write(mesh, SS_MESH_AUTO, fine, NULL, &err) == SS_OK, "write: %s",
+        err.msg);
+  /* binary: doubles exactly as gmsh parsed them from our 17 digits */
+  snprintf(cmd, sizeof cmd,
+           "'%s' -0 -v 0 '%s' -format msh41 -bin -o '%s' >/dev/null 2>&1", gmsh_exe, mesh,
+           msh);
+  CHECK(system(cmd) == 0, "gmsh converts star.mesh");
+  ss_cx *ours = read_or_report(mesh), *theirs = read_or_report(msh);
+  CHECK(ours && ours->nc[SS_OCT] == 0 &&
+            ours->nc[SS_TET] == fine->nc[SS_TET] + 4 * fine->nc[SS_OCT],
+        "the octahedra written as 4 tets each");
+  CHECK(ours && theirs && same_renumbered(ours, theirs, 0.0, 1, 1, why, sizeof why),
+        "gmsh's reading of our Medit file = ours: %s", why);
+  ss_cx_free(ours);
+  ss_cx_free(theirs);
+done:
+  ss_scheme_free(s);
+  ss_cx_free(fine);
+  ss_cx_free(star);
+  tm_link_free(l);
 }
 
 static void expect_bad_gmsh(const char *name, const char *text, size_t len,
@@ -520,6 +567,7 @@ int main(int argc, char **argv) {
     test_gmsh_fixture();
     test_gmsh_threads();
     test_gmsh_geo();
+    test_gmsh_reads_our_medit();
     test_gmsh_bad();
     for (int i = 0; i < 4; i++)
       ss_cx_free(fixture[i]);
