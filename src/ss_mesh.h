@@ -76,8 +76,10 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
  * is vertex k; cells keep the file's element order within each type; a
  * cell's reference is the first physical group of its entity, else the
  * entity's tag; vertex references are 0.  Coordinates: 2 when the mesh has no
- * 3D element and every z is 0, else 3.  Serialised by a mutex (gmsh's API has
- * global state); gmsh prints nothing; the locale is restored.  SS_EIO if the
+ * 3D element and every z is 0, else 3.  gmsh runs in a child process (fork;
+ * gmsh 4.8 crashes on some malformed files: then SS_EINPUT "gmsh crashed"),
+ * one read at a time (a mutex: gmsh's API has global state); gmsh prints
+ * nothing.  SS_EIO if the
  * file cannot be opened; SS_EINPUT for a malformed file or an element type
  * that has no cell here (prisms, pyramids, higher order), and in a build
  * without gmsh; SS_ENOMEM. */

@@ -6,7 +6,10 @@
  * so every read holds one process-wide mutex from gmshInitialize to
  * gmshFinalize (the only mutable static in the library, there because gmsh's
  * own state is static).  Initialising per read and finalising after it leaves
- * nothing behind between reads.  gmsh turns its terminal output on when
+ * nothing behind between reads.  gmsh 4.8 crashes (SIGSEGV) on some
+ * malformed binary files, so it reads in a child process (fork) that sends
+ * the complex back through a pipe: a crash is a message, not the caller's
+ * death.  gmsh turns its terminal output on when
  * initialised (General.Terminal 1): it is switched off at once, with
  * General.Verbosity 0, so a library read prints nothing; errors arrive as
  * ierr, their text from gmshLoggerGetLastError.  gmshInitialize also sets
@@ -25,6 +28,8 @@
 #include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #endif
 
 /* The first two lines of a .msh file: "$MeshFormat" and "version type size".
@@ -319,18 +324,13 @@ done:
   return st;
 }
 
-ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
-  *out = NULL;
-  ss_status st = check_header(path, err);
-  if (st) return st;
-  pthread_mutex_lock(&gmsh_lock);
+/* Read path with gmsh in this process (the child of ss_mesh_read_gmsh). */
+static ss_status read_here(const char *path, ss_cx **out, ss_error *err) {
+  ss_status st = SS_OK;
   /* gmshInitialize sets the locale from the environment: keep the caller's */
   const char *cur = setlocale(LC_ALL, NULL);
   char *saved = cur ? strdup(cur) : NULL;
-  if (cur && !saved) {
-    pthread_mutex_unlock(&gmsh_lock);
-    return ss_error_nomem(err, "locale name");
-  }
+  if (cur && !saved) return ss_error_nomem(err, "locale name");
   int ierr = 0;
   gmshInitialize(0, NULL, 0, &ierr);
   if (ierr) {
@@ -350,7 +350,193 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
   }
   if (saved) setlocale(LC_ALL, saved);
   free(saved);
+  return st;
+}
+
+/* ---- the child's answer through a pipe: status, then the message or the
+ * complex (dim, nv, x, vref, then per cell type nc, cells, cref) ---- */
+
+static int put_all(int fd, const void *p, size_t n) {
+  const char *c = p;
+  while (n) {
+    const ssize_t w = write(fd, c, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return -1;
+    c += w;
+    n -= (size_t)w;
+  }
+  return 0;
+}
+
+static void send_answer(int fd, ss_status st, const ss_cx *cx, const ss_error *err) {
+  int32_t s = (int32_t)st;
+  if (put_all(fd, &s, sizeof s)) return;
+  if (st) {
+    put_all(fd, err->msg, strlen(err->msg));
+    return;
+  }
+  int32_t dim = cx->dim;
+  uint64_t nv = cx->nv;
+  if (put_all(fd, &dim, sizeof dim) || put_all(fd, &nv, sizeof nv) ||
+      put_all(fd, cx->x, cx->nv * (size_t)cx->dim * sizeof *cx->x) ||
+      put_all(fd, cx->vref, cx->nv * sizeof *cx->vref))
+    return;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    uint64_t nc = cx->nc[t];
+    if (put_all(fd, &nc, sizeof nc) ||
+        put_all(fd, cx->cells[t],
+                cx->nc[t] * (size_t)ss_cell_nverts((ss_cell_type)t) * sizeof(ss_idx)) ||
+        put_all(fd, cx->cref[t], cx->nc[t] * sizeof(int32_t)))
+      return;
+  }
+}
+
+/* A cursor over the child's answer. */
+typedef struct {
+  const char *p; /* next unread byte */
+  size_t left;   /* bytes left */
+} cursor;
+
+static int take(cursor *c, void *dst, size_t n) {
+  if (n > c->left) return -1;
+  memcpy(dst, c->p, n);
+  c->p += n;
+  c->left -= n;
+  return 0;
+}
+
+/* Rebuild the complex the child sent; -1 if the answer is short or garbled,
+ * -2 out of memory. */
+static int decode(cursor *c, ss_cx **out, ss_error *err) {
+  int32_t dim;
+  uint64_t nv;
+  if (take(c, &dim, sizeof dim) || take(c, &nv, sizeof nv) || dim < 1 || dim > 3 ||
+      nv > c->left / (sizeof(double) * (size_t)dim))
+    return -1;
+  ss_cx *cx = NULL;
+  if (ss_cx_new(dim, &cx, err) || ss_cx_reserve_vertices(cx, (size_t)nv, err)) {
+    ss_cx_free(cx);
+    return -2;
+  }
+  const char *xs = c->p;
+  if (nv * (uint64_t)dim * sizeof(double) > c->left) goto bad;
+  c->p += nv * (size_t)dim * sizeof(double);
+  c->left -= nv * (size_t)dim * sizeof(double);
+  for (uint64_t i = 0; i < nv; i++) {
+    double x[3];
+    int32_t ref;
+    memcpy(x, xs + i * (size_t)dim * sizeof(double), (size_t)dim * sizeof(double));
+    if (take(c, &ref, sizeof ref)) goto bad;
+    if (ss_cx_add_vertex(cx, x, ref, err)) goto nomem;
+  }
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    uint64_t nc;
+    const int k = ss_cell_nverts((ss_cell_type)t);
+    if (take(c, &nc, sizeof nc) ||
+        nc > c->left / ((size_t)k * sizeof(ss_idx) + sizeof(int32_t)))
+      goto bad;
+    if (ss_cx_reserve_cells(cx, (ss_cell_type)t, (size_t)nc, err)) goto nomem;
+    const char *vs = c->p;
+    c->p += nc * (size_t)k * sizeof(ss_idx);
+    c->left -= nc * (size_t)k * sizeof(ss_idx);
+    for (uint64_t i = 0; i < nc; i++) {
+      ss_idx v[SS_MAXCELLVERTS];
+      int32_t ref;
+      memcpy(v, vs + i * (size_t)k * sizeof(ss_idx), (size_t)k * sizeof(ss_idx));
+      if (take(c, &ref, sizeof ref) || ss_cell_defect((ss_cell_type)t, v, cx->nv))
+        goto bad;
+      if (ss_cx_add_cell(cx, (ss_cell_type)t, v, ref, err)) goto nomem;
+    }
+  }
+  if (c->left) goto bad;
+  *out = cx;
+  return 0;
+bad:
+  ss_cx_free(cx);
+  return -1;
+nomem:
+  ss_cx_free(cx);
+  return -2;
+}
+
+ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
+  *out = NULL;
+  ss_status st = check_header(path, err);
+  if (st) return st;
+  /* gmsh 4.8 dereferences bad node tags in some malformed binary files and
+   * dies of SIGSEGV: it reads in a child process, whose death becomes a
+   * message.  The lock is held across fork, so the child (one thread) never
+   * waits for it, and no two reads overlap. */
+  pthread_mutex_lock(&gmsh_lock);
+  int fd[2];
+  if (pipe(fd)) {
+    pthread_mutex_unlock(&gmsh_lock);
+    return ss_error_set(err, SS_EIO, "%s: no pipe for the gmsh reader: %s", path,
+                        strerror(errno));
+  }
+  const pid_t pid = fork();
+  if (pid < 0) {
+    const int e = errno;
+    close(fd[0]);
+    close(fd[1]);
+    pthread_mutex_unlock(&gmsh_lock);
+    return ss_error_set(err, SS_EIO, "%s: cannot start the gmsh reader: %s", path,
+                        strerror(e));
+  }
+  if (pid == 0) { /* the child: read, answer, and leave without atexit or stdio */
+    close(fd[0]);
+    ss_error e = {0};
+    ss_cx *cx = NULL;
+    const ss_status cst = read_here(path, &cx, &e);
+    send_answer(fd[1], cst, cx, &e);
+    _exit(0);
+  }
+  close(fd[1]);
+  char *buf = NULL;
+  size_t len = 0, cap = 0;
+  int nomem = 0;
+  for (;;) {
+    if (len == cap) {
+      char *b = realloc(buf, cap = cap ? 2 * cap : 65536);
+      if (!b) {
+        nomem = 1;
+        break;
+      }
+      buf = b;
+    }
+    const ssize_t r = read(fd[0], buf + len, cap - len);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) break;
+    len += (size_t)r;
+  }
+  close(fd[0]); /* a child still writing gets EPIPE and ends */
+  int wst = 0;
+  while (waitpid(pid, &wst, 0) < 0 && errno == EINTR) {
+  }
   pthread_mutex_unlock(&gmsh_lock);
+  cursor c = {buf, len};
+  int32_t s;
+  if (nomem) {
+    st = ss_error_nomem(err, "gmsh reader's answer");
+  } else if (WIFSIGNALED(wst)) {
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s: gmsh crashed reading it (signal %d): a malformed file", path,
+                      WTERMSIG(wst));
+  } else if (take(&c, &s, sizeof s)) { /* e.g. a sanitizer caught the crash */
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s: gmsh crashed reading it (exit status %d, no answer): a "
+                      "malformed file",
+                      path, WIFEXITED(wst) ? WEXITSTATUS(wst) : -1);
+  } else if (s) {
+    st = ss_error_set(err, (ss_status)s, "%.*s", (int)(c.left < 511 ? c.left : 511), c.p);
+  } else {
+    const int d = decode(&c, out, err);
+    st = d == 0 ? SS_OK
+         : d == -2
+             ? ss_error_nomem(err, "mesh from gmsh")
+             : ss_error_set(err, SS_EINPUT, "%s: the gmsh reader's answer is cut", path);
+  }
+  free(buf);
   return st;
 }
 
