@@ -13,13 +13,40 @@ ss_charmap_opts ss_charmap_defaults(void) {
   return (ss_charmap_opts){SS_JAC_DEPTH, 3, 0.5};
 }
 
+/* Forget the kept ring level (ss_charmap.h), freeing it. */
+static void drop_ring(ss_charmap *cm) {
+  free(cm->ring_x);
+  free(cm->ring_ctype);
+  free(cm->ring_corner);
+  free(cm->ring_jac);
+  cm->ring_x = NULL;
+  cm->ring_ctype = NULL;
+  cm->ring_corner = NULL;
+  cm->ring_jac = NULL;
+  cm->ring_n = cm->ring_ncells = 0;
+  cm->ring_level = -1;
+}
+
 void ss_charmap_free(ss_charmap *cm) {
   if (!cm) return;
   free(cm->x);
   free(cm->ctype);
   free(cm->corner);
   free(cm->jac);
+  drop_ring(cm);
   free(cm);
+}
+
+double ss_charmap_cell_measure(const ss_jac_result *j, int sign) {
+  /* a cell of one strict sign opposite to the map's counts as minus its own
+   * quality (the smallest |corner value|), so the measure stays in [-1, 1]
+   * and a mirrored cell scores exactly the negative */
+  if (j->sign == SS_JAC_DEGENERATE) return NAN; /* no sign, no margin */
+  const int opposite = (sign > 0 && j->sign == SS_JAC_NEGATIVE) ||
+                       (sign < 0 && j->sign == SS_JAC_POSITIVE);
+  return opposite   ? (sign > 0 ? j->max_scaled : -j->min_scaled)
+         : sign > 0 ? j->min_scaled
+                    : -j->max_scaled;
 }
 
 /* Push a net (dim coordinates per point) through ring level R: out[i] = sum
@@ -124,6 +151,7 @@ ss_status ss_charmap_new(const ss_local *M, const ss_eig *e, ss_charmap **out,
   cm->dim = m;
   cm->n = n;
   cm->n1 = M->n1;
+  cm->ring_level = -1;
   cm->ncells = M->ncells;
   cm->x = malloc((n * (size_t)m + 1) * sizeof *cm->x);
   cm->ctype = malloc((M->ncells + 1) * sizeof *cm->ctype);
@@ -180,17 +208,11 @@ static void judge(size_t ncells, const ss_cell_type *ctype, const size_t *corner
   }
   L->sign = L->negative > L->positive ? -1 : 1;
   for (size_t c = 0; c < ncells; c++) {
-    /* a cell of one strict sign opposite to most counts as minus its own
-     * quality (the smallest |corner value|), so the measure stays in [-1, 1]
-     * and a mirrored cell scores exactly the negative */
     const ss_jac_result *j = jac + c;
-    const int opposite = (L->sign > 0 && j->sign == SS_JAC_NEGATIVE) ||
-                         (L->sign < 0 && j->sign == SS_JAC_POSITIVE);
-    L->inverted += opposite;
+    L->inverted += (L->sign > 0 && j->sign == SS_JAC_NEGATIVE) ||
+                   (L->sign < 0 && j->sign == SS_JAC_POSITIVE);
     if (j->sign == SS_JAC_DEGENERATE) continue; /* no sign, no margin */
-    const double s = opposite      ? (L->sign > 0 ? j->max_scaled : -j->min_scaled)
-                     : L->sign > 0 ? j->min_scaled
-                                   : -j->max_scaled;
+    const double s = ss_charmap_cell_measure(j, L->sign);
     if (L->worst_cell == SIZE_MAX || s < L->min_scaled_jacobian) {
       L->min_scaled_jacobian = s;
       L->worst_cell = c;
@@ -290,16 +312,19 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
   ss_ring_level two;
   judge(cm->ncells, cm->ctype, cm->corner, cm->x, dim, o->depth, &two, cm->jac);
   if (nl < 1) {
+    drop_ring(cm); /* no ring level: none is kept (not an earlier test's) */
     r->verdict.verdict = SS_UNDECIDED;
     snprintf(r->verdict.reason, sizeof r->verdict.reason,
              "the local matrix carries no ring to judge the map on");
     return SS_OK;
   }
   double *prev = cm->x, *net = NULL;
+  ss_jac_result *jac = NULL;
   for (int l = 0; l < nl; l++) {
     const ss_local_ring *R = M->ring + l;
+    free(jac);
     net = malloc((R->nv * (size_t)dim + 1) * sizeof *net);
-    ss_jac_result *jac = malloc((R->ncells + 1) * sizeof *jac);
+    jac = malloc((R->ncells + 1) * sizeof *jac);
     if (!net || !jac) {
       if (prev != cm->x) free(prev);
       free(net);
@@ -309,13 +334,31 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
     push(R, prev, dim, net);
     if (prev != cm->x) free(prev);
     judge(R->ncells, R->ctype, R->corner, net, dim, o->depth, r->level + l, jac);
-    free(jac);
     r->nlevels = l + 1;
     prev = net;
     if (clean(r->level + l)) break;
   }
-  free(net);
   decide(r, o->ring_levels);
+  /* keep the deciding level (the last judged: the loop stops at a clean one)
+   * for pictures and files, replacing an earlier test's */
+  const ss_local_ring *R = M->ring + r->nlevels - 1;
+  drop_ring(cm);
+  cm->ring_x = net;
+  cm->ring_jac = jac;
+  cm->ring_level = r->nlevels - 1;
+  cm->ring_n = R->nv;
+  cm->ring_ncells = R->ncells;
+  cm->ring_ctype = malloc((R->ncells + 1) * sizeof *cm->ring_ctype);
+  cm->ring_corner = malloc((R->ncells * SS_MAXCELLVERTS + 1) * sizeof *cm->ring_corner);
+  if (!cm->ring_ctype || !cm->ring_corner) {
+    drop_ring(cm);
+    return ss_error_nomem(err, "ring cells");
+  }
+  if (R->ncells) {
+    memcpy(cm->ring_ctype, R->ctype, R->ncells * sizeof *cm->ring_ctype);
+    memcpy(cm->ring_corner, R->corner,
+           R->ncells * SS_MAXCELLVERTS * sizeof *cm->ring_corner);
+  }
   for (size_t c = 0; c < cm->ncells; c++) {
     int centre = 0;
     for (int j = 0; j < SS_MAXCELLVERTS && !centre; j++)

@@ -67,6 +67,17 @@ typedef struct {
   size_t *corner;      /* ncells * SS_MAXCELLVERTS corner point indices */
   ss_jac_result *jac;  /* ncells per-cell results of the two-ring's cells
                           (after ss_charmap_regularity; for pictures) */
+  /* The ring level that decided the verdict (the last judged if none did),
+   * kept by ss_charmap_regularity so that pictures and files can show the
+   * cells the verdict and its minimum scaled Jacobian come from: */
+  int ring_level;           /* its number; -1 before a regularity test */
+  size_t ring_n;            /* its points */
+  double *ring_x;           /* ring_n * dim coordinates, normalised as x */
+  size_t ring_ncells;       /* its cells */
+  ss_cell_type *ring_ctype; /* ring_ncells cell types */
+  size_t *ring_corner;      /* ring_ncells * SS_MAXCELLVERTS corners, indices
+                               into ring_x */
+  ss_jac_result *ring_jac;  /* ring_ncells per-cell results */
 } ss_charmap;
 
 /* Options of the regularity test. */
@@ -138,6 +149,15 @@ typedef struct {
                          deeper ring levels than M has (ss_charmap_judge
                          builds them) */
 } ss_regularity;
+
+/* A cell's scaled-Jacobian measure in the map's orientation sign (+1 or
+ * -1, ss_regularity.sign): for a cell of that sign its smallest corner value
+ * times sign (its quality, in (0, 1]); for a cell of one strict sign opposite
+ * to it, minus its quality; for a folded or undecided cell the smallest
+ * oriented corner value; NaN for a degenerate cell (no sign).  The minimum
+ * scaled Jacobian of a verdict is the minimum of this over the level's
+ * cells, so a picture or file that shows it per cell agrees with analyze. */
+double ss_charmap_cell_measure(const ss_jac_result *j, int sign);
 
 /* Defaults: depth SS_JAC_DEPTH, 3 ring levels, shrink 0.5. */
 ss_charmap_opts ss_charmap_defaults(void);

@@ -547,63 +547,102 @@ static ss_status paint(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r
 
 static const int oct_pyramids[2][5] = {{1, 2, 4, 5, 0}, {1, 5, 4, 2, 3}};
 
-static ss_status write_vtk(const ss_charmap *cm, const char *path, ss_error *err) {
+/* VTK cell type and index count of a cell (octahedra: two pyramids). */
+static int vtk_code(ss_cell_type t) {
+  return t == SS_HEX        ? 12
+         : t == SS_TET      ? 10
+         : t == SS_QUAD     ? 9
+         : t == SS_TRIANGLE ? 5
+                            : 14; /* octahedron: two pyramids */
+}
+
+static void vtk_cell(FILE *f, ss_cell_type t, const size_t *v, size_t off) {
+  if (t == SS_OCT) {
+    for (int q = 0; q < 2; q++) {
+      fprintf(f, "5");
+      for (int j = 0; j < 5; j++)
+        fprintf(f, " %zu", off + v[oct_pyramids[q][j]]);
+      fputc('\n', f);
+    }
+    return;
+  }
+  fprintf(f, "%d", ss_cell_nverts(t));
+  for (int j = 0; j < ss_cell_nverts(t); j++)
+    fprintf(f, " %zu", off + v[j]);
+  fputc('\n', f);
+}
+
+/* A cell's sign in the map's orientation: 1 of it, -1 inverted against it;
+ * folded 0, undecided 2, degenerate 3 as ss_jac. */
+static int oriented_sign(ss_jac_sign s, int sign) {
+  return s == SS_JAC_POSITIVE || s == SS_JAC_NEGATIVE ? (int)s * sign : (int)s;
+}
+
+static ss_status write_vtk(const ss_charmap *cm, const ss_regularity *r, const char *path,
+                           ss_error *err) {
   ss_outfile *out;
   ss_status st = ss_outfile_open(path, &out, err);
   if (st) return st;
   FILE *f = ss_outfile_file(out);
+  /* the orientation analyze gives the map (+1 when it has none) */
+  const int sign = r->sign < 0 ? -1 : 1;
+  const size_t nring = cm->ring_x ? cm->ring_ncells : 0,
+               npts = cm->n + (nring ? cm->ring_n : 0);
   size_t ncell = 0, nidx = 0;
-  for (size_t c = 0; c < cm->ncells; c++) {
-    const ss_cell_type t = cm->ctype[c];
+  for (size_t c = 0; c < cm->ncells + nring; c++) {
+    const ss_cell_type t = c < cm->ncells ? cm->ctype[c] : cm->ring_ctype[c - cm->ncells];
     ncell += t == SS_OCT ? 2 : 1;
     nidx += t == SS_OCT ? 12 : 1 + (size_t)ss_cell_nverts(t);
   }
   fprintf(f,
           "# vtk DataFile Version 3.0\nsubspectra characteristic map\nASCII\n"
-          "DATASET UNSTRUCTURED_GRID\nPOINTS %zu double\n",
-          cm->n);
-  for (size_t i = 0; i < cm->n; i++)
-    fprintf(f, "%.17g %.17g %.17g\n", cm->x[i * (size_t)cm->dim],
-            cm->x[i * (size_t)cm->dim + 1],
-            cm->dim == 3 ? cm->x[i * (size_t)cm->dim + 2] : 0.0);
-  fprintf(f, "CELLS %zu %zu\n", ncell, nidx);
-  for (size_t c = 0; c < cm->ncells; c++) {
-    const ss_cell_type t = cm->ctype[c];
-    const size_t *v = cm->corner + c * SS_MAXCELLVERTS;
-    if (t == SS_OCT) {
-      for (int q = 0; q < 2; q++) {
-        fprintf(f, "5");
-        for (int j = 0; j < 5; j++)
-          fprintf(f, " %zu", v[oct_pyramids[q][j]]);
-        fputc('\n', f);
-      }
-      continue;
-    }
-    fprintf(f, "%d", ss_cell_nverts(t));
-    for (int j = 0; j < ss_cell_nverts(t); j++)
-      fprintf(f, " %zu", v[j]);
-    fputc('\n', f);
+          "DATASET UNSTRUCTURED_GRID\nFIELD FieldData 3\n"
+          "min_scaled_jacobian 1 1 double\n%.17g\norientation 1 1 int\n%d\n"
+          "ring_level 1 1 int\n%d\nPOINTS %zu double\n",
+          isfinite(r->min_scaled_jacobian) ? r->min_scaled_jacobian : 0.0, r->sign,
+          r->ring_level, npts);
+  for (size_t i = 0; i < npts; i++) {
+    const double *x = i < cm->n ? cm->x + i * (size_t)cm->dim
+                                : cm->ring_x + (i - cm->n) * (size_t)cm->dim;
+    fprintf(f, "%.17g %.17g %.17g\n", x[0], x[1], cm->dim == 3 ? x[2] : 0.0);
   }
+  fprintf(f, "CELLS %zu %zu\n", ncell, nidx);
+  for (size_t c = 0; c < cm->ncells; c++)
+    vtk_cell(f, cm->ctype[c], cm->corner + c * SS_MAXCELLVERTS, 0);
+  for (size_t c = 0; c < nring; c++)
+    vtk_cell(f, cm->ring_ctype[c], cm->ring_corner + c * SS_MAXCELLVERTS, cm->n);
   fprintf(f, "CELL_TYPES %zu\n", ncell);
-  for (size_t c = 0; c < cm->ncells; c++) {
-    const ss_cell_type t = cm->ctype[c];
-    const int code = t == SS_HEX        ? 12
-                     : t == SS_TET      ? 10
-                     : t == SS_QUAD     ? 9
-                     : t == SS_TRIANGLE ? 5
-                                        : 14; /* octahedron: two pyramids */
-    fprintf(f, t == SS_OCT ? "%d\n%d\n" : "%d\n", code, code);
+  for (size_t c = 0; c < cm->ncells + nring; c++) {
+    const ss_cell_type t = c < cm->ncells ? cm->ctype[c] : cm->ring_ctype[c - cm->ncells];
+    fprintf(f, t == SS_OCT ? "%d\n%d\n" : "%d\n", vtk_code(t), vtk_code(t));
   }
   fprintf(f, "CELL_DATA %zu\nSCALARS jacobian_sign int 1\nLOOKUP_TABLE default\n", ncell);
-  for (size_t c = 0; c < cm->ncells; c++)
-    for (int q = 0; q < (cm->ctype[c] == SS_OCT ? 2 : 1); q++)
-      fprintf(f, "%d\n", (int)cm->jac[c].sign);
+  for (size_t c = 0; c < cm->ncells + nring; c++) {
+    const int two = c < cm->ncells;
+    const ss_jac_result *j = two ? cm->jac + c : cm->ring_jac + (c - cm->ncells);
+    const ss_cell_type t = two ? cm->ctype[c] : cm->ring_ctype[c - cm->ncells];
+    for (int q = 0; q < (t == SS_OCT ? 2 : 1); q++)
+      fprintf(f, "%d\n", oriented_sign(j->sign, sign));
+  }
   fprintf(f, "SCALARS min_scaled_jacobian double 1\nLOOKUP_TABLE default\n");
-  for (size_t c = 0; c < cm->ncells; c++)
-    for (int q = 0; q < (cm->ctype[c] == SS_OCT ? 2 : 1); q++)
-      fprintf(f, "%.17g\n", cm->jac[c].min_scaled);
-  fprintf(f, "POINT_DATA %zu\nSCALARS one_ring int 1\nLOOKUP_TABLE default\n", cm->n);
-  for (size_t i = 0; i < cm->n; i++)
+  for (size_t c = 0; c < cm->ncells + nring; c++) {
+    const int two = c < cm->ncells;
+    const ss_jac_result *j = two ? cm->jac + c : cm->ring_jac + (c - cm->ncells);
+    const ss_cell_type t = two ? cm->ctype[c] : cm->ring_ctype[c - cm->ncells];
+    const double v = ss_charmap_cell_measure(j, sign);
+    for (int q = 0; q < (t == SS_OCT ? 2 : 1); q++)
+      fprintf(f, "%.17g\n", isfinite(v) ? v : 0.0); /* degenerate: no margin */
+  }
+  fprintf(f, "SCALARS part int 1\nLOOKUP_TABLE default\n");
+  for (size_t c = 0; c < cm->ncells + nring; c++) {
+    const int two = c < cm->ncells;
+    const ss_cell_type t = two ? cm->ctype[c] : cm->ring_ctype[c - cm->ncells];
+    const int part = two ? (around_p(cm, c) ? 0 : 1) : 2;
+    for (int q = 0; q < (t == SS_OCT ? 2 : 1); q++)
+      fprintf(f, "%d\n", part);
+  }
+  fprintf(f, "POINT_DATA %zu\nSCALARS one_ring int 1\nLOOKUP_TABLE default\n", npts);
+  for (size_t i = 0; i < npts; i++)
     fprintf(f, "%d\n", i < cm->n1);
   return ss_outfile_commit(out, err); /* checks every write above */
 }
@@ -671,7 +710,7 @@ ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
                         o->height);
   if (cm->dim != 2 && cm->dim != 3)
     return ss_error_set(err, SS_EINPUT, "draw: a map of dimension %d", cm->dim);
-  if (ss_report_has_ext(path, ".vtk")) return write_vtk(cm, path, err);
+  if (ss_report_has_ext(path, ".vtk")) return write_vtk(cm, r, path, err);
   ss_pic_format fmt;
   if (ss_report_pic_format(path, &fmt))
     return ss_error_set(err, SS_EINPUT,

@@ -33,12 +33,26 @@
  * one (NULL) the picture has no text besides axes, legend and panel titles,
  * for a report that captions it itself.
  *
- * VTK: an UNSTRUCTURED_GRID (ASCII, legacy format 4.2 or 3.0) with the points
- * (z1, z2, z3; surfaces with z3 = 0), the cells (hexes, tets, octahedra as
- * VTK_HEXAHEDRON / VTK_TETRA / VTK_POLYHEDRON or 8 tets, quads, triangles) in
- * the vertex order of ss_cx.h, and CELL_DATA "jacobian_sign" (int: 1, -1, 0
- * folded, 2 undecided) and "min_scaled_jacobian" (double), POINT_DATA
- * "one_ring" (int 0/1). */
+ * VTK: an UNSTRUCTURED_GRID (ASCII, legacy format 3.0) with the points
+ * (z1, z2, z3; surfaces with z3 = 0) and cells (hexes, tets, octahedra as two
+ * VTK_PYRAMIDs on their equator, quads, triangles; vertex order of ss_cx.h)
+ * of two parts: the two-ring's cells, and after them the cells of the ring
+ * level that decided the verdict (ss_charmap.h: the cells analyze judges),
+ * with their own points.  The numbers are analyze's, in the map's
+ * orientation (analyze orients the map as a whole; a map whose cells are
+ * all negatively oriented is regular, and its cells are shown +1):
+ *   FIELD FieldData  "min_scaled_jacobian" (double: analyze's
+ *                    regularity.min_scaled_jacobian, 0 without one),
+ *                    "orientation" (int: +1 or -1, analyze's, 0 none),
+ *                    "ring_level" (int: the deciding level, -1 none);
+ *   CELL_DATA        "jacobian_sign" (int: 1 of the map's orientation, -1
+ *                    inverted against it, 0 folded, 2 undecided, 3 flat),
+ *                    "min_scaled_jacobian" (double: ss_charmap_cell_measure,
+ *                    whose minimum over the part-2 cells is the field's
+ *                    value), "part" (int: 0 two-ring cell around p, whose
+ *                    folds decide nothing; 1 other two-ring cell; 2 cell of
+ *                    the deciding ring level);
+ *   POINT_DATA       "one_ring" (int 0/1). */
 #ifndef SS_REPORT_DRAW_H
 #define SS_REPORT_DRAW_H
 

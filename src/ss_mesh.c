@@ -1,5 +1,6 @@
 /* ss_mesh.c — choosing a mesh format and opening files for the readers and
- * writers of ss_mesh_medit.c, ss_mesh_vtk.c and ss_mesh_obj.c. */
+ * writers of ss_mesh_medit.c, ss_mesh_vtk.c, ss_mesh_obj.c, ss_mesh_gmsh.c and
+ * ss_mesh_tetgen.c. */
 #include "ss_mesh.h"
 
 #include <errno.h>
@@ -16,7 +17,30 @@ ss_mesh_format ss_mesh_format_from_path(const char *path) {
   if (!strcasecmp(dot, ".mesh")) return SS_MESH_MEDIT;
   if (!strcasecmp(dot, ".vtk")) return SS_MESH_VTK;
   if (!strcasecmp(dot, ".obj")) return SS_MESH_OBJ;
+  if (!strcasecmp(dot, ".msh")) return SS_MESH_GMSH;
+  if (!strcasecmp(dot, ".node") || !strcasecmp(dot, ".ele") || !strcasecmp(dot, ".face"))
+    return SS_MESH_TETGEN;
   return SS_MESH_AUTO;
+}
+
+int ss_mesh_format_readable(ss_mesh_format fmt) {
+  return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_TETGEN ||
+         (fmt == SS_MESH_GMSH && ss_mesh_gmsh_available());
+}
+
+int ss_mesh_format_writable(ss_mesh_format fmt) {
+  return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_VTK;
+}
+
+const char *ss_mesh_readable_list(void) {
+  return ss_mesh_gmsh_available()
+             ? ".mesh (Medit), .obj, .msh (gmsh) or .node/.ele (TetGen)"
+             : ".mesh (Medit), .obj or .node/.ele (TetGen); .msh needs a build "
+               "with gmsh";
+}
+
+const char *ss_mesh_writable_list(void) {
+  return ".mesh (Medit), .vtk or .obj";
 }
 
 const char *ss_mesh_format_name(ss_mesh_format fmt) {
@@ -27,39 +51,43 @@ const char *ss_mesh_format_name(ss_mesh_format fmt) {
     return "vtk";
   case SS_MESH_OBJ:
     return "obj";
+  case SS_MESH_GMSH:
+    return "gmsh";
+  case SS_MESH_TETGEN:
+    return "tetgen";
   default:
     return "auto";
   }
 }
 
-static ss_status resolve(const char *path, ss_mesh_format *fmt, ss_error *err) {
-  if (*fmt == SS_MESH_AUTO) *fmt = ss_mesh_format_from_path(path);
-  if (*fmt == SS_MESH_AUTO)
-    return ss_error_set(err, SS_EINPUT,
-                        "%s: cannot tell the mesh format (use .mesh, .vtk or .obj)",
-                        path);
-  return SS_OK;
-}
-
 ss_status ss_mesh_read(const char *path, ss_mesh_format fmt, ss_cx **out, ss_error *err) {
   *out = NULL;
-  ss_status st = resolve(path, &fmt, err);
-  if (st) return st;
+  if (fmt == SS_MESH_AUTO) fmt = ss_mesh_format_from_path(path);
+  if (fmt == SS_MESH_AUTO)
+    return ss_error_set(err, SS_EINPUT, "%s: cannot tell the mesh format (read: %s)",
+                        path, ss_mesh_readable_list());
   if (fmt == SS_MESH_VTK)
-    return ss_error_set(err, SS_EINPUT, "%s: VTK files are written, not read (use .mesh)",
-                        path);
+    return ss_error_set(err, SS_EINPUT, "%s: VTK files are written, not read (read: %s)",
+                        path, ss_mesh_readable_list());
+  if (fmt == SS_MESH_GMSH) return ss_mesh_read_gmsh(path, out, err);
+  if (fmt == SS_MESH_TETGEN) return ss_mesh_read_tetgen(path, out, err);
   FILE *f = fopen(path, "r");
   if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
-  st = fmt == SS_MESH_MEDIT ? ss_mesh_read_medit(f, path, out, err)
-                            : ss_mesh_read_obj(f, path, out, err);
+  ss_status st = fmt == SS_MESH_MEDIT ? ss_mesh_read_medit(f, path, out, err)
+                                      : ss_mesh_read_obj(f, path, out, err);
   fclose(f);
   return st;
 }
 
 ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
                         const ss_mesh_write_opts *opts, ss_error *err) {
-  ss_status st = resolve(path, &fmt, err);
-  if (st) return st;
+  ss_status st = SS_OK;
+  if (fmt == SS_MESH_AUTO) fmt = ss_mesh_format_from_path(path);
+  if (!ss_mesh_format_writable(fmt))
+    return ss_error_set(err, SS_EINPUT, "%s: %s (write: %s)", path,
+                        fmt == SS_MESH_AUTO ? "cannot tell the mesh format"
+                                            : "this format is read, not written",
+                        ss_mesh_writable_list());
   for (size_t i = 0; i < cx->nv * (size_t)cx->dim; i++)
     if (!isfinite(cx->x[i]))
       return ss_error_set(err, SS_EINPUT,

@@ -2,14 +2,20 @@
  *
  * Medit (.mesh, ASCII "MeshVersionFormatted"): sections Vertices, Edges,
  * Triangles, Quadrilaterals, Tetrahedra, Hexahedra and Corners (vertex cells),
- * plus the extension keyword "Octahedra" (6 indices + reference, vertex order of
- * ss_cx.h).  "Dimension" may be 1..4 (Medit itself knows 2 and 3).  Known
+ * plus this project's extension keyword "Octahedra" (6 indices + reference,
+ * vertex order of ss_cx.h), read always and written only on request
+ * (ss_mesh_write_opts).  "Dimension" may be 1..4 (Medit itself knows 2 and 3).  Known
  * sections that carry no cells (Ridges, RequiredVertices, Normals, ...) are
  * skipped; an unknown keyword where one is expected is an error.
  * Legacy VTK (.vtk): written only, UNSTRUCTURED_GRID for ParaView; octahedra
  * are written as two pyramids sharing their equator.
  * OBJ (.obj): surfaces only — v, f (triangles and quadrilaterals), l (segments),
  * p (vertex cells); vt/vn/vp/o/g/s/usemtl/mtllib are ignored.
+ * gmsh (.msh, versions 2 and 4, ASCII and binary): read only, by gmsh's own
+ * C API (ss_mesh_gmsh.c); points, lines, triangles, quadrangles, tetrahedra,
+ * hexahedra of first order.
+ * TetGen (.node, .ele, .face; also Triangle's 2D .node/.ele): read only
+ * (ss_mesh_tetgen.c).
  *
  * Every malformed file is SS_EINPUT with "file:line: problem" in err. */
 #ifndef SS_MESH_H
@@ -23,18 +29,34 @@ typedef enum {
   SS_MESH_AUTO = 0, /* choose by file name extension */
   SS_MESH_MEDIT,    /* .mesh */
   SS_MESH_VTK,      /* .vtk (write only) */
-  SS_MESH_OBJ       /* .obj */
+  SS_MESH_OBJ,      /* .obj */
+  SS_MESH_GMSH,     /* .msh (read only, through gmsh's API: ss_mesh_gmsh.c) */
+  SS_MESH_TETGEN    /* .node / .ele / .face (read only: ss_mesh_tetgen.c) */
 } ss_mesh_format;
 
 typedef struct {
-  int split_octahedra; /* Medit: write each octahedron as 4 tets about its 0-3
-                          diagonal, for tools without the Octahedra keyword */
+  int octahedra_keyword; /* Medit: write octahedra under this project's
+                            "Octahedra" extension keyword; 0 (the default):
+                            as 4 positive tets each, about the octahedron's
+                            0-3 diagonal, in the Tetrahedra section, since
+                            no other Medit reader knows the keyword (meshio
+                            refuses the file, gmsh drops the cells) */
 } ss_mesh_write_opts;
 
 /* Format implied by a path's extension (case-insensitive); SS_MESH_AUTO if none. */
 ss_mesh_format ss_mesh_format_from_path(const char *path);
-/* Name of a format ("medit", "vtk", "obj"). */
+/* Name of a format ("medit", "vtk", "obj", "gmsh", "tetgen"). */
 const char *ss_mesh_format_name(ss_mesh_format fmt);
+/* Whether ss_mesh_read / ss_mesh_write take fmt (.msh only when built with
+ * gmsh: ss_mesh_gmsh_available). */
+int ss_mesh_format_readable(ss_mesh_format fmt);
+int ss_mesh_format_writable(ss_mesh_format fmt);
+/* The extensions that can be read / written, in words, for messages
+ * ("'.mesh' (Medit), ..."); constant strings. */
+const char *ss_mesh_readable_list(void);
+const char *ss_mesh_writable_list(void);
+/* 1 if this build reads .msh through gmsh (meson option gmsh). */
+int ss_mesh_gmsh_available(void);
 
 /* Read a mesh file into a new complex (*out, owned by the caller).  fmt =
  * SS_MESH_AUTO picks by extension.  SS_EIO if the file cannot be opened,
@@ -47,6 +69,33 @@ ss_status ss_mesh_read(const char *path, ss_mesh_format fmt, ss_cx **out, ss_err
  * finite (then no file is created), SS_ENOMEM. */
 ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
                         const ss_mesh_write_opts *opts, ss_error *err);
+
+/* gmsh's .msh file at path (ss_mesh_gmsh.c).  The file must begin with a
+ * $MeshFormat of version 2 or 4 (checked before gmsh sees it: gmsh would run
+ * any other text as a .geo script).  Node k of the file (by increasing tag)
+ * is vertex k; cells keep the file's element order within each type; a
+ * cell's reference is the first physical group of its entity, else the
+ * entity's tag; vertex references are 0.  Coordinates: 2 when the mesh has no
+ * 3D element and every z is 0, else 3.  gmsh runs in a child process (fork;
+ * gmsh 4.8 crashes on some malformed files: then SS_EINPUT "gmsh crashed"),
+ * one read at a time (a mutex: gmsh's API has global state); gmsh prints
+ * nothing.  SS_EIO if the
+ * file cannot be opened; SS_EINPUT for a malformed file or an element type
+ * that has no cell here (prisms, pyramids, higher order), and in a build
+ * without gmsh; SS_ENOMEM. */
+ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err);
+
+/* TetGen's X.node with X.ele and X.face when they exist (ss_mesh_tetgen.c);
+ * path is any of the three.  .node: "N dim nattr nmarkers" then "i x y z
+ * [attributes] [marker]" (the marker becomes the vertex reference; indices
+ * start at the first line's, 0 or 1, and run on); .ele: "M 4|3 nattr" then
+ * "i a b c d [attribute]" (tetrahedra in 3D, or triangles with dim 2 as
+ * Triangle writes them; the first attribute, an integer, is the reference);
+ * .face: "F nmarkers" then "i a b c [marker]" as triangles (TetGen's boundary
+ * faces, as its own Medit output -g holds them).  '#' starts a comment.
+ * SS_EIO if X.node cannot be opened; SS_EINPUT "file:line: problem";
+ * SS_ENOMEM. */
+ss_status ss_mesh_read_tetgen(const char *path, ss_cx **out, ss_error *err);
 
 /* Stream versions; `name` is used in messages. */
 ss_status ss_mesh_read_medit(FILE *f, const char *name, ss_cx **out, ss_error *err);

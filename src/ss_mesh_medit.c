@@ -301,7 +301,7 @@ static void write_cells(FILE *f, const ss_cx *cx, ss_cell_type t) {
 
 ss_status ss_mesh_write_medit(FILE *f, const ss_cx *cx, const ss_mesh_write_opts *opts,
                               ss_error *err) {
-  int split = opts && opts->split_octahedra;
+  const int split = !(opts && opts->octahedra_keyword);
   fprintf(f, "MeshVersionFormatted 2\n\nDimension %d\n\nVertices\n%zu\n", cx->dim,
           cx->nv);
   for (size_t i = 0; i < cx->nv; i++) {

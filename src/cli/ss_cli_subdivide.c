@@ -16,15 +16,21 @@ static const char *const usage_text =
     "\n"
     "Refine the mesh IN L times with scheme S and write the result to OUT.\n"
     "Formats follow the file extensions: .mesh (Medit; read and write), .obj\n"
-    "(surfaces; read and write), .vtk (legacy VTK for ParaView; write only).\n"
+    "(surfaces; read and write), .vtk (legacy VTK for ParaView; write only),\n"
+    ".msh (gmsh, versions 2 and 4, ASCII or binary; read only), .node/.ele\n"
+    "(TetGen or Triangle: X.node with X.ele and X.face if present; read only).\n"
     "\n"
     "  -s, --scheme S        mlca | tetoct | boxspline | boxspline-avg |\n"
     "                        catmull-clark | loop | ccsolid | quasi48\n"
     "  -l, --levels L        number of refinement levels, 0..12 (default 1)\n"
     "  -o, --output OUT      output file (written whole or not at all: an old\n"
     "                        OUT stays if writing fails)\n"
-    "      --split-octahedra write octahedra as 4 tetrahedra each (.mesh), for\n"
-    "                        tools that lack the Octahedra keyword\n"
+    "      --octahedra-keyword  .mesh: keep octahedra under this project's\n"
+    "                        Octahedra keyword (not Medit's: meshio refuses the\n"
+    "                        file, gmsh drops the cells); by default each one is\n"
+    "                        written as 4 positive tetrahedra about its 0-3\n"
+    "                        diagonal, and stderr says how many were split\n"
+    "      --split-octahedra the default (kept for old scripts)\n"
     "      --diagonals D     boxspline: the tets' major diagonals, bfs (Algorithm 2\n"
     "                        of the box-spline paper, default), proper (its search\n"
     "                        made to match neighbours' diagonals) or given (the pair\n"
@@ -100,6 +106,7 @@ int ss_cli_subdivide(int argc, char **argv) {
                                        {"levels", required_argument, NULL, 'l'},
                                        {"output", required_argument, NULL, 'o'},
                                        {"split-octahedra", no_argument, NULL, 'S'},
+                                       {"octahedra-keyword", no_argument, NULL, 'K'},
                                        {"format", required_argument, NULL, 'F'},
                                        {"diagonals", required_argument, NULL, 'D'},
                                        {"help", no_argument, NULL, 'h'},
@@ -111,6 +118,7 @@ int ss_cli_subdivide(int argc, char **argv) {
   ss_diag_mode dmode = SS_DIAG_BFS; /* its mode, unless given */
   int given = 0;                    /* --diagonals given: keep the file's */
   ss_mesh_write_opts wopts = {0};
+  int split_given = 0; /* --split-octahedra: the default, said explicitly */
   optind = 1;
   opterr = 0;
   int c;
@@ -128,7 +136,10 @@ int ss_cli_subdivide(int argc, char **argv) {
       out_path = optarg;
       break;
     case 'S':
-      wopts.split_octahedra = 1;
+      split_given = 1;
+      break;
+    case 'K':
+      wopts.octahedra_keyword = 1;
       break;
     case 'F':
       if (ss_cli_format_option("subdivide", optarg, &json)) return SS_EXIT_USAGE;
@@ -152,12 +163,17 @@ int ss_cli_subdivide(int argc, char **argv) {
     return ss_cli_usage_error("subdivide", optind == argc ? "no input mesh given"
                                                           : "more than one input mesh");
   in_path = argv[optind];
+  if (split_given && wopts.octahedra_keyword)
+    return ss_cli_usage_error("subdivide",
+                              "--split-octahedra and --octahedra-keyword contradict");
   if (!scheme_name) return ss_cli_usage_error("subdivide", "--scheme is required");
   if (!out_path) return ss_cli_usage_error("subdivide", "-o OUT is required");
-  if (ss_mesh_format_from_path(out_path) == SS_MESH_AUTO)
-    return ss_cli_usage_error("subdivide",
-                              "cannot tell the format of '%s' (use .mesh, .vtk or .obj)",
-                              out_path);
+  if (!ss_mesh_format_writable(ss_mesh_format_from_path(out_path)))
+    return ss_cli_usage_error("subdivide", "%s '%s' (write: %s)",
+                              ss_mesh_format_from_path(out_path) == SS_MESH_AUTO
+                                  ? "cannot tell the format of"
+                                  : "cannot write the read-only format of",
+                              out_path, ss_mesh_writable_list());
 
   ss_error err = {0};
   ss_scheme *scheme = NULL;
@@ -262,6 +278,13 @@ int ss_cli_subdivide(int argc, char **argv) {
     rc = ss_cli_fail(&err);
     goto done;
   }
+  /* Medit has no octahedron: say that the file holds tets in their place */
+  if (ss_mesh_format_from_path(out_path) == SS_MESH_MEDIT && cx->nc[SS_OCT] &&
+      !wopts.octahedra_keyword)
+    fprintf(stderr,
+            "subspectra subdivide: %s: split %zu octahedra into %zu tetrahedra (Medit "
+            "has no octahedron; --octahedra-keyword keeps them)\n",
+            out_path, cx->nc[SS_OCT], 4 * cx->nc[SS_OCT]);
   if (json) {
     json_object_object_add(report, "output", json_object_new_string(out_path));
     json_object_object_add(

@@ -17,7 +17,7 @@ expect 2 "usage" "$exe"
 expect 2 "unknown scheme 'butterfly'" "$exe" subdivide --scheme butterfly "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
 expect 2 "--scheme is required" "$exe" subdivide "$m/cube-6tets.mesh" -o "$tmp/o.mesh"
 # box-spline solids: Algorithm 2 by default, the file's diagonals on request
-expect 0 "major diagonals: bfs; [0-9]+ of 6 adjacent pairs improper" "$exe" subdivide --scheme boxspline --levels 2 "$m/cube-6tets.mesh" -o "$tmp/b.mesh"
+expect 0 "major diagonals: bfs; [0-9]+ of 6 adjacent pairs improper" "$exe" subdivide --scheme boxspline --levels 2 "$m/cube-6tets.mesh" --octahedra-keyword -o "$tmp/b.mesh"
 expect 0 "major diagonals: given; [0-9]+ of 240 adjacent pairs improper" "$exe" subdivide --scheme boxspline --diagonals given "$tmp/b.mesh" -o "$tmp/b2.mesh"
 expect 0 "boxspline-avg level 2: 125 vertices, 144 tetrahedra, 60 octahedra" "$exe" subdivide --scheme boxspline-avg --levels 2 "$m/cube-6tets.mesh" -o "$tmp/a.mesh"
 expect 0 "major diagonals: proper; 0 of 6 adjacent pairs improper" "$exe" subdivide --scheme boxspline --diagonals proper "$m/cube-6tets.mesh" -o "$tmp/p.mesh"
@@ -39,8 +39,17 @@ expect 0 "mlca level 2: " "$exe" subdivide --scheme mlca --levels 2 "$m/cube-cre
 expect 0 "read .*a.mesh: 125 vertices, 96 quadrilaterals, 64 hexahedra" "$exe" subdivide --scheme mlca --levels 0 "$tmp/a.mesh" -o "$tmp/a2.mesh"
 expect 0 "tetoct level 1: .*24 tetrahedra, 6 octahedra" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o "$tmp/b.vtk"
 expect 0 "UNSTRUCTURED_GRID" cat "$tmp/b.vtk"
-expect 0 "wrote" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --split-octahedra -o "$tmp/c.mesh"
+# Medit output: octahedra split into 4 tets each by default (said on stderr),
+# kept under the Octahedra extension keyword only on request
+expect 0 "split 6 octahedra into 24 tetrahedra" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o "$tmp/c.mesh"
+expect 1 "^0$" grep -c Octahedra "$tmp/c.mesh"
 expect 0 "read .*c.mesh: .* 48 tetrahedra" "$exe" subdivide --scheme tetoct --levels 0 "$tmp/c.mesh" -o "$tmp/c2.mesh"
+expect 0 "wrote" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --split-octahedra -o "$tmp/c3.mesh"
+expect 0 "^" cmp "$tmp/c.mesh" "$tmp/c3.mesh"
+expect 0 "^wrote [^ ]*k.mesh \\(medit\\)$" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --octahedra-keyword -o "$tmp/k.mesh"
+expect 0 "read .*k.mesh: .* 24 tetrahedra, 6 octahedra" "$exe" subdivide --scheme tetoct --levels 0 "$tmp/k.mesh" -o "$tmp/k2.mesh"
+expect 2 "--split-octahedra and --octahedra-keyword contradict" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --split-octahedra --octahedra-keyword -o "$tmp/c.mesh"
+expect 2 "cannot write the read-only format of .*x.msh' \\(write: .mesh \\(Medit\\), .vtk or .obj\\)" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o "$tmp/x.msh"
 expect 0 "catmull-clark level 3: 386 vertices, 384 quadrilaterals" "$exe" subdivide --scheme catmull-clark --levels 3 "$m/cube-surface.obj" -o "$tmp/d.obj"
 expect 0 "loop level 2: 162 vertices, 320 triangles" "$exe" subdivide --scheme loop --levels 2 "$m/icosahedron.obj" -o "$tmp/e.obj"
 # quasi 4-8 surfaces: triangles only; non-manifold edges refused by name
@@ -54,6 +63,26 @@ expect 2 "not implemented yet" "$exe" analyze --scheme quasi48 --surface-vertex 
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/patch3x3.mesh" -o "$tmp/f.mesh"
 expect 0 "tetoct level 1" "$exe" subdivide --scheme tetoct "$m/tetstar-icosahedron.mesh" -o "$tmp/g.mesh"
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/hexstar-icosahedron.mesh" -o "$tmp/h.mesh"
+
+# read-only formats (tests/mesh/test_mesh_formats.c checks them in full):
+# gmsh .msh and TetGen .node/.ele in, a message and status 2 for bad files,
+# and nothing from gmsh itself on the terminal
+g=$src/tests/mesh/gmsh
+expect 2 "mixed.v4b.msh: mixed mesh \\(6 tetrahedra and 1 hexahedra\\)" "$exe" enumerate mesh "$g/mixed.v4b.msh"
+printf '$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n' > "$tmp/cut.msh"
+expect 2 "^subspectra: [^ ]*cut.msh: Could not read nodes$" "$exe" subdivide --scheme tetoct "$tmp/cut.msh" -o "$tmp/x.mesh"
+checks=$((checks + 1))
+lines=$("$exe" subdivide --scheme tetoct "$tmp/cut.msh" -o "$tmp/x.mesh" 2>&1 | wc -l)
+[ "$lines" -eq 1 ] || fail "a bad .msh: $lines lines of output, want the one message"
+printf 'System "touch %s";\n' "$tmp/MARK" > "$tmp/script.msh"
+expect 2 "script.msh:1: not a gmsh mesh" "$exe" subdivide --scheme tetoct "$tmp/script.msh" -o "$tmp/x.mesh"
+expect 1 "" test -e "$tmp/MARK"
+printf '4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n' > "$tmp/t.node"
+printf '1 4 0\n1 1 2 3 4\n' > "$tmp/t.ele"
+expect 0 "tetoct level 1: 10 vertices, 4 tetrahedra, 1 octahedron" "$exe" subdivide --scheme tetoct "$tmp/t.ele" -o "$tmp/t.vtk"
+printf '1 4 0\n1 1 2 3 9\n' > "$tmp/t.ele"
+expect 2 "t.ele:2: tetrahedron 1: point number 9 is out of range 1..4" "$exe" subdivide --scheme tetoct "$tmp/t.node" -o "$tmp/t.vtk"
+expect 2 "x.stl: cannot tell the mesh format \\(read: .mesh \\(Medit\\), .obj, .msh \\(gmsh\\) or .node/.ele \\(TetGen\\)\\)" "$exe" subdivide --scheme tetoct "$tmp/x.stl" -o "$tmp/x.mesh"
 
 # machine-readable summary
 checks=$((checks + 1))

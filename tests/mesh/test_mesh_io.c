@@ -35,7 +35,7 @@ static int same_exact(const ss_cx *a, const ss_cx *b, int vertex_cell_refs) {
 static ss_cx *medit_round_trip(const ss_cx *cx, int split) {
   FILE *f = tmpfile();
   ss_error err = {0};
-  ss_mesh_write_opts o = {split};
+  ss_mesh_write_opts o = {.octahedra_keyword = !split};
   ss_cx *back = NULL;
   if (!f) return NULL;
   if (ss_mesh_write_medit(f, cx, &o, &err) == SS_OK) {

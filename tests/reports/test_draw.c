@@ -132,7 +132,8 @@ static void test_png_svg(const char *dir) {
   }
 }
 
-/* VTK: the counts and the per-cell signs read back. */
+/* VTK: the counts (two-ring and deciding ring level) and the per-cell
+ * signs, in the map's orientation, read back. */
 static void test_vtk(const char *dir) {
   ss_testcase r;
   if (ss_testcase_run("tetoct", (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS}, &r))
@@ -145,6 +146,11 @@ static void test_vtk(const char *dir) {
   for (size_t c = 0; c < r.cm->ncells; c++)
     ntet += r.cm->ctype[c] == SS_TET, noct += r.cm->ctype[c] == SS_OCT;
   CHECK(ntet > 0 && noct > 0, "tet/oct edge: %zu tets, %zu octahedra", ntet, noct);
+  CHECK(r.cm->ring_x && r.cm->ring_ncells > 0 && r.cm->ring_level == r.r.ring_level,
+        "the map keeps its deciding ring level %d (%d)", r.cm->ring_level,
+        r.r.ring_level);
+  for (size_t c = 0; c < r.cm->ring_ncells; c++)
+    ntet += r.cm->ring_ctype[c] == SS_TET, noct += r.cm->ring_ctype[c] == SS_OCT;
   FILE *f = fopen(vtk, "r");
   char line[256];
   size_t npts = 0, ncells = 0, ntypes = 0, t10 = 0, t14 = 0, signs = 0, ones = 0;
@@ -165,15 +171,16 @@ static void test_vtk(const char *dir) {
     if (!strncmp(line, "LOOKUP_TABLE", 12)) continue;
     int v;
     if (section == 1 && sscanf(line, "%d", &v) == 1) t10 += v == 10, t14 += v == 14;
-    if (section == 2 && sscanf(line, "%d", &v) == 1) signs++, ones += v == r.r.sign;
+    if (section == 2 && sscanf(line, "%d", &v) == 1) signs++, ones += v == 1;
   }
   if (f) fclose(f);
-  CHECK(npts == r.cm->n, "vtk points %zu, expected %zu", npts, r.cm->n);
+  CHECK(npts == r.cm->n + r.cm->ring_n, "vtk points %zu, expected %zu + %zu", npts,
+        r.cm->n, r.cm->ring_n);
   CHECK(ncells == ntet + 2 * noct && ntypes == ncells, "vtk cells %zu types %zu", ncells,
         ntypes);
   CHECK(t10 == ntet && t14 == 2 * noct, "vtk: %zu tets, %zu pyramids", t10, t14);
-  CHECK(signs == ncells && ones == ncells, "vtk signs: %zu of %zu equal the map's %d",
-        ones, signs, r.r.sign);
+  CHECK(r.r.verdict.verdict == SS_PASS && signs == ncells && ones == ncells,
+        "vtk signs: %zu of %zu of the map's orientation (+1)", ones, signs);
   unlink(vtk);
   ss_testcase_free(&r);
 }

@@ -1,0 +1,543 @@
+/* ss_mesh_gmsh.c — gmsh .msh files (versions 2 and 4, ASCII and binary), read
+ * through gmsh's own C API (gmshc.h, Debian libgmsh-dev) rather than a parser
+ * of our own: gmsh knows every variant of its format.
+ *
+ * gmsh's API is one global model behind global state, and not thread-safe,
+ * so every read holds one process-wide mutex from gmshInitialize to
+ * gmshFinalize (the only mutable static in the library, there because gmsh's
+ * own state is static).  Initialising per read and finalising after it leaves
+ * nothing behind between reads.  gmsh 4.8 crashes (SIGSEGV) on some
+ * malformed binary files, so it reads in a child process (fork) that sends
+ * the complex back through a pipe: a crash is a message, not the caller's
+ * death.  gmsh turns its terminal output on when
+ * initialised (General.Terminal 1): it is switched off at once, with
+ * General.Verbosity 0, so a library read prints nothing; errors arrive as
+ * ierr, their text from gmshLoggerGetLastError.  gmshInitialize also sets
+ * the process locale (setlocale(LC_ALL, "")): the caller's is restored.
+ *
+ * Without gmsh (meson -Dgmsh=disabled, or libgmsh-dev missing) the reader
+ * is a stub that refuses .msh with a message saying how to convert. */
+#include "ss_mesh.h"
+
+#include <errno.h>
+#include <string.h>
+
+#if SS_HAVE_GMSH
+#include <gmshc.h>
+#include <locale.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
+
+/* The first two lines of a .msh file: "$MeshFormat" and "version type size".
+ * gmsh decides by content, not by extension, and runs any file that is not a
+ * mesh as a .geo script (which can run shell commands: System "..."), so only
+ * files that begin as a version 2 or 4 mesh are handed to it. */
+static ss_status check_header(const char *path, ss_error *err) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  char line[128] = "", ver[128] = "";
+  int type = -1, size = -1;
+  const int got = fgets(line, sizeof line, f) != NULL;
+  line[strcspn(line, "\r\n")] = '\0';
+  ss_status st = SS_OK;
+  if (!got || strcmp(line, "$MeshFormat"))
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s:1: not a gmsh mesh: '$MeshFormat' expected on the first line",
+                      path);
+  else if (!fgets(line, sizeof line, f) ||
+           sscanf(line, "%127s %d %d", ver, &type, &size) != 3 ||
+           (type != 0 && type != 1))
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s:2: malformed $MeshFormat: 'VERSION 0|1 DATA-SIZE' expected",
+                      path);
+  else if (strncmp(ver, "2.", 2) && strncmp(ver, "4.", 2))
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s:2: MSH version %.20s is not read (versions 2 and 4 are; "
+                      "`gmsh %s -0 -format msh41 -o NEW.msh` converts)",
+                      path, ver, path);
+  fclose(f);
+  return st;
+}
+
+#if !SS_HAVE_GMSH
+
+int ss_mesh_gmsh_available(void) {
+  return 0;
+}
+
+ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
+  *out = NULL;
+  ss_status st = check_header(path, err);
+  if (st == SS_EIO) return st;
+  return ss_error_set(err, SS_EINPUT,
+                      "%s: this subspectra was built without gmsh, so .msh files are "
+                      "not read (rebuild with libgmsh-dev and -Dgmsh=enabled, or "
+                      "convert: `gmsh %s -0 -o MESH.mesh`); it reads %s",
+                      path, path, ss_mesh_readable_list());
+}
+
+#else
+
+int ss_mesh_gmsh_available(void) {
+  return 1;
+}
+
+/* gmsh's API is global state: one read at a time in the whole process. */
+static pthread_mutex_t gmsh_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* gmsh element types that are cells here (gmsh manual, "MSH file format"). */
+static int cell_type_of(int gmsh_type, ss_cell_type *t) {
+  switch (gmsh_type) {
+  case 15: /* 1-node point */
+    *t = SS_VERTEX;
+    return 1;
+  case 1: /* 2-node line */
+    *t = SS_SEGMENT;
+    return 1;
+  case 2: /* 3-node triangle */
+    *t = SS_TRIANGLE;
+    return 1;
+  case 3: /* 4-node quadrangle */
+    *t = SS_QUAD;
+    return 1;
+  case 4: /* 4-node tetrahedron: corner order and orientation as ss_cx.h */
+    *t = SS_TET;
+    return 1;
+  case 5: /* 8-node hexahedron: bottom 0-3, top 4-7 above them, as ss_cx.h */
+    *t = SS_HEX;
+    return 1;
+  default:
+    return 0;
+  }
+}
+
+/* The text of gmsh's last error, or a fallback. */
+static void last_error(char *buf, size_t n) {
+  char *e = NULL;
+  int ierr = 0;
+  gmshLoggerGetLastError(&e, &ierr);
+  snprintf(buf, n, "%s", !ierr && e && *e ? e : "gmsh could not read the file");
+  gmshFree(e);
+}
+
+static int cmp_size(const void *a, const void *b) {
+  const size_t x = *(const size_t *)a, y = *(const size_t *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* One element, gathered before the cells are added so that cells of a type
+ * keep the file's order (by element tag) whatever entities they sit on. */
+typedef struct {
+  size_t tag;                /* gmsh element tag */
+  int32_t ref;               /* reference: physical group, else entity tag */
+  ss_idx v[SS_MAXCELLVERTS]; /* vertex indices */
+} elem;
+
+static int cmp_elem(const void *a, const void *b) {
+  const elem *x = a, *y = b;
+  return x->tag < y->tag ? -1 : x->tag > y->tag;
+}
+
+/* Read the model gmsh holds into a new complex. */
+static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
+  ss_status st = SS_OK;
+  int ierr = 0;
+  size_t *ntag = NULL, nn = 0, ncoord = 0, npar = 0;
+  double *coord = NULL, *par = NULL;
+  size_t *order = NULL, *sorted = NULL;
+  elem *el[SS_NCELLTYPES] = {NULL};
+  size_t nel[SS_NCELLTYPES] = {0}, cap[SS_NCELLTYPES] = {0};
+  int *ents = NULL;
+  size_t nents = 0;
+  ss_cx *cx = NULL;
+  *out = NULL;
+
+  gmshModelMeshGetNodes(&ntag, &nn, &coord, &ncoord, &par, &npar, -1, -1, 0, 0, &ierr);
+  if (ierr || ncoord != 3 * nn) {
+    st = ss_error_set(err, SS_EINPUT, "%s: gmsh read no nodes", path);
+    goto done;
+  }
+  if (nn == 0) {
+    st = ss_error_set(err, SS_EINPUT, "%s: no nodes: an empty mesh", path);
+    goto done;
+  }
+  if (nn >= SS_IDX_NONE) {
+    st = ss_error_set(err, SS_EINPUT, "%s: %zu nodes, more than a complex holds", path,
+                      nn);
+    goto done;
+  }
+  /* vertex k is the node of the k-th smallest tag */
+  order = malloc(nn * sizeof *order);
+  sorted = malloc(nn * sizeof *sorted);
+  if (!order || !sorted) {
+    st = ss_error_nomem(err, "gmsh nodes");
+    goto done;
+  }
+  memcpy(sorted, ntag, nn * sizeof *sorted);
+  qsort(sorted, nn, sizeof *sorted, cmp_size);
+  for (size_t i = 1; i < nn; i++)
+    if (sorted[i] == sorted[i - 1]) {
+      st =
+          ss_error_set(err, SS_EINPUT, "%s: node tag %zu appears twice", path, sorted[i]);
+      goto done;
+    }
+  for (size_t i = 0; i < nn; i++) {
+    const size_t *k = bsearch(ntag + i, sorted, nn, sizeof *sorted, cmp_size);
+    order[k - sorted] = i;
+  }
+  const int mdim = gmshModelGetDimension(&ierr);
+  int dim = 3;
+  if (mdim <= 2) {
+    dim = 2;
+    for (size_t i = 0; i < nn && dim == 2; i++)
+      if (coord[3 * i + 2] != 0.0) dim = 3;
+  }
+  if ((st = ss_cx_new(dim, &cx, err)) || (st = ss_cx_reserve_vertices(cx, nn, err)))
+    goto done;
+  for (size_t k = 0; k < nn; k++)
+    if ((st = ss_cx_add_vertex(cx, coord + 3 * order[k], 0, err))) goto done;
+
+  for (int d = 0; d <= 3; d++) {
+    gmshFree(ents);
+    ents = NULL;
+    gmshModelGetEntities(&ents, &nents, d, &ierr);
+    if (ierr) {
+      st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no entities of dimension %d",
+                        path, d);
+      goto done;
+    }
+    for (size_t e = 0; e < nents / 2; e++) {
+      const int etag = ents[2 * e + 1];
+      int *phys = NULL, *types = NULL;
+      size_t nphys = 0, ntypes = 0, **etags = NULL, *etags_n = NULL, etags_nn = 0;
+      size_t **enodes = NULL, *enodes_n = NULL, enodes_nn = 0;
+      gmshModelGetPhysicalGroupsForEntity(d, etag, &phys, &nphys, &ierr);
+      const int32_t ref = nphys ? phys[0] : etag;
+      gmshFree(phys);
+      gmshModelMeshGetElements(&types, &ntypes, &etags, &etags_n, &etags_nn, &enodes,
+                               &enodes_n, &enodes_nn, d, etag, &ierr);
+      for (size_t t = 0; t < ntypes && !st && !ierr; t++) {
+        ss_cell_type ct;
+        if (!cell_type_of(types[t], &ct)) {
+          char *name = NULL;
+          int edim, order_, nnodes, nprim, ierr2 = 0;
+          double *lc = NULL;
+          size_t nlc = 0;
+          gmshModelMeshGetElementProperties(types[t], &name, &edim, &order_, &nnodes, &lc,
+                                            &nlc, &nprim, &ierr2);
+          st =
+              ss_error_set(err, SS_EINPUT,
+                           "%s: %zu elements of gmsh type %d (%s) have no cell here "
+                           "(read: points, lines, triangles, quadrangles, "
+                           "tetrahedra, hexahedra, of first order)",
+                           path, etags_n[t], types[t], !ierr2 && name ? name : "unknown");
+          gmshFree(name);
+          gmshFree(lc);
+          break;
+        }
+        const int nv = ss_cell_nverts(ct);
+        if (enodes_n[t] != etags_n[t] * (size_t)nv) {
+          st = ss_error_set(err, SS_EINPUT, "%s: gmsh gave %zu nodes for %zu %s", path,
+                            enodes_n[t], etags_n[t], ss_cell_plural(ct));
+          break;
+        }
+        if (nel[ct] + etags_n[t] > cap[ct]) {
+          size_t c = 2 * cap[ct] + etags_n[t];
+          elem *p = realloc(el[ct], c * sizeof *p);
+          if (!p) {
+            st = ss_error_nomem(err, "gmsh elements");
+            break;
+          }
+          el[ct] = p;
+          cap[ct] = c;
+        }
+        for (size_t i = 0; i < etags_n[t] && !st; i++) {
+          elem *x = el[ct] + nel[ct]++;
+          x->tag = etags[t][i];
+          x->ref = ref;
+          for (int j = 0; j < nv; j++) {
+            const size_t *k = bsearch(enodes[t] + i * (size_t)nv + j, sorted, nn,
+                                      sizeof *sorted, cmp_size);
+            if (!k) {
+              st = ss_error_set(err, SS_EINPUT,
+                                "%s: element %zu refers to node %zu, which is not "
+                                "in the file",
+                                path, x->tag, enodes[t][i * (size_t)nv + j]);
+              break;
+            }
+            x->v[j] = (ss_idx)(k - sorted);
+          }
+        }
+      }
+      for (size_t t = 0; t < ntypes; t++) {
+        gmshFree(etags[t]);
+        gmshFree(enodes[t]);
+      }
+      gmshFree(types);
+      gmshFree(etags);
+      gmshFree(etags_n);
+      gmshFree(enodes);
+      gmshFree(enodes_n);
+      if (st) goto done;
+      if (ierr) {
+        st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no elements of entity (%d, %d)",
+                          path, d, etag);
+        goto done;
+      }
+    }
+  }
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    if (!nel[t]) continue;
+    const ss_cell_type ct = (ss_cell_type)t;
+    if (ss_cell_dim(ct) > dim) { /* unreachable: 3D cells make dim 3 */
+      st = ss_error_set(err, SS_EINPUT, "%s: %s in a plane", path, ss_cell_plural(ct));
+      goto done;
+    }
+    qsort(el[t], nel[t], sizeof *el[t], cmp_elem);
+    if ((st = ss_cx_reserve_cells(cx, ct, nel[t], err))) goto done;
+    for (size_t i = 0; i < nel[t]; i++) {
+      const char *defect = ss_cell_defect(ct, el[t][i].v, cx->nv);
+      if (defect) {
+        st = ss_error_set(err, SS_EINPUT, "%s: element %zu (a %s) is %s", path,
+                          el[t][i].tag, ss_cell_name(ct), defect);
+        goto done;
+      }
+      if ((st = ss_cx_add_cell(cx, ct, el[t][i].v, el[t][i].ref, err))) goto done;
+    }
+  }
+  *out = cx;
+  cx = NULL;
+done:
+  gmshFree(ntag);
+  gmshFree(coord);
+  gmshFree(par);
+  gmshFree(ents);
+  free(order);
+  free(sorted);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    free(el[t]);
+  ss_cx_free(cx);
+  return st;
+}
+
+/* Read path with gmsh in this process (the child of ss_mesh_read_gmsh). */
+static ss_status read_here(const char *path, ss_cx **out, ss_error *err) {
+  ss_status st = SS_OK;
+  /* gmshInitialize sets the locale from the environment: keep the caller's */
+  const char *cur = setlocale(LC_ALL, NULL);
+  char *saved = cur ? strdup(cur) : NULL;
+  if (cur && !saved) return ss_error_nomem(err, "locale name");
+  int ierr = 0;
+  gmshInitialize(0, NULL, 0, &ierr);
+  if (ierr) {
+    st = ss_error_set(err, SS_EINPUT, "%s: gmsh could not be initialised", path);
+  } else {
+    gmshOptionSetNumber("General.Terminal", 0, &ierr);
+    gmshOptionSetNumber("General.Verbosity", 0, &ierr);
+    gmshOpen(path, &ierr);
+    if (ierr) {
+      char msg[300];
+      last_error(msg, sizeof msg);
+      st = ss_error_set(err, SS_EINPUT, "%s: %s", path, msg);
+    } else {
+      st = extract(path, out, err);
+    }
+    gmshFinalize(&ierr);
+  }
+  if (saved) setlocale(LC_ALL, saved);
+  free(saved);
+  return st;
+}
+
+/* ---- the child's answer through a pipe: status, then the message or the
+ * complex (dim, nv, x, vref, then per cell type nc, cells, cref) ---- */
+
+static int put_all(int fd, const void *p, size_t n) {
+  const char *c = p;
+  while (n) {
+    const ssize_t w = write(fd, c, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return -1;
+    c += w;
+    n -= (size_t)w;
+  }
+  return 0;
+}
+
+static void send_answer(int fd, ss_status st, const ss_cx *cx, const ss_error *err) {
+  int32_t s = (int32_t)st;
+  if (put_all(fd, &s, sizeof s)) return;
+  if (st) {
+    put_all(fd, err->msg, strlen(err->msg));
+    return;
+  }
+  int32_t dim = cx->dim;
+  uint64_t nv = cx->nv;
+  if (put_all(fd, &dim, sizeof dim) || put_all(fd, &nv, sizeof nv) ||
+      put_all(fd, cx->x, cx->nv * (size_t)cx->dim * sizeof *cx->x) ||
+      put_all(fd, cx->vref, cx->nv * sizeof *cx->vref))
+    return;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    uint64_t nc = cx->nc[t];
+    if (put_all(fd, &nc, sizeof nc) ||
+        put_all(fd, cx->cells[t],
+                cx->nc[t] * (size_t)ss_cell_nverts((ss_cell_type)t) * sizeof(ss_idx)) ||
+        put_all(fd, cx->cref[t], cx->nc[t] * sizeof(int32_t)))
+      return;
+  }
+}
+
+/* A cursor over the child's answer. */
+typedef struct {
+  const char *p; /* next unread byte */
+  size_t left;   /* bytes left */
+} cursor;
+
+static int take(cursor *c, void *dst, size_t n) {
+  if (n > c->left) return -1;
+  memcpy(dst, c->p, n);
+  c->p += n;
+  c->left -= n;
+  return 0;
+}
+
+/* Rebuild the complex the child sent; -1 if the answer is short or garbled,
+ * -2 out of memory. */
+static int decode(cursor *c, ss_cx **out, ss_error *err) {
+  int32_t dim;
+  uint64_t nv;
+  if (take(c, &dim, sizeof dim) || take(c, &nv, sizeof nv) || dim < 1 || dim > 3 ||
+      nv > c->left / (sizeof(double) * (size_t)dim))
+    return -1;
+  ss_cx *cx = NULL;
+  if (ss_cx_new(dim, &cx, err) || ss_cx_reserve_vertices(cx, (size_t)nv, err)) {
+    ss_cx_free(cx);
+    return -2;
+  }
+  const char *xs = c->p;
+  if (nv * (uint64_t)dim * sizeof(double) > c->left) goto bad;
+  c->p += nv * (size_t)dim * sizeof(double);
+  c->left -= nv * (size_t)dim * sizeof(double);
+  for (uint64_t i = 0; i < nv; i++) {
+    double x[3];
+    int32_t ref;
+    memcpy(x, xs + i * (size_t)dim * sizeof(double), (size_t)dim * sizeof(double));
+    if (take(c, &ref, sizeof ref)) goto bad;
+    if (ss_cx_add_vertex(cx, x, ref, err)) goto nomem;
+  }
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    uint64_t nc;
+    const int k = ss_cell_nverts((ss_cell_type)t);
+    if (take(c, &nc, sizeof nc) ||
+        nc > c->left / ((size_t)k * sizeof(ss_idx) + sizeof(int32_t)))
+      goto bad;
+    if (ss_cx_reserve_cells(cx, (ss_cell_type)t, (size_t)nc, err)) goto nomem;
+    const char *vs = c->p;
+    c->p += nc * (size_t)k * sizeof(ss_idx);
+    c->left -= nc * (size_t)k * sizeof(ss_idx);
+    for (uint64_t i = 0; i < nc; i++) {
+      ss_idx v[SS_MAXCELLVERTS];
+      int32_t ref;
+      memcpy(v, vs + i * (size_t)k * sizeof(ss_idx), (size_t)k * sizeof(ss_idx));
+      if (take(c, &ref, sizeof ref) || ss_cell_defect((ss_cell_type)t, v, cx->nv))
+        goto bad;
+      if (ss_cx_add_cell(cx, (ss_cell_type)t, v, ref, err)) goto nomem;
+    }
+  }
+  if (c->left) goto bad;
+  *out = cx;
+  return 0;
+bad:
+  ss_cx_free(cx);
+  return -1;
+nomem:
+  ss_cx_free(cx);
+  return -2;
+}
+
+ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
+  *out = NULL;
+  ss_status st = check_header(path, err);
+  if (st) return st;
+  /* gmsh 4.8 dereferences bad node tags in some malformed binary files and
+   * dies of SIGSEGV: it reads in a child process, whose death becomes a
+   * message.  The lock is held across fork, so the child (one thread) never
+   * waits for it, and no two reads overlap. */
+  pthread_mutex_lock(&gmsh_lock);
+  int fd[2];
+  if (pipe(fd)) {
+    pthread_mutex_unlock(&gmsh_lock);
+    return ss_error_set(err, SS_EIO, "%s: no pipe for the gmsh reader: %s", path,
+                        strerror(errno));
+  }
+  const pid_t pid = fork();
+  if (pid < 0) {
+    const int e = errno;
+    close(fd[0]);
+    close(fd[1]);
+    pthread_mutex_unlock(&gmsh_lock);
+    return ss_error_set(err, SS_EIO, "%s: cannot start the gmsh reader: %s", path,
+                        strerror(e));
+  }
+  if (pid == 0) { /* the child: read, answer, and leave without atexit or stdio */
+    close(fd[0]);
+    ss_error e = {0};
+    ss_cx *cx = NULL;
+    const ss_status cst = read_here(path, &cx, &e);
+    send_answer(fd[1], cst, cx, &e);
+    _exit(0);
+  }
+  close(fd[1]);
+  char *buf = NULL;
+  size_t len = 0, cap = 0;
+  int nomem = 0;
+  for (;;) {
+    if (len == cap) {
+      char *b = realloc(buf, cap = cap ? 2 * cap : 65536);
+      if (!b) {
+        nomem = 1;
+        break;
+      }
+      buf = b;
+    }
+    const ssize_t r = read(fd[0], buf + len, cap - len);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) break;
+    len += (size_t)r;
+  }
+  close(fd[0]); /* a child still writing gets EPIPE and ends */
+  int wst = 0;
+  while (waitpid(pid, &wst, 0) < 0 && errno == EINTR) {
+  }
+  pthread_mutex_unlock(&gmsh_lock);
+  cursor c = {buf, len};
+  int32_t s;
+  if (nomem) {
+    st = ss_error_nomem(err, "gmsh reader's answer");
+  } else if (WIFSIGNALED(wst)) {
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s: gmsh crashed reading it (signal %d): a malformed file", path,
+                      WTERMSIG(wst));
+  } else if (take(&c, &s, sizeof s)) { /* e.g. a sanitizer caught the crash */
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s: gmsh crashed reading it (exit status %d, no answer): a "
+                      "malformed file",
+                      path, WIFEXITED(wst) ? WEXITSTATUS(wst) : -1);
+  } else if (s) {
+    st = ss_error_set(err, (ss_status)s, "%.*s", (int)(c.left < 511 ? c.left : 511), c.p);
+  } else {
+    const int d = decode(&c, out, err);
+    st = d == 0 ? SS_OK
+         : d == -2
+             ? ss_error_nomem(err, "mesh from gmsh")
+             : ss_error_set(err, SS_EINPUT, "%s: the gmsh reader's answer is cut", path);
+  }
+  free(buf);
+  return st;
+}
+
+#endif
