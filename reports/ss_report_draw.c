@@ -146,7 +146,7 @@ static void panel_title(cairo_t *cr, const panel *p, const char *t) {
   cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
   cairo_set_font_size(cr, 13.0);
   cairo_move_to(cr, p->x0 + 10, p->y0 + 18);
-  cairo_show_text(cr, t);
+  ss_report_text(cr, t);
 }
 
 static void mark_p(cairo_t *cr, const panel *p, double x, double y) {
@@ -423,16 +423,16 @@ static void panel_axes(cairo_t *cr, const panel *p, const char *xl, const char *
       cairo_stroke(cr);
       snprintf(t, sizeof t, "%g", v);
       cairo_move_to(cr, X0 + (axis ? 5 : -6), Y0 + (axis ? 3 : 13));
-      cairo_show_text(cr, t);
+      ss_report_text(cr, t);
     }
   }
   to_surface(p, hix, 0.0, &X1, &Y1);
   cairo_set_font_size(cr, 12.0);
   cairo_move_to(cr, X1 - 22, Y1 - 6);
-  cairo_show_text(cr, xl);
+  ss_report_text(cr, xl);
   to_surface(p, 0.0, hiy, &X1, &Y1);
   cairo_move_to(cr, X1 + 6, Y1 + 42);
-  cairo_show_text(cr, yl);
+  ss_report_text(cr, yl);
 }
 
 /* The frame's axes as a triad in a corner of the 3D panel. */
@@ -450,7 +450,7 @@ static void axis_triad(cairo_t *cr, const panel *p, const view *v) {
     cairo_line_to(cr, X, Y);
     cairo_stroke(cr);
     cairo_move_to(cr, X + 3, Y + 4);
-    cairo_show_text(cr, name[k]);
+    ss_report_text(cr, name[k]);
   }
 }
 
@@ -475,7 +475,7 @@ static void legend(cairo_t *cr, double y, double w) {
     cairo_set_line_width(cr, 0.6);
     cairo_stroke(cr);
     cairo_move_to(cr, x + 19, y);
-    cairo_show_text(cr, key[i].what);
+    ss_report_text(cr, key[i].what);
     cairo_text_extents_t te;
     cairo_text_extents(cr, key[i].what, &te);
     x += 19 + te.x_advance + 18;
@@ -502,7 +502,7 @@ static void caption(cairo_t *cr, const ss_charmap *cm, const ss_regularity *r,
     else
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     cairo_move_to(cr, 12, y + 18 + 18 * i);
-    cairo_show_text(cr, line[i]);
+    ss_report_text(cr, line[i]);
   }
   (void)w;
 }
@@ -657,10 +657,72 @@ int ss_report_has_ext(const char *path, const char *ext) {
   return 1;
 }
 
-/* cairo's stream writer: into the canvas's file, the first errno kept. */
+/* Append n bytes to b; -1 if it cannot grow. */
+static int bytes_add(ss_report_bytes *b, const void *p, size_t n) {
+  if (b->n + n > b->cap) {
+    size_t nc = b->cap ? b->cap : 1 << 16;
+    while (nc < b->n + n)
+      nc *= 2;
+    char *ns = realloc(b->s, nc);
+    if (!ns) return -1;
+    b->s = ns;
+    b->cap = nc;
+  }
+  if (n) memcpy(b->s + b->n, p, n);
+  b->n += n;
+  return 0;
+}
+
+/* the key under which a context knows its canvas (its address is the key) */
+static const cairo_user_data_key_t canvas_key = {0};
+
+void ss_report_text(cairo_t *cr, const char *s) {
+  ss_report_canvas *c = cairo_get_user_data(cr, &canvas_key);
+  if (!c || c->fmt != SS_PIC_SVG || !cairo_has_current_point(cr)) {
+    cairo_show_text(cr, s);
+    return;
+  }
+  double x, y, r = 0, g = 0, b = 0, a = 1;
+  cairo_get_current_point(cr, &x, &y);
+  cairo_user_to_device(cr, &x, &y);
+  cairo_matrix_t fm;
+  cairo_get_font_matrix(cr, &fm);
+  cairo_pattern_get_rgba(cairo_get_source(cr), &r, &g, &b, &a);
+  char head[256];
+  int n = snprintf(head, sizeof head,
+                   "<text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" "
+                   "font-size=\"%.2f\" fill=\"rgb(%d,%d,%d)\" fill-opacity=\"%.3g\">",
+                   x, y, fm.xx, (int)lround(255 * r), (int)lround(255 * g),
+                   (int)lround(255 * b), a);
+  int bad = bytes_add(&c->text, head, (size_t)n);
+  for (const char *p = s; *p; p++) {
+    const char *e = *p == '&'   ? "&amp;"
+                    : *p == '<' ? "&lt;"
+                    : *p == '>' ? "&gt;"
+                    : *p == '"' ? "&quot;"
+                                : NULL;
+    bad |= e ? bytes_add(&c->text, e, strlen(e)) : bytes_add(&c->text, p, 1);
+  }
+  bad |= bytes_add(&c->text, "</text>\n", 8);
+  if (bad) c->nomem = 1;
+  /* the current point moves on as after cairo_show_text */
+  cairo_text_extents_t te;
+  cairo_text_extents(cr, s, &te);
+  cairo_rel_move_to(cr, te.x_advance, te.y_advance);
+}
+
+/* cairo's stream writer: into the canvas's file (SVG: its buffer), the first
+ * errno kept. */
 static cairo_status_t canvas_write(void *closure, const unsigned char *data,
                                    unsigned int len) {
   ss_report_canvas *c = closure;
+  if (c->fmt == SS_PIC_SVG) {
+    if (bytes_add(&c->svg, data, len)) {
+      c->nomem = 1;
+      return CAIRO_STATUS_NO_MEMORY;
+    }
+    return CAIRO_STATUS_SUCCESS;
+  }
   FILE *f = ss_outfile_file(c->out);
   if (len && fwrite(data, 1, len, f) != len) {
     if (!c->werrno) c->werrno = errno ? errno : EIO;
@@ -683,7 +745,7 @@ int ss_report_pic_format(const char *path, ss_pic_format *fmt) {
 
 ss_status ss_report_cairo_open(const char *path, ss_pic_format fmt, int width, int height,
                                ss_report_canvas *c, ss_error *err) {
-  *c = (ss_report_canvas){NULL, NULL, NULL, fmt, 0};
+  *c = (ss_report_canvas){NULL, NULL, NULL, fmt, 0, 0, {NULL, 0, 0}, {NULL, 0, 0}};
   ss_status st = ss_outfile_open(path, &c->out, err);
   if (st) return st;
   c->s = fmt == SS_PIC_PNG
@@ -696,10 +758,11 @@ ss_status ss_report_cairo_open(const char *path, ss_pic_format fmt, int width, i
                       cairo_status_to_string(cairo_surface_status(c->s)));
     cairo_surface_destroy(c->s);
     ss_outfile_abort(c->out);
-    *c = (ss_report_canvas){NULL, NULL, NULL, fmt, 0};
+    *c = (ss_report_canvas){NULL, NULL, NULL, fmt, 0, 0, {NULL, 0, 0}, {NULL, 0, 0}};
     return st;
   }
   c->cr = cairo_create(c->s);
+  cairo_set_user_data(c->cr, &canvas_key, c, NULL);
   return SS_OK;
 }
 
@@ -746,6 +809,21 @@ ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err
   cairo_surface_finish(c->s);
   if (cs == CAIRO_STATUS_SUCCESS) cs = cairo_surface_status(c->s);
   cairo_surface_destroy(c->s);
+  if (!st && c->nomem) st = ss_error_nomem(err, "picture");
+  if (!st && cs == CAIRO_STATUS_SUCCESS && c->fmt == SS_PIC_SVG) {
+    /* the document with the text before its end tag */
+    const char *end = NULL;
+    for (size_t i = c->svg.n; i-- > 0 && !end;)
+      if (c->svg.n - i >= 6 && !memcmp(c->svg.s + i, "</svg>", 6)) end = c->svg.s + i;
+    const size_t head = end ? (size_t)(end - c->svg.s) : c->svg.n;
+    FILE *f = ss_outfile_file(c->out);
+    if (fwrite(c->svg.s, 1, head, f) != head ||
+        fwrite(c->text.s ? c->text.s : "", 1, c->text.n, f) != c->text.n ||
+        fwrite(c->svg.s + head, 1, c->svg.n - head, f) != c->svg.n - head)
+      c->werrno = errno ? errno : EIO;
+  }
+  free(c->svg.s);
+  free(c->text.s);
   if (!st && c->werrno)
     st = ss_error_set(err, SS_EIO, "%s: cannot write: %s", path, strerror(c->werrno));
   else if (!st && cs != CAIRO_STATUS_SUCCESS)
@@ -755,6 +833,6 @@ ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err
     ss_outfile_abort(c->out);
   else
     st = ss_outfile_commit(c->out, err);
-  *c = (ss_report_canvas){NULL, NULL, NULL, SS_PIC_PNG, 0};
+  *c = (ss_report_canvas){NULL, NULL, NULL, SS_PIC_PNG, 0, 0, {NULL, 0, 0}, {NULL, 0, 0}};
   return st;
 }

@@ -1,7 +1,8 @@
 /* ss_report_draw.h — pictures of a characteristic map's two-ring (issue 5):
  * raster (PNG) and vector (SVG, PDF) drawings through cairo, and legacy VTK
- * for ParaView.  In PDF the text is text (cairo embeds the font subset:
- * selectable and searchable); in SVG cairo draws glyphs as outlines.
+ * for ParaView.  In vector pictures the text is text: PDF embeds the font
+ * subset (selectable, searchable), SVG gets <text> elements (ss_report_text;
+ * cairo itself would draw SVG glyphs as outlines).
  *
  * The frame.  The control net is normalised (ss_charmap.h), which fixes it up
  * to an orthogonal map when the subdominant eigenvalues tie and the basis is
@@ -97,21 +98,37 @@ typedef enum { SS_PIC_PNG = 0, SS_PIC_SVG, SS_PIC_PDF } ss_pic_format;
  * into *fmt; -1 for another extension. */
 int ss_report_pic_format(const char *path, ss_pic_format *fmt);
 
+/* A growing byte buffer. */
+typedef struct {
+  char *s;       /* the bytes (not NUL-terminated) */
+  size_t n, cap; /* used and allocated lengths */
+} ss_report_bytes;
+
 /* A picture being drawn into a file (shared by the pictures and the plots):
  * the file is written whole or not at all (ss_outfile.h). */
 typedef struct {
-  cairo_t *cr;        /* the context to draw with */
-  cairo_surface_t *s; /* an image surface (PNG), or an SVG or PDF surface
-                         streaming to out */
-  ss_outfile *out;    /* the temporary file beside the target, renamed on success */
-  ss_pic_format fmt;  /* PNG, SVG or PDF */
-  int werrno;         /* errno of the first failed write into out, 0 if none */
+  cairo_t *cr;          /* the context to draw with */
+  cairo_surface_t *s;   /* an image surface (PNG), or an SVG or PDF surface
+                           streaming to out (SVG: to svg first) */
+  ss_outfile *out;      /* the temporary file beside the target, renamed on success */
+  ss_pic_format fmt;    /* PNG, SVG or PDF */
+  int werrno;           /* errno of the first failed write into out, 0 if none */
+  int nomem;            /* 1 if a buffer below could not grow */
+  ss_report_bytes svg;  /* SVG: cairo's document, held until the text is added */
+  ss_report_bytes text; /* SVG: the <text> elements (ss_report_text) */
 } ss_report_canvas;
+
+/* Show s at the current point in the current font size and colour, as
+ * cairo_show_text does; in an SVG canvas as a <text> element (x, y, size and
+ * fill in device units; no rotated text is drawn here), so that the text is
+ * text.  cr must come from ss_report_cairo_open. */
+void ss_report_text(cairo_t *cr, const char *s);
 
 /* Open a picture of width x height pixels (points for SVG and PDF) into *c:
  * the temporary file beside path, an image surface for PNG (written by
- * ss_report_cairo_close), an SVG or PDF surface streaming into the file
- * otherwise, and a context on it.  c must
+ * ss_report_cairo_close), a PDF surface streaming into the file or an SVG
+ * surface into memory (written with its text on closing), and a context on
+ * it.  c must
  * stay at its address until closed (the SVG stream writes through it).
  * SS_EIO naming path if the file or the surface cannot be made (nothing is
  * then left to close). */

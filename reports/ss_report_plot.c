@@ -104,7 +104,7 @@ static double text(cairo_t *cr, double x, double y, double align, const char *s)
   cairo_text_extents_t e;
   cairo_text_extents(cr, s, &e);
   cairo_move_to(cr, x - align * e.x_advance, y);
-  cairo_show_text(cr, s);
+  ss_report_text(cr, s);
   return e.x_advance;
 }
 

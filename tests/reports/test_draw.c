@@ -97,6 +97,16 @@ static void test_png_svg(const char *dir) {
     fclose(f);
   }
   CHECK(strstr(head, "<svg") != NULL, "svg header: %.60s", head);
+  /* SVG: text as text (<text> elements, no glyph outlines) */
+  f = fopen(svg, "r");
+  static char doc[1 << 21];
+  size_t nd = f ? fread(doc, 1, sizeof doc - 1, f) : 0;
+  if (f) fclose(f);
+  doc[nd] = '\0';
+  CHECK(strstr(doc, ">regular cell</text>") &&
+            strstr(doc, ">mlca, vertex tetrahedron</text>") && !strstr(doc, "glyph") &&
+            strstr(doc, "</text>\n</svg>"),
+        "svg: the legend and caption as <text>, no glyph outlines");
   CHECK(ss_report_draw(r.cm, &reg, &o, path(dir, "a.jpg"), &err) == SS_EINPUT,
         "unknown format");
   CHECK(ss_report_draw(r.cm, &reg, &o, "/nonexistent/dir/x.png", &err) == SS_EIO,
