@@ -68,11 +68,10 @@ static void help(const char *cmd) {
            "origin, z1 toward the first two-ring point, z2 toward the next one not\n"
            "parallel to it (a tie's arbitrary basis gives the same picture).  Surface\n"
            "cases are drawn flat.  FILE's extension picks the format: .png, .svg,\n"
-           ".pdf (text as text in SVG and PDF) or .vtk (for ParaView: the normalised "
-           "net, the\n"
-           "two-ring's cells and the deciding ring level's, with per-cell Jacobian\n"
-           "sign and minimum scaled Jacobian in the map's orientation, as analyze\n"
-           "reports them; see the README).\n\n");
+           ".pdf (in both, text is text) or .vtk (for ParaView: the normalised net,\n"
+           "the two-ring's cells and the deciding ring level's, with per-cell\n"
+           "Jacobian sign and minimum scaled Jacobian in the map's orientation, as\n"
+           "analyze reports them; see the README).\n\n");
   else if (m)
     printf("Write the local subdivision matrix S of one case in Matrix Market format,\n"
            "rows and columns labelled (in comments) by their exact coordinates relative\n"
