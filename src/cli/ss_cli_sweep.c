@@ -7,7 +7,10 @@
  * (same scheme identity, kind, k and canonical link) is skipped, so a rerun
  * after any interruption computes only what is missing, and every stored
  * row is its own committed transaction (ss_store.h), so a kill loses only
- * the cases being computed at that moment. */
+ * the cases being computed at that moment.  The sweep's life (open, run,
+ * close) and the three steps of a case are shared with the MPI driver,
+ * ss_cli_sweep_mpi.c, through ss_cli_sweep.h: the threads here and the
+ * ranks there enumerate, judge and store cases by the same code. */
 #include <getopt.h>
 #include <math.h>
 #include <signal.h>
@@ -20,6 +23,7 @@
 #include <omp.h>
 
 #include "ss_cli.h"
+#include "ss_cli_sweep.h"
 #include "ss_enum.h"
 #include "ss_jac.h"
 #include "ss_link.h"
@@ -56,7 +60,9 @@ static const char *const sweep_usage =
     "                    missing; a file that is not a subspectra store is refused,\n"
     "                    and one that cannot be written is named as such: read-only\n"
     "                    file system or permissions, or locked by another program)\n"
-    "  --jobs N          threads (default: the number of processors)\n"
+    "  --jobs N          threads (default: the number of processors; under MPI,\n"
+    "                    of each computing rank: its machine's processors shared\n"
+    "                    by the computing ranks there)\n"
     "  --part I/N        only part I of N (0 <= I < N): the enumeration is split\n"
     "                    into N disjoint parts covering every case, for N processes\n"
     "                    or machines; join their stores with `subspectra merge`\n"
@@ -86,6 +92,21 @@ static const char *const sweep_usage =
     "undecided or could not be analysed, 2 bad usage, a bad link or store file,\n"
     "or a case out of memory or beyond the memory budget (the others still run).\n";
 
+/* (a string of its own: C's limit on a string literal's length) */
+static const char *const sweep_usage_mpi =
+    "\n"
+#if SS_HAVE_MPI
+    "One MPI job: `mpirun -n R subspectra sweep ...` (or srun): rank 0 enumerates\n"
+    "the cases, skips the stored ones, hands the rest out in small pieces to\n"
+    "whichever rank asks next, and writes the one store --db; ranks 1..R-1\n"
+    "compute.  Progress and the summary come from rank 0; a killed rank loses\n"
+    "only its piece in flight, and the same command resumes.  With one rank, or\n"
+    "without mpirun, the sweep runs as above.\n";
+#else
+    "This build has no MPI (meson option mpi): for several machines use --part\n"
+    "and merge.\n";
+#endif
+
 static const char *const merge_usage =
     "usage: subspectra merge [--prefer new|old] OUT.db IN.db...\n"
     "\n"
@@ -103,8 +124,6 @@ static const char *const merge_usage =
     "or a file that is not a subspectra results store, cannot be read or\n"
     "written, or is OUT.db itself (nothing is copied from it).\n";
 
-enum { CHUNK = 512 };
-
 /* The signal that asked the sweep to stop (SIGINT, SIGTERM), or 0.  The one
  * piece of process-wide state: a signal handler can reach nothing else.  The
  * cases being computed finish and are stored; the rest is left for a rerun. */
@@ -114,33 +133,27 @@ static void on_signal(int sig) {
   interrupted = sig;
 }
 
-/* One case to run. */
-typedef struct {
-  ss_case_kind kind; /* the case */
-  int n;             /* edge or surface valence */
-  ss_link *link;     /* vertex case: the link (owned) */
-} job;
+/* SIGINT and SIGTERM set `interrupted` from now on. */
+static void catch_signals(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+}
 
-/* A sweep in progress. */
-typedef struct {
-  const ss_scheme *s; /* the scheme (read-only, shared by the threads) */
-  ss_store *st;       /* the store */
-  int64_t id;         /* the scheme's id in the store */
-  ss_result_opts ro;  /* analysis options */
-  ss_diag_mode diag;  /* major diagonals */
-  int jobs;           /* threads */
-  job chunk[CHUNK];   /* cases waiting to be run */
-  size_t nchunk;      /* how many */
-  size_t total;       /* cases in this sweep (this part) */
-  size_t computed;    /* cases analysed and stored now */
-  size_t skipped;     /* cases found in the store */
-  size_t pass, fail, undecided, errors; /* verdicts (stored cases included) */
-  size_t nomem;    /* of the errors, cases out of memory or beyond the budget */
-  double t0, last; /* start, last progress line (seconds) */
-  int tty;         /* stderr is a terminal: show progress */
-  int stop;        /* a store error happened: run nothing more */
-  ss_error fatal;  /* that error */
-} sweep;
+int ss_sweep_interrupted(void) {
+  return interrupted;
+}
+
+void ss_sweep_raise(void) {
+  if (!interrupted) return;
+  fflush(stdout);
+  const int sig = interrupted;
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
 
 static void fmt_time(double s, char *buf, size_t n) {
   if (!isfinite(s) || s < 0) {
@@ -157,7 +170,7 @@ static void fmt_time(double s, char *buf, size_t n) {
 }
 
 /* The progress line; call inside the critical section. */
-static void progress(sweep *w, int force) {
+static void progress(ss_sweep *w, int force) {
   const double t = ss_cli_now();
   if (!w->tty || (!force && t - w->last < 0.25)) return;
   w->last = t;
@@ -172,50 +185,56 @@ static void progress(sweep *w, int force) {
           rate, eta, w->fail, w->undecided, w->errors);
 }
 
-/* Run one case (in a worker thread). */
-static void run_job(sweep *w, const job *j) {
-  if (interrupted) return;
+static int job_k(const ss_sweep_job *j) {
+  return j->kind == SS_CASE_VERTEX ? j->link->k : j->kind == SS_CASE_FACE ? 0 : j->n;
+}
+
+int ss_sweep_prepare(ss_sweep *w, const ss_sweep_job *j, char **canon) {
+  *canon = NULL;
+  if (interrupted) return 0;
   ss_error err = {0};
-  ss_case c = {j->kind, j->link, j->n, w->diag};
   int found = 0, stop = 0;
   ss_verdict_kind v = SS_PASS;
-  char *canon = NULL;
   ss_link *cl = NULL;
   ss_status s = SS_OK;
   if (j->kind == SS_CASE_VERTEX) {
     s = ss_link_canonical(j->link, &cl, NULL, &err);
-    if (!s) s = ss_link_format(cl, &canon, &err);
+    if (!s) s = ss_link_format(cl, canon, &err);
   }
   ss_link_free(cl);
-  const int k = j->kind == SS_CASE_VERTEX ? j->link->k
-                : j->kind == SS_CASE_FACE ? 0
-                                          : j->n;
 #pragma omp critical(ss_sweep_store)
   {
     stop = w->stop;
     if (!stop && !s &&
-        ss_store_has(w->st, w->id, j->kind, k, canon, &found, &v, &w->fatal))
+        ss_store_has(w->st, w->id, j->kind, job_k(j), *canon, &found, &v, &w->fatal))
       w->stop = stop = 1;
     if (found) {
       w->skipped++;
       ++*(v == SS_PASS ? &w->pass : v == SS_FAIL ? &w->fail : &w->undecided);
       progress(w, 0);
     }
+    if (s) {
+      w->errors++;
+      fprintf(stderr, "%ssweep: %s: %s\n", w->tty ? "\r\033[K" : "",
+              ss_case_name(j->kind), err.msg);
+    }
   }
   if (stop || found || s) {
-    if (s) {
-#pragma omp critical(ss_sweep_store)
-      {
-        w->errors++;
-        fprintf(stderr, "%ssweep: %s: %s\n", w->tty ? "\r\033[K" : "",
-                ss_case_name(j->kind), err.msg);
-      }
-    }
-    free(canon);
-    return;
+    free(*canon);
+    *canon = NULL;
+    return 0;
   }
-  ss_result r;
-  s = ss_result_compute(w->s, &c, &w->ro, &r, &err);
+  return 1;
+}
+
+ss_status ss_sweep_compute(const ss_sweep *w, const ss_sweep_job *j, ss_result *r,
+                           ss_error *err) {
+  const ss_case c = {j->kind, j->link, j->n, w->diag};
+  return ss_result_compute(w->s, &c, &w->ro, r, err);
+}
+
+void ss_sweep_record(ss_sweep *w, ss_case_kind kind, int n, const char *canon,
+                     ss_status s, const ss_result *r, const ss_error *err) {
 #pragma omp critical(ss_sweep_store)
   {
     if (s) {
@@ -223,48 +242,62 @@ static void run_job(sweep *w, const job *j) {
       w->nomem += s == SS_ENOMEM;
       if (canon)
         fprintf(stderr, "%ssweep: vertex %s: %s\n", w->tty ? "\r\033[K" : "", canon,
-                err.msg);
+                err->msg);
       else
         fprintf(stderr, "%ssweep: %s %d: %s\n", w->tty ? "\r\033[K" : "",
-                ss_case_name(j->kind), j->n, err.msg);
+                ss_case_name(kind), n, err->msg);
     } else if (!w->stop) {
       int added = 0;
-      if (ss_store_put(w->st, w->id, &r, &added, &w->fatal))
+      if (ss_store_put(w->st, w->id, r, &added, &w->fatal))
         w->stop = 1;
       else {
         /* a case given twice (isomorphic links) is stored once */
         ++*(added ? &w->computed : &w->skipped);
-        v = ss_result_verdict(&r);
+        const ss_verdict_kind v = ss_result_verdict(r);
         ++*(v == SS_PASS ? &w->pass : v == SS_FAIL ? &w->fail : &w->undecided);
       }
     }
     progress(w, 0);
   }
+}
+
+/* Run one case (in a worker thread). */
+static void run_job(ss_sweep *w, const ss_sweep_job *j) {
+  char *canon = NULL;
+  if (!ss_sweep_prepare(w, j, &canon)) return;
+  ss_error err = {0};
+  ss_result r;
+  const ss_status s = ss_sweep_compute(w, j, &r, &err);
+  ss_sweep_record(w, j->kind, j->n, canon, s, &r, &err);
   ss_result_clear(&r);
   free(canon);
 }
 
-/* Run the waiting cases in parallel and free them. */
-static void flush(sweep *w) {
-  const long n = (long)w->nchunk;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(w->jobs)
-  for (long i = 0; i < n; i++)
-    run_job(w, &w->chunk[i]);
+void ss_sweep_clear_chunk(ss_sweep *w) {
   for (size_t i = 0; i < w->nchunk; i++)
     ss_link_free(w->chunk[i].link);
   w->nchunk = 0;
 }
 
+/* The threaded flush: run the waiting cases in parallel and free them. */
+static void flush_threads(ss_sweep *w) {
+  const long n = (long)w->nchunk;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(w->jobs)
+  for (long i = 0; i < n; i++)
+    run_job(w, &w->chunk[i]);
+  ss_sweep_clear_chunk(w);
+}
+
 /* Queue a case (the link is copied); runs the chunk when it is full. */
-static int add(sweep *w, ss_case_kind kind, int n, const ss_link *l) {
+static int add(ss_sweep *w, ss_case_kind kind, int n, const ss_link *l) {
   if (w->stop || interrupted) return 1;
-  job *j = &w->chunk[w->nchunk];
-  *j = (job){kind, n, NULL};
+  ss_sweep_job *j = &w->chunk[w->nchunk];
+  *j = (ss_sweep_job){kind, n, NULL};
   if (l && ss_link_copy(l, &j->link, &w->fatal)) {
     w->stop = 1;
     return 1;
   }
-  if (++w->nchunk == CHUNK) flush(w);
+  if (++w->nchunk == SS_SWEEP_CHUNK) w->flush(w);
   return w->stop;
 }
 
@@ -389,8 +422,8 @@ static int count_visit(const ss_link *l, void *ctx) {
   (void)ctx;
   return interrupted != 0;
 }
-
-int ss_cli_sweep(int argc, char **argv) {
+int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
+  *out = NULL;
   enum {
     O_SCHEME = 256,
     O_STENCIL,
@@ -432,7 +465,7 @@ int ss_cli_sweep(int argc, char **argv) {
   int face = 0;
   double tol = 1e-6, max_memory = 0.0;
   ss_diag_mode diag = SS_DIAG_BFS;
-  int diag_given = 0, json = 0, certify = 0;
+  int diag_given = 0, json = 0, certify = 0, jobs_given = 0;
   optind = 1;
   opterr = 0;
   int c;
@@ -468,6 +501,7 @@ int ss_cli_sweep(int argc, char **argv) {
       if (ss_cli_parse_int(optarg, 1, 1024, &jobs))
         return ss_cli_usage_error("sweep", "--jobs '%s' is not an integer in 1..1024",
                                   optarg);
+      jobs_given = 1;
       break;
     case O_PART:
       if (ss_cli_parse_part(optarg, &part, &nparts))
@@ -501,6 +535,7 @@ int ss_cli_sweep(int argc, char **argv) {
       break;
     case 'h':
       fputs(sweep_usage, stdout);
+      fputs(sweep_usage_mpi, stdout);
       return SS_EXIT_OK;
     default:
       return ss_cli_option_error("sweep", c, argv);
@@ -548,18 +583,11 @@ int ss_cli_sweep(int argc, char **argv) {
     ss_scheme_free(s);
     return ss_cli_usage_error("sweep", "%s", bad);
   }
-  linklist ll = {NULL, 0};
-  size_t dups = 0; /* --links dropped as repeats */
-  int rc = links ? read_links(links, &ll) : SS_EXIT_OK;
-  if (!rc && links)
-    rc = dedupe_links(&ll, vtext && volume ? va : 1, vtext && volume ? vb : 0, &dups);
-  sweep *w = calloc(1, sizeof *w);
-  ss_store *st = NULL;
-  if (rc) goto done;
+  ss_sweep *w = calloc(1, sizeof *w);
   if (!w) {
+    ss_scheme_free(s);
     fprintf(stderr, "subspectra sweep: out of memory\n");
-    rc = SS_EXIT_USAGE;
-    goto done;
+    return SS_EXIT_USAGE;
   }
   ss_result_opts ro = ss_result_defaults();
   ro.tol = tol;
@@ -567,44 +595,64 @@ int ss_cli_sweep(int argc, char **argv) {
   ro.certify = certify;
   /* the budget is shared by the threads, one case each */
   ro.max_bytes = ss_cli_budget(max_memory) / (double)jobs;
+  *w = (ss_sweep){.s = s,
+                  .ro = ro,
+                  .diag = diag,
+                  .jobs = (int)jobs,
+                  .jobs_given = jobs_given,
+                  .max_memory = max_memory,
+                  .ranks = 1,
+                  .db = db,
+                  .json = json,
+                  .part = part,
+                  .nparts = nparts,
+                  .vtext = vtext,
+                  .va = va,
+                  .vb = vb,
+                  .ea = ea,
+                  .eb = eb,
+                  .face = face,
+                  .volume = volume,
+                  .flush = flush_threads,
+                  .tty = role == SS_SWEEP_WHOLE && isatty(STDERR_FILENO)};
   ss_store_scheme sc = {ss_scheme_name(s), stencil, hash, reads, diag, ro};
-  int64_t id = 0;
-  if (ss_store_open(db, SS_STORE_WRITE, &st, &err) ||
-      ss_store_scheme_id(st, &sc, &id, &err)) {
+  ss_store_identity(&sc, w->ident, sizeof w->ident);
+  if (role == SS_SWEEP_WORKER) {
+    /* an MPI rank that computes: a signal finishes the cases in flight */
+    catch_signals();
+    *out = w;
+    return -1;
+  }
+  linklist ll = {NULL, 0};
+  int rc = links ? read_links(links, &ll) : SS_EXIT_OK;
+  if (!rc && links)
+    rc = dedupe_links(&ll, vtext && volume ? va : 1, vtext && volume ? vb : 0, &w->dups);
+  w->links = ll.l;
+  w->nlinks = ll.n;
+  if (rc) goto fail;
+  if (ss_store_open(db, SS_STORE_WRITE, &w->st, &err) ||
+      ss_store_scheme_id(w->st, &sc, &w->id, &err)) {
     fprintf(stderr, "subspectra sweep: %s\n", err.msg);
     rc = SS_EXIT_USAGE; /* a bad store, or out of memory */
-    goto done;
+    goto fail;
   }
-  *w = (sweep){.s = s,
-               .st = st,
-               .id = id,
-               .ro = ro,
-               .diag = diag,
-               .jobs = (int)jobs,
-               .tty = isatty(STDERR_FILENO)};
   /* SIGINT, SIGTERM from here on: the store is open */
-  struct sigaction sa;
-  memset(&sa, 0, sizeof sa);
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
+  catch_signals();
   /* the total first, so that progress can show an ETA (a signal stops the
    * count, and then the sweep before its first case) */
-  ss_enum_opts eo = {(int)va, (int)vb, (int)part, (int)nparts};
-  int counting_stopped = 0;
   if (vtext && volume) {
+    ss_enum_opts eo = {(int)va, (int)vb, (int)part, (int)nparts};
     uint64_t counts[SS_ENUM_MAXK + 1];
     if (w->tty && vb >= 15)
       fprintf(stderr, "sweep: counting the links with %ld..%ld vertices...\n", va, vb);
     if (ss_enum_links(&eo, count_visit, NULL, counts, &err)) {
       fprintf(stderr, "subspectra sweep: %s\n", err.msg);
       rc = ss_cli_exit_status(err.status);
-      goto done;
+      goto fail;
     }
     for (long k = va; k <= vb; k++)
       w->total += counts[k];
-    counting_stopped = interrupted != 0;
+    w->counting_stopped = interrupted != 0;
   }
   size_t idx = 0; /* index of the non-enumerated cases, for --part */
   for (long n = vtext && !volume ? va : 1; n <= (vtext && !volume ? vb : 0); n++)
@@ -612,29 +660,59 @@ int ss_cli_sweep(int argc, char **argv) {
   for (long n = ea; n <= eb; n++)
     w->total += idx++ % (size_t)nparts == (size_t)part;
   if (face) w->total += idx++ % (size_t)nparts == (size_t)part;
-  for (size_t i = 0; i < ll.n; i++)
+  for (size_t i = 0; i < w->nlinks; i++)
     w->total += idx++ % (size_t)nparts == (size_t)part;
-  char ident[256];
-  ss_store_identity(&sc, ident, sizeof ident);
-  if (w->tty && !counting_stopped)
-    fprintf(stderr, "sweep: %zu cases of %s into %s with %ld thread%s%s\n", w->total,
-            ident, db, jobs, jobs == 1 ? "" : "s", nparts > 1 ? " (this part)" : "");
+  *out = w;
+  return -1;
+fail:
+  ss_sweep_free(w);
+  return rc;
+}
+
+void ss_sweep_free(ss_sweep *w) {
+  if (!w) return;
+  ss_sweep_clear_chunk(w);
+  for (size_t i = 0; i < w->nlinks; i++)
+    ss_link_free(w->links[i]);
+  free(w->links);
+  ss_store_close(w->st);
+  ss_scheme_free(w->s);
+  free(w);
+}
+
+void ss_sweep_run(ss_sweep *w) {
+  const long part = w->part, nparts = w->nparts;
+  const int volume = w->volume;
+  if (w->tty && !w->counting_stopped) {
+    char ranks[48] = "";
+    if (w->ranks > 1) snprintf(ranks, sizeof ranks, "%d ranks of ", w->ranks);
+    fprintf(stderr, "sweep: %zu cases of %s into %s with %s%d thread%s%s\n", w->total,
+            w->ident, w->db, ranks, w->jobs, w->jobs == 1 ? "" : "s",
+            nparts > 1 ? " (this part)" : "");
+  }
   w->t0 = w->last = ss_cli_now();
-  if (vtext && volume && ss_enum_links(&eo, visit, w, NULL, &err) && !w->stop) {
+  ss_error err = {0};
+  ss_enum_opts eo = {(int)w->va, (int)w->vb, (int)part, (int)nparts};
+  if (w->vtext && volume && ss_enum_links(&eo, visit, w, NULL, &err) && !w->stop) {
     w->stop = 1;
     w->fatal = err;
   }
-  idx = 0;
-  for (long n = vtext && !volume ? va : 1; n <= (vtext && !volume ? vb : 0); n++)
+  size_t idx = 0;
+  for (long n = w->vtext && !volume ? w->va : 1; n <= (w->vtext && !volume ? w->vb : 0);
+       n++)
     if (idx++ % (size_t)nparts == (size_t)part)
       add(w, SS_CASE_SURFACE_VERTEX, (int)n, NULL);
-  for (long n = ea; n <= eb; n++)
+  for (long n = w->ea; n <= w->eb; n++)
     if (idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_EDGE, (int)n, NULL);
-  if (face && idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_FACE, 0, NULL);
-  for (size_t i = 0; i < ll.n; i++)
-    if (idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_VERTEX, 0, ll.l[i]);
-  flush(w);
+  if (w->face && idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_FACE, 0, NULL);
+  for (size_t i = 0; i < w->nlinks; i++)
+    if (idx++ % (size_t)nparts == (size_t)part) add(w, SS_CASE_VERTEX, 0, w->links[i]);
+  w->flush(w);
+}
+
+int ss_sweep_close(ss_sweep *w) {
   const double dt = ss_cli_now() - w->t0;
+  int rc;
   if (w->tty) fprintf(stderr, "\r\033[K");
   if (w->stop) {
     fprintf(stderr, "subspectra sweep: %s\n", w->fatal.msg);
@@ -644,39 +722,49 @@ int ss_cli_sweep(int argc, char **argv) {
   char took[32];
   fmt_time(dt, took, sizeof took);
   const size_t done = w->computed + w->skipped + w->errors;
-  char dupnote[64] = "";
-  if (dups)
-    snprintf(dupnote, sizeof dupnote, ", %zu repeated link%s in --links skipped", dups,
-             dups == 1 ? "" : "s");
-  if (counting_stopped)
+  char dupnote[64] = "", ranks[48] = "";
+  if (w->dups)
+    snprintf(dupnote, sizeof dupnote, ", %zu repeated link%s in --links skipped", w->dups,
+             w->dups == 1 ? "" : "s");
+  if (w->ranks > 1) snprintf(ranks, sizeof ranks, "%d ranks of ", w->ranks);
+  if (w->counting_stopped)
     fprintf(stderr,
             "sweep: interrupted (%s) while counting the cases, before any was "
             "computed (store %s); the same command resumes\n",
-            interrupted == SIGINT ? "SIGINT" : "SIGTERM", db);
+            interrupted == SIGINT ? "SIGINT" : "SIGTERM", w->db);
   else
-    fprintf(stderr,
-            "sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with %ld thread%s; "
-            "%zu already stored%s): %zu pass, %zu fail, %zu undecided, %zu errors; "
-            "store %s\n",
-            done, ident, took, w->computed, dt > 0 ? (double)w->computed / dt : 0.0, jobs,
-            jobs == 1 ? "" : "s", w->skipped, dupnote, w->pass, w->fail, w->undecided,
-            w->errors, db);
-  if (interrupted && !counting_stopped)
+    fprintf(
+        stderr,
+        "sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with %s%d thread%s; "
+        "%zu already stored%s): %zu pass, %zu fail, %zu undecided, %zu errors; "
+        "store %s\n",
+        done, w->ident, took, w->computed, dt > 0 ? (double)w->computed / dt : 0.0, ranks,
+        w->jobs, w->jobs == 1 ? "" : "s", w->skipped, dupnote, w->pass, w->fail,
+        w->undecided, w->errors, w->db);
+  if (interrupted && !w->counting_stopped)
     fprintf(stderr,
             "sweep: interrupted (%s) with %zu of %zu cases done; the same command "
             "resumes\n",
             interrupted == SIGINT ? "SIGINT" : "SIGTERM", done, w->total);
-  if (json) {
+  else if (w->ranks > 1 && done < w->total)
+    /* every computing rank stopped (a signal) before the work did */
+    fprintf(stderr,
+            "sweep: stopped with %zu of %zu cases done; the same command resumes\n", done,
+            w->total);
+  if (w->json) {
     json_object *o = json_object_new_object();
-    json_object_object_add(o, "scheme", json_object_new_string(ss_scheme_name(s)));
-    json_object_object_add(o, "identity", json_object_new_string(ident));
-    json_object_object_add(o, "db", json_object_new_string(db));
-    json_object_object_add(o, "part", json_object_new_int64(part));
-    json_object_object_add(o, "parts", json_object_new_int64(nparts));
-    json_object_object_add(o, "threads", json_object_new_int64(jobs));
+    json_object_object_add(o, "scheme", json_object_new_string(ss_scheme_name(w->s)));
+    json_object_object_add(o, "identity", json_object_new_string(w->ident));
+    json_object_object_add(o, "db", json_object_new_string(w->db));
+    json_object_object_add(o, "part", json_object_new_int64(w->part));
+    json_object_object_add(o, "parts", json_object_new_int64(w->nparts));
+    json_object_object_add(o, "threads", json_object_new_int64(w->jobs));
+    /* computing MPI ranks (1 without MPI); threads is per rank */
+    json_object_object_add(o, "ranks", json_object_new_int64(w->ranks));
     /* (null: the count was interrupted) */
     json_object_object_add(
-        o, "cases", counting_stopped ? NULL : json_object_new_int64((int64_t)w->total));
+        o, "cases",
+        w->counting_stopped ? NULL : json_object_new_int64((int64_t)w->total));
     json_object_object_add(o, "done", json_object_new_int64((int64_t)done));
     json_object_object_add(o, "computed", json_object_new_int64((int64_t)w->computed));
     json_object_object_add(o, "already_stored",
@@ -685,7 +773,7 @@ int ss_cli_sweep(int argc, char **argv) {
     json_object_object_add(o, "fail", json_object_new_int64((int64_t)w->fail));
     json_object_object_add(o, "undecided", json_object_new_int64((int64_t)w->undecided));
     json_object_object_add(o, "errors", json_object_new_int64((int64_t)w->errors));
-    json_object_object_add(o, "repeated_links", json_object_new_int64((int64_t)dups));
+    json_object_object_add(o, "repeated_links", json_object_new_int64((int64_t)w->dups));
     json_object_object_add(o, "seconds", json_object_new_double(dt));
     json_object_object_add(o, "interrupted", json_object_new_boolean(interrupted != 0));
     printf("%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN |
@@ -698,19 +786,23 @@ int ss_cli_sweep(int argc, char **argv) {
        : w->fail || w->undecided || w->errors ? SS_EXIT_FAIL
                                               : SS_EXIT_OK;
 done:
-  for (size_t i = 0; i < ll.n; i++)
-    ss_link_free(ll.l[i]);
-  free(ll.l);
-  free(w);
-  ss_store_close(st);
-  ss_scheme_free(s);
-  if (interrupted) {
-    /* die of the signal, as the shell expects of an interrupted program */
-    fflush(stdout);
-    const int sig = interrupted;
-    signal(sig, SIG_DFL);
-    raise(sig);
+  ss_sweep_free(w);
+  return rc;
+}
+
+int ss_cli_sweep(int argc, char **argv) {
+#if SS_HAVE_MPI
+  /* under mpirun or srun: MPI (ss_cli_sweep_mpi.c); otherwise MPI is never
+   * initialised, so a plain run is the threaded sweep, unchanged */
+  if (ss_sweep_mpi_launched()) return ss_sweep_mpi(argc, argv);
+#endif
+  ss_sweep *w = NULL;
+  int rc = ss_sweep_open(argc, argv, SS_SWEEP_WHOLE, &w);
+  if (rc < 0) {
+    ss_sweep_run(w);
+    rc = ss_sweep_close(w);
   }
+  ss_sweep_raise();
   return rc;
 }
 

@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# test_sweep_mpi.sh EXE SRCDIR MPI — `subspectra sweep` as one MPI job: with
+# `mpirun --oversubscribe -n 3` (rank 0 hands out the cases and writes the
+# store, two ranks compute) the store equals the single-process store row
+# for row; `mpirun -n 1` is the threaded sweep; a computing rank killed with
+# SIGKILL mid-run leaves a sound partial store that the same command
+# completes, computing only what is missing; only rank 0 prints the summary.
+# MPI is "yes" when the build has MPI (meson option mpi); otherwise, or
+# without mpirun, the test is skipped (77) with the reason.
+set -u
+exe=$1
+src=$2
+have_mpi=$3
+if [ "$have_mpi" != yes ]; then
+  echo "SKIP: subspectra was built without MPI (meson option mpi: needs libopenmpi-dev)"
+  exit 77
+fi
+if ! command -v mpirun >/dev/null; then
+  echo "SKIP: mpirun not found (Debian's openmpi-bin, which ./run installs)"
+  exit 77
+fi
+SS_EXPECT_TIMEOUT=120
+. "$src/tests/ss_expect.sh"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+command -v sqlite3 >/dev/null || { echo "test_sweep_mpi: sqlite3 not installed (./run installs it)"; exit 1; }
+. "$src/tests/sweep/ss_store_rows.sh"
+
+# OpenMPI refuses to run as root unless told twice; the test may run as root
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# one machine: shared memory only (no probing of network interfaces), and no
+# cross-process memory attach, which containers often forbid (ptrace)
+export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none
+mpi=(mpirun --oversubscribe) # (expect runs programs, not functions)
+
+# the reference: the 73 links with 4..9 vertices and edges 3..8, one process
+cases=(--scheme mlca --vertices 4..9 --edges 3..8)
+expect 1 "79 cases of mlca .*79 computed.*1 thread; 0 already stored" \
+  "$exe" sweep "${cases[@]}" --db "$tmp/ref.db" --jobs 1
+total=$(q "$tmp/ref.db" "SELECT count(*) FROM result")
+checks=$((checks + 1))
+[ "$total" = 79 ] || fail "reference sweep stored $total rows, want 79 (73 links + 6 edges)"
+
+# three ranks: the same rows; one summary (rank 0's), naming the 2 computing
+# ranks; the JSON object once, on standard output; the sweep's exit status
+# (1: some case fails) through mpirun
+"${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$tmp/mpi.db" --jobs 1 --format json \
+  >"$tmp/mpi.out" 2>"$tmp/mpi.err"
+rc=$?
+checks=$((checks + 1))
+[ "$rc" = 1 ] || fail "mpirun -n 3 sweep: exit status $rc, want 1 ($(head -3 "$tmp/mpi.err"))"
+same "mpirun -n 3 vs one process" "$tmp/ref.db" "$tmp/mpi.db"
+checks=$((checks + 1))
+n=$(grep -c "^sweep: 79 cases of mlca .*79 computed.*with 2 ranks of 1 thread" "$tmp/mpi.err")
+[ "$n" = 1 ] || fail "mpirun -n 3: $n summary lines, want 1 (rank 0's): $(head -3 "$tmp/mpi.err")"
+checks=$((checks + 1))
+n=$(grep -c '"ranks":2' "$tmp/mpi.out")
+[ "$n" = 1 ] && [ "$(wc -l <"$tmp/mpi.out")" = 1 ] ||
+  fail "mpirun -n 3 --format json: want one object with \"ranks\":2: $(head -3 "$tmp/mpi.out")"
+# the verdict counts of the summary are the stored rows' (recounted, not pasted)
+nfail=$(q "$tmp/ref.db" "SELECT count(*) FROM cases WHERE verdict = 'fail'")
+checks=$((checks + 1))
+[ "$nfail" -gt 0 ] && grep -q "\"fail\":$nfail," "$tmp/mpi.out" ||
+  fail "mpirun -n 3: JSON fail count is not the $nfail failing rows: $(cat "$tmp/mpi.out")"
+
+# rerun into the complete store: nothing computed, everything found
+expect 1 "79 cases .*\(0 computed.*2 ranks of 1 thread; 79 already stored\)" \
+  "${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$tmp/mpi.db" --jobs 1
+
+# one rank is the threaded sweep as it is without mpirun (its summary, no ranks)
+expect 1 "79 cases of mlca .*79 computed, [0-9.]+ cases/s with 2 threads; 0 already stored" \
+  "${mpi[@]}" -n 1 "$exe" sweep "${cases[@]}" --db "$tmp/one.db" --jobs 2
+same "mpirun -n 1 vs one process" "$tmp/ref.db" "$tmp/one.db"
+
+# bad usage is reported once (by rank 0), exit 2
+"${mpi[@]}" -n 3 "$exe" sweep --scheme mlca --vertices 4..9 --jobs 0 --db "$tmp/bad.db" \
+  >"$tmp/bad.out" 2>&1
+rc=$?
+checks=$((checks + 1))
+n=$(grep -c "subspectra sweep: --jobs '0' is not an integer" "$tmp/bad.out")
+[ "$rc" = 2 ] && [ "$n" = 1 ] || fail "mpirun -n 3 sweep --jobs 0: status $rc, $n messages (want 2, 1)"
+
+# SIGKILL to a computing rank mid-run: mpirun ends the job; what rank 0 had
+# stored stays, sound; the same command computes only the rest
+db=$tmp/kill.db
+"${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1 >/dev/null 2>"$tmp/kill.err" &
+pid=$!
+killed=
+for _ in $(seq 1 1500); do
+  kill -0 "$pid" 2>/dev/null || break
+  n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
+  if [ "${n:-0}" -ge 20 ]; then
+    # rank 1: the child of mpirun whose environment says so
+    for c in $(pgrep -P "$pid"); do
+      if tr '\0' '\n' <"/proc/$c/environ" 2>/dev/null | grep -qx OMPI_COMM_WORLD_RANK=1; then
+        kill -KILL "$c" && killed=$c
+      fi
+    done
+    break
+  fi
+  sleep 0.02
+done
+wait "$pid"
+rc=$?
+n=$(q "$db" "SELECT count(*) FROM result")
+checks=$((checks + 1))
+[ -n "$killed" ] && [ "$rc" != 0 ] && [ "$n" -gt 0 ] && [ "$n" -lt "$total" ] ||
+  fail "kill of rank 1: killed '${killed}', mpirun status $rc, $n of $total rows stored (want a partial store)"
+expect 0 "^ok\$" sqlite3 "$db" "PRAGMA integrity_check"
+expect 1 "79 cases .*\($((total - n)) computed.*2 ranks of 1 thread; $n already stored\)" \
+  "${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1
+expect 0 "^$total\$" sqlite3 "$db" "SELECT count(*) FROM (SELECT DISTINCT scheme_id, kind, k, link FROM result)"
+same "rank 1 killed and resumed vs one process" "$tmp/ref.db" "$db"
+
+expect_done test_sweep_mpi
