@@ -99,9 +99,10 @@ static const char *const sweep_usage_mpi =
     "One MPI job: `mpirun -n R subspectra sweep ...` (or srun): rank 0 enumerates\n"
     "the cases, skips the stored ones, hands the rest out in small pieces to\n"
     "whichever rank asks next, and writes the one store --db; ranks 1..R-1\n"
-    "compute.  Progress and the summary come from rank 0; a killed rank loses\n"
-    "only its piece in flight, and the same command resumes.  With one rank, or\n"
-    "without mpirun, the sweep runs as above.\n";
+    "compute.  Progress (a line a minute: mpirun's standard error is a pipe)\n"
+    "and the summary come from rank 0 only.  A killed rank loses only its piece\n"
+    "in flight; the same command resumes.  --jobs: threads of each computing\n"
+    "rank.  With one rank, or without mpirun, the sweep runs as above.\n";
 #else
     "This build has no MPI (meson option mpi): for several machines use --part\n"
     "and merge.\n";
@@ -169,20 +170,23 @@ static void fmt_time(double s, char *buf, size_t n) {
     snprintf(buf, n, "%lds", t);
 }
 
-/* The progress line; call inside the critical section. */
+/* The progress line (on a terminal: one live line; for a log: a line every
+ * log_every seconds); call inside the critical section. */
 static void progress(ss_sweep *w, int force) {
+  if (!w->tty && !(w->log_every > 0)) return;
   const double t = ss_cli_now();
-  if (!w->tty || (!force && t - w->last < 0.25)) return;
+  if (!force && t - w->last < (w->tty ? 0.25 : w->log_every)) return;
   w->last = t;
   const size_t done = w->computed + w->skipped + w->errors;
   const double rate = w->computed / (t - w->t0 > 1e-9 ? t - w->t0 : 1e-9);
   char eta[32];
   fmt_time(rate > 0 ? (double)(w->total - done) / rate : (double)NAN, eta, sizeof eta);
   fprintf(stderr,
-          "\rsweep: %zu/%zu cases (%.1f%%), %.1f cases/s, ETA %s; %zu fail, %zu "
-          "undecided, %zu errors\033[K",
-          done, w->total, w->total ? 100.0 * (double)done / (double)w->total : 100.0,
-          rate, eta, w->fail, w->undecided, w->errors);
+          "%ssweep: %zu/%zu cases (%.1f%%), %.1f cases/s, ETA %s; %zu fail, %zu "
+          "undecided, %zu errors%s",
+          w->tty ? "\r" : "", done, w->total,
+          w->total ? 100.0 * (double)done / (double)w->total : 100.0, rate, eta, w->fail,
+          w->undecided, w->errors, w->tty ? "\033[K" : "\n");
 }
 
 static int job_k(const ss_sweep_job *j) {
@@ -683,7 +687,7 @@ void ss_sweep_free(ss_sweep *w) {
 void ss_sweep_run(ss_sweep *w) {
   const long part = w->part, nparts = w->nparts;
   const int volume = w->volume;
-  if (w->tty && !w->counting_stopped) {
+  if ((w->tty || w->log_every > 0) && !w->counting_stopped) {
     char ranks[48] = "";
     if (w->ranks > 1) snprintf(ranks, sizeof ranks, "%d ranks of ", w->ranks);
     fprintf(stderr, "sweep: %zu cases of %s into %s with %s%d thread%s%s\n", w->total,
@@ -795,6 +799,15 @@ int ss_cli_sweep(int argc, char **argv) {
   /* under mpirun or srun: MPI (ss_cli_sweep_mpi.c); otherwise MPI is never
    * initialised, so a plain run is the threaded sweep, unchanged */
   if (ss_sweep_mpi_launched()) return ss_sweep_mpi(argc, argv);
+#else
+  /* mpirun of a build without MPI would run R copies of the same sweep */
+  const char *ranks = getenv("OMPI_COMM_WORLD_SIZE");
+  if (ranks && strcmp(ranks, "1"))
+    return ss_cli_usage_error("sweep",
+                              "started by mpirun with %s ranks, but this build has no "
+                              "MPI (meson option mpi): run one process, or use --part "
+                              "and merge",
+                              ranks);
 #endif
   ss_sweep *w = NULL;
   int rc = ss_sweep_open(argc, argv, SS_SWEEP_WHOLE, &w);

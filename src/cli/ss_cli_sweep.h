@@ -71,11 +71,13 @@ struct ss_sweep {
   size_t computed;                      /* cases analysed and stored now */
   size_t skipped;                       /* cases found in the store */
   size_t pass, fail, undecided, errors; /* verdicts (stored cases included) */
-  size_t nomem;    /* of the errors, cases out of memory or beyond the budget */
-  double t0, last; /* start, last progress line (seconds) */
-  int tty;         /* stderr is a terminal: show progress */
-  int stop;        /* a store error happened: run nothing more */
-  ss_error fatal;  /* that error */
+  size_t nomem;     /* of the errors, cases out of memory or beyond the budget */
+  double t0, last;  /* start, last progress line (seconds) */
+  int tty;          /* stderr is a terminal: show progress */
+  double log_every; /* > 0 (not tty): a progress line this often (seconds),
+                       for a log (MPI: rank 0's stderr is never a terminal) */
+  int stop;         /* a store error happened: run nothing more */
+  ss_error fatal;   /* that error */
 };
 
 /* Parse argv (`sweep` and its options), load the scheme, check the options

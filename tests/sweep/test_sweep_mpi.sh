@@ -4,7 +4,8 @@
 # store, two ranks compute) the store equals the single-process store row
 # for row; `mpirun -n 1` is the threaded sweep; a computing rank killed with
 # SIGKILL mid-run leaves a sound partial store that the same command
-# completes, computing only what is missing; only rank 0 prints the summary.
+# completes, computing only what is missing; a stopped rank holds only its
+# piece (dynamic distribution); only rank 0 prints the summary.
 # MPI is "yes" when the build has MPI (meson option mpi); otherwise, or
 # without mpirun, the test is skipped (77) with the reason.
 set -u
@@ -80,6 +81,44 @@ checks=$((checks + 1))
 n=$(grep -c "subspectra sweep: --jobs '0' is not an integer" "$tmp/bad.out")
 [ "$rc" = 2 ] && [ "$n" = 1 ] || fail "mpirun -n 3 sweep --jobs 0: status $rc, $n messages (want 2, 1)"
 
+# the PID of rank R of the mpirun whose PID is M: the child whose
+# environment says so
+rank_pid() {
+  local c
+  for c in $(pgrep -P "$2"); do
+    if tr '\0' '\n' <"/proc/$c/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$1"; then
+      echo "$c"
+      return
+    fi
+  done
+}
+
+# dynamic distribution: rank 1 stopped (SIGSTOP) mid-run holds only its piece
+# (4 cases per thread); rank 2 computes everything else meanwhile (with fixed
+# shares it would stop at about half)
+db=$tmp/slow.db
+"${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1 >/dev/null 2>&1 &
+pid=$!
+stopped=
+n=0
+for _ in $(seq 1 3000); do
+  kill -0 "$pid" 2>/dev/null || break
+  n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
+  if [ -z "$stopped" ] && [ "${n:-0}" -ge 2 ]; then
+    stopped=$(rank_pid 1 "$pid")
+    [ -n "$stopped" ] && kill -STOP "$stopped"
+  fi
+  [ -n "$stopped" ] && [ "${n:-0}" -ge $((total - 4)) ] && break
+  sleep 0.02
+done
+[ -n "$stopped" ] && kill -CONT "$stopped"
+wait "$pid"
+rc=$?
+checks=$((checks + 1))
+[ -n "$stopped" ] && [ "${n:-0}" -ge $((total - 4)) ] && [ "$rc" = 1 ] ||
+  fail "rank 1 stopped: $n of $total rows stored meanwhile (want >= $((total - 4))), status $rc"
+same "rank 1 stopped for a while vs one process" "$tmp/ref.db" "$db"
+
 # SIGKILL to a computing rank mid-run: mpirun ends the job; what rank 0 had
 # stored stays, sound; the same command computes only the rest
 db=$tmp/kill.db
@@ -90,12 +129,8 @@ for _ in $(seq 1 1500); do
   kill -0 "$pid" 2>/dev/null || break
   n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
   if [ "${n:-0}" -ge 20 ]; then
-    # rank 1: the child of mpirun whose environment says so
-    for c in $(pgrep -P "$pid"); do
-      if tr '\0' '\n' <"/proc/$c/environ" 2>/dev/null | grep -qx OMPI_COMM_WORLD_RANK=1; then
-        kill -KILL "$c" && killed=$c
-      fi
-    done
+    killed=$(rank_pid 1 "$pid")
+    [ -n "$killed" ] && kill -KILL "$killed"
     break
   fi
   sleep 0.02
