@@ -18,7 +18,9 @@
  * a rank asks by sending back the results of its last piece, so a slow rank
  * takes fewer pieces and never holds the others.  A rank killed mid-run
  * loses only its piece in flight (mpirun then ends the job); everything
- * received before is committed, and the same command resumes.  Rank 0
+ * received before is committed, and the same command resumes.  A rank that
+ * a signal stops alone gives back the cases of its piece it did not start,
+ * and rank 0 hands them to the others.  Rank 0
  * prints the progress, the messages of failed cases and the summary.
  *
  * Messages are raw bytes: every rank runs the same binary (an ss_result is
@@ -176,22 +178,41 @@ typedef struct {
   sent **fly;    /* per rank: the cases it computes now (owned) */
   size_t *nfly;  /* per rank: how many */
   int nalive;    /* ranks > 0 still alive */
-  sent *pending; /* prepared cases of the current chunk, not yet handed out */
-  size_t npend;  /* how many */
+  sent *pending; /* prepared cases not yet handed out: pending[head..npend) */
+  size_t head;   /* the next to hand out */
+  size_t npend;  /* end of the queue */
+  size_t cap;    /* room in pending */
   buf in, out;   /* message buffers */
   int oom;       /* out of memory */
 } coord;
 
-/* Take in the results of rank r's message (in c->in) and record them. */
+/* Queue case j (taking its canon) to be handed out; 0, or -1 out of memory. */
+static int push(coord *c, sent *j) {
+  if (c->npend == c->cap) {
+    sent *p = realloc(c->pending, 2 * c->cap * sizeof *p);
+    if (!p) return -1;
+    c->pending = p;
+    c->cap *= 2;
+  }
+  c->pending[c->npend++] = *j;
+  j->canon = NULL;
+  return 0;
+}
+
+/* Take in the results of rank r's message (in c->in) and record them.  The
+ * cases a leaving rank did not run go back in the queue for the others. */
 static void take_results(ss_sweep *w, coord *c, int r) {
   buf *b = &c->in;
   c->threads[r] = get_i(b);
   const int leaving = get_i(b);
   const int32_t count = get_i(b);
   for (int32_t i = 0; i < count && !b->bad && (size_t)i < c->nfly[r]; i++) {
-    const sent *j = &c->fly[r][i];
+    sent *j = &c->fly[r][i];
     const int32_t st = get_i(b);
-    if (st == NOT_RUN) continue;
+    if (st == NOT_RUN) {
+      if (leaving && !ss_sweep_interrupted() && push(c, j)) c->oom = 1;
+      continue;
+    }
     ss_result res;
     ss_error err = {0};
     memset(&res, 0, sizeof res);
@@ -233,8 +254,8 @@ static void receive_one(ss_sweep *w, coord *c) {
 
 /* Hand the pending cases out, a piece to each rank that asks. */
 static void hand_out(ss_sweep *w, coord *c) {
-  size_t next = 0;
-  while (next < c->npend && !ss_sweep_interrupted() && !w->stop && c->nalive > 0) {
+  while (c->head < c->npend && !ss_sweep_interrupted() && !w->stop && !c->oom &&
+         c->nalive > 0) {
     int r = 0;
     for (int q = 1; q < c->size && !r; q++)
       if (c->alive[q] && c->idle[q]) r = q;
@@ -243,7 +264,7 @@ static void hand_out(ss_sweep *w, coord *c) {
       continue;
     }
     size_t m = (size_t)PIECE * (size_t)(c->threads[r] > 0 ? c->threads[r] : 1);
-    if (m > c->npend - next) m = c->npend - next;
+    if (m > c->npend - c->head) m = c->npend - c->head;
     sent *f = realloc(c->fly[r], m * sizeof *f);
     if (!f) {
       c->oom = 1;
@@ -254,7 +275,7 @@ static void hand_out(ss_sweep *w, coord *c) {
     b->n = 0;
     put_i(b, (int32_t)m);
     for (size_t i = 0; i < m; i++) {
-      const sent *j = &c->pending[next + i];
+      const sent *j = &c->pending[c->head + i];
       put_i(b, (int32_t)j->kind);
       put_i(b, j->n);
       put_s(b, j->canon);
@@ -264,15 +285,15 @@ static void hand_out(ss_sweep *w, coord *c) {
       break;
     }
     MPI_Send(b->p, (int)b->n, MPI_BYTE, r, TAG_WORK, MPI_COMM_WORLD);
-    memcpy(f, c->pending + next, m * sizeof *f);
+    memcpy(f, c->pending + c->head, m * sizeof *f);
     c->nfly[r] = m;
     c->idle[r] = 0;
-    next += m;
+    c->head += m;
   }
-  /* what was not handed out stays for a rerun */
-  for (size_t i = next; i < c->npend; i++)
+  /* what was not handed out (a stop) stays for a rerun */
+  for (size_t i = c->head; i < c->npend; i++)
     free(c->pending[i].canon);
-  c->npend = 0;
+  c->head = c->npend = 0;
   if (c->oom && !w->stop) {
     w->stop = 1;
     snprintf(w->fatal.msg, sizeof w->fatal.msg, "out of memory handing out cases");
@@ -286,16 +307,21 @@ static void flush_mpi(ss_sweep *w) {
   for (size_t i = 0; i < w->nchunk; i++) {
     char *canon = NULL;
     if (!ss_sweep_prepare(w, &w->chunk[i], &canon)) continue;
-    c->pending[c->npend++] = (sent){w->chunk[i].kind, w->chunk[i].n, canon};
+    sent j = {w->chunk[i].kind, w->chunk[i].n, canon};
+    if (push(c, &j)) {
+      free(canon);
+      c->oom = 1;
+    }
   }
   ss_sweep_clear_chunk(w);
   hand_out(w, c);
 }
 
-/* Rank 0 after the last case: wait for every piece out, then stop the
- * ranks. */
+/* Rank 0 after the last case: wait for every piece out (handing out again
+ * what a leaving rank gave back), then stop the ranks. */
 static void finish(ss_sweep *w, coord *c) {
   for (;;) {
+    hand_out(w, c);
     int busy = 0;
     for (int q = 1; q < c->size; q++)
       busy |= c->alive[q] && !c->idle[q];
@@ -329,7 +355,8 @@ static int coord_init(coord *c, int size) {
   c->threads = calloc((size_t)size, sizeof *c->threads);
   c->fly = calloc((size_t)size, sizeof *c->fly);
   c->nfly = calloc((size_t)size, sizeof *c->nfly);
-  c->pending = calloc(SS_SWEEP_CHUNK, sizeof *c->pending);
+  c->cap = SS_SWEEP_CHUNK;
+  c->pending = calloc(c->cap, sizeof *c->pending);
   if (!c->alive || !c->idle || !c->threads || !c->fly || !c->nfly || !c->pending)
     return -1;
   for (int q = 1; q < size; q++)
