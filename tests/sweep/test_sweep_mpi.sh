@@ -5,7 +5,8 @@
 # for row; `mpirun -n 1` is the threaded sweep; a computing rank killed with
 # SIGKILL mid-run leaves a sound partial store that the same command
 # completes, computing only what is missing; a stopped rank holds only its
-# piece (dynamic distribution); only rank 0 prints the summary.
+# piece (dynamic distribution), a rank ended alone by SIGTERM gives the rest
+# of its piece back; only rank 0 prints the summary.
 # MPI is "yes" when the build has MPI (meson option mpi); otherwise, or
 # without mpirun, the test is skipped (77) with the reason.
 set -u
@@ -124,6 +125,29 @@ checks=$((checks + 1))
 [ -n "$stopped" ] && [ "${n:-0}" -ge $((total - 4)) ] && [ "$rc" = 1 ] ||
   fail "rank 1 stopped: $n of $total rows stored meanwhile (want >= $((total - 4))), status $rc"
 same "rank 1 stopped for a while vs one process" "$tmp/ref.db" "$db"
+
+# SIGTERM to rank 1 alone: it finishes its case in flight and gives the rest
+# of its piece back; rank 2 computes everything else, so the store is
+# complete; the job ends with rank 1's signal (143) or the sweep's status
+db=$tmp/term.db
+"${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1 >/dev/null 2>"$tmp/term.err" &
+pid=$!
+termed=
+for _ in $(seq 1 1500); do
+  kill -0 "$pid" 2>/dev/null || break
+  n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
+  if [ "${n:-0}" -ge 4 ]; then
+    termed=$(rank_pid 1 "$pid")
+    [ -n "$termed" ] && kill -TERM "$termed"
+    break
+  fi
+  sleep 0.02
+done
+wait "$pid"
+checks=$((checks + 1))
+[ -n "$termed" ] && grep -q "^sweep: 29 cases of mlca .*; 0 already stored" "$tmp/term.err" ||
+  fail "SIGTERM to rank 1: the sweep did not report all 29 cases: $(head -3 "$tmp/term.err")"
+same "rank 1 stopped by SIGTERM vs one process" "$tmp/ref.db" "$db"
 
 # SIGKILL to a computing rank mid-run: mpirun ends the job; what rank 0 had
 # stored stays, sound; the same command computes only the rest
