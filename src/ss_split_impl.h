@@ -31,6 +31,7 @@ ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine, ss_split **L,
                                ss_error *err);
 ss_status ss_split_tetoct(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
+ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 
 /* End a split: on success hand fine and the parent lists to the caller; on
  * failure (st != SS_OK) free both and hand over NULLs.  Returns st. */

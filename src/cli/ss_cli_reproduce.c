@@ -289,7 +289,7 @@ typedef struct {
 
 static int visit_link(const ss_link *l, void *ctx) {
   enum_ctx *e = ctx;
-  ss_case c = {e->t->kind, l, 0, e->t->diag};
+  ss_case c = {e->t->kind, l, 0, e->t->diag, 0};
   e->st = add_case(e->list, e->s, &c, e->err);
   return e->st != SS_OK;
 }
@@ -313,7 +313,7 @@ static ss_status compute_table(const table_spec *t, const ss_scheme *s, result_l
       gsl_rng_set(r, 1UL);
       st = ss_link_random(k, r, &l, err);
       if (!st) {
-        ss_case c = {t->kind, l, 0, t->diag};
+        ss_case c = {t->kind, l, 0, t->diag, 0};
         st = add_case(out, s, &c, err);
       }
       ss_link_free(l);
@@ -321,11 +321,11 @@ static ss_status compute_table(const table_spec *t, const ss_scheme *s, result_l
     }
   } else if (t->src == SRC_VALENCES) {
     for (int n = t->lo; n <= t->hi && !st; n++) {
-      ss_case c = {t->kind, NULL, n, t->diag};
+      ss_case c = {t->kind, NULL, n, t->diag, 0};
       st = add_case(out, s, &c, err);
     }
   } else {
-    ss_case c = {SS_CASE_FACE, NULL, 0, t->diag};
+    ss_case c = {SS_CASE_FACE, NULL, 0, t->diag, 0};
     st = add_case(out, s, &c, err);
   }
   return st;
@@ -918,7 +918,7 @@ static ss_status draw_figure(const figure_spec *f, const char *path, strbuf *cap
     if (!st) st = ss_link_canonical(l, &cl, NULL, err);
     if (!st) st = ss_link_format(cl, &canon, err);
   }
-  ss_case c = {f->kind, l, f->n, f->diag};
+  ss_case c = {f->kind, l, f->n, f->diag, 0};
   if (!st) st = ss_local_new(s, &c, &M, err);
   size_t pairs = 0, improper = 0;
   const int diag = !st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET;

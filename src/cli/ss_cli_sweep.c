@@ -176,7 +176,7 @@ static void progress(sweep *w, int force) {
 static void run_job(sweep *w, const job *j) {
   if (interrupted) return;
   ss_error err = {0};
-  ss_case c = {j->kind, j->link, j->n, w->diag};
+  ss_case c = {j->kind, j->link, j->n, w->diag, 0};
   int found = 0, stop = 0;
   ss_verdict_kind v = SS_PASS;
   char *canon = NULL;
