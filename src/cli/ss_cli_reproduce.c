@@ -260,6 +260,7 @@ static const figure_spec figures[] = {
     {"tetoct-edge-3.png", "tetoct", SS_CASE_EDGE, NULL, 3, SS_DIAG_BFS, 0},
     {"catmull-clark-3.png", "catmull-clark", SS_CASE_SURFACE_VERTEX, NULL, 3, SS_DIAG_BFS,
      0},
+    {"quasi48-5.png", "quasi48", SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0},
     {"boxspline-edge-9-skew.png", "boxspline", SS_CASE_EDGE, NULL, 9, SS_DIAG_SKEW, 0},
     /* lambda3 = lambda4: no characteristic map; the would-be map, labelled */
     {"boxspline-edge-9-center-forced.png", "boxspline", SS_CASE_EDGE, NULL, 9,
