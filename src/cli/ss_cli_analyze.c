@@ -434,7 +434,10 @@ static int parse(int argc, char **argv, opts *o) {
 static const char *param_text(const opts *o, const char *canon, char *buf, size_t n) {
   if (o->kind == SS_CASE_VERTEX || o->kind == SS_CASE_EDGE_POINT) return canon;
   if (o->kind == SS_CASE_FACE) return "";
-  snprintf(buf, n, "%d", o->n);
+  if (o->cls48 && o->format != FMT_TSV) /* TSV: the valence column stays a number */
+    snprintf(buf, n, "%d, 4-8 class %d", o->n, o->cls48);
+  else
+    snprintf(buf, n, "%d", o->n);
   return buf;
 }
 
