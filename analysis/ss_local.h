@@ -20,7 +20,8 @@
  *                   class-8 vertex of valence 2n after one pass, so its S is
  *                   that of class 8, valence 2n.
  *
- * Extraction.  The star is refined with the scheme, keeping the refinement
+ * Extraction.  The star is refined with the scheme (ss_scheme_refine_step:
+ * one level, or quasi48's two topological passes), keeping the refinement
  * operators R_l and the split's parent lists.  Every vertex carries exact
  * integer coordinates relative to p, in units of its level's grid
  * (ss_star.h).  The point with coordinates x on level l has coordinates 2x on
@@ -32,8 +33,9 @@
  *     Omega_w iff all its parents on level w + m - 1 do;
  *   - the two-ring T = vertices of level w whose basis function does not vanish
  *     on Omega_w: T = A_w with A_{w+d} = (vertices in Omega_w) and A_l =
- *     (vertices in Omega_w) u N(A_{l+1}); d = 1 and d = 2 must agree (fixed
- *     point), else the extraction fails;
+ *     (vertices in Omega_w) u N(A_{l+1}); d = D and d = D + 1 must agree
+ *     (fixed point), else the extraction fails; D = ss_scheme_ring_depth, 1
+ *     for every scheme but quasi48 (3);
  *   - the one-ring O = the closure of {p} under N (the smallest invariant set);
  *   - T and O must be invariant (N(T) in T, N(O) in O), every row read must
  *     belong to a vertex inside the patch (not on its boundary, where the rule
