@@ -266,24 +266,28 @@ ss_status ss_scheme_refine_step(const ss_scheme *s, const ss_cx *coarse, ss_cx *
   ss_status st = SS_OK;
   for (int pass = 0; pass < s->step_passes && !st; pass++) {
     ss_cx *f = NULL;
-    gsl_spmatrix *Rp = NULL;
-    ss_split *Lp = NULL;
+    gsl_spmatrix *Rp = NULL, *C = NULL;
+    ss_split *Lp = NULL, *Lc = NULL;
     st = refine(&t, cx ? cx : coarse, &f, &Rp, &Lp, NULL, err);
-    if (!st && R) {
-      gsl_spmatrix *C = NULL;
-      ss_split *Lc = NULL;
+    if (!st && R) { /* the step so far, then this pass */
       st = compose_operator(Rp, R, &C, err);
       if (!st) st = compose_split(L, Lp, &Lc, err);
-      gsl_spmatrix_free(Rp);
+      if (Rp) gsl_spmatrix_free(Rp);
       ss_split_free(Lp);
-      gsl_spmatrix_free(R);
-      ss_split_free(L);
       Rp = C;
       Lp = Lc;
     }
+    if (st) {
+      ss_cx_free(f);
+      if (Rp) gsl_spmatrix_free(Rp);
+      ss_split_free(Lp);
+      break;
+    }
+    if (R) gsl_spmatrix_free(R);
+    ss_split_free(L);
+    ss_cx_free(cx);
     R = Rp;
     L = Lp;
-    ss_cx_free(cx);
     cx = f;
   }
   if (st) {
