@@ -27,7 +27,6 @@
 #include <stdlib.h>
 
 #include "ss_split_impl.h"
-#include "ss_triedge.h"
 
 ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
                        ss_error *err) {
@@ -37,17 +36,8 @@ ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
   ss_idx *mid = NULL;
   unsigned char *refine = NULL;
   const size_t nt = coarse->nc[SS_TRIANGLE];
-  ss_status st = ss_triedge_new(coarse, &te, err);
+  ss_status st = ss_split_tri_edges(coarse, &te, err);
   if (st) goto done;
-  size_t bad = ss_triedge_nonmanifold(te);
-  if (bad != SIZE_MAX) {
-    st = ss_error_set(err, SS_EINPUT,
-                      "non-manifold edge: the edge between vertices %lu and %lu is "
-                      "held by %zu triangles (at most 2 allowed)",
-                      (unsigned long)te->end[2 * bad] + 1,
-                      (unsigned long)te->end[2 * bad + 1] + 1, te->nface[bad]);
-    goto done;
-  }
   const size_t ne = te->ne;
   mid = malloc((ne + 1) * sizeof *mid);
   refine = calloc(ne + 1, 1); /* how many triangles refine the edge */
@@ -70,14 +60,7 @@ ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
       goto done;
     }
   if ((st = ss_split_builder_init(&b, coarse->nv, nt, err))) goto done;
-  if ((st = ss_cx_new(coarse->dim, &fine, err))) goto done;
-  if ((st = ss_cx_reserve_cells(fine, SS_VERTEX, coarse->nc[SS_VERTEX], err)) ||
-      (st = ss_cx_reserve_cells(fine, SS_TRIANGLE, 2 * nt, err)))
-    goto done;
-  for (size_t c = 0; c < coarse->nc[SS_VERTEX]; c++)
-    if ((st = ss_cx_add_cell(fine, SS_VERTEX, ss_cx_cell(coarse, SS_VERTEX, c),
-                             coarse->cref[SS_VERTEX][c], err)))
-      goto done;
+  if ((st = ss_split_tri_fine(coarse, &fine, err))) goto done;
   for (size_t t = 0; t < nt; t++) {
     const ss_idx *v = ss_cx_cell(coarse, SS_TRIANGLE, t);
     const size_t e = te->tedge[3 * t];

@@ -39,13 +39,14 @@
 
 #include "ss_eig.h"
 #include "ss_local.h"
+#include "ss_mask48.h"
 #include "ss_scheme.h"
 #include "ss_split.h"
 #include "ss_star.h"
 #include "ss_test.h"
 
 #define PI 3.14159265358979323846
-#define G  17 /* mask grid: offsets -4..4 in steps of 1/2, index 2x + 8 */
+#define G  SS_MASK48_G
 
 static ss_scheme *q48;
 
@@ -60,36 +61,18 @@ static ss_local *local(int n, int cls) {
   return M;
 }
 
-/* out = a * b on the half-integer grid (both G x G, centred). */
-static void convolve(const double *a, const double *b, double *out) {
-  memset(out, 0, G * G * sizeof *out);
-  for (int p = 0; p < G * G; p++)
-    for (int q = 0; q < G * G; q++) {
-      if (a[p] == 0 || b[q] == 0) continue;
-      int x = p / G + q / G - 8, y = p % G + q % G - 8;
-      if (x >= 0 && x < G && y >= 0 && y < G) out[x * G + y] += a[p] * b[q];
-    }
-}
-
 /* The dyadic mask a = 4 h1 * h1 * h2 * h2 (above), a[(2x + 8) G + 2y + 8]. */
 static void dyadic_mask(double *a) {
-  double h1[G * G] = {0}, h2[G * G] = {0}, t[G * G], u[G * G], v[G * G];
-  h1[8 * G + 8] = h2[8 * G + 8] = 0.5;
-  for (int s = -1; s <= 1; s += 2)
-    for (int r = -1; r <= 1; r += 2)
-      h1[(8 + s) * G + 8 + r] = 0.125;
-  for (int s = -1; s <= 1; s += 2) {
-    h2[(8 + s) * G + 8] = 0.125;
-    h2[8 * G + 8 + s] = 0.125;
-  }
+  double h1[G * G], h2[G * G], t[G * G], u[G * G], v[G * G];
+  ss_mask48_halves(h1, h2);
   /* one pass at an old vertex: 2 h1 * h1 = 5/8 self, 1/16 axis, 1/32
    * diagonal (figure 6), which is 1/2 v + 1/8 sum of (1/4 of 4 neighbours) */
-  convolve(h1, h1, t);
+  ss_mask48_convolve(h1, h1, t);
   CHECK_CLOSE(2 * t[8 * G + 8], 0.5 + 4 * 0.125 * 0.25, 1e-16, "one pass: centre");
   CHECK_CLOSE(2 * t[10 * G + 8], 2 * 0.125 * 0.25, 1e-16, "one pass: axis neighbour");
   CHECK_CLOSE(2 * t[10 * G + 10], 0.125 * 0.25, 1e-16, "one pass: diagonal neighbour");
-  convolve(t, h2, u);
-  convolve(u, h2, v);
+  ss_mask48_convolve(t, h2, u);
+  ss_mask48_convolve(u, h2, v);
   for (int i = 0; i < G * G; i++)
     a[i] = 4 * v[i];
 }
