@@ -148,8 +148,9 @@ static int cand_count(const candidates *C) {
     return C->naut - 1;
   case SS_CASE_EDGE:
     return 4 * C->c->n - 1;
-  case SS_CASE_SURFACE_VERTEX:
-    return 2 * C->c->n - 1;
+  case SS_CASE_SURFACE_VERTEX: /* the chart's rays: n, or n / 2 for a class-8
+                                 vertex of quasi48 (ss_star_tri48_vertex) */
+    return 2 * C->nc - 1;
   case SS_CASE_FACE:
     return 3;
   default:
@@ -181,7 +182,8 @@ static void cand_make(const candidates *C, int i, chart_map *g, int *reverses, c
   } else if (c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX) {
     /* the faces (rays) around the edge (vertex), turned by s and reflected;
      * an edge may also be flipped end for end (its coordinate n negated) */
-    const int n = c->n, q = i + 1, s = q % n, refl = (q / n) & 1, f = q / (2 * n);
+    const int n = c->kind == SS_CASE_EDGE ? c->n : C->nc, q = i + 1, s = q % n,
+              refl = (q / n) & 1, f = q / (2 * n);
     for (int j = 0; j < n; j++)
       perm[j] = refl ? ((s - j) % n + n) % n : (j + s) % n;
     if (c->kind == SS_CASE_EDGE) {
@@ -214,7 +216,7 @@ static ss_status cand_new(const ss_local *M, const ss_case *c, candidates *C,
   if (M->nring < 0 || C->nc < 1 || (c->kind == SS_CASE_VERTEX && !c->link) ||
       (c->kind == SS_CASE_VERTEX && c->link->k != C->nc) ||
       (c->kind == SS_CASE_EDGE && C->nc != c->n + 1) ||
-      (c->kind == SS_CASE_SURFACE_VERTEX && C->nc != c->n) ||
+      (c->kind == SS_CASE_SURFACE_VERTEX && C->nc != c->n && 2 * C->nc != c->n) ||
       (c->kind == SS_CASE_FACE && C->nc != 5) || c->kind == SS_CASE_EDGE_POINT)
     return ss_error_set(err, SS_EINPUT, "symmetry test: the case does not match the map");
   if (c->kind == SS_CASE_VERTEX)

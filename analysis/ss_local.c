@@ -357,7 +357,7 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
                         "no stationary neighbourhood before the patch exceeds %d cells",
                         MAXCELLS);
   ss_progress_step(W->prog, "refining the star to level", (size_t)W->nlev, 0);
-  ss_status st = ss_scheme_refine_split(W->scheme, C->cx, &F->cx, &C->R, &F->split, err);
+  ss_status st = ss_scheme_refine_step(W->scheme, C->cx, &F->cx, &C->R, &F->split, err);
   if (st) return st;
   W->nlev++;
   const size_t nf = F->cx->nv;
@@ -561,7 +561,29 @@ static int collect_cells(const level *L, const unsigned char *t2, ss_local *M,
   return OK;
 }
 
-/* One attempt with the two-ring on level w (levels up to w + 2 exist). */
+/* The two-ring estimate of depth d (ss_local.h): out (marks of level w) =
+ * A_w with A_{w+d} = the vertices of level w + d in Omega_w (om[d]) and A_l =
+ * (vertices of level l in Omega_w) u N(A_{l+1}).  scratch holds the vertex
+ * count of every level w + 1 .. w + d.  OK or ROOM. */
+static int ring_depth(const work *W, int w, int d, unsigned char *const *om,
+                      unsigned char *const *scratch, unsigned char *out) {
+  if (d == 1) {
+    memcpy(out, om[0], W->lev[w].cx->nv);
+    return influence(W->lev + w, W->lev + w + 1, om[1], out);
+  }
+  unsigned char *a = scratch[d - 1]; /* A_{w+d-1} */
+  memcpy(a, om[d - 1], W->lev[w + d - 1].cx->nv);
+  int rc = influence(W->lev + w + d - 1, W->lev + w + d, om[d], a);
+  for (int l = w + d - 2; !rc && l >= w; l--) {
+    unsigned char *to = l == w ? out : scratch[l - w];
+    memcpy(to, om[l - w], W->lev[l].cx->nv);
+    rc = influence(W->lev + l, W->lev + l + 1, scratch[l + 1 - w], to);
+  }
+  return rc;
+}
+
+/* One attempt with the two-ring on level w (levels up to w + D + 1 exist, D
+ * the scheme's ring depth). */
 static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
   const level *Lw = W->lev + w;
   const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
@@ -571,34 +593,37 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
     return HARD;
   }
   int rc = OK;
-  unsigned char *om[3] = {NULL, NULL, NULL}, *a1 = NULL, *t1 = NULL, *t2 = NULL,
+  const int D = ss_scheme_ring_depth(W->scheme);
+  unsigned char *om[MAXLEVELS] = {NULL}, *sc[MAXLEVELS] = {NULL}, *t1 = NULL, *t2 = NULL,
                 *one = NULL;
   size_t *colmap = NULL;
   double *S2 = NULL;
-  const size_t nw = Lw->cx->nv, nw1 = W->lev[w + 1].cx->nv;
+  const size_t nw = Lw->cx->nv;
   if (omega_marks(W, w, p, om, err)) {
     rc = HARD;
     goto done;
   }
-  a1 = malloc(nw1 + 1);
+  for (int d = 1; d <= D; d++)
+    if (!(sc[d] = malloc(W->lev[w + d].cx->nv + 1))) {
+      ss_error_nomem(err, "two-ring");
+      rc = HARD;
+      goto done;
+    }
   t1 = malloc(nw + 1);
   t2 = malloc(nw + 1);
   one = calloc(nw + 1, 1);
-  if (!a1 || !t1 || !t2 || !one) {
+  if (!t1 || !t2 || !one) {
     ss_error_nomem(err, "two-ring");
     rc = HARD;
     goto done;
   }
-  /* depth 1 and depth 2 */
-  memcpy(t1, om[0], nw);
-  if ((rc = influence(Lw, W->lev + w + 1, om[1], t1))) goto done;
-  memcpy(a1, om[1], nw1);
-  if ((rc = influence(W->lev + w + 1, W->lev + w + 2, om[2], a1))) goto done;
-  memcpy(t2, om[0], nw);
-  if ((rc = influence(Lw, W->lev + w + 1, a1, t2))) goto done;
+  /* depth D and depth D + 1 */
+  if ((rc = ring_depth(W, w, D, om, sc, t1))) goto done;
+  if ((rc = ring_depth(W, w, D + 1, om, sc, t2))) goto done;
   if (memcmp(t1, t2, nw) != 0) {
     ss_error_set(err, SS_EINTERNAL,
-                 "the two-ring grows from depth 1 to depth 2: no fixed point reached");
+                 "the two-ring grows from depth %d to depth %d: no fixed point reached",
+                 D, D + 1);
     rc = HARD;
     goto done;
   }
@@ -679,9 +704,10 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
   if ((rc = collect_cells(Lw, t2, M, err))) goto done;
   M->level = w;
 done:
-  for (int i = 0; i < 3; i++)
+  for (int i = 0; i < MAXLEVELS; i++) {
     free(om[i]);
-  free(a1);
+    free(sc[i]);
+  }
   free(t1);
   free(t2);
   free(one);
@@ -867,6 +893,11 @@ int ss_local_edge_point(const ss_scheme *s, const ss_link *l) {
   return iso < 0 ? -1 : iso ? n : 0;
 }
 
+int ss_local_class48(int n, int cls) {
+  if (cls) return cls;
+  return n >= 6 && n % 2 == 0 ? 8 : 4;
+}
+
 ss_status ss_local_cell(const ss_scheme *s, ss_case_kind kind, ss_cell_type *t,
                         ss_error *err) {
   const int ml = ss_scheme_split_kind(s) == SS_SPLIT_MULTILINEAR;
@@ -926,6 +957,12 @@ ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
     st = ss_star_tet_face(out, err);
     break;
   default:
+    if (c->cls && ss_scheme_split_kind(s) != SS_SPLIT_BISECT)
+      return ss_error_set(err, SS_EINPUT,
+                          "scheme %s: a 4-8 vertex class exists only for quasi48",
+                          ss_scheme_name(s));
+    if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT)
+      return ss_star_tri48_vertex(c->n, ss_local_class48(c->n, c->cls), out, err);
     return t == SS_QUAD ? ss_star_quad_vertex(c->n, out, err)
                         : ss_star_tri_vertex(c->n, out, err);
   }
@@ -995,8 +1032,9 @@ ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local
   W.nlev = 1;
   if (W.lc == 0) st = finish_level(&W, 0, err);
   int w = W.lc + 1, rc = ROOM;
+  const int D = ss_scheme_ring_depth(s);
   while (!st && rc == ROOM) {
-    while (!st && W.nlev < w + 3)
+    while (!st && W.nlev < w + D + 2)
       st = add_level(&W, NULL, 0, err);
     if (st) break;
     rc = attempt(&W, w, M, err);

@@ -11,9 +11,17 @@
  *                   every vertex inside that face sees the same infinite mesh,
  *                   two half tet/oct lattices meeting at a plane);
  *   surface vertex  a 2D vertex of valence n: n quads (multilinear split) or n
- *                   triangles (tet/oct split, which splits triangles like Loop).
+ *                   triangles (tet/oct split, which splits triangles like Loop);
+ *                   for quasi48 a tagged 4-8 star of class 4 or 8
+ *                   (ss_star_tri48_vertex), refined by the scheme's analysis
+ *                   step, a full 4-8 cycle of two topological bisection
+ *                   passes (ss_scheme_refine_step), so S is the two-pass
+ *                   (dyadic) matrix.  A class-4 vertex of valence n is a
+ *                   class-8 vertex of valence 2n after one pass, so its S is
+ *                   that of class 8, valence 2n.
  *
- * Extraction.  The star is refined with the scheme, keeping the refinement
+ * Extraction.  The star is refined with the scheme (ss_scheme_refine_step:
+ * one level, or quasi48's two topological passes), keeping the refinement
  * operators R_l and the split's parent lists.  Every vertex carries exact
  * integer coordinates relative to p, in units of its level's grid
  * (ss_star.h).  The point with coordinates x on level l has coordinates 2x on
@@ -25,8 +33,9 @@
  *     Omega_w iff all its parents on level w + m - 1 do;
  *   - the two-ring T = vertices of level w whose basis function does not vanish
  *     on Omega_w: T = A_w with A_{w+d} = (vertices in Omega_w) and A_l =
- *     (vertices in Omega_w) u N(A_{l+1}); d = 1 and d = 2 must agree (fixed
- *     point), else the extraction fails;
+ *     (vertices in Omega_w) u N(A_{l+1}); d = D and d = D + 1 must agree
+ *     (fixed point), else the extraction fails; D = ss_scheme_ring_depth, 1
+ *     for every scheme but quasi48 (3);
  *   - the one-ring O = the closure of {p} under N (the smallest invariant set);
  *   - T and O must be invariant (N(T) in T, N(O) in O), every row read must
  *     belong to a vertex inside the patch (not on its boundary, where the rule
@@ -93,7 +102,18 @@ typedef struct {
   ss_diag_mode diag;   /* tet stars: major diagonals (ss_diag.h; bfs = 0 by
                           default, or proper; skew and center only for the
                           edge case, around the edge) */
+  int cls;             /* quasi48 surface vertex: its 4-8 class, 4 or 8, or 0
+                          for ss_local_class48's default; 0 for other
+                          schemes and cases */
 } ss_case;
+
+/* The 4-8 class of a quasi48 surface vertex of valence n when the case leaves
+ * it 0: the class that longest-edge refinement gives the centre of a regular
+ * n-gon fan (Velho & Gomes section 3.3): 4 (its outer edges split first, its
+ * valence doubles) for n < 6 and for odd n (which that refinement cannot keep:
+ * odd n > 6 gains one spoke), 8 (alternate spokes split, the valence stays)
+ * for even n >= 6.  cls itself when it is 4 or 8. */
+int ss_local_class48(int n, int cls);
 
 #define SS_LOCAL_MAXRING 4 /* ring levels at most (ss_local_new_ring) */
 #define SS_LOCAL_RING    2 /* ring levels of ss_local_new (no extra refinement) */
@@ -218,6 +238,8 @@ int ss_local_label_norm(const ss_star_coord *c);
  *                               edge   n2 = 15n + 5,  n1 = 3n + 3
  *                               face   n2 = 85,       n1 = 19
  *                               triangles n2 = 3n + 1, n1 = n + 1
+ *   quasi48 (two-pass step; r rays: n for class 4, n / 2 for class 8):
+ *                               n2 = 19r + 1, n1 = 11r + 1
  *   box-spline rules (they read major diagonals): vertex as tet/oct; edge
  *     bfs n2 = ceil((29n + 9) / 2), n1 = ceil((5n + 5) / 2); skew
  *     n2 = 14n + 5, n1 = 2n + 3; center as tet/oct; face n2 = 81, n1 = 15.

@@ -81,6 +81,20 @@ ss_status ss_local_estimate(const ss_scheme *s, const ss_case *c, ss_local_cost 
     n2 = ml ? 6 * n + 1 : 3 * n + 1;
     n1 = ml ? 2 * n + 1 : n + 1;
     b = 3;
+    if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT) {
+      /* quasi48: the chart has r = n rays (class 4) or n / 2 (class 8) */
+      const int cls = ss_local_class48(c->n, c->cls);
+      if (cls != 4 && (cls != 8 || c->n < 6 || c->n % 2))
+        return ss_error_set(err, SS_EINPUT,
+                            cls == 8 ? "a class-8 vertex of a 4-8 mesh has an even "
+                                       "valence of at least 6, not %d"
+                                     : "4-8 vertex class must be 4 or 8 (valence %d)",
+                            c->n);
+      const double r = cls == 8 ? n / 2 : n;
+      sv = n + 1; /* class 8: 2r + 1 */
+      n2 = 19 * r + 1;
+      n1 = 11 * r + 1;
+    }
     break;
   }
   if (b > n2 - n1) b = n2 - n1;

@@ -101,7 +101,7 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   if (cl) cc.link = cl;
   const int ep = !st && cl ? ss_local_edge_point(s, cl) : 0;
   if (ep < 0) st = ss_error_nomem(err, "edge point");
-  if (ep > 0) cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag};
+  if (ep > 0) cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag, 0};
   ss_local_opts lo = ss_local_defaults();
   lo.max_bytes = o->max_bytes;
   if (!st) st = ss_local_new_opts(s, &cc, &lo, &M, err);
@@ -134,6 +134,8 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   r->valence = ep > 0                                                         ? ep
                : c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX ? c->n
                                                                               : 0;
+  if (c->kind == SS_CASE_SURFACE_VERTEX && ss_scheme_split_kind(s) == SS_SPLIT_BISECT)
+    r->cls = ss_local_class48(c->n, c->cls);
   r->cells = c->kind == SS_CASE_VERTEX ? (size_t)(2 * r->k - 4)
              : c->kind == SS_CASE_FACE ? 2
                                        : (size_t)c->n;

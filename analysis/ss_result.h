@@ -48,6 +48,8 @@ typedef struct {
                         surface vertex: the valence n; face: 0 */
   int valence;       /* edge, surface vertex, edge-point: the valence n;
                         otherwise 0 */
+  int cls;           /* quasi48 surface vertex: its 4-8 class (4 or 8, the
+                        default filled in, ss_local_class48); otherwise 0 */
   char *link;        /* vertex: the canonical link in plantri ASCII; else an
                         empty string.  Owned (ss_result_clear) */
   size_t cells;      /* cells around the centre: 2k - 4 for a vertex, n for

@@ -156,6 +156,20 @@ ss_status ss_star_tet_face(ss_star **out, ss_error *err);
 ss_status ss_star_quad_vertex(int n, ss_star **out, ss_error *err);
 ss_status ss_star_tri_vertex(int n, ss_star **out, ss_error *err);
 
+/* The star of a vertex of valence n of a 4-8 mesh (quasi 4-8 surfaces, Velho &
+ * Gomes section 2), tagged for newest-vertex bisection (ss_split.h "nvb":
+ * corner 0 of each triangle is its right-angle corner, the edge opposite it
+ * the next one split).  Class 4 (a vertex whose spokes are all legs: the next
+ * binary step splits the outer edges): the triangle star above, n >= 3.
+ * Class 8 (spokes alternate legs and hypotenuses; n = 2m even, m >= 3): 2m + 1
+ * vertices, 0 the centre, 1 + j the class-4 neighbour A_j = e_j, 1 + m + j the
+ * class-8 neighbour B_j = e_j + e_j+1, triangles (A_j, B_j, 0) and
+ * (A_j+1, 0, B_j): the chart has m quadrants, quadrant j spanned by (e_j,
+ * e_j+1), as Catmull-Clark's star of valence m (ncoord = m).  Regular: class 4
+ * with n = 4, class 8 with n = 8.  SS_EINPUT for another class or an n out of
+ * range (odd or below 6 for class 8), SS_ENOMEM.  Cost O(n). */
+ss_status ss_star_tri48_vertex(int n, int cls, ss_star **out, ss_error *err);
+
 /* Free a star and everything it owns; NULL is a no-op. */
 void ss_star_free(ss_star *s);
 

@@ -56,3 +56,42 @@ ss_status ss_star_quad_vertex(int n, ss_star **out, ss_error *err) {
 ss_status ss_star_tri_vertex(int n, ss_star **out, ss_error *err) {
   return surface_star(SS_TRIANGLE, n, out, err);
 }
+
+ss_status ss_star_tri48_vertex(int n, int cls, ss_star **out, ss_error *err) {
+  *out = NULL;
+  if (cls == 4) return surface_star(SS_TRIANGLE, n, out, err);
+  if (cls != 8)
+    return ss_error_set(err, SS_EINPUT, "4-8 vertex class must be 4 or 8, not %d", cls);
+  if (n < 6 || n % 2 || n > SS_STAR_MAXN)
+    return ss_error_set(err, SS_EINPUT,
+                        "a class-8 vertex of a 4-8 mesh has an even valence of at least "
+                        "6 (its spokes alternate between class-4 and class-8 "
+                        "neighbours, one pair per quadrant), not %d",
+                        n);
+  const int m = n / 2;
+  ss_star *s = NULL;
+  ss_status st = ss_star_alloc(SS_STAR_VERTEX, SS_TRIANGLE, n, m, (size_t)(2 * m + 1),
+                               (size_t)n, &s, err);
+  if (st) return st;
+  ray_axes(s, m);
+  st = ss_star_push_vertex(s, ss_star_coord_make(0, NULL, NULL), err);
+  for (int j = 0; j < m && !st; j++) /* A_j: class 4, on ray j */
+    st = ss_star_push_vertex(s, ray_coord(j, -1), err);
+  for (int j = 0; j < m && !st; j++) /* B_j: class 8, the diagonal of quadrant j */
+    st = ss_star_push_vertex(s, ray_coord(j, (j + 1) % m), err);
+  for (int j = 0; j < m && !st; j++) {
+    /* (o, A_j, B_j) and (o, B_j, A_j+1), each with its right-angle corner A
+     * first: the hypotenuse o-B is the refinement edge */
+    const ss_idx o = 0, a = 1 + (ss_idx)j, b = 1 + (ss_idx)(m + j),
+                 a1 = 1 + (ss_idx)((j + 1) % m);
+    const ss_idx t0[3] = {a, b, o}, t1[3] = {a1, o, b};
+    st = ss_star_push_cell(s, t0, err);
+    if (!st) st = ss_star_push_cell(s, t1, err);
+  }
+  if (st) {
+    ss_star_free(s);
+    return st;
+  }
+  *out = s;
+  return SS_OK;
+}

@@ -50,7 +50,7 @@ int main(int argc, char **argv) {
   int rc = 2;
   if (ss_scheme_new(name, &s, &err)) goto done;
   /* the case: a point on an edge of valence n (no link; default diagonals) */
-  const ss_case c = {SS_CASE_EDGE, NULL, n, SS_DIAG_BFS};
+  const ss_case c = {SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0};
   if (ss_local_new(s, &c, &M, &err)) goto done;
   printf("case %s edge %d\n", ss_scheme_name(s), n);
   printf("matrix %zu %zu %zu\n", M->n2, M->n1, M->nnz);

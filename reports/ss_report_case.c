@@ -194,7 +194,7 @@ ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
       goto done;
     }
     if (ep > 0) { /* a point on an extraordinary edge: the edge case judges it */
-      cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag};
+      cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag, 0};
       rc.kind = SS_CASE_EDGE_POINT;
       rc.n = ep;
     }

@@ -57,6 +57,9 @@ ss_status ss_scheme_alloc(const char *name, ss_split_kind split, unsigned accept
   s->accepts = accepts;
   s->rule = rule;
   s->reach = 1;
+  s->step_split = split;
+  s->step_passes = 1;
+  s->ring_depth = 1;
   *out = s;
   return SS_OK;
 }
@@ -67,6 +70,10 @@ void ss_scheme_free(ss_scheme *s) {
 
 int ss_scheme_reach(const ss_scheme *s) {
   return s->reach;
+}
+
+int ss_scheme_ring_depth(const ss_scheme *s) {
+  return s->ring_depth;
 }
 
 int ss_scheme_reads_diagonals(const ss_scheme *s) {
@@ -170,6 +177,129 @@ ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse,
                                  ss_cx **fine_out, gsl_spmatrix **R_out, ss_split **L_out,
                                  ss_error *err) {
   return refine(s, coarse, fine_out, R_out, L_out, NULL, err);
+}
+
+/* Parents of the composite of two splits, A (coarse -> mid) then B (mid ->
+ * fine): a fine vertex keeps its parents in B when they are all coarse
+ * vertices; a vertex of mid that is a coarse one is its own parent.  Every
+ * vertex of fine must be the centroid of coarse vertices so: SS_EINTERNAL when
+ * B names a vertex born in A as a parent (the composite would need weights). */
+static ss_status compose_split(const ss_split *A, const ss_split *B, ss_split **out,
+                               ss_error *err) {
+  *out = NULL;
+  ss_split *L = calloc(1, sizeof *L);
+  if (!L) return ss_error_nomem(err, "composite split");
+  L->ncoarse = A->ncoarse;
+  L->nfine = B->nfine;
+  L->ptr = malloc((B->nfine + 1) * sizeof *L->ptr);
+  L->parent = malloc((B->ptr[B->nfine] + A->ptr[A->nfine] + 1) * sizeof *L->parent);
+  if (!L->ptr || !L->parent) {
+    ss_split_free(L);
+    return ss_error_nomem(err, "composite split");
+  }
+  size_t q = 0;
+  for (size_t f = 0; f < B->nfine; f++) {
+    L->ptr[f] = q;
+    if (f < A->nfine && f < B->ncoarse) { /* a vertex of mid: A's parents */
+      for (size_t k = A->ptr[f]; k < A->ptr[f + 1]; k++)
+        L->parent[q++] = A->parent[k];
+      continue;
+    }
+    for (size_t k = B->ptr[f]; k < B->ptr[f + 1]; k++) {
+      if (B->parent[k] >= A->ncoarse) {
+        ss_split_free(L);
+        return ss_error_set(err, SS_EINTERNAL,
+                            "composite split: vertex %zu is born on an edge of a "
+                            "vertex of the intermediate level",
+                            f);
+      }
+      L->parent[q++] = B->parent[k];
+    }
+  }
+  L->ptr[B->nfine] = q;
+  *out = L;
+  return SS_OK;
+}
+
+/* C = B A for CSR matrices (B: fine x mid, A: mid x coarse).  SS_ENOMEM. */
+static ss_status compose_operator(const gsl_spmatrix *B, const gsl_spmatrix *A,
+                                  gsl_spmatrix **C, ss_error *err) {
+  ss_triplets t = {0, 0, NULL, NULL, NULL};
+  size_t n = 0;
+  for (size_t f = 0; f < B->size1; f++)
+    for (int q = B->p[f]; q < B->p[f + 1]; q++)
+      n += (size_t)(A->p[B->i[q] + 1] - A->p[B->i[q]]);
+  t.cap = n + 1;
+  t.row = malloc(t.cap * sizeof *t.row);
+  t.col = malloc(t.cap * sizeof *t.col);
+  t.w = malloc(t.cap * sizeof *t.w);
+  ss_status st = SS_OK;
+  if (!t.row || !t.col || !t.w) {
+    st = ss_error_nomem(err, "composite operator");
+    goto done;
+  }
+  for (size_t f = 0; f < B->size1; f++)
+    for (int q = B->p[f]; q < B->p[f + 1]; q++)
+      for (int r = A->p[B->i[q]]; r < A->p[B->i[q] + 1]; r++) {
+        t.row[t.n] = (ss_idx)f;
+        t.col[t.n] = (ss_idx)A->i[r];
+        t.w[t.n++] = B->data[q] * A->data[r];
+      }
+  st = ss_triplets_csr(&t, B->size1, A->size2, C, err);
+done:
+  ss_triplets_clear(&t);
+  return st;
+}
+
+ss_status ss_scheme_refine_step(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
+                                gsl_spmatrix **R_out, ss_split **L_out, ss_error *err) {
+  if (s->step_passes == 1 && s->step_split == s->split)
+    return refine(s, coarse, fine_out, R_out, L_out, NULL, err);
+  *fine_out = NULL;
+  *R_out = NULL;
+  *L_out = NULL;
+  ss_scheme t = *s; /* the same rule on the step's (topological) split */
+  t.split = s->step_split;
+  ss_cx *cx = NULL;
+  gsl_spmatrix *R = NULL;
+  ss_split *L = NULL;
+  ss_status st = SS_OK;
+  for (int pass = 0; pass < s->step_passes && !st; pass++) {
+    ss_cx *f = NULL;
+    gsl_spmatrix *Rp = NULL, *C = NULL;
+    ss_split *Lp = NULL, *Lc = NULL;
+    st = refine(&t, cx ? cx : coarse, &f, &Rp, &Lp, NULL, err);
+    if (!st && R) { /* the step so far, then this pass */
+      st = compose_operator(Rp, R, &C, err);
+      if (!st) st = compose_split(L, Lp, &Lc, err);
+      if (Rp) gsl_spmatrix_free(Rp);
+      ss_split_free(Lp);
+      Rp = C;
+      Lp = Lc;
+    }
+    if (st) {
+      ss_cx_free(f);
+      if (Rp) gsl_spmatrix_free(Rp);
+      ss_split_free(Lp);
+      break;
+    }
+    if (R) gsl_spmatrix_free(R);
+    ss_split_free(L);
+    ss_cx_free(cx);
+    R = Rp;
+    L = Lp;
+    cx = f;
+  }
+  if (st) {
+    ss_cx_free(cx);
+    if (R) gsl_spmatrix_free(R);
+    ss_split_free(L);
+    return st;
+  }
+  *fine_out = cx;
+  *R_out = R;
+  *L_out = L;
+  return SS_OK;
 }
 
 ss_status ss_scheme_refine_at(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,

@@ -73,6 +73,17 @@ int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t);
  * extraction uses it to know which rows of a truncated patch are complete. */
 int ss_scheme_reach(const ss_scheme *s);
 
+/* Levels of influence after which the two-ring of a local subdivision matrix
+ * (ss_local.h) is complete, D: the two-ring is found as the depth-D set and
+ * must equal the depth-(D + 1) one.  With Omega of radius rho and rows of the
+ * step reaching r coarse cells (in some norm), depth d reaches
+ * rho + r (1 + 1/2 + ... + 2^(1-d)) < rho + 2r; D is where the lattice points
+ * stop changing.  D = 1 serves every scheme but quasi48 (r = 1); quasi48's
+ * analysis step (two passes) has rows reaching the octagon |x|, |y| <= 2,
+ * |x| + |y| <= 3, and in the 1-norm (rho = 2, r = 3) depth 2 stops at 6.5,
+ * depth 3 at 7.25 and the limit is 8: D = 3. */
+int ss_scheme_ring_depth(const ss_scheme *s);
+
 /* Whether the rule reads the major diagonals carried in the tets' and
  * octahedra's vertex order (ss_diag.h): 1 for boxspline, 0 otherwise. */
 int ss_scheme_reads_diagonals(const ss_scheme *s);
@@ -94,6 +105,20 @@ ss_status ss_scheme_refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine
  * local coordinates from level to level. */
 ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
                                  gsl_spmatrix **R, ss_split **L, ss_error *err);
+
+/* One analysis step (DESIGN section 3): what ss_local refines a star with, so
+ * that a point with local coordinates x becomes the point 2x.  For every
+ * scheme but quasi48 this is ss_scheme_refine_split, bit for bit.  quasi48's
+ * split depends on positions, which a star refined alone does not have as the
+ * mesh has them; its step is two passes of the topological 4-8 refinement
+ * (newest-vertex bisection, ss_split.h "nvb": the star carries its 4-8 tags
+ * in the triangles' vertex order) with its own rule after each, a full 4-8
+ * cycle (a dyadic step).  *R is then the product of the two passes' operators
+ * and *L the composite split (every vertex born in the step is the midpoint of
+ * two coarse vertices).  R and L must not be NULL.  Errors as
+ * ss_scheme_refine_split (SS_EINPUT for non-conforming tags). */
+ss_status ss_scheme_refine_step(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
+                                gsl_spmatrix **R, ss_split **L, ss_error *err);
 
 /* As ss_scheme_refine without the operator, and when a fine position is not
  * finite (SS_EINPUT; coordinates near DBL_MAX overflow), *bad (may be NULL)

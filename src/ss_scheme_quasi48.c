@@ -87,5 +87,13 @@ ss_status ss_scheme_quasi48_new(ss_scheme **out, ss_error *err) {
   /* an old vertex reads the neighbours of its new neighbours: the coarse
    * 1-rings of the vertices it combines */
   if (!st) (*out)->reach = 2;
+  /* the analysis refines stars topologically, a full 4-8 cycle per step
+   * (ss_scheme_refine_step): on a 4-8 mesh the longest-edge criterion and the
+   * topological one agree (section 2.3) */
+  if (!st) {
+    (*out)->step_split = SS_SPLIT_NVB;
+    (*out)->step_passes = 2;
+    (*out)->ring_depth = 3; /* the step's rows reach far (ss_scheme.h) */
+  }
   return st;
 }

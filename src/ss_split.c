@@ -11,7 +11,8 @@
 int ss_split_accepts(ss_split_kind kind, ss_cell_type t) {
   if (kind == SS_SPLIT_MULTILINEAR)
     return t == SS_VERTEX || t == SS_SEGMENT || t == SS_QUAD || t == SS_HEX;
-  if (kind == SS_SPLIT_BISECT) return t == SS_VERTEX || t == SS_TRIANGLE;
+  if (kind == SS_SPLIT_BISECT || kind == SS_SPLIT_NVB)
+    return t == SS_VERTEX || t == SS_TRIANGLE;
   return t == SS_VERTEX || t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET ||
          t == SS_OCT;
 }
@@ -19,6 +20,7 @@ int ss_split_accepts(ss_split_kind kind, ss_cell_type t) {
 const char *ss_split_name(ss_split_kind kind) {
   return kind == SS_SPLIT_MULTILINEAR ? "multilinear"
          : kind == SS_SPLIT_BISECT    ? "bisect"
+         : kind == SS_SPLIT_NVB       ? "nvb"
                                       : "tetoct";
 }
 
@@ -41,6 +43,7 @@ ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
   ss_status st = ss_cx_validate(coarse, err);
   if (st) return st;
   if (kind == SS_SPLIT_BISECT) return ss_split_bisect(coarse, fine, L, err);
+  if (kind == SS_SPLIT_NVB) return ss_split_nvb(coarse, fine, L, err);
   return kind == SS_SPLIT_MULTILINEAR ? ss_split_multilinear(coarse, fine, L, err)
                                       : ss_split_tetoct(coarse, fine, L, err);
 }

@@ -32,6 +32,11 @@
  *    which halves the triangles holding it (ss_split_bisect.c).  Unlike the
  *    others this split reads the coarse positions (the complex's x): which
  *    edges split depends on their lengths; ties are broken by vertex index.
+ *  - nvb (the same paper, sections 2.2-2.3): newest-vertex bisection, the
+ *    topological 4-8 refinement.  Corner 0 of a triangle is its newest vertex
+ *    and the edge opposite it is split; (a, b, c) becomes (m, a, b) and
+ *    (m, c, a).  Two passes are one full 4-8 cycle.  It reads no positions:
+ *    the analysis of quasi48 refines stars with it (ss_split_nvb.c).
  * Vertex cells are copied.  Every child keeps the parent's reference.
  *
  * Fine cells of coarse cell i of type t occupy a contiguous block, in coarse
@@ -49,7 +54,8 @@
 typedef enum {
   SS_SPLIT_MULTILINEAR = 0, /* vertices, segments, quads, hexes */
   SS_SPLIT_TETOCT,          /* vertices, segments, triangles, tets, octahedra */
-  SS_SPLIT_BISECT           /* vertices, triangles: longest-edge bisection */
+  SS_SPLIT_BISECT,          /* vertices, triangles: longest-edge bisection */
+  SS_SPLIT_NVB              /* vertices, triangles: newest-vertex bisection */
 } ss_split_kind;
 
 /* The linear refinement operator L in parent-list form. */
@@ -67,14 +73,15 @@ static inline size_t ss_split_npar(const ss_split *L, size_t f) {
 
 /* Whether a split accepts cells of type t. */
 int ss_split_accepts(ss_split_kind kind, ss_cell_type t);
-/* Name of a split ("multilinear", "tetoct", "bisect"). */
+/* Name of a split ("multilinear", "tetoct", "bisect", "nvb"). */
 const char *ss_split_name(ss_split_kind kind);
 
 /* Refine `coarse` once: *fine receives the refined complex with new vertices at
  * their linear (centroid) positions, *L the operator.  Both are owned by the
  * caller.  SS_EINPUT if the complex holds a cell type the split does not accept
- * or a malformed cell, and for the bisect split a non-manifold or zero-length
- * edge; SS_ENOMEM.  Cost: linear in the size of the complex. */
+ * or a malformed cell, for the bisect split a non-manifold or zero-length
+ * edge, for the nvb split a non-manifold edge or non-conforming tags;
+ * SS_ENOMEM.  Cost: linear in the size of the complex. */
 ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
                           ss_split **L, ss_error *err);
 

@@ -58,6 +58,31 @@ static double len2(const ss_cx *cx, ss_idx a, ss_idx b) {
   return s;
 }
 
+ss_status ss_split_tri_edges(const ss_cx *coarse, ss_triedge **te, ss_error *err) {
+  ss_status st = ss_triedge_new(coarse, te, err);
+  if (st) return st;
+  const size_t bad = ss_triedge_nonmanifold(*te);
+  if (bad == SIZE_MAX) return SS_OK;
+  st = ss_error_set(err, SS_EINPUT,
+                    "non-manifold edge: the edge between vertices %lu and %lu is held by "
+                    "%zu triangles (at most 2 allowed)",
+                    (unsigned long)(*te)->end[2 * bad] + 1,
+                    (unsigned long)(*te)->end[2 * bad + 1] + 1, (*te)->nface[bad]);
+  ss_triedge_free(*te);
+  *te = NULL;
+  return st;
+}
+
+ss_status ss_split_tri_fine(const ss_cx *coarse, ss_cx **fine, ss_error *err) {
+  ss_status st = ss_cx_new(coarse->dim, fine, err);
+  if (!st) st = ss_cx_reserve_cells(*fine, SS_VERTEX, coarse->nc[SS_VERTEX], err);
+  if (!st) st = ss_cx_reserve_cells(*fine, SS_TRIANGLE, 2 * coarse->nc[SS_TRIANGLE], err);
+  for (size_t c = 0; !st && c < coarse->nc[SS_VERTEX]; c++)
+    st = ss_cx_add_cell(*fine, SS_VERTEX, ss_cx_cell(coarse, SS_VERTEX, c),
+                        coarse->cref[SS_VERTEX][c], err);
+  return st; /* on failure *fine is the caller's to free */
+}
+
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
                           ss_error *err) {
   ss_split_builder b = {0};
@@ -67,17 +92,8 @@ ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_ou
   unsigned char *marked = NULL;
   ss_idx *mid = NULL;
   const size_t nt = coarse->nc[SS_TRIANGLE];
-  ss_status st = ss_triedge_new(coarse, &te, err);
+  ss_status st = ss_split_tri_edges(coarse, &te, err);
   if (st) goto done;
-  size_t bad = ss_triedge_nonmanifold(te);
-  if (bad != SIZE_MAX) {
-    st = ss_error_set(err, SS_EINPUT,
-                      "non-manifold edge: the edge between vertices %lu and %lu is "
-                      "held by %zu triangles (at most 2 allowed)",
-                      (unsigned long)te->end[2 * bad] + 1,
-                      (unsigned long)te->end[2 * bad + 1] + 1, te->nface[bad]);
-    goto done;
-  }
   const size_t ne = te->ne;
   /* two triangles on one edge with the same third corner (a doubled triangle)
    * would give the split point 3 neighbours, not the 4 of section 3.2 */
@@ -146,14 +162,7 @@ ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_ou
       for (int k = 0; k < 3; k++)
         marked[te->tedge[3 * te->face[2 * e + j] + (size_t)k]] = 1;
   }
-  if ((st = ss_cx_new(coarse->dim, &fine, err))) goto done;
-  if ((st = ss_cx_reserve_cells(fine, SS_VERTEX, coarse->nc[SS_VERTEX], err)) ||
-      (st = ss_cx_reserve_cells(fine, SS_TRIANGLE, 2 * nt, err)))
-    goto done;
-  for (size_t c = 0; c < coarse->nc[SS_VERTEX]; c++)
-    if ((st = ss_cx_add_cell(fine, SS_VERTEX, ss_cx_cell(coarse, SS_VERTEX, c),
-                             coarse->cref[SS_VERTEX][c], err)))
-      goto done;
+  if ((st = ss_split_tri_fine(coarse, &fine, err))) goto done;
   for (size_t t = 0; t < nt; t++) {
     const ss_idx *v = ss_cx_cell(coarse, SS_TRIANGLE, t);
     const int32_t ref = coarse->cref[SS_TRIANGLE][t];

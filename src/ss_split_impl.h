@@ -4,6 +4,7 @@
 
 #include "ss_hash.h"
 #include "ss_split.h"
+#include "ss_triedge.h"
 
 /* Parent lists under construction; new vertices are appended in order. */
 typedef struct {
@@ -27,10 +28,19 @@ ss_status ss_split_shared(ss_split_builder *b, ss_hash *h, const uint32_t *key,
 ss_status ss_split_builder_finish(ss_split_builder *b, const ss_cx *coarse, ss_cx *fine,
                                   ss_error *err);
 
+/* For the two triangle-bisection splits (bisect, nvb; ss_split_bisect.c):
+ * the edge table of coarse's triangles, refusing (SS_EINPUT) the first edge
+ * held by more than two of them, by its vertices (1-based); and a new fine
+ * complex with coarse's vertex cells copied and room for twice its
+ * triangles (on failure *fine may be set: the caller frees it). */
+ss_status ss_split_tri_edges(const ss_cx *coarse, ss_triedge **te, ss_error *err);
+ss_status ss_split_tri_fine(const ss_cx *coarse, ss_cx **fine, ss_error *err);
+
 ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine, ss_split **L,
                                ss_error *err);
 ss_status ss_split_tetoct(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
+ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 
 /* End a split: on success hand fine and the parent lists to the caller; on
  * failure (st != SS_OK) free both and hand over NULLs.  Returns st. */

@@ -39,32 +39,69 @@ __all__ = ["SubspectraError", "scheme_names", "local_matrix", "eigenvalues", "ei
            "analyze"]
 
 _ffi = FFI()
-# Declarations as in the installed headers (ss_error.h, ss_scheme.h, ss_link.h,
-# ss_local.h, ss_eig.h, ss_report_case.h).  Enumerations are passed as int.
-# ss_local and ss_eig are read through pointers only, so only their leading
-# fields are declared (in the headers' order; the rest is never touched).
+#Declarations as in the installed headers(ss_error.h, ss_scheme.h, ss_link.h,
+#ss_local.h, ss_eig.h, ss_report_case.h).Enumerations are passed as int.
+#ss_local and ss_eig are read through pointers only, so only their leading
+#fields are declared(in the headers' order; the rest is never touched).
 _ffi.cdef("""
-typedef struct { int status; char msg[512]; } ss_error;
+typedef struct {
+  int status;
+  char msg[512]; } ss_error;
 typedef struct ss_scheme ss_scheme;
 typedef struct ss_link_ ss_link;
-typedef struct { int kind; const ss_link *link; int n; int diag; } ss_case;
 typedef struct {
-  size_t n2; size_t n1; double *S; size_t nnz; void *label;
-  int ncoord; int dim; int level;
+  int kind;
+  const ss_link *link;
+  int n;
+  int diag;
+  int cls; } ss_case;
+typedef struct {
+  size_t n2;
+  size_t n1;
+  double *S;
+  size_t nnz;
+  void *label;
+  int ncoord;
+  int dim;
+  int level;
 } ss_local;
 typedef struct {
-  double re, im, rcond; int block, group, mult; double err, cluster;
+  double re, im, rcond;
+  int block, group, mult;
+  double err, cluster;
 } ss_eigval;
-typedef struct { size_t n; ss_eigval *val; } ss_eig;
-typedef struct { void *fn; void *ctx; } ss_progress;
 typedef struct {
-  double tol; double cluster; int dim; int basis; int force; ss_progress progress;
+  size_t n;
+  ss_eigval *val; } ss_eig;
+typedef struct {
+  void *fn;
+  void *ctx; } ss_progress;
+typedef struct {
+  double tol;
+  double cluster;
+  int dim;
+  int basis;
+  int force;
+  ss_progress progress;
 } ss_eig_opts;
-typedef struct { double tol; int neig; int depth; int ring_levels; int certify; }
+typedef struct {
+  double tol;
+  int neig;
+  int depth;
+  int ring_levels;
+  int certify; }
   ss_report_analyze_opts;
 typedef struct {
-  size_t n; int k; double *re, *im; int *group; int *biorth;
-  double *right_re; double *right_im; double *left_re; double *left_im; int complex_any;
+  size_t n;
+  int k;
+  double *re, *im;
+  int *group;
+  int *biorth;
+  double *right_re;
+  double *right_im;
+  double *left_re;
+  double *left_im;
+  int complex_any;
 } ss_eigvec;
 
 const char *const *ss_scheme_names(void);
@@ -88,7 +125,7 @@ void ss_eigvec_free(ss_eigvec *v);
 void free(void *p);
 """)
 
-# ss_case_kind (ss_local.h)
+#ss_case_kind(ss_local.h)
 _VERTEX, _EDGE, _FACE, _SURFACE_VERTEX = 0, 1, 2, 3
 
 

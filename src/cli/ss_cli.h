@@ -39,10 +39,11 @@ int ss_cli_fail(const ss_error *err);
  * 1 for SS_ENUMERIC and SS_EINTERNAL. */
 int ss_cli_exit_status(ss_status st);
 
-/* For commands that read local subdivision matrices (analyze, matrix, check,
- * sweep): if scheme s has no local-matrix derivation yet (the geometry-
- * sensitive bisect split of quasi48), print why on stderr, prefixed by
- * "subspectra CMD: ", and return 1; otherwise 0. */
+/* For commands that read local subdivision matrices in bulk (check, sweep):
+ * if scheme s is quasi48 (the geometry-sensitive bisect split, whose local
+ * matrices exist for surface vertices only, through analyze and matrix),
+ * print why on stderr, prefixed by "subspectra CMD: ", and return 1;
+ * otherwise 0. */
 int ss_cli_refuse_local(const char *cmd, const ss_scheme *s);
 /* Parse a memory size: a positive number with an optional suffix K, M, G or T
  * (powers of 1000, as the messages print them; a trailing B is allowed:

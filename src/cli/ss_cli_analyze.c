@@ -52,6 +52,10 @@ typedef struct {
                                (analyze: JSON; matrix: Matrix Market); 0: none */
   int left;                 /* matrix --left: the left eigenvectors */
   int nocaption;            /* draw --no-caption */
+  int cls;                  /* --class 4|8: 4-8 class of a quasi48 surface
+                               vertex; 0: ss_local_class48's default */
+  int cls48;                /* the class analysed (quasi48 surface vertex),
+                               else 0 */
 } opts;
 
 static void help(const char *cmd) {
@@ -105,7 +109,13 @@ static void help(const char *cmd) {
       "  --surface-vertex N     a 2D vertex of valence N (3..1000)\n\n"
       "options:\n"
       "  --scheme S             mlca, tetoct, boxspline, boxspline-avg, catmull-clark,\n"
-      "                         loop, ccsolid (quasi48: not yet)\n"
+      "                         loop, ccsolid, quasi48 (surface vertices only; S\n"
+      "                         maps two binary steps, a full 4-8 cycle)\n"
+      "  --class 4|8            quasi48: the 4-8 class of the surface vertex: 4 (all\n"
+      "                         spokes legs, the outer edges split first; N >= 3),\n"
+      "                         8 (spokes alternate, N even >= 6).  Default: 8 for\n"
+      "                         even N >= 6, else 4.  Class 4 with N is class 8\n"
+      "                         with 2N after one step: the same matrix\n"
       "  --diagonals D          major diagonals of tet stars (boxspline): bfs\n"
       "                         (Algorithm 2, default), or around the edge of\n"
       "                         --edge: skew (the same turn all round) or center\n"
@@ -218,7 +228,8 @@ static int parse(int argc, char **argv, opts *o) {
     O_PROGRESS,
     O_EIGVEC,
     O_LEFT,
-    O_NOCAPTION
+    O_NOCAPTION,
+    O_CLASS
   };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
@@ -242,6 +253,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"eigenvectors", required_argument, 0, O_EIGVEC},
                                      {"left", no_argument, 0, O_LEFT},
                                      {"no-caption", no_argument, 0, O_NOCAPTION},
+                                     {"class", required_argument, 0, O_CLASS},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
@@ -389,6 +401,11 @@ static int parse(int argc, char **argv, opts *o) {
     case O_PROGRESS:
       o->progress = 1;
       break;
+    case O_CLASS:
+      if (strcmp(optarg, "4") && strcmp(optarg, "8"))
+        return ss_cli_usage_error(o->cmd, "--class: expected 4 or 8, not '%s'", optarg);
+      o->cls = optarg[0] - '0';
+      break;
     default:
       return ss_cli_option_error(o->cmd, c, argv);
     }
@@ -406,6 +423,9 @@ static int parse(int argc, char **argv, opts *o) {
     return ss_cli_usage_error(o->cmd,
                               "--eigenvectors: analyze writes them with --format "
                               "json (matrix --eigenvectors writes Matrix Market)");
+  if (o->cls && o->kind != SS_CASE_SURFACE_VERTEX)
+    return ss_cli_usage_error(o->cmd, "--class is the 4-8 class of a quasi48 "
+                                      "--surface-vertex; no other case has one");
   return 0;
 }
 
@@ -414,7 +434,10 @@ static int parse(int argc, char **argv, opts *o) {
 static const char *param_text(const opts *o, const char *canon, char *buf, size_t n) {
   if (o->kind == SS_CASE_VERTEX || o->kind == SS_CASE_EDGE_POINT) return canon;
   if (o->kind == SS_CASE_FACE) return "";
-  snprintf(buf, n, "%d", o->n);
+  if (o->cls48 && o->format != FMT_TSV) /* TSV: the valence column stays a number */
+    snprintf(buf, n, "%d, 4-8 class %d", o->n, o->cls48);
+  else
+    snprintf(buf, n, "%d", o->n);
   return buf;
 }
 
@@ -460,6 +483,8 @@ static int print_json(const opts *o, const char *scheme, const char *canon, int 
     fprintf(stderr, "subspectra %s: %s\n", o->cmd, err.msg);
     return ss_cli_exit_status(err.status);
   }
+  if (o->cls48) /* quasi48: the 4-8 class analysed */
+    json_object_object_add(r, "class", json_object_new_int(o->cls48));
   printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
                                                        JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(r);
@@ -512,6 +537,11 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
     printf(", link %s (k = %d, %d %s)\n", canon, k, 2 * k - 4, ss_cell_plural(M->cell));
   else if (o->kind == SS_CASE_FACE)
     printf(" (two tets sharing a face)\n");
+  else if (M->cell == SS_TRIANGLE && o->cls48)
+    printf(", valence %d, 4-8 class %d%s\n", o->n, o->cls48,
+           o->cls48 == 4 ? " (S is class 8's with twice the valence: after one step "
+                           "the vertex is of class 8)"
+                         : "");
   else
     printf(", valence %d\n", o->n);
   printf(
@@ -721,6 +751,7 @@ static void case_text(const opts *o, const ss_link *l, char *buf, size_t n) {
     break;
   case SS_CASE_SURFACE_VERTEX:
     snprintf(buf, n, "--surface-vertex %d", o->n);
+    if (o->cls) snprintf(buf + strlen(buf), n - strlen(buf), " --class %d", o->cls);
     break;
   default:
     snprintf(buf, n, "--face");
@@ -771,7 +802,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
      * spent 35 s there).  A bipyramid becomes an edge point below, whose rows
      * are at least the vertex case's (MLCA 30k - 55 = 30n + 5 both, tet/oct
      * 5k - 5 < 15n + 5, ss_local_cost.c), so nothing refused here fits. */
-    const ss_case cv = {SS_CASE_VERTEX, l, 0, o->diag};
+    const ss_case cv = {SS_CASE_VERTEX, l, 0, o->diag, 0};
     if ((rc = check_budget(o, s, &cv, l, where, &cost))) goto done;
     if (ss_link_canonical(l, &cl, NULL, &err) || ss_link_format(cl, &canon, &err)) {
       fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
@@ -781,12 +812,16 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   }
   /* the canonical labelling, as sweep and reproduce analyse it (ss_result):
    * isomorphic links then give the same numbers to the last bit */
-  ss_case c = {o->kind, cl ? cl : l, o->n, o->diag};
+  ss_case c = {o->kind, cl ? cl : l, o->n, o->diag, o->cls};
   /* a point on an extraordinary edge: the edge case judges it (ss_local.h) */
   const int ep = cl ? ss_local_edge_point(s, cl) : 0;
   opts oe = *o;
+  if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT && o->kind == SS_CASE_SURFACE_VERTEX) {
+    oe.cls48 = ss_local_class48(o->n, o->cls);
+    o = &oe;
+  }
   if (ep > 0) {
-    c = (ss_case){SS_CASE_EDGE, NULL, ep, o->diag};
+    c = (ss_case){SS_CASE_EDGE, NULL, ep, o->diag, 0};
     oe.kind = SS_CASE_EDGE_POINT;
     oe.n = ep;
     o = &oe;
@@ -979,6 +1014,8 @@ static int run(int argc, char **argv, const char *cmd) {
             0,
             0,
             0,
+            0,
+            0,
             0};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
   int r = parse(argc, argv, &o);
@@ -991,9 +1028,12 @@ static int run(int argc, char **argv, const char *cmd) {
             o.stencil ? "--stencil " : "--scheme: ", err.msg);
     return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
   }
-  if (ss_cli_refuse_local(cmd, s)) {
+  if (o.cls && ss_scheme_split_kind(s) != SS_SPLIT_BISECT) {
     ss_scheme_free(s);
-    return SS_EXIT_USAGE;
+    return ss_cli_usage_error(cmd,
+                              "--class: scheme %s has no 4-8 vertex classes (only "
+                              "quasi48 has)",
+                              o.stencil ? o.stencil : o.scheme);
   }
   int rc = SS_EXIT_OK, header = 0;
   if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-") && strcmp(cmd, "analyze"))

@@ -98,7 +98,7 @@ static int visit(const ss_link *l, void *ctx) {
   }
   char what[512];
   snprintf(what, sizeof what, "vertex %s", text);
-  run_case(g, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, what);
+  run_case(g, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, what);
   free(text);
   return 0;
 }
@@ -203,9 +203,9 @@ int ss_cli_check(int argc, char **argv) {
   for (long n = ea; n <= eb; n++) {
     char what[32];
     snprintf(what, sizeof what, "edge %ld", n);
-    run_case(&g, (ss_case){SS_CASE_EDGE, NULL, (int)n, SS_DIAG_BFS}, what);
+    run_case(&g, (ss_case){SS_CASE_EDGE, NULL, (int)n, SS_DIAG_BFS, 0}, what);
   }
-  if (face) run_case(&g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "face");
+  if (face) run_case(&g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "face");
   printf("%ld cases: %ld pass, %ld fail, %ld undecided, %ld errors\n", g.cases, g.pass,
          g.fail, g.undecided, g.errors);
   ss_scheme_free(s);

@@ -45,7 +45,10 @@ typedef enum {
   SRC_LINKS,    /* every link with lo..hi vertices (ss_enum_links order) */
   SRC_RANDOM,   /* per k = lo..hi the first link of `enumerate random --seed 1` */
   SRC_VALENCES, /* edge or surface vertex of valence lo..hi */
-  SRC_FACE      /* the one face case */
+  SRC_FACE,     /* the one face case */
+  SRC_QUASI48   /* surface vertices of valence lo..hi of 4-8 class 4, then those
+                   of class 8 (even valences 6..hi); schemes without classes
+                   run the same valences */
 } src_kind;
 
 typedef struct {
@@ -59,8 +62,9 @@ typedef struct {
   int neig;            /* > 0: show lambda1..neig; 0: lambda1..m and |lambda_m+1| */
   const char *command; /* the equivalent `analyze` commands */
   const char *note;    /* paragraph under the header, or NULL */
-  const char *vs;      /* another scheme run on the same cases and shown side by
-                          side (its results are not written separately), or NULL */
+  const char *vs;      /* other schemes run on the same cases and shown side by
+                          side (their results are not written separately): one
+                          name or several separated by commas, or NULL */
 } table_spec;
 
 #define RANDOM_CMD(S, D)                                                                 \
@@ -212,6 +216,23 @@ static const table_spec tables[] = {
      "\"Catmull–Clark solids\"). λ1..λ3 are 1/2 and the surface pair, as for MLCA, "
      "so the eigenvalue condition fails from valence 8 on in both.",
      "mlca"},
+    {"quasi48-surface-vertices-3-16",
+     "quasi 4–8 surfaces: vertices of valence 3..16, both 4–8 classes, beside Loop and "
+     "Catmull–Clark",
+     "quasi48", SS_CASE_SURFACE_VERTEX, SRC_QUASI48, 3, 16, SS_DIAG_BFS, 0,
+     "for n in $(seq 3 16); do subspectra analyze --scheme quasi48 --surface-vertex $n "
+     "--class 4 --format json; done; for n in 6 8 10 12 14 16; do subspectra analyze "
+     "--scheme quasi48 --surface-vertex $n --class 8 --format json; done",
+     "S maps two binary steps (a full 4–8 cycle, a dyadic step) of the topological "
+     "4–8 refinement, which longest-edge bisection follows on 4–8 meshes (§2.3; README, "
+     "\"Quasi 4–8 surfaces\"). Rows 1..14: vertices of class 4 (valence n, outer edges "
+     "split first; n = 4 is regular), rows 15..20: class 8 (spokes alternate; even "
+     "n ≥ 6; n = 8 is regular). A class-4 vertex of valence n is a class-8 vertex of "
+     "valence 2n after one step, so row n = 3..8 of class 4 equals row 2n of class 8. "
+     "The paper has only \"strong indications\" of C¹ and quotes no values: nothing "
+     "is compared. Loop and Catmull–Clark run the same valences (the class is "
+     "quasi48's only).",
+     "loop,catmull-clark"},
 };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
@@ -239,6 +260,7 @@ static const figure_spec figures[] = {
     {"tetoct-edge-3.png", "tetoct", SS_CASE_EDGE, NULL, 3, SS_DIAG_BFS, 0},
     {"catmull-clark-3.png", "catmull-clark", SS_CASE_SURFACE_VERTEX, NULL, 3, SS_DIAG_BFS,
      0},
+    {"quasi48-5.png", "quasi48", SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0},
     {"boxspline-edge-9-skew.png", "boxspline", SS_CASE_EDGE, NULL, 9, SS_DIAG_SKEW, 0},
     /* lambda3 = lambda4: no characteristic map; the would-be map, labelled */
     {"boxspline-edge-9-center-forced.png", "boxspline", SS_CASE_EDGE, NULL, 9,
@@ -289,7 +311,7 @@ typedef struct {
 
 static int visit_link(const ss_link *l, void *ctx) {
   enum_ctx *e = ctx;
-  ss_case c = {e->t->kind, l, 0, e->t->diag};
+  ss_case c = {e->t->kind, l, 0, e->t->diag, 0};
   e->st = add_case(e->list, e->s, &c, e->err);
   return e->st != SS_OK;
 }
@@ -313,7 +335,7 @@ static ss_status compute_table(const table_spec *t, const ss_scheme *s, result_l
       gsl_rng_set(r, 1UL);
       st = ss_link_random(k, r, &l, err);
       if (!st) {
-        ss_case c = {t->kind, l, 0, t->diag};
+        ss_case c = {t->kind, l, 0, t->diag, 0};
         st = add_case(out, s, &c, err);
       }
       ss_link_free(l);
@@ -321,11 +343,21 @@ static ss_status compute_table(const table_spec *t, const ss_scheme *s, result_l
     }
   } else if (t->src == SRC_VALENCES) {
     for (int n = t->lo; n <= t->hi && !st; n++) {
-      ss_case c = {t->kind, NULL, n, t->diag};
+      ss_case c = {t->kind, NULL, n, t->diag, 0};
+      st = add_case(out, s, &c, err);
+    }
+  } else if (t->src == SRC_QUASI48) {
+    const int classes = ss_scheme_split_kind(s) == SS_SPLIT_BISECT;
+    for (int n = t->lo; n <= t->hi && !st; n++) {
+      ss_case c = {t->kind, NULL, n, t->diag, classes ? 4 : 0};
+      st = add_case(out, s, &c, err);
+    }
+    for (int n = t->lo > 6 ? t->lo + t->lo % 2 : 6; n <= t->hi && !st; n += 2) {
+      ss_case c = {t->kind, NULL, n, t->diag, classes ? 8 : 0};
       st = add_case(out, s, &c, err);
     }
   } else {
-    ss_case c = {SS_CASE_FACE, NULL, 0, t->diag};
+    ss_case c = {SS_CASE_FACE, NULL, 0, t->diag, 0};
     st = add_case(out, s, &c, err);
   }
   return st;
@@ -477,6 +509,8 @@ static const char *case_label(const ss_result *r, char *buf, size_t n) {
     snprintf(buf, n, "k = %d", r->k);
   else if (r->kind == SS_CASE_FACE)
     snprintf(buf, n, "face");
+  else if (r->cls)
+    snprintf(buf, n, "n = %d, class %d", r->k, r->cls);
   else
     snprintf(buf, n, "n = %d", r->k);
   return buf;
@@ -491,6 +525,7 @@ static json_object *result_json(const table_spec *t, const ss_result *r) {
     json_object_object_add(o, "k", json_object_new_int(r->k));
   }
   if (r->valence) json_object_object_add(o, "valence", json_object_new_int(r->valence));
+  if (r->cls) json_object_object_add(o, "class", json_object_new_int(r->cls));
   json_object_object_add(o, "two_ring_size", json_object_new_int64((int64_t)r->two_ring));
   json_object_object_add(o, "one_ring_size", json_object_new_int64((int64_t)r->one_ring));
   if (r->has_diag) {
@@ -606,15 +641,15 @@ static void sb_leading(strbuf *md, const ss_result *r) {
 
 /* The section of table t that shows the results l of t's scheme beside the
  * results v of scheme t->vs on the same cases (same order). */
-static void side_by_side(strbuf *md, const table_spec *t, const result_list *l,
-                         const result_list *v) {
+static void side_by_side(strbuf *md, const table_spec *t, const char *vs,
+                         const result_list *l, const result_list *v) {
   size_t both = 0, only_a = 0, only_b = 0;
   sb_printf(md,
             "\n## Beside %s\n\nThe same cases with `--scheme %s`: λ1..λ3 and \\|λ4\\| "
             "after λ0 = 1 and the verdict of each.\n\n| # | case | %s λ1 | λ2 | λ3 | "
             "\\|λ4\\| | %s verdict | %s λ1 | λ2 | λ3 | \\|λ4\\| | %s verdict |\n"
             "|--:|---|--:|--:|--:|--:|---|--:|--:|--:|--:|---|\n",
-            t->vs, t->vs, t->scheme, t->scheme, t->vs, t->vs);
+            vs, vs, t->scheme, t->scheme, vs, vs);
   for (size_t i = 0; i < l->n && i < v->n; i++) {
     const ss_result *a = l->r + i, *b = v->r + i;
     char buf[64];
@@ -635,11 +670,25 @@ static void side_by_side(strbuf *md, const table_spec *t, const result_list *l,
   sb_printf(md,
             "\n**Side by side:** of %zu cases %zu pass under both schemes, %zu under %s "
             "only, %zu under %s only.\n",
-            l->n, both, only_a, t->scheme, only_b, t->vs);
+            l->n, both, only_a, t->scheme, only_b, vs);
+}
+
+#define MAXVS 2 /* schemes beside a table's, at most */
+
+/* The names in t->vs (comma-separated) into names; their count. */
+static int vs_names(const table_spec *t, char names[MAXVS][32]) {
+  int n = 0;
+  for (const char *p = t->vs; p && *p && n < MAXVS;) {
+    const size_t len = strcspn(p, ",");
+    snprintf(names[n++], 32, "%.*s", (int)len, p);
+    p += len + (p[len] == ',');
+  }
+  return n;
 }
 
 /* Write NAME.md, NAME.tsv and data/NAME.jsonl for table t; vs (NULL unless
- * t->vs) holds the other scheme's results on the same cases. */
+ * t->vs) holds the other schemes' results on the same cases, in t->vs's
+ * order. */
 static ss_status write_table(const char *dir, const table_spec *t, const result_list *l,
                              const result_list *vs, const ss_ref *ref, tally *ty,
                              ss_error *err) {
@@ -811,7 +860,12 @@ static ss_status write_table(const char *dir, const table_spec *t, const result_
       ty->pass, ty->cases, ty->quoted, ty->match, ty->quoted - ty->match, ty->unquoted,
       ty->cases, tol);
   if (t->src == SRC_LINKS) per_k(&md, l);
-  if (vs) side_by_side(&md, t, l, vs);
+  if (vs) {
+    char names[MAXVS][32];
+    const int nvs = vs_names(t, names);
+    for (int k = 0; k < nvs; k++)
+      side_by_side(&md, t, names[k], l, vs + k);
+  }
   if (ncmp) {
     sb_printf(&md, "\n## Quoted values\n\n| # | case | quantity | quoted | computed | "
                    "computed − quoted | tolerance | status | source |\n"
@@ -918,7 +972,7 @@ static ss_status draw_figure(const figure_spec *f, const char *path, strbuf *cap
     if (!st) st = ss_link_canonical(l, &cl, NULL, err);
     if (!st) st = ss_link_format(cl, &canon, err);
   }
-  ss_case c = {f->kind, l, f->n, f->diag};
+  ss_case c = {f->kind, l, f->n, f->diag, 0};
   if (!st) st = ss_local_new(s, &c, &M, err);
   size_t pairs = 0, improper = 0;
   const int diag = !st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET;
@@ -1122,13 +1176,19 @@ int ss_cli_reproduce(int argc, char **argv) {
   for (size_t i = 0; i < NTABLES && rc == SS_EXIT_OK; i++) {
     const table_spec *t = tables + i;
     const double t1 = ss_cli_now();
-    ss_scheme *s = NULL, *sv = NULL;
-    result_list l = {0}, lv = {0};
-    l.o = lv.o = ro;
+    ss_scheme *s = NULL, *sv[MAXVS] = {NULL};
+    result_list l = {0}, lv[MAXVS] = {{0}};
+    char names[MAXVS][32];
+    const int nvs = vs_names(t, names);
+    l.o = ro;
+    for (int k = 0; k < MAXVS; k++)
+      lv[k].o = ro;
     tally ty;
-    if (ss_scheme_new(t->scheme, &s, &err) || compute_table(t, s, &l, &err) ||
-        (t->vs && (ss_scheme_new(t->vs, &sv, &err) || compute_table(t, sv, &lv, &err))) ||
-        write_table(out, t, &l, t->vs ? &lv : NULL, &ref, &ty, &err)) {
+    int bad = ss_scheme_new(t->scheme, &s, &err) || compute_table(t, s, &l, &err);
+    for (int k = 0; k < nvs && !bad; k++)
+      bad =
+          ss_scheme_new(names[k], &sv[k], &err) || compute_table(t, sv[k], &lv[k], &err);
+    if (bad || write_table(out, t, &l, nvs ? lv : NULL, &ref, &ty, &err)) {
       fprintf(stderr, "subspectra %s: %s: %s\n", cmd, t->name, err.msg);
       rc = exit_for(&err);
     } else {
@@ -1144,9 +1204,11 @@ int ss_cli_reproduce(int argc, char **argv) {
       tmatch += ty.match;
     }
     results_free(&l);
-    results_free(&lv);
     ss_scheme_free(s);
-    ss_scheme_free(sv);
+    for (int k = 0; k < MAXVS; k++) {
+      results_free(&lv[k]);
+      ss_scheme_free(sv[k]);
+    }
   }
   for (size_t i = 0; i < ss_reproduce_jsr_count() && rc == SS_EXIT_OK; i++) {
     const double t1 = ss_cli_now();

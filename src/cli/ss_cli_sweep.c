@@ -233,7 +233,7 @@ int ss_sweep_prepare(ss_sweep *w, const ss_sweep_job *j, char **canon) {
 
 ss_status ss_sweep_compute(const ss_sweep *w, const ss_sweep_job *j, ss_result *r,
                            ss_error *err) {
-  const ss_case c = {j->kind, j->link, j->n, w->diag};
+  const ss_case c = {j->kind, j->link, j->n, w->diag, 0};
   return ss_result_compute(w->s, &c, &w->ro, r, err);
 }
 

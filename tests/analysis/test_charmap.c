@@ -74,21 +74,21 @@ static void test_regular(void) {
   ss_error err = {0};
   CHECK(ss_link_parse("octahedron", &oct, &err) == SS_OK, "%s", err.msg);
   result r;
-  if (oct && !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
+  if (oct && !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, &r)) {
     CHECK(r.r.verdict.verdict == SS_PASS, "regular MLCA vertex: %s", r.r.verdict.reason);
     CHECK(r.cm && r.cm->ncells == 64, "regular MLCA vertex: %zu cells, expected 4^3",
           r.cm ? r.cm->ncells : 0);
     CHECK_CLOSE(r.r.min_scaled_jacobian, 1.0, 1e-9, "regular MLCA vertex: cubes");
     done(&r);
   }
-  if (!run(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 4, SS_DIAG_BFS}, &r)) {
+  if (!run(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 4, SS_DIAG_BFS, 0}, &r)) {
     CHECK(r.r.verdict.verdict == SS_PASS, "regular CC vertex: %s", r.r.verdict.reason);
     CHECK(r.cm && r.cm->ncells == 16, "regular CC vertex: %zu cells",
           r.cm ? r.cm->ncells : 0);
     CHECK_CLOSE(r.r.min_scaled_jacobian, 1.0, 1e-9, "regular CC vertex: squares");
     done(&r);
   }
-  if (!run(loop, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 6, SS_DIAG_BFS}, &r)) {
+  if (!run(loop, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 6, SS_DIAG_BFS, 0}, &r)) {
     CHECK(r.r.verdict.verdict == SS_PASS, "regular Loop vertex: %s", r.r.verdict.reason);
     CHECK(r.cm && r.cm->ncells == 24, "regular Loop vertex: %zu cells",
           r.cm ? r.cm->ncells : 0);
@@ -117,7 +117,7 @@ typedef struct {
 static int visit(const ss_link *l, void *vctx) {
   links_ctx *ctx = vctx;
   result r;
-  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) return 0;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &r)) return 0;
   char *text = NULL;
   ss_error err = {0};
   if (ss_link_format(l, &text, &err)) text = NULL;
@@ -138,7 +138,7 @@ static int visit(const ss_link *l, void *vctx) {
     ss_link *q =
         ss_testlink_scrambled(l, (unsigned)(ctx->count * 5 + 3 + mirror), mirror);
     result r2;
-    if (q && !run(ctx->s, (ss_case){SS_CASE_VERTEX, q, 0, SS_DIAG_BFS}, &r2)) {
+    if (q && !run(ctx->s, (ss_case){SS_CASE_VERTEX, q, 0, SS_DIAG_BFS, 0}, &r2)) {
       CHECK(r2.r.verdict.verdict == r.r.verdict.verdict,
             "%s %s: verdict changes under relabelling (mirror %d)",
             ss_scheme_name(ctx->s), text ? text : "?", mirror);
@@ -178,8 +178,8 @@ static void test_claims(void) {
   ss_scheme *to = ss_testcase_scheme("tetoct");
   for (int n = 2; n <= 10; n++) {
     result r;
-    ss_case c = n == 2 ? (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}
-                       : (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS};
+    ss_case c = n == 2 ? (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}
+                       : (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0};
     if (run(to, c, &r)) continue;
     CHECK(r.e->cond.verdict == SS_PASS && r.r.verdict.verdict == SS_PASS,
           "tetoct %s %d: condition %s, regularity %s (%s)", ss_case_name(c.kind), n,
@@ -194,7 +194,8 @@ static void test_claims(void) {
     ss_scheme *s = ss_testcase_scheme(names[i]);
     for (int n = 3; n <= 12; n++) {
       result r;
-      if (run(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, &r)) continue;
+      if (run(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0}, &r))
+        continue;
       CHECK(r.r.verdict.verdict == SS_PASS && r.r.min_scaled_jacobian > 0.0,
             "%s surface valence %d: regularity %s (%s), scaled Jacobian %g", names[i], n,
             ss_verdict_name(r.r.verdict.verdict), r.r.verdict.reason,
@@ -234,7 +235,7 @@ static void test_plain_multilinear(void) {
       continue;
     }
     result r;
-    if (!run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) {
+    if (!run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &r)) {
       int halves = 0;
       for (size_t j = 0; j < r.e->n; j++)
         halves += r.e->val[j].group == r.e->val[1].group;
@@ -263,7 +264,7 @@ static void test_folded(void) {
   ss_error err = {0};
   result r;
   if (ss_link_parse("octahedron", &oct, &err) ||
-      run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
+      run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, &r)) {
     CHECK(0, "regular vertex: %s", err.msg);
     ss_link_free(oct);
     ss_scheme_free(mlca);
@@ -359,7 +360,7 @@ static void test_boxspline_k5(void) {
   result r;
   /* bipyramid:3: the apexes a, e and the equator b, c, d */
   if (ss_link_parse("bipyramid:3", &l, &err) || l->k != 5 ||
-      run(bx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) {
+      run(bx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &r)) {
     CHECK(0, "bipyramid:3: %s", err.msg);
     ss_link_free(l);
     ss_scheme_free(bx);
@@ -399,7 +400,7 @@ static void test_mlca_k8(void) {
   ss_error err = {0};
   result r;
   if (ss_link_parse(mlca_k8_exception, &l, &err) ||
-      run(mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) {
+      run(mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &r)) {
     CHECK(0, "k8 link: %s", err.msg);
     ss_link_free(l);
     ss_scheme_free(mlca);
@@ -529,7 +530,7 @@ static void test_result_canonical(void) {
         continue;
       }
       ss_result r0;
-      ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+      ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
       REQUIRE_OK_VOID(ss_result_compute(s, &c, &ro, &r0, &err), &err);
       failing += ss_result_verdict(&r0) != SS_PASS;
       CHECK(isnan(r0.min_sj) || (r0.min_sj >= -1.0 && r0.min_sj <= 1.0),
@@ -619,7 +620,7 @@ static void test_ring_structure(void) {
     ss_error err = {0};
     result r;
     if ((cases[i].link && ss_link_parse(cases[i].link, &l, &err)) ||
-        run(s, (ss_case){cases[i].kind, l, cases[i].n, SS_DIAG_BFS}, &r)) {
+        run(s, (ss_case){cases[i].kind, l, cases[i].n, SS_DIAG_BFS, 0}, &r)) {
       CHECK(0, "%s %s: %s", cases[i].scheme, cases[i].link, err.msg);
       ss_link_free(l);
       ss_scheme_free(s);
@@ -672,7 +673,7 @@ static void test_basis_invariance(void) {
     ss_error err = {0};
     result r;
     if (ss_link_parse(links[i], &l, &err) ||
-        run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r) || !r.cm) {
+        run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &r) || !r.cm) {
       CHECK(0, "%s: %s", links[i], err.msg);
       ss_link_free(l);
       continue;
@@ -735,7 +736,7 @@ static int visit_centre(const ss_link *l, void *vctx) {
   centre_ctx *ctx = vctx;
   ctx->checked++;
   result r;
-  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) return 1;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &r)) return 1;
   if (r.cm && r.r.verdict.verdict == SS_PASS && r.r.centre_corner_folds > 0) {
     size_t pos, neg, other, cbad;
     two_ring_split(r.cm, &pos, &neg, &other, &cbad, r.r.sign);
@@ -755,7 +756,7 @@ static int visit_shrink(const ss_link *l, void *vctx) {
   centre_ctx *ctx = vctx;
   ctx->checked++;
   result r;
-  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &r)) return 1;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &r)) return 1;
   if (r.cm && r.r.verdict.verdict == SS_UNDECIDED &&
       strstr(r.r.verdict.reason, "shrink")) {
     const ss_ring_level *L = r.r.level + r.r.nlevels - 1, *P = L - 1;
@@ -797,8 +798,8 @@ static void test_symmetry(void) {
   ss_link *oct = NULL, *k8 = NULL;
   result r;
   if (!ss_link_named("octahedron", &oct, &err) &&
-      !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r) && r.cm) {
-    ss_case c = {SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS};
+      !run(mlca, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, &r) && r.cm) {
+    ss_case c = {SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0};
     CHECK(!r.r.sym.found && r.r.sym.tested >= 40,
           "octahedron: %d symmetries tested, found %d", r.r.sym.tested, r.r.sym.found);
     ss_charmap_inj inj;
@@ -835,7 +836,7 @@ static void test_symmetry(void) {
     done(&r);
   }
   if (!ss_link_parse(mlca_k8_exception, &k8, &err) &&
-      !run(mlca, (ss_case){SS_CASE_VERTEX, k8, 0, SS_DIAG_BFS}, &r) && r.cm) {
+      !run(mlca, (ss_case){SS_CASE_VERTEX, k8, 0, SS_DIAG_BFS, 0}, &r) && r.cm) {
     CHECK(r.r.sym.found && r.r.sym.order == 2 && r.r.sym.reverses &&
               r.r.sym.distance < 1e-10 && r.r.verdict.verdict == SS_FAIL &&
               strstr(r.r.verdict.reason, "psi o sigma = psi"),
@@ -853,7 +854,7 @@ static void test_symmetry(void) {
   for (int q = 0; q < 2; q++) {
     ss_scheme *s = q ? ss_testcase_scheme(names[q]) : mlca;
     for (int n = 3; n <= 7; n++) {
-      if (run(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &r) || !r.cm) continue;
+      if (run(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0}, &r) || !r.cm) continue;
       ss_charmap_inj inj;
       REQUIRE_OK_VOID(ss_charmap_injectivity(r.cm, &r.r, &inj, &err), &err);
       CHECK(r.r.verdict.verdict != SS_PASS ||
@@ -889,7 +890,8 @@ static void test_certify(void) {
       CHECK(0, "%s: %s", links[i], err.msg);
       continue;
     }
-    REQUIRE_OK_VOID(ss_result_compute(mlca, &(ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS},
+    REQUIRE_OK_VOID(ss_result_compute(mlca,
+                                      &(ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0},
                                       &o, &r, &err),
                     &err);
     if (i < 2)
@@ -907,15 +909,16 @@ static void test_certify(void) {
     ss_result_clear(&r);
     ss_link_free(l);
   }
-  REQUIRE_OK_VOID(ss_result_compute(mlca, &(ss_case){SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS},
-                                    &o, &r, &err),
+  REQUIRE_OK_VOID(ss_result_compute(mlca,
+                                    &(ss_case){SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS, 0}, &o,
+                                    &r, &err),
                   &err);
   CHECK(r.cond.verdict == SS_FAIL && r.cond_certified && ss_result_certified(&r),
         "MLCA edge 8: condition %s, certified %d (%s)", ss_verdict_name(r.cond.verdict),
         r.cond_certified, r.cond.reason);
   ss_result_clear(&r);
   REQUIRE_OK_VOID(
-      ss_result_compute(loop, &(ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS},
+      ss_result_compute(loop, &(ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0},
                         &o, &r, &err),
       &err);
   CHECK(ss_result_verdict(&r) == SS_UNDECIDED && !r.cond_certified && !r.reg_certified &&
@@ -926,8 +929,9 @@ static void test_certify(void) {
   ss_result_clear(&r);
   /* without certify nothing is marked proven */
   o.certify = 0;
-  REQUIRE_OK_VOID(ss_result_compute(mlca, &(ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS},
-                                    &o, &r, &err),
+  REQUIRE_OK_VOID(ss_result_compute(mlca,
+                                    &(ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, &o,
+                                    &r, &err),
                   &err);
   CHECK(!r.cond_certified && !r.reg_certified && !ss_result_certified(&r),
         "double path: certified flags set");

@@ -199,7 +199,7 @@ static void check_masks(const char *sname, int n) {
   ss_local *M = NULL;
   ss_eigvec *v = NULL;
   ss_error err = {0};
-  const ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS};
+  const ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0};
   if (!s || ss_local_new(s, &c, &M, &err)) {
     CHECK(0, "%s %d: %s", sname, n, err.msg);
     goto done;
@@ -246,23 +246,23 @@ int main(void) {
     check_masks("loop", n);
     check_masks("catmull-clark", n);
     snprintf(what, sizeof what, "surface vertex %d", n);
-    check_case("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, what,
+    check_case("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0}, what,
                rng);
-    check_case("catmull-clark", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS},
-               what, rng);
+    check_case("catmull-clark",
+               (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0}, what, rng);
   }
   for (int n = 3; n <= 6; n++) {
     snprintf(what, sizeof what, "edge %d", n);
-    check_case("mlca", (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, what, rng);
-    check_case("tetoct", (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, what, rng);
+    check_case("mlca", (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0}, what, rng);
+    check_case("tetoct", (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0}, what, rng);
   }
-  check_case("tetoct", (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "face", rng);
+  check_case("tetoct", (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "face", rng);
   const char *links[] = {"octahedron", "icosahedron"};
   for (int i = 0; i < 2; i++) {
     ss_link *l = NULL;
     ss_error err = {0};
     REQUIRE_OK(ss_link_parse(links[i], &l, &err), &err);
-    check_case("mlca", (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, links[i], rng);
+    check_case("mlca", (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, links[i], rng);
     ss_link_free(l);
   }
   /* bad arguments */

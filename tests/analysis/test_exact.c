@@ -155,7 +155,7 @@ static void test_mlca_regular(void) {
   REQUIRE_OK_VOID(ss_link_named("octahedron", &oct, &err), &err);
   ss_local *M;
   ss_exact *x;
-  if (!run(s, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &M, &x)) {
+  if (!run(s, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, &M, &x)) {
     /* the cubic B-spline curve: two-ring {1, 1/2, 1/4, 1/8, 1/8}, one-ring
      * {1, 1/2, 1/4} */
     const int two[5] = {0, 1, 2, 3, 3}, one[3] = {0, 1, 2};
@@ -215,7 +215,7 @@ static void test_tetoct_face(void) {
   ss_scheme *s = ss_testcase_scheme("tetoct");
   ss_local *M;
   ss_exact *x;
-  if (!run(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, &M, &x)) {
+  if (!run(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, &M, &x)) {
     const double want[10] = {1, .5, .5, .5, .25, .25, .25, .25, .25, .25};
     for (int i = 0; i < 10; i++) {
       const ss_exact_root *r = lambda(x, i);
@@ -238,7 +238,7 @@ static void test_ties(void) {
   ss_local *M;
   ss_exact *x;
   /* finding 2: along an MLCA edge of valence 8, lambda3 = lambda4 = 1/2 */
-  if (!run(mlca, (ss_case){SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS}, &M, &x)) {
+  if (!run(mlca, (ss_case){SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS, 0}, &M, &x)) {
     CHECK(verdict_is(x, SS_FAIL, 1) && strstr(reason(x).s, "exact tie"),
           "MLCA edge 8: expected a certified exact tie, got %s", reason(x).s);
     const ss_exact_root *l3 = lambda(x, 3), *l4 = lambda(x, 4);
@@ -254,9 +254,9 @@ static void test_ties(void) {
   struct {
     ss_scheme *s;
     ss_case c;
-  } dbl[3] = {{mlca, {SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}},
-              {to, {SS_CASE_EDGE, NULL, 6, SS_DIAG_BFS}},
-              {to, {SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS}}};
+  } dbl[3] = {{mlca, {SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}},
+              {to, {SS_CASE_EDGE, NULL, 6, SS_DIAG_BFS, 0}},
+              {to, {SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS, 0}}};
   for (int i = 0; i < 3; i++) {
     if (run(dbl[i].s, dbl[i].c, &M, &x)) continue;
     const ss_exact_root *l1 = lambda(x, 1);
@@ -331,7 +331,7 @@ static void test_catmull_clark(void) {
   for (int n = 3; n <= 8; n++) {
     ss_local *M;
     ss_exact *x;
-    if (run(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, &M, &x))
+    if (run(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0}, &M, &x))
       continue;
     CHECK(verdict_is(x, SS_PASS, 1), "Catmull-Clark %d: %s", n, reason(x).s);
     const ss_exact_root *l1 = lambda(x, 1);
@@ -698,7 +698,7 @@ static void test_refused(void) {
   ss_scheme *loop = ss_testcase_scheme("loop");
   ss_local *M = NULL;
   ss_error err = {0};
-  ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS};
+  ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0};
   if (!ss_local_new(loop, &c, &M, &err)) {
     ss_exact *x = NULL;
     ss_exact_opts o = ss_exact_defaults(2);
@@ -903,7 +903,7 @@ static int visit(const ss_link *l, void *vctx) {
   links_ctx *ctx = vctx;
   ss_local *M;
   ss_exact *x;
-  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &M, &x)) return 0;
+  if (run(ctx->s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &M, &x)) return 0;
   char what[64];
   snprintf(what, sizeof what, "MLCA vertex k = %d (link %d)", l->k, ctx->count);
   ctx->count++;
@@ -934,11 +934,11 @@ static void test_basis(void) {
     ss_case c;
     const char *what;
   } cases[5] = {
-      {to, {SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, "tet/oct vertex (octahedron)"},
-      {to, {SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "tet/oct face"},
-      {ctx.s, {SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, "MLCA edge 5"},
-      {ctx.s, {SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, "regular MLCA vertex"},
-      {cc, {SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS}, "Catmull-Clark 5"}};
+      {to, {SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, "tet/oct vertex (octahedron)"},
+      {to, {SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "tet/oct face"},
+      {ctx.s, {SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, "MLCA edge 5"},
+      {ctx.s, {SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, "regular MLCA vertex"},
+      {cc, {SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0}, "Catmull-Clark 5"}};
   for (int i = 0; i < 5; i++) {
     ss_local *M;
     ss_exact *x;
@@ -1037,7 +1037,7 @@ static int bound_visit(const ss_link *l, void *vctx) {
   char what[96];
   snprintf(what, sizeof what, "%s vertex k = %d (link %d)", ss_scheme_name(ctx->s), l->k,
            ctx->cases);
-  bound_case(ctx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, what);
+  bound_case(ctx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, what);
   return 0;
 }
 
@@ -1051,7 +1051,7 @@ static void test_rounding_bound(void) {
     for (int n = 3; n <= 10; n++) {
       char what[64];
       snprintf(what, sizeof what, "%s edge %d", names[j], n);
-      bound_case(&ctx, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, what);
+      bound_case(&ctx, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0}, what);
     }
     /* 1 + 1 + 2 + 5 + 14 + 50 links with k = 4..9, 8 edges */
     CHECK(ctx.cases == 81 && ctx.raised == 2 * 81 && ctx.flips == 0,
@@ -1091,7 +1091,7 @@ static void test_relabel(void) {
       ss_link_parse("8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb", &l, &err), &err);
   ss_local *M;
   ss_exact *x;
-  if (!run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &M, &x)) {
+  if (!run(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &M, &x)) {
     char *ref = spectrum_text(x), small[16];
     ss_exact_minpoly(x, 1, small, sizeof small); /* degree 10: does not fit */
     CHECK(strlen(small) == 15 && !strcmp(small + 12, "..."), "truncated minpoly \"%s\"",
@@ -1100,7 +1100,7 @@ static void test_relabel(void) {
       ss_link *q = ss_testlink_scrambled(l, 11u + (unsigned)t, t & 1);
       ss_local *M2;
       ss_exact *x2;
-      if (q && !run(s, (ss_case){SS_CASE_VERTEX, q, 0, SS_DIAG_BFS}, &M2, &x2)) {
+      if (q && !run(s, (ss_case){SS_CASE_VERTEX, q, 0, SS_DIAG_BFS, 0}, &M2, &x2)) {
         char *got = spectrum_text(x2);
         CHECK(!strcmp(ref, got),
               "relabelled (seed %d, mirror %d): spectrum differs:\n%s\n%s", 11 + t, t & 1,
@@ -1134,7 +1134,7 @@ static void test_timing(void) {
       continue;
     }
     ss_local *M = NULL;
-    ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+    ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
     if (!ss_local_new(s, &c, &M, &err)) {
       ss_exact_opts o = ss_exact_defaults(3);
       ss_exact *x = NULL;

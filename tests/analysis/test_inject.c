@@ -160,7 +160,7 @@ static int run_named(const char *scheme, const char *link, ss_testcase *out) {
     return -1;
   }
   const int st =
-      ss_testcase_run(scheme, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, out);
+      ss_testcase_run(scheme, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, out);
   ss_link_free(l);
   return st;
 }
@@ -438,7 +438,8 @@ static void test_charmaps(void) {
     const char *schemes[2] = {"catmull-clark", "loop"};
     for (int s = 0; s < 2; s++) {
       if (ss_testcase_run(schemes[s],
-                          (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, &res))
+                          (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0},
+                          &res))
         continue;
       const ss_cell_type want = s == 0 ? SS_QUAD : SS_TRIANGLE;
       CHECK(res.cm->ctype[0] == want, "%s: cells are %s", schemes[s],
@@ -448,7 +449,7 @@ static void test_charmaps(void) {
       ss_testcase_free(&res);
     }
   }
-  if (!ss_testcase_run("mlca", (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, &res)) {
+  if (!ss_testcase_run("mlca", (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, &res)) {
     check_pass("mlca edge n = 5", &res);
     ss_testcase_free(&res);
   }
@@ -462,7 +463,8 @@ static void test_degree_two(void) {
   ss_injectivity r;
   /* Catmull–Clark valence 8: each point's angle about the centre doubled */
   if (!ss_testcase_run("catmull-clark",
-                       (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 8, SS_DIAG_BFS}, &res)) {
+                       (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 8, SS_DIAG_BFS, 0},
+                       &res)) {
     net m = charmap_net(res.cm);
     CHECK(!whiten(&m, 0), "whiten");
     const double *p = m.x;
@@ -505,7 +507,7 @@ static void test_degree_two(void) {
   ss_link *l = NULL;
   ss_star *st = NULL;
   if (ss_scheme_new("mlca", &mlca, &err) || ss_link_named("bipyramid:8", &l, &err) ||
-      ss_local_star(mlca, &(ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &st, &err)) {
+      ss_local_star(mlca, &(ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &st, &err)) {
     CHECK(0, "bipyramid:8 star: %s", err.msg);
   } else {
     const ss_cx *cx = st->cx;
@@ -655,11 +657,12 @@ static void test_moved(void) {
     ss_testcase_free(&res);
   }
   if (!ss_testcase_run("catmull-clark",
-                       (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS}, &res)) {
+                       (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0},
+                       &res)) {
     check_moved("catmull-clark n = 5", &res);
     ss_testcase_free(&res);
   }
-  if (!ss_testcase_run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 7, SS_DIAG_BFS},
+  if (!ss_testcase_run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 7, SS_DIAG_BFS, 0},
                        &res)) {
     check_moved("loop n = 7", &res);
     ss_testcase_free(&res);
@@ -804,7 +807,8 @@ static double now(void) {
 
 static void time_case(const char *what, const ss_link *l) {
   ss_testcase res;
-  if (ss_testcase_run("mlca", (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &res)) return;
+  if (ss_testcase_run("mlca", (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &res))
+    return;
   const ss_charmap *cm = res.cm;
   ss_injectivity r;
   ss_error err = {0};

@@ -155,7 +155,7 @@ static void test_surfaces(void) {
     const double lcc = (5 + c2 + c1 * sqrt(2 * (9 + c2))) / 16, lloop = 3.0 / 8 + c2 / 4;
     ss_local *Mm, *Mc, *Ml;
     ss_eig *em, *ec, *el;
-    ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS};
+    ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0};
     if (analyse(ml, c, &Mm, &em) || analyse(cc, c, &Mc, &ec) || analyse(lp, c, &Ml, &el))
       continue;
     CHECK(Mm->n2 == (size_t)(6 * n + 1) && Mm->n1 == (size_t)(2 * n + 1),
@@ -224,7 +224,7 @@ static void test_mlca_regular(void) {
   ss_link_named("octahedron", &oct, &err);
   ss_local *M;
   ss_eig *e;
-  if (!analyse(s, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &M, &e)) {
+  if (!analyse(s, (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, &M, &e)) {
     CHECK(M->n2 == 125 && M->n1 == 27, "regular hex vertex: two-ring %zu, one-ring %zu",
           M->n2, M->n1);
     /* the tensor cube of the curve's two-ring spectrum */
@@ -281,9 +281,9 @@ static void test_mlca_edges(void) {
   for (int n = 3; n <= 8; n++) {
     ss_local *M2, *M3;
     ss_eig *e2, *e3;
-    if (analyse(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, &M2, &e2))
+    if (analyse(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0}, &M2, &e2))
       continue;
-    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &M3, &e3)) continue;
+    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0}, &M3, &e3)) continue;
     CHECK(M3->n2 == 5 * M2->n2 && M3->n1 == 3 * M2->n1,
           "edge n=%d: two-ring %zu one-ring %zu", n, M3->n2, M3->n1);
     const size_t N = e2->n * 5;
@@ -313,7 +313,7 @@ static void test_tetoct(void) {
   ss_scheme *s = scheme("tetoct");
   ss_local *M;
   ss_eig *e;
-  if (!analyse(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, &M, &e)) {
+  if (!analyse(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, &M, &e)) {
     CHECK_CLOSE(e->val[0].re, 1.0, 1e-10, "face lambda0");
     for (int i = 1; i <= 3; i++)
       CHECK_CLOSE(e->val[i].re, 0.5, 1e-10, "face lambda%d", i);
@@ -326,7 +326,7 @@ static void test_tetoct(void) {
     ss_local_free(M);
   }
   for (int n = 3; n <= 10; n++) {
-    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &M, &e)) continue;
+    if (analyse(s, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0}, &M, &e)) continue;
     /* leading four: {1, l, l, 1/2} as a multiset, l real and not 1/2 */
     int half = -1;
     for (int i = 1; i <= 3; i++)
@@ -363,7 +363,8 @@ static int visit(const ss_link *l, void *vctx) {
   for (int si = 0; si < 2; si++) {
     ss_local *M;
     ss_eig *e;
-    if (analyse(ss[si], (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &M, &e)) continue;
+    if (analyse(ss[si], (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &M, &e))
+      continue;
     if (si == 0)
       CHECK(M->n2 == (size_t)(30 * k - 55) && M->n1 == (size_t)(6 * k - 9),
             "mlca k=%d: two-ring %zu one-ring %zu", k, M->n2, M->n1);
@@ -376,7 +377,8 @@ static int visit(const ss_link *l, void *vctx) {
       ss_link *r = ss_testlink_scrambled(l, (unsigned)(ctx->count * 7 + mirror), mirror);
       ss_local *M2;
       ss_eig *e2;
-      if (r && !analyse(ss[si], (ss_case){SS_CASE_VERTEX, r, 0, SS_DIAG_BFS}, &M2, &e2)) {
+      if (r &&
+          !analyse(ss[si], (ss_case){SS_CASE_VERTEX, r, 0, SS_DIAG_BFS, 0}, &M2, &e2)) {
         double *v = values(e2);
         CHECK(M2->n2 == M->n2 && M2->n1 == M->n1 && mismatches(v, ref, e->n, 1e-9) == 0,
               "%s k=%d link %d: spectrum changes under relabelling (mirror %d)",
@@ -524,8 +526,8 @@ static void test_cross(void) {
       CHECK(0, "%s: %s", links[i], err.msg);
       continue;
     }
-    cross_check(ml, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, links[i]);
-    cross_check(to, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, links[i]);
+    cross_check(ml, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, links[i]);
+    cross_check(to, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, links[i]);
     ss_link_free(l);
   }
   {
@@ -534,31 +536,32 @@ static void test_cross(void) {
     ss_link *l = NULL;
     ss_error err = {0};
     if (!ss_link_parse("bipyramid:5", &l, &err))
-      cross_check(bx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS},
+      cross_check(bx, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0},
                   "boxspline bipyramid:5");
-    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, "boxspline edge 5");
-    cross_check(bx, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "boxspline face");
-    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 6, SS_DIAG_SKEW},
+    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, "boxspline edge 5");
+    cross_check(bx, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "boxspline face");
+    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 6, SS_DIAG_SKEW, 0},
                 "boxspline edge 6 skew");
-    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 6, SS_DIAG_CENTER},
+    cross_check(bx, (ss_case){SS_CASE_EDGE, NULL, 6, SS_DIAG_CENTER, 0},
                 "boxspline edge 6 center");
     ss_scheme *av = scheme("boxspline-avg");
     if (l)
-      cross_check(av, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS},
+      cross_check(av, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0},
                   "boxspline-avg bipyramid:5");
-    cross_check(av, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS},
+    cross_check(av, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0},
                 "boxspline-avg edge 5");
-    cross_check(av, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "boxspline-avg face");
+    cross_check(av, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0},
+                "boxspline-avg face");
     ss_link_free(l);
     ss_scheme_free(av);
     ss_scheme_free(bx);
   }
-  cross_check(ml, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, "mlca edge 5");
-  cross_check(to, (ss_case){SS_CASE_EDGE, NULL, 7, SS_DIAG_BFS}, "tetoct edge 7");
-  cross_check(to, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "tetoct face");
-  cross_check(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS},
+  cross_check(ml, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, "mlca edge 5");
+  cross_check(to, (ss_case){SS_CASE_EDGE, NULL, 7, SS_DIAG_BFS, 0}, "tetoct edge 7");
+  cross_check(to, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "tetoct face");
+  cross_check(cc, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0},
               "catmull-clark 5");
-  cross_check(lp, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 7, SS_DIAG_BFS}, "loop 7");
+  cross_check(lp, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 7, SS_DIAG_BFS, 0}, "loop 7");
   ss_scheme_free(ml), ss_scheme_free(to), ss_scheme_free(cc), ss_scheme_free(lp);
 }
 
@@ -673,8 +676,8 @@ static void test_edge_points(void) {
     ss_link_free(q);
     ss_local *Mv = NULL, *Me = NULL;
     ss_eig *ev = NULL, *ee = NULL;
-    if (!analyse(mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, &Mv, &ev) &&
-        !analyse(mlca, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS}, &Me, &ee)) {
+    if (!analyse(mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &Mv, &ev) &&
+        !analyse(mlca, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0}, &Me, &ee)) {
       CHECK(Mv->n2 == Me->n2 && Mv->n1 == Me->n1,
             "%s: vertex two-ring %zu / one-ring %zu, edge %zu / %zu", name, Mv->n2,
             Mv->n1, Me->n2, Me->n1);
@@ -766,7 +769,7 @@ static void test_estimate(void) {
         continue;
       }
       snprintf(what, sizeof what, "vertex k = %d", l->k);
-      estimate_rows(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, what);
+      estimate_rows(s, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, what);
       ss_link_free(l);
     }
     const int box = ss_scheme_reads_diagonals(s);
@@ -776,15 +779,16 @@ static void test_estimate(void) {
                                : d == 1 ? SS_DIAG_SKEW
                                         : SS_DIAG_CENTER;
         snprintf(what, sizeof what, "edge %d, diagonals %s", n, ss_diag_name(m));
-        estimate_rows(s, (ss_case){SS_CASE_EDGE, NULL, n, m}, what);
+        estimate_rows(s, (ss_case){SS_CASE_EDGE, NULL, n, m, 0}, what);
       }
     }
     if (ss_scheme_split_kind(s) == SS_SPLIT_TETOCT && vol)
-      estimate_rows(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS}, "face");
+      estimate_rows(s, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "face");
     for (int n = 3; n <= 8; n += 1 + (n > 4))
       if (ss_scheme_accepts(s, SS_QUAD) || ss_scheme_accepts(s, SS_TRIANGLE)) {
         snprintf(what, sizeof what, "surface vertex %d", n);
-        estimate_rows(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS}, what);
+        estimate_rows(s, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0},
+                      what);
       }
     ss_scheme_free(s);
   }
@@ -795,7 +799,7 @@ static void test_estimate(void) {
   ss_local_opts o = ss_local_defaults();
   o.max_bytes = 1e9;
   ss_local *M = NULL;
-  const ss_case big = {SS_CASE_EDGE, NULL, 1000, SS_DIAG_BFS};
+  const ss_case big = {SS_CASE_EDGE, NULL, 1000, SS_DIAG_BFS, 0};
   CHECK(ss_local_new_opts(mlca, &big, &o, &M, &err) == SS_ENOMEM && !M &&
             strstr(err.msg, "needs about 30005 rows of S") &&
             strstr(err.msg, "budget of 1.0 GB"),
@@ -807,9 +811,9 @@ static void test_estimate(void) {
   const struct {
     const ss_scheme *s;
     ss_case c;
-  } mem[] = {{mlca, {SS_CASE_EDGE, NULL, 40, SS_DIAG_BFS}},
-             {tetoct, {SS_CASE_EDGE, NULL, 60, SS_DIAG_BFS}},
-             {mlca, {SS_CASE_SURFACE_VERTEX, NULL, 400, SS_DIAG_BFS}}};
+  } mem[] = {{mlca, {SS_CASE_EDGE, NULL, 40, SS_DIAG_BFS, 0}},
+             {tetoct, {SS_CASE_EDGE, NULL, 60, SS_DIAG_BFS, 0}},
+             {mlca, {SS_CASE_SURFACE_VERTEX, NULL, 400, SS_DIAG_BFS, 0}}};
   for (size_t i = 0; i < sizeof mem / sizeof mem[0]; i++) {
     ss_local_cost k;
     if (ss_local_estimate(mem[i].s, &mem[i].c, &k, &err)) {

@@ -49,7 +49,7 @@ static int visit(const ss_link *l, void *vc) {
   ctx *c = vc;
   if (l->k == 12 && c->seen12++ % c->stride12 != 0) return 0;
   ss_error err = {0};
-  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
   ss_local *M = NULL;
   ss_eig *e = NULL;
   double t0 = now();

@@ -74,7 +74,7 @@ int main(int argc, char **argv) {
           fprintf(stderr, "bench_certify: %s\n", err.msg);
           return 1;
         }
-        const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+        const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
         ss_result rd, rc;
         td += best(s, &c, 0, &rd);
         tc += best(s, &c, 1, &rc);

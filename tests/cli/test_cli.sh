@@ -59,7 +59,22 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\
 expect 2 "non-manifold edge: the edge between vertices 1 and 2 is held by 3 triangles" "$exe" subdivide --scheme quasi48 "$tmp/nm.obj" -o "$tmp/q.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 1 3\n' > "$tmp/pillow.obj"
 expect 2 "doubled triangle: both triangles on the edge between vertices 1 and 2 have the third corner 3" "$exe" subdivide --scheme quasi48 "$tmp/pillow.obj" -o "$tmp/q.obj"
-expect 2 "not implemented yet" "$exe" analyze --scheme quasi48 --surface-vertex 5
+# quasi48 analysis (issue 19): surface vertices of class 4 or 8 only
+expect 0 "valence 8, 4-8 class 8" "$exe" analyze --scheme quasi48 --surface-vertex 8 --eigenvalues 4
+expect 0 "valence 5, 4-8 class 4" "$exe" analyze --scheme quasi48 --surface-vertex 5 --class 4 --eigenvalues 4
+expect 0 '"class":8' "$exe" analyze --scheme quasi48 --surface-vertex 6 --class 8 --format json
+expect 0 "MatrixMarket" "$exe" matrix --scheme quasi48 --surface-vertex 3
+expect 2 "class-8 vertex of a 4-8 mesh has an even valence of at least 6, not 7" "$exe" analyze --scheme quasi48 --surface-vertex 7 --class 8
+expect 2 "class-8 vertex of a 4-8 mesh has an even valence of at least 6, not 4" "$exe" analyze --scheme quasi48 --surface-vertex 4 --class 8
+expect 2 "class-8 vertex .* not 9" "$exe" matrix --scheme quasi48 --surface-vertex 9 --class 8
+expect 2 "--class: expected 4 or 8, not '5'" "$exe" analyze --scheme quasi48 --surface-vertex 6 --class 5
+expect 2 "--class: expected 4 or 8, not 'eight'" "$exe" analyze --scheme quasi48 --surface-vertex 6 --class eight
+expect 2 "option --class needs a value" "$exe" analyze --scheme quasi48 --surface-vertex 6 --class
+expect 2 "--class: scheme loop has no 4-8 vertex classes" "$exe" analyze --scheme loop --surface-vertex 6 --class 4
+expect 2 "--class is the 4-8 class of a quasi48 --surface-vertex" "$exe" analyze --scheme quasi48 --vertex octahedron --class 4
+expect 2 "scheme quasi48 does not support the vertex case" "$exe" analyze --scheme quasi48 --vertex octahedron
+expect 2 "scheme quasi48 does not support the edge case" "$exe" analyze --scheme quasi48 --edge 5
+expect 2 "only its surface vertices are analysed" "$exe" sweep --scheme quasi48 --vertices 4..5
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/patch3x3.mesh" -o "$tmp/f.mesh"
 expect 0 "tetoct level 1" "$exe" subdivide --scheme tetoct "$m/tetstar-icosahedron.mesh" -o "$tmp/g.mesh"
 expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/hexstar-icosahedron.mesh" -o "$tmp/h.mesh"

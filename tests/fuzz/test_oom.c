@@ -139,7 +139,7 @@ static ss_status op_result(const void *arg, double *digest, ss_error *err) {
   ss_status st = ss_scheme_new(a->scheme, &s, err);
   if (st == SS_OK && a->link) st = ss_link_named(a->link, &l, err);
   if (st == SS_OK) {
-    ss_case c = {a->kind, l, a->n, SS_DIAG_BFS};
+    ss_case c = {a->kind, l, a->n, SS_DIAG_BFS, 0};
     ss_result_opts o = ss_result_defaults();
     ss_result r;
     st = ss_result_compute(s, &c, &o, &r, err);
@@ -261,7 +261,7 @@ int main(int argc, char **argv) {
     ss_scheme *s = NULL;
     ss_result r;
     REQUIRE_OK(ss_scheme_new("mlca", &s, &err), &err);
-    ss_case c = {SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS};
+    ss_case c = {SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS, 0};
     ss_result_opts o = ss_result_defaults();
     REQUIRE_OK(ss_result_compute(s, &c, &o, &r, &err), &err);
     char db[] = "/tmp/ss_oom_XXXXXX";

@@ -64,7 +64,7 @@ static void test_png_svg(const char *dir) {
   ss_error err = {0};
   ss_testcase r;
   if (ss_link_parse("tetrahedron", &oct, &err) ||
-      ss_testcase_run("mlca", (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS}, &r)) {
+      ss_testcase_run("mlca", (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0}, &r)) {
     ss_link_free(oct);
     return;
   }
@@ -131,7 +131,7 @@ static void test_png_svg(const char *dir) {
   ss_testcase_free(&r);
   ss_link_free(oct);
   /* a surface case draws too */
-  if (!ss_testcase_run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS},
+  if (!ss_testcase_run("loop", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0},
                        &r)) {
     o = ss_report_draw_defaults();
     CHECK(ss_report_draw(r.cm, &r.r, &o, png, &err) == SS_OK, "surface png: %s", err.msg);
@@ -146,7 +146,7 @@ static void test_png_svg(const char *dir) {
  * signs, in the map's orientation, read back. */
 static void test_vtk(const char *dir) {
   ss_testcase r;
-  if (ss_testcase_run("tetoct", (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS}, &r))
+  if (ss_testcase_run("tetoct", (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS, 0}, &r))
     return;
   ss_error err = {0};
   ss_report_draw_opts o = ss_report_draw_defaults();
@@ -201,9 +201,9 @@ static void test_vtk(const char *dir) {
  * the first point away from it. */
 static void test_frame(void) {
   const char *sch[] = {"mlca", "tetoct", "loop"};
-  const ss_case cs[] = {{SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS},
-                        {SS_CASE_FACE, NULL, 0, SS_DIAG_BFS},
-                        {SS_CASE_SURFACE_VERTEX, NULL, 6, SS_DIAG_BFS}};
+  const ss_case cs[] = {{SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS, 0},
+                        {SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0},
+                        {SS_CASE_SURFACE_VERTEX, NULL, 6, SS_DIAG_BFS, 0}};
   for (int t = 0; t < 3; t++) {
     ss_testcase r;
     if (ss_testcase_run(sch[t], cs[t], &r)) continue;

@@ -83,18 +83,20 @@ static int make_store(const char *path, computed *all) {
       REQUIRE_OK(ss_link_parse(names[i], &l, &err), &err);
     else
       REQUIRE_OK(ss_link_named(names[i], &l, &err), &err);
-    add_case(st, im, ident_mlca, mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, all);
+    add_case(st, im, ident_mlca, mlca, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0},
+             all);
     if (i < 2)
-      add_case(st, ib, ident_box, box, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS}, all);
+      add_case(st, ib, ident_box, box, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0},
+               all);
     ss_link_free(l);
   }
   for (int n = 3; n <= 8; n++)
-    add_case(st, im, ident_mlca, mlca, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS},
+    add_case(st, im, ident_mlca, mlca, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0},
              all);
-  add_case(st, ib, ident_box, box, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS}, all);
-  add_case(st, it, ident_tetoct, tetoct, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS},
+  add_case(st, ib, ident_box, box, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, all);
+  add_case(st, it, ident_tetoct, tetoct, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0},
            all);
-  add_case(st, it, ident_tetoct, tetoct, (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS},
+  add_case(st, it, ident_tetoct, tetoct, (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS, 0},
            all);
   ss_scheme_free(mlca);
   ss_scheme_free(box);

@@ -30,13 +30,13 @@ expect 2 "badref/mlca-hexahedral-subdivision.tsv:$line: value '0.5.1'" "$exe" re
 
 # the full run (about 10 s)
 out=$tmp/out
-SS_EXPECT_TIMEOUT=280 expect 0 "reproduce: wrote 19 tables" "$exe" reproduce --reference "$ref" --out "$out"
+SS_EXPECT_TIMEOUT=280 expect 0 "reproduce: wrote 20 tables" "$exe" reproduce --reference "$ref" --out "$out"
 
 tables="mlca-vertices-k4-8 mlca-vertices-k9-10 tetoct-vertices-k4-7 tetoct-vertices-k8-10 tetoct-edges-3-10 tetoct-face
 mlca-edges-3-8 mlca-surface-vertices-3-8 catmull-clark-surface-vertices-3-8
 boxspline-vertices-5-22 boxspline-vertices-5-22-proper boxspline-edges-4-9-skew
 boxspline-edges-4-9-center boxspline-avg-vertices-5-22 boxspline-avg-edges-4-9
-ccsolid-vertices-k4-9 ccsolid-edges-3-10"
+ccsolid-vertices-k4-9 ccsolid-edges-3-10 quasi48-surface-vertices-3-16"
 for t in $tables; do
   checks=$((checks + 1))
   for f in "$out/$t.md" "$out/$t.tsv" "$out/data/$t.jsonl"; do
@@ -60,7 +60,7 @@ grep -A2 '^!\[mlca-vertex-regular.png\]' "$out/figures/README.md" |
   grep -q 'λ1..3 = 0.500000 0.500000 0.500000; regularity: pass' ||
   fail "caption of the regular MLCA vertex"
 checks=$((checks + 1))
-[ "$(ls "$out"/data/*.jsonl | wc -l)" -eq 19 ] || fail "expected 19 JSON-lines files"
+[ "$(ls "$out"/data/*.jsonl | wc -l)" -eq 20 ] || fail "expected 20 JSON-lines files"
 # the ccsolid tables put MLCA beside every case
 for t in ccsolid-vertices-k4-9 ccsolid-edges-3-10; do
   checks=$((checks + 1))
@@ -116,7 +116,8 @@ tetoct-edges-3-10: 8 of 8 cases pass both conditions; 30 quoted values: 24 match
 tetoct-face: 1 of 1 cases pass both conditions; 12 quoted values: 12 match, 0 differ; 0 rows not quoted
 tetoct-vertices-k4-7: 9 of 9 cases pass both conditions; 18 quoted values: 18 match, 0 differ; 0 rows not quoted
 ccsolid-edges-3-10: 5 of 8 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 8 rows not quoted
-ccsolid-vertices-k4-9: 70 of 73 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 73 rows not quoted"
+ccsolid-vertices-k4-9: 70 of 73 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 73 rows not quoted
+quasi48-surface-vertices-3-16: 20 of 20 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 20 rows not quoted"
 got_summary=$(cd "$out" && for f in *.tsv; do
   case $f in (*-k9-10.tsv | *-k8-10.tsv | *-jsr.tsv) continue ;; esac # checked below
   sed -n 's/^# summary: /'"${f%.tsv}"': /p' "$f"
@@ -234,6 +235,37 @@ for n in range(3, 9):
     s = vals(surf[n], 16)
     prod = sorted((a * b for a in s for b in (1, 0.5, 0.25, 0.125)), reverse=True)
     close(vals(edges[n], 8), prod[:8], f"edge {n} vs surface {n} x curve")
+if bad:
+    print("\n".join(bad)); sys.exit(1)
+PYEOF
+# quasi48 (issue 19), derived without the program: the regular 4-8 vertex
+# (class 4 with valence 4, class 8 with valence 8) generates cubics (the dyadic
+# symbol's zeros at the other cosets are of order 4, README "Quasi 4-8
+# surfaces"), so its leading eigenvalues are 1, 1/2 x2, 1/4 x3, 1/8 x4; a
+# class-4 vertex of valence n is a class-8 vertex of valence 2n after one
+# binary step, so those rows agree (n = 3..8); quasi48 is shown beside Loop
+# and Catmull-Clark at the same valences.
+for vs in loop catmull-clark; do
+  checks=$((checks + 1))
+  grep -q "^## Beside $vs" "$out/quasi48-surface-vertices-3-16.md" ||
+    fail "quasi48-surface-vertices-3-16.md: no side-by-side section for $vs"
+done
+checks=$((checks + 1))
+python3 - "$out/data/quasi48-surface-vertices-3-16.jsonl" <<'PYEOF' || fail "reproduced quasi48 values differ from the 4-8 closed forms"
+import json, sys
+rows = {(o["valence"], o["class"]): o for o in map(json.loads, open(sys.argv[1]))}
+bad = []
+want = [1.0, 0.5, 0.5] + [0.25] * 3 + [0.125] * 4
+for key in [(4, 4), (8, 8)]:
+    ev = [e["re"] for e in rows[key]["eigenvalues"]][:10]
+    if any(abs(a - b) > 1e-9 for a, b in zip(ev, want)) or len(ev) != 10:
+        bad.append(f"regular {key}: {ev}")
+for n in range(3, 9):
+    a, b = rows.get((n, 4)), rows.get((2 * n, 8))
+    if not a or not b or [e["re"] for e in a["eigenvalues"]] != [e["re"] for e in b["eigenvalues"]]:
+        bad.append(f"class 4 valence {n} differs from class 8 valence {2 * n}")
+if sorted(rows) != sorted([(n, 4) for n in range(3, 17)] + [(n, 8) for n in range(6, 17, 2)]):
+    bad.append(f"cases: {sorted(rows)}")
 if bad:
     print("\n".join(bad)); sys.exit(1)
 PYEOF

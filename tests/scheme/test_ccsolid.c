@@ -98,7 +98,7 @@ static void test_regular_vertex(void) {
     CHECK(0, "octahedron: %s", err.msg);
     return;
   }
-  ss_local *M = local("ccsolid", (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS});
+  ss_local *M = local("ccsolid", (ss_case){SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0});
   CHECK(M->n2 == 125 && M->n1 == 27, "regular vertex: two-ring %zu, one-ring %zu", M->n2,
         M->n1);
   double C[25], cr[5], ci[5];
@@ -701,9 +701,9 @@ static void print_leading(size_t m, const double *wr, const double *wi,
  * w != 0 and differ (n != 4) on w = 0.  Checked: the rows, and the spectra
  * as spec S + spec T_0 = spec T + spec S_0 (the _0 blocks are mode 0). */
 static void check_edge(int n) {
-  ss_local *S = local("ccsolid", (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS});
+  ss_local *S = local("ccsolid", (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0});
   ss_local *Q =
-      local("catmull-clark", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS});
+      local("catmull-clark", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0});
   const size_t n2 = S->n2, q2 = Q->n2;
   CHECK(n2 == 5 * q2, "edge %d: two-ring %zu, surface two-ring %zu", n, n2, q2);
   if (n2 != 5 * q2) goto done;

@@ -27,13 +27,14 @@
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_matrix.h>
 
+#include "ss_mask48.h"
 #include "ss_mesh.h"
 #include "ss_optest.h"
 #include "ss_split.h"
 #include "ss_triedge.h"
 
-#define HALF 6  /* the patch is [-HALF, HALF]^2 */
-#define G    17 /* mask grid: offsets -4..4 in steps of 1/2, index 2x + 8 */
+#define HALF 6           /* the patch is [-HALF, HALF]^2 */
+#define G    SS_MASK48_G /* mask grid: offsets -4..4 in steps of 1/2, index 2x + 8 */
 
 /* The regular 4-8 patch [-HALF, HALF]^2; vertex (i, j) has index
  * (i + HALF) * (2 HALF + 1) + (j + HALF). */
@@ -60,17 +61,6 @@ static ss_cx *lattice48(void) {
     }
 #undef VID
   return cx;
-}
-
-/* out = a * b on the half-integer grid (both G x G, centred). */
-static void convolve(const double *a, const double *b, double *out) {
-  memset(out, 0, G * G * sizeof *out);
-  for (int p = 0; p < G * G; p++)
-    for (int q = 0; q < G * G; q++) {
-      if (a[p] == 0 || b[q] == 0) continue;
-      int x = p / G + q / G - 8, y = p % G + q % G - 8;
-      if (x >= 0 && x < G && y >= 0 && y < G) out[x * G + y] += a[p] * b[q];
-    }
 }
 
 /* Split level by level with the scheme, keeping the nominal position of each
@@ -152,14 +142,10 @@ static void test_lattice(void) {
   CHECK(rows_bad == 0, "%zu rows of the two-level operator do not sum to 1", rows_bad);
   /* the closed-form mask 4 (h1*h1*h2*h2) */
   static double h1[G * G], h2[G * G], t[G * G], u[G * G], mask[G * G];
-  h1[8 * G + 8] = h2[8 * G + 8] = 0.5;
-  for (int s1 = -1; s1 <= 1; s1 += 2)
-    for (int s2 = -1; s2 <= 1; s2 += 2)
-      h1[(8 + s1) * G + 8 + s2] = 1.0 / 8.0;
-  h2[9 * G + 8] = h2[7 * G + 8] = h2[8 * G + 9] = h2[8 * G + 7] = 1.0 / 8.0;
-  convolve(h1, h1, t);
-  convolve(t, h2, u);
-  convolve(u, h2, mask);
+  ss_mask48_halves(h1, h2);
+  ss_mask48_convolve(h1, h1, t);
+  ss_mask48_convolve(t, h2, u);
+  ss_mask48_convolve(u, h2, mask);
   /* fine vertex by its nominal lattice point (2x, 2y integers) */
   const int m = 4 * HALF + 1;
   size_t *at = malloc((size_t)m * (size_t)m * sizeof *at);

@@ -99,11 +99,11 @@ int main(void) {
    * eigenvalue condition with no map (edge 8), box-spline with diagonals */
   const ss_result_opts ro = ss_result_defaults();
   ss_result r[NCASES];
-  const ss_case cases[NCASES] = {{SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS},
-                                 {SS_CASE_VERTEX, k8, 0, SS_DIAG_BFS},
-                                 {SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS},
-                                 {SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS},
-                                 {SS_CASE_VERTEX, tet, 0, SS_DIAG_BFS}};
+  const ss_case cases[NCASES] = {{SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0},
+                                 {SS_CASE_VERTEX, k8, 0, SS_DIAG_BFS, 0},
+                                 {SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS, 0},
+                                 {SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS, 0},
+                                 {SS_CASE_VERTEX, tet, 0, SS_DIAG_BFS, 0}};
   for (int i = 0; i < NCASES; i++)
     REQUIRE_OK(
         ss_result_compute(i == NCASES - 1 ? box : mlca, cases + i, &ro, r + i, &err),
