@@ -645,6 +645,19 @@ int main(int argc, char **argv) {
   claims("icosahedron after 4 Loop levels", big, 6);
   ss_scheme_free(loop);
   ss_cx_free(big);
+  /* a surface meshed by gmsh (tests/scheme/torus.geo, made at build time) */
+  if (argc > 2) {
+    ss_cx *torus = NULL;
+    REQUIRE_OK(ss_mesh_read(argv[2], SS_MESH_AUTO, &torus, &err), &err);
+    CHECK(torus->nc[SS_TRIANGLE] >= 5000 && torus->nc[SS_TRIANGLE] == ss_cx_ncells(torus),
+          "gmsh torus: %zu triangles, and nothing else", torus->nc[SS_TRIANGLE]);
+    test_split(torus);
+    claims("torus meshed by gmsh", torus, 6);
+    ss_cx_free(torus);
+  } else {
+    printf("SKIPPED part: the gmsh-made torus (no gmsh program or reader in this "
+           "build)\n");
+  }
   ss_cx_free(ico);
   return ss_test_done("test_quasi48");
 }
