@@ -142,6 +142,8 @@ ss_status ss_report_case_json(const ss_report_case *c, json_object **out, ss_err
                          json_object_new_int64((int64_t)c->inj->overlaps));
   json_object_object_add(r, "injectivity", in);
   if (c->eigenvectors) json_object_object_add(r, "eigenvectors", c->eigenvectors);
+  if (c->cls48) /* quasi48: the 4-8 class analysed */
+    json_object_object_add(r, "class", json_object_new_int(c->cls48));
   *out = r;
   return SS_OK;
 }
@@ -180,6 +182,8 @@ ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
   rc.n = c->n;
   rc.neig = o->neig;
   rc.diag = c->diag;
+  if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT && c->kind == SS_CASE_SURFACE_VERTEX)
+    rc.cls48 = ss_local_class48(c->n, c->cls);
   if (c->kind == SS_CASE_VERTEX) {
     /* the canonical labelling, as analyze, sweep and reproduce use it */
     if ((st = ss_link_canonical(c->link, &cl, NULL, err)) ||

@@ -43,6 +43,8 @@ typedef struct {
   const ss_exact *exact;     /* the exact spectrum, or NULL */
   json_object *eigenvectors; /* the "eigenvectors" value, or NULL; ownership
                                 passes to the result */
+  int cls48;                 /* quasi48 surface vertex: the 4-8 class analysed
+                                (ss_local_class48), written as "class"; else 0 */
 } ss_report_case;
 
 /* The JSON object of `analyze --format json` for case c, into *out (the

@@ -178,7 +178,7 @@ class _Case:
     """A scheme and a case, built in C; freed on exit (a context manager)."""
 
     def __init__(self, scheme, vertex=None, edge=None, face=False, surface_vertex=None,
-                 diagonals=None):
+                 diagonals=None, cls=None):
         given = [vertex is not None, edge is not None, bool(face), surface_vertex is not None]
         if sum(given) != 1:
             raise ValueError("give exactly one case: vertex=LINK, edge=N, face=True or "
@@ -206,6 +206,10 @@ class _Case:
                 self.c.kind = _FACE
             else:
                 self.c.kind, self.c.n = _SURFACE_VERTEX, int(surface_vertex)
+            if cls is not None:  # quasi48: the 4-8 class, as analyze --class
+                if cls not in (4, 8):
+                    raise ValueError("cls: expected 4 or 8, not %r" % (cls,))
+                self.c.cls = cls
         except BaseException:
             self.close()
             raise
@@ -299,13 +303,13 @@ def eigenvectors(scheme, k=4, tol=1e-6, **case):
 
 
 def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, diagonals=None,
-            tol=None, eigenvalues=None, depth=None, ring_levels=None, certify=False):
+            tol=None, eigenvalues=None, depth=None, ring_levels=None, certify=False, cls=None):
     """The dictionary `subspectra analyze --scheme SCHEME CASE --format json`
     prints (DESIGN section 7): matrix sizes, leading eigenvalues, the
     eigenvalue condition, regularity and injectivity of the characteristic
     map; options as analyze's --tol, --eigenvalues, --depth, --ring-levels,
-    --certify."""
-    with _Case(scheme, vertex, edge, face, surface_vertex, diagonals) as c:
+    --certify, and cls as --class (quasi48 surface vertices: 4 or 8)."""
+    with _Case(scheme, vertex, edge, face, surface_vertex, diagonals, cls) as c:
         o = _ffi.new("ss_report_analyze_opts *", _lib.ss_report_analyze_defaults())
         if tol is not None:
             o.tol = tol

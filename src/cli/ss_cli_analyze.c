@@ -476,15 +476,14 @@ static int print_json(const opts *o, const char *scheme, const char *canon, int 
                             di->improper,
                             ci->on ? &ci->c : NULL,
                             ci->exact,
-                            eigvec};
+                            eigvec,
+                            o->cls48};
   ss_error err = {0};
   json_object *r = NULL;
   if (ss_report_case_json(&c, &r, &err)) {
     fprintf(stderr, "subspectra %s: %s\n", o->cmd, err.msg);
     return ss_cli_exit_status(err.status);
   }
-  if (o->cls48) /* quasi48: the 4-8 class analysed */
-    json_object_object_add(r, "class", json_object_new_int(o->cls48));
   printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
                                                        JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(r);

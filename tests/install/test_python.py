@@ -93,6 +93,9 @@ cases = [
     ("mlca", {"vertex": "bipyramid:5"}, ["--vertex", "bipyramid:5"]),
     ("tetoct", {"vertex": "octahedron", "certify": True}, ["--vertex", "octahedron",
                                                           "--certify"]),
+    # quasi48: the 4-8 class, given and by default (valence 6: class 8)
+    ("quasi48", {"surface_vertex": 5, "cls": 4}, ["--surface-vertex", "5", "--class", "4"]),
+    ("quasi48", {"surface_vertex": 6}, ["--surface-vertex", "6"]),
 ]
 for scheme, case, args in cases:
     want = json.loads(cli("analyze", "--scheme", scheme, *args, "--format", "json"))
@@ -100,6 +103,8 @@ for scheme, case, args in cases:
     for d in (got, want):  # a wall-clock time, the one key that may differ
         d["eigen_condition"].pop("exact_seconds", None)
     same(got, want, "%s %s" % (scheme, case))
+    if scheme == "quasi48" and got.get("class") != case.get("cls", 8):
+        fail("quasi48 %s: class %r" % (case, got.get("class")))
     print("ok: analyze(%r, %s) == analyze --format json (%s)"
           % (scheme, case, got["eigen_condition"]["verdict"]))
 # options reach the library: fewer eigenvalues, as --eigenvalues
