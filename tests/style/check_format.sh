@@ -9,7 +9,7 @@ if [ -z "$cf" ]; then
   exit 77
 fi
 cd "$src" || exit 1
-files=$(find src enumerate analysis reports tests examples -name '*.[ch]' | sort)
+files=$(find src enumerate analysis reports cli tests examples -name '*.[ch]' | sort)
 n=$(wc -w <<<"$files")
 bad=0
 # one clang-format for all files (one per file took 30 s on a loaded machine);

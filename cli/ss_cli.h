@@ -102,7 +102,7 @@ char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno);
 double ss_cli_now(void);
 #ifndef SS_DATADIR
 /* where `meson install` puts data/ (stencils/, reference/, meshes/); meson
- * defines it from the prefix (src/cli/meson.build) */
+ * defines it from the prefix (cli/meson.build) */
 #define SS_DATADIR "/usr/local/share/subspectra"
 #endif
 #ifndef SS_DATADIR_REL
