@@ -131,8 +131,42 @@ typedef struct {
   ss_idx v[4];
 } facet;
 
-static int facet_cmp(const void *a, const void *b) {
-  return memcmp(a, b, sizeof(facet)); /* an order; only equality matters */
+static int facet_eq(const facet *a, const facet *b) {
+  return a->v[0] == b->v[0] && a->v[1] == b->v[1] && a->v[2] == b->v[2] &&
+         a->v[3] == b->v[3];
+}
+
+/* Whether a comes before b on the words after the first (an order; only
+ * equality matters). */
+static int facet_less_tail(const facet *a, const facet *b) {
+  for (int k = 1; k < 4; k++)
+    if (a->v[k] != b->v[k]) return a->v[k] < b->v[k];
+  return 0;
+}
+
+/* The nf facets f grouped so that equal ones are adjacent, into g: a counting
+ * sort on the smallest vertex (nv of them), then an insertion sort within each
+ * bucket, which holds the few facets a vertex is the smallest of.  Linear,
+ * where qsort with a memcmp comparator cost a tenth of an extraction. */
+static ss_status facet_group(const facet *f, size_t nf, size_t nv, facet *g,
+                             ss_error *err) {
+  size_t *ptr = calloc(nv + 2, sizeof *ptr);
+  if (!ptr) return ss_error_nomem(err, "patch boundary");
+  for (size_t i = 0; i < nf; i++)
+    ptr[f[i].v[0] + 2]++;
+  for (size_t v = 0; v < nv; v++)
+    ptr[v + 2] += ptr[v + 1];
+  for (size_t i = 0; i < nf; i++)
+    g[ptr[f[i].v[0] + 1]++] = f[i];
+  for (size_t v = 0; v < nv; v++) /* ptr[v + 1] now ends bucket v */
+    for (size_t i = ptr[v] + 1; i < ptr[v + 1]; i++)
+      for (size_t j = i; j > ptr[v] && facet_less_tail(g + j, g + j - 1); j--) {
+        const facet t = g[j];
+        g[j] = g[j - 1];
+        g[j - 1] = t;
+      }
+  free(ptr);
+  return SS_OK;
 }
 
 static void push_facet(facet *f, size_t *nf, const ss_idx *cell, const int *loc, int m) {
@@ -151,10 +185,10 @@ static void push_facet(facet *f, size_t *nf, const ss_idx *cell, const int *loc,
 static ss_status inner_marks(const ss_cx *cx, unsigned char **out, ss_error *err) {
   size_t cap = 6 * cx->nc[SS_HEX] + 4 * cx->nc[SS_TET] + 8 * cx->nc[SS_OCT] +
                4 * cx->nc[SS_QUAD] + 3 * cx->nc[SS_TRIANGLE] + 1;
-  facet *f = malloc(cap * sizeof *f);
+  facet *f = malloc(cap * sizeof *f), *g = malloc(cap * sizeof *g);
   unsigned char *inner = *out = malloc(cx->nv + 1);
-  if (!f || !inner) {
-    free(f);
+  if (!f || !g || !inner) {
+    free(f), free(g);
     return ss_error_nomem(err, "patch boundary");
   }
   size_t nf = 0;
@@ -180,14 +214,20 @@ static ss_status inner_marks(const ss_cx *cx, unsigned char **out, ss_error *err
       const int loc[2] = {k, (k + 1) % 3};
       push_facet(f, &nf, ss_cx_cell(cx, SS_TRIANGLE, i), loc, 2);
     }
-  qsort(f, nf, sizeof *f, facet_cmp);
+  ss_status st = facet_group(f, nf, cx->nv, g, err);
+  free(f);
+  f = g;
+  if (st) {
+    free(f);
+    return st;
+  }
   memset(inner, 0, cx->nv + 1);
   for (size_t i = 0; i < nf; i++)
     for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)
       inner[f[i].v[k]] = 1;
   for (size_t i = 0; i < nf;) {
     size_t j = i + 1;
-    while (j < nf && facet_cmp(f + i, f + j) == 0)
+    while (j < nf && facet_eq(f + i, f + j))
       j++;
     if (j - i == 1)
       for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)

@@ -52,10 +52,12 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
         w[i][j] = s->avg.mask[t][ss_cell_role(type, i, j)];
     for (size_t c = 0; c < fine->nc[t]; c++) {
       const ss_idx *cv = ss_cx_cell(fine, type, c);
+      ss_sink_cell sc; /* the cell's parents merged once for its n rows */
+      ss_sink_cell_prepare(k, n, cv, &sc);
       for (int i = 0; i < n; i++) {
         const ss_idx v = cv[i];
         if (dimv[v] != D) continue;
-        ss_sink_emit_many(k, v, n, cv, w[i], 1.0 / (double)val[v]);
+        ss_sink_emit_cell(k, &sc, v, w[i], 1.0 / (double)val[v]);
       }
     }
   }

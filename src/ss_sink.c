@@ -84,6 +84,65 @@ void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src
   flush(k, row, m, col, acc);
 }
 
+void ss_sink_cell_prepare(const ss_sink *k, int n, const ss_idx *src, ss_sink_cell *c) {
+  c->n = n;
+  c->src = src;
+  c->m = -1;
+  if (!k->M || n > SS_MAXCELLVERTS) return;
+  const ss_split *L = k->L;
+  int m = 0, s = 0;
+  for (int j = 0; j < n; j++) {
+    const size_t np = ss_split_npar(L, src[j]);
+    if (np > (size_t)(SS_SINK_CELLCAP - s)) return; /* c->m stays -1 */
+    c->np[j] = (int)np;
+    for (size_t q = L->ptr[src[j]]; q < L->ptr[src[j] + 1]; q++) {
+      const ss_idx p = L->parent[q];
+      int i = 0;
+      while (i < m && c->col[i] != p)
+        i++;
+      if (i == m) c->col[m++] = p;
+      c->slot[s++] = (unsigned char)i;
+    }
+  }
+  c->m = m;
+}
+
+void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cell *c, size_t row,
+                                const double *w, double scale) {
+  if (c->m < 0) {
+    ss_sink_emit_many_operator(k, row, c->n, c->src, w, scale);
+    return;
+  }
+  /* ss_sink_emit_many_operator's sums, term by term in the same order; a
+   * column only zero weights reach is left out there, so here too */
+  double acc[SS_SINK_CELLCAP];
+  unsigned char hit[SS_SINK_CELLCAP];
+  for (int i = 0; i < c->m; i++) {
+    acc[i] = 0.0;
+    hit[i] = 0;
+  }
+  for (int j = 0, s = 0; j < c->n; j++) {
+    const int np = c->np[j];
+    if (w[j] == 0.0) {
+      s += np;
+      continue;
+    }
+    const double ws = w[j] * scale / (double)np;
+    for (int q = 0; q < np; q++, s++) {
+      acc[c->slot[s]] += ws;
+      hit[c->slot[s]] = 1;
+    }
+  }
+  if (reserve(k, (size_t)c->m)) return;
+  ss_triplets *t = k->M;
+  for (int i = 0; i < c->m; i++) {
+    if (!hit[i]) continue;
+    t->row[t->n] = (ss_idx)row;
+    t->col[t->n] = c->col[i];
+    t->w[t->n++] = acc[i];
+  }
+}
+
 void ss_triplets_clear(ss_triplets *t) {
   free(t->row);
   free(t->col);

@@ -52,6 +52,34 @@ void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w);
 void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src,
                                 const double *w, double scale);
 
+/* A cell's sources with their parents merged once (operator mode), for the
+ * several rows a cell sends weights to over the same sources: the search for
+ * distinct parents, the costly part of ss_sink_emit_many_operator, is then
+ * done once per cell instead of once per row. */
+enum { SS_SINK_CELLCAP = 4 * SS_MAXCELLVERTS }; /* parent slots merged at most */
+typedef struct {
+  int n;                               /* sources */
+  const ss_idx *src;                   /* the sources, n (not owned) */
+  int m;                               /* distinct parents; -1: more than the caps, rows
+                                          then go through ss_sink_emit_many_operator */
+  ss_idx col[SS_SINK_CELLCAP];         /* the distinct parents, in order of first
+                                          appearance over the sources' parent lists */
+  unsigned char slot[SS_SINK_CELLCAP]; /* per parent slot of the sources (the
+                                          lists concatenated): index into col */
+  int np[SS_MAXCELLVERTS];             /* parents of each source */
+} ss_sink_cell;
+
+/* Prepare c for rows over the n sources src (kept by pointer: it must
+ * outlive c's use).  Only meaningful in operator mode; cheap otherwise. */
+void ss_sink_cell_prepare(const ss_sink *k, int n, const ss_idx *src, ss_sink_cell *c);
+
+/* Operator-mode ss_sink_emit_cell: the same triplets with the same values as
+ * ss_sink_emit_many_operator over c's sources (each entry summed over the
+ * sources in the same order; only the order of a row's distinct columns may
+ * differ, which the CSR assembly does not see). */
+void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cell *c, size_t row,
+                                const double *w, double scale);
+
 /* Send weight w from split vertex src to fine vertex row. */
 static inline void ss_sink_emit(ss_sink *k, size_t row, size_t src, double w) {
   if (k->M) {
@@ -84,6 +112,16 @@ static inline void ss_sink_emit_many(ss_sink *k, size_t row, int n, const ss_idx
   double *y = k->y + row * dim;
   for (size_t r = 0; r < dim; r++)
     y[r] += scale * acc[r];
+}
+
+/* ss_sink_emit_many over the sources of a prepared cell (ss_sink_cell_prepare). */
+static inline void ss_sink_emit_cell(ss_sink *k, const ss_sink_cell *c, size_t row,
+                                     const double *w, double scale) {
+  if (k->M) {
+    ss_sink_emit_cell_operator(k, c, row, w, scale);
+    return;
+  }
+  ss_sink_emit_many(k, row, c->n, c->src, w, scale);
 }
 
 #endif
