@@ -1,6 +1,7 @@
 /* main.c — `subspectra`: one program, one subcommand per job. */
 #include <errno.h>
 #include <fcntl.h>
+#include <malloc.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -129,7 +130,23 @@ static int run(int argc, char **argv) {
   return SS_EXIT_USAGE;
 }
 
+/* Keep freed memory for reuse instead of returning it to the kernel at once.
+ * A case builds and frees a few levels of several megabytes; with glibc's
+ * defaults (blocks above a sliding threshold mapped and unmapped, the heap
+ * trimmed above 128 KiB free) every case faulted its memory in afresh: 1300
+ * page faults per k = 11 MLCA case, 14 % of its CPU time in the kernel, and
+ * the unmapping serialises threads on the process's address-space lock.
+ * With these limits a sweep faults 25 times fewer pages for the same peak
+ * (issue 20).  Process-wide, hence here in the program, not the library. */
+static void malloc_tune(void) {
+#if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
+  mallopt(M_MMAP_THRESHOLD, 32 << 20); /* glibc's largest: blocks below stay */
+  mallopt(M_TRIM_THRESHOLD, 128 << 20);
+#endif
+}
+
 int main(int argc, char **argv) {
+  malloc_tune();
   stdout_open();
   return finish(run(argc, argv));
 }
