@@ -1,0 +1,183 @@
+/* bench_pipeline.c — the whole MLCA vertex pipeline per case (rule -> local
+ * matrix -> eigenstructure -> regularity, ss_result_compute, what a sweep runs
+ * per case) against bare LAPACK dgeev on the same one-ring block (issue 20),
+ * measured side by side in one run on a sample of the links with k vertices:
+ *   (a) pipeline time over dgeev time, and the share of the extraction of the
+ *       local matrix from the global rule (target: within 2x of dgeev);
+ *   (b) cases per second with 1 and 2 threads over the same sample (OpenMP,
+ *       as `sweep` runs them, without the store), the speed-up (target
+ *       >= 1.8 on 2 cores) and the CPU time per wall second: below the
+ *       number of threads means the threads waited for a processor (a loaded
+ *       machine), not for each other.
+ * Options: --k K (4..14, default 12), --samples N (default 100: every
+ * count/N-th link of the enumeration), --jobs J (default 2). */
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "ss_eig.h"
+#include "ss_enum.h"
+#include "ss_local.h"
+#include "ss_result.h"
+
+static double clock_s(clockid_t id) {
+  struct timespec t;
+  clock_gettime(id, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static double now(void) {
+  return clock_s(CLOCK_MONOTONIC);
+}
+
+typedef struct {
+  long stride, seen; /* take every stride-th link */
+  ss_link **l;       /* the sample */
+  size_t n, cap;     /* links taken, room */
+  int failed;        /* out of memory copying */
+} sample;
+
+static int take(const ss_link *l, void *vs) {
+  sample *s = vs;
+  if (s->seen++ % s->stride != 0) return 0;
+  if (s->n == s->cap) {
+    s->cap = s->cap ? 2 * s->cap : 64;
+    ss_link **q = realloc(s->l, s->cap * sizeof *q);
+    if (!q) return s->failed = 1;
+    s->l = q;
+  }
+  ss_error err = {0};
+  if (ss_link_copy(l, &s->l[s->n], &err)) return s->failed = 1;
+  s->n++;
+  return 0;
+}
+
+/* Seconds of one bare dgeev on the one-ring block of link l (one-ring rows
+ * and columns of S); < 0 on failure. */
+static double bare_dgeev(const ss_scheme *sc, const ss_link *l) {
+  ss_error err = {0};
+  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+  ss_local *M = NULL;
+  if (ss_local_new(sc, &cs, &M, &err)) return -1.0;
+  const size_t n1 = M->n1, n2 = M->n2;
+  double *A = malloc(n1 * n1 * sizeof *A), *re = malloc(n1 * sizeof *re),
+         *im = malloc(n1 * sizeof *im);
+  double t = -1.0;
+  if (A && re && im) {
+    for (size_t i = 0; i < n1; i++)
+      memcpy(A + i * n1, M->S + i * n2, n1 * sizeof *A);
+    const double t0 = now();
+    if (!ss_eig_dense(A, n1, re, im, &err)) t = now() - t0;
+  }
+  free(A), free(re), free(im);
+  ss_local_free(M);
+  return t;
+}
+
+/* Seconds of extracting the local matrix of link l; < 0 on failure. */
+static double extraction(const ss_scheme *sc, const ss_link *l) {
+  ss_error err = {0};
+  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+  ss_local *M = NULL;
+  const double t0 = now();
+  ss_status st = ss_local_new(sc, &cs, &M, &err);
+  const double t = now() - t0;
+  ss_local_free(M);
+  return st ? -1.0 : t;
+}
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The pipeline on link i of the sample; 0 or 1 (failed). */
+static int pipeline(const ss_scheme *sc, const ss_result_opts *ro, const ss_link *l) {
+  ss_error err = {0};
+  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+  ss_result r;
+  ss_status st = ss_result_compute(sc, &cs, ro, &r, &err);
+  if (!st) ss_result_clear(&r);
+  return st != SS_OK;
+}
+
+int main(int argc, char **argv) {
+  int k = 12, jobs = 2;
+  long want = 100;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!strcmp(argv[i], "--k")) k = atoi(argv[i + 1]);
+    if (!strcmp(argv[i], "--samples")) want = atol(argv[i + 1]);
+    if (!strcmp(argv[i], "--jobs")) jobs = atoi(argv[i + 1]);
+  }
+  if (k < 4 || k > 14 || want < 1 || jobs < 1) {
+    fprintf(stderr, "bench_pipeline: --k 4..14, --samples >= 1, --jobs >= 1\n");
+    return 2;
+  }
+  ss_error err = {0};
+  ss_scheme *sc = NULL;
+  if (ss_scheme_new("mlca", &sc, &err)) return 1;
+  ss_enum_opts o = {k, k, 0, 1};
+  uint64_t counts[SS_ENUM_MAXK + 1] = {0};
+  if (ss_enum_links(&o, NULL, NULL, counts, &err)) return 1;
+  sample s = {0};
+  s.stride = (long)counts[k] / want > 1 ? (long)counts[k] / want : 1;
+  if (ss_enum_links(&o, take, &s, NULL, &err) || s.failed) return 1;
+  const ss_result_opts ro = ss_result_defaults();
+  printf("MLCA vertex pipeline, %zu of the %llu links with k = %d (every %ld-th)\n", s.n,
+         (unsigned long long)counts[k], k, s.stride);
+
+  /* (a) one thread, case by case */
+  double t_pipe = 0.0, t_ext = 0.0, t_bare = 0.0;
+  double *tp = malloc(s.n * sizeof *tp);
+  int failed = 0;
+  if (!tp) return 1;
+  for (size_t i = 0; i < s.n; i++) {
+    const double t0 = now();
+    failed += pipeline(sc, &ro, s.l[i]);
+    tp[i] = now() - t0;
+    t_pipe += tp[i];
+    const double te = extraction(sc, s.l[i]), tb = bare_dgeev(sc, s.l[i]);
+    failed += te < 0.0 || tb < 0.0;
+    t_ext += fmax(te, 0.0);
+    t_bare += fmax(tb, 0.0);
+  }
+  printf("(a) per case: pipeline %.2f ms (extraction %.2f ms, %.0f %%), bare dgeev on "
+         "the one-ring block %.3f ms\n",
+         1e3 * t_pipe / s.n, 1e3 * t_ext / s.n, 100.0 * t_ext / t_pipe,
+         1e3 * t_bare / s.n);
+  qsort(tp, s.n, sizeof *tp, cmp_double);
+  printf("    pipeline per case: median %.2f ms, slowest %.2f ms (links whose "
+         "regularity needs deeper ring levels)\n",
+         1e3 * tp[s.n / 2], 1e3 * tp[s.n - 1]);
+  printf("    pipeline / dgeev: %.1f   (target <= 2)\n", t_pipe / t_bare);
+  free(tp);
+
+  /* (b) the same cases on 1 .. jobs threads */
+  double rate1 = 0.0;
+  for (int nt = 1; nt <= jobs; nt++) {
+    int bad = 0;
+    const double w0 = now(), c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+    const long n = (long)s.n;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) reduction(+ : bad)
+    for (long i = 0; i < n; i++)
+      bad += pipeline(sc, &ro, s.l[i]);
+    const double wall = now() - w0, cpu = clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    failed += bad;
+    const double rate = (double)s.n / wall;
+    if (nt == 1) rate1 = rate;
+    printf("(b) %d thread%s: %7.1f cases/s, speed-up %.2f, CPU/wall %.2f%s\n", nt,
+           nt == 1 ? " " : "s", rate, rate / rate1, cpu / wall,
+           nt > 1 ? (rate / rate1 >= 0.9 * nt ? "   (target >= 1.8 on 2 cores: met)"
+                                              : "   (target >= 1.8 on 2 cores: NOT met)")
+                  : "");
+  }
+  if (failed) printf("failures: %d\n", failed);
+  for (size_t i = 0; i < s.n; i++)
+    ss_link_free(s.l[i]);
+  free(s.l);
+  ss_scheme_free(sc);
+  return failed ? 1 : 0;
+}
