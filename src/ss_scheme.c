@@ -333,7 +333,14 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
     goto done;
   }
   ss_sink k = {L, dim, fine->x, y, NULL, SS_OK};
-  if (R_out) k.M = &M;
+  if (R_out) { /* a cell sends about one entry per pair of its vertices */
+    size_t est = nf;
+    for (int t = 0; t < SS_NCELLTYPES; t++)
+      est += fine->nc[t] *
+             (size_t)(ss_cell_nverts((ss_cell_type)t) * ss_cell_nverts((ss_cell_type)t));
+    if ((st = ss_triplets_reserve(&M, est, err))) goto done;
+    k.M = &M;
+  }
   if ((st = s->rule(s, coarse, fine, L, &k, err))) goto done;
   if (k.st) {
     st = ss_error_nomem(err, "refinement operator");

@@ -143,6 +143,13 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cell *c, size_t row,
   }
 }
 
+ss_status ss_triplets_reserve(ss_triplets *t, size_t n, ss_error *err) {
+  if (n <= t->cap) return SS_OK;
+  ss_sink k = {NULL, 0, NULL, NULL, t, SS_OK};
+  if (reserve(&k, n - t->n)) return ss_error_nomem(err, "refinement operator");
+  return SS_OK;
+}
+
 void ss_triplets_clear(ss_triplets *t) {
   free(t->row);
   free(t->col);

@@ -32,6 +32,9 @@ typedef struct {
 ss_status ss_triplets_csr(const ss_triplets *t, size_t nrows, size_t ncols,
                           gsl_spmatrix **out, ss_error *err);
 void ss_triplets_clear(ss_triplets *t);
+/* Room for at least n triplets in t (an estimate made before a rule runs
+ * saves the copies of growing by doubling).  SS_ENOMEM (t unchanged). */
+ss_status ss_triplets_reserve(ss_triplets *t, size_t n, ss_error *err);
 
 typedef struct {
   const ss_split *L;  /* parents of the fine vertices */
