@@ -94,14 +94,18 @@ void ss_sink_cell_prepare(const ss_sink *k, int n, const ss_idx *src, ss_sink_ce
   for (int j = 0; j < n; j++) {
     const size_t np = ss_split_npar(L, src[j]);
     if (np > (size_t)(SS_SINK_CELLCAP - s)) return; /* c->m stays -1 */
+    s += (int)np;
     c->np[j] = (int)np;
     for (size_t q = L->ptr[src[j]]; q < L->ptr[src[j] + 1]; q++) {
       const ss_idx p = L->parent[q];
       int i = 0;
       while (i < m && c->col[i] != p)
         i++;
-      if (i == m) c->col[m++] = p;
-      c->slot[s++] = (unsigned char)i;
+      if (i == m) {
+        c->col[m] = p;
+        c->from[m++] = 0;
+      }
+      c->from[i] |= 1u << j; /* a source's parents are distinct: once each */
     }
   }
   c->m = m;
@@ -113,33 +117,27 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cell *c, size_t row,
     ss_sink_emit_many_operator(k, row, c->n, c->src, w, scale);
     return;
   }
-  /* ss_sink_emit_many_operator's sums, term by term in the same order; a
-   * column only zero weights reach is left out there, so here too */
-  double acc[SS_SINK_CELLCAP];
-  unsigned char hit[SS_SINK_CELLCAP];
-  for (int i = 0; i < c->m; i++) {
-    acc[i] = 0.0;
-    hit[i] = 0;
-  }
-  for (int j = 0, s = 0; j < c->n; j++) {
-    const int np = c->np[j];
-    if (w[j] == 0.0) {
-      s += np;
-      continue;
-    }
-    const double ws = w[j] * scale / (double)np;
-    for (int q = 0; q < np; q++, s++) {
-      acc[c->slot[s]] += ws;
-      hit[c->slot[s]] = 1;
-    }
+  /* ss_sink_emit_many_operator's sums, term by term in the same order (the
+   * sources in turn, from 0.0); a column only zero weights reach is left out
+   * there, so here too */
+  double ws[SS_MAXCELLVERTS];
+  unsigned nonzero = 0;
+  for (int j = 0; j < c->n; j++) {
+    if (w[j] == 0.0) continue;
+    ws[j] = w[j] * scale / (double)c->np[j];
+    nonzero |= 1u << j;
   }
   if (reserve(k, (size_t)c->m)) return;
   ss_triplets *t = k->M;
   for (int i = 0; i < c->m; i++) {
-    if (!hit[i]) continue;
+    unsigned b = c->from[i] & nonzero;
+    if (!b) continue;
+    double acc = 0.0;
+    for (; b; b &= b - 1)
+      acc += ws[__builtin_ctz(b)];
     t->row[t->n] = (ss_idx)row;
     t->col[t->n] = c->col[i];
-    t->w[t->n++] = acc[i];
+    t->w[t->n++] = acc;
   }
 }
 

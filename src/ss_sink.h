@@ -61,15 +61,15 @@ void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src
  * done once per cell instead of once per row. */
 enum { SS_SINK_CELLCAP = 4 * SS_MAXCELLVERTS }; /* parent slots merged at most */
 typedef struct {
-  int n;                               /* sources */
-  const ss_idx *src;                   /* the sources, n (not owned) */
-  int m;                               /* distinct parents; -1: more than the caps, rows
-                                          then go through ss_sink_emit_many_operator */
-  ss_idx col[SS_SINK_CELLCAP];         /* the distinct parents, in order of first
-                                          appearance over the sources' parent lists */
-  unsigned char slot[SS_SINK_CELLCAP]; /* per parent slot of the sources (the
-                                          lists concatenated): index into col */
-  int np[SS_MAXCELLVERTS];             /* parents of each source */
+  int n;                          /* sources */
+  const ss_idx *src;              /* the sources, n (not owned) */
+  int m;                          /* distinct parents; -1: more than the caps, rows
+                                     then go through ss_sink_emit_many_operator */
+  ss_idx col[SS_SINK_CELLCAP];    /* the distinct parents, in order of first
+                                     appearance over the sources' parent lists */
+  unsigned from[SS_SINK_CELLCAP]; /* per distinct parent: bit j set when it is a
+                                     parent of source j */
+  int np[SS_MAXCELLVERTS];        /* parents of each source */
 } ss_sink_cell;
 
 /* Prepare c for rows over the n sources src (kept by pointer: it must
