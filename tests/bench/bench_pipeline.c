@@ -69,7 +69,7 @@ static int take(const ss_link *l, void *vs) {
  * and columns of S); < 0 on failure. */
 static double bare_dgeev(const ss_scheme *sc, const ss_link *l) {
   ss_error err = {0};
-  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
   ss_local *M = NULL;
   if (ss_local_new(sc, &cs, &M, &err)) return -1.0;
   const size_t n1 = M->n1, n2 = M->n2;
@@ -90,7 +90,7 @@ static double bare_dgeev(const ss_scheme *sc, const ss_link *l) {
 /* Seconds of extracting the local matrix of link l; < 0 on failure. */
 static double extraction(const ss_scheme *sc, const ss_link *l) {
   ss_error err = {0};
-  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
   ss_local *M = NULL;
   const double t0 = cpu();
   ss_status st = ss_local_new(sc, &cs, &M, &err);
@@ -107,7 +107,7 @@ static int cmp_double(const void *a, const void *b) {
 /* The pipeline on link i of the sample; 0 or 1 (failed). */
 static int pipeline(const ss_scheme *sc, const ss_result_opts *ro, const ss_link *l) {
   ss_error err = {0};
-  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS};
+  ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
   ss_result r;
   ss_status st = ss_result_compute(sc, &cs, ro, &r, &err);
   if (!st) ss_result_clear(&r);
