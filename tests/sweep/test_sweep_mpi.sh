@@ -126,23 +126,29 @@ checks=$((checks + 1))
   fail "rank 1 stopped: $n of $total rows stored meanwhile (want >= $((total - 4))), status $rc"
 same "rank 1 stopped for a while vs one process" "$tmp/ref.db" "$db"
 
+# signal_rank1_after ROWS SIG DB PID: once DB holds ROWS results (while the
+# job PID runs), send SIG to rank 1 of that job; prints rank 1's pid if sent.
+signal_rank1_after() {
+  local rows=$1 sig=$2 db=$3 job=$4 n r
+  for _ in $(seq 1 1500); do
+    kill -0 "$job" 2>/dev/null || return 0
+    n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
+    if [ "${n:-0}" -ge "$rows" ]; then
+      r=$(rank_pid 1 "$job")
+      [ -n "$r" ] && kill -"$sig" "$r" && echo "$r"
+      return 0
+    fi
+    sleep 0.02
+  done
+}
+
 # SIGTERM to rank 1 alone: it finishes its case in flight and gives the rest
 # of its piece back; rank 2 computes everything else, so the store is
 # complete; the job ends with rank 1's signal (143) or the sweep's status
 db=$tmp/term.db
 "${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1 >/dev/null 2>"$tmp/term.err" &
 pid=$!
-termed=
-for _ in $(seq 1 1500); do
-  kill -0 "$pid" 2>/dev/null || break
-  n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
-  if [ "${n:-0}" -ge 4 ]; then
-    termed=$(rank_pid 1 "$pid")
-    [ -n "$termed" ] && kill -TERM "$termed"
-    break
-  fi
-  sleep 0.02
-done
+termed=$(signal_rank1_after 4 TERM "$db" "$pid")
 wait "$pid"
 checks=$((checks + 1))
 [ -n "$termed" ] && grep -q "^sweep: 29 cases of mlca .*; 0 already stored" "$tmp/term.err" ||
@@ -154,17 +160,7 @@ same "rank 1 stopped by SIGTERM vs one process" "$tmp/ref.db" "$db"
 db=$tmp/kill.db
 "${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1 >/dev/null 2>"$tmp/kill.err" &
 pid=$!
-killed=
-for _ in $(seq 1 1500); do
-  kill -0 "$pid" 2>/dev/null || break
-  n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
-  if [ "${n:-0}" -ge 8 ]; then
-    killed=$(rank_pid 1 "$pid")
-    [ -n "$killed" ] && kill -KILL "$killed"
-    break
-  fi
-  sleep 0.02
-done
+killed=$(signal_rank1_after 8 KILL "$db" "$pid")
 wait "$pid"
 rc=$?
 n=$(q "$db" "SELECT count(*) FROM result")
