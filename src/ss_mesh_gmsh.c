@@ -15,6 +15,13 @@
  * ierr, their text from gmshLoggerGetLastError.  gmshInitialize also sets
  * the process locale (setlocale(LC_ALL, "")): the caller's is restored.
  *
+ * libgmsh is not linked: it is opened with dlopen in that child, when a
+ * .msh is read.  Linked, its ~90 shared libraries (OpenCASCADE, FLTK, X11…)
+ * and their relocations and constructors cost every start of the program
+ * ~60 ms of CPU, even `subspectra --version`, and every program or Python
+ * process that loads libsubspectra; opened in the child they cost only the
+ * reads of .msh files, and the parent's address space never holds them.
+ *
  * Without gmsh (meson -Dgmsh=disabled, or libgmsh-dev missing) the reader
  * is a stub that refuses .msh with a message saying how to convert. */
 #include "ss_mesh.h"
@@ -23,6 +30,7 @@
 #include <string.h>
 
 #if SS_HAVE_GMSH
+#include <dlfcn.h>
 #include <gmshc.h>
 #include <locale.h>
 #include <pthread.h>
@@ -86,6 +94,56 @@ int ss_mesh_gmsh_available(void) {
   return 1;
 }
 
+/* gmsh's C API as function pointers, looked up in the child by load_api.
+ * The types come from gmshc.h, so a changed signature is a compile error. */
+#define SS_GMSH_FUNCS(X)                                                                 \
+  X(gmshInitialize)                                                                      \
+  X(gmshFinalize)                                                                        \
+  X(gmshFree)                                                                            \
+  X(gmshOpen)                                                                            \
+  X(gmshOptionSetNumber)                                                                 \
+  X(gmshLoggerGetLastError)                                                              \
+  X(gmshModelGetDimension)                                                               \
+  X(gmshModelGetEntities)                                                                \
+  X(gmshModelGetPhysicalGroupsForEntity)                                                 \
+  X(gmshModelMeshGetNodes)                                                               \
+  X(gmshModelMeshGetElements)                                                            \
+  X(gmshModelMeshGetElementProperties)
+
+typedef struct {
+#define SS_GMSH_FIELD(f) __typeof__(f) *f; /* gmsh's function f */
+  SS_GMSH_FUNCS(SS_GMSH_FIELD)
+#undef SS_GMSH_FIELD
+} gmsh_api;
+
+#define SS_STR_(x) #x
+#define SS_STR(x)  SS_STR_(x)
+/* The soname of the gmsh whose header this was compiled against. */
+#define SS_GMSH_SONAME                                                                   \
+  "libgmsh.so." SS_STR(GMSH_API_VERSION_MAJOR) "." SS_STR(GMSH_API_VERSION_MINOR)
+
+/* Open libgmsh and fill g.  The handle is never closed: the child exits
+ * after the read.  Errors: SS_EINPUT naming the library and dlerror's text. */
+static ss_status load_api(gmsh_api *g, const char *path, ss_error *err) {
+  void *h = dlopen(SS_GMSH_SONAME, RTLD_NOW | RTLD_LOCAL);
+  if (!h)
+    return ss_error_set(err, SS_EINPUT, "%s: cannot load gmsh (%s) to read it: %s", path,
+                        SS_GMSH_SONAME, dlerror());
+    /* dlsym returns an object pointer; ISO C has no conversion to a function
+     * pointer, so the bits are copied (POSIX guarantees they are one) */
+#define SS_GMSH_LOAD(f)                                                                  \
+  {                                                                                      \
+    void *p = dlsym(h, #f);                                                              \
+    if (!p)                                                                              \
+      return ss_error_set(err, SS_EINPUT, "%s: %s has no %s: %s", path, SS_GMSH_SONAME,  \
+                          #f, dlerror());                                                \
+    memcpy(&g->f, &p, sizeof p);                                                         \
+  }
+  SS_GMSH_FUNCS(SS_GMSH_LOAD)
+#undef SS_GMSH_LOAD
+  return SS_OK;
+}
+
 /* gmsh's API is global state: one read at a time in the whole process. */
 static pthread_mutex_t gmsh_lock = PTHREAD_MUTEX_INITIALIZER;
 
@@ -116,12 +174,12 @@ static int cell_type_of(int gmsh_type, ss_cell_type *t) {
 }
 
 /* The text of gmsh's last error, or a fallback. */
-static void last_error(char *buf, size_t n) {
+static void last_error(const gmsh_api *g, char *buf, size_t n) {
   char *e = NULL;
   int ierr = 0;
-  gmshLoggerGetLastError(&e, &ierr);
+  g->gmshLoggerGetLastError(&e, &ierr);
   snprintf(buf, n, "%s", !ierr && e && *e ? e : "gmsh could not read the file");
-  gmshFree(e);
+  g->gmshFree(e);
 }
 
 static int cmp_size(const void *a, const void *b) {
@@ -143,7 +201,8 @@ static int cmp_elem(const void *a, const void *b) {
 }
 
 /* Read the model gmsh holds into a new complex. */
-static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
+static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
+                         ss_error *err) {
   ss_status st = SS_OK;
   int ierr = 0;
   size_t *ntag = NULL, nn = 0, ncoord = 0, npar = 0;
@@ -156,7 +215,7 @@ static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
   ss_cx *cx = NULL;
   *out = NULL;
 
-  gmshModelMeshGetNodes(&ntag, &nn, &coord, &ncoord, &par, &npar, -1, -1, 0, 0, &ierr);
+  g->gmshModelMeshGetNodes(&ntag, &nn, &coord, &ncoord, &par, &npar, -1, -1, 0, 0, &ierr);
   if (ierr || ncoord != 3 * nn) {
     st = ss_error_set(err, SS_EINPUT, "%s: gmsh read no nodes", path);
     goto done;
@@ -189,7 +248,7 @@ static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
     const size_t *k = bsearch(ntag + i, sorted, nn, sizeof *sorted, cmp_size);
     order[k - sorted] = i;
   }
-  const int mdim = gmshModelGetDimension(&ierr);
+  const int mdim = g->gmshModelGetDimension(&ierr);
   int dim = 3;
   if (mdim <= 2) {
     dim = 2;
@@ -202,9 +261,9 @@ static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
     if ((st = ss_cx_add_vertex(cx, coord + 3 * order[k], 0, err))) goto done;
 
   for (int d = 0; d <= 3; d++) {
-    gmshFree(ents);
+    g->gmshFree(ents);
     ents = NULL;
-    gmshModelGetEntities(&ents, &nents, d, &ierr);
+    g->gmshModelGetEntities(&ents, &nents, d, &ierr);
     if (ierr) {
       st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no entities of dimension %d",
                         path, d);
@@ -215,11 +274,11 @@ static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
       int *phys = NULL, *types = NULL;
       size_t nphys = 0, ntypes = 0, **etags = NULL, *etags_n = NULL, etags_nn = 0;
       size_t **enodes = NULL, *enodes_n = NULL, enodes_nn = 0;
-      gmshModelGetPhysicalGroupsForEntity(d, etag, &phys, &nphys, &ierr);
+      g->gmshModelGetPhysicalGroupsForEntity(d, etag, &phys, &nphys, &ierr);
       const int32_t ref = nphys ? phys[0] : etag;
-      gmshFree(phys);
-      gmshModelMeshGetElements(&types, &ntypes, &etags, &etags_n, &etags_nn, &enodes,
-                               &enodes_n, &enodes_nn, d, etag, &ierr);
+      g->gmshFree(phys);
+      g->gmshModelMeshGetElements(&types, &ntypes, &etags, &etags_n, &etags_nn, &enodes,
+                                  &enodes_n, &enodes_nn, d, etag, &ierr);
       for (size_t t = 0; t < ntypes && !st && !ierr; t++) {
         ss_cell_type ct;
         if (!cell_type_of(types[t], &ct)) {
@@ -227,16 +286,16 @@ static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
           int edim, order_, nnodes, nprim, ierr2 = 0;
           double *lc = NULL;
           size_t nlc = 0;
-          gmshModelMeshGetElementProperties(types[t], &name, &edim, &order_, &nnodes, &lc,
-                                            &nlc, &nprim, &ierr2);
+          g->gmshModelMeshGetElementProperties(types[t], &name, &edim, &order_, &nnodes,
+                                               &lc, &nlc, &nprim, &ierr2);
           st =
               ss_error_set(err, SS_EINPUT,
                            "%s: %zu elements of gmsh type %d (%s) have no cell here "
                            "(read: points, lines, triangles, quadrangles, "
                            "tetrahedra, hexahedra, of first order)",
                            path, etags_n[t], types[t], !ierr2 && name ? name : "unknown");
-          gmshFree(name);
-          gmshFree(lc);
+          g->gmshFree(name);
+          g->gmshFree(lc);
           break;
         }
         const int nv = ss_cell_nverts(ct);
@@ -274,14 +333,14 @@ static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
         }
       }
       for (size_t t = 0; t < ntypes; t++) {
-        gmshFree(etags[t]);
-        gmshFree(enodes[t]);
+        g->gmshFree(etags[t]);
+        g->gmshFree(enodes[t]);
       }
-      gmshFree(types);
-      gmshFree(etags);
-      gmshFree(etags_n);
-      gmshFree(enodes);
-      gmshFree(enodes_n);
+      g->gmshFree(types);
+      g->gmshFree(etags);
+      g->gmshFree(etags_n);
+      g->gmshFree(enodes);
+      g->gmshFree(enodes_n);
       if (st) goto done;
       if (ierr) {
         st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no elements of entity (%d, %d)",
@@ -312,10 +371,10 @@ static ss_status extract(const char *path, ss_cx **out, ss_error *err) {
   *out = cx;
   cx = NULL;
 done:
-  gmshFree(ntag);
-  gmshFree(coord);
-  gmshFree(par);
-  gmshFree(ents);
+  g->gmshFree(ntag);
+  g->gmshFree(coord);
+  g->gmshFree(par);
+  g->gmshFree(ents);
   free(order);
   free(sorted);
   for (int t = 0; t < SS_NCELLTYPES; t++)
@@ -326,27 +385,29 @@ done:
 
 /* Read path with gmsh in this process (the child of ss_mesh_read_gmsh). */
 static ss_status read_here(const char *path, ss_cx **out, ss_error *err) {
-  ss_status st = SS_OK;
+  gmsh_api api = {0}, *g = &api;
+  ss_status st = load_api(g, path, err);
+  if (st) return st;
   /* gmshInitialize sets the locale from the environment: keep the caller's */
   const char *cur = setlocale(LC_ALL, NULL);
   char *saved = cur ? strdup(cur) : NULL;
   if (cur && !saved) return ss_error_nomem(err, "locale name");
   int ierr = 0;
-  gmshInitialize(0, NULL, 0, &ierr);
+  g->gmshInitialize(0, NULL, 0, &ierr);
   if (ierr) {
     st = ss_error_set(err, SS_EINPUT, "%s: gmsh could not be initialised", path);
   } else {
-    gmshOptionSetNumber("General.Terminal", 0, &ierr);
-    gmshOptionSetNumber("General.Verbosity", 0, &ierr);
-    gmshOpen(path, &ierr);
+    g->gmshOptionSetNumber("General.Terminal", 0, &ierr);
+    g->gmshOptionSetNumber("General.Verbosity", 0, &ierr);
+    g->gmshOpen(path, &ierr);
     if (ierr) {
       char msg[300];
-      last_error(msg, sizeof msg);
+      last_error(g, msg, sizeof msg);
       st = ss_error_set(err, SS_EINPUT, "%s: %s", path, msg);
     } else {
-      st = extract(path, out, err);
+      st = extract(g, path, out, err);
     }
-    gmshFinalize(&ierr);
+    g->gmshFinalize(&ierr);
   }
   if (saved) setlocale(LC_ALL, saved);
   free(saved);
