@@ -151,22 +151,33 @@ static void canon(gen *s, const int *starts, int nstarts) {
   ss_canon_run(&cg, starts, nstarts, s->cw);
 }
 
-/* Automorphisms of the current graph into lw. */
-static void automorphisms(gen *s, level_ws *lw) {
+/* The automorphisms found by the last canon() into lw.  Valid when that run's
+ * starts were a set of half-edges mapped onto itself by every automorphism:
+ * then the starts reaching the least code are in bijection with the
+ * automorphisms, the first being the identity. */
+static void group_from_canon(gen *s, level_ws *lw) {
+  const graph *g = &s->g;
+  const ss_canon_ws *w = s->cw;
+  lw->naut = w->nbest;
+  for (int j = 0; j < w->nbest; j++)
+    for (int v = 0; v < g->n; v++)
+      lw->aut[j][v] = w->best_order[w->labels[j * g->n + v]];
+}
+
+/* Automorphisms of the current graph into lw, from the half-edges at
+ * verts[0..nverts), a set of vertices that every automorphism maps onto itself
+ * (all of them, or one that every automorphism fixes). */
+static void automorphisms(gen *s, level_ws *lw, const int *verts, int nverts) {
   graph *g = &s->g;
   int n = 0;
-  for (int v = 0; v < g->n; v++)
-    for (int i = 0; i < g->deg[v]; i++) {
+  for (int t = 0; t < nverts; t++)
+    for (int v = verts[t], i = 0; i < g->deg[v]; i++) {
       s->starts[2 * n] = v;
       s->starts[2 * n + 1] = i;
       n++;
     }
   canon(s, s->starts, n);
-  ss_canon_ws *w = s->cw;
-  lw->naut = w->nbest;
-  for (int j = 0; j < w->nbest; j++)
-    for (int v = 0; v < g->n; v++)
-      lw->aut[j][v] = w->best_order[w->labels[j * g->n + v]];
+  group_from_canon(s, lw);
 }
 
 /* ---- the canonical reduction ---- */
@@ -220,8 +231,14 @@ static int reduction_key(const graph *g, const int *lab, int u, int i) {
 }
 
 /* Is the new vertex v = n-1 with choice 0 the canonical reduction of the
- * current graph, up to automorphism?  Its degree is the minimum degree. */
-static int is_canonical(gen *s) {
+ * current graph, up to automorphism?  Its degree is the minimum degree.  If
+ * so and lw is not NULL, the automorphism group goes into lw for the children
+ * (ss_enum.h: a parent's expansions are tried once per orbit).  The group
+ * comes from the half-edges at the vertices whose reductions tie with v's:
+ * the reduction invariant is kept by every automorphism (mirror images
+ * included), so that set is mapped onto itself; with no tie every
+ * automorphism fixes v and the half-edges at v alone are enough. */
+static int is_canonical(gen *s, level_ws *lw) {
   graph *g = &s->g;
   const int v = g->n - 1, d = g->deg[v];
   const int nchoice = d == 3 ? 1 : d == 4 ? 2 : 5;
@@ -236,7 +253,10 @@ static int is_canonical(gen *s) {
       if (f == mine) tie_u[ties] = u, tie_i[ties] = i, ties++;
     }
   }
-  if (ties == 1) return 1;
+  if (ties == 1) {
+    if (lw) automorphisms(s, lw, &tie_u[0], 1);
+    return 1;
+  }
   /* full canonical labelling from the tied vertices */
   int n = 0;
   for (int t = 0; t < ties; t++) {
@@ -258,7 +278,10 @@ static int is_canonical(gen *s) {
     if (best < 0 || key < best) best = key;
   }
   for (int j = 0; j < w->nbest; j++)
-    if (reduction_key(g, w->labels + j * g->n, v, 0) == best) return 1;
+    if (reduction_key(g, w->labels + j * g->n, v, 0) == best) {
+      if (lw) group_from_canon(s, lw);
+      return 1;
+    }
   return 0;
 }
 
@@ -333,8 +356,9 @@ static void visit_node(gen *s) {
   graph *g = &s->g;
   const int n = g->n;
   level_ws *lw = &s->lev[n];
+  /* the children's groups, needed only if they are expanded in turn */
+  level_ws *child_lw = n + 1 < s->o->kmax ? &s->lev[n + 1] : NULL;
   undo_log u = {0};
-  automorphisms(s, lw);
   int cnt3 = 0, cnt4 = 0;
   for (int v = 0; v < n; v++)
     cnt3 += g->deg[v] == 3, cnt4 += g->deg[v] == 4;
@@ -348,7 +372,7 @@ static void visit_node(gen *s) {
       sort3(key);
       if (lw->naut > 1 && !least_in_orbit(lw, 3, key[0], key[1], key[2])) continue;
       expand3(g, &u, x, y, z);
-      if (is_canonical(s)) accept(s);
+      if (is_canonical(s, child_lw)) accept(s);
       undo(g, &u);
       if (s->stop) return;
     }
@@ -362,7 +386,7 @@ static void visit_node(gen *s) {
         if (cnt3 - (g->deg[b] == 3) - (g->deg[d] == 3) != 0) continue;
         if (lw->naut > 1 && !least_in_orbit(lw, 4, a, c, 0)) continue;
         expand4(g, &u, a, c);
-        if (is_canonical(s)) accept(s);
+        if (is_canonical(s, child_lw)) accept(s);
         undo(g, &u);
         if (s->stop) return;
       }
@@ -379,7 +403,7 @@ static void visit_node(gen *s) {
         int lo = c < d ? c : d, hi = c < d ? d : c;
         if (lw->naut > 1 && !least_in_orbit(lw, 5, a, lo, hi)) continue;
         expand5(g, &u, a, c);
-        if (is_canonical(s)) accept(s);
+        if (is_canonical(s, child_lw)) accept(s);
         undo(g, &u);
         if (s->stop) return;
       }
@@ -432,6 +456,8 @@ ss_status ss_enum_links(const ss_enum_opts *o, ss_enum_visit visit, void *ctx,
     s->g.deg[v] = 3;
     memcpy(s->g.nb[v], k4[v], sizeof k4[v]);
   }
+  static const int all4[4] = {0, 1, 2, 3};
+  automorphisms(s, &s->lev[4], all4, 4);
   accept(s);
   if (counts)
     for (int k = 0; k <= SS_ENUM_MAXK; k++)
