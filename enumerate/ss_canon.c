@@ -71,7 +71,15 @@ static int one_start(const ss_cgraph *g, int v0, int p0, int dir, ss_canon_ws *w
       if (label[y] < 0) {
         label[y] = nl;
         order[nl++] = y;
-        ent[y] = g->inv[h] - g->off[y];
+        if (g->inv) {
+          ent[y] = g->inv[h] - g->off[y];
+        } else {
+          const int *ly = g->nbr + g->off[y];
+          int q = 0;
+          while (ly[q] != x)
+            q++;
+          ent[y] = q;
+        }
       }
       const int c = label[y];
       if (cmp == 0) {
@@ -97,19 +105,19 @@ void ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, ss_canon_w
   const int k = g->k;
   w->nbest = 0;
   int first = 1;
-  for (int s = 0; s < nstarts; s++)
-    for (int dir = 1; dir >= -1; dir -= 2) {
-      int r = one_start(g, starts[2 * s], starts[2 * s + 1], dir, w, first);
-      if (r > 0) continue;
-      if (r < 0) {
-        memcpy(w->best, w->code, (size_t)w->ncode * sizeof *w->best);
-        memcpy(w->best_order, w->order, (size_t)k * sizeof *w->order);
-        w->nbest = 0;
-        first = 0;
-      }
-      if (w->nbest < w->maxbest)
-        memcpy(w->labels + (size_t)w->nbest * (size_t)k, w->label,
-               (size_t)k * sizeof *w->label);
-      w->nbest++;
+  for (int s = 0; s < nstarts; s++) {
+    const int *st = starts + 3 * s;
+    int r = one_start(g, st[0], st[1], st[2], w, first);
+    if (r > 0) continue;
+    if (r < 0) {
+      memcpy(w->best, w->code, (size_t)w->ncode * sizeof *w->best);
+      memcpy(w->best_order, w->order, (size_t)k * sizeof *w->order);
+      w->nbest = 0;
+      first = 0;
     }
+    if (w->nbest < w->maxbest)
+      memcpy(w->labels + (size_t)w->nbest * (size_t)k, w->label,
+             (size_t)k * sizeof *w->label);
+    w->nbest++;
+  }
 }

@@ -19,7 +19,9 @@ typedef struct {
   const int *off; /* off[v]: first half-edge of v (lists may have gaps) */
   const int *deg; /* deg[v] */
   const int *nbr; /* nbr[off[v] + i]: i-th neighbour of v in cyclic order */
-  const int *inv; /* inv[h]: the reverse half-edge of h */
+  const int *inv; /* inv[h]: the reverse half-edge of h, or NULL: found by
+                     searching the neighbour's list when a vertex is reached
+                     (cheaper when most starts are abandoned early) */
 } ss_cgraph;
 
 typedef struct {
@@ -45,8 +47,12 @@ void ss_canon_ws_free(ss_canon_ws *w);
 /* Fill inv (size: the half-edge index range) for g's lists. */
 void ss_canon_inverse(int k, const int *off, const int *deg, const int *nbr, int *inv);
 
-/* Least code over the starts (starts[2 j] = vertex, starts[2 j + 1] = position
- * in its list), both directions each. */
+/* Least code over the starts: starts[3 j] = vertex, starts[3 j + 1] = position
+ * in its list, starts[3 j + 2] = turning direction (+1: along the list, -1:
+ * against it).  The least code and the set of starts reaching it do not depend
+ * on the order of the starts; the work does (a start is abandoned at its first
+ * entry above the least code so far), so callers put likely winners first.
+ * best_order and labels[0] belong to the first start reaching the least code. */
 void ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, ss_canon_ws *w);
 
 #endif

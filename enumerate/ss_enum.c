@@ -41,8 +41,8 @@ typedef struct {
   int stop;                         /* the visitor asked to stop */
   graph g;
   ss_canon_ws *cw;
-  int inv[MAXN * MAXN];
-  int starts[2 * MAXN * MAXN];
+  int starts[3 * 2 * MAXN * MAXN]; /* canon(): (vertex, position, direction) */
+  int skey[2 * MAXN * MAXN];       /* canon(): the starts' sort keys */
   int off[MAXN];
   level_ws *lev; /* one per level */
   /* output view */
@@ -144,11 +144,81 @@ static void expand5(graph *g, undo_log *u, int a, int c) {
 
 /* ---- canonical codes of the current graph ---- */
 
-static void canon(gen *s, const int *starts, int nstarts) {
+/* -1, 0, +1 as the degrees of the neighbours of a turning from i in
+ * direction da compare with those of b from j in direction db (lexicographic,
+ * the shorter sequence first). */
+static int degrees_cmp(const graph *g, int a, int i, int da, int b, int j, int db) {
+  const int d = g->deg[a];
+  if (d != g->deg[b]) return d < g->deg[b] ? -1 : 1;
+  for (int t = 0; t < d; t++) {
+    int x = g->deg[g->nb[a][(i + da * t + d * t) % d]];
+    int y = g->deg[g->nb[b][(j + db * t + d * t) % d]];
+    if (x != y) return x < y ? -1 : 1;
+  }
+  return 0;
+}
+
+/* The starts (vertex, position, direction) for a canonical code of the
+ * current graph from the half-edges at verts[0..nverts), both directions,
+ * into s->starts; returns their number.  Every vertex in verts has the same
+ * degree d.  Only starts whose first neighbour has the least degree are kept:
+ * a code opens with the start's list (1..d, closed by k), then its first
+ * neighbour's, which is 0, d, one new label per further neighbour, 2, k, so a
+ * lower degree puts the 2 earlier and gives a lower code; the least code and
+ * the starts reaching it are unchanged.  With `group` (only the automorphisms
+ * are wanted, not the least code), only starts whose whole sequence of
+ * neighbour degrees is the least are kept: an automorphism maps a start to
+ * one with the same sequence, so the set stays invariant.  The starts are
+ * sorted by the degrees of their first three neighbours, for the same reason:
+ * likely winners first, so the others are abandoned early (ss_canon.h: the
+ * order changes only the work). */
+static int collect_starts(gen *s, const int *verts, int nverts, int group) {
+  const graph *g = &s->g;
+  int mind = MAXN;
+  for (int t = 0; t < nverts; t++)
+    for (int i = 0; i < g->deg[verts[t]]; i++)
+      if (g->deg[g->nb[verts[t]][i]] < mind) mind = g->deg[g->nb[verts[t]][i]];
+  int n = 0;
+  for (int t = 0; t < nverts; t++) {
+    const int v = verts[t], d = g->deg[v], *q = g->nb[v];
+    for (int i = 0; i < d; i++)
+      for (int dir = 1; dir >= -1; dir -= 2) {
+        if (g->deg[q[i]] != mind) continue;
+        const int i1 = (i + dir + d) % d, i2 = (i + 2 * dir + 2 * d) % d;
+        const int key = (g->deg[q[i]] * 32 + g->deg[q[i1]]) * 32 + g->deg[q[i2]];
+        int j = n++;
+        for (; j > 0 && s->skey[j - 1] > key; j--) {
+          s->skey[j] = s->skey[j - 1];
+          memcpy(&s->starts[3 * j], &s->starts[3 * (j - 1)], 3 * sizeof *s->starts);
+        }
+        s->skey[j] = key;
+        s->starts[3 * j] = v, s->starts[3 * j + 1] = i, s->starts[3 * j + 2] = dir;
+      }
+  }
+  if (group) {
+    int least = 0, m = 0;
+    const int *st = s->starts;
+    for (int j = 1; j < n; j++)
+      if (degrees_cmp(g, st[3 * j], st[3 * j + 1], st[3 * j + 2], st[3 * least],
+                      st[3 * least + 1], st[3 * least + 2]) < 0)
+        least = j;
+    const int lv = st[3 * least], lp = st[3 * least + 1], ld = st[3 * least + 2];
+    for (int j = 0; j < n; j++)
+      if (!degrees_cmp(g, st[3 * j], st[3 * j + 1], st[3 * j + 2], lv, lp, ld)) {
+        memmove(&s->starts[3 * m], &s->starts[3 * j], 3 * sizeof *s->starts);
+        m++;
+      }
+    n = m;
+  }
+  return n;
+}
+
+/* Least code of the current graph over the starts s->starts[0..n).  No
+ * inverse table: most starts are abandoned before they reach most vertices. */
+static void canon(gen *s, int n) {
   graph *g = &s->g;
-  ss_canon_inverse(g->n, s->off, g->deg, &g->nb[0][0], s->inv);
-  ss_cgraph cg = {g->n, s->off, g->deg, &g->nb[0][0], s->inv};
-  ss_canon_run(&cg, starts, nstarts, s->cw);
+  ss_cgraph cg = {g->n, s->off, g->deg, &g->nb[0][0], NULL};
+  ss_canon_run(&cg, s->starts, n, s->cw);
 }
 
 /* The automorphisms found by the last canon() into lw.  Valid when that run's
@@ -168,15 +238,14 @@ static void group_from_canon(gen *s, level_ws *lw) {
  * verts[0..nverts), a set of vertices that every automorphism maps onto itself
  * (all of them, or one that every automorphism fixes). */
 static void automorphisms(gen *s, level_ws *lw, const int *verts, int nverts) {
-  graph *g = &s->g;
-  int n = 0;
-  for (int t = 0; t < nverts; t++)
-    for (int v = verts[t], i = 0; i < g->deg[v]; i++) {
-      s->starts[2 * n] = v;
-      s->starts[2 * n + 1] = i;
-      n++;
-    }
-  canon(s, s->starts, n);
+  int n = collect_starts(s, verts, nverts, 1);
+  if (n == 1) { /* no other start looks alike: only the identity */
+    lw->naut = 1;
+    for (int v = 0; v < s->g.n; v++)
+      lw->aut[0][v] = v;
+    return;
+  }
+  canon(s, n);
   group_from_canon(s, lw);
 }
 
@@ -258,19 +327,10 @@ static int is_canonical(gen *s, level_ws *lw) {
     return 1;
   }
   /* full canonical labelling from the tied vertices */
-  int n = 0;
-  for (int t = 0; t < ties; t++) {
-    int u = tie_u[t], seen = 0;
-    for (int j = 0; j < t; j++)
-      if (tie_u[j] == u) seen = 1;
-    if (seen) continue;
-    for (int i = 0; i < g->deg[u]; i++) {
-      s->starts[2 * n] = u;
-      s->starts[2 * n + 1] = i;
-      n++;
-    }
-  }
-  canon(s, s->starts, n);
+  int verts[MAXN * 5], nverts = 0;
+  for (int t = 0; t < ties; t++)
+    if (!nverts || verts[nverts - 1] != tie_u[t]) verts[nverts++] = tie_u[t];
+  canon(s, collect_starts(s, verts, nverts, 0));
   ss_canon_ws *w = s->cw;
   int best = -1;
   for (int t = 0; t < ties; t++) {

@@ -25,7 +25,7 @@ static ss_status run_all(const ss_link *l, run *r, ss_error *err) {
   const int k = l->k, e2 = l->off[k];
   r->deg = malloc((size_t)k * sizeof *r->deg);
   r->inv = malloc((size_t)e2 * sizeof *r->inv);
-  r->starts = malloc((size_t)e2 * 2 * sizeof *r->starts);
+  r->starts = malloc((size_t)e2 * 6 * sizeof *r->starts);
   r->w = ss_canon_ws_new(k, e2 + k, 2 * e2);
   if (!r->deg || !r->inv || !r->starts || !r->w) {
     run_free(r);
@@ -33,14 +33,15 @@ static ss_status run_all(const ss_link *l, run *r, ss_error *err) {
   }
   for (int v = 0; v < k; v++) {
     r->deg[v] = ss_link_deg(l, v);
-    for (int i = 0; i < r->deg[v]; i++) {
-      r->starts[2 * (l->off[v] + i)] = v;
-      r->starts[2 * (l->off[v] + i) + 1] = i;
-    }
+    for (int i = 0; i < r->deg[v]; i++)
+      for (int d = 0; d < 2; d++) {
+        int *st = r->starts + 6 * (l->off[v] + i) + 3 * d;
+        st[0] = v, st[1] = i, st[2] = d ? -1 : 1;
+      }
   }
   ss_canon_inverse(k, l->off, r->deg, l->nbr, r->inv);
   r->g = (ss_cgraph){k, l->off, r->deg, l->nbr, r->inv};
-  ss_canon_run(&r->g, r->starts, e2, r->w);
+  ss_canon_run(&r->g, r->starts, 2 * e2, r->w);
   return SS_OK;
 }
 
