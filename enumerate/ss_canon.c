@@ -62,17 +62,19 @@ static int one_start(const ss_cgraph *g, int v0, int p0, int dir, ss_canon_ws *w
   label[v0] = 0;
   order[0] = v0;
   ent[v0] = p0;
+  const int *best = w->best;
   for (int i = 0; i < k; i++) {
     const int x = order[i], d = g->deg[x], base = g->off[x];
+    const int *row = g->nbr + base;
     int p = ent[x];
     for (int j = 0; j < d; j++) {
-      const int h = base + p;
-      const int y = g->nbr[h];
-      if (label[y] < 0) {
-        label[y] = nl;
+      const int y = row[p];
+      int c = label[y];
+      if (c < 0) {
+        c = label[y] = nl;
         order[nl++] = y;
         if (g->inv) {
-          ent[y] = g->inv[h] - g->off[y];
+          ent[y] = g->inv[base + p] - g->off[y];
         } else {
           const int *ly = g->nbr + g->off[y];
           int q = 0;
@@ -81,19 +83,17 @@ static int one_start(const ss_cgraph *g, int v0, int p0, int dir, ss_canon_ws *w
           ent[y] = q;
         }
       }
-      const int c = label[y];
       if (cmp == 0) {
-        if (c > w->best[n]) return 1;
-        if (c < w->best[n]) cmp = -1;
+        if (c > best[n]) return 1;
+        if (c < best[n]) cmp = -1;
       }
       code[n++] = c;
       p += dir;
-      if (p == d) p = 0;
-      if (p < 0) p = d - 1;
+      if ((unsigned)p >= (unsigned)d) p -= dir * d; /* wrapped: d -> 0, -1 -> d - 1 */
     }
     if (cmp == 0) {
-      if (k > w->best[n]) return 1;
-      if (k < w->best[n]) cmp = -1;
+      if (k > best[n]) return 1;
+      if (k < best[n]) cmp = -1;
     }
     code[n++] = k;
   }

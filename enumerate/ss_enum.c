@@ -251,16 +251,10 @@ static void automorphisms(gen *s, level_ws *lw, const int *verts, int nverts) {
 
 /* ---- the canonical reduction ---- */
 
-/* Degree sequence of the neighbours of u from position p in direction dir,
- * as a base-32 number (degrees are below 32). */
-static long seq(const graph *g, int u, int p, int dir) {
-  const int d = g->deg[u];
-  long x = 0;
-  for (int j = 0; j < d; j++) {
-    int q = ((p + dir * j) % d + d) % d;
-    x = x * 32 + g->deg[g->nb[u][q]];
-  }
-  return x;
+/* The degrees a, b, c, ... read as a base-32 number (degrees are below 32):
+ * comparing two such numbers compares the sequences lexicographically. */
+static long digits4(int a, int b, int c, int d) {
+  return (((long)a * 32 + b) * 32 + c) * 32 + d;
 }
 
 static long max2(long a, long b) {
@@ -269,21 +263,32 @@ static long max2(long a, long b) {
 
 /* Invariant of the reduction at u with choice i (degree 3: none; 4: the
  * diagonal at positions i, i+2; 5: the apex at position i), or -1 if that
- * reduction is not valid. */
+ * reduction is not valid: the greatest sequence of the degrees of u's
+ * neighbours read around u from an end of the choice (degree 3: from any
+ * neighbour), in either direction, so that mirror images agree. */
 static long reduction_invariant(const graph *g, int u, int i) {
   const int d = g->deg[u];
   const int *q = g->nb[u];
-  if (d == 3)
-    return max2(max2(max2(seq(g, u, 0, 1), seq(g, u, 1, 1)),
-                     max2(seq(g, u, 2, 1), seq(g, u, 0, -1))),
-                max2(seq(g, u, 1, -1), seq(g, u, 2, -1)));
+  if (d == 3) {
+    /* from each neighbour both ways: every order of the three degrees, the
+     * greatest of which is the decreasing one */
+    int a = g->deg[q[0]], b = g->deg[q[1]], c = g->deg[q[2]], t;
+    if (a < b) t = a, a = b, b = t;
+    if (b < c) t = b, b = c, c = t;
+    if (a < b) t = a, a = b, b = t;
+    return ((long)a * 32 + b) * 32 + c;
+  }
   if (d == 4) {
     if (adjacent(g, q[i], q[i + 2])) return -1;
-    return max2(max2(seq(g, u, i, 1), seq(g, u, i, -1)),
-                max2(seq(g, u, i + 2, 1), seq(g, u, i + 2, -1)));
+    const int t0 = g->deg[q[i]], t1 = g->deg[q[i + 1]], t2 = g->deg[q[i + 2]],
+              t3 = g->deg[q[(i + 3) % 4]];
+    return max2(max2(digits4(t0, t1, t2, t3), digits4(t0, t3, t2, t1)),
+                max2(digits4(t2, t3, t0, t1), digits4(t2, t1, t0, t3)));
   }
   if (adjacent(g, q[i], q[(i + 2) % 5]) || adjacent(g, q[i], q[(i + 3) % 5])) return -1;
-  return max2(seq(g, u, i, 1), seq(g, u, i, -1));
+  const int t0 = g->deg[q[i]], t1 = g->deg[q[(i + 1) % 5]], t2 = g->deg[q[(i + 2) % 5]],
+            t3 = g->deg[q[(i + 3) % 5]], t4 = g->deg[q[(i + 4) % 5]];
+  return max2(digits4(t0, t1, t2, t3) * 32 + t4, digits4(t0, t4, t3, t2) * 32 + t1);
 }
 
 /* Key of reduction (u, i) under labelling lab. */
