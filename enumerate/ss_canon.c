@@ -101,7 +101,8 @@ static int one_start(const ss_cgraph *g, int v0, int p0, int dir, ss_canon_ws *w
   return cmp;
 }
 
-void ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, ss_canon_ws *w) {
+int ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, int nfirst,
+                 ss_canon_ws *w) {
   const int k = g->k;
   w->nbest = 0;
   int first = 1;
@@ -109,6 +110,7 @@ void ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, ss_canon_w
     const int *st = starts + 3 * s;
     int r = one_start(g, st[0], st[1], st[2], w, first);
     if (r > 0) continue;
+    if (r < 0 && s >= nfirst) return 1;
     if (r < 0) {
       memcpy(w->best, w->code, (size_t)w->ncode * sizeof *w->best);
       memcpy(w->best_order, w->order, (size_t)k * sizeof *w->order);
@@ -120,4 +122,5 @@ void ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, ss_canon_w
              (size_t)k * sizeof *w->label);
     w->nbest++;
   }
+  return 0;
 }

@@ -52,7 +52,12 @@ void ss_canon_inverse(int k, const int *off, const int *deg, const int *nbr, int
  * against it).  The least code and the set of starts reaching it do not depend
  * on the order of the starts; the work does (a start is abandoned at its first
  * entry above the least code so far), so callers put likely winners first.
- * best_order and labels[0] belong to the first start reaching the least code. */
-void ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, ss_canon_ws *w);
+ * best_order and labels[0] belong to the first start reaching the least code.
+ * Returns 0, or 1 as soon as a start from index nfirst on gives a code below
+ * the least of the first nfirst (then w holds nothing useful): a caller that
+ * needs the least code to be reached from its first starts stops there
+ * (nfirst = nstarts: never). */
+int ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, int nfirst,
+                 ss_canon_ws *w);
 
 #endif

@@ -172,9 +172,11 @@ static int degrees_cmp(const graph *g, int a, int i, int da, int b, int j, int d
  * sorted by the degrees of their first three neighbours, for the same reason:
  * likely winners first, so the others are abandoned early (ss_canon.h: the
  * order changes only the work). */
-static int collect_starts(gen *s, const int *verts, int nverts, int group) {
+static int collect_starts(gen *s, const int *verts, int nverts, int group, int first,
+                          int *nfirst) {
   const graph *g = &s->g;
   int mind = MAXN;
+  *nfirst = 0;
   for (int t = 0; t < nverts; t++)
     for (int i = 0; i < g->deg[verts[t]]; i++)
       if (g->deg[g->nb[verts[t]][i]] < mind) mind = g->deg[g->nb[verts[t]][i]];
@@ -185,7 +187,9 @@ static int collect_starts(gen *s, const int *verts, int nverts, int group) {
       for (int dir = 1; dir >= -1; dir -= 2) {
         if (g->deg[q[i]] != mind) continue;
         const int i1 = (i + dir + d) % d, i2 = (i + 2 * dir + 2 * d) % d;
-        const int key = (g->deg[q[i]] * 32 + g->deg[q[i1]]) * 32 + g->deg[q[i2]];
+        const int key = (v != first) << 20 | /* first's starts first */
+                        ((g->deg[q[i]] * 32 + g->deg[q[i1]]) * 32 + g->deg[q[i2]]);
+        *nfirst += v == first;
         int j = n++;
         for (; j > 0 && s->skey[j - 1] > key; j--) {
           s->skey[j] = s->skey[j - 1];
@@ -213,12 +217,13 @@ static int collect_starts(gen *s, const int *verts, int nverts, int group) {
   return n;
 }
 
-/* Least code of the current graph over the starts s->starts[0..n).  No
- * inverse table: most starts are abandoned before they reach most vertices. */
-static void canon(gen *s, int n) {
+/* Least code of the current graph over the starts s->starts[0..n), or 1 if a
+ * start from nfirst on beats the first nfirst (ss_canon_run).  No inverse
+ * table: most starts are abandoned before they reach most vertices. */
+static int canon(gen *s, int n, int nfirst) {
   graph *g = &s->g;
   ss_cgraph cg = {g->n, s->off, g->deg, &g->nb[0][0], NULL};
-  ss_canon_run(&cg, s->starts, n, s->cw);
+  return ss_canon_run(&cg, s->starts, n, nfirst, s->cw);
 }
 
 /* The automorphisms found by the last canon() into lw.  Valid when that run's
@@ -238,14 +243,14 @@ static void group_from_canon(gen *s, level_ws *lw) {
  * verts[0..nverts), a set of vertices that every automorphism maps onto itself
  * (all of them, or one that every automorphism fixes). */
 static void automorphisms(gen *s, level_ws *lw, const int *verts, int nverts) {
-  int n = collect_starts(s, verts, nverts, 1);
+  int nfirst, n = collect_starts(s, verts, nverts, 1, -1, &nfirst);
   if (n == 1) { /* no other start looks alike: only the identity */
     lw->naut = 1;
     for (int v = 0; v < s->g.n; v++)
       lw->aut[0][v] = v;
     return;
   }
-  canon(s, n);
+  canon(s, n, n);
   group_from_canon(s, lw);
 }
 
@@ -335,7 +340,12 @@ static int is_canonical(gen *s, level_ws *lw) {
   int verts[MAXN * 5], nverts = 0;
   for (int t = 0; t < ties; t++)
     if (!nverts || verts[nverts - 1] != tie_u[t]) verts[nverts++] = tie_u[t];
-  canon(s, collect_starts(s, verts, nverts, 0));
+  /* v = n - 1 with choice 0 wins only if a least start is at v (the least
+   * labelling's vertex 0 is a least start's vertex, and the best key is the
+   * one with label 0): so v must keep a start, and a start elsewhere that
+   * beats all of v's settles it. */
+  int nfirst, n = collect_starts(s, verts, nverts, 0, v, &nfirst);
+  if (!nfirst || canon(s, n, nfirst)) return 0;
   ss_canon_ws *w = s->cw;
   int best = -1;
   for (int t = 0; t < ties; t++) {

@@ -41,7 +41,7 @@ static ss_status run_all(const ss_link *l, run *r, ss_error *err) {
   }
   ss_canon_inverse(k, l->off, r->deg, l->nbr, r->inv);
   r->g = (ss_cgraph){k, l->off, r->deg, l->nbr, r->inv};
-  ss_canon_run(&r->g, r->starts, 2 * e2, r->w);
+  ss_canon_run(&r->g, r->starts, 2 * e2, 2 * e2, r->w);
   return SS_OK;
 }
 
