@@ -75,11 +75,17 @@ static void undo(graph *g, undo_log *u) {
   g->n--;
 }
 
+/* Insert w into v's list at position p. */
+static void ins_at(graph *g, int v, int p, int w) {
+  int *row = g->nb[v];
+  for (int t = g->deg[v]; t > p; t--) /* a few entries: no library call */
+    row[t] = row[t - 1];
+  row[p] = w;
+  g->deg[v]++;
+}
+
 static void ins_after(graph *g, int v, int a, int w) {
-  int p = pos(g, v, a) + 1, d = g->deg[v];
-  memmove(&g->nb[v][p + 1], &g->nb[v][p], (size_t)(d - p) * sizeof(int));
-  g->nb[v][p] = w;
-  g->deg[v] = d + 1;
+  ins_at(g, v, pos(g, v, a) + 1, w);
 }
 
 static void replace(graph *g, int v, int old, int w) {
@@ -106,11 +112,11 @@ static int adjacent(const graph *g, int a, int b) {
   return pos(g, a, b) >= 0;
 }
 
-/* E3 into the face (x, y, z), z following y around x. */
-static void expand3(graph *g, undo_log *u, int x, int y, int z) {
+/* E3 into the face (x, y, z), y at position i around x and z following it. */
+static void expand3(graph *g, undo_log *u, int x, int i, int y, int z) {
   int v = g->n++;
   save(g, u, x), save(g, u, y), save(g, u, z);
-  ins_after(g, x, y, v);
+  ins_at(g, x, i + 1, v);
   ins_after(g, y, z, v);
   ins_after(g, z, x, v);
   g->deg[v] = 3;
@@ -442,12 +448,12 @@ static void visit_node(gen *s) {
   /* E3: faces, each once as (x; y, z) with x the smallest */
   for (int x = 0; x < n && !s->stop; x++)
     for (int i = 0; i < g->deg[x]; i++) {
-      int y = g->nb[x][i], z = g->nb[x][(i + 1) % g->deg[x]];
+      int y = g->nb[x][i], z = g->nb[x][i + 1 == g->deg[x] ? 0 : i + 1];
       if (y < x || z < x) continue;
       int key[3] = {x, y, z};
       sort3(key);
       if (lw->naut > 1 && !least_in_orbit(lw, 3, key[0], key[1], key[2])) continue;
-      expand3(g, &u, x, y, z);
+      expand3(g, &u, x, i, y, z);
       if (is_canonical(s, child_lw)) accept(s);
       undo(g, &u);
       if (s->stop) return;
