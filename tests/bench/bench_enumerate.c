@@ -26,14 +26,24 @@
  * without either (CI has no network) the case prints "plantri not available:
  * SKIP" and compares nothing.  `bench_enumerate --case plantri` runs it alone.
  *
- * Measured (2-core machine shared with 3-4 other engineers' builds, load
- * 6-11; plantri 5.5 built with gcc -O3; CPU seconds, best of 3):
- *   before issue 20's work (main a188919): count k = 14: 0.83 s against
- *   plantri's 0.17 s (4.9x), k = 15: 6.6 s against 1.22 s (5.4x).
- *   after 0a178e9 (the group from the acceptance test, fewer and better
- *   ordered starts), this benchmark: count 2.09x, 2.40x, 2.16x and ASCII
- *   1.92x, 2.19x, 1.77x for k = 13, 14, 15 (plantri 0.030/0.167/1.261 s
- *   counting, 0.041/0.256/1.857 s writing).
+ * Measured with case plantri (2-core machine shared with 3-4 other
+ * engineers' builds, load 7-10; plantri 5.5 compiled by this benchmark with
+ * gcc -O3; CPU seconds, best of 3; ratio = ours / plantri):
+ *            plantri          main a188919          after issue 20's work
+ *   k    count   ASCII      count       ASCII        count       ASCII
+ *   13   0.028   0.040   0.125 4.50x 0.180 4.47x  0.051 1.59x 0.090 1.98x
+ *   14   0.179   0.259   0.953 5.33x 1.007 3.89x  0.389 2.28x 0.524 1.81x
+ *   15   1.256   1.940   6.930 5.52x 8.280 4.27x  2.514 2.10x 3.727 1.82x
+ * (plantri's column is the run against main; against the new generator it
+ * measured 0.032/0.045, 0.171/0.290, 1.197/2.049 s.)  Repeated runs move a
+ * ratio by about +-0.3 on this loaded machine.  The gain: a node's
+ * automorphism group comes from its own acceptance test instead of a second
+ * canonical run over every half-edge, fewer canonical starts (only those
+ * that can reach the least code) tried in a better order, and the test stops
+ * as soon as another vertex beats the new one; callgrind, k = 13 counted:
+ * 872 M -> 262 M instructions (plantri: 89 M).  Peak memory at k = 15
+ * counted: 1.2 MB.  The links are the same, in the same order: the output of
+ * k = 4..12, 13, 14 and 4..14 is byte for byte that of main.
  */
 #define _DEFAULT_SOURCE /* wait4 */
 #include <fcntl.h>
