@@ -50,9 +50,10 @@ void ss_canon_inverse(int k, const int *off, const int *deg, const int *nbr, int
 }
 
 /* One start.  Returns -1 if its code is less than w->best (then w->code holds
- * it), 0 if equal, +1 if greater (abandoned early).  `first`: no best yet. */
+ * it, unless `quit_below`: then it returns at the first lower entry), 0 if
+ * equal, +1 if greater (abandoned early).  `first`: no best yet. */
 static int one_start(const ss_cgraph *g, int v0, int p0, int dir, ss_canon_ws *w,
-                     int first) {
+                     int first, int quit_below) {
   const int k = g->k;
   int *label = w->label, *order = w->order, *code = w->code;
   int *ent = w->entry;
@@ -85,7 +86,10 @@ static int one_start(const ss_cgraph *g, int v0, int p0, int dir, ss_canon_ws *w
       }
       if (cmp == 0) {
         if (c > best[n]) return 1;
-        if (c < best[n]) cmp = -1;
+        if (c < best[n]) {
+          if (quit_below) return -1;
+          cmp = -1;
+        }
       }
       code[n++] = c;
       p += dir;
@@ -93,7 +97,10 @@ static int one_start(const ss_cgraph *g, int v0, int p0, int dir, ss_canon_ws *w
     }
     if (cmp == 0) {
       if (k > best[n]) return 1;
-      if (k < best[n]) cmp = -1;
+      if (k < best[n]) {
+        if (quit_below) return -1;
+        cmp = -1;
+      }
     }
     code[n++] = k;
   }
@@ -108,7 +115,7 @@ int ss_canon_run(const ss_cgraph *g, const int *starts, int nstarts, int nfirst,
   int first = 1;
   for (int s = 0; s < nstarts; s++) {
     const int *st = starts + 3 * s;
-    int r = one_start(g, st[0], st[1], st[2], w, first);
+    int r = one_start(g, st[0], st[1], st[2], w, first, s >= nfirst);
     if (r > 0) continue;
     if (r < 0 && s >= nfirst) return 1;
     if (r < 0) {
