@@ -27,21 +27,22 @@
  * SKIP" and compares nothing.  `bench_enumerate --case plantri` runs it alone.
  *
  * Measured with case plantri (2-core machine shared with 3-4 other
- * engineers' builds, load 7-10; plantri 5.5 compiled by this benchmark with
+ * engineers' builds, load 7-11; plantri 5.5 compiled by this benchmark with
  * gcc -O3; CPU seconds, best of 3; ratio = ours / plantri):
  *            plantri          main a188919          after issue 20's work
  *   k    count   ASCII      count       ASCII        count       ASCII
- *   13   0.028   0.040   0.125 4.50x 0.180 4.47x  0.051 1.59x 0.090 1.98x
- *   14   0.179   0.259   0.953 5.33x 1.007 3.89x  0.389 2.28x 0.524 1.81x
- *   15   1.256   1.940   6.930 5.52x 8.280 4.27x  2.514 2.10x 3.727 1.82x
- * (plantri's column is the run against main; against the new generator it
- * measured 0.032/0.045, 0.171/0.290, 1.197/2.049 s.)  Repeated runs move a
+ *   13   0.028   0.040   0.125 4.50x 0.180 4.47x  0.048 1.73x 0.063 1.54x
+ *   14   0.179   0.259   0.953 5.33x 1.007 3.89x  0.303 1.91x 0.446 1.73x
+ *   15   1.256   1.940   6.930 5.52x 8.280 4.27x  2.520 2.15x 3.626 1.76x
+ * (plantri's column is the run against main; against the new generator, a
+ * run at load 11, it measured 0.028/0.041, 0.159/0.257, 1.171/2.058 s.)
+ * Each ratio is against plantri in the same run; repeated runs move a
  * ratio by about +-0.3 on this loaded machine.  The gain: a node's
  * automorphism group comes from its own acceptance test instead of a second
  * canonical run over every half-edge, fewer canonical starts (only those
  * that can reach the least code) tried in a better order, and the test stops
  * as soon as another vertex beats the new one; callgrind, k = 13 counted:
- * 872 M -> 262 M instructions (plantri: 89 M).  Peak memory at k = 15
+ * 872 M -> 251 M instructions (plantri: 89 M).  Peak memory at k = 15
  * counted: 1.2 MB.  The links are the same, in the same order: the output of
  * k = 4..12, 13, 14 and 4..14 is byte for byte that of main.
  */
