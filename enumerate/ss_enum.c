@@ -283,12 +283,11 @@ static long reduction_invariant(const graph *g, int u, int i) {
   const int *q = g->nb[u];
   if (d == 3) {
     /* from each neighbour both ways: every order of the three degrees, the
-     * greatest of which is the decreasing one */
-    int a = g->deg[q[0]], b = g->deg[q[1]], c = g->deg[q[2]], t;
-    if (a < b) t = a, a = b, b = t;
-    if (b < c) t = b, b = c, c = t;
-    if (a < b) t = a, a = b, b = t;
-    return ((long)a * 32 + b) * 32 + c;
+     * greatest of which is the decreasing one (min/max: no branch to miss) */
+    const int a = g->deg[q[0]], b = g->deg[q[1]], c = g->deg[q[2]];
+    const int ab = a > b ? a : b, hi = ab > c ? ab : c;
+    const int ba = a < b ? a : b, lo = ba < c ? ba : c;
+    return ((long)hi * 32 + (a + b + c - hi - lo)) * 32 + lo;
   }
   if (d == 4) {
     if (adjacent(g, q[i], q[i + 2])) return -1;
