@@ -14,6 +14,7 @@
 
 #include "ss_jsr_cert.h"
 #include "ss_jsr_ellipsoid.h"
+#include "ss_jsr_polytope.h"
 
 ss_jsr_opts ss_jsr_defaults(void) {
   ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_AUTO, 10000000, 0.0, 0, 1};
@@ -86,6 +87,10 @@ static const double U = DBL_EPSILON / 2;
 /* AUTO tries the ellipsoidal norm up to this order (the tet/oct face is 30,
  * its edges 3..10 up to 50; the fit costs O(m n^3) per L-BFGS step). */
 enum { ELL_AUTO_MAX_N = 64 };
+
+/* The invariant polytope's vertex cap inside ss_jsr_compute (memory about
+ * (12 m + 8 n) bytes per vertex plus GLPK's 2 n nonzeros per vertex). */
+enum { POLY_CAP = 20000 };
 
 /* x rounded away from 0 by a few units: covers the rounding of the handful of
  * floating-point operations on nonnegative numbers that produced x. */
@@ -679,6 +684,33 @@ static int bnb_pass(jsr_ws *w, int L, ss_jsr_norm norm, double gap, size_t max_n
   return 1;
 }
 
+/* The invariant polytope (ss_jsr_polytope.h) from the current lower bound's
+ * word, eps = gap / 2 (so that a closed polytope meets the gap), until the
+ * wall-clock time `until` (0: no limit but the vertex cap).  Fills
+ * out->polytope, poly_vertices, poly_upper.  Only running out of memory is
+ * an error; anything else the method cannot do leaves the gap to the branch
+ * and bound. */
+static ss_status try_polytope(jsr_ws *w, const double *const *Y, double gap, double until,
+                              ss_jsr_result *out, ss_error *err) {
+  out->polytope = SS_POLY_LP;
+  out->poly_upper = INFINITY;
+  if (w->lower_len < 1 || w->n > 4096) return SS_OK;
+  ss_jsr_polytope_opts po = ss_jsr_polytope_defaults();
+  po.eps = gap > 0 ? fmin(gap / 2, 0.25) : 1e-9;
+  po.max_vertices = POLY_CAP;
+  po.max_seconds = until > 0 ? fmax(until - now_seconds(), 1e-3) : 0;
+  ss_jsr_polytope_result pr;
+  ss_error e2 = {0};
+  const ss_status st =
+      ss_jsr_polytope(w->m, w->n, Y, w->lower_word, w->lower_len, &po, &pr, &e2);
+  if (st == SS_ENOMEM) return ss_error_nomem(err, "jsr invariant polytope");
+  if (st != SS_OK) return SS_OK;
+  out->polytope = (int)pr.stop;
+  out->poly_vertices = pr.vertices;
+  if (pr.stop == SS_POLY_CLOSED) out->poly_upper = pr.upper;
+  return SS_OK;
+}
+
 ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_jsr_opts *o,
                          ss_jsr_result *out, ss_error *err) {
   const double t0 = now_seconds();
@@ -686,6 +718,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   if (!o) o = &d;
   if (!out) return ss_error_set(err, SS_EINPUT, "jsr: no result given");
   memset(out, 0, sizeof *out);
+  out->polytope = -1;
+  out->poly_upper = INFINITY;
   if (m < 1) return ss_error_set(err, SS_EINPUT, "jsr: no matrices (m = 0)");
   if (n < 1) return ss_error_set(err, SS_EINPUT, "jsr: matrices of order n = 0");
   if (!Y) return ss_error_set(err, SS_EINPUT, "jsr: no matrices given");
@@ -710,7 +744,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     return ss_error_set(err, SS_EINPUT, "jsr: gap %g is not a finite number >= 0",
                         o->gap);
   if (o->norm != SS_JSR_NORM_INF && o->norm != SS_JSR_NORM_2 &&
-      o->norm != SS_JSR_NORM_AUTO && o->norm != SS_JSR_NORM_ELLIPSOID)
+      o->norm != SS_JSR_NORM_AUTO && o->norm != SS_JSR_NORM_ELLIPSOID &&
+      o->norm != SS_JSR_NORM_POLYTOPE)
     return ss_error_set(err, SS_EINPUT, "jsr: unknown norm %d", (int)o->norm);
   if (isnan(o->max_seconds))
     return ss_error_set(err, SS_EINPUT, "jsr: max_seconds is NaN");
@@ -728,6 +763,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
 
   ss_status st = SS_OK;
   const int K = o->depth;
+  /* POLYTOPE runs the polytope first, then the branch and bound as AUTO */
+  const int auto_ = o->norm == SS_JSR_NORM_AUTO || o->norm == SS_JSR_NORM_POLYTOPE;
   double *rho_cert = NULL, *best_d = NULL, *ybuf = NULL;
   const double **yn = NULL;
   jsr_ws w;
@@ -804,7 +841,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   /* the inf-norm branch and bound may run in a diagonally weighted inf-norm
    * (an exact similarity; the profile rho_inf stays the plain inf-norm) */
   int have = 0;
-  if (o->weighted && (o->norm == SS_JSR_NORM_INF || o->norm == SS_JSR_NORM_AUTO) &&
+  if (o->weighted && (o->norm == SS_JSR_NORM_INF || auto_) &&
       upper > w.lower * (1 + o->gap)) {
     if (!ws_reserve(&w, 2 * w.lower_len)) {
       st = ss_error_nomem(err, "jsr scaling");
@@ -818,8 +855,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
    * copies enclosed; AUTO tries it for orders up to ELL_AUTO_MAX_N (the fit
    * costs O(m n^3) per step), with at most a quarter of the time limit */
   int have_ell = 0;
-  if ((o->norm == SS_JSR_NORM_ELLIPSOID ||
-       (o->norm == SS_JSR_NORM_AUTO && n <= ELL_AUTO_MAX_N)) &&
+  if ((o->norm == SS_JSR_NORM_ELLIPSOID || (auto_ && n <= ELL_AUTO_MAX_N)) &&
       upper > w.lower * (1 + o->gap)) {
     have_ell = ws_ellipsoid(&w, Y, deadline > 0 ? t0 + o->max_seconds / 4 : 0, &st);
     if (st == SS_ENOMEM) {
@@ -845,7 +881,6 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   enum { C_INF, C_WINF, C_2, C_ELL, NCAND };
   const ss_jsr_norm cn[NCAND] = {SS_JSR_NORM_INF, SS_JSR_NORM_INF, SS_JSR_NORM_2,
                                  SS_JSR_NORM_2};
-  const int auto_ = o->norm == SS_JSR_NORM_AUTO;
   const int use[NCAND] = {o->norm == SS_JSR_NORM_INF || auto_, have,
                           o->norm == SS_JSR_NORM_2 || auto_, have_ell};
   int ncand = 0, active = C_INF;
@@ -853,6 +888,13 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     if (use[c]) ncand++, active = c;
   ws_select(&w, Y, active, best_d);
   const size_t max_nodes = o->max_nodes ? brute_nodes + o->max_nodes : 0;
+  if (o->norm == SS_JSR_NORM_POLYTOPE && upper > w.lower * (1 + o->gap)) {
+    const double now = now_seconds();
+    st = try_polytope(&w, Y, o->gap, deadline > 0 ? now + (deadline - now) / 2 : 0, out,
+                      err);
+    if (st != SS_OK) goto done;
+    if (out->poly_upper < upper) upper = out->poly_upper;
+  }
   for (int L = K; upper > w.lower * (1 + o->gap); L++) {
     if (o->max_depth && L > o->max_depth) break;
     if (!ws_reserve(&w, L)) {
@@ -889,9 +931,24 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     out->bnb_depth = L;
     if (u < upper) upper = u;
     if (stop) break;
+    /* AUTO: the first pass left the gap open (the quadratic norms are far
+     * from extremal): the invariant polytope gets a third of the time left
+     * (only under a time limit: its LPs grow with the vertices, and without
+     * a limit only the 20000-vertex cap would stop it) */
+    if (L == K && o->norm == SS_JSR_NORM_AUTO && deadline > 0 &&
+        upper > w.lower * (1 + o->gap)) {
+      const double now = now_seconds();
+      if (deadline > 0 && now >= deadline) break;
+      st = try_polytope(&w, Y, o->gap, deadline > 0 ? now + (deadline - now) / 3 : 0, out,
+                        err);
+      if (st != SS_OK) goto done;
+      if (out->poly_upper < upper) upper = out->poly_upper;
+    }
   }
   out->weighted = active == C_WINF;
-  out->norm = active == C_ELL ? SS_JSR_NORM_ELLIPSOID : cn[active];
+  out->norm = upper >= out->poly_upper ? SS_JSR_NORM_POLYTOPE
+              : active == C_ELL        ? SS_JSR_NORM_ELLIPSOID
+                                       : cn[active];
   if (w.st != SS_OK) goto lapack_failed;
   out->nodes = w.nodes - brute_nodes;
 
@@ -915,6 +972,9 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
    * outwards */
   out->lower = ldexp(lower_rigorous ? lower_cert : w.lower, -ex);
   out->upper = ldexp(upper, -ex);
+  out->poly_upper = ldexp(out->poly_upper, -ex);
+  if (out->poly_upper > 0 && out->poly_upper < DBL_MIN)
+    out->poly_upper = nextafter(out->poly_upper, INFINITY);
   if (out->lower > 0 && out->lower < DBL_MIN) out->lower = nextafter(out->lower, 0.0);
   if (out->upper > 0 && out->upper < DBL_MIN)
     out->upper = nextafter(out->upper, INFINITY);

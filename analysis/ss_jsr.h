@@ -40,6 +40,13 @@
  *    with the exact double L (no inverse is trusted), and their enclosure
  *    radius enters the rounding bound below like a perturbation of the
  *    inputs, so the bound stays proven for the inputs.
+ *  - Invariant polytope (ss_jsr_polytope.h, Guglielmi-Protasov): from the
+ *    word of the lower bound, a polytope norm in which every Y_i has norm
+ *    <= lower (1 + gap / 2) (up to rounding), proven in ball arithmetic;
+ *    exact up to eps when it closes.  Norm POLYTOPE runs it first; AUTO
+ *    runs it (a third of the remaining time; only when max_seconds > 0)
+ *    when the first pass of the branch and bound leaves the gap open.  A vertex cap
+ * (20000) and the time limit stop it; then the branch and bound's bound stands.
  *
  * Certification.
  *  - Upper bounds (both norms): every product carries a rigorous bound on
@@ -66,15 +73,19 @@
 #include "ss_error.h"
 
 typedef enum {
-  SS_JSR_NORM_INF = 0,      /* maximum absolute row sum (the tet/oct paper's norm) */
-  SS_JSR_NORM_2 = 1,        /* spectral norm (largest singular value) */
-  SS_JSR_NORM_AUTO = 2,     /* branch and bound: the first pass runs in each
-                               candidate (inf-norm, weighted inf-norm, 2-norm,
-                               ellipsoidal norm for orders <= 64), the rest in
-                               the one with the lowest bound */
-  SS_JSR_NORM_ELLIPSOID = 3 /* ||x||_P = sqrt(x^T P x), P = L L^T fitted to
+  SS_JSR_NORM_INF = 0,       /* maximum absolute row sum (the tet/oct paper's norm) */
+  SS_JSR_NORM_2 = 1,         /* spectral norm (largest singular value) */
+  SS_JSR_NORM_AUTO = 2,      /* branch and bound: the first pass runs in each
+                                candidate (inf-norm, weighted inf-norm, 2-norm,
+                                ellipsoidal norm for orders <= 64), the rest in
+                                the one with the lowest bound */
+  SS_JSR_NORM_ELLIPSOID = 3, /* ||x||_P = sqrt(x^T P x), P = L L^T fitted to
                                the Y_i (ss_jsr_ellipsoid.h): the 2-norm of
                                the similar L^T Y_i L^{-T}, enclosed */
+  SS_JSR_NORM_POLYTOPE = 4   /* the invariant polytope (ss_jsr_polytope.h)
+                               from the lower bound's word, eps = gap / 2,
+                               within half the time limit; if it does not
+                               close, the branch and bound as AUTO */
 } ss_jsr_norm;
 
 typedef struct {
@@ -98,31 +109,37 @@ typedef struct {
 ss_jsr_opts ss_jsr_defaults(void);
 
 typedef struct {
-  int depth;        /* K, the length of rho_inf and rho_2 */
-  double *rho_inf;  /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k}, k = 1..K
-                       (floating point, the plain inf-norm of the inputs) */
-  double *rho_2;    /* the same in the 2-norm (LAPACK's singular values) */
-  double lower;     /* lower bound: max over the words of length <= K (and the
-                       Lyndon words the branch and bound met) of
-                       rho(Y_w)^{1/|w|}, certified by ball arithmetic (see
-                       certified) */
-  int lower_len;    /* length of the word attaining `lower` */
-  int *lower_word;  /* that word, indices 0..m-1, lower_len of them (first
-                       factor applied first) */
-  double upper;     /* proven upper bound on rho(Y): min of the rigorous
-                       inf-norm profile and the branch and bound in o->norm */
-  int converged;    /* 1 if upper <= lower * (1 + gap) */
-  size_t nodes;     /* products formed by the branch and bound (including
-                       ranking the weightings), not by the brute force */
-  int bnb_depth;    /* word length of the last completed branch-and-bound pass
-                       (0 if none completed) */
-  int weighted;     /* 1 if that branch and bound used a diagonally weighted
-                       inf-norm (ss_jsr.c: choose_scaling) */
-  ss_jsr_norm norm; /* the norm it used (INF, 2 or ELLIPSOID; AUTO resolved) */
-  double seconds;   /* wall-clock time of the computation */
-  int certified;    /* 1 if both bounds account for rounding: upper always
-                       does; 0 only if the ball enclosure of the lower bound's
-                       eigenvalue failed */
+  int depth;            /* K, the length of rho_inf and rho_2 */
+  double *rho_inf;      /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k}, k = 1..K
+                           (floating point, the plain inf-norm of the inputs) */
+  double *rho_2;        /* the same in the 2-norm (LAPACK's singular values) */
+  double lower;         /* lower bound: max over the words of length <= K (and the
+                           Lyndon words the branch and bound met) of
+                           rho(Y_w)^{1/|w|}, certified by ball arithmetic (see
+                           certified) */
+  int lower_len;        /* length of the word attaining `lower` */
+  int *lower_word;      /* that word, indices 0..m-1, lower_len of them (first
+                           factor applied first) */
+  double upper;         /* proven upper bound on rho(Y): min of the rigorous
+                           inf-norm profile and the branch and bound in o->norm */
+  int converged;        /* 1 if upper <= lower * (1 + gap) */
+  size_t nodes;         /* products formed by the branch and bound (including
+                           ranking the weightings), not by the brute force */
+  int bnb_depth;        /* word length of the last completed branch-and-bound pass
+                           (0 if none completed) */
+  int weighted;         /* 1 if that branch and bound used a diagonally weighted
+                           inf-norm (ss_jsr.c: choose_scaling) */
+  ss_jsr_norm norm;     /* the norm of the bound `upper` (INF, 2, ELLIPSOID or
+                           POLYTOPE; AUTO resolved) */
+  int polytope;         /* the invariant polytope: -1 not run, else its stop
+                           code (ss_jsr_polytope_stop: 0 closed, 1 vertex cap,
+                           2 time limit, 3 LP failed, 4 rho = 0) */
+  size_t poly_vertices; /* its vertices at the end (0 if not run) */
+  double poly_upper;    /* its proven bound when closed, else +inf */
+  double seconds;       /* wall-clock time of the computation */
+  int certified;        /* 1 if both bounds account for rounding: upper always
+                           does; 0 only if the ball enclosure of the lower bound's
+                           eigenvalue failed */
 } ss_jsr_result;
 
 /* Bounds on the joint spectral radius of the m matrices Y[0..m-1], each n x n,

@@ -50,7 +50,15 @@ static void usage(FILE *f) {
       "                    ellipsoid: sqrt(x^T P x), P = L L^T fitted to make\n"
       "                    max_i ||L^T Y_i L^-T||_2 small (a nearly extremal norm,\n"
       "                    so the bound converges at short words; the similar\n"
-      "                    matrices are enclosed in ball arithmetic)\n"
+      "                    matrices are enclosed in ball arithmetic), or polytope:\n"
+      "                    the invariant polytope (Guglielmi-Protasov) from the\n"
+      "                    lower bound's word, slack gap/2, vertices added while\n"
+      "                    images leave the hull (LPs by GLPK, the bound proven\n"
+      "                    in ball arithmetic), at most 20000 vertices and half\n"
+      "                    the time; if it does not close, auto's branch and\n"
+      "                    bound goes on (auto itself tries the polytope for a\n"
+      "                    third of the time left when its first pass leaves\n"
+      "                    the gap open)\n"
       "  --diagonals D     major diagonals of tet stars (boxspline): bfs (default),\n"
       "                    proper; skew and center for edges only\n"
       "  --max-seconds T   time limit of the branch and bound, the ellipsoid's fit\n"
@@ -74,7 +82,14 @@ enum {
   O_NORM
 };
 
-static const char *const norm_names[] = {"inf", "2", "auto", "ellipsoid"};
+static const char *const norm_names[] = {"inf", "2", "auto", "ellipsoid", "polytope"};
+
+/* out->polytope: -1 not run, else ss_jsr_polytope_stop */
+static const char *poly_name(int p) {
+  static const char *const nm[] = {"closed", "vertex cap", "time limit", "LP failed",
+                                   "rho = 0"};
+  return p < 0 || p > 4 ? "not run" : nm[p];
+}
 
 int ss_cli_jsr(int argc, char **argv) {
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
@@ -129,11 +144,12 @@ int ss_cli_jsr(int argc, char **argv) {
       break;
     case O_NORM: {
       int k = 0;
-      while (k < 4 && strcmp(optarg, norm_names[k]))
+      while (k < 5 && strcmp(optarg, norm_names[k]))
         k++;
-      if (k == 4)
+      if (k == 5)
         return ss_cli_usage_error(
-            cmd, "--norm: expected auto, inf, 2 or ellipsoid, not '%s'", optarg);
+            cmd, "--norm: expected auto, inf, 2, ellipsoid or polytope, not '%s'",
+            optarg);
       o.norm = (ss_jsr_norm)k;
       break;
     }
@@ -220,6 +236,11 @@ int ss_cli_jsr(int argc, char **argv) {
     json_object_object_add(j, "norm", json_object_new_string(norm_names[r.norm]));
     json_object_object_add(j, "weighted", json_object_new_boolean(r.weighted));
     json_object_object_add(j, "bnb_depth", json_object_new_int(r.bnb_depth));
+    json_object_object_add(j, "polytope", json_object_new_string(poly_name(r.polytope)));
+    json_object_object_add(j, "polytope_vertices",
+                           json_object_new_int64((int64_t)r.poly_vertices));
+    if (r.polytope == 0)
+      json_object_object_add(j, "polytope_upper", json_object_new_double(r.poly_upper));
     printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
     json_object_put(j);
   } else {
@@ -241,6 +262,12 @@ int ss_cli_jsr(int argc, char **argv) {
            r.lower, r.upper, r.certified ? "certified" : "not certified",
            r.converged ? "gap reached" : "gap not reached", r.nodes, norm_names[r.norm],
            r.weighted ? " weighted" : "", r.bnb_depth);
+    if (r.polytope >= 0) {
+      printf("invariant polytope: %s, %zu vertices", poly_name(r.polytope),
+             r.poly_vertices);
+      if (r.polytope == 0) printf(", upper %.6g", r.poly_upper);
+      printf("\n");
+    }
     printf("threshold %.6g: %s\nverdict: %s\n", L->threshold, thr_name, verdict);
   }
 done:

@@ -47,7 +47,7 @@ assert j["maps"] == 2 and j["subspace"] == 4
 assert j["lambda1"] < 0.5 and j["threshold"] == j["lambda1"]
 assert sorted(j["theta"], reverse=True)[0] == 1 or abs(j["theta"][0] - 1) < 1e-10
 PY
-expect_in 2 "--norm: expected auto, inf, 2 or ellipsoid, not 'l1'" "" "$exe" jsr --scheme tetoct --face --norm l1
+expect_in 2 "--norm: expected auto, inf, 2, ellipsoid or polytope, not 'l1'" "" "$exe" jsr --scheme tetoct --face --norm l1
 # edge 10: undecided in the inf- and 2-norms ([0.4948, 0.5271] against 1/2);
 # the fitted ellipsoidal norm is extremal there (JSR = rho(Y_1)): the bounds
 # meet to the gap at short words and prove the pass

@@ -1,0 +1,478 @@
+/* ss_jsr_polytope.c — the invariant polytope method (Guglielmi-Protasov):
+ * vertices by breadth-first images, membership by GLPK, the bound proven in
+ * ball arithmetic.  Method: ss_jsr_polytope.h. */
+#include "ss_jsr_polytope.h"
+
+#include <arb.h>
+#include <glpk.h>
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* pi, for the ellipse points (PI is not C11) */
+#define PI 3.14159265358979323846
+
+ss_jsr_polytope_opts ss_jsr_polytope_defaults(void) {
+  ss_jsr_polytope_opts o = {5e-4, 20000, 60.0, 1e-4};
+  return o;
+}
+
+/* An image counts as inside when its LP value is at most 1 + IN_TOL: the
+ * certificate accounts for whatever the value is, so this only decides
+ * which vertices are kept. */
+#define IN_TOL 1e-10
+
+static double now_seconds(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The working state of one run. */
+typedef struct {
+  size_t m, n;            /* maps, order */
+  const double *const *Y; /* the inputs */
+  double s;               /* the normalisation lambda (1 + eps) */
+  double *vert;           /* cap x n: the vertices, row k = v_k */
+  size_t nv, cap;         /* vertices, their capacity */
+  size_t *rec_off;        /* cap x m: offset of the coefficients of A_i v_j */
+  int *rec_len;           /* cap x m: their number (-1: not tested) */
+  int *cidx;              /* coefficient store: vertex indices */
+  double *cval;           /* coefficient store: values c_k */
+  size_t nc, ccap;        /* used, capacity */
+  glp_prob *lp;           /* rows = n coordinates, 2 columns per vertex */
+  int *ind;               /* 1 + n: GLPK's 1-based row indices */
+  double *col;            /* 1 + n: a column's values */
+} poly_ws;
+
+/* Append vertex x (n values; the capacity is preallocated) as columns +x and
+ * -x of the LP. */
+static void add_vertex(poly_ws *p, const double *x) {
+  const size_t n = p->n;
+  memcpy(p->vert + p->nv * n, x, n * sizeof *x);
+  for (size_t i = 0; i < p->m; i++)
+    p->rec_len[p->nv * p->m + i] = -1;
+  const int c0 = glp_add_cols(p->lp, 2);
+  for (int sgn = 0; sgn < 2; sgn++) {
+    for (size_t l = 0; l < n; l++)
+      p->col[l + 1] = sgn ? -x[l] : x[l];
+    glp_set_mat_col(p->lp, c0 + sgn, (int)n, p->ind, p->col);
+    glp_set_col_bnds(p->lp, c0 + sgn, GLP_LO, 0.0, 0.0);
+    glp_set_obj_coef(p->lp, c0 + sgn, 1.0);
+  }
+  p->nv++;
+}
+
+/* Record coefficients for the image (j, i): cnt pairs; 0 on no memory. */
+static int record(poly_ws *p, size_t j, size_t i, const int *idx, const double *val,
+                  int cnt) {
+  if (p->nc + (size_t)cnt > p->ccap) {
+    size_t nc = p->ccap ? 2 * p->ccap : 4096;
+    while (nc < p->nc + (size_t)cnt)
+      nc *= 2;
+    int *ni = realloc(p->cidx, nc * sizeof *ni);
+    if (!ni) return 0;
+    p->cidx = ni;
+    double *nvv = realloc(p->cval, nc * sizeof *nvv);
+    if (!nvv) return 0;
+    p->cval = nvv;
+    p->ccap = nc;
+  }
+  memcpy(p->cidx + p->nc, idx, (size_t)cnt * sizeof *idx);
+  memcpy(p->cval + p->nc, val, (size_t)cnt * sizeof *val);
+  p->rec_off[j * p->m + i] = p->nc;
+  p->rec_len[j * p->m + i] = cnt;
+  p->nc += (size_t)cnt;
+  return 1;
+}
+
+/* ||x||_P by the LP (x scaled to unit max-norm first, since GLPK's
+ * tolerances are absolute); the nonzero coefficients go to idx/val (at most
+ * nv of them), their count to *cnt.  Returns the value sum |c_k| (computed
+ * from the coefficients, not GLPK's objective), or -1 if the LP failed. */
+static double lp_norm(poly_ws *p, const double *x, int *idx, double *val, int *cnt) {
+  double sc = 0;
+  for (size_t l = 0; l < p->n; l++)
+    sc = fmax(sc, fabs(x[l]));
+  *cnt = 0;
+  if (sc == 0) return 0;
+  for (size_t l = 0; l < p->n; l++)
+    glp_set_row_bnds(p->lp, (int)l + 1, GLP_FX, x[l] / sc, x[l] / sc);
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  parm.meth = GLP_DUALP; /* the last basis stays dual feasible: only b moved */
+  if (glp_simplex(p->lp, &parm) != 0 || glp_get_status(p->lp) != GLP_OPT) {
+    /* a stale basis can be singular after many added columns: retry once
+     * from the standard basis */
+    glp_std_basis(p->lp);
+    if (glp_simplex(p->lp, &parm) != 0 || glp_get_status(p->lp) != GLP_OPT) return -1;
+  }
+  double sum = 0;
+  for (size_t k = 0; k < p->nv; k++) {
+    const double c =
+        glp_get_col_prim(p->lp, 2 * (int)k + 1) - glp_get_col_prim(p->lp, 2 * (int)k + 2);
+    if (c != 0) {
+      idx[*cnt] = (int)k;
+      val[(*cnt)++] = c * sc;
+      sum += fabs(c * sc);
+    }
+  }
+  return sum;
+}
+
+/* A stop code besides ss_jsr_polytope_stop: out of memory. */
+#define STOP_NOMEM 100
+
+/* Test the images A_i v_j (i = 0..m-1) of vertex j: inside ones get their
+ * coefficients recorded, the others become vertices.  Returns -1 to go on,
+ * or a stop code (SS_POLY_CAP, SS_POLY_LP, STOP_NOMEM). */
+static int test_images(poly_ws *p, size_t j, double *x, int *idx, double *val,
+                       size_t *lps, double *max_out) {
+  const size_t n = p->n;
+  for (size_t i = 0; i < p->m; i++) {
+    const double *y = p->Y[i], *vj = p->vert + j * n;
+    for (size_t a = 0; a < n; a++) {
+      double acc = 0;
+      for (size_t c = 0; c < n; c++)
+        acc += y[a * n + c] * vj[c];
+      x[a] = acc / p->s;
+    }
+    int cnt;
+    const double v = lp_norm(p, x, idx, val, &cnt);
+    ++*lps;
+    if (v < 0) return SS_POLY_LP;
+    if (v <= 1 + IN_TOL) {
+      if (!record(p, j, i, idx, val, cnt)) return STOP_NOMEM;
+      continue;
+    }
+    if (p->nv == p->cap) return SS_POLY_CAP;
+    *max_out = fmax(*max_out, v);
+    const int k = (int)p->nv;
+    const double one = 1;
+    add_vertex(p, x);
+    if (!record(p, j, i, &k, &one, 1)) return STOP_NOMEM;
+  }
+  return -1;
+}
+
+/* Leading eigenpair of Pi: roots written to `roots` (at most cap rows of n):
+ * the real eigenvector, or the N ellipse points of the 2-plane variant, each
+ * followed by its len - 1 cyclic images.  Returns the number of rows, 0 if
+ * rho(Pi) = 0, -1 if LAPACK failed, -2 on no memory, -3 if they exceed cap. */
+static long make_roots(poly_ws *p, const int *w, int len, double eps, double *lambda,
+                       int *cplx, double **roots_out) {
+  const size_t n = p->n, nn = n * n;
+  double *P = malloc(nn * sizeof *P), *T = malloc(nn * sizeof *T),
+         *wr = malloc(n * sizeof *wr), *wi = malloc(n * sizeof *wi),
+         *vr = malloc(nn * sizeof *vr);
+  double *roots = NULL;
+  long nr = -2;
+  if (!P || !T || !wr || !wi || !vr) goto out;
+  /* P = Y_{w[len-1]} ... Y_{w[0]} */
+  memcpy(P, p->Y[w[0]], nn * sizeof *P);
+  for (int t = 1; t < len; t++) {
+    const double *y = p->Y[w[t]];
+    for (size_t a = 0; a < n; a++)
+      for (size_t b = 0; b < n; b++) {
+        double acc = 0;
+        for (size_t c = 0; c < n; c++)
+          acc += y[a * n + c] * P[c * n + b];
+        T[a * n + b] = acc;
+      }
+    memcpy(P, T, nn * sizeof *P);
+  }
+  if (LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'V', (lapack_int)n, P, (lapack_int)n, wr, wi,
+                    NULL, 1, vr, (lapack_int)n) != 0) {
+    nr = -1;
+    goto out;
+  }
+  size_t j = 0;
+  for (size_t k = 1; k < n; k++)
+    if (hypot(wr[k], wi[k]) > hypot(wr[j], wi[j])) j = k;
+  const double mu = hypot(wr[j], wi[j]);
+  if (!(mu > 0)) {
+    nr = 0;
+    goto out;
+  }
+  *lambda = pow(mu, 1.0 / len);
+  /* LAPACK stores a conjugate pair as columns j (real part) and j + 1
+   * (imaginary part) for the eigenvalue with positive imaginary part */
+  *cplx = wi[j] != 0;
+  size_t ja = j, npts = 1;
+  if (*cplx) {
+    if (wi[j] < 0) ja = j - 1;
+    const double c = pow(1 + eps, -(double)len);
+    npts = (size_t)ceil(PI / (2 * acos(c)));
+    if (npts < 2) npts = 2;
+  }
+  if (npts * (size_t)len > p->cap) {
+    nr = -3;
+    goto out;
+  }
+  roots = malloc(npts * (size_t)len * n * sizeof *roots);
+  if (!roots) goto out;
+  double na = 0, nb = 0;
+  for (size_t l = 0; l < n; l++) {
+    na += vr[l * n + ja] * vr[l * n + ja];
+    if (*cplx) nb += vr[l * n + ja + 1] * vr[l * n + ja + 1];
+  }
+  const double scale = 1 / sqrt(fmax(na, nb));
+  nr = 0;
+  for (size_t k = 0; k < npts; k++) {
+    double *x = roots + (size_t)nr * n;
+    const double th = PI * (double)k / (double)npts;
+    for (size_t l = 0; l < n; l++)
+      x[l] =
+          scale * (cos(th) * vr[l * n + ja] - (*cplx ? sin(th) * vr[l * n + ja + 1] : 0));
+    nr++;
+    for (int t = 0; t + 1 < len; t++, nr++) {
+      const double *y = p->Y[w[t]], *src = roots + (size_t)nr * n - n;
+      double *dst = roots + (size_t)nr * n;
+      for (size_t a = 0; a < n; a++) {
+        double acc = 0;
+        for (size_t c = 0; c < n; c++)
+          acc += y[a * n + c] * src[c];
+        dst[a] = acc / p->s;
+      }
+    }
+  }
+  *roots_out = roots;
+  roots = NULL;
+out:
+  free(roots);
+  free(vr);
+  free(wi);
+  free(wr);
+  free(T);
+  free(P);
+  return nr;
+}
+
+/* The certificate: U = max over (j, i) of s sum |c_k| + ||r||_1 / delta,
+ * r = Y_i v_j - s sum c_k v_k, in ball arithmetic; rounded up. */
+static double certify(const poly_ws *p, double delta) {
+  const slong n = (slong)p->n, prec = 128;
+  arb_ptr y = _arb_vec_init(n), v = _arb_vec_init(n), row = _arb_vec_init(n);
+  arb_t t, b, U, sv, dv;
+  arf_t ub;
+  arb_init(sv);
+  arb_init(dv);
+  arb_set_d(sv, p->s);
+  arb_set_d(dv, delta);
+  arb_init(t);
+  arb_init(b);
+  arb_init(U);
+  arf_init(ub);
+  arb_zero(U);
+  int ok = 1;
+  for (size_t j = 0; j < p->nv && ok; j++) {
+    const double *vj = p->vert + j * p->n;
+    for (slong l = 0; l < n; l++)
+      arb_set_d(v + l, vj[l]);
+    for (size_t i = 0; i < p->m && ok; i++) {
+      const int cnt = p->rec_len[j * p->m + i];
+      if (cnt < 0) {
+        ok = 0;
+        break;
+      }
+      const double *Yi = p->Y[i];
+      for (slong a = 0; a < n; a++) {
+        for (slong c = 0; c < n; c++)
+          arb_set_d(row + c, Yi[a * n + c]);
+        arb_dot(y + a, NULL, 0, row, 1, v, 1, n, prec);
+      }
+      arb_zero(b);
+      const size_t off = p->rec_off[j * p->m + i];
+      for (int q = 0; q < cnt; q++) {
+        const double *vk = p->vert + (size_t)p->cidx[off + q] * p->n;
+        arb_set_d(t, p->cval[off + q]);
+        arb_mul(t, t, sv, prec); /* s c_k, exact in 128 bits */
+        for (slong a = 0; a < n; a++) {
+          arb_set_d(row, vk[a]);
+          arb_submul(y + a, t, row, prec);
+        }
+        arb_abs(t, t);
+        arb_add(b, b, t, prec);
+      }
+      /* b = s sum |c_k| + ||r||_1 / delta */
+      arb_zero(t);
+      for (slong a = 0; a < n; a++) {
+        arb_abs(row, y + a);
+        arb_add(t, t, row, prec);
+      }
+      arb_div(t, t, dv, prec);
+      arb_add(b, b, t, prec);
+      if (!arb_is_finite(b)) ok = 0;
+      arb_max(U, U, b, prec);
+    }
+  }
+  double out = INFINITY;
+  if (ok) {
+    arb_get_ubound_arf(ub, U, prec);
+    out = arf_get_d(ub, ARF_RND_CEIL);
+  }
+  arf_clear(ub);
+  arb_clear(U);
+  arb_clear(b);
+  arb_clear(t);
+  arb_clear(dv);
+  arb_clear(sv);
+  _arb_vec_clear(row, n);
+  _arb_vec_clear(v, n);
+  _arb_vec_clear(y, n);
+  return out;
+}
+
+static void ws_free(poly_ws *p) {
+  if (p->lp) glp_delete_prob(p->lp);
+  free(p->vert);
+  free(p->rec_off);
+  free(p->rec_len);
+  free(p->cidx);
+  free(p->cval);
+  free(p->ind);
+  free(p->col);
+}
+
+ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int *w,
+                          int len, const ss_jsr_polytope_opts *o,
+                          ss_jsr_polytope_result *out, ss_error *err) {
+  const double t0 = now_seconds();
+  ss_jsr_polytope_opts d = ss_jsr_polytope_defaults();
+  if (!o) o = &d;
+  if (!out) return ss_error_set(err, SS_EINPUT, "jsr polytope: no result given");
+  memset(out, 0, sizeof *out);
+  out->upper = INFINITY;
+  if (m < 1 || n < 1 || !Y)
+    return ss_error_set(err, SS_EINPUT, "jsr polytope: no matrices (m = %zu, n = %zu)", m,
+                        n);
+  if (n > 4096)
+    return ss_error_set(err, SS_EINPUT, "jsr polytope: order %zu above 4096", n);
+  if (!w || len < 1)
+    return ss_error_set(err, SS_EINPUT, "jsr polytope: no candidate word");
+  for (int t = 0; t < len; t++)
+    if (w[t] < 0 || (size_t)w[t] >= m)
+      return ss_error_set(err, SS_EINPUT,
+                          "jsr polytope: letter %d of the word is %d, not in 0..%zu",
+                          t + 1, w[t], m - 1);
+  for (size_t i = 0; i < m; i++)
+    if (!Y[i])
+      return ss_error_set(err, SS_EINPUT, "jsr polytope: matrix %zu missing", i + 1);
+  if (!(o->eps > 0) || !isfinite(o->eps) || !(o->delta > 0) || !isfinite(o->delta))
+    return ss_error_set(err, SS_EINPUT,
+                        "jsr polytope: eps %g and delta %g must be positive and finite",
+                        o->eps, o->delta);
+  if (o->max_vertices < n + 1 || o->max_vertices > (size_t)1 << 26)
+    return ss_error_set(err, SS_EINPUT,
+                        "jsr polytope: vertex cap %zu not in %zu..2^26 (the %zu ball "
+                        "vertices and a root)",
+                        o->max_vertices, n + 1, n);
+  const double deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;
+
+  ss_status st = SS_OK;
+  poly_ws p;
+  memset(&p, 0, sizeof p);
+  p.m = m, p.n = n, p.Y = Y, p.cap = o->max_vertices;
+  double *roots = NULL, *x = NULL, *val = NULL;
+  int *idx = NULL;
+  /* lambda first (make_roots needs s for the cyclic images) */
+  double lambda = 0;
+  int cplx = 0;
+  {
+    /* a throwaway s: make_roots recomputes the images after s is known */
+    p.s = 1;
+    long nr = make_roots(&p, w, len, o->eps, &lambda, &cplx, &roots);
+    free(roots);
+    roots = NULL;
+    if (nr == -2) return ss_error_nomem(err, "jsr polytope roots");
+    if (nr == -1)
+      return ss_error_set(err, SS_ENUMERIC,
+                          "jsr polytope: LAPACK eigenvalues of the candidate failed");
+    if (nr == 0) {
+      out->stop = SS_POLY_ZERO;
+      out->seconds = now_seconds() - t0;
+      return SS_OK;
+    }
+  }
+  p.s = lambda * (1 + o->eps);
+  out->lambda = lambda, out->s = p.s, out->complex_leading = cplx;
+  long nr = make_roots(&p, w, len, o->eps, &lambda, &cplx, &roots);
+  if (nr == -2) return ss_error_nomem(err, "jsr polytope roots");
+  if (nr == -3 || (size_t)nr + n > p.cap) {
+    free(roots);
+    out->stop = SS_POLY_CAP;
+    out->seconds = now_seconds() - t0;
+    return SS_OK;
+  }
+  out->roots = (size_t)nr;
+
+  p.vert = malloc(p.cap * n * sizeof *p.vert);
+  p.rec_off = malloc(p.cap * m * sizeof *p.rec_off);
+  p.rec_len = malloc(p.cap * m * sizeof *p.rec_len);
+  p.ind = malloc((n + 1) * sizeof *p.ind);
+  p.col = malloc((n + 1) * sizeof *p.col);
+  x = malloc(n * sizeof *x);
+  idx = malloc(p.cap * sizeof *idx);
+  val = malloc(p.cap * sizeof *val);
+  if (!p.vert || !p.rec_off || !p.rec_len || !p.ind || !p.col || !x || !idx || !val) {
+    st = ss_error_nomem(err, "jsr polytope");
+    goto done;
+  }
+  p.lp = glp_create_prob();
+  glp_set_obj_dir(p.lp, GLP_MIN);
+  glp_add_rows(p.lp, (int)n);
+  for (size_t l = 0; l < n; l++) {
+    p.ind[l + 1] = (int)l + 1;
+    glp_set_row_bnds(p.lp, (int)l + 1, GLP_FX, 0.0, 0.0);
+  }
+  /* the ball vertices delta e_l first (indices 0..n-1), then the roots */
+  for (size_t l = 0; l < n; l++) {
+    memset(x, 0, n * sizeof *x);
+    x[l] = o->delta;
+    add_vertex(&p, x);
+  }
+  for (long r = 0; r < nr; r++)
+    add_vertex(&p, roots + (size_t)r * n);
+  glp_std_basis(p.lp);
+
+  /* breadth first over the vertices in the order they were added; the ball
+   * vertices last (their images are small, and by then the hull is large) */
+  size_t next = n;
+  int ball_done = 0, stop = -1;
+  while (stop < 0) {
+    if (next < p.nv) {
+      stop = test_images(&p, next++, x, idx, val, &out->lps, &out->max_out);
+    } else if (!ball_done) {
+      ball_done = 1;
+      for (size_t b = 0; b < n && stop < 0; b++)
+        stop = test_images(&p, b, x, idx, val, &out->lps, &out->max_out);
+    } else {
+      stop = SS_POLY_CLOSED;
+    }
+    if (stop < 0 && deadline > 0 && now_seconds() > deadline) stop = SS_POLY_TIME;
+  }
+  if (stop == STOP_NOMEM) {
+    st = ss_error_nomem(err, "jsr polytope coefficients");
+    goto done;
+  }
+  out->stop = (ss_jsr_polytope_stop)stop;
+  out->vertices = p.nv;
+  out->pending = 0;
+  if (stop != SS_POLY_CLOSED) {
+    out->pending = (p.nv - next) + (ball_done ? 0 : n);
+  } else {
+    out->upper = certify(&p, o->delta);
+    if (!isfinite(out->upper)) out->stop = SS_POLY_LP;
+  }
+  out->seconds = now_seconds() - t0;
+done:
+  ws_free(&p);
+  free(roots);
+  free(x);
+  free(idx);
+  free(val);
+  return st;
+}

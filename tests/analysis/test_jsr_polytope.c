@@ -1,0 +1,285 @@
+/* test_jsr_polytope.c — the invariant polytope method (ss_jsr_polytope)
+ * against joint spectral radii known in closed form, brute-force lower
+ * bounds, and a permutation similarity.
+ *
+ * Closed forms:
+ *  - A = [[1,1],[0,1]], B = [[1,0],[1,1]]: JSR = phi (test_jsr.c: ||A||_2 =
+ *    ||B||_2 = phi, rho(AB) = phi^2).  AB is spectrum maximising, so the
+ *    polytope from the word AB closes and its bound is phi (1 + eps) up to
+ *    the certificate's rounding terms; from the word A (rho = 1 < phi) it
+ *    can never close (an invariant body would prove JSR <= 1.001): the
+ *    vertex cap stops it.
+ *  - Cubic B-spline difference schemes (derived as in test_jsr.c: the k-th
+ *    differences of a segment's control points, maps A_L, A_R): every row
+ *    nonnegative with sum 2^{-k}, so JSR = rho(A_L) = 2^{-k}; the polytope
+ *    from the word L closes at 2^{-k} (1 + eps).
+ *  - A scaled rotation R = c R(theta) and a contraction B with ||B||_2 <
+ *    c: JSR = c exactly (rho(R) = ||R||_2 = c).  R's leading eigenvalue is
+ *    complex: the 2-plane (elliptic) variant must run and close at c (1 +
+ *    eps).
+ * Bounds: for random nonnegative sets the polytope's bound, when it closes,
+ * is at least ss_jsr's certified lower bound (brute force over words of
+ * length <= 6) and at most that lower bound times (1 + eps) (1 + 1e-6):
+ * the candidate word is the lower bound's.  Relabelling the coordinates
+ * (P Y_i P^T, P a permutation) leaves the bound unchanged (to 1e-12: the
+ * leading eigenvalue is recomputed in another order).  Through
+ * ss_jsr_compute (norm POLYTOPE): the result brackets the known value and
+ * meets the gap. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_rng.h>
+
+#include "ss_jsr.h"
+#include "ss_jsr_polytope.h"
+#include "ss_test.h"
+
+static ss_jsr_polytope_result poly(size_t m, size_t n, const double *const *Y,
+                                   const int *w, int len, double eps, size_t cap,
+                                   int *ok) {
+  ss_jsr_polytope_opts o = ss_jsr_polytope_defaults();
+  o.eps = eps;
+  o.max_vertices = cap;
+  o.max_seconds = 20;
+  ss_jsr_polytope_result r;
+  ss_error e = {0};
+  *ok = ss_jsr_polytope(m, n, Y, w, len, &o, &r, &e) == SS_OK;
+  CHECK(*ok, "ss_jsr_polytope failed: %s", e.msg);
+  return r;
+}
+
+/* The bound of a closed polytope for a set whose JSR is `exact`: at least
+ * exact, at most exact (1 + eps) (1 + 1e-9). */
+static void check_exact(const char *what, const ss_jsr_polytope_result *r, double exact,
+                        double eps) {
+  CHECK(r->stop == SS_POLY_CLOSED, "%s: not closed (stop %d, %zu vertices)", what,
+        (int)r->stop, r->vertices);
+  if (r->stop != SS_POLY_CLOSED) return;
+  CHECK(r->upper >= exact, "%s: upper %.17g below the JSR %.17g", what, r->upper, exact);
+  CHECK(r->upper <= exact * (1 + eps) * (1 + 1e-9),
+        "%s: upper %.17g above %.17g (1 + %g)", what, r->upper, exact, eps);
+  CHECK(r->pending == 0, "%s: %zu vertices untested", what, r->pending);
+}
+
+static void test_golden(void) {
+  const double A[4] = {1, 1, 0, 1}, B[4] = {1, 0, 1, 1};
+  const double *Y[2] = {A, B};
+  const double phi = (1 + sqrt(5.0)) / 2;
+  int ok;
+  const int ab[2] = {0, 1}, a[1] = {0};
+  for (double eps = 1e-2; eps >= 1e-8; eps /= 100) {
+    ss_jsr_polytope_result r = poly(2, 2, Y, ab, 2, eps, 1000, &ok);
+    if (!ok) continue;
+    CHECK(!r.complex_leading, "rho(AB) = phi^2 is real");
+    CHECK_CLOSE(r.lambda, phi, 1e-14, "lambda of AB");
+    check_exact("golden AB", &r, phi, eps);
+  }
+  /* the candidate A (rho 1) is not spectrum maximising: never closes */
+  ss_jsr_polytope_result r = poly(2, 2, Y, a, 1, 1e-3, 200, &ok);
+  if (ok) {
+    CHECK(r.stop == SS_POLY_CAP, "golden from A: stop %d, want the vertex cap",
+          (int)r.stop);
+    CHECK(isinf(r.upper), "golden from A: no bound, got %g", r.upper);
+    CHECK(r.vertices == 200 && r.pending > 0, "golden from A: %zu vertices, %zu pending",
+          r.vertices, r.pending);
+    CHECK(r.max_out > 1.5, "golden from A: images far outside (max %g)", r.max_out);
+  }
+  /* a time limit stops it likewise */
+  ss_jsr_polytope_opts o = ss_jsr_polytope_defaults();
+  o.max_vertices = 1 << 20;
+  o.max_seconds = 0.2;
+  ss_error e = {0};
+  if (ss_jsr_polytope(2, 2, Y, a, 1, &o, &r, &e) == SS_OK)
+    CHECK(r.stop == SS_POLY_TIME || r.stop == SS_POLY_CAP,
+          "golden from A, 0.2 s: stop %d", (int)r.stop);
+}
+
+/* The k-th difference maps of cubic B-spline subdivision (point mask
+ * (1 + z)^4 / 8).  The k-th differences refine with the symbol b(z) =
+ * (1 + z)^{4-k} / 8 ((1 - z)^k a(z) = b(z) (1 - z^2)^k), coefficients
+ * b_0..b_d, d = 4 - k: q_r = sum_j b_{r - 2j} p_j.  A segment carries d
+ * differences p_0..p_{d-1}; its left half the d values q_{d-1+i}, its right
+ * half q_{d+i} (i = 0..d-1), which read only p_0..p_{d-1}:
+ * A_L[i][j] = b_{d-1+i-2j}, A_R[i][j] = b_{d+i-2j}. */
+static void bspline_diff(int k, double *AL, double *AR) {
+  const int d = 4 - k;
+  double b[5] = {1, 0, 0, 0, 0};
+  for (int t = 0; t < d; t++)
+    for (int j = 4; j > 0; j--)
+      b[j] += b[j - 1];
+  for (int j = 0; j <= d; j++)
+    b[j] /= 8;
+  for (int i = 0; i < d; i++)
+    for (int j = 0; j < d; j++) {
+      const int rl = d - 1 + i - 2 * j, rr = rl + 1;
+      AL[i * d + j] = rl >= 0 && rl <= d ? b[rl] : 0;
+      AR[i * d + j] = rr >= 0 && rr <= d ? b[rr] : 0;
+    }
+}
+
+static void test_bspline(void) {
+  for (int k = 1; k <= 3; k++) {
+    const int d = 4 - k;
+    double AL[16], AR[16];
+    bspline_diff(k, AL, AR);
+    /* the closed form needs every row nonnegative with sum 2^{-k}: check */
+    int rows_ok = 1;
+    for (int i = 0; i < d; i++) {
+      double sl = 0, sr = 0;
+      for (int j = 0; j < d; j++) {
+        sl += AL[i * d + j], sr += AR[i * d + j];
+        rows_ok &= AL[i * d + j] >= 0 && AR[i * d + j] >= 0;
+      }
+      rows_ok &= sl == ldexp(1.0, -k) && sr == ldexp(1.0, -k);
+    }
+    CHECK(rows_ok, "k = %d: difference maps not nonnegative with row sums 2^-k", k);
+    const double *Y[2] = {AL, AR};
+    const int w[1] = {0};
+    int ok;
+    ss_jsr_polytope_result r = poly(2, (size_t)d, Y, w, 1, 1e-6, 2000, &ok);
+    if (!ok) continue;
+    check_exact("B-spline differences", &r, ldexp(1.0, -k), 1e-6);
+  }
+}
+
+static void test_rotation(void) {
+  const double c = 0.75, th = 2 * 3.14159265358979323846 * 0.1234567;
+  const double R[4] = {c * cos(th), -c * sin(th), c * sin(th), c * cos(th)};
+  /* ||B||_2 <= ||B||_F = sqrt(0.09 + 0.04 + 0.01 + 0.16) = 0.548 < c */
+  const double B[4] = {0.3, 0.2, -0.1, 0.4};
+  const double *Y[2] = {R, B};
+  const int w[1] = {0};
+  int ok;
+  for (double eps = 1e-2; eps >= 1e-4; eps /= 10) {
+    ss_jsr_polytope_result r = poly(2, 2, Y, w, 1, eps, 5000, &ok);
+    if (!ok) continue;
+    CHECK(r.complex_leading, "rotation: the leading eigenvalue is complex");
+    /* N points with cos(pi / 2N) >= 1 / (1 + eps) */
+    const double npts = ceil(3.14159265358979323846 / (2 * acos(1 / (1 + eps))));
+    CHECK(r.roots >= (size_t)npts - 1 && r.roots <= (size_t)npts + 1,
+          "rotation: %zu ellipse points, want about %g", r.roots, npts);
+    check_exact("scaled rotation", &r, c, eps);
+  }
+}
+
+/* random nonnegative m sets of order n (entries uniform / n) */
+static void random_set(gsl_rng *rng, size_t m, size_t n, double *buf, const double **Y) {
+  for (size_t i = 0; i < m; i++) {
+    for (size_t e = 0; e < n * n; e++)
+      buf[i * n * n + e] = gsl_rng_uniform(rng) / (double)n;
+    Y[i] = buf + i * n * n;
+  }
+}
+
+static void test_random(gsl_rng *rng) {
+  enum { M = 2, N = 4 };
+  static double buf[M * N * N], pbuf[M * N * N];
+  const double *Y[M], *PY[M];
+  int closed = 0;
+  for (int trial = 0; trial < 8; trial++) {
+    random_set(rng, M, N, buf, Y);
+    ss_jsr_opts o = ss_jsr_defaults();
+    o.depth = 6;
+    o.gap = 1e300; /* brute force only: the lower bound and its word */
+    ss_jsr_result lr;
+    ss_error e = {0};
+    if (ss_jsr_compute(M, N, Y, &o, &lr, &e) != SS_OK) {
+      CHECK(0, "ss_jsr_compute: %s", e.msg);
+      continue;
+    }
+    int ok;
+    const double eps = 1e-4;
+    ss_jsr_polytope_result r = poly(M, N, Y, lr.lower_word, lr.lower_len, eps, 3000, &ok);
+    if (ok && r.stop == SS_POLY_CLOSED) {
+      closed++;
+      CHECK(r.upper >= lr.lower, "trial %d: upper %.17g below the lower bound %.17g",
+            trial, r.upper, lr.lower);
+      CHECK(r.upper <= lr.lower * (1 + eps) * (1 + 1e-6),
+            "trial %d: upper %.17g far above lower %.17g", trial, r.upper, lr.lower);
+      /* relabel: P Y_i P^T with P the reversal composed with a shift */
+      int perm[N];
+      for (int a = 0; a < N; a++)
+        perm[a] = (N - 1 - a + trial) % N;
+      for (int i = 0; i < M; i++) {
+        for (int a = 0; a < N; a++)
+          for (int b = 0; b < N; b++)
+            pbuf[i * N * N + perm[a] * N + perm[b]] = Y[i][a * N + b];
+        PY[i] = pbuf + i * N * N;
+      }
+      ss_jsr_polytope_result pr =
+          poly(M, N, PY, lr.lower_word, lr.lower_len, eps, 3000, &ok);
+      if (ok) {
+        CHECK(pr.stop == SS_POLY_CLOSED, "trial %d: relabelled set did not close", trial);
+        if (pr.stop == SS_POLY_CLOSED)
+          CHECK_CLOSE(pr.upper, r.upper, 1e-12, "trial %d: relabelled upper", trial);
+      }
+    } else if (ok) {
+      /* not closing is allowed (a tie, or the cap), but never a bound */
+      CHECK(isinf(r.upper), "trial %d: bound without closing", trial);
+    }
+    ss_jsr_result_clear(&lr);
+  }
+  CHECK(closed >= 4, "only %d of 8 random nonnegative sets closed", closed);
+}
+
+/* ss_jsr_compute with norm POLYTOPE: the golden pair to the gap 1e-6 */
+static void test_compute(void) {
+  const double A[4] = {1, 1, 0, 1}, B[4] = {1, 0, 1, 1};
+  const double *Y[2] = {A, B};
+  const double phi = (1 + sqrt(5.0)) / 2;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.norm = SS_JSR_NORM_POLYTOPE;
+  o.depth = 4;
+  o.gap = 1e-6;
+  o.max_seconds = 20;
+  ss_jsr_result r;
+  ss_error e = {0};
+  if (ss_jsr_compute(2, 2, Y, &o, &r, &e) != SS_OK) {
+    CHECK(0, "ss_jsr_compute: %s", e.msg);
+    return;
+  }
+  CHECK(r.lower <= phi && phi <= r.upper, "[%.17g, %.17g]", r.lower, r.upper);
+  CHECK(r.converged, "gap 1e-6 not reached: [%.17g, %.17g]", r.lower, r.upper);
+  CHECK(r.polytope == SS_POLY_CLOSED, "polytope stop %d", r.polytope);
+  CHECK(r.norm == SS_JSR_NORM_POLYTOPE || r.upper < r.poly_upper,
+        "norm %d: the bound comes from the polytope or a better one", (int)r.norm);
+  CHECK(r.poly_upper >= phi && r.poly_upper <= phi * (1 + 5e-7) * (1 + 1e-9),
+        "polytope upper %.17g", r.poly_upper);
+  ss_jsr_result_clear(&r);
+}
+
+static void test_bad_input(void) {
+  const double A[4] = {1, 1, 0, 1};
+  const double *Y[1] = {A};
+  ss_jsr_polytope_result r;
+  ss_error e = {0};
+  const int bad[1] = {1}, good[1] = {0};
+  CHECK(ss_jsr_polytope(1, 2, Y, bad, 1, NULL, &r, &e) == SS_EINPUT &&
+            strstr(e.msg, "letter"),
+        "letter out of range: %s", e.msg);
+  ss_jsr_polytope_opts o = ss_jsr_polytope_defaults();
+  o.eps = 0;
+  CHECK(ss_jsr_polytope(1, 2, Y, good, 1, &o, &r, &e) == SS_EINPUT &&
+            strstr(e.msg, "eps"),
+        "eps 0: %s", e.msg);
+  o = ss_jsr_polytope_defaults();
+  o.max_vertices = 2;
+  CHECK(ss_jsr_polytope(1, 2, Y, good, 1, &o, &r, &e) == SS_EINPUT &&
+            strstr(e.msg, "cap"),
+        "cap 2: %s", e.msg);
+  CHECK(ss_jsr_polytope(1, 2, Y, good, 0, NULL, &r, &e) == SS_EINPUT, "empty word");
+}
+
+int main(void) {
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, 29);
+  test_golden();
+  test_bspline();
+  test_rotation();
+  test_random(rng);
+  test_compute();
+  test_bad_input();
+  gsl_rng_free(rng);
+  return ss_test_done("test_jsr_polytope");
+}
