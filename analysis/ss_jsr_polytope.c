@@ -251,6 +251,106 @@ out:
   return nr;
 }
 
+/* Several candidates (Guglielmi-Protasov): a product tied with Pi (two maps
+ * of equal spectral radius, or a symmetric image of w) has an eigenvector
+ * the hull from Pi's alone reaches only after about 1 / eps steps.  Words
+ * searched: all of length <= T, the largest T <= TIE_MAXLEN with m + ... +
+ * m^T <= TIE_BUDGET products. */
+enum { TIE_MAXLEN = 16, TIE_BUDGET = 1 << 16, TIE_MAX = 32 };
+
+/* A tie: rho(Y_u)^{1/|u|} >= lambda (1 - TIE_TOL), equal up to rounding (a
+ * symmetry of the set, or maps of equal spectral radius); products merely
+ * near lambda are left to the slack eps. */
+#define TIE_TOL 1e-9
+
+/* 1 if u (length ul) repeated equals some rotation of w (length len) */
+static int same_class(const int *u, int ul, const int *w, int len) {
+  if (len % ul) return 0;
+  for (int r = 0; r < len; r++) {
+    int eq = 1;
+    for (int t = 0; t < len && eq; t++)
+      eq = w[(r + t) % len] == u[t % ul];
+    if (eq) return 1;
+  }
+  return 0;
+}
+
+/* 1 if u[0..len-1] is a Lyndon word (smaller than its proper rotations) */
+static int lyndon(const int *u, int len) {
+  for (int r = 1; r < len; r++) {
+    int c = 0;
+    for (int t = 0; t < len && !c; t++)
+      c = u[(r + t) % len] - u[t];
+    if (c <= 0) return 0;
+  }
+  return 1;
+}
+
+/* The Lyndon words u of length <= T, not in w's class, with
+ * rho(Y_u)^{1/|u|} >= floor_: at most TIE_MAX into ties (rows of
+ * TIE_MAXLEN) and tlen.  Returns their number, -1 if LAPACK failed, -2 on
+ * no memory.  Products by prefix, depth first. */
+static int find_ties(const poly_ws *p, const int *w, int len, double floor_, int *ties,
+                     int *tlen) {
+  const size_t n = p->n, nn = n * n, m = p->m;
+  int T = 0;
+  for (double words = 0, pw = 1; T < TIE_MAXLEN; T++) {
+    pw *= (double)m;
+    if (words + pw > TIE_BUDGET) break;
+    words += pw;
+  }
+  if (T == 0) return 0;
+  double *prod = malloc((size_t)T * nn * sizeof *prod), *a = malloc(nn * sizeof *a),
+         *wr = malloc(n * sizeof *wr), *wi = malloc(n * sizeof *wi);
+  int u[TIE_MAXLEN], k = 0, nt = 0;
+  if (!prod || !a || !wr || !wi) {
+    nt = -2;
+    goto out;
+  }
+  u[0] = -1;
+  while (k >= 0) {
+    if (++u[k] == (int)m) {
+      k--;
+      continue;
+    }
+    double *P = prod + (size_t)k * nn;
+    if (k == 0) {
+      memcpy(P, p->Y[u[0]], nn * sizeof *P);
+    } else {
+      const double *y = p->Y[u[k]], *Q = P - nn;
+      for (size_t r = 0; r < n; r++)
+        for (size_t c = 0; c < n; c++) {
+          double acc = 0;
+          for (size_t t = 0; t < n; t++)
+            acc += y[r * n + t] * Q[t * n + c];
+          P[r * n + c] = acc;
+        }
+    }
+    if (nt < TIE_MAX && lyndon(u, k + 1) && !same_class(u, k + 1, w, len)) {
+      memcpy(a, P, nn * sizeof *a);
+      if (LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'N', (lapack_int)n, a, (lapack_int)n, wr,
+                        wi, NULL, 1, NULL, 1) != 0) {
+        nt = -1;
+        goto out;
+      }
+      double r = 0;
+      for (size_t j = 0; j < n; j++)
+        r = fmax(r, hypot(wr[j], wi[j]));
+      if (r > 0 && pow(r, 1.0 / (k + 1)) >= floor_) {
+        memcpy(ties + (size_t)nt * TIE_MAXLEN, u, (size_t)(k + 1) * sizeof *u);
+        tlen[nt++] = k + 1;
+      }
+    }
+    if (k + 1 < T) u[++k] = -1;
+  }
+out:
+  free(wi);
+  free(wr);
+  free(a);
+  free(prod);
+  return nt;
+}
+
 /* The certificate: U = max over (j, i) of s sum |c_k| + ||r||_1 / delta,
  * r = Y_i v_j - s sum c_k v_k, in ball arithmetic; rounded up. */
 static double certify(const poly_ws *p, double delta) {
@@ -406,6 +506,43 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
     out->stop = SS_POLY_CAP;
     out->seconds = now_seconds() - t0;
     return SS_OK;
+  }
+  {
+    /* the tied candidates' roots join Pi's */
+    int ties[TIE_MAX * TIE_MAXLEN], tlen[TIE_MAX];
+    const int nt = find_ties(&p, w, len, lambda * (1 - TIE_TOL), ties, tlen);
+    if (nt == -2) {
+      free(roots);
+      return ss_error_nomem(err, "jsr polytope ties");
+    }
+    if (nt == -1) {
+      free(roots);
+      return ss_error_set(err, SS_ENUMERIC,
+                          "jsr polytope: LAPACK eigenvalues of a candidate failed");
+    }
+    for (int t = 0; t < nt; t++) {
+      double *more = NULL, lt;
+      int ct;
+      const long nm =
+          make_roots(&p, ties + (size_t)t * TIE_MAXLEN, tlen[t], o->eps, &lt, &ct, &more);
+      if (nm == -2) {
+        free(roots);
+        return ss_error_nomem(err, "jsr polytope roots");
+      }
+      if (nm > 0 && (size_t)(nr + nm) + n <= p.cap) {
+        double *cat = realloc(roots, (size_t)(nr + nm) * n * sizeof *cat);
+        if (!cat) {
+          free(more);
+          free(roots);
+          return ss_error_nomem(err, "jsr polytope roots");
+        }
+        roots = cat;
+        memcpy(roots + (size_t)nr * n, more, (size_t)nm * n * sizeof *more);
+        nr += nm;
+        out->ties++;
+      }
+      free(more);
+    }
   }
   out->roots = (size_t)nr;
 

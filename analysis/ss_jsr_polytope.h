@@ -10,7 +10,10 @@
  * for every i, then its gauge ||x||_P is a norm with ||Y_i||_P <= s, so
  * rho(Y) <= s.  The method builds P as the absolutely convex hull of vertices:
  * the leading eigenvector v of Pi and its cyclic images
- * A_{w_t} ... A_{w_1} v (A_i = Y_i / s), then repeatedly the images A_i x of
+ * A_{w_t} ... A_{w_1} v (A_i = Y_i / s), the same for every short product
+ * tied with Pi up to rounding (found by a bounded search; a tie, e.g. two
+ * maps of equal spectral radius, would otherwise need about 1 / eps steps
+ * to be absorbed), then repeatedly the images A_i x of
  * every new vertex x, keeping those not already inside the current hull
  * (membership: the linear programme min sum |c_k| s.t. sum c_k v_k = x, by
  * GLPK's dual simplex, warm started).  If no new vertex appears the body is
@@ -80,6 +83,10 @@ typedef struct {
                                 (the 2-plane variant ran) */
   size_t roots;              /* starting vertices (eigenvector points and
                                 their cyclic images, not the ball) */
+  int ties;                  /* other candidate words whose roots joined:
+                                Lyndon words u of length <= T (all m + ...
+                                + m^T <= 2^16 words searched) with
+                                rho(Y_u)^{1/|u|} >= lambda (1 - 1e-9) */
   size_t vertices;           /* vertices at the end, ball included */
   size_t pending;            /* vertices whose images were not yet tested
                                 when it stopped (0 when closed) */
