@@ -255,7 +255,7 @@ out:
  * of equal spectral radius, or a symmetric image of w) has an eigenvector
  * the hull from Pi's alone reaches only after about 1 / eps steps.  Words
  * searched: all of length <= T, the largest T <= TIE_MAXLEN with m + ... +
- * m^T <= TIE_BUDGET products. */
+ * m^T <= TIE_BUDGET products (fewer for large n: 2e9 multiply-adds). */
 enum { TIE_MAXLEN = 16, TIE_BUDGET = 1 << 16, TIE_MAX = 32 };
 
 /* A tie: rho(Y_u)^{1/|u|} >= lambda (1 - TIE_TOL), equal up to rounding (a
@@ -293,10 +293,12 @@ static int lyndon(const int *u, int len) {
 static int find_ties(const poly_ws *p, const int *w, int len, double floor_, int *ties,
                      int *tlen) {
   const size_t n = p->n, nn = n * n, m = p->m;
+  /* at most TIE_BUDGET products, and at most 2e9 multiply-adds */
+  const double budget = fmin(TIE_BUDGET, 2e9 / ((double)n * (double)n * (double)n));
   int T = 0;
   for (double words = 0, pw = 1; T < TIE_MAXLEN; T++) {
     pw *= (double)m;
-    if (words + pw > TIE_BUDGET) break;
+    if (words + pw > budget) break;
     words += pw;
   }
   if (T == 0) return 0;

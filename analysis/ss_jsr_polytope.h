@@ -85,7 +85,8 @@ typedef struct {
                                 their cyclic images, not the ball) */
   int ties;                  /* other candidate words whose roots joined:
                                 Lyndon words u of length <= T (all m + ...
-                                + m^T <= 2^16 words searched) with
+                                + m^T <= min(2^16, 2e9 / n^3) words
+                                searched) with
                                 rho(Y_u)^{1/|u|} >= lambda (1 - 1e-9) */
   size_t vertices;           /* vertices at the end, ball included */
   size_t pending;            /* vertices whose images were not yet tested
