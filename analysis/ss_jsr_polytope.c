@@ -39,6 +39,9 @@ typedef struct {
   size_t nv, cap;         /* vertices, their capacity */
   size_t *rec_off;        /* cap x m: offset of the coefficients of A_i v_j */
   int *rec_len;           /* cap x m: their number (-1: not tested) */
+  int *gen;               /* cap: a vertex's generation (roots and ball 0, an
+                             image of generation g: g + 1) */
+  int depth;              /* largest generation so far */
   int *cidx;              /* coefficient store: vertex indices */
   double *cval;           /* coefficient store: values c_k */
   size_t nc, ccap;        /* used, capacity */
@@ -152,6 +155,8 @@ static int test_images(poly_ws *p, size_t j, double *x, int *idx, double *val,
     *max_out = fmax(*max_out, v);
     const int k = (int)p->nv;
     const double one = 1;
+    p->gen[k] = p->gen[j] + 1;
+    if (p->gen[k] > p->depth) p->depth = p->gen[k];
     add_vertex(p, x);
     if (!record(p, j, i, &k, &one, 1)) return STOP_NOMEM;
   }
@@ -433,6 +438,7 @@ static void ws_free(poly_ws *p) {
   free(p->vert);
   free(p->rec_off);
   free(p->rec_len);
+  free(p->gen);
   free(p->cidx);
   free(p->cval);
   free(p->ind);
@@ -551,12 +557,14 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
   p.vert = malloc(p.cap * n * sizeof *p.vert);
   p.rec_off = malloc(p.cap * m * sizeof *p.rec_off);
   p.rec_len = malloc(p.cap * m * sizeof *p.rec_len);
+  p.gen = calloc(p.cap, sizeof *p.gen);
   p.ind = malloc((n + 1) * sizeof *p.ind);
   p.col = malloc((n + 1) * sizeof *p.col);
   x = malloc(n * sizeof *x);
   idx = malloc(p.cap * sizeof *idx);
   val = malloc(p.cap * sizeof *val);
-  if (!p.vert || !p.rec_off || !p.rec_len || !p.ind || !p.col || !x || !idx || !val) {
+  if (!p.vert || !p.rec_off || !p.rec_len || !p.gen || !p.ind || !p.col || !x || !idx ||
+      !val) {
     st = ss_error_nomem(err, "jsr polytope");
     goto done;
   }
@@ -599,6 +607,7 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
   }
   out->stop = (ss_jsr_polytope_stop)stop;
   out->vertices = p.nv;
+  out->depth = p.depth;
   out->pending = 0;
   if (stop != SS_POLY_CLOSED) {
     out->pending = (p.nv - next) + (ball_done ? 0 : n);

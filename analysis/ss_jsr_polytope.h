@@ -92,6 +92,9 @@ typedef struct {
   size_t pending;            /* vertices whose images were not yet tested
                                 when it stopped (0 when closed) */
   size_t lps;                /* membership LPs solved */
+  int depth;                 /* generations: the longest product of the A_i
+                                that made a vertex from a root (the word
+                                length the method explored) */
   double max_out;            /* largest ||A_i x||_P met for an image outside
                                 (1 < ...; 0 if none): above 1 + eps per step
                                 hints that a product beats lambda */

@@ -38,6 +38,7 @@
 #include <gsl/gsl_rng.h>
 
 #include "ss_jsr.h"
+#include "ss_jsr_polytope.h"
 #include "ss_levin.h"
 
 #define M 4
@@ -92,6 +93,52 @@ static int bench_row(const char *name, size_t m, size_t n, const double *const *
   return 0;
 }
 
+/* The invariant polytope (ss_jsr_polytope.h) from the lower bound's word of
+ * brute force at depth K, eps = 5e-4 (a closed polytope meets the gap 1e-3),
+ * within secs.  Its "L" is the generations it explored (the longest
+ * product of the A_i behind a vertex); brute force at that depth is
+ * extrapolated from the depth-K run by the word count, as bench_row does;
+ * 0 on success. */
+static int bench_polytope(const char *name, size_t m, size_t n, const double *const *Y,
+                          int K, double secs) {
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.depth = K;
+  o.gap = 1e300; /* brute force only */
+  ss_jsr_result b;
+  ss_error e = {0};
+  if (ss_jsr_compute(m, n, Y, &o, &b, &e) != SS_OK) {
+    fprintf(stderr, "bench_jsr: %s\n", e.msg);
+    return 1;
+  }
+  ss_jsr_polytope_opts po = ss_jsr_polytope_defaults();
+  po.eps = 5e-4;
+  po.max_seconds = secs;
+  ss_jsr_polytope_result r;
+  if (ss_jsr_polytope(m, n, Y, b.lower_word, b.lower_len, &po, &r, &e) != SS_OK) {
+    fprintf(stderr, "bench_jsr: polytope: %s\n", e.msg);
+    ss_jsr_result_clear(&b);
+    return 1;
+  }
+  const int closed = r.stop == SS_POLY_CLOSED;
+  const double up = closed ? fmin(r.upper, b.upper) : b.upper;
+  const int L = r.depth > 1 ? r.depth : 1;
+  double wk = 0, p = 1;
+  for (int k = 1; k <= K; k++)
+    wk += (p *= (double)m);
+  const double words = (pow((double)m, L + 1) - (double)m) / ((double)m - 1);
+  const double brute = b.seconds / wk * words;
+  printf("%-8s %6s %10.6f %10.6f %9.2e %4d %9zu %9.2f %12.3g %10.3g%s\n", name, "poly",
+         b.lower, up, up / b.lower - 1, L, r.vertices, r.seconds, brute,
+         brute / r.seconds, closed ? "" : "  (not closed)");
+  printf(
+      "         polytope: word length %d, brute force at depth %d %.3g s, %zu vertices "
+      "(%zu roots, %d ties), %zu untested, %zu LPs, largest image norm %.3g\n",
+      b.lower_len, K, b.seconds, r.vertices, r.roots, r.ties, r.pending, r.lps,
+      r.max_out);
+  ss_jsr_result_clear(&b);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   const double secs = argc > 1 ? atof(argv[1]) : 60;
   const int cases = argc > 2 ? atoi(argv[2]) : 3;
@@ -113,6 +160,7 @@ int main(int argc, char **argv) {
     snprintf(name, sizeof name, "seed %d", c + 1);
     bad |= bench_row(name, M, N, Y, SS_JSR_NORM_2, secs);
     bad |= bench_row(name, M, N, Y, SS_JSR_NORM_INF, secs);
+    bad |= bench_polytope(name, M, N, Y, 6, secs);
   }
   gsl_rng_free(rng);
   /* (b) the tet/oct face (Levin-Levin blocks; threshold 1/4) */
@@ -133,6 +181,8 @@ int main(int argc, char **argv) {
                      SS_JSR_NORM_INF, secs);
     bad |= bench_row("face", L->m, L->n - L->r, (const double *const *)L->Y,
                      SS_JSR_NORM_ELLIPSOID, secs);
+    bad |=
+        bench_polytope("face", L->m, L->n - L->r, (const double *const *)L->Y, 9, secs);
   }
   ss_levin_free(L);
   L = NULL;
