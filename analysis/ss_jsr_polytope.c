@@ -473,9 +473,9 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
     return ss_error_set(err, SS_EINPUT,
                         "jsr polytope: eps %g and delta %g must be positive and finite",
                         o->eps, o->delta);
-  if (o->max_vertices < n + 1 || o->max_vertices > (size_t)1 << 26)
+  if (o->max_vertices < n + 1 || o->max_vertices > (size_t)1 << 25)
     return ss_error_set(err, SS_EINPUT,
-                        "jsr polytope: vertex cap %zu not in %zu..2^26 (the %zu ball "
+                        "jsr polytope: vertex cap %zu not in %zu..2^25 (the %zu ball "
                         "vertices and a root)",
                         o->max_vertices, n + 1, n);
   const double deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;

@@ -105,11 +105,13 @@ typedef struct {
  * candidate word w[0..len-1] (indices 0..m-1, w[0] applied first); o = NULL
  * means the defaults.  *out is filled.  SS_EINPUT (message naming the
  * problem) for m or n < 1, n > 4096, len < 1, an index out of range, eps or
- * delta not positive and finite, max_vertices below the ball and root
- * vertices; SS_ENUMERIC if LAPACK's eigenvalue computation fails; SS_ENOMEM.
- * A limit is not an error: out->stop says which.  Cost: an LP of n rows and
- * 2 N columns per image (N the vertices so far), m per vertex; then
- * O(m N n^2) ball operations for the certificate; memory O(N n + m N n). */
+ * delta not positive and finite, max_vertices below n + 1 or above 2^25
+ * (GLPK's column limit is 10^8); SS_ENUMERIC if LAPACK's eigenvalue
+ * computation fails; SS_ENOMEM.  A limit is not an error: out->stop says
+ * which.  Cost: an LP of n rows and 2 N columns per image (N the vertices so
+ * far), m per vertex; then O(m N n^2) ball operations for the certificate;
+ * memory O(N n + m N n).  GLPK aborts the process on running out of memory
+ * inside an LP (it has no error return for that). */
 ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int *w,
                           int len, const ss_jsr_polytope_opts *o,
                           ss_jsr_polytope_result *out, ss_error *err);

@@ -30,6 +30,33 @@
  * there is rho_4 = 0.648 and still rho_8 = 0.5625 > 1/2, so the ratio < 1
  * understates it: brute force decides nothing at the depths it reaches.
  *
+ * Rows "poly": the invariant polytope (ss_jsr_polytope.h) from the word of
+ * the brute-force lower bound at depth 6 (random sets) or 9 (the face),
+ * eps = 5e-4; L is the generations it explored, "nodes" its vertices, and
+ * brute force at depth L is extrapolated as above.  Measured in one run
+ * (`bench_jsr 60 1`, load 8-11, another polytope experiment running beside
+ * it):
+ *   seed 1 2      [2.248380, 2.250626]  gap 1.0e-3  L 20  4.6 s   ratio 2.3e7
+ *   seed 1 inf    [2.248380, 2.303487]  gap 2.5e-2  L 10  (limit) ratio 3.3
+ *   seed 1 poly   not closed in 60 s: 650 vertices, 126 untested, 2096 LPs
+ *   face   a:ell  [0.136817, 0.141422]  gap 3.4e-2  L 8   (limit) ratio 0.55
+ *   face   inf    [0.136817, 0.183242]  gap 3.4e-1  L 8   (limit) ratio 0.70
+ *   face   ell    [0.136817, 0.141068]  gap 3.1e-2  L 9   (limit) ratio 3.4
+ *   face   poly   not closed in 60 s: 1822 vertices (4 generations deep),
+ *                 1372 untested, 1800 LPs, largest image gauge 4.1e3;
+ *                 brute force at depth 9 (its candidate word) took 89 s
+ *   edge10 2      [0.494787, 0.524318]  gap 6.0e-2  L 12  (limit) ratio 2.2
+ *   edge10 ell    [0.494787, 0.494788]  gap 3.2e-7  L 4   4.6 s   ratio 0.12
+ * In the run before (same machine, no experiment beside it) seed 1's
+ * polytope closed: 787 vertices in 52 s, bound 2.249504 (gap 5.0e-4, the
+ * slack eps: the bound is lambda (1 + eps) up to the certificate's 1e-9),
+ * against 2.35 s for the 2-norm branch and bound; the face's had 2128
+ * vertices after 60 s.  So the polytope, where it closes, gives the exact
+ * value up to eps, but its LPs (n rows, 2 x vertices columns, 20-200 ms
+ * each here) make it slower than a near-extremal norm's branch and bound;
+ * on the face it does not close, and the face's gap 1e-3 is not reached by
+ * any method here (README, "Joint spectral radius").
+ *
  * Usage: bench_jsr [seconds per case (default 60)] [cases (default 3)] */
 #include <math.h>
 #include <stdio.h>
