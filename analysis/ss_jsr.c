@@ -931,19 +931,10 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     out->bnb_depth = L;
     if (u < upper) upper = u;
     if (stop) break;
-    /* AUTO: the first pass left the gap open (the quadratic norms are far
-     * from extremal): the invariant polytope gets a third of the time left
-     * (only under a time limit: its LPs grow with the vertices, and without
-     * a limit only the 20000-vertex cap would stop it) */
-    if (L == K && o->norm == SS_JSR_NORM_AUTO && deadline > 0 &&
-        upper > w.lower * (1 + o->gap)) {
-      const double now = now_seconds();
-      if (deadline > 0 && now >= deadline) break;
-      st = try_polytope(&w, Y, o->gap, deadline > 0 ? now + (deadline - now) / 3 : 0, out,
-                        err);
-      if (st != SS_OK) goto done;
-      if (out->poly_upper < upper) upper = out->poly_upper;
-    }
+    /* AUTO does not try the invariant polytope: on the cases it exists
+     * for (tet/oct face and edges) the polytope does not close within
+     * thousands of vertices (README, "Joint spectral radius"), so its time
+     * would be taken from the branch and bound; --norm polytope asks for it */
   }
   out->weighted = active == C_WINF;
   out->norm = upper >= out->poly_upper ? SS_JSR_NORM_POLYTOPE

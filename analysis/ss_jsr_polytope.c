@@ -7,6 +7,8 @@
 #include <glpk.h>
 #include <lapacke.h>
 #include <math.h>
+#include <setjmp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -48,6 +50,8 @@ typedef struct {
   glp_prob *lp;           /* rows = n coordinates, 2 columns per vertex */
   int *ind;               /* 1 + n: GLPK's 1-based row indices */
   double *col;            /* 1 + n: a column's values */
+  char glpk_says[160];    /* GLPK's first line of terminal output (an error's
+                             text: GLPK prints errors, whatever glp_term_out) */
 } poly_ws;
 
 /* Append vertex x (n values; the capacity is preallocated) as columns +x and
@@ -126,8 +130,9 @@ static double lp_norm(poly_ws *p, const double *x, int *idx, double *val, int *c
   return sum;
 }
 
-/* A stop code besides ss_jsr_polytope_stop: out of memory. */
+/* Stop codes besides ss_jsr_polytope_stop: out of memory; GLPK failed. */
 #define STOP_NOMEM 100
+#define STOP_GLPK  101
 
 /* Test the images A_i v_j (i = 0..m-1) of vertex j: inside ones get their
  * coefficients recorded, the others become vertices.  Returns -1 to go on,
@@ -445,6 +450,96 @@ static void ws_free(poly_ws *p) {
   free(p->col);
 }
 
+/* How far the exploration got; the caller's, so that it is defined after
+ * a jump out of GLPK. */
+typedef struct {
+  size_t next;   /* the next vertex whose images are tested */
+  int ball_done; /* the ball vertices' images are tested */
+} explore_pos;
+
+/* Build the LP from the ball vertices delta e_l and the nr roots, then add
+ * images breadth first until the hull is invariant, the cap or the
+ * deadline; returns the stop code (ss_jsr_polytope_stop or STOP_NOMEM). */
+static int explore(poly_ws *p, const double *roots, long nr, double delta,
+                   double deadline, double *x, int *idx, double *val,
+                   ss_jsr_polytope_result *out, explore_pos *pos) {
+  const size_t n = p->n;
+  p->lp = glp_create_prob();
+  glp_set_obj_dir(p->lp, GLP_MIN);
+  glp_add_rows(p->lp, (int)n);
+  for (size_t l = 0; l < n; l++) {
+    p->ind[l + 1] = (int)l + 1;
+    glp_set_row_bnds(p->lp, (int)l + 1, GLP_FX, 0.0, 0.0);
+  }
+  /* the ball vertices delta e_l first (indices 0..n-1), then the roots */
+  for (size_t l = 0; l < n; l++) {
+    memset(x, 0, n * sizeof *x);
+    x[l] = delta;
+    add_vertex(p, x);
+  }
+  for (long r = 0; r < nr; r++)
+    add_vertex(p, roots + (size_t)r * n);
+  glp_std_basis(p->lp);
+
+  /* breadth first over the vertices in the order they were added; the ball
+   * vertices last (their images are small, and by then the hull is large) */
+  int stop = -1;
+  while (stop < 0) {
+    if (pos->next < p->nv) {
+      stop = test_images(p, pos->next++, x, idx, val, &out->lps, &out->max_out);
+    } else if (!pos->ball_done) {
+      pos->ball_done = 1;
+      for (size_t b = 0; b < n && stop < 0; b++)
+        stop = test_images(p, b, x, idx, val, &out->lps, &out->max_out);
+    } else {
+      stop = SS_POLY_CLOSED;
+    }
+    if (stop < 0 && deadline > 0 && now_seconds() > deadline) stop = SS_POLY_TIME;
+  }
+  return stop;
+}
+
+/* GLPK has no error return for running out of memory (or for its internal
+ * errors): it calls this hook, then aborts if the hook returns.  The hook
+ * jumps back to explore_guarded instead (GLPK's documented way out). */
+static void on_glpk_error(void *info) {
+  longjmp(*(jmp_buf *)info, 1);
+}
+
+/* GLPK's terminal output: kept (the first line, for an error's message),
+ * never printed. */
+static int on_glpk_output(void *info, const char *text) {
+  char *said = info;
+  if (!*said) {
+    snprintf(said, 160, "%s", text);
+    said[strcspn(said, "\n")] = '\0';
+  }
+  return 1;
+}
+
+/* explore with GLPK's terminal output caught and its errors turned into
+ * STOP_GLPK, so that the library neither prints nor aborts.  Nothing in this
+ * frame changes after setjmp. */
+static int explore_guarded(poly_ws *p, const double *roots, long nr, double delta,
+                           double deadline, double *x, int *idx, double *val,
+                           ss_jsr_polytope_result *out, explore_pos *pos) {
+  jmp_buf jb;
+  p->glpk_says[0] = '\0';
+  glp_term_hook(on_glpk_output, p->glpk_says);
+  if (setjmp(jb)) {
+    /* GLPK's state is undefined after the jump: glp_free_env frees all of
+     * this thread's GLPK memory, this problem's included (and the hooks) */
+    glp_free_env();
+    p->lp = NULL;
+    return STOP_GLPK;
+  }
+  glp_error_hook(on_glpk_error, &jb);
+  const int stop = explore(p, roots, nr, delta, deadline, x, idx, val, out, pos);
+  glp_error_hook(NULL, NULL);
+  glp_term_hook(NULL, NULL);
+  return stop;
+}
+
 ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int *w,
                           int len, const ss_jsr_polytope_opts *o,
                           ss_jsr_polytope_result *out, ss_error *err) {
@@ -568,38 +663,13 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
     st = ss_error_nomem(err, "jsr polytope");
     goto done;
   }
-  p.lp = glp_create_prob();
-  glp_set_obj_dir(p.lp, GLP_MIN);
-  glp_add_rows(p.lp, (int)n);
-  for (size_t l = 0; l < n; l++) {
-    p.ind[l + 1] = (int)l + 1;
-    glp_set_row_bnds(p.lp, (int)l + 1, GLP_FX, 0.0, 0.0);
-  }
-  /* the ball vertices delta e_l first (indices 0..n-1), then the roots */
-  for (size_t l = 0; l < n; l++) {
-    memset(x, 0, n * sizeof *x);
-    x[l] = o->delta;
-    add_vertex(&p, x);
-  }
-  for (long r = 0; r < nr; r++)
-    add_vertex(&p, roots + (size_t)r * n);
-  glp_std_basis(p.lp);
-
-  /* breadth first over the vertices in the order they were added; the ball
-   * vertices last (their images are small, and by then the hull is large) */
-  size_t next = n;
-  int ball_done = 0, stop = -1;
-  while (stop < 0) {
-    if (next < p.nv) {
-      stop = test_images(&p, next++, x, idx, val, &out->lps, &out->max_out);
-    } else if (!ball_done) {
-      ball_done = 1;
-      for (size_t b = 0; b < n && stop < 0; b++)
-        stop = test_images(&p, b, x, idx, val, &out->lps, &out->max_out);
-    } else {
-      stop = SS_POLY_CLOSED;
-    }
-    if (stop < 0 && deadline > 0 && now_seconds() > deadline) stop = SS_POLY_TIME;
+  explore_pos pos = {n, 0};
+  const int stop =
+      explore_guarded(&p, roots, nr, o->delta, deadline, x, idx, val, out, &pos);
+  if (stop == STOP_GLPK) {
+    st = ss_error_set(err, SS_ENOMEM, "jsr polytope: GLPK failed inside an LP: %s",
+                      p.glpk_says[0] ? p.glpk_says : "no message");
+    goto done;
   }
   if (stop == STOP_NOMEM) {
     st = ss_error_nomem(err, "jsr polytope coefficients");
@@ -610,7 +680,7 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
   out->depth = p.depth;
   out->pending = 0;
   if (stop != SS_POLY_CLOSED) {
-    out->pending = (p.nv - next) + (ball_done ? 0 : n);
+    out->pending = (p.nv - pos.next) + (pos.ball_done ? 0 : n);
   } else {
     out->upper = certify(&p, o->delta);
     if (!isfinite(out->upper)) out->stop = SS_POLY_LP;

@@ -110,8 +110,10 @@ typedef struct {
  * computation fails; SS_ENOMEM.  A limit is not an error: out->stop says
  * which.  Cost: an LP of n rows and 2 N columns per image (N the vertices so
  * far), m per vertex; then O(m N n^2) ball operations for the certificate;
- * memory O(N n + m N n).  GLPK aborts the process on running out of memory
- * inside an LP (it has no error return for that). */
+ * memory O(N n + m N n).  GLPK has no error return for running out of
+ * memory inside an LP: its error hook is set for the call and jumps out, so
+ * that is SS_ENOMEM too, not an abort (the thread's GLPK environment is then
+ * freed: glp_free_env).  GLPK prints nothing (its output is caught). */
 ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int *w,
                           int len, const ss_jsr_polytope_opts *o,
                           ss_jsr_polytope_result *out, ss_error *err);

@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <glpk.h>
 #include <gsl/gsl_rng.h>
 
 #include "ss_jsr.h"
@@ -287,6 +288,31 @@ static void test_bad_input(void) {
   CHECK(ss_jsr_polytope(1, 2, Y, good, 0, NULL, &r, &e) == SS_EINPUT, "empty word");
 }
 
+/* GLPK has no error return for running out of memory; under a GLPK memory
+ * limit of 1 MB the golden pair from the word A (which never closes) must
+ * come back as SS_ENOMEM with a message, not abort the process, and GLPK
+ * must work again afterwards (the limit went with the freed environment). */
+static void test_glpk_memory(void) {
+  const double A[4] = {1, 1, 0, 1}, B[4] = {1, 0, 1, 1};
+  const double *Y[2] = {A, B};
+  const int a[1] = {0}, ab[2] = {0, 1};
+  ss_jsr_polytope_opts o = ss_jsr_polytope_defaults();
+  o.eps = 1e-3;
+  o.max_vertices = (size_t)1 << 22;
+  o.max_seconds = 60;
+  ss_jsr_polytope_result r;
+  ss_error e = {0};
+  glp_mem_limit(1);
+  const ss_status st = ss_jsr_polytope(2, 2, Y, a, 1, &o, &r, &e);
+  CHECK(
+      st == SS_ENOMEM && strstr(e.msg, "GLPK") && strstr(e.msg, "glp_alloc"),
+      "GLPK memory limit: status %d (%s), %zu vertices, want SS_ENOMEM naming glp_alloc",
+      (int)st, e.msg, r.vertices);
+  int ok;
+  r = poly(2, 2, Y, ab, 2, 1e-3, 1000, &ok);
+  if (ok) check_exact("golden AB after GLPK's failure", &r, (1 + sqrt(5.0)) / 2, 1e-3);
+}
+
 int main(void) {
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(rng, 29);
@@ -297,6 +323,7 @@ int main(void) {
   test_random(rng);
   test_compute();
   test_bad_input();
+  test_glpk_memory();
   gsl_rng_free(rng);
   return ss_test_done("test_jsr_polytope");
 }
