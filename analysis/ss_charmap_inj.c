@@ -44,10 +44,19 @@ ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
     memcpy(cor + nring * SS_MAXCELLVERTS, q, SS_MAXCELLVERTS * sizeof *q);
     nring++;
   }
+  /* The degree is read from the whole net, the overlaps from the ring; the
+   * whole net's overlaps (a superset of the ring's pairs, about as costly
+   * again) matter only when the ring has none and the degree is undecided:
+   * an overlap of a centre cell then turns "undecided" into a fail. */
   ss_injectivity whole, ring;
-  if ((st = ss_inject_test(x, m, n + 1, cm->ctype, cm->corner, cm->ncells, n, &whole,
-                           err)) ||
-      (st = ss_inject_test(x, m, n + 1, ct, cor, nring, n, &ring, err)))
+  if ((st = ss_inject_test_parts(x, m, n + 1, cm->ctype, cm->corner, cm->ncells, n,
+                                 SS_INJECT_DEGREE, &whole, err)) ||
+      (st = ss_inject_test_parts(x, m, n + 1, ct, cor, nring, n, SS_INJECT_OVERLAPS,
+                                 &ring, err)))
+    goto done;
+  if (!ring.overlaps && whole.verdict.verdict == SS_UNDECIDED &&
+      (st = ss_inject_test(x, m, n + 1, cm->ctype, cm->corner, cm->ncells, n, &whole,
+                           err)))
     goto done;
   out->degree = whole.degree;
   out->overlaps = ring.overlaps;

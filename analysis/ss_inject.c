@@ -385,6 +385,14 @@ static void judge(ss_wind_kind kind, ss_injectivity *out) {
 ss_status ss_inject_test(const double *x, int dim, size_t n, const ss_cell_type *ctype,
                          const size_t *corner, size_t ncells, size_t centre,
                          ss_injectivity *out, ss_error *err) {
+  return ss_inject_test_parts(x, dim, n, ctype, corner, ncells, centre,
+                              SS_INJECT_DEGREE | SS_INJECT_OVERLAPS, out, err);
+}
+
+ss_status ss_inject_test_parts(const double *x, int dim, size_t n,
+                               const ss_cell_type *ctype, const size_t *corner,
+                               size_t ncells, size_t centre, int parts,
+                               ss_injectivity *out, ss_error *err) {
   facet_rec *bnd = NULL; /* the boundary facets */
   double *xe = NULL;     /* the points of the PL image */
   size_t *first = NULL, *piece = NULL, *bf = NULL, *extra = NULL;
@@ -393,7 +401,9 @@ ss_status ss_inject_test(const double *x, int dim, size_t n, const ss_cell_type 
   memset(out, 0, sizeof *out);
   out->first[0] = out->first[1] = SIZE_MAX;
   out->verdict.verdict = SS_UNDECIDED;
-  ss_status st = check_input(x, dim, n, ctype, corner, ncells, centre, err);
+  ss_status st = (parts & (SS_INJECT_DEGREE | SS_INJECT_OVERLAPS))
+                     ? check_input(x, dim, n, ctype, corner, ncells, centre, err)
+                     : ss_error_set(err, SS_EINPUT, "injectivity: no part asked for");
   if (st != SS_OK) goto done;
   st = boundary_facets(dim, ctype, corner, ncells, &bnd, &nbnd, err);
   if (st != SS_OK) goto done;
@@ -419,14 +429,18 @@ ss_status ss_inject_test(const double *x, int dim, size_t n, const ss_cell_type 
   const size_t nbf = pl_boundary(dim, ctype, corner, bnd, nbnd, extra, bf);
   out->boundary = nbnd;
 
-  ss_wind_kind kind;
+  ss_wind_kind kind = SS_WIND_NO_RAY; /* a degree not asked for is undecided */
   int w = 0;
-  st = ss_inject_cgal_winding(dim, xe, nbf, bf, centre, &kind, &w, err);
-  if (st != SS_OK) goto done;
+  if (parts & SS_INJECT_DEGREE) {
+    st = ss_inject_cgal_winding(dim, xe, nbf, bf, centre, &kind, &w, err);
+    if (st != SS_OK) goto done;
+  }
   out->degree = kind == SS_WIND_OK ? w : 0;
-  st = ss_inject_cgal_overlaps(dim, xe, ncells, corner, SS_MAXCELLVERTS, first, piece,
-                               &out->overlaps, out->first, err);
-  if (st != SS_OK) goto done;
+  if (parts & SS_INJECT_OVERLAPS) {
+    st = ss_inject_cgal_overlaps(dim, xe, ncells, corner, SS_MAXCELLVERTS, first, piece,
+                                 &out->overlaps, out->first, err);
+    if (st != SS_OK) goto done;
+  }
   judge(kind, out);
 done:
   if (st != SS_OK) {

@@ -65,8 +65,11 @@
  * Cost: O(F) per segment tried for the degree (F boundary triangles), and a
  * box filter over the C cells (O(C log^d C + K)) followed by the pieces of
  * the K box-overlapping pairs of non-neighbours (up to 24 x 24 tet tests for
- * two hexes, each behind its own box test).  About 1.5 ms for the 160 hexes
- * of the MLCA icosahedron (k = 12) map.  No global state; CGAL's exceptions
+ * two hexes, each behind its own box test, most decided by a few orientation
+ * predicates before CGAL's do_intersect).  About 1.5 ms for the 160 hexes of
+ * the MLCA icosahedron (k = 12) map; a folded map, with many box-overlapping
+ * pairs, costs more (ss_charmap_injectivity asks only for the parts it
+ * reads: ss_inject_test_parts).  No global state; CGAL's exceptions
  * are caught in the shim. */
 #ifndef SS_INJECT_H
 #define SS_INJECT_H
@@ -106,5 +109,26 @@ typedef struct {
 ss_status ss_inject_test(const double *x, int dim, size_t n, const ss_cell_type *ctype,
                          const size_t *corner, size_t ncells, size_t centre,
                          ss_injectivity *out, ss_error *err);
+
+/* Which parts ss_inject_test_parts computes: the degree, the overlaps, or
+ * both (ss_inject_test). */
+enum {
+  SS_INJECT_DEGREE = 1,  /* the winding number about the centre's image */
+  SS_INJECT_OVERLAPS = 2 /* the pairs of non-neighbouring cells that meet */
+};
+
+/* ss_inject_test restricted to the parts named in `parts` (a non-zero set of
+ * SS_INJECT_DEGREE and SS_INJECT_OVERLAPS): a caller that reads only the
+ * degree of one net and only the overlaps of another (ss_charmap_injectivity)
+ * pays for nothing else; the overlaps cost nearly all of the time (the degree
+ * is one pass over the boundary).  A part not computed reads as not found:
+ * degree 0 (the winding counted as undecided) or no overlap; the verdict is
+ * judged from what was computed, so it means the whole test's verdict only
+ * when both parts are.  The checks of the input, errors and ownership are
+ * ss_inject_test's (SS_EINPUT also for an empty `parts`). */
+ss_status ss_inject_test_parts(const double *x, int dim, size_t n,
+                               const ss_cell_type *ctype, const size_t *corner,
+                               size_t ncells, size_t centre, int parts,
+                               ss_injectivity *out, ss_error *err);
 
 #endif

@@ -6,7 +6,12 @@
 // inexact_constructions_kernel on the given doubles: orientation, collinear,
 // equality, and do_intersect, which that kernel filters like any predicate
 // (interval arithmetic, then exact arithmetic when the intervals cannot
-// decide), so no rounding enters a yes/no answer.  The only doubles computed
+// decide), so no rounding enters a yes/no answer.  Before do_intersect, two
+// full simplices go through quick_meet (orientation predicates only: a
+// separating facet, or a point of one strictly inside the other), which
+// answers most pairs far more cheaply and leaves the rest to do_intersect;
+// tests/analysis/test_inject.c checks that it never contradicts
+// do_intersect, touching grid simplices included.  The only doubles computed
 // here are the far end of the crossing segment, which is then a given point
 // like the others, and box bounds, which are the points' own coordinates.
 //
@@ -54,9 +59,51 @@ using P3 = K::Point_3;
 
 // ---- dimension traits ----
 
+// The cheap exact answers for two full-dimensional simplices a and b (D + 1
+// points each, neither flat), before CGAL's do_intersect: 0 when a facet's
+// hyperplane of one has every point of the other strictly on its outer side
+// (a separating hyperplane: the closed simplices are disjoint), 1 when a
+// point of one lies strictly inside the other (they meet), -1 when neither
+// shows (do_intersect decides).  Only orientation predicates, which the
+// kernel answers exactly (a static floating-point filter, exact arithmetic
+// behind it) and far more cheaply than do_intersect, which runs whole in
+// interval arithmetic; so no answer differs from do_intersect's.  Most
+// pairs of pieces of non-neighbouring cells whose boxes meet are told apart
+// by a facet; two pieces that cross only edge through edge are left to
+// CGAL.
+template <class G>
+int quick_meet(const typename G::Point *a, const typename G::Point *b) {
+  using Point = typename G::Point;
+  constexpr int m = G::D + 1;
+  for (int pass = 0; pass < 2; pass++) {
+    const Point *s = pass ? b : a, *t = pass ? a : b;
+    int inside[m]; // t's point j strictly on the inner side of every facet so far
+    for (int j = 0; j < m; j++)
+      inside[j] = 1;
+    for (int i = 0; i < m; i++) {
+      // facet i of s: its points but the i-th, in order; inner side: s[i]'s
+      Point f[G::D];
+      for (int j = 0, q = 0; j < m; j++)
+        if (j != i) f[q++] = s[j];
+      const CGAL::Orientation in = G::orient(f, s[i]);
+      bool apart = true;
+      for (int j = 0; j < m; j++) {
+        const CGAL::Orientation o = G::orient(f, t[j]);
+        if (o != -in) apart = false;
+        if (o != in) inside[j] = 0;
+      }
+      if (apart) return 0;
+    }
+    for (int j = 0; j < m; j++)
+      if (inside[j]) return 1;
+  }
+  return -1;
+}
+
 template <int D> struct Geo;
 
 template <> struct Geo<2> {
+  static constexpr int D = 2;
   using Point = P2;
   static Point make(const double *p) {
     return Point(p[0], p[1]);
@@ -70,9 +117,16 @@ template <> struct Geo<2> {
     if (k == 1) return v[0] != v[1];
     return CGAL::orientation(v[0], v[1], v[2]) != CGAL::COLLINEAR;
   }
+  static CGAL::Orientation orient(const Point *f, const Point &p) {
+    return CGAL::orientation(f[0], f[1], p);
+  }
   // Do the closed non-degenerate simplices a (ka + 1 points) and b meet?
-  static bool meet(const Point *a, int ka, const Point *b, int kb) {
-    if (ka < kb) return meet(b, kb, a, ka);
+  static bool meet(const Point *a, int ka, const Point *b, int kb, bool filter = true) {
+    if (ka < kb) return meet(b, kb, a, ka, filter);
+    if (filter && ka == 2 && kb == 2) {
+      const int quick = quick_meet<Geo<2>>(a, b);
+      if (quick >= 0) return quick != 0;
+    }
     if (ka == 2) {
       const K::Triangle_2 t(a[0], a[1], a[2]);
       if (kb == 2) return CGAL::do_intersect(t, K::Triangle_2(b[0], b[1], b[2]));
@@ -89,6 +143,7 @@ template <> struct Geo<2> {
 };
 
 template <> struct Geo<3> {
+  static constexpr int D = 3;
   using Point = P3;
   static Point make(const double *p) {
     return Point(p[0], p[1], p[2]);
@@ -102,8 +157,15 @@ template <> struct Geo<3> {
     if (k == 2) return !CGAL::collinear(v[0], v[1], v[2]);
     return CGAL::orientation(v[0], v[1], v[2], v[3]) != CGAL::COPLANAR;
   }
-  static bool meet(const Point *a, int ka, const Point *b, int kb) {
-    if (ka < kb) return meet(b, kb, a, ka);
+  static CGAL::Orientation orient(const Point *f, const Point &p) {
+    return CGAL::orientation(f[0], f[1], f[2], p);
+  }
+  static bool meet(const Point *a, int ka, const Point *b, int kb, bool filter = true) {
+    if (ka < kb) return meet(b, kb, a, ka, filter);
+    if (filter && ka == 3 && kb == 3) {
+      const int quick = quick_meet<Geo<3>>(a, b);
+      if (quick >= 0) return quick != 0;
+    }
     if (ka == 3) {
       const K::Tetrahedron_3 t(a[0], a[1], a[2], a[3]);
       if (kb == 3) return CGAL::do_intersect(t, K::Tetrahedron_3(b[0], b[1], b[2], b[3]));
@@ -459,5 +521,26 @@ extern "C" ss_status ss_inject_cgal_overlaps(int dim, const double *x, size_t nc
       overlaps<3>(x, ncells, corner, maxcorner, first_piece, piece, noverlaps, pair);
     else
       overlaps<2>(x, ncells, corner, maxcorner, first_piece, piece, noverlaps, pair);
+  });
+}
+
+extern "C" ss_status ss_inject_cgal_meet(int dim, const double *a, const double *b,
+                                         int *quick, int *exact, ss_error *err) {
+  *quick = -2;
+  *exact = 0;
+  return guarded("simplex meet", err, [&] {
+    auto run = [&](auto g) {
+      using G = decltype(g);
+      typename G::Point pa[G::D + 1], pb[G::D + 1];
+      for (int j = 0; j <= G::D; j++)
+        pa[j] = G::make(a + G::D * j), pb[j] = G::make(b + G::D * j);
+      if (G::full(pa, G::D) && G::full(pb, G::D)) *quick = quick_meet<G>(pa, pb);
+      // the exact answer without the cheap test: the do_intersect of meet
+      *exact = G::meet(pa, G::D, pb, G::D, false);
+    };
+    if (dim == 3)
+      run(Geo<3>{});
+    else
+      run(Geo<2>{});
   });
 }

@@ -55,6 +55,15 @@ ss_status ss_inject_cgal_overlaps(int dim, const double *x, size_t ncells,
                                   const size_t *first_piece, const size_t *piece,
                                   size_t *noverlaps, size_t pair[2], ss_error *err);
 
+/* For the tests: whether the closed simplices a and b (dim + 1 points each,
+ * dim = 2 or 3, point by point) meet, by CGAL's do_intersect (*exact, 0 or
+ * 1), and what the cheap test that ss_inject_cgal_overlaps asks first
+ * answered (*quick: 0 apart, 1 they meet, -1 not decided; -2 when a simplex
+ * is flat, where it is not asked).  The overlap count is right only while
+ * *quick is -1 or equals *exact. */
+ss_status ss_inject_cgal_meet(int dim, const double *a, const double *b, int *quick,
+                              int *exact, ss_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -13,6 +13,11 @@
  *  - a cell moved onto a far cell is the one overlap found and reported, the
  *    same after a similarity; a folded lattice has degree 1, cells of both
  *    signs and flat cells, and its overlaps are found;
+ *  - the cheap separating-facet / inner-point test asked before CGAL's
+ *    do_intersect never contradicts it: pairs of random tets and triangles
+ *    on a coarse integer grid (shared corners, touching facets and coplanar
+ *    points are frequent there) and continuous ones; each answer it gives
+ *    (apart, meet) and leaves open is seen;
  *  - bad input is SS_EINPUT with a message;
  *  - the time of the test on the MLCA k = 10 and k = 12 (icosahedron) maps
  *    is printed. */
@@ -25,6 +30,7 @@
 #include <lapacke.h>
 
 #include "ss_inject.h"
+#include "ss_inject_cgal.h"
 #include "ss_link.h"
 #include "ss_test.h"
 #include "ss_testcase.h"
@@ -753,6 +759,50 @@ static void expect_input_error(const char *what, const net *m, size_t centre,
         "%s: status %d, message '%s' (want '%s')", what, (int)st, err.msg, phrase);
 }
 
+/* The cheap test before do_intersect (ss_inject_cgal_meet): it may leave a
+ * pair open, but what it answers must be do_intersect's answer.  On a grid of
+ * 4 (3D) or 5 (2D) values per coordinate, closed simplices touch at corners,
+ * edges and facets and points are coplanar (collinear) all the time: exactly
+ * the ties a filter without exact predicates would get wrong. */
+static void test_quick_meet(void) {
+  uint64_t seed = 20;
+  for (int dim = 2; dim <= 3; dim++)
+    for (int grid = 0; grid < 2; grid++) {
+      const int m = dim + 1;
+      long asked = 0, apart = 0, meet = 0, open = 0, wrong = 0, touching = 0;
+      for (int t = 0; t < 20000; t++) {
+        double a[12], b[12];
+        for (int j = 0; j < m * dim; j++) {
+          const double u = rnd(&seed), v = rnd(&seed);
+          a[j] = grid ? floor(2.5 * (u + 1.0)) : u;
+          b[j] = grid ? floor(2.5 * (v + 1.0)) : v + 0.8;
+        }
+        ss_error err = {0};
+        int quick, exact;
+        if (ss_inject_cgal_meet(dim, a, b, &quick, &exact, &err)) {
+          CHECK(0, "ss_inject_cgal_meet: %s", err.msg);
+          return;
+        }
+        if (quick == -2) continue; /* a flat simplex: not asked */
+        asked++;
+        apart += quick == 0;
+        meet += quick == 1;
+        open += quick == -1;
+        wrong += quick >= 0 && quick != exact;
+        touching += grid && exact && quick == -1;
+      }
+      CHECK(wrong == 0,
+            "%dD %s: the cheap test contradicts do_intersect on %ld of %ld pairs", dim,
+            grid ? "grid" : "random", wrong, asked);
+      CHECK(
+          asked > 5000 && apart > 0 && meet > 0 && open > 0,
+          "%dD %s: %ld pairs asked, %ld apart, %ld meet, %ld left open: a branch untried",
+          dim, grid ? "grid" : "random", asked, apart, meet, open);
+      if (grid)
+        CHECK(touching > 0, "%dD grid: no pair left open that meets (touching)", dim);
+    }
+}
+
 static void test_bad_input(void) {
   net m = lattice(3, 1); /* 8 hexes, 27 points */
   {
@@ -855,6 +905,7 @@ int main(void) {
   test_degree_two();
   test_moved();
   test_folded();
+  test_quick_meet();
   test_bad_input();
   test_timing();
   return ss_test_done("inject");
