@@ -25,8 +25,8 @@ typedef struct {
                             level (after peeling), else NULL */
 } level;
 
-/* Extraction workspace. */
-typedef struct {
+/* Extraction workspace (kept in ss_local.levels when asked). */
+typedef struct ss_local_levels {
   const ss_scheme *scheme; /* the scheme */
   ss_star *star;           /* the star (level 0 is its complex) */
   int lc;                  /* first level on which p is a vertex */
@@ -912,6 +912,42 @@ done:
   return rc;
 }
 
+/* M's ring of nring levels from the levels of W, S mapping from level w:
+ * level w + 1 + r for ring level r; levels W lacks are added, each beyond
+ * w + 2 refining a neighbourhood of Omega_w only (the rows read reach a few
+ * cells out, the margin covers schemes of reach 2).  ss_local_ring_deepen
+ * calls it again on kept levels: the levels added then are those an
+ * extraction with the deeper ring from the start adds, in the same order. */
+static ss_status ring(work *W, int w, int nring, ss_local *M, ss_error *err) {
+  ss_status st = SS_OK;
+  while (!st && W->nlev < w + nring + 1) {
+    const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
+    unsigned char *om[MAXLEVELS] = {NULL};
+    const size_t p = lookup(W->lev + w, &zero);
+    st = p == SIZE_MAX ? ss_error_set(err, SS_EINTERNAL, "the centre is lost")
+                       : omega_marks(W, w, p, om, err);
+    if (!st) st = add_level(W, om[W->nlev - 1 - w], ss_scheme_reach(W->scheme), err);
+    for (int l = 0; l < MAXLEVELS; l++)
+      free(om[l]);
+  }
+  if (!st && build_ring(W, w, nring, M, err) == HARD)
+    st = err && err->status ? err->status : SS_EINTERNAL;
+  return st;
+}
+
+/* Free ring levels 0 .. SS_LOCAL_MAXRING - 1 of M and mark none built. */
+static void free_rings(ss_local *M) {
+  for (int r = 0; r < SS_LOCAL_MAXRING; r++) {
+    free(M->ring[r].ptr);
+    free(M->ring[r].col);
+    free(M->ring[r].w);
+    free(M->ring[r].ctype);
+    free(M->ring[r].corner);
+    memset(M->ring + r, 0, sizeof M->ring[r]);
+  }
+  M->nring = 0;
+}
+
 /* ---- cases and stars ---- */
 
 int ss_local_edge_point(const ss_scheme *s, const ss_link *l) {
@@ -1081,23 +1117,17 @@ ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local
     if (rc == HARD) st = err && err->status ? err->status : SS_EINTERNAL;
     w++;
   }
-  /* the ring: level w + 1 + r for ring level r; levels beyond w + 2 refine a
-   * neighbourhood of Omega_w only (the rows read reach a few cells out, the
-   * margin covers schemes of reach 2) */
   w--;
-  while (!st && W.nlev < w + nring + 1) {
-    const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
-    unsigned char *om[MAXLEVELS] = {NULL};
-    const size_t p = lookup(W.lev + w, &zero);
-    st = p == SIZE_MAX ? ss_error_set(err, SS_EINTERNAL, "the centre is lost")
-                       : omega_marks(&W, w, p, om, err);
-    if (!st) st = add_level(&W, om[W.nlev - 1 - w], ss_scheme_reach(s), err);
-    for (int l = 0; l < MAXLEVELS; l++)
-      free(om[l]);
+  if (!st) st = ring(&W, w, nring, M, err);
+  if (!st && o->keep_levels) {
+    M->levels = malloc(sizeof *M->levels);
+    if (M->levels) {
+      *M->levels = W;         /* the levels move into M: freed by ss_local_free */
+      M->levels->prog = NULL; /* the caller's options do not outlive the call */
+    } else
+      st = ss_error_nomem(err, "kept levels");
   }
-  if (!st && build_ring(&W, w, nring, M, err) == HARD)
-    st = err && err->status ? err->status : SS_EINTERNAL;
-  free_work(&W);
+  if (!M->levels) free_work(&W);
   if (st) {
     ss_local_free(M);
     return st;
@@ -1108,6 +1138,13 @@ ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local
 
 ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
                                ss_local *M, ss_error *err) {
+  if (M->levels) {
+    if (nring < 1 || nring > SS_LOCAL_MAXRING)
+      return ss_error_set(err, SS_EINPUT, "ring levels must be in 1..%d, not %d",
+                          SS_LOCAL_MAXRING, nring);
+    free_rings(M);
+    return ring(M->levels, M->level, nring, M, err);
+  }
   ss_local *D = NULL;
   ss_status st = ss_local_new_ring(s, c, nring, &D, err);
   if (st) return st;
@@ -1132,12 +1169,10 @@ ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
 
 void ss_local_free(ss_local *L) {
   if (!L) return;
-  for (int r = 0; r < SS_LOCAL_MAXRING; r++) {
-    free(L->ring[r].ptr);
-    free(L->ring[r].col);
-    free(L->ring[r].w);
-    free(L->ring[r].ctype);
-    free(L->ring[r].corner);
+  free_rings(L);
+  if (L->levels) {
+    free_work(L->levels);
+    free(L->levels);
   }
   free(L->S);
   free(L->label);

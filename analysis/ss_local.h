@@ -154,6 +154,10 @@ typedef struct {
                            does not contain */
   int nring;            /* ring levels built (see above) */
   ss_local_ring ring[SS_LOCAL_MAXRING]; /* ring levels 0 .. nring - 1 */
+  struct ss_local_levels *levels;       /* the refined star's levels, kept
+                                           for ss_local_ring_deepen when asked
+                                           (ss_local_opts.keep_levels), else
+                                           NULL; private to ss_local.c */
 } ss_local;
 
 /* Name of a case kind as in the command line and JSON ("vertex", "edge",
@@ -202,10 +206,15 @@ ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
 ss_status ss_local_new_ring(const ss_scheme *s, const ss_case *c, int nring,
                             ss_local **out, ss_error *err);
 
-/* Replace M's ring by one of nring levels (M made by ss_local_new or
- * ss_local_new_ring for scheme s and case c): the case is extracted again
- * with the deeper ring, and its S and labels must equal M's bit for bit
- * (SS_EINTERNAL otherwise).  Other errors as ss_local_new_ring. */
+/* Replace M's ring by one of nring levels (M made by ss_local_new,
+ * ss_local_new_ring or ss_local_new_opts for scheme s and case c).  With
+ * M's levels kept (ss_local_opts.keep_levels) only the levels the deeper
+ * ring needs are added to them: the same steps, on the same levels, as an
+ * extraction with nring from the start, so the ring is the same bit for
+ * bit.  Otherwise the case is extracted again with the deeper ring, and its
+ * S and labels must equal M's bit for bit (SS_EINTERNAL otherwise).  Other
+ * errors as ss_local_new_ring; on an error M's ring is left empty (nring 0)
+ * when its levels were kept, unchanged otherwise. */
 ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
                                ss_local *M, ss_error *err);
 
@@ -306,9 +315,15 @@ typedef struct {
                            <= 0: no budget (the default) */
   ss_progress progress; /* steps: "refining the star" level l of the levels
                            needed so far, "reading S" (default silent) */
+  int keep_levels;      /* non-zero: keep the refined levels in the result
+                           (ss_local.levels) so that ss_local_ring_deepen
+                           refines only the levels it adds instead of the
+                           whole case again; they hold about as much memory
+                           as the extraction's peak, until ss_local_free
+                           (default 0) */
 } ss_local_opts;
 
-/* nring SS_LOCAL_RING, no budget, no progress. */
+/* nring SS_LOCAL_RING, no budget, no progress, levels not kept. */
 ss_local_opts ss_local_defaults(void);
 
 /* ss_local_new_ring with options o (budget and progress). */

@@ -104,6 +104,10 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
   if (ep > 0) cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag, 0};
   ss_local_opts lo = ss_local_defaults();
   lo.max_bytes = o->max_bytes;
+  /* a link that folds on the first ring levels is judged on a deeper one:
+   * keep the levels so that only the deeper level is refined then (on a
+   * failing k = 12 MLCA link the extraction again was a quarter of that) */
+  lo.keep_levels = o->ring_levels > lo.nring;
   if (!st) st = ss_local_new_opts(s, &cc, &lo, &M, err);
   if (!st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET)
     st = diagonals(s, &cc, r, err);

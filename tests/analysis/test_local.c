@@ -6,7 +6,9 @@
  * product structure along MLCA edges, the tet/oct face and edge spectra,
  * invariance under relabelling and mirroring of the link, a global-vs-local
  * cross-check on real refined patches, and the verdict logic with its
- * tolerance on matrices whose spectrum is known by construction. */
+ * tolerance on matrices whose spectrum is known by construction; a ring
+ * deepened on kept levels equals the ring extracted that deep from the
+ * start, bit for bit. */
 #define _DEFAULT_SOURCE /* wait4: the peak memory of a child process */
 #include <math.h>
 #include <stdlib.h>
@@ -833,6 +835,64 @@ static void test_estimate(void) {
   ss_scheme_free(tetoct);
 }
 
+/* Whether rings a and b are equal bit for bit (points, rows, cells). */
+static int same_ring(const ss_local_ring *a, const ss_local_ring *b) {
+  if (a->nv != b->nv || a->nprev != b->nprev || a->ncells != b->ncells) return 0;
+  const size_t nnz = a->ptr[a->nv];
+  return nnz == b->ptr[b->nv] && !memcmp(a->ptr, b->ptr, (a->nv + 1) * sizeof *a->ptr) &&
+         !memcmp(a->col, b->col, nnz * sizeof *a->col) &&
+         !memcmp(a->w, b->w, nnz * sizeof *a->w) &&
+         !memcmp(a->ctype, b->ctype, a->ncells * sizeof *a->ctype) &&
+         !memcmp(a->corner, b->corner, a->ncells * SS_MAXCELLVERTS * sizeof *a->corner);
+}
+
+/* ss_local_ring_deepen on kept levels (ss_local_opts.keep_levels) adds only
+ * the levels it lacks; its ring must be the ring of an extraction with that
+ * many levels from the start: MLCA (reach 1) and tet/oct vertices, an MLCA
+ * edge, deepened 2 -> 3 -> 4 and 2 -> 4, and S untouched. */
+static void test_deepen(void) {
+  const char *names[2] = {"mlca", "tetoct"};
+  ss_link *l = NULL;
+  ss_error err = {0};
+  if (ss_link_named("icosahedron", &l, &err)) {
+    CHECK(0, "icosahedron: %s", err.msg);
+    return;
+  }
+  for (int q = 0; q < 3; q++) {
+    ss_scheme *s = scheme(names[q == 1]);
+    const ss_case c = q < 2 ? (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}
+                            : (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0};
+    for (int steps = 1; steps <= 2 && s; steps++) {
+      ss_local_opts o = ss_local_defaults();
+      o.keep_levels = 1;
+      ss_local *K = NULL, *F[SS_LOCAL_MAXRING + 1] = {NULL};
+      ss_status st = ss_local_new_opts(s, &c, &o, &K, &err);
+      for (int n = SS_LOCAL_RING; !st && n <= SS_LOCAL_MAXRING; n++)
+        st = ss_local_new_ring(s, &c, n, &F[n], &err);
+      const double *S0 = K ? K->S : NULL;
+      for (int n = SS_LOCAL_RING + (steps == 1 ? 1 : 2); !st && n <= SS_LOCAL_MAXRING;
+           n += steps) {
+        st = ss_local_ring_deepen(s, &c, n, K, &err);
+        if (st) break;
+        int same = K->nring == n && F[n]->nring == n && K->S == S0 &&
+                   !memcmp(K->S, F[n]->S, K->n2 * K->n2 * sizeof *K->S);
+        for (int r = 0; r < n && same; r++)
+          same = same_ring(K->ring + r, F[n]->ring + r);
+        CHECK(same,
+              "%s %s: the ring deepened on kept levels to %d differs from the "
+              "ring extracted with %d levels",
+              names[q == 1], q < 2 ? "icosahedron vertex" : "edge 5", n, n);
+      }
+      CHECK(!st, "%s: %s", names[q == 1], err.msg);
+      ss_local_free(K);
+      for (int n = 0; n <= SS_LOCAL_MAXRING; n++)
+        ss_local_free(F[n]);
+    }
+    ss_scheme_free(s);
+  }
+  ss_link_free(l);
+}
+
 int main(void) {
   test_verdicts();
   test_surfaces();
@@ -843,5 +903,6 @@ int main(void) {
   test_cross();
   test_edge_points();
   test_estimate();
+  test_deepen();
   return ss_test_done("local");
 }
