@@ -13,7 +13,33 @@
  * Part (a) is timed in thread CPU time, so that it means something on a
  * loaded machine; part (b) in wall time, which is what a sweep takes.
  * Options: --k K (4..14, default 12), --samples N (default 100: every
- * count/N-th link of the enumeration), --jobs J (default 2). */
+ * count/N-th link of the enumeration), --jobs J (default 2), --scheme S
+ * (default mlca; tetoct for the tet/oct split).
+ *
+ * Measured 2026-12-03, one run each, on the 2-core machine with four other
+ * engineers building (load 7-10; this process got 0.2-0.4 of a core), thread
+ * CPU time for (a):
+ *   before the injectivity and deepening work (main a188919) and after, the
+ *   same 102 MLCA links k = 12 in the same run:
+ *     pipeline 172.9 -> 67.6 ms per case (median 118.8 -> 28.6, slowest
+ *     508 -> 151), extraction 16.5 ms (10 % -> 24 %), dgeev 2.07 ms;
+ *     pipeline / dgeev 83.8 -> 32.7.
+ *   after: MLCA k = 14 (41 links) 86.8 ms, extraction 19.1, dgeev 3.22,
+ *     ratio 27.0; tet/oct k = 12 13.8 ms vs dgeev 0.091 ms (ratio 152), k = 14
+ *     18.0 ms vs 0.103 ms (174): tet/oct's one-ring block has only k + 1 rows,
+ *     so its dgeev is nearly free and the ratio says little.
+ *   The 2x target is out of reach as the pipeline is built: the extraction
+ *   alone (refining the star level by level from the global rule) is 5-8x
+ *   dgeev for MLCA, and the regularity test on three ring levels (the
+ *   Jacobian's Bernstein subdivision, depth 6, on every ring cell) and the
+ *   overlap test come on top; only stencils derived once per scheme and
+ *   cell configuration, instead of refining per case, could remove the
+ *   first.
+ *   (b) could not show a speed-up on that machine (CPU per wall second 0.20-
+ *   0.27 with 1 and with 2 threads: no second core was free); cases per CPU
+ *   second with 2 threads were 0.98 (MLCA k = 12), 0.81 (k = 14, 41 cases),
+ *   0.92 and 0.94 (tet/oct) of one thread's: the threads cost each other
+ *   little, so on two free cores the speed-up would be about 1.6-1.96. */
 #include <malloc.h>
 #include <math.h>
 #include <omp.h>
@@ -117,10 +143,12 @@ static int pipeline(const ss_scheme *sc, const ss_result_opts *ro, const ss_link
 int main(int argc, char **argv) {
   int k = 12, jobs = 2;
   long want = 100;
+  const char *scheme = "mlca";
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!strcmp(argv[i], "--k")) k = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--samples")) want = atol(argv[i + 1]);
     if (!strcmp(argv[i], "--jobs")) jobs = atoi(argv[i + 1]);
+    if (!strcmp(argv[i], "--scheme")) scheme = argv[i + 1];
   }
   if (k < 4 || k > 14 || want < 1 || jobs < 1) {
     fprintf(stderr, "bench_pipeline: --k 4..14, --samples >= 1, --jobs >= 1\n");
@@ -132,7 +160,10 @@ int main(int argc, char **argv) {
 #endif
   ss_error err = {0};
   ss_scheme *sc = NULL;
-  if (ss_scheme_new("mlca", &sc, &err)) return 1;
+  if (ss_scheme_new(scheme, &sc, &err)) {
+    fprintf(stderr, "bench_pipeline: %s\n", err.msg);
+    return 2;
+  }
   ss_enum_opts o = {k, k, 0, 1};
   uint64_t counts[SS_ENUM_MAXK + 1] = {0};
   if (ss_enum_links(&o, NULL, NULL, counts, &err)) return 1;
@@ -140,8 +171,8 @@ int main(int argc, char **argv) {
   s.stride = (long)counts[k] / want > 1 ? (long)counts[k] / want : 1;
   if (ss_enum_links(&o, take, &s, NULL, &err) || s.failed) return 1;
   const ss_result_opts ro = ss_result_defaults();
-  printf("MLCA vertex pipeline, %zu of the %llu links with k = %d (every %ld-th)\n", s.n,
-         (unsigned long long)counts[k], k, s.stride);
+  printf("%s vertex pipeline, %zu of the %llu links with k = %d (every %ld-th)\n", scheme,
+         s.n, (unsigned long long)counts[k], k, s.stride);
 
   /* (a) one thread, case by case */
   double t_pipe = 0.0, t_ext = 0.0, t_bare = 0.0;
