@@ -22,6 +22,38 @@ typedef struct {
   int index[8];     /* index[b]: the corner with binary coordinates b */
 } ss_jac_order;
 
+/* The weights of the trilinear map's derivatives at the 27 Lagrange points
+ * (u, v, w) = (i, j, l) / 2 that start the hex test: d x / d t_a there is the
+ * sum over corners of lw[i + 3 j + 9 l][b][a] times the corner with binary
+ * coordinates b, the weight being the product over axes c of +-1 (c = a, by
+ * bit c of b) or t_c, 1 - t_c (bit c set, clear).  Each is a product of 0,
+ * +-1/2 and +-1, exact; written as the formula, not as numbers, so the table
+ * is that of hex_at (which computed them per point and per cell, most of the
+ * Jacobian test's time). */
+#define LW_T(q, bit)                                                                     \
+  ((q) == 0 ? ((bit) ? 0.0 : 1.0) : (q) == 1 ? 0.5 : ((bit) ? 1.0 : 0.0))
+#define LW_Q(p, c) ((c) == 0 ? (p) % 3 : (c) == 1 ? ((p) / 3) % 3 : (p) / 9)
+#define LW_F(p, b, a, c)                                                                 \
+  ((a) == (c) ? ((((b) >> (c)) & 1) ? 1.0 : -1.0) : LW_T(LW_Q(p, c), ((b) >> (c)) & 1))
+#define LW(p, b, a) (1.0 * LW_F(p, b, a, 0) * LW_F(p, b, a, 1) * LW_F(p, b, a, 2))
+#define LW3(p, b)                                                                        \
+  { LW(p, b, 0), LW(p, b, 1), LW(p, b, 2) }
+#define LW8(p)                                                                           \
+  {                                                                                      \
+    LW3(p, 0), LW3(p, 1), LW3(p, 2), LW3(p, 3), LW3(p, 4), LW3(p, 5), LW3(p, 6),         \
+        LW3(p, 7)                                                                        \
+  }
+static const double lagrange_weight[27][8][3] = {
+    LW8(0),  LW8(1),  LW8(2),  LW8(3),  LW8(4),  LW8(5),  LW8(6),  LW8(7),  LW8(8),
+    LW8(9),  LW8(10), LW8(11), LW8(12), LW8(13), LW8(14), LW8(15), LW8(16), LW8(17),
+    LW8(18), LW8(19), LW8(20), LW8(21), LW8(22), LW8(23), LW8(24), LW8(25), LW8(26)};
+#undef LW8
+#undef LW3
+#undef LW
+#undef LW_F
+#undef LW_Q
+#undef LW_T
+
 static void ss_jac_order_init(int d, ss_jac_order *o) {
   for (int k = 0; k < (1 << d); k++) {
     o->bits[k] = ss_cube_corner_bits(d, k);
@@ -60,13 +92,15 @@ static inline int lt0_d(double v, double thr) {
   return v < -thr;
 }
 
-#define NUM      double
-#define SUF      d
-#define JAC_FLAT SS_JAC_DEGENERATE
+#define NUM        double
+#define SUF        d
+#define JAC_FLAT   SS_JAC_DEGENERATE
+#define JAC_HEX_AT /* ss_jac_hex_at evaluates det J at any point */
 #include "ss_jac_impl.h"
 #undef NUM
 #undef SUF
 #undef JAC_FLAT
+#undef JAC_HEX_AT
 
 /* ---- the number interface: intervals (enclosures, outward rounding) ---- */
 

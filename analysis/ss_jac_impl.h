@@ -19,7 +19,8 @@
  *                                     flat threshold), for intervals the whole
  *                                     interval on that side of 0 (thr unused)
  * and, shared by both, ss_jac_order (a cube's corner order, looked up once
- * per cell), ss_jac_order_init and SS_JAC_STACK (the hex box stack's size).
+ * per cell), ss_jac_order_init, SS_JAC_STACK (the hex box stack's size) and
+ * lagrange_weight; JAC_HEX_AT defined: hex_at too (det J at any point).
  * Everything here is defined as static JN(name), e.g. hex_sign_d. */
 
 #define JN_CAT2(a, b) a##_##b
@@ -60,6 +61,7 @@ static void JN(corner_frame)(const NUM *x, int d, const ss_jac_order *o, int k,
   }
 }
 
+#ifdef JAC_HEX_AT
 /* det J of the trilinear map of the hex x (8 x 3, corner order o) at (u, v, w) */
 static NUM JN(hex_at)(const NUM *x, const ss_jac_order *o, double u, double v, double w) {
   const double t[3] = {u, v, w};
@@ -81,6 +83,29 @@ static NUM JN(hex_at)(const NUM *x, const ss_jac_order *o, double u, double v, d
     }
   }
   return JN(det3)(J[0], J[1], J[2]);
+}
+#endif
+
+/* det J at the 27 Lagrange points (i, j, l) / 2 into v[i + 3 j + 9 l]: as
+ * hex_at at each, the same operations in the same order, with the weights
+ * read from lagrange_weight (ss_jac.c) instead of computed. */
+static void JN(hex_lagrange)(const NUM *x, const ss_jac_order *o, NUM *v) {
+  for (int p = 0; p < 27; p++) {
+    NUM J[3][3];
+    for (int i = 0; i < 3; i++)
+      for (int r = 0; r < 3; r++)
+        J[i][r] = JN(zero)();
+    for (int k = 0; k < 8; k++) {
+      const double *lw = lagrange_weight[p][o->bits[k]];
+      for (int i = 0; i < 3; i++) {
+        const double wt = lw[i];
+        if (wt == 0.0) continue; /* as hex_at */
+        for (int r = 0; r < 3; r++)
+          J[i][r] = JN(add)(J[i][r], JN(scale)(x[3 * k + r], wt));
+      }
+    }
+    v[p] = JN(det3)(J[0], J[1], J[2]);
+  }
 }
 
 /* ---- hexes: Bernstein coefficients and adaptive subdivision ---- */
@@ -130,10 +155,7 @@ static void JN(hex_sign)(const NUM *x, int maxdepth, double thr, ss_jac_result *
   int sp = 0;
   /* Lagrange values on {0, 1/2, 1}^3, converted axis by axis */
   JN(box) *b = stack + sp++;
-  for (int k = 0; k < 3; k++)
-    for (int j = 0; j < 3; j++)
-      for (int i = 0; i < 3; i++)
-        b->c[i + 3 * j + 9 * k] = JN(hex_at)(x, &o, 0.5 * i, 0.5 * j, 0.5 * k);
+  JN(hex_lagrange)(x, &o, b->c);
   for (int a = 0, stride = 1; a < 3; a++, stride *= 3)
     for (int q = 0; q < 27; q++)
       if ((q / stride) % 3 == 1)
