@@ -302,6 +302,9 @@ static void no_map(ss_regularity *r, const ss_charmap_opts *o) {
   r->min_scaled_jacobian = NAN;
 }
 
+static ss_status judge_levels(ss_charmap *cm, const ss_local *M, const ss_charmap_opts *o,
+                              int first, ss_regularity *r, ss_error *err);
+
 ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
                                 const ss_charmap_opts *o, ss_regularity *r,
                                 ss_error *err) {
@@ -318,6 +321,18 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
              "the local matrix carries no ring to judge the map on");
     return SS_OK;
   }
+  return judge_levels(cm, M, o, 0, r, err);
+}
+
+/* Judge ring levels first .. (while none is clean) of M, levels
+ * 0 .. first - 1 already judged in r (their nets are pushed again: a deeper
+ * ring numbers their points otherwise, its cells are the same); then the
+ * verdict, the deciding level kept in cm and the centre's corners counted
+ * (from cm->jac, judged). */
+static ss_status judge_levels(ss_charmap *cm, const ss_local *M, const ss_charmap_opts *o,
+                              int first, ss_regularity *r, ss_error *err) {
+  const int dim = cm->dim;
+  const int nl = M->nring < o->ring_levels ? M->nring : o->ring_levels;
   double *prev = cm->x, *net = NULL;
   ss_jac_result *jac = NULL;
   for (int l = 0; l < nl; l++) {
@@ -333,11 +348,14 @@ ss_status ss_charmap_regularity(ss_charmap *cm, const ss_local *M,
     }
     push(R, prev, dim, net);
     if (prev != cm->x) free(prev);
+    prev = net;
+    if (l < first) continue; /* judged before: the same cells, the same net */
     judge(R->ncells, R->ctype, R->corner, net, dim, o->depth, r->level + l, jac);
     r->nlevels = l + 1;
-    prev = net;
     if (clean(r->level + l)) break;
   }
+  r->want_levels = 0;
+  r->centre_corner_folds = 0;
   decide(r, o->ring_levels);
   /* keep the deciding level (the last judged: the loop stops at a clean one)
    * for pictures and files, replacing an earlier test's */
@@ -419,8 +437,14 @@ ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
   ss_status st = ss_charmap_analyze(M, e, o, cm, r, err);
   if (st || !*cm) return st;
   if (r->want_levels > M->nring) {
+    /* the levels judged stay as they were (the deeper ring's first levels
+     * hold the same cells, ss_local_ring_deepen): judge only the new ones */
+    int more = r->nlevels >= 1;
     if ((st = ss_local_ring_deepen(s, c, r->want_levels, M, err))) return st;
-    if ((st = ss_charmap_regularity(*cm, M, o, r, err))) return st;
+    more = more && (M->nring < o->ring_levels ? M->nring : o->ring_levels) > r->nlevels;
+    st = more ? judge_levels(*cm, M, o, r->nlevels, r, err)
+              : ss_charmap_regularity(*cm, M, o, r, err);
+    if (st) return st;
   }
   if ((st = ss_charmap_symmetry(*cm, M, c, &r->sym, err))) return st;
   if (r->sym.found) {
