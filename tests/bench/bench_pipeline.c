@@ -16,30 +16,35 @@
  * count/N-th link of the enumeration), --jobs J (default 2), --scheme S
  * (default mlca; tetoct for the tet/oct split).
  *
- * Measured 2026-12-03, one run each, on the 2-core machine with four other
- * engineers building (load 7-10; this process got 0.2-0.4 of a core), thread
- * CPU time for (a):
- *   before the injectivity and deepening work (main a188919) and after, the
- *   same 102 MLCA links k = 12 in the same run:
- *     pipeline 172.9 -> 67.6 ms per case (median 118.8 -> 28.6, slowest
- *     508 -> 151), extraction 16.5 ms (10 % -> 24 %), dgeev 2.07 ms;
- *     pipeline / dgeev 83.8 -> 32.7.
- *   after: MLCA k = 14 (41 links) 86.8 ms, extraction 19.1, dgeev 3.22,
- *     ratio 27.0; tet/oct k = 12 13.8 ms vs dgeev 0.091 ms (ratio 152), k = 14
- *     18.0 ms vs 0.103 ms (174): tet/oct's one-ring block has only k + 1 rows,
- *     so its dgeev is nearly free and the ratio says little.
+ * Measured 2026-12-03, one run each, on the 2-core machine shared with four
+ * other engineers' builds (load 4-10; this process got 0.5-1 of a core),
+ * thread CPU time for (a):
+ *   main (dd13ff2) and this branch (the injectivity test computing only what
+ *   it reads and deciding most pairs of pieces by orientation predicates,
+ *   the deeper ring refining only its new level and judging only its new
+ *   cells, the hex test's Lagrange weights from a table), the same 102 MLCA
+ *   links k = 12 in the same run:
+ *     pipeline 178.8 -> 54.4 ms per case (median 116.8 -> 26.2, slowest
+ *     561 -> 131), extraction 16.1 -> 14.7 ms (9 % -> 27 %), dgeev 2.1 ms;
+ *     pipeline / dgeev 83.9 -> 28.9.
+ *   branch: MLCA k = 14 (41 links) 80.6 ms, extraction 19.2, dgeev 3.49,
+ *     ratio 23.1; tet/oct k = 12 13.0 ms vs dgeev 0.082 ms (ratio 158): its
+ *     one-ring block has only k + 1 rows, so its dgeev is nearly free and the
+ *     ratio says little.
  *   The 2x target is out of reach as the pipeline is built: the extraction
  *   alone (refining the star level by level from the global rule) is 5-8x
- *   dgeev for MLCA, and the regularity test on three ring levels (the
- *   Jacobian's Bernstein subdivision, depth 6, on every ring cell) and the
- *   overlap test come on top; only stencils derived once per scheme and
- *   cell configuration, instead of refining per case, could remove the
- *   first.
- *   (b) could not show a speed-up on that machine (CPU per wall second 0.20-
- *   0.27 with 1 and with 2 threads: no second core was free); cases per CPU
- *   second with 2 threads were 0.98 (MLCA k = 12), 0.81 (k = 14, 41 cases),
- *   0.92 and 0.94 (tet/oct) of one thread's: the threads cost each other
- *   little, so on two free cores the speed-up would be about 1.6-1.96. */
+ *   dgeev for MLCA, and the regularity test on up to three ring levels (the
+ *   Jacobian's Bernstein subdivision, depth 6, on every ring cell), the
+ *   deeper ring's extra refinement and the overlap test come on top; only
+ *   stencils derived once per scheme and cell configuration, instead of
+ *   refining per case, could remove the first.
+ *   (b) could not show a speed-up on that machine (CPU per wall second
+ *   0.5-1.2 with 2 threads: the second core was seldom free); cases per CPU
+ *   second with 2 threads were 0.94-1.01 of one thread's (MLCA k = 12 and
+ *   14, tet/oct; 0.81-0.98 in a run under load 10; `sweep --jobs 1/2` of
+ *   the same 102 links into fresh stores: 0.91 and 0.99, identical rows):
+ *   the threads cost each other little, so on two free cores the speed-up
+ *   would be about 1.8-2. */
 #include <malloc.h>
 #include <math.h>
 #include <omp.h>
