@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "ss_cli.h"
 #include "ss_cli_reproduce.h"
@@ -51,8 +52,9 @@ static const char usage[] =
     "                       " SS_DATADIR "/reference\n"
     "  -t, --tables FILE    the tables and figures to make (JSON, described in\n"
     "                       reproduce/README.md beside it); default:\n"
-    "                       reproduce/tables.json in the folder that holds the\n"
-    "                       default reference/ (the same search)\n"
+    "                       reproduce/tables.json beside the reference folder\n"
+    "                       (DIR/../reproduce/tables.json), else in the folder\n"
+    "                       of the default reference folder (the same search)\n"
     "  --certify            prove every verdict (as `analyze --certify`): a proven\n"
     "                       verdict is marked ✓, one that cannot be proven becomes\n"
     "                       undecided; the exhaustive tables count both per k\n"
@@ -190,6 +192,18 @@ static int run_jsr_table(size_t i, const char *out, const ss_ref *ref, size_t *q
   return SS_EXIT_OK;
 }
 
+/* The default of --tables, into buf: reproduce/tables.json beside the
+ * reference folder refdir (REFDIR/../reproduce/tables.json) when that file
+ * exists, so that the tables and the values they are compared with come
+ * from one data set, also with --reference; else the one of the default data
+ * folder (ss_cli_datapath).  NULL when it does not fit. */
+static const char *default_tables(const char *refdir, char *buf, size_t cap) {
+  const int n = snprintf(buf, cap, "%s/../reproduce/tables.json", refdir);
+  if (n < 0 || (size_t)n >= cap) return NULL;
+  if (access(buf, F_OK) == 0) return buf;
+  return ss_cli_datapath("reproduce/tables.json", buf, cap);
+}
+
 /* Every reference file DIR/NAME.tsv into *ref; the exit status (2 with a
  * message when there are none or one is malformed). */
 static int load_reference(const char *refdir, ss_ref *ref) {
@@ -281,9 +295,8 @@ int ss_cli_reproduce(int argc, char **argv) {
   if (!*out) return ss_cli_usage_error(cmd, "--out: empty folder name");
   if (!refdir && !(refdir = ss_cli_refdir(refbuf, sizeof refbuf)))
     return ss_cli_usage_error(cmd, "SUBSPECTRA_DATADIR: path too long");
-  if (!tables &&
-      !(tables = ss_cli_datapath("reproduce/tables.json", tabbuf, sizeof tabbuf)))
-    return ss_cli_usage_error(cmd, "SUBSPECTRA_DATADIR: path too long");
+  if (!tables && !(tables = default_tables(refdir, tabbuf, sizeof tabbuf)))
+    return ss_cli_usage_error(cmd, "--reference or SUBSPECTRA_DATADIR: path too long");
 
   ss_error err = {0};
   ss_ref ref = {0};

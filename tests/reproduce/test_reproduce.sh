@@ -24,7 +24,8 @@ expect 2 "unknown option '--bogus'" "$exe" reproduce --bogus
 expect 2 "unexpected argument 'x'" "$exe" reproduce --reference "$ref" x
 expect 2 "no reference files" "$exe" reproduce --reference "$tmp/none" --out "$tmp/o"
 : > "$tmp/file"
-expect 2 "--out $tmp/file/sub: cannot create" "$exe" reproduce --reference "$ref" --tables "$tables" --out "$tmp/file/sub"
+# (the tables are found beside --reference: DIR/../reproduce/tables.json)
+expect 2 "--out $tmp/file/sub: cannot create" "$exe" reproduce --reference "$ref" --out "$tmp/file/sub"
 mkdir -p "$tmp/badref"
 cp "$ref"/*.tsv "$tmp/badref/"
 printf 'p.txt\tsection 1\tmlca\tvertex\t4..8\t-\tlambda1\t0.5.1\tquote\tnote\n' >> "$tmp/badref/mlca-hexahedral-subdivision.tsv"
