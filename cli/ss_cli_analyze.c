@@ -857,6 +857,57 @@ static int check_budget(const opts *o, const ss_scheme *s, const ss_case *c,
   return 0;
 }
 
+/* The error of a case: "subspectra CMD: WHERE message" on stderr; its exit
+ * status. */
+static int case_fail(const opts *o, const char *where, const ss_error *err) {
+  fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err->msg);
+  return ss_cli_exit_status(err->status);
+}
+
+/* draw: the picture of the characteristic map *cm of case (M, e) into
+ * o->out, captioned with the case (canon, diagonals di) unless --no-caption.
+ * With --force and no map (the eigenvalue condition fails) the would-be map
+ * is built into *cm, judged into *reg and drawn, labelled as such.  The exit
+ * status: 0, 1 for a forced map or none to draw, 2 when writing fails. */
+static int draw_case(const opts *o, const ss_scheme *s, const char *canon,
+                     const ss_local *M, const ss_eig *e, const ss_charmap_opts *co,
+                     const diag_info *di, const char *where, ss_charmap **cm,
+                     ss_regularity *reg) {
+  ss_error err = {0};
+  int forced = 0;
+  if (!*cm && o->force && e->basis) {
+    if (ss_charmap_new(M, e, cm, &err) || ss_charmap_regularity(*cm, M, co, reg, &err))
+      return case_fail(o, where, &err);
+    forced = 1;
+  }
+  if (!*cm) {
+    fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
+            reg->verdict.reason);
+    return SS_EXIT_FAIL;
+  }
+  char caption[600], buf[32];
+  char dtext[128] = "";
+  if (di->shown)
+    snprintf(dtext, sizeof dtext, ", diagonals %s (%zu of %zu pairs improper)",
+             ss_diag_name(o->diag), di->improper, di->pairs);
+  snprintf(caption, sizeof caption, "%s, %s %s%s%s", ss_scheme_name(s),
+           ss_case_name(o->kind),
+           o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf), dtext,
+           forced ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
+                  : "");
+  ss_report_draw_opts dopt = o->draw;
+  dopt.caption = o->nocaption ? NULL : caption;
+  if (ss_report_draw(*cm, reg, &dopt, o->out, &err)) {
+    fprintf(stderr, "subspectra draw: %s\n", err.msg);
+    return SS_EXIT_USAGE; /* bad file, i/o or out of memory */
+  }
+  fprintf(stderr, "subspectra draw: wrote %s (%s %s%s%s)\n", o->out,
+          forced ? "forced map, eigenvalue condition fails; its cells:" : "regularity",
+          ss_verdict_name(reg->verdict.verdict), reg->verdict.reason[0] ? ": " : "",
+          reg->verdict.reason);
+  return forced ? SS_EXIT_FAIL : SS_EXIT_OK;
+}
+
 static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
                     const char *where, int *header) {
   ss_error err = {0};
@@ -870,8 +921,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_local_cost cost;
   if (o->kind == SS_CASE_VERTEX) {
     if (ss_link_parse(link_text, &l, &err)) {
-      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-      rc = ss_cli_exit_status(err.status);
+      rc = case_fail(o, where, &err);
       goto done;
     }
     /* the budget before the canonical form, which costs O(k^2) (bipyramid:99998
@@ -881,8 +931,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     const ss_case cv = {SS_CASE_VERTEX, l, 0, o->diag, 0};
     if ((rc = check_budget(o, s, &cv, l, where, &cost))) goto done;
     if (ss_link_canonical(l, &cl, NULL, &err) || ss_link_format(cl, &canon, &err)) {
-      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-      rc = ss_cli_exit_status(err.status);
+      rc = case_fail(o, where, &err);
       goto done;
     }
   }
@@ -912,8 +961,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_local_opts lo = ss_local_defaults();
   lo.progress = prog;
   if (ss_local_new_opts(s, &c, &lo, &M, &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = ss_cli_exit_status(err.status);
+    rc = case_fail(o, where, &err);
     goto done;
   }
   diag_info di = {0, 0, 0};
@@ -921,9 +969,8 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     ss_star *star = NULL;
     if (ss_local_star(s, &c, &star, &err) ||
         ss_diag_improper(star->cx, &di.pairs, &di.improper, &err)) {
-      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
       ss_star_free(star);
-      rc = ss_cli_exit_status(err.status);
+      rc = case_fail(o, where, &err);
       goto done;
     }
     ss_star_free(star);
@@ -942,8 +989,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   eo.force = o->force;
   eo.progress = prog;
   if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = ss_cli_exit_status(err.status);
+    rc = case_fail(o, where, &err);
     goto done;
   }
   ss_regularity reg;
@@ -958,56 +1004,14 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
                    0, 0);
   if (ss_certify_verdicts(s, &c, M, e, &co, o->certify, &cm, &reg, &inj, &ci.c, &ex,
                           &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = ss_cli_exit_status(err.status);
+    rc = case_fail(o, where, &err);
     goto done;
   }
   ci.exact = ex;
   const int k = l ? l->k : 0;
   if (!strcmp(o->cmd, "draw")) {
-    int forced = 0;
-    if (!cm && o->force && e->basis) {
-      if (ss_charmap_new(M, e, &cm, &err)) {
-        fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
-        rc = ss_cli_exit_status(err.status);
-        goto done;
-      }
-      if (ss_charmap_regularity(cm, M, &co, &reg, &err)) {
-        fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
-        rc = ss_cli_exit_status(err.status);
-        goto done;
-      }
-      forced = 1;
-    }
-    if (!cm) {
-      fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
-              reg.verdict.reason);
-      rc = SS_EXIT_FAIL;
-      goto done;
-    }
-    char caption[600], buf[32];
-    char dtext[128] = "";
-    if (di.shown)
-      snprintf(dtext, sizeof dtext, ", diagonals %s (%zu of %zu pairs improper)",
-               ss_diag_name(o->diag), di.improper, di.pairs);
-    snprintf(caption, sizeof caption, "%s, %s %s%s%s", ss_scheme_name(s),
-             ss_case_name(o->kind),
-             o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf), dtext,
-             forced
-                 ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
-                 : "");
-    ss_report_draw_opts dopt = o->draw;
-    dopt.caption = o->nocaption ? NULL : caption;
-    if (ss_report_draw(cm, &reg, &dopt, o->out, &err)) {
-      fprintf(stderr, "subspectra draw: %s\n", err.msg);
-      rc = SS_EXIT_USAGE; /* bad file, i/o or out of memory */
-      goto done;
-    }
-    fprintf(stderr, "subspectra draw: wrote %s (%s %s%s%s)\n", o->out,
-            forced ? "forced map, eigenvalue condition fails; its cells:" : "regularity",
-            ss_verdict_name(reg.verdict.verdict), reg.verdict.reason[0] ? ": " : "",
-            reg.verdict.reason);
-    if (forced) rc = SS_EXIT_FAIL;
+    /* a failure, or a forced map: its status, not the verdicts' */
+    if ((rc = draw_case(o, s, canon, M, e, &co, &di, where, &cm, &reg))) goto done;
   } else if (o->format == FMT_JSON) {
     json_object *evj = NULL;
     if (o->nvec && (rc = eigvec_json(o, M, e, &ci.c.cond, where, &evj))) goto done;
