@@ -116,5 +116,9 @@ double ss_cli_now(void);
  * it holds them; else SS_DATADIR/reference.  Written into buf (cap bytes);
  * returns buf, or NULL if it does not fit. */
 char *ss_cli_refdir(char *buf, size_t cap);
+/* The same data folder as ss_cli_refdir, with sub in place of "reference"
+ * (reproduce's tables: "reproduce/tables.json"), so that both come from one
+ * data set.  buf or NULL as ss_cli_refdir. */
+char *ss_cli_datapath(const char *sub, char *buf, size_t cap);
 
 #endif

@@ -205,32 +205,223 @@ static void help(const char *cmd) {
          "memory budget, or out of memory.\n");
 }
 
+enum {
+  O_SCHEME = 256,
+  O_VERTEX,
+  O_EDGE,
+  O_FACE,
+  O_SURF,
+  O_TOL,
+  O_NEIG,
+  O_FORMAT,
+  O_RING,
+  O_DEPTH,
+  O_SIZE,
+  O_VIEW,
+  O_DIAG,
+  O_FORCE,
+  O_STENCIL,
+  O_RINGS,
+  O_CERTIFY,
+  O_MAXMEM,
+  O_PROGRESS,
+  O_EIGVEC,
+  O_LEFT,
+  O_NOCAPTION,
+  O_CLASS
+};
+
+static int is_matrix(const opts *o) {
+  return !strcmp(o->cmd, "matrix");
+}
+
+static int is_draw(const opts *o) {
+  return !strcmp(o->cmd, "draw");
+}
+
+/* --vertex, --edge, --surface-vertex, --face: which case (counted, so that
+ * check_options can ask for exactly one).  0 or the exit status 2. */
+static int case_option(opts *o, int c, const char *arg) {
+  long v;
+  switch (c) {
+  case O_VERTEX:
+    o->kind = SS_CASE_VERTEX;
+    o->link = arg;
+    break;
+  case O_EDGE:
+  case O_SURF:
+    if (ss_cli_parse_int(arg, 3, 1000, &v))
+      return ss_cli_usage_error(o->cmd,
+                                "%s: valence must be an integer in 3..1000, not '%s'",
+                                c == O_EDGE ? "--edge" : "--surface-vertex", arg);
+    o->kind = c == O_EDGE ? SS_CASE_EDGE : SS_CASE_SURFACE_VERTEX;
+    o->n = (int)v;
+    break;
+  default: /* O_FACE */
+    o->kind = SS_CASE_FACE;
+    break;
+  }
+  o->ncase++;
+  return 0;
+}
+
+/* --format: text, json or tsv for analyze, mtx for matrix, none for draw
+ * (its format is -o FILE's).  0 or the exit status 2. */
+static int format_option(opts *o, const char *arg) {
+  const int m = is_matrix(o);
+  if (is_draw(o))
+    return ss_cli_usage_error(o->cmd, "--format: draw takes the format from -o FILE");
+  else if (!m && !strcmp(arg, "text"))
+    o->format = FMT_TEXT;
+  else if (!m && !strcmp(arg, "json"))
+    o->format = FMT_JSON;
+  else if (!m && !strcmp(arg, "tsv"))
+    o->format = FMT_TSV;
+  else if (m && !strcmp(arg, "mtx"))
+    o->format = FMT_MTX;
+  else
+    return ss_cli_usage_error(o->cmd, "--format: expected %s, not '%s'",
+                              m ? "mtx" : "text, json or tsv", arg);
+  return 0;
+}
+
+/* How the case is analysed and what of it is printed: --tol, --eigenvalues,
+ * --diagonals, --depth, --ring-levels, --certify, --max-memory, --class,
+ * --ring, --eigenvectors, --left; each refused by the commands it does not
+ * belong to.  0 or the exit status 2. */
+static int analysis_option(opts *o, int c, const char *arg) {
+  const int m = is_matrix(o), d = is_draw(o);
+  long v;
+  switch (c) {
+  case O_TOL:
+    if (ss_cli_opt_tol(o->cmd, arg, &o->tol)) return SS_EXIT_USAGE;
+    break;
+  case O_NEIG:
+    if (m || ss_cli_parse_int(arg, 1, 1000000, &v))
+      return ss_cli_usage_error(o->cmd,
+                                "--eigenvalues: expected a positive integer, not "
+                                "'%s'",
+                                arg);
+    o->neig = (int)v;
+    break;
+  case O_RING:
+    if (!m || ss_cli_parse_int(arg, 1, 2, &v))
+      return ss_cli_usage_error(o->cmd, "--ring: expected 1 or 2, not '%s'", arg);
+    o->ring = (int)v;
+    break;
+  case O_DIAG:
+    if (ss_diag_parse(arg, &o->diag))
+      return ss_cli_usage_error(
+          o->cmd, "--diagonals: expected bfs, proper, skew or center, not '%s'", arg);
+    break;
+  case O_DEPTH:
+    if (m) return ss_cli_usage_error(o->cmd, "--depth is not an option of matrix");
+    if (ss_cli_opt_depth(o->cmd, arg, &v)) return SS_EXIT_USAGE;
+    o->depth = (int)v;
+    break;
+  case O_EIGVEC:
+    if (d || ss_cli_parse_int(arg, 1, 1000000, &v))
+      return ss_cli_usage_error(o->cmd,
+                                d ? "--eigenvectors is an option of analyze and matrix"
+                                  : "--eigenvectors: expected a positive integer, not "
+                                    "'%s'",
+                                arg);
+    o->nvec = (int)v;
+    break;
+  case O_LEFT:
+    if (!m) return ss_cli_usage_error(o->cmd, "--left is an option of matrix");
+    o->left = 1;
+    break;
+  case O_CERTIFY:
+    if (m || d) return ss_cli_usage_error(o->cmd, "--certify is an option of analyze");
+    o->certify = 1;
+    break;
+  case O_RINGS:
+    if (m || ss_cli_parse_int(arg, 1, SS_LOCAL_MAXRING, &v))
+      return ss_cli_usage_error(o->cmd,
+                                "--ring-levels: expected an integer in 1..%d, not '%s'",
+                                SS_LOCAL_MAXRING, arg);
+    o->ring_levels = (int)v;
+    break;
+  case O_MAXMEM:
+    if (ss_cli_parse_bytes(arg, &o->max_memory))
+      return ss_cli_usage_error(
+          o->cmd, "--max-memory: expected a size such as 8G, 500M or 2.5G, not '%s'",
+          arg);
+    break;
+  default: /* O_CLASS */
+    if (strcmp(arg, "4") && strcmp(arg, "8"))
+      return ss_cli_usage_error(o->cmd, "--class: expected 4 or 8, not '%s'", arg);
+    o->cls = arg[0] - '0';
+    break;
+  }
+  return 0;
+}
+
+/* The picture of draw: --size, --view, --force, --no-caption (refused by
+ * analyze and matrix).  0 or the exit status 2. */
+static int draw_option(opts *o, int c, const char *arg) {
+  const int d = is_draw(o);
+  switch (c) {
+  case O_SIZE: {
+    int w = 0, h = 0;
+    char tail;
+    if (!d || sscanf(arg, "%dx%d%c", &w, &h, &tail) != 2 || w < 100 || h < 100 ||
+        w > 10000 || h > 10000)
+      return ss_cli_usage_error(
+          o->cmd, "--size: expected WxH with 100 <= W, H <= 10000, not '%s'", arg);
+    o->draw.width = w;
+    o->draw.height = h;
+    break;
+  }
+  case O_VIEW: {
+    double az = 0.0, el = 0.0;
+    char tail;
+    if (!d || sscanf(arg, "%lf,%lf%c", &az, &el, &tail) != 2 || !(fabs(az) <= 360.0) ||
+        !(fabs(el) <= 90.0))
+      return ss_cli_usage_error(
+          o->cmd, "--view: expected AZ,EL in degrees (|AZ| <= 360, |EL| <= 90), not '%s'",
+          arg);
+    o->draw.azimuth = az;
+    o->draw.elevation = el;
+    break;
+  }
+  case O_FORCE:
+    if (!d) return ss_cli_usage_error(o->cmd, "--force is an option of draw only");
+    o->force = 1;
+    break;
+  default: /* O_NOCAPTION */
+    if (!d) return ss_cli_usage_error(o->cmd, "--no-caption is an option of draw only");
+    o->nocaption = 1;
+    break;
+  }
+  return 0;
+}
+
+/* The rules between options, once all are read.  0 or the exit status 2. */
+static int check_options(const opts *o) {
+  const int m = is_matrix(o), d = is_draw(o);
+  if (ss_cli_opt_scheme_source(o->cmd, o->scheme, o->stencil)) return SS_EXIT_USAGE;
+  if (o->ncase != 1)
+    return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
+                                      "--surface-vertex");
+  if (d && !o->out) return ss_cli_usage_error(o->cmd, "-o FILE is required");
+  if (o->left && !o->nvec)
+    return ss_cli_usage_error(o->cmd, "--left needs --eigenvectors K");
+  if (o->nvec && !m && !d && o->format != FMT_JSON)
+    return ss_cli_usage_error(o->cmd,
+                              "--eigenvectors: analyze writes them with --format "
+                              "json (matrix --eigenvectors writes Matrix Market)");
+  if (o->cls && o->kind != SS_CASE_SURFACE_VERTEX)
+    return ss_cli_usage_error(o->cmd, "--class is the 4-8 class of a quasi48 "
+                                      "--surface-vertex; no other case has one");
+  return 0;
+}
+
+/* The command line of analyze, matrix or draw into o (whose defaults the
+ * caller set): 0, -1 after --help, or the exit status 2 with the message
+ * printed. */
 static int parse(int argc, char **argv, opts *o) {
-  enum {
-    O_SCHEME = 256,
-    O_VERTEX,
-    O_EDGE,
-    O_FACE,
-    O_SURF,
-    O_TOL,
-    O_NEIG,
-    O_FORMAT,
-    O_RING,
-    O_DEPTH,
-    O_SIZE,
-    O_VIEW,
-    O_DIAG,
-    O_FORCE,
-    O_STENCIL,
-    O_RINGS,
-    O_CERTIFY,
-    O_MAXMEM,
-    O_PROGRESS,
-    O_EIGVEC,
-    O_LEFT,
-    O_NOCAPTION,
-    O_CLASS
-  };
   static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
                                      {"vertex", required_argument, 0, O_VERTEX},
                                      {"edge", required_argument, 0, O_EDGE},
@@ -256,12 +447,11 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"class", required_argument, 0, O_CLASS},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
-  const int m = !strcmp(o->cmd, "matrix"), d = !strcmp(o->cmd, "draw");
   optind = 1;
   opterr = 0;
-  int c;
-  long v;
-  while ((c = getopt_long(argc, argv, m || d ? ":ho:" : ":h", lo, NULL)) != -1) {
+  int c, rc = 0;
+  while (!rc && (c = getopt_long(argc, argv, is_matrix(o) || is_draw(o) ? ":ho:" : ":h",
+                                 lo, NULL)) != -1) {
     switch (c) {
     case 'h':
       help(o->cmd);
@@ -272,161 +462,48 @@ static int parse(int argc, char **argv, opts *o) {
     case O_SCHEME:
       o->scheme = optarg;
       break;
-    case O_VERTEX:
-      o->kind = SS_CASE_VERTEX;
-      o->link = optarg;
-      o->ncase++;
-      break;
-    case O_EDGE:
-    case O_SURF:
-      if (ss_cli_parse_int(optarg, 3, 1000, &v))
-        return ss_cli_usage_error(o->cmd,
-                                  "%s: valence must be an integer in 3..1000, not '%s'",
-                                  c == O_EDGE ? "--edge" : "--surface-vertex", optarg);
-      o->kind = c == O_EDGE ? SS_CASE_EDGE : SS_CASE_SURFACE_VERTEX;
-      o->n = (int)v;
-      o->ncase++;
-      break;
-    case O_FACE:
-      o->kind = SS_CASE_FACE;
-      o->ncase++;
-      break;
-    case O_TOL:
-      if (ss_cli_opt_tol(o->cmd, optarg, &o->tol)) return SS_EXIT_USAGE;
-      break;
-    case O_NEIG:
-      if (m || ss_cli_parse_int(optarg, 1, 1000000, &v))
-        return ss_cli_usage_error(o->cmd,
-                                  "--eigenvalues: expected a positive integer, not "
-                                  "'%s'",
-                                  optarg);
-      o->neig = (int)v;
-      break;
-    case O_FORMAT:
-      if (d)
-        return ss_cli_usage_error(o->cmd, "--format: draw takes the format from -o FILE");
-      else if (!m && !strcmp(optarg, "text"))
-        o->format = FMT_TEXT;
-      else if (!m && !strcmp(optarg, "json"))
-        o->format = FMT_JSON;
-      else if (!m && !strcmp(optarg, "tsv"))
-        o->format = FMT_TSV;
-      else if (m && !strcmp(optarg, "mtx"))
-        o->format = FMT_MTX;
-      else
-        return ss_cli_usage_error(o->cmd, "--format: expected %s, not '%s'",
-                                  m ? "mtx" : "text, json or tsv", optarg);
-      break;
-    case O_RING:
-      if (!m || ss_cli_parse_int(optarg, 1, 2, &v))
-        return ss_cli_usage_error(o->cmd, "--ring: expected 1 or 2, not '%s'", optarg);
-      o->ring = (int)v;
-      break;
-    case O_DIAG:
-      if (ss_diag_parse(optarg, &o->diag))
-        return ss_cli_usage_error(
-            o->cmd, "--diagonals: expected bfs, proper, skew or center, not '%s'",
-            optarg);
-      break;
-    case O_DEPTH:
-      if (m) return ss_cli_usage_error(o->cmd, "--depth is not an option of matrix");
-      if (ss_cli_opt_depth(o->cmd, optarg, &v)) return SS_EXIT_USAGE;
-      o->depth = (int)v;
-      break;
-    case O_EIGVEC:
-      if (d || ss_cli_parse_int(optarg, 1, 1000000, &v))
-        return ss_cli_usage_error(o->cmd,
-                                  d ? "--eigenvectors is an option of analyze and matrix"
-                                    : "--eigenvectors: expected a positive integer, not "
-                                      "'%s'",
-                                  optarg);
-      o->nvec = (int)v;
-      break;
-    case O_LEFT:
-      if (!m) return ss_cli_usage_error(o->cmd, "--left is an option of matrix");
-      o->left = 1;
-      break;
-    case O_CERTIFY:
-      if (m || d) return ss_cli_usage_error(o->cmd, "--certify is an option of analyze");
-      o->certify = 1;
-      break;
-    case O_RINGS:
-      if (m || ss_cli_parse_int(optarg, 1, SS_LOCAL_MAXRING, &v))
-        return ss_cli_usage_error(o->cmd,
-                                  "--ring-levels: expected an integer in 1..%d, not '%s'",
-                                  SS_LOCAL_MAXRING, optarg);
-      o->ring_levels = (int)v;
-      break;
-    case O_SIZE: {
-      int w = 0, h = 0;
-      char tail;
-      if (!d || sscanf(optarg, "%dx%d%c", &w, &h, &tail) != 2 || w < 100 || h < 100 ||
-          w > 10000 || h > 10000)
-        return ss_cli_usage_error(
-            o->cmd, "--size: expected WxH with 100 <= W, H <= 10000, not '%s'", optarg);
-      o->draw.width = w;
-      o->draw.height = h;
-      break;
-    }
-    case O_VIEW: {
-      double az = 0.0, el = 0.0;
-      char tail;
-      if (!d || sscanf(optarg, "%lf,%lf%c", &az, &el, &tail) != 2 ||
-          !(fabs(az) <= 360.0) || !(fabs(el) <= 90.0))
-        return ss_cli_usage_error(
-            o->cmd,
-            "--view: expected AZ,EL in degrees (|AZ| <= 360, |EL| <= 90), not '%s'",
-            optarg);
-      o->draw.azimuth = az;
-      o->draw.elevation = el;
-      break;
-    }
     case O_STENCIL:
       o->stencil = optarg;
-      break;
-    case O_FORCE:
-      if (!d) return ss_cli_usage_error(o->cmd, "--force is an option of draw only");
-      o->force = 1;
-      break;
-    case O_NOCAPTION:
-      if (!d) return ss_cli_usage_error(o->cmd, "--no-caption is an option of draw only");
-      o->nocaption = 1;
-      break;
-    case O_MAXMEM:
-      if (ss_cli_parse_bytes(optarg, &o->max_memory))
-        return ss_cli_usage_error(
-            o->cmd, "--max-memory: expected a size such as 8G, 500M or 2.5G, not '%s'",
-            optarg);
       break;
     case O_PROGRESS:
       o->progress = 1;
       break;
+    case O_VERTEX:
+    case O_EDGE:
+    case O_SURF:
+    case O_FACE:
+      rc = case_option(o, c, optarg);
+      break;
+    case O_FORMAT:
+      rc = format_option(o, optarg);
+      break;
+    case O_TOL:
+    case O_NEIG:
+    case O_RING:
+    case O_DIAG:
+    case O_DEPTH:
+    case O_EIGVEC:
+    case O_LEFT:
+    case O_CERTIFY:
+    case O_RINGS:
+    case O_MAXMEM:
     case O_CLASS:
-      if (strcmp(optarg, "4") && strcmp(optarg, "8"))
-        return ss_cli_usage_error(o->cmd, "--class: expected 4 or 8, not '%s'", optarg);
-      o->cls = optarg[0] - '0';
+      rc = analysis_option(o, c, optarg);
+      break;
+    case O_SIZE:
+    case O_VIEW:
+    case O_FORCE:
+    case O_NOCAPTION:
+      rc = draw_option(o, c, optarg);
       break;
     default:
       return ss_cli_option_error(o->cmd, c, argv);
     }
   }
+  if (rc) return rc;
   if (optind < argc)
     return ss_cli_usage_error(o->cmd, "unexpected argument '%s'", argv[optind]);
-  if (ss_cli_opt_scheme_source(o->cmd, o->scheme, o->stencil)) return SS_EXIT_USAGE;
-  if (o->ncase != 1)
-    return ss_cli_usage_error(o->cmd, "give exactly one of --vertex, --edge, --face, "
-                                      "--surface-vertex");
-  if (d && !o->out) return ss_cli_usage_error(o->cmd, "-o FILE is required");
-  if (o->left && !o->nvec)
-    return ss_cli_usage_error(o->cmd, "--left needs --eigenvectors K");
-  if (o->nvec && !m && !d && o->format != FMT_JSON)
-    return ss_cli_usage_error(o->cmd,
-                              "--eigenvectors: analyze writes them with --format "
-                              "json (matrix --eigenvectors writes Matrix Market)");
-  if (o->cls && o->kind != SS_CASE_SURFACE_VERTEX)
-    return ss_cli_usage_error(o->cmd, "--class is the 4-8 class of a quasi48 "
-                                      "--surface-vertex; no other case has one");
-  return 0;
+  return check_options(o);
 }
 
 /* ---- output ---- */
@@ -780,6 +857,57 @@ static int check_budget(const opts *o, const ss_scheme *s, const ss_case *c,
   return 0;
 }
 
+/* The error of a case: "subspectra CMD: WHERE message" on stderr; its exit
+ * status. */
+static int case_fail(const opts *o, const char *where, const ss_error *err) {
+  fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err->msg);
+  return ss_cli_exit_status(err->status);
+}
+
+/* draw: the picture of the characteristic map *cm of case (M, e) into
+ * o->out, captioned with the case (canon, diagonals di) unless --no-caption.
+ * With --force and no map (the eigenvalue condition fails) the would-be map
+ * is built into *cm, judged into *reg and drawn, labelled as such.  The exit
+ * status: 0, 1 for a forced map or none to draw, 2 when writing fails. */
+static int draw_case(const opts *o, const ss_scheme *s, const char *canon,
+                     const ss_local *M, const ss_eig *e, const ss_charmap_opts *co,
+                     const diag_info *di, const char *where, ss_charmap **cm,
+                     ss_regularity *reg) {
+  ss_error err = {0};
+  int forced = 0;
+  if (!*cm && o->force && e->basis) {
+    if (ss_charmap_new(M, e, cm, &err) || ss_charmap_regularity(*cm, M, co, reg, &err))
+      return case_fail(o, where, &err);
+    forced = 1;
+  }
+  if (!*cm) {
+    fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
+            reg->verdict.reason);
+    return SS_EXIT_FAIL;
+  }
+  char caption[600], buf[32];
+  char dtext[128] = "";
+  if (di->shown)
+    snprintf(dtext, sizeof dtext, ", diagonals %s (%zu of %zu pairs improper)",
+             ss_diag_name(o->diag), di->improper, di->pairs);
+  snprintf(caption, sizeof caption, "%s, %s %s%s%s", ss_scheme_name(s),
+           ss_case_name(o->kind),
+           o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf), dtext,
+           forced ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
+                  : "");
+  ss_report_draw_opts dopt = o->draw;
+  dopt.caption = o->nocaption ? NULL : caption;
+  if (ss_report_draw(*cm, reg, &dopt, o->out, &err)) {
+    fprintf(stderr, "subspectra draw: %s\n", err.msg);
+    return SS_EXIT_USAGE; /* bad file, i/o or out of memory */
+  }
+  fprintf(stderr, "subspectra draw: wrote %s (%s %s%s%s)\n", o->out,
+          forced ? "forced map, eigenvalue condition fails; its cells:" : "regularity",
+          ss_verdict_name(reg->verdict.verdict), reg->verdict.reason[0] ? ": " : "",
+          reg->verdict.reason);
+  return forced ? SS_EXIT_FAIL : SS_EXIT_OK;
+}
+
 static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
                     const char *where, int *header) {
   ss_error err = {0};
@@ -793,8 +921,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_local_cost cost;
   if (o->kind == SS_CASE_VERTEX) {
     if (ss_link_parse(link_text, &l, &err)) {
-      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-      rc = ss_cli_exit_status(err.status);
+      rc = case_fail(o, where, &err);
       goto done;
     }
     /* the budget before the canonical form, which costs O(k^2) (bipyramid:99998
@@ -804,8 +931,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     const ss_case cv = {SS_CASE_VERTEX, l, 0, o->diag, 0};
     if ((rc = check_budget(o, s, &cv, l, where, &cost))) goto done;
     if (ss_link_canonical(l, &cl, NULL, &err) || ss_link_format(cl, &canon, &err)) {
-      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-      rc = ss_cli_exit_status(err.status);
+      rc = case_fail(o, where, &err);
       goto done;
     }
   }
@@ -835,8 +961,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   ss_local_opts lo = ss_local_defaults();
   lo.progress = prog;
   if (ss_local_new_opts(s, &c, &lo, &M, &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = ss_cli_exit_status(err.status);
+    rc = case_fail(o, where, &err);
     goto done;
   }
   diag_info di = {0, 0, 0};
@@ -844,9 +969,8 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
     ss_star *star = NULL;
     if (ss_local_star(s, &c, &star, &err) ||
         ss_diag_improper(star->cx, &di.pairs, &di.improper, &err)) {
-      fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
       ss_star_free(star);
-      rc = ss_cli_exit_status(err.status);
+      rc = case_fail(o, where, &err);
       goto done;
     }
     ss_star_free(star);
@@ -865,8 +989,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   eo.force = o->force;
   eo.progress = prog;
   if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = ss_cli_exit_status(err.status);
+    rc = case_fail(o, where, &err);
     goto done;
   }
   ss_regularity reg;
@@ -881,56 +1004,14 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
                    0, 0);
   if (ss_certify_verdicts(s, &c, M, e, &co, o->certify, &cm, &reg, &inj, &ci.c, &ex,
                           &err)) {
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-    rc = ss_cli_exit_status(err.status);
+    rc = case_fail(o, where, &err);
     goto done;
   }
   ci.exact = ex;
   const int k = l ? l->k : 0;
   if (!strcmp(o->cmd, "draw")) {
-    int forced = 0;
-    if (!cm && o->force && e->basis) {
-      if (ss_charmap_new(M, e, &cm, &err)) {
-        fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
-        rc = ss_cli_exit_status(err.status);
-        goto done;
-      }
-      if (ss_charmap_regularity(cm, M, &co, &reg, &err)) {
-        fprintf(stderr, "subspectra draw: %s%s\n", where, err.msg);
-        rc = ss_cli_exit_status(err.status);
-        goto done;
-      }
-      forced = 1;
-    }
-    if (!cm) {
-      fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
-              reg.verdict.reason);
-      rc = SS_EXIT_FAIL;
-      goto done;
-    }
-    char caption[600], buf[32];
-    char dtext[128] = "";
-    if (di.shown)
-      snprintf(dtext, sizeof dtext, ", diagonals %s (%zu of %zu pairs improper)",
-               ss_diag_name(o->diag), di.improper, di.pairs);
-    snprintf(caption, sizeof caption, "%s, %s %s%s%s", ss_scheme_name(s),
-             ss_case_name(o->kind),
-             o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf), dtext,
-             forced
-                 ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
-                 : "");
-    ss_report_draw_opts dopt = o->draw;
-    dopt.caption = o->nocaption ? NULL : caption;
-    if (ss_report_draw(cm, &reg, &dopt, o->out, &err)) {
-      fprintf(stderr, "subspectra draw: %s\n", err.msg);
-      rc = SS_EXIT_USAGE; /* bad file, i/o or out of memory */
-      goto done;
-    }
-    fprintf(stderr, "subspectra draw: wrote %s (%s %s%s%s)\n", o->out,
-            forced ? "forced map, eigenvalue condition fails; its cells:" : "regularity",
-            ss_verdict_name(reg.verdict.verdict), reg.verdict.reason[0] ? ": " : "",
-            reg.verdict.reason);
-    if (forced) rc = SS_EXIT_FAIL;
+    /* a failure, or a forced map: its status, not the verdicts' */
+    if ((rc = draw_case(o, s, canon, M, e, &co, &di, where, &cm, &reg))) goto done;
   } else if (o->format == FMT_JSON) {
     json_object *evj = NULL;
     if (o->nvec && (rc = eigvec_json(o, M, e, &ci.c.cond, where, &evj))) goto done;

@@ -206,175 +206,195 @@ static void write_vtk(FILE *f, const point *p, size_t n, int samples, int derivs
   }
 }
 
-int ss_cli_limit(int argc, char **argv) {
+/* The command line of limit. */
+typedef struct {
+  const char *scheme; /* --scheme */
+  const char *out;    /* -o FILE, or NULL: stdout */
+  const char *mesh;   /* MESH */
+  long samples;       /* --samples N per direction, or 0 */
+  long gq;            /* --gauss Q points per direction, or 0 */
+  int derivs;         /* --derivatives */
+  int reference;      /* --reference: the slow reference evaluation */
+  int format;         /* 0 text, 1 json, 2 vtk */
+  point *pts;         /* --at points (owned) */
+  size_t npts, cap;   /* how many, allocated */
+} limit_opts;
+
+/* --at TEXT appended to o->pts: 0, or the exit status 2 with the message
+ * printed. */
+static int add_at(limit_opts *o, const char *text) {
+  if (o->npts == o->cap) {
+    const size_t cap = o->cap ? 2 * o->cap : 8;
+    point *q = realloc(o->pts, cap * sizeof *q);
+    if (!q) {
+      fprintf(stderr, "subspectra limit: out of memory\n");
+      return SS_EXIT_USAGE;
+    }
+    o->pts = q;
+    o->cap = cap;
+  }
+  memset(&o->pts[o->npts], 0, sizeof o->pts[o->npts]);
+  if (parse_at(text, &o->pts[o->npts]))
+    return ss_cli_usage_error("limit",
+                              "--at '%s': expected \"CELL U V W\" (a cell number from "
+                              "1 and three numbers)",
+                              text);
+  o->npts++;
+  return 0;
+}
+
+/* argv into o (o->pts owned by the caller, also on failure): -1 to go on,
+ * else the exit status (0 after --help, 2 with the message printed). */
+static int parse(int argc, char **argv, limit_opts *o) {
   static const struct option opts[] = {
       {"scheme", required_argument, NULL, 's'},  {"at", required_argument, NULL, 'a'},
       {"samples", required_argument, NULL, 'n'}, {"gauss", required_argument, NULL, 'g'},
       {"derivatives", no_argument, NULL, 'd'},   {"reference", no_argument, NULL, 'R'},
       {"format", required_argument, NULL, 'f'},  {"output", required_argument, NULL, 'o'},
       {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0}};
-  const char *scheme_name = NULL, *out_path = NULL;
-  long samples = 0, gq = 0;
-  int derivs = 0, reference = 0, format = 0; /* 0 text, 1 json, 2 vtk */
-  point *pts = NULL;
-  size_t npts = 0, cap = 0;
-  int rc = SS_EXIT_OK;
+  optind = 1;
+  opterr = 0;
+  int c, rc;
+  while ((c = getopt_long(argc, argv, ":s:a:n:g:df:o:h", opts, NULL)) != -1) {
+    switch (c) {
+    case 's':
+      o->scheme = optarg;
+      break;
+    case 'a':
+      if ((rc = add_at(o, optarg))) return rc;
+      break;
+    case 'n':
+      if (ss_cli_parse_int(optarg, 1, 100, &o->samples))
+        return ss_cli_usage_error("limit", "--samples '%s' is not an integer in 1..100",
+                                  optarg);
+      break;
+    case 'g':
+      if (ss_cli_parse_int(optarg, 1, 20, &o->gq))
+        return ss_cli_usage_error("limit", "--gauss '%s' is not an integer in 1..20",
+                                  optarg);
+      break;
+    case 'd':
+      o->derivs = 1;
+      break;
+    case 'R':
+      o->reference = 1;
+      break;
+    case 'f':
+      if (!strcmp(optarg, "text"))
+        o->format = 0;
+      else if (!strcmp(optarg, "json"))
+        o->format = 1;
+      else if (!strcmp(optarg, "vtk"))
+        o->format = 2;
+      else
+        return ss_cli_usage_error(
+            "limit", "--format: expected text, json or vtk, not '%s'", optarg);
+      break;
+    case 'o':
+      o->out = optarg;
+      break;
+    case 'h':
+      fputs(usage_text, stdout);
+      return SS_EXIT_OK;
+    default:
+      return ss_cli_option_error("limit", c, argv);
+    }
+  }
+  if (optind + 1 != argc)
+    return ss_cli_usage_error("limit",
+                              optind == argc ? "no mesh given" : "more than one mesh");
+  o->mesh = argv[optind];
+  if (!o->scheme) return ss_cli_usage_error("limit", "--scheme is required");
+  if ((o->npts > 0) + (o->samples > 0) + (o->gq > 0) != 1)
+    return ss_cli_usage_error("limit", "give exactly one of --at, --samples and --gauss");
+  return -1;
+}
+
+/* --samples or --gauss: the q x q x q grid of points in every cell of L
+ * (equally spaced with zero weights, or Gauss-Legendre nodes with their
+ * weights) in place of o->pts. */
+static ss_status grid_points(limit_opts *o, const ss_limit *L, ss_error *err) {
+  size_t nc = ss_limit_ncells(L), q = o->samples > 0 ? (size_t)o->samples : (size_t)o->gq;
+  double node[100], wt[100];
+  if (o->samples > 0)
+    for (size_t i = 0; i < q; i++) {
+      node[i] = q == 1 ? 0.5 : (double)i / (double)(q - 1);
+      wt[i] = 0.0;
+    }
+  else
+    gauss((int)q, node, wt);
+  free(o->pts);
+  o->npts = nc * q * q * q;
+  o->pts = calloc(o->npts + 1, sizeof *o->pts);
+  if (!o->pts) {
+    o->npts = 0;
+    return ss_error_nomem(err, "points");
+  }
+  size_t m = 0;
+  for (size_t cell = 0; cell < nc; cell++)
+    for (size_t k = 0; k < q; k++)
+      for (size_t j = 0; j < q; j++)
+        for (size_t i = 0; i < q; i++, m++) {
+          o->pts[m].cell = cell;
+          o->pts[m].x[0] = node[i];
+          o->pts[m].x[1] = node[j];
+          o->pts[m].x[2] = node[k];
+          o->pts[m].weight = wt[i] * wt[j] * wt[k];
+        }
+  return SS_OK;
+}
+
+/* The limit (and derivatives) at every point of o, in place (L caches what
+ * the evaluation builds: not const). */
+static ss_status eval_points(limit_opts *o, ss_limit *L, ss_error *err) {
+  for (size_t i = 0; i < o->npts; i++) {
+    point *p = o->pts + i;
+    ss_status st =
+        o->reference
+            ? ss_limit_eval_reference(L, p->cell, p->x[0], p->x[1], p->x[2], o->derivs,
+                                      60, &p->r, err)
+            : ss_limit_eval(L, p->cell, p->x[0], p->x[1], p->x[2], o->derivs, &p->r, err);
+    if (st) return st;
+  }
+  return SS_OK;
+}
+
+/* The points of o, as text, JSON or VTK, to -o FILE (whole or not at all)
+ * or stdout. */
+static ss_status write_points(const limit_opts *o, ss_error *err) {
+  ss_outfile *out = NULL;
+  if (o->out) {
+    const ss_status st = ss_outfile_open(o->out, &out, err);
+    if (st) return st;
+  }
+  FILE *f = out ? ss_outfile_file(out) : stdout;
+  if (o->format == 0)
+    write_text(f, o->pts, o->npts, o->derivs);
+  else if (o->format == 1)
+    write_json(f, o->pts, o->npts, o->derivs);
+  else
+    write_vtk(f, o->pts, o->npts, o->samples > 0 ? (int)o->samples : 0, o->derivs);
+  return out ? ss_outfile_commit(out, err) : SS_OK;
+}
+
+int ss_cli_limit(int argc, char **argv) {
+  limit_opts o = {0};
+  int rc = parse(argc, argv, &o);
+  if (rc >= 0) {
+    free(o.pts);
+    return rc;
+  }
+  rc = SS_EXIT_OK;
   ss_error err = {0};
   ss_scheme *s = NULL;
   ss_cx *mesh = NULL;
   ss_limit *L = NULL;
-  optind = 1;
-  opterr = 0;
-  int c;
-  while ((c = getopt_long(argc, argv, ":s:a:n:g:df:o:h", opts, NULL)) != -1) {
-    switch (c) {
-    case 's':
-      scheme_name = optarg;
-      break;
-    case 'a': {
-      if (npts == cap) {
-        cap = cap ? 2 * cap : 8;
-        point *q = realloc(pts, cap * sizeof *q);
-        if (!q) {
-          free(pts);
-          fprintf(stderr, "subspectra limit: out of memory\n");
-          return SS_EXIT_USAGE;
-        }
-        pts = q;
-      }
-      memset(&pts[npts], 0, sizeof pts[npts]);
-      if (parse_at(optarg, &pts[npts])) {
-        free(pts);
-        return ss_cli_usage_error(
-            "limit",
-            "--at '%s': expected \"CELL U V W\" (a cell number from "
-            "1 and three numbers)",
-            optarg);
-      }
-      npts++;
-      break;
-    }
-    case 'n':
-      if (ss_cli_parse_int(optarg, 1, 100, &samples)) {
-        free(pts);
-        return ss_cli_usage_error("limit", "--samples '%s' is not an integer in 1..100",
-                                  optarg);
-      }
-      break;
-    case 'g':
-      if (ss_cli_parse_int(optarg, 1, 20, &gq)) {
-        free(pts);
-        return ss_cli_usage_error("limit", "--gauss '%s' is not an integer in 1..20",
-                                  optarg);
-      }
-      break;
-    case 'd':
-      derivs = 1;
-      break;
-    case 'R':
-      reference = 1;
-      break;
-    case 'f':
-      if (!strcmp(optarg, "text"))
-        format = 0;
-      else if (!strcmp(optarg, "json"))
-        format = 1;
-      else if (!strcmp(optarg, "vtk"))
-        format = 2;
-      else {
-        free(pts);
-        return ss_cli_usage_error(
-            "limit", "--format: expected text, json or vtk, not '%s'", optarg);
-      }
-      break;
-    case 'o':
-      out_path = optarg;
-      break;
-    case 'h':
-      free(pts);
-      fputs(usage_text, stdout);
-      return SS_EXIT_OK;
-    default:
-      free(pts);
-      return ss_cli_option_error("limit", c, argv);
-    }
-  }
-  if (optind + 1 != argc) {
-    free(pts);
-    return ss_cli_usage_error("limit",
-                              optind == argc ? "no mesh given" : "more than one mesh");
-  }
-  if (!scheme_name) {
-    free(pts);
-    return ss_cli_usage_error("limit", "--scheme is required");
-  }
-  if ((npts > 0) + (samples > 0) + (gq > 0) != 1) {
-    free(pts);
-    return ss_cli_usage_error("limit", "give exactly one of --at, --samples and --gauss");
-  }
-  if (ss_scheme_new(scheme_name, &s, &err) ||
-      ss_mesh_read(argv[optind], SS_MESH_AUTO, &mesh, &err) ||
-      ss_limit_new(s, mesh, &L, &err)) {
+  if (ss_scheme_new(o.scheme, &s, &err) ||
+      ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) ||
+      ss_limit_new(s, mesh, &L, &err) || (!o.npts && grid_points(&o, L, &err)) ||
+      eval_points(&o, L, &err) || write_points(&o, &err))
     rc = ss_cli_fail(&err);
-    goto done;
-  }
-  if (!npts) {
-    size_t nc = ss_limit_ncells(L), q = samples > 0 ? (size_t)samples : (size_t)gq;
-    double node[100], wt[100];
-    if (samples > 0)
-      for (size_t i = 0; i < q; i++) {
-        node[i] = q == 1 ? 0.5 : (double)i / (double)(q - 1);
-        wt[i] = 0.0;
-      }
-    else
-      gauss((int)q, node, wt);
-    npts = nc * q * q * q;
-    free(pts);
-    pts = calloc(npts + 1, sizeof *pts);
-    if (!pts) {
-      rc = ss_cli_fail((ss_error_nomem(&err, "points"), &err));
-      goto done;
-    }
-    size_t m = 0;
-    for (size_t cell = 0; cell < nc; cell++)
-      for (size_t k = 0; k < q; k++)
-        for (size_t j = 0; j < q; j++)
-          for (size_t i = 0; i < q; i++, m++) {
-            pts[m].cell = cell;
-            pts[m].x[0] = node[i];
-            pts[m].x[1] = node[j];
-            pts[m].x[2] = node[k];
-            pts[m].weight = wt[i] * wt[j] * wt[k];
-          }
-  }
-  for (size_t i = 0; i < npts; i++) {
-    ss_status st = reference
-                       ? ss_limit_eval_reference(L, pts[i].cell, pts[i].x[0], pts[i].x[1],
-                                                 pts[i].x[2], derivs, 60, &pts[i].r, &err)
-                       : ss_limit_eval(L, pts[i].cell, pts[i].x[0], pts[i].x[1],
-                                       pts[i].x[2], derivs, &pts[i].r, &err);
-    if (st) {
-      rc = ss_cli_fail(&err);
-      goto done;
-    }
-  }
-  {
-    ss_outfile *o = NULL;
-    if (out_path && ss_outfile_open(out_path, &o, &err)) {
-      rc = ss_cli_fail(&err);
-      goto done;
-    }
-    FILE *f = o ? ss_outfile_file(o) : stdout;
-    if (format == 0)
-      write_text(f, pts, npts, derivs);
-    else if (format == 1)
-      write_json(f, pts, npts, derivs);
-    else
-      write_vtk(f, pts, npts, samples > 0 ? (int)samples : 0, derivs);
-    if (o && ss_outfile_commit(o, &err)) rc = ss_cli_fail(&err);
-  }
-done:
-  free(pts);
+  free(o.pts);
   ss_limit_free(L);
   ss_cx_free(mesh);
   ss_scheme_free(s);

@@ -158,6 +158,118 @@ static int compare_row(const jsr_table *t, const jsr_row *w, const ss_ref *ref,
   return status;
 }
 
+/* The head of table t: in m (Markdown) the title, how to regenerate it, the
+ * test and its budget, the column header; in v (TSV) its header lines. */
+static void write_head(const jsr_table *t, FILE *m, FILE *v) {
+  fprintf(m, "# %s\n\n", t->title);
+  fprintf(m,
+          "Regenerate: `subspectra reproduce` (each case: `subspectra jsr --scheme %s "
+          "--face|--edge N --diagonals D --format json`, which uses a time limit "
+          "instead of a node budget; raw results in `data/%s.jsonl`, the comparison "
+          "in `%s.tsv`).\n\n",
+          t->scheme, t->name, t->name);
+  fprintf(m,
+          "The Levin–Levin test (tet/oct paper, appendix A): the sub-patch maps S_i of "
+          "the patch (face: 4, an edge: 2), reduced to the blocks Y_i on the complement "
+          "of the subspace the smoothness order needs (face: the quadratics, 10; edge: "
+          "1, λ1, λ1, ½, 4).  ρ_k = max over words of length k of ‖Y_w‖∞^(1/k), k = 1..K "
+          "(the paper's ρ^[k]; K = %d for the face, %d for edges: every word).  "
+          "*lower*: the largest ρ(Y_w)^(1/|w|) found, enclosed in ball arithmetic; "
+          "*upper*: Gripenberg's branch and bound in the norm with the lower first "
+          "pass (inf-norm, weighted inf-norm, 2-norm or an ellipsoidal norm fitted "
+          "to the Y_i, whose similar copies are enclosed in ball arithmetic; `norm` "
+          "in the JSON lines), every product's rounding bounded — both bounds are proven "
+          "for the computed Y_i (*certified*), not for "
+          "the rounding in forming Y_i.  Budget: at most %d products in the branch and "
+          "bound, relative gap %g, no time limit (so the table is the same on every "
+          "run).  Threshold: ¼ for the face (C² across it), λ3 = min(λ1, ½) for an "
+          "edge.  Verdict: pass if upper < threshold, fail if lower ≥ threshold, else "
+          "undecided; n/a if the reduction does not apply (the reason is given).\n\n",
+          FACE_DEPTH, EDGE_DEPTH, JSR_NODES, JSR_GAP);
+  fprintf(m,
+          "| case | S_i | Y_i | ρ_k (inf-norm), k = 1..K | lower | upper | threshold "
+          "| verdict | certified | paper |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  fprintf(v, "# %s: the joint spectral radius test (subspectra reproduce)\n", t->name);
+  fprintf(v, "case\tmaps\tS_size\tY_size\trho_k_inf\tlower\tupper\tthreshold\tverdict\t"
+             "certified\tconverged\tnodes\tpaper\n");
+}
+
+/* Row w in m (Markdown), v (TSV) and j (JSON lines), with its comparison
+ * with the papers (paper: "not quoted", "match" or "differ"). */
+static void write_row(const jsr_table *t, const jsr_row *w, const char *paper, FILE *m,
+                      FILE *v, FILE *j) {
+  char lab[64];
+  label(w, lab, sizeof lab);
+  fprintf(j, "{\"scheme\":\"%s\",\"case\":\"%s\",", t->scheme, ss_case_name(w->c.kind));
+  if (w->c.kind == SS_CASE_EDGE) fprintf(j, "\"n\":%d,", w->c.n);
+  fprintf(j, "\"diagonals\":\"%s\",", ss_diag_name(w->c.diag));
+  if (!w->L) {
+    fprintf(m, "| %s | — | — | — | — | — | — | n/a (", lab);
+    cell(m, w->reason);
+    fprintf(m, ") | — | %s |\n", paper);
+    fprintf(v, "%s\t-\t-\t-\t-\t-\t-\t-\tn/a\t-\t-\t-\t%s\n", lab, paper);
+    fprintf(j, "\"verdict\":\"n/a\",\"reason\":\"");
+    for (const char *s = w->reason; *s; s++)
+      fprintf(j, *s == '"' || *s == '\\' ? "\\%c" : "%c", *s);
+    fprintf(j, "\"}\n");
+    return;
+  }
+  const ss_levin *L = w->L;
+  const ss_jsr_result *r = &w->r;
+  const size_t ny = L->n - L->r;
+  fprintf(m, "| %s | %zu × %zu² | %zu² | ", lab, L->m, L->n, ny);
+  fprintf(v, "%s\t%zu\t%zu\t%zu\t", lab, L->m, L->n, ny);
+  fprintf(j, "\"maps\":%zu,\"support\":%zu,\"subspace\":%zu,\"rho_k\":[", L->m, L->n,
+          L->r);
+  for (int k = 0; k < r->depth; k++) {
+    fprintf(m, "%s%.4f", k ? ", " : "", r->rho_inf[k]);
+    fprintf(v, "%s%.6g", k ? "," : "", r->rho_inf[k]);
+    fprintf(j, "%s%.17g", k ? "," : "", r->rho_inf[k]);
+  }
+  fprintf(m, " | %.6f | %.6f | %.6g | %s | %s | %s |\n", r->lower, r->upper, L->threshold,
+          w->verdict, r->certified ? "yes" : "no", paper);
+  fprintf(v, "\t%.9g\t%.9g\t%.17g\t%s\t%d\t%d\t%zu\t%s\n", r->lower, r->upper,
+          L->threshold, w->verdict, r->certified, r->converged, r->nodes, paper);
+  fprintf(j,
+          "],\"lower\":%.17g,\"upper\":%.17g,\"threshold\":%.17g,\"verdict\":\"%s\","
+          "\"certified\":%s,\"converged\":%s,\"nodes\":%zu,\"bnb_depth\":%d,"
+          "\"norm\":\"%s\"}\n",
+          r->lower, r->upper, L->threshold, w->verdict, r->certified ? "true" : "false",
+          r->converged ? "true" : "false", r->nodes, r->bnb_depth,
+          r->norm == SS_JSR_NORM_ELLIPSOID ? "ellipsoid"
+          : r->norm == SS_JSR_NORM_2       ? "2"
+          : r->weighted                    ? "weighted inf"
+                                           : "inf");
+}
+
+/* The end of the table: the summary *ty in m and v, then the quoted values
+ * compared (nbuf, nlen bytes of Markdown rows; tbuf, tlen of TSV lines). */
+static void write_tail(FILE *m, FILE *v, const ss_jsr_tally *ty, const char *nbuf,
+                       size_t nlen, const char *tbuf, size_t tlen) {
+  fprintf(
+      m,
+      "\n**Summary:** %zu of %zu cases pass; the reduction applies to %zu; %zu quoted "
+      "values: %zu match, %zu differ.\n",
+      ty->pass, ty->cases, ty->reduced, ty->quoted, ty->match, ty->quoted - ty->match);
+  fprintf(v,
+          "# summary: %zu of %zu cases pass; %zu quoted values: %zu match, %zu differ\n",
+          ty->pass, ty->cases, ty->quoted, ty->match, ty->quoted - ty->match);
+  if (nlen) {
+    fprintf(m, "\n## Quoted by the papers (data/reference/*.tsv)\n\n| case | quantity | "
+               "quoted | computed | | source: quote |\n|---|---|---|---|---|---|\n");
+    fwrite(nbuf, 1, nlen, m);
+  }
+  fprintf(m, "\nNot quoted: the paper withholds its ρ^[9] for the face and which edge "
+             "valences pass.\n");
+  if (tlen) {
+    fprintf(v, "# quoted\ncase\tquantity\tquoted\tcomputed\tmatch\tsource\n");
+    fwrite(tbuf, 1, tlen, v);
+  }
+}
+
+/* Write DIR/NAME.md, DIR/NAME.tsv and DIR/data/NAME.jsonl of table t from
+ * its n computed rows, each compared with the quoted values of ref (counted
+ * in *ty); each file whole or not at all. */
 static ss_status write_all(const jsr_table *t, const char *dir, const jsr_row *rows,
                            size_t n, const ss_ref *ref, ss_jsr_tally *ty, ss_error *err) {
   ss_status st = SS_OK;
@@ -192,105 +304,15 @@ static ss_status write_all(const jsr_table *t, const char *dir, const jsr_row *r
   fflush(notes);
   fflush(tsvb);
 
-  fprintf(m, "# %s\n\n", t->title);
-  fprintf(m,
-          "Regenerate: `subspectra reproduce` (each case: `subspectra jsr --scheme %s "
-          "--face|--edge N --diagonals D --format json`, which uses a time limit "
-          "instead of a node budget; raw results in `data/%s.jsonl`, the comparison "
-          "in `%s.tsv`).\n\n",
-          t->scheme, t->name, t->name);
-  fprintf(m,
-          "The Levin–Levin test (tet/oct paper, appendix A): the sub-patch maps S_i of "
-          "the patch (face: 4, an edge: 2), reduced to the blocks Y_i on the complement "
-          "of the subspace the smoothness order needs (face: the quadratics, 10; edge: "
-          "1, λ1, λ1, ½, 4).  ρ_k = max over words of length k of ‖Y_w‖∞^(1/k), k = 1..K "
-          "(the paper's ρ^[k]; K = %d for the face, %d for edges: every word).  "
-          "*lower*: the largest ρ(Y_w)^(1/|w|) found, enclosed in ball arithmetic; "
-          "*upper*: Gripenberg's branch and bound in the norm with the lower first "
-          "pass (inf-norm, weighted inf-norm, 2-norm or an ellipsoidal norm fitted "
-          "to the Y_i, whose similar copies are enclosed in ball arithmetic; `norm` "
-          "in the JSON lines), every product's rounding bounded — both bounds are proven "
-          "for the computed Y_i (*certified*), not for "
-          "the rounding in forming Y_i.  Budget: at most %d products in the branch and "
-          "bound, relative gap %g, no time limit (so the table is the same on every "
-          "run).  Threshold: ¼ for the face (C² across it), λ3 = min(λ1, ½) for an "
-          "edge.  Verdict: pass if upper < threshold, fail if lower ≥ threshold, else "
-          "undecided; n/a if the reduction does not apply (the reason is given).\n\n",
-          FACE_DEPTH, EDGE_DEPTH, JSR_NODES, JSR_GAP);
-  fprintf(m,
-          "| case | S_i | Y_i | ρ_k (inf-norm), k = 1..K | lower | upper | threshold "
-          "| verdict | certified | paper |\n|---|---|---|---|---|---|---|---|---|---|\n");
-  fprintf(v, "# %s: the joint spectral radius test (subspectra reproduce)\n", t->name);
-  fprintf(v, "case\tmaps\tS_size\tY_size\trho_k_inf\tlower\tupper\tthreshold\tverdict\t"
-             "certified\tconverged\tnodes\tpaper\n");
-  for (size_t i = 0; i < n; i++) {
-    const jsr_row *w = rows + i;
-    char lab[64];
-    label(w, lab, sizeof lab);
-    const char *paper = status[i] == 0   ? "not quoted"
-                        : status[i] == 1 ? "match"
-                                         : "differ";
-    fprintf(j, "{\"scheme\":\"%s\",\"case\":\"%s\",", t->scheme, ss_case_name(w->c.kind));
-    if (w->c.kind == SS_CASE_EDGE) fprintf(j, "\"n\":%d,", w->c.n);
-    fprintf(j, "\"diagonals\":\"%s\",", ss_diag_name(w->c.diag));
-    if (!w->L) {
-      fprintf(m, "| %s | — | — | — | — | — | — | n/a (", lab);
-      cell(m, w->reason);
-      fprintf(m, ") | — | %s |\n", paper);
-      fprintf(v, "%s\t-\t-\t-\t-\t-\t-\t-\tn/a\t-\t-\t-\t%s\n", lab, paper);
-      fprintf(j, "\"verdict\":\"n/a\",\"reason\":\"");
-      for (const char *s = w->reason; *s; s++)
-        fprintf(j, *s == '"' || *s == '\\' ? "\\%c" : "%c", *s);
-      fprintf(j, "\"}\n");
-      continue;
-    }
-    const ss_levin *L = w->L;
-    const ss_jsr_result *r = &w->r;
-    const size_t ny = L->n - L->r;
-    fprintf(m, "| %s | %zu × %zu² | %zu² | ", lab, L->m, L->n, ny);
-    fprintf(v, "%s\t%zu\t%zu\t%zu\t", lab, L->m, L->n, ny);
-    fprintf(j, "\"maps\":%zu,\"support\":%zu,\"subspace\":%zu,\"rho_k\":[", L->m, L->n,
-            L->r);
-    for (int k = 0; k < r->depth; k++) {
-      fprintf(m, "%s%.4f", k ? ", " : "", r->rho_inf[k]);
-      fprintf(v, "%s%.6g", k ? "," : "", r->rho_inf[k]);
-      fprintf(j, "%s%.17g", k ? "," : "", r->rho_inf[k]);
-    }
-    fprintf(m, " | %.6f | %.6f | %.6g | %s | %s | %s |\n", r->lower, r->upper,
-            L->threshold, w->verdict, r->certified ? "yes" : "no", paper);
-    fprintf(v, "\t%.9g\t%.9g\t%.17g\t%s\t%d\t%d\t%zu\t%s\n", r->lower, r->upper,
-            L->threshold, w->verdict, r->certified, r->converged, r->nodes, paper);
-    fprintf(j,
-            "],\"lower\":%.17g,\"upper\":%.17g,\"threshold\":%.17g,\"verdict\":\"%s\","
-            "\"certified\":%s,\"converged\":%s,\"nodes\":%zu,\"bnb_depth\":%d,"
-            "\"norm\":\"%s\"}\n",
-            r->lower, r->upper, L->threshold, w->verdict, r->certified ? "true" : "false",
-            r->converged ? "true" : "false", r->nodes, r->bnb_depth,
-            r->norm == SS_JSR_NORM_ELLIPSOID ? "ellipsoid"
-            : r->norm == SS_JSR_NORM_2       ? "2"
-            : r->weighted                    ? "weighted inf"
-                                             : "inf");
-  }
+  write_head(t, m, v);
+  for (size_t i = 0; i < n; i++)
+    write_row(t, rows + i,
+              status[i] == 0   ? "not quoted"
+              : status[i] == 1 ? "match"
+                               : "differ",
+              m, v, j);
   free(status);
-  fprintf(
-      m,
-      "\n**Summary:** %zu of %zu cases pass; the reduction applies to %zu; %zu quoted "
-      "values: %zu match, %zu differ.\n",
-      ty->pass, ty->cases, ty->reduced, ty->quoted, ty->match, ty->quoted - ty->match);
-  fprintf(v,
-          "# summary: %zu of %zu cases pass; %zu quoted values: %zu match, %zu differ\n",
-          ty->pass, ty->cases, ty->quoted, ty->match, ty->quoted - ty->match);
-  if (nlen) {
-    fprintf(m, "\n## Quoted by the papers (data/reference/*.tsv)\n\n| case | quantity | "
-               "quoted | computed | | source: quote |\n|---|---|---|---|---|---|\n");
-    fwrite(nbuf, 1, nlen, m);
-  }
-  fprintf(m, "\nNot quoted: the paper withholds its ρ^[9] for the face and which edge "
-             "valences pass.\n");
-  if (tlen) {
-    fprintf(v, "# quoted\ncase\tquantity\tquoted\tcomputed\tmatch\tsource\n");
-    fwrite(tbuf, 1, tlen, v);
-  }
+  write_tail(m, v, ty, nbuf, nlen, tbuf, tlen);
   st = ss_outfile_commit(md, err);
   md = NULL;
   if (!st) st = ss_outfile_commit(tsv, err);

@@ -101,7 +101,23 @@ static void level_text(const char *what, const ss_cx *cx, double seconds) {
   printf("\n");
 }
 
-int ss_cli_subdivide(int argc, char **argv) {
+/* The command line of subdivide. */
+typedef struct {
+  const char *scheme;       /* --scheme */
+  const char *out;          /* -o OUT */
+  const char *in;           /* IN */
+  long levels;              /* --levels */
+  int json;                 /* --format json */
+  const char *diag;         /* --diagonals as given; NULL: the default, bfs */
+  ss_diag_mode dmode;       /* its mode, unless given */
+  int given;                /* --diagonals given: keep the file's */
+  ss_mesh_write_opts wopts; /* --octahedra-keyword */
+  int split_given;          /* --split-octahedra: the default, said explicitly */
+} sub_opts;
+
+/* argv into o: 0, -1 after --help (printed), or the exit status 2 with the
+ * message printed. */
+static int parse(int argc, char **argv, sub_opts *o) {
   static const struct option opts[] = {{"scheme", required_argument, NULL, 's'},
                                        {"levels", required_argument, NULL, 'l'},
                                        {"output", required_argument, NULL, 'o'},
@@ -111,50 +127,45 @@ int ss_cli_subdivide(int argc, char **argv) {
                                        {"diagonals", required_argument, NULL, 'D'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
-  const char *scheme_name = NULL, *out_path = NULL, *in_path = NULL;
-  long levels = 1;
-  int json = 0;
-  const char *diag = NULL;          /* --diagonals as given; NULL: the default, bfs */
-  ss_diag_mode dmode = SS_DIAG_BFS; /* its mode, unless given */
-  int given = 0;                    /* --diagonals given: keep the file's */
-  ss_mesh_write_opts wopts = {0};
-  int split_given = 0; /* --split-octahedra: the default, said explicitly */
+  memset(o, 0, sizeof *o);
+  o->levels = 1;
+  o->dmode = SS_DIAG_BFS;
   optind = 1;
   opterr = 0;
   int c;
   while ((c = getopt_long(argc, argv, ":s:l:o:h", opts, NULL)) != -1) {
     switch (c) {
     case 's':
-      scheme_name = optarg;
+      o->scheme = optarg;
       break;
     case 'l':
-      if (ss_cli_parse_int(optarg, 0, 12, &levels))
+      if (ss_cli_parse_int(optarg, 0, 12, &o->levels))
         return ss_cli_usage_error("subdivide", "--levels '%s' is not an integer in 0..12",
                                   optarg);
       break;
     case 'o':
-      out_path = optarg;
+      o->out = optarg;
       break;
     case 'S':
-      split_given = 1;
+      o->split_given = 1;
       break;
     case 'K':
-      wopts.octahedra_keyword = 1;
+      o->wopts.octahedra_keyword = 1;
       break;
     case 'F':
-      if (ss_cli_format_option("subdivide", optarg, &json)) return SS_EXIT_USAGE;
+      if (ss_cli_format_option("subdivide", optarg, &o->json)) return SS_EXIT_USAGE;
       break;
     case 'D':
-      given = !strcmp(optarg, "given");
-      if (!given && (ss_diag_parse(optarg, &dmode) ||
-                     (dmode != SS_DIAG_BFS && dmode != SS_DIAG_PROPER)))
+      o->given = !strcmp(optarg, "given");
+      if (!o->given && (ss_diag_parse(optarg, &o->dmode) ||
+                        (o->dmode != SS_DIAG_BFS && o->dmode != SS_DIAG_PROPER)))
         return ss_cli_usage_error(
             "subdivide", "--diagonals: expected bfs, proper or given, not '%s'", optarg);
-      diag = optarg;
+      o->diag = optarg;
       break;
     case 'h':
       fputs(usage_text, stdout);
-      return SS_EXIT_OK;
+      return -1;
     default:
       return ss_cli_option_error("subdivide", c, argv);
     }
@@ -162,140 +173,168 @@ int ss_cli_subdivide(int argc, char **argv) {
   if (optind + 1 != argc)
     return ss_cli_usage_error("subdivide", optind == argc ? "no input mesh given"
                                                           : "more than one input mesh");
-  in_path = argv[optind];
-  if (split_given && wopts.octahedra_keyword)
+  o->in = argv[optind];
+  if (o->split_given && o->wopts.octahedra_keyword)
     return ss_cli_usage_error("subdivide",
                               "--split-octahedra and --octahedra-keyword contradict");
-  if (!scheme_name) return ss_cli_usage_error("subdivide", "--scheme is required");
-  if (!out_path) return ss_cli_usage_error("subdivide", "-o OUT is required");
-  if (!ss_mesh_format_writable(ss_mesh_format_from_path(out_path)))
+  if (!o->scheme) return ss_cli_usage_error("subdivide", "--scheme is required");
+  if (!o->out) return ss_cli_usage_error("subdivide", "-o OUT is required");
+  if (!ss_mesh_format_writable(ss_mesh_format_from_path(o->out)))
     return ss_cli_usage_error("subdivide", "%s '%s' (write: %s)",
-                              ss_mesh_format_from_path(out_path) == SS_MESH_AUTO
+                              ss_mesh_format_from_path(o->out) == SS_MESH_AUTO
                                   ? "cannot tell the format of"
                                   : "cannot write the read-only format of",
-                              out_path, ss_mesh_writable_list());
+                              o->out, ss_mesh_writable_list());
+  return 0;
+}
+
+/* Refuse, before any work, a refinement of cx by levels levels that would
+ * make more than 2e9 cells (counted exactly from the split's child counts):
+ * 0, or the exit status 2 with the message printed. */
+static int check_size(const ss_cx *cx, long levels) {
+  double n[SS_NCELLTYPES], m[SS_NCELLTYPES], total = 0;
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    n[t] = (double)cx->nc[t];
+  for (long l = 0; l < levels; l++) {
+    next_counts(n, m);
+    memcpy(n, m, sizeof n);
+  }
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    total += n[t];
+  if (total <= 2e9) return 0;
+  fprintf(stderr,
+          "subspectra subdivide: %ld levels would make %.3g cells (the limit is 2e9); "
+          "use fewer levels\n",
+          levels, total);
+  return SS_EXIT_USAGE;
+}
+
+/* The summary of the input: its level-0 counts and diagonals (dpairs pairs,
+ * dbad improper, when the scheme reads them), as text on stdout, or as the
+ * start of the JSON report *report (levels array *lv) with --format json. */
+static void summary_start(const sub_opts *o, const ss_cx *cx, int reads_diag,
+                          size_t dpairs, size_t dbad, json_object **report,
+                          json_object **lv) {
+  if (o->json) {
+    *report = json_object_new_object();
+    json_object_object_add(*report, "scheme", json_object_new_string(o->scheme));
+    json_object_object_add(*report, "input", json_object_new_string(o->in));
+    if (reads_diag) {
+      json_object *d = json_object_new_object();
+      json_object_object_add(d, "choice", json_object_new_string(o->diag));
+      json_object_object_add(d, "pairs", json_object_new_int64((int64_t)dpairs));
+      json_object_object_add(d, "improper", json_object_new_int64((int64_t)dbad));
+      json_object_object_add(*report, "diagonals", d);
+    }
+    *lv = json_object_new_array();
+    json_object_object_add(*report, "levels", *lv);
+    json_object_array_add(*lv, level_json(0, cx, 0.0));
+  } else {
+    char what[64];
+    snprintf(what, sizeof what, "read %s", o->in);
+    level_text(what, cx, -1);
+    if (reads_diag)
+      printf("major diagonals: %s; %zu of %zu adjacent pairs improper (Definition 3.2 as "
+             "read in the README)\n",
+             o->diag, dbad, dpairs);
+  }
+}
+
+/* Refine *cx o->levels times with scheme, a summary line (or JSON entry in
+ * lv) per level.  *cx is replaced by each finer level (the levels between are
+ * freed, input never: it names the input vertices a non-finite coordinate
+ * derives from).  0, or the exit status with the message printed. */
+static int refine_levels(const sub_opts *o, const ss_scheme *scheme, const ss_cx *input,
+                         ss_cx **cx, json_object *lv) {
+  ss_error err = {0};
+  for (long l = 1; l <= o->levels; l++) {
+    double t0 = ss_cli_now();
+    ss_cx *fine = NULL;
+    size_t bad;
+    if (ss_scheme_refine_at(scheme, *cx, &fine, &bad, &err)) {
+      if (bad == SIZE_MAX) return ss_cli_fail(&err);
+      ss_scheme_explain_nonfinite(scheme, input, (int)l, bad, &err);
+      fprintf(stderr, "subspectra: %s: %s; nothing written\n", o->in, err.msg);
+      return SS_EXIT_USAGE;
+    }
+    if (*cx != input) ss_cx_free(*cx);
+    *cx = fine;
+    double dt = ss_cli_now() - t0;
+    if (o->json) {
+      json_object_array_add(lv, level_json((int)l, *cx, dt));
+    } else {
+      char what[32];
+      snprintf(what, sizeof what, "%s level %ld", o->scheme, l);
+      level_text(what, *cx, dt);
+    }
+  }
+  return SS_EXIT_OK;
+}
+
+/* The end of the summary, once OUT is written: the output file and its
+ * format, as text or closing the JSON report. */
+static void summary_end(const sub_opts *o, json_object *report) {
+  const char *format = ss_mesh_format_name(ss_mesh_format_from_path(o->out));
+  if (o->json) {
+    json_object_object_add(report, "output", json_object_new_string(o->out));
+    json_object_object_add(report, "format", json_object_new_string(format));
+    printf("%s\n", json_object_to_json_string_ext(
+                       report, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+  } else {
+    printf("wrote %s (%s)\n", o->out, format);
+  }
+}
+
+int ss_cli_subdivide(int argc, char **argv) {
+  sub_opts o;
+  int rc = parse(argc, argv, &o);
+  if (rc) return rc < 0 ? SS_EXIT_OK : rc;
 
   ss_error err = {0};
   ss_scheme *scheme = NULL;
   ss_cx *cx = NULL, *input = NULL;
   json_object *report = NULL, *lv = NULL;
-  int rc = SS_EXIT_OK;
-  if (ss_scheme_new(scheme_name, &scheme, &err) ||
-      ss_mesh_read(in_path, SS_MESH_AUTO, &cx, &err)) {
+  if (ss_scheme_new(o.scheme, &scheme, &err) ||
+      ss_mesh_read(o.in, SS_MESH_AUTO, &cx, &err)) {
     rc = ss_cli_fail(&err);
     goto done;
   }
   if (ss_cx_check_orientation(cx, &err)) {
-    fprintf(stderr, "subspectra: %s: %s\n", in_path, err.msg);
+    fprintf(stderr, "subspectra: %s: %s\n", o.in, err.msg);
     rc = SS_EXIT_USAGE;
     goto done;
   }
   size_t dpairs = 0, dbad = 0;
   const int reads_diag = ss_scheme_reads_diagonals(scheme);
-  if (diag && !reads_diag) {
-    rc = ss_cli_usage_error(
-        "subdivide", "--diagonals: scheme %s reads no major diagonals", scheme_name);
+  if (o.diag && !reads_diag) {
+    rc = ss_cli_usage_error("subdivide",
+                            "--diagonals: scheme %s reads no major diagonals", o.scheme);
     goto done;
   }
   if (reads_diag) {
-    if (!diag) diag = "bfs";
-    if ((!given && ss_diag_choose(cx, dmode, 0, 0, &err)) ||
+    if (!o.diag) o.diag = "bfs";
+    if ((!o.given && ss_diag_choose(cx, o.dmode, 0, 0, &err)) ||
         ss_diag_improper(cx, &dpairs, &dbad, &err)) {
       rc = ss_cli_fail(&err);
       goto done;
     }
   }
-  {
-    double n[SS_NCELLTYPES], m[SS_NCELLTYPES], total = 0;
-    for (int t = 0; t < SS_NCELLTYPES; t++)
-      n[t] = (double)cx->nc[t];
-    for (long l = 0; l < levels; l++) {
-      next_counts(n, m);
-      memcpy(n, m, sizeof n);
-    }
-    for (int t = 0; t < SS_NCELLTYPES; t++)
-      total += n[t];
-    if (total > 2e9) {
-      fprintf(
-          stderr,
-          "subspectra subdivide: %ld levels would make %.3g cells (the limit is 2e9); "
-          "use fewer levels\n",
-          levels, total);
-      rc = SS_EXIT_USAGE;
-      goto done;
-    }
-  }
-  if (json) {
-    report = json_object_new_object();
-    json_object_object_add(report, "scheme", json_object_new_string(scheme_name));
-    json_object_object_add(report, "input", json_object_new_string(in_path));
-    if (reads_diag) {
-      json_object *d = json_object_new_object();
-      json_object_object_add(d, "choice", json_object_new_string(diag));
-      json_object_object_add(d, "pairs", json_object_new_int64((int64_t)dpairs));
-      json_object_object_add(d, "improper", json_object_new_int64((int64_t)dbad));
-      json_object_object_add(report, "diagonals", d);
-    }
-    lv = json_object_new_array();
-    json_object_object_add(report, "levels", lv);
-    json_object_array_add(lv, level_json(0, cx, 0.0));
-  } else {
-    char what[64];
-    snprintf(what, sizeof what, "read %s", in_path);
-    level_text(what, cx, -1);
-    if (reads_diag)
-      printf("major diagonals: %s; %zu of %zu adjacent pairs improper (Definition 3.2 as "
-             "read in the README)\n",
-             diag, dbad, dpairs);
-  }
+  if ((rc = check_size(cx, o.levels))) goto done;
+  summary_start(&o, cx, reads_diag, dpairs, dbad, &report, &lv);
   input = cx; /* kept to name input vertices if a level overflows */
-  for (long l = 1; l <= levels; l++) {
-    double t0 = ss_cli_now();
-    ss_cx *fine = NULL;
-    size_t bad;
-    if (ss_scheme_refine_at(scheme, cx, &fine, &bad, &err)) {
-      if (bad != SIZE_MAX) {
-        ss_scheme_explain_nonfinite(scheme, input, (int)l, bad, &err);
-        fprintf(stderr, "subspectra: %s: %s; nothing written\n", in_path, err.msg);
-        rc = SS_EXIT_USAGE;
-      } else {
-        rc = ss_cli_fail(&err);
-      }
-      goto done;
-    }
-    if (cx != input) ss_cx_free(cx);
-    cx = fine;
-    double dt = ss_cli_now() - t0;
-    if (json) {
-      json_object_array_add(lv, level_json((int)l, cx, dt));
-    } else {
-      char what[32];
-      snprintf(what, sizeof what, "%s level %ld", scheme_name, l);
-      level_text(what, cx, dt);
-    }
-  }
-  if (ss_mesh_write(out_path, SS_MESH_AUTO, cx, &wopts, &err)) {
+  if ((rc = refine_levels(&o, scheme, input, &cx, lv))) goto done;
+  if (ss_mesh_write(o.out, SS_MESH_AUTO, cx, &o.wopts, &err)) {
     rc = ss_cli_fail(&err);
     goto done;
   }
   /* Medit has no octahedron: say that the file holds tets in their place */
-  if (ss_mesh_format_from_path(out_path) == SS_MESH_MEDIT && cx->nc[SS_OCT] &&
-      !wopts.octahedra_keyword)
+  if (ss_mesh_format_from_path(o.out) == SS_MESH_MEDIT && cx->nc[SS_OCT] &&
+      !o.wopts.octahedra_keyword)
     fprintf(stderr,
             "subspectra subdivide: %s: split %zu octahedra into %zu tetrahedra (Medit "
             "has no octahedron; --octahedra-keyword keeps them)\n",
-            out_path, cx->nc[SS_OCT], 4 * cx->nc[SS_OCT]);
-  if (json) {
-    json_object_object_add(report, "output", json_object_new_string(out_path));
-    json_object_object_add(
-        report, "format",
-        json_object_new_string(ss_mesh_format_name(ss_mesh_format_from_path(out_path))));
-    printf("%s\n", json_object_to_json_string_ext(
-                       report, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
-  } else {
-    printf("wrote %s (%s)\n", out_path,
-           ss_mesh_format_name(ss_mesh_format_from_path(out_path)));
-  }
+            o.out, cx->nc[SS_OCT], 4 * cx->nc[SS_OCT]);
+  summary_end(&o, report);
 done:
   json_object_put(report);
   if (cx != input) ss_cx_free(input);

@@ -426,8 +426,31 @@ static int count_visit(const ss_link *l, void *ctx) {
   (void)ctx;
   return interrupted != 0;
 }
-int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
-  *out = NULL;
+
+/* The command line of sweep, as given. */
+typedef struct {
+  const char *scheme, *stencil; /* --scheme or --stencil */
+  const char *links;            /* --links FILE, or NULL */
+  const char *db;               /* --db */
+  const char *vtext;            /* --vertices as given, or NULL */
+  long va, vb;                  /* --vertices A..B */
+  long ea, eb;                  /* --edges A..B (eb < ea: none) */
+  long jobs;                    /* --jobs (default: the processors) */
+  long part, nparts;            /* --part I/N */
+  long depth;                   /* --depth */
+  int face;                     /* --face */
+  double tol;                   /* --tol */
+  double max_memory;            /* --max-memory, 0: the default budget */
+  ss_diag_mode diag;            /* --diagonals */
+  int diag_given;               /* --diagonals was given */
+  int json;                     /* --format json */
+  int certify;                  /* --certify */
+  int jobs_given;               /* --jobs was given */
+} sweep_args;
+
+/* argv into a: -1 to go on, else the exit status (0 after --help, 2 with
+ * the message printed). */
+static int parse_args(int argc, char **argv, sweep_args *a) {
   enum {
     O_SCHEME = 256,
     O_STENCIL,
@@ -462,80 +485,81 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
                                        {"max-memory", required_argument, NULL, O_MAXMEM},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
-  const char *scheme = NULL, *stencil = NULL, *links = NULL, *db = "subspectra.db";
-  const char *vtext = NULL;
-  long va = 0, vb = -1, ea = 0, eb = -1, jobs = omp_get_num_procs(), part = 0, nparts = 1,
-       depth = SS_JAC_DEPTH;
-  int face = 0;
-  double tol = 1e-6, max_memory = 0.0;
-  ss_diag_mode diag = SS_DIAG_BFS;
-  int diag_given = 0, json = 0, certify = 0, jobs_given = 0;
+  *a = (sweep_args){.db = "subspectra.db",
+                    .vb = -1,
+                    .eb = -1,
+                    .jobs = omp_get_num_procs(),
+                    .nparts = 1,
+                    .depth = SS_JAC_DEPTH,
+                    .tol = 1e-6,
+                    .diag = SS_DIAG_BFS};
   optind = 1;
   opterr = 0;
   int c;
   while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
     switch (c) {
     case O_SCHEME:
-      scheme = optarg;
+      a->scheme = optarg;
       break;
     case O_STENCIL:
-      stencil = optarg;
+      a->stencil = optarg;
       break;
     case O_VERT:
-      if (ss_cli_parse_range(optarg, &va, &vb) || va > vb)
+      if (ss_cli_parse_range(optarg, &a->va, &a->vb) || a->va > a->vb)
         return ss_cli_usage_error("sweep", "--vertices '%s' is not A..B with A <= B",
                                   optarg);
-      vtext = optarg;
+      a->vtext = optarg;
       break;
     case O_EDGES:
-      if (ss_cli_parse_range(optarg, &ea, &eb) || ea < 3 || eb > 1000 || ea > eb)
+      if (ss_cli_parse_range(optarg, &a->ea, &a->eb) || a->ea < 3 || a->eb > 1000 ||
+          a->ea > a->eb)
         return ss_cli_usage_error(
             "sweep", "--edges '%s' is not A..B with 3 <= A <= B <= 1000", optarg);
       break;
     case O_FACE:
-      face = 1;
+      a->face = 1;
       break;
     case O_LINKS:
-      links = optarg;
+      a->links = optarg;
       break;
     case O_DB:
-      db = optarg;
+      a->db = optarg;
       break;
     case O_JOBS:
-      if (ss_cli_parse_int(optarg, 1, 1024, &jobs))
+      if (ss_cli_parse_int(optarg, 1, 1024, &a->jobs))
         return ss_cli_usage_error("sweep", "--jobs '%s' is not an integer in 1..1024",
                                   optarg);
-      jobs_given = 1;
+      a->jobs_given = 1;
       break;
     case O_PART:
-      if (ss_cli_parse_part(optarg, &part, &nparts))
+      if (ss_cli_parse_part(optarg, &a->part, &a->nparts))
         return ss_cli_usage_error("sweep", "--part '%s': need integers 0 <= I < N",
                                   optarg);
       break;
     case O_TOL:
-      if (ss_cli_opt_tol("sweep", optarg, &tol)) return SS_EXIT_USAGE;
+      if (ss_cli_opt_tol("sweep", optarg, &a->tol)) return SS_EXIT_USAGE;
       break;
     case O_DEPTH:
-      if (ss_cli_opt_depth("sweep", optarg, &depth)) return SS_EXIT_USAGE;
+      if (ss_cli_opt_depth("sweep", optarg, &a->depth)) return SS_EXIT_USAGE;
       break;
     case O_DIAG:
-      if (ss_diag_parse(optarg, &diag))
+      if (ss_diag_parse(optarg, &a->diag))
         return ss_cli_usage_error(
             "sweep", "--diagonals: expected bfs, proper, skew or center, not '%s'",
             optarg);
-      diag_given = 1;
+      a->diag_given = 1;
       break;
     case O_CERTIFY:
-      certify = 1;
+      a->certify = 1;
       break;
     case O_MAXMEM:
-      if (ss_cli_parse_bytes(optarg, &max_memory))
+      if (ss_cli_parse_bytes(optarg, &a->max_memory))
         return ss_cli_usage_error(
             "sweep", "--max-memory: expected a size such as 8G, 500M or 2.5G, not '%s'",
             optarg);
       break;
     case O_FORMAT:
-      if (ss_cli_format_option("sweep", optarg, &json)) return SS_EXIT_USAGE;
+      if (ss_cli_format_option("sweep", optarg, &a->json)) return SS_EXIT_USAGE;
       break;
     case 'h':
       fputs(sweep_usage, stdout);
@@ -547,17 +571,84 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
   }
   if (optind < argc)
     return ss_cli_usage_error("sweep", "unexpected argument '%s'", argv[optind]);
-  if (ss_cli_opt_scheme_source("sweep", scheme, stencil)) return SS_EXIT_USAGE;
-  if (!vtext && eb < ea && !face && !links)
+  if (ss_cli_opt_scheme_source("sweep", a->scheme, a->stencil)) return SS_EXIT_USAGE;
+  if (!a->vtext && a->eb < a->ea && !a->face && !a->links)
     return ss_cli_usage_error("sweep",
                               "no cases: give --vertices, --edges, --face or --links");
+  return -1;
+}
+
+/* Whether the cases a asks for exist for scheme s (volume: volumetric;
+ * reads: reads major diagonals): NULL, or why not (in msg, n bytes, or a
+ * constant). */
+static const char *check_cases(const sweep_args *a, const ss_scheme *s, int volume,
+                               int reads, char *msg, size_t n) {
+  if (a->vtext && volume && (a->va < 4 || a->vb > SS_ENUM_MAXK)) {
+    snprintf(msg, n, "--vertices '%s': links have 4..%d vertices", a->vtext,
+             SS_ENUM_MAXK);
+    return msg;
+  }
+  if (a->vtext && !volume && (a->va < 3 || a->vb > 1000)) {
+    snprintf(msg, n, "--vertices '%s': surface valences are 3..1000", a->vtext);
+    return msg;
+  }
+  if (!volume && (a->eb >= a->ea || a->face || a->links))
+    return "--edges, --face and --links need a volumetric scheme";
+  if (a->face && ss_scheme_split_kind(s) != SS_SPLIT_TETOCT)
+    return "--face: the scheme does not split tets (tetoct split)";
+  if (a->diag_given && !reads) return "--diagonals: the scheme reads no major diagonals";
+  if ((a->diag == SS_DIAG_SKEW || a->diag == SS_DIAG_CENTER) &&
+      (a->vtext || a->face || a->links))
+    return "--diagonals skew and center are defined around an edge: --edges only";
+  return NULL;
+}
+
+/* The cases of this sweep (this part) into w->total, so that progress can
+ * show an ETA: the links counted by enumerating them (a signal stops the
+ * count, and then the sweep before its first case), the other cases dealt
+ * round the parts as the run deals them.  0, or the exit status with the
+ * message printed. */
+static int count_total(ss_sweep *w) {
+  ss_error err = {0};
+  const long part = w->part, nparts = w->nparts;
+  if (w->vtext && w->volume) {
+    ss_enum_opts eo = {(int)w->va, (int)w->vb, (int)part, (int)nparts};
+    uint64_t counts[SS_ENUM_MAXK + 1];
+    if (w->tty && w->vb >= 15)
+      fprintf(stderr, "sweep: counting the links with %ld..%ld vertices...\n", w->va,
+              w->vb);
+    if (ss_enum_links(&eo, count_visit, NULL, counts, &err)) {
+      fprintf(stderr, "subspectra sweep: %s\n", err.msg);
+      return ss_cli_exit_status(err.status);
+    }
+    for (long k = w->va; k <= w->vb; k++)
+      w->total += counts[k];
+    w->counting_stopped = interrupted != 0;
+  }
+  size_t idx = 0; /* index of the non-enumerated cases, for --part */
+  for (long n = w->vtext && !w->volume ? w->va : 1;
+       n <= (w->vtext && !w->volume ? w->vb : 0); n++)
+    w->total += idx++ % (size_t)nparts == (size_t)part;
+  for (long n = w->ea; n <= w->eb; n++)
+    w->total += idx++ % (size_t)nparts == (size_t)part;
+  if (w->face) w->total += idx++ % (size_t)nparts == (size_t)part;
+  for (size_t i = 0; i < w->nlinks; i++)
+    w->total += idx++ % (size_t)nparts == (size_t)part;
+  return SS_EXIT_OK;
+}
+
+int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
+  *out = NULL;
+  sweep_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc >= 0) return rc;
   ss_error err = {0};
   ss_scheme *s = NULL;
   uint64_t hash = 0;
-  if (stencil ? ss_stencil_load(stencil, &s, &hash, &err)
-              : ss_scheme_new(scheme, &s, &err)) {
+  if (a.stencil ? ss_stencil_load(a.stencil, &s, &hash, &err)
+                : ss_scheme_new(a.scheme, &s, &err)) {
     fprintf(stderr, "subspectra sweep: %s%s\n",
-            stencil ? "--stencil " : "--scheme: ", err.msg);
+            a.stencil ? "--stencil " : "--scheme: ", err.msg);
     return SS_EXIT_USAGE; /* bad scheme or stencil, or out of memory */
   }
   if (ss_cli_refuse_local("sweep", s)) {
@@ -566,23 +657,8 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
   }
   const int volume = ss_scheme_accepts(s, SS_HEX) || ss_scheme_accepts(s, SS_TET);
   const int reads = ss_scheme_reads_diagonals(s);
-  const char *bad = NULL;
   char msg[160];
-  if (vtext && volume && (va < 4 || vb > SS_ENUM_MAXK)) {
-    snprintf(msg, sizeof msg, "--vertices '%s': links have 4..%d vertices", vtext,
-             SS_ENUM_MAXK);
-    bad = msg;
-  } else if (vtext && !volume && (va < 3 || vb > 1000)) {
-    snprintf(msg, sizeof msg, "--vertices '%s': surface valences are 3..1000", vtext);
-    bad = msg;
-  } else if (!volume && (eb >= ea || face || links))
-    bad = "--edges, --face and --links need a volumetric scheme";
-  else if (face && ss_scheme_split_kind(s) != SS_SPLIT_TETOCT)
-    bad = "--face: the scheme does not split tets (tetoct split)";
-  else if (diag_given && !reads)
-    bad = "--diagonals: the scheme reads no major diagonals";
-  else if ((diag == SS_DIAG_SKEW || diag == SS_DIAG_CENTER) && (vtext || face || links))
-    bad = "--diagonals skew and center are defined around an edge: --edges only";
+  const char *bad = check_cases(&a, s, volume, reads, msg, sizeof msg);
   if (bad) {
     ss_scheme_free(s);
     return ss_cli_usage_error("sweep", "%s", bad);
@@ -594,32 +670,32 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
     return SS_EXIT_USAGE;
   }
   ss_result_opts ro = ss_result_defaults();
-  ro.tol = tol;
-  ro.depth = (int)depth;
-  ro.certify = certify;
+  ro.tol = a.tol;
+  ro.depth = (int)a.depth;
+  ro.certify = a.certify;
   /* the budget is shared by the threads, one case each */
-  ro.max_bytes = ss_cli_budget(max_memory) / (double)jobs;
+  ro.max_bytes = ss_cli_budget(a.max_memory) / (double)a.jobs;
   *w = (ss_sweep){.s = s,
                   .ro = ro,
-                  .diag = diag,
-                  .jobs = (int)jobs,
-                  .jobs_given = jobs_given,
-                  .max_memory = max_memory,
+                  .diag = a.diag,
+                  .jobs = (int)a.jobs,
+                  .jobs_given = a.jobs_given,
+                  .max_memory = a.max_memory,
                   .ranks = 1,
-                  .db = db,
-                  .json = json,
-                  .part = part,
-                  .nparts = nparts,
-                  .vtext = vtext,
-                  .va = va,
-                  .vb = vb,
-                  .ea = ea,
-                  .eb = eb,
-                  .face = face,
+                  .db = a.db,
+                  .json = a.json,
+                  .part = a.part,
+                  .nparts = a.nparts,
+                  .vtext = a.vtext,
+                  .va = a.va,
+                  .vb = a.vb,
+                  .ea = a.ea,
+                  .eb = a.eb,
+                  .face = a.face,
                   .volume = volume,
                   .flush = flush_threads,
                   .tty = role == SS_SWEEP_WHOLE && isatty(STDERR_FILENO)};
-  ss_store_scheme sc = {ss_scheme_name(s), stencil, hash, reads, diag, ro};
+  ss_store_scheme sc = {ss_scheme_name(s), a.stencil, hash, reads, a.diag, ro};
   ss_store_identity(&sc, w->ident, sizeof w->ident);
   if (role == SS_SWEEP_WORKER) {
     /* an MPI rank that computes: a signal finishes the cases in flight */
@@ -628,13 +704,14 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
     return -1;
   }
   linklist ll = {NULL, 0};
-  int rc = links ? read_links(links, &ll) : SS_EXIT_OK;
-  if (!rc && links)
-    rc = dedupe_links(&ll, vtext && volume ? va : 1, vtext && volume ? vb : 0, &w->dups);
+  rc = a.links ? read_links(a.links, &ll) : SS_EXIT_OK;
+  if (!rc && a.links)
+    rc = dedupe_links(&ll, a.vtext && volume ? a.va : 1, a.vtext && volume ? a.vb : 0,
+                      &w->dups);
   w->links = ll.l;
   w->nlinks = ll.n;
   if (rc) goto fail;
-  if (ss_store_open(db, SS_STORE_WRITE, &w->st, &err) ||
+  if (ss_store_open(a.db, SS_STORE_WRITE, &w->st, &err) ||
       ss_store_scheme_id(w->st, &sc, &w->id, &err)) {
     fprintf(stderr, "subspectra sweep: %s\n", err.msg);
     rc = SS_EXIT_USAGE; /* a bad store, or out of memory */
@@ -642,30 +719,7 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
   }
   /* SIGINT, SIGTERM from here on: the store is open */
   catch_signals();
-  /* the total first, so that progress can show an ETA (a signal stops the
-   * count, and then the sweep before its first case) */
-  if (vtext && volume) {
-    ss_enum_opts eo = {(int)va, (int)vb, (int)part, (int)nparts};
-    uint64_t counts[SS_ENUM_MAXK + 1];
-    if (w->tty && vb >= 15)
-      fprintf(stderr, "sweep: counting the links with %ld..%ld vertices...\n", va, vb);
-    if (ss_enum_links(&eo, count_visit, NULL, counts, &err)) {
-      fprintf(stderr, "subspectra sweep: %s\n", err.msg);
-      rc = ss_cli_exit_status(err.status);
-      goto fail;
-    }
-    for (long k = va; k <= vb; k++)
-      w->total += counts[k];
-    w->counting_stopped = interrupted != 0;
-  }
-  size_t idx = 0; /* index of the non-enumerated cases, for --part */
-  for (long n = vtext && !volume ? va : 1; n <= (vtext && !volume ? vb : 0); n++)
-    w->total += idx++ % (size_t)nparts == (size_t)part;
-  for (long n = ea; n <= eb; n++)
-    w->total += idx++ % (size_t)nparts == (size_t)part;
-  if (face) w->total += idx++ % (size_t)nparts == (size_t)part;
-  for (size_t i = 0; i < w->nlinks; i++)
-    w->total += idx++ % (size_t)nparts == (size_t)part;
+  if ((rc = count_total(w))) goto fail;
   *out = w;
   return -1;
 fail:

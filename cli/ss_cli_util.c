@@ -183,6 +183,10 @@ static int has_reference(const char *dir) {
 }
 
 char *ss_cli_refdir(char *buf, size_t cap) {
+  return ss_cli_datapath("reference", buf, cap);
+}
+
+char *ss_cli_datapath(const char *sub, char *buf, size_t cap) {
   const char *env = getenv("SUBSPECTRA_DATADIR");
   char dir[4096] = "";
   if (env && *env) {
@@ -206,6 +210,6 @@ char *ss_cli_refdir(char *buf, size_t cap) {
         !has_reference(dir))
       snprintf(dir, sizeof dir, "%s", SS_DATADIR);
   }
-  const int n = snprintf(buf, cap, "%s/reference", dir);
+  const int n = snprintf(buf, cap, "%s/%s", dir, sub);
   return n >= 0 && (size_t)n < cap ? buf : NULL;
 }

@@ -135,6 +135,21 @@ static void scratch_free(scratch *s) {
   free(s->uf);
 }
 
+/* Scratch for vertices in at most maxm cells (3 maxm link triangle corners). */
+static ss_status scratch_alloc(scratch *s, size_t maxm, ss_error *err) {
+  const size_t m3 = 3 * maxm + 1;
+  s->gtri = malloc(m3 * sizeof *s->gtri);
+  s->loc = malloc(m3 * sizeof *s->loc);
+  s->tri = malloc(m3 * sizeof *s->tri);
+  s->toff = malloc((m3 + 1) * sizeof *s->toff);
+  s->tlist = malloc(m3 * sizeof *s->tlist);
+  s->deg = malloc(m3 * sizeof *s->deg);
+  s->uf = malloc(m3 * sizeof *s->uf);
+  if (!s->gtri || !s->loc || !s->tri || !s->toff || !s->tlist || !s->deg || !s->uf)
+    return ss_error_nomem(err, "mesh links");
+  return SS_OK;
+}
+
 static int uf_find(int *uf, int x) {
   while (uf[x] != x) {
     uf[x] = uf[uf[x]];
@@ -282,6 +297,48 @@ static ss_status vertex_link(const scratch *s, int k, int m, size_t v, linkset *
   return st;
 }
 
+/* The vertex -> (cell, corner) incidences of the ncorners corners cells
+ * (flat indices into cells) of a mesh with nv vertices, grouped by vertex:
+ * those of vertex v are inc[off[v] .. off[v+1]-1] (off zeroed by the
+ * caller, nv + 1 entries; inc, ncorners).  *maxm = the most cells at one
+ * vertex; SS_EINPUT when that is more than a link has triangles. */
+static ss_status incidences(const ss_idx *cells, size_t ncorners, size_t nv, size_t *off,
+                            size_t *inc, size_t *maxm, ss_error *err) {
+  for (size_t i = 0; i < ncorners; i++)
+    off[cells[i] + 1]++;
+  *maxm = 0;
+  for (size_t v = 0; v < nv; v++) {
+    if (off[v + 1] > *maxm) *maxm = off[v + 1];
+    off[v + 1] += off[v];
+  }
+  for (size_t i = 0; i < ncorners; i++)
+    inc[off[cells[i]]++] = i;
+  for (size_t v = nv; v > 0; v--)
+    off[v] = off[v - 1];
+  off[0] = 0;
+  if (*maxm <= 2 * (size_t)SS_LINK_MAXK - 4) return SS_OK;
+  size_t v = 0;
+  while (off[v + 1] - off[v] != *maxm)
+    v++;
+  return ss_error_set(err, SS_EINPUT,
+                      "vertex %zu is in %zu cells, more than a link has triangles (at "
+                      "most %d)",
+                      v + 1, *maxm, 2 * SS_LINK_MAXK - 4);
+}
+
+/* Append vertex v to ml's non-manifold vertices (*cap allocated). */
+static ss_status add_nonmanifold(ss_meshlinks *ml, size_t *cap, size_t v, ss_error *err) {
+  if (ml->nv_nonmanifold == *cap) {
+    size_t ncap = *cap ? 2 * *cap : 16;
+    size_t *g = realloc(ml->nonmanifold, ncap * sizeof *g);
+    if (!g) return ss_error_nomem(err, "non-manifold vertices");
+    ml->nonmanifold = g;
+    *cap = ncap;
+  }
+  ml->nonmanifold[ml->nv_nonmanifold++] = v;
+  return SS_OK;
+}
+
 ss_status ss_meshlinks_compute(const ss_cx *cx, ss_meshlinks **out, ss_error *err) {
   *out = NULL;
   ss_cell_type t = SS_TET;
@@ -318,43 +375,11 @@ ss_status ss_meshlinks_compute(const ss_cx *cx, ss_meshlinks **out, ss_error *er
     goto done;
   }
 
-  /* vertex -> (cell, corner) incidences, as flat indices into cx->cells[t] */
   const ss_idx *cells = cx->cells[t];
-  for (size_t i = 0; i < nc * (size_t)n; i++)
-    off[cells[i] + 1]++;
   size_t maxm = 0;
-  for (size_t v = 0; v < nv; v++) {
-    if (off[v + 1] > maxm) maxm = off[v + 1];
-    off[v + 1] += off[v];
-  }
-  for (size_t i = 0; i < nc * (size_t)n; i++)
-    inc[off[cells[i]]++] = i;
-  for (size_t v = nv; v > 0; v--)
-    off[v] = off[v - 1];
-  off[0] = 0;
-  if (maxm > 2 * (size_t)SS_LINK_MAXK - 4) {
-    size_t v = 0;
-    while (off[v + 1] - off[v] != maxm)
-      v++;
-    st = ss_error_set(err, SS_EINPUT,
-                      "vertex %zu is in %zu cells, more than a link has triangles (at "
-                      "most %d)",
-                      v + 1, maxm, 2 * SS_LINK_MAXK - 4);
-    goto done;
-  }
+  if ((st = incidences(cells, nc * (size_t)n, nv, off, inc, &maxm, err))) goto done;
 
-  const size_t m3 = 3 * maxm + 1;
-  s.gtri = malloc(m3 * sizeof *s.gtri);
-  s.loc = malloc(m3 * sizeof *s.loc);
-  s.tri = malloc(m3 * sizeof *s.tri);
-  s.toff = malloc((m3 + 1) * sizeof *s.toff);
-  s.tlist = malloc(m3 * sizeof *s.tlist);
-  s.deg = malloc(m3 * sizeof *s.deg);
-  s.uf = malloc(m3 * sizeof *s.uf);
-  if (!s.gtri || !s.loc || !s.tri || !s.toff || !s.tlist || !s.deg || !s.uf) {
-    st = ss_error_nomem(err, "mesh links");
-    goto done;
-  }
+  if ((st = scratch_alloc(&s, maxm, err))) goto done;
 
   double vsum = 0, esum = 0;
   for (size_t v = 0; v < nv; v++) {
@@ -396,17 +421,7 @@ ss_status ss_meshlinks_compute(const ss_cx *cx, ss_meshlinks **out, ss_error *er
       vsum += k;
       if ((st = hist_add(&ml->vval_hist, &vlen, k, err))) goto done;
     } else if (any_triple || !any_single) {
-      if (ml->nv_nonmanifold == nm_cap) {
-        size_t ncap = nm_cap ? 2 * nm_cap : 16;
-        size_t *g = realloc(ml->nonmanifold, ncap * sizeof *g);
-        if (!g) {
-          st = ss_error_nomem(err, "non-manifold vertices");
-          goto done;
-        }
-        ml->nonmanifold = g;
-        nm_cap = ncap;
-      }
-      ml->nonmanifold[ml->nv_nonmanifold++] = v;
+      if ((st = add_nonmanifold(ml, &nm_cap, v, err))) goto done;
     } else {
       ml->nv_boundary++;
     }

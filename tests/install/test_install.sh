@@ -21,8 +21,8 @@
 #        two-ring 30n + 5, one-ring 6n + 3;
 #  - the man page is installed and names every command;
 #  - `reproduce` run from outside the source tree finds the installed reference
-#    values (beside the program, and through SUBSPECTRA_DATADIR), and its
-#    --help names the compiled-in datadir;
+#    values and its tables (reproduce/tables.json) beside the program, and
+#    through SUBSPECTRA_DATADIR, and its --help names the compiled-in datadir;
 #  - the Python package, installed under the platform's site directory (PYDIR,
 #    empty when not built), through test_python.py (PYTEST).
 set -u
@@ -57,7 +57,7 @@ for f in "$L/libsubspectra.a" "$L/libsubspectra.so" "$L/pkgconfig/subspectra.pc"
   [ -e "$f" ] || fail "not installed: ${f#"$stage"}"
 done
 ls "$INC/subspectra" | grep -q '_impl\.h$' && fail "an *_impl.h header is installed"
-for d in stencils reference meshes; do
+for d in stencils reference reproduce meshes; do
   [ -n "$(ls "$D/$d" 2>/dev/null)" ] || fail "not installed: ${D#"$stage"}/$d/"
 done
 
@@ -174,9 +174,10 @@ if [ -f "$man1" ]; then
   ok "man page"
 fi
 
-# reproduce from outside the source tree: the reference files are found (they
-# are loaded before the output folder is made, so an output that cannot be
-# made shows that loading got past them without running the whole reproduce)
+# reproduce from outside the source tree: the reference files and the tables
+# are found (they are loaded before the output folder is made, so an output
+# that cannot be made shows that loading got past them without running the
+# whole reproduce)
 mkdir -p "$tmp/elsewhere"
 run_reproduce() { (cd "$tmp/elsewhere" && "$@" reproduce --out /dev/null/x 2>&1); }
 out=$(run_reproduce env -u SUBSPECTRA_DATADIR "$B/subspectra")
@@ -184,6 +185,13 @@ case $out in
 *"cannot create /dev/null/x"*) ok "reproduce finds the data beside the installed program" ;;
 *) fail "installed reproduce: $out" ;;
 esac
+mv "$D/reproduce" "$tmp/tables"
+out=$(run_reproduce env -u SUBSPECTRA_DATADIR "$B/subspectra")
+case $out in
+*"reproduce/tables.json: No such file or directory (the tables to make)"*) ok "without the tables: a clear message" ;;
+*) fail "reproduce without its tables: $out" ;;
+esac
+mv "$tmp/tables" "$D/reproduce"
 mv "$D" "$tmp/moved"
 out=$(run_reproduce env -u SUBSPECTRA_DATADIR "$B/subspectra")
 case $out in

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # test_reproduce.sh EXE SRCDIR — `subspectra reproduce`: usage errors (exit 2),
-# a malformed reference file named by file and line (exit 2), then a full run
+# a malformed reference file named by file and line (exit 2), a malformed
+# tables file (data/reproduce/tables.json) named by file and entry or line
+# (exit 2), then a full run
 # into a temporary folder: every table (.md, .tsv, data/.jsonl) and figure is
 # written, the regular cases and MLCA's edges equal values derived
 # independently (B-spline spectra, tensor products of two tables), the papers'
@@ -15,12 +17,14 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 . "$(dirname "$0")/../ss_expect.sh"
 ref=$src/data/reference
+tables=$src/data/reproduce/tables.json
 
 expect 0 "usage: subspectra reproduce" "$exe" reproduce --help
 expect 2 "unknown option '--bogus'" "$exe" reproduce --bogus
 expect 2 "unexpected argument 'x'" "$exe" reproduce --reference "$ref" x
 expect 2 "no reference files" "$exe" reproduce --reference "$tmp/none" --out "$tmp/o"
 : > "$tmp/file"
+# (the tables are found beside --reference: DIR/../reproduce/tables.json)
 expect 2 "--out $tmp/file/sub: cannot create" "$exe" reproduce --reference "$ref" --out "$tmp/file/sub"
 mkdir -p "$tmp/badref"
 cp "$ref"/*.tsv "$tmp/badref/"
@@ -28,9 +32,23 @@ printf 'p.txt\tsection 1\tmlca\tvertex\t4..8\t-\tlambda1\t0.5.1\tquote\tnote\n' 
 line=$(wc -l < "$tmp/badref/mlca-hexahedral-subdivision.tsv")
 expect 2 "badref/mlca-hexahedral-subdivision.tsv:$line: value '0.5.1'" "$exe" reproduce --reference "$tmp/badref" --out "$tmp/o"
 
+# the tables file: every key checked, the entry and key named
+expect 2 "$tmp/none.json: No such file or directory \\(the tables to make\\)" "$exe" reproduce --reference "$ref" --tables "$tmp/none.json" --out "$tmp/o"
+printf '{"tables": [\n  {"name": "t",\n' > "$tmp/t.json"
+expect 2 "t.json:3: not JSON: unexpected end of data" "$exe" reproduce --reference "$ref" --tables "$tmp/t.json" --out "$tmp/o"
+tab='"name": "t", "title": "T", "scheme": "loop", "case": "surface-vertex", "command": "c"'
+printf '{"tables": [{%s, "source": "valences", "from": 3, "to": 4, "colour": 1}], "figures": []}' "$tab" > "$tmp/t.json"
+expect 2 "t.json: table 1: colour: unknown key" "$exe" reproduce --reference "$ref" --tables "$tmp/t.json" --out "$tmp/o"
+printf '{"tables": [{%s, "source": "links", "from": 4, "to": 5}], "figures": []}' "$tab" > "$tmp/t.json"
+expect 2 "t.json: table 1: case: not a case kind this source yields" "$exe" reproduce --reference "$ref" --tables "$tmp/t.json" --out "$tmp/o"
+printf '{"tables": [{%s, "source": "valences", "from": 5, "to": 4}], "figures": []}' "$tab" > "$tmp/t.json"
+expect 2 "t.json: table 1: to: 4 not in 5..1000" "$exe" reproduce --reference "$ref" --tables "$tmp/t.json" --out "$tmp/o"
+printf '{"tables": [], "figures": [{"file": "f.png", "scheme": "mlca", "case": "edge"}]}' > "$tmp/t.json"
+expect 2 "t.json: figure 1: valence: missing" "$exe" reproduce --reference "$ref" --tables "$tmp/t.json" --out "$tmp/o"
+
 # the full run (about 10 s)
 out=$tmp/out
-SS_EXPECT_TIMEOUT=280 expect 0 "reproduce: wrote 20 tables" "$exe" reproduce --reference "$ref" --out "$out"
+SS_EXPECT_TIMEOUT=280 expect 0 "reproduce: wrote 20 tables" "$exe" reproduce --reference "$ref" --tables "$tables" --out "$out"
 
 tables="mlca-vertices-k4-8 mlca-vertices-k9-10 tetoct-vertices-k4-7 tetoct-vertices-k8-10 tetoct-edges-3-10 tetoct-face
 mlca-edges-3-8 mlca-surface-vertices-3-8 catmull-clark-surface-vertices-3-8
