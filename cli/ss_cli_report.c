@@ -9,13 +9,15 @@
 
 #include "ss_cli.h"
 #include "ss_report_draw.h"
+#include "ss_report_exhaustive.h"
 #include "ss_report_plot.h"
 #include "ss_report_table.h"
 #include "ss_store.h"
 
 static const char *const usage_text =
     "usage: subspectra report --db FILE [--format md|csv|tex|json]\n"
-    "                         [--table cases|summary|both] [--where EXPR]\n"
+    "                         [--table cases|summary|both|exhaustive|not-passing]\n"
+    "                         [--where EXPR]\n"
     "                         [--plot FILE.png|.svg|.pdf] [--size WxH] [--label NAME]\n"
     "\n"
     "Tables of the cases in a results store (written by `subspectra sweep`):\n"
@@ -27,7 +29,16 @@ static const char *const usage_text =
     "           Jacobian, and improper pairs of major diagonals (boxspline);\n"
     "  summary  per scheme identity, case kind and k: cases, pass, fail,\n"
     "           undecided (pass = both conditions hold), the worst minimum\n"
-    "           scaled Jacobian and the range of |lambda1|.\n"
+    "           scaled Jacobian and the range of |lambda1|;\n"
+    "  exhaustive  vertex one-rings per scheme identity and k: links, pass,\n"
+    "           fail by the first condition that fails (eigenvalue condition,\n"
+    "           regularity, injectivity only), undecided, passes with folds\n"
+    "           around p only, points on an edge, and (--certify sweeps) how\n"
+    "           many passes and failures are proven: the rows `reproduce`\n"
+    "           writes for its tables over every link (md, csv or json);\n"
+    "  not-passing  every vertex link that fails or is undecided, with that\n"
+    "           class, whether it is proven and the three reasons (csv or\n"
+    "           json).  reports/exhaustive.sh writes both for k <= 12.\n"
     "\n"
     "  --db FILE          the results store (SQLite)\n"
     "  --format F         md (GitHub Markdown, default), csv (RFC 4180, one table,\n"
@@ -38,7 +49,8 @@ static const char *const usage_text =
     "                     [...], \"summary\": [...]}, numbers as numbers)\n"
     "  --label NAME       tex: the tables' labels tab:NAME-cases and\n"
     "                     tab:NAME-summary (default subspectra)\n"
-    "  --table T          cases, summary or both (default both; csv: cases)\n"
+    "  --table T          cases, summary, both (default both; csv: cases),\n"
+    "                     exhaustive or not-passing\n"
     "  --where EXPR       an SQL expression over the columns of the view `cases`:\n"
     "                     scheme, identity, kind, k, link, cells, two_ring,\n"
     "                     one_ring, lambda1..lambda4 (moduli), eigen_condition,\n"
@@ -84,6 +96,7 @@ int ss_cli_report(int argc, char **argv) {
   ss_report_format fmt = SS_REPORT_MD;
   int have_format = 0, fail_on_fail = 0;
   unsigned tables = 0;
+  int exh = -1; /* --table exhaustive or not-passing: ss_report_exh_table */
   ss_report_plot_opts po = ss_report_plot_defaults();
   optind = 1;
   opterr = 0;
@@ -100,9 +113,15 @@ int ss_cli_report(int argc, char **argv) {
       have_format = 1;
       break;
     case O_TABLE:
-      if (ss_report_tables_parse(optarg, &tables))
-        return ss_cli_usage_error("report", "--table '%s' is not cases, summary or both",
-                                  optarg);
+      exh = !strcmp(optarg, "exhaustive")    ? SS_REPORT_EXH_COUNTS
+            : !strcmp(optarg, "not-passing") ? SS_REPORT_EXH_LINKS
+                                             : -1;
+      tables = 0;
+      if (exh < 0 && ss_report_tables_parse(optarg, &tables))
+        return ss_cli_usage_error(
+            "report",
+            "--table '%s' is not cases, summary, both, exhaustive or not-passing",
+            optarg);
       break;
     case O_WHERE:
       where = optarg;
@@ -148,9 +167,18 @@ int ss_cli_report(int argc, char **argv) {
     return ss_cli_usage_error("report", "--label is for --format tex");
   if ((po.width || po.height) && !plot)
     return ss_cli_usage_error("report", "--size needs --plot");
+  if (exh >= 0 && plot)
+    return ss_cli_usage_error("report",
+                              "--plot goes with --table cases, summary or both");
+  if (exh >= 0 && fmt == SS_REPORT_TEX)
+    return ss_cli_usage_error("report", "--table %s: --format md, csv or json",
+                              exh == SS_REPORT_EXH_COUNTS ? "exhaustive" : "not-passing");
+  if (exh == SS_REPORT_EXH_LINKS && fmt == SS_REPORT_MD)
+    return ss_cli_usage_error("report", "--table not-passing: --format csv or json");
   /* --plot alone prints no table */
-  const int print = have_format || tables || !plot;
-  if (!tables) tables = fmt == SS_REPORT_CSV ? SS_REPORT_CASES : SS_REPORT_BOTH;
+  const int print = have_format || tables || exh >= 0 || !plot;
+  if (!tables && exh < 0)
+    tables = fmt == SS_REPORT_CSV ? SS_REPORT_CASES : SS_REPORT_BOTH;
   if (fmt == SS_REPORT_CSV && tables == SS_REPORT_BOTH)
     return ss_cli_usage_error("report",
                               "--format csv holds one table: --table cases or summary");
@@ -177,8 +205,10 @@ int ss_cli_report(int argc, char **argv) {
   if (rows.n == 0)
     fprintf(stderr, "subspectra report: %s: no cases selected%s\n", db,
             where ? " by --where" : " (an empty store)");
-  if (print && ss_report_table_write(stdout, fmt, tables, rows.row, rows.n, sum, ns,
-                                     label, &err)) {
+  if (print && (exh >= 0 ? ss_report_exh_write(stdout, fmt, (ss_report_exh_table)exh,
+                                               rows.row, rows.n, &err)
+                         : ss_report_table_write(stdout, fmt, tables, rows.row, rows.n,
+                                                 sum, ns, label, &err))) {
     /* standard output failed: main reports it, with the reason */
     if (!(err.status == SS_EIO && ferror(stdout))) rc = report_fail(&err);
     goto done;

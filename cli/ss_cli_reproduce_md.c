@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "ss_cli_reproduce.h"
+#include "ss_report_exhaustive.h"
 
 /* The title, how to regenerate the table, its note and the rules by which
  * verdicts and matches are decided (tolerance tol, Jacobian depth). */
@@ -132,49 +133,24 @@ static void md_row(ss_strbuf *md, const ss_reproduce_table *t, const ss_result *
 
 /* The verdicts of an exhaustive table counted per k: which condition fails,
  * and how many passing maps fold in cells around p (which decide nothing,
- * ss_charmap.h). */
+ * ss_charmap.h).  The rows are ss_report_exhaustive's, as `report --table
+ * exhaustive` writes them from a sweep's store. */
 static void per_k(ss_strbuf *md, const ss_reproduce_results *l) {
-  ss_sb_printf(md,
-               "\n| k | links | pass | fail: eigenvalue condition | fail: regularity | "
-               "fail: injectivity only | undecided | passing, with folds around p | "
-               "points on an edge (edge verdict) |%s\n"
-               "|--:|--:|--:|--:|--:|--:|--:|--:|---|%s\n",
-               l->o.certify ? " certified pass | certified fail | not certified |" : "",
-               l->o.certify ? "--:|--:|--:|" : "");
+  char line[SS_REPORT_EXH_LINE];
+  ss_report_exh_md_head(l->o.certify, line, sizeof line);
+  ss_sb_printf(md, "\n%s", line);
   int lo = INT_MAX, hi = 0;
   for (size_t i = 0; i < l->n; i++) {
     lo = l->r[i].k < lo ? l->r[i].k : lo;
     hi = l->r[i].k > hi ? l->r[i].k : hi;
   }
   for (int k = lo; k <= hi; k++) { /* the enumeration interleaves the k */
-    size_t n = 0, pass = 0, fcond = 0, freg = 0, finj = 0, und = 0, centre = 0, cpass = 0,
-           cfail = 0, nedge = 0;
-    char edges[128] = "–";
-    for (size_t i = 0; i < l->n; i++) {
-      const ss_result *r = l->r + i;
-      if (r->k != k) continue;
-      const ss_verdict_kind v = ss_result_verdict(r);
-      if (r->kind == SS_CASE_EDGE_POINT) { /* judged as an edge: not a vertex */
-        snprintf(edges, sizeof edges, "%zu (valence %d: %s)", ++nedge, r->valence,
-                 ss_verdict_name(v));
-        continue;
-      }
-      n++;
-      pass += v == SS_PASS;
-      fcond += r->cond.verdict == SS_FAIL;
-      freg += r->cond.verdict != SS_FAIL && r->reg.verdict == SS_FAIL;
-      finj += v == SS_FAIL && r->cond.verdict != SS_FAIL && r->reg.verdict != SS_FAIL;
-      und += v == SS_UNDECIDED;
-      centre += v == SS_PASS && r->centre_corner_folds > 0;
-      cpass += v == SS_PASS && ss_result_certified(r);
-      cfail += v == SS_FAIL && ss_result_certified(r);
-    }
-    if (!n && !nedge) continue;
-    ss_sb_printf(md, "| %d | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %s |", k,
-                 n + nedge, pass, fcond, freg, finj, und, centre, edges);
-    if (l->o.certify)
-      ss_sb_printf(md, " %zu | %zu | %zu |", cpass, cfail, n - cpass - cfail);
-    ss_sb_printf(md, "\n");
+    ss_report_exh_k g;
+    ss_report_exh_init(&g, k);
+    for (size_t i = 0; i < l->n; i++)
+      if (l->r[i].k == k) ss_report_exh_add(&g, l->r + i);
+    ss_report_exh_md_row(&g, l->o.certify, line, sizeof line);
+    ss_sb_printf(md, "%s", line);
   }
 }
 

@@ -612,8 +612,7 @@ static void tex_summary(FILE *f, const ss_report_summary *s, size_t ns,
 
 /* ---- CSV ---- */
 
-/* One field, quoted when it holds a comma, quote or line break (RFC 4180). */
-static void csv_put(FILE *f, const char *s) {
+void ss_report_csv_put(FILE *f, const char *s) {
   if (!strpbrk(s, ",\"\r\n")) {
     fputs(s, f);
     return;
@@ -643,11 +642,11 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
         f);
   for (size_t i = 0; i < n; i++) {
     const ss_result *r = &rows[i].r;
-    csv_put(f, rows[i].scheme);
+    ss_report_csv_put(f, rows[i].scheme);
     fputc(',', f);
-    csv_put(f, rows[i].identity);
+    ss_report_csv_put(f, rows[i].identity);
     fprintf(f, ",%s,%d,", ss_case_name(r->kind), r->k);
-    csv_put(f, r->link);
+    ss_report_csv_put(f, r->link);
     fprintf(f, ",%zu,%zu,%zu", r->cells, r->two_ring, r->one_ring);
     for (int j = 1; j <= NLAMBDA; j++) {
       if (j < r->neig)
@@ -656,9 +655,9 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
         fputs(",,,", f);
     }
     fprintf(f, ",%s,", ss_verdict_name(r->cond.verdict));
-    csv_put(f, r->cond.reason);
+    ss_report_csv_put(f, r->cond.reason);
     fprintf(f, ",%.17g,%s,", r->tol, ss_verdict_name(r->reg.verdict));
-    csv_put(f, r->reg.reason);
+    ss_report_csv_put(f, r->reg.reason);
     fprintf(f, ",%s,", ss_verdict_name(ss_result_verdict(r)));
     csv_num(f, r->min_sj);
     fprintf(f, ",%d,", r->depth);
@@ -668,7 +667,7 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
       fputc(',', f);
     fprintf(f, ",%.17g,%d,%d,%d,%zu,%s,", r->seconds, r->cond_certified, r->reg_certified,
             r->ring_level, r->centre_corner_folds, ss_verdict_name(r->inj.verdict));
-    csv_put(f, r->inj.reason);
+    ss_report_csv_put(f, r->inj.reason);
     fprintf(f, ",%d,%d\r\n", r->inj_degree, r->inj_certified);
   }
 }
@@ -679,9 +678,9 @@ static void csv_summary(FILE *f, const ss_report_summary *s, size_t ns) {
         f);
   for (size_t i = 0; i < ns; i++) {
     const ss_report_summary *g = &s[i];
-    csv_put(f, g->identity);
+    ss_report_csv_put(f, g->identity);
     fputc(',', f);
-    csv_put(f, g->scheme);
+    ss_report_csv_put(f, g->scheme);
     fprintf(f, ",%s,%d,%zu,%zu,%zu,%zu,%zu,", ss_case_name(g->kind), g->k, g->cases,
             g->pass, g->fail, g->undecided, g->no_map);
     csv_num(f, g->worst_sj);

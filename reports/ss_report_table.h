@@ -122,6 +122,10 @@ ss_status ss_report_table_write(FILE *f, ss_report_format fmt, unsigned tables,
                                 const ss_report_summary *sum, size_t ns,
                                 const char *label, ss_error *err);
 
+/* Write s to f as one CSV field (RFC 4180): quoted, with its quotes doubled,
+ * when it holds a comma, quote or line break; as it is otherwise. */
+void ss_report_csv_put(FILE *f, const char *s);
+
 /* The kept eigenvalues of r as a JSON array of {"re", "im", "multiplicity"}
  * (the key names of `analyze --format json`); the caller owns it
  * (json_object_put). */

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# reports/exhaustive.sh — the exhaustive tables of vertex one-rings (issue 20):
+# every link with 4..K vertices under MLCA, tet/oct and box-spline solids,
+# certified, counted per k by the condition that fails, and the links that do
+# not pass.  Not part of ./run (k = 12 takes about an hour of CPU); see
+# reports/README.md, "Exhaustive tables".
+#
+#   reports/exhaustive.sh [--max-k K] [--db FILE] [--out DIR] [--jobs N]
+#                         [--schemes "mlca tetoct boxspline"]
+#
+# It runs, for each scheme S,
+#   subspectra sweep --scheme S --vertices 4..K --certify --db FILE --jobs N
+# (resumable: an interrupted run, rerun with the same arguments, computes only
+# what is missing), then writes from the store
+#   DIR/exhaustive-vertices-k4-K.md        subspectra report --table exhaustive
+#   DIR/exhaustive-vertices-k4-K.csv       the same counts, --format csv
+#   DIR/data/exhaustive-vertices-k4-K-not-passing.csv.xz
+#                                          --table not-passing --format csv, xz
+# restricted to the schemes and k asked for (a store may hold more).  The
+# tables hold counts only, no timing: the same store gives the same bytes.
+#
+# The program: $SUBSPECTRA, else build/cli/subspectra beside this script's
+# folder, else subspectra on PATH.  Exit status: 0 written, 1 a sweep ended
+# with an error other than failing verdicts, 2 bad usage.
+set -euo pipefail
+
+usage() {
+  sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'
+}
+
+kmax=12 db=exhaustive.db out=reports jobs=1 schemes="mlca tetoct boxspline"
+while (($#)); do
+  case "$1" in
+  --max-k) kmax=${2:?--max-k needs a value}; shift 2 ;;
+  --db) db=${2:?--db needs a file}; shift 2 ;;
+  --out) out=${2:?--out needs a folder}; shift 2 ;;
+  --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
+  --schemes) schemes=${2:?--schemes needs names}; shift 2 ;;
+  -h | --help) usage; exit 0 ;;
+  *) echo "exhaustive.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+if ! [[ $kmax =~ ^[0-9]+$ ]] || ((kmax < 4 || kmax > 20)); then
+  echo "exhaustive.sh: --max-k '$kmax' is not an integer 4..20" >&2
+  exit 2
+fi
+for s in $schemes; do
+  case "$s" in
+  mlca | tetoct | boxspline | boxspline-avg | ccsolid) ;;
+  *) echo "exhaustive.sh: --schemes: '$s' is not a solid scheme with vertex one-rings" >&2
+     exit 2 ;;
+  esac
+done
+here=$(cd "$(dirname "$0")/.." && pwd)
+exe=${SUBSPECTRA:-}
+if [[ -z $exe ]]; then
+  if [[ -x $here/build/cli/subspectra ]]; then exe=$here/build/cli/subspectra
+  else exe=$(command -v subspectra || true); fi
+fi
+[[ -n $exe && -x $exe ]] || { echo "exhaustive.sh: no subspectra program (set SUBSPECTRA)" >&2; exit 2; }
+command -v xz > /dev/null || { echo "exhaustive.sh: xz is needed" >&2; exit 2; }
+mkdir -p "$out/data"
+
+for s in $schemes; do
+  echo "exhaustive.sh: sweep --scheme $s --vertices 4..$kmax --certify (store $db)" >&2
+  rc=0
+  "$exe" sweep --scheme "$s" --vertices "4..$kmax" --certify --jobs "$jobs" --db "$db" || rc=$?
+  # 1 = some case fails or is undecided: the tables are about exactly that
+  if ((rc != 0 && rc != 1)); then
+    echo "exhaustive.sh: the $s sweep ended with status $rc; rerun to resume" >&2
+    exit 1
+  fi
+done
+
+names=$(printf "'%s'," $schemes)
+where="kind IN ('vertex','edge-point') AND k BETWEEN 4 AND $kmax AND scheme IN (${names%,})"
+where+=" AND identity LIKE '% certified%'"
+stem=$out/exhaustive-vertices-k4-$kmax
+{
+  echo "# Exhaustive tables: every vertex one-ring with 4..$kmax vertices"
+  echo
+  echo "Written by \`reports/exhaustive.sh --max-k $kmax\` (the sweeps"
+  echo "\`subspectra sweep --scheme S --vertices 4..$kmax --certify\` for S in"
+  echo "$(printf '`%s` ' $schemes)into one store, then \`subspectra report --table exhaustive\`);"
+  echo "not part of \`./run\`.  How long it takes, and what \"certified\" covers:"
+  echo "reports/README.md, \"Exhaustive tables\".  The links that do not pass:"
+  echo "\`data/$(basename "$stem")-not-passing.csv.xz\` (\`xz -dc\` it)."
+  echo
+  "$exe" report --db "$db" --where "$where" --table exhaustive
+} > "$stem.md.tmp"
+"$exe" report --db "$db" --where "$where" --table exhaustive --format csv > "$stem.csv.tmp"
+"$exe" report --db "$db" --where "$where" --table not-passing --format csv |
+  xz -9 -T1 > "$out/data/$(basename "$stem")-not-passing.csv.xz.tmp"
+mv "$stem.md.tmp" "$stem.md"
+mv "$stem.csv.tmp" "$stem.csv"
+mv "$out/data/$(basename "$stem")-not-passing.csv.xz.tmp" \
+  "$out/data/$(basename "$stem")-not-passing.csv.xz"
+echo "exhaustive.sh: wrote $stem.md, $stem.csv and $out/data/$(basename "$stem")-not-passing.csv.xz" >&2
