@@ -2,7 +2,8 @@
 # reports/exhaustive.sh — the exhaustive tables of vertex one-rings (issue 20):
 # every link with 4..K vertices under MLCA, tet/oct and box-spline solids,
 # certified, counted per k by the condition that fails, and the links that do
-# not pass.  Not part of ./run (k = 12 takes about an hour of CPU); see
+# not pass.  Not part of ./run (k = 12 takes well over an hour of CPU, most of
+# it MLCA at about 0.5 s a link); see
 # reports/README.md, "Exhaustive tables".
 #
 #   reports/exhaustive.sh [--max-k K] [--db FILE] [--out DIR] [--jobs N]
