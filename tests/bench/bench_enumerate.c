@@ -57,6 +57,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_counts.h"
 #include "ss_enum.h"
 
 static double now(void) {
@@ -64,11 +65,6 @@ static double now(void) {
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
-
-/* The published numbers of sphere triangulations (DESIGN section 6), to
- * compare with what the generator counts. */
-static const unsigned long long published[] = {
-    0, 0, 0, 0, 1, 1, 2, 5, 14, 50, 233, 1249, 7595, 49566, 339722, 2406841, 17490241};
 
 static const char *verdict(int k, uint64_t n) {
   return k <= 16 && n == published[k] ? "= published"

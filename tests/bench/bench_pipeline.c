@@ -53,6 +53,10 @@
 #include <string.h>
 #include <time.h>
 
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_statistics_double.h>
+
+#include "bench_counts.h"
 #include "ss_eig.h"
 #include "ss_enum.h"
 #include "ss_local.h"
@@ -76,6 +80,7 @@ static double cpu(void) {
 
 typedef struct {
   long stride, seen; /* take every stride-th link */
+  long offset;       /* ... starting with link number offset (0-based) */
   ss_link **l;       /* the sample */
   size_t n, cap;     /* links taken, room */
   int failed;        /* out of memory copying */
@@ -83,7 +88,7 @@ typedef struct {
 
 static int take(const ss_link *l, void *vs) {
   sample *s = vs;
-  if (s->seen++ % s->stride != 0) return 0;
+  if (s->seen++ % s->stride != s->offset) return 0;
   if (s->n == s->cap) {
     s->cap = s->cap ? 2 * s->cap : 64;
     ss_link **q = realloc(s->l, s->cap * sizeof *q);
@@ -145,18 +150,183 @@ static int pipeline(const ss_scheme *sc, const ss_result_opts *ro, const ss_link
   return st != SS_OK;
 }
 
+/* (b): the sample on 1 .. jobs threads, wall time.  Returns the cases per
+ * CPU second with `jobs` threads over those with one thread (the thread
+ * efficiency, which a loaded machine does not hide as it hides the
+ * speed-up); failures are added to *failed. */
+static double threads(const ss_scheme *sc, const ss_result_opts *ro, const sample *s,
+                      int jobs, int *failed) {
+  double rate1 = 0.0, per_cpu1 = 0.0, eff = 1.0;
+  for (int nt = 1; nt <= jobs; nt++) {
+    int bad = 0;
+    const double w0 = now(), c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+    const long n = (long)s->n;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) reduction(+ : bad)
+    for (long i = 0; i < n; i++)
+      bad += pipeline(sc, ro, s->l[i]);
+    const double wall = now() - w0, cpus = clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    *failed += bad;
+    const double rate = (double)s->n / wall;
+    if (nt == 1) rate1 = rate, per_cpu1 = (double)s->n / cpus;
+    eff = (double)s->n / cpus / per_cpu1;
+    printf("(b) %d thread%s: %7.1f cases/s, speed-up %.2f, CPU/wall %.2f, cases per CPU "
+           "second %.2f of 1 thread's%s\n",
+           nt, nt == 1 ? " " : "s", rate, rate / rate1, cpus / wall, eff,
+           nt > 1 ? (rate / rate1 >= 0.9 * nt ? "   (target >= 1.8 on 2 cores: met)"
+                                              : "   (target >= 1.8 on 2 cores: NOT met)")
+                  : "");
+  }
+  return eff;
+}
+
+static void sample_clear(sample *s) {
+  for (size_t i = 0; i < s->n; i++)
+    ss_link_free(s->l[i]);
+  free(s->l);
+  *s = (sample){0};
+}
+
+/* ---- --project: the exhaustive sweeps projected from samples ---- */
+
+typedef struct {
+  double mean, median; /* CPU seconds per case over the sample */
+  double half;         /* half-width of the 95 % interval of the mean (0: all) */
+  size_t n;            /* cases timed */
+  int all;             /* the sample is every link with k vertices */
+} k_cost;
+
+/* Time the pipeline (thread CPU, one thread) on every stride-th link with k
+ * vertices, the stride from the published count so that one pass of the
+ * generator suffices, the first taken at stride/2; the generator's count is
+ * checked against the published one.  The sample is left in *s.  The
+ * interval is Student's t on the sample as if it were a simple random
+ * sample; the sample is systematic (evenly spaced in the generator's order),
+ * which is as good unless the cost has a period in that order. */
+static int cost_of_k(const ss_scheme *sc, const ss_result_opts *ro, int k, long want,
+                     sample *s, k_cost *c, int *failed) {
+  ss_enum_opts o = {k, k, 0, 1};
+  uint64_t counts[SS_ENUM_MAXK + 1] = {0};
+  ss_error err = {0};
+  s->stride = (long)(published[k] / (unsigned long long)want);
+  if (s->stride < 1) s->stride = 1;
+  s->offset = s->stride / 2;
+  if (ss_enum_links(&o, take, s, counts, &err) || s->failed) return 1;
+  if (counts[k] != published[k]) {
+    printf("k = %d: the generator counts %llu links, DIFFERS from the published %llu\n",
+           k, (unsigned long long)counts[k], published[k]);
+    return 1;
+  }
+  double *t = malloc(s->n * sizeof *t);
+  if (!t) return 1;
+  for (size_t i = 0; i < s->n; i++) {
+    const double t0 = cpu();
+    *failed += pipeline(sc, ro, s->l[i]);
+    t[i] = cpu() - t0;
+  }
+  qsort(t, s->n, sizeof *t, cmp_double);
+  c->n = s->n;
+  c->all = s->n == counts[k];
+  c->mean = gsl_stats_mean(t, 1, s->n);
+  c->median = gsl_stats_median_from_sorted_data(t, 1, s->n);
+  c->half = !c->all && s->n >= 2 ? gsl_cdf_tdist_Pinv(0.975, (double)(s->n - 1)) *
+                                       gsl_stats_sd(t, 1, s->n) / sqrt((double)s->n)
+                                 : 0.0;
+  free(t);
+  return 0;
+}
+
+/* The projection: for k = 4..kmax the CPU time of sweeping every link with
+ * k vertices (count x mean CPU per case) with its 95 % interval, summed over
+ * k (the intervals' half-widths in quadrature: the samples are independent),
+ * then the thread efficiency e measured on the k = 13 sample with 1 and
+ * `jobs` threads, and the wall time on 2 free cores = CPU / (2 min(e, 1)). */
+static int project(const ss_scheme *sc, const ss_result_opts *ro, long want, int kmax,
+                   int jobs) {
+  printf("projection of exhaustive vertex sweeps, %s, pipeline CPU per case (one "
+         "thread, thread CPU time) on every count/%ld-th link of the enumeration\n",
+         ss_scheme_name(sc), want);
+  printf("  k      links  sampled  mean ms (95 %% interval)  median   CPU-h this k   "
+         "CPU-h k <= this (95 %% interval)\n");
+  double hours = 0.0, var = 0.0, hours13 = 0.0, half13 = 0.0;
+  int failed = 0;
+  sample s13 = {0};
+  double cum_h[SS_ENUM_MAXK + 1] = {0}, cum_half[SS_ENUM_MAXK + 1] = {0};
+  for (int k = 4; k <= kmax; k++) {
+    sample s = {0};
+    k_cost c = {0};
+    if (cost_of_k(sc, ro, k, want, &s, &c, &failed)) {
+      sample_clear(&s);
+      sample_clear(&s13);
+      return 1;
+    }
+    const double n = (double)published[k], h = n * c.mean / 3600.0,
+                 hh = n * c.half / 3600.0;
+    hours += h;
+    var += hh * hh;
+    cum_h[k] = hours, cum_half[k] = sqrt(var);
+    printf(
+        " %2d %10llu  %7zu%s %7.1f [%6.1f, %6.1f]  %6.1f  %12.3f   %10.3f [%.3f, %.3f]\n",
+        k, published[k], c.n, c.all ? " all" : "    ", 1e3 * c.mean,
+        1e3 * (c.mean - c.half), 1e3 * (c.mean + c.half), 1e3 * c.median, h, hours,
+        hours - sqrt(var), hours + sqrt(var));
+    fflush(stdout);
+    if (k == (kmax < 13 ? kmax : 13)) {
+      s13 = s;
+      hours13 = hours, half13 = sqrt(var);
+    } else
+      sample_clear(&s);
+  }
+  const int ke = kmax < 13 ? kmax : 13;
+  printf("thread efficiency e, measured on the k = %d sample:\n", ke);
+  const double e = threads(sc, ro, &s13, jobs, &failed);
+  const double ec = e < 1.0 ? e : 1.0;
+  printf("wall time of the exhaustive sweep on 2 free cores = CPU / (2 x min(e, 1)), "
+         "e = %.2f:\n",
+         e);
+  for (int k = 13; k <= kmax; k++)
+    printf("  k <= %2d: %9.3f CPU-h [%.3f, %.3f], wall %8.3f h [%.3f, %.3f] = %.0f min\n",
+           k, cum_h[k], cum_h[k] - cum_half[k], cum_h[k] + cum_half[k],
+           cum_h[k] / (2 * ec), (cum_h[k] - cum_half[k]) / (2 * ec),
+           (cum_h[k] + cum_half[k]) / (2 * ec), 60.0 * cum_h[k] / (2 * ec));
+  unsigned long long links13 = 0;
+  for (int k = 4; k <= 13; k++)
+    links13 += published[k];
+  if (kmax >= 13)
+    printf("k <= 13 (%llu links) under 30 minutes on 2 cores, by projection (not a timed "
+           "exhaustive run; pipeline only, without enumeration and store): %s "
+           "(%.1f min, 95 %% interval [%.1f, %.1f])\n",
+           links13,
+           60.0 * (hours13 + half13) / (2 * ec) < 30.0   ? "yes"
+           : 60.0 * (hours13 - half13) / (2 * ec) > 30.0 ? "no"
+                                                         : "undecided by this sample",
+           60.0 * hours13 / (2 * ec), 60.0 * (hours13 - half13) / (2 * ec),
+           60.0 * (hours13 + half13) / (2 * ec));
+  sample_clear(&s13);
+  if (failed) printf("failures: %d\n", failed);
+  return failed ? 1 : 0;
+}
+
 int main(int argc, char **argv) {
-  int k = 12, jobs = 2;
-  long want = 100;
+  int k = 12, jobs = 2, proj = 0, kmax = 16;
+  long want = 0;
   const char *scheme = "mlca";
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--project")) {
+      proj = 1;
+      continue;
+    }
+    if (i + 1 == argc) break;
     if (!strcmp(argv[i], "--k")) k = atoi(argv[i + 1]);
+    if (!strcmp(argv[i], "--kmax")) kmax = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--samples")) want = atol(argv[i + 1]);
     if (!strcmp(argv[i], "--jobs")) jobs = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--scheme")) scheme = argv[i + 1];
+    i++;
   }
-  if (k < 4 || k > 14 || want < 1 || jobs < 1) {
-    fprintf(stderr, "bench_pipeline: --k 4..14, --samples >= 1, --jobs >= 1\n");
+  if (!want) want = proj ? 50 : 100;
+  if (k < 4 || k > 14 || kmax < 4 || kmax > 16 || want < 1 || jobs < 1) {
+    fprintf(stderr,
+            "bench_pipeline: --k 4..14, --kmax 4..16, --samples >= 1, --jobs >= 1\n");
     return 2;
   }
 #if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
@@ -168,6 +338,12 @@ int main(int argc, char **argv) {
   if (ss_scheme_new(scheme, &sc, &err)) {
     fprintf(stderr, "bench_pipeline: %s\n", err.msg);
     return 2;
+  }
+  if (proj) {
+    const ss_result_opts pro = ss_result_defaults();
+    const int rc = project(sc, &pro, want, kmax, jobs);
+    ss_scheme_free(sc);
+    return rc;
   }
   ss_enum_opts o = {k, k, 0, 1};
   uint64_t counts[SS_ENUM_MAXK + 1] = {0};
@@ -206,26 +382,7 @@ int main(int argc, char **argv) {
   free(tp);
 
   /* (b) the same cases on 1 .. jobs threads */
-  double rate1 = 0.0, per_cpu1 = 0.0;
-  for (int nt = 1; nt <= jobs; nt++) {
-    int bad = 0;
-    const double w0 = now(), c0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
-    const long n = (long)s.n;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) reduction(+ : bad)
-    for (long i = 0; i < n; i++)
-      bad += pipeline(sc, &ro, s.l[i]);
-    const double wall = now() - w0, cpus = clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0;
-    failed += bad;
-    const double rate = (double)s.n / wall;
-    if (nt == 1) rate1 = rate, per_cpu1 = (double)s.n / cpus;
-    printf("(b) %d thread%s: %7.1f cases/s, speed-up %.2f, CPU/wall %.2f, cases per CPU "
-           "second %.2f of 1 thread's%s\n",
-           nt, nt == 1 ? " " : "s", rate, rate / rate1, cpus / wall,
-           (double)s.n / cpus / per_cpu1,
-           nt > 1 ? (rate / rate1 >= 0.9 * nt ? "   (target >= 1.8 on 2 cores: met)"
-                                              : "   (target >= 1.8 on 2 cores: NOT met)")
-                  : "");
-  }
+  threads(sc, &ro, &s, jobs, &failed);
   if (failed) printf("failures: %d\n", failed);
   for (size_t i = 0; i < s.n; i++)
     ss_link_free(s.l[i]);
