@@ -16,6 +16,70 @@
  * count/N-th link of the enumeration), --jobs J (default 2), --scheme S
  * (default mlca; tetoct for the tet/oct split).
  *
+ * --project [--kmax K] [--samples N]: the exhaustive sweeps projected (issue
+ * 20).  For each k = 4..K (default 16) every count/N-th link (default N =
+ * 50; all of them when count <= N), count the published number, which the
+ * generator's count in the same pass must equal; the pipeline's thread CPU
+ * per case on one thread: mean with its 95 % interval (Student's t, as if
+ * the evenly spaced sample were a random one), median; the CPU-hours of
+ * the whole k (count x mean) and of all k' <= k (half-widths summed in
+ * quadrature); then the thread efficiency e = cases per CPU second with
+ * --jobs threads over those with one, on the k = 13 sample, and the wall
+ * time on 2 free cores = CPU / (2 min(e, 1)).  It is a projection of the
+ * pipeline alone: enumeration, canonical forms and the store are not in it
+ * (the real `sweep` below says how much they add).
+ *
+ * The issue's "k = 13 (58,716 links)" counts every link with 4..13
+ * vertices, the sweep `--vertices 4..13`: 1 + 1 + 2 + 5 + 14 + 50 + 233 +
+ * 1249 + 7595 + 49566 = 58,716 (49,566 is k = 13 alone, the published
+ * number, which `enumerate links --count` reproduces); its "17.5 M" is k =
+ * 16 alone (17,490,241).  Not a mistake.
+ *
+ * Measured 2026-12-03 12:12-12:16 UTC (load 7.2-9.9; this process got
+ * 84 s of CPU in 242 s wall), --project --samples 100, MLCA:
+ *    k      links  sampled  mean ms [95 %]        median  CPU-h k  CPU-h <= k [95 %]
+ *   <=9        73    all     6-20                                0.000
+ *   10        233    116   28.9 [ 24.4,  33.4]     18.6    0.002     0.002
+ *   11      1,249    104   36.4 [ 30.5,  42.3]     22.1    0.013     0.015
+ *   12      7,595    101   46.6 [ 39.6,  53.6]     25.7    0.098     0.113
+ *   13     49,566    100   68.6 [ 59.8,  77.3]     36.3    0.944     1.057 [0.94, 1.18]
+ *   14    339,722    100   74.8 [ 66.1,  83.4]     98.2    7.06      8.11  [7.29, 8.94]
+ *   15  2,406,841    100   86.1 [ 75.9,  96.4]    112.9   57.6      65.7   [58.8, 72.6]
+ *   16 17,490,241    100  122.9 [110.2, 135.5]    155.6  597       663    [601, 725]
+ *   e = 0.97 (2 threads; CPU/wall 0.41: no free second core), so on 2 free
+ *   cores: k <= 13 33 min [29, 36], k <= 14 4.2 h, k <= 15 34 h, k <= 16
+ *   340 h (14 days).  The interval is sampling error only; a CPU second
+ *   on a loaded machine (shared caches and memory bandwidth) also moves:
+ *   k = 12 measured 54 ms per case below, on 102 other links.  The random
+ *   links of bench_sweep.sh are easier than the enumerated ones (its k =
+ *   16 estimate of 113 h used random links, before the ring was judged).
+ * The real command, the same day, for the cross-check:
+ *   /usr/bin/time -v subspectra sweep --scheme mlca --vertices 13
+ *     --part 1/40 --jobs 2 --db /tmp/x.db     (load 8.6 at the start, 7.7 at
+ *   the end): 1378 cases (parts are subtrees of the generator, not equal
+ *   slices: 1/40 of 49,566 is 1239), 87.6 s CPU (user + system), 4 min 10 s
+ *   wall (34 % of a core on average of the 2 asked for).  Scaled by 40:
+ *   58.4 min CPU = 0.97 CPU-h for k = 13; scaled by cases (49,566 / 1378):
+ *   63.6 ms per case, 0.88 CPU-h, inside the projection's interval for the
+ *   pipeline alone (0.82-1.06 CPU-h at k = 13), so enumeration and store
+ *   add little.  Its wall time, scaled by 40: 2 h 47 min on this loaded
+ *   machine.
+ *   A second part, --part 7/40 (load 6.6 at the start, 3.8 at the end):
+ *   1252 cases, 96.0 s CPU, 2 min 56 s wall (54 % of a core); 76.7 ms per
+ *   case, scaled by 40 1.07 CPU-h, by cases 1.06.  The parts differ by
+ *   20 % per case (subtrees of different links); the two pooled: 183.7 s
+ *   for 2630 cases, 69.8 ms per case, 0.96 CPU-h for k = 13, beside the
+ *   bench's 68.6 ms and 0.94.
+ * Does "k <= 13 under 30 minutes on this 2-core machine" hold?  By
+ * projection (not a timed exhaustive run): CPU for k <= 13 = 0.11 CPU-h
+ * (k <= 12, bench) + 0.88 to 1.07 (k = 13 from the two sweep parts; 0.96
+ * pooled) or 0.94 (bench), i.e. 0.99-1.18 CPU-h, / 2 cores / e = 0.97:
+ * 31-37 minutes (pooled parts 33, bench 33 with 95 % interval 29-36).
+ * No: every central estimate lies above 30 minutes; only the cheapest
+ * part, scaled by its cases, comes near (31).  Pipeline speed-ups of
+ * 10-20 % would be needed; and a machine as loaded as today's (a third to
+ * a half of a core per process) takes hours.
+ *
  * Measured 2026-12-03, one run each, on the 2-core machine shared with four
  * other engineers' builds (load 4-10; this process got 0.5-1 of a core),
  * thread CPU time for (a):
