@@ -27,7 +27,9 @@
  * --jobs threads over those with one, on the k = 13 sample, and the wall
  * time on 2 free cores = CPU / (2 min(e, 1)).  It is a projection of the
  * pipeline alone: enumeration, canonical forms and the store are not in it
- * (the real `sweep` below says how much they add).
+ * (the real `sweep` below says how much they add).  The double path, as
+ * `sweep` without --certify runs: certified sweeps cost 3-9x more per case
+ * (bench_certify; reports/README.md: about 0.5 s per MLCA k = 12 link).
  *
  * The issue's "k = 13 (58,716 links)" counts every link with 4..13
  * vertices, the sweep `--vertices 4..13`: 1 + 1 + 2 + 5 + 14 + 50 + 233 +
@@ -48,7 +50,19 @@
  *   16 17,490,241    100  122.9 [110.2, 135.5]    155.6  597       663    [601, 725]
  *   e = 0.97 (2 threads; CPU/wall 0.41: no free second core), so on 2 free
  *   cores: k <= 13 33 min [29, 36], k <= 14 4.2 h, k <= 15 34 h, k <= 16
- *   340 h (14 days).  The interval is sampling error only; a CPU second
+ *   340 h (14 days).
+ *   A second run, the default --samples 50 (other links: the stride doubled,
+ *   so none of the first run's; 12:21-12:23, load 4.7-6.1, 58 s CPU in
+ *   107 s wall): mean ms k = 12 48.7 [37.6, 59.7], 13 79.1 [64.6, 93.7],
+ *   14 97.5 [82.2, 112.7], 15 123.8 [107.1, 140.6], 16 109.7 [92.0,
+ *   127.4]; CPU-h k <= 13 1.21, k <= 14 10.4, k <= 15 93, k <= 16 626;
+ *   e = 0.96; k <= 13 38 min on 2 cores.  The first run's 100 links at
+ *   k = 13 once more (12:24, --kmax 13 --jobs 1): 64.4 ms against 68.6,
+ *   so timing noise is about 6 %; but the two samples differ at k = 14 and
+ *   15 by more than their intervals allow: the t-interval understates the
+ *   error (the cost is heavy-tailed and not independent of the order of
+ *   the enumeration), so read each projection as +-30 %, not as its
+ *   printed interval.  The interval is sampling error only; a CPU second
  *   on a loaded machine (shared caches and memory bandwidth) also moves:
  *   k = 12 measured 54 ms per case below, on 102 other links.  The random
  *   links of bench_sweep.sh are easier than the enumerated ones (its k =
@@ -73,12 +87,11 @@
  * Does "k <= 13 under 30 minutes on this 2-core machine" hold?  By
  * projection (not a timed exhaustive run): CPU for k <= 13 = 0.11 CPU-h
  * (k <= 12, bench) + 0.88 to 1.07 (k = 13 from the two sweep parts; 0.96
- * pooled) or 0.94 (bench), i.e. 0.99-1.18 CPU-h, / 2 cores / e = 0.97:
- * 31-37 minutes (pooled parts 33, bench 33 with 95 % interval 29-36).
- * No: every central estimate lies above 30 minutes; only the cheapest
- * part, scaled by its cases, comes near (31).  Pipeline speed-ups of
- * 10-20 % would be needed; and a machine as loaded as today's (a third to
- * a half of a core per process) takes hours.
+ * pooled) or 0.89-1.09 (bench's three runs), i.e. 0.99-1.21 CPU-h, / 2
+ * cores / e = 0.96-0.97: 30-38 minutes (pooled parts 33, bench runs 30,
+ * 33 and 38).  No: every central estimate lies at or above 30 minutes.  Pipeline
+ * speed-ups of 10-20 % would be needed; and a machine as loaded as today's (a third to a
+ * half of a core per process) takes hours.
  *
  * Measured 2026-12-03, one run each, on the 2-core machine shared with four
  * other engineers' builds (load 4-10; this process got 0.5-1 of a core),
