@@ -378,6 +378,8 @@ static int project(const ss_scheme *sc, const ss_result_opts *ro, long want, int
                                                          : "undecided by this sample",
            60.0 * hours13 / (2 * ec), 60.0 * (hours13 - half13) / (2 * ec),
            60.0 * (hours13 + half13) / (2 * ec));
+  printf("(the intervals are sampling error as if the sample were random; runs with "
+         "other links differed by more, about +-30 %%: see the header)\n");
   sample_clear(&s13);
   if (failed) printf("failures: %d\n", failed);
   return failed ? 1 : 0;
