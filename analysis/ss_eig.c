@@ -385,7 +385,7 @@ static int outer_solve(const ss_csr *A, size_t n1, const ss_scc *K, double mu,
  * times over with exactly the same entries in the same order (for an MLCA
  * vertex with k = 10, about 30 of its 34 blocks larger than 1 x 1 are copies);
  * equal matrices have equal eigenvalues, so each distinct block is solved
- * once. */
+ * once.  The arrays belong to the workspace (capacities there). */
 typedef struct {
   size_t n;                /* distinct blocks held */
   size_t *sz, *at, *res;   /* per block: size, offset in mat, offset in re/im/rc */
@@ -405,6 +405,107 @@ static void memo_free(memo *M) {
   free(M->rc);
   free(M->eb);
   free(M->cb);
+  memset(M, 0, sizeof *M);
+}
+
+/* ---- the workspace (ss_eig.h) ---- */
+
+struct ss_eig_workspace {
+  size_t n;             /* rows of S served (0: nothing allocated) */
+  size_t b;             /* largest dense block served */
+  blockws lw;           /* dgeevx's workspace for blocks up to b */
+  double *a, *avr;      /* b^2 each: the one-ring block and its eigenvectors */
+  double *blk;          /* b^2: copy of the outer block being solved */
+  double *bw;           /* (b + 1)^2 + n: outer_solve's block and right side */
+  lapack_int *piv;      /* b + 1 pivots of outer_solve */
+  double *wr, *wi, *rc; /* n each: the one-ring block's eigenvalues, rcond */
+  double *eb, *cb;      /* n each: their rounding and cluster bounds */
+  double *awr, *awi;    /* b each: A's eigenvalues, kept for the basis */
+  memo M;               /* distinct outer blocks: n blocks, b n matrix
+                           entries, n eigenvalues */
+};
+
+static void ws_release(ss_eig_workspace *w) {
+  blockws_free(&w->lw);
+  free(w->a);
+  free(w->avr);
+  free(w->blk);
+  free(w->bw);
+  free(w->piv);
+  free(w->wr);
+  free(w->wi);
+  free(w->rc);
+  free(w->eb);
+  free(w->cb);
+  free(w->awr);
+  free(w->awi);
+  memo_free(&w->M);
+  memset(w, 0, sizeof *w);
+}
+
+/* Make w serve n rows and dense blocks of b: nothing when it already does,
+ * else everything again at the larger of the old and new sizes (the old
+ * contents are scratch).  Returns 0, or -1 when out of memory (w is then
+ * empty, and valid). */
+static int ws_fit(ss_eig_workspace *w, size_t n, size_t b) {
+  if (w->n && n <= w->n && b <= w->b) return 0;
+  if (n < w->n) n = w->n;
+  if (b < w->b) b = w->b;
+  ws_release(w);
+  w->n = n;
+  w->b = b;
+  const size_t b2 = b * b + 1, n1 = n + 1;
+  int bad = blockws_make(b, &w->lw);
+  w->a = malloc(b2 * sizeof *w->a);
+  w->avr = malloc(b2 * sizeof *w->avr);
+  w->blk = malloc(b2 * sizeof *w->blk);
+  w->bw = malloc(((b + 1) * (b + 1) + n1) * sizeof *w->bw);
+  w->piv = malloc((b + 1) * sizeof *w->piv);
+  w->wr = malloc(n1 * sizeof *w->wr);
+  w->wi = malloc(n1 * sizeof *w->wi);
+  w->rc = malloc(n1 * sizeof *w->rc);
+  w->eb = malloc(n1 * sizeof *w->eb);
+  w->cb = malloc(n1 * sizeof *w->cb);
+  w->awr = malloc((b + 1) * sizeof *w->awr);
+  w->awi = malloc((b + 1) * sizeof *w->awi);
+  memo *M = &w->M;
+  M->sz = malloc(n1 * sizeof *M->sz);
+  M->at = malloc(n1 * sizeof *M->at);
+  M->res = malloc(n1 * sizeof *M->res);
+  M->mat = malloc((b * n + 1) * sizeof *M->mat);
+  M->re = malloc(n1 * sizeof *M->re);
+  M->im = malloc(n1 * sizeof *M->im);
+  M->rc = malloc(n1 * sizeof *M->rc);
+  M->eb = malloc(n1 * sizeof *M->eb);
+  M->cb = malloc(n1 * sizeof *M->cb);
+  bad |= !w->a || !w->avr || !w->blk || !w->bw || !w->piv || !w->wr || !w->wi || !w->rc ||
+         !w->eb || !w->cb || !w->awr || !w->awi || !M->sz || !M->at || !M->res ||
+         !M->mat || !M->re || !M->im || !M->rc || !M->eb || !M->cb;
+  if (bad) {
+    ws_release(w);
+    return -1;
+  }
+  return 0;
+}
+
+ss_eig_workspace *ss_eig_workspace_new(size_t nmax) {
+  ss_eig_workspace *w = calloc(1, sizeof *w);
+  if (w && nmax > 0 && ws_fit(w, nmax, nmax)) {
+    free(w);
+    return NULL;
+  }
+  return w;
+}
+
+void ss_eig_workspace_free(ss_eig_workspace *w) {
+  if (!w) return;
+  ws_release(w);
+  free(w);
+}
+
+void ss_eig_workspace_size(const ss_eig_workspace *w, size_t *n, size_t *b) {
+  *n = w->n;
+  *b = w->b;
 }
 
 /* The eigenvalues of the outer blocks (the diagonal blocks of C in Tarjan's
@@ -412,24 +513,13 @@ static void memo_free(memo *M) {
  * distinct larger block solved once (memo).  blk holds K->largest^2 doubles
  * of scratch.  SS_ENOMEM, SS_ENUMERIC. */
 static ss_status outer_eigenvalues(const double *S, size_t n, size_t n1, const ss_scc *K,
-                                   blockws *ws, double *blk, const ss_progress *progress,
-                                   ss_eigval *val, ss_error *err) {
+                                   blockws *ws, memo *memo_ws, double *blk,
+                                   const ss_progress *progress, ss_eigval *val,
+                                   ss_error *err) {
   ss_status st = SS_OK;
-  const size_t nc = n - n1, big = K->largest, nsolve = 1 + (size_t)K->n;
-  memo M = {0};
-  M.sz = malloc(((size_t)K->n + 1) * sizeof *M.sz);
-  M.at = malloc(((size_t)K->n + 1) * sizeof *M.at);
-  M.res = malloc(((size_t)K->n + 1) * sizeof *M.res);
-  M.mat = malloc((big * nc + 1) * sizeof *M.mat);
-  M.re = malloc((nc + 1) * sizeof *M.re);
-  M.im = malloc((nc + 1) * sizeof *M.im);
-  M.rc = malloc((nc + 1) * sizeof *M.rc);
-  M.eb = malloc((nc + 1) * sizeof *M.eb);
-  M.cb = malloc((nc + 1) * sizeof *M.cb);
-  if (!M.sz || !M.at || !M.res || !M.mat || !M.re || !M.im || !M.rc || !M.eb || !M.cb) {
-    st = ss_error_nomem(err, "outer blocks");
-    goto done;
-  }
+  const size_t nsolve = 1 + (size_t)K->n;
+  memo M = *memo_ws; /* the workspace's arrays, emptied */
+  M.n = M.matfill = M.resfill = 0;
   size_t k = 0;
   for (long c = 0; c < K->n; c++) {
     const size_t b = K->start[c], sz = K->start[c + 1] - b;
@@ -472,7 +562,6 @@ static ss_status outer_eigenvalues(const double *S, size_t n, size_t n1, const s
   }
   ss_progress_step(progress, "eigen-solve, block", nsolve, nsolve);
 done:
-  memo_free(&M);
   return st;
 }
 
@@ -609,6 +698,11 @@ static ss_status subdominant_basis(const double *S, size_t n, size_t n1, const s
 
 ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
                      ss_eig **out, ss_error *err) {
+  return ss_eig_new_ws(S, n, n1, opts, NULL, out, err);
+}
+
+ss_status ss_eig_new_ws(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
+                        ss_eig_workspace *wsp, ss_eig **out, ss_error *err) {
   *out = NULL;
   ss_status st = ss_scc_check_form(S, n, n1, err);
   if (st) return st;
@@ -616,20 +710,12 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
       (opts->dim != 2 && opts->dim != 3))
     return ss_error_set(err, SS_EINPUT,
                         "eigenvalue tolerance must be in (0, 0.1), not %g", opts->tol);
-  const size_t nc = n - n1;
+  /* without a caller's workspace, one for this matrix alone */
+  ss_eig_workspace own = {0}, *W = wsp ? wsp : &own;
   ss_eig *e = calloc(1, sizeof *e);
-  double *a = malloc((n1 * n1 + 1) * sizeof *a), *vr = malloc((n1 * n1 + 1) * sizeof *vr),
-         *wr = malloc((n + 1) * sizeof *wr), *wi = malloc((n + 1) * sizeof *wi),
-         *rc = malloc((n + 1) * sizeof *rc), *awr = malloc((n1 + 1) * sizeof *awr),
-         *awi = malloc((n1 + 1) * sizeof *awi), *eb = malloc((n + 1) * sizeof *eb),
-         *cb = malloc((n + 1) * sizeof *cb);
   ss_scc K = {0, NULL, NULL, NULL, NULL, 0};
   ss_csr A = {NULL, NULL, NULL, NULL};
-  blockws ws = {0};
-  double *blk = NULL, *bw = NULL;
-  lapack_int *piv = NULL;
-  if (!e || !a || !vr || !wr || !wi || !rc || !awr || !awi || !eb || !cb ||
-      ss_csr_make(S, n, n1, &A)) {
+  if (!e || ss_csr_make(S, n, n1, &A)) {
     st = ss_error_nomem(err, "eigenvalues");
     goto done;
   }
@@ -650,25 +736,25 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   const size_t big = K.largest;
   e->nblocks = (size_t)K.n;
   e->largest_block = big;
-  blk = malloc((big * big + 1) * sizeof *blk);
-  bw = malloc(((big + 1) * (big + 1) + nc + 1) * sizeof *bw);
-  piv = malloc((big + 1) * sizeof *piv);
-  if (!blk || !bw || !piv || blockws_make(big > n1 ? big : n1, &ws)) {
+  if (ws_fit(W, n, big > n1 ? big : n1)) {
     st = ss_error_nomem(err, "eigenvalues");
     goto done;
   }
+  double *a = W->a, *vr = W->avr, *wr = W->wr, *wi = W->wi, *rc = W->rc, *eb = W->eb,
+         *cb = W->cb, *awr = W->awr, *awi = W->awi;
   /* the one-ring block */
   const size_t nsolve = 1 + (size_t)K.n;
   ss_progress_step(&opts->progress, "eigen-solve, block", 1, nsolve);
   colmajor(S, n, n1, a);
-  if ((st = block_eig(&ws, a, n1, wr, wi, rc, eb, cb, vr, err))) goto done;
+  if ((st = block_eig(&W->lw, a, n1, wr, wi, rc, eb, cb, vr, err))) goto done;
   for (size_t i = 0; i < n1; i++) {
     e->val[i] = (ss_eigval){wr[i], wi[i], rc[i], 0, 0, 0, eb[i], cb[i]};
     awr[i] = wr[i];
     awi[i] = wi[i];
   }
   /* the outer blocks' eigenvalues */
-  if ((st = outer_eigenvalues(S, n, n1, &K, &ws, blk, &opts->progress, e->val + n1, err)))
+  if ((st = outer_eigenvalues(S, n, n1, &K, &W->lw, &W->M, W->blk, &opts->progress,
+                              e->val + n1, err)))
     goto done;
   /* the tolerance: at least the rounding floor of the leading m + 2 */
   qsort(e->val, n, sizeof *e->val, by_modulus);
@@ -702,24 +788,12 @@ ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *op
   if (!opts->basis || (size_t)e->m >= n ||
       (e->cond.verdict != SS_PASS && !(opts->force && real_positive)))
     goto done;
-  st = subdominant_basis(S, n, n1, &A, &K, awr, awi, vr, a, opts->cluster, bw, piv, e,
-                         err);
+  st = subdominant_basis(S, n, n1, &A, &K, awr, awi, vr, a, opts->cluster, W->bw, W->piv,
+                         e, err);
 done:
-  free(a);
-  free(vr);
-  free(wr);
-  free(wi);
-  free(rc);
-  free(awr);
-  free(awi);
-  free(eb);
-  free(cb);
   ss_scc_free(&K);
   ss_csr_free(&A);
-  blockws_free(&ws);
-  free(blk);
-  free(bw);
-  free(piv);
+  if (W == &own) ws_release(&own);
   if (st) {
     ss_eig_free(e);
     return st;

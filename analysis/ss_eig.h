@@ -124,9 +124,45 @@ ss_eig_opts ss_eig_defaults(int dim);
 /* Analyse S (n x n, row-major) whose leading n1 x n1 block A is invariant
  * (S[i][j] = 0 for i < n1 <= j).  *out is owned by the caller (ss_eig_free).
  * SS_EINPUT if S is not of that form or opts are out of range; SS_ENUMERIC if
- * LAPACK fails; SS_ENOMEM. */
+ * LAPACK fails; SS_ENOMEM.  Allocates a workspace for this S and frees it
+ * again: ss_eig_new_ws with a fresh ss_eig_workspace_new(0). */
 ss_status ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
                      ss_eig **out, ss_error *err);
+
+/* Scratch memory of ss_eig_new_ws (GSL's _alloc discipline): the dense
+ * block solves' LAPACK workspace (dgeevx's work arrays, eigenvectors,
+ * balancing), the one-ring block's copy and eigenvectors, the per-eigenvalue
+ * scratch and the memo of distinct outer blocks, kept between calls so that
+ * a sweep's thread analyses case after case in the same memory.  One
+ * workspace serves one call at a time (one per thread).  Its sizes are
+ * capacities: n rows of S and b, the largest dense block (the one-ring block
+ * or an outer block).  A matrix beyond them makes the workspace grow (to the
+ * largest n and b seen; it never shrinks), so any workspace serves any S and
+ * the results do not depend on its history: bit for bit ss_eig_new's.  Not
+ * held here: the result (ss_eig), the sparse copy of S with its strongly
+ * connected components, and the Schur solves of the subdominant basis (only
+ * when the leading eigenvalues cluster).  Opaque: its fields (ss_eig.c) hold
+ * LAPACK's integer type, which this header does not expose. */
+typedef struct ss_eig_workspace ss_eig_workspace;
+
+/* A workspace for matrices of up to nmax rows (any block structure), or an
+ * empty one (nmax = 0) that grows at its first use.  NULL when out of
+ * memory.  Free with ss_eig_workspace_free. */
+ss_eig_workspace *ss_eig_workspace_new(size_t nmax);
+
+/* Free; NULL is a no-op. */
+void ss_eig_workspace_free(ss_eig_workspace *w);
+
+/* The capacities of w: rows of S (*n) and largest dense block (*b) that it
+ * serves without growing. */
+void ss_eig_workspace_size(const ss_eig_workspace *w, size_t *n, size_t *b);
+
+/* ss_eig_new with the scratch memory taken from w (grown when S needs more;
+ * SS_ENOMEM if it cannot grow, w then still valid and usable).  The result
+ * is the same as ss_eig_new's bit for bit, whatever w served before.  w
+ * NULL: as ss_eig_new. */
+ss_status ss_eig_new_ws(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
+                        ss_eig_workspace *w, ss_eig **out, ss_error *err);
 
 void ss_eig_free(ss_eig *e);
 

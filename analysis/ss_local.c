@@ -34,7 +34,32 @@ typedef struct ss_local_levels {
   int nlev;                /* levels built */
   level lev[MAXLEVELS];    /* levels 0 .. nlev-1 */
   const ss_progress *prog; /* progress reports (may be NULL) */
+  ss_local_workspace *ws;  /* scratch of the attempts; NULL once the levels
+                              are kept (ss_local_ring_deepen attempts none) */
 } work;
+
+ss_local_workspace *ss_local_workspace_new(void) {
+  return calloc(1, sizeof(ss_local_workspace));
+}
+
+void ss_local_workspace_free(ss_local_workspace *w) {
+  if (!w) return;
+  free(w->dense);
+  free(w->colmap);
+  free(w->mark);
+  free(w);
+}
+
+/* Make *p hold at least n elements of size sz (capacity *cap): a larger
+ * block replaces it when it is short (its contents are scratch).  Returns 0,
+ * or -1 when out of memory (*p then NULL, *cap 0). */
+static int ws_grow(void **p, size_t *cap, size_t n, size_t sz) {
+  if (*p && n <= *cap) return 0;
+  free(*p);
+  *p = malloc((n + 1) * sz);
+  *cap = *p ? n : 0;
+  return *p ? 0 : -1;
+}
 
 const char *ss_case_name(ss_case_kind kind) {
   switch (kind) {
@@ -649,14 +674,16 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
       rc = HARD;
       goto done;
     }
-  t1 = malloc(nw + 1);
-  t2 = malloc(nw + 1);
-  one = calloc(nw + 1, 1);
-  if (!t1 || !t2 || !one) {
+  ss_local_workspace *ws = W->ws;
+  if (ws_grow((void **)&ws->mark, &ws->nmark, 3 * nw, 1)) {
     ss_error_nomem(err, "two-ring");
     rc = HARD;
     goto done;
   }
+  t1 = ws->mark;
+  t2 = t1 + nw;
+  one = t2 + nw;
+  memset(ws->mark, 0, 3 * nw); /* as fresh memory would be read: never */
   /* depth D and depth D + 1 */
   if ((rc = ring_depth(W, w, D, om, sc, t1))) goto done;
   if ((rc = ring_depth(W, w, D + 1, om, sc, t2))) goto done;
@@ -698,13 +725,16 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
   M->n1 = n1;
   M->label = malloc((n2 + 1) * sizeof *M->label);
   M->S = malloc((n2 * n2 + 1) * sizeof *M->S);
-  S2 = malloc((n2 * n2 + 1) * sizeof *S2);
-  colmap = malloc((W->lev[w + 1].cx->nv + 1) * sizeof *colmap);
-  if (!M->label || !M->S || !S2 || !colmap) {
+  if (!M->label || !M->S ||
+      ws_grow((void **)&ws->dense, &ws->ndense, n2 * n2, sizeof *ws->dense) ||
+      ws_grow((void **)&ws->colmap, &ws->ncolmap, W->lev[w + 1].cx->nv,
+              sizeof *ws->colmap)) {
     ss_error_nomem(err, "local matrix");
     rc = HARD;
     goto done;
   }
+  S2 = ws->dense;
+  colmap = ws->colmap;
   size_t i1 = 0, i2 = n1;
   for (size_t v = 0; v < nw; v++)
     if (one[v])
@@ -748,11 +778,6 @@ done:
     free(om[i]);
     free(sc[i]);
   }
-  free(t1);
-  free(t2);
-  free(one);
-  free(colmap);
-  free(S2);
   if (rc) {
     free(M->label);
     free(M->S);
@@ -1066,6 +1091,11 @@ ss_status ss_local_new_ring(const ss_scheme *s, const ss_case *c, int nring,
 
 ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local_opts *o,
                             ss_local **out, ss_error *err) {
+  return ss_local_new_ws(s, c, o, NULL, out, err);
+}
+
+ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_opts *o,
+                          ss_local_workspace *wsp, ss_local **out, ss_error *err) {
   *out = NULL;
   const int nring = o->nring;
   if (nring < 1 || nring > SS_LOCAL_MAXRING)
@@ -1079,6 +1109,9 @@ ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local
   }
   work W;
   memset(&W, 0, sizeof W);
+  /* without a caller's workspace, one for this case alone */
+  ss_local_workspace own = {NULL, 0, NULL, 0, NULL, 0};
+  W.ws = wsp ? wsp : &own;
   W.scheme = s;
   W.prog = &o->progress;
   ss_progress_step(W.prog, "building the star", 0, 0);
@@ -1118,6 +1151,10 @@ ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local
     w++;
   }
   w--;
+  free(own.dense);
+  free(own.colmap);
+  free(own.mark);
+  W.ws = NULL;
   if (!st) st = ring(&W, w, nring, M, err);
   if (!st && o->keep_levels) {
     M->levels = malloc(sizeof *M->levels);

@@ -330,4 +330,39 @@ ss_local_opts ss_local_defaults(void);
 ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local_opts *o,
                             ss_local **out, ss_error *err);
 
+/* Scratch memory of ss_local_new_ws (GSL's _alloc discipline), kept between
+ * extractions so that a sweep's thread extracts case after case in the same
+ * memory: the largest per-case buffers that do not outlive the extraction.
+ * One workspace serves one call at a time (one per thread).  Every buffer
+ * is a capacity that grows when a case needs more (to the largest case
+ * seen; it never shrinks), so any workspace serves any case, and the
+ * result never depends on its history: bit for bit ss_local_new_opts's.
+ * Still allocated per case: the refined levels (complexes, splits,
+ * refinement operators, coordinates; their sizes and shapes differ from
+ * case to case), the patch-boundary facets, and the result itself. */
+typedef struct {
+  double *dense;       /* S read a second time, one level deeper, to check
+                          that S is stationary: n2^2 doubles */
+  size_t ndense;       /* capacity of dense, doubles */
+  size_t *colmap;      /* a level's points to S's columns while reading S */
+  size_t ncolmap;      /* capacity of colmap, entries */
+  unsigned char *mark; /* three marks per point of level w: the two-ring at
+                          ring depths D and D + 1, the one-ring */
+  size_t nmark;        /* capacity of mark, bytes */
+} ss_local_workspace;
+
+/* An empty workspace (it grows at its first use); NULL when out of memory.
+ * Free with ss_local_workspace_free. */
+ss_local_workspace *ss_local_workspace_new(void);
+
+/* Free; NULL is a no-op. */
+void ss_local_workspace_free(ss_local_workspace *w);
+
+/* ss_local_new_opts with the scratch memory taken from w (grown as the case
+ * needs; SS_ENOMEM if it cannot grow, w then still valid).  The result is
+ * the same as ss_local_new_opts's bit for bit, whatever w served before.  w
+ * NULL: as ss_local_new_opts. */
+ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_opts *o,
+                          ss_local_workspace *w, ss_local **out, ss_error *err);
+
 #endif

@@ -81,8 +81,33 @@ static ss_status diagonals(const ss_scheme *s, const ss_case *c, ss_result *r,
   return st;
 }
 
+ss_result_workspace *ss_result_workspace_new(void) {
+  ss_result_workspace *w = calloc(1, sizeof *w);
+  if (!w) return NULL;
+  w->local = ss_local_workspace_new();
+  w->eig = ss_eig_workspace_new(0);
+  if (!w->local || !w->eig) {
+    ss_result_workspace_free(w);
+    return NULL;
+  }
+  return w;
+}
+
+void ss_result_workspace_free(ss_result_workspace *w) {
+  if (!w) return;
+  ss_local_workspace_free(w->local);
+  ss_eig_workspace_free(w->eig);
+  free(w);
+}
+
 ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
                             ss_result *r, ss_error *err) {
+  return ss_result_compute_ws(s, c, o, NULL, r, err);
+}
+
+ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
+                               const ss_result_opts *o, ss_result_workspace *w,
+                               ss_result *r, ss_error *err) {
   memset(r, 0, sizeof *r);
   if (!(o->tol > 0.0 && o->tol < 0.1) || o->depth < 0 || o->depth > 12 ||
       o->ring_levels < 1 || o->ring_levels > SS_LOCAL_MAXRING)
@@ -108,13 +133,13 @@ ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_resul
    * keep the levels so that only the deeper level is refined then (on a
    * failing k = 12 MLCA link the extraction again was a quarter of that) */
   lo.keep_levels = o->ring_levels > lo.nring;
-  if (!st) st = ss_local_new_opts(s, &cc, &lo, &M, err);
+  if (!st) st = ss_local_new_ws(s, &cc, &lo, w ? w->local : NULL, &M, err);
   if (!st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET)
     st = diagonals(s, &cc, r, err);
   if (!st) {
     ss_eig_opts eo = ss_eig_defaults(M->dim);
     eo.tol = o->tol;
-    st = ss_eig_new(M->S, M->n2, M->n1, &eo, &e, err);
+    st = ss_eig_new_ws(M->S, M->n2, M->n1, &eo, w ? w->eig : NULL, &e, err);
   }
   ss_charmap_inj inj;
   ss_certified cert;

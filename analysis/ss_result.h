@@ -94,6 +94,26 @@ ss_result_opts ss_result_defaults(void);
 ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
                             ss_result *r, ss_error *err);
 
+/* The workspaces of one case's extraction and eigen-solve, reused from case
+ * to case by one thread (a sweep holds one per thread).  Either may be NULL
+ * (that step then allocates per case). */
+typedef struct {
+  ss_local_workspace *local; /* ss_local_new_ws's scratch */
+  ss_eig_workspace *eig;     /* ss_eig_new_ws's scratch */
+} ss_result_workspace;
+
+/* Both workspaces, empty (they grow at first use); NULL when out of
+ * memory.  Free with ss_result_workspace_free (NULL is a no-op there). */
+ss_result_workspace *ss_result_workspace_new(void);
+void ss_result_workspace_free(ss_result_workspace *w);
+
+/* ss_result_compute with the scratch memory of the extraction and the
+ * eigen-solve taken from w (NULL: allocated per case).  The result is the
+ * same bit for bit (only r->seconds, a time, differs). */
+ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
+                               const ss_result_opts *o, ss_result_workspace *w,
+                               ss_result *r, ss_error *err);
+
 /* Whether r is a vertex case, judged as a vertex or as an edge point: it
  * carries a link. */
 static inline int ss_result_has_link(const ss_result *r) {

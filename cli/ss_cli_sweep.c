@@ -231,10 +231,35 @@ int ss_sweep_prepare(ss_sweep *w, const ss_sweep_job *j, char **canon) {
   return 1;
 }
 
+/* The calling thread's workspace, made at its first case; NULL when out of
+ * memory (the case then allocates its own, with the same result). */
+static ss_result_workspace *thread_ws(ss_sweep_wspool *p) {
+  if (!p) return NULL;
+  const int t = omp_get_thread_num();
+  ss_result_workspace *ws = NULL;
+#pragma omp critical(ss_sweep_ws)
+  {
+    if (t >= p->n) {
+      ss_result_workspace **g = realloc(p->slot, (size_t)(t + 1) * sizeof *g);
+      if (g) {
+        for (int i = p->n; i <= t; i++)
+          g[i] = NULL;
+        p->slot = g;
+        p->n = t + 1;
+      }
+    }
+    if (t < p->n) {
+      if (!p->slot[t]) p->slot[t] = ss_result_workspace_new();
+      ws = p->slot[t];
+    }
+  }
+  return ws;
+}
+
 ss_status ss_sweep_compute(const ss_sweep *w, const ss_sweep_job *j, ss_result *r,
                            ss_error *err) {
   const ss_case c = {j->kind, j->link, j->n, w->diag, 0};
-  return ss_result_compute(w->s, &c, &w->ro, r, err);
+  return ss_result_compute_ws(w->s, &c, &w->ro, thread_ws(w->pool), r, err);
 }
 
 void ss_sweep_record(ss_sweep *w, ss_case_kind kind, int n, const char *canon,
@@ -694,7 +719,8 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
                   .face = a.face,
                   .volume = volume,
                   .flush = flush_threads,
-                  .tty = role == SS_SWEEP_WHOLE && isatty(STDERR_FILENO)};
+                  .tty = role == SS_SWEEP_WHOLE && isatty(STDERR_FILENO),
+                  .pool = calloc(1, sizeof(ss_sweep_wspool))};
   ss_store_scheme sc = {ss_scheme_name(s), a.stencil, hash, reads, a.diag, ro};
   ss_store_identity(&sc, w->ident, sizeof w->ident);
   if (role == SS_SWEEP_WORKER) {
@@ -735,6 +761,10 @@ void ss_sweep_free(ss_sweep *w) {
   free(w->links);
   ss_store_close(w->st);
   ss_scheme_free(w->s);
+  for (int i = 0; w->pool && i < w->pool->n; i++)
+    ss_result_workspace_free(w->pool->slot[i]);
+  if (w->pool) free(w->pool->slot);
+  free(w->pool);
   free(w);
 }
 

@@ -38,6 +38,13 @@ typedef enum {
 
 typedef struct ss_sweep ss_sweep;
 
+/* The threads' workspaces: thread t analyses every case of the sweep in
+ * slot[t] (ss_result_compute_ws), made at its first case. */
+typedef struct {
+  ss_result_workspace **slot; /* n workspaces (NULL until used) */
+  int n;                      /* slots (grown to the highest thread number) */
+} ss_sweep_wspool;
+
 /* A sweep in progress. */
 struct ss_sweep {
   ss_scheme *s;               /* the scheme (owned; read-only, shared by the threads) */
@@ -71,13 +78,15 @@ struct ss_sweep {
   size_t computed;                      /* cases analysed and stored now */
   size_t skipped;                       /* cases found in the store */
   size_t pass, fail, undecided, errors; /* verdicts (stored cases included) */
-  size_t nomem;     /* of the errors, cases out of memory or beyond the budget */
-  double t0, last;  /* start, last progress line (seconds) */
-  int tty;          /* stderr is a terminal: show progress */
-  double log_every; /* > 0 (not tty): a progress line this often (seconds),
-                       for a log (MPI: rank 0's stderr is never a terminal) */
-  int stop;         /* a store error happened: run nothing more */
-  ss_error fatal;   /* that error */
+  size_t nomem;          /* of the errors, cases out of memory or beyond the budget */
+  double t0, last;       /* start, last progress line (seconds) */
+  int tty;               /* stderr is a terminal: show progress */
+  double log_every;      /* > 0 (not tty): a progress line this often (seconds),
+                            for a log (MPI: rank 0's stderr is never a terminal) */
+  int stop;              /* a store error happened: run nothing more */
+  ss_error fatal;        /* that error */
+  ss_sweep_wspool *pool; /* the threads' workspaces (owned; NULL when out of
+                            memory: each case allocates its own) */
 };
 
 /* Parse argv (`sweep` and its options), load the scheme, check the options

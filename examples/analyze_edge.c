@@ -6,7 +6,10 @@
  * multiplicities, the eigenvalue condition, and the regularity of the
  * characteristic map: two of the three verdicts of `subspectra analyze
  * --edge N` (the third, injectivity, is ss_charmap_injectivity; ss_result.h
- * runs the whole pipeline in one call).
+ * runs the whole pipeline in one call).  The extraction and the eigen-solve
+ * take their scratch memory from workspaces, as a loop over many cases would
+ * (one workspace per thread, reused from case to case; ss_local_new and
+ * ss_eig_new allocate their own).
  *
  * Build against an installed library:
  *   cc -std=c11 analyze_edge.c $(pkg-config --cflags --libs subspectra)
@@ -47,17 +50,24 @@ int main(int argc, char **argv) {
   ss_local *M = NULL;
   ss_eig *e = NULL;
   ss_charmap *cm = NULL;
+  ss_local_workspace *lw = ss_local_workspace_new();
+  ss_eig_workspace *ew = ss_eig_workspace_new(0);
   int rc = 2;
+  if (!lw || !ew) {
+    ss_error_set(&err, SS_ENOMEM, "out of memory (workspaces)");
+    goto done;
+  }
   if (ss_scheme_new(name, &s, &err)) goto done;
   /* the case: a point on an edge of valence n (no link; default diagonals) */
   const ss_case c = {SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0};
-  if (ss_local_new(s, &c, &M, &err)) goto done;
+  const ss_local_opts lo = ss_local_defaults();
+  if (ss_local_new_ws(s, &c, &lo, lw, &M, &err)) goto done;
   printf("case %s edge %d\n", ss_scheme_name(s), n);
   printf("matrix %zu %zu %zu\n", M->n2, M->n1, M->nnz);
 
   /* eigenvalues, the eigenvalue condition and the subdominant basis */
   const ss_eig_opts eo = ss_eig_defaults(M->dim);
-  if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) goto done;
+  if (ss_eig_new_ws(M->S, M->n2, M->n1, &eo, ew, &e, &err)) goto done;
   for (size_t i = 0; i < e->n && i < 8; i++)
     printf("lambda %zu %.15g %.15g %d\n", i, e->val[i].re, e->val[i].im, e->val[i].mult);
   printf("condition %s %s\n", ss_verdict_name(e->cond.verdict), e->cond.reason);
@@ -76,6 +86,8 @@ done:
   ss_charmap_free(cm);
   ss_eig_free(e);
   ss_local_free(M);
+  ss_local_workspace_free(lw);
+  ss_eig_workspace_free(ew);
   ss_scheme_free(s);
   return rc;
 }
