@@ -34,31 +34,40 @@ typedef struct ss_local_levels {
   int nlev;                /* levels built */
   level lev[MAXLEVELS];    /* levels 0 .. nlev-1 */
   const ss_progress *prog; /* progress reports (may be NULL) */
-  ss_local_workspace *ws;  /* scratch of the attempts; NULL once the levels
-                              are kept (ss_local_ring_deepen attempts none) */
+  ss_local_workspace *ws;  /* scratch memory (never NULL while a level is
+                              built or an attempt made; NULL in kept levels) */
 } work;
 
 ss_local_workspace *ss_local_workspace_new(void) {
   return calloc(1, sizeof(ss_local_workspace));
 }
 
-void ss_local_workspace_free(ss_local_workspace *w) {
-  if (!w) return;
+/* Free w's buffers and empty it (w itself stays). */
+static void ws_release(ss_local_workspace *w) {
   free(w->dense);
   free(w->colmap);
   free(w->mark);
+  free(w->facet);
+  free(w->bucket);
+  free(w->key);
+  memset(w, 0, sizeof *w);
+}
+
+void ss_local_workspace_free(ss_local_workspace *w) {
+  if (!w) return;
+  ws_release(w);
   free(w);
 }
 
-/* Make *p hold at least n elements of size sz (capacity *cap): a larger
- * block replaces it when it is short (its contents are scratch).  Returns 0,
- * or -1 when out of memory (*p then NULL, *cap 0). */
-static int ws_grow(void **p, size_t *cap, size_t n, size_t sz) {
-  if (*p && n <= *cap) return 0;
-  free(*p);
-  *p = malloc((n + 1) * sz);
-  *cap = *p ? n : 0;
-  return *p ? 0 : -1;
+/* A block of at least n elements of size sz in place of p (capacity *cap):
+ * p itself when it holds them, else a larger block (p freed: its contents
+ * are scratch).  NULL when out of memory (p freed, *cap 0). */
+static void *ws_grow(void *p, size_t *cap, size_t n, size_t sz) {
+  if (p && n <= *cap) return p;
+  free(p);
+  p = malloc((n + 1) * sz);
+  *cap = p ? n : 0;
+  return p;
 }
 
 const char *ss_case_name(ss_case_kind kind) {
@@ -174,9 +183,11 @@ static int facet_less_tail(const facet *a, const facet *b) {
  * bucket, which holds the few facets a vertex is the smallest of.  Linear,
  * where qsort with a memcmp comparator cost a tenth of an extraction. */
 static ss_status facet_group(const facet *f, size_t nf, size_t nv, facet *g,
-                             ss_error *err) {
-  size_t *ptr = calloc(nv + 2, sizeof *ptr);
-  if (!ptr) return ss_error_nomem(err, "patch boundary");
+                             ss_local_workspace *ws, ss_error *err) {
+  if (!(ws->bucket = ws_grow(ws->bucket, &ws->nbucket, nv + 2, sizeof *ws->bucket)))
+    return ss_error_nomem(err, "patch boundary");
+  size_t *ptr = ws->bucket;
+  memset(ptr, 0, (nv + 2) * sizeof *ptr);
   for (size_t i = 0; i < nf; i++)
     ptr[f[i].v[0] + 2]++;
   for (size_t v = 0; v < nv; v++)
@@ -190,7 +201,6 @@ static ss_status facet_group(const facet *f, size_t nf, size_t nv, facet *g,
         g[j] = g[j - 1];
         g[j - 1] = t;
       }
-  free(ptr);
   return SS_OK;
 }
 
@@ -207,15 +217,15 @@ static void push_facet(facet *f, size_t *nf, const ss_idx *cell, const int *loc,
   f[(*nf)++] = x;
 }
 
-static ss_status inner_marks(const ss_cx *cx, unsigned char **out, ss_error *err) {
+static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned char **out,
+                             ss_error *err) {
   size_t cap = 6 * cx->nc[SS_HEX] + 4 * cx->nc[SS_TET] + 8 * cx->nc[SS_OCT] +
                4 * cx->nc[SS_QUAD] + 3 * cx->nc[SS_TRIANGLE] + 1;
-  facet *f = malloc(cap * sizeof *f), *g = malloc(cap * sizeof *g);
   unsigned char *inner = *out = malloc(cx->nv + 1);
-  if (!f || !g || !inner) {
-    free(f), free(g);
+  if (!inner ||
+      !(ws->facet = ws_grow(ws->facet, &ws->nfacet, 2 * cap * sizeof(facet), 1)))
     return ss_error_nomem(err, "patch boundary");
-  }
+  facet *f = ws->facet, *g = f + cap; /* the facets, then grouped */
   size_t nf = 0;
   const int topdim = ss_cx_topdim(cx);
   for (size_t i = 0; topdim == 3 && i < cx->nc[SS_HEX]; i++)
@@ -239,13 +249,9 @@ static ss_status inner_marks(const ss_cx *cx, unsigned char **out, ss_error *err
       const int loc[2] = {k, (k + 1) % 3};
       push_facet(f, &nf, ss_cx_cell(cx, SS_TRIANGLE, i), loc, 2);
     }
-  ss_status st = facet_group(f, nf, cx->nv, g, err);
-  free(f);
+  ss_status st = facet_group(f, nf, cx->nv, g, ws, err);
   f = g;
-  if (st) {
-    free(f);
-    return st;
-  }
+  if (st) return st;
   memset(inner, 0, cx->nv + 1);
   for (size_t i = 0; i < nf; i++)
     for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)
@@ -259,7 +265,6 @@ static ss_status inner_marks(const ss_cx *cx, unsigned char **out, ss_error *err
         inner[f[i].v[k]] = 0;
     i = j;
   }
-  free(f);
   return SS_OK;
 }
 
@@ -269,18 +274,16 @@ static ss_status finish_level(work *W, int l, ss_error *err) {
   const size_t nv = L->cx->nv;
   L->rel = malloc((nv + 1) * sizeof *L->rel);
   L->order = malloc((nv + 1) * sizeof *L->order);
-  keyed *k = malloc((nv + 1) * sizeof *k);
-  if (!L->rel || !L->order || !k) {
-    free(k);
+  if (!L->rel || !L->order ||
+      !(W->ws->key = ws_grow(W->ws->key, &W->ws->nkey, nv * sizeof(keyed), 1)))
     return ss_error_nomem(err, "local coordinates");
-  }
+  keyed *k = W->ws->key;
   const ss_star_coord *c[2];
   const int mult[2] = {1, -(1 << (l - W->lc))};
   c[1] = &W->cp;
   for (size_t v = 0; v < nv; v++) {
     c[0] = L->abs + v;
     if (lincomb(2, c, mult, 1, L->rel + v)) {
-      free(k);
       return ss_error_set(err, SS_EINTERNAL,
                           "local coordinates of vertex %zu on level %d have too many "
                           "nonzero entries",
@@ -292,12 +295,11 @@ static ss_status finish_level(work *W, int l, ss_error *err) {
   qsort(k, nv, sizeof *k, by_rel);
   for (size_t i = 0; i < nv; i++)
     L->order[i] = k[i].v;
-  free(k);
   for (size_t i = 1; i < nv; i++)
     if (ss_star_coord_cmp(L->rel + L->order[i - 1], L->rel + L->order[i]) == 0)
       return ss_error_set(err, SS_EINTERNAL, "two vertices of level %d share coordinates",
                           l);
-  return inner_marks(L->cx, &L->inner, err);
+  return inner_marks(L->cx, W->ws, &L->inner, err);
 }
 
 /* Peel level l (l > 0, p a vertex) before it is refined: with the distance
@@ -414,7 +416,7 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
   }
   if (ss_scheme_reach(W->scheme) > 1) {
     free(C->cinner);
-    ss_status st = inner_marks(C->cx, &C->cinner, err);
+    ss_status st = inner_marks(C->cx, W->ws, &C->cinner, err);
     if (st) return st;
   }
   if (8 * ss_cx_ncells(C->cx) > MAXCELLS)
@@ -675,7 +677,7 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
       goto done;
     }
   ss_local_workspace *ws = W->ws;
-  if (ws_grow((void **)&ws->mark, &ws->nmark, 3 * nw, 1)) {
+  if (!(ws->mark = ws_grow(ws->mark, &ws->nmark, 3 * nw, 1))) {
     ss_error_nomem(err, "two-ring");
     rc = HARD;
     goto done;
@@ -726,9 +728,9 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
   M->label = malloc((n2 + 1) * sizeof *M->label);
   M->S = malloc((n2 * n2 + 1) * sizeof *M->S);
   if (!M->label || !M->S ||
-      ws_grow((void **)&ws->dense, &ws->ndense, n2 * n2, sizeof *ws->dense) ||
-      ws_grow((void **)&ws->colmap, &ws->ncolmap, W->lev[w + 1].cx->nv,
-              sizeof *ws->colmap)) {
+      !(ws->dense = ws_grow(ws->dense, &ws->ndense, n2 * n2, sizeof *ws->dense)) ||
+      !(ws->colmap = ws_grow(ws->colmap, &ws->ncolmap, W->lev[w + 1].cx->nv,
+                             sizeof *ws->colmap))) {
     ss_error_nomem(err, "local matrix");
     rc = HARD;
     goto done;
@@ -1110,7 +1112,8 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
   work W;
   memset(&W, 0, sizeof W);
   /* without a caller's workspace, one for this case alone */
-  ss_local_workspace own = {NULL, 0, NULL, 0, NULL, 0};
+  ss_local_workspace own;
+  memset(&own, 0, sizeof own);
   W.ws = wsp ? wsp : &own;
   W.scheme = s;
   W.prog = &o->progress;
@@ -1151,11 +1154,9 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
     w++;
   }
   w--;
-  free(own.dense);
-  free(own.colmap);
-  free(own.mark);
-  W.ws = NULL;
   if (!st) st = ring(&W, w, nring, M, err);
+  ws_release(&own);
+  W.ws = NULL; /* the caller's workspace is not the kept levels' */
   if (!st && o->keep_levels) {
     M->levels = malloc(sizeof *M->levels);
     if (M->levels) {
@@ -1180,7 +1181,13 @@ ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
       return ss_error_set(err, SS_EINPUT, "ring levels must be in 1..%d, not %d",
                           SS_LOCAL_MAXRING, nring);
     free_rings(M);
-    return ring(M->levels, M->level, nring, M, err);
+    ss_local_workspace own; /* the levels kept their refinement, not a workspace */
+    memset(&own, 0, sizeof own);
+    M->levels->ws = &own;
+    const ss_status st = ring(M->levels, M->level, nring, M, err);
+    M->levels->ws = NULL;
+    ws_release(&own);
+    return st;
   }
   ss_local *D = NULL;
   ss_status st = ss_local_new_ring(s, c, nring, &D, err);

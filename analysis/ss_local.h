@@ -332,14 +332,15 @@ ss_status ss_local_new_opts(const ss_scheme *s, const ss_case *c, const ss_local
 
 /* Scratch memory of ss_local_new_ws (GSL's _alloc discipline), kept between
  * extractions so that a sweep's thread extracts case after case in the same
- * memory: the largest per-case buffers that do not outlive the extraction.
- * One workspace serves one call at a time (one per thread).  Every buffer
- * is a capacity that grows when a case needs more (to the largest case
- * seen; it never shrinks), so any workspace serves any case, and the
- * result never depends on its history: bit for bit ss_local_new_opts's.
- * Still allocated per case: the refined levels (complexes, splits,
- * refinement operators, coordinates; their sizes and shapes differ from
- * case to case), the patch-boundary facets, and the result itself. */
+ * memory: the per-case buffers that do not outlive the extraction.  One
+ * workspace serves one call at a time (one per thread).  Every buffer is a
+ * capacity that grows when a case needs more (to the largest case seen; it
+ * never shrinks), so any workspace serves any case, and the result never
+ * depends on its history: bit for bit ss_local_new_opts's.  Still allocated
+ * per case: the refined levels (complexes, splits, refinement operators and
+ * the triplets they are assembled from, coordinates, boundary marks: their
+ * sizes and shapes differ from case to case, and the kept levels outlive the
+ * call), the marks of Omega_w, the ring, and the result itself. */
 typedef struct {
   double *dense;       /* S read a second time, one level deeper, to check
                           that S is stationary: n2^2 doubles */
@@ -349,6 +350,14 @@ typedef struct {
   unsigned char *mark; /* three marks per point of level w: the two-ring at
                           ring depths D and D + 1, the one-ring */
   size_t nmark;        /* capacity of mark, bytes */
+  void *facet;         /* a level's cell facets and the same grouped (equal
+                          facets adjacent), to find the patch boundary */
+  size_t nfacet;       /* capacity of facet, bytes */
+  size_t *bucket;      /* the grouping's counting sort: a bucket per point */
+  size_t nbucket;      /* capacity of bucket, entries */
+  void *key;           /* a level's points with their coordinates, sorted
+                          for lookup */
+  size_t nkey;         /* capacity of key, bytes */
 } ss_local_workspace;
 
 /* An empty workspace (it grows at its first use); NULL when out of memory.
