@@ -132,8 +132,34 @@ typedef struct {
   int n;              /* edge / surface vertex: valence */
 } case_arg;
 
+/* op_result's case through workspaces (ss_result_compute_ws): made in the
+ * operation (the workspaces' growth is walked) or kept across the runs (a
+ * workspace that a refused allocation left part empty serves the next run,
+ * which must still give the reference answer). */
+typedef struct {
+  case_arg c;              /* the case */
+  ss_result_workspace *ws; /* kept workspaces, or NULL: made per run */
+} ws_arg;
+
+static ss_status result_of(const case_arg *a, ss_result_workspace *ws, double *digest,
+                           ss_error *err);
+
 static ss_status op_result(const void *arg, double *digest, ss_error *err) {
-  const case_arg *a = arg;
+  return result_of(arg, NULL, digest, err);
+}
+
+static ss_status op_result_ws(const void *arg, double *digest, ss_error *err) {
+  const ws_arg *a = arg;
+  if (a->ws) return result_of(&a->c, a->ws, digest, err);
+  ss_result_workspace *ws = ss_result_workspace_new();
+  if (!ws) return ss_error_nomem(err, "workspaces");
+  const ss_status st = result_of(&a->c, ws, digest, err);
+  ss_result_workspace_free(ws);
+  return st;
+}
+
+static ss_status result_of(const case_arg *a, ss_result_workspace *ws, double *digest,
+                           ss_error *err) {
   ss_scheme *s = NULL;
   ss_link *l = NULL;
   ss_status st = ss_scheme_new(a->scheme, &s, err);
@@ -142,7 +168,8 @@ static ss_status op_result(const void *arg, double *digest, ss_error *err) {
     ss_case c = {a->kind, l, a->n, SS_DIAG_BFS, 0};
     ss_result_opts o = ss_result_defaults();
     ss_result r;
-    st = ss_result_compute(s, &c, &o, &r, err);
+    st = ws ? ss_result_compute_ws(s, &c, &o, ws, &r, err)
+            : ss_result_compute(s, &c, &o, &r, err);
     if (st == SS_OK) {
       *digest = r.min_sj + (double)r.cond.verdict + 3.0 * (double)r.reg.verdict;
       for (int i = 0; i < r.neig; i++)
@@ -245,6 +272,18 @@ int main(int argc, char **argv) {
       snprintf(name, sizeof name, "result %s %s %d", cases[i].scheme,
                ss_case_name(cases[i].kind), cases[i].n);
     walk(name, op_result, &cases[i]);
+  }
+  /* workspaces: made per run (mlca edge 5), and kept across the runs (tetoct
+   * face) */
+  for (int kept = 0; kept < 2; kept++) {
+    const size_t i = kept ? 3 : 1;
+    ws_arg a = {cases[i], kept ? ss_result_workspace_new() : NULL};
+    char name[128];
+    snprintf(name, sizeof name, "result_ws (%s) %s %s", kept ? "kept" : "per run",
+             cases[i].scheme, ss_case_name(cases[i].kind));
+    CHECK(!kept || a.ws, "a workspace");
+    walk(name, op_result_ws, &a);
+    ss_result_workspace_free(a.ws);
   }
   walk("link parse + canonical form", op_link_parse,
        "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb");
