@@ -43,10 +43,11 @@
  *  - Invariant polytope (ss_jsr_polytope.h, Guglielmi-Protasov): from the
  *    word of the lower bound, a polytope norm in which every Y_i has norm
  *    <= lower (1 + gap / 2) (up to rounding), proven in ball arithmetic;
- *    exact up to eps when it closes.  Norm POLYTOPE runs it first; AUTO
- *    runs it (a third of the remaining time; only when max_seconds > 0)
- *    when the first pass of the branch and bound leaves the gap open.  A vertex cap
- * (20000) and the time limit stop it; then the branch and bound's bound stands.
+ *    exact up to eps when it closes.  Norm POLYTOPE runs it first, then
+ *    the branch and bound as AUTO; AUTO never runs it (on the tet/oct face
+ *    and edges it does not close, and would take the branch and bound's
+ *    time).  A vertex cap (20000) and the time limit stop it; then the
+ *    branch and bound's bound stands.
  *
  * Certification.
  *  - Upper bounds (both norms): every product carries a rigorous bound on
