@@ -168,6 +168,18 @@ static int test_images(poly_ws *p, size_t j, double *x, int *idx, double *val,
   return -1;
 }
 
+/* out = y q for n x n row-major matrices (out may not alias q): the next
+ * letter of a word applied on the left. */
+static void mul_left(size_t n, const double *y, const double *q, double *out) {
+  for (size_t a = 0; a < n; a++)
+    for (size_t b = 0; b < n; b++) {
+      double acc = 0;
+      for (size_t c = 0; c < n; c++)
+        acc += y[a * n + c] * q[c * n + b];
+      out[a * n + b] = acc;
+    }
+}
+
 /* Leading eigenpair of Pi: roots written to `roots` (at most cap rows of n):
  * the real eigenvector, or the N ellipse points of the 2-plane variant, each
  * followed by its len - 1 cyclic images.  Returns the number of rows, 0 if
@@ -184,14 +196,7 @@ static long make_roots(poly_ws *p, const int *w, int len, double eps, double *la
   /* P = Y_{w[len-1]} ... Y_{w[0]} */
   memcpy(P, p->Y[w[0]], nn * sizeof *P);
   for (int t = 1; t < len; t++) {
-    const double *y = p->Y[w[t]];
-    for (size_t a = 0; a < n; a++)
-      for (size_t b = 0; b < n; b++) {
-        double acc = 0;
-        for (size_t c = 0; c < n; c++)
-          acc += y[a * n + c] * P[c * n + b];
-        T[a * n + b] = acc;
-      }
+    mul_left(n, p->Y[w[t]], P, T);
     memcpy(P, T, nn * sizeof *P);
   }
   if (LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'V', (lapack_int)n, P, (lapack_int)n, wr, wi,
@@ -329,14 +334,7 @@ static int find_ties(const poly_ws *p, const int *w, int len, double floor_, int
     if (k == 0) {
       memcpy(P, p->Y[u[0]], nn * sizeof *P);
     } else {
-      const double *y = p->Y[u[k]], *Q = P - nn;
-      for (size_t r = 0; r < n; r++)
-        for (size_t c = 0; c < n; c++) {
-          double acc = 0;
-          for (size_t t = 0; t < n; t++)
-            acc += y[r * n + t] * Q[t * n + c];
-          P[r * n + c] = acc;
-        }
+      mul_left(n, p->Y[u[k]], P - nn, P);
     }
     if (nt < TIE_MAX && lyndon(u, k + 1) && !same_class(u, k + 1, w, len)) {
       memcpy(a, P, nn * sizeof *a);
