@@ -17,7 +17,7 @@
 #define PI 3.14159265358979323846
 
 ss_jsr_polytope_opts ss_jsr_polytope_defaults(void) {
-  ss_jsr_polytope_opts o = {5e-4, 20000, 60.0, 1e-4};
+  ss_jsr_polytope_opts o = {5e-4, 20000, 60.0, 1e-4, 1e-9};
   return o;
 }
 
@@ -180,19 +180,34 @@ static void mul_left(size_t n, const double *y, const double *q, double *out) {
     }
 }
 
-/* Leading eigenpair of Pi: roots written to `roots` (at most cap rows of n):
- * the real eigenvector, or the N ellipse points of the 2-plane variant, each
- * followed by its len - 1 cyclic images.  Returns the number of rows, 0 if
- * rho(Pi) = 0, -1 if LAPACK failed, -2 on no memory, -3 if they exceed cap. */
+/* Two moduli at most this far apart (relative) are one leading eigenvalue:
+ * a semisimple multiple one (the tet/oct face's Y_2..Y_4 each have a double
+ * one) has an eigenplane, and a root from only one of its eigenvectors
+ * leaves the other direction to be reached by images. */
+#define LEAD_TOL 1e-9
+
+/* A real leading eigenvector counts as a new direction when at least this
+ * fraction of its norm lies outside the span of those already taken. */
+#define INDEP_TOL 1e-6
+
+/* Leading eigenpairs of Pi: roots written to `roots` (at most cap rows of
+ * n): for every eigenvalue of modulus within LEAD_TOL of rho(Pi), its real
+ * eigenvector, or for a complex pair the N ellipse points of the 2-plane
+ * variant, each followed by its len - 1 cyclic images.  N is the least with
+ * cos(pi / 2N) >= rho(Pi) / s^len, capped by (1 + eps)^{-len} (its value
+ * for the candidate itself; a near-candidate, rho(Pi) < s^len / (1 + eps)^len,
+ * needs fewer points).  Returns the number of rows, 0 if rho(Pi) = 0, -1 if
+ * LAPACK failed, -2 on no memory, -3 if they exceed cap. */
 static long make_roots(poly_ws *p, const int *w, int len, double eps, double *lambda,
                        int *cplx, double **roots_out) {
   const size_t n = p->n, nn = n * n;
   double *P = malloc(nn * sizeof *P), *T = malloc(nn * sizeof *T),
          *wr = malloc(n * sizeof *wr), *wi = malloc(n * sizeof *wi),
          *vr = malloc(nn * sizeof *vr);
+  unsigned char *sel = malloc(n);
   double *roots = NULL;
   long nr = -2;
-  if (!P || !T || !wr || !wi || !vr) goto out;
+  if (!P || !T || !wr || !wi || !vr || !sel) goto out;
   /* P = Y_{w[len-1]} ... Y_{w[0]} */
   memcpy(P, p->Y[w[0]], nn * sizeof *P);
   for (int t = 1; t < len; t++) {
@@ -204,53 +219,87 @@ static long make_roots(poly_ws *p, const int *w, int len, double eps, double *la
     nr = -1;
     goto out;
   }
-  size_t j = 0;
-  for (size_t k = 1; k < n; k++)
-    if (hypot(wr[k], wi[k]) > hypot(wr[j], wi[j])) j = k;
-  const double mu = hypot(wr[j], wi[j]);
+  double mu = 0;
+  for (size_t k = 0; k < n; k++)
+    mu = fmax(mu, hypot(wr[k], wi[k]));
   if (!(mu > 0)) {
     nr = 0;
     goto out;
   }
   *lambda = pow(mu, 1.0 / len);
-  /* LAPACK stores a conjugate pair as columns j (real part) and j + 1
-   * (imaginary part) for the eigenvalue with positive imaginary part */
-  *cplx = wi[j] != 0;
-  size_t ja = j, npts = 1;
-  if (*cplx) {
-    if (wi[j] < 0) ja = j - 1;
-    const double c = pow(1 + eps, -(double)len);
-    npts = (size_t)ceil(PI / (2 * acos(c)));
-    if (npts < 2) npts = 2;
+  /* points per complex pair: Pi / s^len has modulus c on the ellipse */
+  const double c = fmin(mu / pow(p->s, len), pow(1 + eps, -(double)len));
+  size_t npts = (size_t)ceil(PI / (2 * acos(c)));
+  if (npts < 2) npts = 2;
+  /* LAPACK stores a conjugate pair as columns k (real part) and k + 1
+   * (imaginary part) for the eigenvalue with positive imaginary part: the
+   * partner with negative imaginary part is skipped.  A real eigenvector
+   * (nearly) in the span of those already taken is skipped too: a defective
+   * eigenvalue gives (nearly) parallel columns, which would be the same root
+   * twice.  P (spent by dgeev) holds their orthonormalised copies. */
+  size_t rows = 0, taken = 0;
+  *cplx = 0;
+  for (size_t k = 0; k < n; k++) {
+    sel[k] = hypot(wr[k], wi[k]) >= mu * (1 - LEAD_TOL) && wi[k] >= 0;
+    if (sel[k] && wi[k] == 0) {
+      double *g = P + taken * n, norm0 = 0, norm1 = 0;
+      for (size_t l = 0; l < n; l++) {
+        g[l] = vr[l * n + k];
+        norm0 += g[l] * g[l];
+      }
+      for (size_t b = 0; b < taken; b++) {
+        double d = 0;
+        for (size_t l = 0; l < n; l++)
+          d += P[b * n + l] * g[l];
+        for (size_t l = 0; l < n; l++)
+          g[l] -= d * P[b * n + l];
+      }
+      for (size_t l = 0; l < n; l++)
+        norm1 += g[l] * g[l];
+      sel[k] = norm1 > INDEP_TOL * INDEP_TOL * norm0;
+      if (sel[k]) {
+        for (size_t l = 0; l < n; l++)
+          g[l] /= sqrt(norm1);
+        taken++;
+      }
+    }
+    if (sel[k]) {
+      rows += (wi[k] > 0 ? npts : 1) * (size_t)len;
+      *cplx |= wi[k] > 0;
+    }
   }
-  if (npts * (size_t)len > p->cap) {
+  if (rows > p->cap) {
     nr = -3;
     goto out;
   }
-  roots = malloc(npts * (size_t)len * n * sizeof *roots);
+  roots = malloc(rows * n * sizeof *roots);
   if (!roots) goto out;
-  double na = 0, nb = 0;
-  for (size_t l = 0; l < n; l++) {
-    na += vr[l * n + ja] * vr[l * n + ja];
-    if (*cplx) nb += vr[l * n + ja + 1] * vr[l * n + ja + 1];
-  }
-  const double scale = 1 / sqrt(fmax(na, nb));
   nr = 0;
-  for (size_t k = 0; k < npts; k++) {
-    double *x = roots + (size_t)nr * n;
-    const double th = PI * (double)k / (double)npts;
-    for (size_t l = 0; l < n; l++)
-      x[l] =
-          scale * (cos(th) * vr[l * n + ja] - (*cplx ? sin(th) * vr[l * n + ja + 1] : 0));
-    nr++;
-    for (int t = 0; t + 1 < len; t++, nr++) {
-      const double *y = p->Y[w[t]], *src = roots + (size_t)nr * n - n;
-      double *dst = roots + (size_t)nr * n;
-      for (size_t a = 0; a < n; a++) {
-        double acc = 0;
-        for (size_t c = 0; c < n; c++)
-          acc += y[a * n + c] * src[c];
-        dst[a] = acc / p->s;
+  for (size_t ja = 0; ja < n; ja++) {
+    if (!sel[ja]) continue;
+    const int pair = wi[ja] > 0;
+    double na = 0, nb = 0;
+    for (size_t l = 0; l < n; l++) {
+      na += vr[l * n + ja] * vr[l * n + ja];
+      if (pair) nb += vr[l * n + ja + 1] * vr[l * n + ja + 1];
+    }
+    const double scale = 1 / sqrt(fmax(na, nb));
+    for (size_t k = 0; k < (pair ? npts : 1); k++) {
+      double *x = roots + (size_t)nr * n;
+      const double th = PI * (double)k / (double)npts;
+      for (size_t l = 0; l < n; l++)
+        x[l] = scale *
+               (cos(th) * vr[l * n + ja] - (pair ? sin(th) * vr[l * n + ja + 1] : 0));
+      nr++;
+      for (int t = 0; t + 1 < len; t++, nr++) {
+        const double *y = p->Y[w[t]], *src = roots + (size_t)nr * n - n;
+        double *dst = roots + (size_t)nr * n;
+        for (size_t a = 0; a < n; a++) {
+          double acc = 0;
+          for (size_t q = 0; q < n; q++)
+            acc += y[a * n + q] * src[q];
+          dst[a] = acc / p->s;
+        }
       }
     }
   }
@@ -258,6 +307,7 @@ static long make_roots(poly_ws *p, const int *w, int len, double eps, double *la
   roots = NULL;
 out:
   free(roots);
+  free(sel);
   free(vr);
   free(wi);
   free(wr);
@@ -273,10 +323,12 @@ out:
  * m^T <= TIE_BUDGET products (fewer for large n: 2e9 multiply-adds). */
 enum { TIE_MAXLEN = 16, TIE_BUDGET = 1 << 16, TIE_MAX = 32 };
 
-/* A tie: rho(Y_u)^{1/|u|} >= lambda (1 - TIE_TOL), equal up to rounding (a
- * symmetry of the set, or maps of equal spectral radius); products merely
- * near lambda are left to the slack eps. */
-#define TIE_TOL 1e-9
+/* A tie: rho(Y_u)^{1/|u|} >= lambda (1 - o->near).  With the default near
+ * (1e-9) that is equality up to rounding (a symmetry of the set, or maps of
+ * equal spectral radius), and products merely near lambda are left to the
+ * slack eps; a larger near also starts from the near-candidates'
+ * eigenvectors (Mejstrik 2020), so that an orbit decaying like
+ * (rho_u / s)^k need not be followed until it falls inside. */
 
 /* 1 if u (length ul) repeated equals some rotation of w (length len) */
 static int same_class(const int *u, int ul, const int *w, int len) {
@@ -562,6 +614,8 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
   for (size_t i = 0; i < m; i++)
     if (!Y[i])
       return ss_error_set(err, SS_EINPUT, "jsr polytope: matrix %zu missing", i + 1);
+  if (!(o->near >= 0 && o->near < 1))
+    return ss_error_set(err, SS_EINPUT, "jsr polytope: near %g not in [0, 1)", o->near);
   if (!(o->eps > 0) || !isfinite(o->eps) || !(o->delta > 0) || !isfinite(o->delta))
     return ss_error_set(err, SS_EINPUT,
                         "jsr polytope: eps %g and delta %g must be positive and finite",
@@ -611,7 +665,7 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
   {
     /* the tied candidates' roots join Pi's */
     int ties[TIE_MAX * TIE_MAXLEN], tlen[TIE_MAX];
-    const int nt = find_ties(&p, w, len, lambda * (1 - TIE_TOL), ties, tlen);
+    const int nt = find_ties(&p, w, len, lambda * (1 - o->near), ties, tlen);
     if (nt == -2) {
       free(roots);
       return ss_error_nomem(err, "jsr polytope ties");

@@ -9,11 +9,13 @@
  * absolutely convex body P with nonempty interior satisfies Y_i P within s P
  * for every i, then its gauge ||x||_P is a norm with ||Y_i||_P <= s, so
  * rho(Y) <= s.  The method builds P as the absolutely convex hull of vertices:
- * the leading eigenvector v of Pi and its cyclic images
+ * the leading eigenvector v of Pi (every one, if the leading eigenvalue is
+ * a semisimple multiple one) and its cyclic images
  * A_{w_t} ... A_{w_1} v (A_i = Y_i / s), the same for every short product
- * tied with Pi up to rounding (found by a bounded search; a tie, e.g. two
- * maps of equal spectral radius, would otherwise need about 1 / eps steps
- * to be absorbed), then repeatedly the images A_i x of
+ * tied with Pi up to rounding, or within a relative `near` of it (found by
+ * a bounded search; a tie, e.g. two maps of equal spectral radius, would
+ * otherwise need about 1 / eps steps to be absorbed), then repeatedly the
+ * images A_i x of
  * every new vertex x, keeping those not already inside the current hull
  * (membership: the linear programme min sum |c_k| s.t. sum c_k v_k = x, by
  * GLPK's dual simplex, warm started).  If no new vertex appears the body is
@@ -29,7 +31,8 @@
  * ellipse (their absolutely convex hull is a 2N-gon inscribed in it, and
  * contains the ellipse scaled by cos(pi / 2N)) with N the least integer with
  * cos(pi / 2N) >= (1 + eps)^{-len}, so that the normalised Pi maps the
- * polygon into itself.
+ * polygon into itself (a near-candidate u: cos(pi / 2N) >= rho(Y_u) / s^|u|,
+ * fewer points).
  *
  * Certification.  The n vertices delta e_l (delta > 0, the canonical basis)
  * are added first, so P contains the l1 ball of radius delta and
@@ -60,9 +63,13 @@ typedef struct {
   double max_seconds;  /* wall-clock limit; <= 0: none */
   double delta;        /* radius of the l1 ball inside P (roots have unit
                           2-norm); > 0 */
+  double near;         /* other candidates: the Lyndon words u searched with
+                          rho(Y_u)^{1/|u|} >= lambda (1 - near) start roots
+                          too (at most 32 words); in [0, 1) */
 } ss_jsr_polytope_opts;
 
-/* Defaults: eps 5e-4, 20000 vertices, 60 s, delta 1e-4. */
+/* Defaults: eps 5e-4, 20000 vertices, 60 s, delta 1e-4, near 1e-9 (ties up
+ * to rounding only). */
 ss_jsr_polytope_opts ss_jsr_polytope_defaults(void);
 
 typedef enum {
@@ -87,7 +94,7 @@ typedef struct {
                                 Lyndon words u of length <= T (all m + ...
                                 + m^T <= min(2^16, 2e9 / n^3) words
                                 searched) with
-                                rho(Y_u)^{1/|u|} >= lambda (1 - 1e-9) */
+                                rho(Y_u)^{1/|u|} >= lambda (1 - near) */
   size_t vertices;           /* vertices at the end, ball included */
   size_t pending;            /* vertices whose images were not yet tested
                                 when it stopped (0 when closed) */

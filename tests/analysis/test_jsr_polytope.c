@@ -18,6 +18,11 @@
  *    complex: the 2-plane (elliptic) variant must run and close at c (1 +
  *    eps).
  *  - A mirror-symmetric pair with JSR 1 attained by both maps (a tie).
+ *  - A near-candidate 0.1 % below the JSR (a spiral): with its own roots
+ *    (option near) the hull closes from the roots alone, without them only
+ *    after a hundred images; relabelled alike.
+ *  - A semisimple double leading eigenvalue gives two roots, a defective
+ *    one (Jordan block) one.
  * Bounds: for random nonnegative sets the polytope's bound, when it closes,
  * is at least ss_jsr's certified lower bound (brute force over words of
  * length <= 6) and at most that lower bound times (1 + eps) (1 + 1e-6):
@@ -180,6 +185,98 @@ static void test_tie(void) {
   check_exact("mirror pair", &r, 1.0, 1e-5);
 }
 
+/* A near-candidate (Mejstrik 2020), order 3: Y_0 = diag(1, 0, 0) (the
+ * candidate, rho 1) and Y_1 = [[0, 0, 0], [1, qc, -qs], [0, qs, qc]],
+ * c, s = cos, sin theta, q = 1 - 1e-3, theta = 0.01: Y_1 sends e_1 into
+ * the plane span(e_2, e_3) and turns that plane by theta, shrinking it by
+ * q.  The plane is invariant under both and Y_0 kills it; on the quotient
+ * Y_0 is 1 and Y_1 is 0, so JSR = max(rho(q R(theta)), 1) = 1, attained by
+ * Y_0 alone; Y_1 is 0.1 % below it, and every word with both letters has a
+ * rotation containing Y_0 Y_1 = 0 (rho 0): Y_1 is the only near-candidate.
+ * With eps = 1e-5 the orbit of e_1 spirals inward by about 0.999 per step
+ * through 0.01 rad: from Y_0's root alone the hull needs over a hundred
+ * images.  With near = 2e-3 the word Y_1 joins (ties = 1): its complex pair
+ * gives N circle points with cos(pi / 2N) >= q / s, N = 35; the rotated and
+ * shrunk 70-gon lies inside the 70-gon, and the hull closes at 1 (1 + eps)
+ * with a few vertices besides the roots.  Relabelling the coordinates
+ * (P Y_i P^T, P the reversal) changes nothing. */
+static void test_near(void) {
+  const double q = 1 - 1e-3, th = 0.01, eps = 1e-5;
+  const double qc = q * cos(th), qs = q * sin(th);
+  const double A[9] = {1, 0, 0, 0, 0, 0, 0, 0, 0};
+  const double B[9] = {0, 0, 0, 1, qc, -qs, 0, qs, qc};
+  double PA[9], PB[9]; /* (P X P^T)[a][b] = X[2 - a][2 - b] */
+  for (int e = 0; e < 9; e++)
+    PA[e] = A[8 - e], PB[e] = B[8 - e];
+  const double *Y[2] = {A, B}, *PY[2] = {PA, PB};
+  const int w[1] = {0};
+  ss_jsr_polytope_opts o = ss_jsr_polytope_defaults();
+  o.eps = eps;
+  o.max_vertices = 2000;
+  o.max_seconds = 20;
+  ss_jsr_polytope_result r;
+  ss_error e = {0};
+  if (ss_jsr_polytope(2, 3, Y, w, 1, &o, &r, &e) != SS_OK) {
+    CHECK(0, "near: %s", e.msg);
+    return;
+  }
+  CHECK(r.ties == 0 && r.roots == 1, "near 1e-9: %d ties, %zu roots, want 0 and 1",
+        r.ties, r.roots);
+  check_exact("spiral from Y_0's root alone", &r, 1.0, eps);
+  CHECK(r.vertices > r.roots + 3 + 100, "near 1e-9: only %zu vertices (%zu roots)",
+        r.vertices, r.roots);
+  o.near = 2e-3;
+  const double npts = ceil(3.14159265358979323846 / (2 * acos(q / (1 + eps))));
+  CHECK(npts == 35, "near: N = %g ellipse points, want 35 (cos(pi / 70) >= q / s)", npts);
+  for (int relabel = 0; relabel < 2; relabel++) {
+    if (ss_jsr_polytope(2, 3, relabel ? PY : Y, w, 1, &o, &r, &e) != SS_OK) {
+      CHECK(0, "near 2e-3: %s", e.msg);
+      continue;
+    }
+    CHECK(r.ties == 1 && r.roots == 1 + (size_t)npts,
+          "near 2e-3 (relabelled %d): %d ties, %zu roots, want 1 and 1 + %g", relabel,
+          r.ties, r.roots, npts);
+    check_exact("near-candidate spiral", &r, 1.0, eps);
+    CHECK(r.vertices <= r.roots + 3 + 10,
+          "near 2e-3: %zu vertices for %zu roots: the roots should nearly close it",
+          r.vertices, r.roots);
+  }
+  o.near = 1;
+  CHECK(ss_jsr_polytope(2, 3, Y, w, 1, &o, &r, &e) == SS_EINPUT && strstr(e.msg, "near"),
+        "near 1: %s", e.msg);
+}
+
+/* A multiple leading eigenvalue.  Semisimple: Y_0 = Q diag(1, 1, 1/2) Q^T
+ * (Q a rotation; ||Y_0||_2 = 1) has an eigenplane: both eigenvectors are
+ * roots (roots = 2).  Defective: the Jordan block [[1, 1], [0, 1]] plus 1/2
+ * has one eigenvector, and LAPACK's second, parallel up to rounding, must
+ * not make a second root (roots = 1; alone, so that no tie adds roots).  With Y_1 = 0.3 Q
+ * (||Y_1||_2 = 0.3) the semisimple set has JSR 1: the hull closes at 1 (1 + eps). */
+static void test_multiple(void) {
+  const double c = cos(0.7), s = sin(0.7);
+  const double Q[9] = {c, -s, 0, s * 0.6, c * 0.6, -0.8, s * 0.8, c * 0.8, 0.6};
+  const double d[3] = {1, 1, 0.5};
+  double S[9], B[9];
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) {
+      S[a * 3 + b] = 0;
+      for (int k = 0; k < 3; k++)
+        S[a * 3 + b] += Q[a * 3 + k] * d[k] * Q[b * 3 + k];
+      B[a * 3 + b] = 0.3 * Q[a * 3 + b];
+    }
+  const double J[9] = {1, 1, 0, 0, 1, 0, 0, 0, 0.5};
+  const double *Y[2] = {S, B}, *JY[1] = {J};
+  const int w[1] = {0};
+  int ok;
+  ss_jsr_polytope_result r = poly(2, 3, Y, w, 1, 1e-4, 2000, &ok);
+  if (ok) {
+    CHECK(r.roots == 2, "eigenplane: %zu roots, want 2", r.roots);
+    check_exact("eigenplane", &r, 1.0, 1e-4);
+  }
+  r = poly(1, 3, JY, w, 1, 1e-4, 50, &ok);
+  if (ok) CHECK(r.roots == 1, "Jordan block: %zu roots, want 1", r.roots);
+}
+
 /* random nonnegative m sets of order n (entries uniform / n) */
 static void random_set(gsl_rng *rng, size_t m, size_t n, double *buf, const double **Y) {
   for (size_t i = 0; i < m; i++) {
@@ -320,6 +417,8 @@ int main(void) {
   test_bspline();
   test_rotation();
   test_tie();
+  test_near();
+  test_multiple();
   test_random(rng);
   test_compute();
   test_bad_input();
