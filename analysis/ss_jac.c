@@ -153,17 +153,27 @@ static inline int lt0_di(di_t v, double thr) {
 
 /* ---- the scaled Jacobian (double) ---- */
 
+/* The length of a, as hypot folded over the coordinates from 0: the first
+ * step hypot(0, a[0]) is |a[0]| exactly (a representable result, which a
+ * faithful hypot returns), so it starts there and calls hypot d - 1 times,
+ * with the same doubles as before. */
 static double norm(const double *a, int d) {
-  double s = 0.0;
-  for (int i = 0; i < d; i++)
+  double s = fabs(a[0]);
+  for (int i = 1; i < d; i++)
     s = hypot(s, a[i]);
   return s;
 }
 
+/* det/product of the lengths la, lb, lc of a, b, c; 0 when one is 0 */
+static double scaled3_len(const double *a, const double *b, const double *c, double la,
+                          double lb, double lc) {
+  const double l = la * lb * lc;
+  return l > 0.0 ? det3_d(a, b, c) / l : 0.0;
+}
+
 /* det/product of lengths, 0 when an edge has length 0 */
 static double scaled3(const double *a, const double *b, const double *c) {
-  const double l = norm(a, 3) * norm(b, 3) * norm(c, 3);
-  return l > 0.0 ? det3_d(a, b, c) / l : 0.0;
+  return scaled3_len(a, b, c, norm(a, 3), norm(b, 3), norm(c, 3));
 }
 
 static void see_scaled(ss_jac_result *r, double s) {
@@ -178,10 +188,23 @@ static void measures(ss_cell_type t, const double *x, ss_jac_result *r) {
   ss_jac_order o;
   if (t == SS_HEX) {
     ss_jac_order_init(3, &o);
+    /* each of the 12 edges is in the frames of its two ends, as the same
+     * difference: its length once (hypot was most of the measure's time),
+     * len[i][b] for the edge along axis i from the corner of bits b */
+    double len[3][8];
+    for (int i = 0; i < 3; i++)
+      for (unsigned b = 0; b < 8; b++)
+        if (!(b & (1u << i))) {
+          double a[3];
+          diff_d(3, x + 3 * o.index[b | (1u << i)], x + 3 * o.index[b], a);
+          len[i][b] = norm(a, 3);
+        }
     for (int k = 0; k < 8; k++) {
       double e[3][3];
       corner_frame_d(x, 3, &o, k, e);
-      see_scaled(r, scaled3(e[0], e[1], e[2]));
+      const unsigned b = o.bits[k];
+      see_scaled(r, scaled3_len(e[0], e[1], e[2], len[0][b & ~1u], len[1][b & ~2u],
+                                len[2][b & ~4u]));
     }
   } else if (t == SS_QUAD) {
     ss_jac_order_init(2, &o);
