@@ -71,12 +71,22 @@ using P3 = K::Point_3;
 // pairs of pieces of non-neighbouring cells whose boxes meet are told apart
 // by a facet; two pieces that cross only edge through edge are left to
 // CGAL.
+//
+// oa, ob: the orientations of a and b (G::orient of their first D points
+// and the last).  The inner side of facet i (s without s[i]) is then that
+// orientation times (-1)^(D - i): s[i] moved from the end to place i is
+// D - i transpositions, which flip an exact sign exactly.  A point of t is
+// not tested against a facet when no answer there can matter (the facet
+// already shown not to separate, the point already outside some facet):
+// the same answer with fewer predicates.
 template <class G>
-int quick_meet(const typename G::Point *a, const typename G::Point *b) {
+int quick_meet(const typename G::Point *a, const typename G::Point *b,
+               CGAL::Orientation oa, CGAL::Orientation ob) {
   using Point = typename G::Point;
   constexpr int m = G::D + 1;
   for (int pass = 0; pass < 2; pass++) {
     const Point *s = pass ? b : a, *t = pass ? a : b;
+    const CGAL::Orientation os = pass ? ob : oa;
     int inside[m]; // t's point j strictly on the inner side of every facet so far
     for (int j = 0; j < m; j++)
       inside[j] = 1;
@@ -85,9 +95,10 @@ int quick_meet(const typename G::Point *a, const typename G::Point *b) {
       Point f[G::D];
       for (int j = 0, q = 0; j < m; j++)
         if (j != i) f[q++] = s[j];
-      const CGAL::Orientation in = G::orient(f, s[i]);
+      const CGAL::Orientation in = (G::D - i) % 2 ? -os : os;
       bool apart = true;
       for (int j = 0; j < m; j++) {
+        if (!apart && !inside[j]) continue;
         const CGAL::Orientation o = G::orient(f, t[j]);
         if (o != -in) apart = false;
         if (o != in) inside[j] = 0;
@@ -121,10 +132,12 @@ template <> struct Geo<2> {
     return CGAL::orientation(f[0], f[1], p);
   }
   // Do the closed non-degenerate simplices a (ka + 1 points) and b meet?
-  static bool meet(const Point *a, int ka, const Point *b, int kb, bool filter = true) {
-    if (ka < kb) return meet(b, kb, a, ka, filter);
+  // oa, ob: their orientations when full (quick_meet), else unused.
+  static bool meet(const Point *a, int ka, const Point *b, int kb, CGAL::Orientation oa,
+                   CGAL::Orientation ob, bool filter = true) {
+    if (ka < kb) return meet(b, kb, a, ka, ob, oa, filter);
     if (filter && ka == 2 && kb == 2) {
-      const int quick = quick_meet<Geo<2>>(a, b);
+      const int quick = quick_meet<Geo<2>>(a, b, oa, ob);
       if (quick >= 0) return quick != 0;
     }
     if (ka == 2) {
@@ -160,10 +173,11 @@ template <> struct Geo<3> {
   static CGAL::Orientation orient(const Point *f, const Point &p) {
     return CGAL::orientation(f[0], f[1], f[2], p);
   }
-  static bool meet(const Point *a, int ka, const Point *b, int kb, bool filter = true) {
-    if (ka < kb) return meet(b, kb, a, ka, filter);
+  static bool meet(const Point *a, int ka, const Point *b, int kb, CGAL::Orientation oa,
+                   CGAL::Orientation ob, bool filter = true) {
+    if (ka < kb) return meet(b, kb, a, ka, ob, oa, filter);
     if (filter && ka == 3 && kb == 3) {
-      const int quick = quick_meet<Geo<3>>(a, b);
+      const int quick = quick_meet<Geo<3>>(a, b, oa, ob);
       if (quick >= 0) return quick != 0;
     }
     if (ka == 3) {
@@ -361,6 +375,7 @@ void winding(const double *x, size_t nfacet, const size_t *facet, size_t centre,
 
 template <int D> struct Simplex {
   int k;                                       // dimension: k + 1 points
+  CGAL::Orientation o;                         // orientation when k = D (quick_meet)
   std::array<typename Geo<D>::Point, D + 1> v; // its points
   std::array<double, D> lo, hi;                // its box
 };
@@ -388,7 +403,9 @@ void decompose(const std::array<typename Geo<D>::Point, D + 1> &v,
       int j = 0;
       for (int i = 0; i < m; i++)
         if (mask & (1u << i)) s.v[static_cast<size_t>(j++)] = v[static_cast<size_t>(i)];
-      if (!G::full(s.v.data(), k)) continue;
+      // full: for k = D its orientation, kept for quick_meet, is not zero
+      s.o = k == D ? G::orient(s.v.data(), s.v[D]) : CGAL::ZERO;
+      if (k == D ? s.o == CGAL::ZERO : !G::full(s.v.data(), k)) continue;
       for (int i = 0; i < D; i++) {
         s.lo[i] = s.hi[i] = G::coord(s.v[0], i);
         for (int a = 1; a <= k; a++) {
@@ -431,8 +448,9 @@ void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorne
   using Box = CGAL::Box_intersection_d::Box_with_handle_d<
       double, D, const size_t *, CGAL::Box_intersection_d::ID_FROM_HANDLE>;
   std::vector<size_t> ids(ncells);
-  std::vector<Box> boxes;
+  std::vector<Box> boxes; // reordered by box_self_intersection_d
   boxes.reserve(ncells);
+  std::vector<std::array<double, 2 * D>> cbox(ncells); // cell c's lo, then hi
   for (size_t c = 0; c < ncells; c++) {
     begin[c] = simp.size();
     for (size_t s = first_piece[c]; s < first_piece[c + 1]; s++) {
@@ -451,6 +469,9 @@ void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorne
       }
     ids[c] = c;
     boxes.emplace_back(lo, hi, &ids[c]);
+    for (int i = 0; i < D; i++)
+      cbox[c][static_cast<size_t>(i)] = lo[i],
+      cbox[c][static_cast<size_t>(D + i)] = hi[i];
   }
   begin[ncells] = simp.size();
   // Candidate pairs: closed boxes that meet, cells that share no corner.
@@ -469,10 +490,20 @@ void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorne
   pair[0] = pair[1] = SIZE_MAX;
   for (const auto &c : cand) {
     bool hit = false;
-    for (size_t s = begin[c.first]; s < begin[c.first + 1] && !hit; s++)
+    // a piece of one cell outside the other cell's box meets none of its
+    // pieces (their boxes are inside it): skipped before the inner loop
+    const std::array<double, 2 *D> &bb = cbox[c.second];
+    for (size_t s = begin[c.first]; s < begin[c.first + 1] && !hit; s++) {
+      bool near = true;
+      for (int i = 0; i < D; i++)
+        near &= !(simp[s].hi[i] < bb[static_cast<size_t>(i)] ||
+                  bb[static_cast<size_t>(D + i)] < simp[s].lo[i]);
+      if (!near) continue;
       for (size_t t = begin[c.second]; t < begin[c.second + 1] && !hit; t++)
         hit = boxes_meet<D>(simp[s], simp[t]) &&
-              G::meet(simp[s].v.data(), simp[s].k, simp[t].v.data(), simp[t].k);
+              G::meet(simp[s].v.data(), simp[s].k, simp[t].v.data(), simp[t].k, simp[s].o,
+                      simp[t].o);
+    }
     if (!hit) continue;
     if (*count == 0) pair[0] = c.first, pair[1] = c.second;
     ++*count;
@@ -534,9 +565,10 @@ extern "C" ss_status ss_inject_cgal_meet(int dim, const double *a, const double 
       typename G::Point pa[G::D + 1], pb[G::D + 1];
       for (int j = 0; j <= G::D; j++)
         pa[j] = G::make(a + G::D * j), pb[j] = G::make(b + G::D * j);
-      if (G::full(pa, G::D) && G::full(pb, G::D)) *quick = quick_meet<G>(pa, pb);
+      const CGAL::Orientation oa = G::orient(pa, pa[G::D]), ob = G::orient(pb, pb[G::D]);
+      if (oa != CGAL::ZERO && ob != CGAL::ZERO) *quick = quick_meet<G>(pa, pb, oa, ob);
       // the exact answer without the cheap test: the do_intersect of meet
-      *exact = G::meet(pa, G::D, pb, G::D, false);
+      *exact = G::meet(pa, G::D, pb, G::D, oa, ob, false);
     };
     if (dim == 3)
       run(Geo<3>{});
