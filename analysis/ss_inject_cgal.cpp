@@ -79,27 +79,26 @@ using P3 = K::Point_3;
 // not tested against a facet when no answer there can matter (the facet
 // already shown not to separate, the point already outside some facet):
 // the same answer with fewer predicates.
-template <class G>
-int quick_meet(const typename G::Point *a, const typename G::Point *b,
-               CGAL::Orientation oa, CGAL::Orientation ob) {
-  using Point = typename G::Point;
-  constexpr int m = G::D + 1;
+//
+// ab(i, j): the orientation of b's point j against facet i of a (G::orient
+// of a's points but the i-th, in order, and b[j]); ba(i, j) the same with a
+// and b swapped.  Computed here (quick_meet) or looked up where the pieces of
+// two cells meet many times over (overlaps).
+template <int D, class AB, class BA>
+int quick_meet_by(CGAL::Orientation oa, CGAL::Orientation ob, AB ab, BA ba) {
+  constexpr int m = D + 1;
   for (int pass = 0; pass < 2; pass++) {
-    const Point *s = pass ? b : a, *t = pass ? a : b;
     const CGAL::Orientation os = pass ? ob : oa;
     int inside[m]; // t's point j strictly on the inner side of every facet so far
     for (int j = 0; j < m; j++)
       inside[j] = 1;
     for (int i = 0; i < m; i++) {
       // facet i of s: its points but the i-th, in order; inner side: s[i]'s
-      Point f[G::D];
-      for (int j = 0, q = 0; j < m; j++)
-        if (j != i) f[q++] = s[j];
-      const CGAL::Orientation in = (G::D - i) % 2 ? -os : os;
+      const CGAL::Orientation in = (D - i) % 2 ? -os : os;
       bool apart = true;
       for (int j = 0; j < m; j++) {
         if (!apart && !inside[j]) continue;
-        const CGAL::Orientation o = G::orient(f, t[j]);
+        const CGAL::Orientation o = pass ? ba(i, j) : ab(i, j);
         if (o != -in) apart = false;
         if (o != in) inside[j] = 0;
       }
@@ -109,6 +108,24 @@ int quick_meet(const typename G::Point *a, const typename G::Point *b,
       if (inside[j]) return 1;
   }
   return -1;
+}
+
+// The orientation of p against facet i of the simplex s (D + 1 points).
+template <class G>
+CGAL::Orientation facet_orient(const typename G::Point *s, int i,
+                               const typename G::Point &p) {
+  typename G::Point f[G::D];
+  for (int j = 0, q = 0; j <= G::D; j++)
+    if (j != i) f[q++] = s[j];
+  return G::orient(f, p);
+}
+
+template <class G>
+int quick_meet(const typename G::Point *a, const typename G::Point *b,
+               CGAL::Orientation oa, CGAL::Orientation ob) {
+  return quick_meet_by<G::D>(
+      oa, ob, [&](int i, int j) { return facet_orient<G>(a, i, b[j]); },
+      [&](int i, int j) { return facet_orient<G>(b, i, a[j]); });
 }
 
 template <int D> struct Geo;
@@ -378,6 +395,7 @@ template <int D> struct Simplex {
   CGAL::Orientation o;                         // orientation when k = D (quick_meet)
   std::array<typename Geo<D>::Point, D + 1> v; // its points
   std::array<double, D> lo, hi;                // its box
+  std::array<int, D + 1> pt;                   // v's numbers among its cell's points
 };
 
 int bits(unsigned mask) {
@@ -389,9 +407,10 @@ int bits(unsigned mask) {
 
 // Append the non-degenerate simplices of top dimension spanned by the
 // D + 1 points v: v itself when it is not flat.
+// id[i]: the number of v[i] among the cell's points (Simplex::pt).
 template <int D>
 void decompose(const std::array<typename Geo<D>::Point, D + 1> &v,
-               std::vector<Simplex<D>> &out) {
+               const std::array<int, D + 1> &id, std::vector<Simplex<D>> &out) {
   using G = Geo<D>;
   const int m = D + 1;
   for (int k = D; k >= 0; k--) {
@@ -402,7 +421,10 @@ void decompose(const std::array<typename Geo<D>::Point, D + 1> &v,
       s.k = k;
       int j = 0;
       for (int i = 0; i < m; i++)
-        if (mask & (1u << i)) s.v[static_cast<size_t>(j++)] = v[static_cast<size_t>(i)];
+        if (mask & (1u << i)) {
+          s.pt[static_cast<size_t>(j)] = id[static_cast<size_t>(i)];
+          s.v[static_cast<size_t>(j++)] = v[static_cast<size_t>(i)];
+        }
       // full: for k = D its orientation, kept for quick_meet, is not zero
       s.o = k == D ? G::orient(s.v.data(), s.v[D]) : CGAL::ZERO;
       if (k == D ? s.o == CGAL::ZERO : !G::full(s.v.data(), k)) continue;
@@ -451,14 +473,24 @@ void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorne
   std::vector<Box> boxes; // reordered by box_self_intersection_d
   boxes.reserve(ncells);
   std::vector<std::array<double, 2 * D>> cbox(ncells); // cell c's lo, then hi
+  std::vector<int> npts(ncells); // the number of distinct points of cell c's pieces
+  std::vector<size_t> seen;      // those points, while numbering them
   for (size_t c = 0; c < ncells; c++) {
     begin[c] = simp.size();
+    seen.clear();
     for (size_t s = first_piece[c]; s < first_piece[c + 1]; s++) {
       std::array<Point, D + 1> v;
-      for (int j = 0; j <= D; j++)
-        v[static_cast<size_t>(j)] = G::make(x + D * piece[(D + 1) * s + j]);
-      decompose<D>(v, simp);
+      std::array<int, D + 1> id;
+      for (int j = 0; j <= D; j++) {
+        const size_t q = piece[(D + 1) * s + static_cast<size_t>(j)];
+        v[static_cast<size_t>(j)] = G::make(x + D * q);
+        const auto at = std::find(seen.begin(), seen.end(), q);
+        id[static_cast<size_t>(j)] = static_cast<int>(at - seen.begin());
+        if (at == seen.end()) seen.push_back(q);
+      }
+      decompose<D>(v, id, simp);
     }
+    npts[c] = static_cast<int>(seen.size());
     double lo[D], hi[D];
     for (int i = 0; i < D; i++)
       lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
@@ -488,21 +520,59 @@ void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorne
   cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
   *count = 0;
   pair[0] = pair[1] = SIZE_MAX;
+  // The pieces of two cells share points (a hex's 24 tets have 15), so the
+  // orientations of quick_meet recur: each (piece, facet, point of the other
+  // cell) is computed once per pair of cells and looked up after (memo,
+  // kUnknown until then); the same predicates, the same answers.
+  constexpr signed char kUnknown = 2;
+  constexpr size_t F = static_cast<size_t>(D + 1); // facets of a piece
+  std::vector<signed char> memo_a, memo_b;
   for (const auto &c : cand) {
     bool hit = false;
+    const size_t a0 = begin[c.first], b0 = begin[c.second];
+    const size_t na = npts[c.first], nb = npts[c.second];
+    memo_a.assign((begin[c.first + 1] - a0) * F * nb, kUnknown);
+    memo_b.assign((begin[c.second + 1] - b0) * F * na, kUnknown);
     // a piece of one cell outside the other cell's box meets none of its
     // pieces (their boxes are inside it): skipped before the inner loop
     const std::array<double, 2 *D> &bb = cbox[c.second];
-    for (size_t s = begin[c.first]; s < begin[c.first + 1] && !hit; s++) {
+    for (size_t s = a0; s < begin[c.first + 1] && !hit; s++) {
       bool near = true;
       for (int i = 0; i < D; i++)
         near &= !(simp[s].hi[i] < bb[static_cast<size_t>(i)] ||
                   bb[static_cast<size_t>(D + i)] < simp[s].lo[i]);
       if (!near) continue;
-      for (size_t t = begin[c.second]; t < begin[c.second + 1] && !hit; t++)
-        hit = boxes_meet<D>(simp[s], simp[t]) &&
-              G::meet(simp[s].v.data(), simp[s].k, simp[t].v.data(), simp[t].k, simp[s].o,
-                      simp[t].o);
+      const Simplex<D> &A = simp[s];
+      for (size_t t = b0; t < begin[c.second + 1] && !hit; t++) {
+        const Simplex<D> &B = simp[t];
+        if (!boxes_meet<D>(A, B)) continue;
+        if (A.k < D || B.k < D) {
+          hit = G::meet(A.v.data(), A.k, B.v.data(), B.k, A.o, B.o);
+          continue;
+        }
+        signed char *ma = memo_a.data() + (s - a0) * F * nb;
+        signed char *mb = memo_b.data() + (t - b0) * F * na;
+        const int quick = quick_meet_by<D>(
+            A.o, B.o,
+            [&](int i, int j) {
+              signed char &r = ma[static_cast<size_t>(i) * nb +
+                                  static_cast<size_t>(B.pt[static_cast<size_t>(j)])];
+              if (r == kUnknown)
+                r = static_cast<signed char>(
+                    facet_orient<G>(A.v.data(), i, B.v[static_cast<size_t>(j)]));
+              return static_cast<CGAL::Orientation>(r);
+            },
+            [&](int i, int j) {
+              signed char &r = mb[static_cast<size_t>(i) * na +
+                                  static_cast<size_t>(A.pt[static_cast<size_t>(j)])];
+              if (r == kUnknown)
+                r = static_cast<signed char>(
+                    facet_orient<G>(B.v.data(), i, A.v[static_cast<size_t>(j)]));
+              return static_cast<CGAL::Orientation>(r);
+            });
+        hit = quick >= 0 ? quick != 0
+                         : G::meet(A.v.data(), A.k, B.v.data(), B.k, A.o, B.o, false);
+      }
     }
     if (!hit) continue;
     if (*count == 0) pair[0] = c.first, pair[1] = c.second;
