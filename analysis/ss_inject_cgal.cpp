@@ -527,6 +527,17 @@ void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorne
   constexpr signed char kUnknown = 2;
   constexpr size_t F = static_cast<size_t>(D + 1); // facets of a piece
   std::vector<signed char> memo_a, memo_b;
+  // the orientation of T's point j against facet i of S, memo[i n + point]
+  auto cached = [](signed char *memo, size_t n, const Simplex<D> &S,
+                   const Simplex<D> &T) {
+    return [=, &S, &T](int i, int j) {
+      const size_t u = static_cast<size_t>(j);
+      signed char &r = memo[static_cast<size_t>(i) * n + static_cast<size_t>(T.pt[u])];
+      if (r == kUnknown)
+        r = static_cast<signed char>(facet_orient<G>(S.v.data(), i, T.v[u]));
+      return static_cast<CGAL::Orientation>(r);
+    };
+  };
   for (const auto &c : cand) {
     bool hit = false;
     const size_t a0 = begin[c.first], b0 = begin[c.second];
@@ -550,26 +561,9 @@ void overlaps(const double *x, size_t ncells, const size_t *corner, int maxcorne
           hit = G::meet(A.v.data(), A.k, B.v.data(), B.k, A.o, B.o);
           continue;
         }
-        signed char *ma = memo_a.data() + (s - a0) * F * nb;
-        signed char *mb = memo_b.data() + (t - b0) * F * na;
         const int quick = quick_meet_by<D>(
-            A.o, B.o,
-            [&](int i, int j) {
-              signed char &r = ma[static_cast<size_t>(i) * nb +
-                                  static_cast<size_t>(B.pt[static_cast<size_t>(j)])];
-              if (r == kUnknown)
-                r = static_cast<signed char>(
-                    facet_orient<G>(A.v.data(), i, B.v[static_cast<size_t>(j)]));
-              return static_cast<CGAL::Orientation>(r);
-            },
-            [&](int i, int j) {
-              signed char &r = mb[static_cast<size_t>(i) * na +
-                                  static_cast<size_t>(A.pt[static_cast<size_t>(j)])];
-              if (r == kUnknown)
-                r = static_cast<signed char>(
-                    facet_orient<G>(B.v.data(), i, A.v[static_cast<size_t>(j)]));
-              return static_cast<CGAL::Orientation>(r);
-            });
+            A.o, B.o, cached(memo_a.data() + (s - a0) * F * nb, nb, A, B),
+            cached(memo_b.data() + (t - b0) * F * na, na, B, A));
         hit = quick >= 0 ? quick != 0
                          : G::meet(A.v.data(), A.k, B.v.data(), B.k, A.o, B.o, false);
       }
