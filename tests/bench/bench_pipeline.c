@@ -121,7 +121,31 @@
  *   14, tet/oct; 0.81-0.98 in a run under load 10; `sweep --jobs 1/2` of
  *   the same 102 links into fresh stores: 0.91 and 0.99, identical rows):
  *   the threads cost each other little, so on two free cores the speed-up
- *   would be about 1.8-2. */
+ *   would be about 1.8-2.
+ *
+ * The regularity side (branch i20reg: everything in ss_result_compute but
+ * the local matrix), 2026-12-03 14:23-14:25 UTC, load 2.7-3.2, main's
+ * binary (d712994) and the branch's run side by side, one core each
+ * (--jobs 1; paired, so both see the same load), part (a), 102 links:
+ *   k = 12, three pairs: pipeline 65.9 -> 59.9, 62.2 -> 58.4, 60.6 -> 56.9
+ *     ms (-6 to -9 %); without the extraction 48.6 -> 42.2, 46.0 -> 42.1,
+ *     44.5 -> 40.4 ms (-9 to -13 %); median 28.4 -> 26.7, slowest 127 -> 118.
+ *   k = 13, two pairs: 66.9 -> 61.9 and 79.7 -> 71.7 ms (-7.5, -10 %);
+ *     without the extraction -12 and -13 %.
+ *   callgrind, 12 links k = 12 (instructions, free of load): pipeline 9.88
+ *   -> 9.28 G; Jacobian test (ss_jac_cell) 2.08 -> 1.78 G, injectivity
+ *   0.96 -> 0.66 G.  What changed: the scaled Jacobian's edge lengths once
+ *   per hex edge (hypot was most of ss_jac_cell's time), the Bernstein
+ *   conversion and split without an integer division per coefficient, and
+ *   the overlap test's orientation predicates each computed once per pair
+ *   of cells (a hex's 24 tets share 15 points) with the pieces'
+ *   orientations kept.  Stores unchanged bit for bit (MLCA k 4..11 and edges
+ *   3..8, tet/oct, box-spline, a certified MLCA store).  What is left,
+ *   perf at k = 12 and 13 (share of the pipeline's CPU): the deeper ring's
+ *   refinement (ss_local_ring_deepen) 45-47 %, the local matrix 29-32 %,
+ *   injectivity 9-11 %, Jacobian test 4-6 %, eigen 4 %: the regularity
+ *   side proper is now about a fifth of a case; the deeper ring, a
+ *   refinement, is the next target. */
 #include <malloc.h>
 #include <math.h>
 #include <omp.h>
