@@ -18,7 +18,9 @@ typedef struct {
   gsl_spmatrix *R;       /* operator to the next level, CSR (NULL on the last) */
   ss_star_coord *abs;    /* chart coordinates, cx->nv */
   ss_star_coord *rel;    /* coordinates relative to p (levels >= lc), cx->nv */
-  size_t *order;         /* vertices sorted by rel, for lookup */
+  ss_idx *index;         /* the vertices hashed by rel, for lookup: open
+                            addressing, mask + 1 slots, SS_IDX_NONE empty */
+  size_t mask;           /* slots - 1 (a power of two minus one) */
   unsigned char *inner;  /* vertex not on the patch boundary */
   unsigned char *cinner; /* schemes reaching 2 rings: vertex not on the
                             boundary of the complex refined into the next
@@ -49,7 +51,6 @@ static void ws_release(ss_local_workspace *w) {
   free(w->mark);
   free(w->facet);
   free(w->bucket);
-  free(w->key);
   memset(w, 0, sizeof *w);
 }
 
@@ -128,29 +129,31 @@ static int lincomb(int m, const ss_star_coord *const *c, const int *mult, int di
 
 /* ---- the levels ---- */
 
-/* A vertex and its coordinates, for sorting without global state. */
-typedef struct {
-  ss_star_coord c; /* relative coordinates */
-  size_t v;        /* vertex index */
-} keyed;
+/* A hash of a coordinate vector (of its nonzero entries: the unused slots
+ * of equal vectors agree anyway). */
+static size_t coord_hash(const ss_star_coord *c) {
+  uint64_t h = (uint64_t)(c->n + 1) * 0x9e3779b97f4a7c15u;
+  for (int i = 0; i < c->n; i++) {
+    h ^= (uint64_t)(uint32_t)c->idx[i] << 32 | (uint32_t)c->val[i];
+    h *= 0xff51afd7ed558ccdu;
+    h ^= h >> 29;
+  }
+  return (size_t)h;
+}
 
-static int by_rel(const void *a, const void *b) {
-  return ss_star_coord_cmp(&((const keyed *)a)->c, &((const keyed *)b)->c);
+/* The slot of L's index holding the vertex with relative coordinates c, or
+ * the empty slot where it would go. */
+static size_t slot_of(const level *L, const ss_star_coord *c) {
+  size_t h = coord_hash(c) & L->mask;
+  while (L->index[h] != SS_IDX_NONE && ss_star_coord_cmp(L->rel + L->index[h], c) != 0)
+    h = (h + 1) & L->mask;
+  return h;
 }
 
 /* Vertex with relative coordinates c on level l, or SIZE_MAX. */
 static size_t lookup(const level *L, const ss_star_coord *c) {
-  size_t lo = 0, hi = L->cx->nv;
-  while (lo < hi) {
-    size_t mid = lo + (hi - lo) / 2;
-    int r = ss_star_coord_cmp(L->rel + L->order[mid], c);
-    if (r == 0) return L->order[mid];
-    if (r < 0)
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  return SIZE_MAX;
+  const ss_idx v = L->index[slot_of(L, c)];
+  return v == SS_IDX_NONE ? SIZE_MAX : (size_t)v;
 }
 
 /* Facets of the top cells, as sorted vertex quadruples (padded with
@@ -272,33 +275,36 @@ static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned c
 static ss_status finish_level(work *W, int l, ss_error *err) {
   level *L = W->lev + l;
   const size_t nv = L->cx->nv;
+  size_t slots = 4;
+  while (slots < 2 * nv)
+    slots *= 2;
   L->rel = malloc((nv + 1) * sizeof *L->rel);
-  L->order = malloc((nv + 1) * sizeof *L->order);
-  if (!L->rel || !L->order ||
-      !(W->ws->key = ws_grow(W->ws->key, &W->ws->nkey, nv * sizeof(keyed), 1)))
-    return ss_error_nomem(err, "local coordinates");
-  keyed *k = W->ws->key;
-  const ss_star_coord *c[2];
-  const int mult[2] = {1, -(1 << (l - W->lc))};
-  c[1] = &W->cp;
-  for (size_t v = 0; v < nv; v++) {
-    c[0] = L->abs + v;
-    if (lincomb(2, c, mult, 1, L->rel + v)) {
-      return ss_error_set(err, SS_EINTERNAL,
-                          "local coordinates of vertex %zu on level %d have too many "
-                          "nonzero entries",
-                          v, l);
+  L->index = malloc(slots * sizeof *L->index);
+  if (!L->rel || !L->index) return ss_error_nomem(err, "local coordinates");
+  L->mask = slots - 1;
+  if (W->cp.n == 0) /* p is the chart's origin: relative = absolute */
+    memcpy(L->rel, L->abs, nv * sizeof *L->rel);
+  else {
+    const ss_star_coord *c[2];
+    const int mult[2] = {1, -(1 << (l - W->lc))};
+    c[1] = &W->cp;
+    for (size_t v = 0; v < nv; v++) {
+      c[0] = L->abs + v;
+      if (lincomb(2, c, mult, 1, L->rel + v))
+        return ss_error_set(err, SS_EINTERNAL,
+                            "local coordinates of vertex %zu on level %d have too many "
+                            "nonzero entries",
+                            v, l);
     }
-    k[v].c = L->rel[v];
-    k[v].v = v;
   }
-  qsort(k, nv, sizeof *k, by_rel);
-  for (size_t i = 0; i < nv; i++)
-    L->order[i] = k[i].v;
-  for (size_t i = 1; i < nv; i++)
-    if (ss_star_coord_cmp(L->rel + L->order[i - 1], L->rel + L->order[i]) == 0)
+  memset(L->index, 0xff, slots * sizeof *L->index); /* SS_IDX_NONE */
+  for (size_t v = 0; v < nv; v++) {
+    const size_t h = slot_of(L, L->rel + v);
+    if (L->index[h] != SS_IDX_NONE)
       return ss_error_set(err, SS_EINTERNAL, "two vertices of level %d share coordinates",
                           l);
+    L->index[h] = (ss_idx)v;
+  }
   return inner_marks(L->cx, W->ws, &L->inner, err);
 }
 
@@ -456,7 +462,7 @@ static void free_work(work *W) {
     if (L->R) gsl_spmatrix_free(L->R);
     if (l > 0) free(L->abs);
     free(L->rel);
-    free(L->order);
+    free(L->index);
     free(L->inner);
     free(L->cinner);
   }

@@ -355,9 +355,6 @@ typedef struct {
   size_t nfacet;       /* capacity of facet, bytes */
   size_t *bucket;      /* the grouping's counting sort: a bucket per point */
   size_t nbucket;      /* capacity of bucket, entries */
-  void *key;           /* a level's points with their coordinates, sorted
-                          for lookup */
-  size_t nkey;         /* capacity of key, bytes */
 } ss_local_workspace;
 
 /* An empty workspace (it grows at its first use); NULL when out of memory.

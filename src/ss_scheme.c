@@ -314,6 +314,8 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
   ss_split *L = NULL;
   gsl_spmatrix *R = NULL;
   ss_triplets M = {0, 0, NULL, NULL, NULL};
+  ss_rows rows;
+  memset(&rows, 0, sizeof rows);
   double *y = NULL;
   *fine_out = NULL;
   if (R_out) *R_out = NULL;
@@ -332,8 +334,12 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
     st = ss_error_nomem(err, "fine positions");
     goto done;
   }
-  ss_sink k = {L, dim, fine->x, y, NULL, SS_OK};
-  if (R_out) { /* a cell sends about one entry per pair of its vertices */
+  ss_sink k = {L, dim, fine->x, y, NULL, SS_OK, NULL};
+  if (R_out && s->rows_in_order) { /* up to 3^dim columns a row, fewer mostly */
+    size_t est = nf * (size_t)(ss_cx_topdim(fine) == 3 ? 16 : 9);
+    if ((st = ss_rows_init(&rows, nf, coarse->nv, est, err))) goto done;
+    k.rows = &rows;
+  } else if (R_out) { /* a cell sends about one entry per pair of its vertices */
     size_t est = nf;
     for (int t = 0; t < SS_NCELLTYPES; t++)
       est += fine->nc[t] *
@@ -342,12 +348,23 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
     k.M = &M;
   }
   if ((st = s->rule(s, coarse, fine, L, &k, err))) goto done;
+  if (k.st == SS_EINTERNAL) {
+    st = ss_error_set(err, SS_EINTERNAL,
+                      "scheme %s: the rule sent a row of the refinement operator out of "
+                      "order",
+                      s->name);
+    goto done;
+  }
   if (k.st) {
     st = ss_error_nomem(err, "refinement operator");
     goto done;
   }
   if (R_out) {
-    if ((st = ss_triplets_csr(&M, nf, coarse->nv, &R, err))) goto done;
+    if (k.rows)
+      st = ss_rows_finish(&rows, &R, err);
+    else
+      st = ss_triplets_csr(&M, nf, coarse->nv, &R, err);
+    if (st) goto done;
     ss_triplets_clear(&M);
     if ((st = check_rows(s, R, err))) goto done;
     for (size_t r = 0; r < dim; r++) {
@@ -388,6 +405,7 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
 done:
   free(y);
   ss_triplets_clear(&M);
+  ss_rows_clear(&rows);
   if (L_out && !st) {
     *L_out = L;
     L = NULL;

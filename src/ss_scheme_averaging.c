@@ -8,10 +8,16 @@
  *          sum over u in C of mask_C[role(v, u)] * u,
  * with u at its split position.  A vertex in no cell keeps its position. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "ss_scheme_impl.h"
 
+/* The rule row by row: fine vertex v's cells of dimension dim[v] in the order
+ * (type, index), so that a sink can write R's rows in order (ss_rows); row
+ * v's terms come in the same order as a pass over the cells would send them,
+ * so positions and R are the same to the bit either way. */
 static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
                                 const ss_cx *fine, const ss_split *L, ss_sink *k,
                                 ss_error *err) {
@@ -19,53 +25,77 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
   (void)L;
   const size_t nv = fine->nv;
   unsigned char *dimv = malloc(nv + 1);
-  uint32_t *val = calloc(nv + 1, sizeof *val);
-  if (!dimv || !val) {
-    free(dimv);
-    free(val);
-    return ss_error_nomem(err, "averaging valences");
-  }
+  size_t *ptr = calloc(nv + 2, sizeof *ptr); /* v's cells: inc[ptr[v] .. ptr[v + 1]) */
+  uint64_t *inc = NULL; /* cell index << 8 | type << 4 | v's place in the cell */
+  size_t ninc = 0;
+  ss_sink_cells cells[SS_NCELLTYPES];
+  memset(cells, 0, sizeof cells);
+  ss_status st = SS_OK;
+  if (!dimv || !ptr) goto nomem;
   for (size_t v = 0; v < nv; v++)
     dimv[v] = 0xff;
   for (int t = 0; t < SS_NCELLTYPES; t++) {
     const unsigned char D = (unsigned char)ss_cell_dim((ss_cell_type)t);
-    const int n = ss_cell_nverts((ss_cell_type)t);
-    const ss_idx *c = fine->cells[t];
-    for (size_t i = 0; i < fine->nc[t] * (size_t)n; i++) {
-      ss_idx v = c[i];
-      if (D < dimv[v]) {
-        dimv[v] = D;
-        val[v] = 1;
-      } else if (D == dimv[v]) {
-        val[v]++;
-      }
+    const size_t n = fine->nc[t] * (size_t)ss_cell_nverts((ss_cell_type)t);
+    for (size_t i = 0; i < n; i++) {
+      const ss_idx v = fine->cells[t][i];
+      if (D < dimv[v]) dimv[v] = D;
     }
   }
+  /* counting sort of the (vertex, cell) pairs by vertex, cells in order */
   for (int t = 0; t < SS_NCELLTYPES; t++) {
-    if (!fine->nc[t]) continue;
-    const ss_cell_type type = (ss_cell_type)t;
-    const unsigned char D = (unsigned char)ss_cell_dim(type);
-    const int n = ss_cell_nverts(type);
-    double w[SS_MAXCELLVERTS][SS_MAXCELLVERTS];
-    for (int i = 0; i < n; i++)
-      for (int j = 0; j < n; j++)
-        w[i][j] = s->avg.mask[t][ss_cell_role(type, i, j)];
-    for (size_t c = 0; c < fine->nc[t]; c++) {
-      const ss_idx *cv = ss_cx_cell(fine, type, c);
-      ss_sink_cell sc; /* the cell's parents merged once for its n rows */
-      ss_sink_cell_prepare(k, n, cv, &sc);
-      for (int i = 0; i < n; i++) {
-        const ss_idx v = cv[i];
-        if (dimv[v] != D) continue;
-        ss_sink_emit_cell(k, &sc, v, w[i], 1.0 / (double)val[v]);
-      }
-    }
+    const unsigned char D = (unsigned char)ss_cell_dim((ss_cell_type)t);
+    const size_t n = fine->nc[t] * (size_t)ss_cell_nverts((ss_cell_type)t);
+    for (size_t i = 0; i < n; i++)
+      if (dimv[fine->cells[t][i]] == D) ptr[fine->cells[t][i] + 2]++;
   }
   for (size_t v = 0; v < nv; v++)
-    if (dimv[v] == 0xff) ss_sink_emit(k, v, v, 1.0);
+    ptr[v + 2] += ptr[v + 1];
+  ninc = ptr[nv + 1];
+  if (!(inc = malloc((ninc + 1) * sizeof *inc))) goto nomem;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    const unsigned char D = (unsigned char)ss_cell_dim((ss_cell_type)t);
+    const int n = ss_cell_nverts((ss_cell_type)t);
+    for (size_t c = 0; c < fine->nc[t]; c++)
+      for (int i = 0; i < n; i++) {
+        const ss_idx v = fine->cells[t][c * (size_t)n + (size_t)i];
+        if (dimv[v] == D)
+          inc[ptr[v + 1]++] = (uint64_t)c << 8 | (uint64_t)t << 4 | (uint64_t)i;
+      }
+  }
+  double w[SS_NCELLTYPES][SS_MAXCELLVERTS][SS_MAXCELLVERTS];
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    const ss_cell_type type = (ss_cell_type)t;
+    for (int i = 0; fine->nc[t] && i < ss_cell_nverts(type); i++)
+      for (int j = 0; j < ss_cell_nverts(type); j++)
+        w[t][i][j] = s->avg.mask[t][ss_cell_role(type, i, j)];
+  }
+  for (int t = 0; t < SS_NCELLTYPES; t++) /* each cell's parents merged once */
+    if ((st = ss_sink_cells_prepare(k, ss_cell_nverts((ss_cell_type)t), fine->nc[t],
+                                    fine->cells[t], cells + t, err)))
+      goto done;
+  for (size_t v = 0; v < nv; v++) {
+    if (dimv[v] == 0xff) {
+      ss_sink_emit(k, v, v, 1.0);
+      continue;
+    }
+    /* val[v], the number of those cells */
+    const double scale = 1.0 / (double)(ptr[v + 1] - ptr[v]);
+    for (size_t q = ptr[v]; q < ptr[v + 1]; q++) {
+      const int t = (int)(inc[q] >> 4 & 0xf), i = (int)(inc[q] & 0xf);
+      ss_sink_emit_cell(k, cells + t, (size_t)(inc[q] >> 8), v, w[t][i], scale);
+    }
+  }
+  goto done;
+nomem:
+  st = ss_error_nomem(err, "averaging valences");
+done:
   free(dimv);
-  free(val);
-  return SS_OK;
+  free(ptr);
+  free(inc);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    ss_sink_cells_clear(cells + t);
+  return st;
 }
 
 ss_status ss_scheme_averaging_new(const char *name, const ss_averaging *a,
@@ -93,6 +123,7 @@ ss_status ss_scheme_averaging_new(const char *name, const ss_averaging *a,
   ss_status st = ss_scheme_alloc(name, a->split, accepts, averaging_rule, &s, err);
   if (st) return st;
   s->avg = *a;
+  s->rows_in_order = 1;
   *out = s;
   return SS_OK;
 }

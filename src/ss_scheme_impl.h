@@ -28,6 +28,9 @@ struct ss_scheme {
   int step_passes;          /* refinements in one analysis step: 1, or 2 for
                                quasi48 (a full 4-8 cycle) */
   int ring_depth;           /* ss_scheme_ring_depth */
+  int rows_in_order;        /* 1: the rule sends its rows one after another in
+                               increasing order, so R is written row by row
+                               (ss_rows); 0: in any order (ss_triplets) */
 };
 
 /* Allocate a scheme with the given parts. */

@@ -3,7 +3,9 @@
 
 #include "ss_gsl.h"
 
+#include <limits.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Room for m more triplets; 0, or -1 (and k->st set) without memory. */
 static int reserve(ss_sink *k, size_t m) {
@@ -26,7 +28,191 @@ static int reserve(ss_sink *k, size_t m) {
   return 0;
 }
 
+/* ---- rows in order (ss_rows) ---- */
+
+ss_status ss_rows_init(ss_rows *r, size_t nrows, size_t ncols, size_t nnz,
+                       ss_error *err) {
+  memset(r, 0, sizeof *r);
+  r->nrows = nrows;
+  r->ncols = ncols;
+  r->cap = nnz + 64;
+  r->ptr = malloc((nrows + 1) * sizeof *r->ptr);
+  r->col = malloc(r->cap * sizeof *r->col);
+  r->w = malloc(r->cap * sizeof *r->w);
+  r->slot = calloc(ncols + 1, sizeof *r->slot);
+  r->gslot = calloc(ncols + 1, sizeof *r->gslot);
+  if (!r->ptr || !r->col || !r->w || !r->slot || !r->gslot) {
+    ss_rows_clear(r);
+    return ss_error_nomem(err, "refinement operator");
+  }
+  r->ptr[0] = 0;
+  return SS_OK;
+}
+
+void ss_rows_clear(ss_rows *r) {
+  free(r->ptr);
+  free(r->col);
+  free(r->w);
+  free(r->slot);
+  free(r->gslot);
+  memset(r, 0, sizeof *r);
+}
+
+/* Room for one more entry of the current row; 0, or -1 (k->st set). */
+static int rows_grow(ss_sink *k) {
+  ss_rows *r = k->rows;
+  size_t cap = 2 * r->cap;
+  if (cap > (size_t)INT_MAX) cap = (size_t)INT_MAX; /* GSL's CSR indices are int */
+  if (r->nnz + r->m + 1 > cap) {
+    k->st = SS_ENOMEM;
+    return -1;
+  }
+  int *c = realloc(r->col, cap * sizeof *c);
+  if (c) r->col = c;
+  double *w = realloc(r->w, cap * sizeof *w);
+  if (w) r->w = w;
+  if (!c || !w) {
+    k->st = SS_ENOMEM;
+    return -1;
+  }
+  r->cap = cap;
+  return 0;
+}
+
+/* Add x to entry (current row, c): the row's first term for c is stored as
+ * it is, later ones added, as ss_triplets_csr merges a row's triplets. */
+static inline void row_add(ss_sink *k, ss_idx c, double x) {
+  ss_rows *r = k->rows;
+  const uint32_t s = r->slot[c];
+  if (s) {
+    r->w[r->nnz + s - 1] += x;
+    return;
+  }
+  if (r->nnz + r->m >= r->cap && rows_grow(k)) return;
+  r->col[r->nnz + r->m] = (int)c;
+  r->w[r->nnz + r->m] = x;
+  r->slot[c] = (uint32_t)++r->m;
+}
+
+/* Close the current row: columns ascending, slots cleared. */
+static void row_close(ss_rows *r) {
+  int *col = r->col + r->nnz;
+  double *w = r->w + r->nnz;
+  const size_t m = r->m;
+  for (size_t i = 0; i < m; i++)
+    r->slot[col[i]] = 0;
+  for (size_t i = 1; i < m; i++) { /* insertion sort: a row has few columns */
+    const int c = col[i];
+    const double x = w[i];
+    size_t j = i;
+    for (; j > 0 && col[j - 1] > c; j--) {
+      col[j] = col[j - 1];
+      w[j] = w[j - 1];
+    }
+    col[j] = c;
+    w[j] = x;
+  }
+  r->nnz += m;
+  r->m = 0;
+  r->ptr[r->row + 1] = (int)r->nnz;
+}
+
+/* Make `row` the current row (closing the rows before it); 0, or -1 with
+ * k->st set when the rule went back to a closed row or past the last. */
+static int rows_goto(ss_sink *k, size_t row) {
+  ss_rows *r = k->rows;
+  if (row == r->row) return 0;
+  if (row < r->row || row >= r->nrows) {
+    k->st = SS_EINTERNAL;
+    return -1;
+  }
+  row_close(r);
+  for (size_t i = r->row + 2; i <= row; i++) /* rows the rule left empty */
+    r->ptr[i] = (int)r->nnz;
+  r->row = row;
+  return 0;
+}
+
+ss_status ss_rows_finish(ss_rows *r, gsl_spmatrix **out, ss_error *err) {
+  *out = NULL;
+  if (r->nrows) {
+    row_close(r);
+    for (size_t i = r->row + 2; i <= r->nrows; i++)
+      r->ptr[i] = (int)r->nnz;
+  }
+  gsl_spmatrix *R = ss_gsl_csr_alloc(r->nrows, r->ncols ? r->ncols : 1, r->nnz);
+  if (!R) {
+    ss_rows_clear(r);
+    return ss_error_nomem(err, "refinement operator");
+  }
+  memcpy(R->p, r->ptr, (r->nrows + 1) * sizeof *R->p);
+  memcpy(R->i, r->col, r->nnz * sizeof *R->i);
+  memcpy(R->data, r->w, r->nnz * sizeof *R->data);
+  R->nz = r->nnz;
+  ss_rows_clear(r);
+  *out = R;
+  return SS_OK;
+}
+
+/* ss_sink_emit_operator into rows. */
+static void rows_emit(ss_sink *k, size_t row, size_t src, double w) {
+  if (rows_goto(k, row)) return;
+  const ss_split *L = k->L;
+  const double ws = w / (double)ss_split_npar(L, src);
+  for (size_t q = L->ptr[src]; q < L->ptr[src + 1]; q++)
+    row_add(k, L->parent[q], ws);
+}
+
+/* ss_sink_emit_many_operator into rows: the same merged sums (a column ->
+ * slot map in place of the search), cut where that function cuts them, each
+ * then added to the row as its triplet would be. */
+static void rows_emit_many(ss_sink *k, size_t row, int n, const ss_idx *src,
+                           const double *w, double scale) {
+  enum { CAP = 4 * SS_MAXCELLVERTS };
+  if (rows_goto(k, row)) return;
+  ss_idx col[CAP];
+  double acc[CAP];
+  int m = 0;
+  const ss_split *L = k->L;
+  uint8_t *g = k->rows->gslot;
+  for (int j = 0; j <= n; j++) {
+    size_t np = 0;
+    if (j < n) {
+      if (w[j] == 0.0) continue;
+      np = ss_split_npar(L, src[j]);
+      if (np > CAP) {
+        rows_emit(k, row, src[j], w[j] * scale);
+        continue;
+      }
+    }
+    if (j == n || m + np > CAP) { /* the merged sums go into the row */
+      for (int i = 0; i < m; i++) {
+        g[col[i]] = 0;
+        row_add(k, col[i], acc[i]);
+      }
+      m = 0;
+      if (j == n) break;
+    }
+    const double ws = w[j] * scale / (double)np;
+    for (size_t q = L->ptr[src[j]]; q < L->ptr[src[j] + 1]; q++) {
+      const ss_idx c = L->parent[q];
+      if (!g[c]) {
+        col[m] = c;
+        acc[m] = 0.0;
+        g[c] = (uint8_t)++m;
+      }
+      acc[g[c] - 1] += ws;
+    }
+  }
+}
+
+/* ---- triplets ---- */
+
 void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w) {
+  if (k->rows) {
+    rows_emit(k, row, src, w);
+    return;
+  }
   const ss_split *L = k->L;
   const size_t np = ss_split_npar(L, src);
   if (reserve(k, np)) return;
@@ -52,6 +238,10 @@ static void flush(ss_sink *k, size_t row, int m, const ss_idx *col, const double
 
 void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src,
                                 const double *w, double scale) {
+  if (k->rows) {
+    rows_emit_many(k, row, n, src, w, scale);
+    return;
+  }
   enum { CAP = 4 * SS_MAXCELLVERTS };
   ss_idx col[CAP];
   double acc[CAP];
@@ -84,66 +274,113 @@ void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src
   flush(k, row, m, col, acc);
 }
 
-void ss_sink_cell_prepare(const ss_sink *k, int n, const ss_idx *src, ss_sink_cell *c) {
-  c->n = n;
-  c->src = src;
-  c->m = -1;
-  if (!k->M || n > SS_MAXCELLVERTS) return;
-  const ss_split *L = k->L;
-  int m = 0, s = 0;
-  for (int j = 0; j < n; j++) {
-    const size_t np = ss_split_npar(L, src[j]);
-    if (np > (size_t)(SS_SINK_CELLCAP - s)) return; /* c->m stays -1 */
-    s += (int)np;
-    c->np[j] = (int)np;
-    for (size_t q = L->ptr[src[j]]; q < L->ptr[src[j] + 1]; q++) {
-      const ss_idx p = L->parent[q];
-      int i = 0;
-      while (i < m && c->col[i] != p)
-        i++;
-      if (i == m) {
-        c->col[m] = p;
-        c->from[m++] = 0;
-      }
-      c->from[i] |= 1u << j; /* a source's parents are distinct: once each */
-    }
-  }
-  c->m = m;
-}
-
-void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cell *c, size_t row,
-                                const double *w, double scale) {
-  if (c->m < 0) {
-    ss_sink_emit_many_operator(k, row, c->n, c->src, w, scale);
+/* Append entry (row, c) = x: into the current row, or as a triplet. */
+static inline void put(ss_sink *k, size_t row, ss_idx c, double x) {
+  if (k->rows) {
+    row_add(k, c, x);
     return;
   }
+  ss_triplets *t = k->M;
+  t->row[t->n] = (ss_idx)row;
+  t->col[t->n] = c;
+  t->w[t->n++] = x;
+}
+
+void ss_sink_cells_clear(ss_sink_cells *c) {
+  free(c->off);
+  free(c->col);
+  free(c->from);
+  free(c->np);
+  memset(c, 0, sizeof *c);
+}
+
+ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss_idx *src,
+                                ss_sink_cells *c, ss_error *err) {
+  memset(c, 0, sizeof *c);
+  c->n = n;
+  c->src = src;
+  if (!(k->M || k->rows)) return SS_OK;
+  const ss_split *L = k->L;
+  /* room: each cell's parent slots, at most SS_SINK_CELLCAP merged */
+  size_t room = 0;
+  for (size_t i = 0; i < ncells * (size_t)n; i++)
+    room += ss_split_npar(L, src[i]);
+  c->off = malloc((ncells + 1) * sizeof *c->off);
+  c->col = malloc((room + 1) * sizeof *c->col);
+  c->from = malloc(room + 1);
+  c->np = malloc(ncells * (size_t)n + 1);
+  if (!c->off || !c->col || !c->from || !c->np) {
+    ss_sink_cells_clear(c);
+    return ss_error_nomem(err, "refinement operator");
+  }
+  size_t at = 0;
+  for (size_t i = 0; i < ncells; i++) {
+    const ss_idx *s = src + i * (size_t)n;
+    uint8_t *np = c->np + i * (size_t)n;
+    c->off[i] = at;
+    int m = 0, slots = 0;
+    for (int j = 0; j < n; j++) {
+      const size_t p = ss_split_npar(L, s[j]);
+      if (n > 8 || p > (size_t)(SS_SINK_CELLCAP - slots)) {
+        np[0] = 0; /* not merged */
+        m = 0;
+        break;
+      }
+      slots += (int)p;
+      np[j] = (uint8_t)p;
+      for (size_t q = L->ptr[s[j]]; q < L->ptr[s[j] + 1]; q++) {
+        const ss_idx v = L->parent[q];
+        int u = 0;
+        while (u < m && c->col[at + (size_t)u] != v)
+          u++;
+        if (u == m) {
+          c->col[at + (size_t)m] = v;
+          c->from[at + (size_t)m++] = 0;
+        }
+        c->from[at + (size_t)u] |= (uint8_t)(1u << j); /* a source's parents are
+                                                          distinct: once each */
+      }
+    }
+    at += (size_t)m;
+  }
+  c->off[ncells] = at;
+  return SS_OK;
+}
+
+void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, size_t row,
+                                const double *w, double scale) {
+  const int n = c->n;
+  const uint8_t *np = c->np + i * (size_t)n;
+  if (!np[0]) {
+    ss_sink_emit_many_operator(k, row, n, c->src + i * (size_t)n, w, scale);
+    return;
+  }
+  if (k->rows && rows_goto(k, row)) return;
+  const size_t b = c->off[i], e = c->off[i + 1];
+  if (!k->rows && reserve(k, e - b)) return;
   /* ss_sink_emit_many_operator's sums, term by term in the same order (the
    * sources in turn, from 0.0); a column only zero weights reach is left out
    * there, so here too */
-  double ws[SS_MAXCELLVERTS];
+  double ws[8];
   unsigned nonzero = 0;
-  for (int j = 0; j < c->n; j++) {
+  for (int j = 0; j < n; j++) {
     if (w[j] == 0.0) continue;
-    ws[j] = w[j] * scale / (double)c->np[j];
+    ws[j] = w[j] * scale / (double)np[j];
     nonzero |= 1u << j;
   }
-  if (reserve(k, (size_t)c->m)) return;
-  ss_triplets *t = k->M;
-  for (int i = 0; i < c->m; i++) {
-    unsigned b = c->from[i] & nonzero;
-    if (!b) continue;
+  for (size_t q = b; q < e; q++) {
+    unsigned f = c->from[q] & nonzero;
+    if (!f) continue;
     double acc = 0.0;
-    for (; b; b &= b - 1)
-      acc += ws[__builtin_ctz(b)];
-    t->row[t->n] = (ss_idx)row;
-    t->col[t->n] = c->col[i];
-    t->w[t->n++] = acc;
+    for (; f; f &= f - 1)
+      acc += ws[__builtin_ctz(f)];
+    put(k, row, c->col[q], acc);
   }
 }
 
 ss_status ss_triplets_reserve(ss_triplets *t, size_t n, ss_error *err) {
   if (n <= t->cap) return SS_OK;
-  ss_sink k = {NULL, 0, NULL, NULL, t, SS_OK};
+  ss_sink k = {NULL, 0, NULL, NULL, t, SS_OK, NULL};
   if (reserve(&k, n - t->n)) return ss_error_nomem(err, "refinement operator");
   return SS_OK;
 }

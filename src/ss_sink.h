@@ -11,6 +11,7 @@
 #define SS_SINK_H
 
 #include <stddef.h> /* gsl_spmatrix.h uses size_t without including it */
+#include <stdint.h>
 
 #include <gsl/gsl_spmatrix.h>
 
@@ -36,13 +37,47 @@ void ss_triplets_clear(ss_triplets *t);
  * saves the copies of growing by doubling).  SS_ENOMEM (t unchanged). */
 ss_status ss_triplets_reserve(ss_triplets *t, size_t n, ss_error *err);
 
+/* Operator rows assembled as a rule emits them, for rules that send their
+ * rows one after another in increasing row order (every emission for row r
+ * before any for a later row; ss_scheme.rows_in_order): the current row's
+ * entries are summed in place through a column -> slot map over the coarse
+ * vertices and the row is closed, its columns sorted, when the next one
+ * begins, so R is written in CSR form directly, with no triplet list to
+ * bucket and merge.  Each entry is summed in the order the rule sends its
+ * terms (the first term, then += each later one), which is how
+ * ss_triplets_csr sums the same emissions: both give R bit for bit. */
+typedef struct {
+  size_t nrows, ncols; /* R's size: fine x coarse vertices */
+  size_t row;          /* the row being summed; rows before it are closed */
+  int *ptr;            /* nrows + 1 row starts into col and w (int, as GSL's CSR) */
+  int *col;            /* the closed rows' columns, then the current row's */
+  double *w;           /* their values */
+  size_t nnz, cap;     /* entries of the closed rows; room in col and w */
+  size_t m;            /* entries of the current row, at col + nnz */
+  uint32_t *slot;      /* ncols: 1 + position of the column in the current
+                          row, 0 when absent (cleared as the row closes) */
+  uint8_t *gslot;      /* ncols: 1 + position of the column in the sums of
+                          one ss_sink_emit_many call, 0 when absent */
+} ss_rows;
+
+/* Empty rows for an nrows x ncols operator, with room for about nnz entries
+ * (a guess; they grow).  SS_ENOMEM (r cleared). */
+ss_status ss_rows_init(ss_rows *r, size_t nrows, size_t ncols, size_t nnz, ss_error *err);
+/* Close the last rows and move them into a new CSR matrix (*out, caller
+ * frees with gsl_spmatrix_free); r is cleared either way.  SS_ENOMEM. */
+ss_status ss_rows_finish(ss_rows *r, gsl_spmatrix **out, ss_error *err);
+/* Free r's memory (a no-op on a cleared r). */
+void ss_rows_clear(ss_rows *r);
+
 typedef struct {
   const ss_split *L;  /* parents of the fine vertices */
   size_t dim;         /* coordinates per vertex (positions mode) */
   const double *xlin; /* positions mode: split positions, nfine*dim; else NULL */
   double *y;          /* positions mode: accumulated new positions, nfine*dim */
-  ss_triplets *M;     /* operator mode: the entries of R; else NULL */
-  ss_status st;       /* SS_OK, or SS_ENOMEM once an insertion into M failed */
+  ss_triplets *M;     /* operator mode, any row order: the entries of R; else NULL */
+  ss_status st;       /* SS_OK; SS_ENOMEM once an insertion into M or rows
+                         failed; SS_EINTERNAL once a row came out of order */
+  ss_rows *rows;      /* operator mode, rows in order (instead of M); else NULL */
 } ss_sink;
 
 /* Operator-mode emission (out of line: it walks the parents). */
@@ -51,41 +86,49 @@ void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w);
 /* Operator-mode ss_sink_emit_many: the sources' parents are merged into
  * distinct coarse columns before they are appended (a fine hex's 8 sources
  * have 27 parent slots but at most 8 distinct parents), which cuts the triplet
- * list, and with it the assembly of R, several-fold. */
+ * list, and with it the assembly of R, several-fold.  Each merged entry is
+ * summed from 0.0 over the sources in turn; into rows, the merged entries are
+ * then added to the row exactly as their triplets would be. */
 void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src,
                                 const double *w, double scale);
 
-/* A cell's sources with their parents merged once (operator mode), for the
- * several rows a cell sends weights to over the same sources: the search for
- * distinct parents, the costly part of ss_sink_emit_many_operator, is then
- * done once per cell instead of once per row. */
+/* The cells of one type with each cell's sources' parents merged once
+ * (operator mode), for a rule that sends a cell's weights row by row, so that
+ * it visits the cell once per vertex: the search for a cell's distinct
+ * parents, the costly part of ss_sink_emit_many_operator, is done once per
+ * cell instead of once per visit. */
 enum { SS_SINK_CELLCAP = 4 * SS_MAXCELLVERTS }; /* parent slots merged at most */
 typedef struct {
-  int n;                          /* sources */
-  const ss_idx *src;              /* the sources, n (not owned) */
-  int m;                          /* distinct parents; -1: more than the caps, rows
-                                     then go through ss_sink_emit_many_operator */
-  ss_idx col[SS_SINK_CELLCAP];    /* the distinct parents, in order of first
-                                     appearance over the sources' parent lists */
-  unsigned from[SS_SINK_CELLCAP]; /* per distinct parent: bit j set when it is a
-                                     parent of source j */
-  int np[SS_MAXCELLVERTS];        /* parents of each source */
-} ss_sink_cell;
+  int n;             /* sources per cell (its vertices) */
+  const ss_idx *src; /* ncells * n sources (not owned: must outlive the use) */
+  size_t *off;       /* ncells + 1: cell c's distinct parents are col[off[c] ..
+                        off[c + 1]); NULL outside operator mode */
+  ss_idx *col;       /* the distinct parents, in order of first appearance */
+  uint8_t *from;     /* per distinct parent: bit j set when it is a parent of
+                        source j */
+  uint8_t *np;       /* ncells * n: parents of each source; 0 in a cell's first
+                        slot: more parent slots than SS_SINK_CELLCAP, the cell's
+                        rows then go through ss_sink_emit_many_operator */
+} ss_sink_cells;
 
-/* Prepare c for rows over the n sources src (kept by pointer: it must
- * outlive c's use).  Only meaningful in operator mode; cheap otherwise. */
-void ss_sink_cell_prepare(const ss_sink *k, int n, const ss_idx *src, ss_sink_cell *c);
+/* Prepare c for the ncells cells whose vertices are src (n each, kept by
+ * pointer).  Only operator mode merges; otherwise c just holds src.
+ * SS_ENOMEM (c cleared). */
+ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss_idx *src,
+                                ss_sink_cells *c, ss_error *err);
+/* Free c's memory (the sources are not c's). */
+void ss_sink_cells_clear(ss_sink_cells *c);
 
-/* Operator-mode ss_sink_emit_cell: the same triplets with the same values as
- * ss_sink_emit_many_operator over c's sources (each entry summed over the
- * sources in the same order; only the order of a row's distinct columns may
- * differ, which the CSR assembly does not see). */
-void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cell *c, size_t row,
+/* Operator-mode ss_sink_emit_cell: the same entries with the same values as
+ * ss_sink_emit_many_operator over cell i's sources (each entry summed over
+ * the sources in the same order; only the order of a row's distinct columns
+ * may differ, which the CSR assembly does not see). */
+void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, size_t row,
                                 const double *w, double scale);
 
 /* Send weight w from split vertex src to fine vertex row. */
 static inline void ss_sink_emit(ss_sink *k, size_t row, size_t src, double w) {
-  if (k->M) {
+  if (k->M || k->rows) {
     ss_sink_emit_operator(k, row, src, w);
     return;
   }
@@ -101,7 +144,7 @@ static inline void ss_sink_emit(ss_sink *k, size_t row, size_t src, double w) {
  * on the cell's few vertices instead of scattering n writes. */
 static inline void ss_sink_emit_many(ss_sink *k, size_t row, int n, const ss_idx *src,
                                      const double *w, double scale) {
-  if (k->M) {
+  if (k->M || k->rows) {
     ss_sink_emit_many_operator(k, row, n, src, w, scale);
     return;
   }
@@ -117,14 +160,15 @@ static inline void ss_sink_emit_many(ss_sink *k, size_t row, int n, const ss_idx
     y[r] += scale * acc[r];
 }
 
-/* ss_sink_emit_many over the sources of a prepared cell (ss_sink_cell_prepare). */
-static inline void ss_sink_emit_cell(ss_sink *k, const ss_sink_cell *c, size_t row,
-                                     const double *w, double scale) {
-  if (k->M) {
-    ss_sink_emit_cell_operator(k, c, row, w, scale);
+/* ss_sink_emit_many over the sources of cell i of a prepared table
+ * (ss_sink_cells_prepare). */
+static inline void ss_sink_emit_cell(ss_sink *k, const ss_sink_cells *c, size_t i,
+                                     size_t row, const double *w, double scale) {
+  if (k->M || k->rows) {
+    ss_sink_emit_cell_operator(k, c, i, row, w, scale);
     return;
   }
-  ss_sink_emit_many(k, row, c->n, c->src, w, scale);
+  ss_sink_emit_many(k, row, c->n, c->src + i * (size_t)c->n, w, scale);
 }
 
 #endif

@@ -72,11 +72,6 @@ ss_status ss_split_builder_init(ss_split_builder *b, size_t ncoarse, size_t expe
   return SS_OK;
 }
 
-static int cmp_idx(const void *a, const void *b) {
-  ss_idx x = *(const ss_idx *)a, y = *(const ss_idx *)b;
-  return (x > y) - (x < y);
-}
-
 ss_status ss_split_builder_add(ss_split_builder *b, const ss_idx *par, int n,
                                ss_idx *index, ss_error *err) {
   ss_split *L = b->L;
@@ -98,8 +93,13 @@ ss_status ss_split_builder_add(ss_split_builder *b, const ss_idx *par, int n,
     L->parent = p;
     b->pcap = cap;
   }
-  memcpy(L->parent + at, par, (size_t)n * sizeof *par);
-  qsort(L->parent + at, (size_t)n, sizeof *par, cmp_idx);
+  ss_idx *q = L->parent + at;
+  for (int i = 0; i < n; i++) { /* insertion sort: a vertex has few parents */
+    int j = i;
+    for (; j > 0 && q[j - 1] > par[i]; j--)
+      q[j] = q[j - 1];
+    q[j] = par[i];
+  }
   *index = (ss_idx)L->nfine;
   L->nfine++;
   L->ptr[L->nfine] = at + (size_t)n;
