@@ -63,12 +63,24 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
           inc[ptr[v + 1]++] = (uint64_t)c << 8 | (uint64_t)t << 4 | (uint64_t)i;
       }
   }
+  /* the weight row of each place in a cell; places with equal rows (all of
+   * them for MLCA's uniform masks) share one address, which lets the sink
+   * reuse a cell's sums (ss_sink_emit_cell) */
   double w[SS_NCELLTYPES][SS_MAXCELLVERTS][SS_MAXCELLVERTS];
+  const double *wrow[SS_NCELLTYPES][SS_MAXCELLVERTS];
   for (int t = 0; t < SS_NCELLTYPES; t++) {
     const ss_cell_type type = (ss_cell_type)t;
-    for (int i = 0; fine->nc[t] && i < ss_cell_nverts(type); i++)
-      for (int j = 0; j < ss_cell_nverts(type); j++)
+    const int n = ss_cell_nverts(type);
+    for (int i = 0; fine->nc[t] && i < n; i++) {
+      for (int j = 0; j < n; j++)
         w[t][i][j] = s->avg.mask[t][ss_cell_role(type, i, j)];
+      wrow[t][i] = w[t][i];
+      for (int e = 0; e < i; e++)
+        if (!memcmp(w[t][e], w[t][i], (size_t)n * sizeof w[t][i][0])) {
+          wrow[t][i] = w[t][e];
+          break;
+        }
+    }
   }
   for (int t = 0; t < SS_NCELLTYPES; t++) /* each cell's parents merged once */
     if ((st = ss_sink_cells_prepare(k, ss_cell_nverts((ss_cell_type)t), fine->nc[t],
@@ -83,7 +95,7 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
     const double scale = 1.0 / (double)(ptr[v + 1] - ptr[v]);
     for (size_t q = ptr[v]; q < ptr[v + 1]; q++) {
       const int t = (int)(inc[q] >> 4 & 0xf), i = (int)(inc[q] & 0xf);
-      ss_sink_emit_cell(k, cells + t, (size_t)(inc[q] >> 8), v, w[t][i], scale);
+      ss_sink_emit_cell(k, cells + t, (size_t)(inc[q] >> 8), v, wrow[t][i], scale);
     }
   }
   goto done;

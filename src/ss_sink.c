@@ -291,6 +291,10 @@ void ss_sink_cells_clear(ss_sink_cells *c) {
   free(c->col);
   free(c->from);
   free(c->np);
+  free(c->g);
+  free(c->gw);
+  free(c->gscale);
+  free(c->gmask);
   memset(c, 0, sizeof *c);
 }
 
@@ -299,17 +303,24 @@ ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss
   memset(c, 0, sizeof *c);
   c->n = n;
   c->src = src;
-  if (!(k->M || k->rows)) return SS_OK;
+  if (!(k->M || k->rows) || !ncells) return SS_OK;
   const ss_split *L = k->L;
   /* room: each cell's parent slots, at most SS_SINK_CELLCAP merged */
   size_t room = 0;
   for (size_t i = 0; i < ncells * (size_t)n; i++)
     room += ss_split_npar(L, src[i]);
+  uint8_t *map = calloc(L->ncoarse + 1, 1); /* parent -> 1 + its place, 0: none */
   c->off = malloc((ncells + 1) * sizeof *c->off);
   c->col = malloc((room + 1) * sizeof *c->col);
   c->from = malloc(room + 1);
   c->np = malloc(ncells * (size_t)n + 1);
-  if (!c->off || !c->col || !c->from || !c->np) {
+  c->g = malloc((room + 1) * sizeof *c->g);
+  c->gw = calloc(ncells, sizeof *c->gw);
+  c->gscale = malloc(ncells * sizeof *c->gscale);
+  c->gmask = malloc(ncells * sizeof *c->gmask);
+  if (!map || !c->off || !c->col || !c->from || !c->np || !c->g || !c->gw || !c->gscale ||
+      !c->gmask) {
+    free(map);
     ss_sink_cells_clear(c);
     return ss_error_nomem(err, "refinement operator");
   }
@@ -317,33 +328,38 @@ ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss
   for (size_t i = 0; i < ncells; i++) {
     const ss_idx *s = src + i * (size_t)n;
     uint8_t *np = c->np + i * (size_t)n;
+    ss_idx *col = c->col + at;
+    uint8_t *from = c->from + at;
     c->off[i] = at;
-    int m = 0, slots = 0;
-    for (int j = 0; j < n; j++) {
+    int m = 0, slots = 0, merged = n <= 8;
+    for (int j = 0; j < n && merged; j++) {
       const size_t p = ss_split_npar(L, s[j]);
-      if (n > 8 || p > (size_t)(SS_SINK_CELLCAP - slots)) {
-        np[0] = 0; /* not merged */
-        m = 0;
+      if (p > (size_t)(SS_SINK_CELLCAP - slots)) {
+        merged = 0;
         break;
       }
       slots += (int)p;
       np[j] = (uint8_t)p;
       for (size_t q = L->ptr[s[j]]; q < L->ptr[s[j] + 1]; q++) {
         const ss_idx v = L->parent[q];
-        int u = 0;
-        while (u < m && c->col[at + (size_t)u] != v)
-          u++;
-        if (u == m) {
-          c->col[at + (size_t)m] = v;
-          c->from[at + (size_t)m++] = 0;
+        if (!map[v]) {
+          col[m] = v;
+          from[m] = 0;
+          map[v] = (uint8_t)++m;
         }
-        c->from[at + (size_t)u] |= (uint8_t)(1u << j); /* a source's parents are
-                                                          distinct: once each */
+        from[map[v] - 1] |= (uint8_t)(1u << j); /* a source's parents are
+                                                   distinct: once each */
       }
     }
-    at += (size_t)m;
+    for (int u = 0; u < m; u++)
+      map[col[u]] = 0;
+    if (merged)
+      at += (size_t)m;
+    else
+      np[0] = 0;
   }
   c->off[ncells] = at;
+  free(map);
   return SS_OK;
 }
 
@@ -358,23 +374,34 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, si
   if (k->rows && rows_goto(k, row)) return;
   const size_t b = c->off[i], e = c->off[i + 1];
   if (!k->rows && reserve(k, e - b)) return;
-  /* ss_sink_emit_many_operator's sums, term by term in the same order (the
-   * sources in turn, from 0.0); a column only zero weights reach is left out
-   * there, so here too */
-  double ws[8];
-  unsigned nonzero = 0;
-  for (int j = 0; j < n; j++) {
-    if (w[j] == 0.0) continue;
-    ws[j] = w[j] * scale / (double)np[j];
-    nonzero |= 1u << j;
+  if (c->gw[i] != w || c->gscale[i] != scale) {
+    /* ss_sink_emit_many_operator's sums, term by term in the same order (the
+     * sources in turn, from 0.0); a column only zero weights reach is left
+     * out there, so here too */
+    double ws[8];
+    unsigned nonzero = 0;
+    for (int j = 0; j < n; j++) {
+      if (w[j] == 0.0) continue;
+      ws[j] = w[j] * scale / (double)np[j];
+      nonzero |= 1u << j;
+    }
+    uint32_t mask = 0;
+    for (size_t q = b; q < e; q++) {
+      unsigned f = c->from[q] & nonzero;
+      if (!f) continue;
+      double acc = 0.0;
+      for (; f; f &= f - 1)
+        acc += ws[__builtin_ctz(f)];
+      c->g[q] = acc;
+      mask |= 1u << (q - b);
+    }
+    c->gw[i] = w;
+    c->gscale[i] = scale;
+    c->gmask[i] = mask;
   }
-  for (size_t q = b; q < e; q++) {
-    unsigned f = c->from[q] & nonzero;
-    if (!f) continue;
-    double acc = 0.0;
-    for (; f; f &= f - 1)
-      acc += ws[__builtin_ctz(f)];
-    put(k, row, c->col[q], acc);
+  for (uint32_t f = c->gmask[i]; f; f &= f - 1) {
+    const size_t q = b + (size_t)__builtin_ctz(f);
+    put(k, row, c->col[q], c->g[q]);
   }
 }
 

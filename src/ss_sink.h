@@ -109,6 +109,15 @@ typedef struct {
   uint8_t *np;       /* ncells * n: parents of each source; 0 in a cell's first
                         slot: more parent slots than SS_SINK_CELLCAP, the cell's
                         rows then go through ss_sink_emit_many_operator */
+  /* The sums of a cell's last row are kept with what they depend on (the
+   * weight row, by address, and the scale): the next row of the cell with
+   * the same two (MLCA's uniform masks at vertices of equal valence) takes
+   * them as they are, the same bits without summing again. */
+  double *g;         /* per distinct parent (as col): its sum */
+  const double **gw; /* per cell: the weight row of its sums; NULL: none yet */
+  double *gscale;    /* per cell: their scale */
+  uint32_t *gmask;   /* per cell: bit u set when distinct parent u has a sum
+                        (a parent that only zero weights reach has none) */
 } ss_sink_cells;
 
 /* Prepare c for the ncells cells whose vertices are src (n each, kept by
@@ -122,7 +131,9 @@ void ss_sink_cells_clear(ss_sink_cells *c);
 /* Operator-mode ss_sink_emit_cell: the same entries with the same values as
  * ss_sink_emit_many_operator over cell i's sources (each entry summed over
  * the sources in the same order; only the order of a row's distinct columns
- * may differ, which the CSR assembly does not see). */
+ * may differ, which the CSR assembly does not see).  Rows of a cell that
+ * share a weight row should pass the same address w (the kept sums are
+ * found by it). */
 void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, size_t row,
                                 const double *w, double scale);
 

@@ -55,12 +55,14 @@ static ss_split *random_split(gsl_rng *rng) {
 
 /* One emission, recorded so that it can be replayed into any sink. */
 typedef struct {
-  int kind;        /* 0 single source, 1 merged sources, 2 prepared cell */
-  size_t row, src; /* row; kind 0: the source; kind 2: the cell */
-  int n;           /* kind 1: sources */
-  ss_idx many[8];  /* kind 1: the sources */
-  double w[8];     /* weights (kind 0: w[0]) */
-  double scale;    /* kinds 1, 2 */
+  int kind;         /* 0 single source, 1 merged sources, 2 prepared cell */
+  size_t row, src;  /* row; kind 0: the source; kind 2: the cell */
+  int n;            /* kind 1: sources */
+  ss_idx many[8];   /* kind 1: the sources */
+  double w[8];      /* weights (kind 0: w[0]; kind 2: a copy of *wp) */
+  const double *wp; /* kind 2: a row of a shared pool (the sink reuses a
+                       cell's sums for the same row address and scale) */
+  double scale;     /* kinds 1, 2 */
 } emission;
 
 static void replay(ss_sink *k, const ss_sink_cells *cells, const emission *e, size_t ne) {
@@ -70,7 +72,7 @@ static void replay(ss_sink *k, const ss_sink_cells *cells, const emission *e, si
     else if (e[i].kind == 1)
       ss_sink_emit_many(k, e[i].row, e[i].n, e[i].many, e[i].w, e[i].scale);
     else
-      ss_sink_emit_cell(k, cells, e[i].src, e[i].row, e[i].w, e[i].scale);
+      ss_sink_emit_cell(k, cells, e[i].src, e[i].row, e[i].wp, e[i].scale);
   }
 }
 
@@ -120,6 +122,12 @@ static void test_random(unsigned long seed) {
       cellv[c * 8 + (size_t)j] = v;
     }
   }
+  /* a pool of weight rows for the cells: rows and scales repeat, so a
+   * cell's kept sums are reused, and dropped when either changes */
+  double pool[3][8];
+  for (int r = 0; r < 3; r++)
+    for (int j = 0; j < 8; j++)
+      pool[r][j] = j == r ? 0.0 : gsl_rng_uniform(rng) - 0.2;
   /* emissions, rows ascending, some rows left empty */
   size_t ne = 0, cap = 8 * NF;
   emission *e = calloc(cap, sizeof *e);
@@ -139,8 +147,12 @@ static void test_random(unsigned long seed) {
         x->n = 1 + (int)gsl_rng_uniform_int(rng, 8);
         for (int j = 0; j < x->n; j++)
           x->many[j] = (ss_idx)gsl_rng_uniform_int(rng, NF);
-      } else
-        x->src = gsl_rng_uniform_int(rng, NCELL);
+      } else {
+        x->src = gsl_rng_uniform_int(rng, NCELL / 4); /* cells met again */
+        x->wp = pool[gsl_rng_uniform_int(rng, 3)];
+        x->scale = gsl_rng_uniform_int(rng, 2) ? 0.125 : 0.25;
+        memcpy(x->w, x->wp, sizeof x->w);
+      }
     }
   }
   ss_error err = {0};
