@@ -295,6 +295,7 @@ void ss_sink_cells_clear(ss_sink_cells *c) {
   free(c->gw);
   free(c->gscale);
   free(c->gmask);
+  free(c->glast);
   memset(c, 0, sizeof *c);
 }
 
@@ -314,12 +315,13 @@ ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss
   c->col = malloc((room + 1) * sizeof *c->col);
   c->from = malloc(room + 1);
   c->np = malloc(ncells * (size_t)n + 1);
-  c->g = malloc((room + 1) * sizeof *c->g);
-  c->gw = calloc(ncells, sizeof *c->gw);
-  c->gscale = malloc(ncells * sizeof *c->gscale);
-  c->gmask = malloc(ncells * sizeof *c->gmask);
+  c->g = malloc((2 * room + 1) * sizeof *c->g);
+  c->gw = calloc(2 * ncells, sizeof *c->gw);
+  c->gscale = malloc(2 * ncells * sizeof *c->gscale);
+  c->gmask = malloc(2 * ncells * sizeof *c->gmask);
+  c->glast = calloc(ncells, 1);
   if (!map || !c->off || !c->col || !c->from || !c->np || !c->g || !c->gw || !c->gscale ||
-      !c->gmask) {
+      !c->gmask || !c->glast) {
     free(map);
     ss_sink_cells_clear(c);
     return ss_error_nomem(err, "refinement operator");
@@ -374,7 +376,13 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, si
   if (k->rows && rows_goto(k, row)) return;
   const size_t b = c->off[i], e = c->off[i + 1];
   if (!k->rows && reserve(k, e - b)) return;
-  if (c->gw[i] != w || c->gscale[i] != scale) {
+  /* the kept sums of this weight row and scale, if either slot has them */
+  int slot = 0;
+  while (slot < 2 &&
+         (c->gw[2 * i + (size_t)slot] != w || c->gscale[2 * i + (size_t)slot] != scale))
+    slot++;
+  if (slot == 2) { /* the slot not used last */
+    slot = !c->glast[i];
     /* ss_sink_emit_many_operator's sums, term by term in the same order (the
      * sources in turn, from 0.0); a column only zero weights reach is left
      * out there, so here too */
@@ -385,6 +393,7 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, si
       ws[j] = w[j] * scale / (double)np[j];
       nonzero |= 1u << j;
     }
+    double *g = c->g + 2 * b + (size_t)slot * (e - b);
     uint32_t mask = 0;
     for (size_t q = b; q < e; q++) {
       unsigned f = c->from[q] & nonzero;
@@ -392,16 +401,18 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, si
       double acc = 0.0;
       for (; f; f &= f - 1)
         acc += ws[__builtin_ctz(f)];
-      c->g[q] = acc;
+      g[q - b] = acc;
       mask |= 1u << (q - b);
     }
-    c->gw[i] = w;
-    c->gscale[i] = scale;
-    c->gmask[i] = mask;
+    c->gw[2 * i + (size_t)slot] = w;
+    c->gscale[2 * i + (size_t)slot] = scale;
+    c->gmask[2 * i + (size_t)slot] = mask;
   }
-  for (uint32_t f = c->gmask[i]; f; f &= f - 1) {
-    const size_t q = b + (size_t)__builtin_ctz(f);
-    put(k, row, c->col[q], c->g[q]);
+  c->glast[i] = (uint8_t)slot;
+  const double *g = c->g + 2 * b + (size_t)slot * (e - b);
+  for (uint32_t f = c->gmask[2 * i + (size_t)slot]; f; f &= f - 1) {
+    const size_t u = (size_t)__builtin_ctz(f);
+    put(k, row, c->col[b + u], g[u]);
   }
 }
 

@@ -109,15 +109,19 @@ typedef struct {
   uint8_t *np;       /* ncells * n: parents of each source; 0 in a cell's first
                         slot: more parent slots than SS_SINK_CELLCAP, the cell's
                         rows then go through ss_sink_emit_many_operator */
-  /* The sums of a cell's last row are kept with what they depend on (the
-   * weight row, by address, and the scale): the next row of the cell with
-   * the same two (MLCA's uniform masks at vertices of equal valence) takes
-   * them as they are, the same bits without summing again. */
-  double *g;         /* per distinct parent (as col): its sum */
-  const double **gw; /* per cell: the weight row of its sums; NULL: none yet */
-  double *gscale;    /* per cell: their scale */
-  uint32_t *gmask;   /* per cell: bit u set when distinct parent u has a sum
-                        (a parent that only zero weights reach has none) */
+  /* The sums of a cell's last two rows of different weights are kept with
+   * what they depend on (the weight row, by address, and the scale): a
+   * later row of the cell with the same two (MLCA's uniform masks at
+   * vertices of equal valence) takes them as they are, the same bits
+   * without summing again. */
+  double *g;         /* per cell: two slots of sums, one per distinct parent
+                        (slot s of cell i at 2 off[i] + s (off[i + 1] - off[i])) */
+  const double **gw; /* per cell and slot: the weight row of the sums; NULL:
+                        none yet */
+  double *gscale;    /* per cell and slot: their scale */
+  uint32_t *gmask;   /* per cell and slot: bit u set when distinct parent u
+                        has a sum (a parent only zero weights reach has none) */
+  uint8_t *glast;    /* per cell: the slot used last (the other is replaced) */
 } ss_sink_cells;
 
 /* Prepare c for the ncells cells whose vertices are src (n each, kept by
