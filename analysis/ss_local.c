@@ -305,7 +305,7 @@ static ss_status finish_level(work *W, int l, ss_error *err) {
                           l);
     L->index[h] = (ss_idx)v;
   }
-  return inner_marks(L->cx, W->ws, &L->inner, err);
+  return L->inner ? SS_OK : inner_marks(L->cx, W->ws, &L->inner, err);
 }
 
 /* Peel level l (l > 0, p a vertex) before it is refined: with the distance
@@ -430,9 +430,22 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
                         "no stationary neighbourhood before the patch exceeds %d cells",
                         MAXCELLS);
   ss_progress_step(W->prog, "refining the star to level", (size_t)W->nlev, 0);
-  ss_status st = ss_scheme_refine_step(W->scheme, C->cx, &F->cx, &C->R, &F->split, err);
-  if (st) return st;
-  W->nlev++;
+  ss_status st;
+  if (ss_scheme_step_is_one_split(W->scheme)) {
+    /* split, then the rule only for the rows that can be read: those of
+     * inner vertices (row_complete), where a level has its boundary marks */
+    st = ss_split_refine(ss_scheme_split_kind(W->scheme), C->cx, &F->cx, &F->split, err);
+    if (st) return st;
+    W->nlev++;
+    if (W->nlev - 1 >= W->lc && (st = inner_marks(F->cx, W->ws, &F->inner, err)))
+      return st;
+    st = ss_scheme_step_rows(W->scheme, C->cx, F->cx, F->split, F->inner, &C->R, err);
+    if (st) return st;
+  } else {
+    st = ss_scheme_refine_step(W->scheme, C->cx, &F->cx, &C->R, &F->split, err);
+    if (st) return st;
+    W->nlev++;
+  }
   const size_t nf = F->cx->nv;
   F->abs = malloc((nf + 1) * sizeof *F->abs);
   if (!F->abs) return ss_error_nomem(err, "local coordinates");

@@ -111,9 +111,12 @@ static ss_status check_types(const ss_scheme *s, const ss_cx *cx, ss_error *err)
   return SS_OK;
 }
 
-/* Every row of a refinement operator is an affine combination. */
-static ss_status check_rows(const ss_scheme *s, const gsl_spmatrix *R, ss_error *err) {
+/* Every row of a refinement operator is an affine combination (the rows r
+ * with want[r]; want NULL: all). */
+static ss_status check_rows(const ss_scheme *s, const gsl_spmatrix *R,
+                            const unsigned char *want, ss_error *err) {
   for (size_t r = 0; r < R->size1; r++) {
+    if (want && !want[r]) continue;
     double sum = 0.0;
     for (int q = R->p[r]; q < R->p[r + 1]; q++)
       sum += R->data[q];
@@ -307,39 +310,26 @@ ss_status ss_scheme_refine_at(const ss_scheme *s, const ss_cx *coarse, ss_cx **f
   return refine(s, coarse, fine_out, NULL, NULL, bad, err);
 }
 
-static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
-                        gsl_spmatrix **R_out, ss_split **L_out, size_t *bad,
-                        ss_error *err) {
-  ss_cx *fine = NULL;
-  ss_split *L = NULL;
-  gsl_spmatrix *R = NULL;
+/* R from the rule over the split (fine, L) of coarse: rows f with want[f]
+ * (want NULL: all) as the rule sends them, summed row by row (ss_rows) when
+ * the rule sends its rows in order, else through triplets; the wanted rows
+ * checked to sum to 1.  SS_ENOMEM, SS_EINTERNAL. */
+static ss_status rule_operator(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                               const ss_split *L, const unsigned char *want,
+                               gsl_spmatrix **R_out, ss_error *err) {
   ss_triplets M = {0, 0, NULL, NULL, NULL};
   ss_rows rows;
   memset(&rows, 0, sizeof rows);
-  double *y = NULL;
-  *fine_out = NULL;
-  if (R_out) *R_out = NULL;
-  if (L_out) *L_out = NULL;
-  if (bad) *bad = SIZE_MAX;
-  ss_status st = check_types(s, coarse, err);
-  if (st) goto done;
-  if (coarse->nv == 0) {
-    st = ss_error_set(err, SS_EINPUT, "the mesh has no vertices");
-    goto done;
-  }
-  if ((st = ss_split_refine(s->split, coarse, &fine, &L, err))) goto done;
-  const size_t dim = (size_t)coarse->dim, nf = fine->nv;
-  y = calloc(nf * dim + 1, sizeof *y);
-  if (!y) {
-    st = ss_error_nomem(err, "fine positions");
-    goto done;
-  }
-  ss_sink k = {L, dim, fine->x, y, NULL, SS_OK, NULL};
-  if (R_out && s->rows_in_order) { /* up to 3^dim columns a row, fewer mostly */
+  gsl_spmatrix *R = NULL;
+  const size_t nf = fine->nv;
+  ss_status st = SS_OK;
+  *R_out = NULL;
+  ss_sink k = {L, (size_t)coarse->dim, NULL, NULL, NULL, SS_OK, NULL, want};
+  if (s->rows_in_order) { /* up to 3^dim columns a row, fewer mostly */
     size_t est = nf * (size_t)(ss_cx_topdim(fine) == 3 ? 16 : 9);
     if ((st = ss_rows_init(&rows, nf, coarse->nv, est, err))) goto done;
     k.rows = &rows;
-  } else if (R_out) { /* a cell sends about one entry per pair of its vertices */
+  } else { /* a cell sends about one entry per pair of its vertices */
     size_t est = nf;
     for (int t = 0; t < SS_NCELLTYPES; t++)
       est += fine->nc[t] *
@@ -359,14 +349,65 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
     st = ss_error_nomem(err, "refinement operator");
     goto done;
   }
+  if (k.rows)
+    st = ss_rows_finish(&rows, &R, err);
+  else
+    st = ss_triplets_csr(&M, nf, coarse->nv, &R, err);
+  if (!st) st = check_rows(s, R, want, err);
+done:
+  ss_triplets_clear(&M);
+  ss_rows_clear(&rows);
+  if (st && R) {
+    gsl_spmatrix_free(R);
+    R = NULL;
+  }
+  *R_out = R;
+  return st;
+}
+
+int ss_scheme_step_is_one_split(const ss_scheme *s) {
+  return s->step_passes == 1 && s->step_split == s->split;
+}
+
+ss_status ss_scheme_step_rows(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                              const ss_split *L, const unsigned char *want,
+                              gsl_spmatrix **R, ss_error *err) {
+  *R = NULL;
+  if (!ss_scheme_step_is_one_split(s))
+    return ss_error_set(err, SS_EINTERNAL,
+                        "scheme %s: its analysis step is not one split and the rule",
+                        s->name);
+  ss_status st = check_types(s, coarse, err);
+  if (st) return st;
+  return rule_operator(s, coarse, fine, L, want, R, err);
+}
+
+static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_out,
+                        gsl_spmatrix **R_out, ss_split **L_out, size_t *bad,
+                        ss_error *err) {
+  ss_cx *fine = NULL;
+  ss_split *L = NULL;
+  gsl_spmatrix *R = NULL;
+  double *y = NULL;
+  *fine_out = NULL;
+  if (R_out) *R_out = NULL;
+  if (L_out) *L_out = NULL;
+  if (bad) *bad = SIZE_MAX;
+  ss_status st = check_types(s, coarse, err);
+  if (st) goto done;
+  if (coarse->nv == 0) {
+    st = ss_error_set(err, SS_EINPUT, "the mesh has no vertices");
+    goto done;
+  }
+  if ((st = ss_split_refine(s->split, coarse, &fine, &L, err))) goto done;
+  const size_t dim = (size_t)coarse->dim, nf = fine->nv;
+  y = calloc(nf * dim + 1, sizeof *y);
+  if (!y) {
+    st = ss_error_nomem(err, "fine positions");
+    goto done;
+  }
   if (R_out) {
-    if (k.rows)
-      st = ss_rows_finish(&rows, &R, err);
-    else
-      st = ss_triplets_csr(&M, nf, coarse->nv, &R, err);
-    if (st) goto done;
-    ss_triplets_clear(&M);
-    if ((st = check_rows(s, R, err))) goto done;
+    if ((st = rule_operator(s, coarse, fine, L, NULL, &R, err))) goto done;
     for (size_t r = 0; r < dim; r++) {
       gsl_vector_const_view xv =
           gsl_vector_const_view_array_with_stride(coarse->x + r, dim, coarse->nv);
@@ -377,6 +418,9 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
         goto done;
       }
     }
+  } else {
+    ss_sink k = {L, dim, fine->x, y, NULL, SS_OK, NULL, NULL};
+    if ((st = s->rule(s, coarse, fine, L, &k, err))) goto done;
   }
   /* Check results, not only input: finite coordinates can still overflow. */
   size_t f = first_nonfinite(y, nf, dim);
@@ -404,8 +448,6 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
   y = NULL;
 done:
   free(y);
-  ss_triplets_clear(&M);
-  ss_rows_clear(&rows);
   if (L_out && !st) {
     *L_out = L;
     L = NULL;

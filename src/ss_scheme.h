@@ -120,6 +120,28 @@ ss_status ss_scheme_refine_split(const ss_scheme *s, const ss_cx *coarse, ss_cx 
 ss_status ss_scheme_refine_step(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine,
                                 gsl_spmatrix **R, ss_split **L, ss_error *err);
 
+/* Whether ss_scheme_refine_step is one split (ss_split_refine with
+ * ss_scheme_split_kind(s)) followed by the rule: 1 for every scheme but
+ * quasi48, whose step is two passes.  Then ss_scheme_step_rows can take the
+ * rule's half of the step. */
+int ss_scheme_step_is_one_split(const ss_scheme *s);
+
+/* The rule's half of ss_scheme_refine_step (schemes for which
+ * ss_scheme_step_is_one_split holds; SS_EINTERNAL otherwise), for a caller
+ * that split `coarse` itself (fine and L from ss_split_refine with
+ * ss_scheme_split_kind(s)) and reads only some rows of R and no positions.
+ * *R receives the fine->nv x coarse->nv operator (caller frees): row f equal
+ * bit for bit to ss_scheme_refine_step's where want[f] is nonzero (want NULL:
+ * every row), checked to sum to 1; the other rows are unspecified (a rule
+ * that writes its rows in order leaves them empty) and must not be read.
+ * fine's positions stay the split's (centroids of the parents), not R times
+ * the coarse ones.  Skipping rows saves the rule's work on them: a patch's
+ * boundary rows are incomplete, hence never read, and cost as much as the
+ * rest.  SS_EINPUT for cell types the scheme does not take; SS_ENOMEM. */
+ss_status ss_scheme_step_rows(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                              const ss_split *L, const unsigned char *want,
+                              gsl_spmatrix **R, ss_error *err);
+
 /* As ss_scheme_refine without the operator, and when a fine position is not
  * finite (SS_EINPUT; coordinates near DBL_MAX overflow), *bad (may be NULL)
  * receives that fine vertex, 0-based; SIZE_MAX otherwise.  Every refinement

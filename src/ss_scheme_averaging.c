@@ -87,6 +87,7 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
                                     fine->cells[t], cells + t, err)))
       goto done;
   for (size_t v = 0; v < nv; v++) {
+    if (!ss_sink_wants(k, v)) continue;
     if (dimv[v] == 0xff) {
       ss_sink_emit(k, v, v, 1.0);
       continue;

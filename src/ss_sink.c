@@ -209,6 +209,7 @@ static void rows_emit_many(ss_sink *k, size_t row, int n, const ss_idx *src,
 /* ---- triplets ---- */
 
 void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w) {
+  if (!ss_sink_wants(k, row)) return;
   if (k->rows) {
     rows_emit(k, row, src, w);
     return;
@@ -238,6 +239,7 @@ static void flush(ss_sink *k, size_t row, int m, const ss_idx *col, const double
 
 void ss_sink_emit_many_operator(ss_sink *k, size_t row, int n, const ss_idx *src,
                                 const double *w, double scale) {
+  if (!ss_sink_wants(k, row)) return;
   if (k->rows) {
     rows_emit_many(k, row, n, src, w, scale);
     return;
@@ -367,6 +369,7 @@ ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss
 
 void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, size_t row,
                                 const double *w, double scale) {
+  if (!ss_sink_wants(k, row)) return;
   const int n = c->n;
   const uint8_t *np = c->np + i * (size_t)n;
   if (!np[0]) {
@@ -418,7 +421,7 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, si
 
 ss_status ss_triplets_reserve(ss_triplets *t, size_t n, ss_error *err) {
   if (n <= t->cap) return SS_OK;
-  ss_sink k = {NULL, 0, NULL, NULL, t, SS_OK, NULL};
+  ss_sink k = {NULL, 0, NULL, NULL, t, SS_OK, NULL, NULL};
   if (reserve(&k, n - t->n)) return ss_error_nomem(err, "refinement operator");
   return SS_OK;
 }

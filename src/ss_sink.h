@@ -78,7 +78,14 @@ typedef struct {
   ss_status st;       /* SS_OK; SS_ENOMEM once an insertion into M or rows
                          failed; SS_EINTERNAL once a row came out of order */
   ss_rows *rows;      /* operator mode, rows in order (instead of M); else NULL */
+  const unsigned char *want; /* operator mode: emissions to row r are dropped
+                                unless want[r]; NULL: every row is wanted */
 } ss_sink;
+
+/* Whether k takes emissions to row (a rule may skip a row's work if not). */
+static inline int ss_sink_wants(const ss_sink *k, size_t row) {
+  return !k->want || k->want[row];
+}
 
 /* Operator-mode emission (out of line: it walks the parents). */
 void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w);

@@ -9,6 +9,8 @@
  *    whose parents overflow the merge, empty rows), seeded;
  *  - the averaging schemes (MLCA on hex stars, tet/oct on tet stars, MLCA on
  *    a crease complex) refined both ways: the same R to the bit;
+ *  - the rule's half of a step for some rows only (ss_scheme_step_rows):
+ *    those rows the same bits, the others empty;
  *  - a rule that goes back to an earlier row is refused, not mis-assembled. */
 #include <stdint.h>
 #include <string.h>
@@ -158,7 +160,7 @@ static void test_random(unsigned long seed) {
   ss_error err = {0};
   /* triplets */
   ss_triplets t = {0, 0, NULL, NULL, NULL};
-  ss_sink kt = {L, 0, NULL, NULL, &t, SS_OK, NULL};
+  ss_sink kt = {L, 0, NULL, NULL, &t, SS_OK, NULL, NULL};
   ss_sink_cells ct, cr;
   gsl_spmatrix *A = NULL, *B = NULL;
   REQUIRE_OK_VOID(ss_sink_cells_prepare(&kt, 8, NCELL, cellv, &ct, &err), &err);
@@ -168,7 +170,7 @@ static void test_random(unsigned long seed) {
   /* rows */
   ss_rows rows;
   REQUIRE_OK_VOID(ss_rows_init(&rows, NF, NC, 16, &err), &err); /* must grow */
-  ss_sink kr = {L, 0, NULL, NULL, NULL, SS_OK, &rows};
+  ss_sink kr = {L, 0, NULL, NULL, NULL, SS_OK, &rows, NULL};
   REQUIRE_OK_VOID(ss_sink_cells_prepare(&kr, 8, NCELL, cellv, &cr, &err), &err);
   size_t unmerged = 0;
   for (size_t c = 0; c < NCELL; c++)
@@ -220,7 +222,7 @@ static void test_out_of_order(void) {
   ss_error err = {0};
   ss_rows rows;
   REQUIRE_OK_VOID(ss_rows_init(&rows, NF, NC, 100, &err), &err);
-  ss_sink k = {L, 0, NULL, NULL, NULL, SS_OK, &rows};
+  ss_sink k = {L, 0, NULL, NULL, NULL, SS_OK, &rows, NULL};
   ss_sink_emit(&k, 5, 70, 1.0);
   ss_sink_emit(&k, 9, 71, 1.0);
   CHECK(k.st == SS_OK, "rows in order refused");
@@ -249,6 +251,35 @@ static void check_scheme(const char *name, const ss_cx *cx, const char *what) {
             !memcmp(fa->x, fb->x, fa->nv * (size_t)fa->dim * sizeof *fa->x),
         "%s on %s: different positions", name, what);
   check_row_sums(A, what);
+  /* the rule's half of the step for some rows (every third vertex): those
+   * rows the same bits, the others empty */
+  ss_cx *fc = NULL;
+  ss_split *L = NULL;
+  gsl_spmatrix *C = NULL;
+  s->rows_in_order = 1;
+  CHECK(ss_scheme_step_is_one_split(s), "%s: one split per step", name);
+  REQUIRE_OK_VOID(ss_split_refine(ss_scheme_split_kind(s), cx, &fc, &L, &err), &err);
+  unsigned char *want = calloc(fc->nv, 1);
+  for (size_t f = 0; f < fc->nv; f += 3)
+    want[f] = 1;
+  REQUIRE_OK_VOID(ss_scheme_step_rows(s, cx, fc, L, want, &C, &err), &err);
+  size_t bad = 0;
+  for (size_t f = 0; f < fc->nv && C->size1 == A->size1; f++) {
+    const int n = C->p[f + 1] - C->p[f];
+    if (!want[f]) {
+      bad += n != 0;
+      continue;
+    }
+    bad += n != A->p[f + 1] - A->p[f] ||
+           memcmp(C->i + C->p[f], A->i + A->p[f], (size_t)n * sizeof *C->i) ||
+           memcmp(C->data + C->p[f], A->data + A->p[f], (size_t)n * sizeof *C->data);
+  }
+  CHECK(C->size1 == A->size1 && bad == 0, "%s on %s: %zu rows differ from the step's",
+        name, what, bad);
+  free(want);
+  gsl_spmatrix_free(C);
+  ss_split_free(L);
+  ss_cx_free(fc);
   gsl_spmatrix_free(A);
   gsl_spmatrix_free(B);
   ss_cx_free(fa);
