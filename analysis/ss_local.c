@@ -127,6 +127,55 @@ static int lincomb(int m, const ss_star_coord *const *c, const int *mult, int di
   return 0;
 }
 
+/* 2 * (the mean of the np parents' coordinates), which must be an integer
+ * vector with at most SS_STAR_MAXSUPP nonzeros: lincomb(np, par, {2, ..},
+ * np, out) to the bit, the entries merged in index order as they come (the
+ * parents' entries are few and each parent's ascending).  0 or -1. */
+static int child_coord(int np, const ss_star_coord *const *par, ss_star_coord *out) {
+  if (np == 1) { /* a coarse vertex: its coordinates doubled */
+    *out = *par[0];
+    for (int e = 0; e < out->n; e++)
+      out->val[e] = (int32_t)(2L * par[0]->val[e]);
+    return 0;
+  }
+  int32_t idx[8 * SS_STAR_MAXSUPP];
+  long val[8 * SS_STAR_MAXSUPP];
+  int n = 0;
+  for (int i = 0; i < np; i++)
+    for (int e = 0; e < par[i]->n; e++) {
+      const int32_t x = par[i]->idx[e];
+      int j = n;
+      while (j > 0 && idx[j - 1] > x)
+        j--;
+      if (j > 0 && idx[j - 1] == x) {
+        val[j - 1] += 2L * par[i]->val[e];
+        continue;
+      }
+      if (n == 8 * SS_STAR_MAXSUPP) return -1;
+      for (int u = n; u > j; u--) { /* a loop: memmove would be a call */
+        idx[u] = idx[u - 1];
+        val[u] = val[u - 1];
+      }
+      idx[j] = x;
+      val[j] = 2L * par[i]->val[e];
+      n++;
+    }
+  ss_star_coord c;
+  c.n = 0;
+  for (int j = 0; j < n; j++) {
+    if (val[j] == 0) continue;
+    if (val[j] % np != 0 || c.n == SS_STAR_MAXSUPP) return -1;
+    c.idx[c.n] = idx[j];
+    c.val[c.n++] = (int32_t)(val[j] / np);
+  }
+  for (int i = c.n; i < SS_STAR_MAXSUPP; i++) { /* as ss_star_coord_make leaves them */
+    c.idx[i] = -1;
+    c.val[i] = 0;
+  }
+  *out = c;
+  return 0;
+}
+
 /* ---- the levels ---- */
 
 /* A hash of a coordinate vector (of its nonzero entries: the unused slots
@@ -451,14 +500,11 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
   if (!F->abs) return ss_error_nomem(err, "local coordinates");
   for (size_t f = 0; f < nf; f++) {
     const ss_star_coord *par[8];
-    int mult[8];
     const size_t np = ss_split_npar(F->split, f);
     if (np > 8) return ss_error_set(err, SS_EINTERNAL, "vertex with %zu parents", np);
-    for (size_t i = 0; i < np; i++) {
+    for (size_t i = 0; i < np; i++)
       par[i] = C->abs + F->split->parent[F->split->ptr[f] + i];
-      mult[i] = 2;
-    }
-    if (lincomb((int)np, par, mult, (int)np, F->abs + f))
+    if (child_coord((int)np, par, F->abs + f))
       return ss_error_set(err, SS_EINTERNAL,
                           "fine vertex %zu on level %d has no integer coordinates", f,
                           W->nlev - 1);

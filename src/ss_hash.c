@@ -69,12 +69,19 @@ size_t ss_hash_size(const ss_hash *h) {
   return h->n;
 }
 
+/* Whether the width words at a and b agree (a loop: memcmp of a variable
+ * length is a call, and keys are at most four words). */
+static int same_key(const uint32_t *a, const uint32_t *b, int width) {
+  for (int w = 0; w < width; w++)
+    if (a[w] != b[w]) return 0;
+  return 1;
+}
+
 /* Slot holding key, or the empty slot where it would go. */
 static size_t probe(const ss_hash *h, const uint32_t *key) {
   size_t mask = h->cap - 1, i = (size_t)hash_key(key, h->width) & mask;
-  const size_t bytes = (size_t)h->width * sizeof *key;
   while (h->vals[i] != UINT32_MAX &&
-         memcmp(h->keys + i * (size_t)h->width, key, bytes) != 0)
+         !same_key(h->keys + i * (size_t)h->width, key, h->width))
     i = (i + 1) & mask;
   return i;
 }

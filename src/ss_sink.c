@@ -35,47 +35,39 @@ ss_status ss_rows_init(ss_rows *r, size_t nrows, size_t ncols, size_t nnz,
   memset(r, 0, sizeof *r);
   r->nrows = nrows;
   r->ncols = ncols;
-  r->cap = nnz + 64;
-  r->ptr = malloc((nrows + 1) * sizeof *r->ptr);
-  r->col = malloc(r->cap * sizeof *r->col);
-  r->w = malloc(r->cap * sizeof *r->w);
+  if (nnz > (size_t)INT_MAX - 64) nnz = (size_t)INT_MAX - 64;
+  r->R = ss_gsl_csr_alloc(nrows ? nrows : 1, ncols ? ncols : 1, nnz + 64);
   r->slot = calloc(ncols + 1, sizeof *r->slot);
   r->gslot = calloc(ncols + 1, sizeof *r->gslot);
-  if (!r->ptr || !r->col || !r->w || !r->slot || !r->gslot) {
+  r->tmp = malloc((ncols + 1) * sizeof *r->tmp);
+  if (!r->R || !r->slot || !r->gslot || !r->tmp) {
     ss_rows_clear(r);
     return ss_error_nomem(err, "refinement operator");
   }
-  r->ptr[0] = 0;
+  r->R->p[0] = 0;
   return SS_OK;
 }
 
 void ss_rows_clear(ss_rows *r) {
-  free(r->ptr);
-  free(r->col);
-  free(r->w);
+  if (r->R) gsl_spmatrix_free(r->R);
   free(r->slot);
   free(r->gslot);
+  free(r->tmp);
   memset(r, 0, sizeof *r);
 }
 
-/* Room for one more entry of the current row; 0, or -1 (k->st set). */
-static int rows_grow(ss_sink *k) {
+/* Room for n more entries of the current row; 0, or -1 (k->st set). */
+static int rows_room(ss_sink *k, size_t n) {
   ss_rows *r = k->rows;
-  size_t cap = 2 * r->cap;
+  const size_t need = r->nnz + r->m + n;
+  if (need <= r->R->nzmax) return 0;
+  size_t cap = 2 * r->R->nzmax;
+  if (cap < need) cap = need;
   if (cap > (size_t)INT_MAX) cap = (size_t)INT_MAX; /* GSL's CSR indices are int */
-  if (r->nnz + r->m + 1 > cap) {
+  if (need > cap || gsl_spmatrix_realloc(cap, r->R) != 0) {
     k->st = SS_ENOMEM;
     return -1;
   }
-  int *c = realloc(r->col, cap * sizeof *c);
-  if (c) r->col = c;
-  double *w = realloc(r->w, cap * sizeof *w);
-  if (w) r->w = w;
-  if (!c || !w) {
-    k->st = SS_ENOMEM;
-    return -1;
-  }
-  r->cap = cap;
   return 0;
 }
 
@@ -85,36 +77,37 @@ static inline void row_add(ss_sink *k, ss_idx c, double x) {
   ss_rows *r = k->rows;
   const uint32_t s = r->slot[c];
   if (s) {
-    r->w[r->nnz + s - 1] += x;
+    r->R->data[r->nnz + s - 1] += x;
     return;
   }
-  if (r->nnz + r->m >= r->cap && rows_grow(k)) return;
-  r->col[r->nnz + r->m] = (int)c;
-  r->w[r->nnz + r->m] = x;
+  if (rows_room(k, 1)) return;
+  r->R->i[r->nnz + r->m] = (int)c;
+  r->R->data[r->nnz + r->m] = x;
   r->slot[c] = (uint32_t)++r->m;
 }
 
-/* Close the current row: columns ascending, slots cleared. */
+/* Close the current row: columns ascending (the columns sorted alone, the
+ * values then gathered through their slots), slots cleared. */
 static void row_close(ss_rows *r) {
-  int *col = r->col + r->nnz;
-  double *w = r->w + r->nnz;
+  int *col = r->R->i + r->nnz;
+  double *w = r->R->data + r->nnz;
   const size_t m = r->m;
   for (size_t i = 0; i < m; i++)
-    r->slot[col[i]] = 0;
+    r->tmp[i] = w[i];
   for (size_t i = 1; i < m; i++) { /* insertion sort: a row has few columns */
     const int c = col[i];
-    const double x = w[i];
     size_t j = i;
-    for (; j > 0 && col[j - 1] > c; j--) {
+    for (; j > 0 && col[j - 1] > c; j--)
       col[j] = col[j - 1];
-      w[j] = w[j - 1];
-    }
     col[j] = c;
-    w[j] = x;
+  }
+  for (size_t i = 0; i < m; i++) {
+    w[i] = r->tmp[r->slot[col[i]] - 1];
+    r->slot[col[i]] = 0;
   }
   r->nnz += m;
   r->m = 0;
-  r->ptr[r->row + 1] = (int)r->nnz;
+  r->R->p[r->row + 1] = (int)r->nnz;
 }
 
 /* Make `row` the current row (closing the rows before it); 0, or -1 with
@@ -128,29 +121,23 @@ static int rows_goto(ss_sink *k, size_t row) {
   }
   row_close(r);
   for (size_t i = r->row + 2; i <= row; i++) /* rows the rule left empty */
-    r->ptr[i] = (int)r->nnz;
+    r->R->p[i] = (int)r->nnz;
   r->row = row;
   return 0;
 }
 
 ss_status ss_rows_finish(ss_rows *r, gsl_spmatrix **out, ss_error *err) {
   *out = NULL;
+  if (!r->R) return ss_error_nomem(err, "refinement operator");
   if (r->nrows) {
     row_close(r);
     for (size_t i = r->row + 2; i <= r->nrows; i++)
-      r->ptr[i] = (int)r->nnz;
+      r->R->p[i] = (int)r->nnz;
   }
-  gsl_spmatrix *R = ss_gsl_csr_alloc(r->nrows, r->ncols ? r->ncols : 1, r->nnz);
-  if (!R) {
-    ss_rows_clear(r);
-    return ss_error_nomem(err, "refinement operator");
-  }
-  memcpy(R->p, r->ptr, (r->nrows + 1) * sizeof *R->p);
-  memcpy(R->i, r->col, r->nnz * sizeof *R->i);
-  memcpy(R->data, r->w, r->nnz * sizeof *R->data);
-  R->nz = r->nnz;
+  r->R->nz = r->nnz;
+  *out = r->R;
+  r->R = NULL;
   ss_rows_clear(r);
-  *out = R;
   return SS_OK;
 }
 
@@ -413,10 +400,34 @@ void ss_sink_emit_cell_operator(ss_sink *k, const ss_sink_cells *c, size_t i, si
   }
   c->glast[i] = (uint8_t)slot;
   const double *g = c->g + 2 * b + (size_t)slot * (e - b);
-  for (uint32_t f = c->gmask[2 * i + (size_t)slot]; f; f &= f - 1) {
-    const size_t u = (size_t)__builtin_ctz(f);
-    put(k, row, c->col[b + u], g[u]);
+  const uint32_t mask = c->gmask[2 * i + (size_t)slot];
+  if (!k->rows) {
+    for (uint32_t f = mask; f; f &= f - 1) {
+      const size_t u = (size_t)__builtin_ctz(f);
+      put(k, row, c->col[b + u], g[u]);
+    }
+    return;
   }
+  /* into the row: row_add's steps with the room made once */
+  if (rows_room(k, e - b)) return;
+  ss_rows *r = k->rows;
+  uint32_t *slotof = r->slot;
+  int *rc = r->R->i + r->nnz;
+  double *rw = r->R->data + r->nnz;
+  size_t m = r->m;
+  for (size_t u = 0; u < e - b; u++) {
+    if (!(mask >> u & 1u)) continue;
+    const ss_idx col = c->col[b + u];
+    const uint32_t sl = slotof[col];
+    if (sl)
+      rw[sl - 1] += g[u];
+    else {
+      rc[m] = (int)col;
+      rw[m] = g[u];
+      slotof[col] = (uint32_t)++m;
+    }
+  }
+  r->m = m;
 }
 
 ss_status ss_triplets_reserve(ss_triplets *t, size_t n, ss_error *err) {

@@ -49,22 +49,24 @@ ss_status ss_triplets_reserve(ss_triplets *t, size_t n, ss_error *err);
 typedef struct {
   size_t nrows, ncols; /* R's size: fine x coarse vertices */
   size_t row;          /* the row being summed; rows before it are closed */
-  int *ptr;            /* nrows + 1 row starts into col and w (int, as GSL's CSR) */
-  int *col;            /* the closed rows' columns, then the current row's */
-  double *w;           /* their values */
-  size_t nnz, cap;     /* entries of the closed rows; room in col and w */
-  size_t m;            /* entries of the current row, at col + nnz */
+  gsl_spmatrix *R;     /* the CSR matrix being written: R->p the closed rows'
+                          starts, R->i and R->data their entries, then the
+                          current row's; R->nzmax the room (it grows) */
+  size_t nnz;          /* entries of the closed rows */
+  size_t m;            /* entries of the current row, at R->i + nnz */
   uint32_t *slot;      /* ncols: 1 + position of the column in the current
                           row, 0 when absent (cleared as the row closes) */
   uint8_t *gslot;      /* ncols: 1 + position of the column in the sums of
                           one ss_sink_emit_many call, 0 when absent */
+  double *tmp;         /* ncols: the current row's values while it is sorted */
 } ss_rows;
 
 /* Empty rows for an nrows x ncols operator, with room for about nnz entries
  * (a guess; they grow).  SS_ENOMEM (r cleared). */
 ss_status ss_rows_init(ss_rows *r, size_t nrows, size_t ncols, size_t nnz, ss_error *err);
-/* Close the last rows and move them into a new CSR matrix (*out, caller
- * frees with gsl_spmatrix_free); r is cleared either way.  SS_ENOMEM. */
+/* Close the last rows and hand the CSR matrix over (*out, caller frees with
+ * gsl_spmatrix_free; its room may exceed its entries); r is cleared either
+ * way.  SS_ENOMEM (r never initialised). */
 ss_status ss_rows_finish(ss_rows *r, gsl_spmatrix **out, ss_error *err);
 /* Free r's memory (a no-op on a cleared r). */
 void ss_rows_clear(ss_rows *r);

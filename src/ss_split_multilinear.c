@@ -10,10 +10,21 @@
 
 #include "ss_split_impl.h"
 
+/* Lattice point t of a d-cube as the face it is born on: its parents are the
+ * cube corners corner[0 .. 2^nfree) of the face in cyclic order over its free
+ * dimensions (the same for every cube of a dimension: tabulated once a split). */
 typedef struct {
-  ss_split_builder b; /* parent lists of fine vertices */
-  ss_hash *edges;     /* sorted vertex pair -> fine index */
-  ss_hash *faces;     /* the two sorted diagonals of a quad face -> fine index */
+  int nfree;     /* dimensions in which t is 1 (the face's dimension) */
+  int corner[8]; /* the face's corners, as cube corner indices */
+} lattice_face;
+
+typedef struct {
+  ss_split_builder b;      /* parent lists of fine vertices */
+  ss_hash *edges;          /* sorted vertex pair -> fine index */
+  ss_hash *faces;          /* the two sorted diagonals of a quad face -> fine index */
+  lattice_face lat[3][27]; /* per d - 1: the faces of the lattice points */
+  unsigned char child[3][8][8]; /* per d - 1: corner k of the child at corner kc
+                                   is lattice point child[kc][k] */
 } ml_state;
 
 static void sort2(uint32_t *a, uint32_t *b) {
@@ -24,49 +35,51 @@ static void sort2(uint32_t *a, uint32_t *b) {
   }
 }
 
-/* Fine index of lattice point t (digits t[0..d)) of the d-cube with corners v. */
-static ss_status lattice_point(ml_state *s, int d, const ss_idx *v, const int *t,
-                               ss_idx *out, ss_error *err) {
-  int free_dims[3], nfree = 0;
+/* The face of lattice point t (digits t[0..d)) of a d-cube. */
+static lattice_face face_of(int d, const int *t) {
+  lattice_face f = {0, {0}};
+  int free_dims[3];
   unsigned fixed = 0;
   for (int i = 0; i < d; i++) {
     if (t[i] == 1)
-      free_dims[nfree++] = i;
+      free_dims[f.nfree++] = i;
     else if (t[i] == 2)
       fixed |= 1u << i;
   }
   /* corners of the face in cyclic order over its free dimensions */
-  ss_idx par[8];
-  int npar = 1 << nfree;
-  for (int c = 0; c < npar; c++) {
+  for (int c = 0; c < 1 << f.nfree; c++) {
     unsigned bits = fixed;
     /* cyclic order 00 10 11 01 in the first two free dimensions */
     static const unsigned cyc[4] = {0u, 1u, 3u, 2u};
-    unsigned local = nfree <= 2 ? cyc[c & 3] : (unsigned)c;
-    for (int k = 0; k < nfree; k++)
+    unsigned local = f.nfree <= 2 ? cyc[c & 3] : (unsigned)c;
+    for (int k = 0; k < f.nfree; k++)
       if ((local >> k) & 1u) bits |= 1u << free_dims[k];
-    par[c] = v[ss_cube_corner_index(d, bits)];
+    f.corner[c] = ss_cube_corner_index(d, bits);
   }
-  if (nfree == 0) {
+  return f;
+}
+
+/* Fine index of the lattice point with face f of the d-cube with corners v. */
+static ss_status lattice_point(ml_state *s, const lattice_face *f, const ss_idx *v,
+                               ss_idx *out, ss_error *err) {
+  ss_idx par[8];
+  for (int c = 0; c < 1 << f->nfree; c++)
+    par[c] = v[f->corner[c]];
+  if (f->nfree == 0) {
     *out = par[0];
     return SS_OK;
   }
-  if (nfree == 1) {
+  if (f->nfree == 1) {
     uint32_t key[2] = {par[0], par[1]};
     sort2(&key[0], &key[1]);
     return ss_split_shared(&s->b, s->edges, key, par, 2, out, err);
   }
-  if (nfree == 2) {
-    uint32_t key[4] = {par[0], par[2], par[1], par[3]};
-    sort2(&key[0], &key[1]);
-    sort2(&key[2], &key[3]);
-    if (key[2] < key[0]) {
-      uint32_t a = key[0], b = key[1];
-      key[0] = key[2];
-      key[1] = key[3];
-      key[2] = a;
-      key[3] = b;
-    }
+  if (f->nfree == 2) {
+    uint32_t a0 = par[0], a1 = par[2], b0 = par[1], b1 = par[3];
+    sort2(&a0, &a1);
+    sort2(&b0, &b1);
+    const uint32_t key[4] = {b0 < a0 ? b0 : a0, b0 < a0 ? b1 : a1, b0 < a0 ? a0 : b0,
+                             b0 < a0 ? a1 : b1};
     return ss_split_shared(&s->b, s->faces, key, par, 4, out, err);
   }
   return ss_split_builder_add(&s->b, par, 8, out, err);
@@ -79,21 +92,14 @@ static ss_status split_cube(ml_state *s, int d, ss_cell_type type, const ss_cx *
   ss_idx lat[27];
   int npts = d == 1 ? 3 : d == 2 ? 9 : 27;
   for (int p = 0; p < npts; p++) {
-    int t[3] = {p % 3, (p / 3) % 3, p / 9};
-    ss_status st = lattice_point(s, d, v, t, &lat[p], err);
+    ss_status st = lattice_point(s, &s->lat[d - 1][p], v, &lat[p], err);
     if (st) return st;
   }
   const int n = 1 << d;
   for (int kc = 0; kc < n; kc++) {
-    const unsigned o = ss_cube_corner_bits(d, kc); /* child kc sits at corner kc */
     ss_idx child[8];
-    for (int k = 0; k < n; k++) {
-      unsigned bk = ss_cube_corner_bits(d, k);
-      int p = 0, scale = 1;
-      for (int i = 0; i < d; i++, scale *= 3)
-        p += (int)((o >> i & 1u) + (bk >> i & 1u)) * scale;
-      child[k] = lat[p];
-    }
+    for (int k = 0; k < n; k++)
+      child[k] = lat[s->child[d - 1][kc][k]];
     ss_status st = ss_cx_add_cell(fine, type, child, ref, err);
     if (st) return st;
   }
@@ -102,7 +108,23 @@ static ss_status split_cube(ml_state *s, int d, ss_cell_type type, const ss_cx *
 
 ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
                                ss_error *err) {
-  ml_state s = {{0}, NULL, NULL};
+  ml_state s = {{0}, NULL, NULL, {{{0, {0}}}}, {{{0}}}};
+  for (int d = 1; d <= 3; d++)
+    for (int p = 0; p < (d == 1 ? 3 : d == 2 ? 9 : 27); p++) {
+      const int t[3] = {p % 3, (p / 3) % 3, p / 9};
+      s.lat[d - 1][p] = face_of(d, t);
+    }
+  for (int d = 1; d <= 3; d++)
+    for (int kc = 0; kc < 1 << d; kc++) {
+      const unsigned o = ss_cube_corner_bits(d, kc);
+      for (int k = 0; k < 1 << d; k++) {
+        const unsigned bk = ss_cube_corner_bits(d, k);
+        int p = 0, scale = 1;
+        for (int i = 0; i < d; i++, scale *= 3)
+          p += (int)((o >> i & 1u) + (bk >> i & 1u)) * scale;
+        s.child[d - 1][kc][k] = (unsigned char)p;
+      }
+    }
   ss_cx *fine = NULL;
   const size_t nseg = coarse->nc[SS_SEGMENT], nquad = coarse->nc[SS_QUAD],
                nhex = coarse->nc[SS_HEX];
