@@ -145,7 +145,35 @@
  *   refinement (ss_local_ring_deepen) 45-47 %, the local matrix 29-32 %,
  *   injectivity 9-11 %, Jacobian test 4-6 %, eigen 4 %: the regularity
  *   side proper is now about a fifth of a case; the deeper ring, a
- *   refinement, is the next target. */
+ *   refinement, is the next target.
+ *
+ * The refinement side (branch i20refine: the rule -> local matrix and the
+ * ring's levels), 2026-12-03 14:38-14:41 UTC, load 1.4-3.7, main (31954ee,
+ * with the regularity side above) and the branch rebased on it, run
+ * alternately, --jobs 1, part (a), 102 links k = 12, best of 3: pipeline
+ * 49.7 -> 31.3 ms per case (the three pairs 49.7/31.3, 50.5/32.8,
+ * 54.5/33.9), extraction 13.9 -> 6.7 ms, dgeev 1.83-1.86 ms: pipeline /
+ * dgeev 27 -> 17.  --project --kmax 13 --samples 100, the two run back to
+ * back (14:39-14:41, load 1.4-1.6): mean ms k = 10 25.9 -> 16.0, 11 31.3 ->
+ * 21.6, 12 44.3 -> 30.3, 13 63.3 -> 40.1; CPU-h k <= 13 0.978 -> 0.624;
+ * wall on 2 free cores 29 -> 20 min (e = 1.03 and 0.93; 19 min at e = 1),
+ * so k <= 13 under 30 minutes holds by projection, with the +-30 % above
+ * only just.  callgrind (instructions, free of load), --samples 8: 8.49 G
+ * (d712994) -> 5.76 G (the branch before the rebase).  What changed: R is
+ * written row by row (the averaging rule walks each fine vertex's cells in
+ * order, so no triplet list is bucketed and merged), each cell's parents
+ * merged once and its sums reused across its vertices of equal valence, the
+ * rule run only for the rows that can be read (inner vertices) and without
+ * positions, levels indexed by a hash of their coordinates instead of a
+ * sort, the split tabulated.  Every entry of R is summed in the same order
+ * as before: stores unchanged bit for bit (MLCA 4..10 and edges 3..8,
+ * tet/oct 4..9 and 3..8, box-spline 4..9).  What is left of the
+ * refinement, perf at k = 12 (share of the pipeline's CPU): the rule's
+ * emission 13 %, the levels' boundary marks (inner_marks, a facet sort per
+ * level) 6-7 %, the split 7 %, merging cells' parents 3-4 %; the boundary
+ * marks could be derived from the coarser level's (a fine facet is on the
+ * boundary iff its coarse one is), and the split and the rule share the
+ * parent lookups. */
 #include <malloc.h>
 #include <math.h>
 #include <omp.h>
