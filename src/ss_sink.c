@@ -275,6 +275,15 @@ static inline void put(ss_sink *k, size_t row, ss_idx c, double x) {
   t->w[t->n++] = x;
 }
 
+void ss_sink_put(ss_sink *k, size_t row, ss_idx col, double x) {
+  if (!ss_sink_wants(k, row)) return;
+  if (k->rows) {
+    if (!rows_goto(k, row)) row_add(k, col, x);
+    return;
+  }
+  if (!reserve(k, 1)) put(k, row, col, x);
+}
+
 void ss_sink_cells_clear(ss_sink_cells *c) {
   free(c->off);
   free(c->col);

@@ -89,6 +89,11 @@ static inline int ss_sink_wants(const ss_sink *k, size_t row) {
   return !k->want || k->want[row];
 }
 
+/* Add x to entry (row, col) of the operator (rows in order or triplets), as
+ * one parent's term of an emission would be: for operators that are not a
+ * rule's (a product of two).  k->st as for emissions. */
+void ss_sink_put(ss_sink *k, size_t row, ss_idx col, double x);
+
 /* Operator-mode emission (out of line: it walks the parents). */
 void ss_sink_emit_operator(ss_sink *k, size_t row, size_t src, double w);
 
