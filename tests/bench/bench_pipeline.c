@@ -173,7 +173,20 @@
  * level) 6-7 %, the split 7 %, merging cells' parents 3-4 %; the boundary
  * marks could be derived from the coarser level's (a fine facet is on the
  * boundary iff its coarse one is), and the split and the rule share the
- * parent lookups. */
+ * parent lookups.
+ *
+ * Both merged (main c83aa33), the machine otherwise idle, 2026-12-03:
+ *   the exhaustive sweep TIMED (14:46-15:05 UTC, load 0.4-2.0 from the sweep
+ *   itself): `/usr/bin/time -v subspectra sweep --scheme mlca --vertices
+ *   4..13 --jobs 2` 58,716 cases in 18 min 59 s wall, 2249.6 s user + 5.3 s
+ *   system (0.63 CPU-h; 198 % of a CPU), 88 MB resident: k <= 13 under 30
+ *   minutes, measured.  Per case from the store: k = 12 31.3 ms, 13 40.0 ms.
+ *   --k 14 (15:07, load 0.4): pipeline 55.5 ms, extraction 9.5, dgeev 3.59,
+ *   ratio 15.4; (b) 18.3 -> 33.5 cases/s, speed-up 1.83.
+ *   --project --samples 50 (15:07): CPU-h k <= 13 0.725 [0.61, 0.84] (timed:
+ *   0.63), k <= 14 6.6 [5.7, 7.5], k <= 15 52 [46, 58], k <= 16 378 [328,
+ *   428]; e = 1.15 on the k = 13 sample (2.25x one thread's cases/s: above
+ *   1 is noise of a short sample; the wall times use min(e, 1)). */
 #include <malloc.h>
 #include <math.h>
 #include <omp.h>
