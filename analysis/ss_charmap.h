@@ -80,14 +80,33 @@ typedef struct {
   ss_jac_result *ring_jac;  /* ring_ncells per-cell results */
 } ss_charmap;
 
+/* Thread CPU seconds of the regularity test's stages, added to (never
+ * reset) by ss_charmap_judge and ss_certify_verdicts when the caller hands
+ * one in (ss_charmap_opts.times): for benchmarks (bench_pipeline --phases),
+ * which read where a case's time goes without a profiler.  Timing reads
+ * clocks only: no result depends on it. */
+typedef struct {
+  double map;       /* ss_charmap_new: the map's net and its normalisation */
+  double jacobian;  /* the Jacobian test on the two-ring's cells and the ring
+                       levels M already has */
+  double deepen;    /* ss_local_ring_deepen: refining the deeper ring levels
+                       of a link that folds on the first ones */
+  double deep_jac;  /* the Jacobian test on those deeper levels */
+  double symmetry;  /* ss_charmap_symmetry */
+  double injective; /* ss_charmap_injectivity (ss_certify_verdicts) */
+  long deep;        /* cases that needed deeper ring levels */
+} ss_charmap_times;
+
 /* Options of the regularity test. */
 typedef struct {
-  int depth;       /* hex subdivision depth limit of ss_jac (SS_JAC_DEPTH) */
-  int ring_levels; /* ring levels judged at most, 1..SS_LOCAL_MAXRING (3) */
-  double shrink;   /* a fold shrinks when its fraction of the ring's cells
-                      falls below shrink times the previous level's (0.5: a
-                      fold over a region keeps its fraction, one along a curve
-                      falls 4x per level) */
+  int depth;               /* hex subdivision depth limit of ss_jac (SS_JAC_DEPTH) */
+  int ring_levels;         /* ring levels judged at most, 1..SS_LOCAL_MAXRING (3) */
+  double shrink;           /* a fold shrinks when its fraction of the ring's cells
+                              falls below shrink times the previous level's (0.5: a
+                              fold over a region keeps its fraction, one along a curve
+                              falls 4x per level) */
+  ss_charmap_times *times; /* NULL (the default), or where to add the stages'
+                              thread CPU times (above); borrowed */
 } ss_charmap_opts;
 
 /* One ring level's cells by verdict. */
@@ -159,8 +178,13 @@ typedef struct {
  * cells, so a picture or file that shows it per cell agrees with analyze. */
 double ss_charmap_cell_measure(const ss_jac_result *j, int sign);
 
-/* Defaults: depth SS_JAC_DEPTH, 3 ring levels, shrink 0.5. */
+/* Defaults: depth SS_JAC_DEPTH, 3 ring levels, shrink 0.5, no timing. */
 ss_charmap_opts ss_charmap_defaults(void);
+
+/* This thread's CPU time in seconds (CLOCK_THREAD_CPUTIME_ID), for the
+ * timing hooks (ss_charmap_times, ss_result_times); 0 if the clock cannot be
+ * read. */
+double ss_charmap_cpu_seconds(void);
 
 /* The characteristic map of case M with eigenstructure e (which must carry a
  * subdominant basis), normalised as above.  *out is owned by the caller

@@ -15,6 +15,7 @@
 
 #include <stddef.h>
 
+#include "ss_charmap.h"
 #include "ss_eig.h"
 #include "ss_local.h"
 
@@ -94,12 +95,28 @@ ss_result_opts ss_result_defaults(void);
 ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
                             ss_result *r, ss_error *err);
 
+/* Thread CPU seconds of the pipeline's stages, added to (never reset) by
+ * ss_result_compute_ws when its workspace carries one: where a case's time
+ * goes, for benchmarks (bench_pipeline --phases).  Timing reads clocks
+ * only: no result depends on it. */
+typedef struct {
+  double canon;             /* the link's canonical form and text */
+  double extract;           /* ss_local_new_ws: the local matrix from the
+                               global rule, with the first ring levels */
+  double diagonals;         /* schemes reading major diagonals: their count */
+  double eig;               /* ss_eig_new_ws: LAPACK and the condition */
+  ss_charmap_times charmap; /* the regularity and injectivity tests */
+  long cases;               /* cases timed */
+} ss_result_times;
+
 /* The workspaces of one case's extraction and eigen-solve, reused from case
  * to case by one thread (a sweep holds one per thread).  Either may be NULL
  * (that step then allocates per case). */
 typedef struct {
   ss_local_workspace *local; /* ss_local_new_ws's scratch */
   ss_eig_workspace *eig;     /* ss_eig_new_ws's scratch */
+  ss_result_times *times;    /* NULL (ss_result_workspace_new), or where to
+                                add the stages' CPU times; borrowed */
 } ss_result_workspace;
 
 /* Both workspaces, empty (they grow at first use); NULL when out of
