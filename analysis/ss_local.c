@@ -269,15 +269,15 @@ static void push_facet(facet *f, size_t *nf, const ss_idx *cell, const int *loc,
   f[(*nf)++] = x;
 }
 
-static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned char **out,
-                             ss_error *err) {
+/* The facets of cx's top cells grouped so that equal ones are adjacent, in
+ * the workspace: *g and *nf (scratch until the workspace's next use). */
+static ss_status grouped_facets(const ss_cx *cx, ss_local_workspace *ws, facet **g,
+                                size_t *nf_out, ss_error *err) {
   size_t cap = 6 * cx->nc[SS_HEX] + 4 * cx->nc[SS_TET] + 8 * cx->nc[SS_OCT] +
                4 * cx->nc[SS_QUAD] + 3 * cx->nc[SS_TRIANGLE] + 1;
-  unsigned char *inner = *out = malloc(cx->nv + 1);
-  if (!inner ||
-      !(ws->facet = ws_grow(ws->facet, &ws->nfacet, 2 * cap * sizeof(facet), 1)))
+  if (!(ws->facet = ws_grow(ws->facet, &ws->nfacet, 2 * cap * sizeof(facet), 1)))
     return ss_error_nomem(err, "patch boundary");
-  facet *f = ws->facet, *g = f + cap; /* the facets, then grouped */
+  facet *f = ws->facet; /* the facets, then grouped after them */
   size_t nf = 0;
   const int topdim = ss_cx_topdim(cx);
   for (size_t i = 0; topdim == 3 && i < cx->nc[SS_HEX]; i++)
@@ -301,8 +301,18 @@ static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned c
       const int loc[2] = {k, (k + 1) % 3};
       push_facet(f, &nf, ss_cx_cell(cx, SS_TRIANGLE, i), loc, 2);
     }
-  ss_status st = facet_group(f, nf, cx->nv, g, ws, err);
-  f = g;
+  *g = f + cap;
+  *nf_out = nf;
+  return facet_group(f, nf, cx->nv, *g, ws, err);
+}
+
+static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned char **out,
+                             ss_error *err) {
+  unsigned char *inner = *out = malloc(cx->nv + 1);
+  if (!inner) return ss_error_nomem(err, "patch boundary");
+  facet *f;
+  size_t nf;
+  ss_status st = grouped_facets(cx, ws, &f, &nf, err);
   if (st) return st;
   memset(inner, 0, cx->nv + 1);
   for (size_t i = 0; i < nf; i++)
@@ -317,6 +327,112 @@ static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned c
         inner[f[i].v[k]] = 0;
     i = j;
   }
+  return SS_OK;
+}
+
+/* A hash of a facet's (sorted) vertices. */
+static size_t facet_hash(const facet *x) {
+  uint64_t h = 0x9e3779b97f4a7c15u;
+  for (int k = 0; k < 4; k++) {
+    h ^= x->v[k];
+    h *= 0xff51afd7ed558ccdu;
+    h ^= h >> 29;
+  }
+  return (size_t)h;
+}
+
+/* Put x into the open-addressing set t (mask + 1 slots, empty slots all
+ * SS_IDX_NONE), unless it is there. */
+static void face_put(facet *t, size_t mask, const facet *x) {
+  size_t h = facet_hash(x) & mask;
+  while (t[h].v[0] != SS_IDX_NONE && !facet_eq(t + h, x))
+    h = (h + 1) & mask;
+  t[h] = *x;
+}
+
+static int face_has(const facet *t, size_t mask, const facet *x) {
+  size_t h = facet_hash(x) & mask;
+  while (t[h].v[0] != SS_IDX_NONE) {
+    if (facet_eq(t + h, x)) return 1;
+    h = (h + 1) & mask;
+  }
+  return 0;
+}
+
+/* The boundary marks of F = split(C) (inner_marks(F->cx) to the bit) from
+ * the coarse complex C as refined (after peeling), without grouping F's
+ * facets, eight times as many as C's.  A fine vertex lies in the relative
+ * interior of its carrier, the face of C spanned by its parents (ss_split.h:
+ * a corner, an edge, a quad, a cell); the split refines every facet of C
+ * into facets that occur as often as it does, so a fine facet occurs once
+ * iff its coarse facet does, and f lies on such a fine facet iff its carrier
+ * lies in a boundary facet Q of C, i.e. (its parents spanning a face of C)
+ * iff its parents are a subset of Q's corners: a corner of Q, two of them
+ * (an edge; two opposite corners of a quad span no edge, so no fine vertex
+ * has them as parents), or all of Q.  Cells' centres (more parents than a
+ * facet has corners) are never on the boundary.  inner[f] = f lies in a top
+ * cell of F and not on the boundary. */
+static ss_status inner_marks_split(const ss_cx *C, const ss_cx *F, const ss_split *sp,
+                                   ss_local_workspace *ws, unsigned char **out,
+                                   ss_error *err) {
+  facet *g;
+  size_t nf;
+  ss_status st = grouped_facets(C, ws, &g, &nf, err);
+  if (st) return st;
+  size_t nb = 0; /* boundary facets, moved to the front of g */
+  for (size_t i = 0; i < nf;) {
+    size_t j = i + 1;
+    while (j < nf && facet_eq(g + i, g + j))
+      j++;
+    if (j - i == 1) g[nb++] = g[i];
+    i = j;
+  }
+  size_t slots = 16;
+  while (slots < 4 * 8 * nb) /* a facet and its at most 6 pairs, load <= 1/4 */
+    slots *= 2;
+  unsigned char *inner = *out = malloc(F->nv + 1), *bv = calloc(C->nv + 1, 1);
+  facet *t = malloc(slots * sizeof *t);
+  if (!inner || !bv || !t) {
+    free(bv);
+    free(t);
+    return ss_error_nomem(err, "patch boundary");
+  }
+  memset(t, 0xff, slots * sizeof *t); /* SS_IDX_NONE */
+  for (size_t i = 0; i < nb; i++) {
+    const facet *q = g + i;
+    int m = 0;
+    while (m < 4 && q->v[m] != SS_IDX_NONE)
+      bv[q->v[m++]] = 1;
+    if (m >= 2) face_put(t, slots - 1, q);
+    for (int a = 0; m > 2 && a < m; a++)
+      for (int b = a + 1; b < m; b++) {
+        const facet e = {{q->v[a], q->v[b], SS_IDX_NONE, SS_IDX_NONE}};
+        face_put(t, slots - 1, &e);
+      }
+  }
+  memset(inner, 0, F->nv + 1);
+  const int topdim = ss_cx_topdim(F);
+  for (int ty = 0; ty < SS_NCELLTYPES; ty++) {
+    if (ss_cell_dim((ss_cell_type)ty) != topdim) continue;
+    const size_t n = F->nc[ty] * (size_t)ss_cell_nverts((ss_cell_type)ty);
+    for (size_t i = 0; i < n; i++)
+      inner[F->cells[ty][i]] = 1;
+  }
+  for (size_t f = 0; f < F->nv; f++) {
+    if (!inner[f]) continue;
+    const size_t np = ss_split_npar(sp, f);
+    const ss_idx *p = sp->parent + sp->ptr[f];
+    if (np == 1)
+      inner[f] = !bv[p[0]];
+    else if (np <= 4) {
+      facet x = {{SS_IDX_NONE, SS_IDX_NONE, SS_IDX_NONE, SS_IDX_NONE}};
+      for (size_t k = 0; k < np; k++) /* ascending already */
+        x.v[k] = p[k];
+      inner[f] = !face_has(t, slots - 1, &x);
+    }
+  }
+  free(bv);
+  free(t);
   return SS_OK;
 }
 
@@ -486,8 +602,18 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
     st = ss_split_refine(ss_scheme_split_kind(W->scheme), C->cx, &F->cx, &F->split, err);
     if (st) return st;
     W->nlev++;
-    if (W->nlev - 1 >= W->lc && (st = inner_marks(F->cx, W->ws, &F->inner, err)))
+    if (W->nlev - 1 >= W->lc &&
+        (st = inner_marks_split(C->cx, F->cx, F->split, W->ws, &F->inner, err)))
       return st;
+#ifdef SS_CHECK_MARKS
+    if (W->nlev - 1 >= W->lc) {
+      unsigned char *chk = NULL;
+      if ((st = inner_marks(F->cx, W->ws, &chk, err))) return st;
+      const int same = !memcmp(chk, F->inner, F->cx->nv);
+      free(chk);
+      if (!same) return ss_error_set(err, SS_EINTERNAL, "derived boundary marks differ");
+    }
+#endif
     st = ss_scheme_step_rows(W->scheme, C->cx, F->cx, F->split, F->inner, &C->R, err);
     if (st) return st;
   } else {
