@@ -22,6 +22,11 @@ typedef struct {
                             addressing, mask + 1 slots, SS_IDX_NONE empty */
   size_t mask;           /* slots - 1 (a power of two minus one) */
   unsigned char *inner;  /* vertex not on the patch boundary */
+  unsigned char *rows;   /* the finest level of a ring (ring's deeper levels):
+                            the vertices whose rows into this level were
+                            computed, those of inner vertices inside Omega_w
+                            (the only ones the ring reads there); NULL: every
+                            inner vertex's */
   unsigned char *cinner; /* schemes reaching 2 rings: vertex not on the
                             boundary of the complex refined into the next
                             level (after peeling), else NULL */
@@ -574,8 +579,12 @@ static ss_status peel(level *L, const unsigned char *near, int margin, ss_error 
   return SS_OK;
 }
 
-/* Refine the last level once more, peeled first (peel's near and margin). */
-static ss_status add_level(work *W, const unsigned char *near, int margin,
+/* Refine the last level once more, peeled first (peel's near and margin).
+ * With near and finest (the ring's finest level, whose rows the ring reads
+ * only inside Omega_w, near's region, ss_local.h), the rule runs only for
+ * the inner vertices there (level.rows): a vertex of the finer level lies in
+ * Omega_w iff all its parents do (omega_marks). */
+static ss_status add_level(work *W, const unsigned char *near, int margin, int finest,
                            ss_error *err) {
   if (W->nlev == MAXLEVELS)
     return ss_error_set(err, SS_EINTERNAL, "no stationary neighbourhood within %d levels",
@@ -614,7 +623,17 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
       if (!same) return ss_error_set(err, SS_EINTERNAL, "derived boundary marks differ");
     }
 #endif
-    st = ss_scheme_step_rows(W->scheme, C->cx, F->cx, F->split, F->inner, &C->R, err);
+    if (near && finest && F->inner) { /* only the rows inside Omega_w */
+      if (!(F->rows = malloc(F->cx->nv + 1))) return ss_error_nomem(err, "ring rows");
+      for (size_t f = 0; f < F->cx->nv; f++) {
+        int in = F->inner[f];
+        for (size_t q = F->split->ptr[f]; in && q < F->split->ptr[f + 1]; q++)
+          in = near[F->split->parent[q]];
+        F->rows[f] = (unsigned char)in;
+      }
+    }
+    st = ss_scheme_step_rows(W->scheme, C->cx, F->cx, F->split,
+                             F->rows ? F->rows : F->inner, &C->R, err);
     if (st) return st;
   } else {
     st = ss_scheme_refine_step(W->scheme, C->cx, &F->cx, &C->R, &F->split, err);
@@ -649,6 +668,7 @@ static void free_work(work *W) {
     free(L->rel);
     free(L->index);
     free(L->inner);
+    free(L->rows);
     free(L->cinner);
   }
   ss_star_free(W->star);
@@ -665,7 +685,7 @@ enum { OK = 0, ROOM = 1, HARD = 2 };
  * neighbourhoods of the vertices it combines (reach 2, ss_scheme.h), none of
  * the row's coarse vertices is on the boundary of the complex C refined. */
 static int row_complete(const level *C, const level *F, size_t f) {
-  if (!F->inner[f]) return 0;
+  if (!(F->rows ? F->rows : F->inner)[f]) return 0;
   if (C->cinner)
     for (int q = C->R->p[f]; q < C->R->p[f + 1]; q++)
       if (!C->cinner[C->R->i[q]]) return 0;
@@ -1144,7 +1164,19 @@ static ss_status ring(work *W, int w, int nring, ss_local *M, ss_error *err) {
     const size_t p = lookup(W->lev + w, &zero);
     st = p == SIZE_MAX ? ss_error_set(err, SS_EINTERNAL, "the centre is lost")
                        : omega_marks(W, w, p, om, err);
-    if (!st) st = add_level(W, om[W->nlev - 1 - w], ss_scheme_reach(W->scheme), err);
+    level *C = W->lev + W->nlev - 1, *B = W->lev + W->nlev - 2;
+    if (!st && C->rows) {
+      /* a finest level becomes an inner one: every inner row, bit for bit as
+       * an extraction with this ring from the start computes them */
+      gsl_spmatrix_free(B->R);
+      B->R = NULL;
+      free(C->rows);
+      C->rows = NULL;
+      st = ss_scheme_step_rows(W->scheme, B->cx, C->cx, C->split, C->inner, &B->R, err);
+    }
+    if (!st)
+      st = add_level(W, om[W->nlev - 1 - w], ss_scheme_reach(W->scheme),
+                     W->nlev + 1 == w + nring + 1, err);
     for (int l = 0; l < MAXLEVELS; l++)
       free(om[l]);
   }
@@ -1338,7 +1370,7 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
   const int D = ss_scheme_ring_depth(s);
   while (!st && rc == ROOM) {
     while (!st && W.nlev < w + D + 2)
-      st = add_level(&W, NULL, 0, err);
+      st = add_level(&W, NULL, 0, 0, err);
     if (st) break;
     rc = attempt(&W, w, M, err);
     if (rc == HARD) st = err && err->status ? err->status : SS_EINTERNAL;
