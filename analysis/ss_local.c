@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ss_gsl.h"
+
 #define MAXLEVELS 8       /* levels of refinement tried at most */
 #define MAXCELLS  6000000 /* refuse to refine a patch beyond this many cells */
 #define STAT_TOL  1e-12   /* S on consecutive levels must agree to this */
@@ -579,17 +581,73 @@ static ss_status peel(level *L, const unsigned char *near, int margin, ss_error 
   return SS_OK;
 }
 
+/* Give level l (computed with level.rows) every inner vertex's row into it:
+ * the rule once more for the rows left out, merged row by row into the
+ * operator from level l - 1 (ss_scheme_step_rows: each row the same bits
+ * whichever rows are asked with it).  Before level l - 1 ... l change: C's
+ * complex must be the one F was split from (not peeled since). */
+static ss_status complete_rows(work *W, int l, ss_error *err) {
+  level *C = W->lev + l - 1, *F = W->lev + l;
+  if (!F->rows) return SS_OK;
+  const size_t nf = F->cx->nv;
+  unsigned char *rest = malloc(nf + 1);
+  if (!rest) return ss_error_nomem(err, "refinement operator");
+  size_t n = 0;
+  for (size_t f = 0; f < nf; f++)
+    n += rest[f] = (unsigned char)(F->inner[f] && !F->rows[f]);
+  gsl_spmatrix *B = NULL, *A = C->R, *M = NULL;
+  ss_status st = SS_OK;
+  if (n &&
+      !(st = ss_scheme_step_rows(W->scheme, C->cx, F->cx, F->split, rest, &B, err))) {
+    size_t nnz = 0;
+    for (size_t f = 0; f < nf; f++) {
+      const gsl_spmatrix *X = rest[f] ? B : A;
+      nnz += (size_t)(X->p[f + 1] - X->p[f]);
+    }
+    if (!(M = ss_gsl_csr_alloc(A->size1, A->size2, nnz)))
+      st = ss_error_nomem(err, "refinement operator");
+    else {
+      size_t q = 0;
+      M->p[0] = 0;
+      for (size_t f = 0; f < nf; f++) {
+        const gsl_spmatrix *X = rest[f] ? B : A;
+        for (int e = X->p[f]; e < X->p[f + 1]; e++, q++) {
+          M->i[q] = X->i[e];
+          M->data[q] = X->data[e];
+        }
+        M->p[f + 1] = (int)q;
+      }
+      M->nz = nnz;
+      gsl_spmatrix_free(C->R);
+      C->R = M;
+    }
+  }
+  if (B) gsl_spmatrix_free(B);
+  free(rest);
+  if (!st) {
+    free(F->rows);
+    F->rows = NULL;
+  }
+  return st;
+}
+
 /* Refine the last level once more, peeled first (peel's near and margin).
- * With near and finest (the ring's finest level, whose rows the ring reads
- * only inside Omega_w, near's region, ss_local.h), the rule runs only for
- * the inner vertices there (level.rows): a vertex of the finer level lies in
- * Omega_w iff all its parents do (omega_marks). */
-static ss_status add_level(work *W, const unsigned char *near, int margin, int finest,
-                           ss_error *err) {
+ * With keep (marks of the last level's vertices in Omega_w), the new level
+ * is the finest one an attempt or the ring reads, only inside Omega_w
+ * (ss_local.h): the rule runs only for the inner vertices there
+ * (level.rows; a vertex of the finer level lies in Omega_w iff all its
+ * parents do, as omega_marks says), the other rows are added
+ * (complete_rows) when a read needs them or a level is added below. */
+static ss_status add_level(work *W, const unsigned char *near, int margin,
+                           const unsigned char *keep, ss_error *err) {
   if (W->nlev == MAXLEVELS)
     return ss_error_set(err, SS_EINTERNAL, "no stationary neighbourhood within %d levels",
                         MAXLEVELS);
   level *C = W->lev + W->nlev - 1, *F = W->lev + W->nlev;
+  if (W->nlev >= 2) { /* C becomes an inner level: every inner row into it */
+    ss_status st = complete_rows(W, W->nlev - 1, err);
+    if (st) return st;
+  }
   if (W->nlev - 1 > 0 && W->nlev - 1 >= W->lc) {
     ss_status st = peel(C, near, margin, err);
     if (st) return st;
@@ -623,12 +681,12 @@ static ss_status add_level(work *W, const unsigned char *near, int margin, int f
       if (!same) return ss_error_set(err, SS_EINTERNAL, "derived boundary marks differ");
     }
 #endif
-    if (near && finest && F->inner) { /* only the rows inside Omega_w */
+    if (keep && F->inner) { /* only the rows inside Omega_w */
       if (!(F->rows = malloc(F->cx->nv + 1))) return ss_error_nomem(err, "ring rows");
       for (size_t f = 0; f < F->cx->nv; f++) {
         int in = F->inner[f];
         for (size_t q = F->split->ptr[f]; in && q < F->split->ptr[f + 1]; q++)
-          in = near[F->split->parent[q]];
+          in = keep[F->split->parent[q]];
         F->rows[f] = (unsigned char)in;
       }
     }
@@ -656,6 +714,26 @@ static ss_status add_level(work *W, const unsigned char *near, int margin, int f
   }
   if (W->nlev - 1 >= W->lc) return finish_level(W, W->nlev - 1, err);
   return SS_OK;
+}
+
+static ss_status omega_marks(const work *W, int w, size_t p, unsigned char **out,
+                             ss_error *err);
+
+/* Add level w + D + 1, the finest an attempt at level w reads (rows of
+ * Omega_w's vertices and of the labels, ss_local.h), computing only the rows
+ * inside Omega_w (add_level's keep); the labels' rows, if any lies outside,
+ * are added before S is read there (attempt). */
+static ss_status add_finest(work *W, int w, ss_error *err) {
+  const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
+  const size_t p = w >= W->lc && w < W->nlev ? lookup(W->lev + w, &zero) : SIZE_MAX;
+  if (p == SIZE_MAX || !ss_scheme_step_is_one_split(W->scheme))
+    return add_level(W, NULL, 0, NULL, err);
+  unsigned char *om[MAXLEVELS] = {NULL};
+  ss_status st = omega_marks(W, w, p, om, err);
+  if (!st) st = add_level(W, NULL, 0, om[W->nlev - 1 - w], err);
+  for (int l = 0; l < MAXLEVELS; l++)
+    free(om[l]);
+  return st;
 }
 
 static void free_work(work *W) {
@@ -781,6 +859,19 @@ static int read_matrix(const work *W, int l, const ss_local *M, double *S, size_
   return OK;
 }
 
+/* Make sure the rows of M's labels into level l are computed where they
+ * are inner (level.rows leaves out those outside Omega_w): OK or HARD. */
+static int label_rows(work *W, int l, const ss_local *M, ss_error *err) {
+  const level *F = W->lev + l;
+  if (l >= W->nlev || !F->rows) return OK;
+  for (size_t i = 0; i < M->n2; i++) {
+    const size_t f = lookup(F, M->label + i);
+    if (f != SIZE_MAX && F->inner[f] && !F->rows[f])
+      return complete_rows(W, l, err) ? HARD : OK;
+  }
+  return OK;
+}
+
 /* Index of the label x among M's labels (sorted within the one-ring and
  * within the rest), or SIZE_MAX. */
 size_t ss_local_label_index(const ss_local *M, const ss_star_coord *x) {
@@ -862,7 +953,7 @@ static int ring_depth(const work *W, int w, int d, unsigned char *const *om,
 
 /* One attempt with the two-ring on level w (levels up to w + D + 1 exist, D
  * the scheme's ring depth). */
-static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
+static int attempt(work *W, int w, ss_local *M, ss_error *err) {
   const level *Lw = W->lev + w;
   const ss_star_coord zero = ss_star_coord_make(0, NULL, NULL);
   size_t p = lookup(Lw, &zero);
@@ -958,6 +1049,7 @@ static int attempt(const work *W, int w, ss_local *M, ss_error *err) {
   qsort(M->label + n1, n2 - n1, sizeof *M->label, label_cmp);
   ss_progress_step(W->prog, "reading S, rows", n2, 0);
   if ((rc = read_matrix(W, w, M, M->S, colmap, err))) goto done;
+  if ((rc = label_rows(W, w + 2, M, err))) goto done;
   if ((rc = read_matrix(W, w + 1, M, S2, colmap, err))) goto done;
   double diff = 0.0;
   M->nnz = 0;
@@ -1164,19 +1256,9 @@ static ss_status ring(work *W, int w, int nring, ss_local *M, ss_error *err) {
     const size_t p = lookup(W->lev + w, &zero);
     st = p == SIZE_MAX ? ss_error_set(err, SS_EINTERNAL, "the centre is lost")
                        : omega_marks(W, w, p, om, err);
-    level *C = W->lev + W->nlev - 1, *B = W->lev + W->nlev - 2;
-    if (!st && C->rows) {
-      /* a finest level becomes an inner one: every inner row, bit for bit as
-       * an extraction with this ring from the start computes them */
-      gsl_spmatrix_free(B->R);
-      B->R = NULL;
-      free(C->rows);
-      C->rows = NULL;
-      st = ss_scheme_step_rows(W->scheme, B->cx, C->cx, C->split, C->inner, &B->R, err);
-    }
     if (!st)
       st = add_level(W, om[W->nlev - 1 - w], ss_scheme_reach(W->scheme),
-                     W->nlev + 1 == w + nring + 1, err);
+                     W->nlev + 1 == w + nring + 1 ? om[W->nlev - 1 - w] : NULL, err);
     for (int l = 0; l < MAXLEVELS; l++)
       free(om[l]);
   }
@@ -1370,7 +1452,8 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
   const int D = ss_scheme_ring_depth(s);
   while (!st && rc == ROOM) {
     while (!st && W.nlev < w + D + 2)
-      st = add_level(&W, NULL, 0, 0, err);
+      st = W.nlev + 1 == w + D + 2 ? add_finest(&W, w, err)
+                                   : add_level(&W, NULL, 0, NULL, err);
     if (st) break;
     rc = attempt(&W, w, M, err);
     if (rc == HARD) st = err && err->status ? err->status : SS_EINTERNAL;

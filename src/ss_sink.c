@@ -331,7 +331,14 @@ ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss
     ss_idx *col = c->col + at;
     uint8_t *from = c->from + at;
     c->off[i] = at;
-    int m = 0, slots = 0, merged = n <= 8;
+    int m = 0, slots = 0, merged = n <= 8, wanted = !k->want;
+    for (int j = 0; j < n && !wanted; j++)
+      wanted = k->want[s[j]];
+    if (!wanted) { /* no row of the cell is emitted (ss_sink_emit_cell_operator
+                      is called for its corners' rows only): nothing to merge */
+      np[0] = 0;
+      continue;
+    }
     for (int j = 0; j < n && merged; j++) {
       const size_t p = ss_split_npar(L, s[j]);
       if (p > (size_t)(SS_SINK_CELLCAP - slots)) {

@@ -139,7 +139,9 @@ typedef struct {
 } ss_sink_cells;
 
 /* Prepare c for the ncells cells whose vertices are src (n each, kept by
- * pointer).  Only operator mode merges; otherwise c just holds src.
+ * pointer).  Only operator mode merges; otherwise c just holds src.  A cell
+ * none of whose vertices' rows the sink wants is not merged (its rows are
+ * dropped anyway): emit a cell only into one of its own vertices' rows.
  * SS_ENOMEM (c cleared). */
 ss_status ss_sink_cells_prepare(const ss_sink *k, int n, size_t ncells, const ss_idx *src,
                                 ss_sink_cells *c, ss_error *err);
