@@ -13,7 +13,9 @@
  *   and serve cases smaller than they hold), edges and faces, of MLCA and
  *   tet/oct interleaved in one workspace;
  *   - a workspace too small grows (ss_eig_workspace_size) and never shrinks;
- *   - a call that fails on bad input leaves the workspace usable. */
+ *   - a call that fails on bad input leaves the workspace usable;
+ *   - the timing hook (ss_result_workspace.times) changes no result, and its
+ *     stage times are >= 0 and fit in the calls' thread CPU time. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -232,6 +234,54 @@ int main(void) {
           "a non-triangular S is SS_EINPUT");
     const ss_case c = {SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0};
     one_case(mlca, &c, lw, ew, rw, "mlca edge 5 after a failed call");
+  }
+
+  /* the timing hook (ss_result_workspace.times, for bench_pipeline --phases)
+   * reads clocks only: the same results bit for bit; every stage's time is
+   * >= 0 and together they fit in the thread CPU time around the calls; the
+   * cases are counted, and the deeper ring level (ss_charmap_times.deep) at
+   * most once per case.  MLCA links k = 10..12 until one needed the deeper
+   * level (about 4 in 10 at k = 12 do), at most 12 links. */
+  {
+    ss_result_times tm;
+    memset(&tm, 0, sizeof tm);
+    rw->times = &tm;
+    long n = 0;
+    double cpu = 0.0;
+    for (int i = 0; i < 12 && !tm.charmap.deep; i++) {
+      ss_link *l = NULL;
+      ss_error err = {0};
+      if (ss_link_random(10 + i % 3, rng, &l, &err)) continue;
+      const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
+      ss_result_opts ro = ss_result_defaults();
+      ss_result r0, r1;
+      const ss_status s0 = ss_result_compute(mlca, &c, &ro, &r0, &err);
+      const double t0 = ss_charmap_cpu_seconds();
+      const ss_status s1 = ss_result_compute_ws(mlca, &c, &ro, rw, &r1, &err);
+      cpu += ss_charmap_cpu_seconds() - t0;
+      n++;
+      CHECK(s0 == SS_OK && s1 == SS_OK, "timed case %d: %s", i, err.msg);
+      if (s0 == SS_OK && s1 == SS_OK) compare_result(&r0, &r1, "timed case");
+      if (s0 == SS_OK) ss_result_clear(&r0);
+      if (s1 == SS_OK) ss_result_clear(&r1);
+      ss_link_free(l);
+    }
+    const ss_charmap_times *ct = &tm.charmap;
+    const double st[] = {tm.canon,     tm.extract,   tm.diagonals, tm.eig,
+                         ct->map,      ct->jacobian, ct->deepen,   ct->deep_jac,
+                         ct->symmetry, ct->injective};
+    double sum = 0.0;
+    int nonneg = 1;
+    for (size_t i = 0; i < sizeof st / sizeof *st; i++) {
+      nonneg &= st[i] >= 0.0;
+      sum += st[i];
+    }
+    CHECK(tm.cases == n && ct->deep >= 1 && ct->deep <= n,
+          "timed %ld of %ld cases, %ld with the deeper ring level (want >= 1)", tm.cases,
+          n, ct->deep);
+    CHECK(nonneg && sum <= cpu * (1.0 + 1e-9) + 1e-6 && tm.extract > 0.0 && tm.eig > 0.0,
+          "stage times %g s in all, the calls took %g s of thread CPU", sum, cpu);
+    rw->times = NULL;
   }
 
   /* NULL workspaces are the plain calls */
