@@ -235,7 +235,53 @@
  * block is 13 x 13 and its dgeev 0.08 ms: the eigen stage alone is 5.5x and
  * the Jacobian test on levels 0-1 alone 5x; the target is meaningless there.
  * Speed-ups can still cut the whole (the deeper ring's refinement is the
- * largest stage: 29-40 % of the CPU), but not to 2x. */
+ * largest stage: 29-40 % of the CPU), but not to 2x.
+ *
+ * SPEED (branch i20phase, every sum in the same order: stores identical row
+ * for row, MLCA 4..10 + edges 3..8 and k = 11, tet/oct 4..9 + 3..8,
+ * box-spline 4..9, and against main also catmull-clark, loop, ccsolid, the
+ * tet/oct face, box-spline edges and face, a certified MLCA store):
+ *   - a refined level's boundary marks from the coarse level's boundary
+ *     facets through the split's parent lists (a fine facet occurs once iff
+ *     its coarse one does) instead of grouping the fine level's 8x as many
+ *     facets; equal to the old marks on every case of those stores (checked
+ *     under -DSS_CHECK_MARKS);
+ *   - the finest level an extraction or a ring reads (level w + 2, and the
+ *     deeper ring's w + 3) gets the rule only for its rows inside Omega_w
+ *     (the only ones read there); the labels' rows and, when a level is
+ *     added below (the deeper ring), the other inner rows are computed later
+ *     and merged row by row (each row the same bits whichever rows are asked
+ *     with it, ss_scheme_step_rows); cells with no wanted row not merged.
+ * Measured 2026-12-03 16:19-16:21 UTC, load 1.7-2.3 (others' work; one core
+ * free), main 7dcbfe1 and the branch alternately, --jobs 1, part (a), best
+ * of 3 (each pair run back to back):
+ *   MLCA k = 12: pipeline 32.0 -> 28.6 ms (-11 %), extraction 6.79 -> 5.56
+ *     ms (-18 %), median 16.3 -> 14.4, slowest 78 -> 73; pipeline / dgeev
+ *     15.5-16.8 -> 14.8-15.2;
+ *   MLCA k = 14: 47.7 -> 46.7 ms (-2 %), extraction 8.31 -> 7.35 (-12 %),
+ *     ratio 15.4-16.3 -> 15.0 (59 of 101 links take the deeper level, where
+ *     the rows deferred on level w + 2 are computed after all);
+ *   tet/oct k = 12: 10.65 -> 7.30 ms (-31 %), extraction 2.35 -> 1.30,
+ *     ratio 116-126 -> 103-105.
+ * callgrind (instructions, free of load; the whole bench, --samples 10):
+ *   ss_result_compute_ws k = 12 5.884 -> 5.404 G (-8.2 %), k = 14 5.871 ->
+ *   5.406 G (-7.9 %); every extraction (ss_local_new_ws) -19 %, the deeper
+ *   ring (ss_local_ring_deepen) -15 %.
+ * --phases on the branch (16:28, load 1.5-2.0), multiples of dgeev, mean:
+ *   k = 12: extraction 2.66, eigen 1.64, Jacobian 0.72 + deeper level
+ *   refinement 3.77 + its Jacobian 3.08, injectivity 2.62; whole 14.6
+ *   (17.1 on main); per link needing the deeper level 22.1 ms refinement.
+ *   k = 14: extraction 2.20, eigen 1.51, deeper refinement 4.33, its
+ *   Jacobian 3.30, injectivity 2.74; whole 14.8 (15.7 on main).
+ *   tet/oct: extraction 15.8, deeper refinement 31.4; whole 88.7 (109).
+ * What is left (callgrind, k = 12, share of the instructions): the Jacobian
+ *   test 25 % (hex_sign_d 17 %: Bernstein subdivision, every box's values
+ *   needed for the counts and the minimum), the rule's emission 23 %, the
+ *   split 7.5 %, eigen 9 %, injectivity 9 %.  Not done: the split and the
+ *   rule sharing the parents' lookups (ss_sink_cells_prepare 5 %), a
+ *   per-configuration stencil cache (the rule 23 % and the split would go;
+ *   the largest remaining step).  Tried and dropped: the hex test's boxes
+ *   split in place instead of copied (-0.4 % of instructions). */
 #include <malloc.h>
 #include <math.h>
 #include <omp.h>
