@@ -24,11 +24,11 @@ typedef struct {
                             addressing, mask + 1 slots, SS_IDX_NONE empty */
   size_t mask;           /* slots - 1 (a power of two minus one) */
   unsigned char *inner;  /* vertex not on the patch boundary */
-  unsigned char *rows;   /* the finest level of a ring (ring's deeper levels):
-                            the vertices whose rows into this level were
-                            computed, those of inner vertices inside Omega_w
-                            (the only ones the ring reads there); NULL: every
-                            inner vertex's */
+  unsigned char *rows;   /* the finest level an attempt or a ring reads
+                            (add_level's keep): the vertices whose rows into
+                            this level were computed, the inner ones inside
+                            Omega_w (complete_rows adds the others when
+                            needed); NULL: every inner vertex's */
   unsigned char *cinner; /* schemes reaching 2 rings: vertex not on the
                             boundary of the complex refined into the next
                             level (after peeling), else NULL */
@@ -1048,8 +1048,9 @@ static int attempt(work *W, int w, ss_local *M, ss_error *err) {
   qsort(M->label, n1, sizeof *M->label, label_cmp);
   qsort(M->label + n1, n2 - n1, sizeof *M->label, label_cmp);
   ss_progress_step(W->prog, "reading S, rows", n2, 0);
+  if ((rc = label_rows(W, w + 1, M, err)) || (rc = label_rows(W, w + 2, M, err)))
+    goto done;
   if ((rc = read_matrix(W, w, M, M->S, colmap, err))) goto done;
-  if ((rc = label_rows(W, w + 2, M, err))) goto done;
   if ((rc = read_matrix(W, w + 1, M, S2, colmap, err))) goto done;
   double diff = 0.0;
   M->nnz = 0;
