@@ -1341,7 +1341,8 @@ ss_status ss_local_cell(const ss_scheme *s, ss_case_kind kind, ss_cell_type *t,
 ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
                         ss_error *err) {
   *out = NULL;
-  ss_cell_type t;
+  ss_cell_type t =
+      SS_HEX; /* set by ss_local_cell; initialised for -Wmaybe-uninitialized */
   ss_status st0 = ss_local_cell(s, c->kind, &t, err);
   if (st0) return st0;
   if (c->kind == SS_CASE_VERTEX && !c->link)
