@@ -17,7 +17,7 @@
 #include "ss_jsr_polytope.h"
 
 ss_jsr_opts ss_jsr_defaults(void) {
-  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_AUTO, 10000000, 0.0, 0, 1};
+  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_AUTO, 10000000, 0.0, 0, 1, 1};
   return o;
 }
 
@@ -612,7 +612,7 @@ static void ws_select(jsr_ws *w, const double *const *Y, int c, const double *be
 /* Fit the ellipsoidal norm to the inputs Y and enclose the similar copies
  * into w->ebuf (ss_jsr_ellipsoid.h).  Returns 1 if they are ready; 0 if the
  * fit or the enclosure failed (*st = SS_ENOMEM if memory ran out). */
-static int ws_ellipsoid(jsr_ws *w, const double *const *Y, double deadline,
+static int ws_ellipsoid(jsr_ws *w, const double *const *Y, int words, double deadline,
                         ss_status *st) {
   const size_t m = w->m, n = w->n;
   double *L = malloc(n * n * sizeof *L);
@@ -625,7 +625,7 @@ static int ws_ellipsoid(jsr_ws *w, const double *const *Y, double deadline,
     *st = SS_ENOMEM;
     goto done;
   }
-  *st = ss_jsr_ellipsoid_fit(m, n, Y, deadline, L);
+  *st = ss_jsr_ellipsoid_fit_words(m, n, Y, words, deadline, L);
   if (*st != SS_OK) goto done;
   ok = ss_jsr_ellipsoid_similar(m, n, Y, L, w->ebuf, w->edelta, &w->ecw);
   for (size_t i = 0; i < m; i++)
@@ -751,6 +751,18 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     return ss_error_set(err, SS_EINPUT, "jsr: max_seconds is NaN");
   if (o->max_depth < 0)
     return ss_error_set(err, SS_EINPUT, "jsr: max_depth %d < 0", o->max_depth);
+  if (o->fit_words < 1 || o->fit_words > 5)
+    return ss_error_set(err, SS_EINPUT, "jsr: fit_words %d not in 1..5", o->fit_words);
+  {
+    double prods = 1; /* the ellipsoid's fit holds all m^K products */
+    for (int k = 0; k < o->fit_words; k++)
+      prods *= (double)m;
+    if (prods > 4096)
+      return ss_error_set(err, SS_EINPUT,
+                          "jsr: fit_words %d with %zu matrices means %.0f products "
+                          "(at most 4096); lower fit_words",
+                          o->fit_words, m, prods);
+  }
   for (size_t i = 0; i < m; i++) {
     if (!Y[i]) return ss_error_set(err, SS_EINPUT, "jsr: matrix %zu is missing", i + 1);
     for (size_t e = 0; e < n * n; e++)
@@ -857,7 +869,8 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   int have_ell = 0;
   if ((o->norm == SS_JSR_NORM_ELLIPSOID || (auto_ && n <= ELL_AUTO_MAX_N)) &&
       upper > w.lower * (1 + o->gap)) {
-    have_ell = ws_ellipsoid(&w, Y, deadline > 0 ? t0 + o->max_seconds / 4 : 0, &st);
+    have_ell = ws_ellipsoid(&w, Y, o->fit_words,
+                            deadline > 0 ? t0 + o->max_seconds / 4 : 0, &st);
     if (st == SS_ENOMEM) {
       st = ss_error_nomem(err, "jsr ellipsoidal norm");
       goto done;

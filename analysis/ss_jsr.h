@@ -103,10 +103,14 @@ typedef struct {
                          besides max_nodes / max_seconds (>= depth to matter) */
   int weighted;       /* 1: the inf-norm branch and bound may switch to a
                          diagonally weighted inf-norm (default); 0: never */
+  int fit_words;      /* K in 1..5 (m^K <= 4096): the ellipsoidal norm is
+                         fitted to the m^K products of length K instead of
+                         the m maps (ss_jsr_ellipsoid_fit_words); 1 (default)
+                         the maps.  The bound stays proven for any K */
 } ss_jsr_opts;
 
 /* Defaults: depth 8, gap 1e-3, norm AUTO, 10^7 nodes, no time or depth limit,
- * weighting allowed. */
+ * weighting allowed, the ellipsoid fitted to the maps (fit_words 1). */
 ss_jsr_opts ss_jsr_defaults(void);
 
 typedef struct {
@@ -150,12 +154,13 @@ typedef struct {
  * m < 1, n < 1, Y or a Y[i] NULL, a non-finite entry (matrix and entry
  * named), depth outside 1..64, gap negative or not finite, an unknown norm,
  * max_depth < 0, max_seconds NaN, more than 10^10 brute-force words
- * (m + ... + m^K); SS_ENOMEM; SS_ENUMERIC if LAPACK's
- * eigenvalue or singular value computation fails, or if norm ELLIPSOID was
+ * (m + ... + m^K), fit_words outside 1..5 or m^fit_words > 4096; SS_ENOMEM; SS_ENUMERIC
+ * if LAPACK's eigenvalue or singular value computation fails, or if norm ELLIPSOID was
  * asked for and the fitted L could not be proven invertible (AUTO then just
  * skips that norm).  Cost: (m^{K+1} - m) / (m - 1) products with a norm
  * each (an SVD for rho_2) for the profiles; the ellipsoid's fit, at most
- * 750 L-BFGS steps of O(m n^3) (within a quarter of max_seconds), and its
+ * 750 L-BFGS steps of O(m n^3) (within a quarter of max_seconds; with
+ * fit_words K > 1 as many more of O(m^K n^3) on the products), and its
  * enclosure, O(m n^3) in 128-bit balls; then the branch and bound within
  * max_nodes / max_seconds / max_depth (converged = 0 when a limit stops it);
  * memory O((K + L) n^2 + m n^2), about (26 + 2 m) n^2 more for the fit. */

@@ -128,7 +128,7 @@ static double dot(const double *a, const double *b, size_t len) {
 }
 
 ss_status ss_jsr_ellipsoid_fit(size_t m, size_t n, const double *const *Y,
-                               double deadline, double *L) {
+                               double deadline, int warm, double *L) {
   const size_t nn = n * n;
   fit_ws f = {m, n, Y, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
   ss_status st = SS_OK;
@@ -155,7 +155,8 @@ ss_status ss_jsr_ellipsoid_fit(size_t m, size_t n, const double *const *Y,
     goto done;
   }
   for (size_t e = 0; e < nn; e++)
-    L[e] = x[e] = e % (n + 1) == 0 ? 1 : 0;
+    x[e] = warm ? L[e] : e % (n + 1) == 0 ? 1 : 0;
+  memcpy(L, x, nn * sizeof *L);
   double best = eval_sv(&f, x);
   if (best < 0) {
     st = SS_ENUMERIC;
@@ -263,6 +264,52 @@ done:
   free(d);
   free(S);
   free(YY);
+  return st;
+}
+
+ss_status ss_jsr_ellipsoid_fit_words(size_t m, size_t n, const double *const *Y, int K,
+                                     double deadline, double *L) {
+  if (K <= 1) return ss_jsr_ellipsoid_fit(m, n, Y, deadline, 0, L);
+  const size_t nn = n * n;
+  size_t cnt = m, prev = 0;
+  for (int k = 1; k < K; k++)
+    prev = cnt, cnt *= m;
+  /* the products, level by level: those of length k + 1 are Y_i times those
+   * of length k (the order of the list does not matter to the fit) */
+  double *P = malloc(cnt * nn * sizeof *P), *Q = malloc(prev * nn * sizeof *Q);
+  const double **ptr = malloc(cnt * sizeof *ptr);
+  ss_status st = SS_OK;
+  if (!P || !Q || !ptr) {
+    st = SS_ENOMEM;
+    goto done;
+  }
+  for (size_t i = 0; i < m; i++)
+    memcpy(P + i * nn, Y[i], nn * sizeof *P);
+  for (size_t len = m; len < cnt; len *= m) {
+    memcpy(Q, P, len * nn * sizeof *Q);
+    for (size_t i = 0; i < m; i++)
+      for (size_t u = 0; u < len; u++) {
+        const double *a = Y[i], *b = Q + u * nn;
+        double *c = P + (i * len + u) * nn;
+        for (size_t r = 0; r < n; r++)
+          for (size_t cc = 0; cc < n; cc++) {
+            double z = 0;
+            for (size_t t = 0; t < n; t++)
+              z += a[r * n + t] * b[t * n + cc];
+            c[r * n + cc] = z;
+          }
+      }
+  }
+  for (size_t w = 0; w < cnt; w++)
+    ptr[w] = P + w * nn;
+  const double start = now_seconds();
+  st = ss_jsr_ellipsoid_fit(m, n, Y, deadline > 0 ? start + (deadline - start) / 4 : 0, 0,
+                            L);
+  if (st == SS_OK) st = ss_jsr_ellipsoid_fit(cnt, n, ptr, deadline, 1, L);
+done:
+  free(P);
+  free(Q);
+  free(ptr);
   return st;
 }
 
