@@ -60,6 +60,34 @@ assert j["norm"] == "ellipsoid" and j["converged"] and j["certified"]
 assert j["lower"] <= j["upper"] <= j["lower"] * (1 + 1e-3)
 assert j["threshold"] == 0.5 and j["upper"] < 0.5 and j["verdict"] == "pass"
 PY
+# --fit-words K: the ellipsoid fitted to the products of length K.  Bad K
+# is refused; K = 1 is the default (edge 3: the fit converges long before
+# its deadline, so the two runs are the same computation); K = 2 on the
+# face and on edge 3 gives proven bounds (lower <= upper) with the key.
+expect_in 2 "--fit-words: expected 1..5, not '0'" "" "$exe" jsr --scheme tetoct --face --fit-words 0
+expect_in 2 "--fit-words: expected 1..5, not '6'" "" "$exe" jsr --scheme tetoct --face --fit-words 6
+expect_in 2 "--fit-words: expected 1..5, not 'x'" "" "$exe" jsr --scheme tetoct --face --fit-words x
+a=$("$exe" jsr --scheme tetoct --edge 3 --depth 3 --norm ellipsoid --max-seconds 60 --format json)
+b=$("$exe" jsr --scheme tetoct --edge 3 --depth 3 --norm ellipsoid --max-seconds 60 --fit-words 1 --format json)
+c=$("$exe" jsr --scheme tetoct --edge 3 --depth 3 --norm ellipsoid --max-seconds 60 --fit-words 2 --format json)
+checks=$((checks + 1))
+python3 - "$a" "$b" "$c" <<'PY' || fail "tetoct edge 3 --fit-words: $a $b $c"
+import json, sys
+a, b, c = (json.loads(x) for x in sys.argv[1:])
+assert a["fit_words"] == 1 and b["fit_words"] == 1 and c["fit_words"] == 2
+assert (a["lower"], a["upper"], a["bnb_depth"]) == (b["lower"], b["upper"], b["bnb_depth"])
+assert c["norm"] == "ellipsoid" and c["certified"] and c["converged"]
+assert c["lower"] <= c["upper"] <= c["lower"] * (1 + 1e-3) and c["verdict"] == "pass"
+PY
+out=$("$exe" jsr --scheme tetoct --face --depth 3 --max-seconds 5 --fit-words 2 --format json)
+checks=$((checks + 1))
+python3 - "$out" <<'PY' || fail "tetoct face --fit-words 2 JSON: $out"
+import json, sys
+j = json.loads(sys.argv[1])
+assert j["fit_words"] == 2 and j["lower"] <= j["upper"] and j["certified"]
+want = "pass" if j["upper"] < 0.25 else "fail" if j["lower"] >= 0.25 else "undecided"
+assert j["verdict"] == want
+PY
 # box-spline faces with the diagonals of Algorithm 2 have the eigenvalue
 # 0.512 > 1/2: the reduction does not apply, exit 1 with the spectrum
 expect_in 1 "are not 1, 1/2 x3, 1/4 x6" "" "$exe" jsr --scheme boxspline --face --depth 2 --max-seconds 1
