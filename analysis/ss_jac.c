@@ -15,51 +15,48 @@
 
 enum { SS_JAC_STACK = 8 * 16 + 8 }; /* depth-first: at most 7 pending boxes per level */
 
-/* The corners of a d-cube (ss_cx.h), looked up once per cell rather than in
- * every inner loop. */
+/* The corners of a d-cube (ss_cx.h). */
 typedef struct {
   unsigned bits[8]; /* bits[k]: the binary coordinates of corner k */
   int index[8];     /* index[b]: the corner with binary coordinates b */
 } ss_jac_order;
 
+/* The cube's corner order of ss_cx.h as constants: a quad's corners 0 1 2 3
+ * cyclic (corner 2 at bits 11, corner 3 at bits 10), a hex's top face 4 5 6 7
+ * the same above them.  The map is its own inverse.  Constants rather than
+ * ss_cube_corner_bits calls so that the hex test's Lagrange weights below are
+ * compile-time constants (its zero terms vanish from the code) and no cell
+ * pays for looking the order up (16 calls per hex, twice); test_jac checks
+ * that ss_cube_corner_bits and ss_cube_corner_index agree with it. */
+#define QUAD_BITS(k) ((k) == 2 ? 3 : (k) == 3 ? 2 : (k))
+#define HEX_BITS(k)  (QUAD_BITS((k)&3) | ((k)&4))
+static const ss_jac_order quad_order = {
+    {QUAD_BITS(0), QUAD_BITS(1), QUAD_BITS(2), QUAD_BITS(3)},
+    {QUAD_BITS(0), QUAD_BITS(1), QUAD_BITS(2), QUAD_BITS(3)}};
+static const ss_jac_order hex_order = {
+    {HEX_BITS(0), HEX_BITS(1), HEX_BITS(2), HEX_BITS(3), HEX_BITS(4), HEX_BITS(5),
+     HEX_BITS(6), HEX_BITS(7)},
+    {HEX_BITS(0), HEX_BITS(1), HEX_BITS(2), HEX_BITS(3), HEX_BITS(4), HEX_BITS(5),
+     HEX_BITS(6), HEX_BITS(7)}};
+
 /* The weights of the trilinear map's derivatives at the 27 Lagrange points
  * (u, v, w) = (i, j, l) / 2 that start the hex test: d x / d t_a there is the
- * sum over corners of lw[i + 3 j + 9 l][b][a] times the corner with binary
- * coordinates b, the weight being the product over axes c of +-1 (c = a, by
- * bit c of b) or t_c, 1 - t_c (bit c set, clear).  Each is a product of 0,
- * +-1/2 and +-1, exact; written as the formula, not as numbers, so the table
- * is that of hex_at (which computed them per point and per cell, most of the
+ * sum over corners k of LAG_W(i + 3 j + 9 l, k, a) times corner k, the weight
+ * being the product over axes c of +-1 (c = a, by bit c of the corner's binary
+ * coordinates b) or t_c, 1 - t_c (bit c set, clear).  Each is a product of 0,
+ * +-1/2 and +-1, exact; written as the formula, not as numbers, so the weights
+ * are those of hex_at (which computed them per point and per cell).  Constant
+ * expressions: hex_lagrange (ss_jac_impl.h) is written out term by term with
+ * them, so the compiler drops the 0 weights (more than half) and no table is
+ * read or tested per cell (reading and testing the table was most of the
  * Jacobian test's time). */
 #define LW_T(q, bit)                                                                     \
   ((q) == 0 ? ((bit) ? 0.0 : 1.0) : (q) == 1 ? 0.5 : ((bit) ? 1.0 : 0.0))
 #define LW_Q(p, c) ((c) == 0 ? (p) % 3 : (c) == 1 ? ((p) / 3) % 3 : (p) / 9)
 #define LW_F(p, b, a, c)                                                                 \
   ((a) == (c) ? ((((b) >> (c)) & 1) ? 1.0 : -1.0) : LW_T(LW_Q(p, c), ((b) >> (c)) & 1))
-#define LW(p, b, a) (1.0 * LW_F(p, b, a, 0) * LW_F(p, b, a, 1) * LW_F(p, b, a, 2))
-#define LW3(p, b)                                                                        \
-  { LW(p, b, 0), LW(p, b, 1), LW(p, b, 2) }
-#define LW8(p)                                                                           \
-  {                                                                                      \
-    LW3(p, 0), LW3(p, 1), LW3(p, 2), LW3(p, 3), LW3(p, 4), LW3(p, 5), LW3(p, 6),         \
-        LW3(p, 7)                                                                        \
-  }
-static const double lagrange_weight[27][8][3] = {
-    LW8(0),  LW8(1),  LW8(2),  LW8(3),  LW8(4),  LW8(5),  LW8(6),  LW8(7),  LW8(8),
-    LW8(9),  LW8(10), LW8(11), LW8(12), LW8(13), LW8(14), LW8(15), LW8(16), LW8(17),
-    LW8(18), LW8(19), LW8(20), LW8(21), LW8(22), LW8(23), LW8(24), LW8(25), LW8(26)};
-#undef LW8
-#undef LW3
-#undef LW
-#undef LW_F
-#undef LW_Q
-#undef LW_T
-
-static void ss_jac_order_init(int d, ss_jac_order *o) {
-  for (int k = 0; k < (1 << d); k++) {
-    o->bits[k] = ss_cube_corner_bits(d, k);
-    o->index[k] = ss_cube_corner_index(d, (unsigned)k);
-  }
-}
+#define LW(p, b, a)    (1.0 * LW_F(p, b, a, 0) * LW_F(p, b, a, 1) * LW_F(p, b, a, 2))
+#define LAG_W(p, k, a) LW(p, HEX_BITS(k), a)
 
 /* ---- the number interface: double ---- */
 
@@ -150,6 +147,11 @@ static inline int lt0_di(di_t v, double thr) {
 #undef NUM
 #undef SUF
 #undef JAC_FLAT
+#undef LAG_W
+#undef LW
+#undef LW_F
+#undef LW_Q
+#undef LW_T
 
 /* ---- the scaled Jacobian (double) ---- */
 
@@ -185,9 +187,8 @@ static void see_scaled(ss_jac_result *r, double s) {
 static void measures(ss_cell_type t, const double *x, ss_jac_result *r) {
   r->min_scaled = INFINITY;
   r->max_scaled = -INFINITY;
-  ss_jac_order o;
   if (t == SS_HEX) {
-    ss_jac_order_init(3, &o);
+    const ss_jac_order *o = &hex_order;
     /* each of the 12 edges is in the frames of its two ends, as the same
      * difference: its length once (hypot was most of the measure's time),
      * len[i][b] for the edge along axis i from the corner of bits b */
@@ -196,21 +197,20 @@ static void measures(ss_cell_type t, const double *x, ss_jac_result *r) {
       for (unsigned b = 0; b < 8; b++)
         if (!(b & (1u << i))) {
           double a[3];
-          diff_d(3, x + 3 * o.index[b | (1u << i)], x + 3 * o.index[b], a);
+          diff_d(3, x + 3 * o->index[b | (1u << i)], x + 3 * o->index[b], a);
           len[i][b] = norm(a, 3);
         }
     for (int k = 0; k < 8; k++) {
       double e[3][3];
-      corner_frame_d(x, 3, &o, k, e);
-      const unsigned b = o.bits[k];
+      corner_frame_d(x, 3, o, k, e);
+      const unsigned b = o->bits[k];
       see_scaled(r, scaled3_len(e[0], e[1], e[2], len[0][b & ~1u], len[1][b & ~2u],
                                 len[2][b & ~4u]));
     }
   } else if (t == SS_QUAD) {
-    ss_jac_order_init(2, &o);
     for (int k = 0; k < 4; k++) {
       double e[3][3];
-      corner_frame_d(x, 2, &o, k, e);
+      corner_frame_d(x, 2, &quad_order, k, e);
       const double d = det2_d(e[0], e[1]), l = norm(e[0], 2) * norm(e[1], 2);
       see_scaled(r, l > 0.0 ? d / l : 0.0);
     }
@@ -254,9 +254,7 @@ static void measures(ss_cell_type t, const double *x, ss_jac_result *r) {
 /* ---- the entry points ---- */
 
 double ss_jac_hex_at(const double *x, double u, double v, double w) {
-  ss_jac_order o;
-  ss_jac_order_init(3, &o);
-  return hex_at_d(x, &o, u, v, w);
+  return hex_at_d(x, &hex_order, u, v, w);
 }
 
 /* The number of coordinates of a cell of type t in dim dimensions, 0 when the

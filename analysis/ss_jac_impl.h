@@ -18,9 +18,10 @@
  *                                     doubles v > thr and v < -thr (thr the
  *                                     flat threshold), for intervals the whole
  *                                     interval on that side of 0 (thr unused)
- * and, shared by both, ss_jac_order (a cube's corner order, looked up once
- * per cell), ss_jac_order_init, SS_JAC_STACK (the hex box stack's size) and
- * lagrange_weight; JAC_HEX_AT defined: hex_at too (det J at any point).
+ * and, shared by both, ss_jac_order with its constants quad_order and
+ * hex_order (a cube's corner order), SS_JAC_STACK (the hex box stack's size)
+ * and LAG_W(p, k, a) (the Lagrange weights, constant expressions); JAC_HEX_AT
+ * defined: hex_at too (det J at any point).
  * Everything here is defined as static JN(name), e.g. hex_sign_d. */
 
 #define JN_CAT2(a, b) a##_##b
@@ -87,26 +88,74 @@ static NUM JN(hex_at)(const NUM *x, const ss_jac_order *o, double u, double v, d
 #endif
 
 /* det J at the 27 Lagrange points (i, j, l) / 2 into v[i + 3 j + 9 l]: as
- * hex_at at each, the same operations in the same order, with the weights
- * read from lagrange_weight (ss_jac.c) instead of computed. */
-static void JN(hex_lagrange)(const NUM *x, const ss_jac_order *o, NUM *v) {
-  for (int p = 0; p < 27; p++) {
-    NUM J[3][3];
-    for (int i = 0; i < 3; i++)
-      for (int r = 0; r < 3; r++)
-        J[i][r] = JN(zero)();
-    for (int k = 0; k < 8; k++) {
-      const double *lw = lagrange_weight[p][o->bits[k]];
-      for (int i = 0; i < 3; i++) {
-        const double wt = lw[i];
-        if (wt == 0.0) continue; /* as hex_at */
-        for (int r = 0; r < 3; r++)
-          J[i][r] = JN(add)(J[i][r], JN(scale)(x[3 * k + r], wt));
-      }
-    }
-    v[p] = JN(det3)(J[0], J[1], J[2]);
-  }
+ * hex_at at each, the same operations in the same order (per derivative,
+ * corners k = 0..7 in turn, 0 weights skipped), with the weights the constants
+ * LAG_W (ss_jac.c) instead of computed.  Written out point by point and corner
+ * by corner (the macros below, expanded 27 x 8 x 3 times) so that each weight
+ * and its test against 0 are resolved by the compiler: the straight-line code
+ * has only the nonzero terms (about 11 of 24 per point).  Only the order of
+ * terms of different sums (different axes and coordinates) is interleaved
+ * otherwise than in a loop; each sum is formed in the same order, so the
+ * values are the same bits. */
+#define JN_LTERM(p, k, a)                                                                \
+  do {                                                                                   \
+    const double wt_ = LAG_W(p, k, a);                                                   \
+    if (wt_ != 0.0)                                                                      \
+      for (int r_ = 0; r_ < 3; r_++)                                                     \
+        J[a][r_] = JN(add)(J[a][r_], JN(scale)(x[3 * (k) + r_], wt_));                   \
+  } while (0)
+#define JN_LCORNER(p, k)                                                                 \
+  JN_LTERM(p, k, 0);                                                                     \
+  JN_LTERM(p, k, 1);                                                                     \
+  JN_LTERM(p, k, 2)
+#define JN_LPOINT(p)                                                                     \
+  do {                                                                                   \
+    NUM J[3][3];                                                                         \
+    for (int i_ = 0; i_ < 3; i_++)                                                       \
+      for (int r_ = 0; r_ < 3; r_++)                                                     \
+        J[i_][r_] = JN(zero)();                                                          \
+    JN_LCORNER(p, 0);                                                                    \
+    JN_LCORNER(p, 1);                                                                    \
+    JN_LCORNER(p, 2);                                                                    \
+    JN_LCORNER(p, 3);                                                                    \
+    JN_LCORNER(p, 4);                                                                    \
+    JN_LCORNER(p, 5);                                                                    \
+    JN_LCORNER(p, 6);                                                                    \
+    JN_LCORNER(p, 7);                                                                    \
+    v[p] = JN(det3)(J[0], J[1], J[2]);                                                   \
+  } while (0)
+static void JN(hex_lagrange)(const NUM *x, NUM *v) {
+  JN_LPOINT(0);
+  JN_LPOINT(1);
+  JN_LPOINT(2);
+  JN_LPOINT(3);
+  JN_LPOINT(4);
+  JN_LPOINT(5);
+  JN_LPOINT(6);
+  JN_LPOINT(7);
+  JN_LPOINT(8);
+  JN_LPOINT(9);
+  JN_LPOINT(10);
+  JN_LPOINT(11);
+  JN_LPOINT(12);
+  JN_LPOINT(13);
+  JN_LPOINT(14);
+  JN_LPOINT(15);
+  JN_LPOINT(16);
+  JN_LPOINT(17);
+  JN_LPOINT(18);
+  JN_LPOINT(19);
+  JN_LPOINT(20);
+  JN_LPOINT(21);
+  JN_LPOINT(22);
+  JN_LPOINT(23);
+  JN_LPOINT(24);
+  JN_LPOINT(25);
+  JN_LPOINT(26);
 }
+#undef JN_LPOINT
+#undef JN_LCORNER
+#undef JN_LTERM
 
 /* ---- hexes: Bernstein coefficients and adaptive subdivision ---- */
 
@@ -157,13 +206,11 @@ static void JN(box_point)(const JN(box) * b, int i, int j, int l, double *p) {
  * but the other boxes are still searched for a proof of a fold. */
 static void JN(hex_sign)(const NUM *x, int maxdepth, double thr, ss_jac_result *r) {
   if (maxdepth > 15) maxdepth = 15;
-  ss_jac_order o;
-  ss_jac_order_init(3, &o);
   JN(box) stack[SS_JAC_STACK];
   int sp = 0;
   /* Lagrange values on {0, 1/2, 1}^3, converted axis by axis */
   JN(box) *b = stack + sp++;
-  JN(hex_lagrange)(x, &o, b->c);
+  JN(hex_lagrange)(x, b->c);
   for (int a = 0, stride = 1; a < 3; a++, stride *= 3)
     for (int u = 0; u < 9; u++) {
       const int q = JN(line_start)(a, u) + stride; /* the middle of the line */
@@ -259,8 +306,7 @@ static void JN(hex_sign)(const NUM *x, int maxdepth, double thr, ss_jac_result *
 
 /* Quad: det J is affine, its four corner values decide. */
 static void JN(quad_sign)(const NUM *x, double thr, ss_jac_result *r) {
-  ss_jac_order o;
-  ss_jac_order_init(2, &o);
+  const ss_jac_order o = quad_order;
   int sg[4], flat = 1;
   for (int k = 0; k < 4; k++) {
     NUM e[3][3];

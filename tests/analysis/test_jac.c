@@ -833,7 +833,29 @@ static void test_bad_input(void) {
   CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_scaled), "segment: %d", r.sign);
 }
 
+/* The cube corner order of ss_cx.h (quad corners 0 1 2 3 cyclic, hex top face
+ * 4 5 6 7 above them), which ss_jac.c holds as constants (QUAD_BITS, HEX_BITS)
+ * so that the hex test's Lagrange weights are compile-time constants: if the
+ * order here changed, those would silently be another map's. */
+static void test_corner_order(void) {
+  static const unsigned quad[4] = {0u, 1u, 3u, 2u};
+  static const unsigned hex[8] = {0u, 1u, 3u, 2u, 4u, 5u, 7u, 6u};
+  for (int k = 0; k < 4; k++) {
+    CHECK(ss_cube_corner_bits(2, k) == quad[k], "quad corner %d: bits %u", k,
+          ss_cube_corner_bits(2, k));
+    CHECK(ss_cube_corner_index(2, quad[k]) == k, "quad bits %u: corner %d", quad[k],
+          ss_cube_corner_index(2, quad[k]));
+  }
+  for (int k = 0; k < 8; k++) {
+    CHECK(ss_cube_corner_bits(3, k) == hex[k], "hex corner %d: bits %u", k,
+          ss_cube_corner_bits(3, k));
+    CHECK(ss_cube_corner_index(3, hex[k]) == k, "hex bits %u: corner %d", hex[k],
+          ss_cube_corner_index(3, hex[k]));
+  }
+}
+
 int main(void) {
+  test_corner_order();
   test_ideal_cells();
   test_similarity();
   test_bernstein();
