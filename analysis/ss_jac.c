@@ -173,11 +173,6 @@ static double scaled3_len(const double *a, const double *b, const double *c, dou
   return l > 0.0 ? det3_d(a, b, c) / l : 0.0;
 }
 
-/* det/product of lengths, 0 when an edge has length 0 */
-static double scaled3(const double *a, const double *b, const double *c) {
-  return scaled3_len(a, b, c, norm(a, 3), norm(b, 3), norm(c, 3));
-}
-
 static void see_scaled(ss_jac_result *r, double s) {
   r->min_scaled = fmin(r->min_scaled, s);
   r->max_scaled = fmax(r->max_scaled, s);
@@ -223,14 +218,21 @@ static void measures(ss_cell_type t, const double *x, ss_jac_result *r) {
       diff_d(d, x + d * (i + 1), x, e[i]);
     const double det = d == 3 ? det3_d(e[0], e[1], e[2]) : det2_d(e[0], e[1]);
     const double f = d == 3 ? sqrt(2.0) : 2.0 / sqrt(3.0);
-    for (int c = 0; c < n; c++) {
-      double l = 1.0;
-      for (int j = 0; j < n; j++) {
-        if (j == c) continue;
+    /* each edge's length once, len[c][j] = len[j][c]: x_j - x_c and x_c - x_j
+     * are the same difference negated (rounding to nearest is symmetric) and
+     * the length takes |.| of each coordinate first, so both corners see the
+     * same bits as when each computed its own (half the hypot calls) */
+    double len[4][4];
+    for (int c = 0; c < n; c++)
+      for (int j = c + 1; j < n; j++) {
         double a[3];
         diff_d(d, x + d * j, x + d * c, a);
-        l *= norm(a, d);
+        len[c][j] = len[j][c] = norm(a, d);
       }
+    for (int c = 0; c < n; c++) {
+      double l = 1.0;
+      for (int j = 0; j < n; j++)
+        if (j != c) l *= len[c][j];
       see_scaled(r, l > 0.0 ? f * det / l : 0.0);
     }
   } else { /* SS_OCT */
@@ -238,14 +240,17 @@ static void measures(ss_cell_type t, const double *x, ss_jac_result *r) {
     for (int k = 0; k < 6; k++)
       for (int i = 0; i < 3; i++)
         c[i] += x[3 * k + i] / 6.0;
+    /* each vertex's vector from the centroid and its length once: every one
+     * is in four of the eight octants (6 lengths instead of 24) */
+    double v[6][3], len[6];
+    for (int k = 0; k < 6; k++) {
+      diff_d(3, x + 3 * k, c, v[k]);
+      len[k] = norm(v[k], 3);
+    }
     for (int f = 0; f < 8; f++) {
       const int s0 = (f & 1) ? 3 : 0, s1 = (f & 2) ? 4 : 1, s2 = (f & 4) ? 5 : 2;
       const int flips = (f & 1) + ((f >> 1) & 1) + ((f >> 2) & 1);
-      double a[3], b[3], e[3];
-      diff_d(3, x + 3 * s0, c, a);
-      diff_d(3, x + 3 * s1, c, b);
-      diff_d(3, x + 3 * s2, c, e);
-      const double s = scaled3(a, b, e);
+      const double s = scaled3_len(v[s0], v[s1], v[s2], len[s0], len[s1], len[s2]);
       see_scaled(r, (flips & 1) ? -s : s);
     }
   }

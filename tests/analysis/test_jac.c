@@ -437,6 +437,62 @@ static void test_reference(void) {
   CHECK(mn == 1.0 && mx == 1.0, "regular octahedron's octants: [%g, %g]", mn, mx);
 }
 
+/* The test's own scaled Jacobian of a tet or an octahedron (ss_jac.h): each
+ * corner's (tet) or octant's (octahedron, at the centroid) determinant over
+ * the product of its edges' lengths, the lengths as sqrt of a sum of squares
+ * and each computed where it is used, not shared; extremes into *mn, *mx. */
+static void ref_scaled(ss_cell_type t, const double *x, double *mn, double *mx) {
+  *mn = INFINITY, *mx = -INFINITY;
+  const int n = t == SS_TET ? 4 : 8;
+  double c[3] = {0, 0, 0};
+  for (int k = 0; t == SS_OCT && k < 6; k++)
+    for (int i = 0; i < 3; i++)
+      c[i] += x[3 * k + i] / 6.0;
+  for (int f = 0; f < n; f++) {
+    double e[3][3], s = 1.0, l = 1.0;
+    if (t == SS_TET) { /* corner f: the edges to the other three, in order */
+      for (int j = 0, m = 0; j < 4; j++)
+        for (int i = 0; j != f && i < 3; i++)
+          e[m][i] = x[3 * j + i] - x[3 * f + i], m += i == 2;
+      s = (f & 1) ? -sqrt(2.0) : sqrt(2.0); /* odd corners list the others oddly */
+    } else { /* octant f: one vertex of each opposite pair */
+      const int v[3] = {(f & 1) ? 3 : 0, (f & 2) ? 4 : 1, (f & 4) ? 5 : 2};
+      for (int m = 0; m < 3; m++)
+        for (int i = 0; i < 3; i++)
+          e[m][i] = x[3 * v[m] + i] - c[i];
+      s = ((f & 1) + ((f >> 1) & 1) + ((f >> 2) & 1)) & 1 ? -1.0 : 1.0;
+    }
+    for (int m = 0; m < 3; m++)
+      l *= sqrt(e[m][0] * e[m][0] + e[m][1] * e[m][1] + e[m][2] * e[m][2]);
+    const double d = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+    *mn = fmin(*mn, s * d / l);
+    *mx = fmax(*mx, s * d / l);
+  }
+}
+
+/* The scaled Jacobian of irregular tets and octahedra (a regular cell has all
+ * its edges alike, so it cannot tell one edge's length from another's): the
+ * extremes against ref_scaled, relative 1e-12. */
+static void test_scaled_irregular(void) {
+  uint64_t seed = 23;
+  for (int n = 0; n < 200; n++) {
+    const ss_cell_type t = n % 2 ? SS_OCT : SS_TET;
+    const double *base = t == SS_OCT ? reg_oct : reg_tet;
+    double x[18], mn, mx;
+    for (int i = 0; i < nvals(t); i++)
+      x[i] = base[i] + 0.4 * rnd(&seed);
+    ss_jac_result r;
+    ss_jac_cell(t, x, 3, 0, &r);
+    ref_scaled(t, x, &mn, &mx);
+    CHECK(fabs(r.min_scaled - mn) <= 1e-12 * fabs(mn) &&
+              fabs(r.max_scaled - mx) <= 1e-12 * fabs(mx),
+          "%s %d: scaled Jacobian [%.17g, %.17g], reference [%.17g, %.17g]",
+          t == SS_OCT ? "octahedron" : "tet", n, r.min_scaled, r.max_scaled, mn, mx);
+  }
+}
+
 /* The interval verdict for tight boxes against the double one: same sign,
  * same point, same depth. */
 static void agree(ss_cell_type t, const double *x, int depth, const char *what, int n) {
@@ -860,6 +916,7 @@ int main(void) {
   test_similarity();
   test_bernstein();
   test_reference();
+  test_scaled_irregular();
   test_interval_tight();
   test_interval_proofs();
   test_no_sign();
