@@ -281,7 +281,38 @@
  *   rule sharing the parents' lookups (ss_sink_cells_prepare 5 %), a
  *   per-configuration stencil cache (the rule 23 % and the split would go;
  *   the largest remaining step).  Tried and dropped: the hex test's boxes
- *   split in place instead of copied (-0.4 % of instructions). */
+ *   split in place instead of copied (-0.4 % of instructions).
+ *
+ * THE JACOBIAN TEST (branch i20jac, 2026-12-03; the same bits: stores identical
+ * row for row, MLCA 4..10 + edges 3..8 and k = 11, tet/oct 4..9 + 3..8,
+ * box-spline 4..9).  callgrind (k = 12, --samples 20) showed the hex test's
+ * time was not the Bernstein subdivision (nearly every ring cell is decided by
+ * its 27 first coefficients) but the 27 Lagrange values: a loop reading and
+ * testing 648 table weights per hex, more than half of them 0.  Now:
+ *   - those weights are compile-time constants and the 27 values are written
+ *     out term by term (the zero terms drop out of the code), each sum in the
+ *     same order as before; the cube corner order as constants (test_jac pins
+ *     it to ss_cx's) instead of 32 ss_cube_corner_* calls per hex;
+ *   - tets and octahedra: each edge (centroid vector) length of the scaled
+ *     Jacobian once, not at both ends (in four octants).
+ * Instructions (callgrind): ss_result_compute_ws 6.81 -> 6.07 G (-11 %),
+ *   ss_jac_cell 1.55 -> 0.81 G (-47 %; per hex 12.9k -> 6.8k, of which the
+ *   Lagrange values 2.1k, the rest of the sign test 1.1k, the scaled Jacobian
+ *   with its 24 hypot calls 2.6k, checks and the flat threshold 1.0k).
+ * Timed 17:05-17:13 UTC, load 1.5-3.2 (others' work), main fa0c8a1 and the
+ *   branch alternately, --jobs 1, best of 3 (thread CPU):
+ *   MLCA k = 12 --phases: pipeline 26.2 -> 23.4 ms, in x dgeev 15.9-16.7 ->
+ *     13.7-14.3; Jacobian test levels 0-1 0.75-0.79 -> 0.45-0.47 x dgeev,
+ *     the deeper level's 3.10-3.26 -> 1.76-1.79 x (per link needing it 16.1
+ *     -> 9.1 ms);  part (a): pipeline / dgeev 15.7-16.2 -> 14.2-14.9.
+ *   MLCA k = 14 part (a): pipeline 41.6 -> 33.6 ms, ratio 15.1-15.8 ->
+ *     13.2-14.0.
+ *   tet/oct k = 12 --phases: pipeline 6.18 -> 5.10 ms (-17 %); Jacobian test
+ *     levels 0-1 0.40 -> 0.21 ms, deeper level 1.71 -> 0.93 ms.
+ *   The machine's speed moved by 20 % between runs (dgeev 1.5-2.0 ms at
+ *   k = 12): read the multiples of dgeev, not the ms.  What is left of the
+ *   Jacobian test is mostly the scaled Jacobian's hypot (its bits are
+ *   stored, so it stays) and the Lagrange values themselves. */
 #include <malloc.h>
 #include <math.h>
 #include <omp.h>
