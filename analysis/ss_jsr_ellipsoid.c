@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include <arb_mat.h>
+#include <gsl/gsl_blas.h>
 #include <lapacke.h>
 
 enum { LBFGS_MEM = 8, STAGE_ITERS = 150, NSTAGES = 5 };
@@ -289,15 +290,11 @@ ss_status ss_jsr_ellipsoid_fit_words(size_t m, size_t n, const double *const *Y,
     memcpy(Q, P, len * nn * sizeof *Q);
     for (size_t i = 0; i < m; i++)
       for (size_t u = 0; u < len; u++) {
-        const double *a = Y[i], *b = Q + u * nn;
-        double *c = P + (i * len + u) * nn;
-        for (size_t r = 0; r < n; r++)
-          for (size_t cc = 0; cc < n; cc++) {
-            double z = 0;
-            for (size_t t = 0; t < n; t++)
-              z += a[r * n + t] * b[t * n + cc];
-            c[r * n + cc] = z;
-          }
+        gsl_matrix_const_view a = gsl_matrix_const_view_array(Y[i], n, n),
+                              b = gsl_matrix_const_view_array(Q + u * nn, n, n);
+        gsl_matrix_view c = gsl_matrix_view_array(P + (i * len + u) * nn, n, n);
+        gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, &a.matrix, &b.matrix, 0.0,
+                       &c.matrix);
       }
   }
   for (size_t w = 0; w < cnt; w++)
