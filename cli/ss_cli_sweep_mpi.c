@@ -163,6 +163,18 @@ static void recv_into(buf *b, const MPI_Status *stat) {
            stat->MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
 }
 
+/* Post the receive of the message stat announces into b (emptied first),
+ * without waiting for it: *rq completes when it is all there. */
+static void post_recv(buf *b, const MPI_Status *stat, MPI_Request *rq) {
+  int n = 0;
+  MPI_Get_count(stat, MPI_BYTE, &n);
+  b->n = b->at = 0;
+  b->bad = 0;
+  put(b, NULL, (size_t)n);
+  MPI_Irecv(b->bad ? NULL : b->p, b->bad ? 0 : n, MPI_BYTE, stat->MPI_SOURCE,
+            stat->MPI_TAG, MPI_COMM_WORLD, rq);
+}
+
 /* A case handed out, as rank 0 remembers it until its result comes. */
 typedef struct {
   ss_case_kind kind; /* the case */
@@ -172,19 +184,22 @@ typedef struct {
 
 /* Rank 0's state. */
 typedef struct {
-  int size;      /* ranks */
-  int *alive;    /* per rank: still takes work */
-  int *idle;     /* per rank: has no piece (its last message was received) */
-  int *threads;  /* per rank: its threads */
-  sent **fly;    /* per rank: the cases it computes now (owned) */
-  size_t *nfly;  /* per rank: how many */
-  int nalive;    /* ranks > 0 still alive */
-  sent *pending; /* prepared cases not yet handed out: pending[head..npend) */
-  size_t head;   /* the next to hand out */
-  size_t npend;  /* end of the queue */
-  size_t cap;    /* room in pending */
-  buf in, out;   /* message buffers */
-  int oom;       /* out of memory */
+  int size;        /* ranks */
+  int *alive;      /* per rank: still takes work */
+  int *idle;       /* per rank: has no piece (its last message was received) */
+  int *threads;    /* per rank: its threads */
+  sent **fly;      /* per rank: the cases it computes now (owned) */
+  size_t *nfly;    /* per rank: how many */
+  int nalive;      /* ranks > 0 still alive */
+  sent *pending;   /* prepared cases not yet handed out: pending[head..npend) */
+  size_t head;     /* the next to hand out */
+  size_t npend;    /* end of the queue */
+  size_t cap;      /* room in pending */
+  buf *in;         /* per rank: its message being received */
+  MPI_Request *rq; /* per rank: the receive posted for it, or
+                      MPI_REQUEST_NULL */
+  buf out;         /* the message being sent */
+  int oom;         /* out of memory */
 } coord;
 
 /* Queue case j (taking its canon) to be handed out; 0, or -1 out of memory. */
@@ -200,10 +215,10 @@ static int push(coord *c, sent *j) {
   return 0;
 }
 
-/* Take in the results of rank r's message (in c->in) and record them.  The
+/* Take in the results of rank r's message (in c->in[r]) and record them.  The
  * cases a leaving rank did not run go back in the queue for the others. */
 static void take_results(ss_sweep *w, coord *c, int r) {
-  buf *b = &c->in;
+  buf *b = &c->in[r];
   c->threads[r] = get_i(b);
   const int leaving = get_i(b);
   const int32_t count = get_i(b);
@@ -245,12 +260,34 @@ static void take_results(ss_sweep *w, coord *c, int r) {
   }
 }
 
-/* Receive one message from a rank with a piece, record its results. */
+/* Receive one whole message from a rank with a piece, record its results.
+ * Each rank's message is received into its own buffer without blocking: a
+ * message over the eager limit (a piece's results: about 2 kB per case)
+ * comes in fragments that only its sender can push, so a blocking receive
+ * would let one stopped or descheduled sender hold every other rank's
+ * results, and their next pieces, until it runs again (test_sweep_mpi
+ * stops a rank with SIGSTOP and found exactly that). */
 static void receive_one(ss_sweep *w, coord *c) {
-  MPI_Status stat;
-  wait_msg(MPI_ANY_SOURCE, &stat);
-  recv_into(&c->in, &stat);
-  take_results(w, c, stat.MPI_SOURCE);
+  for (;;) {
+    for (int q = 1; q < c->size; q++) {
+      int done = 0;
+      if (c->rq[q] == MPI_REQUEST_NULL) continue;
+      MPI_Test(&c->rq[q], &done, MPI_STATUS_IGNORE); /* done: rq[q] = NULL */
+      if (done) {
+        take_results(w, c, q);
+        return;
+      }
+    }
+    /* a rank sends one message per piece and waits for the answer, so a
+     * message probed here is never one whose receive is posted already */
+    MPI_Status stat;
+    int flag = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &stat);
+    if (flag)
+      post_recv(&c->in[stat.MPI_SOURCE], &stat, &c->rq[stat.MPI_SOURCE]);
+    else
+      nap();
+  }
 }
 
 /* Hand the pending cases out, a piece to each rank that asks. */
@@ -345,7 +382,10 @@ static void coord_free(coord *c) {
   free(c->idle);
   free(c->threads);
   free(c->pending);
-  free(c->in.p);
+  for (int q = 0; c->in && q < c->size; q++)
+    free(c->in[q].p);
+  free(c->in);
+  free(c->rq);
   free(c->out.p);
 }
 
@@ -356,10 +396,15 @@ static int coord_init(coord *c, int size) {
   c->threads = calloc((size_t)size, sizeof *c->threads);
   c->fly = calloc((size_t)size, sizeof *c->fly);
   c->nfly = calloc((size_t)size, sizeof *c->nfly);
+  c->in = calloc((size_t)size, sizeof *c->in);
+  c->rq = malloc((size_t)size * sizeof *c->rq);
   c->cap = SS_SWEEP_CHUNK;
   c->pending = calloc(c->cap, sizeof *c->pending);
-  if (!c->alive || !c->idle || !c->threads || !c->fly || !c->nfly || !c->pending)
+  if (!c->alive || !c->idle || !c->threads || !c->fly || !c->nfly || !c->in || !c->rq ||
+      !c->pending)
     return -1;
+  for (int q = 0; q < size; q++)
+    c->rq[q] = MPI_REQUEST_NULL;
   for (int q = 1; q < size; q++)
     c->alive[q] = 1; /* busy until its first (empty) message says it is ready */
   return 0;
