@@ -152,17 +152,6 @@ static void wait_req(MPI_Request *req) {
   }
 }
 
-/* Receive the message stat announces into b (emptied first). */
-static void recv_into(buf *b, const MPI_Status *stat) {
-  int n = 0;
-  MPI_Get_count(stat, MPI_BYTE, &n);
-  b->n = b->at = 0;
-  b->bad = 0;
-  put(b, NULL, (size_t)n);
-  MPI_Recv(b->bad ? NULL : b->p, b->bad ? 0 : n, MPI_BYTE, stat->MPI_SOURCE,
-           stat->MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-}
-
 /* Post the receive of the message stat announces into b (emptied first),
  * without waiting for it: *rq completes when it is all there. */
 static void post_recv(buf *b, const MPI_Status *stat, MPI_Request *rq) {
@@ -173,6 +162,13 @@ static void post_recv(buf *b, const MPI_Status *stat, MPI_Request *rq) {
   put(b, NULL, (size_t)n);
   MPI_Irecv(b->bad ? NULL : b->p, b->bad ? 0 : n, MPI_BYTE, stat->MPI_SOURCE,
             stat->MPI_TAG, MPI_COMM_WORLD, rq);
+}
+
+/* Receive the message stat announces into b (emptied first). */
+static void recv_into(buf *b, const MPI_Status *stat) {
+  MPI_Request rq;
+  post_recv(b, stat, &rq);
+  wait_req(&rq);
 }
 
 /* A case handed out, as rank 0 remembers it until its result comes. */
