@@ -60,7 +60,8 @@ static void usage(FILE *f) {
       "  --fit-words K     fit the ellipsoid to the 4^K (face) or 2^K (edge)\n"
       "                    products of length K = 1..5 instead of the maps:\n"
       "                    max_w ||L^T Y_w L^-T||_2^(1/K) small (the fit on the\n"
-      "                    maps first, then on the products); default 1.  The\n"
+      "                    maps first, then on the products); default 1; with\n"
+      "                    --norm ellipsoid or auto only.  The\n"
       "                    bound stays proven for any K (tet/oct face, 60 s:\n"
       "                    see README, \"Joint spectral radius\")\n"
       "  --diagonals D     major diagonals of tet stars (boxspline): bfs (default),\n"
@@ -188,6 +189,11 @@ int ss_cli_jsr(int argc, char **argv) {
     return ss_cli_usage_error(cmd, "unexpected argument '%s'", argv[optind]);
   if (!scheme_name) return ss_cli_usage_error(cmd, "--scheme is required");
   if (!have_case) return ss_cli_usage_error(cmd, "give --face or --edge N");
+  if (o.fit_words > 1 && o.norm != SS_JSR_NORM_AUTO && o.norm != SS_JSR_NORM_ELLIPSOID)
+    return ss_cli_usage_error(cmd,
+                              "--fit-words fits the ellipsoidal norm: it needs --norm "
+                              "ellipsoid or auto, not %s",
+                              norm_names[o.norm]);
 
   ss_error err = {0};
   ss_scheme *s = NULL;

@@ -67,6 +67,8 @@ PY
 expect_in 2 "--fit-words: expected 1..5, not '0'" "" "$exe" jsr --scheme tetoct --face --fit-words 0
 expect_in 2 "--fit-words: expected 1..5, not '6'" "" "$exe" jsr --scheme tetoct --face --fit-words 6
 expect_in 2 "--fit-words: expected 1..5, not 'x'" "" "$exe" jsr --scheme tetoct --face --fit-words x
+expect_in 2 "it needs --norm ellipsoid or auto, not inf" "" "$exe" jsr --scheme tetoct --edge 3 --norm inf --fit-words 2
+expect_in 2 "it needs --norm ellipsoid or auto, not polytope" "" "$exe" jsr --scheme tetoct --face --norm polytope --fit-words 3
 a=$("$exe" jsr --scheme tetoct --edge 3 --depth 3 --norm ellipsoid --max-seconds 60 --format json)
 b=$("$exe" jsr --scheme tetoct --edge 3 --depth 3 --norm ellipsoid --max-seconds 60 --fit-words 1 --format json)
 c=$("$exe" jsr --scheme tetoct --edge 3 --depth 3 --norm ellipsoid --max-seconds 60 --fit-words 2 --format json)
