@@ -99,9 +99,9 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
   if (x) *x = NULL;
   ss_status st = ss_charmap_judge(s, c, M, e, o, cm, reg, err);
   if (!st && *cm) {
-    const double t0 = o->times ? ss_charmap_cpu_seconds() : 0.0;
+    double t0 = o->times ? ss_charmap_cpu_seconds() : 0.0;
     st = ss_charmap_injectivity(*cm, reg, inj, err);
-    if (o->times) o->times->injective += ss_charmap_cpu_seconds() - t0;
+    if (o->times) ss_charmap_lap(&o->times->injective, &t0);
   }
   if (!st && certify) st = ss_certify(M, c, e, *cm, o, reg, inj, out, x, err);
   return st;

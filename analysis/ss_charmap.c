@@ -20,10 +20,7 @@ double ss_charmap_cpu_seconds(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* With a timing hook: add the thread CPU time since *t0 to *acc and restart
- * the clock at now (ss_charmap_times). */
-static void lap(const ss_charmap_opts *o, double *acc, double *t0) {
-  if (!o->times) return;
+void ss_charmap_lap(double *acc, double *t0) {
   const double t = ss_charmap_cpu_seconds();
   *acc += t - *t0;
   *t0 = t;
@@ -437,7 +434,7 @@ ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, const ss_charma
   }
   double t0 = o->times ? ss_charmap_cpu_seconds() : 0.0;
   ss_status st = ss_charmap_new(M, e, cm, err);
-  if (o->times) lap(o, &o->times->map, &t0);
+  if (o->times) ss_charmap_lap(&o->times->map, &t0);
   if (st == SS_ENOMEM) return st;
   if (st) {
     v->verdict = SS_UNDECIDED;
@@ -447,7 +444,7 @@ ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, const ss_charma
     return SS_OK;
   }
   st = ss_charmap_regularity(*cm, M, o, r, err);
-  if (o->times) lap(o, &o->times->jacobian, &t0);
+  if (o->times) ss_charmap_lap(&o->times->jacobian, &t0);
   return st;
 }
 
@@ -463,16 +460,16 @@ ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
     double t0 = o->times ? ss_charmap_cpu_seconds() : 0.0;
     if (o->times) o->times->deep++;
     if ((st = ss_local_ring_deepen(s, c, r->want_levels, M, err))) return st;
-    if (o->times) lap(o, &o->times->deepen, &t0);
+    if (o->times) ss_charmap_lap(&o->times->deepen, &t0);
     more = more && (M->nring < o->ring_levels ? M->nring : o->ring_levels) > r->nlevels;
     st = more ? judge_levels(*cm, M, o, r->nlevels, r, err)
               : ss_charmap_regularity(*cm, M, o, r, err);
-    if (o->times) lap(o, &o->times->deep_jac, &t0);
+    if (o->times) ss_charmap_lap(&o->times->deep_jac, &t0);
     if (st) return st;
   }
   double t1 = o->times ? ss_charmap_cpu_seconds() : 0.0;
   st = ss_charmap_symmetry(*cm, M, c, &r->sym, err);
-  if (o->times) lap(o, &o->times->symmetry, &t1);
+  if (o->times) ss_charmap_lap(&o->times->symmetry, &t1);
   if (st) return st;
   if (r->sym.found) {
     char ring[sizeof r->verdict.reason];

@@ -186,6 +186,10 @@ ss_charmap_opts ss_charmap_defaults(void);
  * read. */
 double ss_charmap_cpu_seconds(void);
 
+/* One stage of a timing hook: add the thread CPU seconds since *t0 to *acc
+ * and restart the clock at now (*t0 from ss_charmap_cpu_seconds). */
+void ss_charmap_lap(double *acc, double *t0);
+
 /* The characteristic map of case M with eigenstructure e (which must carry a
  * subdominant basis), normalised as above.  *out is owned by the caller
  * (ss_charmap_free).  SS_EINPUT if e has no basis or sizes disagree;

@@ -81,14 +81,6 @@ static ss_status diagonals(const ss_scheme *s, const ss_case *c, ss_result *r,
   return st;
 }
 
-/* Add the thread CPU time since *t to *acc and restart the clock at now
- * (ss_result_times). */
-static void lap(double *acc, double *t) {
-  const double u = ss_charmap_cpu_seconds();
-  *acc += u - *t;
-  *t = u;
-}
-
 ss_result_workspace *ss_result_workspace_new(void) {
   ss_result_workspace *w = calloc(1, sizeof *w);
   if (!w) return NULL;
@@ -137,7 +129,7 @@ ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
   const int ep = !st && cl ? ss_local_edge_point(s, cl) : 0;
   if (ep < 0) st = ss_error_nomem(err, "edge point");
   if (ep > 0) cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag, 0};
-  if (tm) lap(&tm->canon, &c1);
+  if (tm) ss_charmap_lap(&tm->canon, &c1);
   ss_local_opts lo = ss_local_defaults();
   lo.max_bytes = o->max_bytes;
   /* a link that folds on the first ring levels is judged on a deeper one:
@@ -145,16 +137,16 @@ ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
    * failing k = 12 MLCA link the extraction again was a quarter of that) */
   lo.keep_levels = o->ring_levels > lo.nring;
   if (!st) st = ss_local_new_ws(s, &cc, &lo, w ? w->local : NULL, &M, err);
-  if (tm) lap(&tm->extract, &c1);
+  if (tm) ss_charmap_lap(&tm->extract, &c1);
   if (!st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET)
     st = diagonals(s, &cc, r, err);
-  if (tm) lap(&tm->diagonals, &c1);
+  if (tm) ss_charmap_lap(&tm->diagonals, &c1);
   if (!st) {
     ss_eig_opts eo = ss_eig_defaults(M->dim);
     eo.tol = o->tol;
     st = ss_eig_new_ws(M->S, M->n2, M->n1, &eo, w ? w->eig : NULL, &e, err);
   }
-  if (tm) lap(&tm->eig, &c1);
+  if (tm) ss_charmap_lap(&tm->eig, &c1);
   ss_charmap_inj inj;
   ss_certified cert;
   if (!st) {
