@@ -313,28 +313,58 @@ static ss_status grouped_facets(const ss_cx *cx, ss_local_workspace *ws, facet *
   return facet_group(f, nf, cx->nv, *g, ws, err);
 }
 
-static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned char **out,
-                             ss_error *err) {
-  unsigned char *inner = *out = malloc(cx->nv + 1);
-  if (!inner) return ss_error_nomem(err, "patch boundary");
-  facet *f;
-  size_t nf;
-  ss_status st = grouped_facets(cx, ws, &f, &nf, err);
+/* The boundary facets of cx (the facets of its top cells that occur once),
+ * in the workspace: *b and *nb (scratch until the workspace's next use). */
+static ss_status boundary_facets(const ss_cx *cx, ss_local_workspace *ws, facet **b,
+                                 size_t *nb, ss_error *err) {
+  facet *g = NULL;
+  size_t nf = 0, n = 0;
+  ss_status st = grouped_facets(cx, ws, &g, &nf, err);
   if (st) return st;
-  memset(inner, 0, cx->nv + 1);
-  for (size_t i = 0; i < nf; i++)
-    for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)
-      inner[f[i].v[k]] = 1;
   for (size_t i = 0; i < nf;) {
     size_t j = i + 1;
-    while (j < nf && facet_eq(f + i, f + j))
+    while (j < nf && facet_eq(g + i, g + j))
       j++;
-    if (j - i == 1)
-      for (int k = 0; k < 4 && f[i].v[k] != SS_IDX_NONE; k++)
-        inner[f[i].v[k]] = 0;
+    if (j - i == 1) g[n++] = g[i];
     i = j;
   }
+  *b = g;
+  *nb = n;
   return SS_OK;
+}
+
+/* mark[v] = 1 for the vertices of cx's top cells, 0 for the others (nv + 1
+ * bytes). */
+static void top_marks(const ss_cx *cx, unsigned char *mark) {
+  memset(mark, 0, cx->nv + 1);
+  const int topdim = ss_cx_topdim(cx);
+  for (int ty = 0; ty < SS_NCELLTYPES; ty++) {
+    if (ss_cell_dim((ss_cell_type)ty) != topdim) continue;
+    const size_t n = cx->nc[ty] * (size_t)ss_cell_nverts((ss_cell_type)ty);
+    for (size_t i = 0; i < n; i++)
+      mark[cx->cells[ty][i]] = 1;
+  }
+}
+
+/* inner[v] = v lies in a top cell of cx and on none of its nb boundary
+ * facets b. */
+static ss_status boundary_marks(const ss_cx *cx, const facet *b, size_t nb,
+                                unsigned char **out, ss_error *err) {
+  unsigned char *inner = *out = malloc(cx->nv + 1);
+  if (!inner) return ss_error_nomem(err, "patch boundary");
+  top_marks(cx, inner);
+  for (size_t i = 0; i < nb; i++)
+    for (int k = 0; k < 4 && b[i].v[k] != SS_IDX_NONE; k++)
+      inner[b[i].v[k]] = 0;
+  return SS_OK;
+}
+
+static ss_status inner_marks(const ss_cx *cx, ss_local_workspace *ws, unsigned char **out,
+                             ss_error *err) {
+  facet *b = NULL;
+  size_t nb = 0;
+  ss_status st = boundary_facets(cx, ws, &b, &nb, err);
+  return st ? st : boundary_marks(cx, b, nb, out, err);
 }
 
 /* A hash of a facet's (sorted) vertices. */
@@ -377,23 +407,12 @@ static int face_has(const facet *t, size_t mask, const facet *x) {
  * iff its parents are a subset of Q's corners: a corner of Q, two of them
  * (an edge; two opposite corners of a quad span no edge, so no fine vertex
  * has them as parents), or all of Q.  Cells' centres (more parents than a
- * facet has corners) are never on the boundary.  inner[f] = f lies in a top
- * cell of F and not on the boundary. */
-static ss_status inner_marks_split(const ss_cx *C, const ss_cx *F, const ss_split *sp,
-                                   ss_local_workspace *ws, unsigned char **out,
-                                   ss_error *err) {
-  facet *g;
-  size_t nf;
-  ss_status st = grouped_facets(C, ws, &g, &nf, err);
-  if (st) return st;
-  size_t nb = 0; /* boundary facets, moved to the front of g */
-  for (size_t i = 0; i < nf;) {
-    size_t j = i + 1;
-    while (j < nf && facet_eq(g + i, g + j))
-      j++;
-    if (j - i == 1) g[nb++] = g[i];
-    i = j;
-  }
+ * facet has corners) are never on the boundary.  g: C's nb boundary facets
+ * (boundary_facets).  inner[f] = f lies in a top cell of F and not on the
+ * boundary. */
+static ss_status inner_marks_split(const ss_cx *C, const facet *g, size_t nb,
+                                   const ss_cx *F, const ss_split *sp,
+                                   unsigned char **out, ss_error *err) {
   size_t slots = 16;
   while (slots < 4 * 8 * nb) /* a facet and its at most 6 pairs, load <= 1/4 */
     slots *= 2;
@@ -417,14 +436,7 @@ static ss_status inner_marks_split(const ss_cx *C, const ss_cx *F, const ss_spli
         face_put(t, slots - 1, &e);
       }
   }
-  memset(inner, 0, F->nv + 1);
-  const int topdim = ss_cx_topdim(F);
-  for (int ty = 0; ty < SS_NCELLTYPES; ty++) {
-    if (ss_cell_dim((ss_cell_type)ty) != topdim) continue;
-    const size_t n = F->nc[ty] * (size_t)ss_cell_nverts((ss_cell_type)ty);
-    for (size_t i = 0; i < n; i++)
-      inner[F->cells[ty][i]] = 1;
-  }
+  top_marks(F, inner);
   for (size_t f = 0; f < F->nv; f++) {
     if (!inner[f]) continue;
     const size_t np = ss_split_npar(sp, f);
@@ -652,9 +664,19 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
     ss_status st = peel(C, near, margin, err);
     if (st) return st;
   }
+  /* C's boundary facets, once for both of their uses: the marks of C's
+   * complex as refined (schemes reaching 2 rings) and F's derived marks */
+  const int one_split = ss_scheme_step_is_one_split(W->scheme),
+            derive = one_split && W->nlev >= W->lc; /* F will be level >= lc */
+  facet *cb = NULL;
+  size_t ncb = 0;
+  if (ss_scheme_reach(W->scheme) > 1 || derive) {
+    ss_status st = boundary_facets(C->cx, W->ws, &cb, &ncb, err);
+    if (st) return st;
+  }
   if (ss_scheme_reach(W->scheme) > 1) {
     free(C->cinner);
-    ss_status st = inner_marks(C->cx, W->ws, &C->cinner, err);
+    ss_status st = boundary_marks(C->cx, cb, ncb, &C->cinner, err);
     if (st) return st;
   }
   if (8 * ss_cx_ncells(C->cx) > MAXCELLS)
@@ -663,17 +685,17 @@ static ss_status add_level(work *W, const unsigned char *near, int margin,
                         MAXCELLS);
   ss_progress_step(W->prog, "refining the star to level", (size_t)W->nlev, 0);
   ss_status st;
-  if (ss_scheme_step_is_one_split(W->scheme)) {
+  if (one_split) {
     /* split, then the rule only for the rows that can be read: those of
      * inner vertices (row_complete), where a level has its boundary marks */
     st = ss_split_refine(ss_scheme_split_kind(W->scheme), C->cx, &F->cx, &F->split, err);
     if (st) return st;
     W->nlev++;
-    if (W->nlev - 1 >= W->lc &&
-        (st = inner_marks_split(C->cx, F->cx, F->split, W->ws, &F->inner, err)))
+    if (derive &&
+        (st = inner_marks_split(C->cx, cb, ncb, F->cx, F->split, &F->inner, err)))
       return st;
 #ifdef SS_CHECK_MARKS
-    if (W->nlev - 1 >= W->lc) {
+    if (derive) {
       unsigned char *chk = NULL;
       if ((st = inner_marks(F->cx, W->ws, &chk, err))) return st;
       const int same = !memcmp(chk, F->inner, F->cx->nv);
