@@ -126,14 +126,22 @@ checks=$((checks + 1))
   fail "rank 1 stopped: $n of $total rows stored meanwhile (want >= $((total - 4))), status $rc"
 same "rank 1 stopped for a while vs one process" "$tmp/ref.db" "$db"
 
-# signal_rank1_after ROWS SIG DB PID: once DB holds ROWS results (while the
-# job PID runs), send SIG to rank 1 of that job; prints rank 1's pid if sent.
+# signal_rank1_after ROWS SIG DB PID [hold]: once DB holds ROWS results (while
+# the job PID runs), send SIG to rank 1 of that job; prints rank 1's pid if
+# sent.  With "hold", rank 2 is stopped (SIGSTOP) first, so that it cannot
+# finish the whole sweep in the moment before mpirun ends the job: the small
+# cases take milliseconds, and on an idle machine rank 2 used to store all 29
+# rows between rank 1's SIGKILL and mpirun's reaction (3 runs of 5 here).
 signal_rank1_after() {
-  local rows=$1 sig=$2 db=$3 job=$4 n r
+  local rows=$1 sig=$2 db=$3 job=$4 hold=${5:-} n r h
   for _ in $(seq 1 1500); do
     kill -0 "$job" 2>/dev/null || return 0
     n=$(q "$db" "SELECT count(*) FROM result" 2>/dev/null || echo 0)
     if [ "${n:-0}" -ge "$rows" ]; then
+      if [ -n "$hold" ]; then
+        h=$(rank_pid 2 "$job")
+        [ -n "$h" ] && kill -STOP "$h"
+      fi
       r=$(rank_pid 1 "$job")
       [ -n "$r" ] && kill -"$sig" "$r" && echo "$r"
       return 0
@@ -156,21 +164,31 @@ checks=$((checks + 1))
 same "rank 1 stopped by SIGTERM vs one process" "$tmp/ref.db" "$db"
 
 # SIGKILL to a computing rank mid-run: mpirun ends the job; what rank 0 had
-# stored stays, sound; the same command computes only the rest
+# stored stays, sound; the same command computes only the rest.  On the 29
+# small cases above (about 5 ms each) rank 2 often finished the whole sweep
+# between the poll that saw 8 rows and mpirun's reaction (3 runs of 5 on an
+# idle machine stored all 29), so this check sweeps the 312 cases with up to
+# 10 link vertices (about 2 s on one thread) and holds rank 2 (SIGSTOP) at
+# the moment of the kill; mpirun's SIGKILL ends the stopped rank too
+big=(--scheme mlca --vertices 4..10 --edges 3..8)
+"$exe" sweep "${big[@]}" --db "$tmp/bigref.db" --jobs 1 >/dev/null 2>&1
+btotal=$(q "$tmp/bigref.db" "SELECT count(*) FROM result")
+checks=$((checks + 1))
+[ "$btotal" = 312 ] || fail "reference sweep of k <= 10 stored $btotal rows, want 312"
 db=$tmp/kill.db
-"${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1 >/dev/null 2>"$tmp/kill.err" &
+"${mpi[@]}" -n 3 "$exe" sweep "${big[@]}" --db "$db" --jobs 1 >/dev/null 2>"$tmp/kill.err" &
 pid=$!
-killed=$(signal_rank1_after 8 KILL "$db" "$pid")
+killed=$(signal_rank1_after 8 KILL "$db" "$pid" hold)
 wait "$pid"
 rc=$?
 n=$(q "$db" "SELECT count(*) FROM result")
 checks=$((checks + 1))
-[ -n "$killed" ] && [ "$rc" != 0 ] && [ "$n" -gt 0 ] && [ "$n" -lt "$total" ] ||
-  fail "kill of rank 1: killed '${killed}', mpirun status $rc, $n of $total rows stored (want a partial store)"
+[ -n "$killed" ] && [ "$rc" != 0 ] && [ "$n" -gt 0 ] && [ "$n" -lt "$btotal" ] ||
+  fail "kill of rank 1: killed '${killed}', mpirun status $rc, $n of $btotal rows stored (want a partial store)"
 expect 0 "^ok\$" sqlite3 "$db" "PRAGMA integrity_check"
-expect 1 "29 cases .*\($((total - n)) computed.*2 ranks of 1 thread; $n already stored\)" \
-  "${mpi[@]}" -n 3 "$exe" sweep "${cases[@]}" --db "$db" --jobs 1
-expect 0 "^$total\$" sqlite3 "$db" "SELECT count(*) FROM (SELECT DISTINCT scheme_id, kind, k, link FROM result)"
-same "rank 1 killed and resumed vs one process" "$tmp/ref.db" "$db"
+expect 1 "312 cases .*\($((btotal - n)) computed.*2 ranks of 1 thread; $n already stored\)" \
+  "${mpi[@]}" -n 3 "$exe" sweep "${big[@]}" --db "$db" --jobs 1
+expect 0 "^$btotal\$" sqlite3 "$db" "SELECT count(*) FROM (SELECT DISTINCT scheme_id, kind, k, link FROM result)"
+same "rank 1 killed and resumed vs one process" "$tmp/bigref.db" "$db"
 
 expect_done test_sweep_mpi
