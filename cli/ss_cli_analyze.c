@@ -597,7 +597,7 @@ static void print_tsv(const opts *o, const char *scheme, const char *canon,
          ss_verdict_name(reg->verdict.verdict), reg->verdict.reason);
   if (isfinite(reg->min_scaled_jacobian)) printf("%.6g", reg->min_scaled_jacobian);
   printf("\t%s\t%s\t%d\t%d\n", ss_verdict_name(inj->verdict.verdict), inj->verdict.reason,
-         ci->on && ci->c.cond_certified, reg->certified);
+         ci->on && ci->c.cond.certified, reg->verdict.certified);
 }
 
 static void print_text(const opts *o, const char *scheme, const char *canon, int k,
@@ -647,7 +647,7 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
   printf(")\n");
   if (ci->on) {
     printf("eigenvalue condition, exact (%.2f s): %s%s%s%s\n", ci->c.seconds,
-           ss_verdict_name(ci->c.cond.verdict), ci->c.cond_certified ? ", certified" : "",
+           ss_verdict_name(ci->c.cond.verdict), ci->c.cond.certified ? ", certified" : "",
            ci->c.cond.reason[0] ? ": " : "", ci->c.cond.reason);
     size_t nr = 0;
     const ss_exact_root *x = ci->exact ? ss_exact_roots(ci->exact, &nr) : NULL;
@@ -660,7 +660,7 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
   }
   if (e->basis_kind[0]) printf("subdominant basis: %s\n", e->basis_kind);
   printf("regularity: %s%s%s%s\n", ss_verdict_name(reg->verdict.verdict),
-         reg->certified ? ", certified" : "", reg->verdict.reason[0] ? ": " : "",
+         reg->verdict.certified ? ", certified" : "", reg->verdict.reason[0] ? ": " : "",
          reg->verdict.reason);
   if (reg->nlevels > 0) {
     printf(
@@ -684,7 +684,7 @@ static void print_text(const opts *o, const char *scheme, const char *canon, int
         reg->centre_corner_folds, M->ncentre);
   }
   printf("injectivity: %s%s%s%s\n", ss_verdict_name(inj->verdict.verdict),
-         inj->certified ? ", certified" : "", inj->verdict.reason[0] ? ": " : "",
+         inj->verdict.certified ? ", certified" : "", inj->verdict.reason[0] ? ": " : "",
          inj->verdict.reason);
   if (inj->verdict.verdict == SS_PASS)
     printf("  degree %d about psi(p); no two ring cells without a common vertex meet "
@@ -997,7 +997,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   co.depth = o->depth;
   co.ring_levels = o->ring_levels;
   ss_charmap_inj inj;
-  cert_info ci = {o->certify, {e->cond, 0, 0.0}, NULL};
+  cert_info ci = {o->certify, {e->cond, 0.0}, NULL};
   ss_progress_step(&prog,
                    o->certify ? "regularity, injectivity, exact path"
                               : "regularity and injectivity",

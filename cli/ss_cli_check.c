@@ -78,10 +78,12 @@ static void run_case(gate *g, ss_case c, const char *what) {
   const ss_verdict_kind v = ss_result_verdict(&r);
   ++*(v == SS_PASS ? &g->pass : v == SS_FAIL ? &g->fail : &g->undecided);
   if (v != SS_PASS) { /* the first condition that does not pass */
-    const int which = r.cond.verdict != SS_PASS ? 0 : r.reg.verdict != SS_PASS ? 1 : 2;
+    const int which = r.v.cond.verdict != SS_PASS  ? 0
+                      : r.v.reg.verdict != SS_PASS ? 1
+                                                   : 2;
     static const char *const names[3] = {"eigenvalue condition", "regularity",
                                          "injectivity"};
-    const ss_verdict *why = which == 0 ? &r.cond : which == 1 ? &r.reg : &r.inj;
+    const ss_verdict *why = which == 0 ? &r.v.cond : which == 1 ? &r.v.reg : &r.v.inj;
     printf("%-10s %s: %s: %s\n", v == SS_UNDECIDED ? "undecided" : "fail", what,
            names[which], why->reason);
   }

@@ -206,10 +206,10 @@ int ss_cli_jsr(int argc, char **argv) {
     rc = ss_cli_fail(&err);
     goto done;
   }
-  const char *verdict = r.upper < L->threshold    ? "pass"
-                        : r.lower >= L->threshold ? "fail"
-                                                  : "undecided";
-  rc = strcmp(verdict, "pass") ? SS_EXIT_FAIL : SS_EXIT_OK;
+  ss_verdict jv;
+  ss_levin_verdict(L, &r, &jv);
+  const char *verdict = ss_verdict_name(jv.verdict);
+  rc = jv.verdict != SS_PASS ? SS_EXIT_FAIL : SS_EXIT_OK;
   const char *thr_name = c.kind == SS_CASE_FACE           ? "1/4 (C^2 across the face)"
                          : fabs(L->lambda1 - 0.5) <= 1e-8 ? "lambda3 = lambda1 = 1/2"
                          : L->lambda1 < 0.5               ? "lambda3 = lambda1 (< 1/2)"

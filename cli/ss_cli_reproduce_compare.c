@@ -20,8 +20,8 @@ static ss_status compare(const ss_result *r, const ss_ref_row *q, ss_reproduce_c
   snprintf(c->diff, sizeof c->diff, "–");
   if (v.kind == SS_REF_VERDICT) {
     ss_verdict_kind got = !strcmp(q->quantity, "verdict")           ? ss_result_verdict(r)
-                          : !strcmp(q->quantity, "eigen_condition") ? r->cond.verdict
-                                                                    : r->reg.verdict;
+                          : !strcmp(q->quantity, "eigen_condition") ? r->v.cond.verdict
+                                                                    : r->v.reg.verdict;
     snprintf(c->quoted, sizeof c->quoted, "%s", v.verdict);
     snprintf(c->computed, sizeof c->computed, "%s", ss_verdict_name(got));
     snprintf(c->tol, sizeof c->tol, "equal");

@@ -75,9 +75,9 @@ typedef struct {
 
 static const char *verdict_of(const jsr_row *w) {
   if (!w->L) return "n/a";
-  return w->r.upper < w->L->threshold    ? "pass"
-         : w->r.lower >= w->L->threshold ? "fail"
-                                         : "undecided";
+  ss_verdict v;
+  ss_levin_verdict(w->L, &w->r, &v);
+  return ss_verdict_name(v.verdict);
 }
 
 static void label(const jsr_row *w, char *buf, size_t n) {

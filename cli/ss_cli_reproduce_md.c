@@ -113,14 +113,14 @@ static void md_row(ss_strbuf *md, const ss_reproduce_table *t, const ss_result *
       ss_sb_printf(md, " |");
   }
   ss_sb_printf(md, " ");
-  ss_sb_verdict(md, &r->cond, r->cond_certified);
+  ss_sb_verdict(md, &r->v.cond, r->v.cond.certified);
   ss_sb_printf(md, " | ");
-  ss_sb_verdict(md, &r->reg, r->reg_certified);
+  ss_sb_verdict(md, &r->v.reg, r->v.reg.certified);
   ss_sb_printf(md, " | ");
-  if (r->inj.verdict == SS_PASS)
+  if (r->v.inj.verdict == SS_PASS)
     ss_sb_printf(md, "pass (degree %d)", r->inj_degree);
   else
-    ss_sb_verdict(md, &r->inj, r->inj_certified);
+    ss_sb_verdict(md, &r->v.inj, r->v.inj.certified);
   if (isfinite(r->min_sj))
     ss_sb_printf(md, " | %.4f |", r->min_sj);
   else
@@ -160,9 +160,9 @@ static const char *verdict_words(const ss_result *r) {
   const ss_verdict_kind v = ss_result_verdict(r);
   if (v == SS_PASS) return "pass";
   const int und = v == SS_UNDECIDED;
-  if (r->cond.verdict != SS_PASS)
+  if (r->v.cond.verdict != SS_PASS)
     return und ? "undecided: eigenvalue condition" : "fail: eigenvalue condition";
-  if (r->reg.verdict != SS_PASS)
+  if (r->v.reg.verdict != SS_PASS)
     return und ? "undecided: regularity" : "fail: regularity";
   return und ? "undecided: injectivity" : "fail: injectivity";
 }

@@ -33,7 +33,7 @@ static json_object *level_json(const ss_ring_level *L, int l) {
 /* The regularity object of DESIGN section 7, with the ring's levels. */
 static json_object *regularity_json(const ss_regularity *reg) {
   /* certified: set by ss_charmap_certify under --certify, else 0 */
-  json_object *g = ss_report_verdict_json(&reg->verdict, reg->certified);
+  json_object *g = ss_report_verdict_json(&reg->verdict, reg->verdict.certified);
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(reg->min_scaled_jacobian)
                              ? json_object_new_double(reg->min_scaled_jacobian)
@@ -107,7 +107,7 @@ ss_status ss_report_case_json(const ss_report_case *c, json_object **out, ss_err
   }
   json_object_object_add(r, "eigenvalues", ev);
   json_object *cj = ss_report_verdict_json(c->cert ? &c->cert->cond : &e->cond,
-                                           c->cert && c->cert->cond_certified);
+                                           c->cert && c->cert->cond.certified);
   json_object_object_add(cj, "tolerance", json_object_new_double(e->tol));
   json_object_object_add(cj, "tolerance_requested",
                          json_object_new_double(e->tol_requested));
@@ -136,7 +136,7 @@ ss_status ss_report_case_json(const ss_report_case *c, json_object **out, ss_err
   json_object_object_add(r, "eigen_condition", cj);
   json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
   json_object_object_add(r, "regularity", regularity_json(c->reg));
-  json_object *in = ss_report_verdict_json(&c->inj->verdict, c->inj->certified);
+  json_object *in = ss_report_verdict_json(&c->inj->verdict, c->inj->verdict.certified);
   json_object_object_add(in, "degree", json_object_new_int(c->inj->degree));
   json_object_object_add(in, "overlaps",
                          json_object_new_int64((int64_t)c->inj->overlaps));

@@ -20,8 +20,8 @@ const char *ss_report_exh_class(const ss_result *r) {
   case SS_PASS:
     return "pass";
   case SS_FAIL:
-    if (r->cond.verdict == SS_FAIL) return "fail: eigenvalue condition";
-    if (r->reg.verdict == SS_FAIL) return "fail: regularity";
+    if (r->v.cond.verdict == SS_FAIL) return "fail: eigenvalue condition";
+    if (r->v.reg.verdict == SS_FAIL) return "fail: regularity";
     return "fail: injectivity only";
   default:
     return "undecided";
@@ -40,9 +40,10 @@ void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r) {
   }
   g->vertices++;
   g->pass += v == SS_PASS;
-  g->fail_cond += r->cond.verdict == SS_FAIL;
-  g->fail_reg += r->cond.verdict != SS_FAIL && r->reg.verdict == SS_FAIL;
-  g->fail_inj += v == SS_FAIL && r->cond.verdict != SS_FAIL && r->reg.verdict != SS_FAIL;
+  g->fail_cond += r->v.cond.verdict == SS_FAIL;
+  g->fail_reg += r->v.cond.verdict != SS_FAIL && r->v.reg.verdict == SS_FAIL;
+  g->fail_inj +=
+      v == SS_FAIL && r->v.cond.verdict != SS_FAIL && r->v.reg.verdict != SS_FAIL;
   g->undecided += v == SS_UNDECIDED;
   g->centre += v == SS_PASS && r->centre_corner_folds > 0;
   g->cert_pass += v == SS_PASS && ss_result_certified(r);
@@ -224,12 +225,12 @@ static void write_links(FILE *f, ss_report_format fmt, const ss_report_row *rows
       ss_report_csv_put(f, r->link);
       fprintf(f, ",%s,%d,", ss_report_exh_class(r), ss_result_certified(r));
       if (isfinite(r->min_sj)) fprintf(f, "%.17g", r->min_sj);
-      fprintf(f, ",%s,", ss_verdict_name(r->cond.verdict));
-      ss_report_csv_put(f, r->cond.reason);
-      fprintf(f, ",%s,", ss_verdict_name(r->reg.verdict));
-      ss_report_csv_put(f, r->reg.reason);
-      fprintf(f, ",%s,", ss_verdict_name(r->inj.verdict));
-      ss_report_csv_put(f, r->inj.reason);
+      fprintf(f, ",%s,", ss_verdict_name(r->v.cond.verdict));
+      ss_report_csv_put(f, r->v.cond.reason);
+      fprintf(f, ",%s,", ss_verdict_name(r->v.reg.verdict));
+      ss_report_csv_put(f, r->v.reg.reason);
+      fprintf(f, ",%s,", ss_verdict_name(r->v.inj.verdict));
+      ss_report_csv_put(f, r->v.inj.reason);
       fputs("\r\n", f);
     } else {
       json_object *o = json_object_new_object();
@@ -245,11 +246,11 @@ static void write_links(FILE *f, ss_report_format fmt, const ss_report_row *rows
                              isfinite(r->min_sj) ? json_object_new_double(r->min_sj)
                                                  : NULL);
       json_object_object_add(o, "eigen_condition",
-                             ss_report_verdict_json(&r->cond, r->cond_certified));
+                             ss_report_verdict_json(&r->v.cond, r->v.cond.certified));
       json_object_object_add(o, "regularity",
-                             ss_report_verdict_json(&r->reg, r->reg_certified));
+                             ss_report_verdict_json(&r->v.reg, r->v.reg.certified));
       json_object_object_add(o, "injectivity",
-                             ss_report_verdict_json(&r->inj, r->inj_certified));
+                             ss_report_verdict_json(&r->v.inj, r->v.inj.certified));
       json_object_array_add(arr, o);
     }
   }

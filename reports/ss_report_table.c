@@ -314,9 +314,9 @@ static void md_cases(FILE *f, const ss_report_row *rows, size_t n) {
     }
     fmt_mult(buf, sizeof buf, r);
     md_cell(f, buf);
-    fmt_verdict(buf, sizeof buf, &r->cond);
+    fmt_verdict(buf, sizeof buf, &r->v.cond);
     md_cell(f, buf);
-    fmt_verdict(buf, sizeof buf, &r->reg);
+    fmt_verdict(buf, sizeof buf, &r->v.reg);
     md_cell(f, buf);
     fmt_short(buf, sizeof buf, r->min_sj, 0, "–");
     md_cell(f, buf);
@@ -527,8 +527,8 @@ static void tex_cases(FILE *f, const ss_report_row *rows, size_t n, const char *
       fprintf(f, " & %s", buf);
     }
     fmt_mult(buf, sizeof buf, r);
-    fprintf(f, " & %s & %s & %s", buf, tex_verdict(r->cond.verdict),
-            tex_verdict(r->reg.verdict));
+    fprintf(f, " & %s & %s & %s", buf, tex_verdict(r->v.cond.verdict),
+            tex_verdict(r->v.reg.verdict));
     fmt_short(buf, sizeof buf, r->min_sj, 1, "--");
     fprintf(f, " & %s", buf);
     if (diag) {
@@ -538,7 +538,7 @@ static void tex_cases(FILE *f, const ss_report_row *rows, size_t n, const char *
         fputs(" & --", f);
     }
     fputs(" \\\\\n", f);
-    if (!r->link[0] && !r->cond.reason[0] && !r->reg.reason[0]) continue;
+    if (!r->link[0] && !r->v.cond.reason[0] && !r->v.reg.reason[0]) continue;
     fprintf(f, "\\multicolumn{%d}{@{\\quad}p{\\dimexpr\\linewidth-1em\\relax}@{}}{",
             ncol);
     const char *sep = "";
@@ -547,14 +547,14 @@ static void tex_cases(FILE *f, const ss_report_row *rows, size_t n, const char *
       tex_link(f, r->link);
       sep = "; ";
     }
-    if (r->cond.reason[0]) {
+    if (r->v.cond.reason[0]) {
       fprintf(f, "%seigenvalue condition: ", sep);
-      tex_put(f, r->cond.reason);
+      tex_put(f, r->v.cond.reason);
       sep = "; ";
     }
-    if (r->reg.reason[0]) {
+    if (r->v.reg.reason[0]) {
       fprintf(f, "%sregularity: ", sep);
-      tex_put(f, r->reg.reason);
+      tex_put(f, r->v.reg.reason);
     }
     fputs("} \\\\[2pt]\n", f);
   }
@@ -654,10 +654,10 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
       else
         fputs(",,,", f);
     }
-    fprintf(f, ",%s,", ss_verdict_name(r->cond.verdict));
-    ss_report_csv_put(f, r->cond.reason);
-    fprintf(f, ",%.17g,%s,", r->tol, ss_verdict_name(r->reg.verdict));
-    ss_report_csv_put(f, r->reg.reason);
+    fprintf(f, ",%s,", ss_verdict_name(r->v.cond.verdict));
+    ss_report_csv_put(f, r->v.cond.reason);
+    fprintf(f, ",%.17g,%s,", r->tol, ss_verdict_name(r->v.reg.verdict));
+    ss_report_csv_put(f, r->v.reg.reason);
     fprintf(f, ",%s,", ss_verdict_name(ss_result_verdict(r)));
     csv_num(f, r->min_sj);
     fprintf(f, ",%d,", r->depth);
@@ -665,10 +665,11 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
       fprintf(f, "%zu,%zu", r->improper, r->pairs);
     else
       fputc(',', f);
-    fprintf(f, ",%.17g,%d,%d,%d,%zu,%s,", r->seconds, r->cond_certified, r->reg_certified,
-            r->ring_level, r->centre_corner_folds, ss_verdict_name(r->inj.verdict));
-    ss_report_csv_put(f, r->inj.reason);
-    fprintf(f, ",%d,%d\r\n", r->inj_degree, r->inj_certified);
+    fprintf(f, ",%.17g,%d,%d,%d,%zu,%s,", r->seconds, r->v.cond.certified,
+            r->v.reg.certified, r->ring_level, r->centre_corner_folds,
+            ss_verdict_name(r->v.inj.verdict));
+    ss_report_csv_put(f, r->v.inj.reason);
+    fprintf(f, ",%d,%d\r\n", r->inj_degree, r->v.inj.certified);
   }
 }
 
@@ -726,16 +727,16 @@ static json_object *json_case(const ss_report_row *row) {
   json_object_object_add(o, "two_ring_size", jsize(r->two_ring));
   json_object_object_add(o, "one_ring_size", jsize(r->one_ring));
   json_object_object_add(o, "eigenvalues", ss_report_eig_json(r));
-  json_object *c = ss_report_verdict_json(&r->cond, r->cond_certified);
+  json_object *c = ss_report_verdict_json(&r->v.cond, r->v.cond.certified);
   json_object_object_add(c, "tolerance", json_object_new_double(r->tol));
   json_object_object_add(o, "eigen_condition", c);
-  json_object *g = ss_report_verdict_json(&r->reg, r->reg_certified);
+  json_object *g = ss_report_verdict_json(&r->v.reg, r->v.reg.certified);
   json_object_object_add(g, "min_scaled_jacobian", jnum(r->min_sj));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));
   json_object_object_add(g, "centre_corner_folds", jsize(r->centre_corner_folds));
   json_object_object_add(o, "regularity", g);
-  json_object *in = ss_report_verdict_json(&r->inj, r->inj_certified);
+  json_object *in = ss_report_verdict_json(&r->v.inj, r->v.inj.certified);
   json_object_object_add(in, "degree", json_object_new_int(r->inj_degree));
   json_object_object_add(o, "injectivity", in);
   json_object_object_add(o, "verdict",

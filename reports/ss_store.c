@@ -478,9 +478,9 @@ ss_status ss_store_has(ss_store *st, int64_t id, ss_case_kind kind, int k,
   *found = rc == SQLITE_ROW;
   if (*found && verdict) {
     ss_result r;
-    r.cond.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 0));
-    r.reg.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 1));
-    r.inj.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 2));
+    r.v.cond.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 0));
+    r.v.reg.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 1));
+    r.v.inj.verdict = verdict_of((const char *)sqlite3_column_text(st->has, 2));
     *verdict = ss_result_verdict(&r);
   }
   sqlite3_reset(st->has);
@@ -527,11 +527,11 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
   for (int i = 1; i <= 4; i++)
     if (i < r->neig) bind_real(q, 7 + i, hypot(r->eig[i].re, r->eig[i].im));
   sqlite3_bind_text(q, 12, ev, -1, SQLITE_STATIC);
-  sqlite3_bind_text(q, 13, ss_verdict_name(r->cond.verdict), -1, SQLITE_STATIC);
-  sqlite3_bind_text(q, 14, r->cond.reason, -1, SQLITE_STATIC);
+  sqlite3_bind_text(q, 13, ss_verdict_name(r->v.cond.verdict), -1, SQLITE_STATIC);
+  sqlite3_bind_text(q, 14, r->v.cond.reason, -1, SQLITE_STATIC);
   sqlite3_bind_double(q, 15, r->tol);
-  sqlite3_bind_text(q, 16, ss_verdict_name(r->reg.verdict), -1, SQLITE_STATIC);
-  sqlite3_bind_text(q, 17, r->reg.reason, -1, SQLITE_STATIC);
+  sqlite3_bind_text(q, 16, ss_verdict_name(r->v.reg.verdict), -1, SQLITE_STATIC);
+  sqlite3_bind_text(q, 17, r->v.reg.reason, -1, SQLITE_STATIC);
   bind_real(q, 18, r->min_sj);
   sqlite3_bind_int(q, 19, r->depth);
   if (r->has_diag) {
@@ -539,14 +539,14 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
     sqlite3_bind_int64(q, 21, (int64_t)r->pairs);
   }
   sqlite3_bind_double(q, 22, r->seconds);
-  sqlite3_bind_int(q, 23, r->cond_certified);
-  sqlite3_bind_int(q, 24, r->reg_certified);
+  sqlite3_bind_int(q, 23, r->v.cond.certified);
+  sqlite3_bind_int(q, 24, r->v.reg.certified);
   sqlite3_bind_int(q, 25, r->ring_level);
   sqlite3_bind_int64(q, 26, (int64_t)r->centre_corner_folds);
-  sqlite3_bind_text(q, 27, ss_verdict_name(r->inj.verdict), -1, SQLITE_STATIC);
-  sqlite3_bind_text(q, 28, r->inj.reason, -1, SQLITE_STATIC);
+  sqlite3_bind_text(q, 27, ss_verdict_name(r->v.inj.verdict), -1, SQLITE_STATIC);
+  sqlite3_bind_text(q, 28, r->v.inj.reason, -1, SQLITE_STATIC);
   sqlite3_bind_int(q, 29, r->inj_degree);
-  sqlite3_bind_int(q, 30, r->inj_certified);
+  sqlite3_bind_int(q, 30, r->v.inj.certified);
   const int rc = sqlite3_step(q);
   sqlite3_reset(q);
   free(ev);
@@ -663,11 +663,11 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     r->cells = (size_t)sqlite3_column_int64(q, 5);
     r->two_ring = (size_t)sqlite3_column_int64(q, 6);
     r->one_ring = (size_t)sqlite3_column_int64(q, 7);
-    r->cond.verdict = verdict_of((const char *)sqlite3_column_text(q, 9));
-    copy_text(r->cond.reason, sizeof r->cond.reason, sqlite3_column_text(q, 10));
+    r->v.cond.verdict = verdict_of((const char *)sqlite3_column_text(q, 9));
+    copy_text(r->v.cond.reason, sizeof r->v.cond.reason, sqlite3_column_text(q, 10));
     r->tol = sqlite3_column_double(q, 11);
-    r->reg.verdict = verdict_of((const char *)sqlite3_column_text(q, 12));
-    copy_text(r->reg.reason, sizeof r->reg.reason, sqlite3_column_text(q, 13));
+    r->v.reg.verdict = verdict_of((const char *)sqlite3_column_text(q, 12));
+    copy_text(r->v.reg.reason, sizeof r->v.reg.reason, sqlite3_column_text(q, 13));
     r->min_sj = sqlite3_column_type(q, 14) == SQLITE_NULL ? (double)NAN
                                                           : sqlite3_column_double(q, 14);
     r->depth = sqlite3_column_int(q, 15);
@@ -675,14 +675,14 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     r->improper = (size_t)sqlite3_column_int64(q, 16);
     r->pairs = (size_t)sqlite3_column_int64(q, 17);
     r->seconds = sqlite3_column_double(q, 18);
-    r->cond_certified = sqlite3_column_int(q, 19);
-    r->reg_certified = sqlite3_column_int(q, 20);
+    r->v.cond.certified = sqlite3_column_int(q, 19);
+    r->v.reg.certified = sqlite3_column_int(q, 20);
     r->ring_level = sqlite3_column_int(q, 21);
     r->centre_corner_folds = (size_t)sqlite3_column_int64(q, 22);
-    r->inj.verdict = verdict_of((const char *)sqlite3_column_text(q, 23));
-    copy_text(r->inj.reason, sizeof r->inj.reason, sqlite3_column_text(q, 24));
+    r->v.inj.verdict = verdict_of((const char *)sqlite3_column_text(q, 23));
+    copy_text(r->v.inj.reason, sizeof r->v.inj.reason, sqlite3_column_text(q, 24));
     r->inj_degree = sqlite3_column_int(q, 25);
-    r->inj_certified = sqlite3_column_int(q, 26);
+    r->v.inj.certified = sqlite3_column_int(q, 26);
     if (visit(&row, ctx)) break;
   }
   if (!s && rc != SQLITE_ROW && rc != SQLITE_DONE) s = db_error(st, err, "query");

@@ -19,7 +19,7 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
   const double t0 = now();
   memset(out, 0, sizeof *out);
   if (x) *x = NULL;
-  reg->certified = inj->certified = 0;
+  reg->verdict.certified = inj->verdict.certified = 0;
   ss_exact *ex = NULL;
   double *lo = NULL, *hi = NULL;
   ss_exact_opts eo = ss_exact_defaults(M->dim);
@@ -31,30 +31,33 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
   }
   if (st) { /* not rational, or FLINT could not: nothing is proven */
     out->cond = e->cond;
-    ss_charmap_unproven(&out->cond, xe.msg);
-    ss_charmap_unproven(&reg->verdict, "no exact spectrum");
-    ss_charmap_unproven(&inj->verdict, "no exact spectrum");
+    ss_verdict_unproven(&out->cond, xe.msg);
+    ss_verdict_unproven(&reg->verdict, "no exact spectrum");
+    ss_verdict_unproven(&inj->verdict, "no exact spectrum");
     st = SS_OK;
     goto done;
   }
-  ss_exact_condition(ex, &out->cond, &out->cond_certified);
-  if (!out->cond_certified) { /* undecided already, with its reason */
-    ss_charmap_unproven(&reg->verdict, "the eigenvalue condition is not proven");
-    ss_charmap_unproven(&inj->verdict, "the eigenvalue condition is not proven");
+  ss_exact_condition(ex, &out->cond, &out->cond.certified);
+  out->cond.on = SS_ON_SPECTRUM;
+  if (!out->cond.certified) { /* undecided already, with its reason */
+    ss_verdict_unproven(&reg->verdict, "the eigenvalue condition is not proven");
+    ss_verdict_unproven(&inj->verdict, "the eigenvalue condition is not proven");
   } else if (out->cond.verdict != SS_PASS) {
     /* no characteristic map; keep a failure the double path proved from the
      * spectrum's kind (complex, defective), else there is nothing to judge */
     if (!(cm == NULL && reg->verdict.verdict == SS_FAIL)) {
       reg->verdict.verdict = SS_UNDECIDED;
+      reg->verdict.on = SS_ON_NOTHING;
       snprintf(reg->verdict.reason, sizeof reg->verdict.reason,
                "no characteristic map: the eigenvalue condition fails (certified)");
     }
     inj->verdict.verdict = SS_UNDECIDED;
+    inj->verdict.on = SS_ON_NOTHING;
     snprintf(inj->verdict.reason, sizeof inj->verdict.reason, "no characteristic map");
   } else if (!cm) {
-    ss_charmap_unproven(&reg->verdict,
+    ss_verdict_unproven(&reg->verdict,
                         "the double-precision path found no characteristic map");
-    ss_charmap_unproven(&inj->verdict,
+    ss_verdict_unproven(&inj->verdict,
                         "the double-precision path found no characteristic map");
   } else {
     const size_t n = M->n2 * (size_t)cm->dim;
@@ -73,7 +76,7 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
     if (bs) {
       char why[sizeof be.msg + 32];
       snprintf(why, sizeof why, "basis enclosure: %s", be.msg);
-      ss_charmap_unproven(&reg->verdict, why);
+      ss_verdict_unproven(&reg->verdict, why);
     } else if ((st = ss_charmap_certify(M, c, lo, hi, cm->dim, eo.maxden, o, reg, inj,
                                         err))) {
       goto done;
@@ -90,12 +93,32 @@ done:
   return st;
 }
 
+/* What the double path's verdicts are statements about: the condition about
+ * the spectrum; a symmetry sigma with psi o sigma = psi about psi itself
+ * (psi is the net's combination of basis functions that sigma permutes, so
+ * the net's invariance is psi's); every other verdict of a map about its
+ * control net; a regularity failure without a map (complex or defective
+ * subdominant eigenvalues) about the spectrum; no map, no judgement. */
+static void judged_on(const ss_charmap *cm, ss_verdict *cond, ss_regularity *reg,
+                      ss_charmap_inj *inj) {
+  cond->on = SS_ON_SPECTRUM;
+  if (cm && reg->sym.found)
+    reg->verdict.on = inj->verdict.on = SS_ON_PSI;
+  else if (cm)
+    reg->verdict.on = inj->verdict.on = SS_ON_NET;
+  else {
+    reg->verdict.on = reg->verdict.verdict == SS_FAIL ? SS_ON_SPECTRUM : SS_ON_NOTHING;
+    inj->verdict.on = SS_ON_NOTHING;
+  }
+}
+
 ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
                               const ss_eig *e, const ss_charmap_opts *o, int certify,
                               ss_charmap **cm, ss_regularity *reg, ss_charmap_inj *inj,
                               ss_certified *out, ss_exact **x, ss_error *err) {
-  *out = (ss_certified){e->cond, 0, 0.0};
-  *inj = (ss_charmap_inj){{SS_UNDECIDED, "no characteristic map"}, 0, 0, 0};
+  *out = (ss_certified){e->cond, 0.0};
+  *inj =
+      (ss_charmap_inj){{SS_UNDECIDED, "no characteristic map", 0, SS_ON_NOTHING}, 0, 0};
   if (x) *x = NULL;
   ss_status st = ss_charmap_judge(s, c, M, e, o, cm, reg, err);
   if (!st && *cm) {
@@ -103,6 +126,7 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
     st = ss_charmap_injectivity(*cm, reg, inj, err);
     if (o->times) ss_charmap_lap(&o->times->injective, &t0);
   }
+  if (!st) judged_on(*cm, &out->cond, reg, inj);
   if (!st && certify) st = ss_certify(M, c, e, *cm, o, reg, inj, out, x, err);
   return st;
 }

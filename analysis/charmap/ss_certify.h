@@ -27,9 +27,9 @@
 
 /* What the exact path adds to one case. */
 typedef struct {
-  ss_verdict cond;    /* the eigenvalue condition, proven or undecided */
-  int cond_certified; /* 1 if cond is proven */
-  double seconds;     /* time the exact path took (wall clock) */
+  ss_verdict cond; /* the eigenvalue condition, proven (certified) or
+                      undecided */
+  double seconds;  /* time the exact path took (wall clock) */
 } ss_certified;
 
 /* Run the exact path on case c (M, e from the double path; cm, reg, inj its

@@ -143,7 +143,9 @@ typedef struct {
 
 /* The regularity verdict. */
 typedef struct {
-  ss_verdict verdict;         /* pass, fail or undecided, with the reason */
+  ss_verdict verdict;         /* pass, fail or undecided, with the reason;
+                                 certified when ss_charmap_certify proves it;
+                                 judged on the net */
   double min_scaled_jacobian; /* see above; NaN when there is no map */
   int sign;                   /* +1 or -1: the orientation of the ring; 0: none */
   size_t worst_cell;          /* in the deciding level's ring cells; SIZE_MAX when
@@ -161,7 +163,6 @@ typedef struct {
   ss_ring_level level[SS_LOCAL_MAXRING]; /* each judged level */
   int depth;                             /* the hex subdivision depth limit used */
   double shrink;                         /* the shrink ratio used */
-  int certified;      /* 1 if the verdict is proven (ss_charmap_certify) */
   ss_charmap_sym sym; /* the symmetry test (ss_charmap_judge): when it finds
                          psi o sigma = psi the verdict is fail */
   int want_levels;    /* > nlevels when the verdict would be judged on
@@ -256,13 +257,13 @@ ss_status ss_charmap_sym_perm(const ss_local *M, const ss_case *c,
 
 /* The injectivity verdict. */
 typedef struct {
-  ss_verdict verdict; /* pass, fail or undecided, with the reason */
+  ss_verdict verdict; /* pass, fail or undecided, with the reason; certified
+                         when proven (ss_charmap_certify: only a failure by
+                         psi o sigma = psi is); judged on the net */
   int degree;         /* winding number of the two-ring's boundary image about
                          psi(p) (ss_inject); 0 when not computed */
   size_t overlaps;    /* pairs of ring cells (the two-ring's cells that do not
                          touch p) sharing no vertex whose images meet */
-  int certified;      /* 1 if the verdict is proven (ss_charmap_certify: only a
-                         failure by psi o sigma = psi is) */
 } ss_charmap_inj;
 
 /* Whether the map is one-to-one, beyond regular: fail when the symmetry test
@@ -301,9 +302,5 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
                              const double *hi, int m, long maxden,
                              const ss_charmap_opts *o, ss_regularity *r,
                              ss_charmap_inj *inj, ss_error *err);
-
-/* v becomes undecided, "not certified: why (double precision: v)"; an
- * undecided verdict keeps its reason (there is nothing to prove). */
-void ss_charmap_unproven(ss_verdict *v, const char *why);
 
 #endif

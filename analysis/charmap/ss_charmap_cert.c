@@ -132,8 +132,8 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
                              const double *hi, int m, long maxden,
                              const ss_charmap_opts *o, ss_regularity *r,
                              ss_charmap_inj *inj, ss_error *err) {
-  r->certified = 0;
-  inj->certified = 0;
+  r->verdict.certified = 0;
+  inj->verdict.certified = 0;
   ss_verdict *v = &r->verdict;
   char why[200] = "";
   ss_status st = SS_OK;
@@ -147,7 +147,7 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
     const int p = sym_proven(M, c, &r->sym, lo, hi, m, maxden, err);
     if (p < 0) return ss_error_nomem(err, "certification");
     if (p) {
-      r->certified = inj->certified = 1;
+      r->verdict.certified = inj->verdict.certified = 1;
       return SS_OK;
     }
     snprintf(why, sizeof why, "psi o sigma = psi is not proven by the enclosure");
@@ -190,7 +190,7 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
   const proven *L = pr + last;
   if (v->verdict == SS_PASS) {
     if (L->pos == L->cells || L->neg == L->cells) {
-      r->certified = 1;
+      r->verdict.certified = 1;
       return SS_OK;
     }
     snprintf(why, sizeof why,
@@ -211,7 +211,7 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       const double before =
           (double)(Q->folded + Q->unknown + (qplus ? Q->neg : Q->pos)) / (double)Q->cells;
       if (now > 0.0 && now >= r->shrink * before) {
-        r->certified = 1;
+        r->verdict.certified = 1;
         return SS_OK;
       }
     }
@@ -226,16 +226,6 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
   else
     snprintf(why, sizeof why, "undecided in double precision");
 uncertified:
-  ss_charmap_unproven(v, why);
+  ss_verdict_unproven(v, why);
   return st;
-}
-
-void ss_charmap_unproven(ss_verdict *v, const char *why) {
-  if (v->verdict == SS_UNDECIDED) return;
-  char was[sizeof v->reason];
-  snprintf(was, sizeof was, "%.9s%s%.300s", ss_verdict_name(v->verdict),
-           v->reason[0] ? ": " : "", v->reason);
-  v->verdict = SS_UNDECIDED;
-  snprintf(v->reason, sizeof v->reason,
-           "not certified: %.150s (double precision: %.300s)", why, was);
 }

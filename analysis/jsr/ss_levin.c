@@ -5,6 +5,7 @@
 
 #include <lapacke.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -736,4 +737,22 @@ done:
   }
   *out = L;
   return st;
+}
+
+void ss_levin_verdict(const ss_levin *L, const ss_jsr_result *r, ss_verdict *v) {
+  *v = (ss_verdict){.verdict = SS_UNDECIDED, .on = SS_ON_JSR};
+  if (r->upper < L->threshold) {
+    v->verdict = SS_PASS;
+  } else if (r->lower >= L->threshold) {
+    v->verdict = SS_FAIL;
+    snprintf(v->reason, sizeof v->reason,
+             "the joint spectral radius is at least %.6g, not below the threshold %.6g",
+             r->lower, L->threshold);
+  } else {
+    snprintf(v->reason, sizeof v->reason,
+             "the bounds [%.6g, %.6g] on the joint spectral radius contain the "
+             "threshold %.6g",
+             r->lower, r->upper, L->threshold);
+  }
+  v->certified = v->verdict != SS_UNDECIDED && r->certified;
 }

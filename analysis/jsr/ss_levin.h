@@ -70,7 +70,9 @@
 #ifndef SS_LEVIN_H
 #define SS_LEVIN_H
 
+#include "ss_jsr.h"
 #include "ss_local.h"
+#include "ss_verdict.h"
 
 #define SS_LEVIN_MAXMAPS 4 /* sub-patches at most (the face) */
 
@@ -121,6 +123,14 @@ ss_status ss_levin_new(const ss_scheme *s, const ss_case *c, ss_levin **out,
 ss_status ss_levin_reduce(size_t m, size_t n, const double *const *S, const double *V,
                           size_t r, double tol, double **Y, double *defect,
                           ss_error *err);
+
+/* The joint spectral radius test of L with the bounds r of its Y_i
+ * (ss_jsr_compute): pass when r->upper < L->threshold, fail when r->lower >=
+ * L->threshold, else undecided; judged on the JSR bounds (SS_ON_JSR), and
+ * certified when decided with r->certified bounds.  What is proven is the
+ * comparison with L->threshold as computed: 1/4 for the face, and for an
+ * edge min(lambda_1, 1/2) with lambda_1 from LAPACK in double precision. */
+void ss_levin_verdict(const ss_levin *L, const ss_jsr_result *r, ss_verdict *v);
 
 /* Free; NULL is a no-op. */
 void ss_levin_free(ss_levin *L);

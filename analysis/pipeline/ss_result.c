@@ -24,13 +24,7 @@ void ss_result_clear(ss_result *r) {
 }
 
 ss_verdict_kind ss_result_verdict(const ss_result *r) {
-  if (r->cond.verdict == SS_FAIL || r->reg.verdict == SS_FAIL ||
-      r->inj.verdict == SS_FAIL)
-    return SS_FAIL;
-  if (r->cond.verdict == SS_PASS && r->reg.verdict == SS_PASS &&
-      r->inj.verdict == SS_PASS)
-    return SS_PASS;
-  return SS_UNDECIDED;
+  return ss_verdicts_combined(&r->v);
 }
 
 static double now(void) {
@@ -40,16 +34,7 @@ static double now(void) {
 }
 
 int ss_result_certified(const ss_result *r) {
-  switch (ss_result_verdict(r)) {
-  case SS_PASS:
-    return r->cond_certified && r->reg_certified;
-  case SS_FAIL:
-    return (r->cond.verdict == SS_FAIL && r->cond_certified) ||
-           (r->reg.verdict == SS_FAIL && r->reg_certified) ||
-           (r->inj.verdict == SS_FAIL && r->inj_certified);
-  default:
-    return 0;
-  }
+  return ss_verdicts_certified(&r->v);
 }
 
 /* The canonical form of a vertex case's link (*cl, caller frees) and its text
@@ -180,14 +165,9 @@ ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
   r->neig = e->n < SS_RESULT_NEIG ? (int)e->n : SS_RESULT_NEIG;
   for (int i = 0; i < r->neig; i++)
     r->eig[i] = (ss_result_eigval){e->val[i].re, e->val[i].im, e->val[i].mult};
-  r->cond = cert.cond;
-  r->cond_certified = cert.cond_certified;
-  r->reg_certified = reg.certified;
-  r->inj_certified = inj.certified;
+  r->v = (ss_verdicts){cert.cond, reg.verdict, inj.verdict};
   r->tol = e->tol_requested; /* the identity asked for; the verdict says if rounding
                                 raised it */
-  r->reg = reg.verdict;
-  r->inj = inj.verdict;
   r->inj_degree = inj.degree;
   r->min_sj = reg.min_scaled_jacobian;
   r->depth = reg.depth;

@@ -60,14 +60,13 @@ typedef struct {
   int neig;          /* eigenvalues kept: min(SS_RESULT_NEIG, two_ring) */
   ss_result_eigval eig[SS_RESULT_NEIG]; /* leading eigenvalues of S, by
                                            decreasing modulus (ss_eig order) */
-  ss_verdict cond;                      /* the eigenvalue condition */
-  int cond_certified;                   /* 1 if cond is proven (ss_exact) */
-  double tol;                           /* the tolerance it used */
-  ss_verdict reg;                       /* regularity of the characteristic map */
-  int reg_certified;                    /* 1 if reg is proven */
-  ss_verdict inj;             /* injectivity of the characteristic map (ss_charmap_inj) */
-  int inj_certified;          /* 1 if inj is proven */
-  int inj_degree;             /* its degree about psi(p); 0 when not computed */
+  ss_verdicts v;                        /* the eigenvalue condition, regularity
+                                           and injectivity of the characteristic
+                                           map (ss_charmap_inj), each with its
+                                           certified flag and what it was judged
+                                           on */
+  double tol;                           /* the tolerance the condition used */
+  int inj_degree;                       /* its degree about psi(p); 0 when not computed */
   double min_sj;              /* minimum scaled Jacobian (ss_charmap); NaN: no map */
   int depth;                  /* the hex depth limit used */
   int ring_levels;            /* the ring levels allowed (ss_charmap_opts) */
@@ -137,14 +136,11 @@ static inline int ss_result_has_link(const ss_result *r) {
   return r->kind == SS_CASE_VERTEX || r->kind == SS_CASE_EDGE_POINT;
 }
 
-/* The verdicts combined (eigenvalue condition, regularity, injectivity):
- * pass if all pass; fail if any fails; else undecided. */
+/* The verdicts combined: ss_verdicts_combined(&r->v). */
 ss_verdict_kind ss_result_verdict(const ss_result *r);
 
-/* Whether the combined verdict is proven (only with certify): a pass when the
- * eigenvalue condition and the regularity are (injectivity is checked with
- * exact predicates on the double-precision net, not proven), a failure when
- * a condition that fails is; 0 for undecided. */
+/* Whether the combined verdict is proven (only with certify):
+ * ss_verdicts_certified(&r->v). */
 int ss_result_certified(const ss_result *r);
 
 /* Release r's link text and zero r.  NULL is a no-op. */

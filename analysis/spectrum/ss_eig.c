@@ -19,10 +19,6 @@ ss_eig_opts ss_eig_defaults(int dim) {
   return o;
 }
 
-const char *ss_verdict_name(ss_verdict_kind v) {
-  return v == SS_PASS ? "pass" : v == SS_FAIL ? "fail" : "undecided";
-}
-
 void ss_eig_free(ss_eig *e) {
   if (!e) return;
   free(e->val);
@@ -769,6 +765,7 @@ ss_status ss_eig_new_ws(const double *S, size_t n, size_t n1, const ss_eig_opts 
       e->val[i].im = 0.0;
   qsort(e->val, n, sizeof *e->val, by_modulus);
   if ((st = make_groups(e, tol, err))) goto done;
+  e->cond.on = SS_ON_SPECTRUM; /* in double precision: never certified */
   if (!(tol < 0.1)) {
     /* the leading eigenvalues are too ill-conditioned to be told apart at all
      * in double precision: nothing below can be judged */

@@ -60,14 +60,7 @@
 
 #include "ss_error.h"
 #include "ss_progress.h"
-
-typedef enum { SS_PASS = 0, SS_FAIL, SS_UNDECIDED } ss_verdict_kind;
-
-/* A verdict and its reason. */
-typedef struct {
-  ss_verdict_kind verdict; /* pass, fail or undecided */
-  char reason[512];        /* why (empty when passing) */
-} ss_verdict;
+#include "ss_verdict.h"
 
 /* One eigenvalue of S. */
 typedef struct {
@@ -170,8 +163,5 @@ void ss_eig_free(ss_eig *e);
  * with right eigenvectors: the reference the benchmark compares against.
  * re, im receive n values each (unsorted).  SS_ENUMERIC, SS_ENOMEM. */
 ss_status ss_eig_dense(const double *S, size_t n, double *re, double *im, ss_error *err);
-
-/* "pass", "fail", "undecided". */
-const char *ss_verdict_name(ss_verdict_kind v);
 
 #endif

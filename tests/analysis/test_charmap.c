@@ -547,9 +547,9 @@ static void test_result_canonical(void) {
         if (!ss_result_compute(s, &c, &ro, &r1, &err)) {
           CHECK(!strcmp(r0.link, r1.link) && r0.neig == r1.neig &&
                     !memcmp(r0.eig, r1.eig, sizeof r0.eig[0] * (size_t)r0.neig) &&
-                    r0.cond.verdict == r1.cond.verdict &&
-                    r0.reg.verdict == r1.reg.verdict &&
-                    !strcmp(r0.reg.reason, r1.reg.reason) &&
+                    r0.v.cond.verdict == r1.v.cond.verdict &&
+                    r0.v.reg.verdict == r1.v.reg.verdict &&
+                    !strcmp(r0.v.reg.reason, r1.v.reg.reason) &&
                     (isnan(r0.min_sj) ? isnan(r1.min_sj) : r0.min_sj == r1.min_sj) &&
                     r0.improper == r1.improper,
                 "%s %s, copy %u: not bit for bit equal (min SJ %.17g vs %.17g)",
@@ -895,17 +895,17 @@ static void test_certify(void) {
                                       &o, &r, &err),
                     &err);
     if (i < 2)
-      CHECK(ss_result_verdict(&r) == SS_PASS && r.cond_certified && r.reg_certified &&
+      CHECK(ss_result_verdict(&r) == SS_PASS && r.v.cond.certified && r.v.reg.certified &&
                 ss_result_certified(&r),
             "%s: %s, condition certified %d, regularity certified %d (%s)", links[i],
-            ss_verdict_name(ss_result_verdict(&r)), r.cond_certified, r.reg_certified,
-            r.reg.reason);
+            ss_verdict_name(ss_result_verdict(&r)), r.v.cond.certified, r.v.reg.certified,
+            r.v.reg.reason);
     else
-      CHECK(ss_result_verdict(&r) == SS_FAIL && r.reg_certified && r.inj_certified &&
-                r.cond_certified && r.cond.verdict == SS_PASS,
+      CHECK(ss_result_verdict(&r) == SS_FAIL && r.v.reg.certified && r.v.inj.certified &&
+                r.v.cond.certified && r.v.cond.verdict == SS_PASS,
             "finding 1: %s, certified %d %d %d (%s)",
-            ss_verdict_name(ss_result_verdict(&r)), r.cond_certified, r.reg_certified,
-            r.inj_certified, r.reg.reason);
+            ss_verdict_name(ss_result_verdict(&r)), r.v.cond.certified, r.v.reg.certified,
+            r.v.inj.certified, r.v.reg.reason);
     ss_result_clear(&r);
     ss_link_free(l);
   }
@@ -913,19 +913,19 @@ static void test_certify(void) {
                                     &(ss_case){SS_CASE_EDGE, NULL, 8, SS_DIAG_BFS, 0}, &o,
                                     &r, &err),
                   &err);
-  CHECK(r.cond.verdict == SS_FAIL && r.cond_certified && ss_result_certified(&r),
-        "MLCA edge 8: condition %s, certified %d (%s)", ss_verdict_name(r.cond.verdict),
-        r.cond_certified, r.cond.reason);
+  CHECK(r.v.cond.verdict == SS_FAIL && r.v.cond.certified && ss_result_certified(&r),
+        "MLCA edge 8: condition %s, certified %d (%s)", ss_verdict_name(r.v.cond.verdict),
+        r.v.cond.certified, r.v.cond.reason);
   ss_result_clear(&r);
   REQUIRE_OK_VOID(
       ss_result_compute(loop, &(ss_case){SS_CASE_SURFACE_VERTEX, NULL, 5, SS_DIAG_BFS, 0},
                         &o, &r, &err),
       &err);
-  CHECK(ss_result_verdict(&r) == SS_UNDECIDED && !r.cond_certified && !r.reg_certified &&
-            strstr(r.cond.reason, "not certified") &&
-            strstr(r.reg.reason, "not certified"),
-        "Loop 5: %s / %s (%s)", ss_verdict_name(r.cond.verdict),
-        ss_verdict_name(r.reg.verdict), r.cond.reason);
+  CHECK(ss_result_verdict(&r) == SS_UNDECIDED && !r.v.cond.certified &&
+            !r.v.reg.certified && strstr(r.v.cond.reason, "not certified") &&
+            strstr(r.v.reg.reason, "not certified"),
+        "Loop 5: %s / %s (%s)", ss_verdict_name(r.v.cond.verdict),
+        ss_verdict_name(r.v.reg.verdict), r.v.cond.reason);
   ss_result_clear(&r);
   /* without certify nothing is marked proven */
   o.certify = 0;
@@ -933,7 +933,7 @@ static void test_certify(void) {
                                     &(ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, &o,
                                     &r, &err),
                   &err);
-  CHECK(!r.cond_certified && !r.reg_certified && !ss_result_certified(&r),
+  CHECK(!r.v.cond.certified && !r.v.reg.certified && !ss_result_certified(&r),
         "double path: certified flags set");
   ss_result_clear(&r);
   ss_scheme_free(mlca);

@@ -113,10 +113,11 @@ static void compare_result(const ss_result *a, const ss_result *b, const char *w
   int ok = a->kind == b->kind && a->k == b->k && a->valence == b->valence &&
            a->cls == b->cls && !strcmp(a->link, b->link) && a->cells == b->cells &&
            a->two_ring == b->two_ring && a->one_ring == b->one_ring &&
-           a->neig == b->neig && a->cond.verdict == b->cond.verdict &&
-           !strcmp(a->cond.reason, b->cond.reason) && bits(a->tol, b->tol) &&
-           a->reg.verdict == b->reg.verdict && !strcmp(a->reg.reason, b->reg.reason) &&
-           a->inj.verdict == b->inj.verdict && a->inj_degree == b->inj_degree &&
+           a->neig == b->neig && a->v.cond.verdict == b->v.cond.verdict &&
+           !strcmp(a->v.cond.reason, b->v.cond.reason) && bits(a->tol, b->tol) &&
+           a->v.reg.verdict == b->v.reg.verdict &&
+           !strcmp(a->v.reg.reason, b->v.reg.reason) &&
+           a->v.inj.verdict == b->v.inj.verdict && a->inj_degree == b->inj_degree &&
            bits(a->min_sj, b->min_sj) && a->depth == b->depth &&
            a->ring_levels == b->ring_levels && a->ring_level == b->ring_level &&
            a->centre_corner_folds == b->centre_corner_folds;

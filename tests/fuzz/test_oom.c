@@ -171,7 +171,7 @@ static ss_status result_of(const case_arg *a, ss_result_workspace *ws, double *d
     st = ws ? ss_result_compute_ws(s, &c, &o, ws, &r, err)
             : ss_result_compute(s, &c, &o, &r, err);
     if (st == SS_OK) {
-      *digest = r.min_sj + (double)r.cond.verdict + 3.0 * (double)r.reg.verdict;
+      *digest = r.min_sj + (double)r.v.cond.verdict + 3.0 * (double)r.v.reg.verdict;
       for (int i = 0; i < r.neig; i++)
         *digest += r.eig[i].re * (i + 1);
       ss_result_clear(&r);

@@ -118,7 +118,7 @@ static const ss_result *find(const computed *all, const char *ident, ss_case_kin
 /* Own combined verdict: not ss_result_verdict, so the summary is checked
  * against an independent count. */
 static int own_verdict(const ss_result *r) {
-  const int c = r->cond.verdict, g = r->reg.verdict;
+  const int c = r->v.cond.verdict, g = r->v.reg.verdict;
   if (c == SS_FAIL || g == SS_FAIL) return 1;
   return c == SS_PASS && g == SS_PASS ? 0 : 2;
 }
@@ -224,8 +224,8 @@ static void test_rows(ss_store *st, const computed *all) {
   }
   const ss_result *e8 = find(all, ident_mlca, SS_CASE_EDGE, 8, "");
   const ss_result *v8 = find(all, ident_mlca, SS_CASE_VERTEX, 8, k8_fail);
-  CHECK(e8 && e8->cond.verdict == SS_FAIL && isnan(e8->min_sj), "mlca edge 8");
-  CHECK(v8 && v8->cond.verdict == SS_PASS && v8->reg.verdict == SS_FAIL &&
+  CHECK(e8 && e8->v.cond.verdict == SS_FAIL && isnan(e8->min_sj), "mlca edge 8");
+  CHECK(v8 && v8->v.cond.verdict == SS_PASS && v8->v.reg.verdict == SS_FAIL &&
             v8->min_sj < 0.0,
         "mlca k = 8 link");
   free(sum);

@@ -30,9 +30,9 @@ typedef struct {
 static int same_result(const ss_result *a, const ss_result *b) {
   if (a->kind != b->kind || a->k != b->k || strcmp(a->link, b->link) ||
       a->cells != b->cells || a->two_ring != b->two_ring || a->one_ring != b->one_ring ||
-      a->neig != b->neig || a->cond.verdict != b->cond.verdict ||
-      strcmp(a->cond.reason, b->cond.reason) || a->tol != b->tol ||
-      a->reg.verdict != b->reg.verdict || strcmp(a->reg.reason, b->reg.reason) ||
+      a->neig != b->neig || a->v.cond.verdict != b->v.cond.verdict ||
+      strcmp(a->v.cond.reason, b->v.cond.reason) || a->tol != b->tol ||
+      a->v.reg.verdict != b->v.reg.verdict || strcmp(a->v.reg.reason, b->v.reg.reason) ||
       a->depth != b->depth || a->has_diag != b->has_diag ||
       (a->has_diag && (a->pairs != b->pairs || a->improper != b->improper)) ||
       a->seconds != b->seconds)
@@ -109,9 +109,9 @@ int main(void) {
         ss_result_compute(i == NCASES - 1 ? box : mlca, cases + i, &ro, r + i, &err),
         &err);
   CHECK(ss_result_verdict(r + 0) == SS_PASS, "octahedron passes");
-  CHECK(ss_result_verdict(r + 1) == SS_FAIL && r[1].reg.verdict == SS_FAIL,
+  CHECK(ss_result_verdict(r + 1) == SS_FAIL && r[1].v.reg.verdict == SS_FAIL,
         "k = 8 finding fails regularity");
-  CHECK(r[2].cond.verdict == SS_FAIL && isnan(r[2].min_sj), "edge 8: no map");
+  CHECK(r[2].v.cond.verdict == SS_FAIL && isnan(r[2].min_sj), "edge 8: no map");
   CHECK(r[4].has_diag && r[4].pairs > 0, "box-spline vertex reports its pairs");
 
   ss_store *st = NULL;
