@@ -1,7 +1,9 @@
 /* ss_cli_analyze.c — `subspectra analyze` (local matrix, eigenstructure,
  * eigenvalue condition and characteristic-map regularity for one case or one
  * case per input line), `subspectra matrix` (the local matrix in Matrix Market
- * format) and `subspectra draw` (a picture of the characteristic map). */
+ * format) and `subspectra draw` (a picture of the characteristic map): their
+ * options and one case through the pipeline (ss_pipeline); the writers are in
+ * ss_cli_analyze_print.c, ss_cli_matrix.c and ss_cli_draw.c. */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -9,54 +11,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include <json-c/json.h>
-
-#include "ss_certify.h"
-#include "ss_charmap.h"
 #include "ss_cli.h"
-#include "ss_cli_eigvec.h"
-#include "ss_eig.h"
+#include "ss_cli_analyze.h"
 #include "ss_link.h"
-#include "ss_local.h"
-#include "ss_outfile.h"
-#include "ss_report_case.h"
-#include "ss_report_draw.h"
-#include "ss_report_table.h"
 #include "ss_stencil.h"
 
-enum { FMT_TEXT = 0, FMT_JSON, FMT_TSV, FMT_MTX };
-
-/* Options shared by analyze and matrix. */
-typedef struct {
-  const char *cmd;          /* "analyze" or "matrix" */
-  const char *scheme;       /* --scheme */
-  const char *stencil;      /* --stencil FILE (instead of --scheme) */
-  ss_case_kind kind;        /* which case option was given */
-  int ncase;                /* how many case options were given */
-  const char *link;         /* --vertex argument ("-" = standard input) */
-  int n;                    /* --edge / --surface-vertex valence */
-  double tol;               /* --tol */
-  int neig;                 /* --eigenvalues: how many to print */
-  int format;               /* FMT_* */
-  int ring;                 /* matrix --ring 1|2 */
-  const char *out;          /* matrix, draw: -o FILE */
-  int depth;                /* --depth: hex subdivision limit of the Jacobian test */
-  int ring_levels;          /* --ring-levels: ring levels judged at most */
-  int certify;              /* --certify: the exact path too (ss_certify) */
-  ss_report_draw_opts draw; /* draw: picture options */
-  ss_diag_mode diag;        /* --diagonals: major diagonals of tet stars */
-  int force;                /* draw --force: a map even when the condition fails */
-  double max_memory;        /* --max-memory in bytes, 0: the default budget */
-  int progress;             /* --progress: progress lines on stderr */
-  int nvec;                 /* --eigenvectors K: export the K leading eigenpairs
-                               (analyze: JSON; matrix: Matrix Market); 0: none */
-  int left;                 /* matrix --left: the left eigenvectors */
-  int nocaption;            /* draw --no-caption */
-  int cls;                  /* --class 4|8: 4-8 class of a quasi48 surface
-                               vertex; 0: ss_local_class48's default */
-  int cls48;                /* the class analysed (quasi48 surface vertex),
-                               else 0 */
-} opts;
+typedef ss_cli_analyze_opts opts;
 
 static void help(const char *cmd) {
   const int m = !strcmp(cmd, "matrix"), d = !strcmp(cmd, "draw");
@@ -506,327 +466,25 @@ static int parse(int argc, char **argv, opts *o) {
   return check_options(o);
 }
 
-/* ---- output ---- */
-
-static const char *param_text(const opts *o, const char *canon, char *buf, size_t n) {
-  if (o->kind == SS_CASE_VERTEX || o->kind == SS_CASE_EDGE_POINT) return canon;
-  if (o->kind == SS_CASE_FACE) return "";
-  if (o->cls48 && o->format != FMT_TSV) /* TSV: the valence column stays a number */
-    snprintf(buf, n, "%d, 4-8 class %d", o->n, o->cls48);
-  else
-    snprintf(buf, n, "%d", o->n);
-  return buf;
-}
-
-/* What --certify adds (ss_certify). */
-typedef struct {
-  int on;                /* --certify given */
-  ss_certified c;        /* the proven eigenvalue condition, timing */
-  const ss_exact *exact; /* the exact spectrum, or NULL */
-} cert_info;
-
-/* Major diagonals of a tet star, for schemes that read them. */
-typedef struct {
-  int shown;       /* 1 if the scheme reads diagonals */
-  size_t pairs;    /* adjacent cell pairs they concern (ss_diag_improper) */
-  size_t improper; /* of which improper */
-} diag_info;
-
-/* The JSON object of DESIGN section 7 (ss_report_case_json), on one line. */
-static int print_json(const opts *o, const char *scheme, const char *canon, int k,
-                      const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                      const ss_charmap_inj *inj, const diag_info *di, const cert_info *ci,
-                      json_object *eigvec) {
-  const ss_report_case c = {scheme,
-                            o->kind,
-                            canon,
-                            k,
-                            o->n,
-                            o->neig,
-                            M,
-                            e,
-                            reg,
-                            inj,
-                            di->shown,
-                            o->diag,
-                            di->pairs,
-                            di->improper,
-                            ci->on ? &ci->c : NULL,
-                            ci->exact,
-                            eigvec,
-                            o->cls48};
-  ss_error err = {0};
-  json_object *r = NULL;
-  if (ss_report_case_json(&c, &r, &err)) {
-    fprintf(stderr, "subspectra %s: %s\n", o->cmd, err.msg);
-    return ss_cli_exit_status(err.status);
-  }
-  printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
-  json_object_put(r);
-  return SS_EXIT_OK;
-}
-
-static void print_value(FILE *f, const ss_eigval *v) {
-  if (v->im == 0.0)
-    fprintf(f, "%.12g", v->re);
-  else
-    fprintf(f, "%.12g%+.12gi", v->re, v->im);
-}
-
-static void print_tsv(const opts *o, const char *scheme, const char *canon,
-                      const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                      const ss_charmap_inj *inj, const cert_info *ci, int header) {
-  if (header) {
-    printf("scheme\tcase\tlink_or_valence\ttwo_ring\tone_ring");
-    for (int i = 0; i < o->neig; i++)
-      printf("\tlambda%d", i);
-    printf("\teigen_condition\treason\ttolerance\tregularity\tregularity_reason\t"
-           "min_scaled_jacobian\tinjectivity\tinjectivity_reason\teigen_certified\t"
-           "regularity_certified\n");
-  }
-  char buf[32];
-  printf("%s\t%s\t%s\t%zu\t%zu", scheme, ss_case_name(o->kind),
-         param_text(o, canon, buf, sizeof buf), M->n2, M->n1);
-  for (int i = 0; i < o->neig; i++) {
-    putchar('\t');
-    if ((size_t)i < e->n) print_value(stdout, e->val + i);
-  }
-  const ss_verdict *cond = ci->on ? &ci->c.cond : &e->cond;
-  printf("\t%s\t%s\t%g\t%s\t%s\t", ss_verdict_name(cond->verdict), cond->reason, e->tol,
-         ss_verdict_name(reg->verdict.verdict), reg->verdict.reason);
-  if (isfinite(reg->min_scaled_jacobian)) printf("%.6g", reg->min_scaled_jacobian);
-  printf("\t%s\t%s\t%d\t%d\n", ss_verdict_name(inj->verdict.verdict), inj->verdict.reason,
-         ci->on && ci->c.cond.certified, reg->verdict.certified);
-}
-
-static void print_text(const opts *o, const char *scheme, const char *canon, int k,
-                       const ss_local *M, const ss_eig *e, const ss_regularity *reg,
-                       const ss_charmap_inj *inj, const diag_info *di,
-                       const cert_info *ci) {
-  printf("scheme %s, %s case", scheme, ss_case_name(o->kind));
-  if (o->kind == SS_CASE_EDGE_POINT)
-    printf(", link %s (k = %d): the bipyramid over %d, a point on an edge of valence %d, "
-           "analysed as --edge %d\n",
-           canon, k, o->n, o->n, o->n);
-  else if (o->kind == SS_CASE_VERTEX)
-    printf(", link %s (k = %d, %d %s)\n", canon, k, 2 * k - 4, ss_cell_plural(M->cell));
-  else if (o->kind == SS_CASE_FACE)
-    printf(" (two tets sharing a face)\n");
-  else if (M->cell == SS_TRIANGLE && o->cls48)
-    printf(", valence %d, 4-8 class %d%s\n", o->n, o->cls48,
-           o->cls48 == 4 ? " (S is class 8's with twice the valence: after one step "
-                           "the vertex is of class 8)"
-                         : "");
-  else
-    printf(", valence %d\n", o->n);
-  printf(
-      "two-ring %zu points, one-ring %zu (read on level %d); outer part in %zu blocks, "
-      "the largest %zu\n",
-      M->n2, M->n1, M->level, e->nblocks, e->largest_block);
-  if (di->shown)
-    printf("major diagonals: %s; %zu of %zu face-adjacent pairs improper (Definition 3.2 "
-           "as read in the README)\n",
-           ss_diag_name(o->diag), di->improper, di->pairs);
-  printf("\n    #  eigenvalue            mult  rcond     block\n");
-  for (size_t i = 0; i < e->n && i < (size_t)o->neig; i++) {
-    char v[64];
-    if (e->val[i].im == 0.0)
-      snprintf(v, sizeof v, "%.12g", e->val[i].re);
-    else
-      snprintf(v, sizeof v, "%.8g%+.8gi", e->val[i].re, e->val[i].im);
-    printf("  %3zu  %-20s  %4d  %-8.2e  %s\n", i, v, e->val[i].mult, e->val[i].rcond,
-           e->val[i].block ? "outer" : "one-ring");
-  }
-  printf("\neigenvalue condition: %s%s%s (equal within relative tolerance %.1e",
-         ss_verdict_name(e->cond.verdict), e->cond.reason[0] ? ": " : "", e->cond.reason,
-         e->tol);
-  if (e->tol > e->tol_requested)
-    printf(": the requested %.1e is below the eigenvalues' rounding error bound",
-           e->tol_requested);
-  printf(")\n");
-  if (ci->on) {
-    printf("eigenvalue condition, exact (%.2f s): %s%s%s%s\n", ci->c.seconds,
-           ss_verdict_name(ci->c.cond.verdict), ci->c.cond.certified ? ", certified" : "",
-           ci->c.cond.reason[0] ? ": " : "", ci->c.cond.reason);
-    size_t nr = 0;
-    const ss_exact_root *x = ci->exact ? ss_exact_roots(ci->exact, &nr) : NULL;
-    for (size_t i = 0; i < nr && i < 6; i++) {
-      char poly[160];
-      printf("    %-20.12g %+.3gi  mult %d  radius %.1e  minimal polynomial %s\n",
-             x[i].re, x[i].im, x[i].mult, x[i].rad,
-             ss_exact_minpoly(ci->exact, i, poly, sizeof poly));
-    }
-  }
-  if (e->basis_kind[0]) printf("subdominant basis: %s\n", e->basis_kind);
-  printf("regularity: %s%s%s%s\n", ss_verdict_name(reg->verdict.verdict),
-         reg->verdict.certified ? ", certified" : "", reg->verdict.reason[0] ? ": " : "",
-         reg->verdict.reason);
-  if (reg->nlevels > 0) {
-    printf(
-        "  judged on the ring (cells not touching the centre), levels 0..%d of at most "
-        "%d; fold shrink ratio %.2f:\n",
-        reg->nlevels - 1, o->ring_levels, reg->shrink);
-    for (int l = 0; l < reg->nlevels; l++) {
-      const ss_ring_level *L = reg->level + l;
-      printf(
-          "    level %d: %zu cells: %zu positive, %zu negative, %zu folded (%zu inverted "
-          "whole), %zu undecided, %zu flat; minimum scaled Jacobian %.6g\n",
-          l, L->cells, L->positive, L->negative, L->folded, L->inverted, L->undecided,
-          L->degenerate, L->min_scaled_jacobian);
-    }
-    printf(
-        "  minimum scaled Jacobian %.6g (level %d, ring cell %zu; hex subdivision depth "
-        "limit %d)\n"
-        "  cells around the centre: %zu of %zu not of the ring's sign "
-        "(centre_corner_folds; they decide nothing)\n",
-        reg->min_scaled_jacobian, reg->ring_level, reg->worst_cell, reg->depth,
-        reg->centre_corner_folds, M->ncentre);
-  }
-  printf("injectivity: %s%s%s%s\n", ss_verdict_name(inj->verdict.verdict),
-         inj->verdict.certified ? ", certified" : "", inj->verdict.reason[0] ? ": " : "",
-         inj->verdict.reason);
-  if (inj->verdict.verdict == SS_PASS)
-    printf("  degree %d about psi(p); no two ring cells without a common vertex meet "
-           "(piecewise-linear images, exact predicates)\n",
-           inj->degree);
-}
-
-static void print_label(FILE *f, const ss_star_coord *c) {
-  char buf[256];
-  ss_cli_label_text(c, buf, sizeof buf);
-  fputs(buf, f);
-}
-
-static int write_mtx(const opts *o, const char *scheme, const char *canon,
-                     const ss_local *M, const diag_info *di) {
-  /* -o: a temporary file renamed over the target, written whole or not at all;
-   * standard output is checked by main */
-  ss_outfile *out = NULL;
-  ss_error err = {0};
-  if (o->out && ss_outfile_open(o->out, &out, &err)) return ss_cli_fail(&err);
-  FILE *f = out ? ss_outfile_file(out) : stdout;
-  const size_t n = o->ring == 1 ? M->n1 : M->n2;
-  size_t nnz = 0;
-  for (size_t i = 0; i < n; i++)
-    for (size_t j = 0; j < n; j++)
-      nnz += M->S[i * M->n2 + j] != 0.0;
-  char buf[32];
-  fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n");
-  fprintf(f, "%% subspectra local subdivision matrix: scheme %s, %s case %s\n", scheme,
-          ss_case_name(o->kind), param_text(o, canon, buf, sizeof buf));
-  if (di->shown)
-    fprintf(f, "%% major diagonals: %s; %zu of %zu face-adjacent pairs improper\n",
-            ss_diag_name(o->diag), di->improper, di->pairs);
-  fprintf(f,
-          "%% %s: row i = point i on level j+1, column j = point j on level j (read on "
-          "level %d)\n",
-          o->ring == 1 ? "one-ring block A" : "whole two-ring S", M->level);
-  fprintf(f,
-          "%% points 1..%zu are the one-ring, %zu..%zu the rest of the two-ring; each\n"
-          "%% point is named by its exact coordinates relative to the centre, as\n"
-          "%% (chart-index:value ...) pairs in units of the level's grid\n",
-          M->n1, M->n1 + 1, M->n2);
-  for (size_t i = 0; i < n; i++) {
-    fprintf(f, "%% %zu ", i + 1);
-    print_label(f, M->label + i);
-    fputc('\n', f);
-  }
-  fprintf(f, "%zu %zu %zu\n", n, n, nnz);
-  for (size_t i = 0; i < n; i++)
-    for (size_t j = 0; j < n; j++)
-      if (M->S[i * M->n2 + j] != 0.0)
-        fprintf(f, "%zu %zu %.17g\n", i + 1, j + 1, M->S[i * M->n2 + j]);
-  if (ss_outfile_commit(out, &err)) return ss_cli_fail(&err);
-  return SS_EXIT_OK;
-}
-
-/* The K leading eigenpairs of S, or of A with --ring 1 (ss_eigvec); NULL
- * after saying why. */
-static ss_eigvec *eigvec_of(const opts *o, const ss_local *M, size_t n,
-                            const char *where) {
-  ss_error err = {0};
-  ss_eigvec *v = NULL;
-  double *A = NULL;
-  if ((size_t)o->nvec > n) {
-    fprintf(stderr, "subspectra %s: %s--eigenvectors %d: the matrix has only %zu rows\n",
-            o->cmd, where, o->nvec, n);
-    return NULL;
-  }
-  if (n != M->n2) { /* the one-ring block, contiguous */
-    if (!(A = malloc(n * n * sizeof *A))) {
-      fprintf(stderr, "subspectra %s: out of memory\n", o->cmd);
-      return NULL;
-    }
-    for (size_t i = 0; i < n; i++)
-      memcpy(A + i * n, M->S + i * M->n2, n * sizeof *A);
-  }
-  if (ss_eigvec_new(A ? A : M->S, n, o->nvec, o->tol, &v, &err))
-    fprintf(stderr, "subspectra %s: %s%s\n", o->cmd, where, err.msg);
-  free(A);
-  return v;
-}
-
-static int write_eigvec_mtx(const opts *o, const char *scheme, const char *canon,
-                            const ss_local *M) {
-  const size_t n = o->ring == 1 ? M->n1 : M->n2;
-  ss_eigvec *v = eigvec_of(o, M, n, "");
-  if (!v) return SS_EXIT_USAGE;
-  ss_outfile *out = NULL;
-  ss_error err = {0};
-  if (o->out && ss_outfile_open(o->out, &out, &err)) {
-    ss_eigvec_free(v);
-    return ss_cli_fail(&err);
-  }
-  char head[256], buf[32];
-  snprintf(head, sizeof head,
-           "%% subspectra local subdivision matrix: scheme %s, %s case %s, %s", scheme,
-           ss_case_name(o->kind), param_text(o, canon, buf, sizeof buf),
-           o->ring == 1 ? "one-ring block A" : "whole two-ring S");
-  ss_cli_eigvec_mtx(out ? ss_outfile_file(out) : stdout, v, M, o->left, head);
-  ss_eigvec_free(v);
-  if (ss_outfile_commit(out, &err)) return ss_cli_fail(&err);
-  return SS_EXIT_OK;
-}
-
-/* analyze's "eigenvectors" object: 0, or the exit status after saying why
- * not.  The limit masks need the eigenvalue condition (cond). */
-static int eigvec_json(const opts *o, const ss_local *M, const ss_eig *e,
-                       const ss_verdict *cond, const char *where, json_object **out) {
-  ss_eigvec *v = eigvec_of(o, M, M->n2, where);
-  if (!v) return SS_EXIT_USAGE;
-  const int limit = ss_eigvec_has_limit(v, e->tol);
-  const int ok = cond->verdict == SS_PASS && limit;
-  *out = ss_cli_eigvec_json(v, M, M->dim, ok,
-                            !limit ? "lambda0 = 1 is not simple with a constant "
-                                     "eigenvector"
-                                   : "the eigenvalue condition does not hold");
-  ss_eigvec_free(v);
-  if (!*out) {
-    fprintf(stderr, "subspectra %s: out of memory\n", o->cmd);
-    return SS_EXIT_USAGE;
-  }
-  return 0;
-}
-
 /* ---- one case ---- */
 
 #define SLOW 3.0 /* estimated seconds above which a terminal sees progress */
 
-/* The case as the command line named it, for messages: "--edge 1000". */
-static void case_text(const opts *o, const ss_link *l, char *buf, size_t n) {
-  switch (o->kind) {
+/* The case as the command line named it, for messages: "--edge 1000"; num
+ * is k for a vertex, n for an edge point, edge or surface vertex. */
+static void case_text(const opts *o, ss_case_kind kind, int num, char *buf, size_t n) {
+  switch (kind) {
   case SS_CASE_VERTEX:
-    snprintf(buf, n, "--vertex (a link with k = %d vertices)", l ? l->k : 0);
+    snprintf(buf, n, "--vertex (a link with k = %d vertices)", num);
     break;
   case SS_CASE_EDGE_POINT:
-    snprintf(buf, n, "--vertex (the bipyramid over %d, as --edge %d)", o->n, o->n);
+    snprintf(buf, n, "--vertex (the bipyramid over %d, as --edge %d)", num, num);
     break;
   case SS_CASE_EDGE:
-    snprintf(buf, n, "--edge %d", o->n);
+    snprintf(buf, n, "--edge %d", num);
     break;
   case SS_CASE_SURFACE_VERTEX:
-    snprintf(buf, n, "--surface-vertex %d", o->n);
+    snprintf(buf, n, "--surface-vertex %d", num);
     if (o->cls) snprintf(buf + strlen(buf), n - strlen(buf), " --class %d", o->cls);
     break;
   default:
@@ -834,13 +492,12 @@ static void case_text(const opts *o, const ss_link *l, char *buf, size_t n) {
   }
 }
 
-/* Analyse one case; link_text is the link's text for the vertex case and
- * where is a prefix for messages ("" or "stdin:LINE: "). */
 /* Whether case c fits the memory budget: 0, or the exit status after saying
  * why not (the estimate against the budget, ss_local_check_budget, or the
  * estimator's error).  *cost receives the estimate. */
 static int check_budget(const opts *o, const ss_scheme *s, const ss_case *c,
-                        const ss_link *l, const char *where, ss_local_cost *cost) {
+                        ss_case_kind kind, int num, const char *where,
+                        ss_local_cost *cost) {
   ss_error err = {0};
   ss_status st = ss_local_estimate(s, c, cost, &err);
   if (st) {
@@ -849,7 +506,7 @@ static int check_budget(const opts *o, const ss_scheme *s, const ss_case *c,
   }
   if ((st = ss_local_check_budget(cost, ss_cli_budget(o->max_memory), &err))) {
     char what[96];
-    case_text(o, l, what, sizeof what);
+    case_text(o, kind, num, what, sizeof what);
     fprintf(stderr, "subspectra %s: %s%s %s: set --max-memory to override\n", o->cmd,
             where, what, err.msg);
     return ss_cli_exit_status(st);
@@ -864,59 +521,13 @@ static int case_fail(const opts *o, const char *where, const ss_error *err) {
   return ss_cli_exit_status(err->status);
 }
 
-/* draw: the picture of the characteristic map *cm of case (M, e) into
- * o->out, captioned with the case (canon, diagonals di) unless --no-caption.
- * With --force and no map (the eigenvalue condition fails) the would-be map
- * is built into *cm, judged into *reg and drawn, labelled as such.  The exit
- * status: 0, 1 for a forced map or none to draw, 2 when writing fails. */
-static int draw_case(const opts *o, const ss_scheme *s, const char *canon,
-                     const ss_local *M, const ss_eig *e, const ss_charmap_opts *co,
-                     const diag_info *di, const char *where, ss_charmap **cm,
-                     ss_regularity *reg) {
-  ss_error err = {0};
-  int forced = 0;
-  if (!*cm && o->force && e->basis) {
-    if (ss_charmap_new(M, e, cm, &err) || ss_charmap_regularity(*cm, M, co, reg, &err))
-      return case_fail(o, where, &err);
-    forced = 1;
-  }
-  if (!*cm) {
-    fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
-            reg->verdict.reason);
-    return SS_EXIT_FAIL;
-  }
-  char caption[600], buf[32];
-  char dtext[128] = "";
-  if (di->shown)
-    snprintf(dtext, sizeof dtext, ", diagonals %s (%zu of %zu pairs improper)",
-             ss_diag_name(o->diag), di->improper, di->pairs);
-  snprintf(caption, sizeof caption, "%s, %s %s%s%s", ss_scheme_name(s),
-           ss_case_name(o->kind),
-           o->kind == SS_CASE_FACE ? "" : param_text(o, canon, buf, sizeof buf), dtext,
-           forced ? "; forced: NOT a characteristic map (the eigenvalue condition fails)"
-                  : "");
-  ss_report_draw_opts dopt = o->draw;
-  dopt.caption = o->nocaption ? NULL : caption;
-  if (ss_report_draw(*cm, reg, &dopt, o->out, &err)) {
-    fprintf(stderr, "subspectra draw: %s\n", err.msg);
-    return SS_EXIT_USAGE; /* bad file, i/o or out of memory */
-  }
-  fprintf(stderr, "subspectra draw: wrote %s (%s %s%s%s)\n", o->out,
-          forced ? "forced map, eigenvalue condition fails; its cells:" : "regularity",
-          ss_verdict_name(reg->verdict.verdict), reg->verdict.reason[0] ? ": " : "",
-          reg->verdict.reason);
-  return forced ? SS_EXIT_FAIL : SS_EXIT_OK;
-}
-
+/* Analyse one case; link_text is the link's text for the vertex case and
+ * where is a prefix for messages ("" or "stdin:LINE: "). */
 static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
                     const char *where, int *header) {
   ss_error err = {0};
-  ss_link *l = NULL, *cl = NULL;
-  char *canon = NULL;
-  ss_local *M = NULL;
-  ss_eig *e = NULL;
-  ss_charmap *cm = NULL;
-  ss_exact *ex = NULL;
+  ss_link *l = NULL;
+  ss_pipeline *p = NULL;
   int rc = SS_EXIT_OK;
   ss_local_cost cost;
   if (o->kind == SS_CASE_VERTEX) {
@@ -929,114 +540,63 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
      * are at least the vertex case's (MLCA 30k - 55 = 30n + 5 both, tet/oct
      * 5k - 5 < 15n + 5, ss_local_cost.c), so nothing refused here fits. */
     const ss_case cv = {SS_CASE_VERTEX, l, 0, o->diag, 0};
-    if ((rc = check_budget(o, s, &cv, l, where, &cost))) goto done;
-    if (ss_link_canonical(l, &cl, NULL, &err) || ss_link_format(cl, &canon, &err)) {
-      rc = case_fail(o, where, &err);
-      goto done;
-    }
+    if ((rc = check_budget(o, s, &cv, SS_CASE_VERTEX, l->k, where, &cost))) goto done;
   }
-  /* the canonical labelling, as sweep and reproduce analyse it (ss_result):
-   * isomorphic links then give the same numbers to the last bit */
-  ss_case c = {o->kind, cl ? cl : l, o->n, o->diag, o->cls};
-  /* a point on an extraordinary edge: the edge case judges it (ss_local.h) */
-  const int ep = cl ? ss_local_edge_point(s, cl) : 0;
-  opts oe = *o;
-  if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT && o->kind == SS_CASE_SURFACE_VERTEX) {
-    oe.cls48 = ss_local_class48(o->n, o->cls);
-    o = &oe;
-  }
-  if (ep > 0) {
-    c = (ss_case){SS_CASE_EDGE, NULL, ep, o->diag, 0};
-    oe.kind = SS_CASE_EDGE_POINT;
-    oe.n = ep;
-    o = &oe;
-  }
-  /* what the case will cost, before anything is built */
-  if ((rc = check_budget(o, s, &c, l, where, &cost))) goto done;
-  ss_cli_progress pr = {o->cmd, ss_cli_now(), 0.0, NULL, 0};
-  const ss_progress prog = {o->progress || (isatty(STDERR_FILENO) && cost.seconds > SLOW)
-                                ? ss_cli_progress_fn
-                                : NULL,
-                            &pr};
-  ss_local_opts lo = ss_local_defaults();
-  lo.progress = prog;
-  if (ss_local_new_opts(s, &c, &lo, &M, &err)) {
+  ss_pipeline_opts po = ss_pipeline_defaults();
+  po.tol = o->tol;
+  po.depth = o->depth;
+  po.ring_levels = o->ring_levels;
+  po.certify = o->certify;
+  po.force = o->force;
+  /* the case as analysed: the canonical labelling, as sweep and reproduce
+   * analyse it (isomorphic links give the same numbers to the last bit), a
+   * point on an extraordinary edge as that edge (ss_local.h) */
+  const ss_case c = {o->kind, l, o->n, o->diag, o->cls};
+  if (ss_pipeline_new(s, &c, &po, NULL, &p, &err)) {
     rc = case_fail(o, where, &err);
     goto done;
   }
-  diag_info di = {0, 0, 0};
-  if (ss_scheme_reads_diagonals(s) && M->cell == SS_TET) {
-    ss_star *star = NULL;
-    if (ss_local_star(s, &c, &star, &err) ||
-        ss_diag_improper(star->cx, &di.pairs, &di.improper, &err)) {
-      ss_star_free(star);
-      rc = case_fail(o, where, &err);
-      goto done;
-    }
-    ss_star_free(star);
-    di.shown = 1;
-  }
-  if (o->format == FMT_MTX && o->nvec) {
-    rc = write_eigvec_mtx(o, ss_scheme_name(s), canon ? canon : "", M);
+  /* what the case will cost, before anything is built */
+  if ((rc = check_budget(o, s, &p->c.judged, p->c.kind,
+                         p->c.kind == SS_CASE_EDGE_POINT ? p->c.valence : p->c.k, where,
+                         &cost)))
+    goto done;
+  ss_cli_progress pr = {o->cmd, ss_cli_now(), 0.0, NULL, 0};
+  p->opts.progress = (ss_progress){
+      o->progress || (isatty(STDERR_FILENO) && cost.seconds > SLOW) ? ss_cli_progress_fn
+                                                                    : NULL,
+      &pr};
+  const ss_pipeline_stage until =
+      o->format == FMT_MTX ? SS_PIPE_MATRIX : SS_PIPE_VERDICTS;
+  if (ss_pipeline_run(p, until, NULL, &err)) {
+    rc = case_fail(o, where, &err);
     goto done;
   }
   if (o->format == FMT_MTX) {
-    rc = write_mtx(o, ss_scheme_name(s), canon ? canon : "", M, &di);
+    rc = o->nvec ? ss_cli_write_eigvec_mtx(o, p) : ss_cli_write_mtx(o, p);
     goto done;
   }
-  ss_eig_opts eo = ss_eig_defaults(M->dim);
-  eo.tol = o->tol;
-  eo.force = o->force;
-  eo.progress = prog;
-  if (ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err)) {
-    rc = case_fail(o, where, &err);
-    goto done;
-  }
-  ss_regularity reg;
-  ss_charmap_opts co = ss_charmap_defaults();
-  co.depth = o->depth;
-  co.ring_levels = o->ring_levels;
-  ss_charmap_inj inj;
-  cert_info ci = {o->certify, {e->cond, 0.0}, NULL};
-  ss_progress_step(&prog,
-                   o->certify ? "regularity, injectivity, exact path"
-                              : "regularity and injectivity",
-                   0, 0);
-  if (ss_certify_verdicts(s, &c, M, e, &co, o->certify, &cm, &reg, &inj, &ci.c, &ex,
-                          &err)) {
-    rc = case_fail(o, where, &err);
-    goto done;
-  }
-  ci.exact = ex;
-  const int k = l ? l->k : 0;
   if (!strcmp(o->cmd, "draw")) {
     /* a failure, or a forced map: its status, not the verdicts' */
-    if ((rc = draw_case(o, s, canon, M, e, &co, &di, where, &cm, &reg))) goto done;
+    if ((rc = ss_cli_draw_case(o, p, where))) goto done;
   } else if (o->format == FMT_JSON) {
     json_object *evj = NULL;
-    if (o->nvec && (rc = eigvec_json(o, M, e, &ci.c.cond, where, &evj))) goto done;
-    if ((rc = print_json(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj,
-                         &di, &ci, evj)))
-      goto done;
+    if (o->nvec && (rc = ss_cli_eigvec_json_of(o, p, where, &evj))) goto done;
+    if ((rc = ss_cli_print_json(o, p, evj))) goto done;
   } else if (o->format == FMT_TSV)
-    print_tsv(o, ss_scheme_name(s), canon ? canon : "", M, e, &reg, &inj, &ci,
-              (*header)++ == 0);
+    ss_cli_print_tsv(o, p, (*header)++ == 0);
   else
-    print_text(o, ss_scheme_name(s), canon ? canon : "", k, M, e, &reg, &inj, &di, &ci);
-  if (ci.c.cond.verdict != SS_PASS || reg.verdict.verdict != SS_PASS ||
-      inj.verdict.verdict != SS_PASS)
-    rc = SS_EXIT_FAIL;
+    ss_cli_print_text(o, p);
+  if (ss_verdicts_combined(&p->v) != SS_PASS) rc = SS_EXIT_FAIL;
 done:
-  ss_charmap_free(cm);
-  ss_exact_free(ex);
-  ss_eig_free(e);
-  ss_local_free(M);
-  free(canon);
+  ss_pipeline_free(p);
   ss_link_free(l);
-  ss_link_free(cl);
   return rc;
 }
 
+/* matrix and draw write one case: `--vertex -` reads exactly one link from
+ * standard input, and refuses a second one before writing anything (a stream
+ * of results belongs to analyze). */
 /* matrix and draw write one case: `--vertex -` reads exactly one link from
  * standard input, and refuses a second one before writing anything (a stream
  * of results belongs to analyze). */
@@ -1072,31 +632,16 @@ done:
 }
 
 static int run(int argc, char **argv, const char *cmd) {
-  opts o = {cmd,
-            NULL,
-            NULL,
-            SS_CASE_VERTEX,
-            0,
-            NULL,
-            0,
-            1e-6,
-            16,
-            FMT_TEXT,
-            2,
-            NULL,
-            SS_JAC_DEPTH,
-            ss_charmap_defaults().ring_levels,
-            0,
-            ss_report_draw_defaults(),
-            SS_DIAG_BFS,
-            0,
-            0.0,
-            0,
-            0,
-            0,
-            0,
-            0,
-            0};
+  opts o = {.cmd = cmd,
+            .kind = SS_CASE_VERTEX,
+            .tol = 1e-6,
+            .neig = 16,
+            .format = FMT_TEXT,
+            .ring = 2,
+            .depth = SS_JAC_DEPTH,
+            .ring_levels = ss_charmap_defaults().ring_levels,
+            .draw = ss_report_draw_defaults(),
+            .diag = SS_DIAG_BFS};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;
   int r = parse(argc, argv, &o);
   if (r) return r < 0 ? SS_EXIT_OK : r;

@@ -233,14 +233,14 @@ int ss_sweep_prepare(ss_sweep *w, const ss_sweep_job *j, char **canon) {
 
 /* The calling thread's workspace, made at its first case; NULL when out of
  * memory (the case then allocates its own, with the same result). */
-static ss_result_workspace *thread_ws(ss_sweep_wspool *p) {
+static ss_pipeline_workspace *thread_ws(ss_sweep_wspool *p) {
   if (!p) return NULL;
   const int t = omp_get_thread_num();
-  ss_result_workspace *ws = NULL;
+  ss_pipeline_workspace *ws = NULL;
 #pragma omp critical(ss_sweep_ws)
   {
     if (t >= p->n) {
-      ss_result_workspace **g = realloc(p->slot, (size_t)(t + 1) * sizeof *g);
+      ss_pipeline_workspace **g = realloc(p->slot, (size_t)(t + 1) * sizeof *g);
       if (g) {
         for (int i = p->n; i <= t; i++)
           g[i] = NULL;
@@ -249,7 +249,7 @@ static ss_result_workspace *thread_ws(ss_sweep_wspool *p) {
       }
     }
     if (t < p->n) {
-      if (!p->slot[t]) p->slot[t] = ss_result_workspace_new();
+      if (!p->slot[t]) p->slot[t] = ss_pipeline_workspace_new();
       ws = p->slot[t];
     }
   }
@@ -762,7 +762,7 @@ void ss_sweep_free(ss_sweep *w) {
   ss_store_close(w->st);
   ss_scheme_free(w->s);
   for (int i = 0; w->pool && i < w->pool->n; i++)
-    ss_result_workspace_free(w->pool->slot[i]);
+    ss_pipeline_workspace_free(w->pool->slot[i]);
   if (w->pool) free(w->pool->slot);
   free(w->pool);
   free(w);

@@ -41,7 +41,7 @@ typedef struct ss_sweep ss_sweep;
 /* The threads' workspaces: thread t analyses every case of the sweep in
  * slot[t] (ss_result_compute_ws), made at its first case. */
 typedef struct {
-  ss_result_workspace **slot; /* n workspaces (NULL until used) */
+  ss_pipeline_workspace **slot; /* n workspaces (NULL until used) */
   int n;                      /* slots (grown to the highest thread number) */
 } ss_sweep_wspool;
 

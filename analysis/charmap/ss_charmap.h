@@ -183,7 +183,7 @@ double ss_charmap_cell_measure(const ss_jac_result *j, int sign);
 ss_charmap_opts ss_charmap_defaults(void);
 
 /* This thread's CPU time in seconds (CLOCK_THREAD_CPUTIME_ID), for the
- * timing hooks (ss_charmap_times, ss_result_times); 0 if the clock cannot be
+ * timing hooks (ss_charmap_times, ss_pipeline_times); 0 if the clock cannot be
  * read. */
 double ss_charmap_cpu_seconds(void);
 

@@ -1,10 +1,9 @@
 /* ss_result.h — the whole analysis of one case, reduced to what a sweep
  * stores and a report prints (DESIGN sections 2, 5 and 7).
  *
- * The pipeline link -> star -> local matrix (ss_local) -> eigenstructure and
- * eigenvalue condition (ss_eig) -> characteristic-map regularity (ss_charmap)
- * in one call, shared by `check`, `sweep` and `reproduce` so that they judge a
- * case exactly as `analyze` does.  A result owns no pointer into the
+ * The pipeline (ss_pipeline: case -> local matrix -> eigenstructure ->
+ * verdicts) in one call, shared by `check`, `sweep` and `reproduce` so that
+ * they judge a case exactly as `analyze` does.  A result owns no pointer into the
  * intermediate objects: it is a plain value (apart from the link text) that
  * can be written to the store and read back unchanged.
  *
@@ -18,6 +17,7 @@
 #include "ss_charmap.h"
 #include "ss_eig.h"
 #include "ss_local.h"
+#include "ss_pipeline.h"
 
 #define SS_RESULT_NEIG 16 /* leading eigenvalues kept (lambda0 first) */
 
@@ -94,41 +94,20 @@ ss_result_opts ss_result_defaults(void);
 ss_status ss_result_compute(const ss_scheme *s, const ss_case *c, const ss_result_opts *o,
                             ss_result *r, ss_error *err);
 
-/* Thread CPU seconds of the pipeline's stages, added to (never reset) by
- * ss_result_compute_ws when its workspace carries one: where a case's time
- * goes, for benchmarks (bench_pipeline --phases).  Timing reads clocks
- * only: no result depends on it. */
-typedef struct {
-  double canon;             /* the link's canonical form and text */
-  double extract;           /* ss_local_new_ws: the local matrix from the
-                               global rule, with the first ring levels */
-  double diagonals;         /* schemes reading major diagonals: their count */
-  double eig;               /* ss_eig_new_ws: LAPACK and the condition */
-  ss_charmap_times charmap; /* the regularity and injectivity tests */
-  long cases;               /* cases timed */
-} ss_result_times;
-
-/* The workspaces of one case's extraction and eigen-solve, reused from case
- * to case by one thread (a sweep holds one per thread).  Either may be NULL
- * (that step then allocates per case). */
-typedef struct {
-  ss_local_workspace *local; /* ss_local_new_ws's scratch */
-  ss_eig_workspace *eig;     /* ss_eig_new_ws's scratch */
-  ss_result_times *times;    /* NULL (ss_result_workspace_new), or where to
-                                add the stages' CPU times; borrowed */
-} ss_result_workspace;
-
-/* Both workspaces, empty (they grow at first use); NULL when out of
- * memory.  Free with ss_result_workspace_free (NULL is a no-op there). */
-ss_result_workspace *ss_result_workspace_new(void);
-void ss_result_workspace_free(ss_result_workspace *w);
-
 /* ss_result_compute with the scratch memory of the extraction and the
- * eigen-solve taken from w (NULL: allocated per case).  The result is the
- * same bit for bit (only r->seconds, a time, differs). */
+ * eigen-solve taken from w (NULL: allocated per case), and the stages timed
+ * into w->times when set.  The result is the same bit for bit (only
+ * r->seconds, a time, differs). */
 ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
-                               const ss_result_opts *o, ss_result_workspace *w,
+                               const ss_result_opts *o, ss_pipeline_workspace *w,
                                ss_result *r, ss_error *err);
+
+/* The result of a pipeline that ran its verdicts stage (ss_pipeline), with
+ * o the options it ran with (their identity is kept in r), into *r (which
+ * need not be initialised).  SS_EINPUT when p has not run that far;
+ * SS_ENOMEM. */
+ss_status ss_result_of_pipeline(const ss_pipeline *p, const ss_result_opts *o,
+                                ss_result *r, ss_error *err);
 
 /* Whether r is a vertex case, judged as a vertex or as an edge point: it
  * carries a link. */

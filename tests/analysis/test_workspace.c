@@ -14,7 +14,7 @@
  *   tet/oct interleaved in one workspace;
  *   - a workspace too small grows (ss_eig_workspace_size) and never shrinks;
  *   - a call that fails on bad input leaves the workspace usable;
- *   - the timing hook (ss_result_workspace.times) changes no result, and its
+ *   - the timing hook (ss_pipeline_workspace.times) changes no result, and its
  *     stage times are >= 0 and fit in the calls' thread CPU time. */
 #include <stdlib.h>
 #include <string.h>
@@ -130,7 +130,7 @@ static void compare_result(const ss_result *a, const ss_result *b, const char *w
 /* One case three ways: fresh calls, the shared local and eigen workspaces,
  * and the result pipeline with and without the shared result workspace. */
 static void one_case(const ss_scheme *s, const ss_case *c, ss_local_workspace *lw,
-                     ss_eig_workspace *ew, ss_result_workspace *rw, const char *what) {
+                     ss_eig_workspace *ew, ss_pipeline_workspace *rw, const char *what) {
   ss_error err = {0};
   ss_local *M0 = NULL, *M1 = NULL;
   ss_eig *e0 = NULL, *e1 = NULL;
@@ -177,7 +177,7 @@ int main(void) {
   ss_local_workspace *lw = ss_local_workspace_new();
   /* deliberately too small: the first case must make it grow */
   ss_eig_workspace *ew = ss_eig_workspace_new(8);
-  ss_result_workspace *rw = ss_result_workspace_new();
+  ss_pipeline_workspace *rw = ss_pipeline_workspace_new();
   if (!mlca || !tetoct || !rng || !lw || !ew || !rw) {
     fprintf(stderr, "setup failed\n");
     return 1;
@@ -237,14 +237,14 @@ int main(void) {
     one_case(mlca, &c, lw, ew, rw, "mlca edge 5 after a failed call");
   }
 
-  /* the timing hook (ss_result_workspace.times, for bench_pipeline --phases)
+  /* the timing hook (ss_pipeline_workspace.times, for bench_pipeline --phases)
    * reads clocks only: the same results bit for bit; every stage's time is
    * >= 0 and together they fit in the thread CPU time around the calls; the
    * cases are counted, and the deeper ring level (ss_charmap_times.deep) at
    * most once per case.  MLCA links k = 10..12 until one needed the deeper
    * level (about 4 in 10 at k = 12 do), at most 12 links. */
   {
-    ss_result_times tm;
+    ss_pipeline_times tm;
     memset(&tm, 0, sizeof tm);
     rw->times = &tm;
     long n = 0;
@@ -298,7 +298,7 @@ int main(void) {
 
   ss_local_workspace_free(lw);
   ss_eig_workspace_free(ew);
-  ss_result_workspace_free(rw);
+  ss_pipeline_workspace_free(rw);
   gsl_rng_free(rng);
   ss_scheme_free(mlca);
   ss_scheme_free(tetoct);

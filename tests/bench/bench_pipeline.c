@@ -19,7 +19,7 @@
  * --phases [--k K] [--scheme S] [--samples N]: where a case's time goes
  * instead of (a) and (b): the thread CPU time of each stage of the real
  * pipeline (ss_result_compute_ws with the library's timing hook,
- * ss_result_workspace.times: clocks read between the stages, nothing else
+ * ss_pipeline_workspace.times: clocks read between the stages, nothing else
  * changes) per case, mean and median, in ms and as multiples of the bare
  * dgeev on the same one-ring block; the ring construction alone (the ring's
  * cells and rows on levels that exist, ss_local_ring_deepen on kept levels)
@@ -458,7 +458,7 @@ static double ring_time(const ss_scheme *sc, const ss_case *cs, int nring, ss_lo
 }
 
 /* --phases: each stage of ss_result_compute_ws in thread CPU time (the
- * library's timing hook, ss_result_workspace.times, in the real pipeline,
+ * library's timing hook, ss_pipeline_workspace.times, in the real pipeline,
  * one case at a time); then, outside the pipeline on a second extraction
  * with kept levels, the ring construction alone (ss_local_ring_deepen with
  * levels that exist), and for the links that needed a deeper ring level
@@ -467,8 +467,8 @@ static double ring_time(const ss_scheme *sc, const ss_case *cs, int nring, ss_lo
 static int phases(const ss_scheme *sc, const ss_result_opts *ro, const sample *s) {
   const size_t n = s->n;
   double *t = calloc(NPH * n + 1, sizeof *t); /* t[ph * n + i] */
-  ss_result_workspace *w = ss_result_workspace_new();
-  ss_result_times tm;
+  ss_pipeline_workspace *w = ss_pipeline_workspace_new();
+  ss_pipeline_times tm;
   int failed = 0;
   long ndeep = 0;
   if (!t || !w) return 1;
@@ -543,7 +543,7 @@ static int phases(const ss_scheme *sc, const ss_result_opts *ro, const sample *s
          (mean[PH_MAP] + mean[PH_JAC] + mean[PH_DEEPEN] + mean[PH_DEEPJAC] +
           mean[PH_SYM] + mean[PH_INJ]) /
              mean[PH_DGEEV]);
-  ss_result_workspace_free(w);
+  ss_pipeline_workspace_free(w);
   free(t);
   if (failed) printf("failures: %d\n", failed);
   return failed ? 1 : 0;

@@ -138,10 +138,10 @@ typedef struct {
  * which must still give the reference answer). */
 typedef struct {
   case_arg c;              /* the case */
-  ss_result_workspace *ws; /* kept workspaces, or NULL: made per run */
+  ss_pipeline_workspace *ws; /* kept workspaces, or NULL: made per run */
 } ws_arg;
 
-static ss_status result_of(const case_arg *a, ss_result_workspace *ws, double *digest,
+static ss_status result_of(const case_arg *a, ss_pipeline_workspace *ws, double *digest,
                            ss_error *err);
 
 static ss_status op_result(const void *arg, double *digest, ss_error *err) {
@@ -151,14 +151,14 @@ static ss_status op_result(const void *arg, double *digest, ss_error *err) {
 static ss_status op_result_ws(const void *arg, double *digest, ss_error *err) {
   const ws_arg *a = arg;
   if (a->ws) return result_of(&a->c, a->ws, digest, err);
-  ss_result_workspace *ws = ss_result_workspace_new();
+  ss_pipeline_workspace *ws = ss_pipeline_workspace_new();
   if (!ws) return ss_error_nomem(err, "workspaces");
   const ss_status st = result_of(&a->c, ws, digest, err);
-  ss_result_workspace_free(ws);
+  ss_pipeline_workspace_free(ws);
   return st;
 }
 
-static ss_status result_of(const case_arg *a, ss_result_workspace *ws, double *digest,
+static ss_status result_of(const case_arg *a, ss_pipeline_workspace *ws, double *digest,
                            ss_error *err) {
   ss_scheme *s = NULL;
   ss_link *l = NULL;
@@ -277,13 +277,13 @@ int main(int argc, char **argv) {
    * face) */
   for (int kept = 0; kept < 2; kept++) {
     const size_t i = kept ? 3 : 1;
-    ws_arg a = {cases[i], kept ? ss_result_workspace_new() : NULL};
+    ws_arg a = {cases[i], kept ? ss_pipeline_workspace_new() : NULL};
     char name[128];
     snprintf(name, sizeof name, "result_ws (%s) %s %s", kept ? "kept" : "per run",
              cases[i].scheme, ss_case_name(cases[i].kind));
     CHECK(!kept || a.ws, "a workspace");
     walk(name, op_result_ws, &a);
-    ss_result_workspace_free(a.ws);
+    ss_pipeline_workspace_free(a.ws);
   }
   walk("link parse + canonical form", op_link_parse,
        "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb");

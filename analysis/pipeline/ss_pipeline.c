@@ -1,0 +1,183 @@
+/* ss_pipeline.c — one case through the whole analysis (ss_pipeline.h). */
+#include "ss_pipeline.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "ss_diag.h"
+#include "ss_jac.h"
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+ss_pipeline_opts ss_pipeline_defaults(void) {
+  const ss_charmap_opts co = ss_charmap_defaults();
+  ss_pipeline_opts o;
+  memset(&o, 0, sizeof o);
+  o.tol = 1e-6;
+  o.depth = co.depth;
+  o.ring_levels = co.ring_levels;
+  return o;
+}
+
+ss_pipeline_workspace *ss_pipeline_workspace_new(void) {
+  ss_pipeline_workspace *w = calloc(1, sizeof *w);
+  if (!w) return NULL;
+  w->local = ss_local_workspace_new();
+  w->eig = ss_eig_workspace_new(0);
+  if (!w->local || !w->eig) {
+    ss_pipeline_workspace_free(w);
+    return NULL;
+  }
+  return w;
+}
+
+void ss_pipeline_workspace_free(ss_pipeline_workspace *w) {
+  if (!w) return;
+  ss_local_workspace_free(w->local);
+  ss_eig_workspace_free(w->eig);
+  free(w);
+}
+
+void ss_pipeline_free(ss_pipeline *p) {
+  if (!p) return;
+  ss_case_resolved_clear(&p->c);
+  ss_local_free(p->M);
+  ss_eig_free(p->e);
+  ss_charmap_free(p->cm);
+  ss_exact_free(p->ex);
+  free(p);
+}
+
+ss_status ss_pipeline_new(const ss_scheme *s, const ss_case *c, const ss_pipeline_opts *o,
+                          ss_pipeline_workspace *w, ss_pipeline **out, ss_error *err) {
+  *out = NULL;
+  const ss_pipeline_opts d = ss_pipeline_defaults();
+  if (!o) o = &d;
+  if (!(o->tol > 0.0 && o->tol < 0.1) || o->depth < 0 || o->depth > 12 ||
+      o->ring_levels < 1 || o->ring_levels > SS_LOCAL_MAXRING)
+    return ss_error_set(
+        err, SS_EINPUT,
+        "analysis options out of range (tol %g, depth %d, ring levels %d)", o->tol,
+        o->depth, o->ring_levels);
+  ss_pipeline *p = calloc(1, sizeof *p);
+  if (!p) return ss_error_nomem(err, "pipeline");
+  p->scheme = s;
+  p->opts = *o;
+  const double t0 = now();
+  ss_pipeline_times *tm = w ? w->times : NULL;
+  double c1 = tm ? ss_charmap_cpu_seconds() : 0.0;
+  const ss_status st = ss_case_resolve(s, c, &p->c, err);
+  if (tm) ss_charmap_lap(&tm->canon, &c1);
+  if (st) {
+    ss_pipeline_free(p);
+    return st;
+  }
+  p->done = SS_PIPE_CASE;
+  p->seconds = now() - t0;
+  *out = p;
+  return SS_OK;
+}
+
+/* The local matrix and, for schemes that read major diagonals, the improper
+ * pairs of the star's diagonals. */
+static ss_status matrix(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err) {
+  ss_pipeline_times *tm = w ? w->times : NULL;
+  double c1 = tm ? ss_charmap_cpu_seconds() : 0.0;
+  ss_local_opts lo = ss_local_defaults();
+  lo.max_bytes = p->opts.max_bytes;
+  lo.progress = p->opts.progress;
+  /* a link that folds on the first ring levels is judged on a deeper one:
+   * keep the levels so that only the deeper level is refined then (on a
+   * failing k = 12 MLCA link the extraction again was a quarter of that) */
+  lo.keep_levels = p->opts.ring_levels > lo.nring;
+  ss_status st =
+      ss_local_new_ws(p->scheme, &p->c.judged, &lo, w ? w->local : NULL, &p->M, err);
+  if (tm) ss_charmap_lap(&tm->extract, &c1);
+  if (!st && ss_scheme_reads_diagonals(p->scheme) && p->M->cell == SS_TET) {
+    const ss_star *star = NULL;
+    st = ss_case_resolved_star(p->scheme, &p->c, &star, err);
+    if (!st) st = ss_diag_improper(star->cx, &p->pairs, &p->improper, err);
+    p->has_diag = st == SS_OK;
+  }
+  if (tm) ss_charmap_lap(&tm->diagonals, &c1);
+  return st;
+}
+
+static ss_status eigen(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err) {
+  ss_pipeline_times *tm = w ? w->times : NULL;
+  double c1 = tm ? ss_charmap_cpu_seconds() : 0.0;
+  ss_eig_opts eo = ss_eig_defaults(p->M->dim);
+  eo.tol = p->opts.tol;
+  eo.force = p->opts.force;
+  eo.progress = p->opts.progress;
+  const ss_status st =
+      ss_eig_new_ws(p->M->S, p->M->n2, p->M->n1, &eo, w ? w->eig : NULL, &p->e, err);
+  if (tm) ss_charmap_lap(&tm->eig, &c1);
+  if (!st) p->v.cond = p->e->cond;
+  return st;
+}
+
+/* The three verdicts; with force and no map, the forced map judged for a
+ * picture (the verdicts keep what the case has: no characteristic map). */
+static ss_status verdicts(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
+  ss_charmap_opts co = ss_charmap_defaults();
+  co.depth = p->opts.depth;
+  co.ring_levels = p->opts.ring_levels;
+  co.times = tm ? &tm->charmap : NULL;
+  ss_certified cert;
+  ss_progress_step(&p->opts.progress,
+                   p->opts.certify ? "regularity, injectivity, exact path"
+                                   : "regularity and injectivity",
+                   0, 0);
+  ss_status st =
+      ss_certify_verdicts(p->scheme, &p->c.judged, p->M, p->e, &co, p->opts.certify,
+                          &p->cm, &p->reg, &p->inj, &cert, &p->ex, err);
+  if (st) return st;
+  p->v = (ss_verdicts){cert.cond, p->reg.verdict, p->inj.verdict};
+  p->exact_seconds = cert.seconds;
+  if (!p->cm && p->opts.force && p->e->basis) {
+    if ((st = ss_charmap_new(p->M, p->e, &p->cm, err)) ||
+        (st = ss_charmap_regularity(p->cm, p->M, &co, &p->reg, err)))
+      return st;
+    p->forced = 1;
+  }
+  return SS_OK;
+}
+
+ss_status ss_pipeline_run(ss_pipeline *p, ss_pipeline_stage until,
+                          ss_pipeline_workspace *w, ss_error *err) {
+  const double t0 = now();
+  ss_status st = SS_OK;
+  if (p->done < SS_PIPE_MATRIX && until >= SS_PIPE_MATRIX) {
+    if (!(st = matrix(p, w, err))) p->done = SS_PIPE_MATRIX;
+  }
+  if (!st && p->done < SS_PIPE_EIGEN && until >= SS_PIPE_EIGEN) {
+    if (!(st = eigen(p, w, err))) p->done = SS_PIPE_EIGEN;
+  }
+  if (!st && p->done < SS_PIPE_VERDICTS && until >= SS_PIPE_VERDICTS) {
+    ss_pipeline_times *tm = w ? w->times : NULL;
+    if (!(st = verdicts(p, tm, err))) {
+      p->done = SS_PIPE_VERDICTS;
+      if (tm) tm->cases++;
+    }
+  }
+  p->seconds += now() - t0;
+  return st;
+}
+
+ss_status ss_pipeline_compute(const ss_scheme *s, const ss_case *c,
+                              const ss_pipeline_opts *o, ss_pipeline_stage until,
+                              ss_pipeline_workspace *w, ss_pipeline **out,
+                              ss_error *err) {
+  ss_status st = ss_pipeline_new(s, c, o, w, out, err);
+  if (!st && (st = ss_pipeline_run(*out, until, w, err))) {
+    ss_pipeline_free(*out);
+    *out = NULL;
+  }
+  return st;
+}
