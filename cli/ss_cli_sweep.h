@@ -42,7 +42,7 @@ typedef struct ss_sweep ss_sweep;
  * slot[t] (ss_result_compute_ws), made at its first case. */
 typedef struct {
   ss_pipeline_workspace **slot; /* n workspaces (NULL until used) */
-  int n;                      /* slots (grown to the highest thread number) */
+  int n;                        /* slots (grown to the highest thread number) */
 } ss_sweep_wspool;
 
 /* A sweep in progress. */

@@ -137,7 +137,7 @@ typedef struct {
  * workspace that a refused allocation left part empty serves the next run,
  * which must still give the reference answer). */
 typedef struct {
-  case_arg c;              /* the case */
+  case_arg c;                /* the case */
   ss_pipeline_workspace *ws; /* kept workspaces, or NULL: made per run */
 } ws_arg;
 
