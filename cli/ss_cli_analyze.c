@@ -53,7 +53,7 @@ typedef struct {
   int left;                 /* matrix --left: the left eigenvectors */
   int nocaption;            /* draw --no-caption */
   int cls;                  /* --class 4|8: 4-8 class of a quasi48 surface
-                               vertex; 0: ss_local_class48's default */
+                               vertex; 0: ss_case_class48's default */
   int cls48;                /* the class analysed (quasi48 surface vertex),
                                else 0 */
 } opts;
@@ -939,10 +939,10 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
    * isomorphic links then give the same numbers to the last bit */
   ss_case c = {o->kind, cl ? cl : l, o->n, o->diag, o->cls};
   /* a point on an extraordinary edge: the edge case judges it (ss_local.h) */
-  const int ep = cl ? ss_local_edge_point(s, cl) : 0;
+  const int ep = cl ? ss_case_edge_point(s, cl) : 0;
   opts oe = *o;
   if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT && o->kind == SS_CASE_SURFACE_VERTEX) {
-    oe.cls48 = ss_local_class48(o->n, o->cls);
+    oe.cls48 = ss_case_class48(o->n, o->cls);
     o = &oe;
   }
   if (ep > 0) {
@@ -967,7 +967,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   diag_info di = {0, 0, 0};
   if (ss_scheme_reads_diagonals(s) && M->cell == SS_TET) {
     ss_star *star = NULL;
-    if (ss_local_star(s, &c, &star, &err) ||
+    if (ss_case_star(s, &c, &star, &err) ||
         ss_diag_improper(star->cx, &di.pairs, &di.improper, &err)) {
       ss_star_free(star);
       rc = case_fail(o, where, &err);

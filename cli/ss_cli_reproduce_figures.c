@@ -36,7 +36,7 @@ static ss_status draw_figure(const ss_reproduce_figure *f, const char *path,
   size_t pairs = 0, improper = 0;
   const int diag = !st && ss_scheme_reads_diagonals(s) && M->cell == SS_TET;
   if (diag) {
-    st = ss_local_star(s, &c, &star, err);
+    st = ss_case_star(s, &c, &star, err);
     if (!st) st = ss_diag_improper(star->cx, &pairs, &improper, err);
   }
   if (!st) {

@@ -183,7 +183,7 @@ ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
   rc.neig = o->neig;
   rc.diag = c->diag;
   if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT && c->kind == SS_CASE_SURFACE_VERTEX)
-    rc.cls48 = ss_local_class48(c->n, c->cls);
+    rc.cls48 = ss_case_class48(c->n, c->cls);
   if (c->kind == SS_CASE_VERTEX) {
     /* the canonical labelling, as analyze, sweep and reproduce use it */
     if ((st = ss_link_canonical(c->link, &cl, NULL, err)) ||
@@ -192,7 +192,7 @@ ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
     cc.link = cl;
     rc.link = canon;
     rc.k = cl->k;
-    const int ep = ss_local_edge_point(s, cl);
+    const int ep = ss_case_edge_point(s, cl);
     if (ep < 0) {
       st = ss_error_nomem(err, "edge-point test");
       goto done;
@@ -205,7 +205,7 @@ ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
   }
   if ((st = ss_local_new(s, &cc, &M, err))) goto done;
   if (ss_scheme_reads_diagonals(s) && M->cell == SS_TET) {
-    if ((st = ss_local_star(s, &cc, &star, err)) ||
+    if ((st = ss_case_star(s, &cc, &star, err)) ||
         (st = ss_diag_improper(star->cx, &rc.diag_pairs, &rc.diag_improper, err)))
       goto done;
     rc.diag_shown = 1;

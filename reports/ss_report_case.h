@@ -44,7 +44,7 @@ typedef struct {
   json_object *eigenvectors; /* the "eigenvectors" value, or NULL; ownership
                                 passes to the result */
   int cls48;                 /* quasi48 surface vertex: the 4-8 class analysed
-                                (ss_local_class48), written as "class"; else 0 */
+                                (ss_case_class48), written as "class"; else 0 */
 } ss_report_case;
 
 /* The JSON object of `analyze --format json` for case c, into *out (the
@@ -65,7 +65,7 @@ ss_report_analyze_opts ss_report_analyze_defaults(void);
 
 /* Analyse case c of scheme s as `subspectra analyze --format json` does: a
  * vertex link put in canonical form (a bipyramid link that makes the vertex a
- * point on an edge judged as that edge, ss_local_edge_point), the local
+ * point on an edge judged as that edge, ss_case_edge_point), the local
  * matrix, its eigenstructure, the three verdicts (ss_certify_verdicts, proven
  * with o->certify), and the object of ss_report_case_json, written as plain
  * JSON text into *json (NUL-terminated, malloc'd, the caller frees it with

@@ -74,7 +74,7 @@ static ss_status link_text(const ss_case *c, ss_link **cl, char **out, ss_error 
 static ss_status diagonals(const ss_scheme *s, const ss_case *c, ss_result *r,
                            ss_error *err) {
   ss_star *star = NULL;
-  ss_status st = ss_local_star(s, c, &star, err);
+  ss_status st = ss_case_star(s, c, &star, err);
   if (!st) st = ss_diag_improper(star->cx, &r->pairs, &r->improper, err);
   ss_star_free(star);
   r->has_diag = st == SS_OK;
@@ -126,7 +126,7 @@ ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
   ss_status st = link_text(c, &cl, &r->link, err);
   ss_case cc = *c;
   if (cl) cc.link = cl;
-  const int ep = !st && cl ? ss_local_edge_point(s, cl) : 0;
+  const int ep = !st && cl ? ss_case_edge_point(s, cl) : 0;
   if (ep < 0) st = ss_error_nomem(err, "edge point");
   if (ep > 0) cc = (ss_case){SS_CASE_EDGE, NULL, ep, c->diag, 0};
   if (tm) ss_charmap_lap(&tm->canon, &c1);
@@ -171,7 +171,7 @@ ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
                : c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX ? c->n
                                                                               : 0;
   if (c->kind == SS_CASE_SURFACE_VERTEX && ss_scheme_split_kind(s) == SS_SPLIT_BISECT)
-    r->cls = ss_local_class48(c->n, c->cls);
+    r->cls = ss_case_class48(c->n, c->cls);
   r->cells = c->kind == SS_CASE_VERTEX ? (size_t)(2 * r->k - 4)
              : c->kind == SS_CASE_FACE ? 2
                                        : (size_t)c->n;
