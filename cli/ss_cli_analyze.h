@@ -42,7 +42,7 @@ typedef struct {
   int left;                 /* matrix --left: the left eigenvectors */
   int nocaption;            /* draw --no-caption */
   int cls;                  /* --class 4|8: 4-8 class of a quasi48 surface
-                               vertex; 0: ss_local_class48's default */
+                               vertex; 0: ss_case_class48's default */
 } ss_cli_analyze_opts;
 
 /* The case's parameter as printed: the canonical link of a vertex or edge

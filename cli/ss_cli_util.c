@@ -162,7 +162,7 @@ int ss_cli_parse_part(const char *s, long *part, long *nparts) {
 int ss_cli_refuse_local(const char *cmd, const ss_scheme *s) {
   if (ss_scheme_split_kind(s) != SS_SPLIT_BISECT) return 0;
   /* its split depends on positions; the analysis refines 4-8 stars by the
-   * topological refinement instead, for surface vertices only (ss_local.h) */
+   * topological refinement instead, for surface vertices only (ss_case.h) */
   fprintf(stderr,
           "subspectra %s: scheme %s: only its surface vertices are analysed (analyze "
           "--scheme %s --surface-vertex N --class 4|8); %s of its geometry-sensitive "

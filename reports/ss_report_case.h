@@ -41,7 +41,7 @@ ss_report_analyze_opts ss_report_analyze_defaults(void);
 
 /* Analyse case c of scheme s as `subspectra analyze --format json` does: a
  * vertex link put in canonical form (a bipyramid link that makes the vertex a
- * point on an edge judged as that edge, ss_local_edge_point), the local
+ * point on an edge judged as that edge, ss_case_edge_point), the local
  * matrix, its eigenstructure, the three verdicts (ss_pipeline, proven with
  * o->certify), and the object of ss_report_case_json, written as plain
  * JSON text into *json (NUL-terminated, malloc'd, the caller frees it with

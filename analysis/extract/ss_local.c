@@ -78,22 +78,6 @@ static void *ws_grow(void *p, size_t *cap, size_t n, size_t sz) {
   return p;
 }
 
-const char *ss_case_name(ss_case_kind kind) {
-  switch (kind) {
-  case SS_CASE_VERTEX:
-    return "vertex";
-  case SS_CASE_EDGE:
-    return "edge";
-  case SS_CASE_FACE:
-    return "face";
-  case SS_CASE_SURFACE_VERTEX:
-    return "surface-vertex";
-  case SS_CASE_EDGE_POINT:
-    return "edge-point";
-  }
-  return "?";
-}
-
 int ss_local_label_norm(const ss_star_coord *c) {
   int m = 0;
   for (int i = 0; i < c->n; i++)
@@ -1303,111 +1287,6 @@ static void free_rings(ss_local *M) {
   M->nring = 0;
 }
 
-/* ---- cases and stars ---- */
-
-int ss_local_edge_point(const ss_scheme *s, const ss_link *l) {
-  const int n = l->k - 2;
-  if (ss_scheme_split_kind(s) != SS_SPLIT_MULTILINEAR || n < 3 || n == 4) return 0;
-  for (int v = 0, poles = 0; v < l->k; v++) { /* cheap filter: degrees n, n, 4 ... */
-    const int d = ss_link_deg(l, v);
-    poles += d == n && n != 4;
-    if (d != 4 && d != n) return 0;
-    if (v == l->k - 1 && poles != 2) return 0;
-  }
-  char name[32];
-  snprintf(name, sizeof name, "bipyramid:%d", n);
-  ss_link *b = NULL;
-  ss_error err = {0};
-  if (ss_link_named(name, &b, &err)) return -1;
-  const int iso = ss_link_isomorphic(l, b);
-  ss_link_free(b);
-  return iso < 0 ? -1 : iso ? n : 0;
-}
-
-int ss_local_class48(int n, int cls) {
-  if (cls) return cls;
-  return n >= 6 && n % 2 == 0 ? 8 : 4;
-}
-
-ss_status ss_local_cell(const ss_scheme *s, ss_case_kind kind, ss_cell_type *t,
-                        ss_error *err) {
-  const int ml = ss_scheme_split_kind(s) == SS_SPLIT_MULTILINEAR;
-  switch (kind) {
-  case SS_CASE_VERTEX:
-  case SS_CASE_EDGE:
-    *t = ml ? SS_HEX : SS_TET;
-    break;
-  case SS_CASE_FACE:
-    if (ml)
-      return ss_error_set(err, SS_EINPUT,
-                          "scheme %s: the face case exists only for schemes with the "
-                          "tet/oct split (two tets sharing a face)",
-                          ss_scheme_name(s));
-    *t = SS_TET;
-    break;
-  case SS_CASE_SURFACE_VERTEX:
-    *t = ml ? SS_QUAD : SS_TRIANGLE;
-    break;
-  default:
-    return ss_error_set(err, SS_EINPUT, "unknown case");
-  }
-  if (!ss_scheme_accepts(s, *t))
-    return ss_error_set(
-        err, SS_EINPUT,
-        "scheme %s does not support the %s case: its star would be made of "
-        "%s, which the scheme does not take",
-        ss_scheme_name(s), ss_case_name(kind), ss_cell_plural(*t));
-  return SS_OK;
-}
-
-ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
-                        ss_error *err) {
-  *out = NULL;
-  ss_cell_type t =
-      SS_HEX; /* set by ss_local_cell; initialised for -Wmaybe-uninitialized */
-  ss_status st0 = ss_local_cell(s, c->kind, &t, err);
-  if (st0) return st0;
-  if (c->kind == SS_CASE_VERTEX && !c->link)
-    return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
-  if ((c->diag == SS_DIAG_SKEW || c->diag == SS_DIAG_CENTER) &&
-      (c->kind != SS_CASE_EDGE || t != SS_TET))
-    return ss_error_set(err, SS_EINPUT,
-                        "major diagonals '%s' are defined around an edge: only for the "
-                        "edge case of a tet star",
-                        ss_diag_name(c->diag));
-  ss_status st;
-  switch (c->kind) {
-  case SS_CASE_VERTEX:
-    st = t == SS_HEX ? ss_star_hex_vertex(c->link, out, err)
-                     : ss_star_tet_vertex(c->link, out, err);
-    break;
-  case SS_CASE_EDGE:
-    st =
-        t == SS_HEX ? ss_star_hex_edge(c->n, out, err) : ss_star_tet_edge(c->n, out, err);
-    break;
-  case SS_CASE_FACE:
-    st = ss_star_tet_face(out, err);
-    break;
-  default:
-    if (c->cls && ss_scheme_split_kind(s) != SS_SPLIT_BISECT)
-      return ss_error_set(err, SS_EINPUT,
-                          "scheme %s: a 4-8 vertex class exists only for quasi48",
-                          ss_scheme_name(s));
-    if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT)
-      return ss_star_tri48_vertex(c->n, ss_local_class48(c->n, c->cls), out, err);
-    return t == SS_QUAD ? ss_star_quad_vertex(c->n, out, err)
-                        : ss_star_tri_vertex(c->n, out, err);
-  }
-  /* tet stars carry their major diagonals in the tets' vertex order (the edge
-   * star's edge is star vertices 0 and 1) */
-  if (!st && t == SS_TET) st = ss_diag_choose((*out)->cx, c->diag, 0, 1, err);
-  if (st) {
-    ss_star_free(*out);
-    *out = NULL;
-  }
-  return st;
-}
-
 ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
                        ss_error *err) {
   return ss_local_new_ring(s, c, SS_LOCAL_RING, out, err);
@@ -1447,7 +1326,7 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
   W.scheme = s;
   W.prog = &o->progress;
   ss_progress_step(W.prog, "building the star", 0, 0);
-  ss_status st = ss_local_star(s, c, &W.star, err);
+  ss_status st = ss_case_star(s, c, &W.star, err);
   if (st) return st;
   ss_local *M = calloc(1, sizeof *M);
   if (!M) {
@@ -1457,17 +1336,12 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
   M->ncoord = W.star->ncoord;
   M->dim = c->kind == SS_CASE_SURFACE_VERTEX ? 2 : 3;
   M->cell = W.star->cell_type;
-  if (c->kind == SS_CASE_VERTEX || c->kind == SS_CASE_SURFACE_VERTEX) {
-    W.lc = 0;
-    W.cp = ss_star_coord_make(0, NULL, NULL);
-  } else if (c->kind == SS_CASE_EDGE) {
-    W.lc = 1;
-    W.cp = ss_star_coord_make(0, NULL, NULL);
-  } else {
-    const int32_t idx[3] = {0, 1, 2}, val[3] = {2, 1, 1};
-    W.lc = 2;
-    W.cp = ss_star_coord_make(3, idx, val);
-  }
+  /* p's chart coordinates on level lc: the origin, or (2, 1, 1) for the face
+   * point */
+  const int32_t idx[3] = {0, 1, 2}, val[3] = {2, 1, 1};
+  W.lc = ss_case_centre_level(c->kind);
+  W.cp = c->kind == SS_CASE_FACE ? ss_star_coord_make(3, idx, val)
+                                 : ss_star_coord_make(0, NULL, NULL);
   W.lev[0].cx = W.star->cx;
   W.lev[0].abs = W.star->coord;
   W.nlev = 1;

@@ -1,24 +1,7 @@
 /* ss_local.h — local subdivision matrices, derived from a scheme's global rule
  * (DESIGN section 3).
  *
- * A case names a centre p and the star around it:
- *   vertex          a 3D vertex with a given link: the hex star for schemes with
- *                   the multilinear split, the tet star for the tet/oct split;
- *   edge            the midpoint of an edge of valence n (a vertex from level 1
- *                   on), in n hexes or n tets;
- *   face            tet/oct split only: a vertex inside the face shared by two
- *                   tets (from level 2 on, the vertex 1/4 (2, 1, 1) of the face;
- *                   every vertex inside that face sees the same infinite mesh,
- *                   two half tet/oct lattices meeting at a plane);
- *   surface vertex  a 2D vertex of valence n: n quads (multilinear split) or n
- *                   triangles (tet/oct split, which splits triangles like Loop);
- *                   for quasi48 a tagged 4-8 star of class 4 or 8
- *                   (ss_star_tri48_vertex), refined by the scheme's analysis
- *                   step, a full 4-8 cycle of two topological bisection
- *                   passes (ss_scheme_refine_step), so S is the two-pass
- *                   (dyadic) matrix.  A class-4 vertex of valence n is a
- *                   class-8 vertex of valence 2n after one pass, so its S is
- *                   that of class 8, valence 2n.
+ * A case (ss_case.h) names a centre p and the star around it.
  *
  * Extraction.  The star is refined with the scheme (ss_scheme_refine_step:
  * one level, or quasi48's two topological passes), keeping the refinement
@@ -74,46 +57,11 @@
 #ifndef SS_LOCAL_H
 #define SS_LOCAL_H
 
-#include "ss_diag.h"
+#include "ss_case.h"
 #include "ss_error.h"
-#include "ss_link.h"
 #include "ss_progress.h"
 #include "ss_scheme.h"
 #include "ss_star.h"
-
-typedef enum {
-  SS_CASE_VERTEX = 0,     /* a 3D vertex with a link */
-  SS_CASE_EDGE,           /* a point on an edge of valence n */
-  SS_CASE_FACE,           /* a point inside the face shared by two tets */
-  SS_CASE_SURFACE_VERTEX, /* a 2D vertex of valence n */
-  SS_CASE_EDGE_POINT      /* results only: a vertex whose link is the bipyramid
-                             over n (n != 4) in a hex mesh, which is a point on
-                             an edge of valence n and is analysed as the edge
-                             case (ss_local_edge_point) */
-} ss_case_kind;
-
-#define SS_NCASEKINDS 5 /* case kinds, for tables indexed by kind */
-
-/* One case to analyse.  The link is borrowed, not copied. */
-typedef struct {
-  ss_case_kind kind;   /* which centre */
-  const ss_link *link; /* vertex case: the link; otherwise NULL */
-  int n;               /* edge and surface vertex cases: the valence */
-  ss_diag_mode diag;   /* tet stars: major diagonals (ss_diag.h; bfs = 0 by
-                          default, or proper; skew and center only for the
-                          edge case, around the edge) */
-  int cls;             /* quasi48 surface vertex: its 4-8 class, 4 or 8, or 0
-                          for ss_local_class48's default; 0 for other
-                          schemes and cases */
-} ss_case;
-
-/* The 4-8 class of a quasi48 surface vertex of valence n when the case leaves
- * it 0: the class that longest-edge refinement gives the centre of a regular
- * n-gon fan (Velho & Gomes section 3.3): 4 (its outer edges split first, its
- * valence doubles) for n < 6 and for odd n (which that refinement cannot keep:
- * odd n > 6 gains one spoke), 8 (alternate spokes split, the valence stays)
- * for even n >= 6.  cls itself when it is 4 or 8. */
-int ss_local_class48(int n, int cls);
 
 #define SS_LOCAL_MAXRING 4 /* ring levels at most (ss_local_new_ring) */
 #define SS_LOCAL_RING    2 /* ring levels of ss_local_new (no extra refinement) */
@@ -160,38 +108,8 @@ typedef struct {
                                            NULL; private to ss_local.c */
 } ss_local;
 
-/* Name of a case kind as in the command line and JSON ("vertex", "edge",
- * "face", "surface-vertex", "edge-point"). */
-const char *ss_case_name(ss_case_kind kind);
-
-/* Points on extraordinary edges (DESIGN section 10).  A vertex of a hex mesh
- * whose link is the bipyramid over an n-gon has two edges of valence n (the
- * poles) and n regular ones: it lies on an edge of valence n, and its hex star
- * is the star of that edge's midpoint once refined, so its local matrix is
- * the edge case's (the same two-ring, relabelled) and the edge analysis, not
- * the vertex condition, decides its smoothness.  Returns n when the scheme
- * splits hexes (multilinear split) and l is such a bipyramid with n != 4 (the
- * octahedron is the regular vertex); 0 otherwise, and -1 when out of memory.
- * For tet stars a bipyramid link is an ordinary vertex: the tet/oct split
- * refines a vertex and an edge midpoint differently. */
-int ss_local_edge_point(const ss_scheme *s, const ss_link *l);
-
-/* The cell type of the star of a case of kind `kind` under scheme s: hex or
- * tet for vertices and edges (by the scheme's split), tet for the face, quad
- * or triangle for surface vertices.  SS_EINPUT when the scheme has no such
- * case (the face of a multilinear split, cells the scheme does not take). */
-ss_status ss_local_cell(const ss_scheme *s, ss_case_kind kind, ss_cell_type *t,
-                        ss_error *err);
-
-/* The star the scheme refines for case c (hex or tet stars by the scheme's
- * split; see above).  *out is owned by the caller.  SS_EINPUT if the scheme
- * does not support the case (it does not take the star's cell type, or the face
- * case with a multilinear split) or the valence is out of range. */
-ss_status ss_local_star(const ss_scheme *s, const ss_case *c, ss_star **out,
-                        ss_error *err);
-
 /* Extract the local subdivision matrix of scheme s at case c (method above).
- * *out is owned by the caller (ss_local_free).  SS_EINPUT as ss_local_star;
+ * *out is owned by the caller (ss_local_free).  SS_EINPUT as ss_case_star;
  * SS_EINTERNAL if the two-ring or one-ring is not invariant, a row would be
  * read at the patch boundary even at the deepest level tried, or the matrix is
  * not stationary; SS_ENOMEM.  Cost: refining the star about w + 2 times, i.e.
@@ -287,7 +205,7 @@ typedef struct {
 
 /* Estimate the cost of case c for scheme s (formulas above).  O(k) for a
  * vertex case (the link's degrees), O(1) otherwise; builds nothing.  SS_EINPUT
- * for cases the scheme does not support (as ss_local_star) or a vertex case
+ * for cases the scheme does not support (as ss_case_star) or a vertex case
  * without a link. */
 ss_status ss_local_estimate(const ss_scheme *s, const ss_case *c, ss_local_cost *out,
                             ss_error *err);

@@ -29,13 +29,12 @@ ss_status ss_local_estimate(const ss_scheme *s, const ss_case *c, ss_local_cost 
   const int ml = ss_scheme_split_kind(s) == SS_SPLIT_MULTILINEAR;
   const int box = ss_scheme_reads_diagonals(s);
   ss_cell_type t;
-  ss_status st = ss_local_cell(s, c->kind, &t, err);
+  ss_status st = ss_case_cell(s, c->kind, &t, err);
   if (st) return st;
   if (c->kind == SS_CASE_VERTEX && !c->link)
     return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
-  /* the first level on which the centre is a vertex: 0 for a vertex, 1 for
-   * an edge's midpoint, 2 for the face point */
-  const int lc = c->kind == SS_CASE_EDGE ? 1 : c->kind == SS_CASE_FACE ? 2 : 0;
+  /* the first level on which the centre is a vertex */
+  const int lc = ss_case_centre_level(c->kind);
   if (c->kind != SS_CASE_VERTEX && c->kind != SS_CASE_FACE &&
       (c->n < 3 || c->n > SS_STAR_MAXN))
     return ss_error_set(err, SS_EINPUT, "valence %d is not in 3..%d", c->n, SS_STAR_MAXN);
@@ -83,7 +82,7 @@ ss_status ss_local_estimate(const ss_scheme *s, const ss_case *c, ss_local_cost 
     b = 3;
     if (ss_scheme_split_kind(s) == SS_SPLIT_BISECT) {
       /* quasi48: the chart has r = n rays (class 4) or n / 2 (class 8) */
-      const int cls = ss_local_class48(c->n, c->cls);
+      const int cls = ss_case_class48(c->n, c->cls);
       if (cls != 4 && (cls != 8 || c->n < 6 || c->n % 2))
         return ss_error_set(err, SS_EINPUT,
                             cls == 8 ? "a class-8 vertex of a 4-8 mesh has an even "

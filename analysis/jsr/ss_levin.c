@@ -655,7 +655,7 @@ ss_status ss_levin_new(const ss_scheme *s, const ss_case *c, ss_levin **out,
   double *S2[SS_LEVIN_MAXMAPS] = {NULL};
   size_t n2 = 0;
   ss_status st = L ? SS_OK : ss_error_nomem(err, "Levin-Levin case");
-  if (!st) st = ss_local_star(s, c, &W.star, err);
+  if (!st) st = ss_case_star(s, c, &W.star, err);
   if (st) goto done;
   if (ss_cx_ncells(W.star->cx) && W.star->cell_type != SS_TET) {
     st = ss_error_set(err, SS_EINPUT,

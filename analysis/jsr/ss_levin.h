@@ -105,7 +105,7 @@ typedef struct {
 /* Build the sub-patch matrices of case c (kind SS_CASE_FACE or SS_CASE_EDGE,
  * c->n the valence, c->diag the major diagonals) for scheme s, and reduce them
  * (method above).  *out is owned by the caller (ss_levin_free).  SS_EINPUT if
- * the scheme has no such case (ss_local_star) or another kind is asked for;
+ * the scheme has no such case (ss_case_star) or another kind is asked for;
  * SS_EINTERNAL if a matrix is not square with unit row sums, no stationary
  * level is found, the edge spectrum is not 1, lambda, lambda, 1/2, or the
  * subspace is not invariant under every S_i; SS_ENUMERIC if LAPACK fails;

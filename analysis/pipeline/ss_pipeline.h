@@ -6,7 +6,7 @@
  *             canonical form (isomorphic or mirrored links then give results
  *             equal to the last bit: LAPACK's rounding depends on the order
  *             of rows), a link that makes the vertex a point on an edge of
- *             valence n (ss_local_edge_point) judged as that edge case, a
+ *             valence n (ss_case_edge_point) judged as that edge case, a
  *             quasi48 surface vertex's 4-8 class filled in;
  *   matrix    the local subdivision matrix (ss_local), and for schemes that
  *             read major diagonals the star's improper pairs (ss_diag);

@@ -44,13 +44,13 @@ typedef struct {
 typedef struct {
   ss_case_kind kind; /* vertex, edge, face, surface-vertex, or edge-point for
                         a vertex case whose link makes it a point on an edge
-                        (ss_local_edge_point), judged as that edge */
+                        (ss_case_edge_point), judged as that edge */
   int k;             /* vertex and edge-point: vertices of the link; edge and
                         surface vertex: the valence n; face: 0 */
   int valence;       /* edge, surface vertex, edge-point: the valence n;
                         otherwise 0 */
   int cls;           /* quasi48 surface vertex: its 4-8 class (4 or 8, the
-                        default filled in, ss_local_class48); otherwise 0 */
+                        default filled in, ss_case_class48); otherwise 0 */
   char *link;        /* vertex: the canonical link in plantri ASCII; else an
                         empty string.  Owned (ss_result_clear) */
   size_t cells;      /* cells around the centre: 2k - 4 for a vertex, n for
@@ -86,7 +86,7 @@ ss_result_opts ss_result_defaults(void);
 /* Analyse case c of scheme s into *r (which need not be initialised; on
  * failure it is left cleared).  For a vertex case the link is put in canonical
  * form first, so isomorphic or mirrored links give equal results; a link that
- * makes the vertex a point on an edge of valence n (ss_local_edge_point) is
+ * makes the vertex a point on an edge of valence n (ss_case_edge_point) is
  * analysed as the edge case n and reported as kind edge-point.  Free the
  * link text with ss_result_clear.  SS_EINPUT when the scheme does not support
  * the case or an option is out of range; SS_EINTERNAL, SS_ENUMERIC when

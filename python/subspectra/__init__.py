@@ -40,7 +40,7 @@ __all__ = ["SubspectraError", "scheme_names", "local_matrix", "eigenvalues", "ei
 
 _ffi = FFI()
 #Declarations as in the installed headers(ss_error.h, ss_scheme.h, ss_link.h,
-#ss_local.h, ss_eig.h, ss_report_case.h).Enumerations are passed as int.
+#ss_case.h, ss_local.h, ss_eig.h, ss_report_case.h).Enumerations are passed as int.
 #ss_local and ss_eig are read through pointers only, so only their leading
 #fields are declared(in the headers' order; the rest is never touched).
 _ffi.cdef("""
@@ -125,7 +125,7 @@ void ss_eigvec_free(ss_eigvec *v);
 void free(void *p);
 """)
 
-#ss_case_kind(ss_local.h)
+#ss_case_kind(ss_case.h)
 _VERTEX, _EDGE, _FACE, _SURFACE_VERTEX = 0, 1, 2, 3
 
 

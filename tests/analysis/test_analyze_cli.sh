@@ -70,7 +70,7 @@ for s in lines:
     for key in ("scheme", "case", "link", "two_ring_size", "one_ring_size",
                 "eigenvalues", "eigen_condition", "regularity"):
         assert key in o, key
-    # bipyramid:5 is a point on an edge of valence 5 (ss_local_edge_point)
+    # bipyramid:5 is a point on an edge of valence 5 (ss_case_edge_point)
     want = "edge-point" if o["k"] == 7 else "vertex"
     assert o["scheme"] == "mlca" and o["case"] == want, o["case"]
     assert want == "vertex" or o["valence"] == 5, o

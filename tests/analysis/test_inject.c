@@ -513,7 +513,7 @@ static void test_degree_two(void) {
   ss_link *l = NULL;
   ss_star *st = NULL;
   if (ss_scheme_new("mlca", &mlca, &err) || ss_link_named("bipyramid:8", &l, &err) ||
-      ss_local_star(mlca, &(ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &st, &err)) {
+      ss_case_star(mlca, &(ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, &st, &err)) {
     CHECK(0, "bipyramid:8 star: %s", err.msg);
   } else {
     const ss_cx *cx = st->cx;

@@ -67,7 +67,7 @@ static void face_tetoct(void) {
   ss_levin *L = NULL;
   ss_star *star = NULL;
   REQUIRE_OK_VOID(ss_levin_new(s, &c, &L, &err), &err);
-  REQUIRE_OK_VOID(ss_local_star(s, &c, &star, &err), &err);
+  REQUIRE_OK_VOID(ss_case_star(s, &c, &star, &err), &err);
   CHECK(L->m == 4 && L->r == 10 && L->n > 10, "m %zu r %zu n %zu", L->m, L->r, L->n);
   CHECK(!strcmp(L->basis, "quadratics"), "basis %s", L->basis);
   const size_t n = L->n;

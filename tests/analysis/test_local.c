@@ -433,7 +433,7 @@ static void cross_check(const ss_scheme *s, ss_case c, const char *what) {
   ss_error err = {0};
   ss_local *M = NULL;
   ss_star *star = NULL;
-  if (ss_local_new(s, &c, &M, &err) || ss_local_star(s, &c, &star, &err)) {
+  if (ss_local_new(s, &c, &M, &err) || ss_case_star(s, &c, &star, &err)) {
     CHECK(0, "%s: %s", what, err.msg);
     ss_local_free(M);
     return;
@@ -655,7 +655,7 @@ static void test_verdicts(void) {
   }
 }
 /* A vertex whose link is the bipyramid over n is a point on an edge of
- * valence n (ss_local_edge_point): in a hex mesh its star is the edge
+ * valence n (ss_case_edge_point): in a hex mesh its star is the edge
  * midpoint's, so the vertex and the edge case must give one local matrix (the
  * same sizes and spectrum), and only hex schemes call it an edge point. */
 static void test_edge_points(void) {
@@ -669,12 +669,12 @@ static void test_edge_points(void) {
       CHECK(0, "%s: %s", name, err.msg);
       continue;
     }
-    CHECK(ss_local_edge_point(mlca, l) == (n == 4 ? 0 : n), "%s: edge point %d", name,
-          ss_local_edge_point(mlca, l));
-    CHECK(ss_local_edge_point(tetoct, l) == 0, "%s: tet stars have no edge points", name);
+    CHECK(ss_case_edge_point(mlca, l) == (n == 4 ? 0 : n), "%s: edge point %d", name,
+          ss_case_edge_point(mlca, l));
+    CHECK(ss_case_edge_point(tetoct, l) == 0, "%s: tet stars have no edge points", name);
     /* a relabelled copy is recognised too; a link that is no bipyramid is not */
     ss_link *q = ss_testlink_scrambled(l, (unsigned)n, n & 1);
-    CHECK(q && ss_local_edge_point(mlca, q) == (n == 4 ? 0 : n), "%s relabelled", name);
+    CHECK(q && ss_case_edge_point(mlca, q) == (n == 4 ? 0 : n), "%s relabelled", name);
     ss_link_free(q);
     ss_local *Mv = NULL, *Me = NULL;
     ss_eig *ev = NULL, *ee = NULL;
@@ -699,7 +699,7 @@ static void test_edge_points(void) {
   }
   ss_link *ico = NULL;
   if (!ss_link_named("icosahedron", &ico, &err))
-    CHECK(ss_local_edge_point(mlca, ico) == 0, "the icosahedron is no edge point");
+    CHECK(ss_case_edge_point(mlca, ico) == 0, "the icosahedron is no edge point");
   ss_link_free(ico);
   ss_scheme_free(mlca);
   ss_scheme_free(tetoct);

@@ -20,7 +20,7 @@ ss_status ss_case_resolve(const ss_scheme *s, const ss_case *c, ss_case_resolved
     r->judged.link = r->canon;
     r->k = r->canon->k;
     r->cells = (size_t)(2 * r->k - 4);
-    const int ep = ss_local_edge_point(s, r->canon);
+    const int ep = ss_case_edge_point(s, r->canon);
     if (ep < 0) {
       st = ss_error_nomem(err, "edge point");
       goto fail;
@@ -40,7 +40,7 @@ ss_status ss_case_resolve(const ss_scheme *s, const ss_case *c, ss_case_resolved
   r->valence = c->kind == SS_CASE_EDGE || c->kind == SS_CASE_SURFACE_VERTEX ? c->n : 0;
   r->cells = c->kind == SS_CASE_FACE ? 2 : (size_t)c->n;
   if (c->kind == SS_CASE_SURFACE_VERTEX && ss_scheme_split_kind(s) == SS_SPLIT_BISECT)
-    r->cls = ss_local_class48(c->n, c->cls);
+    r->cls = ss_case_class48(c->n, c->cls);
   return SS_OK;
 fail:
   ss_case_resolved_clear(r);
@@ -50,7 +50,7 @@ fail:
 ss_status ss_case_resolved_star(const ss_scheme *s, ss_case_resolved *r,
                                 const ss_star **star, ss_error *err) {
   if (!r->star) {
-    ss_status st = ss_local_star(s, &r->judged, &r->star, err);
+    ss_status st = ss_case_star(s, &r->judged, &r->star, err);
     if (st) return st;
   }
   *star = r->star;

@@ -4,15 +4,15 @@
  * A vertex case's link is put in canonical form (ss_link_canonical), so that
  * isomorphic or mirrored links give results equal to the last bit; a link
  * that makes the vertex a point on an extraordinary edge of valence n
- * (ss_local_edge_point) is judged as that edge case and reported as kind
+ * (ss_case_edge_point) is judged as that edge case and reported as kind
  * edge-point; a quasi48 surface vertex gets its 4-8 class
- * (ss_local_class48).  The star of the judged case is built on demand, once. */
+ * (ss_case_class48).  The star of the judged case is built on demand, once. */
 #ifndef SS_CASE_RESOLVE_H
 #define SS_CASE_RESOLVE_H
 
 #include <stddef.h>
 
-#include "ss_local.h"
+#include "ss_case.h"
 
 /* A case as asked, as analysed and as reported. */
 typedef struct {
@@ -42,8 +42,8 @@ typedef struct {
 ss_status ss_case_resolve(const ss_scheme *s, const ss_case *c, ss_case_resolved *r,
                           ss_error *err);
 
-/* The star of r's judged case (ss_local_star), built at the first call and
- * kept in r->star.  Errors as ss_local_star. */
+/* The star of r's judged case (ss_case_star), built at the first call and
+ * kept in r->star.  Errors as ss_case_star. */
 ss_status ss_case_resolved_star(const ss_scheme *s, ss_case_resolved *r,
                                 const ss_star **star, ss_error *err);
 
