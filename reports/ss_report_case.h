@@ -14,11 +14,14 @@
 
 #include <json-c/json.h>
 
+#include "ss_api.h"
 #include "ss_certify.h"
 #include "ss_charmap.h"
 #include "ss_eig.h"
 #include "ss_error.h"
 #include "ss_local.h"
+
+SS_BEGIN_DECLS
 
 /* What one case's analysis produced, as analyze reports it.  Every pointer is
  * borrowed. */
@@ -73,5 +76,7 @@ ss_report_analyze_opts ss_report_analyze_defaults(void);
  * support or options out of range; the errors of the pipeline otherwise. */
 ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
                             const ss_report_analyze_opts *o, char **json, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -48,9 +48,12 @@
 #ifndef SS_CHARMAP_H
 #define SS_CHARMAP_H
 
+#include "ss_api.h"
 #include "ss_eig.h"
 #include "ss_jac.h"
 #include "ss_local.h"
+
+SS_BEGIN_DECLS
 
 /* The characteristic map's control net on the two-ring. */
 typedef struct {
@@ -305,5 +308,7 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
 /* v becomes undecided, "not certified: why (double precision: v)"; an
  * undecided verdict keeps its reason (there is nothing to prove). */
 void ss_charmap_unproven(ss_verdict *v, const char *why);
+
+SS_END_DECLS
 
 #endif

@@ -74,12 +74,15 @@
 #ifndef SS_LOCAL_H
 #define SS_LOCAL_H
 
+#include "ss_api.h"
 #include "ss_diag.h"
 #include "ss_error.h"
 #include "ss_link.h"
 #include "ss_progress.h"
 #include "ss_scheme.h"
 #include "ss_star.h"
+
+SS_BEGIN_DECLS
 
 typedef enum {
   SS_CASE_VERTEX = 0,     /* a 3D vertex with a link */
@@ -370,5 +373,7 @@ void ss_local_workspace_free(ss_local_workspace *w);
  * NULL: as ss_local_new_opts. */
 ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_opts *o,
                           ss_local_workspace *w, ss_local **out, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -70,7 +70,10 @@
 #ifndef SS_LEVIN_H
 #define SS_LEVIN_H
 
+#include "ss_api.h"
 #include "ss_local.h"
+
+SS_BEGIN_DECLS
 
 #define SS_LEVIN_MAXMAPS 4 /* sub-patches at most (the face) */
 
@@ -124,5 +127,7 @@ ss_status ss_levin_reduce(size_t m, size_t n, const double *const *S, const doub
 
 /* Free; NULL is a no-op. */
 void ss_levin_free(ss_levin *L);
+
+SS_END_DECLS
 
 #endif

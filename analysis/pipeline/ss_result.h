@@ -15,9 +15,12 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_charmap.h"
 #include "ss_eig.h"
 #include "ss_local.h"
+
+SS_BEGIN_DECLS
 
 #define SS_RESULT_NEIG 16 /* leading eigenvalues kept (lambda0 first) */
 
@@ -149,5 +152,7 @@ int ss_result_certified(const ss_result *r);
 
 /* Release r's link text and zero r.  NULL is a no-op. */
 void ss_result_clear(ss_result *r);
+
+SS_END_DECLS
 
 #endif

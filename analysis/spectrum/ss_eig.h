@@ -58,8 +58,11 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
 #include "ss_progress.h"
+
+SS_BEGIN_DECLS
 
 typedef enum { SS_PASS = 0, SS_FAIL, SS_UNDECIDED } ss_verdict_kind;
 
@@ -173,5 +176,7 @@ ss_status ss_eig_dense(const double *S, size_t n, double *re, double *im, ss_err
 
 /* "pass", "fail", "undecided". */
 const char *ss_verdict_name(ss_verdict_kind v);
+
+SS_END_DECLS
 
 #endif
