@@ -11,10 +11,7 @@
 
 #include "ss_cli.h"
 #include "ss_outfile.h"
-
-#ifndef SS_VERSION
-#define SS_VERSION "0.1.0"
-#endif
+#include "ss_version.h"
 
 typedef struct {
   const char *name;         /* subcommand */
@@ -43,7 +40,7 @@ static void overview(FILE *f) {
           "subspectra %s — spectral analysis and smoothness verification of subdivision "
           "schemes\n\n"
           "usage: subspectra COMMAND [OPTIONS] ...\n\ncommands:\n",
-          SS_VERSION);
+          SS_VERSION_STRING);
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
   fprintf(f, "\n'subspectra COMMAND --help' describes a command; 'subspectra [COMMAND] "
@@ -108,7 +105,7 @@ static int run(int argc, char **argv) {
     return SS_EXIT_OK;
   }
   if (!strcmp(argv[1], "--version")) {
-    printf("subspectra %s\n", SS_VERSION);
+    printf("subspectra %s\n", SS_VERSION_STRING);
     return SS_EXIT_OK;
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
@@ -117,7 +114,7 @@ static int run(int argc, char **argv) {
        * --help says: one place instead of one option per command */
       for (int a = 2; a < argc && strcmp(argv[a], "--"); a++)
         if (!strcmp(argv[a], "--version")) {
-          printf("subspectra %s\n", SS_VERSION);
+          printf("subspectra %s\n", SS_VERSION_STRING);
           return SS_EXIT_OK;
         }
       const int rc = commands[i].run(argc - 1, argv + 1);

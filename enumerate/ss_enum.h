@@ -22,7 +22,10 @@
 
 #include <stdint.h>
 
+#include "ss_api.h"
 #include "ss_link.h"
+
+SS_BEGIN_DECLS
 
 #define SS_ENUM_MAXK 20 /* largest k enumerated (k = 20 has ~10^11 links) */
 
@@ -45,5 +48,7 @@ ss_status ss_enum_links(const ss_enum_opts *o, ss_enum_visit visit, void *ctx,
 /* The level at which parts are cut for these options (for progress output and
  * tests). */
 int ss_enum_split_level(const ss_enum_opts *o);
+
+SS_END_DECLS
 
 #endif

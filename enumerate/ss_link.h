@@ -24,7 +24,10 @@
 
 #include <stdint.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 #define SS_LINK_MAXK 100000 /* largest link read (a sanity bound, not a design limit) */
 
@@ -94,5 +97,7 @@ ss_status ss_link_automorphisms(const ss_link *l, int **aut, int *naut, ss_error
 
 /* 1 if the two links are equal as rotation systems (same k, same lists). */
 int ss_link_equal(const ss_link *a, const ss_link *b);
+
+SS_END_DECLS
 
 #endif

@@ -11,8 +11,11 @@
 
 #include <gsl/gsl_rng.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
 #include "ss_link.h"
+
+SS_BEGIN_DECLS
 
 /* Number of point sets drawn before ss_link_random gives up. */
 #define SS_LINK_RANDOM_TRIES 100
@@ -29,5 +32,7 @@
  * attempt was degenerate; SS_ENOMEM; SS_EINTERNAL from the hull shim.  On
  * failure *out = NULL.  Cost O(k log k) expected. */
 ss_status ss_link_random(int k, gsl_rng *r, ss_link **out, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -31,8 +31,11 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_cx.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 /* One class of interior vertices with isomorphic (or mirrored) links. */
 typedef struct {
@@ -83,5 +86,7 @@ ss_status ss_meshlinks_compute(const ss_cx *cx, ss_meshlinks **out, ss_error *er
 
 /* Free a result; NULL is a no-op. */
 void ss_meshlinks_free(ss_meshlinks *ml);
+
+SS_END_DECLS
 
 #endif

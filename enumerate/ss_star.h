@@ -92,9 +92,12 @@
 
 #include <stdint.h>
 
+#include "ss_api.h"
 #include "ss_cx.h"
 #include "ss_error.h"
 #include "ss_link.h"
+
+SS_BEGIN_DECLS
 
 #define SS_STAR_MAXSUPP 4      /* most nonzero coordinates of a vertex (face star) */
 #define SS_STAR_MAXN    100000 /* largest edge valence accepted (a sanity bound) */
@@ -197,5 +200,7 @@ int ss_star_coord_cmp(const ss_star_coord *a, const ss_star_coord *b);
  * scale into x[0..2]. */
 void ss_star_coord_position(const ss_star *s, const ss_star_coord *c, double scale,
                             double x[3]);
+
+SS_END_DECLS
 
 #endif

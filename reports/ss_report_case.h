@@ -14,9 +14,12 @@
 
 #include <json-c/json.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
 #include "ss_local.h"
 #include "ss_pipeline.h"
+
+SS_BEGIN_DECLS
 
 /* The JSON object of `analyze --format json` for the case of pipeline p
  * (run through its verdicts stage), listing neig eigenvalues (and exact
@@ -49,5 +52,7 @@ ss_report_analyze_opts ss_report_analyze_defaults(void);
  * support or options out of range; the errors of the pipeline otherwise. */
 ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
                             const ss_report_analyze_opts *o, char **json, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -59,8 +59,11 @@
 
 #include <cairo.h>
 
+#include "ss_api.h"
 #include "ss_charmap.h"
 #include "ss_outfile.h"
+
+SS_BEGIN_DECLS
 
 /* How to draw. */
 typedef struct {
@@ -142,5 +145,7 @@ ss_status ss_report_cairo_open(const char *path, ss_pic_format fmt, int width, i
  * was.  st is the status so far (not SS_OK: the drawing is abandoned);
  * returns the first failure (SS_EIO naming the target). */
 ss_status ss_report_cairo_close(ss_report_canvas *c, ss_status st, ss_error *err);
+
+SS_END_DECLS
 
 #endif

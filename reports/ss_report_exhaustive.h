@@ -21,8 +21,11 @@
 
 #include <stdio.h>
 
+#include "ss_api.h"
 #include "ss_report_table.h"
 #include "ss_result.h"
+
+SS_BEGIN_DECLS
 
 /* Room for one Markdown line of ss_report_exhaustive_md_head/_row. */
 #define SS_REPORT_EXH_LINE 512
@@ -82,5 +85,7 @@ typedef enum {
  * fails, SS_ENOMEM. */
 ss_status ss_report_exh_write(FILE *f, ss_report_format fmt, ss_report_exh_table which,
                               const ss_report_row *rows, size_t n, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -17,7 +17,10 @@
 #ifndef SS_REPORT_PLOT_H
 #define SS_REPORT_PLOT_H
 
+#include "ss_api.h"
 #include "ss_report_table.h"
+
+SS_BEGIN_DECLS
 
 /* How to plot. */
 typedef struct {
@@ -40,5 +43,7 @@ ss_report_plot_opts ss_report_plot_defaults(void);
 ss_status ss_report_plot(const ss_report_row *rows, size_t n,
                          const ss_report_plot_opts *o, const char *path, size_t *plotted,
                          ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -35,8 +35,11 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
 #include "ss_local.h"
+
+SS_BEGIN_DECLS
 
 #define SS_REF_EXACT_TOL 1e-9 /* absolute tolerance for exact quoted values */
 
@@ -104,5 +107,7 @@ int ss_report_ref_quantity(const char *name, int *index);
  * name or NULL when the scheme reads none). */
 int ss_report_ref_applies(const ss_ref_row *r, const char *scheme, ss_case_kind kind,
                           int k, const char *diagonals);
+
+SS_END_DECLS
 
 #endif

@@ -26,7 +26,10 @@
 
 #include <json-c/json.h>
 
+#include "ss_api.h"
 #include "ss_store.h"
+
+SS_BEGIN_DECLS
 
 /* One case, copied out of the store. */
 typedef struct {
@@ -135,5 +138,7 @@ json_object *ss_report_eig_json(const ss_result *r);
  * `analyze --format json` (DESIGN section 7); certified says whether it is
  * proven (ss_result).  The caller owns it and may add keys. */
 json_object *ss_report_verdict_json(const ss_verdict *v, int certified);
+
+SS_END_DECLS
 
 #endif

@@ -31,8 +31,11 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ss_api.h"
 #include "ss_diag.h"
 #include "ss_result.h"
+
+SS_BEGIN_DECLS
 
 #define SS_STORE_APP_ID 0x53537370 /* "SSsp" */
 #define SS_STORE_SCHEMA 2
@@ -155,5 +158,7 @@ typedef struct {
  * which file); SS_ENOMEM. */
 ss_status ss_store_merge(ss_store *st, const char *src, ss_store_prefer prefer,
                          ss_store_merge_stats *stats, ss_error *err);
+
+SS_END_DECLS
 
 #endif

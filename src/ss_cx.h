@@ -27,7 +27,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 typedef uint32_t ss_idx; /* vertex index: complexes hold at most 2^32-2 vertices */
 #define SS_IDX_NONE UINT32_MAX
@@ -160,5 +163,7 @@ int ss_cx_cell_flat(const ss_cx *cx, ss_cell_type t, const ss_idx *v);
  *    flat.
  * SS_EINPUT naming the first bad cell (1-based, by type). */
 ss_status ss_cx_check_orientation(const ss_cx *cx, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -48,7 +48,10 @@
 #ifndef SS_DIAG_H
 #define SS_DIAG_H
 
+#include "ss_api.h"
 #include "ss_cx.h"
+
+SS_BEGIN_DECLS
 
 typedef enum {
   SS_DIAG_BFS = 0, /* Algorithm 2 (the default) */
@@ -72,5 +75,7 @@ ss_status ss_diag_choose(ss_cx *cx, ss_diag_mode m, ss_idx v0, ss_idx v1, ss_err
  * SS_ENOMEM.  Cost O(c log c) in the number of cells. */
 ss_status ss_diag_improper(const ss_cx *cx, size_t *pairs, size_t *improper,
                            ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -9,6 +9,10 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
+
+SS_BEGIN_DECLS
+
 typedef enum {
   SS_OK = 0,    /* success */
   SS_ENOMEM,    /* an allocation failed */
@@ -48,5 +52,7 @@ ss_status ss_error_nomem(ss_error *err, const char *what);
 
 /* A short constant name of a status ("ok", "out of memory", ...). */
 const char *ss_status_name(ss_status st);
+
+SS_END_DECLS
 
 #endif

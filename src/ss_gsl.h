@@ -15,6 +15,10 @@
 
 #include <gsl/gsl_spmatrix.h>
 
+#include "ss_api.h"
+
+SS_BEGIN_DECLS
+
 /* Make GSL's error handler safe for the library as described above.
  * Idempotent and thread-safe; the allocation below calls it first. */
 void ss_gsl_init(void);
@@ -23,5 +27,7 @@ void ss_gsl_init(void);
  * ss_gsl_init (GSL wants room for one entry even in an empty matrix; nrows and
  * ncols must be at least 1): NULL when memory is short, never an abort. */
 gsl_spmatrix *ss_gsl_csr_alloc(size_t nrows, size_t ncols, size_t nnz);
+
+SS_END_DECLS
 
 #endif

@@ -23,7 +23,10 @@
 
 #include <stdio.h>
 
+#include "ss_api.h"
 #include "ss_cx.h"
+
+SS_BEGIN_DECLS
 
 typedef enum {
   SS_MESH_AUTO = 0, /* choose by file name extension */
@@ -104,5 +107,7 @@ ss_status ss_mesh_write_medit(FILE *f, const ss_cx *cx, const ss_mesh_write_opts
                               ss_error *err);
 ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, ss_error *err);
 ss_status ss_mesh_write_obj(FILE *f, const ss_cx *cx, ss_error *err);
+
+SS_END_DECLS
 
 #endif

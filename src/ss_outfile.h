@@ -24,7 +24,10 @@
 
 #include <stdio.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 /* An output file being written (opaque). */
 typedef struct ss_outfile ss_outfile;
@@ -61,5 +64,7 @@ void ss_outfile_abort(ss_outfile *o);
  * makes every write fail with it.  fclose closes fd.  fileno() is -1 on it.
  * NULL (errno set) without memory. */
 FILE *ss_outfile_fdopen(int fd, int *errnum);
+
+SS_END_DECLS
 
 #endif

@@ -7,6 +7,10 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
+
+SS_BEGIN_DECLS
+
 /* One step of a phase: `phase` names it ("refining the star", "eigen-solve
  * outer blocks", ...), done of total steps are finished (total 0: unknown).
  * Called from the computing thread; phase is a constant string. */
@@ -23,5 +27,7 @@ static inline void ss_progress_step(const ss_progress *p, const char *phase, siz
                                     size_t total) {
   if (p && p->fn) p->fn(p->ctx, phase, done, total);
 }
+
+SS_END_DECLS
 
 #endif

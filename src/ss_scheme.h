@@ -28,8 +28,11 @@
 
 #include <gsl/gsl_spmatrix.h>
 
+#include "ss_api.h"
 #include "ss_cx.h"
 #include "ss_split.h"
+
+SS_BEGIN_DECLS
 
 typedef struct ss_scheme ss_scheme; /* opaque; immutable once built, so threads
                                        may share one */
@@ -170,5 +173,7 @@ ss_status ss_scheme_explain_nonfinite(const ss_scheme *s, const ss_cx *input, in
  * explained by ss_scheme_explain_nonfinite. */
 ss_status ss_scheme_refine_levels(const ss_scheme *s, const ss_cx *coarse, int levels,
                                   ss_cx **fine, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -49,7 +49,10 @@
 
 #include <gsl/gsl_spmatrix.h>
 
+#include "ss_api.h"
 #include "ss_cx.h"
+
+SS_BEGIN_DECLS
 
 typedef enum {
   SS_SPLIT_MULTILINEAR = 0, /* vertices, segments, quads, hexes */
@@ -91,5 +94,7 @@ void ss_split_free(ss_split *L);
 /* L as a new nfine x ncoarse CSR matrix (caller frees with gsl_spmatrix_free).
  * SS_ENOMEM. */
 ss_status ss_split_matrix(const ss_split *L, gsl_spmatrix **out, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -32,7 +32,10 @@
 
 #include <stdint.h>
 
+#include "ss_api.h"
 #include "ss_scheme.h"
+
+SS_BEGIN_DECLS
 
 /* Read the stencil file at path and build its scheme (*out, caller frees with
  * ss_scheme_free; named by the file's `name`).  If identity is not NULL it
@@ -45,5 +48,7 @@ ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
 /* As ss_stencil_load, from the text of a file; `where` names it in messages. */
 ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
                            ss_error *err);
+
+SS_END_DECLS
 
 #endif

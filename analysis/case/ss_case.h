@@ -24,11 +24,14 @@
 #ifndef SS_CASE_H
 #define SS_CASE_H
 
+#include "ss_api.h"
 #include "ss_diag.h"
 #include "ss_error.h"
 #include "ss_link.h"
 #include "ss_scheme.h"
 #include "ss_star.h"
+
+SS_BEGIN_DECLS
 
 typedef enum {
   SS_CASE_VERTEX = 0,     /* a 3D vertex with a link */
@@ -98,5 +101,7 @@ ss_status ss_case_cell(const ss_scheme *s, ss_case_kind kind, ss_cell_type *t,
  * case with a multilinear split) or the valence is out of range. */
 ss_status ss_case_star(const ss_scheme *s, const ss_case *c, ss_star **out,
                        ss_error *err);
+
+SS_END_DECLS
 
 #endif

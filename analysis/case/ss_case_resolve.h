@@ -12,7 +12,10 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_case.h"
+
+SS_BEGIN_DECLS
 
 /* A case as asked, as analysed and as reported. */
 typedef struct {
@@ -49,5 +52,7 @@ ss_status ss_case_resolved_star(const ss_scheme *s, ss_case_resolved *r,
 
 /* Release what r owns and zero it.  NULL is a no-op. */
 void ss_case_resolved_clear(ss_case_resolved *r);
+
+SS_END_DECLS
 
 #endif

@@ -20,10 +20,13 @@
 #ifndef SS_CERTIFY_H
 #define SS_CERTIFY_H
 
+#include "ss_api.h"
 #include "ss_charmap.h"
 #include "ss_eig.h"
 #include "ss_exact.h"
 #include "ss_local.h"
+
+SS_BEGIN_DECLS
 
 /* What the exact path adds to one case. */
 typedef struct {
@@ -54,5 +57,7 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
                               const ss_eig *e, const ss_charmap_opts *o, int certify,
                               ss_charmap **cm, ss_regularity *reg, ss_charmap_inj *inj,
                               ss_certified *out, ss_exact **x, ss_error *err);
+
+SS_END_DECLS
 
 #endif

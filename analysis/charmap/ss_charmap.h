@@ -48,9 +48,12 @@
 #ifndef SS_CHARMAP_H
 #define SS_CHARMAP_H
 
+#include "ss_api.h"
 #include "ss_eig.h"
 #include "ss_jac.h"
 #include "ss_local.h"
+
+SS_BEGIN_DECLS
 
 /* The characteristic map's control net on the two-ring. */
 typedef struct {
@@ -302,5 +305,7 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
                              const double *hi, int m, long maxden,
                              const ss_charmap_opts *o, ss_regularity *r,
                              ss_charmap_inj *inj, ss_error *err);
+
+SS_END_DECLS
 
 #endif

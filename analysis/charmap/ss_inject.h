@@ -76,9 +76,12 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_cx.h"
 #include "ss_eig.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 /* What the test found. */
 typedef struct {
@@ -130,5 +133,7 @@ ss_status ss_inject_test_parts(const double *x, int dim, size_t n,
                                const ss_cell_type *ctype, const size_t *corner,
                                size_t ncells, size_t centre, int parts,
                                ss_injectivity *out, ss_error *err);
+
+SS_END_DECLS
 
 #endif

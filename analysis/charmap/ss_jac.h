@@ -64,7 +64,10 @@
 #ifndef SS_JAC_H
 #define SS_JAC_H
 
+#include "ss_api.h"
 #include "ss_cx.h"
+
+SS_BEGIN_DECLS
 
 /* The verdict for one cell. */
 typedef enum {
@@ -127,5 +130,7 @@ void ss_jac_cell_interval(ss_cell_type t, const double *lo, const double *hi, in
  * at the parameter point (u, v, w) in [0,1]^3: the reference value the
  * Bernstein test bounds (for tests and pictures). */
 double ss_jac_hex_at(const double *x, double u, double v, double w);
+
+SS_END_DECLS
 
 #endif

@@ -57,11 +57,14 @@
 #ifndef SS_LOCAL_H
 #define SS_LOCAL_H
 
+#include "ss_api.h"
 #include "ss_case.h"
 #include "ss_error.h"
 #include "ss_progress.h"
 #include "ss_scheme.h"
 #include "ss_star.h"
+
+SS_BEGIN_DECLS
 
 #define SS_LOCAL_MAXRING 4 /* ring levels at most (ss_local_new_ring) */
 #define SS_LOCAL_RING    2 /* ring levels of ss_local_new (no extra refinement) */
@@ -288,5 +291,7 @@ void ss_local_workspace_free(ss_local_workspace *w);
  * NULL: as ss_local_new_opts. */
 ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_opts *o,
                           ss_local_workspace *w, ss_local **out, ss_error *err);
+
+SS_END_DECLS
 
 #endif

@@ -71,7 +71,10 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 typedef enum {
   SS_JSR_NORM_INF = 0,       /* maximum absolute row sum (the tet/oct paper's norm) */
@@ -169,5 +172,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
 
 /* Free the arrays of r and zero it; NULL-safe. */
 void ss_jsr_result_clear(ss_jsr_result *r);
+
+SS_END_DECLS
 
 #endif

@@ -70,9 +70,12 @@
 #ifndef SS_LEVIN_H
 #define SS_LEVIN_H
 
+#include "ss_api.h"
 #include "ss_jsr.h"
 #include "ss_local.h"
 #include "ss_verdict.h"
+
+SS_BEGIN_DECLS
 
 #define SS_LEVIN_MAXMAPS 4 /* sub-patches at most (the face) */
 
@@ -134,5 +137,7 @@ void ss_levin_verdict(const ss_levin *L, const ss_jsr_result *r, ss_verdict *v);
 
 /* Free; NULL is a no-op. */
 void ss_levin_free(ss_levin *L);
+
+SS_END_DECLS
 
 #endif

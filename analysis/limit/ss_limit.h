@@ -84,9 +84,12 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_cx.h"
 #include "ss_error.h"
 #include "ss_scheme.h"
+
+SS_BEGIN_DECLS
 
 typedef struct ss_limit ss_limit; /* opaque: the mesh, its adjacency and the caches */
 
@@ -162,5 +165,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
  * being [0,1]^3.  jac (may be NULL) receives rows d/du, d/dv, d/dw. */
 void ss_limit_bspline(const double (*net)[3], double u, double v, double w, double p[3],
                       double jac[3][3]);
+
+SS_END_DECLS
 
 #endif

@@ -31,6 +31,7 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_case_resolve.h"
 #include "ss_certify.h"
 #include "ss_charmap.h"
@@ -38,6 +39,8 @@
 #include "ss_exact.h"
 #include "ss_local.h"
 #include "ss_verdict.h"
+
+SS_BEGIN_DECLS
 
 /* How far a pipeline has run, or is to run. */
 typedef enum {
@@ -153,5 +156,7 @@ ss_status ss_pipeline_compute(const ss_scheme *s, const ss_case *c,
 
 /* Free; NULL is a no-op. */
 void ss_pipeline_free(ss_pipeline *p);
+
+SS_END_DECLS
 
 #endif

@@ -14,10 +14,13 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_charmap.h"
 #include "ss_eig.h"
 #include "ss_local.h"
 #include "ss_pipeline.h"
+
+SS_BEGIN_DECLS
 
 #define SS_RESULT_NEIG 16 /* leading eigenvalues kept (lambda0 first) */
 
@@ -124,5 +127,7 @@ int ss_result_certified(const ss_result *r);
 
 /* Release r's link text and zero r.  NULL is a no-op. */
 void ss_result_clear(ss_result *r);
+
+SS_END_DECLS
 
 #endif

@@ -58,9 +58,12 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
 #include "ss_progress.h"
 #include "ss_verdict.h"
+
+SS_BEGIN_DECLS
 
 /* One eigenvalue of S. */
 typedef struct {
@@ -163,5 +166,7 @@ void ss_eig_free(ss_eig *e);
  * with right eigenvectors: the reference the benchmark compares against.
  * re, im receive n values each (unsorted).  SS_ENUMERIC, SS_ENOMEM. */
 ss_status ss_eig_dense(const double *S, size_t n, double *re, double *im, ss_error *err);
+
+SS_END_DECLS
 
 #endif

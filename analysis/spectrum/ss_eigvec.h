@@ -36,7 +36,10 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 /* The k leading eigenpairs of S. */
 typedef struct {
@@ -66,5 +69,7 @@ void ss_eigvec_free(ss_eigvec *v);
  * real, and its right vector constant (r_0 = 1 within tol); then column 0 of
  * left_re is the limit-position mask. */
 int ss_eigvec_has_limit(const ss_eigvec *v, double tol);
+
+SS_END_DECLS
 
 #endif

@@ -113,8 +113,11 @@
 
 #include <stddef.h>
 
+#include "ss_api.h"
 #include "ss_eig.h"
 #include "ss_error.h"
+
+SS_BEGIN_DECLS
 
 typedef struct ss_exact ss_exact; /* opaque: FLINT matrices, factors, balls */
 
@@ -198,5 +201,7 @@ int ss_exact_entry(const ss_exact *x, size_t i, size_t j, long long *p, long lon
  * terms (q > 0), else 0.  The same reconstruction ss_exact_new applies to S,
  * for callers that need other rows of the rule exactly. */
 int ss_exact_rational(double s, long maxden, long long *p, long long *q);
+
+SS_END_DECLS
 
 #endif

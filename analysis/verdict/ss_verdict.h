@@ -14,6 +14,10 @@
 #ifndef SS_VERDICT_H
 #define SS_VERDICT_H
 
+#include "ss_api.h"
+
+SS_BEGIN_DECLS
+
 typedef enum { SS_PASS = 0, SS_FAIL, SS_UNDECIDED } ss_verdict_kind;
 
 /* What a verdict is a statement about. */
@@ -63,5 +67,7 @@ ss_verdict_kind ss_verdicts_combined(const ss_verdicts *v);
  * predicates on the double-precision net, not proven), a failure when a
  * verdict that fails is; 0 for undecided. */
 int ss_verdicts_certified(const ss_verdicts *v);
+
+SS_END_DECLS
 
 #endif

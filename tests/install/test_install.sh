@@ -1,12 +1,21 @@
 #!/usr/bin/env bash
 # test_install.sh BUILD SRC EXAMPLE PREFIX LIBDIR DATADIR BINDIR MANDIR INCLUDEDIR
-#                 PYDIR PYTEST SANITIZE
+#                 PYDIR PYTEST SANITIZE CXXPROG CHECKEXPORTS
 #
 # The installed library as a user meets it (issue 21): `meson install` into a
 # staging folder (DESTDIR), then
 #  - every public header compiles alone from #include <subspectra/NAME.h> with
 #    the installed pkg-config file's --cflags (nothing includes a header that
-#    is not installed);
+#    is not installed), in C and in C++;
+#  - the library boundary (issue 33): the C++ program CXXPROG
+#    (tests/install/cxx_link.cpp) includes every installed header, is built
+#    with g++ and `pkg-config --cflags --libs subspectra`, linked shared, and
+#    run (closed forms of the MLCA edge 4, its own checks); ss_version() ==
+#    SS_VERSION_STRING == pkg-config --modversion; `nm -D --defined-only` of
+#    the installed libsubspectra.so is exactly the functions the installed
+#    headers declare, all ss_ (CHECKEXPORTS, tests/install/check_exports.sh),
+#    and the checker fails on doctored lists (an undeclared name, an
+#    unprefixed one, a missing one, none at all);
 #  - the C example examples/analyze_edge.c compiled with
 #    `pkg-config --cflags --libs subspectra`, linked against the shared library
 #    (and run with it: LD_LIBRARY_PATH, the binary must need libsubspectra.so)
@@ -27,7 +36,7 @@
 #    empty when not built), through test_python.py (PYTEST).
 set -u
 build=$1 src=$2 example=$3 prefix=$4 libdir=$5 datadir=$6 bindir=$7 mandir=$8 incdir=$9
-pydir=${10} pytest=${11} sanitize=${12}
+pydir=${10} pytest=${11} sanitize=${12} cxxprog=${13} checkexports=${14}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -75,11 +84,14 @@ echo "cflags: $pc_cflags"
 echo "libs: $pc_libs"
 echo "static libs: $pc_static"
 cc=${CC:-cc}
+cxx=${CXX:-c++}
 cflags=(-std=c11 -Wall -Wextra -Wpedantic -Werror)
+cxxflags=(-std=c++17 -Wall -Wextra -Wpedantic -Werror)
 # a sanitizer build's library needs its runtime in the programs that load it
 pyenv=()
 if [ "$sanitize" = true ]; then
   cflags+=(-fsanitize=address,undefined -fno-omit-frame-pointer)
+  cxxflags+=(-fsanitize=address,undefined -fno-omit-frame-pointer)
   pyenv=(LD_PRELOAD="$("$cc" -print-file-name=libasan.so) $("$cc" -print-file-name=libubsan.so)"
     ASAN_OPTIONS=detect_leaks=0) # the interpreter's own allocations are not ours
 fi
@@ -91,9 +103,67 @@ for h in "$INC"/subspectra/*.h; do
   # shellcheck disable=SC2086 # pkg-config's output is a word list
   "$cc" "${cflags[@]}" -fsyntax-only $pc_cflags "$tmp/h.c" 2>"$tmp/h.log" ||
     fail "header ${h##*/} does not compile alone: $(head -3 "$tmp/h.log")"
+  cp "$tmp/h.c" "$tmp/h.cpp"
+  # shellcheck disable=SC2086
+  "$cxx" "${cxxflags[@]}" -fsyntax-only $pc_cflags "$tmp/h.cpp" 2>"$tmp/h.log" ||
+    fail "header ${h##*/} does not compile alone in C++: $(head -3 "$tmp/h.log")"
+  printf '#include <subspectra/%s>\n' "${h##*/}" >>"$tmp/ss_all_headers.h"
   nh=$((nh + 1))
 done
-[ "$nh" -ge 10 ] && ok "$nh public headers compile alone" || fail "only $nh headers"
+[ "$nh" -ge 10 ] && ok "$nh public headers compile alone (C and C++)" || fail "only $nh headers"
+
+# C++: every installed header in one program, linked shared, run
+# shellcheck disable=SC2086
+if "$cxx" "${cxxflags[@]}" -I"$tmp" -o "$tmp/cxx_link" "$cxxprog" $pc_cflags $pc_libs \
+  2>"$tmp/cxx.log"; then
+  ok "C++ program compiled and linked against the shared library"
+  readelf -d "$tmp/cxx_link" 2>/dev/null | grep -q 'NEEDED.*libsubspectra\.so' ||
+    fail "the C++ program does not need libsubspectra.so"
+  out=$(cd "$tmp" && LD_LIBRARY_PATH=$L "$tmp/cxx_link" 2>&1) || fail "cxx_link: exit $?"
+  echo "$out" | sed 's|^|  cxx_link: |'
+  echo "$out" | grep -q '^FAIL' && fail "cxx_link: a check failed"
+  [ "$(echo "$out" | grep -c '^ok: ')" -ge 8 ] || fail "cxx_link: too few checks ran"
+  modversion=$(pkg-config --modversion subspectra)
+  libversion=$(echo "$out" | awk '$1 == "version" { print $2 }')
+  if [ -n "$modversion" ] && [ "$libversion" = "$modversion" ]; then
+    ok "ss_version() $libversion == pkg-config --modversion $modversion"
+  else
+    fail "ss_version() '$libversion' != pkg-config --modversion '$modversion'"
+  fi
+else
+  fail "C++ program does not compile or link: $(head -5 "$tmp/cxx.log")"
+fi
+
+# the export list: exactly the declared ss_ functions; the checker itself on
+# doctored lists, so that it cannot pass vacuously
+# shellcheck disable=SC2086
+exports() { bash "$checkexports" "$1" "$INC" "$cc" $pc_cflags; }
+nm -D --defined-only "$L/libsubspectra.so" >"$tmp/nm.txt" || fail "nm -D"
+echo "exported: $(wc -l <"$tmp/nm.txt") symbols"
+if exports "$tmp/nm.txt" >"$tmp/exports.log" 2>&1; then
+  cat "$tmp/exports.log"
+else
+  fail "export list: $(grep -c FAIL "$tmp/exports.log") offenders:
+$(head -20 "$tmp/exports.log")"
+fi
+# (doctored: NAME, the check that must fail, what it must say)
+doctored() {
+  if exports "$tmp/fake.txt" >"$tmp/fake.log" 2>&1; then
+    fail "check_exports passed a list with $1"
+  elif ! grep -qF "$2" "$tmp/fake.log"; then
+    fail "check_exports on a list with $1 did not say '$2': $(head -3 "$tmp/fake.log")"
+  else
+    ok "check_exports fails on a list with $1"
+  fi
+}
+{ cat "$tmp/nm.txt" && echo "0000000000001000 T ss_fake_undeclared"; } >"$tmp/fake.txt"
+doctored "an undeclared ss_ name" "declared in no installed header: ss_fake_undeclared"
+{ cat "$tmp/nm.txt" && echo "0000000000001000 T lim_step"; } >"$tmp/fake.txt"
+doctored "an unprefixed name" "without the ss_ prefix: lim_step"
+grep -v ' ss_version$' "$tmp/nm.txt" >"$tmp/fake.txt"
+doctored "ss_version hidden" "not exported: ss_version"
+: >"$tmp/fake.txt"
+doctored "no symbol" "the export list is empty"
 
 # the example, shared
 # shellcheck disable=SC2086
