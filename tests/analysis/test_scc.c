@@ -23,9 +23,9 @@
  *   - Tarjan's low-link taken over a cross edge to a node no longer on the
  *     stack (`on[w] &&` dropped): merges components that do not reach each
  *     other back -> "shared component without mutual reach";
- *   - components emitted in reverse order (cid = n - 1 - c): edge order
- *     check fails;
- *   - mid[] placed before the first column >= n1 is reached: the csr check. */
+ *   - the components numbered backwards in cid (n - 1 - c): cid no longer
+ *     agrees with comp and start;
+ *   - mid[] set one column early (j + 1 >= n1): the compressed-rows check. */
 #include <stdlib.h>
 #include <string.h>
 
