@@ -66,10 +66,9 @@ static edge *edge_at(edges *E, ss_idx a, ss_idx b) {
   return E->e + E->n++;
 }
 
-/* Kinds (SS_SMOOTH, SS_CREASE, SS_CORNER) and edge counts of the coarse
- * vertices of cx (faces of type face), by ss_crease.h's rule. */
-static void rule(const ss_cx *cx, ss_cell_type face, unsigned char *kind,
-                 unsigned *nedge) {
+/* The edges of cx's faces (of type face) and segments, with their face
+ * counts and segment marks. */
+static edges edge_table(const ss_cx *cx, ss_cell_type face) {
   edges E = {0, 0, NULL};
   const int fn = ss_cell_nverts(face);
   for (size_t c = 0; c < cx->nc[face]; c++) {
@@ -81,6 +80,14 @@ static void rule(const ss_cx *cx, ss_cell_type face, unsigned char *kind,
     const ss_idx *v = ss_cx_cell(cx, SS_SEGMENT, c);
     edge_at(&E, v[0], v[1])->segment = 1;
   }
+  return E;
+}
+
+/* Kinds (SS_SMOOTH, SS_CREASE, SS_CORNER) and edge counts of the coarse
+ * vertices of cx (faces of type face), by ss_crease.h's rule. */
+static void rule(const ss_cx *cx, ss_cell_type face, unsigned char *kind,
+                 unsigned *nedge) {
+  edges E = edge_table(cx, face);
   unsigned *ncrease = calloc(cx->nv, sizeof *ncrease),
            *nodd = calloc(cx->nv, sizeof *nodd);
   memset(nedge, 0, cx->nv * sizeof *nedge);
@@ -135,17 +142,8 @@ static unsigned char *compare(const ss_cx *cx, ss_cell_type face, const char *wh
   CHECK(bad_edges == 0, "%s: %zu vertices with the wrong edge count", what, bad_edges);
   /* fine vertices: face counts (each coarse face puts one child at its
    * corners, children_at_edge at its edge midpoints) and sharp midpoints */
-  edges E = {0, 0, NULL};
+  edges E = edge_table(cx, face);
   const int fn = ss_cell_nverts(face);
-  for (size_t f = 0; f < cx->nc[face]; f++) {
-    const ss_idx *v = ss_cx_cell(cx, face, f);
-    for (int k = 0; k < fn; k++)
-      edge_at(&E, v[k], v[(k + 1) % fn])->nfaces++;
-  }
-  for (size_t s = 0; s < cx->nc[SS_SEGMENT]; s++) {
-    const ss_idx *v = ss_cx_cell(cx, SS_SEGMENT, s);
-    edge_at(&E, v[0], v[1])->segment = 1;
-  }
   unsigned *faces_at = calloc(nv, sizeof *faces_at);
   for (size_t f = 0; f < cx->nc[face]; f++)
     for (int k = 0; k < fn; k++)
