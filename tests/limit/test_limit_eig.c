@@ -1,0 +1,332 @@
+/* test_limit_eig.c — the eigen-decomposition of a stationary run's matrix and
+ * its powers (lim_eig, ss_limit_eig.c), against constructions and repeated
+ * multiplication done here.
+ *
+ * Properties:
+ *   - W = T D T^-1 with D real block diagonal (1, a rotation block of
+ *     modulus 0.6, 0.5, -0.45, 0.3, 0.2, -0.1): the eigenvalues are D's, the
+ *     real eigenvector matrix reconstructs W (W x = lambda x for real
+ *     eigenvalues, W [x y] = [x y] [a b; -b a] for a pair a + ib), V V^-1 =
+ *     I, the eigenvalue 1 is found (`one`) and `second` = 0.6;
+ *     lim_eig_coef solves V C = P;
+ *   - powers: W^m P by lim_eig_power equals m repeated products (m = 0, 1,
+ *     2, 7, 40) and, with the shift split off, P' + shift row by row; the
+ *     limit (m < 0) equals W^(2^16) P formed here by squaring;
+ *   - averaging matrices (positive, rows summing to 1, as the evaluator's
+ *     runs are): the limit gives every point the same position, pi^T P with
+ *     pi the left eigenvector of 1 (power iteration on W^T, here);
+ *   - a Jordan block (defective W): the decomposition is refused for the
+ *     powers W^(2^i) (pw set, why says so), which give W^m P for m up to
+ *     4095 equal to repeated products and the limit; m = 4096 is refused;
+ *   - no limit when 1 is not simple (two closed classes) or another
+ *     eigenvalue has modulus 1 (a 2-cycle: -1): one = SIZE_MAX and
+ *     lim_eig_power(m < 0) is SS_ENUMERIC, finite powers still exact.
+ * Mutations this catches (tried by hand: the report of issue 33):
+ *   - the rotation of a complex pair's coefficients with the sign of sin
+ *     flipped in the second row: W^m P differs from repeated products;
+ *   - the limit keeping every component instead of only the eigenvalue-1
+ *     one: the limit differs from W^(2^16) P;
+ *   - the shift's mean of the eigenvector without the division by K: P' +
+ *     shift differs from W^m P. */
+#include <complex.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_rng.h>
+
+#include "ss_limit.h"
+#include "ss_limit_impl.h"
+#include "ss_test.h"
+
+enum { KMAX = 12 };
+
+/* c = a b, K x K row-major (c may alias neither). */
+static void matmul(size_t K, const double *a, const double *b, double *c) {
+  for (size_t i = 0; i < K; i++)
+    for (size_t j = 0; j < K; j++) {
+      double s = 0.0;
+      for (size_t k = 0; k < K; k++)
+        s += a[i * K + k] * b[k * K + j];
+      c[i * K + j] = s;
+    }
+}
+
+/* P <- W P (K x 3), m times. */
+static void repeat(const double *W, size_t K, long m, double *P) {
+  double Q[KMAX * 3];
+  for (long s = 0; s < m; s++) {
+    for (size_t i = 0; i < K; i++)
+      for (int d = 0; d < 3; d++) {
+        double v = 0.0;
+        for (size_t j = 0; j < K; j++)
+          v += W[i * K + j] * P[j * 3 + (size_t)d];
+        Q[i * 3 + (size_t)d] = v;
+      }
+    memcpy(P, Q, K * 3 * sizeof *P);
+  }
+}
+
+/* P <- W^(2^16) P by squaring W: the limit of a convergent run whose other
+ * eigenvalues are below 0.99 in modulus (0.99^65536 < 1e-280), while the
+ * rounding of the eigenvalue 1 grows only to about 65536 eps. */
+static void limit_by_squaring(const double *W, size_t K, double *P) {
+  double A[KMAX * KMAX], B[KMAX * KMAX];
+  memcpy(A, W, K * K * sizeof *A);
+  for (int s = 0; s < 16; s++) {
+    matmul(K, A, A, B);
+    memcpy(A, B, K * K * sizeof *A);
+  }
+  repeat(A, K, 1, P);
+}
+
+static double maxdiff(const double *a, const double *b, size_t n) {
+  double m = 0.0;
+  for (size_t i = 0; i < n; i++)
+    m = fmax(m, fabs(a[i] - b[i]));
+  return m;
+}
+
+static void points(gsl_rng *r, size_t K, double *P) {
+  for (size_t i = 0; i < K * 3; i++)
+    P[i] = 2.0 * gsl_rng_uniform(r) - 1.0;
+}
+
+/* Powers, shift and limit of e against repeated products of W. */
+static void check_powers(const lim_eig *e, const double *W, size_t K, gsl_rng *r,
+                         long mmax, int limit, const char *what) {
+  const long ms[6] = {0, 1, 2, 7, 40, 4095};
+  ss_error err = {0};
+  for (int t = 0; t < 6 && ms[t] <= mmax; t++) {
+    double P[KMAX * 3], Q[KMAX * 3], R[KMAX * 3], shift[3];
+    points(r, K, P);
+    memcpy(Q, P, sizeof Q);
+    memcpy(R, P, sizeof R);
+    repeat(W, K, ms[t], Q);
+    REQUIRE_OK_VOID(lim_eig_power(e, ms[t], P, NULL, &err), &err);
+    CHECK(maxdiff(P, Q, K * 3) <= 1e-12, "%s: W^%ld P off by %g", what, ms[t],
+          maxdiff(P, Q, K * 3));
+    REQUIRE_OK_VOID(lim_eig_power(e, ms[t], R, shift, &err), &err);
+    for (size_t i = 0; i < K; i++)
+      for (int d = 0; d < 3; d++)
+        R[i * 3 + (size_t)d] += shift[d];
+    CHECK(maxdiff(R, Q, K * 3) <= 1e-12, "%s: W^%ld P = P' + shift off by %g", what,
+          ms[t], maxdiff(R, Q, K * 3));
+  }
+  if (!limit) return;
+  double P[KMAX * 3], Q[KMAX * 3];
+  points(r, K, P);
+  memcpy(Q, P, sizeof Q);
+  limit_by_squaring(W, K, Q);
+  REQUIRE_OK_VOID(lim_eig_power(e, -1, P, NULL, &err), &err);
+  CHECK(maxdiff(P, Q, K * 3) <= 1e-10, "%s: limit off by %g", what, maxdiff(P, Q, K * 3));
+}
+
+/* W = T D T^-1, D (K x K) with its eigenvalue 1 at (0, 0) and e_0 its
+ * eigenvector; T unit lower triangular with a first column of ones (T e_0 =
+ * 1), so W 1 = 1: rows summing to 1, as a run's matrix's. */
+static void similar(size_t K, const double *D, double *W) {
+  double T[KMAX * KMAX], Ti[KMAX * KMAX], A[KMAX * KMAX];
+  for (size_t i = 0; i < K; i++)
+    for (size_t j = 0; j < K; j++)
+      T[i * K + j] = i == j || j == 0 ? 1.0
+                     : j < i          ? 0.25 * (double)((i + 3 * j) % 5) - 0.4
+                                      : 0.0;
+  for (size_t j = 0; j < K; j++) /* T^-1 by forward substitution */
+    for (size_t i = 0; i < K; i++) {
+      double v = i == j ? 1.0 : 0.0;
+      for (size_t q = 0; q < i; q++)
+        v -= T[i * K + q] * Ti[q * K + j];
+      Ti[i * K + j] = v;
+    }
+  matmul(K, T, D, A);
+  matmul(K, A, Ti, W);
+}
+
+static void test_diagonalisable(gsl_rng *r) {
+  enum { K = 8 };
+  const double rho = 0.6, th = 0.7;
+  double D[K * K] = {0}, W[K * K];
+  const double reals[K] = {1.0, 0, 0, 0.5, -0.45, 0.3, 0.2, -0.1};
+  for (int i = 0; i < K; i++)
+    D[i * K + i] = reals[i];
+  D[1 * K + 1] = D[2 * K + 2] = rho * cos(th);
+  D[1 * K + 2] = rho * sin(th), D[2 * K + 1] = -rho * sin(th);
+  similar(K, D, W);
+  lim_eig *e = NULL;
+  ss_error err = {0};
+  REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+  CHECK(e->ok && !e->pw && e->cond <= SS_LIMIT_MAXCOND, "diagonalisable: pw %p, cond %g",
+        (void *)e->pw, e->cond);
+  /* the eigenvalues: D's */
+  const double complex want[K] = {1.0,
+                                  CMPLX(rho * cos(th), rho * sin(th)),
+                                  CMPLX(rho * cos(th), -rho * sin(th)),
+                                  0.5,
+                                  -0.45,
+                                  0.3,
+                                  0.2,
+                                  -0.1};
+  unsigned char used[K] = {0};
+  double worst = 0.0;
+  for (int i = 0; i < K; i++) {
+    int best = -1;
+    double bd = INFINITY;
+    for (int j = 0; j < K; j++)
+      if (!used[j] && cabs(e->lam[j] - want[i]) < bd)
+        bd = cabs(e->lam[j] - want[i]), best = j;
+    used[best] = 1;
+    worst = fmax(worst, bd);
+  }
+  CHECK(worst <= 1e-12, "diagonalisable: eigenvalues off by %g", worst);
+  CHECK(e->one < K && cabs(e->lam[e->one] - 1.0) <= 1e-12 &&
+            fabs(e->second - rho) <= 1e-12,
+        "diagonalisable: one %zu, second %.17g", e->one, e->second);
+  /* W V = V Lambda in the real block form, and V V^-1 = I */
+  double res = 0.0, inv = 0.0;
+  int pairs = 0;
+  for (size_t j = 0; j < K; j++) {
+    const double *x = e->V + j * K, *y = e->V + (j + 1) * K;
+    const double a = creal(e->lam[j]), b = cimag(e->lam[j]);
+    for (size_t i = 0; i < K; i++) {
+      double wx = 0.0, wy = 0.0;
+      for (size_t q = 0; q < K; q++) {
+        wx += W[i * K + q] * x[q];
+        if (e->pair[j] == 1) wy += W[i * K + q] * y[q];
+      }
+      if (e->pair[j] == 1) {
+        res = fmax(res, fabs(wx - (a * x[i] - b * y[i])));
+        res = fmax(res, fabs(wy - (b * x[i] + a * y[i])));
+      } else if (e->pair[j] == 0) {
+        res = fmax(res, fabs(wx - a * x[i]));
+      }
+    }
+    pairs += e->pair[j] == 1;
+    CHECK(e->pair[j] != 1 || (j + 1 < K && e->pair[j + 1] == 2 &&
+                              cabs(e->lam[j + 1] - conj(e->lam[j])) <= 1e-14),
+          "diagonalisable: pair %zu not followed by its conjugate", j);
+    for (size_t i = 0; i < K; i++) {
+      double s = 0.0;
+      for (size_t q = 0; q < K; q++)
+        s += e->V[q * K + i] * e->Vinv[j * K + q]; /* (V V^-1)[i][j] */
+      inv = fmax(inv, fabs(s - (i == j)));
+    }
+  }
+  CHECK(pairs == 1 && res <= 1e-12, "diagonalisable: %d pairs, |W V - V Lambda| = %g",
+        pairs, res);
+  CHECK(inv <= 1e-12 * e->cond, "diagonalisable: |V V^-1 - I| = %g", inv);
+  /* coefficients: V C = P */
+  double P[K * 3], C[K * 3], VC[K * 3] = {0};
+  points(r, K, P);
+  lim_eig_coef(e, P, C);
+  for (size_t i = 0; i < K; i++)
+    for (size_t j = 0; j < K; j++)
+      for (int d = 0; d < 3; d++)
+        VC[i * 3 + (size_t)d] += e->V[j * K + i] * C[j * 3 + (size_t)d];
+  CHECK(maxdiff(VC, P, K * 3) <= 1e-12, "diagonalisable: V C - P = %g",
+        maxdiff(VC, P, K * 3));
+  check_powers(e, W, K, r, 40, 1, "diagonalisable");
+  lim_eig_free(e);
+}
+
+static void test_averaging(gsl_rng *r) {
+  enum { K = 10 };
+  double W[K * K];
+  for (int t = 0; t < 5; t++) {
+    for (int i = 0; i < K; i++) {
+      double s = 0.0;
+      for (int j = 0; j < K; j++)
+        s += W[i * K + j] = gsl_rng_uniform_pos(r) * (gsl_rng_uniform(r) < 0.6);
+      W[i * K + i] += 0.1, s += 0.1; /* aperiodic, and no zero row */
+      for (int j = 0; j < K; j++)
+        W[i * K + j] /= s;
+    }
+    /* the left eigenvector of 1: power iteration on W^T */
+    double pi[K], q[K];
+    for (int i = 0; i < K; i++)
+      pi[i] = 1.0 / K;
+    for (int s = 0; s < 2000; s++) {
+      for (int j = 0; j < K; j++) {
+        q[j] = 0.0;
+        for (int i = 0; i < K; i++)
+          q[j] += pi[i] * W[i * K + j];
+      }
+      memcpy(pi, q, sizeof pi);
+    }
+    lim_eig *e = NULL;
+    ss_error err = {0};
+    REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+    CHECK(e->one != SIZE_MAX && e->second < 1.0, "averaging %d: one %zu, second %g", t,
+          e->one, e->second);
+    double P[K * 3], want[3] = {0, 0, 0};
+    points(r, K, P);
+    for (int i = 0; i < K; i++)
+      for (int d = 0; d < 3; d++)
+        want[d] += pi[i] * P[i * 3 + d];
+    REQUIRE_OK_VOID(lim_eig_power(e, -1, P, NULL, &err), &err);
+    double off = 0.0;
+    for (int i = 0; i < K; i++)
+      for (int d = 0; d < 3; d++)
+        off = fmax(off, fabs(P[i * 3 + d] - want[d]));
+    CHECK(off <= 1e-12, "averaging %d: limit points differ from pi^T P by %g", t, off);
+    check_powers(e, W, K, r, 40, 1, "averaging");
+    lim_eig_free(e);
+  }
+}
+
+static void test_defective(gsl_rng *r) {
+  enum { K = 6 };
+  double D[K * K] = {0}, W[K * K];
+  const double d[K] = {1.0, 0.5, 0.5, 0.3, -0.2, 0.1};
+  for (int i = 0; i < K; i++)
+    D[i * K + i] = d[i];
+  D[1 * K + 2] = 1.0; /* a Jordan block of 1/2 */
+  similar(K, D, W);
+  lim_eig *e = NULL;
+  ss_error err = {0};
+  REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+  CHECK(e->ok && e->pw && strstr(e->why, "defective") && !(e->cond <= SS_LIMIT_MAXCOND),
+        "Jordan block: pw %p, cond %g (%s)", (void *)e->pw, e->cond, e->why);
+  CHECK(e->one != SIZE_MAX, "Jordan block: 1 is simple");
+  check_powers(e, W, K, r, 4095, 1, "Jordan block");
+  double P[K * 3];
+  points(r, K, P);
+  CHECK(lim_eig_power(e, 4096, P, NULL, &err) != SS_OK, "Jordan block: W^4096 accepted");
+  lim_eig_free(e);
+}
+
+static void test_no_limit(gsl_rng *r) {
+  enum { K = 5 };
+  /* two closed classes {0, 1} and {2, 3}, point 4 averaging both: 1 twice */
+  const double two[K * K] = {0.5, 0.5, 0, 0, 0,   0.25, 0.75, 0,   0,   0,   0,   0,  0.4,
+                             0.6, 0,   0, 0, 0.3, 0.7,  0,    0.2, 0.2, 0.2, 0.2, 0.2};
+  /* a 2-cycle {0, 1} (eigenvalue -1) read by the others */
+  const double cyc[K * K] = {0, 1, 0,   0,   0,   1,   0, 0,   0,   0,   0.2, 0.2, 0.6,
+                             0, 0, 0.1, 0.1, 0.2, 0.6, 0, 0.1, 0.1, 0.1, 0.1, 0.6};
+  const double *Ws[2] = {two, cyc};
+  const char *names[2] = {"two closed classes", "a 2-cycle"};
+  for (int t = 0; t < 2; t++) {
+    lim_eig *e = NULL;
+    ss_error err = {0};
+    REQUIRE_OK_VOID(lim_eig_new(Ws[t], K, &e, &err), &err);
+    CHECK(e->one == SIZE_MAX, "%s: eigenvalue 1 called simple", names[t]);
+    double P[K * 3];
+    points(r, K, P);
+    CHECK(lim_eig_power(e, -1, P, NULL, &err) == SS_ENUMERIC,
+          "%s: a limit that does not exist was given", names[t]);
+    check_powers(e, Ws[t], K, r, 40, 0, names[t]);
+    lim_eig_free(e);
+  }
+}
+
+int main(void) {
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, 1033);
+  test_diagonalisable(r);
+  test_averaging(r);
+  test_defective(r);
+  test_no_limit(r);
+  gsl_rng_free(r);
+  return ss_test_done("limit_eig");
+}
