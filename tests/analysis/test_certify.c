@@ -44,18 +44,18 @@
 #include "ss_testcase.h"
 #include "ss_testlink.h"
 
-/* The certified flags, read in one place (the verdict struct is being
- * reworked by issue 33, step 2). */
+/* The certified flags, read in one place (each verdict carries its own,
+ * ss_verdict.certified). */
 static int cond_certified(const ss_certified *c) {
-  return c->cond_certified;
+  return c->cond.certified;
 }
 
 static int reg_certified(const ss_regularity *r) {
-  return r->certified;
+  return r->verdict.certified;
 }
 
 static int inj_certified(const ss_charmap_inj *i) {
-  return i->certified;
+  return i->verdict.certified;
 }
 
 /* The verdicts of one case. */
@@ -266,7 +266,7 @@ static void test_unprovable(void) {
   ss_testcase t;
   if (!ss_testcase_run("mlca", v, &t)) {
     ss_regularity reg = t.r;
-    ss_charmap_inj inj = {{SS_PASS, ""}, 1, 0, 0};
+    ss_charmap_inj inj = {{SS_PASS, "", 0, SS_ON_NET}, 1, 0};
     ss_certified out;
     const ss_charmap_opts o = ss_charmap_defaults();
     REQUIRE_OK_VOID(ss_certify(t.M, &v, t.e, NULL, &o, &reg, &inj, &out, NULL, &err),
