@@ -108,7 +108,8 @@ typedef struct {
   struct ss_local_levels *levels;       /* the refined star's levels, kept
                                            for ss_local_ring_deepen when asked
                                            (ss_local_opts.keep_levels), else
-                                           NULL; private to ss_local.c */
+                                           NULL; private to the extractor
+                                           (ss_local_impl.h) */
 } ss_local;
 
 /* Extract the local subdivision matrix of scheme s at case c (method above).

@@ -1,11 +1,12 @@
-/* test_marks.c — the boundary marks of refined levels (ss_local.c).
+/* test_marks.c — the boundary marks of refined levels (ss_local_marks.c).
  *
  * A refined level's inner/boundary marks are derived from the coarser
  * level's boundary facets through the split's parent lists (a fine facet is
  * a boundary facet iff its coarse one is), not recomputed by grouping the
- * fine level's facets.  This executable compiles its own copy of ss_local.c
- * with SS_CHECK_MARKS, which recomputes every derived level's marks the
- * independent way (inner_marks on the fine complex) and fails the
+ * fine level's facets.  This executable compiles its own copy of
+ * ss_local_level.c with SS_CHECK_MARKS, which recomputes every derived
+ * level's marks the independent way (ss_local_inner_marks on the fine
+ * complex) and fails the
  * extraction with SS_EINTERNAL "derived boundary marks differ" if they are
  * not the same bytes.  The property is then: every case of every scheme
  * with a one-split step, vertex one-rings of random links k = 4..12 (with
