@@ -46,11 +46,16 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
   W.scheme = s;
   W.prog = &o->progress;
   ss_progress_step(W.prog, "building the star", 0, 0);
-  ss_status st = ss_case_star(s, c, &W.star, err);
-  if (st) return st;
+  ss_status st = SS_OK;
+  if (o->star) /* the caller's, only read: level 0's complex is never refined
+                  in place (peeling and marks touch levels >= 1) */
+    W.star = (ss_star *)o->star;
+  else if ((st = ss_case_star(s, c, &W.star, err)))
+    return st;
+  W.star_owned = !o->star;
   ss_local *M = calloc(1, sizeof *M);
   if (!M) {
-    ss_star_free(W.star);
+    if (W.star_owned) ss_star_free(W.star);
     return ss_error_nomem(err, "local matrix");
   }
   M->ncoord = W.star->ncoord;

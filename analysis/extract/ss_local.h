@@ -243,9 +243,15 @@ typedef struct {
                            whole case again; they hold about as much memory
                            as the extraction's peak, until ss_local_free
                            (default 0) */
+  const ss_star *star;  /* the case's star as ss_case_star builds it, when the
+                           caller has it already (ss_case_resolved_star):
+                           borrowed and only read (level 0 is its complex),
+                           it must outlive the result when keep_levels is
+                           set; NULL (the default): built here */
 } ss_local_opts;
 
-/* nring SS_LOCAL_RING, no budget, no progress, levels not kept. */
+/* nring SS_LOCAL_RING, no budget, no progress, levels not kept, the star
+ * built here. */
 ss_local_opts ss_local_defaults(void);
 
 /* ss_local_new_ring with options o (budget and progress). */

@@ -12,7 +12,7 @@
 #define PATCH_RATE 40e6 /* refined-patch bytes built per second */
 
 ss_local_opts ss_local_defaults(void) {
-  return (ss_local_opts){SS_LOCAL_RING, 0.0, {NULL, NULL}, 0};
+  return (ss_local_opts){SS_LOCAL_RING, 0.0, {NULL, NULL}, 0, NULL};
 }
 
 /* Largest degree of a link vertex. */

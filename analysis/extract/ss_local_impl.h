@@ -44,6 +44,8 @@ typedef struct {
 typedef struct ss_local_levels {
   const ss_scheme *scheme;                /* the scheme */
   ss_star *star;                          /* the star (level 0 is its complex) */
+  int star_owned;                         /* 1 if star is freed with the levels;
+                                             0 if the caller's (ss_local_opts.star) */
   int lc;                                 /* first level on which p is a vertex */
   ss_star_coord cp;                       /* p's chart coordinates on level lc */
   int nlev;                               /* levels built */

@@ -374,5 +374,5 @@ void ss_local_levels_release(ss_local_levels *W) {
     free(L->rows);
     free(L->cinner);
   }
-  ss_star_free(W->star);
+  if (W->star_owned) ss_star_free(W->star);
 }

@@ -45,11 +45,11 @@ void ss_pipeline_workspace_free(ss_pipeline_workspace *w) {
 
 void ss_pipeline_free(ss_pipeline *p) {
   if (!p) return;
-  ss_case_resolved_clear(&p->c);
-  ss_local_free(p->M);
+  ss_local_free(p->M); /* its kept levels read the case's star: first */
   ss_eig_free(p->e);
   ss_charmap_free(p->cm);
   ss_exact_free(p->ex);
+  ss_case_resolved_clear(&p->c);
   free(p);
 }
 
@@ -88,20 +88,26 @@ ss_status ss_pipeline_new(const ss_scheme *s, const ss_case *c, const ss_pipelin
 static ss_status matrix(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err) {
   ss_pipeline_times *tm = w ? w->times : NULL;
   double c1 = tm ? ss_charmap_cpu_seconds() : 0.0;
-  ss_local_opts lo = ss_local_defaults();
-  lo.max_bytes = p->opts.max_bytes;
+  ss_local_opts lo = ss_local_defaults(); /* the budget is checked below, once */
   lo.progress = p->opts.progress;
   /* a link that folds on the first ring levels is judged on a deeper one:
    * keep the levels so that only the deeper level is refined then (on a
    * failing k = 12 MLCA link the extraction again was a quarter of that) */
   lo.keep_levels = p->opts.ring_levels > lo.nring;
-  ss_status st =
-      ss_local_new_ws(p->scheme, &p->c.judged, &lo, w ? w->local : NULL, &p->M, err);
+  /* the star, once: the extraction refines it, the diagonals are counted on
+   * it; the budget is checked before it is built */
+  ss_status st = SS_OK;
+  if (p->opts.max_bytes > 0.0) {
+    ss_local_cost k;
+    st = ss_local_estimate(p->scheme, &p->c.judged, &k, err);
+    if (!st) st = ss_local_check_budget(&k, p->opts.max_bytes, err);
+  }
+  if (!st) st = ss_case_resolved_star(p->scheme, &p->c, &lo.star, err);
+  if (!st)
+    st = ss_local_new_ws(p->scheme, &p->c.judged, &lo, w ? w->local : NULL, &p->M, err);
   if (tm) ss_charmap_lap(&tm->extract, &c1);
   if (!st && ss_scheme_reads_diagonals(p->scheme) && p->M->cell == SS_TET) {
-    const ss_star *star = NULL;
-    st = ss_case_resolved_star(p->scheme, &p->c, &star, err);
-    if (!st) st = ss_diag_improper(star->cx, &p->pairs, &p->improper, err);
+    st = ss_diag_improper(p->c.star->cx, &p->pairs, &p->improper, err);
     p->has_diag = st == SS_OK;
   }
   if (tm) ss_charmap_lap(&tm->diagonals, &c1);

@@ -3,6 +3,8 @@
  * results every command reads.
  *
  * Properties (comparisons exact, bit for bit):
+ *   - the extraction with the star the pipeline built once (and counted the
+ *     diagonals on) gives the S of an extraction that builds its own;
  *   - stages run one at a time (case, matrix, eigen, verdicts, each its own
  *     ss_pipeline_run) give what one ss_pipeline_compute gives: S, every
  *     eigenvalue, every verdict with its reason, certified flag and subject;
@@ -89,6 +91,15 @@ static void stages(const ss_scheme *s, const ss_case *c, int certify, const char
           "%s: running a stage again is a no-op", what);
   }
   if (ok && whole) CHECK(same_pipeline(p, whole), "%s: staged run differs", what);
+  if (ok) { /* the pipeline lends its star to the extraction: the same S as one
+               extraction that builds its own */
+    ss_local *M = NULL;
+    const ss_local_opts lo = ss_local_defaults();
+    CHECK(!ss_local_new_opts(s, &p->c.judged, &lo, &M, &err) && M->n2 == p->M->n2 &&
+              !memcmp(M->S, p->M->S, M->n2 * M->n2 * sizeof *M->S),
+          "%s: S with the pipeline's star differs from S with its own", what);
+    ss_local_free(M);
+  }
   if (ok && whole) {
     ss_result r0, r1;
     ss_result_opts ro = ss_result_defaults();
