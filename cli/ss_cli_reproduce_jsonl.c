@@ -29,10 +29,10 @@ static json_object *result_json(const ss_reproduce_table *t, const ss_result *r)
     json_object_object_add(o, "diagonals", d);
   }
   json_object_object_add(o, "eigenvalues", ss_report_eig_json(r));
-  json_object *c = ss_report_verdict_json(&r->v.cond, r->v.cond.certified);
+  json_object *c = ss_report_verdict_json(&r->v.cond);
   json_object_object_add(c, "tolerance", json_object_new_double(r->tol));
   json_object_object_add(o, "eigen_condition", c);
-  json_object *g = ss_report_verdict_json(&r->v.reg, r->v.reg.certified);
+  json_object *g = ss_report_verdict_json(&r->v.reg);
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(r->min_sj) ? json_object_new_double(r->min_sj) : NULL);
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));
@@ -41,7 +41,7 @@ static json_object *result_json(const ss_reproduce_table *t, const ss_result *r)
                          json_object_new_int64((int64_t)r->centre_corner_folds));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(o, "regularity", g);
-  json_object *in = ss_report_verdict_json(&r->v.inj, r->v.inj.certified);
+  json_object *in = ss_report_verdict_json(&r->v.inj);
   json_object_object_add(in, "degree", json_object_new_int(r->inj_degree));
   json_object_object_add(o, "injectivity", in);
   return o;

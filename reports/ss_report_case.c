@@ -30,8 +30,7 @@ static json_object *level_json(const ss_ring_level *L, int l) {
 
 /* The regularity object of DESIGN section 7, with the ring's levels. */
 static json_object *regularity_json(const ss_regularity *reg) {
-  /* certified: set by ss_charmap_certify under --certify, else 0 */
-  json_object *g = ss_report_verdict_json(&reg->verdict, reg->verdict.certified);
+  json_object *g = ss_report_verdict_json(&reg->verdict);
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(reg->min_scaled_jacobian)
                              ? json_object_new_double(reg->min_scaled_jacobian)
@@ -111,7 +110,7 @@ ss_status ss_report_case_json(const ss_pipeline *p, int neig, json_object *eigen
   }
   json_object_object_add(r, "eigenvalues", ev);
   /* the condition as judged: the exact path's with certify, else LAPACK's */
-  json_object *cj = ss_report_verdict_json(&p->v.cond, p->v.cond.certified);
+  json_object *cj = ss_report_verdict_json(&p->v.cond);
   json_object_object_add(cj, "tolerance", json_object_new_double(e->tol));
   json_object_object_add(cj, "tolerance_requested",
                          json_object_new_double(e->tol_requested));
@@ -139,7 +138,7 @@ ss_status ss_report_case_json(const ss_pipeline *p, int neig, json_object *eigen
   json_object_object_add(r, "eigen_condition", cj);
   json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
   json_object_object_add(r, "regularity", regularity_json(&p->reg));
-  json_object *in = ss_report_verdict_json(&p->inj.verdict, p->inj.verdict.certified);
+  json_object *in = ss_report_verdict_json(&p->inj.verdict);
   json_object_object_add(in, "degree", json_object_new_int(p->inj.degree));
   json_object_object_add(in, "overlaps", json_object_new_int64((int64_t)p->inj.overlaps));
   json_object_object_add(r, "injectivity", in);

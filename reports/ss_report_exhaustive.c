@@ -245,12 +245,9 @@ static void write_links(FILE *f, ss_report_format fmt, const ss_report_row *rows
       json_object_object_add(o, "min_scaled_jacobian",
                              isfinite(r->min_sj) ? json_object_new_double(r->min_sj)
                                                  : NULL);
-      json_object_object_add(o, "eigen_condition",
-                             ss_report_verdict_json(&r->v.cond, r->v.cond.certified));
-      json_object_object_add(o, "regularity",
-                             ss_report_verdict_json(&r->v.reg, r->v.reg.certified));
-      json_object_object_add(o, "injectivity",
-                             ss_report_verdict_json(&r->v.inj, r->v.inj.certified));
+      json_object_object_add(o, "eigen_condition", ss_report_verdict_json(&r->v.cond));
+      json_object_object_add(o, "regularity", ss_report_verdict_json(&r->v.reg));
+      json_object_object_add(o, "injectivity", ss_report_verdict_json(&r->v.inj));
       json_object_array_add(arr, o);
     }
   }

@@ -704,11 +704,11 @@ static json_object *jsize(size_t v) {
   return json_object_new_int64((int64_t)v);
 }
 
-json_object *ss_report_verdict_json(const ss_verdict *v, int certified) {
+json_object *ss_report_verdict_json(const ss_verdict *v) {
   json_object *o = json_object_new_object();
   json_object_object_add(o, "verdict",
                          json_object_new_string(ss_verdict_name(v->verdict)));
-  json_object_object_add(o, "certified", json_object_new_boolean(certified));
+  json_object_object_add(o, "certified", json_object_new_boolean(v->certified));
   json_object_object_add(o, "reason", json_object_new_string(v->reason));
   return o;
 }
@@ -727,16 +727,16 @@ static json_object *json_case(const ss_report_row *row) {
   json_object_object_add(o, "two_ring_size", jsize(r->two_ring));
   json_object_object_add(o, "one_ring_size", jsize(r->one_ring));
   json_object_object_add(o, "eigenvalues", ss_report_eig_json(r));
-  json_object *c = ss_report_verdict_json(&r->v.cond, r->v.cond.certified);
+  json_object *c = ss_report_verdict_json(&r->v.cond);
   json_object_object_add(c, "tolerance", json_object_new_double(r->tol));
   json_object_object_add(o, "eigen_condition", c);
-  json_object *g = ss_report_verdict_json(&r->v.reg, r->v.reg.certified);
+  json_object *g = ss_report_verdict_json(&r->v.reg);
   json_object_object_add(g, "min_scaled_jacobian", jnum(r->min_sj));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));
   json_object_object_add(g, "centre_corner_folds", jsize(r->centre_corner_folds));
   json_object_object_add(o, "regularity", g);
-  json_object *in = ss_report_verdict_json(&r->v.inj, r->v.inj.certified);
+  json_object *in = ss_report_verdict_json(&r->v.inj);
   json_object_object_add(in, "degree", json_object_new_int(r->inj_degree));
   json_object_object_add(o, "injectivity", in);
   json_object_object_add(o, "verdict",

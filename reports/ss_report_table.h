@@ -135,9 +135,9 @@ void ss_report_csv_put(FILE *f, const char *s);
 json_object *ss_report_eig_json(const ss_result *r);
 
 /* A verdict as the JSON object {"verdict", "certified", "reason"} of
- * `analyze --format json` (DESIGN section 7); certified says whether it is
- * proven (ss_result).  The caller owns it and may add keys. */
-json_object *ss_report_verdict_json(const ss_verdict *v, int certified);
+ * `analyze --format json` (DESIGN section 7).  The caller owns it and may
+ * add keys. */
+json_object *ss_report_verdict_json(const ss_verdict *v);
 
 SS_END_DECLS
 
