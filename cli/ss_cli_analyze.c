@@ -550,7 +550,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   po.force = o->force;
   /* the case as analysed: the canonical labelling, as sweep and reproduce
    * analyse it (isomorphic links give the same numbers to the last bit), a
-   * point on an extraordinary edge as that edge (ss_local.h) */
+   * point on an extraordinary edge as that edge (ss_case.h) */
   const ss_case c = {o->kind, l, o->n, o->diag, o->cls};
   if (ss_pipeline_new(s, &c, &po, NULL, &p, &err)) {
     rc = case_fail(o, where, &err);

@@ -7,6 +7,10 @@
 
 #include "ss_local_impl.h"
 
+ss_local_opts ss_local_defaults(void) {
+  return (ss_local_opts){SS_LOCAL_RING, 0.0, {NULL, NULL}, 0, NULL};
+}
+
 ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
                        ss_error *err) {
   return ss_local_new_ring(s, c, SS_LOCAL_RING, out, err);

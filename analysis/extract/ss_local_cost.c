@@ -1,6 +1,6 @@
 /* ss_local_cost.c — what a case will cost before it is built: rows of S,
- * memory and time (formulas in ss_local.h), and the memory budget. */
-#include "ss_local.h"
+ * memory and time (formulas in ss_local_cost.h), and the memory budget. */
+#include "ss_local_cost.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -10,10 +10,6 @@
 #define BASE_BYTES 16e6 /* the program itself, measured */
 #define FLOP_RATE  2e9  /* dense LAPACK on one core, flops per second */
 #define PATCH_RATE 40e6 /* refined-patch bytes built per second */
-
-ss_local_opts ss_local_defaults(void) {
-  return (ss_local_opts){SS_LOCAL_RING, 0.0, {NULL, NULL}, 0, NULL};
-}
 
 /* Largest degree of a link vertex. */
 static int max_degree(const ss_link *l) {
