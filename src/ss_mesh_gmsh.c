@@ -73,10 +73,6 @@ static ss_status check_header(const char *path, ss_error *err) {
 
 #if !SS_HAVE_GMSH
 
-int ss_mesh_gmsh_available(void) {
-  return 0;
-}
-
 ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
   *out = NULL;
   ss_status st = check_header(path, err);
@@ -89,10 +85,6 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
 }
 
 #else
-
-int ss_mesh_gmsh_available(void) {
-  return 1;
-}
 
 /* gmsh's C API as function pointers, looked up in the child by load_api.
  * The types come from gmshc.h, so a changed signature is a compile error. */
