@@ -97,112 +97,224 @@ static const char *poly_name(int p) {
   return p < 0 || p > 4 ? "not run" : nm[p];
 }
 
-int ss_cli_jsr(int argc, char **argv) {
-  static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
-                                     {"face", no_argument, 0, O_FACE},
-                                     {"edge", required_argument, 0, O_EDGE},
-                                     {"depth", required_argument, 0, O_DEPTH},
-                                     {"gap", required_argument, 0, O_GAP},
-                                     {"norm", required_argument, 0, O_NORM},
-                                     {"fit-words", required_argument, 0, O_FITWORDS},
-                                     {"diagonals", required_argument, 0, O_DIAG},
-                                     {"max-seconds", required_argument, 0, O_SECONDS},
-                                     {"format", required_argument, 0, O_FORMAT},
-                                     {"help", no_argument, 0, 'h'},
-                                     {0, 0, 0, 0}};
-  const char *cmd = "jsr", *scheme_name = NULL;
-  ss_case c = {0};
-  int have_case = 0, json = 0;
+static const struct option jsr_options[] = {
+    {"scheme", required_argument, 0, O_SCHEME},
+    {"face", no_argument, 0, O_FACE},
+    {"edge", required_argument, 0, O_EDGE},
+    {"depth", required_argument, 0, O_DEPTH},
+    {"gap", required_argument, 0, O_GAP},
+    {"norm", required_argument, 0, O_NORM},
+    {"fit-words", required_argument, 0, O_FITWORDS},
+    {"diagonals", required_argument, 0, O_DIAG},
+    {"max-seconds", required_argument, 0, O_SECONDS},
+    {"format", required_argument, 0, O_FORMAT},
+    {"help", no_argument, 0, 'h'},
+    {0, 0, 0, 0}};
+
+/* The command line of jsr. */
+typedef struct {
+  const char *scheme_name; /* --scheme */
+  ss_case c;               /* --face or --edge N, with --diagonals */
+  int have_case;           /* --face or --edge was given */
+  int json;                /* --format json */
+  ss_jsr_opts o;           /* --depth, --gap, --norm, --fit-words, --max-seconds */
+} jsr_args;
+
+/* One option ch (its argument in optarg) into a: -1 to go on, else the exit
+ * status (0 after --help, 2 with the message printed). */
+static int parse_option(int ch, char **argv, jsr_args *a) {
+  const char *cmd = "jsr";
+  char *end = NULL;
   long v;
-  ss_jsr_opts o = ss_jsr_defaults();
-  o.max_seconds = 60;
+  switch (ch) {
+  case 'h':
+    usage(stdout);
+    return SS_EXIT_OK;
+  case O_SCHEME:
+    a->scheme_name = optarg;
+    break;
+  case O_FACE:
+    if (a->have_case) return ss_cli_usage_error(cmd, "give one of --face and --edge");
+    a->c.kind = SS_CASE_FACE, a->have_case = 1;
+    break;
+  case O_EDGE:
+    if (a->have_case) return ss_cli_usage_error(cmd, "give one of --face and --edge");
+    if (ss_cli_parse_int(optarg, 3, 64, &v))
+      return ss_cli_usage_error(cmd, "--edge: expected a valence 3..64, not '%s'",
+                                optarg);
+    a->c.kind = SS_CASE_EDGE, a->c.n = (int)v, a->have_case = 1;
+    break;
+  case O_DEPTH:
+    if (ss_cli_parse_int(optarg, 1, 12, &v))
+      return ss_cli_usage_error(cmd, "--depth: expected 1..12, not '%s'", optarg);
+    a->o.depth = (int)v;
+    break;
+  case O_GAP:
+    a->o.gap = strtod(optarg, &end);
+    if (end == optarg || *end || !(a->o.gap > 0 && a->o.gap < 1))
+      return ss_cli_usage_error(cmd, "--gap: expected a number in (0, 1), not '%s'",
+                                optarg);
+    break;
+  case O_NORM: {
+    int k = 0;
+    while (k < 5 && strcmp(optarg, norm_names[k]))
+      k++;
+    if (k == 5)
+      return ss_cli_usage_error(
+          cmd, "--norm: expected auto, inf, 2, ellipsoid or polytope, not '%s'", optarg);
+    a->o.norm = (ss_jsr_norm)k;
+    break;
+  }
+  case O_FITWORDS:
+    if (ss_cli_parse_int(optarg, 1, 5, &v))
+      return ss_cli_usage_error(cmd, "--fit-words: expected 1..5, not '%s'", optarg);
+    a->o.fit_words = (int)v;
+    break;
+  case O_SECONDS:
+    a->o.max_seconds = strtod(optarg, &end);
+    if (end == optarg || *end || !(a->o.max_seconds > 0 && a->o.max_seconds < 1e7))
+      return ss_cli_usage_error(cmd,
+                                "--max-seconds: expected a positive number, not "
+                                "'%s'",
+                                optarg);
+    break;
+  case O_DIAG:
+    if (ss_diag_parse(optarg, &a->c.diag))
+      return ss_cli_usage_error(
+          cmd, "--diagonals: expected bfs, proper, skew or center, not '%s'", optarg);
+    break;
+  case O_FORMAT:
+    if (ss_cli_format_option(cmd, optarg, &a->json)) return SS_EXIT_USAGE;
+    break;
+  default:
+    return ss_cli_option_error(cmd, ch, argv);
+  }
+  return -1;
+}
+
+/* argv into a: -1 to go on, else the exit status (0 after --help, 2 with
+ * the message printed). */
+static int parse_args(int argc, char **argv, jsr_args *a) {
+  const char *cmd = "jsr";
+  *a = (jsr_args){.o = ss_jsr_defaults()};
+  a->o.max_seconds = 60;
   optind = 1;
   opterr = 0;
-  for (int ch; (ch = getopt_long(argc, argv, ":h", lo, NULL)) != -1;) {
-    char *end = NULL;
-    switch (ch) {
-    case 'h':
-      usage(stdout);
-      return SS_EXIT_OK;
-    case O_SCHEME:
-      scheme_name = optarg;
-      break;
-    case O_FACE:
-      if (have_case) return ss_cli_usage_error(cmd, "give one of --face and --edge");
-      c.kind = SS_CASE_FACE, have_case = 1;
-      break;
-    case O_EDGE:
-      if (have_case) return ss_cli_usage_error(cmd, "give one of --face and --edge");
-      if (ss_cli_parse_int(optarg, 3, 64, &v))
-        return ss_cli_usage_error(cmd, "--edge: expected a valence 3..64, not '%s'",
-                                  optarg);
-      c.kind = SS_CASE_EDGE, c.n = (int)v, have_case = 1;
-      break;
-    case O_DEPTH:
-      if (ss_cli_parse_int(optarg, 1, 12, &v))
-        return ss_cli_usage_error(cmd, "--depth: expected 1..12, not '%s'", optarg);
-      o.depth = (int)v;
-      break;
-    case O_GAP:
-      o.gap = strtod(optarg, &end);
-      if (end == optarg || *end || !(o.gap > 0 && o.gap < 1))
-        return ss_cli_usage_error(cmd, "--gap: expected a number in (0, 1), not '%s'",
-                                  optarg);
-      break;
-    case O_NORM: {
-      int k = 0;
-      while (k < 5 && strcmp(optarg, norm_names[k]))
-        k++;
-      if (k == 5)
-        return ss_cli_usage_error(
-            cmd, "--norm: expected auto, inf, 2, ellipsoid or polytope, not '%s'",
-            optarg);
-      o.norm = (ss_jsr_norm)k;
-      break;
-    }
-    case O_FITWORDS:
-      if (ss_cli_parse_int(optarg, 1, 5, &v))
-        return ss_cli_usage_error(cmd, "--fit-words: expected 1..5, not '%s'", optarg);
-      o.fit_words = (int)v;
-      break;
-    case O_SECONDS:
-      o.max_seconds = strtod(optarg, &end);
-      if (end == optarg || *end || !(o.max_seconds > 0 && o.max_seconds < 1e7))
-        return ss_cli_usage_error(cmd,
-                                  "--max-seconds: expected a positive number, not "
-                                  "'%s'",
-                                  optarg);
-      break;
-    case O_DIAG:
-      if (ss_diag_parse(optarg, &c.diag))
-        return ss_cli_usage_error(
-            cmd, "--diagonals: expected bfs, proper, skew or center, not '%s'", optarg);
-      break;
-    case O_FORMAT:
-      if (ss_cli_format_option(cmd, optarg, &json)) return SS_EXIT_USAGE;
-      break;
-    default:
-      return ss_cli_option_error(cmd, ch, argv);
-    }
+  for (int ch; (ch = getopt_long(argc, argv, ":h", jsr_options, NULL)) != -1;) {
+    const int rc = parse_option(ch, argv, a);
+    if (rc >= 0) return rc;
   }
   if (optind < argc)
     return ss_cli_usage_error(cmd, "unexpected argument '%s'", argv[optind]);
-  if (!scheme_name) return ss_cli_usage_error(cmd, "--scheme is required");
-  if (!have_case) return ss_cli_usage_error(cmd, "give --face or --edge N");
-  if (o.fit_words > 1 && o.norm != SS_JSR_NORM_AUTO && o.norm != SS_JSR_NORM_ELLIPSOID)
+  if (!a->scheme_name) return ss_cli_usage_error(cmd, "--scheme is required");
+  if (!a->have_case) return ss_cli_usage_error(cmd, "give --face or --edge N");
+  if (a->o.fit_words > 1 && a->o.norm != SS_JSR_NORM_AUTO &&
+      a->o.norm != SS_JSR_NORM_ELLIPSOID)
     return ss_cli_usage_error(cmd,
                               "--fit-words fits the ellipsoidal norm: it needs --norm "
                               "ellipsoid or auto, not %s",
-                              norm_names[o.norm]);
+                              norm_names[a->o.norm]);
+  return -1;
+}
 
+/* The result as one JSON object on standard output. */
+static void print_json(const jsr_args *a, const ss_levin *L, const ss_jsr_result *r,
+                       const char *verdict, const char *thr_name) {
+  const ss_case c = a->c;
+  json_object *j = json_object_new_object(), *rk = json_object_new_array(),
+              *r2 = json_object_new_array(), *th = json_object_new_array(),
+              *w = json_object_new_array();
+  json_object_object_add(j, "scheme", json_object_new_string(a->scheme_name));
+  json_object_object_add(j, "case", json_object_new_string(ss_case_name(c.kind)));
+  if (c.kind == SS_CASE_EDGE) json_object_object_add(j, "n", json_object_new_int(c.n));
+  json_object_object_add(j, "diagonals", json_object_new_string(ss_diag_name(c.diag)));
+  json_object_object_add(j, "level", json_object_new_int(L->level));
+  json_object_object_add(j, "maps", json_object_new_int64((int64_t)L->m));
+  json_object_object_add(j, "support", json_object_new_int64((int64_t)L->n));
+  json_object_object_add(j, "subspace", json_object_new_int64((int64_t)L->r));
+  json_object_object_add(j, "subspace_basis", json_object_new_string(L->basis));
+  json_object_object_add(j, "invariance_defect", json_object_new_double(L->defect));
+  for (size_t i = 0; i < L->r; i++)
+    json_object_array_add(th, json_object_new_double(L->theta[i]));
+  json_object_object_add(j, "theta", th);
+  if (c.kind == SS_CASE_EDGE)
+    json_object_object_add(j, "lambda1", json_object_new_double(L->lambda1));
+  for (int k = 0; k < r->depth; k++) {
+    json_object_array_add(rk, json_object_new_double(r->rho_inf[k]));
+    json_object_array_add(r2, json_object_new_double(r->rho_2[k]));
+  }
+  json_object_object_add(j, "rho_k", rk);
+  json_object_object_add(j, "rho_k_2", r2);
+  json_object_object_add(j, "lower", json_object_new_double(r->lower));
+  for (int k = 0; k < r->lower_len; k++)
+    json_object_array_add(w, json_object_new_int(r->lower_word[k] + 1));
+  json_object_object_add(j, "lower_word", w);
+  json_object_object_add(j, "upper", json_object_new_double(r->upper));
+  json_object_object_add(j, "threshold", json_object_new_double(L->threshold));
+  json_object_object_add(j, "threshold_name", json_object_new_string(thr_name));
+  json_object_object_add(j, "verdict", json_object_new_string(verdict));
+  json_object_object_add(j, "certified", json_object_new_boolean(r->certified));
+  json_object_object_add(j, "converged", json_object_new_boolean(r->converged));
+  json_object_object_add(j, "nodes", json_object_new_int64((int64_t)r->nodes));
+  json_object_object_add(j, "norm", json_object_new_string(norm_names[r->norm]));
+  json_object_object_add(j, "weighted", json_object_new_boolean(r->weighted));
+  json_object_object_add(j, "fit_words", json_object_new_int(a->o.fit_words));
+  json_object_object_add(j, "bnb_depth", json_object_new_int(r->bnb_depth));
+  json_object_object_add(j, "polytope", json_object_new_string(poly_name(r->polytope)));
+  json_object_object_add(j, "polytope_vertices",
+                         json_object_new_int64((int64_t)r->poly_vertices));
+  if (r->polytope == 0)
+    json_object_object_add(j, "polytope_upper", json_object_new_double(r->poly_upper));
+  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
+  json_object_put(j);
+}
+
+/* The result as text on standard output. */
+static void print_text(const jsr_args *a, const ss_levin *L, const ss_jsr_result *r,
+                       const char *verdict, const char *thr_name) {
+  const ss_case c = a->c;
+  printf("scheme %s, %s", a->scheme_name, ss_case_name(c.kind));
+  if (c.kind == SS_CASE_EDGE) printf(" of valence %d", c.n);
+  printf(" (diagonals %s)\n", ss_diag_name(c.diag));
+  printf("maps S_1..S_%zu: %zu x %zu (support on level %d); subspace of dimension "
+         "%zu (%s,\n  invariant under every S_i to %.2g); Y_i: %zu x %zu\n",
+         L->m, L->n, L->n, L->level, L->r, L->basis, L->defect, L->n - L->r, L->n - L->r);
+  printf("eigenvalues of S_1 on the subspace:");
+  for (size_t i = 0; i < L->r; i++)
+    printf(" %.6g", L->theta[i]);
+  printf("\n%-4s %-12s %-12s\n", "k", "rho_k (inf)", "rho_k (2)");
+  for (int k = 0; k < r->depth; k++)
+    printf("%-4d %-12.6g %-12.6g\n", k + 1, r->rho_inf[k], r->rho_2[k]);
+  char fitted[48] = "";
+  if (a->o.fit_words > 1 && r->norm == SS_JSR_NORM_ELLIPSOID)
+    snprintf(fitted, sizeof fitted, " fitted to words of length %d", a->o.fit_words);
+  printf("joint spectral radius in [%.6g, %.6g] (%s; %s, %zu products, %s-norm%s%s, "
+         "words to length %d)\n",
+         r->lower, r->upper, r->certified ? "certified" : "not certified",
+         r->converged ? "gap reached" : "gap not reached", r->nodes, norm_names[r->norm],
+         r->weighted ? " weighted" : "", fitted, r->bnb_depth);
+  if (r->polytope >= 0) {
+    printf("invariant polytope: %s, %zu vertices", poly_name(r->polytope),
+           r->poly_vertices);
+    if (r->polytope == 0) printf(", upper %.6g", r->poly_upper);
+    printf("\n");
+  }
+  printf("threshold %.6g: %s\nverdict: %s\n", L->threshold, thr_name, verdict);
+}
+
+int ss_cli_jsr(int argc, char **argv) {
+  jsr_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc >= 0) return rc;
+  const ss_case c = a.c;
   ss_error err = {0};
   ss_scheme *s = NULL;
   ss_levin *L = NULL;
   ss_jsr_result r;
   memset(&r, 0, sizeof r);
-  int rc = SS_EXIT_OK;
-  if (ss_scheme_new(scheme_name, &s, &err) || ss_levin_new(s, &c, &L, &err) ||
-      ss_jsr_compute(L->m, L->n - L->r, (const double *const *)L->Y, &o, &r, &err)) {
+  rc = SS_EXIT_OK;
+  if (ss_scheme_new(a.scheme_name, &s, &err) || ss_levin_new(s, &c, &L, &err) ||
+      ss_jsr_compute(L->m, L->n - L->r, (const double *const *)L->Y, &a.o, &r, &err)) {
     rc = ss_cli_fail(&err);
     goto done;
   }
@@ -214,83 +326,10 @@ int ss_cli_jsr(int argc, char **argv) {
                          : fabs(L->lambda1 - 0.5) <= 1e-8 ? "lambda3 = lambda1 = 1/2"
                          : L->lambda1 < 0.5               ? "lambda3 = lambda1 (< 1/2)"
                                                           : "lambda3 = 1/2 (< lambda1)";
-  if (json) {
-    json_object *j = json_object_new_object(), *rk = json_object_new_array(),
-                *r2 = json_object_new_array(), *th = json_object_new_array(),
-                *w = json_object_new_array();
-    json_object_object_add(j, "scheme", json_object_new_string(scheme_name));
-    json_object_object_add(j, "case", json_object_new_string(ss_case_name(c.kind)));
-    if (c.kind == SS_CASE_EDGE) json_object_object_add(j, "n", json_object_new_int(c.n));
-    json_object_object_add(j, "diagonals", json_object_new_string(ss_diag_name(c.diag)));
-    json_object_object_add(j, "level", json_object_new_int(L->level));
-    json_object_object_add(j, "maps", json_object_new_int64((int64_t)L->m));
-    json_object_object_add(j, "support", json_object_new_int64((int64_t)L->n));
-    json_object_object_add(j, "subspace", json_object_new_int64((int64_t)L->r));
-    json_object_object_add(j, "subspace_basis", json_object_new_string(L->basis));
-    json_object_object_add(j, "invariance_defect", json_object_new_double(L->defect));
-    for (size_t i = 0; i < L->r; i++)
-      json_object_array_add(th, json_object_new_double(L->theta[i]));
-    json_object_object_add(j, "theta", th);
-    if (c.kind == SS_CASE_EDGE)
-      json_object_object_add(j, "lambda1", json_object_new_double(L->lambda1));
-    for (int k = 0; k < r.depth; k++) {
-      json_object_array_add(rk, json_object_new_double(r.rho_inf[k]));
-      json_object_array_add(r2, json_object_new_double(r.rho_2[k]));
-    }
-    json_object_object_add(j, "rho_k", rk);
-    json_object_object_add(j, "rho_k_2", r2);
-    json_object_object_add(j, "lower", json_object_new_double(r.lower));
-    for (int k = 0; k < r.lower_len; k++)
-      json_object_array_add(w, json_object_new_int(r.lower_word[k] + 1));
-    json_object_object_add(j, "lower_word", w);
-    json_object_object_add(j, "upper", json_object_new_double(r.upper));
-    json_object_object_add(j, "threshold", json_object_new_double(L->threshold));
-    json_object_object_add(j, "threshold_name", json_object_new_string(thr_name));
-    json_object_object_add(j, "verdict", json_object_new_string(verdict));
-    json_object_object_add(j, "certified", json_object_new_boolean(r.certified));
-    json_object_object_add(j, "converged", json_object_new_boolean(r.converged));
-    json_object_object_add(j, "nodes", json_object_new_int64((int64_t)r.nodes));
-    json_object_object_add(j, "norm", json_object_new_string(norm_names[r.norm]));
-    json_object_object_add(j, "weighted", json_object_new_boolean(r.weighted));
-    json_object_object_add(j, "fit_words", json_object_new_int(o.fit_words));
-    json_object_object_add(j, "bnb_depth", json_object_new_int(r.bnb_depth));
-    json_object_object_add(j, "polytope", json_object_new_string(poly_name(r.polytope)));
-    json_object_object_add(j, "polytope_vertices",
-                           json_object_new_int64((int64_t)r.poly_vertices));
-    if (r.polytope == 0)
-      json_object_object_add(j, "polytope_upper", json_object_new_double(r.poly_upper));
-    printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
-    json_object_put(j);
-  } else {
-    printf("scheme %s, %s", scheme_name, ss_case_name(c.kind));
-    if (c.kind == SS_CASE_EDGE) printf(" of valence %d", c.n);
-    printf(" (diagonals %s)\n", ss_diag_name(c.diag));
-    printf("maps S_1..S_%zu: %zu x %zu (support on level %d); subspace of dimension "
-           "%zu (%s,\n  invariant under every S_i to %.2g); Y_i: %zu x %zu\n",
-           L->m, L->n, L->n, L->level, L->r, L->basis, L->defect, L->n - L->r,
-           L->n - L->r);
-    printf("eigenvalues of S_1 on the subspace:");
-    for (size_t i = 0; i < L->r; i++)
-      printf(" %.6g", L->theta[i]);
-    printf("\n%-4s %-12s %-12s\n", "k", "rho_k (inf)", "rho_k (2)");
-    for (int k = 0; k < r.depth; k++)
-      printf("%-4d %-12.6g %-12.6g\n", k + 1, r.rho_inf[k], r.rho_2[k]);
-    char fitted[48] = "";
-    if (o.fit_words > 1 && r.norm == SS_JSR_NORM_ELLIPSOID)
-      snprintf(fitted, sizeof fitted, " fitted to words of length %d", o.fit_words);
-    printf("joint spectral radius in [%.6g, %.6g] (%s; %s, %zu products, %s-norm%s%s, "
-           "words to length %d)\n",
-           r.lower, r.upper, r.certified ? "certified" : "not certified",
-           r.converged ? "gap reached" : "gap not reached", r.nodes, norm_names[r.norm],
-           r.weighted ? " weighted" : "", fitted, r.bnb_depth);
-    if (r.polytope >= 0) {
-      printf("invariant polytope: %s, %zu vertices", poly_name(r.polytope),
-             r.poly_vertices);
-      if (r.polytope == 0) printf(", upper %.6g", r.poly_upper);
-      printf("\n");
-    }
-    printf("threshold %.6g: %s\nverdict: %s\n", L->threshold, thr_name, verdict);
-  }
+  if (a.json)
+    print_json(&a, L, &r, verdict, thr_name);
+  else
+    print_text(&a, L, &r, verdict, thr_name);
 done:
   ss_jsr_result_clear(&r);
   ss_levin_free(L);

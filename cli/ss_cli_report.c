@@ -80,156 +80,194 @@ static int report_fail(const ss_error *err) {
   return SS_EXIT_USAGE;
 }
 
-int ss_cli_report(int argc, char **argv) {
-  enum { O_DB = 256, O_FORMAT, O_TABLE, O_WHERE, O_PLOT, O_SIZE, O_FAILONFAIL, O_LABEL };
-  static const struct option opts[] = {{"db", required_argument, NULL, O_DB},
-                                       {"format", required_argument, NULL, O_FORMAT},
-                                       {"table", required_argument, NULL, O_TABLE},
-                                       {"where", required_argument, NULL, O_WHERE},
-                                       {"plot", required_argument, NULL, O_PLOT},
-                                       {"size", required_argument, NULL, O_SIZE},
-                                       {"fail-on-fail", no_argument, NULL, O_FAILONFAIL},
-                                       {"label", required_argument, NULL, O_LABEL},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
-  const char *db = NULL, *where = NULL, *plot = NULL, *label = NULL;
-  ss_report_format fmt = SS_REPORT_MD;
-  int have_format = 0, fail_on_fail = 0;
-  unsigned tables = 0;
-  int exh = -1; /* --table exhaustive or not-passing: ss_report_exh_table */
-  ss_report_plot_opts po = ss_report_plot_defaults();
+enum { O_DB = 256, O_FORMAT, O_TABLE, O_WHERE, O_PLOT, O_SIZE, O_FAILONFAIL, O_LABEL };
+
+static const struct option report_options[] = {
+    {"db", required_argument, NULL, O_DB},
+    {"format", required_argument, NULL, O_FORMAT},
+    {"table", required_argument, NULL, O_TABLE},
+    {"where", required_argument, NULL, O_WHERE},
+    {"plot", required_argument, NULL, O_PLOT},
+    {"size", required_argument, NULL, O_SIZE},
+    {"fail-on-fail", no_argument, NULL, O_FAILONFAIL},
+    {"label", required_argument, NULL, O_LABEL},
+    {"help", no_argument, NULL, 'h'},
+    {NULL, 0, NULL, 0}};
+
+/* The command line of report. */
+typedef struct {
+  const char *db;         /* --db */
+  const char *where;      /* --where, or NULL */
+  const char *plot;       /* --plot FILE, or NULL */
+  const char *label;      /* --label, or NULL */
+  ss_report_format fmt;   /* --format */
+  int have_format;        /* --format was given */
+  int fail_on_fail;       /* --fail-on-fail */
+  unsigned tables;        /* --table cases, summary or both (ss_report_tables) */
+  int exh;                /* --table exhaustive or not-passing:
+                             ss_report_exh_table; else -1 */
+  int print;              /* print tables (not --plot alone) */
+  ss_report_plot_opts po; /* --size */
+} report_args;
+
+/* One option c (its argument in optarg) into a: -1 to go on, else the exit
+ * status (0 after --help, 2 with the message printed). */
+static int parse_option(int c, char **argv, report_args *a) {
+  switch (c) {
+  case O_DB:
+    a->db = optarg;
+    break;
+  case O_FORMAT:
+    if (ss_report_format_parse(optarg, &a->fmt))
+      return ss_cli_usage_error("report", "--format '%s' is not md, csv, tex or json",
+                                optarg);
+    a->have_format = 1;
+    break;
+  case O_TABLE:
+    a->exh = !strcmp(optarg, "exhaustive")    ? SS_REPORT_EXH_COUNTS
+             : !strcmp(optarg, "not-passing") ? SS_REPORT_EXH_LINKS
+                                              : -1;
+    a->tables = 0;
+    if (a->exh < 0 && ss_report_tables_parse(optarg, &a->tables))
+      return ss_cli_usage_error(
+          "report", "--table '%s' is not cases, summary, both, exhaustive or not-passing",
+          optarg);
+    break;
+  case O_WHERE:
+    a->where = optarg;
+    break;
+  case O_PLOT:
+    a->plot = optarg;
+    break;
+  case O_SIZE: {
+    int w = 0, h = 0;
+    char tail;
+    if (sscanf(optarg, "%dx%d%c", &w, &h, &tail) != 2 || w < 200 || h < 200 ||
+        w > 10000 || h > 10000)
+      return ss_cli_usage_error(
+          "report", "--size '%s' is not WxH with 200 <= W, H <= 10000", optarg);
+    a->po.width = w;
+    a->po.height = h;
+    break;
+  }
+  case O_FAILONFAIL:
+    a->fail_on_fail = 1;
+    break;
+  case O_LABEL:
+    if (!*optarg || strspn(optarg, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                   "0123456789-_:.") != strlen(optarg))
+      return ss_cli_usage_error("report",
+                                "--label '%s': use letters, digits, '-', '_', ':' "
+                                "and '.' only",
+                                optarg);
+    a->label = optarg;
+    break;
+  case 'h':
+    fputs(usage_text, stdout);
+    return SS_EXIT_OK;
+  default:
+    return ss_cli_option_error("report", c, argv);
+  }
+  return -1;
+}
+
+/* argv into a, the options checked against each other and the default
+ * tables chosen: -1 to go on, else the exit status (0 after --help, 2 with
+ * the message printed). */
+static int parse_args(int argc, char **argv, report_args *a) {
+  *a = (report_args){.fmt = SS_REPORT_MD, .exh = -1, .po = ss_report_plot_defaults()};
   optind = 1;
   opterr = 0;
   int c;
-  while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-    switch (c) {
-    case O_DB:
-      db = optarg;
-      break;
-    case O_FORMAT:
-      if (ss_report_format_parse(optarg, &fmt))
-        return ss_cli_usage_error("report", "--format '%s' is not md, csv, tex or json",
-                                  optarg);
-      have_format = 1;
-      break;
-    case O_TABLE:
-      exh = !strcmp(optarg, "exhaustive")    ? SS_REPORT_EXH_COUNTS
-            : !strcmp(optarg, "not-passing") ? SS_REPORT_EXH_LINKS
-                                             : -1;
-      tables = 0;
-      if (exh < 0 && ss_report_tables_parse(optarg, &tables))
-        return ss_cli_usage_error(
-            "report",
-            "--table '%s' is not cases, summary, both, exhaustive or not-passing",
-            optarg);
-      break;
-    case O_WHERE:
-      where = optarg;
-      break;
-    case O_PLOT:
-      plot = optarg;
-      break;
-    case O_SIZE: {
-      int w = 0, h = 0;
-      char tail;
-      if (sscanf(optarg, "%dx%d%c", &w, &h, &tail) != 2 || w < 200 || h < 200 ||
-          w > 10000 || h > 10000)
-        return ss_cli_usage_error(
-            "report", "--size '%s' is not WxH with 200 <= W, H <= 10000", optarg);
-      po.width = w;
-      po.height = h;
-      break;
-    }
-    case O_FAILONFAIL:
-      fail_on_fail = 1;
-      break;
-    case O_LABEL:
-      if (!*optarg ||
-          strspn(optarg, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                         "0123456789-_:.") != strlen(optarg))
-        return ss_cli_usage_error("report",
-                                  "--label '%s': use letters, digits, '-', '_', ':' "
-                                  "and '.' only",
-                                  optarg);
-      label = optarg;
-      break;
-    case 'h':
-      fputs(usage_text, stdout);
-      return SS_EXIT_OK;
-    default:
-      return ss_cli_option_error("report", c, argv);
-    }
+  while ((c = getopt_long(argc, argv, ":h", report_options, NULL)) != -1) {
+    const int rc = parse_option(c, argv, a);
+    if (rc >= 0) return rc;
   }
   if (optind < argc)
     return ss_cli_usage_error("report", "unexpected argument '%s'", argv[optind]);
-  if (!db) return ss_cli_usage_error("report", "no results store given (--db FILE)");
-  if (label && fmt != SS_REPORT_TEX)
+  if (!a->db) return ss_cli_usage_error("report", "no results store given (--db FILE)");
+  if (a->label && a->fmt != SS_REPORT_TEX)
     return ss_cli_usage_error("report", "--label is for --format tex");
-  if ((po.width || po.height) && !plot)
+  if ((a->po.width || a->po.height) && !a->plot)
     return ss_cli_usage_error("report", "--size needs --plot");
-  if (exh >= 0 && plot)
+  if (a->exh >= 0 && a->plot)
     return ss_cli_usage_error("report",
                               "--plot goes with --table cases, summary or both");
-  if (exh >= 0 && fmt == SS_REPORT_TEX)
+  if (a->exh >= 0 && a->fmt == SS_REPORT_TEX)
     return ss_cli_usage_error("report", "--table %s: --format md, csv or json",
-                              exh == SS_REPORT_EXH_COUNTS ? "exhaustive" : "not-passing");
-  if (exh == SS_REPORT_EXH_LINKS && fmt == SS_REPORT_MD)
+                              a->exh == SS_REPORT_EXH_COUNTS ? "exhaustive"
+                                                             : "not-passing");
+  if (a->exh == SS_REPORT_EXH_LINKS && a->fmt == SS_REPORT_MD)
     return ss_cli_usage_error("report", "--table not-passing: --format csv or json");
   /* --plot alone prints no table */
-  const int print = have_format || tables || exh >= 0 || !plot;
-  if (!tables && exh < 0)
-    tables = fmt == SS_REPORT_CSV ? SS_REPORT_CASES : SS_REPORT_BOTH;
-  if (fmt == SS_REPORT_CSV && tables == SS_REPORT_BOTH)
+  a->print = a->have_format || a->tables || a->exh >= 0 || !a->plot;
+  if (!a->tables && a->exh < 0)
+    a->tables = a->fmt == SS_REPORT_CSV ? SS_REPORT_CASES : SS_REPORT_BOTH;
+  if (a->fmt == SS_REPORT_CSV && a->tables == SS_REPORT_BOTH)
     return ss_cli_usage_error("report",
                               "--format csv holds one table: --table cases or summary");
-  if (plot) {
+  if (a->plot) {
     /* the format check before the (possibly long) read of the store */
     ss_pic_format pf;
-    if (ss_report_pic_format(plot, &pf))
+    if (ss_report_pic_format(a->plot, &pf))
       return ss_cli_usage_error(
-          "report", "--plot '%s' is not FILE.png, FILE.svg or FILE.pdf", plot);
+          "report", "--plot '%s' is not FILE.png, FILE.svg or FILE.pdf", a->plot);
   }
+  return -1;
+}
 
+/* The figure of --plot: the first scheme identity of the rows, and a note
+ * on stderr when there are others.  SS_OK, or the plot's error. */
+static ss_status plot_rows(const report_args *a, const ss_report_rows *rows,
+                           ss_error *err) {
+  size_t nid = rows->n > 0;
+  for (size_t i = 1; i < rows->n; i++)
+    nid += strcmp(rows->row[i].identity, rows->row[i - 1].identity) != 0;
+  size_t plotted = 0;
+  const ss_status st = ss_report_plot(rows->row, rows->n, &a->po, a->plot, &plotted, err);
+  if (st) return st;
+  if (nid > 1)
+    fprintf(stderr,
+            "subspectra report: --plot: %zu scheme identities selected; %s shows the "
+            "first, '%s' (%zu cases); choose another with --where \"identity = "
+            "'...'\"\n",
+            nid, a->plot, rows->row[0].identity, plotted);
+  return SS_OK;
+}
+
+int ss_cli_report(int argc, char **argv) {
+  report_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc >= 0) return rc;
   ss_error err = {0};
   ss_store *st = NULL;
   ss_report_rows rows = {0};
   ss_report_summary *sum = NULL;
   size_t ns = 0;
-  int rc = SS_EXIT_OK;
-  if (ss_store_open(db, SS_STORE_READ, &st, &err) ||
-      ss_report_rows_load(st, where, &rows, &err) ||
+  rc = SS_EXIT_OK;
+  if (ss_store_open(a.db, SS_STORE_READ, &st, &err) ||
+      ss_report_rows_load(st, a.where, &rows, &err) ||
       ss_report_summarize(rows.row, rows.n, &sum, &ns, &err)) {
     rc = report_fail(&err);
     goto done;
   }
   if (rows.n == 0)
-    fprintf(stderr, "subspectra report: %s: no cases selected%s\n", db,
-            where ? " by --where" : " (an empty store)");
-  if (print && (exh >= 0 ? ss_report_exh_write(stdout, fmt, (ss_report_exh_table)exh,
-                                               rows.row, rows.n, &err)
-                         : ss_report_table_write(stdout, fmt, tables, rows.row, rows.n,
-                                                 sum, ns, label, &err))) {
+    fprintf(stderr, "subspectra report: %s: no cases selected%s\n", a.db,
+            a.where ? " by --where" : " (an empty store)");
+  if (a.print &&
+      (a.exh >= 0 ? ss_report_exh_write(stdout, a.fmt, (ss_report_exh_table)a.exh,
+                                        rows.row, rows.n, &err)
+                  : ss_report_table_write(stdout, a.fmt, a.tables, rows.row, rows.n, sum,
+                                          ns, a.label, &err))) {
     /* standard output failed: main reports it, with the reason */
     if (!(err.status == SS_EIO && ferror(stdout))) rc = report_fail(&err);
     goto done;
   }
-  if (plot) {
-    size_t nid = rows.n > 0;
-    for (size_t i = 1; i < rows.n; i++)
-      nid += strcmp(rows.row[i].identity, rows.row[i - 1].identity) != 0;
-    size_t plotted = 0;
-    if (ss_report_plot(rows.row, rows.n, &po, plot, &plotted, &err)) {
-      rc = report_fail(&err);
-      goto done;
-    }
-    if (nid > 1)
-      fprintf(stderr,
-              "subspectra report: --plot: %zu scheme identities selected; %s shows the "
-              "first, '%s' (%zu cases); choose another with --where \"identity = "
-              "'...'\"\n",
-              nid, plot, rows.row[0].identity, plotted);
+  if (a.plot && plot_rows(&a, &rows, &err)) {
+    rc = report_fail(&err);
+    goto done;
   }
-  for (size_t i = 0; fail_on_fail && i < rows.n; i++)
+  for (size_t i = 0; a.fail_on_fail && i < rows.n; i++)
     if (ss_result_verdict(&rows.row[i].r) != SS_PASS) rc = SS_EXIT_FAIL;
 done:
   free(sum);

@@ -1,6 +1,9 @@
-/* ss_cli_sweep.h — what `subspectra sweep` shares between its threaded
- * driver (ss_cli_sweep.c) and its MPI driver (ss_cli_sweep_mpi.c, built only
- * with MPI).  Private to the command-line tool.
+/* ss_cli_sweep.h — the interface of `subspectra sweep`'s files, private to
+ * the command-line tool.  Each file uses only those after it:
+ *  - ss_cli_sweep.c: the command's entry, the threaded sweep or MPI;
+ *  - ss_cli_sweep_mpi.c: the MPI driver (built only with MPI);
+ *  - ss_cli_sweep_run.c: the sweep's life and the steps of a case;
+ *  - ss_cli_sweep_opts.c: the options, parsed once (ss_sweep_opts).
  *
  * A sweep is opened from the command line (options, scheme, --links, the
  * store, the count of cases), run (its cases enumerated in order and queued;
@@ -9,18 +12,55 @@
  * share: ss_sweep_prepare (canonical link, already stored?), ss_sweep_compute
  * (the analysis; any thread or process) and ss_sweep_record (store it, count
  * it, progress).  The threaded flush does the three in each thread; under MPI
- * rank 0 prepares and records, and the other ranks compute. */
+ * rank 0 prepares and records, and the other ranks compute.
+ *
+ * What the command line says (ss_sweep_opts) is parsed once and then only
+ * read; what the run changes (the store, the queue, the counts, the threads
+ * in use) is the rest of ss_sweep. */
 #ifndef SS_CLI_SWEEP_H
 #define SS_CLI_SWEEP_H
 
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ss_diag.h"
 #include "ss_link.h"
 #include "ss_result.h"
 #include "ss_store.h"
 
 enum { SS_SWEEP_CHUNK = 512 }; /* cases queued before a flush */
+
+/* The command line of sweep, as given (ss_sweep_parse). */
+typedef struct {
+  const char *scheme, *stencil; /* --scheme or --stencil */
+  const char *links;            /* --links FILE, or NULL */
+  const char *db;               /* --db: the store's file name */
+  const char *vtext;            /* --vertices as given, or NULL */
+  long va, vb;                  /* --vertices A..B */
+  long ea, eb;                  /* --edges A..B (eb < ea: none) */
+  long jobs;                    /* --jobs (default: the processors) */
+  long part, nparts;            /* --part I/N */
+  long depth;                   /* --depth */
+  int face;                     /* --face */
+  double tol;                   /* --tol */
+  double max_memory;            /* --max-memory, 0: the default budget */
+  ss_diag_mode diag;            /* --diagonals */
+  int diag_given;               /* --diagonals was given */
+  int json;                     /* --format json */
+  int certify;                  /* --certify */
+  int jobs_given;               /* --jobs was given */
+} ss_sweep_opts;
+
+/* argv (`sweep` and its options) into *o (ss_cli_sweep_opts.c): -1 to go
+ * on, else the exit status (0 after --help, which prints the usage; 2 with
+ * the message printed). */
+int ss_sweep_parse(int argc, char **argv, ss_sweep_opts *o);
+
+/* Whether the cases o asks for exist for scheme s (volume: volumetric;
+ * reads: reads major diagonals): NULL, or why not (in msg, n bytes, or a
+ * constant). */
+const char *ss_sweep_check_cases(const ss_sweep_opts *o, const ss_scheme *s, int volume,
+                                 int reads, char *msg, size_t n);
 
 /* One case to run. */
 typedef struct {
@@ -47,27 +87,19 @@ typedef struct {
 
 /* A sweep in progress. */
 struct ss_sweep {
+  ss_sweep_opts opt;          /* the command line (only read once opened) */
   ss_scheme *s;               /* the scheme (owned; read-only, shared by the threads) */
+  int volume;                 /* the scheme is volumetric (--vertices enumerates links) */
+  char ident[256];            /* the scheme's identity in the store */
+  ss_result_opts ro;          /* analysis options, with this process's memory
+                                 budget of one case */
+  int jobs;                   /* threads in use (of each rank under MPI) */
+  int ranks;                  /* MPI processes computing (1 without MPI) */
   ss_store *st;               /* the store (owned; NULL on a worker) */
   int64_t id;                 /* the scheme's id in the store */
-  ss_result_opts ro;          /* analysis options */
-  ss_diag_mode diag;          /* major diagonals */
-  int jobs;                   /* threads (of each rank under MPI) */
-  int jobs_given;             /* --jobs was given */
-  double max_memory;          /* --max-memory, or 0 for the default budget */
-  int ranks;                  /* MPI processes computing (1 without MPI) */
-  const char *db;             /* the store's file name (argv) */
-  int json;                   /* --format json */
-  long part, nparts;          /* --part */
-  const char *vtext;          /* --vertices as given, or NULL */
-  long va, vb;                /* --vertices A..B */
-  long ea, eb;                /* --edges A..B (eb < ea: none) */
-  int face;                   /* --face */
-  int volume;                 /* the scheme is volumetric (--vertices enumerates links) */
   ss_link **links;            /* --links, repeats dropped (owned) */
   size_t nlinks;              /* how many */
   size_t dups;                /* --links dropped as repeats */
-  char ident[256];            /* the scheme's identity in the store */
   void (*flush)(ss_sweep *w); /* runs (or hands out) the queued cases and
                                  empties the queue; threads by default */
   void *flush_ctx;            /* the flush's own state (MPI) */
@@ -89,7 +121,7 @@ struct ss_sweep {
                             memory: each case allocates its own) */
 };
 
-/* Parse argv (`sweep` and its options), load the scheme, check the options
+/* Parse argv (ss_sweep_parse), load the scheme, check the options
  * against it and, for SS_SWEEP_WHOLE, read --links, open the store, install
  * the SIGINT/SIGTERM handler and count the cases.  Returns -1 with *out
  * (owned: ss_sweep_close) when the sweep is to run, otherwise the exit status

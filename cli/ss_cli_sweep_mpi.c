@@ -520,11 +520,11 @@ static void share_machine(ss_sweep *w, int rank) {
   MPI_Allreduce(&mine, &here, 1, MPI_INT, MPI_SUM, local);
   MPI_Comm_free(&local);
   if (here < 1) here = 1;
-  if (!w->jobs_given) {
+  if (!w->opt.jobs_given) {
     w->jobs = omp_get_num_procs() / here;
     if (w->jobs < 1) w->jobs = 1;
   }
-  w->ro.max_bytes = ss_cli_budget(w->max_memory) / ((double)w->jobs * here);
+  w->ro.max_bytes = ss_cli_budget(w->opt.max_memory) / ((double)w->jobs * here);
 }
 
 int ss_sweep_mpi(int argc, char **argv) {

@@ -398,57 +398,48 @@ static long find_dedge(const dedge *e, long n, int a, int b) {
   return -1;
 }
 
-ss_status ss_link_from_triangles(int k, int ntri, const int *tri_in, ss_link **out,
-                                 ss_error *err) {
-  *out = NULL;
-  if (k < 4 || k > SS_LINK_MAXK)
-    return ss_error_set(err, SS_EINPUT, "a link needs 4..%d vertices, not %d",
-                        SS_LINK_MAXK, k);
-  if (ntri != 2 * k - 4)
-    return ss_error_set(err, SS_EINPUT,
-                        "%d triangles on %d vertices: a sphere has 2k - 4 = %d", ntri, k,
-                        2 * k - 4);
-  ss_status st = SS_OK;
-  int *tri = malloc((size_t)ntri * 3 * sizeof *tri);
-  signed char *flip = calloc((size_t)ntri, 1);
-  int *queue = malloc((size_t)ntri * sizeof *queue);
-  dedge *u = malloc((size_t)ntri * 6 * sizeof *u); /* undirected: both directions */
-  int *deg = calloc((size_t)k, sizeof *deg), *nbr = NULL, *pos = NULL;
-  if (!tri || !flip || !queue || !u || !deg) {
-    st = ss_error_nomem(err, "link");
-    goto done;
-  }
-  memcpy(tri, tri_in, (size_t)ntri * 3 * sizeof *tri);
+/* The edges of the triangles tri (ntri of them, vertices 0..k-1), both
+ * ways round, into u (6 ntri entries).  SS_EINPUT for a vertex out of
+ * range or a triangle repeating one. */
+static ss_status tri_dedges(int k, int ntri, const int *tri, dedge *u, ss_error *err) {
   for (int t = 0; t < ntri; t++)
     for (int j = 0; j < 3; j++) {
       int a = tri[3 * t + j], b = tri[3 * t + (j + 1) % 3];
-      if (a < 0 || a >= k) {
-        st = ss_error_set(err, SS_EINPUT, "triangle %d: vertex %d is not in 1..%d", t + 1,
-                          a + 1, k);
-        goto done;
-      }
-      if (a == b || a == tri[3 * t + (j + 2) % 3]) {
-        st = ss_error_set(err, SS_EINPUT, "triangle %d repeats vertex %d", t + 1, a + 1);
-        goto done;
-      }
+      if (a < 0 || a >= k)
+        return ss_error_set(err, SS_EINPUT, "triangle %d: vertex %d is not in 1..%d",
+                            t + 1, a + 1, k);
+      if (a == b || a == tri[3 * t + (j + 2) % 3])
+        return ss_error_set(err, SS_EINPUT, "triangle %d repeats vertex %d", t + 1,
+                            a + 1);
       u[6 * t + 2 * j] = (dedge){a, b, t};
       u[6 * t + 2 * j + 1] = (dedge){b, a, t};
     }
-  /* every undirected edge in exactly two triangles */
-  long nu = 6L * ntri;
+  return SS_OK;
+}
+
+/* Every undirected edge in exactly two triangles: u, the nu edges of
+ * tri_dedges, is sorted and each run of equal edges counted.  SS_EINPUT. */
+static ss_status check_two_per_edge(dedge *u, long nu, ss_error *err) {
   qsort(u, (size_t)nu, sizeof *u, cmp_dedge);
   for (long i = 0; i < nu;) {
     long j = i;
     while (j < nu && u[j].a == u[i].a && u[j].b == u[i].b)
       j++;
-    if (j - i != 2) {
-      st = ss_error_set(err, SS_EINPUT, "edge %d-%d is in %ld triangles, not 2",
-                        u[i].a + 1, u[i].b + 1, j - i);
-      goto done;
-    }
+    if (j - i != 2)
+      return ss_error_set(err, SS_EINPUT, "edge %d-%d is in %ld triangles, not 2",
+                          u[i].a + 1, u[i].b + 1, j - i);
     i = j;
   }
-  /* orient by propagation: neighbours across an edge traverse it oppositely */
+  return SS_OK;
+}
+
+/* Orient the ntri triangles tri coherently, by propagation from triangle 0:
+ * neighbours across an edge traverse it oppositely (u: the sorted edges of
+ * check_two_per_edge, nu of them); a triangle to turn has its corners 1 and
+ * 2 swapped.  flip and queue: ntri entries of scratch.  SS_EINPUT when the
+ * surface is not orientable or not connected. */
+static ss_status orient(int ntri, int *tri, const dedge *u, long nu, signed char *flip,
+                        int *queue, ss_error *err) {
   for (int t = 0; t < ntri; t++)
     flip[t] = -1;
   flip[0] = 0;
@@ -471,70 +462,111 @@ ss_status ss_link_from_triangles(int k, int ntri, const int *tri_in, ss_link **o
         flip[s] = (signed char)want;
         queue[qt++] = s;
       } else if (flip[s] != want) {
-        st = ss_error_set(err, SS_EINPUT,
-                          "the triangles do not form an orientable surface");
-        goto done;
+        return ss_error_set(err, SS_EINPUT,
+                            "the triangles do not form an orientable surface");
       }
     }
   }
-  if (qt != ntri) {
-    st = ss_error_set(err, SS_EINPUT, "the triangles do not form a connected surface");
-    goto done;
-  }
+  if (qt != ntri)
+    return ss_error_set(err, SS_EINPUT, "the triangles do not form a connected surface");
   for (int t = 0; t < ntri; t++)
     if (flip[t]) {
       int s = tri[3 * t + 1];
       tri[3 * t + 1] = tri[3 * t + 2];
       tri[3 * t + 2] = s;
     }
-  /* rotation: around v, triangle (v, w, w') says w' follows w */
+  return SS_OK;
+}
+
+/* The number of triangles at each of the k vertices into deg (zero on
+ * entry).  SS_EINPUT for a vertex in fewer than 3. */
+static ss_status count_degrees(int k, int ntri, const int *tri, int *deg, ss_error *err) {
   for (int t = 0; t < ntri; t++)
     for (int j = 0; j < 3; j++)
       deg[tri[3 * t + j]]++;
   for (int v = 0; v < k; v++)
-    if (deg[v] < 3) {
-      st =
-          ss_error_set(err, SS_EINPUT, "vertex %d is in %d triangles (at least 3 needed)",
-                       v + 1, deg[v]);
-      goto done;
-    }
-  /* next[v][w] via the sorted directed edges of the oriented triangles */
+    if (deg[v] < 3)
+      return ss_error_set(err, SS_EINPUT,
+                          "vertex %d is in %d triangles (at least 3 needed)", v + 1,
+                          deg[v]);
+  return SS_OK;
+}
+
+/* The directed edges (a, b) of the oriented triangles, each with the third
+ * vertex of its triangle (in the field t), into u, sorted: 3 ntri of them.
+ * Around a, triangle (a, b, c) says c follows b. */
+static void next_dedges(int ntri, const int *tri, dedge *u) {
   for (int t = 0; t < ntri; t++)
     for (int j = 0; j < 3; j++) {
       int a = tri[3 * t + j], b = tri[3 * t + (j + 1) % 3];
       u[3 * t + j] = (dedge){a, b, tri[3 * t + (j + 2) % 3]}; /* t = the third vertex */
     }
-  nu = 3L * ntri;
-  qsort(u, (size_t)nu, sizeof *u, cmp_dedge);
-  nbr = malloc((size_t)nu * sizeof *nbr);
-  pos = malloc(((size_t)k + 1) * sizeof *pos);
-  if (!nbr || !pos) {
-    st = ss_error_nomem(err, "link");
-    goto done;
-  }
+  qsort(u, (size_t)(3L * ntri), sizeof *u, cmp_dedge);
+}
+
+/* The rotation system: the neighbours of each vertex v in turn into
+ * nbr[pos[v] .. pos[v] + deg[v]), walking w -> next(w) = the third vertex of
+ * the triangle on (v, w) through u, the nu edges of next_dedges; pos (k + 1
+ * offsets) is filled here.  SS_EINPUT when the triangles around a vertex do
+ * not close into one cycle. */
+static ss_status walk_rotations(int k, const int *deg, const dedge *u, long nu, int *nbr,
+                                int *pos, ss_error *err) {
   pos[0] = 0;
   for (int v = 0; v < k; v++)
     pos[v + 1] = pos[v] + deg[v];
   for (int v = 0; v < k; v++) {
-    /* walk: w -> next(w) = third vertex of the triangle on (v, w) */
     long e0 = find_dedge(u, nu, v, u[pos[v]].b);
     int w = u[e0].b;
     for (int i = 0; i < deg[v]; i++) {
       nbr[pos[v] + i] = w;
       long e = find_dedge(u, nu, v, w);
-      if (e < 0) {
-        st = ss_error_set(err, SS_EINPUT, "the triangles around vertex %d do not close",
-                          v + 1);
-        goto done;
-      }
+      if (e < 0)
+        return ss_error_set(err, SS_EINPUT, "the triangles around vertex %d do not close",
+                            v + 1);
       w = u[e].t;
     }
-    if (w != nbr[pos[v]]) {
-      st = ss_error_set(err, SS_EINPUT,
-                        "the triangles around vertex %d form more than one cycle", v + 1);
-      goto done;
-    }
+    if (w != nbr[pos[v]])
+      return ss_error_set(err, SS_EINPUT,
+                          "the triangles around vertex %d form more than one cycle",
+                          v + 1);
   }
+  return SS_OK;
+}
+
+ss_status ss_link_from_triangles(int k, int ntri, const int *tri_in, ss_link **out,
+                                 ss_error *err) {
+  *out = NULL;
+  if (k < 4 || k > SS_LINK_MAXK)
+    return ss_error_set(err, SS_EINPUT, "a link needs 4..%d vertices, not %d",
+                        SS_LINK_MAXK, k);
+  if (ntri != 2 * k - 4)
+    return ss_error_set(err, SS_EINPUT,
+                        "%d triangles on %d vertices: a sphere has 2k - 4 = %d", ntri, k,
+                        2 * k - 4);
+  ss_status st = SS_OK;
+  int *tri = malloc((size_t)ntri * 3 * sizeof *tri);
+  signed char *flip = calloc((size_t)ntri, 1);
+  int *queue = malloc((size_t)ntri * sizeof *queue);
+  dedge *u = malloc((size_t)ntri * 6 * sizeof *u); /* undirected: both directions */
+  int *deg = calloc((size_t)k, sizeof *deg), *nbr = NULL, *pos = NULL;
+  if (!tri || !flip || !queue || !u || !deg) {
+    st = ss_error_nomem(err, "link");
+    goto done;
+  }
+  memcpy(tri, tri_in, (size_t)ntri * 3 * sizeof *tri);
+  if ((st = tri_dedges(k, ntri, tri, u, err)) ||
+      (st = check_two_per_edge(u, 6L * ntri, err)) ||
+      (st = orient(ntri, tri, u, 6L * ntri, flip, queue, err)) ||
+      (st = count_degrees(k, ntri, tri, deg, err)))
+    goto done;
+  next_dedges(ntri, tri, u); /* u is reused: the first table is done with */
+  nbr = malloc((size_t)(3L * ntri) * sizeof *nbr);
+  pos = malloc(((size_t)k + 1) * sizeof *pos);
+  if (!nbr || !pos) {
+    st = ss_error_nomem(err, "link");
+    goto done;
+  }
+  if ((st = walk_rotations(k, deg, u, 3L * ntri, nbr, pos, err))) goto done;
   st = ss_link_new(k, deg, nbr, out, err);
 done:
   free(tri);

@@ -1,64 +1,14 @@
-/* ss_mesh.c — choosing a mesh format and opening files for the readers and
- * writers of ss_mesh_medit.c, ss_mesh_vtk.c, ss_mesh_obj.c, ss_mesh_gmsh.c and
- * ss_mesh_tetgen.c. */
+/* ss_mesh.c — reading and writing a mesh file: the format chosen
+ * (ss_mesh_format.c), the file opened, and the reader or writer of
+ * ss_mesh_medit.c, ss_mesh_vtk.c, ss_mesh_obj.c, ss_mesh_gmsh.c or
+ * ss_mesh_tetgen.c called. */
 #include "ss_mesh.h"
 
 #include <errno.h>
 #include <math.h>
 #include <string.h>
-#include <strings.h>
 
 #include "ss_outfile.h"
-
-ss_mesh_format ss_mesh_format_from_path(const char *path) {
-  const char *dot = strrchr(path, '.');
-  const char *slash = strrchr(path, '/');
-  if (!dot || (slash && dot < slash)) return SS_MESH_AUTO;
-  if (!strcasecmp(dot, ".mesh")) return SS_MESH_MEDIT;
-  if (!strcasecmp(dot, ".vtk")) return SS_MESH_VTK;
-  if (!strcasecmp(dot, ".obj")) return SS_MESH_OBJ;
-  if (!strcasecmp(dot, ".msh")) return SS_MESH_GMSH;
-  if (!strcasecmp(dot, ".node") || !strcasecmp(dot, ".ele") || !strcasecmp(dot, ".face"))
-    return SS_MESH_TETGEN;
-  return SS_MESH_AUTO;
-}
-
-int ss_mesh_format_readable(ss_mesh_format fmt) {
-  return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_TETGEN ||
-         (fmt == SS_MESH_GMSH && ss_mesh_gmsh_available());
-}
-
-int ss_mesh_format_writable(ss_mesh_format fmt) {
-  return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_VTK;
-}
-
-const char *ss_mesh_readable_list(void) {
-  return ss_mesh_gmsh_available()
-             ? ".mesh (Medit), .obj, .msh (gmsh) or .node/.ele (TetGen)"
-             : ".mesh (Medit), .obj or .node/.ele (TetGen); .msh needs a build "
-               "with gmsh";
-}
-
-const char *ss_mesh_writable_list(void) {
-  return ".mesh (Medit), .vtk or .obj";
-}
-
-const char *ss_mesh_format_name(ss_mesh_format fmt) {
-  switch (fmt) {
-  case SS_MESH_MEDIT:
-    return "medit";
-  case SS_MESH_VTK:
-    return "vtk";
-  case SS_MESH_OBJ:
-    return "obj";
-  case SS_MESH_GMSH:
-    return "gmsh";
-  case SS_MESH_TETGEN:
-    return "tetgen";
-  default:
-    return "auto";
-  }
-}
 
 ss_status ss_mesh_read(const char *path, ss_mesh_format fmt, ss_cx **out, ss_error *err) {
   *out = NULL;

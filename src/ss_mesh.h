@@ -46,7 +46,8 @@ typedef struct {
                             refuses the file, gmsh drops the cells) */
 } ss_mesh_write_opts;
 
-/* Format implied by a path's extension (case-insensitive); SS_MESH_AUTO if none. */
+/* The formats (ss_mesh_format.c, below the readers and writers).
+ * Format implied by a path's extension (case-insensitive); SS_MESH_AUTO if none. */
 ss_mesh_format ss_mesh_format_from_path(const char *path);
 /* Name of a format ("medit", "vtk", "obj", "gmsh", "tetgen"). */
 const char *ss_mesh_format_name(ss_mesh_format fmt);

@@ -73,10 +73,6 @@ static ss_status check_header(const char *path, ss_error *err) {
 
 #if !SS_HAVE_GMSH
 
-int ss_mesh_gmsh_available(void) {
-  return 0;
-}
-
 ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
   *out = NULL;
   ss_status st = check_header(path, err);
@@ -89,10 +85,6 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
 }
 
 #else
-
-int ss_mesh_gmsh_available(void) {
-  return 1;
-}
 
 /* gmsh's C API as function pointers, looked up in the child by load_api.
  * The types come from gmshc.h, so a changed signature is a compile error. */
@@ -200,20 +192,30 @@ static int cmp_elem(const void *a, const void *b) {
   return x->tag < y->tag ? -1 : x->tag > y->tag;
 }
 
-/* Read the model gmsh holds into a new complex. */
-static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
-                         ss_error *err) {
+/* The nodes' tags, ascending: vertex k is the node of tag sorted[k]. */
+typedef struct {
+  size_t *sorted; /* n tags (owned) */
+  size_t n;       /* nodes */
+} node_tags;
+
+/* The elements gathered so far, per cell type. */
+typedef struct {
+  elem *el[SS_NCELLTYPES];   /* the elements of each type (owned) */
+  size_t n[SS_NCELLTYPES];   /* how many */
+  size_t cap[SS_NCELLTYPES]; /* room in el[t] */
+} elem_lists;
+
+/* The nodes of the model gmsh holds as the vertices of a new complex *out:
+ * vertex k is the node of the k-th smallest tag (the tags into nd); 2
+ * coordinates when the model has no 3D element and every z is 0, else 3. */
+static ss_status read_nodes(const gmsh_api *g, const char *path, node_tags *nd,
+                            ss_cx **out, ss_error *err) {
   ss_status st = SS_OK;
   int ierr = 0;
   size_t *ntag = NULL, nn = 0, ncoord = 0, npar = 0;
   double *coord = NULL, *par = NULL;
   size_t *order = NULL, *sorted = NULL;
-  elem *el[SS_NCELLTYPES] = {NULL};
-  size_t nel[SS_NCELLTYPES] = {0}, cap[SS_NCELLTYPES] = {0};
-  int *ents = NULL;
-  size_t nents = 0;
   ss_cx *cx = NULL;
-  *out = NULL;
 
   g->gmshModelMeshGetNodes(&ntag, &nn, &coord, &ncoord, &par, &npar, -1, -1, 0, 0, &ierr);
   if (ierr || ncoord != 3 * nn) {
@@ -259,126 +261,173 @@ static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
     goto done;
   for (size_t k = 0; k < nn; k++)
     if ((st = ss_cx_add_vertex(cx, coord + 3 * order[k], 0, err))) goto done;
-
-  for (int d = 0; d <= 3; d++) {
-    g->gmshFree(ents);
-    ents = NULL;
-    g->gmshModelGetEntities(&ents, &nents, d, &ierr);
-    if (ierr) {
-      st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no entities of dimension %d",
-                        path, d);
-      goto done;
-    }
-    for (size_t e = 0; e < nents / 2; e++) {
-      const int etag = ents[2 * e + 1];
-      int *phys = NULL, *types = NULL;
-      size_t nphys = 0, ntypes = 0, **etags = NULL, *etags_n = NULL, etags_nn = 0;
-      size_t **enodes = NULL, *enodes_n = NULL, enodes_nn = 0;
-      g->gmshModelGetPhysicalGroupsForEntity(d, etag, &phys, &nphys, &ierr);
-      const int32_t ref = nphys ? phys[0] : etag;
-      g->gmshFree(phys);
-      g->gmshModelMeshGetElements(&types, &ntypes, &etags, &etags_n, &etags_nn, &enodes,
-                                  &enodes_n, &enodes_nn, d, etag, &ierr);
-      for (size_t t = 0; t < ntypes && !st && !ierr; t++) {
-        ss_cell_type ct;
-        if (!cell_type_of(types[t], &ct)) {
-          char *name = NULL;
-          int edim, order_, nnodes, nprim, ierr2 = 0;
-          double *lc = NULL;
-          size_t nlc = 0;
-          g->gmshModelMeshGetElementProperties(types[t], &name, &edim, &order_, &nnodes,
-                                               &lc, &nlc, &nprim, &ierr2);
-          st =
-              ss_error_set(err, SS_EINPUT,
-                           "%s: %zu elements of gmsh type %d (%s) have no cell here "
-                           "(read: points, lines, triangles, quadrangles, "
-                           "tetrahedra, hexahedra, of first order)",
-                           path, etags_n[t], types[t], !ierr2 && name ? name : "unknown");
-          g->gmshFree(name);
-          g->gmshFree(lc);
-          break;
-        }
-        const int nv = ss_cell_nverts(ct);
-        if (enodes_n[t] != etags_n[t] * (size_t)nv) {
-          st = ss_error_set(err, SS_EINPUT, "%s: gmsh gave %zu nodes for %zu %s", path,
-                            enodes_n[t], etags_n[t], ss_cell_plural(ct));
-          break;
-        }
-        if (nel[ct] + etags_n[t] > cap[ct]) {
-          size_t c = 2 * cap[ct] + etags_n[t];
-          elem *p = realloc(el[ct], c * sizeof *p);
-          if (!p) {
-            st = ss_error_nomem(err, "gmsh elements");
-            break;
-          }
-          el[ct] = p;
-          cap[ct] = c;
-        }
-        for (size_t i = 0; i < etags_n[t] && !st; i++) {
-          elem *x = el[ct] + nel[ct]++;
-          x->tag = etags[t][i];
-          x->ref = ref;
-          for (int j = 0; j < nv; j++) {
-            const size_t *k = bsearch(enodes[t] + i * (size_t)nv + j, sorted, nn,
-                                      sizeof *sorted, cmp_size);
-            if (!k) {
-              st = ss_error_set(err, SS_EINPUT,
-                                "%s: element %zu refers to node %zu, which is not "
-                                "in the file",
-                                path, x->tag, enodes[t][i * (size_t)nv + j]);
-              break;
-            }
-            x->v[j] = (ss_idx)(k - sorted);
-          }
-        }
-      }
-      for (size_t t = 0; t < ntypes; t++) {
-        g->gmshFree(etags[t]);
-        g->gmshFree(enodes[t]);
-      }
-      g->gmshFree(types);
-      g->gmshFree(etags);
-      g->gmshFree(etags_n);
-      g->gmshFree(enodes);
-      g->gmshFree(enodes_n);
-      if (st) goto done;
-      if (ierr) {
-        st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no elements of entity (%d, %d)",
-                          path, d, etag);
-        goto done;
-      }
-    }
-  }
-  for (int t = 0; t < SS_NCELLTYPES; t++) {
-    if (!nel[t]) continue;
-    const ss_cell_type ct = (ss_cell_type)t;
-    if (ss_cell_dim(ct) > dim) { /* unreachable: 3D cells make dim 3 */
-      st = ss_error_set(err, SS_EINPUT, "%s: %s in a plane", path, ss_cell_plural(ct));
-      goto done;
-    }
-    qsort(el[t], nel[t], sizeof *el[t], cmp_elem);
-    if ((st = ss_cx_reserve_cells(cx, ct, nel[t], err))) goto done;
-    for (size_t i = 0; i < nel[t]; i++) {
-      const char *defect = ss_cell_defect(ct, el[t][i].v, cx->nv);
-      if (defect) {
-        st = ss_error_set(err, SS_EINPUT, "%s: element %zu (a %s) is %s", path,
-                          el[t][i].tag, ss_cell_name(ct), defect);
-        goto done;
-      }
-      if ((st = ss_cx_add_cell(cx, ct, el[t][i].v, el[t][i].ref, err))) goto done;
-    }
-  }
+  *nd = (node_tags){sorted, nn};
+  sorted = NULL;
   *out = cx;
   cx = NULL;
 done:
   g->gmshFree(ntag);
   g->gmshFree(coord);
   g->gmshFree(par);
-  g->gmshFree(ents);
   free(order);
   free(sorted);
+  ss_cx_free(cx);
+  return st;
+}
+
+/* gmsh's element block of one type, `type`, on one entity: count elements,
+ * tags[i] and their nodes nodes[i * nv ..], nnodes in all; into es with
+ * reference ref, their nodes as vertex indices (nd).  SS_EINPUT for a type
+ * that has no cell here, a block whose node count does not match, or a node
+ * that is not in the file; SS_ENOMEM. */
+static ss_status add_block(const gmsh_api *g, const char *path, int type, size_t count,
+                           const size_t *tags, size_t nnodes, const size_t *nodes,
+                           int32_t ref, const node_tags *nd, elem_lists *es,
+                           ss_error *err) {
+  ss_status st = SS_OK;
+  ss_cell_type ct;
+  if (!cell_type_of(type, &ct)) {
+    char *name = NULL;
+    int edim, order_, nnod, nprim, ierr2 = 0;
+    double *lc = NULL;
+    size_t nlc = 0;
+    g->gmshModelMeshGetElementProperties(type, &name, &edim, &order_, &nnod, &lc, &nlc,
+                                         &nprim, &ierr2);
+    st = ss_error_set(err, SS_EINPUT,
+                      "%s: %zu elements of gmsh type %d (%s) have no cell here "
+                      "(read: points, lines, triangles, quadrangles, "
+                      "tetrahedra, hexahedra, of first order)",
+                      path, count, type, !ierr2 && name ? name : "unknown");
+    g->gmshFree(name);
+    g->gmshFree(lc);
+    return st;
+  }
+  const int nv = ss_cell_nverts(ct);
+  if (nnodes != count * (size_t)nv)
+    return ss_error_set(err, SS_EINPUT, "%s: gmsh gave %zu nodes for %zu %s", path,
+                        nnodes, count, ss_cell_plural(ct));
+  if (es->n[ct] + count > es->cap[ct]) {
+    size_t c = 2 * es->cap[ct] + count;
+    elem *p = realloc(es->el[ct], c * sizeof *p);
+    if (!p) return ss_error_nomem(err, "gmsh elements");
+    es->el[ct] = p;
+    es->cap[ct] = c;
+  }
+  for (size_t i = 0; i < count; i++) {
+    elem *x = es->el[ct] + es->n[ct]++;
+    x->tag = tags[i];
+    x->ref = ref;
+    for (int j = 0; j < nv; j++) {
+      const size_t *k = bsearch(nodes + i * (size_t)nv + j, nd->sorted, nd->n,
+                                sizeof *nd->sorted, cmp_size);
+      if (!k)
+        return ss_error_set(err, SS_EINPUT,
+                            "%s: element %zu refers to node %zu, which is not "
+                            "in the file",
+                            path, x->tag, nodes[i * (size_t)nv + j]);
+      x->v[j] = (ss_idx)(k - nd->sorted);
+    }
+  }
+  return SS_OK;
+}
+
+/* The elements of entity (d, etag), block by block, into es; their
+ * reference is the entity's first physical group, else its tag. */
+static ss_status add_entity(const gmsh_api *g, const char *path, int d, int etag,
+                            const node_tags *nd, elem_lists *es, ss_error *err) {
+  ss_status st = SS_OK;
+  int ierr = 0;
+  int *phys = NULL, *types = NULL;
+  size_t nphys = 0, ntypes = 0, **etags = NULL, *etags_n = NULL, etags_nn = 0;
+  size_t **enodes = NULL, *enodes_n = NULL, enodes_nn = 0;
+  g->gmshModelGetPhysicalGroupsForEntity(d, etag, &phys, &nphys, &ierr);
+  const int32_t ref = nphys ? phys[0] : etag;
+  g->gmshFree(phys);
+  g->gmshModelMeshGetElements(&types, &ntypes, &etags, &etags_n, &etags_nn, &enodes,
+                              &enodes_n, &enodes_nn, d, etag, &ierr);
+  for (size_t t = 0; t < ntypes && !st && !ierr; t++)
+    st = add_block(g, path, types[t], etags_n[t], etags[t], enodes_n[t], enodes[t], ref,
+                   nd, es, err);
+  for (size_t t = 0; t < ntypes; t++) {
+    g->gmshFree(etags[t]);
+    g->gmshFree(enodes[t]);
+  }
+  g->gmshFree(types);
+  g->gmshFree(etags);
+  g->gmshFree(etags_n);
+  g->gmshFree(enodes);
+  g->gmshFree(enodes_n);
+  if (!st && ierr)
+    st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no elements of entity (%d, %d)",
+                      path, d, etag);
+  return st;
+}
+
+/* The elements of every entity of the model, dimension 0 to 3, into es. */
+static ss_status gather_elements(const gmsh_api *g, const char *path, const node_tags *nd,
+                                 elem_lists *es, ss_error *err) {
+  ss_status st = SS_OK;
+  int ierr = 0;
+  int *ents = NULL;
+  size_t nents = 0;
+  for (int d = 0; d <= 3 && !st; d++) {
+    g->gmshFree(ents);
+    ents = NULL;
+    g->gmshModelGetEntities(&ents, &nents, d, &ierr);
+    if (ierr) {
+      st = ss_error_set(err, SS_EINPUT, "%s: gmsh lists no entities of dimension %d",
+                        path, d);
+      break;
+    }
+    for (size_t e = 0; e < nents / 2 && !st; e++)
+      st = add_entity(g, path, d, ents[2 * e + 1], nd, es, err);
+  }
+  g->gmshFree(ents);
+  return st;
+}
+
+/* The gathered elements as cells of cx, type by type in the file's order
+ * (by element tag).  SS_EINPUT for a degenerate cell; SS_ENOMEM. */
+static ss_status add_cells(ss_cx *cx, const char *path, elem_lists *es, ss_error *err) {
+  ss_status st = SS_OK;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    if (!es->n[t]) continue;
+    const ss_cell_type ct = (ss_cell_type)t;
+    if (ss_cell_dim(ct) > cx->dim) /* unreachable: 3D cells make dim 3 */
+      return ss_error_set(err, SS_EINPUT, "%s: %s in a plane", path, ss_cell_plural(ct));
+    qsort(es->el[t], es->n[t], sizeof *es->el[t], cmp_elem);
+    if ((st = ss_cx_reserve_cells(cx, ct, es->n[t], err))) return st;
+    for (size_t i = 0; i < es->n[t]; i++) {
+      const elem *x = &es->el[t][i];
+      const char *defect = ss_cell_defect(ct, x->v, cx->nv);
+      if (defect)
+        return ss_error_set(err, SS_EINPUT, "%s: element %zu (a %s) is %s", path, x->tag,
+                            ss_cell_name(ct), defect);
+      if ((st = ss_cx_add_cell(cx, ct, x->v, x->ref, err))) return st;
+    }
+  }
+  return SS_OK;
+}
+
+/* Read the model gmsh holds into a new complex: its nodes, then the
+ * elements of every entity, then those as cells. */
+static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
+                         ss_error *err) {
+  node_tags nd = {NULL, 0};
+  elem_lists es;
+  memset(&es, 0, sizeof es);
+  ss_cx *cx = NULL;
+  *out = NULL;
+  ss_status st = read_nodes(g, path, &nd, &cx, err);
+  if (!st) st = gather_elements(g, path, &nd, &es, err);
+  if (!st) st = add_cells(cx, path, &es, err);
+  if (!st) {
+    *out = cx;
+    cx = NULL;
+  }
+  free(nd.sorted);
   for (int t = 0; t < SS_NCELLTYPES; t++)
-    free(el[t]);
+    free(es.el[t]);
   ss_cx_free(cx);
   return st;
 }

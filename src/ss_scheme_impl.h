@@ -33,7 +33,8 @@ struct ss_scheme {
                                (ss_rows); 0: in any order (ss_triplets) */
 };
 
-/* Allocate a scheme with the given parts. */
+/* Allocate a scheme with the given parts (ss_scheme_base.c, below every
+ * scheme file). */
 ss_status ss_scheme_alloc(const char *name, ss_split_kind split, unsigned accepts,
                           ss_rule_fn rule, ss_scheme **out, ss_error *err);
 

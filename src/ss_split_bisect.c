@@ -31,8 +31,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "ss_split_builder.h"
 #include "ss_split_impl.h"
-#include "ss_triedge.h"
+#include "ss_split_tri.h"
 
 typedef struct {
   uint64_t key; /* rounded squared length */
@@ -56,31 +57,6 @@ static double len2(const ss_cx *cx, ss_idx a, ss_idx b) {
     s += d * d;
   }
   return s;
-}
-
-ss_status ss_split_tri_edges(const ss_cx *coarse, ss_triedge **te, ss_error *err) {
-  ss_status st = ss_triedge_new(coarse, te, err);
-  if (st) return st;
-  const size_t bad = ss_triedge_nonmanifold(*te);
-  if (bad == SIZE_MAX) return SS_OK;
-  st = ss_error_set(err, SS_EINPUT,
-                    "non-manifold edge: the edge between vertices %lu and %lu is held by "
-                    "%zu triangles (at most 2 allowed)",
-                    (unsigned long)(*te)->end[2 * bad] + 1,
-                    (unsigned long)(*te)->end[2 * bad + 1] + 1, (*te)->nface[bad]);
-  ss_triedge_free(*te);
-  *te = NULL;
-  return st;
-}
-
-ss_status ss_split_tri_fine(const ss_cx *coarse, ss_cx **fine, ss_error *err) {
-  ss_status st = ss_cx_new(coarse->dim, fine, err);
-  if (!st) st = ss_cx_reserve_cells(*fine, SS_VERTEX, coarse->nc[SS_VERTEX], err);
-  if (!st) st = ss_cx_reserve_cells(*fine, SS_TRIANGLE, 2 * coarse->nc[SS_TRIANGLE], err);
-  for (size_t c = 0; !st && c < coarse->nc[SS_VERTEX]; c++)
-    st = ss_cx_add_cell(*fine, SS_VERTEX, ss_cx_cell(coarse, SS_VERTEX, c),
-                        coarse->cref[SS_VERTEX][c], err);
-  return st; /* on failure *fine is the caller's to free */
 }
 
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,

@@ -8,6 +8,7 @@
  * point o + bits(k'). */
 #include <stdlib.h>
 
+#include "ss_split_builder.h"
 #include "ss_split_impl.h"
 
 /* Lattice point t of a d-cube as the face it is born on: its parents are the

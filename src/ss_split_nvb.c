@@ -26,7 +26,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "ss_split_builder.h"
 #include "ss_split_impl.h"
+#include "ss_split_tri.h"
 
 ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
                        ss_error *err) {

@@ -2,6 +2,7 @@
  * figure 3): corner chopping of tets and triangles, and octahedra into six
  * octahedra and eight tets about a new centroid.  Only edge midpoints are shared
  * between cells; each octahedron's centroid belongs to it alone. */
+#include "ss_split_builder.h"
 #include "ss_split_impl.h"
 
 typedef struct {

@@ -1,0 +1,67 @@
+/* ss_scheme_base.c — the scheme object: allocation with its parts, the
+ * accessors, and the vertex lists of messages.  Below every scheme file
+ * (ss_scheme_<name>.c builds its scheme with ss_scheme_alloc) and below the
+ * registry and driver in ss_scheme.c. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "ss_scheme_impl.h"
+
+ss_status ss_scheme_alloc(const char *name, ss_split_kind split, unsigned accepts,
+                          ss_rule_fn rule, ss_scheme **out, ss_error *err) {
+  *out = NULL;
+  ss_scheme *s = calloc(1, sizeof *s);
+  if (!s) return ss_error_nomem(err, "scheme");
+  snprintf(s->name, sizeof s->name, "%s", name);
+  s->split = split;
+  s->accepts = accepts;
+  s->rule = rule;
+  s->reach = 1;
+  s->step_split = split;
+  s->step_passes = 1;
+  s->ring_depth = 1;
+  *out = s;
+  return SS_OK;
+}
+
+void ss_scheme_free(ss_scheme *s) {
+  free(s);
+}
+
+int ss_scheme_reach(const ss_scheme *s) {
+  return s->reach;
+}
+
+int ss_scheme_ring_depth(const ss_scheme *s) {
+  return s->ring_depth;
+}
+
+int ss_scheme_reads_diagonals(const ss_scheme *s) {
+  return s->diagonals;
+}
+
+const char *ss_scheme_name(const ss_scheme *s) {
+  return s->name;
+}
+
+ss_split_kind ss_scheme_split_kind(const ss_scheme *s) {
+  return s->split;
+}
+
+int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t) {
+  return (int)((s->accepts >> t) & 1u);
+}
+
+void ss_scheme_list_vertices(const ss_idx *v, size_t n, char *buf, size_t cap) {
+  size_t len = 0;
+  buf[0] = '\0';
+  for (size_t j = 0; j < n && len < cap; j++) {
+    int w = snprintf(buf + len, cap - len, "%s%lu",
+                     j == 0       ? ""
+                     : j + 1 == n ? " and "
+                                  : ", ",
+                     (unsigned long)v[j] + 1);
+    if (w < 0) break;
+    len += (size_t)w;
+  }
+}
