@@ -21,26 +21,36 @@ SS_EXPECT_TIMEOUT=120
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# compare JSON VTK: the checks above in Python (stdlib only); prints one
-# line per failed property, nothing when all hold
-compare() {
-  python3 - "$1" "$2" <<'PY'
+# The VTK reader and the checks above in Python (stdlib only), once: `vtk.py
+# compare JSON VTK` prints one line per failed property (nothing when all
+# hold); `vtk.py centre VTK` says whether the cells around p go below the
+# ring's minimum.
+cat >"$tmp/vtk.py" <<'PY'
 import json, sys
-j = json.load(open(sys.argv[1]))["regularity"]
-lines = open(sys.argv[2]).read().split("\n")
-field = {}
-for i, l in enumerate(lines):
-    for name in ("min_scaled_jacobian", "orientation", "ring_level"):
-        if l.startswith(name + " 1 1 "):
-            field[name] = lines[i + 1]
-def block(head, stop):
-    i = lines.index(head) + 2  # skip LOOKUP_TABLE
-    out = []
-    while i < len(lines) and lines[i] and not lines[i].startswith(stop):
-        out.append(lines[i]); i += 1
-    return out
-msj = [float(x) for x in block("SCALARS min_scaled_jacobian double 1", "SCALARS")]
-part = [int(x) for x in block("SCALARS part int 1", "POINT_DATA")]
+def read(path):
+    lines = open(path).read().split("\n")
+    field = {}
+    for i, l in enumerate(lines):
+        for name in ("min_scaled_jacobian", "orientation", "ring_level"):
+            if l.startswith(name + " 1 1 "):
+                field[name] = lines[i + 1]
+    def block(head, stop):
+        i = lines.index(head) + 2  # skip LOOKUP_TABLE
+        out = []
+        while i < len(lines) and lines[i] and not lines[i].startswith(stop):
+            out.append(lines[i]); i += 1
+        return out
+    msj = [float(x) for x in block("SCALARS min_scaled_jacobian double 1", "SCALARS")]
+    part = [int(x) for x in block("SCALARS part int 1", "POINT_DATA")]
+    return field, msj, part
+if sys.argv[1] == "centre":
+    field, msj, part = read(sys.argv[2])
+    c = [m for m, p in zip(msj, part) if p == 0]
+    r = [m for m, p in zip(msj, part) if p == 2]
+    print("yes" if c and r and min(c) < min(r) else "no")
+    sys.exit(0)
+j = json.load(open(sys.argv[2]))["regularity"]
+field, msj, part = read(sys.argv[3])
 bad = []
 if float(field["min_scaled_jacobian"]) != j["min_scaled_jacobian"]:
     bad.append("field min_scaled_jacobian %s, analyze %r" % (field["min_scaled_jacobian"], j["min_scaled_jacobian"]))
@@ -55,7 +65,6 @@ elif min(ring) != j["min_scaled_jacobian"]:
     bad.append("ring cells' minimum %r, analyze %r" % (min(ring), j["min_scaled_jacobian"]))
 print("\n".join(bad))
 PY
-}
 
 one() { # SCHEME CASE-OPTION [ARG]
   local name="$*" js="$tmp/a.json" vtk="$tmp/d.vtk"
@@ -71,7 +80,7 @@ one() { # SCHEME CASE-OPTION [ARG]
   fi
   grep -q "(regularity $verdict" <<<"$line" || fail "$name: draw says '$line', analyze '$verdict'"
   local bad
-  bad=$(compare "$js" "$vtk")
+  bad=$(python3 "$tmp/vtk.py" compare "$js" "$vtk")
   [ -z "$bad" ] || fail "$name: $bad"
 }
 
@@ -88,22 +97,7 @@ one catmull-clark --surface-vertex 5
 # keep them apart (part 0), or the test above would compare the wrong cells
 "$exe" draw --scheme mlca --vertex tetrahedron -o "$tmp/t.vtk" 2>/dev/null
 checks=$((checks + 1))
-low=$(python3 - "$tmp/t.vtk" <<'PY'
-import sys
-lines = open(sys.argv[1]).read().split("\n")
-def block(head, stop):
-    i = lines.index(head) + 2
-    out = []
-    while i < len(lines) and lines[i] and not lines[i].startswith(stop):
-        out.append(lines[i]); i += 1
-    return out
-msj = [float(x) for x in block("SCALARS min_scaled_jacobian double 1", "SCALARS")]
-part = [int(x) for x in block("SCALARS part int 1", "POINT_DATA")]
-c = [m for m, p in zip(msj, part) if p == 0]
-r = [m for m, p in zip(msj, part) if p == 2]
-print("yes" if c and r and min(c) < min(r) else "no")
-PY
-)
+low=$(python3 "$tmp/vtk.py" centre "$tmp/t.vtk")
 [ "$low" = yes ] || fail "mlca tetrahedron: the centre cells are not marked apart below the ring's minimum"
 
 # relabelled and mirrored: the same picture data (canonical form)
