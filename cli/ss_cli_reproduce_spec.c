@@ -17,12 +17,10 @@ static const char *const source_names[] = {"links", "random", "valences", "face"
 
 /* The case kinds a table or figure may name (edge-point is a result only). */
 static int parse_kind(const char *name, ss_case_kind *out) {
-  for (int k = SS_CASE_VERTEX; k <= SS_CASE_SURFACE_VERTEX; k++)
-    if (!strcmp(name, ss_case_name((ss_case_kind)k))) {
-      *out = (ss_case_kind)k;
-      return 0;
-    }
-  return -1;
+  ss_case_kind k;
+  if (ss_case_kind_parse(name, &k) || k == SS_CASE_EDGE_POINT) return -1;
+  *out = k;
+  return 0;
 }
 
 /* Reading one entry: the file and entry named in every message. */

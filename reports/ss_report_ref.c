@@ -165,15 +165,12 @@ int ss_report_ref_applies(const ss_ref_row *r, const char *scheme, ss_case_kind 
   return 1;
 }
 
+/* The four kinds a quoted value names (edge-point is a result only). */
 static int parse_kind(const char *s, ss_case_kind *out) {
-  static const ss_case_kind kinds[] = {SS_CASE_VERTEX, SS_CASE_EDGE, SS_CASE_FACE,
-                                       SS_CASE_SURFACE_VERTEX};
-  for (int i = 0; i < 4; i++)
-    if (!strcmp(s, ss_case_name(kinds[i]))) {
-      *out = kinds[i];
-      return 0;
-    }
-  return -1;
+  ss_case_kind k;
+  if (ss_case_kind_parse(s, &k) || k == SS_CASE_EDGE_POINT) return -1;
+  *out = k;
+  return 0;
 }
 
 static int parse_range(const char *s, int *lo, int *hi) {

@@ -566,10 +566,9 @@ ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[SS_NCASEKINDS],
                               -1, &q, NULL);
   if (rc == SQLITE_OK) sqlite3_bind_int64(q, 1, id);
   while (rc == SQLITE_OK && (rc = sqlite3_step(q)) == SQLITE_ROW) {
-    const char *kind = (const char *)sqlite3_column_text(q, 0);
-    for (int i = 0; i < SS_NCASEKINDS; i++)
-      if (!strcmp(kind, ss_case_name((ss_case_kind)i)))
-        nk[i] = (size_t)sqlite3_column_int64(q, 1);
+    ss_case_kind k;
+    if (!ss_case_kind_parse((const char *)sqlite3_column_text(q, 0), &k))
+      nk[k] = (size_t)sqlite3_column_int64(q, 1);
     rc = SQLITE_OK;
   }
   sqlite3_finalize(q);
@@ -578,9 +577,8 @@ ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[SS_NCASEKINDS],
 }
 
 static int kind_of(const char *name) {
-  for (int i = 0; i < SS_NCASEKINDS; i++)
-    if (!strcmp(name, ss_case_name((ss_case_kind)i))) return i;
-  return -1;
+  ss_case_kind k;
+  return ss_case_kind_parse(name, &k) ? -1 : (int)k;
 }
 
 static ss_verdict_kind verdict_of(const char *name) {

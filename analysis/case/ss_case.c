@@ -2,6 +2,8 @@
  * type and the star (ss_case.h). */
 #include "ss_case.h"
 
+#include <string.h>
+
 #include <stdio.h>
 
 const char *ss_case_name(ss_case_kind kind) {
@@ -18,6 +20,15 @@ const char *ss_case_name(ss_case_kind kind) {
     return "edge-point";
   }
   return "?";
+}
+
+int ss_case_kind_parse(const char *name, ss_case_kind *out) {
+  for (int i = 0; i < SS_NCASEKINDS; i++)
+    if (!strcmp(name, ss_case_name((ss_case_kind)i))) {
+      *out = (ss_case_kind)i;
+      return 0;
+    }
+  return -1;
 }
 
 int ss_case_edge_point(const ss_scheme *s, const ss_link *l) {

@@ -63,6 +63,10 @@ typedef struct {
  * "face", "surface-vertex", "edge-point"). */
 const char *ss_case_name(ss_case_kind kind);
 
+/* The kind named name (one of ss_case_name's five names) into *out: 0, or
+ * -1 for any other name (*out untouched). */
+int ss_case_kind_parse(const char *name, ss_case_kind *out);
+
 /* The 4-8 class of a quasi48 surface vertex of valence n when the case leaves
  * it 0: the class that longest-edge refinement gives the centre of a regular
  * n-gon fan (Velho & Gomes section 3.3): 4 (its outer edges split first, its

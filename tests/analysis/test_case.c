@@ -28,6 +28,22 @@ static void test_names(void) {
   CHECK(!strcmp(ss_case_name(SS_CASE_SURFACE_VERTEX), "surface-vertex"), "%s",
         ss_case_name(SS_CASE_SURFACE_VERTEX));
   CHECK(!strcmp(ss_case_name((ss_case_kind)SS_NCASEKINDS), "?"), "an unknown kind");
+  /* parsing: the command line's and the store's names, each back to its kind;
+   * anything else refused, *out untouched */
+  const char *names[] = {"vertex", "edge", "face", "surface-vertex", "edge-point"};
+  const ss_case_kind kinds[] = {SS_CASE_VERTEX, SS_CASE_EDGE, SS_CASE_FACE,
+                                SS_CASE_SURFACE_VERTEX, SS_CASE_EDGE_POINT};
+  for (int i = 0; i < 5; i++) {
+    ss_case_kind k = (ss_case_kind)-1;
+    CHECK(!ss_case_kind_parse(names[i], &k) && k == kinds[i], "parse %s: %d", names[i],
+          (int)k);
+  }
+  const char *bad[] = {"", "Vertex", "surface vertex", "edge ", "?", "edges"};
+  for (int i = 0; i < 6; i++) {
+    ss_case_kind k = SS_CASE_FACE;
+    CHECK(ss_case_kind_parse(bad[i], &k) == -1 && k == SS_CASE_FACE, "'%s' accepted",
+          bad[i]);
+  }
 }
 
 static void test_class48(void) {
