@@ -8,10 +8,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <lapacke.h>
 
+#include "ss_clock.h"
 #include "ss_jsr_cert.h"
 #include "ss_jsr_ellipsoid.h"
 #include "ss_jsr_polytope.h"
@@ -105,12 +105,6 @@ static double root_up(double x, int k) {
   if (x <= 0) return 0;
   double r = pow(x, 1.0 / k);
   return r * (1 + (8 + fabs(log(x))) * 2 * U);
-}
-
-static double now_seconds(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 static void ws_free(jsr_ws *w) {
@@ -657,7 +651,7 @@ static int bnb_pass(jsr_ws *w, int L, ss_jsr_norm norm, double gap, size_t max_n
   w->word[0] = -1;
   while (ws_next(w, &k)) {
     if ((max_nodes && w->nodes >= max_nodes) ||
-        (deadline > 0 && now_seconds() > deadline))
+        (deadline > 0 && ss_clock_wall() > deadline))
       return 0;
     ws_push(w, k, (size_t)w->word[k]);
     ws_offer_lower(w, k);
@@ -698,7 +692,7 @@ static ss_status try_polytope(jsr_ws *w, const double *const *Y, double gap, dou
   ss_jsr_polytope_opts po = ss_jsr_polytope_defaults();
   po.eps = gap > 0 ? fmin(gap / 2, 0.25) : 1e-9;
   po.max_vertices = POLY_CAP;
-  po.max_seconds = until > 0 ? fmax(until - now_seconds(), 1e-3) : 0;
+  po.max_seconds = until > 0 ? fmax(until - ss_clock_wall(), 1e-3) : 0;
   ss_jsr_polytope_result pr;
   ss_error e2 = {0};
   const ss_status st =
@@ -713,7 +707,7 @@ static ss_status try_polytope(jsr_ws *w, const double *const *Y, double gap, dou
 
 ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_jsr_opts *o,
                          ss_jsr_result *out, ss_error *err) {
-  const double t0 = now_seconds();
+  const double t0 = ss_clock_wall();
   ss_jsr_opts d = ss_jsr_defaults();
   if (!o) o = &d;
   if (!out) return ss_error_set(err, SS_EINPUT, "jsr: no result given");
@@ -902,7 +896,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   ws_select(&w, Y, active, best_d);
   const size_t max_nodes = o->max_nodes ? brute_nodes + o->max_nodes : 0;
   if (o->norm == SS_JSR_NORM_POLYTOPE && upper > w.lower * (1 + o->gap)) {
-    const double now = now_seconds();
+    const double now = ss_clock_wall();
     st = try_polytope(&w, Y, o->gap, deadline > 0 ? now + (deadline - now) / 2 : 0, out,
                       err);
     if (st != SS_OK) goto done;
@@ -989,7 +983,7 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   /* every upper bound above is rigorous (rounding carried in both norms) */
   out->certified = lower_rigorous;
   out->converged = out->upper <= out->lower * (1 + o->gap);
-  out->seconds = now_seconds() - t0;
+  out->seconds = ss_clock_wall() - t0;
   goto done;
 
 lapack_failed:

@@ -6,11 +6,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <arb_mat.h>
 #include <gsl/gsl_blas.h>
 #include <lapacke.h>
+
+#include "ss_clock.h"
 
 enum { LBFGS_MEM = 8, STAGE_ITERS = 150, NSTAGES = 5 };
 static const double STAGE_T[NSTAGES] = {20, 100, 500, 2000, 10000};
@@ -29,12 +30,6 @@ typedef struct {
   double *G;              /* n^2: the gradient in P */
   double *u, *yu;         /* n each: u = L^{-T} v and Y u */
 } fit_ws;
-
-static double now_seconds(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Squared singular values of L^T Y_i L^{-T} (into f->s, vectors into f->vt)
  * for the n x n row-major L; returns the largest, or -1 if L is singular or
@@ -173,7 +168,7 @@ ss_status ss_jsr_ellipsoid_fit(size_t m, size_t n, const double *const *Y,
     double rho[LBFGS_MEM], alpha[LBFGS_MEM];
     int mem = 0, head = 0;
     for (int it = 0; it < STAGE_ITERS; it++) {
-      if (deadline > 0 && now_seconds() > deadline) goto done;
+      if (deadline > 0 && ss_clock_wall() > deadline) goto done;
       /* two-loop recursion: d = -H g */
       for (size_t e = 0; e < nn; e++)
         d[e] = -g[e];
@@ -299,7 +294,7 @@ ss_status ss_jsr_ellipsoid_fit_words(size_t m, size_t n, const double *const *Y,
   }
   for (size_t w = 0; w < cnt; w++)
     ptr[w] = P + w * nn;
-  const double start = now_seconds();
+  const double start = ss_clock_wall();
   st = ss_jsr_ellipsoid_fit(m, n, Y, deadline > 0 ? start + (deadline - start) / 4 : 0, 0,
                             L);
   if (st == SS_OK) st = ss_jsr_ellipsoid_fit(cnt, n, ptr, deadline, 1, L);

@@ -11,7 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+
+#include "ss_clock.h"
 
 /* pi, for the ellipse points (PI is not C11) */
 #define PI 3.14159265358979323846
@@ -25,12 +26,6 @@ ss_jsr_polytope_opts ss_jsr_polytope_defaults(void) {
  * certificate accounts for whatever the value is, so this only decides
  * which vertices are kept. */
 #define IN_TOL 1e-10
-
-static double now_seconds(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* The working state of one run. */
 typedef struct {
@@ -544,7 +539,7 @@ static int explore(poly_ws *p, const double *roots, long nr, double delta,
     } else {
       stop = SS_POLY_CLOSED;
     }
-    if (stop < 0 && deadline > 0 && now_seconds() > deadline) stop = SS_POLY_TIME;
+    if (stop < 0 && deadline > 0 && ss_clock_wall() > deadline) stop = SS_POLY_TIME;
   }
   return stop;
 }
@@ -593,7 +588,7 @@ static int explore_guarded(poly_ws *p, const double *roots, long nr, double delt
 ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int *w,
                           int len, const ss_jsr_polytope_opts *o,
                           ss_jsr_polytope_result *out, ss_error *err) {
-  const double t0 = now_seconds();
+  const double t0 = ss_clock_wall();
   ss_jsr_polytope_opts d = ss_jsr_polytope_defaults();
   if (!o) o = &d;
   if (!out) return ss_error_set(err, SS_EINPUT, "jsr polytope: no result given");
@@ -648,7 +643,7 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
                           "jsr polytope: LAPACK eigenvalues of the candidate failed");
     if (nr == 0) {
       out->stop = SS_POLY_ZERO;
-      out->seconds = now_seconds() - t0;
+      out->seconds = ss_clock_wall() - t0;
       return SS_OK;
     }
   }
@@ -659,7 +654,7 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
   if (nr == -3 || (size_t)nr + n > p.cap) {
     free(roots);
     out->stop = SS_POLY_CAP;
-    out->seconds = now_seconds() - t0;
+    out->seconds = ss_clock_wall() - t0;
     return SS_OK;
   }
   {
@@ -737,7 +732,7 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
     out->upper = certify(&p, o->delta);
     if (!isfinite(out->upper)) out->stop = SS_POLY_LP;
   }
-  out->seconds = now_seconds() - t0;
+  out->seconds = ss_clock_wall() - t0;
 done:
   ws_free(&p);
   free(roots);
