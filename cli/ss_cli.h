@@ -98,7 +98,7 @@ int ss_cli_parse_part(const char *s, long *part, long *nparts);
  * Returns the item, which lives in *line until the next call, or NULL at the
  * end of the input; *lineno counts every line read, for messages. */
 char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno);
-/* Monotonic wall-clock seconds. */
+/* Monotonic wall-clock seconds (ss_clock_wall). */
 double ss_cli_now(void);
 #ifndef SS_DATADIR
 /* where `meson install` puts data/ (stencils/, reference/, meshes/); meson

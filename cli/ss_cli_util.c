@@ -8,10 +8,10 @@
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "ss_cli.h"
+#include "ss_clock.h"
 #include "ss_local.h"
 
 int ss_cli_fail(const ss_error *err) {
@@ -91,9 +91,7 @@ int ss_cli_parse_int(const char *s, long lo, long hi, long *out) {
 }
 
 double ss_cli_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+  return ss_clock_wall();
 }
 
 int ss_cli_format_option(const char *cmd, const char *arg, int *json) {

@@ -4,19 +4,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "ss_clock.h"
 
 ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
                      const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
                      ss_charmap_inj *inj, ss_certified *out, ss_exact **x,
                      ss_error *err) {
-  const double t0 = now();
+  const double t0 = ss_clock_wall();
   memset(out, 0, sizeof *out);
   if (x) *x = NULL;
   reg->verdict.certified = inj->verdict.certified = 0;
@@ -85,7 +80,7 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
 done:
   free(lo);
   free(hi);
-  out->seconds = now() - t0;
+  out->seconds = ss_clock_wall() - t0;
   if (x && !st)
     *x = ex;
   else
@@ -122,9 +117,9 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
   if (x) *x = NULL;
   ss_status st = ss_charmap_judge(s, c, M, e, o, cm, reg, err);
   if (!st && *cm) {
-    double t0 = o->times ? ss_charmap_cpu_seconds() : 0.0;
+    double t0 = o->times ? ss_clock_cpu() : 0.0;
     st = ss_charmap_injectivity(*cm, reg, inj, err);
-    if (o->times) ss_charmap_lap(&o->times->injective, &t0);
+    if (o->times) ss_clock_lap(&o->times->injective, &t0);
   }
   if (!st) judged_on(*cm, &out->cond, reg, inj);
   if (!st && certify) st = ss_certify(M, c, e, *cm, o, reg, inj, out, x, err);

@@ -6,24 +6,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <lapacke.h>
 
+#include "ss_clock.h"
+
 ss_charmap_opts ss_charmap_defaults(void) {
   return (ss_charmap_opts){SS_JAC_DEPTH, 3, 0.5, NULL};
-}
-
-double ss_charmap_cpu_seconds(void) {
-  struct timespec t;
-  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t)) return 0.0;
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-void ss_charmap_lap(double *acc, double *t0) {
-  const double t = ss_charmap_cpu_seconds();
-  *acc += t - *t0;
-  *t0 = t;
 }
 
 /* Forget the kept ring level (ss_charmap.h), freeing it. */
@@ -432,9 +421,9 @@ ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, const ss_charma
              e->m, e->tol);
     return SS_OK;
   }
-  double t0 = o->times ? ss_charmap_cpu_seconds() : 0.0;
+  double t0 = o->times ? ss_clock_cpu() : 0.0;
   ss_status st = ss_charmap_new(M, e, cm, err);
-  if (o->times) ss_charmap_lap(&o->times->map, &t0);
+  if (o->times) ss_clock_lap(&o->times->map, &t0);
   if (st == SS_ENOMEM) return st;
   if (st) {
     v->verdict = SS_UNDECIDED;
@@ -444,7 +433,7 @@ ss_status ss_charmap_analyze(const ss_local *M, const ss_eig *e, const ss_charma
     return SS_OK;
   }
   st = ss_charmap_regularity(*cm, M, o, r, err);
-  if (o->times) ss_charmap_lap(&o->times->jacobian, &t0);
+  if (o->times) ss_clock_lap(&o->times->jacobian, &t0);
   return st;
 }
 
@@ -457,19 +446,19 @@ ss_status ss_charmap_judge(const ss_scheme *s, const ss_case *c, ss_local *M,
     /* the levels judged stay as they were (the deeper ring's first levels
      * hold the same cells, ss_local_ring_deepen): judge only the new ones */
     int more = r->nlevels >= 1;
-    double t0 = o->times ? ss_charmap_cpu_seconds() : 0.0;
+    double t0 = o->times ? ss_clock_cpu() : 0.0;
     if (o->times) o->times->deep++;
     if ((st = ss_local_ring_deepen(s, c, r->want_levels, M, err))) return st;
-    if (o->times) ss_charmap_lap(&o->times->deepen, &t0);
+    if (o->times) ss_clock_lap(&o->times->deepen, &t0);
     more = more && (M->nring < o->ring_levels ? M->nring : o->ring_levels) > r->nlevels;
     st = more ? judge_levels(*cm, M, o, r->nlevels, r, err)
               : ss_charmap_regularity(*cm, M, o, r, err);
-    if (o->times) ss_charmap_lap(&o->times->deep_jac, &t0);
+    if (o->times) ss_clock_lap(&o->times->deep_jac, &t0);
     if (st) return st;
   }
-  double t1 = o->times ? ss_charmap_cpu_seconds() : 0.0;
+  double t1 = o->times ? ss_clock_cpu() : 0.0;
   st = ss_charmap_symmetry(*cm, M, c, &r->sym, err);
-  if (o->times) ss_charmap_lap(&o->times->symmetry, &t1);
+  if (o->times) ss_clock_lap(&o->times->symmetry, &t1);
   if (st) return st;
   if (r->sym.found) {
     char ring[sizeof r->verdict.reason];

@@ -185,15 +185,6 @@ double ss_charmap_cell_measure(const ss_jac_result *j, int sign);
 /* Defaults: depth SS_JAC_DEPTH, 3 ring levels, shrink 0.5, no timing. */
 ss_charmap_opts ss_charmap_defaults(void);
 
-/* This thread's CPU time in seconds (CLOCK_THREAD_CPUTIME_ID), for the
- * timing hooks (ss_charmap_times, ss_pipeline_times); 0 if the clock cannot be
- * read. */
-double ss_charmap_cpu_seconds(void);
-
-/* One stage of a timing hook: add the thread CPU seconds since *t0 to *acc
- * and restart the clock at now (*t0 from ss_charmap_cpu_seconds). */
-void ss_charmap_lap(double *acc, double *t0);
-
 /* The characteristic map of case M with eigenstructure e (which must carry a
  * subdominant basis), normalised as above.  *out is owned by the caller
  * (ss_charmap_free).  SS_EINPUT if e has no basis or sizes disagree;

@@ -6,11 +6,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <arb_mat.h>
 #include <gsl/gsl_blas.h>
 #include <lapacke.h>
+
+#include "ss_clock.h"
 
 enum { LBFGS_MEM = 8, STAGE_ITERS = 150, NSTAGES = 5 };
 static const double STAGE_T[NSTAGES] = {20, 100, 500, 2000, 10000};
@@ -29,12 +30,6 @@ typedef struct {
   double *G;              /* n^2: the gradient in P */
   double *u, *yu;         /* n each: u = L^{-T} v and Y u */
 } fit_ws;
-
-static double now_seconds(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Squared singular values of L^T Y_i L^{-T} (into f->s, vectors into f->vt)
  * for the n x n row-major L; returns the largest, or -1 if L is singular or
@@ -128,6 +123,118 @@ static double dot(const double *a, const double *b, size_t len) {
   return s;
 }
 
+/* The L-BFGS state of the fit. */
+typedef struct {
+  double *x, *g;           /* nn each: the iterate L and its gradient */
+  double *xt, *gt;         /* nn each: the trial point and its gradient */
+  double *d;               /* nn: the search direction */
+  double *S, *YY;          /* LBFGS_MEM * nn each: the memory pairs' steps and
+                              gradient changes */
+  double rho[LBFGS_MEM];   /* 1 / (s^T y) of each pair */
+  double alpha[LBFGS_MEM]; /* the two-loop recursion's coefficients */
+  int mem, head;           /* pairs held; the slot of the next pair */
+} lbfgs;
+
+/* d = -H g by the two-loop recursion (the first step moves L by about 1% of
+ * its size); where that is not a descent direction the memory is dropped and
+ * d is along -g.  Returns g^T d: not < 0 if there is no descent. */
+static double lbfgs_direction(lbfgs *b, size_t nn) {
+  double *d = b->d, *rho = b->rho, *alpha = b->alpha;
+  const double *g = b->g, *x = b->x, *S = b->S, *YY = b->YY;
+  const int mem = b->mem, head = b->head;
+  for (size_t e = 0; e < nn; e++)
+    d[e] = -g[e];
+  for (int q = 0; q < mem; q++) {
+    const int j = (head - 1 - q + LBFGS_MEM) % LBFGS_MEM;
+    alpha[j] = rho[j] * dot(S + (size_t)j * nn, d, nn);
+    for (size_t e = 0; e < nn; e++)
+      d[e] -= alpha[j] * YY[(size_t)j * nn + e];
+  }
+  double gamma = 1;
+  if (mem > 0) {
+    const int j = (head - 1 + LBFGS_MEM) % LBFGS_MEM;
+    const double *yj = YY + (size_t)j * nn;
+    gamma = 1 / (rho[j] * dot(yj, yj, nn));
+  } else { /* first step: move L by about 1% of its size */
+    gamma = 0.01 * sqrt(dot(x, x, nn) / fmax(dot(g, g, nn), 1e-300));
+  }
+  for (size_t e = 0; e < nn; e++)
+    d[e] *= gamma;
+  for (int q = mem - 1; q >= 0; q--) {
+    const int j = (head - 1 - q + LBFGS_MEM) % LBFGS_MEM;
+    const double b2 = rho[j] * dot(YY + (size_t)j * nn, d, nn);
+    for (size_t e = 0; e < nn; e++)
+      d[e] += (alpha[j] - b2) * S[(size_t)j * nn + e];
+  }
+  double gd = dot(g, d, nn);
+  if (!(gd < 0)) { /* not a descent direction: restart along -g */
+    b->mem = 0;
+    const double sc = 0.01 * sqrt(dot(x, x, nn) / fmax(dot(g, g, nn), 1e-300));
+    for (size_t e = 0; e < nn; e++)
+      d[e] = -sc * g[e];
+    gd = dot(g, d, nn);
+  }
+  return gd;
+}
+
+/* One stage of the fit at sharpness t: L-BFGS with Armijo backtracking on the
+ * smoothed objective from b->x, the best L met kept in L (*best its largest
+ * singular value), then the iterate rescaled.  Returns 1 if the fit ends here
+ * (the objective degenerate or the deadline passed), 0 to go on. */
+static int fit_stage(fit_ws *f, lbfgs *b, double t, double deadline, double *L,
+                     double *best) {
+  const size_t n = f->n, nn = n * n;
+  double *x = b->x, *g = b->g, *xt = b->xt, *gt = b->gt, *d = b->d;
+  double mx, c = 0;
+  c = eval_sv(f, x);
+  if (c <= 0) return 1;
+  double fx = objective(f, x, t, c, g, &mx);
+  if (!isfinite(fx)) return 1;
+  b->mem = 0, b->head = 0;
+  for (int it = 0; it < STAGE_ITERS; it++) {
+    if (deadline > 0 && ss_clock_wall() > deadline) return 1;
+    const double gd = lbfgs_direction(b, nn);
+    if (!(gd < 0)) break;
+    /* Armijo backtracking */
+    double a = 1, ft = INFINITY, mxt = 0;
+    int ok = 0;
+    for (int bt = 0; bt < 30 && !ok; bt++, a *= 0.5) {
+      for (size_t e = 0; e < nn; e++)
+        xt[e] = x[e] + a * d[e];
+      ft = objective(f, xt, t, c, gt, &mxt);
+      ok = isfinite(ft) && ft <= fx + 1e-4 * a * gd;
+    }
+    if (!ok) break;
+    if (mxt < *best) {
+      *best = mxt;
+      memcpy(L, xt, nn * sizeof *L);
+    }
+    double *sj = b->S + (size_t)b->head * nn, *yj = b->YY + (size_t)b->head * nn;
+    for (size_t e = 0; e < nn; e++) {
+      sj[e] = xt[e] - x[e];
+      yj[e] = gt[e] - g[e];
+    }
+    const double sy = dot(sj, yj, nn);
+    if (sy > 1e-12 * sqrt(dot(sj, sj, nn) * dot(yj, yj, nn))) {
+      b->rho[b->head] = 1 / sy;
+      b->head = (b->head + 1) % LBFGS_MEM;
+      if (b->mem < LBFGS_MEM) b->mem++;
+    }
+    const double df = fx - ft;
+    memcpy(x, xt, nn * sizeof *x);
+    memcpy(g, gt, nn * sizeof *g);
+    fx = ft;
+    if (df <= 1e-12 * fabs(fx)) break;
+  }
+  /* the smoothed objective is scale-invariant in L: rescale to keep the
+   * iterate's size near that of the start (no effect on the norm) */
+  double nx = sqrt(dot(x, x, nn) / (double)n);
+  if (nx > 0 && isfinite(nx))
+    for (size_t e = 0; e < nn; e++)
+      x[e] /= nx;
+  return 0;
+}
+
 ss_status ss_jsr_ellipsoid_fit(size_t m, size_t n, const double *const *Y,
                                double deadline, int warm, double *L) {
   const size_t nn = n * n;
@@ -145,107 +252,28 @@ ss_status ss_jsr_ellipsoid_fit(size_t m, size_t n, const double *const *Y,
   f.u = malloc(n * sizeof *f.u);
   f.yu = malloc(n * sizeof *f.yu);
   /* L-BFGS state: x, its gradient, the trial point and gradient, the
-   * direction, the memory pairs, and the best L met */
-  double *x = malloc(nn * sizeof *x), *g = malloc(nn * sizeof *g),
-         *xt = malloc(nn * sizeof *xt), *gt = malloc(nn * sizeof *gt),
-         *d = malloc(nn * sizeof *d), *S = malloc(LBFGS_MEM * nn * sizeof *S),
-         *YY = malloc(LBFGS_MEM * nn * sizeof *YY);
+   * direction, the memory pairs; the best L met goes to L */
+  lbfgs b;
+  memset(&b, 0, sizeof b);
+  b.x = malloc(nn * sizeof *b.x), b.g = malloc(nn * sizeof *b.g);
+  b.xt = malloc(nn * sizeof *b.xt), b.gt = malloc(nn * sizeof *b.gt);
+  b.d = malloc(nn * sizeof *b.d), b.S = malloc(LBFGS_MEM * nn * sizeof *b.S);
+  b.YY = malloc(LBFGS_MEM * nn * sizeof *b.YY);
   if (!f.li || !f.piv || !f.tmp || !f.M || !f.dummy || !f.vt || !f.s || !f.sb || !f.G ||
-      !f.u || !f.yu || !x || !g || !xt || !gt || !d || !S || !YY) {
+      !f.u || !f.yu || !b.x || !b.g || !b.xt || !b.gt || !b.d || !b.S || !b.YY) {
     st = SS_ENOMEM;
     goto done;
   }
   for (size_t e = 0; e < nn; e++)
-    x[e] = warm ? L[e] : e % (n + 1) == 0 ? 1 : 0;
-  memcpy(L, x, nn * sizeof *L);
-  double best = eval_sv(&f, x);
+    b.x[e] = warm ? L[e] : e % (n + 1) == 0 ? 1 : 0;
+  memcpy(L, b.x, nn * sizeof *L);
+  double best = eval_sv(&f, b.x);
   if (best < 0) {
     st = SS_ENUMERIC;
     goto done;
   }
-  for (int stage = 0; stage < NSTAGES; stage++) {
-    const double t = STAGE_T[stage];
-    double mx, c = 0;
-    c = eval_sv(&f, x);
-    if (c <= 0) break;
-    double fx = objective(&f, x, t, c, g, &mx);
-    if (!isfinite(fx)) break;
-    double rho[LBFGS_MEM], alpha[LBFGS_MEM];
-    int mem = 0, head = 0;
-    for (int it = 0; it < STAGE_ITERS; it++) {
-      if (deadline > 0 && now_seconds() > deadline) goto done;
-      /* two-loop recursion: d = -H g */
-      for (size_t e = 0; e < nn; e++)
-        d[e] = -g[e];
-      for (int q = 0; q < mem; q++) {
-        const int j = (head - 1 - q + LBFGS_MEM) % LBFGS_MEM;
-        alpha[j] = rho[j] * dot(S + (size_t)j * nn, d, nn);
-        for (size_t e = 0; e < nn; e++)
-          d[e] -= alpha[j] * YY[(size_t)j * nn + e];
-      }
-      double gamma = 1;
-      if (mem > 0) {
-        const int j = (head - 1 + LBFGS_MEM) % LBFGS_MEM;
-        const double *yj = YY + (size_t)j * nn;
-        gamma = 1 / (rho[j] * dot(yj, yj, nn));
-      } else { /* first step: move L by about 1% of its size */
-        gamma = 0.01 * sqrt(dot(x, x, nn) / fmax(dot(g, g, nn), 1e-300));
-      }
-      for (size_t e = 0; e < nn; e++)
-        d[e] *= gamma;
-      for (int q = mem - 1; q >= 0; q--) {
-        const int j = (head - 1 - q + LBFGS_MEM) % LBFGS_MEM;
-        const double b = rho[j] * dot(YY + (size_t)j * nn, d, nn);
-        for (size_t e = 0; e < nn; e++)
-          d[e] += (alpha[j] - b) * S[(size_t)j * nn + e];
-      }
-      double gd = dot(g, d, nn);
-      if (!(gd < 0)) { /* not a descent direction: restart along -g */
-        mem = 0;
-        const double sc = 0.01 * sqrt(dot(x, x, nn) / fmax(dot(g, g, nn), 1e-300));
-        for (size_t e = 0; e < nn; e++)
-          d[e] = -sc * g[e];
-        gd = dot(g, d, nn);
-        if (!(gd < 0)) break;
-      }
-      /* Armijo backtracking */
-      double a = 1, ft = INFINITY, mxt = 0;
-      int ok = 0;
-      for (int bt = 0; bt < 30 && !ok; bt++, a *= 0.5) {
-        for (size_t e = 0; e < nn; e++)
-          xt[e] = x[e] + a * d[e];
-        ft = objective(&f, xt, t, c, gt, &mxt);
-        ok = isfinite(ft) && ft <= fx + 1e-4 * a * gd;
-      }
-      if (!ok) break;
-      if (mxt < best) {
-        best = mxt;
-        memcpy(L, xt, nn * sizeof *L);
-      }
-      double *sj = S + (size_t)head * nn, *yj = YY + (size_t)head * nn;
-      for (size_t e = 0; e < nn; e++) {
-        sj[e] = xt[e] - x[e];
-        yj[e] = gt[e] - g[e];
-      }
-      const double sy = dot(sj, yj, nn);
-      if (sy > 1e-12 * sqrt(dot(sj, sj, nn) * dot(yj, yj, nn))) {
-        rho[head] = 1 / sy;
-        head = (head + 1) % LBFGS_MEM;
-        if (mem < LBFGS_MEM) mem++;
-      }
-      const double df = fx - ft;
-      memcpy(x, xt, nn * sizeof *x);
-      memcpy(g, gt, nn * sizeof *g);
-      fx = ft;
-      if (df <= 1e-12 * fabs(fx)) break;
-    }
-    /* the smoothed objective is scale-invariant in L: rescale to keep the
-     * iterate's size near that of the start (no effect on the norm) */
-    double nx = sqrt(dot(x, x, nn) / (double)n);
-    if (nx > 0 && isfinite(nx))
-      for (size_t e = 0; e < nn; e++)
-        x[e] /= nx;
-  }
+  for (int stage = 0; stage < NSTAGES; stage++)
+    if (fit_stage(&f, &b, STAGE_T[stage], deadline, L, &best)) break;
 done:
   free(f.li);
   free(f.piv);
@@ -258,13 +286,13 @@ done:
   free(f.G);
   free(f.u);
   free(f.yu);
-  free(x);
-  free(g);
-  free(xt);
-  free(gt);
-  free(d);
-  free(S);
-  free(YY);
+  free(b.x);
+  free(b.g);
+  free(b.xt);
+  free(b.gt);
+  free(b.d);
+  free(b.S);
+  free(b.YY);
   return st;
 }
 
@@ -299,7 +327,7 @@ ss_status ss_jsr_ellipsoid_fit_words(size_t m, size_t n, const double *const *Y,
   }
   for (size_t w = 0; w < cnt; w++)
     ptr[w] = P + w * nn;
-  const double start = now_seconds();
+  const double start = ss_clock_wall();
   st = ss_jsr_ellipsoid_fit(m, n, Y, deadline > 0 ? start + (deadline - start) / 4 : 0, 0,
                             L);
   if (st == SS_OK) st = ss_jsr_ellipsoid_fit(cnt, n, ptr, deadline, 1, L);

@@ -26,7 +26,7 @@
  * P-unit eigenvector u is (Y u)(Y u)^T - lambda u u^T in P, times 2 L in L.
  * Starts from L = I (warm = 0) or from the L given (warm = 1); returns the
  * best L met (by the true maximum), so never worse than the start.  Stops early at the
- * wall-clock time `deadline` (CLOCK_MONOTONIC seconds; <= 0: none).  Deterministic
+ * wall-clock time `deadline` (ss_clock_wall seconds; <= 0: none).  Deterministic
  * without a deadline. SS_ENOMEM; SS_ENUMERIC if LAPACK fails at the start (later failures
  * end the fit with the best L so far).  Cost O(m n^3) per step. */
 ss_status ss_jsr_ellipsoid_fit(size_t m, size_t n, const double *const *Y,

@@ -11,7 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+
+#include "ss_clock.h"
 
 /* pi, for the ellipse points (PI is not C11) */
 #define PI 3.14159265358979323846
@@ -25,12 +26,6 @@ ss_jsr_polytope_opts ss_jsr_polytope_defaults(void) {
  * certificate accounts for whatever the value is, so this only decides
  * which vertices are kept. */
 #define IN_TOL 1e-10
-
-static double now_seconds(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* The working state of one run. */
 typedef struct {
@@ -544,7 +539,7 @@ static int explore(poly_ws *p, const double *roots, long nr, double delta,
     } else {
       stop = SS_POLY_CLOSED;
     }
-    if (stop < 0 && deadline > 0 && now_seconds() > deadline) stop = SS_POLY_TIME;
+    if (stop < 0 && deadline > 0 && ss_clock_wall() > deadline) stop = SS_POLY_TIME;
   }
   return stop;
 }
@@ -590,15 +585,9 @@ static int explore_guarded(poly_ws *p, const double *roots, long nr, double delt
   return stop;
 }
 
-ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int *w,
-                          int len, const ss_jsr_polytope_opts *o,
-                          ss_jsr_polytope_result *out, ss_error *err) {
-  const double t0 = now_seconds();
-  ss_jsr_polytope_opts d = ss_jsr_polytope_defaults();
-  if (!o) o = &d;
-  if (!out) return ss_error_set(err, SS_EINPUT, "jsr polytope: no result given");
-  memset(out, 0, sizeof *out);
-  out->upper = INFINITY;
+/* The arguments of ss_jsr_polytope checked; SS_EINPUT with the reason. */
+static ss_status poly_validate(size_t m, size_t n, const double *const *Y, const int *w,
+                               int len, const ss_jsr_polytope_opts *o, ss_error *err) {
   if (m < 1 || n < 1 || !Y)
     return ss_error_set(err, SS_EINPUT, "jsr polytope: no matrices (m = %zu, n = %zu)", m,
                         n);
@@ -625,102 +614,111 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
                         "jsr polytope: vertex cap %zu not in %zu..2^25 (the %zu ball "
                         "vertices and a root)",
                         o->max_vertices, n + 1, n);
-  const double deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;
+  return SS_OK;
+}
 
-  ss_status st = SS_OK;
-  poly_ws p;
-  memset(&p, 0, sizeof p);
-  p.m = m, p.n = n, p.Y = Y, p.cap = o->max_vertices;
-  double *roots = NULL, *x = NULL, *val = NULL;
-  int *idx = NULL;
-  /* lambda first (make_roots needs s for the cyclic images) */
-  double lambda = 0;
-  int cplx = 0;
-  {
-    /* a throwaway s: make_roots recomputes the images after s is known */
-    p.s = 1;
-    long nr = make_roots(&p, w, len, o->eps, &lambda, &cplx, &roots);
-    free(roots);
-    roots = NULL;
-    if (nr == -2) return ss_error_nomem(err, "jsr polytope roots");
-    if (nr == -1)
-      return ss_error_set(err, SS_ENUMERIC,
-                          "jsr polytope: LAPACK eigenvalues of the candidate failed");
-    if (nr == 0) {
-      out->stop = SS_POLY_ZERO;
-      out->seconds = now_seconds() - t0;
-      return SS_OK;
-    }
-  }
-  p.s = lambda * (1 + o->eps);
-  out->lambda = lambda, out->s = p.s, out->complex_leading = cplx;
-  long nr = make_roots(&p, w, len, o->eps, &lambda, &cplx, &roots);
-  if (nr == -2) return ss_error_nomem(err, "jsr polytope roots");
-  if (nr == -3 || (size_t)nr + n > p.cap) {
-    free(roots);
-    out->stop = SS_POLY_CAP;
-    out->seconds = now_seconds() - t0;
-    return SS_OK;
-  }
-  {
-    /* the tied candidates' roots join Pi's */
-    int ties[TIE_MAX * TIE_MAXLEN], tlen[TIE_MAX];
-    const int nt = find_ties(&p, w, len, lambda * (1 - o->near), ties, tlen);
-    if (nt == -2) {
-      free(roots);
-      return ss_error_nomem(err, "jsr polytope ties");
-    }
-    if (nt == -1) {
-      free(roots);
-      return ss_error_set(err, SS_ENUMERIC,
-                          "jsr polytope: LAPACK eigenvalues of a candidate failed");
-    }
-    for (int t = 0; t < nt; t++) {
-      double *more = NULL, lt;
-      int ct;
-      const long nm =
-          make_roots(&p, ties + (size_t)t * TIE_MAXLEN, tlen[t], o->eps, &lt, &ct, &more);
-      if (nm == -2) {
-        free(roots);
+/* The tied candidates' roots (find_ties) appended to the nr roots in *roots,
+ * as far as the vertex cap allows; out->ties counts them. */
+static ss_status add_tie_roots(poly_ws *p, const int *w, int len,
+                               const ss_jsr_polytope_opts *o, double lambda,
+                               double **roots, long *nr, ss_jsr_polytope_result *out,
+                               ss_error *err) {
+  const size_t n = p->n;
+  int ties[TIE_MAX * TIE_MAXLEN], tlen[TIE_MAX];
+  const int nt = find_ties(p, w, len, lambda * (1 - o->near), ties, tlen);
+  if (nt == -2) return ss_error_nomem(err, "jsr polytope ties");
+  if (nt == -1)
+    return ss_error_set(err, SS_ENUMERIC,
+                        "jsr polytope: LAPACK eigenvalues of a candidate failed");
+  for (int t = 0; t < nt; t++) {
+    double *more = NULL, lt;
+    int ct;
+    const long nm =
+        make_roots(p, ties + (size_t)t * TIE_MAXLEN, tlen[t], o->eps, &lt, &ct, &more);
+    if (nm == -2) return ss_error_nomem(err, "jsr polytope roots");
+    if (nm > 0 && (size_t)(*nr + nm) + n <= p->cap) {
+      double *cat = realloc(*roots, (size_t)(*nr + nm) * n * sizeof *cat);
+      if (!cat) {
+        free(more);
         return ss_error_nomem(err, "jsr polytope roots");
       }
-      if (nm > 0 && (size_t)(nr + nm) + n <= p.cap) {
-        double *cat = realloc(roots, (size_t)(nr + nm) * n * sizeof *cat);
-        if (!cat) {
-          free(more);
-          free(roots);
-          return ss_error_nomem(err, "jsr polytope roots");
-        }
-        roots = cat;
-        memcpy(roots + (size_t)nr * n, more, (size_t)nm * n * sizeof *more);
-        nr += nm;
-        out->ties++;
-      }
-      free(more);
+      *roots = cat;
+      memcpy(*roots + (size_t)*nr * n, more, (size_t)nm * n * sizeof *more);
+      *nr += nm;
+      out->ties++;
     }
+    free(more);
   }
-  out->roots = (size_t)nr;
+  return SS_OK;
+}
 
-  p.vert = malloc(p.cap * n * sizeof *p.vert);
-  p.rec_off = malloc(p.cap * m * sizeof *p.rec_off);
-  p.rec_len = malloc(p.cap * m * sizeof *p.rec_len);
-  p.gen = calloc(p.cap, sizeof *p.gen);
-  p.ind = malloc((n + 1) * sizeof *p.ind);
-  p.col = malloc((n + 1) * sizeof *p.col);
+/* The polytope's roots: lambda and the scale s first (make_roots needs s for
+ * the cyclic images), then the candidate's roots and its ties'.  *done = 1
+ * when the run ends here (out->stop SS_POLY_ZERO or SS_POLY_CAP). */
+static ss_status gather_roots(poly_ws *p, const int *w, int len,
+                              const ss_jsr_polytope_opts *o, ss_jsr_polytope_result *out,
+                              double **roots, long *nr, int *done, ss_error *err) {
+  double lambda = 0;
+  int cplx = 0;
+  *done = 0;
+  /* a throwaway s: make_roots recomputes the images after s is known */
+  p->s = 1;
+  long n0 = make_roots(p, w, len, o->eps, &lambda, &cplx, roots);
+  free(*roots);
+  *roots = NULL;
+  if (n0 == -2) return ss_error_nomem(err, "jsr polytope roots");
+  if (n0 == -1)
+    return ss_error_set(err, SS_ENUMERIC,
+                        "jsr polytope: LAPACK eigenvalues of the candidate failed");
+  if (n0 == 0) {
+    out->stop = SS_POLY_ZERO;
+    *done = 1;
+    return SS_OK;
+  }
+  p->s = lambda * (1 + o->eps);
+  out->lambda = lambda, out->s = p->s, out->complex_leading = cplx;
+  *nr = make_roots(p, w, len, o->eps, &lambda, &cplx, roots);
+  if (*nr == -2) return ss_error_nomem(err, "jsr polytope roots");
+  if (*nr == -3 || (size_t)*nr + p->n > p->cap) {
+    out->stop = SS_POLY_CAP;
+    *done = 1;
+    return SS_OK;
+  }
+  const ss_status st = add_tie_roots(p, w, len, o, lambda, roots, nr, out, err);
+  if (st != SS_OK) return st;
+  out->roots = (size_t)*nr;
+  return SS_OK;
+}
+
+/* The polytope explored from the roots and, if it closed, its bound
+ * certified. */
+static ss_status explore_certify(poly_ws *p, const double *roots, long nr,
+                                 const ss_jsr_polytope_opts *o, double deadline,
+                                 ss_jsr_polytope_result *out, ss_error *err) {
+  const size_t m = p->m, n = p->n;
+  ss_status st = SS_OK;
+  double *x = NULL, *val = NULL;
+  int *idx = NULL;
+  p->vert = malloc(p->cap * n * sizeof *p->vert);
+  p->rec_off = malloc(p->cap * m * sizeof *p->rec_off);
+  p->rec_len = malloc(p->cap * m * sizeof *p->rec_len);
+  p->gen = calloc(p->cap, sizeof *p->gen);
+  p->ind = malloc((n + 1) * sizeof *p->ind);
+  p->col = malloc((n + 1) * sizeof *p->col);
   x = malloc(n * sizeof *x);
-  idx = malloc(p.cap * sizeof *idx);
-  val = malloc(p.cap * sizeof *val);
-  if (!p.vert || !p.rec_off || !p.rec_len || !p.gen || !p.ind || !p.col || !x || !idx ||
-      !val) {
+  idx = malloc(p->cap * sizeof *idx);
+  val = malloc(p->cap * sizeof *val);
+  if (!p->vert || !p->rec_off || !p->rec_len || !p->gen || !p->ind || !p->col || !x ||
+      !idx || !val) {
     st = ss_error_nomem(err, "jsr polytope");
     goto done;
   }
   explore_pos pos = {n, 0};
   const int stop =
-      explore_guarded(&p, roots, nr, o->delta, deadline, x, idx, val, out, &pos);
+      explore_guarded(p, roots, nr, o->delta, deadline, x, idx, val, out, &pos);
   if (stop == STOP_GLPK) {
     st = ss_error_set(err, SS_ENOMEM, "jsr polytope: GLPK failed inside an LP: %s",
-                      p.glpk_says[0] ? p.glpk_says : "no message");
+                      p->glpk_says[0] ? p->glpk_says : "no message");
     goto done;
   }
   if (stop == STOP_NOMEM) {
@@ -728,21 +726,45 @@ ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int 
     goto done;
   }
   out->stop = (ss_jsr_polytope_stop)stop;
-  out->vertices = p.nv;
-  out->depth = p.depth;
+  out->vertices = p->nv;
+  out->depth = p->depth;
   out->pending = 0;
   if (stop != SS_POLY_CLOSED) {
-    out->pending = (p.nv - pos.next) + (pos.ball_done ? 0 : n);
+    out->pending = (p->nv - pos.next) + (pos.ball_done ? 0 : n);
   } else {
-    out->upper = certify(&p, o->delta);
+    out->upper = certify(p, o->delta);
     if (!isfinite(out->upper)) out->stop = SS_POLY_LP;
   }
-  out->seconds = now_seconds() - t0;
 done:
-  ws_free(&p);
-  free(roots);
   free(x);
   free(idx);
   free(val);
+  return st;
+}
+
+ss_status ss_jsr_polytope(size_t m, size_t n, const double *const *Y, const int *w,
+                          int len, const ss_jsr_polytope_opts *o,
+                          ss_jsr_polytope_result *out, ss_error *err) {
+  const double t0 = ss_clock_wall();
+  ss_jsr_polytope_opts d = ss_jsr_polytope_defaults();
+  if (!o) o = &d;
+  if (!out) return ss_error_set(err, SS_EINPUT, "jsr polytope: no result given");
+  memset(out, 0, sizeof *out);
+  out->upper = INFINITY;
+  ss_status st = poly_validate(m, n, Y, w, len, o, err);
+  if (st != SS_OK) return st;
+  const double deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;
+
+  poly_ws p;
+  memset(&p, 0, sizeof p);
+  p.m = m, p.n = n, p.Y = Y, p.cap = o->max_vertices;
+  double *roots = NULL;
+  long nr = 0;
+  int done = 0;
+  st = gather_roots(&p, w, len, o, out, &roots, &nr, &done, err);
+  if (st == SS_OK && !done) st = explore_certify(&p, roots, nr, o, deadline, out, err);
+  if (st == SS_OK) out->seconds = ss_clock_wall() - t0;
+  ws_free(&p);
+  free(roots);
   return st;
 }

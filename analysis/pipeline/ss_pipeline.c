@@ -3,16 +3,10 @@
 
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "ss_clock.h"
 #include "ss_diag.h"
 #include "ss_jac.h"
-
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 ss_pipeline_opts ss_pipeline_defaults(void) {
   const ss_charmap_opts co = ss_charmap_defaults();
@@ -68,17 +62,17 @@ ss_status ss_pipeline_new(const ss_scheme *s, const ss_case *c, const ss_pipelin
   if (!p) return ss_error_nomem(err, "pipeline");
   p->scheme = s;
   p->opts = *o;
-  const double t0 = now();
+  const double t0 = ss_clock_wall();
   ss_pipeline_times *tm = w ? w->times : NULL;
-  double c1 = tm ? ss_charmap_cpu_seconds() : 0.0;
+  double c1 = tm ? ss_clock_cpu() : 0.0;
   const ss_status st = ss_case_resolve(s, c, &p->c, err);
-  if (tm) ss_charmap_lap(&tm->canon, &c1);
+  if (tm) ss_clock_lap(&tm->canon, &c1);
   if (st) {
     ss_pipeline_free(p);
     return st;
   }
   p->done = SS_PIPE_CASE;
-  p->seconds = now() - t0;
+  p->seconds = ss_clock_wall() - t0;
   *out = p;
   return SS_OK;
 }
@@ -87,7 +81,7 @@ ss_status ss_pipeline_new(const ss_scheme *s, const ss_case *c, const ss_pipelin
  * pairs of the star's diagonals. */
 static ss_status matrix(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err) {
   ss_pipeline_times *tm = w ? w->times : NULL;
-  double c1 = tm ? ss_charmap_cpu_seconds() : 0.0;
+  double c1 = tm ? ss_clock_cpu() : 0.0;
   ss_local_opts lo = ss_local_defaults(); /* the budget is checked below, once */
   lo.progress = p->opts.progress;
   /* a link that folds on the first ring levels is judged on a deeper one:
@@ -105,25 +99,25 @@ static ss_status matrix(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err)
   if (!st) st = ss_case_resolved_star(p->scheme, &p->c, &lo.star, err);
   if (!st)
     st = ss_local_new_ws(p->scheme, &p->c.judged, &lo, w ? w->local : NULL, &p->M, err);
-  if (tm) ss_charmap_lap(&tm->extract, &c1);
+  if (tm) ss_clock_lap(&tm->extract, &c1);
   if (!st && ss_scheme_reads_diagonals(p->scheme) && p->M->cell == SS_TET) {
     st = ss_diag_improper(p->c.star->cx, &p->pairs, &p->improper, err);
     p->has_diag = st == SS_OK;
   }
-  if (tm) ss_charmap_lap(&tm->diagonals, &c1);
+  if (tm) ss_clock_lap(&tm->diagonals, &c1);
   return st;
 }
 
 static ss_status eigen(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err) {
   ss_pipeline_times *tm = w ? w->times : NULL;
-  double c1 = tm ? ss_charmap_cpu_seconds() : 0.0;
+  double c1 = tm ? ss_clock_cpu() : 0.0;
   ss_eig_opts eo = ss_eig_defaults(p->M->dim);
   eo.tol = p->opts.tol;
   eo.force = p->opts.force;
   eo.progress = p->opts.progress;
   const ss_status st =
       ss_eig_new_ws(p->M->S, p->M->n2, p->M->n1, &eo, w ? w->eig : NULL, &p->e, err);
-  if (tm) ss_charmap_lap(&tm->eig, &c1);
+  if (tm) ss_clock_lap(&tm->eig, &c1);
   if (!st) p->v.cond = p->e->cond;
   return st;
 }
@@ -157,7 +151,7 @@ static ss_status verdicts(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) 
 
 ss_status ss_pipeline_run(ss_pipeline *p, ss_pipeline_stage until,
                           ss_pipeline_workspace *w, ss_error *err) {
-  const double t0 = now();
+  const double t0 = ss_clock_wall();
   ss_status st = SS_OK;
   if (p->done < SS_PIPE_MATRIX && until >= SS_PIPE_MATRIX) {
     if (!(st = matrix(p, w, err))) p->done = SS_PIPE_MATRIX;
@@ -172,7 +166,7 @@ ss_status ss_pipeline_run(ss_pipeline *p, ss_pipeline_stage until,
       if (tm) tm->cases++;
     }
   }
-  p->seconds += now() - t0;
+  p->seconds += ss_clock_wall() - t0;
   return st;
 }
 

@@ -1,5 +1,8 @@
-/* ss_exact_impl.h — the inside of an ss_exact, shared by ss_exact.c (rational
- * matrix, spectrum, condition) and ss_exact_basis.c (the subdominant basis).
+/* ss_exact_impl.h — the inside of an ss_exact, shared by its stages: the
+ * rational matrix (ss_exact_rational.c), the factors and roots by blocks
+ * (ss_exact_factor.c), the order and the condition (ss_exact_condition.c),
+ * the subdominant basis (ss_exact_basis.c), and the object that runs them
+ * (ss_exact.c), which alone calls the others' stages: calls run one way.
  * Not a public header. */
 #ifndef SS_EXACT_IMPL_H
 #define SS_EXACT_IMPL_H
@@ -72,6 +75,41 @@ struct ss_exact {
   long long *bnum, *bden; /* the exact basis when lambda1..m are rational and
                              it fits in int64, else NULL */
 };
+
+/* Largest denominator bound accepted (so that numerators fit in 64 bits with
+ * room to spare). */
+#define SS_EXACT_MAXDEN_LIMIT (1L << 31)
+
+/* Reconstruct every entry of S (n x n, row-major) into x->A and x->q and
+ * check the row sums (ss_exact_rational.c).  SS_ENUMERIC naming the entry or
+ * row, SS_ENOMEM. */
+ss_status ss_exact_reconstruct(ss_exact *x, const double *S, ss_error *err);
+
+/* The factors of every diagonal block, merged (ss_exact_factor.c).
+ * SS_ENOMEM. */
+ss_status ss_exact_all_blocks(ss_exact *x, ss_error *err);
+
+/* The rows (= columns) of block b of S: the one-ring, or outer component
+ * b - 1 (ss_exact_factor.c).  Returns their number; idx has room for the
+ * largest block. */
+size_t ss_exact_block_rows(const ss_exact *x, size_t b, size_t *idx);
+
+/* The root count, reflections, exact moduli, and first isolation
+ * (ss_exact_factor.c).  SS_ENOMEM. */
+ss_status ss_exact_roots_init(ss_exact *x, ss_error *err);
+
+/* Classes, order and condition, refining the factors an open comparison
+ * depends on until the condition is decided or nothing can be refined; then
+ * the public roots (ss_exact_condition.c).  SS_ENOMEM, SS_EINTERNAL. */
+ss_status ss_exact_decide(ss_exact *x, ss_error *err);
+
+/* Set the condition: verdict v, certified or not, the reason from fmt. */
+void ss_exact_set_verdict(ss_exact *x, ss_verdict_kind v, int certified, const char *fmt,
+                          ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
 
 /* Compute the basis on a certified pass (sets bstatus, bmsg, lo, hi, bnum,
  * bden).  Returns SS_ENOMEM or SS_OK; a basis that cannot be certified is not
