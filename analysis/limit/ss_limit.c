@@ -18,11 +18,11 @@
 
 /* A cached (key, child) transition. */
 typedef struct {
-  size_t next;  /* state of the child patch */
-  lim_frame g;  /* the child's canonical frame relative to the inherited one */
-  double *W;    /* rows: child patch points from parent patch points */
-  lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
-} lim_trans;
+  size_t next;     /* state of the child patch */
+  ss_lim_frame g;  /* the child's canonical frame relative to the inherited one */
+  double *W;       /* rows: child patch points from parent patch points */
+  ss_lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
+} ss_lim_trans;
 
 /* The layered structure of a patch around an extraordinary edge (the
  * paper's eq. (1)): the patch points in 4 layers along the edge, columns
@@ -35,9 +35,9 @@ typedef struct {
   size_t *col;        /* K: the column of each point */
   size_t ncol;        /* columns */
   size_t (*colpt)[4]; /* ncol x 4: the point of each column in each layer */
-} lim_tensor;
+} ss_lim_tensor;
 
-static void tensor_free(lim_tensor *t) {
+static void tensor_free(ss_lim_tensor *t) {
   if (!t) return;
   free(t->layer);
   free(t->col);
@@ -47,33 +47,33 @@ static void tensor_free(lim_tensor *t) {
 
 /* A patch topology met so far. */
 typedef struct {
-  lim_patch patch;  /* key, regularity and net (src: of the instance below) */
-  ss_cx *cx;        /* an instance of the patch as a complex (for refining) */
-  uint64_t hash;    /* lim_patch_hash */
-  lim_trans *tr[8]; /* per child, NULL until computed */
-  int coarse_only;  /* 1 while only coarse cells have this patch (no transition
-                       leads to it): its transitions may be evicted */
-  int held;         /* 1 while its transitions are in the ring of recent ones */
-  lim_tensor *ten;  /* the layered structure, computed on first need */
-  size_t src_cell;  /* coarse-only: a mesh cell with this patch, to rebuild the
-                       instance cx from (it is dropped with the transitions) */
-} lim_state;
+  ss_lim_patch patch;  /* key, regularity and net (src: of the instance below) */
+  ss_cx *cx;           /* an instance of the patch as a complex (for refining) */
+  uint64_t hash;       /* ss_lim_patch_hash */
+  ss_lim_trans *tr[8]; /* per child, NULL until computed */
+  int coarse_only;     /* 1 while only coarse cells have this patch (no transition
+                          leads to it): its transitions may be evicted */
+  int held;            /* 1 while its transitions are in the ring of recent ones */
+  ss_lim_tensor *ten;  /* the layered structure, computed on first need */
+  size_t src_cell;     /* coarse-only: a mesh cell with this patch, to rebuild the
+                          instance cx from (it is dropped with the transitions) */
+} ss_lim_state;
 
 /* Per coarse cell: its patch's state and where its points come from. */
 typedef struct {
-  size_t state; /* SIZE_MAX until first used */
-  ss_idx *src;  /* the patch's mesh vertices, in the patch's numbering */
-  lim_frame g;  /* the patch's canonical frame relative to the cell's stored
-                   vertex order (isomorphic cells share their transitions) */
-} lim_cell;
+  size_t state;   /* SIZE_MAX until first used */
+  ss_idx *src;    /* the patch's mesh vertices, in the patch's numbering */
+  ss_lim_frame g; /* the patch's canonical frame relative to the cell's stored
+                  vertex order (isomorphic cells share their transitions) */
+} ss_lim_cell;
 
 struct ss_limit {
   const ss_scheme *s; /* borrowed */
   ss_cx *mesh;        /* owned copy */
-  lim_adj adj;        /* hex adjacency of the mesh */
+  ss_lim_adj adj;     /* hex adjacency of the mesh */
   int64_t *loc;       /* scratch, mesh->nv entries, all -1 between calls */
-  lim_cell *cell;     /* per hex */
-  lim_state **st;     /* states */
+  ss_lim_cell *cell;  /* per hex */
+  ss_lim_state **st;  /* states */
   size_t nst, capst;  /* their number and room */
   size_t *tab;        /* hash table of states: index + 1, 0 empty */
   size_t captab;      /* its size, a power of 2 */
@@ -100,19 +100,19 @@ void ss_limit_set_tensor(ss_limit *L, int on) {
   L->tensor = on != 0;
 }
 
-static void drop_transitions(lim_state *s) {
+static void drop_transitions(ss_lim_state *s) {
   for (int k = 0; k < 8; k++)
     if (s->tr[k]) {
       free(s->tr[k]->W);
-      lim_eig_free(s->tr[k]->eig);
+      ss_lim_eig_free(s->tr[k]->eig);
       free(s->tr[k]);
       s->tr[k] = NULL;
     }
 }
 
-static void state_free(lim_state *s) {
+static void state_free(ss_lim_state *s) {
   if (!s) return;
-  lim_patch_free(&s->patch);
+  ss_lim_patch_free(&s->patch);
   ss_cx_free(s->cx);
   drop_transitions(s);
   tensor_free(s->ten);
@@ -130,7 +130,7 @@ void ss_limit_free(ss_limit *L) {
       free(L->cell[c].src);
   free(L->cell);
   free(L->loc);
-  lim_adj_free(&L->adj);
+  ss_lim_adj_free(&L->adj);
   ss_cx_free(L->mesh);
   free(L);
 }
@@ -156,8 +156,8 @@ static ss_status check_bspline(const ss_scheme *s, ss_error *err) {
   const double(*A)[4][4] = bspline_half;
   ss_status st;
   ss_cx *g = NULL, *pcx = NULL, *ccx = NULL;
-  lim_adj adj = {0};
-  lim_patch p = {0}, c = {0};
+  ss_lim_adj adj = {0};
+  ss_lim_patch p = {0}, c = {0};
   double *W = NULL;
   int64_t loc[64];
   if ((st = ss_cx_new(3, &g, err))) return st;
@@ -180,14 +180,14 @@ static ss_status check_bspline(const ss_scheme *s, ss_error *err) {
   }
   for (int v = 0; v < 64; v++)
     loc[v] = -1;
-  lim_frame id = lim_frame_id(), gk;
-  if (st || (st = lim_adj_build(g, &adj, err)) ||
-      (st = lim_patch_build(&adj, 0, &id, loc, &p, err)) ||
-      (st = lim_patch_complex(g, &p, &pcx, err)))
+  ss_lim_frame id = ss_lim_frame_id(), gk;
+  if (st || (st = ss_lim_adj_build(g, &adj, err)) ||
+      (st = ss_lim_patch_build(&adj, 0, &id, loc, &p, err)) ||
+      (st = ss_lim_patch_complex(g, &p, &pcx, err)))
     goto done;
   double worst = 0.0;
   for (int k = 0; k < 8 && p.regular; k++) {
-    if ((st = lim_step(s, pcx, k, 0, &c, &gk, &ccx, &W, err))) goto done;
+    if ((st = ss_lim_step(s, pcx, k, 0, &c, &gk, &ccx, &W, err))) goto done;
     unsigned b = ss_cube_corner_bits(3, k);
     for (int q = 0; q < 64 && c.regular; q++)
       for (int r = 0; r < 64; r++) {
@@ -198,7 +198,7 @@ static ss_status check_bspline(const ss_scheme *s, ss_error *err) {
         if (e > worst) worst = e;
       }
     if (!c.regular) worst = 1.0;
-    lim_patch_free(&c);
+    ss_lim_patch_free(&c);
     ss_cx_free(ccx);
     ccx = NULL;
     free(W);
@@ -212,11 +212,11 @@ static ss_status check_bspline(const ss_scheme *s, ss_error *err) {
                       ss_scheme_name(s), worst);
 done:
   free(W);
-  lim_patch_free(&c);
-  lim_patch_free(&p);
+  ss_lim_patch_free(&c);
+  ss_lim_patch_free(&p);
   ss_cx_free(ccx);
   ss_cx_free(pcx);
-  lim_adj_free(&adj);
+  ss_lim_adj_free(&adj);
   ss_cx_free(g);
   return st;
 }
@@ -251,7 +251,7 @@ ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
   L->s = s;
   L->tensor = 1;
   if ((st = ss_cx_copy(mesh, &L->mesh, err))) goto done;
-  if ((st = lim_adj_build(L->mesh, &L->adj, err))) goto done;
+  if ((st = ss_lim_adj_build(L->mesh, &L->adj, err))) goto done;
   L->loc = malloc((mesh->nv + 1) * sizeof *L->loc);
   L->cell = calloc(mesh->nc[SS_HEX], sizeof *L->cell);
   L->captab = 64;
@@ -334,29 +334,29 @@ static ss_status grow_table(ss_limit *L, ss_error *err) {
 
 /* The state of patch p (taken over: moved into a new state, or freed when its
  * key is known), with instance complex cx (likewise). */
-static ss_status state_of(ss_limit *L, lim_patch *p, ss_cx *cx, size_t *out,
+static ss_status state_of(ss_limit *L, ss_lim_patch *p, ss_cx *cx, size_t *out,
                           ss_error *err) {
   ss_status st;
-  uint64_t h = lim_patch_hash(p);
+  uint64_t h = ss_lim_patch_hash(p);
   size_t i = (size_t)h & (L->captab - 1);
   while (L->tab[i]) {
-    lim_state *s = L->st[L->tab[i] - 1];
-    if (s->hash == h && lim_patch_same(&s->patch, p)) {
+    ss_lim_state *s = L->st[L->tab[i] - 1];
+    if (s->hash == h && ss_lim_patch_same(&s->patch, p)) {
       *out = L->tab[i] - 1;
-      lim_patch_free(p);
+      ss_lim_patch_free(p);
       ss_cx_free(cx);
       return SS_OK;
     }
     i = (i + 1) & (L->captab - 1);
   }
-  lim_state *s = calloc(1, sizeof *s);
+  ss_lim_state *s = calloc(1, sizeof *s);
   if (!s) {
     st = ss_error_nomem(err, "state");
     goto fail;
   }
   if (L->nst == L->capst) {
     size_t cap = L->capst ? 2 * L->capst : 16;
-    lim_state **n = realloc(L->st, cap * sizeof *n);
+    ss_lim_state **n = realloc(L->st, cap * sizeof *n);
     if (!n) {
       st = ss_error_nomem(err, "states");
       goto fail;
@@ -375,7 +375,7 @@ static ss_status state_of(ss_limit *L, lim_patch *p, ss_cx *cx, size_t *out,
   return SS_OK;
 fail:
   free(s);
-  lim_patch_free(p);
+  ss_lim_patch_free(p);
   ss_cx_free(cx);
   return st;
 }
@@ -384,26 +384,27 @@ fail:
 static ss_status cell_state(ss_limit *L, size_t c, ss_error *err) {
   if (L->cell[c].state != SIZE_MAX) return SS_OK;
   ss_status st;
-  lim_patch p;
+  ss_lim_patch p;
   ss_cx *cx = NULL;
   /* a regular patch needs no canonical frame (every frame gives the same
    * grid walk up to the B-spline's symmetry, and it has no transitions):
    * most cells of a mesh are, and the 48 walks would dominate a first pass */
-  L->cell[c].g = lim_frame_id();
-  if ((st = lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
+  L->cell[c].g = ss_lim_frame_id();
+  if ((st = ss_lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
   if (!p.regular) {
-    lim_patch_free(&p);
-    if ((st = lim_patch_canonical(&L->adj, c, L->loc, &p, &L->cell[c].g, err))) return st;
+    ss_lim_patch_free(&p);
+    if ((st = ss_lim_patch_canonical(&L->adj, c, L->loc, &p, &L->cell[c].g, err)))
+      return st;
   }
   ss_idx *src = malloc((p.nv + 1) * sizeof *src);
   if (!src) {
-    lim_patch_free(&p);
+    ss_lim_patch_free(&p);
     return ss_error_nomem(err, "cell patch");
   }
   memcpy(src, p.src, p.nv * sizeof *src);
-  if ((st = lim_patch_complex(L->mesh, &p, &cx, err))) {
+  if ((st = ss_lim_patch_complex(L->mesh, &p, &cx, err))) {
     free(src);
-    lim_patch_free(&p);
+    ss_lim_patch_free(&p);
     return st;
   }
   size_t s, before = L->nst;
@@ -425,29 +426,29 @@ static ss_status cell_state(ss_limit *L, size_t c, ss_error *err) {
 }
 
 /* The transition of state i into child k, computed on first use. */
-static ss_status transition(ss_limit *L, size_t i, int k, lim_trans **out,
+static ss_status transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
                             ss_error *err) {
   ss_status st;
-  lim_state *s = L->st[i];
+  ss_lim_state *s = L->st[i];
   if (s->tr[k]) {
     *out = s->tr[k];
     return SS_OK;
   }
   if (!s->cx) {
-    lim_patch p;
+    ss_lim_patch p;
     size_t c = s->src_cell;
-    if ((st = lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
-    int same = lim_patch_same(&p, &s->patch);
-    st = same ? lim_patch_complex(L->mesh, &p, &s->cx, err)
+    if ((st = ss_lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
+    int same = ss_lim_patch_same(&p, &s->patch);
+    st = same ? ss_lim_patch_complex(L->mesh, &p, &s->cx, err)
               : ss_error_set(err, SS_EINTERNAL, "limit: cell %zu's patch changed", c + 1);
-    lim_patch_free(&p);
+    ss_lim_patch_free(&p);
     if (st) return st;
   }
-  lim_trans *t = calloc(1, sizeof *t);
+  ss_lim_trans *t = calloc(1, sizeof *t);
   if (!t) return ss_error_nomem(err, "transition");
-  lim_patch child;
+  ss_lim_patch child;
   ss_cx *ccx;
-  if ((st = lim_step(L->s, s->cx, k, 1, &child, &t->g, &ccx, &t->W, err))) {
+  if ((st = ss_lim_step(L->s, s->cx, k, 1, &child, &t->g, &ccx, &t->W, err))) {
     free(t);
     return st;
   }
@@ -462,7 +463,7 @@ static ss_status transition(ss_limit *L, size_t i, int k, lim_trans **out,
   if (s->coarse_only && !s->held) {
     size_t slot = L->nrecent % LIM_RECENT;
     if (L->nrecent >= LIM_RECENT) {
-      lim_state *old = L->st[L->recent[slot]];
+      ss_lim_state *old = L->st[L->recent[slot]];
       if (old->coarse_only) {
         drop_transitions(old);
         ss_cx_free(old->cx);
@@ -503,9 +504,9 @@ static ss_status check_args(const ss_limit *L, size_t cell, const double x[3],
 typedef struct {
   int s[3];    /* the corner side each coordinate is measured from */
   double d[3]; /* the distance from it, in [0, 1/2] */
-} lim_pt;
+} ss_lim_pt;
 
-static void pt_normalize(lim_pt *p) {
+static void pt_normalize(ss_lim_pt *p) {
   for (int a = 0; a < 3; a++)
     if (p->d[a] > 0.5) {
       p->s[a] ^= 1;
@@ -513,8 +514,8 @@ static void pt_normalize(lim_pt *p) {
     }
 }
 
-static lim_pt pt_make(const double x[3]) {
-  lim_pt p;
+static ss_lim_pt pt_make(const double x[3]) {
+  ss_lim_pt p;
   for (int a = 0; a < 3; a++) {
     p.s[a] = 0;
     p.d[a] = x[a];
@@ -523,13 +524,13 @@ static lim_pt pt_make(const double x[3]) {
   return p;
 }
 
-static void pt_x(const lim_pt *p, double x[3]) {
+static void pt_x(const ss_lim_pt *p, double x[3]) {
   for (int a = 0; a < 3; a++)
     x[a] = p->s[a] ? 1.0 - p->d[a] : p->d[a];
 }
 
 /* The child holding the point: bit a set iff x_a >= 1/2. */
-static int child_of(const lim_pt *p) {
+static int child_of(const ss_lim_pt *p) {
   unsigned b = 0;
   for (int a = 0; a < 3; a++)
     if (p->s[a] || p->d[a] == 0.5) b |= 1u << a;
@@ -538,7 +539,7 @@ static int child_of(const lim_pt *p) {
 
 /* How many consecutive steps from p go into child bits b (-1: for ever);
  * exact, from the binary exponents of the distances to that corner. */
-static long run_length(const lim_pt *p, unsigned b) {
+static long run_length(const ss_lim_pt *p, unsigned b) {
   long m = -1;
   for (int a = 0; a < 3; a++) {
     int bit = (int)((b >> a) & 1u), e;
@@ -552,7 +553,7 @@ static long run_length(const lim_pt *p, unsigned b) {
 }
 
 /* m steps into child bits b: the distance to that corner times 2^m. */
-static void pt_jump(lim_pt *p, unsigned b, long m) {
+static void pt_jump(ss_lim_pt *p, unsigned b, long m) {
   for (int a = 0; a < 3; a++) {
     int bit = (int)((b >> a) & 1u);
     double dist = p->s[a] == bit ? p->d[a] : 1.0 - p->d[a];
@@ -563,9 +564,9 @@ static void pt_jump(lim_pt *p, unsigned b, long m) {
 }
 
 /* One step into child k, then frame g; M <- G 2 M. */
-static void advance(lim_pt *p, int k, const lim_frame *g, double M[3][3]) {
+static void advance(ss_lim_pt *p, int k, const ss_lim_frame *g, double M[3][3]) {
   pt_jump(p, ss_cube_corner_bits(3, k), 1);
-  lim_pt q;
+  ss_lim_pt q;
   double G[3][3], N[3][3];
   for (int a = 0; a < 3; a++) {
     q.s[a] = p->s[g->perm[a]] ^ g->flip[a];
@@ -573,7 +574,7 @@ static void advance(lim_pt *p, int k, const lim_frame *g, double M[3][3]) {
   }
   *p = q;
   double zero[3] = {0, 0, 0}, unused[3];
-  lim_frame_apply(g, zero, unused, G);
+  ss_lim_frame_apply(g, zero, unused, G);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
       N[i][j] = 0.0;
@@ -584,7 +585,7 @@ static void advance(lim_pt *p, int k, const lim_frame *g, double M[3][3]) {
 }
 
 /* Point and Jacobian from a regular patch's points P (patch numbering). */
-static void finish_regular(const lim_patch *p, const double *P, const lim_pt *pt,
+static void finish_regular(const ss_lim_patch *p, const double *P, const ss_lim_pt *pt,
                            double M[3][3], int derivatives, ss_limit_point *out) {
   double net[64][3], J[3][3], x[3];
   pt_x(pt, x);
@@ -626,7 +627,7 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
   (void)L;
 }
 
-static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
+static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
                       ss_limit_point *out, ss_error *err);
 
@@ -639,7 +640,7 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
  * any other component with |lambda| >= 1/2 makes the Jacobian unbounded or
  * direction-dependent, and is refused.  J receives rows d/dx_a in the
  * current frame. */
-static ss_status fixed_jacobian(ss_limit *L, size_t s, const lim_eig *e, unsigned b,
+static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsigned b,
                                 const double *P, size_t cell, double J[3][3],
                                 ss_error *err) {
   ss_status st = SS_OK;
@@ -662,7 +663,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const lim_eig *e, unsigne
     free(Q);
     return ss_error_nomem(err, "fixed-point Jacobian");
   }
-  lim_eig_coef(e, P, C);
+  ss_lim_eig_coef(e, P, C);
   for (size_t i = 0; i < K; i++) {
     const double *c = C + i * 3;
     double cn = fabs(c[0]) + fabs(c[1]) + fabs(c[2]), al = cabs(e->lam[i]);
@@ -688,7 +689,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const lim_eig *e, unsigne
   }
   free(C);
   for (int a = 0; a < 3; a++) {
-    lim_pt y;
+    ss_lim_pt y;
     for (int d = 0; d < 3; d++) {
       y.s[d] = (int)((b >> d) & 1u);
       y.d[d] = d == a ? 0.5 : 0.0;
@@ -739,7 +740,7 @@ static size_t uf_find(size_t *p, size_t i) {
  * cpt[c][l] the point of column c in layer l), parent points as T says;
  * F (ncc x T->ncol) is scratch.  To 1e-12. */
 static int factors(const double *W, size_t Kc, const int *lc, const size_t *cc,
-                   size_t ncc, const size_t (*cpt)[4], const lim_tensor *T, int b,
+                   size_t ncc, const size_t (*cpt)[4], const ss_lim_tensor *T, int b,
                    double *F) {
   const size_t K = T->ncol * 4, n = T->ncol;
   for (size_t p = 0; p < ncc; p++)
@@ -760,15 +761,15 @@ static int factors(const double *W, size_t Kc, const int *lc, const size_t *cc,
  * across a, both runs' W factor as A_b (x) T to 1e-12, and every other child
  * is regular with its net factoring likewise -- then every basis function on
  * the cell is a product N_l(x_a) phi_c(y), which eq. (1) needs. */
-static ss_status tensor_of(ss_limit *L, size_t i, int k, lim_tensor **out,
+static ss_status tensor_of(ss_limit *L, size_t i, int k, ss_lim_tensor **out,
                            ss_error *err) {
   ss_status st = SS_OK;
-  lim_state *S = L->st[i];
+  ss_lim_state *S = L->st[i];
   if (S->ten) {
     *out = S->ten;
     return SS_OK;
   }
-  lim_tensor *T = calloc(1, sizeof *T);
+  ss_lim_tensor *T = calloc(1, sizeof *T);
   size_t *uf = NULL;
   double *F = NULL;
   if (!T) return ss_error_nomem(err, "layers");
@@ -776,12 +777,12 @@ static ss_status tensor_of(ss_limit *L, size_t i, int k, lim_tensor **out,
   const size_t K = S->patch.nv;
   unsigned bk = ss_cube_corner_bits(3, k);
   int axis = -1, runs = 0;
-  lim_trans *tr[2] = {NULL, NULL};
+  ss_lim_trans *tr[2] = {NULL, NULL};
   for (int a = 0; a < 3; a++) {
-    lim_trans *t;
+    ss_lim_trans *t;
     if ((st = transition(L, i, ss_cube_corner_index(3, bk ^ (1u << a)), &t, err)))
       goto done;
-    if (t->next == i && lim_frame_is_id(&t->g)) {
+    if (t->next == i && ss_lim_frame_is_id(&t->g)) {
       runs++;
       axis = a;
       tr[(bk >> a) & 1u ? 0 : 1] = t;
@@ -849,9 +850,9 @@ static ss_status tensor_of(ss_limit *L, size_t i, int k, lim_tensor **out,
   for (int kk = 0; kk < 8; kk++) {
     unsigned bb = ss_cube_corner_bits(3, kk);
     if (((bb ^ bk) & ~(1u << axis)) == 0) continue; /* the two runs */
-    lim_trans *t;
+    ss_lim_trans *t;
     if ((st = transition(L, i, kk, &t, err))) goto done;
-    const lim_patch *cp = &L->st[t->next]->patch;
+    const ss_lim_patch *cp = &L->st[t->next]->patch;
     if (!cp->regular) goto done;
     int ca = 0; /* the child's framed axis along the edge */
     while (t->g.perm[ca] != axis)
@@ -891,17 +892,17 @@ done:
  * put in every layer, has the same limit at (0, y) -- a corner along the
  * edge, reached by one jump whatever x_a's digits; and the derivative along
  * the edge is the limit at (0, y) of the net with N_l'. */
-static ss_status tensor_eval(ss_limit *L, size_t s, const lim_tensor *T, const double *P,
-                             const double o[3], lim_pt pt, double M[3][3],
-                             int derivatives, size_t cell, ss_limit_point *out,
-                             ss_error *err) {
+static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
+                             const double *P, const double o[3], ss_lim_pt pt,
+                             double M[3][3], int derivatives, size_t cell,
+                             ss_limit_point *out, ss_error *err) {
   ss_status st;
   const size_t K = L->st[s]->patch.nv;
   const int a = T->axis;
   double x[3], bw[2][4];
   pt_x(&pt, x);
   basis(x[a], bw[0], bw[1]);
-  lim_pt p0 = pt;
+  ss_lim_pt p0 = pt;
   p0.s[a] = 0;
   p0.d[a] = 0.0;
   for (int pass = 0; pass < (derivatives ? 2 : 1); pass++) {
@@ -938,7 +939,7 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const lim_tensor *T, const d
 
 /* The walk from state s with patch points P (taken over and freed), relative
  * to the origin o (recentred on the way; out->p is absolute). */
-static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
+static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
                       ss_limit_point *out, ss_error *err) {
   ss_status st = SS_OK;
@@ -946,7 +947,7 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
   int plain = 0;
   recentre(P, L->st[s]->patch.nv, o);
   for (;;) {
-    lim_state *S = L->st[s];
+    ss_lim_state *S = L->st[s];
     if (S->patch.regular) {
       finish_regular(&S->patch, P, &pt, M, derivatives, out);
       for (int d = 0; d < 3; d++)
@@ -954,12 +955,12 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
       break;
     }
     int k = child_of(&pt);
-    lim_trans *t = NULL;
+    ss_lim_trans *t = NULL;
     if ((st = transition(L, s, k, &t, err))) goto done;
     S = L->st[s];
-    if (t->next == s && lim_frame_is_id(&t->g)) {
+    if (t->next == s && ss_lim_frame_is_id(&t->g)) {
       if (!no_tensor && L->tensor) {
-        lim_tensor *T = NULL;
+        ss_lim_tensor *T = NULL;
         if ((st = tensor_of(L, s, k, &T, err))) goto done;
         if (T->status == 1) {
           int steps = out->steps, products = out->products;
@@ -972,7 +973,7 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
       long m = run_length(&pt, ss_cube_corner_bits(3, k));
       if (m < 0 || m >= JUMP_MIN) {
         if (!t->eig) {
-          if ((st = lim_eig_new(t->W, S->patch.nv, &t->eig, err))) goto done;
+          if ((st = ss_lim_eig_new(t->W, S->patch.nv, &t->eig, err))) goto done;
           L->stats.eigs++;
         }
         if (m < 0 && derivatives) {
@@ -984,7 +985,7 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], lim_pt pt,
           memcpy(P0, P, S->patch.nv * 3 * sizeof *P0);
         }
         double shift[3];
-        if ((st = lim_eig_power(t->eig, m, P, shift, err))) goto done;
+        if ((st = ss_lim_eig_power(t->eig, m, P, shift, err))) goto done;
         for (int d = 0; d < 3; d++)
           o[d] += shift[d];
         out->products++;
@@ -1039,13 +1040,13 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
   memset(out, 0, sizeof *out);
   if ((st = check_args(L, cell, x, err)) || (st = cell_state(L, cell, err))) return st;
   /* the cell's canonical frame: turned, not recomputed (exact) */
-  const lim_frame *g0 = &L->cell[cell].g;
-  lim_pt pt = pt_make(x), q;
+  const ss_lim_frame *g0 = &L->cell[cell].g;
+  ss_lim_pt pt = pt_make(x), q;
   for (int a = 0; a < 3; a++) {
     q.s[a] = pt.s[g0->perm[a]] ^ g0->flip[a];
     q.d[a] = pt.d[g0->perm[a]];
   }
-  lim_frame_apply(g0, x, x, M);
+  ss_lim_frame_apply(g0, x, x, M);
   size_t s = L->cell[cell].state;
   const size_t K0 = L->st[s]->patch.nv;
   double *P = malloc((K0 * 3 + 1) * sizeof *P);
@@ -1061,15 +1062,15 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
                                   ss_error *err) {
   ss_status st;
   double x[3] = {u, v, w}, M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  lim_pt pt = pt_make(x);
-  lim_patch p;
+  ss_lim_pt pt = pt_make(x);
+  ss_lim_patch p;
   ss_cx *pcx = NULL;
   double *P = NULL;
   memset(out, 0, sizeof *out);
   if ((st = check_args(L, cell, x, err))) return st;
-  lim_frame g = lim_frame_id();
-  if ((st = lim_patch_build(&L->adj, cell, &g, L->loc, &p, err))) return st;
-  if ((st = lim_patch_complex(L->mesh, &p, &pcx, err))) goto done;
+  ss_lim_frame g = ss_lim_frame_id();
+  if ((st = ss_lim_patch_build(&L->adj, cell, &g, L->loc, &p, err))) return st;
+  if ((st = ss_lim_patch_complex(L->mesh, &p, &pcx, err))) goto done;
   double o[3] = {0, 0, 0}; /* the patch is kept relative to o (recentre) */
   for (int depth = 0;; depth++) {
     recentre(pcx->x, pcx->nv, o);
@@ -1095,10 +1096,10 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
       goto done;
     }
     int k = child_of(&pt);
-    lim_patch child;
+    ss_lim_patch child;
     ss_cx *ccx;
-    if ((st = lim_step(L->s, pcx, k, 0, &child, &g, &ccx, NULL, err))) goto done;
-    lim_patch_free(&p);
+    if ((st = ss_lim_step(L->s, pcx, k, 0, &child, &g, &ccx, NULL, err))) goto done;
+    ss_lim_patch_free(&p);
     ss_cx_free(pcx);
     p = child;
     pcx = ccx;
@@ -1108,7 +1109,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
   }
 done:
   free(P);
-  lim_patch_free(&p);
+  ss_lim_patch_free(&p);
   ss_cx_free(pcx);
   return st;
 }

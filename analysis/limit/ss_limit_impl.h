@@ -20,13 +20,13 @@ typedef struct {
   size_t *vptr;    /* nv + 1 offsets into vcell */
   size_t *vcell;   /* hexes at each vertex */
   int64_t *nb;     /* nh * 6: neighbour across stored face 2 * axis + side, or -1 */
-} lim_adj;
+} ss_lim_adj;
 
 /* A cube symmetry: framed axis a is stored axis perm[a], reversed if flip[a]. */
 typedef struct {
   int perm[3]; /* stored axis of each framed axis */
   int flip[3]; /* 1 if the framed axis runs against the stored one */
-} lim_frame;
+} ss_lim_frame;
 
 /* A patch: a target cell and every cell sharing a vertex with it, numbered by
  * the framed walk (ss_limit.h). */
@@ -44,39 +44,39 @@ typedef struct {
   int regular;      /* 1 if the patch is the 3x3x3 block of a grid */
   uint32_t net[64]; /* regular: patch vertex at grid position i + 4j + 16k,
                        position (i - 1, j - 1, k - 1) */
-} lim_patch;
+} ss_lim_patch;
 
-ss_status lim_adj_build(const ss_cx *cx, lim_adj *a, ss_error *err);
-void lim_adj_free(lim_adj *a);
+ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err);
+void ss_lim_adj_free(ss_lim_adj *a);
 
 /* The identity frame. */
-lim_frame lim_frame_id(void);
+ss_lim_frame ss_lim_frame_id(void);
 /* Whether g is the identity. */
-int lim_frame_is_id(const lim_frame *g);
+int ss_lim_frame_is_id(const ss_lim_frame *g);
 /* Framed coordinates of a point with stored coordinates xs; G (may be NULL)
  * receives d framed / d stored. */
-void lim_frame_apply(const lim_frame *g, const double xs[3], double xf[3],
-                     double G[3][3]);
+void ss_lim_frame_apply(const ss_lim_frame *g, const double xs[3], double xf[3],
+                        double G[3][3]);
 
 /* Cut the patch of hex t of a->cx in frame g.  loc is scratch of a->cx->nv
  * entries, all -1 on entry and on return.  SS_EINPUT when the cells around t
  * are not face-connected (a non-manifold vertex); SS_ENOMEM. */
-ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_t *loc,
-                          lim_patch *out, ss_error *err);
-/* As lim_patch_build in the frame with the smallest key (the identity frame
+ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                             int64_t *loc, ss_lim_patch *out, ss_error *err);
+/* As ss_lim_patch_build in the frame with the smallest key (the identity frame
  * first among equals); *g receives it. */
-ss_status lim_patch_canonical(const lim_adj *a, size_t t, int64_t *loc, lim_patch *out,
-                              lim_frame *g, ss_error *err);
-void lim_patch_free(lim_patch *p);
+ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
+                                 ss_lim_patch *out, ss_lim_frame *g, ss_error *err);
+void ss_lim_patch_free(ss_lim_patch *p);
 /* Hash of a key. */
-uint64_t lim_patch_hash(const lim_patch *p);
+uint64_t ss_lim_patch_hash(const ss_lim_patch *p);
 /* Whether two patches have the same key. */
-int lim_patch_same(const lim_patch *p, const lim_patch *q);
+int ss_lim_patch_same(const ss_lim_patch *p, const ss_lim_patch *q);
 
 /* The patch as a complex: vertex i at cx's vertex p->src[i], the framed cells
  * in walk order (cell 0 the target, in its frame).  SS_ENOMEM. */
-ss_status lim_patch_complex(const ss_cx *cx, const lim_patch *p, ss_cx **out,
-                            ss_error *err);
+ss_status ss_lim_patch_complex(const ss_cx *cx, const ss_lim_patch *p, ss_cx **out,
+                               ss_error *err);
 
 /* One step: refine the patch complex pcx (cell 0 the target) with s, cut the
  * patch of child k of cell 0 (canonical frame if `canonical`, else the
@@ -85,9 +85,9 @@ ss_status lim_patch_complex(const ss_cx *cx, const lim_patch *p, ss_cx **out,
  * for its points (*W, nchild x pcx->nv row-major, caller frees).  *child
  * receives the child patch (its src are indices of the refined complex).
  * SS_EINTERNAL if the split does not put child k where ss_split.h says. */
-ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
-                   lim_patch *child, lim_frame *g, ss_cx **ccx, double **W,
-                   ss_error *err);
+ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
+                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
+                      ss_error *err);
 
 /* Eigen-decomposition of a stationary run's matrix W (K x K, row-major):
  * W = V diag(lam) V^-1. */
@@ -107,7 +107,7 @@ typedef struct {
   double second;       /* largest |lambda| other than 1 */
   double *pw;          /* cond > SS_LIMIT_MAXCOND: W^(2^i), i < LIM_NPOW, each
                           K x K row-major; else NULL */
-} lim_eig;
+} ss_lim_eig;
 
 #define LIM_NPOW                                                                         \
   12 /* powers W^(2^i) kept for a defective run: runs are at most                        \
@@ -117,11 +117,11 @@ typedef struct {
  * exceeds SS_LIMIT_MAXCOND (a Jordan block: W is defective) the powers
  * W^(2^i) are kept instead (why says so), and W^m costs popcount(m) <=
  * LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK fails outright. */
-ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err);
-void lim_eig_free(lim_eig *e);
+ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err);
+void ss_lim_eig_free(ss_lim_eig *e);
 /* C (K x 3) = V^-1 P (P K x 3, row-major): the coefficients of P's points on
  * the eigenvectors (real ones, and x, y of a pair). */
-void lim_eig_coef(const lim_eig *e, const double *P, double *C);
+void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C);
 /* P (K x 3, row-major) <- W^m P; m < 0 means the limit m -> infinity (the
  * projection on the eigenvalue 1, which must be simple and every other
  * |lambda| < 1).  With shift not NULL and m >= 0, the eigenvalue-1 part of
@@ -129,7 +129,7 @@ void lim_eig_coef(const lim_eig *e, const double *P, double *C);
  * written to shift instead (zero when W^m is formed from powers): W^m P =
  * P + shift, row by row.  SS_ENUMERIC when the limit is not defined;
  * SS_ENOMEM. */
-ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
-                        ss_error *err);
+ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
+                           ss_error *err);
 
 #endif

@@ -14,7 +14,7 @@ static unsigned cbits(int k) {
   return ss_cube_corner_bits(3, k);
 }
 
-void lim_adj_free(lim_adj *a) {
+void ss_lim_adj_free(ss_lim_adj *a) {
   if (!a) return;
   free(a->vptr);
   free(a->vcell);
@@ -27,7 +27,7 @@ static int cmp_u32(const void *x, const void *y) {
   return (a > b) - (a < b);
 }
 
-ss_status lim_adj_build(const ss_cx *cx, lim_adj *a, ss_error *err) {
+ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
   ss_status st = SS_OK;
   ss_hash *h = NULL;
   memset(a, 0, sizeof *a);
@@ -83,23 +83,23 @@ ss_status lim_adj_build(const ss_cx *cx, lim_adj *a, ss_error *err) {
   }
 done:
   ss_hash_free(h);
-  if (st) lim_adj_free(a);
+  if (st) ss_lim_adj_free(a);
   return st;
 }
 
-lim_frame lim_frame_id(void) {
-  lim_frame g = {{0, 1, 2}, {0, 0, 0}};
+ss_lim_frame ss_lim_frame_id(void) {
+  ss_lim_frame g = {{0, 1, 2}, {0, 0, 0}};
   return g;
 }
 
-int lim_frame_is_id(const lim_frame *g) {
+int ss_lim_frame_is_id(const ss_lim_frame *g) {
   for (int a = 0; a < 3; a++)
     if (g->perm[a] != a || g->flip[a]) return 0;
   return 1;
 }
 
-void lim_frame_apply(const lim_frame *g, const double xs[3], double xf[3],
-                     double G[3][3]) {
+void ss_lim_frame_apply(const ss_lim_frame *g, const double xs[3], double xf[3],
+                        double G[3][3]) {
   double y[3];
   for (int a = 0; a < 3; a++)
     y[a] = g->flip[a] ? 1.0 - xs[g->perm[a]] : xs[g->perm[a]];
@@ -112,14 +112,14 @@ void lim_frame_apply(const lim_frame *g, const double xs[3], double xf[3],
 }
 
 /* Stored bits of framed bits b under frame g. */
-static unsigned frame_bits(const lim_frame *g, unsigned b) {
+static unsigned frame_bits(const ss_lim_frame *g, unsigned b) {
   unsigned s = 0;
   for (int a = 0; a < 3; a++)
     s |= (((b >> a) & 1u) ^ (unsigned)g->flip[a]) << g->perm[a];
   return s;
 }
 
-void lim_patch_free(lim_patch *p) {
+void ss_lim_patch_free(ss_lim_patch *p) {
   if (!p) return;
   free(p->key);
   free(p->src);
@@ -127,7 +127,7 @@ void lim_patch_free(lim_patch *p) {
   memset(p, 0, sizeof *p);
 }
 
-uint64_t lim_patch_hash(const lim_patch *p) {
+uint64_t ss_lim_patch_hash(const ss_lim_patch *p) {
   uint64_t h = 1469598103934665603ull ^ p->ncells;
   for (size_t i = 0; i < p->ncells * 8; i++) {
     h ^= p->key[i];
@@ -136,7 +136,7 @@ uint64_t lim_patch_hash(const lim_patch *p) {
   return h;
 }
 
-int lim_patch_same(const lim_patch *p, const lim_patch *q) {
+int ss_lim_patch_same(const ss_lim_patch *p, const ss_lim_patch *q) {
   return p->ncells == q->ncells && p->nv == q->nv &&
          !memcmp(p->key, q->key, p->ncells * 8 * sizeof *p->key);
 }
@@ -158,8 +158,8 @@ static int touches(const ss_cx *cx, size_t c, const ss_idx *tv) {
   return 0;
 }
 
-ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_t *loc,
-                          lim_patch *out, ss_error *err) {
+ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                             int64_t *loc, ss_lim_patch *out, ss_error *err) {
   ss_status st = SS_OK;
   const ss_cx *cx = a->cx;
   const ss_idx *tv = ss_cx_cell(cx, SS_HEX, t);
@@ -295,44 +295,44 @@ done:
     loc[out->src[v]] = -1;
   free(mem);
   free(q);
-  if (st) lim_patch_free(out);
+  if (st) ss_lim_patch_free(out);
   return st;
 }
 
-ss_status lim_patch_canonical(const lim_adj *a, size_t t, int64_t *loc, lim_patch *out,
-                              lim_frame *g, ss_error *err) {
+ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
+                                 ss_lim_patch *out, ss_lim_frame *g, ss_error *err) {
   static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                   {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   ss_status st;
   memset(out, 0, sizeof *out);
   for (int p = 0; p < 6; p++)
     for (int f = 0; f < 8; f++) {
-      lim_frame h;
+      ss_lim_frame h;
       for (int d = 0; d < 3; d++) {
         h.perm[d] = perms[p][d];
         h.flip[d] = (f >> d) & 1;
       }
-      lim_patch cand;
-      if ((st = lim_patch_build(a, t, &h, loc, &cand, err))) {
-        lim_patch_free(out);
+      ss_lim_patch cand;
+      if ((st = ss_lim_patch_build(a, t, &h, loc, &cand, err))) {
+        ss_lim_patch_free(out);
         return st;
       }
       int better = out->key == NULL;
       if (!better && cand.ncells == out->ncells)
         better = memcmp(cand.key, out->key, cand.ncells * 8 * sizeof *cand.key) < 0;
       if (better) {
-        lim_patch_free(out);
+        ss_lim_patch_free(out);
         *out = cand;
         *g = h;
       } else {
-        lim_patch_free(&cand);
+        ss_lim_patch_free(&cand);
       }
     }
   return SS_OK;
 }
 
-ss_status lim_patch_complex(const ss_cx *cx, const lim_patch *p, ss_cx **out,
-                            ss_error *err) {
+ss_status ss_lim_patch_complex(const ss_cx *cx, const ss_lim_patch *p, ss_cx **out,
+                               ss_error *err) {
   ss_status st;
   ss_cx *c = NULL;
   *out = NULL;
@@ -357,13 +357,13 @@ done:
   return st;
 }
 
-ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
-                   lim_patch *child, lim_frame *g, ss_cx **ccx, double **W,
-                   ss_error *err) {
+ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
+                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
+                      ss_error *err) {
   ss_status st;
   ss_cx *fine = NULL;
   gsl_spmatrix *R = NULL;
-  lim_adj fa = {0};
+  ss_lim_adj fa = {0};
   int64_t *loc = NULL;
   memset(child, 0, sizeof *child);
   *ccx = NULL;
@@ -377,7 +377,7 @@ ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
                       k, k);
     goto done;
   }
-  if ((st = lim_adj_build(fine, &fa, err))) goto done;
+  if ((st = ss_lim_adj_build(fine, &fa, err))) goto done;
   loc = malloc((fine->nv + 1) * sizeof *loc);
   if (!loc) {
     st = ss_error_nomem(err, "patch scratch");
@@ -386,12 +386,12 @@ ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
   for (size_t v = 0; v < fine->nv; v++)
     loc[v] = -1;
   if (canonical)
-    st = lim_patch_canonical(&fa, (size_t)k, loc, child, g, err);
+    st = ss_lim_patch_canonical(&fa, (size_t)k, loc, child, g, err);
   else {
-    *g = lim_frame_id();
-    st = lim_patch_build(&fa, (size_t)k, g, loc, child, err);
+    *g = ss_lim_frame_id();
+    st = ss_lim_patch_build(&fa, (size_t)k, g, loc, child, err);
   }
-  if (st || (st = lim_patch_complex(fine, child, ccx, err))) goto done;
+  if (st || (st = ss_lim_patch_complex(fine, child, ccx, err))) goto done;
   if (W) {
     size_t K = pcx->nv, Kc = child->nv;
     double *w = calloc(Kc * K + 1, sizeof *w);
@@ -408,12 +408,12 @@ ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
   }
 done:
   if (st) {
-    lim_patch_free(child);
+    ss_lim_patch_free(child);
     ss_cx_free(*ccx);
     *ccx = NULL;
   }
   free(loc);
-  lim_adj_free(&fa);
+  ss_lim_adj_free(&fa);
   if (R) gsl_spmatrix_free(R);
   ss_cx_free(fine);
   return st;
