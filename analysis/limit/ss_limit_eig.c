@@ -21,14 +21,14 @@ void ss_lim_eig_free(ss_lim_eig *e) {
   free(e);
 }
 
-/* The fallback for a defective W: W^(2^i), i = 0 .. LIM_NPOW - 1, by repeated
+/* The fallback for a defective W: W^(2^i), i = 0 .. SS_LIM_NPOW - 1, by repeated
  * squaring (products of averaging matrices: stable, whatever the Jordan
  * structure). */
 static ss_status make_powers(const double *W, size_t K, ss_lim_eig *e, ss_error *err) {
-  e->pw = malloc((LIM_NPOW * K * K + 1) * sizeof *e->pw);
+  e->pw = malloc((SS_LIM_NPOW * K * K + 1) * sizeof *e->pw);
   if (!e->pw) return ss_error_nomem(err, "matrix powers");
   memcpy(e->pw, W, K * K * sizeof *W);
-  for (int p = 1; p < LIM_NPOW; p++) {
+  for (int p = 1; p < SS_LIM_NPOW; p++) {
     const double *A = e->pw + (size_t)(p - 1) * K * K;
     double *B = e->pw + (size_t)p * K * K;
     memset(B, 0, K * K * sizeof *B);
@@ -188,22 +188,22 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
         "others inside the unit circle; this run's matrix has not");
   if (shift) shift[0] = shift[1] = shift[2] = 0.0;
   if (e->pw) {
-    /* W^m by the binary digits of m; the limit as W^(2^(LIM_NPOW-1)) applied
+    /* W^m by the binary digits of m; the limit as W^(2^(SS_LIM_NPOW-1)) applied
      * until |lambda_1|^(2^i) has vanished */
     double *tmp = malloc((K * 3 + 1) * sizeof *tmp);
     if (!tmp) return ss_error_nomem(err, "matrix powers");
     if (m < 0) {
       double l1 = e->second, r = l1;
       int reps = 0;
-      for (int p = 0; p < LIM_NPOW - 1; p++)
+      for (int p = 0; p < SS_LIM_NPOW - 1; p++)
         r *= r;
       do {
-        matvec(e->pw + (size_t)(LIM_NPOW - 1) * K * K, K, P, tmp);
+        matvec(e->pw + (size_t)(SS_LIM_NPOW - 1) * K * K, K, P, tmp);
         reps++;
         l1 = reps == 1 ? r : l1 * r;
       } while (l1 > 1e-300 && reps < 64);
     } else {
-      for (int p = 0; p < LIM_NPOW && m > 0; p++, m >>= 1)
+      for (int p = 0; p < SS_LIM_NPOW && m > 0; p++, m >>= 1)
         if (m & 1) matvec(e->pw + (size_t)p * K * K, K, P, tmp);
       if (m > 0) {
         free(tmp);
