@@ -158,6 +158,122 @@ static int touches(const ss_cx *cx, size_t c, const ss_idx *tv) {
   return 0;
 }
 
+/* The member cells of the patch of hex t (corners tv): every hex at a corner
+ * of t, each once, into mem; returns their number. */
+static size_t member_cells(const ss_lim_adj *a, const ss_idx *tv, size_t *mem) {
+  size_t nmem = 0;
+  for (int i = 0; i < 8; i++)
+    for (size_t j = a->vptr[tv[i]]; j < a->vptr[tv[i] + 1]; j++) {
+      size_t c = a->vcell[j];
+      int seen = 0;
+      for (size_t m = 0; m < nmem && !seen; m++)
+        seen = mem[m] == c;
+      if (!seen) mem[nmem++] = c;
+    }
+  return nmem;
+}
+
+/* Number the corners of walked cell A (the head-th) in the patch: a vertex
+ * met first gets the next number and A's grid position of it; one met before
+ * is checked against its position (*posok = 0 and posbad where they
+ * disagree). */
+static void walk_number(const ss_cx *cx, const walk_cell *A, size_t head, int64_t *loc,
+                        ss_lim_patch *out, int *posok) {
+  const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
+  for (int i = 0; i < 8; i++) {
+    unsigned b = cbits(i);
+    ss_idx v = av[A->sig[b]];
+    if (loc[v] < 0) {
+      loc[v] = (int64_t)out->nv;
+      out->src[out->nv] = v;
+      for (int d = 0; d < 3; d++)
+        out->pos[out->nv][d] = A->off[d] + (int)((b >> d) & 1u);
+      out->nv++;
+    } else {
+      for (int d = 0; d < 3; d++)
+        if (out->pos[loc[v]][d] != A->off[d] + (int)((b >> d) & 1u)) {
+          *posok = 0;
+          out->posbad |= 1u << d;
+        }
+    }
+    out->key[head * 8 + (size_t)i] = (uint32_t)loc[v];
+  }
+}
+
+/* The neighbour of walked cell A across its framed face (axis, side), if it
+ * touches t (corners tv) and is not walked yet: appended to q at *tail, its
+ * frame carried over the shared face.  SS_EINTERNAL if the face's vertices
+ * are not the neighbour's. */
+static ss_status walk_across(const ss_lim_adj *a, const ss_idx *tv, const walk_cell *A,
+                             int axis, unsigned side, walk_cell *q, size_t *tail,
+                             ss_error *err) {
+  const ss_cx *cx = a->cx;
+  const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
+  /* the stored face holding the framed face (axis, side) */
+  unsigned fb[4];
+  int n = 0;
+  for (unsigned b = 0; b < 8; b++)
+    if (((b >> axis) & 1u) == side) fb[n++] = b;
+  unsigned s0 = cbits(A->sig[fb[0]]), agree = 7u;
+  for (int j = 1; j < 4; j++)
+    agree &= ~(cbits(A->sig[fb[j]]) ^ s0);
+  int saxis = agree & 1u ? 0 : agree & 2u ? 1 : 2;
+  int sside = (int)((s0 >> saxis) & 1u);
+  int64_t B = a->nb[A->cell * 6 + (size_t)(2 * saxis + sside)];
+  if (B < 0 || !touches(cx, (size_t)B, tv)) return SS_OK;
+  int seen = 0;
+  for (size_t m = 0; m < *tail && !seen; m++)
+    seen = q[m].cell == (size_t)B;
+  if (seen) return SS_OK;
+  walk_cell *C = &q[*tail];
+  C->cell = (size_t)B;
+  const ss_idx *bv = ss_cx_cell(cx, SS_HEX, (size_t)B);
+  /* shared corners: B's framed b (bit axis = 1 - side) is A's b ^ axis */
+  unsigned shared_bits = 0, sb0 = 0;
+  for (int j = 0; j < 4; j++) {
+    unsigned bb = fb[j] ^ (1u << axis);
+    ss_idx v = av[A->sig[fb[j]]];
+    int k = -1;
+    for (int m = 0; m < 8; m++)
+      if (bv[m] == v) k = m;
+    if (k < 0)
+      return ss_error_set(err, SS_EINTERNAL, "patch walk: face vertex not in neighbour");
+    C->sig[bb] = k;
+    if (j == 0)
+      sb0 = cbits(k), shared_bits = 7u;
+    else
+      shared_bits &= ~(cbits(k) ^ sb0);
+  }
+  int naxis = shared_bits & 1u ? 0 : shared_bits & 2u ? 1 : 2;
+  for (int j = 0; j < 4; j++) {
+    unsigned bb = fb[j] ^ (1u << axis);
+    C->sig[fb[j]] = cidx(cbits(C->sig[bb]) ^ (1u << naxis));
+  }
+  for (int d = 0; d < 3; d++)
+    C->off[d] = A->off[d] + (d == axis ? (side ? 1 : -1) : 0);
+  (*tail)++;
+  return SS_OK;
+}
+
+/* Regular: 27 cells, 64 vertices on distinct grid positions in [-1, 2]^3;
+ * then out->net holds the grid. */
+static void mark_regular(ss_lim_patch *out, int posok) {
+  if (out->ncells == 27 && out->nv == 64 && posok) {
+    int filled[64] = {0}, ok = 1;
+    for (size_t v = 0; v < 64 && ok; v++) {
+      int i = out->pos[v][0] + 1, j = out->pos[v][1] + 1, k = out->pos[v][2] + 1;
+      if (i < 0 || i > 3 || j < 0 || j > 3 || k < 0 || k > 3 ||
+          filled[i + 4 * j + 16 * k])
+        ok = 0;
+      else {
+        filled[i + 4 * j + 16 * k] = 1;
+        out->net[i + 4 * j + 16 * k] = (uint32_t)v;
+      }
+    }
+    out->regular = ok;
+  }
+}
+
 ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
                              int64_t *loc, ss_lim_patch *out, ss_error *err) {
   ss_status st = SS_OK;
@@ -179,14 +295,7 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
     st = ss_error_nomem(err, "patch");
     goto done;
   }
-  for (int i = 0; i < 8; i++)
-    for (size_t j = a->vptr[tv[i]]; j < a->vptr[tv[i] + 1]; j++) {
-      size_t c = a->vcell[j];
-      int seen = 0;
-      for (size_t m = 0; m < nmem && !seen; m++)
-        seen = mem[m] == c;
-      if (!seen) mem[nmem++] = c;
-    }
+  nmem = member_cells(a, tv, mem);
   /* the walk */
   size_t head = 0, tail = 0;
   q[tail].cell = t;
@@ -195,75 +304,11 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
   q[tail].off[0] = q[tail].off[1] = q[tail].off[2] = 0;
   tail++;
   while (head < tail) {
-    walk_cell *A = &q[head];
-    const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
-    for (int i = 0; i < 8; i++) {
-      unsigned b = cbits(i);
-      ss_idx v = av[A->sig[b]];
-      if (loc[v] < 0) {
-        loc[v] = (int64_t)out->nv;
-        out->src[out->nv] = v;
-        for (int d = 0; d < 3; d++)
-          out->pos[out->nv][d] = A->off[d] + (int)((b >> d) & 1u);
-        out->nv++;
-      } else {
-        for (int d = 0; d < 3; d++)
-          if (out->pos[loc[v]][d] != A->off[d] + (int)((b >> d) & 1u)) {
-            posok = 0;
-            out->posbad |= 1u << d;
-          }
-      }
-      out->key[head * 8 + (size_t)i] = (uint32_t)loc[v];
-    }
+    const walk_cell *A = &q[head];
+    walk_number(cx, A, head, loc, out, &posok);
     for (int axis = 0; axis < 3; axis++)
-      for (unsigned side = 0; side < 2; side++) {
-        /* the stored face holding the framed face (axis, side) */
-        unsigned fb[4];
-        int n = 0;
-        for (unsigned b = 0; b < 8; b++)
-          if (((b >> axis) & 1u) == side) fb[n++] = b;
-        unsigned s0 = cbits(A->sig[fb[0]]), agree = 7u;
-        for (int j = 1; j < 4; j++)
-          agree &= ~(cbits(A->sig[fb[j]]) ^ s0);
-        int saxis = agree & 1u ? 0 : agree & 2u ? 1 : 2;
-        int sside = (int)((s0 >> saxis) & 1u);
-        int64_t B = a->nb[A->cell * 6 + (size_t)(2 * saxis + sside)];
-        if (B < 0 || !touches(cx, (size_t)B, tv)) continue;
-        int seen = 0;
-        for (size_t m = 0; m < tail && !seen; m++)
-          seen = q[m].cell == (size_t)B;
-        if (seen) continue;
-        walk_cell *C = &q[tail];
-        C->cell = (size_t)B;
-        const ss_idx *bv = ss_cx_cell(cx, SS_HEX, (size_t)B);
-        /* shared corners: B's framed b (bit axis = 1 - side) is A's b ^ axis */
-        unsigned shared_bits = 0, sb0 = 0;
-        for (int j = 0; j < 4; j++) {
-          unsigned bb = fb[j] ^ (1u << axis);
-          ss_idx v = av[A->sig[fb[j]]];
-          int k = -1;
-          for (int m = 0; m < 8; m++)
-            if (bv[m] == v) k = m;
-          if (k < 0) {
-            st = ss_error_set(err, SS_EINTERNAL,
-                              "patch walk: face vertex not in neighbour");
-            goto done;
-          }
-          C->sig[bb] = k;
-          if (j == 0)
-            sb0 = cbits(k), shared_bits = 7u;
-          else
-            shared_bits &= ~(cbits(k) ^ sb0);
-        }
-        int naxis = shared_bits & 1u ? 0 : shared_bits & 2u ? 1 : 2;
-        for (int j = 0; j < 4; j++) {
-          unsigned bb = fb[j] ^ (1u << axis);
-          C->sig[fb[j]] = cidx(cbits(C->sig[bb]) ^ (1u << naxis));
-        }
-        for (int d = 0; d < 3; d++)
-          C->off[d] = A->off[d] + (d == axis ? (side ? 1 : -1) : 0);
-        tail++;
-      }
+      for (unsigned side = 0; side < 2; side++)
+        if ((st = walk_across(a, tv, A, axis, side, q, &tail, err))) goto done;
     head++;
   }
   out->ncells = tail;
@@ -275,21 +320,7 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
                       t + 1);
     goto done;
   }
-  /* regular: 27 cells, 64 vertices on distinct grid positions in [-1, 2]^3 */
-  if (tail == 27 && out->nv == 64 && posok) {
-    int filled[64] = {0}, ok = 1;
-    for (size_t v = 0; v < 64 && ok; v++) {
-      int i = out->pos[v][0] + 1, j = out->pos[v][1] + 1, k = out->pos[v][2] + 1;
-      if (i < 0 || i > 3 || j < 0 || j > 3 || k < 0 || k > 3 ||
-          filled[i + 4 * j + 16 * k])
-        ok = 0;
-      else {
-        filled[i + 4 * j + 16 * k] = 1;
-        out->net[i + 4 * j + 16 * k] = (uint32_t)v;
-      }
-    }
-    out->regular = ok;
-  }
+  mark_regular(out, posok);
 done:
   for (size_t v = 0; v < out->nv; v++)
     loc[out->src[v]] = -1;
