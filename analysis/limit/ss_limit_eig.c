@@ -11,7 +11,7 @@
 #include "ss_limit.h"
 #include "ss_limit_impl.h"
 
-void lim_eig_free(lim_eig *e) {
+void ss_lim_eig_free(ss_lim_eig *e) {
   if (!e) return;
   free(e->pw);
   free(e->V);
@@ -21,14 +21,14 @@ void lim_eig_free(lim_eig *e) {
   free(e);
 }
 
-/* The fallback for a defective W: W^(2^i), i = 0 .. LIM_NPOW - 1, by repeated
+/* The fallback for a defective W: W^(2^i), i = 0 .. SS_LIM_NPOW - 1, by repeated
  * squaring (products of averaging matrices: stable, whatever the Jordan
  * structure). */
-static ss_status make_powers(const double *W, size_t K, lim_eig *e, ss_error *err) {
-  e->pw = malloc((LIM_NPOW * K * K + 1) * sizeof *e->pw);
+static ss_status make_powers(const double *W, size_t K, ss_lim_eig *e, ss_error *err) {
+  e->pw = malloc((SS_LIM_NPOW * K * K + 1) * sizeof *e->pw);
   if (!e->pw) return ss_error_nomem(err, "matrix powers");
   memcpy(e->pw, W, K * K * sizeof *W);
-  for (int p = 1; p < LIM_NPOW; p++) {
+  for (int p = 1; p < SS_LIM_NPOW; p++) {
     const double *A = e->pw + (size_t)(p - 1) * K * K;
     double *B = e->pw + (size_t)p * K * K;
     memset(B, 0, K * K * sizeof *B);
@@ -70,9 +70,9 @@ static double norm1(const double *A, size_t K) {
   return m;
 }
 
-ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err) {
+ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err) {
   ss_status st = SS_OK;
-  lim_eig *e = calloc(1, sizeof *e);
+  ss_lim_eig *e = calloc(1, sizeof *e);
   double *a = malloc((K * K + 1) * sizeof *a), *wr = malloc((K + 1) * sizeof *wr);
   double *wi = malloc((K + 1) * sizeof *wi), *vr = malloc((K * K + 1) * sizeof *vr);
   lapack_int *ipiv = malloc((K + 1) * sizeof *ipiv);
@@ -157,13 +157,13 @@ done:
   free(vr);
   free(ipiv);
   if (st)
-    lim_eig_free(e);
+    ss_lim_eig_free(e);
   else
     *out = e;
   return st;
 }
 
-void lim_eig_coef(const lim_eig *e, const double *P, double *C) {
+void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C) {
   const size_t K = e->K;
   memset(C, 0, K * 3 * sizeof *C);
   for (size_t j = 0; j < K; j++) {
@@ -177,8 +177,8 @@ void lim_eig_coef(const lim_eig *e, const double *P, double *C) {
   }
 }
 
-ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
-                        ss_error *err) {
+ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
+                           ss_error *err) {
   const size_t K = e->K;
   if (!e->ok) return ss_error_set(err, SS_ENUMERIC, "%s", e->why);
   if (m < 0 && e->one == SIZE_MAX)
@@ -188,22 +188,22 @@ ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
         "others inside the unit circle; this run's matrix has not");
   if (shift) shift[0] = shift[1] = shift[2] = 0.0;
   if (e->pw) {
-    /* W^m by the binary digits of m; the limit as W^(2^(LIM_NPOW-1)) applied
+    /* W^m by the binary digits of m; the limit as W^(2^(SS_LIM_NPOW-1)) applied
      * until |lambda_1|^(2^i) has vanished */
     double *tmp = malloc((K * 3 + 1) * sizeof *tmp);
     if (!tmp) return ss_error_nomem(err, "matrix powers");
     if (m < 0) {
       double l1 = e->second, r = l1;
       int reps = 0;
-      for (int p = 0; p < LIM_NPOW - 1; p++)
+      for (int p = 0; p < SS_LIM_NPOW - 1; p++)
         r *= r;
       do {
-        matvec(e->pw + (size_t)(LIM_NPOW - 1) * K * K, K, P, tmp);
+        matvec(e->pw + (size_t)(SS_LIM_NPOW - 1) * K * K, K, P, tmp);
         reps++;
         l1 = reps == 1 ? r : l1 * r;
       } while (l1 > 1e-300 && reps < 64);
     } else {
-      for (int p = 0; p < LIM_NPOW && m > 0; p++, m >>= 1)
+      for (int p = 0; p < SS_LIM_NPOW && m > 0; p++, m >>= 1)
         if (m & 1) matvec(e->pw + (size_t)p * K * K, K, P, tmp);
       if (m > 0) {
         free(tmp);
@@ -221,7 +221,7 @@ ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
   double sh[3] = {0, 0, 0};
   double *C = malloc((K * 3 + 1) * sizeof *C);
   if (!C) return ss_error_nomem(err, "eigen power");
-  lim_eig_coef(e, P, C);
+  ss_lim_eig_coef(e, P, C);
   for (size_t i = 0; i < K; i++) {
     double *c = C + i * 3;
     if (m < 0) {

@@ -11,6 +11,7 @@
 
 #include "ss_cx.h"
 #include "ss_error.h"
+#include "ss_limit.h"
 #include "ss_scheme.h"
 
 /* Vertex-to-cell incidence and face neighbours of the hexes of a complex. */
@@ -20,13 +21,13 @@ typedef struct {
   size_t *vptr;    /* nv + 1 offsets into vcell */
   size_t *vcell;   /* hexes at each vertex */
   int64_t *nb;     /* nh * 6: neighbour across stored face 2 * axis + side, or -1 */
-} lim_adj;
+} ss_lim_adj;
 
 /* A cube symmetry: framed axis a is stored axis perm[a], reversed if flip[a]. */
 typedef struct {
   int perm[3]; /* stored axis of each framed axis */
   int flip[3]; /* 1 if the framed axis runs against the stored one */
-} lim_frame;
+} ss_lim_frame;
 
 /* A patch: a target cell and every cell sharing a vertex with it, numbered by
  * the framed walk (ss_limit.h). */
@@ -44,39 +45,39 @@ typedef struct {
   int regular;      /* 1 if the patch is the 3x3x3 block of a grid */
   uint32_t net[64]; /* regular: patch vertex at grid position i + 4j + 16k,
                        position (i - 1, j - 1, k - 1) */
-} lim_patch;
+} ss_lim_patch;
 
-ss_status lim_adj_build(const ss_cx *cx, lim_adj *a, ss_error *err);
-void lim_adj_free(lim_adj *a);
+ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err);
+void ss_lim_adj_free(ss_lim_adj *a);
 
 /* The identity frame. */
-lim_frame lim_frame_id(void);
+ss_lim_frame ss_lim_frame_id(void);
 /* Whether g is the identity. */
-int lim_frame_is_id(const lim_frame *g);
+int ss_lim_frame_is_id(const ss_lim_frame *g);
 /* Framed coordinates of a point with stored coordinates xs; G (may be NULL)
  * receives d framed / d stored. */
-void lim_frame_apply(const lim_frame *g, const double xs[3], double xf[3],
-                     double G[3][3]);
+void ss_lim_frame_apply(const ss_lim_frame *g, const double xs[3], double xf[3],
+                        double G[3][3]);
 
 /* Cut the patch of hex t of a->cx in frame g.  loc is scratch of a->cx->nv
  * entries, all -1 on entry and on return.  SS_EINPUT when the cells around t
  * are not face-connected (a non-manifold vertex); SS_ENOMEM. */
-ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_t *loc,
-                          lim_patch *out, ss_error *err);
-/* As lim_patch_build in the frame with the smallest key (the identity frame
+ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                             int64_t *loc, ss_lim_patch *out, ss_error *err);
+/* As ss_lim_patch_build in the frame with the smallest key (the identity frame
  * first among equals); *g receives it. */
-ss_status lim_patch_canonical(const lim_adj *a, size_t t, int64_t *loc, lim_patch *out,
-                              lim_frame *g, ss_error *err);
-void lim_patch_free(lim_patch *p);
+ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
+                                 ss_lim_patch *out, ss_lim_frame *g, ss_error *err);
+void ss_lim_patch_free(ss_lim_patch *p);
 /* Hash of a key. */
-uint64_t lim_patch_hash(const lim_patch *p);
+uint64_t ss_lim_patch_hash(const ss_lim_patch *p);
 /* Whether two patches have the same key. */
-int lim_patch_same(const lim_patch *p, const lim_patch *q);
+int ss_lim_patch_same(const ss_lim_patch *p, const ss_lim_patch *q);
 
 /* The patch as a complex: vertex i at cx's vertex p->src[i], the framed cells
  * in walk order (cell 0 the target, in its frame).  SS_ENOMEM. */
-ss_status lim_patch_complex(const ss_cx *cx, const lim_patch *p, ss_cx **out,
-                            ss_error *err);
+ss_status ss_lim_patch_complex(const ss_cx *cx, const ss_lim_patch *p, ss_cx **out,
+                               ss_error *err);
 
 /* One step: refine the patch complex pcx (cell 0 the target) with s, cut the
  * patch of child k of cell 0 (canonical frame if `canonical`, else the
@@ -85,9 +86,9 @@ ss_status lim_patch_complex(const ss_cx *cx, const lim_patch *p, ss_cx **out,
  * for its points (*W, nchild x pcx->nv row-major, caller frees).  *child
  * receives the child patch (its src are indices of the refined complex).
  * SS_EINTERNAL if the split does not put child k where ss_split.h says. */
-ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
-                   lim_patch *child, lim_frame *g, ss_cx **ccx, double **W,
-                   ss_error *err);
+ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
+                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
+                      ss_error *err);
 
 /* Eigen-decomposition of a stationary run's matrix W (K x K, row-major):
  * W = V diag(lam) V^-1. */
@@ -105,23 +106,23 @@ typedef struct {
   int *pair;           /* K: 0 real, 1 first of a complex pair, 2 second */
   size_t one;          /* index of the eigenvalue 1, or SIZE_MAX if not simple */
   double second;       /* largest |lambda| other than 1 */
-  double *pw;          /* cond > SS_LIMIT_MAXCOND: W^(2^i), i < LIM_NPOW, each
+  double *pw;          /* cond > SS_LIMIT_MAXCOND: W^(2^i), i < SS_LIM_NPOW, each
                           K x K row-major; else NULL */
-} lim_eig;
+} ss_lim_eig;
 
-#define LIM_NPOW                                                                         \
+#define SS_LIM_NPOW                                                                      \
   12 /* powers W^(2^i) kept for a defective run: runs are at most                        \
         about 1075 steps (the binary exponents of doubles) */
 
 /* Decompose W (K x K row-major).  When V is singular or its condition
  * exceeds SS_LIMIT_MAXCOND (a Jordan block: W is defective) the powers
  * W^(2^i) are kept instead (why says so), and W^m costs popcount(m) <=
- * LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK fails outright. */
-ss_status lim_eig_new(const double *W, size_t K, lim_eig **out, ss_error *err);
-void lim_eig_free(lim_eig *e);
+ * SS_LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK fails outright. */
+ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err);
+void ss_lim_eig_free(ss_lim_eig *e);
 /* C (K x 3) = V^-1 P (P K x 3, row-major): the coefficients of P's points on
  * the eigenvectors (real ones, and x, y of a pair). */
-void lim_eig_coef(const lim_eig *e, const double *P, double *C);
+void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C);
 /* P (K x 3, row-major) <- W^m P; m < 0 means the limit m -> infinity (the
  * projection on the eigenvalue 1, which must be simple and every other
  * |lambda| < 1).  With shift not NULL and m >= 0, the eigenvalue-1 part of
@@ -129,7 +130,111 @@ void lim_eig_coef(const lim_eig *e, const double *P, double *C);
  * written to shift instead (zero when W^m is formed from powers): W^m P =
  * P + shift, row by row.  SS_ENUMERIC when the limit is not defined;
  * SS_ENOMEM. */
-ss_status lim_eig_power(const lim_eig *e, long m, double *P, double shift[3],
-                        ss_error *err);
+ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
+                           ss_error *err);
+
+/* ---- the evaluator's cache and object (ss_limit.c, ss_limit_state.c,
+ * ss_limit_tensor.c, ss_limit_walk.c) ---- */
+
+#define SS_LIM_RECENT 64 /* coarse-only states whose transitions are kept */
+
+/* A cached (key, child) transition. */
+typedef struct {
+  size_t next;     /* state of the child patch */
+  ss_lim_frame g;  /* the child's canonical frame relative to the inherited one */
+  double *W;       /* rows: child patch points from parent patch points */
+  ss_lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
+} ss_lim_trans;
+
+/* The layered structure of a patch around an extraordinary edge (the
+ * paper's eq. (1)): the patch points in 4 layers along the edge, columns
+ * across them, and whether both stationary halves W_b factor as A_b (x) T,
+ * A_b the cubic B-spline's 4 x 4 left/right matrices. */
+typedef struct {
+  int status;         /* 1 factors, -1 does not (or no edge here) */
+  int axis;           /* the edge's axis in the patch's frame */
+  int *layer;         /* K: 0..3, the B-spline index along the axis */
+  size_t *col;        /* K: the column of each point */
+  size_t ncol;        /* columns */
+  size_t (*colpt)[4]; /* ncol x 4: the point of each column in each layer */
+} ss_lim_tensor;
+
+/* A patch topology met so far. */
+typedef struct {
+  ss_lim_patch patch;  /* key, regularity and net (src: of the instance below) */
+  ss_cx *cx;           /* an instance of the patch as a complex (for refining) */
+  uint64_t hash;       /* ss_lim_patch_hash */
+  ss_lim_trans *tr[8]; /* per child, NULL until computed */
+  int coarse_only;     /* 1 while only coarse cells have this patch (no transition
+                          leads to it): its transitions may be evicted */
+  int held;            /* 1 while its transitions are in the ring of recent ones */
+  ss_lim_tensor *ten;  /* the layered structure, computed on first need */
+  size_t src_cell;     /* coarse-only: a mesh cell with this patch, to rebuild the
+                          instance cx from (it is dropped with the transitions) */
+} ss_lim_state;
+
+/* Per coarse cell: its patch's state and where its points come from. */
+typedef struct {
+  size_t state;   /* SIZE_MAX until first used */
+  ss_idx *src;    /* the patch's mesh vertices, in the patch's numbering */
+  ss_lim_frame g; /* the patch's canonical frame relative to the cell's stored
+                  vertex order (isomorphic cells share their transitions) */
+} ss_lim_cell;
+
+struct ss_limit {
+  const ss_scheme *s; /* borrowed */
+  ss_cx *mesh;        /* owned copy */
+  ss_lim_adj adj;     /* hex adjacency of the mesh */
+  int64_t *loc;       /* scratch, mesh->nv entries, all -1 between calls */
+  ss_lim_cell *cell;  /* per hex */
+  ss_lim_state **st;  /* states */
+  size_t nst, capst;  /* their number and room */
+  size_t *tab;        /* hash table of states: index + 1, 0 empty */
+  size_t captab;      /* its size, a power of 2 */
+  /* Coarse-only states' transitions are kept for the SS_LIM_RECENT most recent
+   * ones only: on an unstructured mesh nearly every irregular coarse cell has
+   * a patch of its own, and keeping all their W (~80 KB each) would grow
+   * with the mesh; points are usually asked cell by cell. */
+  size_t recent[SS_LIM_RECENT]; /* ring of coarse-only states holding transitions */
+  size_t nrecent;               /* entries ever pushed (the ring's head) */
+  int tensor;                   /* use eq. (1) where an edge's runs factor (default
+                                   1; ss_limit_set_tensor) */
+  ss_limit_stats stats;
+};
+
+/* Cubic B-spline rows of the left (b = 0) and right (b = 1) halves: child
+ * points at positions -1..2 of the half from the parent's at -1..2
+ * (ss_limit_bspline.c). */
+extern const double ss_lim_bspline_half[2][4][4];
+
+/* Uniform cubic B-spline basis on [0,1] for the points at -1, 0, 1, 2, and
+ * its derivative (ss_limit_bspline.c). */
+void ss_lim_basis(double t, double b[4], double d[4]);
+
+/* SS_OK if scheme s refines a regular hex grid by the tricubic B-spline's
+ * rules, else SS_EINPUT saying by how much a weight is off
+ * (ss_limit_bspline.c). */
+ss_status ss_lim_check_bspline(const ss_scheme *s, ss_error *err);
+
+/* Free a layered structure (NULL is fine; ss_limit_state.c). */
+void ss_lim_tensor_free(ss_lim_tensor *t);
+
+/* Free a state: its patch, instance, transitions and layered structure
+ * (ss_limit_state.c). */
+void ss_lim_state_free(ss_lim_state *s);
+
+/* The state of coarse cell c (its patch in its canonical frame), found or
+ * made (ss_limit_state.c). */
+ss_status ss_lim_cell_state(ss_limit *L, size_t c, ss_error *err);
+
+/* The transition of state i into child k, computed on first use; L->st may
+ * move, the states do not (ss_limit_state.c). */
+ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
+                            ss_error *err);
+
+/* The layered structure of state i, whose child k is a stationary run,
+ * computed on first use: status 1 if it factors (ss_limit_tensor.c). */
+ss_status ss_lim_tensor_of(ss_limit *L, size_t i, int k, ss_lim_tensor **out,
+                           ss_error *err);
 
 #endif

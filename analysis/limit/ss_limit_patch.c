@@ -14,7 +14,7 @@ static unsigned cbits(int k) {
   return ss_cube_corner_bits(3, k);
 }
 
-void lim_adj_free(lim_adj *a) {
+void ss_lim_adj_free(ss_lim_adj *a) {
   if (!a) return;
   free(a->vptr);
   free(a->vcell);
@@ -27,7 +27,7 @@ static int cmp_u32(const void *x, const void *y) {
   return (a > b) - (a < b);
 }
 
-ss_status lim_adj_build(const ss_cx *cx, lim_adj *a, ss_error *err) {
+ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
   ss_status st = SS_OK;
   ss_hash *h = NULL;
   memset(a, 0, sizeof *a);
@@ -83,23 +83,23 @@ ss_status lim_adj_build(const ss_cx *cx, lim_adj *a, ss_error *err) {
   }
 done:
   ss_hash_free(h);
-  if (st) lim_adj_free(a);
+  if (st) ss_lim_adj_free(a);
   return st;
 }
 
-lim_frame lim_frame_id(void) {
-  lim_frame g = {{0, 1, 2}, {0, 0, 0}};
+ss_lim_frame ss_lim_frame_id(void) {
+  ss_lim_frame g = {{0, 1, 2}, {0, 0, 0}};
   return g;
 }
 
-int lim_frame_is_id(const lim_frame *g) {
+int ss_lim_frame_is_id(const ss_lim_frame *g) {
   for (int a = 0; a < 3; a++)
     if (g->perm[a] != a || g->flip[a]) return 0;
   return 1;
 }
 
-void lim_frame_apply(const lim_frame *g, const double xs[3], double xf[3],
-                     double G[3][3]) {
+void ss_lim_frame_apply(const ss_lim_frame *g, const double xs[3], double xf[3],
+                        double G[3][3]) {
   double y[3];
   for (int a = 0; a < 3; a++)
     y[a] = g->flip[a] ? 1.0 - xs[g->perm[a]] : xs[g->perm[a]];
@@ -112,14 +112,14 @@ void lim_frame_apply(const lim_frame *g, const double xs[3], double xf[3],
 }
 
 /* Stored bits of framed bits b under frame g. */
-static unsigned frame_bits(const lim_frame *g, unsigned b) {
+static unsigned frame_bits(const ss_lim_frame *g, unsigned b) {
   unsigned s = 0;
   for (int a = 0; a < 3; a++)
     s |= (((b >> a) & 1u) ^ (unsigned)g->flip[a]) << g->perm[a];
   return s;
 }
 
-void lim_patch_free(lim_patch *p) {
+void ss_lim_patch_free(ss_lim_patch *p) {
   if (!p) return;
   free(p->key);
   free(p->src);
@@ -127,7 +127,7 @@ void lim_patch_free(lim_patch *p) {
   memset(p, 0, sizeof *p);
 }
 
-uint64_t lim_patch_hash(const lim_patch *p) {
+uint64_t ss_lim_patch_hash(const ss_lim_patch *p) {
   uint64_t h = 1469598103934665603ull ^ p->ncells;
   for (size_t i = 0; i < p->ncells * 8; i++) {
     h ^= p->key[i];
@@ -136,7 +136,7 @@ uint64_t lim_patch_hash(const lim_patch *p) {
   return h;
 }
 
-int lim_patch_same(const lim_patch *p, const lim_patch *q) {
+int ss_lim_patch_same(const ss_lim_patch *p, const ss_lim_patch *q) {
   return p->ncells == q->ncells && p->nv == q->nv &&
          !memcmp(p->key, q->key, p->ncells * 8 * sizeof *p->key);
 }
@@ -158,8 +158,124 @@ static int touches(const ss_cx *cx, size_t c, const ss_idx *tv) {
   return 0;
 }
 
-ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_t *loc,
-                          lim_patch *out, ss_error *err) {
+/* The member cells of the patch of hex t (corners tv): every hex at a corner
+ * of t, each once, into mem; returns their number. */
+static size_t member_cells(const ss_lim_adj *a, const ss_idx *tv, size_t *mem) {
+  size_t nmem = 0;
+  for (int i = 0; i < 8; i++)
+    for (size_t j = a->vptr[tv[i]]; j < a->vptr[tv[i] + 1]; j++) {
+      size_t c = a->vcell[j];
+      int seen = 0;
+      for (size_t m = 0; m < nmem && !seen; m++)
+        seen = mem[m] == c;
+      if (!seen) mem[nmem++] = c;
+    }
+  return nmem;
+}
+
+/* Number the corners of walked cell A (the head-th) in the patch: a vertex
+ * met first gets the next number and A's grid position of it; one met before
+ * is checked against its position (*posok = 0 and posbad where they
+ * disagree). */
+static void walk_number(const ss_cx *cx, const walk_cell *A, size_t head, int64_t *loc,
+                        ss_lim_patch *out, int *posok) {
+  const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
+  for (int i = 0; i < 8; i++) {
+    unsigned b = cbits(i);
+    ss_idx v = av[A->sig[b]];
+    if (loc[v] < 0) {
+      loc[v] = (int64_t)out->nv;
+      out->src[out->nv] = v;
+      for (int d = 0; d < 3; d++)
+        out->pos[out->nv][d] = A->off[d] + (int)((b >> d) & 1u);
+      out->nv++;
+    } else {
+      for (int d = 0; d < 3; d++)
+        if (out->pos[loc[v]][d] != A->off[d] + (int)((b >> d) & 1u)) {
+          *posok = 0;
+          out->posbad |= 1u << d;
+        }
+    }
+    out->key[head * 8 + (size_t)i] = (uint32_t)loc[v];
+  }
+}
+
+/* The neighbour of walked cell A across its framed face (axis, side), if it
+ * touches t (corners tv) and is not walked yet: appended to q at *tail, its
+ * frame carried over the shared face.  SS_EINTERNAL if the face's vertices
+ * are not the neighbour's. */
+static ss_status walk_across(const ss_lim_adj *a, const ss_idx *tv, const walk_cell *A,
+                             int axis, unsigned side, walk_cell *q, size_t *tail,
+                             ss_error *err) {
+  const ss_cx *cx = a->cx;
+  const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
+  /* the stored face holding the framed face (axis, side) */
+  unsigned fb[4];
+  int n = 0;
+  for (unsigned b = 0; b < 8; b++)
+    if (((b >> axis) & 1u) == side) fb[n++] = b;
+  unsigned s0 = cbits(A->sig[fb[0]]), agree = 7u;
+  for (int j = 1; j < 4; j++)
+    agree &= ~(cbits(A->sig[fb[j]]) ^ s0);
+  int saxis = agree & 1u ? 0 : agree & 2u ? 1 : 2;
+  int sside = (int)((s0 >> saxis) & 1u);
+  int64_t B = a->nb[A->cell * 6 + (size_t)(2 * saxis + sside)];
+  if (B < 0 || !touches(cx, (size_t)B, tv)) return SS_OK;
+  int seen = 0;
+  for (size_t m = 0; m < *tail && !seen; m++)
+    seen = q[m].cell == (size_t)B;
+  if (seen) return SS_OK;
+  walk_cell *C = &q[*tail];
+  C->cell = (size_t)B;
+  const ss_idx *bv = ss_cx_cell(cx, SS_HEX, (size_t)B);
+  /* shared corners: B's framed b (bit axis = 1 - side) is A's b ^ axis */
+  unsigned shared_bits = 0, sb0 = 0;
+  for (int j = 0; j < 4; j++) {
+    unsigned bb = fb[j] ^ (1u << axis);
+    ss_idx v = av[A->sig[fb[j]]];
+    int k = -1;
+    for (int m = 0; m < 8; m++)
+      if (bv[m] == v) k = m;
+    if (k < 0)
+      return ss_error_set(err, SS_EINTERNAL, "patch walk: face vertex not in neighbour");
+    C->sig[bb] = k;
+    if (j == 0)
+      sb0 = cbits(k), shared_bits = 7u;
+    else
+      shared_bits &= ~(cbits(k) ^ sb0);
+  }
+  int naxis = shared_bits & 1u ? 0 : shared_bits & 2u ? 1 : 2;
+  for (int j = 0; j < 4; j++) {
+    unsigned bb = fb[j] ^ (1u << axis);
+    C->sig[fb[j]] = cidx(cbits(C->sig[bb]) ^ (1u << naxis));
+  }
+  for (int d = 0; d < 3; d++)
+    C->off[d] = A->off[d] + (d == axis ? (side ? 1 : -1) : 0);
+  (*tail)++;
+  return SS_OK;
+}
+
+/* Regular: 27 cells, 64 vertices on distinct grid positions in [-1, 2]^3;
+ * then out->net holds the grid. */
+static void mark_regular(ss_lim_patch *out, int posok) {
+  if (out->ncells == 27 && out->nv == 64 && posok) {
+    int filled[64] = {0}, ok = 1;
+    for (size_t v = 0; v < 64 && ok; v++) {
+      int i = out->pos[v][0] + 1, j = out->pos[v][1] + 1, k = out->pos[v][2] + 1;
+      if (i < 0 || i > 3 || j < 0 || j > 3 || k < 0 || k > 3 ||
+          filled[i + 4 * j + 16 * k])
+        ok = 0;
+      else {
+        filled[i + 4 * j + 16 * k] = 1;
+        out->net[i + 4 * j + 16 * k] = (uint32_t)v;
+      }
+    }
+    out->regular = ok;
+  }
+}
+
+ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                             int64_t *loc, ss_lim_patch *out, ss_error *err) {
   ss_status st = SS_OK;
   const ss_cx *cx = a->cx;
   const ss_idx *tv = ss_cx_cell(cx, SS_HEX, t);
@@ -179,14 +295,7 @@ ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_
     st = ss_error_nomem(err, "patch");
     goto done;
   }
-  for (int i = 0; i < 8; i++)
-    for (size_t j = a->vptr[tv[i]]; j < a->vptr[tv[i] + 1]; j++) {
-      size_t c = a->vcell[j];
-      int seen = 0;
-      for (size_t m = 0; m < nmem && !seen; m++)
-        seen = mem[m] == c;
-      if (!seen) mem[nmem++] = c;
-    }
+  nmem = member_cells(a, tv, mem);
   /* the walk */
   size_t head = 0, tail = 0;
   q[tail].cell = t;
@@ -195,75 +304,11 @@ ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_
   q[tail].off[0] = q[tail].off[1] = q[tail].off[2] = 0;
   tail++;
   while (head < tail) {
-    walk_cell *A = &q[head];
-    const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
-    for (int i = 0; i < 8; i++) {
-      unsigned b = cbits(i);
-      ss_idx v = av[A->sig[b]];
-      if (loc[v] < 0) {
-        loc[v] = (int64_t)out->nv;
-        out->src[out->nv] = v;
-        for (int d = 0; d < 3; d++)
-          out->pos[out->nv][d] = A->off[d] + (int)((b >> d) & 1u);
-        out->nv++;
-      } else {
-        for (int d = 0; d < 3; d++)
-          if (out->pos[loc[v]][d] != A->off[d] + (int)((b >> d) & 1u)) {
-            posok = 0;
-            out->posbad |= 1u << d;
-          }
-      }
-      out->key[head * 8 + (size_t)i] = (uint32_t)loc[v];
-    }
+    const walk_cell *A = &q[head];
+    walk_number(cx, A, head, loc, out, &posok);
     for (int axis = 0; axis < 3; axis++)
-      for (unsigned side = 0; side < 2; side++) {
-        /* the stored face holding the framed face (axis, side) */
-        unsigned fb[4];
-        int n = 0;
-        for (unsigned b = 0; b < 8; b++)
-          if (((b >> axis) & 1u) == side) fb[n++] = b;
-        unsigned s0 = cbits(A->sig[fb[0]]), agree = 7u;
-        for (int j = 1; j < 4; j++)
-          agree &= ~(cbits(A->sig[fb[j]]) ^ s0);
-        int saxis = agree & 1u ? 0 : agree & 2u ? 1 : 2;
-        int sside = (int)((s0 >> saxis) & 1u);
-        int64_t B = a->nb[A->cell * 6 + (size_t)(2 * saxis + sside)];
-        if (B < 0 || !touches(cx, (size_t)B, tv)) continue;
-        int seen = 0;
-        for (size_t m = 0; m < tail && !seen; m++)
-          seen = q[m].cell == (size_t)B;
-        if (seen) continue;
-        walk_cell *C = &q[tail];
-        C->cell = (size_t)B;
-        const ss_idx *bv = ss_cx_cell(cx, SS_HEX, (size_t)B);
-        /* shared corners: B's framed b (bit axis = 1 - side) is A's b ^ axis */
-        unsigned shared_bits = 0, sb0 = 0;
-        for (int j = 0; j < 4; j++) {
-          unsigned bb = fb[j] ^ (1u << axis);
-          ss_idx v = av[A->sig[fb[j]]];
-          int k = -1;
-          for (int m = 0; m < 8; m++)
-            if (bv[m] == v) k = m;
-          if (k < 0) {
-            st = ss_error_set(err, SS_EINTERNAL,
-                              "patch walk: face vertex not in neighbour");
-            goto done;
-          }
-          C->sig[bb] = k;
-          if (j == 0)
-            sb0 = cbits(k), shared_bits = 7u;
-          else
-            shared_bits &= ~(cbits(k) ^ sb0);
-        }
-        int naxis = shared_bits & 1u ? 0 : shared_bits & 2u ? 1 : 2;
-        for (int j = 0; j < 4; j++) {
-          unsigned bb = fb[j] ^ (1u << axis);
-          C->sig[fb[j]] = cidx(cbits(C->sig[bb]) ^ (1u << naxis));
-        }
-        for (int d = 0; d < 3; d++)
-          C->off[d] = A->off[d] + (d == axis ? (side ? 1 : -1) : 0);
-        tail++;
-      }
+      for (unsigned side = 0; side < 2; side++)
+        if ((st = walk_across(a, tv, A, axis, side, q, &tail, err))) goto done;
     head++;
   }
   out->ncells = tail;
@@ -275,64 +320,50 @@ ss_status lim_patch_build(const lim_adj *a, size_t t, const lim_frame *g, int64_
                       t + 1);
     goto done;
   }
-  /* regular: 27 cells, 64 vertices on distinct grid positions in [-1, 2]^3 */
-  if (tail == 27 && out->nv == 64 && posok) {
-    int filled[64] = {0}, ok = 1;
-    for (size_t v = 0; v < 64 && ok; v++) {
-      int i = out->pos[v][0] + 1, j = out->pos[v][1] + 1, k = out->pos[v][2] + 1;
-      if (i < 0 || i > 3 || j < 0 || j > 3 || k < 0 || k > 3 ||
-          filled[i + 4 * j + 16 * k])
-        ok = 0;
-      else {
-        filled[i + 4 * j + 16 * k] = 1;
-        out->net[i + 4 * j + 16 * k] = (uint32_t)v;
-      }
-    }
-    out->regular = ok;
-  }
+  mark_regular(out, posok);
 done:
   for (size_t v = 0; v < out->nv; v++)
     loc[out->src[v]] = -1;
   free(mem);
   free(q);
-  if (st) lim_patch_free(out);
+  if (st) ss_lim_patch_free(out);
   return st;
 }
 
-ss_status lim_patch_canonical(const lim_adj *a, size_t t, int64_t *loc, lim_patch *out,
-                              lim_frame *g, ss_error *err) {
+ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
+                                 ss_lim_patch *out, ss_lim_frame *g, ss_error *err) {
   static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                   {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   ss_status st;
   memset(out, 0, sizeof *out);
   for (int p = 0; p < 6; p++)
     for (int f = 0; f < 8; f++) {
-      lim_frame h;
+      ss_lim_frame h;
       for (int d = 0; d < 3; d++) {
         h.perm[d] = perms[p][d];
         h.flip[d] = (f >> d) & 1;
       }
-      lim_patch cand;
-      if ((st = lim_patch_build(a, t, &h, loc, &cand, err))) {
-        lim_patch_free(out);
+      ss_lim_patch cand;
+      if ((st = ss_lim_patch_build(a, t, &h, loc, &cand, err))) {
+        ss_lim_patch_free(out);
         return st;
       }
       int better = out->key == NULL;
       if (!better && cand.ncells == out->ncells)
         better = memcmp(cand.key, out->key, cand.ncells * 8 * sizeof *cand.key) < 0;
       if (better) {
-        lim_patch_free(out);
+        ss_lim_patch_free(out);
         *out = cand;
         *g = h;
       } else {
-        lim_patch_free(&cand);
+        ss_lim_patch_free(&cand);
       }
     }
   return SS_OK;
 }
 
-ss_status lim_patch_complex(const ss_cx *cx, const lim_patch *p, ss_cx **out,
-                            ss_error *err) {
+ss_status ss_lim_patch_complex(const ss_cx *cx, const ss_lim_patch *p, ss_cx **out,
+                               ss_error *err) {
   ss_status st;
   ss_cx *c = NULL;
   *out = NULL;
@@ -357,13 +388,13 @@ done:
   return st;
 }
 
-ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
-                   lim_patch *child, lim_frame *g, ss_cx **ccx, double **W,
-                   ss_error *err) {
+ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
+                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
+                      ss_error *err) {
   ss_status st;
   ss_cx *fine = NULL;
   gsl_spmatrix *R = NULL;
-  lim_adj fa = {0};
+  ss_lim_adj fa = {0};
   int64_t *loc = NULL;
   memset(child, 0, sizeof *child);
   *ccx = NULL;
@@ -377,7 +408,7 @@ ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
                       k, k);
     goto done;
   }
-  if ((st = lim_adj_build(fine, &fa, err))) goto done;
+  if ((st = ss_lim_adj_build(fine, &fa, err))) goto done;
   loc = malloc((fine->nv + 1) * sizeof *loc);
   if (!loc) {
     st = ss_error_nomem(err, "patch scratch");
@@ -386,12 +417,12 @@ ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
   for (size_t v = 0; v < fine->nv; v++)
     loc[v] = -1;
   if (canonical)
-    st = lim_patch_canonical(&fa, (size_t)k, loc, child, g, err);
+    st = ss_lim_patch_canonical(&fa, (size_t)k, loc, child, g, err);
   else {
-    *g = lim_frame_id();
-    st = lim_patch_build(&fa, (size_t)k, g, loc, child, err);
+    *g = ss_lim_frame_id();
+    st = ss_lim_patch_build(&fa, (size_t)k, g, loc, child, err);
   }
-  if (st || (st = lim_patch_complex(fine, child, ccx, err))) goto done;
+  if (st || (st = ss_lim_patch_complex(fine, child, ccx, err))) goto done;
   if (W) {
     size_t K = pcx->nv, Kc = child->nv;
     double *w = calloc(Kc * K + 1, sizeof *w);
@@ -408,12 +439,12 @@ ss_status lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
   }
 done:
   if (st) {
-    lim_patch_free(child);
+    ss_lim_patch_free(child);
     ss_cx_free(*ccx);
     *ccx = NULL;
   }
   free(loc);
-  lim_adj_free(&fa);
+  ss_lim_adj_free(&fa);
   if (R) gsl_spmatrix_free(R);
   ss_cx_free(fine);
   return st;

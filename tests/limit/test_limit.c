@@ -655,8 +655,8 @@ static void test_eig_power(void) {
           v += T[i][a] * D[a][b] * Ti[b][j];
       W[i * K + j] = v;
     }
-  lim_eig *e;
-  REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+  ss_lim_eig *e;
+  REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
   CHECK(e->ok && !e->pw, "a diagonalisable matrix: %s", e->why);
   int pairs = 0;
   for (int i = 0; i < K; i++)
@@ -666,7 +666,7 @@ static void test_eig_power(void) {
     double P[K * 3], Q[K * 3];
     for (int i = 0; i < K * 3; i++)
       P[i] = Q[i] = sin(1.0 + i);
-    REQUIRE_OK_VOID(lim_eig_power(e, m, P, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, m, P, NULL, &err), &err);
     for (long step = 0; step < m; step++) {
       double N[K * 3] = {0};
       for (int i = 0; i < K; i++)
@@ -678,7 +678,7 @@ static void test_eig_power(void) {
     for (int i = 0; i < K * 3; i++)
       CHECK_CLOSE(P[i], Q[i], 1e-13, "W^%ld P entry %d", m, i);
   }
-  lim_eig_free(e);
+  ss_lim_eig_free(e);
 }
 
 /* Near and on an extraordinary edge: the paper's eq. (1) (where the edge's

@@ -1,5 +1,5 @@
 /* test_limit_eig.c — the eigen-decomposition of a stationary run's matrix and
- * its powers (lim_eig, ss_limit_eig.c), against constructions and repeated
+ * its powers (ss_lim_eig, ss_limit_eig.c), against constructions and repeated
  * multiplication done here.
  *
  * Properties:
@@ -8,8 +8,8 @@
  *     real eigenvector matrix reconstructs W (W x = lambda x for real
  *     eigenvalues, W [x y] = [x y] [a b; -b a] for a pair a + ib), V V^-1 =
  *     I, the eigenvalue 1 is found (`one`) and `second` = 0.6;
- *     lim_eig_coef solves V C = P;
- *   - powers: W^m P by lim_eig_power equals m repeated products (m = 0, 1,
+ *     ss_lim_eig_coef solves V C = P;
+ *   - powers: W^m P by ss_lim_eig_power equals m repeated products (m = 0, 1,
  *     2, 7, 40) and, with the shift split off, P' + shift row by row; the
  *     limit (m < 0) equals W^(2^16) P formed here by squaring;
  *   - averaging matrices (positive, rows summing to 1, as the evaluator's
@@ -20,7 +20,7 @@
  *     4095 equal to repeated products and the limit; m = 4096 is refused;
  *   - no limit when 1 is not simple (two closed classes) or another
  *     eigenvalue has modulus 1 (a 2-cycle: -1): one = SIZE_MAX and
- *     lim_eig_power(m < 0) is SS_ENUMERIC, finite powers still exact.
+ *     ss_lim_eig_power(m < 0) is SS_ENUMERIC, finite powers still exact.
  * Mutations this catches (tried by hand: the report of issue 33):
  *   - the rotation of a complex pair's coefficients with the sign of sin
  *     flipped in the second row: W^m P differs from repeated products;
@@ -94,7 +94,7 @@ static void points(gsl_rng *r, size_t K, double *P) {
 }
 
 /* Powers, shift and limit of e against repeated products of W. */
-static void check_powers(const lim_eig *e, const double *W, size_t K, gsl_rng *r,
+static void check_powers(const ss_lim_eig *e, const double *W, size_t K, gsl_rng *r,
                          long mmax, int limit, const char *what) {
   const long ms[6] = {0, 1, 2, 7, 40, 4095};
   ss_error err = {0};
@@ -104,10 +104,10 @@ static void check_powers(const lim_eig *e, const double *W, size_t K, gsl_rng *r
     memcpy(Q, P, sizeof Q);
     memcpy(R, P, sizeof R);
     repeat(W, K, ms[t], Q);
-    REQUIRE_OK_VOID(lim_eig_power(e, ms[t], P, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], P, NULL, &err), &err);
     CHECK(maxdiff(P, Q, K * 3) <= 1e-12, "%s: W^%ld P off by %g", what, ms[t],
           maxdiff(P, Q, K * 3));
-    REQUIRE_OK_VOID(lim_eig_power(e, ms[t], R, shift, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], R, shift, &err), &err);
     for (size_t i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
         R[i * 3 + (size_t)d] += shift[d];
@@ -119,7 +119,7 @@ static void check_powers(const lim_eig *e, const double *W, size_t K, gsl_rng *r
   points(r, K, P);
   memcpy(Q, P, sizeof Q);
   limit_by_squaring(W, K, Q);
-  REQUIRE_OK_VOID(lim_eig_power(e, -1, P, NULL, &err), &err);
+  REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, &err), &err);
   CHECK(maxdiff(P, Q, K * 3) <= 1e-10, "%s: limit off by %g", what, maxdiff(P, Q, K * 3));
 }
 
@@ -154,9 +154,9 @@ static void test_diagonalisable(gsl_rng *r) {
   D[1 * K + 1] = D[2 * K + 2] = rho * cos(th);
   D[1 * K + 2] = rho * sin(th), D[2 * K + 1] = -rho * sin(th);
   similar(K, D, W);
-  lim_eig *e = NULL;
+  ss_lim_eig *e = NULL;
   ss_error err = {0};
-  REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+  REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
   CHECK(e->ok && !e->pw && e->cond <= SS_LIMIT_MAXCOND, "diagonalisable: pw %p, cond %g",
         (void *)e->pw, e->cond);
   /* the eigenvalues: D's */
@@ -219,7 +219,7 @@ static void test_diagonalisable(gsl_rng *r) {
   /* coefficients: V C = P */
   double P[K * 3], C[K * 3], VC[K * 3] = {0};
   points(r, K, P);
-  lim_eig_coef(e, P, C);
+  ss_lim_eig_coef(e, P, C);
   for (size_t i = 0; i < K; i++)
     for (size_t j = 0; j < K; j++)
       for (int d = 0; d < 3; d++)
@@ -227,7 +227,7 @@ static void test_diagonalisable(gsl_rng *r) {
   CHECK(maxdiff(VC, P, K * 3) <= 1e-12, "diagonalisable: V C - P = %g",
         maxdiff(VC, P, K * 3));
   check_powers(e, W, K, r, 40, 1, "diagonalisable");
-  lim_eig_free(e);
+  ss_lim_eig_free(e);
 }
 
 static void test_averaging(gsl_rng *r) {
@@ -254,9 +254,9 @@ static void test_averaging(gsl_rng *r) {
       }
       memcpy(pi, q, sizeof pi);
     }
-    lim_eig *e = NULL;
+    ss_lim_eig *e = NULL;
     ss_error err = {0};
-    REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
     CHECK(e->one != SIZE_MAX && e->second < 1.0, "averaging %d: one %zu, second %g", t,
           e->one, e->second);
     double P[K * 3], want[3] = {0, 0, 0};
@@ -264,14 +264,14 @@ static void test_averaging(gsl_rng *r) {
     for (int i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
         want[d] += pi[i] * P[i * 3 + d];
-    REQUIRE_OK_VOID(lim_eig_power(e, -1, P, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, &err), &err);
     double off = 0.0;
     for (int i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
         off = fmax(off, fabs(P[i * 3 + d] - want[d]));
     CHECK(off <= 1e-12, "averaging %d: limit points differ from pi^T P by %g", t, off);
     check_powers(e, W, K, r, 40, 1, "averaging");
-    lim_eig_free(e);
+    ss_lim_eig_free(e);
   }
 }
 
@@ -283,17 +283,18 @@ static void test_defective(gsl_rng *r) {
     D[i * K + i] = d[i];
   D[1 * K + 2] = 1.0; /* a Jordan block of 1/2 */
   similar(K, D, W);
-  lim_eig *e = NULL;
+  ss_lim_eig *e = NULL;
   ss_error err = {0};
-  REQUIRE_OK_VOID(lim_eig_new(W, K, &e, &err), &err);
+  REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
   CHECK(e->ok && e->pw && strstr(e->why, "defective") && !(e->cond <= SS_LIMIT_MAXCOND),
         "Jordan block: pw %p, cond %g (%s)", (void *)e->pw, e->cond, e->why);
   CHECK(e->one != SIZE_MAX, "Jordan block: 1 is simple");
   check_powers(e, W, K, r, 4095, 1, "Jordan block");
   double P[K * 3];
   points(r, K, P);
-  CHECK(lim_eig_power(e, 4096, P, NULL, &err) != SS_OK, "Jordan block: W^4096 accepted");
-  lim_eig_free(e);
+  CHECK(ss_lim_eig_power(e, 4096, P, NULL, &err) != SS_OK,
+        "Jordan block: W^4096 accepted");
+  ss_lim_eig_free(e);
 }
 
 static void test_no_limit(gsl_rng *r) {
@@ -307,16 +308,16 @@ static void test_no_limit(gsl_rng *r) {
   const double *Ws[2] = {two, cyc};
   const char *names[2] = {"two closed classes", "a 2-cycle"};
   for (int t = 0; t < 2; t++) {
-    lim_eig *e = NULL;
+    ss_lim_eig *e = NULL;
     ss_error err = {0};
-    REQUIRE_OK_VOID(lim_eig_new(Ws[t], K, &e, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_new(Ws[t], K, &e, &err), &err);
     CHECK(e->one == SIZE_MAX, "%s: eigenvalue 1 called simple", names[t]);
     double P[K * 3];
     points(r, K, P);
-    CHECK(lim_eig_power(e, -1, P, NULL, &err) == SS_ENUMERIC,
+    CHECK(ss_lim_eig_power(e, -1, P, NULL, &err) == SS_ENUMERIC,
           "%s: a limit that does not exist was given", names[t]);
     check_powers(e, Ws[t], K, r, 40, 0, names[t]);
-    lim_eig_free(e);
+    ss_lim_eig_free(e);
   }
 }
 

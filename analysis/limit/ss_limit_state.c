@@ -1,0 +1,201 @@
+/* ss_limit_state.c — the limit evaluator's cache: the patch topologies met so
+ * far (states, found by hash), each coarse cell's state, and the transitions
+ * of a state into its children, computed on first use; coarse-only states'
+ * transitions are kept for the most recent ones only. */
+#include <complex.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_limit_impl.h"
+
+void ss_lim_tensor_free(ss_lim_tensor *t) {
+  if (!t) return;
+  free(t->layer);
+  free(t->col);
+  free(t->colpt);
+  free(t);
+}
+
+static void drop_transitions(ss_lim_state *s) {
+  for (int k = 0; k < 8; k++)
+    if (s->tr[k]) {
+      free(s->tr[k]->W);
+      ss_lim_eig_free(s->tr[k]->eig);
+      free(s->tr[k]);
+      s->tr[k] = NULL;
+    }
+}
+
+void ss_lim_state_free(ss_lim_state *s) {
+  if (!s) return;
+  ss_lim_patch_free(&s->patch);
+  ss_cx_free(s->cx);
+  drop_transitions(s);
+  ss_lim_tensor_free(s->ten);
+  free(s);
+}
+
+static ss_status grow_table(ss_limit *L, ss_error *err) {
+  size_t cap = L->captab * 2;
+  size_t *t = calloc(cap, sizeof *t);
+  if (!t) return ss_error_nomem(err, "state table");
+  for (size_t i = 0; i < L->nst; i++) {
+    size_t h = (size_t)L->st[i]->hash & (cap - 1);
+    while (t[h])
+      h = (h + 1) & (cap - 1);
+    t[h] = i + 1;
+  }
+  free(L->tab);
+  L->tab = t;
+  L->captab = cap;
+  return SS_OK;
+}
+
+/* The state of patch p (taken over: moved into a new state, or freed when its
+ * key is known), with instance complex cx (likewise). */
+static ss_status state_of(ss_limit *L, ss_lim_patch *p, ss_cx *cx, size_t *out,
+                          ss_error *err) {
+  ss_status st;
+  uint64_t h = ss_lim_patch_hash(p);
+  size_t i = (size_t)h & (L->captab - 1);
+  while (L->tab[i]) {
+    ss_lim_state *s = L->st[L->tab[i] - 1];
+    if (s->hash == h && ss_lim_patch_same(&s->patch, p)) {
+      *out = L->tab[i] - 1;
+      ss_lim_patch_free(p);
+      ss_cx_free(cx);
+      return SS_OK;
+    }
+    i = (i + 1) & (L->captab - 1);
+  }
+  ss_lim_state *s = calloc(1, sizeof *s);
+  if (!s) {
+    st = ss_error_nomem(err, "state");
+    goto fail;
+  }
+  if (L->nst == L->capst) {
+    size_t cap = L->capst ? 2 * L->capst : 16;
+    ss_lim_state **n = realloc(L->st, cap * sizeof *n);
+    if (!n) {
+      st = ss_error_nomem(err, "states");
+      goto fail;
+    }
+    L->st = n;
+    L->capst = cap;
+  }
+  s->patch = *p;
+  s->cx = cx;
+  s->hash = h;
+  L->st[L->nst] = s;
+  L->tab[i] = L->nst + 1;
+  *out = L->nst++;
+  L->stats.keys++;
+  if (2 * L->nst > L->captab) return grow_table(L, err);
+  return SS_OK;
+fail:
+  free(s);
+  ss_lim_patch_free(p);
+  ss_cx_free(cx);
+  return st;
+}
+
+/* The state of coarse cell c (its patch in its canonical frame). */
+ss_status ss_lim_cell_state(ss_limit *L, size_t c, ss_error *err) {
+  if (L->cell[c].state != SIZE_MAX) return SS_OK;
+  ss_status st;
+  ss_lim_patch p;
+  ss_cx *cx = NULL;
+  /* a regular patch needs no canonical frame (every frame gives the same
+   * grid walk up to the B-spline's symmetry, and it has no transitions):
+   * most cells of a mesh are, and the 48 walks would dominate a first pass */
+  L->cell[c].g = ss_lim_frame_id();
+  if ((st = ss_lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
+  if (!p.regular) {
+    ss_lim_patch_free(&p);
+    if ((st = ss_lim_patch_canonical(&L->adj, c, L->loc, &p, &L->cell[c].g, err)))
+      return st;
+  }
+  ss_idx *src = malloc((p.nv + 1) * sizeof *src);
+  if (!src) {
+    ss_lim_patch_free(&p);
+    return ss_error_nomem(err, "cell patch");
+  }
+  memcpy(src, p.src, p.nv * sizeof *src);
+  if ((st = ss_lim_patch_complex(L->mesh, &p, &cx, err))) {
+    free(src);
+    ss_lim_patch_free(&p);
+    return st;
+  }
+  size_t s, before = L->nst;
+  if ((st = state_of(L, &p, cx, &s, err))) {
+    free(src);
+    return st;
+  }
+  if (L->nst > before) {
+    /* a coarse-only patch keeps no instance until its transitions are
+     * needed: one per irregular cell would grow with the mesh */
+    L->st[s]->coarse_only = 1;
+    L->st[s]->src_cell = c;
+    ss_cx_free(L->st[s]->cx);
+    L->st[s]->cx = NULL;
+  }
+  L->cell[c].src = src;
+  L->cell[c].state = s;
+  return SS_OK;
+}
+
+/* The transition of state i into child k, computed on first use. */
+ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
+                            ss_error *err) {
+  ss_status st;
+  ss_lim_state *s = L->st[i];
+  if (s->tr[k]) {
+    *out = s->tr[k];
+    return SS_OK;
+  }
+  if (!s->cx) {
+    ss_lim_patch p;
+    size_t c = s->src_cell;
+    if ((st = ss_lim_patch_build(&L->adj, c, &L->cell[c].g, L->loc, &p, err))) return st;
+    int same = ss_lim_patch_same(&p, &s->patch);
+    st = same ? ss_lim_patch_complex(L->mesh, &p, &s->cx, err)
+              : ss_error_set(err, SS_EINTERNAL, "limit: cell %zu's patch changed", c + 1);
+    ss_lim_patch_free(&p);
+    if (st) return st;
+  }
+  ss_lim_trans *t = calloc(1, sizeof *t);
+  if (!t) return ss_error_nomem(err, "transition");
+  ss_lim_patch child;
+  ss_cx *ccx;
+  if ((st = ss_lim_step(L->s, s->cx, k, 1, &child, &t->g, &ccx, &t->W, err))) {
+    free(t);
+    return st;
+  }
+  if ((st = state_of(L, &child, ccx, &t->next, err))) {
+    free(t->W);
+    free(t);
+    return st;
+  }
+  L->st[i]->tr[k] = t; /* L->st may have moved, the state has not */
+  L->stats.transitions++;
+  L->st[t->next]->coarse_only = 0; /* a child's patch: keep its transitions */
+  if (s->coarse_only && !s->held) {
+    size_t slot = L->nrecent % SS_LIM_RECENT;
+    if (L->nrecent >= SS_LIM_RECENT) {
+      ss_lim_state *old = L->st[L->recent[slot]];
+      if (old->coarse_only) {
+        drop_transitions(old);
+        ss_cx_free(old->cx);
+        old->cx = NULL;
+      }
+      old->held = 0;
+    }
+    L->recent[slot] = i;
+    L->nrecent++;
+    s->held = 1;
+  }
+  *out = t;
+  return SS_OK;
+}
