@@ -1,7 +1,7 @@
 /* ss_split_builder.c — the parent lists of a split under construction, which
  * every split file (ss_split_multilinear.c, ss_split_tetoct.c,
  * ss_split_bisect.c, ss_split_nvb.c) builds its operator L with; and the
- * freeing of L.  Below every split and below the dispatch in ss_split.c. */
+ * freeing of L.  Below every split and below the dispatch in ss_split_refine.c. */
 #include "ss_split_builder.h"
 
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* ss_split_impl.h — what a split file provides to the dispatch in ss_split.c
+/* ss_split_impl.h — what a split file provides to the dispatch in ss_split_refine.c
  * (private): one entry point per split, each called with a validated complex
  * whose cell types the split accepts. */
 #ifndef SS_SPLIT_IMPL_H

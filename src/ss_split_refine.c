@@ -1,4 +1,4 @@
-/* ss_split.c — the splits' registry: which cells each takes, their names,
+/* ss_split_refine.c — the splits' registry: which cells each takes, their names,
  * the dispatch of ss_split_refine to the split files (ss_split_multilinear.c,
  * ss_split_tetoct.c, ss_split_bisect.c, ss_split_nvb.c, all built on
  * ss_split_builder.c below them), and the operator L as a sparse matrix. */
