@@ -15,12 +15,9 @@
 #include <math.h>
 #include <stdlib.h>
 
-#define PI 3.14159265358979323846
+#include "ss_dense.h"
 
-static double det3(const double *a, const double *b, const double *c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-         a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
+#define PI 3.14159265358979323846
 
 /* y = A x for the Tutte system restricted to interior vertices: row of
  * interior vertex a is deg(a) x_a - sum of its interior neighbours. */
@@ -155,8 +152,8 @@ ss_status ss_star_link_embed(const ss_link *l, double *x, ss_error *err) {
   for (int pass = 0; pass < 2; pass++) {
     int npos = 0;
     for (int t = 0; t < ntri; t++)
-      npos +=
-          det3(x + 3 * tri[3 * t], x + 3 * tri[3 * t + 1], x + 3 * tri[3 * t + 2]) > 0.0;
+      npos += ss_dense_det3(x + 3 * tri[3 * t], x + 3 * tri[3 * t + 1],
+                            x + 3 * tri[3 * t + 2]) > 0.0;
     if (npos == ntri) break;
     if (pass == 0 && npos == 0) {
       for (int a = 0; a < k; a++)

@@ -19,6 +19,8 @@
 
 #include <math.h>
 
+#include "ss_dense.h"
+
 /* A cell's vertices relative to its vertex 0, scaled by 2^-e. */
 typedef struct {
   int n;                                /* vertices */
@@ -58,11 +60,6 @@ static double det2(double a, double b, double c, double d) {
   return a * d - b * c;
 }
 
-static double det3(const double *a, const double *b, const double *c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-         a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
-
 static double norm(int n, const double *a) {
   double s = 0.0;
   for (int r = 0; r < n; r++)
@@ -78,7 +75,7 @@ static double spread(int n, int k, const double (*c)[SS_MAXDIM]) {
   if (k == n) {
     if (n == 1) return c[0][0];
     if (n == 2) return det2(c[0][0], c[1][0], c[0][1], c[1][1]);
-    if (n == 3) return det3(c[0], c[1], c[2]);
+    if (n == 3) return ss_dense_det3(c[0], c[1], c[2]);
   }
   if (k == 1) return norm(n, c[0]);
   double s = 0.0;
@@ -92,7 +89,7 @@ static double spread(int n, int k, const double (*c)[SS_MAXDIM]) {
       for (int l = j + 1; l < n; l++) { /* k == 3 */
         double a[3] = {c[0][i], c[0][j], c[0][l]}, b[3] = {c[1][i], c[1][j], c[1][l]},
                d[3] = {c[2][i], c[2][j], c[2][l]};
-        double m = det3(a, b, d);
+        double m = ss_dense_det3(a, b, d);
         s += m * m;
       }
     }

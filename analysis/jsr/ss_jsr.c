@@ -208,7 +208,7 @@ static ss_status scale_inputs(jsr_run *r, ss_error *err) {
   int ex = 0;
   double mx = 0;
   for (size_t i = 0; i < m; i++)
-    mx = fmax(mx, ss_jsr_norm_inf(Y[i], n));
+    mx = fmax(mx, ss_dense_max_row_sum(Y[i], n));
   if (mx > 0 && isfinite(mx)) ex = -ilogb(mx);
   if (ex != 0) {
     r->ybuf = malloc(m * n * n * sizeof *r->ybuf);

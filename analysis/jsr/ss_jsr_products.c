@@ -73,18 +73,6 @@ int ss_jsr_ws_reserve(ss_jsr_ws *w, int levels) {
   return 1;
 }
 
-/* Maximum absolute row sum of the n x n row-major matrix a (floating point). */
-double ss_jsr_norm_inf(const double *a, size_t n) {
-  double mx = 0;
-  for (size_t r = 0; r < n; r++) {
-    double s = 0;
-    for (size_t c = 0; c < n; c++)
-      s += fabs(a[r * n + c]);
-    if (s > mx) mx = s;
-  }
-  return mx;
-}
-
 /* Maximum absolute column sum of the n x n row-major matrix a. */
 static double norm_one(const double *a, size_t n, double *colsum) {
   for (size_t c = 0; c < n; c++)
@@ -138,7 +126,8 @@ static void ws_err_componentwise(ss_jsr_ws *w, int k) {
   const double c = ss_jsr_up(K1 * g * (1 + 2 * K1 * g) * (1 + 2 * K1 * w->gam));
   const double *q = w->qabs + (size_t)k * nn;
   const double ei =
-      ss_jsr_up(c * ss_jsr_up(ss_jsr_norm_inf(q, n) * (1 + 2 * w->gam))) + K1 * w->tiny;
+      ss_jsr_up(c * ss_jsr_up(ss_dense_max_row_sum(q, n) * (1 + 2 * w->gam))) +
+      K1 * w->tiny;
   const double e2 = ss_jsr_up(c * norm_f_up(q, nn)) + K1 * w->tiny;
   w->err_inf[k] = fmin(w->err_inf[k], ei);
   w->err_2[k] = fmin(w->err_2[k], e2);
@@ -177,7 +166,7 @@ void ss_jsr_ws_push(ss_jsr_ws *w, int k, size_t i) {
                             w->nf_up[k - 1])) +
         w->tiny);
   }
-  w->nhat_inf[k] = ss_jsr_norm_inf(p, n);
+  w->nhat_inf[k] = ss_dense_max_row_sum(p, n);
   w->nf_up[k] = norm_f_up(p, nn);
   w->cap2[k] = fmin(sqrt(norm_one(p, n, w->sb) * w->nhat_inf[k]), w->nf_up[k]);
   /* the normwise bound grows like prod ||Y_i||; where it starts to matter
@@ -338,11 +327,11 @@ void ss_jsr_ws_scale(ss_jsr_ws *w, const double *const *Y, const double *d) {
           z[r * n + c] = Y[i][r * n + c] * (d[c] / d[r]);
       w->zptr[i] = z;
       w->delta[i] =
-          ss_jsr_up(3 * U * ss_jsr_up(ss_jsr_norm_inf(z, n) * (1 + 2 * w->gam))) +
+          ss_jsr_up(3 * U * ss_jsr_up(ss_dense_max_row_sum(z, n) * (1 + 2 * w->gam))) +
           w->tiny;
     }
-    w->ynorm[i] = ss_jsr_up(ss_jsr_up(ss_jsr_norm_inf(w->zptr[i], n) * (1 + 2 * w->gam)) +
-                            w->delta[i]);
+    w->ynorm[i] = ss_jsr_up(
+        ss_jsr_up(ss_dense_max_row_sum(w->zptr[i], n) * (1 + 2 * w->gam)) + w->delta[i]);
     /* ||Y||_2 <= ||Y||_F; the 2-norm error recursion needs only a bound */
     w->yf[i] = norm_f_up(w->zptr[i], nn);
     w->y2[i] = ss_jsr_up(w->yf[i] + ss_jsr_up(w->delta[i] * sqrt((double)n)));

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "ss_dense.h"
 #include "ss_jsr.h"
 
 /* The depth-first walk over words.  Level k (0-based) of the stacks holds the
@@ -90,8 +91,6 @@ void ss_jsr_ws_free(ss_jsr_ws *w);
 /* Make the stacks hold `levels` levels, keeping their contents; 0 if memory
  * ran out. */
 int ss_jsr_ws_reserve(ss_jsr_ws *w, int levels);
-/* Maximum absolute row sum of the n x n row-major matrix a (floating point). */
-double ss_jsr_norm_inf(const double *a, size_t n);
 /* Form the product at level k: Y_i, or Y_i times level k - 1, with its
  * rigorous error bounds. */
 void ss_jsr_ws_push(ss_jsr_ws *w, int k, size_t i);

@@ -8,6 +8,7 @@
 
 #include <lapacke.h>
 
+#include "ss_dense.h"
 #include "ss_limit.h"
 #include "ss_limit_impl.h"
 
@@ -56,18 +57,6 @@ static void matvec(const double *A, size_t K, double *P, double *tmp) {
     memcpy(tmp + i * 3, acc, sizeof acc);
   }
   memcpy(P, tmp, K * 3 * sizeof *P);
-}
-
-/* 1-norm of a K x K matrix. */
-static double norm1(const double *A, size_t K) {
-  double m = 0.0;
-  for (size_t j = 0; j < K; j++) {
-    double s = 0.0;
-    for (size_t i = 0; i < K; i++)
-      s += fabs(A[j * K + i]);
-    if (s > m) m = s;
-  }
-  return m;
 }
 
 ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err) {
@@ -128,7 +117,8 @@ ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *
                         (lapack_int)K, ipiv);
   if (info == 0)
     info = LAPACKE_dgetri(LAPACK_COL_MAJOR, (lapack_int)K, e->Vinv, (lapack_int)K, ipiv);
-  e->cond = info ? HUGE_VAL : norm1(e->V, K) * norm1(e->Vinv, K);
+  e->cond =
+      info ? HUGE_VAL : ss_dense_max_row_sum(e->V, K) * ss_dense_max_row_sum(e->Vinv, K);
   if (!(e->cond <= SS_LIMIT_MAXCOND)) {
     snprintf(e->why, sizeof e->why,
              "the %zu x %zu matrix of a stationary run is defective or nearly so (a "
