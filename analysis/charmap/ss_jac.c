@@ -2,7 +2,8 @@
  * for hexes) and its scaled Jacobian.  Method: ss_jac.h.
  *
  * The sign machinery is written once, in ss_jac_impl.h, over a tiny number
- * interface, and instantiated twice below: for double (the hot path of the
+ * interface (ss_jac_num.h, shared with analysis/psi/), and instantiated twice
+ * below: for double (the hot path of the
  * sweeps, whose values of no sign are those below the flat threshold) and for
  * arb's di_t intervals with outward rounding (the certified path).  The scaled
  * Jacobian, a measure and not a proof, is computed in double only. */
@@ -11,7 +12,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "double_interval.h"
+#include "ss_jac_num.h"
 
 enum { SS_JAC_STACK = 8 * 16 + 8 }; /* depth-first: at most 7 pending boxes per level */
 
@@ -58,36 +59,7 @@ static const ss_jac_order hex_order = {
 #define LW(p, b, a)    (1.0 * LW_F(p, b, a, 0) * LW_F(p, b, a, 1) * LW_F(p, b, a, 2))
 #define LAG_W(p, k, a) LW(p, HEX_BITS(k), a)
 
-/* ---- the number interface: double ---- */
-
-static inline double add_d(double a, double b) {
-  return a + b;
-}
-static inline double sub_d(double a, double b) {
-  return a - b;
-}
-static inline double mul_d(double a, double b) {
-  return a * b;
-}
-static inline double scale_d(double a, double s) {
-  return s * a;
-}
-static inline double divd_d(double a, double s) {
-  return a / s;
-}
-static inline double minus_d(double a) {
-  return -a;
-}
-static inline double zero_d(void) {
-  return 0.0;
-}
-/* above the flat threshold: a sign that rounding did not decide */
-static inline int gt0_d(double v, double thr) {
-  return v > thr;
-}
-static inline int lt0_d(double v, double thr) {
-  return v < -thr;
-}
+/* ---- the sign machinery over double (the number interface: ss_jac_num.h) ---- */
 
 #define NUM        double
 #define SUF        d
@@ -99,46 +71,7 @@ static inline int lt0_d(double v, double thr) {
 #undef JAC_FLAT
 #undef JAC_HEX_AT
 
-/* ---- the number interface: intervals (enclosures, outward rounding) ---- */
-
-static inline di_t add_di(di_t a, di_t b) {
-  return di_fast_add(a, b);
-}
-static inline di_t sub_di(di_t a, di_t b) {
-  return di_fast_sub(a, b);
-}
-static inline di_t mul_di(di_t a, di_t b) {
-  return di_fast_mul(a, b);
-}
-/* s a x as two products rounded to nearest, then moved outward (arb's own
- * helpers of di_fast_add; they also cover underflow): cheaper than
- * di_fast_mul_d's general case, and hex_at scales 1944 times per cell */
-static inline di_t scale_di(di_t a, double s) {
-  const double p = s * a.a, q = s * a.b;
-  di_t r;
-  r.a = _di_below(s >= 0.0 ? p : q);
-  r.b = _di_above(s >= 0.0 ? q : p);
-  return r;
-}
-static inline di_t divd_di(di_t a, double s) {
-  return di_fast_div_d(a, s);
-}
-static inline di_t minus_di(di_t a) {
-  return di_neg(a);
-}
-static inline di_t zero_di(void) {
-  const di_t z = {0.0, 0.0};
-  return z;
-}
-/* the whole enclosure on one side of 0 (no threshold: rounding is enclosed) */
-static inline int gt0_di(di_t v, double thr) {
-  (void)thr;
-  return v.a > 0.0;
-}
-static inline int lt0_di(di_t v, double thr) {
-  (void)thr;
-  return v.b < 0.0;
-}
+/* ---- the same over intervals (enclosures, outward rounding) ---- */
 
 #define NUM      di_t
 #define SUF      di
