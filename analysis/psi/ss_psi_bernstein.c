@@ -109,6 +109,7 @@ static double flat_of_bezier(double (*B)[3]) {
 }
 
 double ss_psi_bernstein_flat(const double (*net)[3]) {
+  if (!finite_net(net)) return NAN;
   double B[64][3];
   bezier_net_d(net, B);
   return flat_of_bezier(B);

@@ -42,10 +42,15 @@
  * from the origin (as SS_JAC_FLAT does for cells).  In the interval path an
  * enclosure that holds 0 has no sign (no threshold).
  *
- * Cost and memory: about 41,000 multiply-adds for the coefficients, and one
- * 729-coefficient box per subdivision level, held in a fixed-size array on
- * the C stack (about 55 kB for doubles, 110 kB for intervals at the largest
- * depth SS_PSI_MAXDEPTH); no allocation, no global state, nothing printed.
+ * Cost and memory: about 50,000 multiply-adds for the coefficients (some 14
+ * us in doubles, 20 times that in intervals), about 8,700 halvings per
+ * sub-box judged (7 us, 40 us), and one 729-coefficient box per subdivision
+ * level, held in fixed-size arrays on the C stack (about 65 kB for doubles,
+ * 130 kB for intervals, with the coefficients' scratch); no allocation, no
+ * global state, nothing printed.  A piece whose det Dψ touches 0 without
+ * changing sign away from the sub-box corners is the worst case: every box
+ * along the zero set is split down to maxdepth (about 11,000 boxes at depth
+ * 6 for a plane of tangential zeros: 80 ms in doubles, 0.5 s in intervals).
  * These functions cannot fail: a non-finite input, or lo > hi, gives
  * SS_JAC_UNDECIDED with NaN measures. */
 #ifndef SS_PSI_BERNSTEIN_H
@@ -102,7 +107,8 @@ typedef struct {
 
 /* The 729 Bernstein coefficients of det Dψ on [0,1]^3 of the tricubic
  * B-spline of net (64 points, layout above), coef[a + 9b + 81c] for degree
- * indices a (in u), b (in v), c (in w); in doubles (rounded). */
+ * indices a (in u), b (in v), c (in w); in doubles (rounded; a net that is
+ * not finite gives coefficients that are not finite). */
 void ss_psi_bernstein_det(const double (*net)[3], double coef[SS_PSI_NCOEF]);
 
 /* As ss_psi_bernstein_det for a net known within boxes, lo[q][r] <= net[q][r]
@@ -119,7 +125,8 @@ double ss_psi_bernstein_eval(const double coef[SS_PSI_NCOEF], double u, double v
                              double w);
 
 /* The double path's zero-to-rounding threshold of the piece of net:
- * SS_PSI_FLAT N_u N_v N_w (see "Values with no sign"). */
+ * SS_PSI_FLAT N_u N_v N_w (see "Values with no sign"); NaN for a net that is
+ * not finite. */
 double ss_psi_bernstein_flat(const double (*net)[3]);
 
 /* Decide the sign of det Dψ on the piece of net in doubles (method above),

@@ -431,9 +431,10 @@ static int relabel_index(int m, int a, int b, int c, int *sign) {
 static void test_symmetry(void) {
   uint64_t s = 4242;
   double worst = 0.0;
+  int kinds[3] = {0, 0, 0};
   for (int n = 0; n < 6; n++) {
     double net[64][3], mir[64][3], A[3][3], c[SS_PSI_NCOEF], cm[SS_PSI_NCOEF];
-    affine_net(&s, 0.5, net, A);
+    affine_net(&s, 0.3 + 0.3 * n, net, A); /* from nearly a grid to wild */
     ss_psi_bernstein_det(CN(net), c);
     memcpy(mir, net, sizeof mir);
     for (int q = 0; q < 64; q++)
@@ -458,11 +459,24 @@ static void test_symmetry(void) {
         ok &= e <= 1e-13;
       }
       CHECK(ok, "net %d, relabelling %d: coefficients not permuted", n, m);
+      /* the verdict: a proven sign times the relabelling's determinant */
+      int sg;
+      relabel_index(m, 0, 0, 0, &sg);
+      ss_psi_piece_result r0, rr;
+      ss_psi_piece_sign(CN(net), SS_PSI_DEPTH, &r0);
+      ss_psi_piece_sign(CN(rl), SS_PSI_DEPTH, &rr);
+      const ss_jac_sign want = r0.sign == SS_JAC_POSITIVE || r0.sign == SS_JAC_NEGATIVE
+                                   ? (ss_jac_sign)(sg * (int)r0.sign)
+                                   : r0.sign;
+      CHECK(rr.sign == want, "net %d, relabelling %d: verdict %d, the net's %d", n, m,
+            rr.sign, r0.sign);
+      kinds[r0.sign == SS_JAC_FOLDED ? 0 : r0.sign == SS_JAC_UNDECIDED ? 2 : 1]++;
     }
   }
+  CHECK(kinds[0] > 0 && kinds[1] > 0, "relabellings: no fold or no proof among the nets");
   printf("relabellings: coefficients permuted, times the determinant, to %.2e of the "
-         "largest\n",
-         worst);
+         "largest; verdicts kept (%d folded, %d proven, %d undecided)\n",
+         worst, kinds[0], kinds[1], kinds[2]);
 }
 
 /* ---- the acceptance rules on their edges ---- */
@@ -584,6 +598,7 @@ static void test_bad_input(void) {
   ss_psi_piece_result r;
   ss_psi_piece_sign(CN(net), 3, &r);
   CHECK(r.sign == SS_JAC_UNDECIDED && isnan(r.min_coef), "NaN net: sign %d", r.sign);
+  CHECK(isnan(ss_psi_bernstein_flat(CN(net))), "NaN net: a flat threshold");
   affine_net(&s, 0.1, net, A);
   double hi[64][3];
   memcpy(hi, net, sizeof hi);
