@@ -12,7 +12,12 @@
  *     relative allowance is wrong at level 0; a pair whose product is
  *     computed as 0 but is not (A's second row t times its first, rounded;
  *     B's rows (t, -1)), so the bound without the product's error bound is
- *     wrong; and seeded random words.
+ *     wrong; and seeded random words.  The 2-norm bound
+ *     (ss_jsr_ws_norm_2_up) likewise on 2 x 2 words, against the closed form
+ *     sigma_max^2 = (f + sqrt(f^2 - 4 det^2)) / 2, f = ||P||_F^2, in arb; the
+ *     cancelling pair needs its error bound err_2.  The componentwise error
+ *     bound of a product (formed where the normwise one exceeds 1e-12 of the
+ *     norm: the cancelling pairs) is what these error bounds are on them.
  *  2. The k-th root bounded from above (ss_jsr_root_up) against arb's root of
  *     the same double: certainly >= it, within (8 + |ln x|) 2u + 2u of it, and
  *     pow alone below it on some of the inputs (1/3 rounded down makes
@@ -71,10 +76,11 @@ static int d_within(double x, const arb_t v, double rel, double s) {
 }
 
 /* The workspace of the walks for the m n x n matrices Y, as ss_jsr.c sets it
- * up for its inputs (exact: delta 0), without the componentwise bound. */
+ * up for its inputs (exact: delta 0, so the componentwise bound applies). */
 static int ws_init(ss_jsr_ws *w, size_t m, size_t n, const double *const *Y, int levels) {
   memset(w, 0, sizeof *w);
   w->m = m, w->n = n, w->Y = Y;
+  w->cw_ok = 1; /* the inputs are exact: the componentwise bound applies */
   w->gam = (double)n * U / (1 - (double)n * U);
   w->tiny = (double)n * (double)n * DBL_TRUE_MIN;
   w->ynorm = calloc(m, sizeof *w->ynorm);
@@ -82,8 +88,13 @@ static int ws_init(ss_jsr_ws *w, size_t m, size_t n, const double *const *Y, int
   w->y2 = calloc(m, sizeof *w->y2);
   w->yf = calloc(m, sizeof *w->yf);
   w->sb = calloc(n, sizeof *w->sb);
-  if (!w->sb || !w->ynorm || !w->delta || !w->y2 || !w->yf ||
-      !ss_jsr_ws_reserve(w, levels))
+  w->a = calloc(n * n, sizeof *w->a);
+  w->sv = calloc(n, sizeof *w->sv);
+  w->vl = calloc(n * n, sizeof *w->vl);
+  w->v = calloc(n * n, sizeof *w->v);
+  w->t2 = calloc(n * n, sizeof *w->t2);
+  if (!w->a || !w->sv || !w->vl || !w->v || !w->t2 || !w->sb || !w->ynorm || !w->delta ||
+      !w->y2 || !w->yf || !ss_jsr_ws_reserve(w, levels))
     return 0;
   for (size_t i = 0; i < m; i++) {
     double mx = 0;
@@ -94,6 +105,11 @@ static int ws_init(ss_jsr_ws *w, size_t m, size_t n, const double *const *Y, int
       mx = fmax(mx, s);
     }
     w->ynorm[i] = ss_jsr_up(mx * (1 + 2 * w->gam));
+    /* ||Y_i||_F from above, generously: bounds ||Y_i||_2 too */
+    double f = 0;
+    for (size_t e = 0; e < n * n; e++)
+      f += Y[i][e] * Y[i][e];
+    w->yf[i] = w->y2[i] = sqrt(f) * (1 + 1e-12) + 1e-300;
   }
   return 1;
 }
@@ -143,6 +159,79 @@ static void exact_norm(arb_t out, size_t n, const double *const *Y, const int *w
   arb_mat_clear(T);
   arb_mat_clear(F);
   arb_mat_clear(P);
+}
+
+/* ||Y_{w[len-1]} ... Y_{w[0]}||_2 of the exact product of 2 x 2 doubles:
+ * sigma_max^2 = (f + sqrt(f^2 - 4 det^2)) / 2, f = ||P||_F^2; and
+ * prod ||Y_i||_F (doubles, for the tolerance) */
+static void exact_norm2(arb_t out, const double *const *Y, const int *w, int len,
+                        double *prodnorm) {
+  arb_mat_t P, F, T;
+  arb_mat_init(P, 2, 2);
+  arb_mat_init(F, 2, 2);
+  arb_mat_init(T, 2, 2);
+  *prodnorm = 1;
+  for (int k = 0; k < len; k++) {
+    double f = 0;
+    for (slong e = 0; e < 4; e++) {
+      arb_set_d(arb_mat_entry(F, e / 2, e % 2), Y[w[k]][e]);
+      f += Y[w[k]][e] * Y[w[k]][e];
+    }
+    *prodnorm *= sqrt(f);
+    if (k == 0) {
+      arb_mat_set(P, F);
+    } else {
+      arb_mat_mul(T, F, P, PREC);
+      arb_mat_swap(T, P);
+    }
+  }
+  arb_t f, d, t;
+  arb_init(f);
+  arb_init(d);
+  arb_init(t);
+  arb_zero(f);
+  for (slong e = 0; e < 4; e++)
+    arb_addmul(f, arb_mat_entry(P, e / 2, e % 2), arb_mat_entry(P, e / 2, e % 2), PREC);
+  arb_mat_det(d, P, PREC);
+  arb_mul(t, f, f, PREC);
+  arb_mul(d, d, d, PREC);
+  arb_submul_ui(t, d, 4, PREC);
+  arb_sqrtpos(t, t, PREC);
+  arb_add(t, t, f, PREC);
+  arb_mul_2exp_si(t, t, -1);
+  arb_sqrtpos(out, t, PREC);
+  arb_clear(t);
+  arb_clear(d);
+  arb_clear(f);
+  arb_mat_clear(T);
+  arb_mat_clear(F);
+  arb_mat_clear(P);
+}
+
+/* The 2-norm bound at every level of the word w of 2 x 2 matrices (pushed
+ * already) against the exact norm; returns how many levels had the bound
+ * without the product's error bound err_2 below the exact norm. */
+static int check_word2(ss_jsr_ws *ws, const int *w, int len, const char *what) {
+  int below = 0;
+  arb_t ex;
+  arb_init(ex);
+  for (int k = 0; k < len; k++) {
+    double pn;
+    exact_norm2(ex, ws->Y, w, k + 1, &pn);
+    const double up = ss_jsr_ws_norm_2_up(ws, k);
+    /* the certificate's own slack (Gershgorin of W^T W, sigma_min(V), the
+     * gamma_n terms) reaches about 65u relative on these inputs */
+    const double tol = (double)(k + 1) * 128 * U;
+    CHECK(d_ge(up, ex), "%s, level %d: the 2-norm bound %.17g is below the exact norm",
+          what, k, up);
+    CHECK(d_within(up, ex, tol, pn),
+          "%s, level %d: the 2-norm bound %.17g is more than %g of prod ||Y_i||_F = %g "
+          "above the exact norm",
+          what, k, up, tol, pn);
+    below += d_lt(up - ws->err_2[k], ex);
+  }
+  arb_clear(ex);
+  return below;
 }
 
 /* Push the word w (len letters) through the workspace and check the bound at
@@ -200,7 +289,7 @@ static void test_norm_inf_up(void) {
    * rounding errors.  Only the product's error bound covers them. */
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(rng, 34);
-  int below = 0;
+  int below = 0, below2 = 0, cw = 0;
   bare = 0;
   for (int t = 0; t < 20; t++) {
     const double x = gsl_rng_uniform(rng) + 0.5, y = gsl_rng_uniform(rng) - 0.5;
@@ -212,6 +301,34 @@ static void test_norm_inf_up(void) {
     char what[64];
     snprintf(what, sizeof what, "cancelling pair %d", t);
     below += check_word(&ws, w2, 3, what, &bare);
+    below2 += check_word2(&ws, w2, 3, what);
+    cw += ws.qvalid[1] && ws.qvalid[2]; /* the componentwise bound was formed */
+    ss_jsr_ws_free(&ws);
+  }
+  CHECK(cw == 20,
+        "the componentwise error bound must be formed for every cancelling pair "
+        "(%d of 20)",
+        cw);
+  CHECK(below2 >= 10,
+        "the cancelling pairs must put the 2-norm bound without the product's error "
+        "bound below the exact norm (%d of 20)",
+        below2);
+  /* seeded random words of two 2 x 2 matrices, in both norms */
+  for (int t = 0; t < 50; t++) {
+    double A2[4], B2[4];
+    for (int e = 0; e < 4; e++) {
+      A2[e] = gsl_rng_uniform(rng) - 0.5;
+      B2[e] = gsl_rng_uniform(rng) - 0.5;
+    }
+    const double *Y2[2] = {A2, B2};
+    int w2[5];
+    for (int k = 0; k < 5; k++)
+      w2[k] = (int)gsl_rng_uniform_int(rng, 2);
+    CHECK(ws_init(&ws, 2, 2, Y2, 5), "workspace");
+    char what[64];
+    snprintf(what, sizeof what, "random 2 x 2 word %d", t);
+    check_word(&ws, w2, 5, what, &bare);
+    check_word2(&ws, w2, 5, what);
     ss_jsr_ws_free(&ws);
   }
   CHECK(below >= 10,
