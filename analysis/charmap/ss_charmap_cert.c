@@ -10,6 +10,7 @@
 
 #include "double_interval.h"
 #include "ss_charmap.h"
+#include "ss_charmap_cert_impl.h"
 #include "ss_exact.h"
 
 /* An interval net: lo and hi, point by point (dim coordinates each). */
@@ -58,10 +59,7 @@ static int push(const ss_local_ring *R, const inet *prev, int dim, long maxden,
   return 0;
 }
 
-/* Proven verdicts of the cells of one ring level. */
-typedef struct {
-  size_t cells, pos, neg, folded, unknown;
-} proven;
+typedef ss_charmap_proven proven;
 
 static void judge(const ss_local_ring *R, const inet *x, int dim, int depth, proven *p) {
   memset(p, 0, sizeof *p);
@@ -84,6 +82,11 @@ static void judge(const ss_local_ring *R, const inet *x, int dim, int depth, pro
     p->unknown += res.sign != SS_JAC_POSITIVE && res.sign != SS_JAC_NEGATIVE &&
                   res.sign != SS_JAC_FOLDED;
   }
+}
+
+int ss_charmap_cert_sym_margin(double dx2, double e2, double mu0, double gap) {
+  const double smin = sqrt(fmax(mu0, 0.0)), en = sqrt(e2);
+  return sqrt(dx2) + 2.0 * en < 0.5 * (smin - en) * gap;
 }
 
 /* psi o sigma = psi proven: P commutes with the exact S (entries compared as
@@ -120,12 +123,21 @@ static int sym_proven(const ss_local *M, const ss_case *c, const ss_charmap_sym 
     }
   double mu[3];
   if (ok && LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'U', m, G, m, mu)) ok = 0;
-  if (ok) {
-    const double smin = sqrt(fmax(mu[0], 0.0)), en = sqrt(e);
-    ok = sqrt(dx) + 2.0 * en < 0.5 * (smin - en) * y->gap;
-  }
+  if (ok) ok = ss_charmap_cert_sym_margin(dx, e, mu[0], y->gap);
   free(P);
   return ok;
+}
+
+int ss_charmap_cert_persists(const proven *Q, const proven *L, double shrink) {
+  /* at least the proven bad cells now, at most the proven and unknown ones
+   * before */
+  const int plus = L->pos > L->neg + L->unknown, minus = L->neg > L->pos + L->unknown;
+  const int qplus = Q->pos > Q->neg + Q->unknown, qminus = Q->neg > Q->pos + Q->unknown;
+  if (!(plus || minus) || !(qplus || qminus)) return 0;
+  const double now = (double)(L->folded + (plus ? L->neg : L->pos)) / (double)L->cells;
+  const double before =
+      (double)(Q->folded + Q->unknown + (qplus ? Q->neg : Q->pos)) / (double)Q->cells;
+  return now > 0.0 && now >= shrink * before;
 }
 
 ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *lo,
@@ -200,20 +212,11 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
     goto uncertified;
   }
   if (v->verdict == SS_FAIL && last >= 1) {
-    /* the rule of the verdict with proven counts: at least the proven bad
-     * cells now, at most the proven and unknown ones before */
+    /* the rule of the verdict with proven counts */
     const proven *Q = pr + last - 1;
-    const int plus = L->pos > L->neg + L->unknown, minus = L->neg > L->pos + L->unknown;
-    const int qplus = Q->pos > Q->neg + Q->unknown, qminus = Q->neg > Q->pos + Q->unknown;
-    if ((plus || minus) && (qplus || qminus)) {
-      const double now =
-          (double)(L->folded + (plus ? L->neg : L->pos)) / (double)L->cells;
-      const double before =
-          (double)(Q->folded + Q->unknown + (qplus ? Q->neg : Q->pos)) / (double)Q->cells;
-      if (now > 0.0 && now >= r->shrink * before) {
-        r->verdict.certified = 1;
-        return SS_OK;
-      }
+    if (ss_charmap_cert_persists(Q, L, r->shrink)) {
+      r->verdict.certified = 1;
+      return SS_OK;
     }
     snprintf(why, sizeof why,
              "ring levels %d and %d: the folds are not proven to persist in interval "
