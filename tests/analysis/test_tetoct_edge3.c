@@ -34,6 +34,8 @@
  *   profile rho_k (orthogonally invariant, so any orthonormal complement and
  *   any order of the support give it), and a proven upper bound between
  *   this rho(Y_1) and lambda1; ss_jsr_compute on the Y_i built here too.
+ * - the rho-mode (eigenvalue 0.2873777...) not odd under the mirror through P:
+ *   control values on P's cross-section not all zero.
  * A wrong weight, a wrong eigenvalue or a wrong reduction in the program
  * breaks the comparisons; a wrong key number of the finding breaks the
  * closed forms. */
@@ -251,10 +253,11 @@ static int inside(const int64_t *x, int64_t (*b)[3]) {
 }
 
 typedef struct {
-  size_t n;     /* support size */
-  double *S[2]; /* n x n, row-major */
-  int interior; /* every point of sigma_i(U) strictly inside */
-  int closed;   /* every such point exists in the refined mesh */
+  size_t n;        /* support size */
+  double *S[2];    /* n x n, row-major */
+  int interior;    /* every point of sigma_i(U) strictly inside */
+  int closed;      /* every such point exists in the refined mesh */
+  int64_t z[MAXU]; /* each support point's height along the edge relative to P */
 } maps;
 
 static void build_maps(maps *M) {
@@ -311,6 +314,8 @@ static void build_maps(maps *M) {
   /* the loop's bound grows with U: each point is mapped once, after it is
    * added, so U ends closed */
   M->n = nu;
+  for (size_t a = 0; a < nu; a++)
+    M->z[a] = O.p[U[a]][2] - P[2];
   for (int i = 0; i < 2; i++) {
     M->S[i] = calloc(nu * nu, sizeof *M->S[i]);
     const int64_t *c = i ? Mid : P;
@@ -466,6 +471,45 @@ int main(void) {
   for (size_t k = 4; k < n; k++)
     rY1 = fmax(rY1, hypot(wr[k], wi[k]));
   CHECK_CLOSE(rY1, rho4, 1e-10, "rho(Y_1) is the cubic's root");
+
+  /* The rho-mode (S_1's eigenvector for rho4, by inverse iteration): its
+   * control values on the cross-section through P (the support's points at
+   * P's height, P left out) are not all zero, so the mode is not odd under the edge's
+   * mirror through P (an odd one would vanish there exactly) -- the evidence
+   * finding 9 gives for the exponent ln(rho)/ln(lambda1) - 1 being attained. */
+  {
+    double *A = malloc(n * n * sizeof *A), *x = malloc(n * sizeof *x);
+    lapack_int *ipiv = malloc(n * sizeof *ipiv);
+    memcpy(A, M.S[0], n * n * sizeof *A);
+    for (size_t a = 0; a < n; a++)
+      A[a * n + a] -= rho4 * (1 + 1e-7), x[a] = 1.0 + 0.1 * a;
+    LAPACKE_dgetrf(LAPACK_ROW_MAJOR, (lapack_int)n, (lapack_int)n, A, (lapack_int)n,
+                   ipiv);
+    for (int it = 0; it < 6; it++) {
+      LAPACKE_dgetrs(LAPACK_ROW_MAJOR, 'N', (lapack_int)n, 1, A, (lapack_int)n, ipiv, x,
+                     1);
+      double mx = 0;
+      for (size_t a = 0; a < n; a++)
+        mx = fmax(mx, fabs(x[a]));
+      for (size_t a = 0; a < n; a++)
+        x[a] /= mx;
+    }
+    double res = 0, mid0 = 0; /* residual of S_1 x = rho4 x; largest |x| at z = 0 */
+    for (size_t a = 0; a < n; a++) {
+      double y = -rho4 * x[a];
+      for (size_t b = 0; b < n; b++)
+        y += M.S[0][a * n + b] * x[b];
+      res = fmax(res, fabs(y));
+      if (a > 0 && M.z[a] == 0) mid0 = fmax(mid0, fabs(x[a])); /* U[0] is P */
+    }
+    CHECK(res < 1e-9, "rho-mode residual %.3g", res);
+    CHECK(mid0 > 1e-3, "rho-mode on the cross-section through P: max |value| %.3g", mid0);
+    printf(
+        "independent: rho-mode's control values (max 1): at P %.4f, largest elsewhere on "
+        "P's cross-section %.4f\n",
+        x[0], mid0);
+    free(A), free(x), free(ipiv);
+  }
 
   /* 2-norm profile: the first k with rho_k < lambda1 */
   const double *Yc[2] = {Y[0], Y[1]};
