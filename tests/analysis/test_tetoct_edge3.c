@@ -34,6 +34,8 @@
  *   profile rho_k (orthogonally invariant, so any orthonormal complement and
  *   any order of the support give it), and a proven upper bound between
  *   this rho(Y_1) and lambda1; ss_jsr_compute on the Y_i built here too.
+ * - S_2 u = lambda1 u for S_1's lambda1-eigenvectors u (the across pair is
+ *   not coupled to 1 or X);
  * - the rho-mode (eigenvalue 0.2873777...) not odd under the mirror through P:
  *   control values on P's cross-section not all zero.
  * A wrong weight, a wrong eigenvalue or a wrong reduction in the program
@@ -540,6 +542,32 @@ int main(void) {
          "below lambda1 at k = %d (0: none up to %d)\n",
          pow(binf[7], 1.0 / 8), pow(binf[11], 1.0 / 12), pow(binf[15], 1.0 / 16), kinf,
          KINF);
+
+  /* S_1's lambda1-eigenspace (the two smallest right singular vectors of
+   * S_1 - lambda1 I) is mapped by S_2 to lambda1 times itself: no coupling
+   * of the across pair to 1 or X, as the rotation about the edge forces. */
+  {
+    double *A = malloc(n * n * sizeof *A), *sv = malloc(n * sizeof *sv),
+           *vt = malloc(n * n * sizeof *vt), *sup = malloc(n * sizeof *sup);
+    memcpy(A, M.S[0], n * n * sizeof *A);
+    for (size_t a = 0; a < n; a++)
+      A[a * n + a] -= lambda1;
+    LAPACKE_dgesvd(LAPACK_ROW_MAJOR, 'N', 'A', (lapack_int)n, (lapack_int)n, A,
+                   (lapack_int)n, sv, NULL, 1, vt, (lapack_int)n, sup);
+    CHECK(sv[n - 1] < 1e-12 && sv[n - 2] < 1e-12 && sv[n - 3] > 1e-6,
+          "lambda1-eigenspace of S_1 of dimension 2: singular values %.3g %.3g %.3g",
+          sv[n - 3], sv[n - 2], sv[n - 1]);
+    double cpl = 0;
+    for (size_t j = n - 2; j < n; j++)
+      for (size_t a = 0; a < n; a++) {
+        double y = -lambda1 * vt[j * n + a];
+        for (size_t b = 0; b < n; b++)
+          y += M.S[1][a * n + b] * vt[j * n + b];
+        cpl = fmax(cpl, fabs(y));
+      }
+    CHECK(cpl < 1e-12, "S_2 u = lambda1 u on the pair: defect %.3g", cpl);
+    free(A), free(sv), free(vt), free(sup);
+  }
 
   /* the library on the same case */
   ss_error err = {0};
