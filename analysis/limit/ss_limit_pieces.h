@@ -1,0 +1,57 @@
+/* ss_limit_pieces.h — where the limit is a polynomial: the boxes of a cell's
+ * parameters on which the limit of a hex mesh (ss_limit.h) is exactly the
+ * tricubic B-spline of 64 points, found by refining the cell's patch.
+ *
+ * From the cell's box (depth 0): a box whose patch is the 3x3x3 block of a
+ * grid is one piece; otherwise its 8 children (child k the octant at corner
+ * k, its patch refined once from the box's by ss_lim_step, as the reference
+ * evaluator ss_limit_eval_reference does), down to maxdepth, where a box
+ * still irregular is left uncovered (round an extraordinary vertex or edge
+ * boxes never become regular).  Every patch is cut in the frame inherited
+ * from the cell's vertex order, so a piece's own parameters are the box's,
+ * axis for axis: t in [0,1]^3 is the cell's origin + 2^-depth t, and det
+ * D_x(limit) = 2^(3 depth) det D_t(piece).  Nothing is cached: each box costs
+ * one refinement of its parent's patch (about a millisecond).
+ *
+ * Double precision only: the points of a piece are the refined patch's
+ * (rows of the scheme applied in doubles). */
+#ifndef SS_LIMIT_PIECES_H
+#define SS_LIMIT_PIECES_H
+
+#include <stddef.h>
+
+#include "ss_api.h"
+#include "ss_error.h"
+#include "ss_limit.h"
+
+SS_BEGIN_DECLS
+
+/* One box: a polynomial piece of the limit, or a box left uncovered. */
+typedef struct {
+  size_t cell;            /* the mesh cell (0-based, as ss_limit_eval) */
+  int depth;              /* the box has side 2^-depth in the cell's parameters */
+  double origin[3];       /* its corner of smallest (u, v, w) */
+  const double (*net)[3]; /* a piece: its 64 points in ss_limit_bspline's
+                             layout (valid during the callback; translated by
+                             a common vector, which changes no derivative);
+                             NULL for a box left uncovered */
+} ss_limit_piece;
+
+/* Called for each piece and each box left uncovered; nonzero stops the
+ * traversal (ss_limit_pieces then returns SS_OK). */
+typedef int (*ss_limit_piece_fn)(const ss_limit_piece *pc, void *arg);
+
+/* Whether to leave out a box and everything in it (1) — e.g. the octant of
+ * an extraordinary vertex; NULL keeps every box. */
+typedef int (*ss_limit_box_skip)(size_t cell, int depth, const double origin[3],
+                                 void *arg);
+
+/* Visit the pieces of cell `cell` of L's mesh down to maxdepth (0..10).
+ * SS_EINPUT for an unknown cell or depth out of range; SS_ENOMEM; the errors
+ * of a refinement step. */
+ss_status ss_limit_pieces(ss_limit *L, size_t cell, int maxdepth, ss_limit_box_skip skip,
+                          ss_limit_piece_fn fn, void *arg, ss_error *err);
+
+SS_END_DECLS
+
+#endif
