@@ -114,8 +114,18 @@ static void help(const char *cmd) {
         "                         rational matrix (FLINT), the subdominant basis in\n"
         "                         ball arithmetic (arb) and the ring's Jacobians in\n"
         "                         interval arithmetic; what cannot be proven becomes\n"
-        "                         undecided (\"not certified: ...\")\n",
-        SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels);
+        "                         undecided (\"not certified: ...\")\n"
+        "  --psi-depth N          judge psi itself on its polynomial pieces (mlca,\n"
+        "                         ccsolid vertices: where psi is a tricubic B-spline,\n"
+        "                         the Bernstein form of det Dpsi), the ring cut in\n"
+        "                         boxes down to side 2^-N (1..8, default %d; 0: not);\n"
+        "                         a fold of psi fails regularity and injectivity\n"
+        "                         judged on psi, a ring fully covered and of one sign\n"
+        "                         passes regularity; double precision, not proven:\n"
+        "                         with --certify psi is reported (json \"psi\") but\n"
+        "                         decides nothing\n",
+        SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels,
+        SS_PSI_BOX_DEPTH);
   if (!m && !d)
     printf(
         "  --eigenvectors K       with --format json: the right and left eigenvectors\n"
@@ -182,6 +192,7 @@ enum {
   O_FORCE,
   O_STENCIL,
   O_RINGS,
+  O_PSI,
   O_CERTIFY,
   O_MAXMEM,
   O_PROGRESS,
@@ -303,6 +314,14 @@ static int analysis_option(opts *o, int c, const char *arg) {
                                 SS_LOCAL_MAXRING, arg);
     o->ring_levels = (int)v;
     break;
+  case O_PSI:
+    if (m || d || ss_cli_parse_int(arg, 0, 8, &v))
+      return ss_cli_usage_error(o->cmd,
+                                "--psi-depth: an option of analyze, expects an integer "
+                                "in 0..8, not '%s'",
+                                arg);
+    o->psi_depth = (int)v;
+    break;
   case O_MAXMEM:
     if (ss_cli_parse_bytes(arg, &o->max_memory))
       return ss_cli_usage_error(
@@ -399,6 +418,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"stencil", required_argument, 0, O_STENCIL},
                                      {"ring-levels", required_argument, 0, O_RINGS},
                                      {"certify", no_argument, 0, O_CERTIFY},
+                                     {"psi-depth", required_argument, 0, O_PSI},
                                      {"max-memory", required_argument, 0, O_MAXMEM},
                                      {"progress", no_argument, 0, O_PROGRESS},
                                      {"eigenvectors", required_argument, 0, O_EIGVEC},
@@ -547,6 +567,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   po.depth = o->depth;
   po.ring_levels = o->ring_levels;
   po.certify = o->certify;
+  po.psi_depth = o->psi_depth;
   po.force = o->force;
   /* the case as analysed: the canonical labelling, as sweep and reproduce
    * analyse it (isomorphic links give the same numbers to the last bit), a
@@ -640,6 +661,7 @@ static int run(int argc, char **argv, const char *cmd) {
             .ring = 2,
             .depth = SS_JAC_DEPTH,
             .ring_levels = ss_charmap_defaults().ring_levels,
+            .psi_depth = strcmp(cmd, "analyze") ? 0 : SS_PSI_BOX_DEPTH,
             .draw = ss_report_draw_defaults(),
             .diag = SS_DIAG_BFS};
   if (!strcmp(cmd, "matrix")) o.format = FMT_MTX;

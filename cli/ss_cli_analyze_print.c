@@ -44,7 +44,6 @@ static void print_value(FILE *f, const ss_eigval *v) {
 void ss_cli_print_tsv(const ss_cli_analyze_opts *o, const ss_pipeline *p, int header) {
   const ss_eig *e = p->e;
   const ss_regularity *reg = &p->reg;
-  const ss_charmap_inj *inj = &p->inj;
   if (header) {
     printf("scheme\tcase\tlink_or_valence\ttwo_ring\tone_ring");
     for (int i = 0; i < o->neig; i++)
@@ -62,10 +61,10 @@ void ss_cli_print_tsv(const ss_cli_analyze_opts *o, const ss_pipeline *p, int he
   }
   const ss_verdict *cond = &p->v.cond; /* the exact path's with --certify */
   printf("\t%s\t%s\t%g\t%s\t%s\t", ss_verdict_name(cond->verdict), cond->reason, e->tol,
-         ss_verdict_name(reg->verdict.verdict), reg->verdict.reason);
+         ss_verdict_name(p->v.reg.verdict), p->v.reg.reason);
   if (isfinite(reg->min_scaled_jacobian)) printf("%.6g", reg->min_scaled_jacobian);
-  printf("\t%s\t%s\t%d\t%d\n", ss_verdict_name(inj->verdict.verdict), inj->verdict.reason,
-         cond->certified, reg->verdict.certified);
+  printf("\t%s\t%s\t%d\t%d\n", ss_verdict_name(p->v.inj.verdict), p->v.inj.reason,
+         cond->certified, p->v.reg.certified);
 }
 
 /* The case line of the text output. */
@@ -130,10 +129,22 @@ static void print_spectrum(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
 /* The regularity and injectivity verdicts with the ring's levels. */
 static void print_map(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
   const ss_regularity *reg = &p->reg;
-  const ss_charmap_inj *inj = &p->inj;
-  printf("regularity: %s%s%s%s\n", ss_verdict_name(reg->verdict.verdict),
-         reg->verdict.certified ? ", certified" : "", reg->verdict.reason[0] ? ": " : "",
-         reg->verdict.reason);
+  const ss_verdict *rv = p->forced ? &reg->verdict : &p->v.reg, *iv = &p->v.inj;
+  printf("regularity: %s%s%s%s\n", ss_verdict_name(rv->verdict),
+         rv->certified ? ", certified" : "", rv->reason[0] ? ": " : "", rv->reason);
+  if (p->psi.ran) {
+    const ss_psi_result *q = &p->psi;
+    printf("  psi on its polynomial pieces (boxes to side 1/%d, double precision%s): %s; "
+           "%zu pieces, of one sign on %.2f %% of the ring, opposite %.2f %%, folded or "
+           "in doubt %.2f %%, uncovered %.2f %% (round the spokes)\n",
+           1 << q->maxdepth, p->opts.certify ? ", reported only" : "",
+           ss_verdict_name(q->verdict.verdict), q->pieces, 100.0 * q->covered,
+           100.0 * q->opposite, 100.0 * q->doubtful, 100.0 * q->uncovered);
+    if (!p->forced && p->v.reg.on == SS_ON_PSI && reg->verdict.verdict != rv->verdict)
+      printf("  the control net's verdict: %s%s%s\n",
+             ss_verdict_name(reg->verdict.verdict), reg->verdict.reason[0] ? ": " : "",
+             reg->verdict.reason);
+  }
   if (reg->nlevels > 0) {
     printf(
         "  judged on the ring (cells not touching the centre), levels 0..%d of at most "
@@ -155,13 +166,12 @@ static void print_map(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
         reg->min_scaled_jacobian, reg->ring_level, reg->worst_cell, reg->depth,
         reg->centre_corner_folds, p->M->ncentre);
   }
-  printf("injectivity: %s%s%s%s\n", ss_verdict_name(inj->verdict.verdict),
-         inj->verdict.certified ? ", certified" : "", inj->verdict.reason[0] ? ": " : "",
-         inj->verdict.reason);
-  if (inj->verdict.verdict == SS_PASS)
+  printf("injectivity: %s%s%s%s\n", ss_verdict_name(iv->verdict),
+         iv->certified ? ", certified" : "", iv->reason[0] ? ": " : "", iv->reason);
+  if (iv->verdict == SS_PASS)
     printf("  degree %d about psi(p); no two ring cells without a common vertex meet "
            "(piecewise-linear images, exact predicates)\n",
-           inj->degree);
+           p->inj.degree);
 }
 
 void ss_cli_print_text(const ss_cli_analyze_opts *o, const ss_pipeline *p) {

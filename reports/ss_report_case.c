@@ -28,9 +28,57 @@ static json_object *level_json(const ss_ring_level *L, int l) {
   return x;
 }
 
-/* The regularity object of DESIGN section 7, with the ring's levels. */
-static json_object *regularity_json(const ss_regularity *reg) {
-  json_object *g = ss_report_verdict_json(&reg->verdict);
+static json_object *psi_point_json(const ss_psi_point *x) {
+  json_object *o = json_object_new_object();
+  json_object_object_add(o, "cell", json_object_new_int64((int64_t)x->cell));
+  json_object *a = json_object_new_array();
+  for (int d = 0; d < 3; d++)
+    json_object_array_add(a, json_object_new_double(x->at[d]));
+  json_object_object_add(o, "at", a);
+  json_object *v = json_object_new_array();
+  json_object_array_add(v, json_object_new_double(x->det[0]));
+  json_object_array_add(v, json_object_new_double(x->det[1]));
+  json_object_object_add(o, "det", v);
+  return o;
+}
+
+/* psi judged on its polynomial pieces (ss_psi.h), or null when it was not. */
+static json_object *psi_json(const ss_psi_result *r) {
+  if (!r->ran) return NULL;
+  json_object *o = ss_report_verdict_json(&r->verdict);
+  json_object_object_add(o, "covered", json_object_new_double(r->covered));
+  json_object_object_add(o, "opposite", json_object_new_double(r->opposite));
+  json_object_object_add(o, "doubtful", json_object_new_double(r->doubtful));
+  json_object_object_add(o, "uncovered", json_object_new_double(r->uncovered));
+  json_object_object_add(o, "pieces", json_object_new_int64((int64_t)r->pieces));
+  json_object_object_add(o, "positive", json_object_new_int64((int64_t)r->npositive));
+  json_object_object_add(o, "negative", json_object_new_int64((int64_t)r->nnegative));
+  json_object_object_add(o, "folded", json_object_new_int64((int64_t)r->nfolded));
+  json_object_object_add(o, "undecided", json_object_new_int64((int64_t)r->nundecided));
+  json_object_object_add(o, "uncovered_boxes",
+                         json_object_new_int64((int64_t)r->nuncovered));
+  json_object_object_add(o, "box_depth", json_object_new_int(r->maxdepth));
+  json_object_object_add(o, "piece_depth", json_object_new_int(r->piece_depth));
+  return o;
+}
+
+/* The regularity object of DESIGN section 7, with the ring's levels: the
+ * verdict as combined with psi's (a forced map's own), the control net's
+ * (net_verdict) and psi's (psi, with covered and witness) beside it. */
+static json_object *regularity_json(const ss_pipeline *p) {
+  const ss_regularity *reg = &p->reg;
+  json_object *g = ss_report_verdict_json(p->forced ? &reg->verdict : &p->v.reg);
+  json_object_object_add(g, "net_verdict", ss_report_verdict_json(&reg->verdict));
+  json_object_object_add(g, "covered",
+                         p->psi.ran ? json_object_new_double(p->psi.covered) : NULL);
+  json_object *w = NULL;
+  if (p->psi.ran && p->psi.nwitness == 2) {
+    w = json_object_new_array();
+    for (int i = 0; i < 2; i++)
+      json_object_array_add(w, psi_point_json(&p->psi.witness[i]));
+  }
+  json_object_object_add(g, "witness", w);
+  json_object_object_add(g, "psi", psi_json(&p->psi));
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(reg->min_scaled_jacobian)
                              ? json_object_new_double(reg->min_scaled_jacobian)
@@ -137,8 +185,8 @@ ss_status ss_report_case_json(const ss_pipeline *p, int neig, json_object *eigen
   }
   json_object_object_add(r, "eigen_condition", cj);
   json_object_object_add(r, "subdominant_basis", json_object_new_string(e->basis_kind));
-  json_object_object_add(r, "regularity", regularity_json(&p->reg));
-  json_object *in = ss_report_verdict_json(&p->inj.verdict);
+  json_object_object_add(r, "regularity", regularity_json(p));
+  json_object *in = ss_report_verdict_json(&p->v.inj);
   json_object_object_add(in, "degree", json_object_new_int(p->inj.degree));
   json_object_object_add(in, "overlaps", json_object_new_int64((int64_t)p->inj.overlaps));
   json_object_object_add(r, "injectivity", in);

@@ -7,6 +7,7 @@
 #include "ss_clock.h"
 #include "ss_diag.h"
 #include "ss_jac.h"
+#include "ss_psi.h"
 
 ss_pipeline_opts ss_pipeline_defaults(void) {
   const ss_charmap_opts co = ss_charmap_defaults();
@@ -15,6 +16,7 @@ ss_pipeline_opts ss_pipeline_defaults(void) {
   o.tol = 1e-6;
   o.depth = co.depth;
   o.ring_levels = co.ring_levels;
+  o.psi_depth = 0;
   return o;
 }
 
@@ -53,11 +55,13 @@ ss_status ss_pipeline_new(const ss_scheme *s, const ss_case *c, const ss_pipelin
   const ss_pipeline_opts d = ss_pipeline_defaults();
   if (!o) o = &d;
   if (!(o->tol > 0.0 && o->tol < 0.1) || o->depth < 0 || o->depth > 12 ||
-      o->ring_levels < 1 || o->ring_levels > SS_LOCAL_MAXRING)
+      o->ring_levels < 1 || o->ring_levels > SS_LOCAL_MAXRING || o->psi_depth < 0 ||
+      o->psi_depth > 8)
     return ss_error_set(
         err, SS_EINPUT,
-        "analysis options out of range (tol %g, depth %d, ring levels %d)", o->tol,
-        o->depth, o->ring_levels);
+        "analysis options out of range (tol %g, depth %d, ring levels %d, "
+        "psi depth %d: 0..8)",
+        o->tol, o->depth, o->ring_levels, o->psi_depth);
   ss_pipeline *p = calloc(1, sizeof *p);
   if (!p) return ss_error_nomem(err, "pipeline");
   p->scheme = s;
@@ -122,6 +126,26 @@ static ss_status eigen(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err) 
   return st;
 }
 
+/* psi judged on its pieces (ss_psi) when the case has a characteristic map
+ * and is a vertex, on the map's double net, its verdict then combined into
+ * the net's (ss_psi_apply) — but not with certify: the test is not proven
+ * yet, and nothing unproven may decide a certified verdict (psi is then
+ * reported only). */
+static ss_status psi(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
+  p->psi.ran = 0;
+  if (!p->opts.psi_depth || !p->cm || p->c.judged.kind != SS_CASE_VERTEX ||
+      p->v.cond.verdict != SS_PASS)
+    return SS_OK;
+  ss_psi_opts o = ss_psi_defaults();
+  o.maxdepth = p->opts.psi_depth;
+  double c1 = tm ? ss_clock_cpu() : 0.0;
+  ss_progress_step(&p->opts.progress, "psi on its polynomial pieces", 0, 0);
+  const ss_status st = ss_psi_judge(p->scheme, p->M, p->cm->x, &o, &p->psi, err);
+  if (!st && !p->opts.certify) ss_psi_apply(&p->psi, &p->v.reg, &p->v.inj);
+  if (tm) ss_clock_lap(&tm->psi, &c1);
+  return st;
+}
+
 /* The three verdicts; with force and no map, the forced map judged for a
  * picture (the verdicts keep what the case has: no characteristic map). */
 static ss_status verdicts(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
@@ -140,6 +164,7 @@ static ss_status verdicts(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) 
   if (st) return st;
   p->v = (ss_verdicts){cert.cond, p->reg.verdict, p->inj.verdict};
   p->exact_seconds = cert.seconds;
+  if (p->cm && (st = psi(p, tm, err))) return st;
   if (!p->cm && p->opts.force && p->e->basis) {
     if ((st = ss_charmap_new(p->M, p->e, &p->cm, err)) ||
         (st = ss_charmap_regularity(p->cm, p->M, &co, &p->reg, err)))

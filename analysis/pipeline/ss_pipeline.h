@@ -16,7 +16,11 @@
  *             too; with force and no map (the eigenvalue condition fails),
  *             the would-be map of the leading eigenvectors built and judged
  *             for a picture (forced = 1; it is NOT a characteristic map and
- *             changes no verdict).
+ *             changes no verdict); then, for a vertex with a map and a
+ *             scheme with polynomial pieces (mlca, ccsolid), psi itself
+ *             judged on them (ss_psi; with certify reported only: not
+ *             proven yet) and otherwise combined into the regularity and
+ *             injectivity verdicts (ss_psi_apply).
  * `analyze`, `matrix`, `draw`, `reproduce` (tables and figures), `sweep`,
  * `check` (through ss_result) and the Python package (through
  * ss_report_analyze) all run it, so a case is judged the same way whatever
@@ -38,6 +42,7 @@
 #include "ss_eig.h"
 #include "ss_exact.h"
 #include "ss_local.h"
+#include "ss_psi.h"
 #include "ss_verdict.h"
 
 SS_BEGIN_DECLS
@@ -60,6 +65,7 @@ typedef struct {
   double diagonals;         /* schemes reading major diagonals: their count */
   double eig;               /* LAPACK and the condition */
   ss_charmap_times charmap; /* the regularity and injectivity tests */
+  double psi;               /* psi judged on its polynomial pieces (ss_psi) */
   long cases;               /* cases timed */
 } ss_pipeline_times;
 
@@ -76,13 +82,17 @@ typedef struct {
                            eigenvalue condition fails (ss_eig_opts.force),
                            and a forced map built and judged for a
                            picture when there is no characteristic map */
+  int psi_depth;        /* psi judged on its polynomial pieces down to boxes
+                           of side 2^-psi_depth, 0..8 (SS_PSI_BOX_DEPTH for
+                           analyze); 0, the default: not at all (the verdicts
+                           are the control net's) */
   double max_bytes;     /* memory budget of the case (ss_local_opts);
                            <= 0: none */
   ss_progress progress; /* steps of the stages (default silent) */
 } ss_pipeline_opts;
 
-/* tol 1e-6, depth SS_JAC_DEPTH, the charmap's ring levels, no certification,
- * no force, no budget, silent. */
+/* tol 1e-6, depth SS_JAC_DEPTH, the charmap's ring levels, psi not
+ * judged (psi_depth 0), no certification, no force, no budget, silent. */
 ss_pipeline_opts ss_pipeline_defaults(void);
 
 /* The workspaces of one case's extraction and eigen-solve, reused from case
@@ -118,7 +128,11 @@ typedef struct {
                               map (forced), or NULL without a map */
   ss_regularity reg;       /* verdicts: the regularity test (its verdict is
                               v.reg, unless forced: then the forced map's) */
-  ss_charmap_inj inj;      /* verdicts: the injectivity test */
+  ss_charmap_inj inj;      /* verdicts: the injectivity test (its verdict is
+                              v.inj's before psi's is combined in) */
+  ss_psi_result psi;       /* verdicts: psi judged on its pieces (ran = 0 when
+                              it was not: no map, not a vertex, no pieces,
+                              psi_depth 0) */
   ss_exact *ex;            /* verdicts with certify: the exact spectrum, or
                               NULL when it could not be built */
   double exact_seconds;    /* verdicts with certify: the exact path's wall

@@ -1,0 +1,297 @@
+/* ss_psi.c — the characteristic map judged on its polynomial pieces on the
+ * ring.  Method and verdicts: ss_psi.h. */
+#include "ss_psi.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ss_clock.h"
+#include "ss_cx.h"
+#include "ss_limit.h"
+#include "ss_limit_pieces.h"
+#include "ss_psi_bernstein.h"
+
+ss_psi_opts ss_psi_defaults(void) {
+  return (ss_psi_opts){SS_PSI_BOX_DEPTH, SS_PSI_PIECE_DEPTH};
+}
+
+/* What the traversal of one case carries. */
+typedef struct {
+  const ss_psi_opts *o;
+  unsigned pbits;     /* the centre's corner of the current cell, as bits */
+  double vol[4];      /* parameter volume: positive, negative, doubtful,
+                         uncovered */
+  ss_psi_result *r;   /* counts and witnesses */
+  int have[2];        /* a proven positive [0] / negative [1] point kept */
+  ss_psi_point pt[2]; /* those points */
+  int folded;         /* a folded piece's two witnesses are in r->witness */
+} walk;
+
+/* Whether a box of a cell around p lies in p's octant [0,1/2]^3 (in the
+ * cell's parameters, p at corner bits pbits): psi's ring leaves it out. */
+static int skip_octant(size_t cell, int depth, const double origin[3], void *arg) {
+  (void)cell;
+  const walk *w = arg;
+  if (depth < 1) return 0;
+  const double h = ldexp(1.0, -depth);
+  for (int a = 0; a < 3; a++) {
+    const int hi = (int)((w->pbits >> a) & 1u);
+    if (hi ? origin[a] < 0.5 : origin[a] + h > 0.5) return 0;
+  }
+  return 1;
+}
+
+/* The cell's parameters of the piece's parameter t. */
+static void to_cell(const ss_limit_piece *pc, const double t[3], double x[3]) {
+  const double h = ldexp(1.0, -pc->depth);
+  for (int a = 0; a < 3; a++)
+    x[a] = pc->origin[a] + h * t[a];
+}
+
+/* det Dpsi at the piece's corner t = 0, from ss_limit_bspline's Jacobian (an
+ * evaluation independent of the Bernstein form), in the cell's parameters. */
+static double corner_det(const ss_limit_piece *pc) {
+  double p[3], J[3][3];
+  ss_limit_bspline(pc->net, 0.0, 0.0, 0.0, p, J);
+  const double v = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                   J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                   J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  return v * ldexp(1.0, 3 * pc->depth); /* d/dx = 2^depth d/dt, exactly */
+}
+
+static int visit(const ss_limit_piece *pc, void *arg) {
+  walk *w = arg;
+  ss_psi_result *r = w->r;
+  /* a box of depth 0 is a whole cell around p: its ring part is 7/8 */
+  const double vol = pc->depth ? ldexp(1.0, -3 * pc->depth) : 0.875;
+  if (!pc->net) {
+    r->nuncovered++;
+    w->vol[3] += vol;
+    return 0;
+  }
+  r->pieces++;
+  ss_psi_piece_result ps;
+  ss_psi_piece_sign(pc->net, w->o->piece_depth, &ps);
+  if (ps.sign == SS_JAC_POSITIVE || ps.sign == SS_JAC_NEGATIVE) {
+    const int k = ps.sign == SS_JAC_POSITIVE ? 0 : 1;
+    if (k == 0)
+      r->npositive++;
+    else
+      r->nnegative++;
+    w->vol[k] += vol;
+    /* the witness of each sign: the proven piece's corner with the largest
+     * |det Dpsi|, far from rounding (on a mirror plane det Dpsi is 0) */
+    const double d = corner_det(pc);
+    if (!w->have[k] || fabs(d) > fabs(w->pt[k].det[0])) {
+      static const double t0[3] = {0.0, 0.0, 0.0};
+      w->pt[k].cell = pc->cell;
+      to_cell(pc, t0, w->pt[k].at);
+      w->pt[k].det[0] = w->pt[k].det[1] = d;
+      w->have[k] = 1;
+    }
+    return 0;
+  }
+  w->vol[2] += vol;
+  if (ps.sign != SS_JAC_FOLDED) {
+    r->nundecided++;
+    return 0;
+  }
+  r->nfolded++;
+  if (!w->folded) {
+    const double sc = ldexp(1.0, 3 * pc->depth);
+    for (int i = 0; i < 2; i++) {
+      r->witness[i].cell = pc->cell;
+      to_cell(pc, ps.where[i], r->witness[i].at);
+      r->witness[i].det[0] = ps.det[i][0] * sc;
+      r->witness[i].det[1] = ps.det[i][1] * sc;
+    }
+    w->folded = 1;
+  }
+  return 0;
+}
+
+/* The two-ring's cells as a hex mesh with points x (n2 x 3 row by row).
+ * NULL when a cell is not a hex (*why says so) or out of memory (*nomem). */
+static ss_cx *two_ring_mesh(const ss_local *M, const double *x, char *why, size_t nwhy,
+                            int *nomem, ss_error *err) {
+  *nomem = 0;
+  for (size_t c = 0; c < M->ncells; c++)
+    if (M->ctype[c] != SS_HEX) {
+      snprintf(why, nwhy,
+               "psi's pieces are tricubic: the two-ring has cells "
+               "other than hexahedra");
+      return NULL;
+    }
+  ss_cx *cx = NULL;
+  if (ss_cx_new(3, &cx, err) || ss_cx_reserve_vertices(cx, M->n2, err) ||
+      ss_cx_reserve_cells(cx, SS_HEX, M->ncells, err))
+    goto nomem;
+  for (size_t i = 0; i < M->n2; i++)
+    if (ss_cx_add_vertex(cx, x + 3 * i, 0, err)) goto nomem;
+  for (size_t c = 0; c < M->ncells; c++) {
+    ss_idx v[8];
+    for (int j = 0; j < 8; j++)
+      v[j] = (ss_idx)M->corner[c * SS_MAXCELLVERTS + (size_t)j];
+    if (ss_cx_add_cell(cx, SS_HEX, v, 0, err)) goto nomem;
+  }
+  return cx;
+nomem:
+  ss_cx_free(cx);
+  *nomem = 1;
+  return NULL;
+}
+
+/* The verdict from the counts (ss_psi.h). */
+static void decide(walk *w, double ring) {
+  ss_psi_result *r = w->r;
+  const double pos = w->vol[0] / ring, neg = w->vol[1] / ring;
+  r->sign = w->vol[0] > 0.0 || w->vol[1] > 0.0 ? (pos >= neg ? 1 : -1) : 0;
+  r->covered = r->sign > 0 ? pos : r->sign < 0 ? neg : 0.0;
+  r->opposite = r->sign > 0 ? neg : r->sign < 0 ? pos : 0.0;
+  r->doubtful = w->vol[2] / ring;
+  r->uncovered = w->vol[3] / ring;
+  ss_verdict *v = &r->verdict;
+  v->on = SS_ON_PSI;
+  v->certified = 0;
+  if (w->folded || (w->have[0] && w->have[1])) {
+    if (w->have[0] && w->have[1]) { /* rather than a folded piece's corners */
+      r->witness[0] = w->pt[0];
+      r->witness[1] = w->pt[1];
+    }
+    r->nwitness = 2;
+    v->verdict = SS_FAIL;
+    v->certified = r->certified;
+    snprintf(v->reason, sizeof v->reason,
+             "psi folds: det Dpsi in [%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g) and in "
+             "[%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g)%s",
+             r->witness[0].det[0], r->witness[0].det[1], r->witness[0].cell,
+             r->witness[0].at[0], r->witness[0].at[1], r->witness[0].at[2],
+             r->witness[1].det[0], r->witness[1].det[1], r->witness[1].cell,
+             r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2],
+             r->certified ? " (proven)" : " (double precision, not proven)");
+  } else if (r->nuncovered == 0 && r->nundecided == 0 && r->pieces > 0) {
+    v->verdict = SS_PASS;
+    v->certified = r->certified;
+    v->reason[0] = '\0';
+  } else {
+    v->verdict = SS_UNDECIDED;
+    snprintf(
+        v->reason, sizeof v->reason,
+        "psi of one sign on %.1f %% of its ring (%zu polynomial pieces); %.1f %% left "
+        "uncovered round the spokes at box depth %d, %.1f %% in doubt",
+        100.0 * r->covered, r->pieces, 100.0 * r->uncovered, r->maxdepth,
+        100.0 * r->doubtful);
+  }
+}
+
+/* Walk the ring of every cell around p. */
+static ss_status walk_cells(ss_limit *L, const ss_local *M, walk *w, ss_error *err) {
+  size_t ncentre = 0;
+  for (size_t c = 0; c < M->ncells; c++) {
+    int j = 0;
+    while (j < 8 && M->corner[c * SS_MAXCELLVERTS + (size_t)j] != 0)
+      j++;
+    if (j == 8) continue;
+    ncentre++;
+    w->pbits = ss_cube_corner_bits(3, j);
+    const ss_status st =
+        ss_limit_pieces(L, c, w->o->maxdepth, skip_octant, visit, w, err);
+    if (st) return st;
+  }
+  decide(w, 0.875 * (double)(ncentre ? ncentre : 1));
+  return SS_OK;
+}
+
+ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
+                       const ss_psi_opts *o, ss_psi_result *out, ss_error *err) {
+  memset(out, 0, sizeof *out);
+  out->verdict = (ss_verdict){SS_UNDECIDED, "", 0, SS_ON_NOTHING};
+  if (o->maxdepth < 1 || o->maxdepth > 8 || o->piece_depth < 0 || o->piece_depth > 8)
+    return ss_error_set(err, SS_EINPUT,
+                        "psi options out of range: box depth %d (1..8), piece depth %d "
+                        "(0..8)",
+                        o->maxdepth, o->piece_depth);
+  if (!x) return ss_error_set(err, SS_EINPUT, "psi: no net");
+  const double t0 = ss_clock_cpu();
+  out->maxdepth = o->maxdepth;
+  out->piece_depth = o->piece_depth;
+  if (M->dim != 3 || M->cell != SS_HEX) {
+    snprintf(out->why, sizeof out->why,
+             "psi's pieces are tricubic: this case's cells are not hexahedra");
+    return SS_OK;
+  }
+  ss_cx *cx = NULL;
+  ss_limit *L = NULL;
+  ss_status st = SS_OK;
+  walk w = {o, 0, {0, 0, 0, 0}, out, {0, 0}, {{0}}, 0};
+  int nomem = 0;
+  if (!(cx = two_ring_mesh(M, x, out->why, sizeof out->why, &nomem, err))) {
+    st = nomem ? SS_ENOMEM : SS_OK;
+    goto done;
+  }
+  ss_error le = {0};
+  st = ss_limit_new(s, cx, &L, &le);
+  if (st == SS_EINPUT) { /* not a limit evaluator's scheme: no pieces */
+    snprintf(out->why, sizeof out->why, "no polynomial pieces: %.130s", le.msg);
+    st = SS_OK;
+    goto done;
+  }
+  if (st) {
+    *err = le;
+    goto done;
+  }
+  if ((st = walk_cells(L, M, &w, err))) goto done;
+  out->ran = 1;
+done:
+  ss_limit_free(L);
+  ss_cx_free(cx);
+  out->seconds = ss_clock_cpu() - t0;
+  return st;
+}
+
+/* Append text to a verdict's reason, as room allows. */
+static void append(ss_verdict *v, const char *text) {
+  const size_t n = strlen(v->reason);
+  snprintf(v->reason + n, sizeof v->reason - n, "%s%s", n ? "; " : "", text);
+}
+
+void ss_psi_apply(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj) {
+  if (!r->ran) return;
+  if (r->verdict.verdict == SS_FAIL && reg->on == SS_ON_PSI && reg->verdict == SS_FAIL) {
+    /* psi o sigma = psi failed it already, about psi (and perhaps proven):
+     * that verdict stays, the witnesses added */
+    char text[200];
+    snprintf(text, sizeof text,
+             "psi's pieces agree: det Dpsi %.4g and %.4g (double precision)",
+             r->witness[0].det[0], r->witness[1].det[0]);
+    append(reg, text);
+    return;
+  }
+  if (r->verdict.verdict == SS_FAIL) {
+    const int net_saw = reg->verdict == SS_FAIL;
+    *reg = r->verdict;
+    if (!net_saw) append(reg, "the control net did not show it");
+    *inj = r->verdict;
+    snprintf(inj->reason, sizeof inj->reason,
+             "psi folds (det Dpsi takes both signs on its connected ring)%s",
+             r->certified ? " (proven)" : " (double precision)");
+    return;
+  }
+  if (r->verdict.verdict == SS_PASS) {
+    *reg = r->verdict;
+    return;
+  }
+  char text[200];
+  snprintf(text, sizeof text,
+           "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",
+           100.0 * r->covered);
+  if (reg->on == SS_ON_PSI) return; /* psi o sigma = psi: already about psi */
+  if (reg->verdict == SS_FAIL) {
+    reg->certified = 0; /* a fold of the net that psi does not witness */
+    append(reg, text);
+  } else if (reg->verdict == SS_UNDECIDED) {
+    append(reg, text);
+  }
+}

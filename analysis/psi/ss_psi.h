@@ -1,0 +1,131 @@
+/* ss_psi.h — the characteristic map judged on itself, not on its control
+ * net: its polynomial pieces on the ring (DESIGN section 10, "Verdicts about
+ * psi").
+ *
+ * For a scheme that is the tricubic B-spline on regular grids and whose rule
+ * reads only the cells at a fine vertex's birth element (the limit
+ * evaluator's schemes: mlca, ccsolid; ss_limit.h), psi on the cells around
+ * the centre p is the limit of the two-ring's cells (a hex mesh) with the
+ * characteristic map's net as their points: the two-ring is by definition
+ * every point whose basis function reaches those cells, and a reach-1 rule
+ * refines a cell's patch from the patch alone.  psi's ring is each cell
+ * around p minus its octant [0,1/2]^3 at p (ss_local.h, "the ring").
+ *
+ * Pieces.  The ring is cut into boxes (the octants of the cells around p,
+ * halved again down to depth maxdepth); a box whose patch is the 3x3x3
+ * block of a grid carries psi exactly as the tricubic B-spline of its 64
+ * points (ss_limit_pieces), and det Dpsi there is a polynomial of degree
+ * (8, 8, 8) whose Bernstein coefficients bound it (ss_psi_bernstein): one
+ * strict sign proves the sign on the box, two exact values of opposite signs
+ * prove a fold.  Boxes along a spoke (an edge from p of valence other than
+ * 4) never become regular: at maxdepth they are left uncovered, a tube
+ * round each spoke of relative volume about 2^-2 maxdepth per spoke.
+ *
+ * Verdict on psi (ss_psi_result.verdict, judged on SS_ON_PSI):
+ *   fail       det Dpsi takes both strict signs on the ring: a folded piece,
+ *              or pieces proven of opposite signs; the two witnesses are
+ *              points of cells around p (their parameters) with enclosures
+ *              of det Dpsi there.  The ring is connected, so psi is then
+ *              neither regular nor injective (a continuous injective map of
+ *              a connected open set has one local degree, the sign of det
+ *              Dpsi wherever it is not 0);
+ *   pass       every box is a piece proven of one and the same strict sign:
+ *              psi is regular on the ring, hence everywhere but p (it is
+ *              self-similar);
+ *   undecided  otherwise (uncovered tubes, pieces still in doubt): covered
+ *              says how much of the ring is proven of one sign.
+ * Not certified: the pieces' points are the refined patches' in double
+ * precision (their enclosure from the exact path's basis is the next step),
+ * and the Bernstein test's double path is exact only up to its flat
+ * threshold; the verdict is a statement about psi, not a proof of it.
+ *
+ * ss_psi_apply combines it with the control net's verdict (ss_charmap): a
+ * psi verdict that decides replaces it; an undecided one keeps the net's,
+ * but a failure of the net that psi does not witness is no longer proven. */
+#ifndef SS_PSI_H
+#define SS_PSI_H
+
+#include <stddef.h>
+
+#include "ss_api.h"
+#include "ss_error.h"
+#include "ss_local.h"
+#include "ss_scheme.h"
+#include "ss_verdict.h"
+
+SS_BEGIN_DECLS
+
+#define SS_PSI_BOX_DEPTH   4 /* default: boxes of the ring down to side 1/16 */
+#define SS_PSI_PIECE_DEPTH 4 /* default Bernstein subdivision depth of a piece */
+
+/* Options of the test on psi. */
+typedef struct {
+  int maxdepth;    /* boxes of the ring down to side 2^-maxdepth of a cell
+                      around p, 1..8 (SS_PSI_BOX_DEPTH) */
+  int piece_depth; /* subdivision depth of one piece's Bernstein test, 0..8
+                      (SS_PSI_PIECE_DEPTH) */
+} ss_psi_opts;
+
+/* A point of psi's domain with det Dpsi there. */
+typedef struct {
+  size_t cell;   /* the two-ring cell holding it (an index into M's cells,
+                    one of the cells around p) */
+  double at[3];  /* its parameters (u, v, w) in the cell's vertex order
+                    (ss_cx.h: u along corner 0 -> 1, v along 0 -> 3, w along
+                    0 -> 4) */
+  double det[2]; /* an enclosure [lo, hi] of det Dpsi there, derivatives in
+                    those parameters (double path: lo = hi = the value) */
+} ss_psi_point;
+
+/* What the test on psi found. */
+typedef struct {
+  int ran;                 /* 1 if psi was judged on its pieces; 0 if this case
+                              has none (why says so): the scheme is not a
+                              limit evaluator's, or the case is not a vertex */
+  char why[160];           /* with ran = 0: the reason */
+  int certified;           /* 0: the double path (see above) */
+  ss_verdict verdict;      /* pass, fail, undecided, judged on psi */
+  double covered;          /* share of the ring's parameter volume in pieces
+                              proven of the ring's sign */
+  double opposite;         /* share in pieces proven of the other sign */
+  double doubtful;         /* share in pieces folded or in doubt */
+  double uncovered;        /* share in boxes left without a piece at maxdepth */
+  size_t pieces;           /* pieces judged */
+  size_t npositive;        /* of these, proven det > 0 (in the cells' parameters) */
+  size_t nnegative;        /* proven det < 0 */
+  size_t nfolded;          /* two exact values of opposite signs inside */
+  size_t nundecided;       /* no proof either way at piece_depth */
+  size_t nuncovered;       /* boxes left without a piece at maxdepth */
+  int sign;                /* the ring's sign: of the larger proven volume (+1
+                              positive first when equal); 0 when none is proven */
+  int nwitness;            /* 2 when failing, else 0 */
+  ss_psi_point witness[2]; /* with fail: det Dpsi of opposite strict signs */
+  int maxdepth;            /* the options used */
+  int piece_depth;
+  double seconds; /* thread CPU time of the test */
+} ss_psi_result;
+
+/* maxdepth SS_PSI_BOX_DEPTH, piece_depth SS_PSI_PIECE_DEPTH. */
+ss_psi_opts ss_psi_defaults(void);
+
+/* Judge psi of vertex case M under scheme s (M from ss_local for s) with the
+ * net x (M->n2 points, 3 coordinates each, row by row: the characteristic
+ * map's, in any basis of the subdominant subspace).  A case without pieces
+ * is not an error: out->ran = 0.  SS_EINPUT for options out of range or no
+ * net; SS_ENOMEM; the errors of a refinement step. */
+ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
+                       const ss_psi_opts *o, ss_psi_result *out, ss_error *err);
+
+/* Combine the verdict on psi r (ran) into the regularity and injectivity
+ * verdicts of the control net, reg and inj: psi fails -> both fail, judged on
+ * psi, with the witnesses in the reason, certified as r (a regularity failure
+ * already about psi, psi o sigma = psi, is kept with the witnesses added); psi passes ->
+ * regularity passes judged on psi (injectivity is left: a regular psi may
+ * still overlap itself); undecided -> the net's verdicts stay, with psi's
+ * coverage added to their reason, and a regularity failure of the net (not
+ * one already judged on psi) is no longer certified. */
+void ss_psi_apply(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj);
+
+SS_END_DECLS
+
+#endif
