@@ -12,7 +12,7 @@ const char *ss_judged_on_name(ss_judged_on on) {
   case SS_ON_SPECTRUM:
     return "spectrum";
   case SS_ON_NET:
-    return "net";
+    return "control-net";
   case SS_ON_PSI:
     return "psi";
   case SS_ON_JSR:

@@ -50,7 +50,7 @@ typedef struct {
 /* "pass", "fail", "undecided". */
 const char *ss_verdict_name(ss_verdict_kind v);
 
-/* "nothing", "spectrum", "net", "psi", "jsr". */
+/* "nothing", "spectrum", "control-net", "psi", "jsr" (the names in JSON). */
 const char *ss_judged_on_name(ss_judged_on on);
 
 /* v becomes undecided, "not certified: why (double precision: v)", and not

@@ -75,7 +75,7 @@ static void unproven(void) {
 static void names(void) {
   const ss_judged_on on[5] = {SS_ON_NOTHING, SS_ON_SPECTRUM, SS_ON_NET, SS_ON_PSI,
                               SS_ON_JSR};
-  const char *want[5] = {"nothing", "spectrum", "net", "psi", "jsr"};
+  const char *want[5] = {"nothing", "spectrum", "control-net", "psi", "jsr"};
   for (int i = 0; i < 5; i++)
     CHECK(!strcmp(ss_judged_on_name(on[i]), want[i]), "%s", ss_judged_on_name(on[i]));
   CHECK(!strcmp(ss_verdict_name(SS_PASS), "pass") &&
