@@ -710,10 +710,9 @@ json_object *ss_report_verdict_json(const ss_verdict *v) {
                          json_object_new_string(ss_verdict_name(v->verdict)));
   json_object_object_add(o, "certified", json_object_new_boolean(v->certified));
   json_object_object_add(o, "reason", json_object_new_string(v->reason));
-  json_object_object_add(o, "judged_on",
-                         v->on == SS_ON_NOTHING
-                             ? NULL
-                             : json_object_new_string(ss_judged_on_name(v->on)));
+  json_object_object_add(
+      o, "judged_on",
+      v->on == SS_ON_NOTHING ? NULL : json_object_new_string(ss_judged_on_name(v->on)));
   return o;
 }
 

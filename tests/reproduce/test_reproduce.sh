@@ -122,7 +122,7 @@ done
 checks=$((checks + 1))
 grep -q '"scheme":"mlca","case":"vertex","link":"4 bcd,adc,abd,acb","k":4,"two_ring_size":' "$out/data/mlca-vertices-k4-8.jsonl" ||
   fail "mlca-vertices-k4-8.jsonl: keys"
-grep -q '"eigen_condition":{"verdict":"pass","certified":false,"reason":"","tolerance":' "$out/data/tetoct-face.jsonl" ||
+grep -q '"eigen_condition":{"verdict":"pass","certified":false,"reason":"","judged_on":"spectrum","tolerance":' "$out/data/tetoct-face.jsonl" ||
   fail "tetoct-face.jsonl: eigen_condition"
 
 # the joint spectral radius tables: derived independently, not pasted output.
