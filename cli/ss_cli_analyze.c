@@ -466,6 +466,7 @@ static int parse(int argc, char **argv, opts *o) {
     case O_LEFT:
     case O_CERTIFY:
     case O_RINGS:
+    case O_PSI:
     case O_MAXMEM:
     case O_CLASS:
       rc = analysis_option(o, c, optarg);

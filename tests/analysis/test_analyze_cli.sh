@@ -113,6 +113,21 @@ PY
 # injective, and not regular either (det Dpsi vanishes on sigma's fixed rays)
 expect_in 1 "regularity: fail: psi o sigma = psi for link automorphism .* of order 2 .* the ring alone: fail: ring level 2: .* the fold persists" "" "$exe" analyze --scheme mlca --vertex "$k8"
 expect_in 1 "injectivity: fail: psi o sigma = psi" "" "$exe" analyze --scheme mlca --vertex "$k8"
+# psi judged on its pieces: the same failure witnessed on psi itself (two
+# points with det Dpsi of opposite signs), judged on psi; --psi-depth 0 leaves
+# psi out (the net's JSON: judged on the control net for a regular vertex)
+checks=$((checks + 1))
+python3 - "$k8json" <<'PY' || fail "k = 8 on psi: $k8json"
+import json, sys
+g = json.loads(sys.argv[1])["regularity"]
+w = g["witness"]
+assert g["judged_on"] == "psi" and g["psi"]["verdict"] == "fail", g
+assert len(w) == 2 and w[0]["det"][0] * w[1]["det"][1] < 0, w
+assert 0 < g["covered"] < 1 and g["net_verdict"]["verdict"] == "fail", g
+PY
+expect_in 0 '"judged_on":"control-net"' "" "$exe" analyze --scheme mlca --vertex octahedron --psi-depth 0 --format json
+expect_in 0 "psi on its polynomial pieces .*: pass; 8 pieces" "" "$exe" analyze --scheme mlca --vertex octahedron
+expect_in 2 "psi-depth: .* 0..8, not '9'" "" "$exe" analyze --scheme mlca --vertex octahedron --psi-depth 9
 expect_in 1 "regularity: undecided: no characteristic map" "" "$exe" analyze --scheme mlca --edge 8
 
 # --certify: proven verdicts.  The regular vertex: the exact roots 1 and 1/2
