@@ -9,6 +9,7 @@
 
 #include "ss_clock.h"
 #include "ss_cx.h"
+#include "ss_dense.h"
 #include "ss_limit.h"
 #include "ss_limit_pieces.h"
 #include "ss_psi_bernstein.h"
@@ -55,10 +56,8 @@ static void to_cell(const ss_limit_piece *pc, const double t[3], double x[3]) {
 static double corner_det(const ss_limit_piece *pc) {
   double p[3], J[3][3];
   ss_limit_bspline(pc->net, 0.0, 0.0, 0.0, p, J);
-  const double v = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-                   J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-                   J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-  return v * ldexp(1.0, 3 * pc->depth); /* d/dx = 2^depth d/dt, exactly */
+  return ss_dense_det3(J[0], J[1], J[2]) *
+         ldexp(1.0, 3 * pc->depth); /* d/dx = 2^depth d/dt, exactly */
 }
 
 static int visit(const ss_limit_piece *pc, void *arg) {
@@ -85,9 +84,8 @@ static int visit(const ss_limit_piece *pc, void *arg) {
      * |det Dpsi|, far from rounding (on a mirror plane det Dpsi is 0) */
     const double d = corner_det(pc);
     if (!w->have[k] || fabs(d) > fabs(w->pt[k].det[0])) {
-      static const double t0[3] = {0.0, 0.0, 0.0};
       w->pt[k].cell = pc->cell;
-      to_cell(pc, t0, w->pt[k].at);
+      memcpy(w->pt[k].at, pc->origin, sizeof w->pt[k].at); /* the corner t = 0 */
       w->pt[k].det[0] = w->pt[k].det[1] = d;
       w->have[k] = 1;
     }
@@ -112,35 +110,27 @@ static int visit(const ss_limit_piece *pc, void *arg) {
   return 0;
 }
 
-/* The two-ring's cells as a hex mesh with points x (n2 x 3 row by row).
- * NULL when a cell is not a hex (*why says so) or out of memory (*nomem). */
-static ss_cx *two_ring_mesh(const ss_local *M, const double *x, char *why, size_t nwhy,
-                            int *nomem, ss_error *err) {
-  *nomem = 0;
-  for (size_t c = 0; c < M->ncells; c++)
-    if (M->ctype[c] != SS_HEX) {
-      snprintf(why, nwhy,
-               "psi's pieces are tricubic: the two-ring has cells "
-               "other than hexahedra");
-      return NULL;
-    }
+/* The two-ring's cells (hexes: M->cell is SS_HEX) as a mesh with points x
+ * (n2 x 3 row by row) into *out.  SS_ENOMEM only. */
+static ss_status two_ring_mesh(const ss_local *M, const double *x, ss_cx **out,
+                               ss_error *err) {
   ss_cx *cx = NULL;
-  if (ss_cx_new(3, &cx, err) || ss_cx_reserve_vertices(cx, M->n2, err) ||
-      ss_cx_reserve_cells(cx, SS_HEX, M->ncells, err))
-    goto nomem;
-  for (size_t i = 0; i < M->n2; i++)
-    if (ss_cx_add_vertex(cx, x + 3 * i, 0, err)) goto nomem;
-  for (size_t c = 0; c < M->ncells; c++) {
+  ss_status st;
+  if ((st = ss_cx_new(3, &cx, err)) || (st = ss_cx_reserve_vertices(cx, M->n2, err)) ||
+      (st = ss_cx_reserve_cells(cx, SS_HEX, M->ncells, err)))
+    goto done;
+  for (size_t i = 0; i < M->n2 && !st; i++)
+    st = ss_cx_add_vertex(cx, x + 3 * i, 0, err);
+  for (size_t c = 0; c < M->ncells && !st; c++) {
     ss_idx v[8];
     for (int j = 0; j < 8; j++)
       v[j] = (ss_idx)M->corner[c * SS_MAXCELLVERTS + (size_t)j];
-    if (ss_cx_add_cell(cx, SS_HEX, v, 0, err)) goto nomem;
+    st = ss_cx_add_cell(cx, SS_HEX, v, 0, err);
   }
-  return cx;
-nomem:
-  ss_cx_free(cx);
-  *nomem = 1;
-  return NULL;
+done:
+  if (st) ss_cx_free(cx);
+  *out = st ? NULL : cx;
+  return st;
 }
 
 /* The verdict from the counts (ss_psi.h). */
@@ -162,7 +152,6 @@ static void decide(walk *w, double ring) {
     }
     r->nwitness = 2;
     v->verdict = SS_FAIL;
-    v->certified = r->certified;
     snprintf(v->reason, sizeof v->reason,
              "psi folds: det Dpsi in [%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g) and in "
              "[%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g)%s",
@@ -170,10 +159,9 @@ static void decide(walk *w, double ring) {
              r->witness[0].at[0], r->witness[0].at[1], r->witness[0].at[2],
              r->witness[1].det[0], r->witness[1].det[1], r->witness[1].cell,
              r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2],
-             r->certified ? " (proven)" : " (double precision, not proven)");
+             " (double precision, not proven)");
   } else if (r->nuncovered == 0 && r->nundecided == 0 && r->pieces > 0) {
     v->verdict = SS_PASS;
-    v->certified = r->certified;
     v->reason[0] = '\0';
   } else {
     v->verdict = SS_UNDECIDED;
@@ -226,11 +214,7 @@ ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
   ss_limit *L = NULL;
   ss_status st = SS_OK;
   walk w = {o, 0, {0, 0, 0, 0}, out, {0, 0}, {{0}}, 0};
-  int nomem = 0;
-  if (!(cx = two_ring_mesh(M, x, out->why, sizeof out->why, &nomem, err))) {
-    st = nomem ? SS_ENOMEM : SS_OK;
-    goto done;
-  }
+  if ((st = two_ring_mesh(M, x, &cx, err))) goto done;
   ss_error le = {0};
   st = ss_limit_new(s, cx, &L, &le);
   if (st == SS_EINPUT) { /* not a limit evaluator's scheme: no pieces */
@@ -275,19 +259,19 @@ void ss_psi_apply(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj) {
     if (!net_saw) append(reg, "the control net did not show it");
     *inj = r->verdict;
     snprintf(inj->reason, sizeof inj->reason,
-             "psi folds (det Dpsi takes both signs on its connected ring)%s",
-             r->certified ? " (proven)" : " (double precision)");
+             "psi folds (det Dpsi takes both signs on its connected ring) (double "
+             "precision)");
     return;
   }
   if (r->verdict.verdict == SS_PASS) {
     *reg = r->verdict;
     return;
   }
+  if (reg->on == SS_ON_PSI) return; /* psi o sigma = psi: already about psi */
   char text[200];
   snprintf(text, sizeof text,
            "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",
            100.0 * r->covered);
-  if (reg->on == SS_ON_PSI) return; /* psi o sigma = psi: already about psi */
   if (reg->verdict == SS_FAIL) {
     reg->certified = 0; /* a fold of the net that psi does not witness */
     append(reg, text);

@@ -83,7 +83,6 @@ typedef struct {
                               has none (why says so): the scheme is not a
                               limit evaluator's, or the case is not a vertex */
   char why[160];           /* with ran = 0: the reason */
-  int certified;           /* 0: the double path (see above) */
   ss_verdict verdict;      /* pass, fail, undecided, judged on psi */
   double covered;          /* share of the ring's parameter volume in pieces
                               proven of the ring's sign */
@@ -118,9 +117,9 @@ ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
 
 /* Combine the verdict on psi r (ran) into the regularity and injectivity
  * verdicts of the control net, reg and inj: psi fails -> both fail, judged on
- * psi, with the witnesses in the reason, certified as r (a regularity failure
- * already about psi, psi o sigma = psi, is kept with the witnesses added); psi passes ->
- * regularity passes judged on psi (injectivity is left: a regular psi may
+ * psi, with the witnesses in the reason, not certified (a regularity failure
+ * already about psi, psi o sigma = psi, is kept with the witnesses added);
+ * psi passes -> regularity passes judged on psi (injectivity is left: a regular psi may
  * still overlap itself); undecided -> the net's verdicts stay, with psi's
  * coverage added to their reason, and a regularity failure of the net (not
  * one already judged on psi) is no longer certified. */
