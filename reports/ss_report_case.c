@@ -46,6 +46,7 @@ static json_object *psi_point_json(const ss_psi_point *x) {
 static json_object *psi_json(const ss_psi_result *r) {
   if (!r->ran) return NULL;
   json_object *o = ss_report_verdict_json(&r->verdict);
+  json_object_object_add(o, "enclosed", json_object_new_boolean(r->enclosed));
   json_object_object_add(o, "covered", json_object_new_double(r->covered));
   json_object_object_add(o, "opposite", json_object_new_double(r->opposite));
   json_object_object_add(o, "doubtful", json_object_new_double(r->doubtful));

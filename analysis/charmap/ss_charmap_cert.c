@@ -33,10 +33,9 @@ static int inet_alloc(inet *x, size_t n, int dim) {
 /* The exact weight w (a reconstructed rational p/q) as an interval; 0, or -1
  * when w is not a rational of bounded denominator. */
 static int weight(double w, long maxden, di_t *out) {
-  long long p, q;
-  if (!ss_exact_rational(w, maxden, &p, &q)) return -1;
-  const di_t P = di_interval((double)p, (double)p), Q = di_interval((double)q, (double)q);
-  *out = di_fast_div(P, Q); /* p, q < 2^53: exact as doubles */
+  double lo, hi;
+  if (!ss_exact_rational_enclose(w, maxden, &lo, &hi)) return -1;
+  *out = di_interval(lo, hi);
   return 0;
 }
 

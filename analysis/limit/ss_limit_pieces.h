@@ -13,8 +13,15 @@
  * D_x(limit) = 2^(3 depth) det D_t(piece).  Nothing is cached: each box costs
  * one refinement of its parent's patch (about a millisecond).
  *
- * Double precision only: the points of a piece are the refined patch's
- * (rows of the scheme applied in doubles). */
+ * Points.  A piece's net is the refined patch's (rows of the scheme applied
+ * in doubles).  With an enclosure of the mesh's points (ss_limit_pieces_
+ * enclosed), each patch also carries intervals holding its true points: the
+ * rows of each step (ss_lim_step's W) applied in interval arithmetic with
+ * outward rounding, every nonzero weight replaced by the caller's enclosure
+ * of the rule's true weight (e.g. the rational ss_exact_rational
+ * reconstructs), so a piece's intervals hold the net of the exact rule
+ * applied to any points inside the mesh's enclosure.  Each step then also
+ * costs a dense product (child x parent points). */
 #ifndef SS_LIMIT_PIECES_H
 #define SS_LIMIT_PIECES_H
 
@@ -35,7 +42,24 @@ typedef struct {
                              layout (valid during the callback; translated by
                              a common vector, which changes no derivative);
                              NULL for a box left uncovered */
+  const double (*lo)[3];  /* with an enclosure: lo[q] <= true point q - the
+                             same vector <= hi[q] (valid during the
+                             callback); NULL without one or without a piece */
+  const double (*hi)[3];
 } ss_limit_piece;
+
+/* An enclosure of the rule's weight w (as the scheme computes it in
+ * doubles): 0 with wlo <= true weight <= whi, nonzero if w is not known
+ * exactly (the traversal then fails with SS_ENUMERIC). */
+typedef int (*ss_limit_weight_fn)(double w, void *arg, double *wlo, double *whi);
+
+/* What the true points of the mesh are known to be. */
+typedef struct {
+  const double *lo;          /* mesh->nv x 3, row by row: lo <= true point */
+  const double *hi;          /* likewise, true point <= hi */
+  ss_limit_weight_fn weight; /* the rule's true weights */
+  void *arg;                 /* passed to weight */
+} ss_limit_enclosure;
 
 /* Called for each piece and each box left uncovered; nonzero stops the
  * traversal (ss_limit_pieces then returns SS_OK). */
@@ -51,6 +75,13 @@ typedef int (*ss_limit_box_skip)(size_t cell, int depth, const double origin[3],
  * of a refinement step. */
 ss_status ss_limit_pieces(ss_limit *L, size_t cell, int maxdepth, ss_limit_box_skip skip,
                           ss_limit_piece_fn fn, void *arg, ss_error *err);
+
+/* As ss_limit_pieces, each piece with the enclosure of its points from enc
+ * (above).  SS_EINPUT also for an enclosure with a bound that is not finite
+ * or lo > hi; SS_ENUMERIC for a weight without enclosure. */
+ss_status ss_limit_pieces_enclosed(ss_limit *L, size_t cell, int maxdepth,
+                                   const ss_limit_enclosure *enc, ss_limit_box_skip skip,
+                                   ss_limit_piece_fn fn, void *arg, ss_error *err);
 
 SS_END_DECLS
 

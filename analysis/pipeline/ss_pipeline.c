@@ -126,11 +126,41 @@ static ss_status eigen(ss_pipeline *p, ss_pipeline_workspace *w, ss_error *err) 
   return st;
 }
 
+/* The exact path's enclosure of psi's net (ss_exact_basis, transposed to
+ * rows) into lo, hi (allocated here, n2 x 3); 0, or -1 when there is none
+ * (*lo, *hi NULL: no exact path, or its basis could not be enclosed). */
+static int psi_enclosure(const ss_pipeline *p, double **lo, double **hi, ss_error *err,
+                         ss_status *st) {
+  const size_t n = p->M->n2, m = (size_t)p->cm->dim;
+  *lo = *hi = NULL;
+  if (!p->ex || m != 3) return -1;
+  double *bl = malloc((3 * n + 1) * sizeof *bl), *bh = malloc((3 * n + 1) * sizeof *bh);
+  *lo = malloc((3 * n + 1) * sizeof **lo);
+  *hi = malloc((3 * n + 1) * sizeof **hi);
+  ss_error be = {0};
+  if (!bl || !bh || !*lo || !*hi)
+    *st = ss_error_nomem(err, "psi: basis enclosure");
+  else if (ss_exact_basis(p->ex, bl, bh, &be) == SS_OK)
+    for (size_t i = 0; i < n; i++)
+      for (size_t d = 0; d < 3; d++) {
+        (*lo)[3 * i + d] = bl[d * n + i]; /* column-major to rows */
+        (*hi)[3 * i + d] = bh[d * n + i];
+      }
+  else {
+    free(*lo);
+    free(*hi);
+    *lo = *hi = NULL;
+  }
+  free(bl);
+  free(bh);
+  return *lo ? 0 : -1;
+}
+
 /* psi judged on its pieces (ss_psi) when the case has a characteristic map
- * and is a vertex, on the map's double net, its verdict then combined into
- * the net's (ss_psi_apply) — but not with certify: the test is not proven
- * yet, and nothing unproven may decide a certified verdict (psi is then
- * reported only). */
+ * and is a vertex, on the map's double net — with certify on the exact
+ * path's enclosure of the basis, proving what it can (ss_psi_certify) — its
+ * verdict then combined into the net's (ss_psi_apply; with certify only a
+ * proven verdict on psi decides). */
 static ss_status psi(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
   p->psi.ran = 0;
   if (!p->opts.psi_depth || !p->cm || p->c.judged.kind != SS_CASE_VERTEX ||
@@ -140,8 +170,17 @@ static ss_status psi(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
   o.maxdepth = p->opts.psi_depth;
   double c1 = tm ? ss_clock_cpu() : 0.0;
   ss_progress_step(&p->opts.progress, "psi on its polynomial pieces", 0, 0);
-  const ss_status st = ss_psi_judge(p->scheme, p->M, p->cm->x, &o, &p->psi, err);
-  if (!st && !p->opts.certify) ss_psi_apply(&p->psi, &p->v.reg, &p->v.inj);
+  ss_status st = SS_OK;
+  double *lo = NULL, *hi = NULL;
+  if (p->opts.certify && !psi_enclosure(p, &lo, &hi, err, &st)) {
+    const ss_psi_enclosure e = {lo, hi, ss_exact_defaults(p->M->dim).maxden};
+    st = ss_psi_certify(p->scheme, p->M, &e, &o, &p->psi, err);
+  } else if (!st) {
+    st = ss_psi_judge(p->scheme, p->M, p->cm->x, &o, &p->psi, err);
+  }
+  free(lo);
+  free(hi);
+  if (!st) ss_psi_apply(&p->psi, p->opts.certify, &p->v.reg, &p->v.inj);
   if (tm) ss_clock_lap(&tm->psi, &c1);
   return st;
 }

@@ -18,9 +18,10 @@
  *             for a picture (forced = 1; it is NOT a characteristic map and
  *             changes no verdict); then, for a vertex with a map and a
  *             scheme with polynomial pieces (mlca, ccsolid), psi itself
- *             judged on them (ss_psi; with certify reported only: not
- *             proven yet) and otherwise combined into the regularity and
- *             injectivity verdicts (ss_psi_apply).
+ *             judged on them (ss_psi; with certify on the exact path's
+ *             enclosure of its net, ss_psi_certify) and combined into the
+ *             regularity and injectivity verdicts (ss_psi_apply; with
+ *             certify only a proven verdict on psi decides).
  * `analyze`, `matrix`, `draw`, `reproduce` (tables and figures), `sweep`,
  * `check` (through ss_result) and the Python package (through
  * ss_report_analyze) all run it, so a case is judged the same way whatever

@@ -10,6 +10,7 @@
 #include "ss_clock.h"
 #include "ss_cx.h"
 #include "ss_dense.h"
+#include "ss_exact.h"
 #include "ss_limit.h"
 #include "ss_limit_pieces.h"
 #include "ss_psi_bernstein.h"
@@ -18,29 +19,70 @@ ss_psi_opts ss_psi_defaults(void) {
   return (ss_psi_opts){SS_PSI_BOX_DEPTH, SS_PSI_PIECE_DEPTH};
 }
 
+/* A box of a cell's parameters: side 2^-depth, corner origin. */
+typedef struct {
+  size_t cell;
+  int depth;
+  double origin[3];
+} box_id;
+
+/* What a traversal does at each piece: judge it in doubles, or prove (with
+ * the enclosure) the corner values of the target pieces, the fold of the
+ * target piece, or the sign of every piece. */
+typedef enum { WALK_JUDGE, WALK_CORNERS, WALK_FOLD, WALK_ALL } walk_mode;
+
 /* What the traversal of one case carries. */
 typedef struct {
   const ss_psi_opts *o;
   unsigned pbits;     /* the centre's corner of the current cell, as bits */
+  walk_mode mode;     /* what visit does */
   double vol[4];      /* parameter volume: positive, negative, doubtful,
                          uncovered */
   ss_psi_result *r;   /* counts and witnesses */
   int have[2];        /* a proven positive [0] / negative [1] point kept */
   ss_psi_point pt[2]; /* those points */
+  int ptdepth[2];     /* the depth of their pieces (their corners t = 0) */
   int folded;         /* a folded piece's two witnesses are in r->witness */
+  box_id fbox;        /* that piece */
+  /* the proof passes */
+  int ntarget;            /* WALK_CORNERS, WALK_FOLD: pieces to visit (else 0) */
+  box_id target[2];       /* those pieces */
+  int found[2];           /* a target was reached and its value enclosed */
+  double encl[2][2];      /* WALK_CORNERS: det Dpsi at each target's corner */
+  ss_psi_piece_result ps; /* WALK_FOLD: the target's interval verdict */
+  int need;               /* WALK_ALL: the sign every piece must have (+-1);
+                             0 once one does not */
 } walk;
 
 /* Whether a box of a cell around p lies in p's octant [0,1/2]^3 (in the
  * cell's parameters, p at corner bits pbits): psi's ring leaves it out. */
-static int skip_octant(size_t cell, int depth, const double origin[3], void *arg) {
-  (void)cell;
-  const walk *w = arg;
+static int in_octant(const walk *w, int depth, const double origin[3]) {
   if (depth < 1) return 0;
   const double h = ldexp(1.0, -depth);
   for (int a = 0; a < 3; a++) {
     const int hi = (int)((w->pbits >> a) & 1u);
     if (hi ? origin[a] < 0.5 : origin[a] + h > 0.5) return 0;
   }
+  return 1;
+}
+
+/* Whether box (cell, depth, origin) holds box b (or is it). */
+static int holds(size_t cell, int depth, const double origin[3], const box_id *b) {
+  if (cell != b->cell || depth > b->depth) return 0;
+  const double h = ldexp(1.0, -depth);
+  for (int a = 0; a < 3; a++)
+    if (b->origin[a] < origin[a] || b->origin[a] >= origin[a] + h) return 0;
+  return 1;
+}
+
+/* Boxes left out: p's octant, and in a pass with targets every box that
+ * holds none of them. */
+static int skip_box(size_t cell, int depth, const double origin[3], void *arg) {
+  const walk *w = arg;
+  if (in_octant(w, depth, origin)) return 1;
+  if (!w->ntarget) return 0;
+  for (int i = 0; i < w->ntarget; i++)
+    if (holds(cell, depth, origin, &w->target[i])) return 0;
   return 1;
 }
 
@@ -60,8 +102,8 @@ static double corner_det(const ss_limit_piece *pc) {
          ldexp(1.0, 3 * pc->depth); /* d/dx = 2^depth d/dt, exactly */
 }
 
-static int visit(const ss_limit_piece *pc, void *arg) {
-  walk *w = arg;
+/* WALK_JUDGE: the piece judged in doubles, counted, its witnesses kept. */
+static int judge_piece(const ss_limit_piece *pc, walk *w) {
   ss_psi_result *r = w->r;
   /* a box of depth 0 is a whole cell around p: its ring part is 7/8 */
   const double vol = pc->depth ? ldexp(1.0, -3 * pc->depth) : 0.875;
@@ -87,6 +129,7 @@ static int visit(const ss_limit_piece *pc, void *arg) {
       w->pt[k].cell = pc->cell;
       memcpy(w->pt[k].at, pc->origin, sizeof w->pt[k].at); /* the corner t = 0 */
       w->pt[k].det[0] = w->pt[k].det[1] = d;
+      w->ptdepth[k] = pc->depth;
       w->have[k] = 1;
     }
     return 0;
@@ -106,8 +149,56 @@ static int visit(const ss_limit_piece *pc, void *arg) {
       r->witness[i].det[1] = ps.det[i][1] * sc;
     }
     w->folded = 1;
+    w->fbox =
+        (box_id){pc->cell, pc->depth, {pc->origin[0], pc->origin[1], pc->origin[2]}};
   }
   return 0;
+}
+
+/* The index of the target that is piece pc, or -1. */
+static int target_of(const walk *w, const ss_limit_piece *pc) {
+  for (int i = 0; i < w->ntarget; i++) {
+    const box_id *b = &w->target[i];
+    if (b->cell == pc->cell && b->depth == pc->depth && b->origin[0] == pc->origin[0] &&
+        b->origin[1] == pc->origin[1] && b->origin[2] == pc->origin[2])
+      return i;
+  }
+  return -1;
+}
+
+/* The proof passes: intervals from the enclosed net of the piece. */
+static int prove_piece(const ss_limit_piece *pc, walk *w) {
+  if (w->mode == WALK_ALL) {
+    ss_psi_piece_result ps;
+    if (pc->net) ss_psi_piece_sign_interval(pc->lo, pc->hi, w->o->piece_depth, &ps);
+    const int sign = !pc->net                     ? 0
+                     : ps.sign == SS_JAC_POSITIVE ? 1
+                     : ps.sign == SS_JAC_NEGATIVE ? -1
+                                                  : 0;
+    if (sign != w->need) w->need = 0;
+    return w->need == 0; /* one piece not proven: stop */
+  }
+  const int i = target_of(w, pc);
+  if (i < 0 || !pc->net) return 0;
+  const int sc = 3 * pc->depth; /* d/dx = 2^depth d/dt, exactly */
+  if (w->mode == WALK_CORNERS) {
+    double clo[SS_PSI_NCOEF], chi[SS_PSI_NCOEF];
+    ss_psi_bernstein_det_interval(pc->lo, pc->hi, clo, chi);
+    w->encl[i][0] = ldexp(clo[0], sc); /* the corner t = 0's exact value */
+    w->encl[i][1] = ldexp(chi[0], sc);
+  } else {
+    ss_psi_piece_sign_interval(pc->lo, pc->hi, w->o->piece_depth, &w->ps);
+    for (int j = 0; j < 2; j++)
+      for (int e = 0; e < 2; e++)
+        w->ps.det[j][e] = ldexp(w->ps.det[j][e], sc);
+  }
+  w->found[i] = 1;
+  return 0;
+}
+
+static int visit(const ss_limit_piece *pc, void *arg) {
+  walk *w = arg;
+  return w->mode == WALK_JUDGE ? judge_piece(pc, w) : prove_piece(pc, w);
 }
 
 /* The two-ring's cells (hexes: M->cell is SS_HEX) as a mesh with points x
@@ -133,7 +224,8 @@ done:
   return st;
 }
 
-/* The verdict from the counts (ss_psi.h). */
+/* The verdict from the counts (ss_psi.h); its reason is written later
+ * (describe), once the proof passes have run. */
 static void decide(walk *w, double ring) {
   ss_psi_result *r = w->r;
   const double pos = w->vol[0] / ring, neg = w->vol[1] / ring;
@@ -152,56 +244,126 @@ static void decide(walk *w, double ring) {
     }
     r->nwitness = 2;
     v->verdict = SS_FAIL;
+  } else if (r->nuncovered == 0 && r->nundecided == 0 && r->pieces > 0) {
+    v->verdict = SS_PASS;
+  } else {
+    v->verdict = SS_UNDECIDED;
+  }
+}
+
+/* The verdict's reason, with what it rests on. */
+static void describe(ss_psi_result *r) {
+  ss_verdict *v = &r->verdict;
+  const char *how = v->certified  ? " (proven: interval arithmetic on the enclosed basis)"
+                    : r->enclosed ? " (double precision; the enclosure did not prove it)"
+                                  : " (double precision, not proven)";
+  if (v->verdict == SS_FAIL)
     snprintf(v->reason, sizeof v->reason,
              "psi folds: det Dpsi in [%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g) and in "
              "[%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g)%s",
              r->witness[0].det[0], r->witness[0].det[1], r->witness[0].cell,
              r->witness[0].at[0], r->witness[0].at[1], r->witness[0].at[2],
              r->witness[1].det[0], r->witness[1].det[1], r->witness[1].cell,
-             r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2],
-             " (double precision, not proven)");
-  } else if (r->nuncovered == 0 && r->nundecided == 0 && r->pieces > 0) {
-    v->verdict = SS_PASS;
+             r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2], how);
+  else if (v->verdict == SS_PASS && r->enclosed)
+    snprintf(v->reason, sizeof v->reason, "det Dpsi of one sign on all %zu pieces%s",
+             r->pieces, how);
+  else if (v->verdict == SS_PASS)
     v->reason[0] = '\0';
-  } else {
-    v->verdict = SS_UNDECIDED;
+  else
     snprintf(
         v->reason, sizeof v->reason,
         "psi of one sign on %.1f %% of its ring (%zu polynomial pieces); %.1f %% left "
         "uncovered round the spokes at box depth %d, %.1f %% in doubt",
         100.0 * r->covered, r->pieces, 100.0 * r->uncovered, r->maxdepth,
         100.0 * r->doubtful);
-  }
 }
 
-/* Walk the ring of every cell around p. */
-static ss_status walk_cells(ss_limit *L, const ss_local *M, walk *w, ss_error *err) {
-  size_t ncentre = 0;
+/* Walk the ring of every cell around p (enc: the pieces' enclosures, or
+ * NULL); the number of cells around p into *ncentre. */
+static ss_status walk_cells(ss_limit *L, const ss_local *M, const ss_limit_enclosure *enc,
+                            walk *w, size_t *ncentre, ss_error *err) {
+  *ncentre = 0;
   for (size_t c = 0; c < M->ncells; c++) {
     int j = 0;
     while (j < 8 && M->corner[c * SS_MAXCELLVERTS + (size_t)j] != 0)
       j++;
     if (j == 8) continue;
-    ncentre++;
+    ++*ncentre;
     w->pbits = ss_cube_corner_bits(3, j);
     const ss_status st =
-        ss_limit_pieces(L, c, w->o->maxdepth, skip_octant, visit, w, err);
+        ss_limit_pieces_enclosed(L, c, w->o->maxdepth, enc, skip_box, visit, w, err);
     if (st) return st;
   }
-  decide(w, 0.875 * (double)(ncentre ? ncentre : 1));
   return SS_OK;
 }
 
-ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
-                       const ss_psi_opts *o, ss_psi_result *out, ss_error *err) {
-  memset(out, 0, sizeof *out);
-  out->verdict = (ss_verdict){SS_UNDECIDED, "", 0, SS_ON_NOTHING};
-  if (o->maxdepth < 1 || o->maxdepth > 8 || o->piece_depth < 0 || o->piece_depth > 8)
-    return ss_error_set(err, SS_EINPUT,
-                        "psi options out of range: box depth %d (1..8), piece depth %d "
-                        "(0..8)",
-                        o->maxdepth, o->piece_depth);
-  if (!x) return ss_error_set(err, SS_EINPUT, "psi: no net");
+/* The rule's weight as the exact path reads it (ss_exact_rational). */
+static int exact_weight(double wt, void *arg, double *lo, double *hi) {
+  return ss_exact_rational_enclose(wt, *(const long *)arg, lo, hi) ? 0 : -1;
+}
+
+/* A failure proven: the double path's two witnesses (corners of pieces of
+ * opposite signs) enclosed, else its folded piece's proven again. */
+static ss_status prove_fail(ss_limit *L, const ss_local *M, const ss_limit_enclosure *enc,
+                            walk *w, ss_error *err) {
+  ss_psi_result *r = w->r;
+  size_t n;
+  ss_status st;
+  if (w->have[0] && w->have[1]) {
+    w->mode = WALK_CORNERS;
+    w->ntarget = 2;
+    for (int i = 0; i < 2; i++)
+      w->target[i] = (box_id){
+          w->pt[i].cell, w->ptdepth[i], {w->pt[i].at[0], w->pt[i].at[1], w->pt[i].at[2]}};
+    if ((st = walk_cells(L, M, enc, w, &n, err))) return st;
+    if (w->found[0] && w->found[1] && w->encl[0][0] > 0.0 && w->encl[1][1] < 0.0) {
+      for (int i = 0; i < 2; i++)
+        memcpy(r->witness[i].det, w->encl[i], sizeof w->encl[i]);
+      r->verdict.certified = 1;
+      return SS_OK;
+    }
+  }
+  if (!w->folded) return SS_OK;
+  w->mode = WALK_FOLD;
+  w->ntarget = 1;
+  w->target[0] = w->fbox;
+  w->found[0] = 0;
+  if ((st = walk_cells(L, M, enc, w, &n, err))) return st;
+  if (!w->found[0] || w->ps.sign != SS_JAC_FOLDED) return SS_OK;
+  const ss_limit_piece pc = {w->fbox.cell, w->fbox.depth, {0}, NULL, NULL, NULL};
+  for (int i = 0; i < 2; i++) {
+    ss_limit_piece at = pc;
+    memcpy(at.origin, w->fbox.origin, sizeof at.origin);
+    r->witness[i].cell = w->fbox.cell;
+    to_cell(&at, w->ps.where[i], r->witness[i].at);
+    memcpy(r->witness[i].det, w->ps.det[i], sizeof w->ps.det[i]);
+  }
+  r->verdict.certified = 1;
+  return SS_OK;
+}
+
+/* The proof passes of a decided double verdict, with the enclosure e. */
+static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e, walk *w,
+                       ss_error *err) {
+  long maxden = e->maxden;
+  const ss_limit_enclosure enc = {e->lo, e->hi, exact_weight, &maxden};
+  w->r->enclosed = 1;
+  if (w->r->verdict.verdict == SS_FAIL) return prove_fail(L, M, &enc, w, err);
+  if (w->r->verdict.verdict != SS_PASS) return SS_OK;
+  w->mode = WALK_ALL;
+  w->ntarget = 0;
+  w->need = w->r->sign;
+  size_t n;
+  const ss_status st = walk_cells(L, M, &enc, w, &n, err);
+  if (!st && w->need != 0) w->r->verdict.certified = 1;
+  return st;
+}
+
+/* ss_psi_judge, and with e the proof passes. */
+static ss_status judge(const ss_scheme *s, const ss_local *M, const double *x,
+                       const ss_psi_enclosure *e, const ss_psi_opts *o,
+                       ss_psi_result *out, ss_error *err) {
   const double t0 = ss_clock_cpu();
   out->maxdepth = o->maxdepth;
   out->piece_depth = o->piece_depth;
@@ -213,7 +375,11 @@ ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
   ss_cx *cx = NULL;
   ss_limit *L = NULL;
   ss_status st = SS_OK;
-  walk w = {o, 0, {0, 0, 0, 0}, out, {0, 0}, {{0}}, 0};
+  walk w;
+  memset(&w, 0, sizeof w);
+  w.o = o;
+  w.r = out;
+  w.mode = WALK_JUDGE;
   if ((st = two_ring_mesh(M, x, &cx, err))) goto done;
   ss_error le = {0};
   st = ss_limit_new(s, cx, &L, &le);
@@ -226,12 +392,56 @@ ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
     *err = le;
     goto done;
   }
-  if ((st = walk_cells(L, M, &w, err))) goto done;
+  size_t ncentre;
+  if ((st = walk_cells(L, M, NULL, &w, &ncentre, err))) goto done;
+  decide(&w, 0.875 * (double)(ncentre ? ncentre : 1));
+  if (e && (st = prove(L, M, e, &w, err))) goto done;
+  describe(out);
   out->ran = 1;
 done:
   ss_limit_free(L);
   ss_cx_free(cx);
   out->seconds = ss_clock_cpu() - t0;
+  return st;
+}
+
+/* The options' and inputs' check shared by both entries. */
+static ss_status check(const ss_psi_opts *o, const void *net, ss_psi_result *out,
+                       ss_error *err) {
+  memset(out, 0, sizeof *out);
+  out->verdict = (ss_verdict){SS_UNDECIDED, "", 0, SS_ON_NOTHING};
+  if (o->maxdepth < 1 || o->maxdepth > 8 || o->piece_depth < 0 || o->piece_depth > 8)
+    return ss_error_set(err, SS_EINPUT,
+                        "psi options out of range: box depth %d (1..8), piece depth %d "
+                        "(0..8)",
+                        o->maxdepth, o->piece_depth);
+  if (!net) return ss_error_set(err, SS_EINPUT, "psi: no net");
+  return SS_OK;
+}
+
+ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
+                       const ss_psi_opts *o, ss_psi_result *out, ss_error *err) {
+  const ss_status st = check(o, x, out, err);
+  return st ? st : judge(s, M, x, NULL, o, out, err);
+}
+
+ss_status ss_psi_certify(const ss_scheme *s, const ss_local *M, const ss_psi_enclosure *e,
+                         const ss_psi_opts *o, ss_psi_result *out, ss_error *err) {
+  ss_status st = check(o, e && e->lo && e->hi ? e : NULL, out, err);
+  if (st) return st;
+  const size_t n = 3 * M->n2;
+  for (size_t i = 0; i < n; i++)
+    if (!(e->lo[i] <= e->hi[i]) || !isfinite(e->lo[i]) || !isfinite(e->hi[i]))
+      return ss_error_set(err, SS_EINPUT,
+                          "psi: point %zu's enclosure [%g, %g] is not an interval of "
+                          "finite bounds",
+                          i / 3 + 1, e->lo[i], e->hi[i]);
+  double *x = malloc((n + 1) * sizeof *x);
+  if (!x) return ss_error_nomem(err, "psi: net");
+  for (size_t i = 0; i < n; i++)
+    x[i] = 0.5 * e->lo[i] + 0.5 * e->hi[i]; /* inside: no overflow */
+  st = judge(s, M, x, e, o, out, err);
+  free(x);
   return st;
 }
 
@@ -241,40 +451,70 @@ static void append(ss_verdict *v, const char *text) {
   snprintf(v->reason + n, sizeof v->reason - n, "%s%s", n ? "; " : "", text);
 }
 
-void ss_psi_apply(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj) {
-  if (!r->ran) return;
-  if (r->verdict.verdict == SS_FAIL && reg->on == SS_ON_PSI && reg->verdict == SS_FAIL) {
-    /* psi o sigma = psi failed it already, about psi (and perhaps proven):
-     * that verdict stays, the witnesses added */
-    char text[200];
-    snprintf(text, sizeof text,
-             "psi's pieces agree: det Dpsi %.4g and %.4g (double precision)",
-             r->witness[0].det[0], r->witness[1].det[0]);
-    append(reg, text);
-    return;
-  }
-  if (r->verdict.verdict == SS_FAIL) {
-    const int net_saw = reg->verdict == SS_FAIL;
-    *reg = r->verdict;
-    if (!net_saw) append(reg, "the control net did not show it");
-    *inj = r->verdict;
-    snprintf(inj->reason, sizeof inj->reason,
-             "psi folds (det Dpsi takes both signs on its connected ring) (double "
-             "precision)");
-    return;
-  }
+/* A decided verdict on psi that may decide (proven, or no proof asked for). */
+static void apply_decided(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj) {
+  const char *how = r->verdict.certified ? "proven" : "double precision";
+  char text[200];
   if (r->verdict.verdict == SS_PASS) {
     *reg = r->verdict;
     return;
   }
-  if (reg->on == SS_ON_PSI) return; /* psi o sigma = psi: already about psi */
-  char text[200];
-  snprintf(text, sizeof text,
-           "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",
-           100.0 * r->covered);
-  if (reg->verdict == SS_FAIL) {
-    reg->certified = 0; /* a fold of the net that psi does not witness */
+  if (reg->on == SS_ON_PSI && reg->verdict == SS_FAIL) {
+    /* psi o sigma = psi failed it already, about psi (and perhaps proven):
+     * that verdict stays, the witnesses added (and its proof, if it had none) */
+    snprintf(text, sizeof text, "psi's pieces agree: det Dpsi %.4g and %.4g (%s)",
+             r->witness[0].det[0], r->witness[1].det[0], how);
     append(reg, text);
+    if (r->verdict.certified) {
+      reg->certified = 1;
+      if (inj->verdict == SS_FAIL) inj->certified = 1;
+    }
+    return;
+  }
+  /* what the net's verdict said, kept after psi's (an unproven failure of
+   * the net is undecided by now, "not certified: ...") */
+  char was[200];
+  if (reg->verdict == SS_FAIL)
+    was[0] = '\0';
+  else
+    snprintf(was, sizeof was, "the control net: %s%s%.150s",
+             ss_verdict_name(reg->verdict), reg->reason[0] ? ": " : "", reg->reason);
+  *reg = r->verdict;
+  if (was[0]) append(reg, was);
+  *inj = r->verdict;
+  snprintf(inj->reason, sizeof inj->reason,
+           "psi folds (det Dpsi takes both signs on its connected ring) (%s)", how);
+}
+
+void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdict *inj) {
+  if (!r->ran) return;
+  const ss_verdict_kind k = r->verdict.verdict;
+  if (k != SS_UNDECIDED && (r->verdict.certified || !certify)) {
+    apply_decided(r, reg, inj);
+    return;
+  }
+  /* psi undecided, or decided in doubles where a proof was asked for */
+  char text[200];
+  if (k == SS_FAIL)
+    snprintf(text, sizeof text,
+             "psi folds in double precision (det Dpsi %.4g and %.4g), not proven",
+             r->witness[0].det[0], r->witness[1].det[0]);
+  else if (k == SS_PASS)
+    snprintf(text, sizeof text,
+             "psi of one sign on every piece in double precision, not proven");
+  else
+    snprintf(text, sizeof text,
+             "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",
+             100.0 * r->covered);
+  if (reg->on == SS_ON_PSI) return; /* psi o sigma = psi: already about psi */
+  if (reg->verdict == SS_FAIL) {
+    /* a fold of the net that psi does not (provably) show */
+    if (certify)
+      ss_verdict_unproven(reg, text);
+    else {
+      reg->certified = 0;
+      append(reg, text);
+    }
   } else if (reg->verdict == SS_UNDECIDED) {
     append(reg, text);
   }

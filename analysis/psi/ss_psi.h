@@ -34,14 +34,34 @@
  *              self-similar);
  *   undecided  otherwise (uncovered tubes, pieces still in doubt): covered
  *              says how much of the ring is proven of one sign.
- * Not certified: the pieces' points are the refined patches' in double
- * precision (their enclosure from the exact path's basis is the next step),
- * and the Bernstein test's double path is exact only up to its flat
- * threshold; the verdict is a statement about psi, not a proof of it.
- *
+ * Proof (ss_psi_certify).  Given an enclosure of the true net (the exact
+ * path's subdominant basis, ss_exact_basis) the same traversal runs on the
+ * enclosure's midpoints in doubles, and then a decided verdict is proven or
+ * left unproven (never reversed):
+ *   fail   the two witnesses' pieces are reached again with the enclosure
+ *          carried through every refinement step (ss_limit_pieces_enclosed:
+ *          the rule's weights as the exact path's rationals, interval
+ *          arithmetic), and det Dpsi at each witness (a corner coefficient
+ *          of its piece's Bernstein form: an exact value) is enclosed; two
+ *          enclosures of opposite strict signs prove the fold.  Failing
+ *          that, a folded piece's interval test (ss_psi_piece_sign_interval)
+ *          proves it if it finds the fold again;
+ *   pass   every piece's interval test proves the same strict sign (with no
+ *          box left uncovered: in practice the regular vertex only, until
+ *          the spokes are decided).
+ * The proven verdict has certified = 1 and its witnesses carry the
+ * enclosures.  What is proven is a statement about psi of the rule with
+ * those rational weights (the matrix every certified statement is about,
+ * ss_exact.h), in the basis the enclosure holds (det Dpsi scales by det G
+ * under a change of basis G: signs compare, values do not).  Without an
+ * enclosure (ss_psi_judge) nothing is proven: the verdict is a statement
+ * about psi in double precision (and the Bernstein test's double path
+ * decides values only beyond its flat threshold).
+
  * ss_psi_apply combines it with the control net's verdict (ss_charmap): a
- * psi verdict that decides replaces it; an undecided one keeps the net's,
- * but a failure of the net that psi does not witness is no longer proven. */
+ * psi verdict that decides (with certify: a proven one) replaces it; else
+ * the net's stays, but a failure of the net that psi does not show is no
+ * longer proven. */
 #ifndef SS_PSI_H
 #define SS_PSI_H
 
@@ -95,6 +115,7 @@ typedef struct {
   size_t nfolded;          /* two exact values of opposite signs inside */
   size_t nundecided;       /* no proof either way at piece_depth */
   size_t nuncovered;       /* boxes left without a piece at maxdepth */
+  int enclosed;            /* 1 if the proof passes ran (ss_psi_certify) */
   int sign;                /* the ring's sign: of the larger proven volume (+1
                               positive first when equal); 0 when none is proven */
   int nwitness;            /* 2 when failing, else 0 */
@@ -103,6 +124,15 @@ typedef struct {
   int piece_depth;
   double seconds; /* thread CPU time of the test */
 } ss_psi_result;
+
+/* What the exact path knows of psi's net (ss_psi_certify). */
+typedef struct {
+  const double *lo; /* M->n2 x 3, row by row: lo <= the true net */
+  const double *hi; /* the true net <= hi */
+  long maxden;      /* the rule's weights are the rationals of denominator
+                       <= maxden nearest to its doubles (ss_exact_rational;
+                       ss_exact_opts.maxden) */
+} ss_psi_enclosure;
 
 /* maxdepth SS_PSI_BOX_DEPTH, piece_depth SS_PSI_PIECE_DEPTH. */
 ss_psi_opts ss_psi_defaults(void);
@@ -115,15 +145,27 @@ ss_psi_opts ss_psi_defaults(void);
 ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
                        const ss_psi_opts *o, ss_psi_result *out, ss_error *err);
 
+/* As ss_psi_judge on the net of enclosure e's midpoints, then the proof
+ * passes (above): out->verdict.certified = 1 for a proven verdict.
+ * SS_EINPUT also for an enclosure with a bound that is not finite or lo >
+ * hi; SS_ENUMERIC when a weight of the rule is not a rational the exact path
+ * accepts (ss_exact_rational). */
+ss_status ss_psi_certify(const ss_scheme *s, const ss_local *M, const ss_psi_enclosure *e,
+                         const ss_psi_opts *o, ss_psi_result *out, ss_error *err);
+
 /* Combine the verdict on psi r (ran) into the regularity and injectivity
- * verdicts of the control net, reg and inj: psi fails -> both fail, judged on
- * psi, with the witnesses in the reason, not certified (a regularity failure
- * already about psi, psi o sigma = psi, is kept with the witnesses added);
- * psi passes -> regularity passes judged on psi (injectivity is left: a regular psi may
- * still overlap itself); undecided -> the net's verdicts stay, with psi's
- * coverage added to their reason, and a regularity failure of the net (not
- * one already judged on psi) is no longer certified. */
-void ss_psi_apply(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj);
+ * verdicts of the control net, reg and inj.  A verdict on psi that decides —
+ * any pass or fail without certify; with certify (nonzero) only a proven one
+ * — replaces the net's: psi fails -> both fail, judged on psi, the
+ * witnesses in the reason (a regularity failure already about psi, psi o
+ * sigma = psi, is kept with the witnesses added, and proven if psi's is);
+ * psi passes -> regularity passes judged on psi (injectivity is left: a
+ * regular psi may still overlap itself).  Otherwise the net's verdicts stay
+ * with psi's finding added to their reason, and a regularity failure of the
+ * net (not one already judged on psi) is no longer proven: without certify
+ * it loses certified, with certify it becomes undecided
+ * (ss_verdict_unproven). */
+void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdict *inj);
 
 SS_END_DECLS
 

@@ -202,6 +202,11 @@ int ss_exact_entry(const ss_exact *x, size_t i, size_t j, long long *p, long lon
  * for callers that need other rows of the rule exactly. */
 int ss_exact_rational(double s, long maxden, long long *p, long long *q);
 
+/* As ss_exact_rational, the rational p / q as an interval [*lo, *hi] of
+ * doubles holding it (outward rounded; a point when p / q is a double):
+ * 1, or 0 when s is not accepted (or p or q is not below 2^53). */
+int ss_exact_rational_enclose(double s, long maxden, double *lo, double *hi);
+
 SS_END_DECLS
 
 #endif

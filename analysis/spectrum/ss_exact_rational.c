@@ -15,6 +15,7 @@
 
 #include "arb_fmpz_poly.h"
 #include "arf.h"
+#include "double_interval.h"
 
 #include "ss_exact_impl.h"
 
@@ -124,6 +125,18 @@ int ss_exact_rational(double s, long maxden, long long *p, long long *q) {
   fmpq_clear(d);
   fmpq_clear(bound);
   return ok;
+}
+
+int ss_exact_rational_enclose(double s, long maxden, double *lo, double *hi) {
+  long long p, q;
+  const long long big = 1LL << 53; /* p and q exact as doubles below this */
+  if (!ss_exact_rational(s, maxden, &p, &q) || p >= big || -p >= big || q >= big)
+    return 0;
+  const di_t r =
+      di_fast_div(di_interval((double)p, (double)p), di_interval((double)q, (double)q));
+  *lo = r.a;
+  *hi = r.b;
+  return 1;
 }
 
 /* Reconstruct every entry and check the row sums.  SS_ENUMERIC naming the

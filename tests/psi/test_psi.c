@@ -20,66 +20,28 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ss_cx.h"
-#include "ss_limit.h"
-#include "ss_link.h"
-#include "ss_pipeline.h"
+#include "psi_case.h"
 #include "ss_psi.h"
-#include "ss_scheme.h"
 #include "ss_test.h"
 
 static const char *const FINDING1 = "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb";
 
-/* The pipeline of an MLCA (or s) vertex case through its verdicts, with psi. */
 static ss_pipeline *run(const ss_scheme *s, const char *link, int psi_depth) {
-  ss_link *l = NULL;
-  ss_error err = {0};
-  if (ss_link_named(link, &l, &err) && ss_link_parse(link, &l, &err)) {
-    fprintf(stderr, "%s: %s\n", link, err.msg);
-    return NULL;
-  }
-  ss_pipeline_opts o = ss_pipeline_defaults();
-  o.psi_depth = psi_depth;
-  const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
-  ss_pipeline *p = NULL;
-  if (ss_pipeline_compute(s, &c, &o, SS_PIPE_VERDICTS, NULL, &p, &err))
-    fprintf(stderr, "%s: %s\n", link, err.msg);
-  ss_link_free(l);
-  return p;
-}
-
-static double det3(double J[3][3]) {
-  return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  return psi_run(s, link, psi_depth, 0);
 }
 
 /* det Dpsi at a witness by the limit evaluator on the two-ring mesh. */
 static int eval_det(const ss_scheme *s, const ss_pipeline *p, const ss_psi_point *w,
                     double *det) {
   ss_error err = {0};
-  ss_cx *cx = NULL;
-  ss_limit *L = NULL;
-  int rc = -1;
-  if (ss_cx_new(3, &cx, &err)) return -1;
-  for (size_t i = 0; i < p->M->n2; i++)
-    if (ss_cx_add_vertex(cx, p->cm->x + 3 * i, 0, &err)) goto done;
-  for (size_t c = 0; c < p->M->ncells; c++) {
-    ss_idx v[8];
-    for (int j = 0; j < 8; j++)
-      v[j] = (ss_idx)p->M->corner[c * SS_MAXCELLVERTS + (size_t)j];
-    if (ss_cx_add_cell(cx, SS_HEX, v, 0, &err)) goto done;
-  }
+  ss_limit *L = psi_limit(s, p, p->cm->x);
   ss_limit_point pt;
-  if (ss_limit_new(s, cx, &L, &err) ||
-      ss_limit_eval(L, w->cell, w->at[0], w->at[1], w->at[2], 1, &pt, &err))
-    goto done;
-  *det = det3(pt.jac);
-  rc = 0;
-done:
-  if (rc) fprintf(stderr, "eval_det: %s\n", err.msg);
+  const int rc =
+      L && !ss_limit_eval(L, w->cell, w->at[0], w->at[1], w->at[2], 1, &pt, &err) ? 0
+                                                                                  : -1;
+  if (!rc) *det = psi_det3(pt.jac);
+  if (L && rc) fprintf(stderr, "eval_det: %s\n", err.msg);
   ss_limit_free(L);
-  ss_cx_free(cx);
   return rc;
 }
 
@@ -174,7 +136,7 @@ static void fold(const ss_scheme *s) {
     CHECK(!ss_psi_judge(s, p->M, y, &o, &q, &err), "basis %d: %s", g, err.msg);
     double Gg[3][3];
     memcpy(Gg, G[g], sizeof Gg);
-    const int flip = det3(Gg) < 0.0;
+    const int flip = psi_det3(Gg) < 0.0;
     /* the verdict, the pieces and the uncovered boxes do not depend on the
      * basis, and the witnesses (each sign's largest |det|, far from 0) are
      * the same points with det times det G.  The counts of proven and folded
@@ -185,7 +147,7 @@ static void fold(const ss_scheme *s) {
               q.nuncovered == r->nuncovered && q.nwitness == 2,
           "basis %d: %s, %zu pieces, %zu uncovered", g,
           ss_verdict_name(q.verdict.verdict), q.pieces, q.nuncovered);
-    const double dg = det3(Gg);
+    const double dg = psi_det3(Gg);
     for (int i = 0; i < 2 && q.nwitness == 2; i++) {
       const ss_psi_point *a = &r->witness[i], *b = &q.witness[flip ? 1 - i : i];
       CHECK(a->cell == b->cell && !memcmp(a->at, b->at, sizeof a->at) &&

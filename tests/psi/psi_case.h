@@ -1,0 +1,65 @@
+/* psi_case.h — what the psi tests share: a vertex case through the
+ * pipeline's verdicts with psi judged, the two-ring's hexes as a limit
+ * evaluator (another path to det Dpsi), a 3x3 determinant. */
+#ifndef PSI_CASE_H
+#define PSI_CASE_H
+
+#include <stdio.h>
+
+#include "ss_cx.h"
+#include "ss_limit.h"
+#include "ss_link.h"
+#include "ss_pipeline.h"
+#include "ss_scheme.h"
+
+/* The pipeline of vertex case `link` under s through its verdicts, psi
+ * judged to box depth psi_depth, with the exact path if certify; NULL (the
+ * reason printed) on failure. */
+static ss_pipeline *psi_run(const ss_scheme *s, const char *link, int psi_depth,
+                            int certify) {
+  ss_link *l = NULL;
+  ss_error err = {0};
+  if (ss_link_named(link, &l, &err) && ss_link_parse(link, &l, &err)) {
+    fprintf(stderr, "%s: %s\n", link, err.msg);
+    return NULL;
+  }
+  ss_pipeline_opts o = ss_pipeline_defaults();
+  o.psi_depth = psi_depth;
+  o.certify = certify;
+  const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
+  ss_pipeline *p = NULL;
+  if (ss_pipeline_compute(s, &c, &o, SS_PIPE_VERDICTS, NULL, &p, &err))
+    fprintf(stderr, "%s: %s\n", link, err.msg);
+  ss_link_free(l);
+  return p;
+}
+
+/* The two-ring's hexes of p's case with points x (n2 x 3) as a limit
+ * evaluator under s; NULL (the reason printed) on failure. */
+static ss_limit *psi_limit(const ss_scheme *s, const ss_pipeline *p, const double *x) {
+  ss_error err = {0};
+  ss_cx *cx = NULL;
+  ss_limit *L = NULL;
+  if (ss_cx_new(3, &cx, &err)) return NULL;
+  for (size_t i = 0; i < p->M->n2; i++)
+    if (ss_cx_add_vertex(cx, x + 3 * i, 0, &err)) goto done;
+  for (size_t c = 0; c < p->M->ncells; c++) {
+    ss_idx v[8];
+    for (int j = 0; j < 8; j++)
+      v[j] = (ss_idx)p->M->corner[c * SS_MAXCELLVERTS + (size_t)j];
+    if (ss_cx_add_cell(cx, SS_HEX, v, 0, &err)) goto done;
+  }
+  if (ss_limit_new(s, cx, &L, &err)) L = NULL;
+done:
+  if (!L) fprintf(stderr, "psi_limit: %s\n", err.msg);
+  ss_cx_free(cx);
+  return L;
+}
+
+static double psi_det3(double J[3][3]) {
+  return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+}
+
+#endif
