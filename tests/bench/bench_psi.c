@@ -2,9 +2,11 @@
  * for MLCA vertex cases with k = 8, 10 and 12 (seeded random links, as
  * bench_certify: `enumerate random --seed 1`), the time per case of the
  * double-precision pipeline without psi, with psi (box depth SS_PSI_BOX_DEPTH),
- * and with the exact path (certify, no psi), measured side by side in one
- * run, best of three each; prints the times, the ratios to the double path,
- * psi's verdicts and its mean covered share.  One core.
+ * with the exact path (certify, no psi) and with both (certify and psi: the
+ * pieces proven where psi decides, ss_psi_certify), measured side by side in
+ * one run, best of three each; prints the times, the ratios to the double
+ * path, psi's verdicts (certified ones: proven) and its mean covered share.
+ * One core.
  * `bench_psi [SAMPLES]` (default 4 links per k). */
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,14 +64,14 @@ int main(int argc, char **argv) {
   }
   printf("psi on its pieces vs the double and certified paths, MLCA vertex cases, %d "
          "random links per k (seed 1), best of 3 each, one core\n\n"
-         " k  double s/case  +psi s/case  ratio  certify s/case  ratio  psi pass/fail/"
-         "undecided  mean covered\n",
+         " k  double s/case  +psi s/case  ratio  certify s/case  ratio  certify+psi "
+         "s/case  ratio  psi pass/fail/undecided (proven)  mean covered\n",
          samples);
   for (int k = 8; k <= 12; k += 2) {
     gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(g, 1UL);
-    double td = 0.0, tp = 0.0, tc = 0.0, cov = 0.0;
-    int n[3] = {0, 0, 0}, ran = 0;
+    double td = 0.0, tp = 0.0, tc = 0.0, tcp = 0.0, cov = 0.0;
+    int n[3] = {0, 0, 0}, ran = 0, proven = 0;
     for (int i = 0; i < samples; i++) {
       ss_link *l = NULL;
       if (ss_link_random(k, g, &l, &err)) {
@@ -81,18 +83,25 @@ int main(int argc, char **argv) {
       td += best(s, &c, 0, 0, NULL);
       tp += best(s, &c, SS_PSI_BOX_DEPTH, 0, &p);
       tc += best(s, &c, 0, 1, NULL);
+      ss_pipeline *q = NULL;
+      tcp += best(s, &c, SS_PSI_BOX_DEPTH, 1, &q);
       if (p->psi.ran) {
         ran++;
         n[p->psi.verdict.verdict]++;
         cov += p->psi.covered;
       }
+      proven += q->psi.ran && q->psi.verdict.certified;
+      ss_pipeline_free(q);
       ss_pipeline_free(p);
       ss_link_free(l);
     }
     gsl_rng_free(g);
-    printf("%2d  %13.4f  %11.4f  %5.1f  %14.4f  %5.1f  %d/%d/%d of %d  %12.4f\n", k,
-           td / samples, tp / samples, tp / td, tc / samples, tc / td, n[SS_PASS],
-           n[SS_FAIL], n[SS_UNDECIDED], samples, ran ? cov / ran : 0.0);
+    printf(
+        "%2d  %13.4f  %11.4f  %5.1f  %14.4f  %5.1f  %18.4f  %5.1f  %d/%d/%d of %d (%d)  "
+        "%12.4f\n",
+        k, td / samples, tp / samples, tp / td, tc / samples, tc / td, tcp / samples,
+        tcp / td, n[SS_PASS], n[SS_FAIL], n[SS_UNDECIDED], samples, proven,
+        ran ? cov / ran : 0.0);
     fflush(stdout);
   }
   ss_scheme_free(s);
