@@ -137,7 +137,8 @@ static void md_row(ss_strbuf *md, const ss_reproduce_table *t, const ss_result *
  * exhaustive` writes them from a sweep's store. */
 static void per_k(ss_strbuf *md, const ss_reproduce_results *l) {
   char line[SS_REPORT_EXH_LINE];
-  ss_report_exh_md_head(l->o.certify, line, sizeof line);
+  /* (no columns on psi: reproduce does not judge psi on its pieces) */
+  ss_report_exh_md_head(l->o.certify, 0, line, sizeof line);
   ss_sb_printf(md, "\n%s", line);
   int lo = INT_MAX, hi = 0;
   for (size_t i = 0; i < l->n; i++) {
@@ -149,7 +150,7 @@ static void per_k(ss_strbuf *md, const ss_reproduce_results *l) {
     ss_report_exh_init(&g, k);
     for (size_t i = 0; i < l->n; i++)
       if (l->r[i].k == k) ss_report_exh_add(&g, l->r + i);
-    ss_report_exh_md_row(&g, l->o.certify, line, sizeof line);
+    ss_report_exh_md_row(&g, l->o.certify, 0, line, sizeof line);
     ss_sb_printf(md, "%s", line);
   }
 }

@@ -48,6 +48,7 @@ typedef struct {
   int diag_given;               /* --diagonals was given */
   int json;                     /* --format json */
   int certify;                  /* --certify */
+  long psi_depth;               /* --psi-depth (0: psi not judged) */
   int jobs_given;               /* --jobs was given */
 } ss_sweep_opts;
 

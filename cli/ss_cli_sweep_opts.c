@@ -15,13 +15,14 @@
 static const char *const sweep_usage =
     "usage: subspectra sweep (--scheme S | --stencil FILE) CASES [--db FILE]\n"
     "                        [--jobs N] [--part I/N] [--tol T] [--depth D]\n"
-    "                        [--diagonals D] [--certify] [--max-memory SIZE]\n"
+    "                        [--diagonals D] [--certify] [--psi-depth N]\n"
+    "                        [--max-memory SIZE]\n"
     "\n"
     "Analyse every case asked for, exactly as `subspectra analyze` does, and store\n"
     "each result in a SQLite results store (schema in the README).  Results are\n"
     "keyed by the scheme's identity (its name, or the hash of the stencil file's\n"
-    "bytes, with --tol, --depth, --diagonals and --certify), the case and the\n"
-    "canonical link:\n"
+    "bytes, with --tol, --depth, --diagonals, --certify and --psi-depth), the case\n"
+    "and the canonical link:\n"
     "a rerun skips the cases already stored, so an interrupted sweep (even by\n"
     "SIGKILL) resumes where it stopped, and no case is ever stored twice.\n"
     "\n"
@@ -55,6 +56,11 @@ static const char *const sweep_usage =
     "                    or center with --edges only\n"
     "  --certify         prove the verdicts (the exact path of `analyze --certify`);\n"
     "                    what cannot be proven is stored as undecided\n"
+    "  --psi-depth N     judge psi itself on its polynomial pieces, as `analyze\n"
+    "                    --psi-depth N` does (mlca, ccsolid vertices), the ring cut\n"
+    "                    in boxes down to side 2^-N (0..8, default 0: not); the\n"
+    "                    store keeps psi's verdict and shares, and what each verdict\n"
+    "                    was judged on (`report --format json`)\n"
     "  --max-memory SIZE memory budget shared by the threads (K, M, G, T: powers of\n"
     "                    1000; default half the physical memory, 3/4 of ulimit -v\n"
     "                    and -d when set): a case whose estimate exceeds SIZE / N\n"
@@ -62,7 +68,10 @@ static const char *const sweep_usage =
     "                    the estimate\n"
     "  --format F        text (default) or json: the final summary also as one\n"
     "                    JSON object on standard output\n"
-    "  -h, --help        this text\n"
+    "  -h, --help        this text\n";
+
+/* (strings of their own: C's limit on a string literal's length) */
+static const char *const sweep_usage_end =
     "\n"
     "Progress (cases done / total, rate, ETA, failures so far) goes to standard\n"
     "error while it is a terminal; otherwise only the final summary is printed.\n"
@@ -73,7 +82,6 @@ static const char *const sweep_usage =
     "undecided or could not be analysed, 2 bad usage, a bad link or store file,\n"
     "or a case out of memory or beyond the memory budget (the others still run).\n";
 
-/* (a string of its own: C's limit on a string literal's length) */
 static const char *const sweep_usage_mpi =
     "\n"
 #if SS_HAVE_MPI
@@ -104,6 +112,7 @@ enum {
   O_DIAG,
   O_FORMAT,
   O_CERTIFY,
+  O_PSI,
   O_MAXMEM
 };
 
@@ -122,6 +131,7 @@ static const struct option sweep_options[] = {
     {"diagonals", required_argument, NULL, O_DIAG},
     {"format", required_argument, NULL, O_FORMAT},
     {"certify", no_argument, NULL, O_CERTIFY},
+    {"psi-depth", required_argument, NULL, O_PSI},
     {"max-memory", required_argument, NULL, O_MAXMEM},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0}};
@@ -182,6 +192,11 @@ static int parse_option(int c, char **argv, ss_sweep_opts *o) {
   case O_CERTIFY:
     o->certify = 1;
     break;
+  case O_PSI:
+    if (ss_cli_parse_int(optarg, 0, 8, &o->psi_depth))
+      return ss_cli_usage_error(
+          "sweep", "--psi-depth: expects an integer in 0..8, not '%s'", optarg);
+    break;
   case O_MAXMEM:
     if (ss_cli_parse_bytes(optarg, &o->max_memory))
       return ss_cli_usage_error(
@@ -193,6 +208,7 @@ static int parse_option(int c, char **argv, ss_sweep_opts *o) {
     break;
   case 'h':
     fputs(sweep_usage, stdout);
+    fputs(sweep_usage_end, stdout);
     fputs(sweep_usage_mpi, stdout);
     return SS_EXIT_OK;
   default:

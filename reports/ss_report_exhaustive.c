@@ -48,19 +48,30 @@ void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r) {
   g->centre += v == SS_PASS && r->centre_corner_folds > 0;
   g->cert_pass += v == SS_PASS && ss_result_certified(r);
   g->cert_fail += v == SS_FAIL && ss_result_certified(r);
+  if (r->psi.ran) {
+    g->psi_pass += r->psi.verdict == SS_PASS;
+    g->psi_fail += r->psi.verdict == SS_FAIL;
+    g->psi_undecided += r->psi.verdict == SS_UNDECIDED;
+  }
 }
 
-void ss_report_exh_md_head(int certify, char *buf, size_t n) {
+int ss_report_exh_has_psi(const ss_report_exh_k *g) {
+  return g->psi_pass + g->psi_fail + g->psi_undecided > 0;
+}
+
+void ss_report_exh_md_head(int certify, int psi, char *buf, size_t n) {
   snprintf(buf, n,
            "| k | links | pass | fail: eigenvalue condition | fail: regularity | "
            "fail: injectivity only | undecided | passing, with folds around p | "
-           "points on an edge (edge verdict) |%s\n"
-           "|--:|--:|--:|--:|--:|--:|--:|--:|---|%s\n",
+           "points on an edge (edge verdict) |%s%s\n"
+           "|--:|--:|--:|--:|--:|--:|--:|--:|---|%s%s\n",
            certify ? " certified pass | certified fail | not certified |" : "",
-           certify ? "--:|--:|--:|" : "");
+           psi ? " on psi: pass | on psi: fail | on psi: undecided |" : "",
+           certify ? "--:|--:|--:|" : "", psi ? "--:|--:|--:|" : "");
 }
 
-void ss_report_exh_md_row(const ss_report_exh_k *g, int certify, char *buf, size_t n) {
+void ss_report_exh_md_row(const ss_report_exh_k *g, int certify, int psi, char *buf,
+                          size_t n) {
   char edges[128] = "–";
   buf[0] = '\0';
   if (!g->links) return;
@@ -74,6 +85,12 @@ void ss_report_exh_md_row(const ss_report_exh_k *g, int certify, char *buf, size
   if (certify)
     len += snprintf(buf + len, n - (size_t)len, " %zu | %zu | %zu |", g->cert_pass,
                     g->cert_fail, g->vertices - g->cert_pass - g->cert_fail);
+  if (len < 0 || (size_t)len >= n) return;
+  if (psi && ss_report_exh_has_psi(g))
+    len += snprintf(buf + len, n - (size_t)len, " %zu | %zu | %zu |", g->psi_pass,
+                    g->psi_fail, g->psi_undecided);
+  else if (psi)
+    len += snprintf(buf + len, n - (size_t)len, " – | – | – |");
   if (len >= 0 && (size_t)len < n) snprintf(buf + len, n - (size_t)len, "\n");
 }
 
@@ -126,16 +143,92 @@ static const char legend[] =
     "failing condition is proven; injectivity is decided by exact predicates on "
     "the double-precision net, not proven.\n";
 
+static const char legend_psi[] =
+    "On psi (sweeps with --psi-depth): the vertex cases whose characteristic map "
+    "was judged on its polynomial pieces, by that verdict (pass: psi proven of one "
+    "sign on its whole ring, fail: of both signs, undecided: neither; double "
+    "precision, not certified); – where it was judged for no case of that k.\n";
+
+/* One CSV row of the counts e of identity id, scheme sc; psi: the table has
+ * the columns on psi. */
+static void csv_count_row(FILE *f, const char *id, const char *sc,
+                          const ss_report_exh_k *e, int cert, int psi) {
+  ss_report_csv_put(f, id);
+  fputc(',', f);
+  ss_report_csv_put(f, sc);
+  fprintf(f, ",%d,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,", e->k, e->links, e->vertices,
+          e->pass, e->fail_cond, e->fail_reg, e->fail_inj, e->undecided, e->centre,
+          e->edge_points);
+  if (e->edge_points)
+    fprintf(f, "%d,%s,", e->edge_valence, ss_verdict_name(e->edge_verdict));
+  else
+    fputs(",,", f);
+  if (cert)
+    fprintf(f, "%zu,%zu,%zu", e->cert_pass, e->cert_fail,
+            e->vertices - e->cert_pass - e->cert_fail);
+  else
+    fputs(",,", f);
+  if (psi && ss_report_exh_has_psi(e))
+    fprintf(f, ",%zu,%zu,%zu", e->psi_pass, e->psi_fail, e->psi_undecided);
+  else if (psi)
+    fputs(",,,", f);
+  fputs("\r\n", f);
+}
+
+/* The JSON object of the counts e of identity id, scheme sc. */
+static json_object *json_count_row(const char *id, const char *sc,
+                                   const ss_report_exh_k *e, int cert) {
+  json_object *o = json_object_new_object();
+  json_object_object_add(o, "identity", json_object_new_string(id));
+  json_object_object_add(o, "scheme", json_object_new_string(sc));
+  json_object_object_add(o, "k", json_object_new_int(e->k));
+  json_object_object_add(o, "links", jsize(e->links));
+  json_object_object_add(o, "vertices", jsize(e->vertices));
+  json_object_object_add(o, "pass", jsize(e->pass));
+  json_object_object_add(o, "fail_eigen_condition", jsize(e->fail_cond));
+  json_object_object_add(o, "fail_regularity", jsize(e->fail_reg));
+  json_object_object_add(o, "fail_injectivity_only", jsize(e->fail_inj));
+  json_object_object_add(o, "undecided", jsize(e->undecided));
+  json_object_object_add(o, "pass_with_centre_folds", jsize(e->centre));
+  json_object_object_add(o, "edge_points", jsize(e->edge_points));
+  if (e->edge_points) {
+    json_object_object_add(o, "edge_point_valence", json_object_new_int(e->edge_valence));
+    json_object_object_add(o, "edge_point_verdict",
+                           json_object_new_string(ss_verdict_name(e->edge_verdict)));
+  }
+  if (cert) {
+    json_object_object_add(o, "certified_pass", jsize(e->cert_pass));
+    json_object_object_add(o, "certified_fail", jsize(e->cert_fail));
+    json_object_object_add(o, "not_certified",
+                           jsize(e->vertices - e->cert_pass - e->cert_fail));
+  }
+  if (ss_report_exh_has_psi(e)) {
+    json_object_object_add(o, "psi_pass", jsize(e->psi_pass));
+    json_object_object_add(o, "psi_fail", jsize(e->psi_fail));
+    json_object_object_add(o, "psi_undecided", jsize(e->psi_undecided));
+  }
+  return o;
+}
+
+/* Whether psi was judged for some vertex case of rows[a..b). */
+static int rows_have_psi(const ss_report_row *rows, size_t a, size_t b) {
+  for (size_t i = a; i < b; i++)
+    if (rows[i].r.kind == SS_CASE_VERTEX && rows[i].r.psi.ran) return 1;
+  return 0;
+}
+
 /* One table over the identity groups of rows (sorted by identity). */
 static void write_counts(FILE *f, ss_report_format fmt, const ss_report_row *rows,
                          size_t n, json_object *arr, ss_status *st, ss_error *err) {
   char buf[SS_REPORT_EXH_LINE];
+  const int any_psi = rows_have_psi(rows, 0, n);
   if (fmt == SS_REPORT_CSV)
-    fputs("identity,scheme,k,links,vertices,pass,fail_eigen_condition,"
-          "fail_regularity,fail_injectivity_only,undecided,pass_with_centre_folds,"
-          "edge_points,edge_point_valence,edge_point_verdict,certified_pass,"
-          "certified_fail,not_certified\r\n",
-          f);
+    fprintf(f,
+            "identity,scheme,k,links,vertices,pass,fail_eigen_condition,"
+            "fail_regularity,fail_injectivity_only,undecided,pass_with_centre_folds,"
+            "edge_points,edge_point_valence,edge_point_verdict,certified_pass,"
+            "certified_fail,not_certified%s\r\n",
+            any_psi ? ",psi_pass,psi_fail,psi_undecided" : "");
   for (size_t a = 0, b; a < n && !*st; a = b) {
     for (b = a + 1; b < n && !strcmp(rows[b].identity, rows[a].identity); b++)
       ;
@@ -144,66 +237,28 @@ static void write_counts(FILE *f, ss_report_format fmt, const ss_report_row *row
     if ((*st = count_group(rows, a, b, &g, &nk, err))) break;
     if (!g) continue; /* no vertex cases under this identity */
     const int cert = identity_certified(rows[a].identity);
+    const int psi = rows_have_psi(rows, a, b);
     if (fmt == SS_REPORT_MD) {
-      ss_report_exh_md_head(cert, buf, sizeof buf);
+      ss_report_exh_md_head(cert, psi, buf, sizeof buf);
       fprintf(f, "## %s\n\n%s", rows[a].identity, buf);
     }
     for (int k = 0; k < nk; k++) {
       const ss_report_exh_k *e = &g[k];
       if (!e->links) continue;
       if (fmt == SS_REPORT_MD) {
-        ss_report_exh_md_row(e, cert, buf, sizeof buf);
+        ss_report_exh_md_row(e, cert, psi, buf, sizeof buf);
         fputs(buf, f);
-      } else if (fmt == SS_REPORT_CSV) {
-        ss_report_csv_put(f, rows[a].identity);
-        fputc(',', f);
-        ss_report_csv_put(f, rows[a].scheme);
-        fprintf(f, ",%d,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,", e->k, e->links,
-                e->vertices, e->pass, e->fail_cond, e->fail_reg, e->fail_inj,
-                e->undecided, e->centre, e->edge_points);
-        if (e->edge_points)
-          fprintf(f, "%d,%s,", e->edge_valence, ss_verdict_name(e->edge_verdict));
-        else
-          fputs(",,", f);
-        if (cert)
-          fprintf(f, "%zu,%zu,%zu\r\n", e->cert_pass, e->cert_fail,
-                  e->vertices - e->cert_pass - e->cert_fail);
-        else
-          fputs(",,\r\n", f);
-      } else {
-        json_object *o = json_object_new_object();
-        json_object_object_add(o, "identity", json_object_new_string(rows[a].identity));
-        json_object_object_add(o, "scheme", json_object_new_string(rows[a].scheme));
-        json_object_object_add(o, "k", json_object_new_int(e->k));
-        json_object_object_add(o, "links", jsize(e->links));
-        json_object_object_add(o, "vertices", jsize(e->vertices));
-        json_object_object_add(o, "pass", jsize(e->pass));
-        json_object_object_add(o, "fail_eigen_condition", jsize(e->fail_cond));
-        json_object_object_add(o, "fail_regularity", jsize(e->fail_reg));
-        json_object_object_add(o, "fail_injectivity_only", jsize(e->fail_inj));
-        json_object_object_add(o, "undecided", jsize(e->undecided));
-        json_object_object_add(o, "pass_with_centre_folds", jsize(e->centre));
-        json_object_object_add(o, "edge_points", jsize(e->edge_points));
-        if (e->edge_points) {
-          json_object_object_add(o, "edge_point_valence",
-                                 json_object_new_int(e->edge_valence));
-          json_object_object_add(
-              o, "edge_point_verdict",
-              json_object_new_string(ss_verdict_name(e->edge_verdict)));
-        }
-        if (cert) {
-          json_object_object_add(o, "certified_pass", jsize(e->cert_pass));
-          json_object_object_add(o, "certified_fail", jsize(e->cert_fail));
-          json_object_object_add(o, "not_certified",
-                                 jsize(e->vertices - e->cert_pass - e->cert_fail));
-        }
-        json_object_array_add(arr, o);
-      }
+      } else if (fmt == SS_REPORT_CSV)
+        csv_count_row(f, rows[a].identity, rows[a].scheme, e, cert, any_psi);
+      else
+        json_object_array_add(arr,
+                              json_count_row(rows[a].identity, rows[a].scheme, e, cert));
     }
     if (fmt == SS_REPORT_MD) fputc('\n', f);
     free(g);
   }
   if (fmt == SS_REPORT_MD) fputs(legend, f);
+  if (fmt == SS_REPORT_MD && any_psi) fputs(legend_psi, f);
 }
 
 /* Every vertex row of rows that does not pass. */

@@ -44,6 +44,11 @@ typedef struct {
                                    decide nothing: ss_charmap.h) */
   size_t cert_pass;             /* passes that are proven (ss_result_certified) */
   size_t cert_fail;             /* failures that are proven */
+  size_t psi_pass;              /* vertex cases where psi was judged on its
+                                   pieces (ss_result_psi), by psi's verdict:
+                                   pass */
+  size_t psi_fail;              /* fail */
+  size_t psi_undecided;         /* undecided */
   size_t edge_points;           /* links judged as a point on an edge */
   int edge_valence;             /* the last such link's edge valence */
   ss_verdict_kind edge_verdict; /* and its combined verdict */
@@ -60,14 +65,22 @@ void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r);
  * condition", "fail: regularity", "fail: injectivity only" or "undecided". */
 const char *ss_report_exh_class(const ss_result *r);
 
+/* Whether psi was judged for some case g counts (psi_pass + psi_fail +
+ * psi_undecided > 0). */
+int ss_report_exh_has_psi(const ss_report_exh_k *g);
+
 /* The Markdown header of a per-k table (two lines, each ending in a line
  * break) into buf (n >= SS_REPORT_EXH_LINE); certify adds the columns
- * certified pass, certified fail and not certified. */
-void ss_report_exh_md_head(int certify, char *buf, size_t n);
+ * certified pass, certified fail and not certified, psi the columns on psi:
+ * pass, fail, undecided. */
+void ss_report_exh_md_head(int certify, int psi, char *buf, size_t n);
 
 /* One Markdown row of g (ending in a line break) into buf
- * (n >= SS_REPORT_EXH_LINE); an empty string when g counts no link. */
-void ss_report_exh_md_row(const ss_report_exh_k *g, int certify, char *buf, size_t n);
+ * (n >= SS_REPORT_EXH_LINE), with the columns of ss_report_exh_md_head(certify,
+ * psi) (on psi: "–" when g has none); an empty string when g counts no
+ * link. */
+void ss_report_exh_md_row(const ss_report_exh_k *g, int certify, int psi, char *buf,
+                          size_t n);
 
 /* Which of the exhaustive tables to write. */
 typedef enum {
@@ -79,7 +92,11 @@ typedef enum {
 /* Write table `which` of the vertex and edge-point rows of rows[0..n) (sorted
  * as ss_report_rows_load sorts them; other kinds are left out) to f.  Counts:
  * Markdown (a section per scheme identity, the certified columns when the
- * identity is certified, then a legend), CSV or JSON; links: CSV or JSON.
+ * identity is certified, the columns on psi when psi was judged for some case
+ * of it, then a legend), CSV (the columns on psi when psi was judged for some
+ * case, empty in the rows of a k without) or JSON (the keys on psi for a k
+ * where psi was judged); links: CSV or JSON.  Rows without psi give the
+ * tables of stores before psi was kept, byte for byte.
  * Every number is a count and no timing is written, so equal stores give
  * equal bytes.  SS_EINPUT for another format, SS_EIO when writing to f
  * fails, SS_ENOMEM. */

@@ -631,14 +631,34 @@ static void csv_num(FILE *f, double v) {
   if (!isnan(v)) fprintf(f, "%.17g", v);
 }
 
+/* Whether psi was judged on its pieces for some row (sweep --psi-depth). */
+static int any_psi(const ss_report_row *rows, size_t n) {
+  for (size_t i = 0; i < n; i++)
+    if (rows[i].r.psi.ran) return 1;
+  return 0;
+}
+
+/* What v was judged on, as a CSV field (empty: not judged, or not
+ * recorded). */
+static const char *csv_on(const ss_verdict *v) {
+  return v->on == SS_ON_NOTHING ? "" : ss_judged_on_name(v->on);
+}
+
 static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
+  /* the columns of psi only when some row has it: the table of a store
+   * without psi is what it was before they existed */
+  const int psi = any_psi(rows, n);
   fputs("scheme,identity,case,k,link,cells,two_ring,one_ring", f);
   for (int j = 1; j <= NLAMBDA; j++)
     fprintf(f, ",lambda%d_re,lambda%d_im,lambda%d_mult", j, j, j);
   fputs(",eigen_condition,eigen_reason,tolerance,regularity,regularity_reason,"
         "verdict,min_scaled_jacobian,depth,improper_pairs,adjacent_pairs,seconds,"
         "eigen_certified,regularity_certified,ring_level,centre_corner_folds,"
-        "injectivity,injectivity_reason,degree,injectivity_certified\r\n",
+        "injectivity,injectivity_reason,degree,injectivity_certified",
+        f);
+  fputs(psi ? ",eigen_on,regularity_on,injectivity_on,psi_verdict,psi_covered,"
+              "psi_uncovered,psi_pieces\r\n"
+            : "\r\n",
         f);
   for (size_t i = 0; i < n; i++) {
     const ss_result *r = &rows[i].r;
@@ -669,7 +689,19 @@ static void csv_cases(FILE *f, const ss_report_row *rows, size_t n) {
             r->v.reg.certified, r->ring_level, r->centre_corner_folds,
             ss_verdict_name(r->v.inj.verdict));
     ss_report_csv_put(f, r->v.inj.reason);
-    fprintf(f, ",%d,%d\r\n", r->inj_degree, r->v.inj.certified);
+    fprintf(f, ",%d,%d", r->inj_degree, r->v.inj.certified);
+    if (psi) {
+      fprintf(f, ",%s,%s,%s,", csv_on(&r->v.cond), csv_on(&r->v.reg), csv_on(&r->v.inj));
+      if (r->psi.ran) {
+        fprintf(f, "%s,", ss_verdict_name(r->psi.verdict));
+        csv_num(f, r->psi.covered);
+        fputc(',', f);
+        csv_num(f, r->psi.uncovered);
+        fprintf(f, ",%zu", r->psi.pieces);
+      } else
+        fputs(",,,", f);
+    }
+    fputs("\r\n", f);
   }
 }
 
@@ -716,6 +748,21 @@ json_object *ss_report_verdict_json(const ss_verdict *v) {
   return o;
 }
 
+/* psi judged on its pieces as a store keeps it (the keys of analyze's
+ * regularity.psi that it keeps), or null when it was not. */
+static json_object *json_psi(const ss_result_psi *p) {
+  if (!p->ran) return NULL;
+  json_object *o = json_object_new_object();
+  json_object_object_add(o, "verdict",
+                         json_object_new_string(ss_verdict_name(p->verdict)));
+  json_object_object_add(o, "judged_on",
+                         json_object_new_string(ss_judged_on_name(SS_ON_PSI)));
+  json_object_object_add(o, "covered", jnum(p->covered));
+  json_object_object_add(o, "uncovered", jnum(p->uncovered));
+  json_object_object_add(o, "pieces", jsize(p->pieces));
+  return o;
+}
+
 static json_object *json_case(const ss_report_row *row) {
   const ss_result *r = &row->r;
   json_object *o = json_object_new_object();
@@ -734,6 +781,8 @@ static json_object *json_case(const ss_report_row *row) {
   json_object_object_add(c, "tolerance", json_object_new_double(r->tol));
   json_object_object_add(o, "eigen_condition", c);
   json_object *g = ss_report_verdict_json(&r->v.reg);
+  json_object_object_add(g, "covered", r->psi.ran ? jnum(r->psi.covered) : NULL);
+  json_object_object_add(g, "psi", json_psi(&r->psi));
   json_object_object_add(g, "min_scaled_jacobian", jnum(r->min_sj));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));

@@ -15,68 +15,11 @@
 #include <json-c/json.h>
 #include <sqlite3.h>
 
+#include "ss_store_impl.h"
+
 enum { SS_STORE_OPEN_WAIT_MS = 5000 }; /* how long open waits for a lock */
 
-struct ss_store {
-  sqlite3 *db;       /* the connection */
-  char *path;        /* the file, for messages */
-  sqlite3_stmt *has; /* the verdicts of one key */
-  sqlite3_stmt *put; /* INSERT OR IGNORE INTO result */
-  int readonly;      /* opened with SS_STORE_READ */
-};
-
-/* The schema.  Column comments are repeated in the README. */
-static const char *const schema_sql =
-    "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);\n"
-    "CREATE TABLE scheme(\n"
-    "  id INTEGER PRIMARY KEY,\n"
-    "  identity TEXT NOT NULL UNIQUE,\n"
-    "  name TEXT NOT NULL,\n"
-    "  stencil TEXT,\n"
-    "  stencil_hash TEXT,\n"
-    "  tol REAL NOT NULL,\n"
-    "  depth INTEGER NOT NULL,\n"
-    "  ring_levels INTEGER NOT NULL,\n"
-    "  certify INTEGER NOT NULL,\n"
-    "  diagonals TEXT);\n"
-    "CREATE TABLE result(\n"
-    "  scheme_id INTEGER NOT NULL REFERENCES scheme(id),\n"
-    "  kind TEXT NOT NULL CHECK (kind IN ('vertex','edge','face','surface-vertex',\n"
-    "                                     'edge-point')),\n"
-    "  k INTEGER NOT NULL,\n"
-    "  link TEXT NOT NULL,\n"
-    "  cells INTEGER NOT NULL,\n"
-    "  two_ring INTEGER NOT NULL,\n"
-    "  one_ring INTEGER NOT NULL,\n"
-    "  lambda1 REAL, lambda2 REAL, lambda3 REAL, lambda4 REAL,\n"
-    "  eigenvalues TEXT NOT NULL,\n"
-    "  eigen_condition TEXT NOT NULL,\n"
-    "  eigen_reason TEXT NOT NULL,\n"
-    "  eigen_certified INTEGER NOT NULL,\n"
-    "  tolerance REAL NOT NULL,\n"
-    "  regularity TEXT NOT NULL,\n"
-    "  regularity_reason TEXT NOT NULL,\n"
-    "  regularity_certified INTEGER NOT NULL,\n"
-    "  min_scaled_jacobian REAL,\n"
-    "  depth INTEGER NOT NULL,\n"
-    "  ring_level INTEGER NOT NULL,\n"
-    "  centre_corner_folds INTEGER NOT NULL,\n"
-    "  injectivity TEXT NOT NULL,\n"
-    "  injectivity_reason TEXT NOT NULL,\n"
-    "  degree INTEGER NOT NULL,\n"
-    "  injectivity_certified INTEGER NOT NULL,\n"
-    "  improper_pairs INTEGER,\n"
-    "  adjacent_pairs INTEGER,\n"
-    "  seconds REAL NOT NULL,\n"
-    "  PRIMARY KEY (scheme_id, kind, k, link)) WITHOUT ROWID;\n"
-    "CREATE VIEW cases AS SELECT s.name AS scheme, s.identity AS identity, r.*,\n"
-    "  CASE WHEN 'fail' IN (r.eigen_condition, r.regularity, r.injectivity) THEN 'fail'\n"
-    "       WHEN r.eigen_condition = 'pass' AND r.regularity = 'pass' AND\n"
-    "            r.injectivity = 'pass' THEN 'pass'\n"
-    "       ELSE 'undecided' END AS verdict\n"
-    "  FROM result r JOIN scheme s ON s.id = r.scheme_id;\n";
-
-static ss_status db_error(ss_store *st, ss_error *err, const char *what) {
+ss_status ss_store_db_error(ss_store *st, ss_error *err, const char *what) {
   const int code = sqlite3_errcode(st->db);
   return ss_error_set(err, SS_EIO, "%s: %s: %s%s", st->path, what, sqlite3_errmsg(st->db),
                       code == SQLITE_BUSY || code == SQLITE_LOCKED
@@ -84,7 +27,7 @@ static ss_status db_error(ss_store *st, ss_error *err, const char *what) {
                           : "");
 }
 
-static int exec(ss_store *st, const char *sql) {
+int ss_store_exec(ss_store *st, const char *sql) {
   return sqlite3_exec(st->db, sql, NULL, NULL, NULL);
 }
 
@@ -97,14 +40,13 @@ static int exec_retry(ss_store *st, const char *sql, int ms) {
   int rc;
   const struct timespec pause = {0, 10 * 1000 * 1000};
   for (int waited = 0;; waited += 10) {
-    rc = exec(st, sql);
+    rc = ss_store_exec(st, sql);
     if ((rc != SQLITE_BUSY && rc != SQLITE_LOCKED) || waited >= ms) return rc;
     nanosleep(&pause, NULL);
   }
 }
 
-/* One integer from a one-row query; -1 on error. */
-static int64_t query_int(ss_store *st, const char *sql, int *rc) {
+int64_t ss_store_query_int(ss_store *st, const char *sql, int *rc) {
   sqlite3_stmt *q = NULL;
   int64_t v = -1;
   *rc = sqlite3_prepare_v2(st->db, sql, -1, &q, NULL);
@@ -189,25 +131,28 @@ done:
   return s;
 }
 
-/* Is the open file a healthy store of our schema?  An empty database (a new
- * or zero-length file) reports *empty = 1. */
-static ss_status validate(ss_store *st, int *empty, ss_error *err) {
+/* Is the open file a healthy store of our schema, or of version 2 (which
+ * ss_store_schema_upgrade reads: *old = 1)?  An empty database (a new or
+ * zero-length file) reports *empty = 1. */
+static ss_status validate(ss_store *st, int *empty, int *old, ss_error *err) {
   int rc;
-  const int64_t ntables = query_int(st, "SELECT count(*) FROM sqlite_schema", &rc);
+  const int64_t ntables =
+      ss_store_query_int(st, "SELECT count(*) FROM sqlite_schema", &rc);
   if (rc != SQLITE_OK) return first_read_error(st, err);
-  const int64_t app = query_int(st, "PRAGMA application_id", &rc);
-  const int64_t ver = query_int(st, "PRAGMA user_version", &rc);
+  const int64_t app = ss_store_query_int(st, "PRAGMA application_id", &rc);
+  const int64_t ver = ss_store_query_int(st, "PRAGMA user_version", &rc);
   *empty = ntables == 0 && app == 0;
+  *old = ver == 2;
   if (*empty) return SS_OK;
   if (app != SS_STORE_APP_ID)
     return ss_error_set(err, SS_EINPUT,
                         "%s: a foreign SQLite database, not a subspectra results "
                         "store (application_id %" PRId64 ")",
                         st->path, app);
-  if (ver != SS_STORE_SCHEMA)
+  if (ver != SS_STORE_SCHEMA && ver != 2)
     return ss_error_set(err, SS_EINPUT,
                         "%s: results store of schema version %" PRId64
-                        ", this program reads version %d",
+                        ", this program reads version %d (and upgrades version 2)",
                         st->path, ver, SS_STORE_SCHEMA);
   sqlite3_stmt *q = NULL;
   rc = sqlite3_prepare_v2(st->db, "PRAGMA quick_check", -1, &q, NULL);
@@ -224,41 +169,6 @@ static ss_status validate(ss_store *st, int *empty, ss_error *err) {
   return SS_OK;
 }
 
-/* Create the schema in an empty database.  Another process may have opened
- * the same new file at the same moment (the parts of a sweep sharing one
- * store): whoever takes the write lock first creates, and *raced = 1 tells
- * the others to validate what it made instead. */
-static ss_status create(ss_store *st, int *raced, ss_error *err) {
-  char sql[4096];
-  char when[32];
-  time_t t = time(NULL);
-  struct tm tm;
-  *raced = 0;
-  if (exec(st, "BEGIN IMMEDIATE") != SQLITE_OK)
-    return db_error(st, err, "cannot create the schema");
-  int rc;
-  const int64_t ntables = query_int(st, "SELECT count(*) FROM sqlite_schema", &rc);
-  if (rc != SQLITE_OK || ntables != 0) {
-    ss_status s = rc != SQLITE_OK ? db_error(st, err, "cannot create the schema") : SS_OK;
-    exec(st, "ROLLBACK");
-    *raced = rc == SQLITE_OK;
-    return s;
-  }
-  strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&t, &tm));
-  snprintf(sql, sizeof sql,
-           "%s"
-           "INSERT INTO meta VALUES('program','subspectra'),('schema','%d'),"
-           "('created','%s');\n"
-           "PRAGMA application_id = %d;\nPRAGMA user_version = %d;\nCOMMIT;",
-           schema_sql, SS_STORE_SCHEMA, when, SS_STORE_APP_ID, SS_STORE_SCHEMA);
-  if (exec(st, sql) != SQLITE_OK) {
-    ss_status s = db_error(st, err, "cannot create the schema");
-    exec(st, "ROLLBACK");
-    return s;
-  }
-  return SS_OK;
-}
-
 static ss_status prepare(ss_store *st, ss_error *err) {
   if (sqlite3_prepare_v2(st->db,
                          "SELECT eigen_condition, regularity, injectivity FROM result "
@@ -266,20 +176,23 @@ static ss_status prepare(ss_store *st, ss_error *err) {
                          "scheme_id=?1 AND (kind=?2 OR (?2='vertex' AND "
                          "kind='edge-point')) AND k=?3 AND link=?4",
                          -1, &st->has, NULL) != SQLITE_OK)
-    return db_error(st, err, "prepare");
+    return ss_store_db_error(st, err, "prepare");
   if (st->readonly) return SS_OK;
-  if (sqlite3_prepare_v2(st->db,
-                         "INSERT OR IGNORE INTO result(scheme_id,kind,k,link,cells,"
-                         "two_ring,one_ring,lambda1,lambda2,lambda3,lambda4,eigenvalues,"
-                         "eigen_condition,eigen_reason,tolerance,regularity,"
-                         "regularity_reason,min_scaled_jacobian,depth,improper_pairs,"
-                         "adjacent_pairs,seconds,eigen_certified,regularity_certified,"
-                         "ring_level,centre_corner_folds,injectivity,injectivity_reason,"
-                         "degree,injectivity_certified) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,"
-                         "?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,"
-                         "?25,?26,?27,?28,?29,?30)",
-                         -1, &st->put, NULL) != SQLITE_OK)
-    return db_error(st, err, "prepare");
+  if (sqlite3_prepare_v2(
+          st->db,
+          "INSERT OR IGNORE INTO result(scheme_id,kind,k,link,cells,"
+          "two_ring,one_ring,lambda1,lambda2,lambda3,lambda4,eigenvalues,"
+          "eigen_condition,eigen_reason,tolerance,regularity,"
+          "regularity_reason,min_scaled_jacobian,depth,improper_pairs,"
+          "adjacent_pairs,seconds,eigen_certified,regularity_certified,"
+          "ring_level,centre_corner_folds,injectivity,injectivity_reason,"
+          "degree,injectivity_certified,eigen_on,regularity_on,"
+          "injectivity_on,psi_verdict,psi_covered,psi_uncovered,psi_pieces) "
+          "VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,"
+          "?17,?18,?19,?20,?21,?22,?23,?24,?25,?26,?27,?28,?29,?30,?31,?32,"
+          "?33,?34,?35,?36,?37)",
+          -1, &st->put, NULL) != SQLITE_OK)
+    return ss_store_db_error(st, err, "prepare");
   return SS_OK;
 }
 
@@ -330,7 +243,7 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
       st->readonly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   ss_status s = st->readonly ? SS_OK : check_writable(path, err);
   if (s) goto fail;
-  int empty = 0;
+  int empty = 0, old = 0;
   if (sqlite3_open_v2(path, &st->db, flags | SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK) {
     s = ss_error_set(err, SS_EIO, "%s: cannot open: %s", path,
                      st->db ? sqlite3_errmsg(st->db) : "out of memory");
@@ -341,8 +254,8 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
    * exclusively, not a sweep adding rows; say so soon.  Writers then wait
    * their turn (another process committing a row, a merge) much longer. */
   sqlite3_busy_timeout(st->db, SS_STORE_OPEN_WAIT_MS);
-  s = validate(st, &empty, err);
-  if (s && st->readonly && retry_immutable(st, path)) s = validate(st, &empty, err);
+  s = validate(st, &empty, &old, err);
+  if (s && st->readonly && retry_immutable(st, path)) s = validate(st, &empty, &old, err);
   if (s) goto fail;
   sqlite3_busy_timeout(st->db, 30000);
   if (empty && st->readonly) {
@@ -355,17 +268,18 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
      * that the next open replays; NORMAL syncs at checkpoints, enough
      * against a process being killed (not against power loss). */
     if (exec_retry(st, "PRAGMA journal_mode=WAL", 30000) != SQLITE_OK ||
-        exec(st, "PRAGMA synchronous=NORMAL") != SQLITE_OK) {
-      s = db_error(st, err, "cannot set the journal mode");
+        ss_store_exec(st, "PRAGMA synchronous=NORMAL") != SQLITE_OK) {
+      s = ss_store_db_error(st, err, "cannot set the journal mode");
       goto fail;
     }
     int raced = 0;
-    if (empty && (s = create(st, &raced, err))) goto fail;
-    if (raced && ((s = validate(st, &empty, err)) || empty)) {
+    if (empty && (s = ss_store_schema_create(st, &raced, err))) goto fail;
+    if (raced && ((s = validate(st, &empty, &old, err)) || empty)) {
       if (!s) s = ss_error_set(err, SS_EIO, "%s: cannot create the schema", path);
       goto fail;
     }
   }
+  if (old && (s = ss_store_schema_upgrade(st, err))) goto fail;
   if ((s = prepare(st, err))) goto fail;
   *out = st;
   return SS_OK;
@@ -394,17 +308,20 @@ static void exact_real(double x, char *buf, size_t n) {
 }
 
 void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n) {
-  char diag[40] = "", tol[32];
+  char tail[64] = "", tol[32];
+  int len = 0;
   if (sc->reads_diagonals)
-    snprintf(diag, sizeof diag, " diagonals=%s", ss_diag_name(sc->diag));
+    len = snprintf(tail, sizeof tail, " diagonals=%s", ss_diag_name(sc->diag));
+  if (sc->opts.psi_depth) /* (appended: identities without psi are as before) */
+    snprintf(tail + len, sizeof tail - (size_t)len, " psi-depth=%d", sc->opts.psi_depth);
   exact_real(sc->opts.tol, tol, sizeof tol);
   if (sc->stencil)
     snprintf(buf, n, "stencil:%016" PRIx64 " tol=%s depth=%d rings=%d%s%s",
              sc->stencil_hash, tol, sc->opts.depth, sc->opts.ring_levels,
-             sc->opts.certify ? " certified" : "", diag);
+             sc->opts.certify ? " certified" : "", tail);
   else
     snprintf(buf, n, "%s tol=%s depth=%d rings=%d%s%s", sc->name, tol, sc->opts.depth,
-             sc->opts.ring_levels, sc->opts.certify ? " certified" : "", diag);
+             sc->opts.ring_levels, sc->opts.certify ? " certified" : "", tail);
 }
 
 ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *id,
@@ -434,15 +351,16 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
     return SS_OK;
   }
   sqlite3_finalize(q);
-  if (rc != SQLITE_DONE) return db_error(st, err, "scheme lookup");
+  if (rc != SQLITE_DONE) return ss_store_db_error(st, err, "scheme lookup");
   if (st->readonly)
     return ss_error_set(err, SS_EINPUT, "%s: no results for scheme '%s'", st->path,
                         ident);
-  rc = sqlite3_prepare_v2(st->db,
-                          "INSERT OR IGNORE INTO scheme(identity,name,stencil,"
-                          "stencil_hash,tol,depth,diagonals,ring_levels,certify) "
-                          "VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9)",
-                          -1, &q, NULL);
+  rc = sqlite3_prepare_v2(
+      st->db,
+      "INSERT OR IGNORE INTO scheme(identity,name,stencil,"
+      "stencil_hash,tol,depth,diagonals,ring_levels,certify,psi_depth) "
+      "VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10)",
+      -1, &q, NULL);
   if (rc == SQLITE_OK) {
     sqlite3_bind_text(q, 1, ident, -1, SQLITE_TRANSIENT);
     sqlite3_bind_text(q, 2, sc->name, -1, SQLITE_TRANSIENT);
@@ -456,10 +374,11 @@ ss_status ss_store_scheme_id(ss_store *st, const ss_store_scheme *sc, int64_t *i
       sqlite3_bind_text(q, 7, ss_diag_name(sc->diag), -1, SQLITE_STATIC);
     sqlite3_bind_int(q, 8, sc->opts.ring_levels);
     sqlite3_bind_int(q, 9, sc->opts.certify);
+    sqlite3_bind_int(q, 10, sc->opts.psi_depth);
     rc = sqlite3_step(q);
   }
   sqlite3_finalize(q);
-  if (rc != SQLITE_DONE) return db_error(st, err, "scheme insert");
+  if (rc != SQLITE_DONE) return ss_store_db_error(st, err, "scheme insert");
   /* another process may have inserted it first: look it up again */
   return ss_store_scheme_id(st, sc, id, err);
 }
@@ -484,7 +403,7 @@ ss_status ss_store_has(ss_store *st, int64_t id, ss_case_kind kind, int k,
     *verdict = ss_result_verdict(&r);
   }
   sqlite3_reset(st->has);
-  if (rc != SQLITE_ROW && rc != SQLITE_DONE) return db_error(st, err, "lookup");
+  if (rc != SQLITE_ROW && rc != SQLITE_DONE) return ss_store_db_error(st, err, "lookup");
   return SS_OK;
 }
 
@@ -547,10 +466,20 @@ ss_status ss_store_put(ss_store *st, int64_t id, const ss_result *r, int *added,
   sqlite3_bind_text(q, 28, r->v.inj.reason, -1, SQLITE_STATIC);
   sqlite3_bind_int(q, 29, r->inj_degree);
   sqlite3_bind_int(q, 30, r->v.inj.certified);
+  const ss_verdict *v[3] = {&r->v.cond, &r->v.reg, &r->v.inj};
+  for (int i = 0; i < 3; i++) /* NULL: not judged */
+    if (v[i]->on != SS_ON_NOTHING)
+      sqlite3_bind_text(q, 31 + i, ss_judged_on_name(v[i]->on), -1, SQLITE_STATIC);
+  if (r->psi.ran) { /* NULL: psi not judged */
+    sqlite3_bind_text(q, 34, ss_verdict_name(r->psi.verdict), -1, SQLITE_STATIC);
+    bind_real(q, 35, r->psi.covered);
+    bind_real(q, 36, r->psi.uncovered);
+    sqlite3_bind_int64(q, 37, (int64_t)r->psi.pieces);
+  }
   const int rc = sqlite3_step(q);
   sqlite3_reset(q);
   free(ev);
-  if (rc != SQLITE_DONE) return db_error(st, err, "insert");
+  if (rc != SQLITE_DONE) return ss_store_db_error(st, err, "insert");
   if (added) *added = sqlite3_changes(st->db) > 0;
   return SS_OK;
 }
@@ -572,7 +501,7 @@ ss_status ss_store_count(ss_store *st, int64_t id, size_t nk[SS_NCASEKINDS],
     rc = SQLITE_OK;
   }
   sqlite3_finalize(q);
-  if (rc != SQLITE_DONE) return db_error(st, err, "count");
+  if (rc != SQLITE_DONE) return ss_store_db_error(st, err, "count");
   return SS_OK;
 }
 
@@ -583,6 +512,21 @@ static int kind_of(const char *name) {
 
 static ss_verdict_kind verdict_of(const char *name) {
   return !strcmp(name, "pass") ? SS_PASS : !strcmp(name, "fail") ? SS_FAIL : SS_UNDECIDED;
+}
+
+/* What a verdict was judged on, from its name (ss_judged_on_name); NULL (not
+ * judged, or a row of schema 2) and unknown names: SS_ON_NOTHING. */
+static ss_judged_on judged_on_of(const unsigned char *name) {
+  static const ss_judged_on all[] = {SS_ON_SPECTRUM, SS_ON_NET, SS_ON_PSI, SS_ON_JSR};
+  for (size_t i = 0; name && i < sizeof all / sizeof all[0]; i++)
+    if (!strcmp((const char *)name, ss_judged_on_name(all[i]))) return all[i];
+  return SS_ON_NOTHING;
+}
+
+/* A REAL column, NaN for NULL (bind_real's inverse). */
+static double column_real(sqlite3_stmt *q, int i) {
+  return sqlite3_column_type(q, i) == SQLITE_NULL ? (double)NAN
+                                                  : sqlite3_column_double(q, i);
 }
 
 static void copy_text(char *dst, size_t n, const unsigned char *src) {
@@ -622,7 +566,9 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
       "eigen_condition, eigen_reason, tolerance, regularity, regularity_reason, "
       "min_scaled_jacobian, depth, improper_pairs, adjacent_pairs, seconds, "
       "eigen_certified, regularity_certified, ring_level, centre_corner_folds, "
-      "injectivity, injectivity_reason, degree, injectivity_certified FROM cases";
+      "injectivity, injectivity_reason, degree, injectivity_certified, eigen_on, "
+      "regularity_on, injectivity_on, psi_verdict, psi_covered, psi_uncovered, "
+      "psi_pieces FROM cases";
   size_t n = strlen(cols) + (where ? strlen(where) : 0) + 64;
   char *sql = malloc(n);
   if (!sql) return ss_error_nomem(err, "query");
@@ -666,8 +612,7 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     r->tol = sqlite3_column_double(q, 11);
     r->v.reg.verdict = verdict_of((const char *)sqlite3_column_text(q, 12));
     copy_text(r->v.reg.reason, sizeof r->v.reg.reason, sqlite3_column_text(q, 13));
-    r->min_sj = sqlite3_column_type(q, 14) == SQLITE_NULL ? (double)NAN
-                                                          : sqlite3_column_double(q, 14);
+    r->min_sj = column_real(q, 14);
     r->depth = sqlite3_column_int(q, 15);
     r->has_diag = sqlite3_column_type(q, 16) != SQLITE_NULL;
     r->improper = (size_t)sqlite3_column_int64(q, 16);
@@ -681,23 +626,36 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     copy_text(r->v.inj.reason, sizeof r->v.inj.reason, sqlite3_column_text(q, 24));
     r->inj_degree = sqlite3_column_int(q, 25);
     r->v.inj.certified = sqlite3_column_int(q, 26);
+    r->v.cond.on = judged_on_of(sqlite3_column_text(q, 27));
+    r->v.reg.on = judged_on_of(sqlite3_column_text(q, 28));
+    r->v.inj.on = judged_on_of(sqlite3_column_text(q, 29));
+    if (sqlite3_column_type(q, 30) != SQLITE_NULL) /* psi judged */
+      r->psi = (ss_result_psi){1, verdict_of((const char *)sqlite3_column_text(q, 30)),
+                               column_real(q, 31), column_real(q, 32),
+                               (size_t)sqlite3_column_int64(q, 33)};
     if (visit(&row, ctx)) break;
   }
-  if (!s && rc != SQLITE_ROW && rc != SQLITE_DONE) s = db_error(st, err, "query");
+  if (!s && rc != SQLITE_ROW && rc != SQLITE_DONE)
+    s = ss_store_db_error(st, err, "query");
   sqlite3_finalize(q);
   return s;
 }
 
 /* The value columns of result: every column but the key (scheme_id, kind, k,
  * link) and the timing (seconds), which two runs of one case do not share.
- * Two rows of one key conflict when any of these differs. */
+ * Two rows of one key conflict when any of these differs (but see
+ * NRECORDED). */
 #define VALUE_COLS                                                                       \
   "cells, two_ring, one_ring, lambda1, lambda2, lambda3, lambda4, eigenvalues, "         \
   "eigen_condition, eigen_reason, eigen_certified, tolerance, regularity, "              \
   "regularity_reason, regularity_certified, min_scaled_jacobian, depth, ring_level, "    \
   "centre_corner_folds, injectivity, injectivity_reason, degree, "                       \
-  "injectivity_certified, improper_pairs, adjacent_pairs"
-enum { NVALUE = 25 };
+  "injectivity_certified, improper_pairs, adjacent_pairs, eigen_on, regularity_on, "     \
+  "injectivity_on, psi_verdict, psi_covered, psi_uncovered, psi_pieces"
+/* NVALUE values, of which the last NRECORDED came with schema 3: a store
+ * upgraded from schema 2 holds NULL there (not recorded), which is no
+ * conflict with a value */
+enum { NVALUE = 32, NRECORDED = 7 };
 
 /* Exactly equal stored values (storage class and value; reals compared as
  * doubles, so bit for bit but for the sign of zero). */
@@ -747,10 +705,10 @@ static void merge_sql_free(merge_sql *m) {
 static int merge_sql_prepare(merge_sql *m, sqlite3 *src, sqlite3 *dst, sqlite3 **failed) {
   static const char *const params =
       "VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,"
-      "?21,?22,?23,?24,?25,?26,?27,?28,?29,?30)";
-  static const char *const scheme_cols =
-      "identity,name,stencil,stencil_hash,tol,depth,ring_levels,certify,diagonals";
-  char sql[1024];
+      "?21,?22,?23,?24,?25,?26,?27,?28,?29,?30,?31,?32,?33,?34,?35,?36,?37)";
+  static const char *const scheme_cols = "identity,name,stencil,stencil_hash,tol,depth,"
+                                         "ring_levels,certify,diagonals,psi_depth";
+  char sql[2048];
   *failed = src;
   snprintf(sql, sizeof sql, "SELECT %s FROM scheme", scheme_cols);
   int rc = sqlite3_prepare_v2(src, sql, -1, &m->schemes, NULL);
@@ -763,7 +721,7 @@ static int merge_sql_prepare(merge_sql *m, sqlite3 *src, sqlite3 *dst, sqlite3 *
   if (rc != SQLITE_OK) return rc;
   *failed = dst;
   snprintf(sql, sizeof sql,
-           "INSERT OR IGNORE INTO scheme(%s) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9)",
+           "INSERT OR IGNORE INTO scheme(%s) VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10)",
            scheme_cols);
   rc = sqlite3_prepare_v2(dst, sql, -1, &m->addsch, NULL);
   if (rc == SQLITE_OK)
@@ -814,7 +772,7 @@ static int merge_rows(ss_store *st, ss_store *in, ss_store_prefer prefer,
   if (rc != SQLITE_OK) goto done;
   while ((rc = sqlite3_step(m.schemes)) == SQLITE_ROW) {
     sqlite3_reset(m.addsch);
-    for (int i = 0; i < 9; i++)
+    for (int i = 0; i < 10; i++)
       sqlite3_bind_value(m.addsch, i + 1, sqlite3_column_value(m.schemes, i));
     if ((rc = sqlite3_step(m.addsch)) != SQLITE_DONE) {
       *failed = st->db;
@@ -852,9 +810,13 @@ static int merge_rows(ss_store *st, ss_store *in, ss_store_prefer prefer,
     bind_row(m.old, m.rows, id, 4);
     if ((rc = sqlite3_step(m.old)) != SQLITE_ROW) goto missing;
     int same = 1;
-    for (int i = 0; i < NVALUE && same; i++)
-      same =
-          same_value(sqlite3_column_value(m.old, i), sqlite3_column_value(m.rows, 4 + i));
+    for (int i = 0; i < NVALUE && same; i++) {
+      sqlite3_value *a = sqlite3_column_value(m.old, i),
+                    *b = sqlite3_column_value(m.rows, 4 + i);
+      same = same_value(a, b) ||
+             (i >= NVALUE - NRECORDED && (sqlite3_value_type(a) == SQLITE_NULL ||
+                                          sqlite3_value_type(b) == SQLITE_NULL));
+    }
     sqlite3_reset(m.old);
     if (same) {
       ms->present++;
@@ -898,9 +860,9 @@ ss_status ss_store_merge(ss_store *st, const char *src, ss_store_prefer prefer,
   ss_status s = ss_store_open(src, SS_STORE_READ, &in, err);
   if (s) return s;
   sqlite3 *failed = st->db;
-  int rc = exec(st, "BEGIN IMMEDIATE");
+  int rc = ss_store_exec(st, "BEGIN IMMEDIATE");
   if (rc == SQLITE_OK) rc = merge_rows(st, in, prefer, &ms, &failed);
-  if (rc == SQLITE_OK) rc = exec(st, "COMMIT");
+  if (rc == SQLITE_OK) rc = ss_store_exec(st, "COMMIT");
   if (rc != SQLITE_OK) {
     if (rc == SQLITE_NOMEM)
       s = ss_error_nomem(err, "merge");
@@ -910,7 +872,7 @@ ss_status ss_store_merge(ss_store *st, const char *src, ss_store_prefer prefer,
                        failed == in->db ? st->path : src,
                        sqlite3_errcode(failed) != SQLITE_OK ? sqlite3_errmsg(failed)
                                                             : sqlite3_errstr(rc));
-    exec(st, "ROLLBACK");
+    ss_store_exec(st, "ROLLBACK");
     memset(&ms, 0, sizeof ms);
   }
   ss_store_close(in);

@@ -1,20 +1,34 @@
 /* ss_store.h — the results store: one SQLite database per sweep (or per
  * project), one row per analysed case (DESIGN sections 2 and 8).
  *
- * Schema (version 2; the README shows it in full):
- *   meta(key, value)       program = subspectra, schema = 2, created = UTC time
+ * Schema (version 3; the README shows it in full):
+ *   meta(key, value)       program = subspectra, schema = 3, created = UTC time
  *   scheme(id, identity, name, stencil, stencil_hash, tol, depth, ring_levels,
- *          certify, diagonals)
+ *          certify, diagonals, psi_depth)
  *                          identity is unique: the scheme name or the hash of
  *                          its stencil file, with every analysis parameter
  *                          that can change a verdict (ss_store_identity)
- *   result(scheme_id, kind, k, link, ...)   primary key (scheme_id, kind, k,
- *                          link): a case is stored at most once per identity
+ *   result(scheme_id, kind, k, link, ..., eigen_on, regularity_on,
+ *          injectivity_on, psi_verdict, psi_covered, psi_uncovered,
+ *          psi_pieces)         primary key (scheme_id, kind, k, link): a case
+ *                          is stored at most once per identity.  *_on: what
+ *                          each verdict was judged on (ss_judged_on_name),
+ *                          NULL when not judged or not recorded; psi_*: psi
+ *                          judged on its pieces (ss_result_psi), NULL when
+ *                          it was not
  *   cases                  a view: result joined with its scheme's name and
  *                          identity, plus the combined verdict; what `report
  *                          --where` filters
  * The file is marked with PRAGMA application_id = SS_STORE_APP_ID and
  * user_version = SS_STORE_SCHEMA, so a foreign SQLite file is recognised.
+ *
+ * Versions.  Version 3 added the columns *_on and psi_* of result (last, in
+ * that order) and scheme.psi_depth.  A store of version 2 opened to write is
+ * upgraded in one transaction (its rows keep NULL there: not recorded); opened
+ * read-only it is read as it is, the file untouched: temporary views of the
+ * connection show the missing columns as NULL (and psi_depth 0), so `report`
+ * and `merge` read it like an upgraded one.  Other versions, older or newer,
+ * are refused with a message naming both versions.
  *
  * Durability: journal_mode WAL, synchronous NORMAL.  Every ss_store_put is its
  * own committed transaction, so a process killed at any moment (SIGKILL
@@ -38,7 +52,7 @@
 SS_BEGIN_DECLS
 
 #define SS_STORE_APP_ID 0x53537370 /* "SSsp" */
-#define SS_STORE_SCHEMA 2
+#define SS_STORE_SCHEMA 3
 
 typedef struct ss_store ss_store; /* an open database and its statements */
 
@@ -55,7 +69,8 @@ typedef struct {
   uint64_t stencil_hash; /* FNV-1a 64 of the stencil file's bytes (ss_stencil) */
   int reads_diagonals;   /* 1 if the scheme reads major diagonals */
   ss_diag_mode diag;     /* with reads_diagonals: the choice */
-  ss_result_opts opts;   /* tolerance, hex depth, ring levels */
+  ss_result_opts opts;   /* tolerance, hex depth, ring levels, certify, psi
+                            depth */
 } ss_store_scheme;
 
 /* One stored row, as ss_store_each hands it out (pointers valid during the
@@ -70,15 +85,19 @@ typedef struct {
 typedef int (*ss_store_visit)(const ss_store_row *row, void *ctx);
 
 /* The identity text of sc into buf (n bytes, >= 128 is always enough):
- * "NAME tol=T depth=D rings=R[ certified][ diagonals=X]" for a built-in
- * scheme, "stencil:HASH16 tol=T depth=D rings=R[ certified][ diagonals=X]" for
- * a stencil file ("certified": the exact path, --certify).  T is the shortest
+ * "NAME tol=T depth=D rings=R[ certified][ diagonals=X][ psi-depth=P]" for a
+ * built-in scheme, "stencil:HASH16 tol=T depth=D rings=R[ certified][
+ * diagonals=X][ psi-depth=P]" for a stencil file ("certified": the exact path,
+ * --certify; psi-depth only when not 0, so identities of psi_depth 0 are
+ * those of stores written before it existed).  T is the shortest
  * of "%.6g".."%.17g" that reads back as the tolerance exactly, so distinct
  * tolerances are distinct identities (1e-06, 1.0000006e-06). */
 void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n);
 
 /* Open path (see ss_store_mode).  An existing file must be a subspectra store
- * of this schema version and pass SQLite's quick_check.  *out is owned by the
+ * of this schema version or of version 2 (upgraded when opened to write, read
+ * as it is when read-only: see "Versions" above) and pass SQLite's
+ * quick_check.  *out is owned by the
  * caller (ss_store_close).  SS_EINPUT: not SQLite, corrupt, a foreign
  * database, or another schema version (the message says which); SS_EIO: the
  * file cannot be opened or created, or (SS_STORE_WRITE) this process cannot
@@ -123,7 +142,8 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
 
 /* What to do with a conflict: a case (scheme identity, kind, k, link) that
  * both stores hold with different values (any column but the key and
- * `seconds`, compared exactly). */
+ * `seconds`, compared exactly; a column of version 3 that one of them holds as
+ * NULL, not recorded by a store of version 2, is no conflict). */
 typedef enum {
   SS_STORE_PREFER_NONE = 0, /* keep st's row; the caller reports the conflicts */
   SS_STORE_PREFER_OLD,      /* keep st's row */

@@ -6,7 +6,7 @@
 
 ss_result_opts ss_result_defaults(void) {
   const ss_charmap_opts co = ss_charmap_defaults();
-  return (ss_result_opts){1e-6, co.depth, co.ring_levels, 0, 0.0};
+  return (ss_result_opts){1e-6, co.depth, co.ring_levels, 0, 0, 0.0};
 }
 
 void ss_result_clear(ss_result *r) {
@@ -45,6 +45,9 @@ ss_status ss_result_of_pipeline(const ss_pipeline *p, const ss_result_opts *o,
   for (int i = 0; i < r->neig; i++)
     r->eig[i] = (ss_result_eigval){p->e->val[i].re, p->e->val[i].im, p->e->val[i].mult};
   r->v = p->v;
+  if (p->psi.ran)
+    r->psi = (ss_result_psi){1, p->psi.verdict.verdict, p->psi.covered, p->psi.uncovered,
+                             p->psi.pieces};
   r->tol = p->e->tol_requested; /* the identity asked for; the verdict says if
                                    rounding raised it */
   r->inj_degree = p->inj.degree;
@@ -69,6 +72,7 @@ ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
   po.depth = o->depth;
   po.ring_levels = o->ring_levels;
   po.certify = o->certify;
+  po.psi_depth = o->psi_depth;
   po.max_bytes = o->max_bytes;
   ss_pipeline *p = NULL;
   ss_status st = ss_pipeline_compute(s, c, &po, SS_PIPE_VERDICTS, w, &p, err);

@@ -31,6 +31,8 @@ typedef struct {
   int ring_levels;  /* ring levels regularity is judged on at most (ss_charmap) */
   int certify;      /* nonzero: the exact path too (ss_certify): every verdict
                        proven or undecided */
+  int psi_depth;    /* psi judged on its polynomial pieces down to boxes of
+                       side 2^-psi_depth, 0..8 (ss_pipeline_opts); 0: not */
   double max_bytes; /* memory budget of one case (ss_local_opts): a case whose
                        estimate exceeds it fails with SS_ENOMEM before anything
                        is built; <= 0: none.  Not part of the identity: it
@@ -42,6 +44,17 @@ typedef struct {
   double re, im; /* the eigenvalue */
   int mult;      /* size of its group of equal eigenvalues (within tol) */
 } ss_result_eigval;
+
+/* psi judged on its polynomial pieces (ss_psi_result), as a result keeps it. */
+typedef struct {
+  int ran;                 /* 1 if psi was judged (psi_depth > 0, a vertex case of
+                              a scheme with pieces); 0: not judged, or not
+                              recorded (a store of schema 2), the rest zero */
+  ss_verdict_kind verdict; /* psi's own verdict: pass, fail or undecided */
+  double covered;          /* share of the ring proven of the ring's sign */
+  double uncovered;        /* share left without a piece round the spokes */
+  size_t pieces;           /* polynomial pieces judged */
+} ss_result_psi;
 
 /* The analysis of one case. */
 typedef struct {
@@ -67,7 +80,9 @@ typedef struct {
                                            and injectivity of the characteristic
                                            map (ss_charmap_inj), each with its
                                            certified flag and what it was judged
-                                           on */
+                                           on (SS_ON_NOTHING: not judged, or not
+                                           recorded by a store of schema 2) */
+  ss_result_psi psi;                    /* psi on its pieces (psi.ran = 0: not) */
   double tol;                           /* the tolerance the condition used */
   int inj_degree;                       /* its degree about psi(p); 0 when not computed */
   double min_sj;              /* minimum scaled Jacobian (ss_charmap); NaN: no map */
@@ -82,8 +97,8 @@ typedef struct {
   double seconds;             /* wall-clock time the analysis took */
 } ss_result;
 
-/* Defaults: tol 1e-6, depth SS_JAC_DEPTH, 3 ring levels, no certification, no
- * memory budget. */
+/* Defaults: tol 1e-6, depth SS_JAC_DEPTH, 3 ring levels, no certification, psi
+ * not judged (psi_depth 0), no memory budget. */
 ss_result_opts ss_result_defaults(void);
 
 /* Analyse case c of scheme s into *r (which need not be initialised; on
