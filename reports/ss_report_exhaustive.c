@@ -48,10 +48,11 @@ void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r) {
   g->centre += v == SS_PASS && r->centre_corner_folds > 0;
   g->cert_pass += v == SS_PASS && ss_result_certified(r);
   g->cert_fail += v == SS_FAIL && ss_result_certified(r);
-  if (r->psi.ran) {
-    g->psi_pass += r->psi.verdict == SS_PASS;
-    g->psi_fail += r->psi.verdict == SS_FAIL;
-    g->psi_undecided += r->psi.verdict == SS_UNDECIDED;
+  if (r->psi.ran) { /* the regularity verdict when it is about psi */
+    const int on = r->v.reg.on == SS_ON_PSI;
+    g->psi_pass += on && r->v.reg.verdict == SS_PASS;
+    g->psi_fail += on && r->v.reg.verdict == SS_FAIL;
+    g->psi_undecided += !on || r->v.reg.verdict == SS_UNDECIDED;
   }
 }
 
@@ -145,9 +146,11 @@ static const char legend[] =
 
 static const char legend_psi[] =
     "On psi (sweeps with --psi-depth): the vertex cases whose characteristic map "
-    "was judged on its polynomial pieces, by that verdict (pass: psi proven of one "
-    "sign on its whole ring, fail: of both signs, undecided: neither; double "
-    "precision, not certified); – where it was judged for no case of that k.\n";
+    "was judged on its polynomial pieces, by their regularity verdict when it is a "
+    "statement about psi itself (pass: det Dpsi of one sign on its whole ring, fail: "
+    "of both signs, or psi o sigma = psi; with --certify both proven), else "
+    "undecided (psi neither proven regular nor folded: the spoke tubes, say); – "
+    "where it was judged for no case of that k.\n";
 
 /* One CSV row of the counts e of identity id, scheme sc; psi: the table has
  * the columns on psi. */
