@@ -140,8 +140,9 @@ static int run_table(const ss_reproduce_table *t, const char *out, const ss_ref 
   ss_reproduce_results l = {0}, lv[SS_REPRODUCE_MAXVS] = {{0}};
   int rc = SS_EXIT_OK;
   l.o = *ro;
+  l.o.psi_depth = t->psi_depth;
   for (int k = 0; k < SS_REPRODUCE_MAXVS; k++)
-    lv[k].o = *ro;
+    lv[k].o = l.o;
   ss_reproduce_tally ty;
   int bad = ss_scheme_new(t->scheme, &s, &err) || ss_reproduce_cases(t, s, &l, &err);
   for (int k = 0; k < t->nvs && !bad; k++)

@@ -52,6 +52,9 @@ typedef struct {
   int lo, hi;              /* k or valence range (0, 0 for the face) */
   ss_diag_mode diag;       /* major diagonals (schemes that read them) */
   int neig;                /* > 0: show lambda1..neig; 0: lambda1..m and |lambda_m+1| */
+  int psi_depth;           /* > 0: psi judged on its polynomial pieces to box
+                              depth psi_depth (ss_result_opts; vertex cases of
+                              mlca and ccsolid), 0: not */
   const char *command;     /* the equivalent `analyze` commands */
   const char *note;        /* paragraph under the header, or NULL */
   const char *vs[SS_REPRODUCE_MAXVS]; /* other schemes run on the same cases and

@@ -33,6 +33,10 @@ static json_object *result_json(const ss_reproduce_table *t, const ss_result *r)
   json_object_object_add(c, "tolerance", json_object_new_double(r->tol));
   json_object_object_add(o, "eigen_condition", c);
   json_object *g = ss_report_verdict_json(&r->v.reg);
+  if (r->psi.ran) { /* a table with psi_depth: psi's figures (as analyze's) */
+    json_object_object_add(g, "covered", json_object_new_double(r->psi.covered));
+    json_object_object_add(g, "psi", ss_report_psi_json(&r->psi));
+  }
   json_object_object_add(g, "min_scaled_jacobian",
                          isfinite(r->min_sj) ? json_object_new_double(r->min_sj) : NULL);
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));

@@ -40,6 +40,21 @@ static void md_head(ss_strbuf *md, const ss_reproduce_table *t,
             "be proven is undecided, \"not certified\", with the double-precision "
             "verdict in its reason."
           : " Verdicts are double precision (`reproduce --certify` proves them).");
+  if (l->o.psi_depth > 0)
+    ss_sb_printf(
+        md,
+        "ψ itself is judged on its polynomial pieces (boxes of the ring to side 1/%d; "
+        "`analyze --psi-depth %d`): where a box is a tricubic B-spline piece the "
+        "Bernstein form of det Dψ decides its sign%s.  A regularity verdict whose "
+        "reason begins \"psi folds\", or \"psi o sigma = psi\", is a statement about "
+        "ψ (two points with det Dψ of opposite signs, or a symmetry of ψ); any other "
+        "is about the control net, and a fold of the net that ψ does not show is "
+        "no longer %s.\n\n",
+        1 << l->o.psi_depth, l->o.psi_depth,
+        l->o.certify ? ", the pieces carried in interval arithmetic from the enclosed "
+                       "basis, so a fold of ψ marked ✓ is proven"
+                     : " (double precision)",
+        l->o.certify ? "proven (undecided)" : "certified");
 }
 
 /* Whether any result of l reports major diagonals (a column of its own). */

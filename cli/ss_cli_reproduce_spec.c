@@ -131,7 +131,7 @@ static int source_fits(ss_reproduce_source src, ss_case_kind kind) {
 static ss_status read_table(const entry *e, ss_reproduce_table *t) {
   static const char *const keys[] = {"name", "title",  "scheme",    "case",    "source",
                                      "from", "to",     "diagonals", "lambdas", "command",
-                                     "note", "beside", NULL};
+                                     "note", "beside", "psi_depth", NULL};
   const char *src = NULL;
   memset(t, 0, sizeof *t);
   ss_status st = known_keys(e, keys);
@@ -156,6 +156,7 @@ static ss_status read_table(const entry *e, ss_reproduce_table *t) {
   if (range && !st) st = get_int(e, "to", 1, 0, t->lo, 1000, &t->hi);
   if (!st) st = get_diag(e, &t->diag);
   if (!st) st = get_int(e, "lambdas", 0, 0, 0, 15, &t->neig);
+  if (!st) st = get_int(e, "psi_depth", 0, 0, 0, 8, &t->psi_depth);
   if (!st) st = get_string(e, "command", 1, &t->command);
   if (!st) st = get_string(e, "note", 0, &t->note);
   if (!st) st = get_beside(e, t);

@@ -748,9 +748,7 @@ json_object *ss_report_verdict_json(const ss_verdict *v) {
   return o;
 }
 
-/* psi judged on its pieces as a store keeps it (the keys of analyze's
- * regularity.psi that it keeps), or null when it was not. */
-static json_object *json_psi(const ss_result_psi *p) {
+json_object *ss_report_psi_json(const ss_result_psi *p) {
   if (!p->ran) return NULL;
   json_object *o = json_object_new_object();
   json_object_object_add(o, "verdict",
@@ -782,7 +780,7 @@ static json_object *json_case(const ss_report_row *row) {
   json_object_object_add(o, "eigen_condition", c);
   json_object *g = ss_report_verdict_json(&r->v.reg);
   json_object_object_add(g, "covered", r->psi.ran ? jnum(r->psi.covered) : NULL);
-  json_object_object_add(g, "psi", json_psi(&r->psi));
+  json_object_object_add(g, "psi", ss_report_psi_json(&r->psi));
   json_object_object_add(g, "min_scaled_jacobian", jnum(r->min_sj));
   json_object_object_add(g, "depth", json_object_new_int(r->depth));
   json_object_object_add(g, "ring_level", json_object_new_int(r->ring_level));

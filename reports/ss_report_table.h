@@ -139,6 +139,12 @@ json_object *ss_report_eig_json(const ss_result *r);
  * add keys. */
 json_object *ss_report_verdict_json(const ss_verdict *v);
 
+/* psi judged on its pieces as a result keeps it: {"verdict", "judged_on",
+ * "covered", "uncovered", "pieces"} (the keys of analyze's regularity.psi
+ * that a result keeps), or NULL (JSON null) when psi was not judged.  The
+ * caller owns it. */
+json_object *ss_report_psi_json(const ss_result_psi *p);
+
 SS_END_DECLS
 
 #endif

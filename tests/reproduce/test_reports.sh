@@ -11,7 +11,7 @@
 # reports/exhaustive.sh), the k = 11 sweep (reports/vertices-k11-certified.md,
 # made by `subspectra sweep`), and the sources beside them (*.c, *.h,
 # meson.build).
-# About 65-85 s on an idle machine.
+# About 2 minutes on an idle machine (psi on the MLCA and ccsolid vertex tables).
 set -u
 exe=$1
 src=$2
