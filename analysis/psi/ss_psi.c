@@ -13,6 +13,7 @@
 #include "ss_limit.h"
 #include "ss_limit_pieces.h"
 #include "ss_psi_bernstein.h"
+#include "ss_psi_spoke.h"
 
 ss_psi_opts ss_psi_defaults(void) {
   return (ss_psi_opts){SS_PSI_BOX_DEPTH, SS_PSI_PIECE_DEPTH};
@@ -110,29 +111,6 @@ static int visit(const ss_limit_piece *pc, void *arg) {
   return 0;
 }
 
-/* The two-ring's cells (hexes: M->cell is SS_HEX) as a mesh with points x
- * (n2 x 3 row by row) into *out.  SS_ENOMEM only. */
-static ss_status two_ring_mesh(const ss_local *M, const double *x, ss_cx **out,
-                               ss_error *err) {
-  ss_cx *cx = NULL;
-  ss_status st;
-  if ((st = ss_cx_new(3, &cx, err)) || (st = ss_cx_reserve_vertices(cx, M->n2, err)) ||
-      (st = ss_cx_reserve_cells(cx, SS_HEX, M->ncells, err)))
-    goto done;
-  for (size_t i = 0; i < M->n2 && !st; i++)
-    st = ss_cx_add_vertex(cx, x + 3 * i, 0, err);
-  for (size_t c = 0; c < M->ncells && !st; c++) {
-    ss_idx v[8];
-    for (int j = 0; j < 8; j++)
-      v[j] = (ss_idx)M->corner[c * SS_MAXCELLVERTS + (size_t)j];
-    st = ss_cx_add_cell(cx, SS_HEX, v, 0, err);
-  }
-done:
-  if (st) ss_cx_free(cx);
-  *out = st ? NULL : cx;
-  return st;
-}
-
 /* The verdict from the counts (ss_psi.h). */
 static void decide(walk *w, double ring) {
   ss_psi_result *r = w->r;
@@ -192,10 +170,118 @@ static ss_status walk_cells(ss_limit *L, const ss_local *M, walk *w, ss_error *e
   return SS_OK;
 }
 
+/* A spoke's name: its link vertex's letter (plantri's), or #index. */
+static void spoke_name(int v, char name[16]) {
+  if (v >= 0 && v < 26)
+    snprintf(name, 16, "%c", 'a' + v);
+  else
+    snprintf(name, 16, "#%d", v + 1);
+}
+
+static ss_psi_point spoke_point(const ss_psi_spoke_sample *q) {
+  ss_psi_point pt = {q->cell, {q->at[0], q->at[1], q->at[2]}, {q->det_eval, q->det_eval}};
+  return pt;
+}
+
+/* Fail by spoke sp: its two samples of opposite signs, or (ring's proven
+ * point rp) its tube's sign opposite to the ring's. */
+static void fail_spoke(ss_psi_result *r, const ss_psi_spoke *sp, const ss_psi_point *rp) {
+  char name[16];
+  spoke_name(sp->vertex, name);
+  r->spoke_vertex = sp->vertex;
+  r->verdict.verdict = SS_FAIL;
+  r->nwitness = 2;
+  if (sp->cls == SS_SPOKE_SIGN_CHANGE) {
+    r->witness[0] = spoke_point(&sp->w[0]);
+    r->witness[1] = spoke_point(&sp->w[1]);
+  } else {
+    r->witness[0] = *rp;
+    r->witness[1] = spoke_point(&sp->min);
+  }
+  snprintf(r->verdict.reason, sizeof r->verdict.reason,
+           "psi folds %s spoke %s (valence %d): det Dpsi %.6g at cell %zu (%.6g, %.6g, "
+           "%.6g) and %.6g at cell %zu (%.6g, %.6g, %.6g) (double precision, evidence "
+           "in the tube, not proven)",
+           sp->cls == SS_SPOKE_SIGN_CHANGE ? "across" : "in the tube round", name,
+           sp->valence, r->witness[0].det[0], r->witness[0].cell, r->witness[0].at[0],
+           r->witness[0].at[1], r->witness[0].at[2], r->witness[1].det[0],
+           r->witness[1].cell, r->witness[1].at[0], r->witness[1].at[1],
+           r->witness[1].at[2]);
+}
+
+/* The verdict with the spokes classified (ss_psi.h, "The tubes"). */
+static void decide_spokes(walk *w, const ss_psi_spokes *sk) {
+  ss_psi_result *r = w->r;
+  const ss_psi_spoke *bad = NULL;
+  for (size_t i = 0; i < sk->n && !bad; i++)
+    if (sk->spoke[i].cls == SS_SPOKE_SIGN_CHANGE) bad = &sk->spoke[i];
+  for (size_t i = 0; i < sk->n && !bad && r->sign; i++)
+    if (sk->spoke[i].cls == SS_SPOKE_ONE_SIGN && sk->spoke[i].sign != r->sign)
+      bad = &sk->spoke[i];
+  if (bad) {
+    fail_spoke(r, bad, &w->pt[r->sign > 0 ? 0 : 1]);
+    return;
+  }
+  char name[16];
+  for (size_t i = 0; i < sk->n; i++) {
+    const ss_psi_spoke *sp = &sk->spoke[i];
+    if (sp->cls != SS_SPOKE_DEGENERATE) continue;
+    spoke_name(sp->vertex, name);
+    r->spoke_vertex = sp->vertex;
+    r->degenerate = 1;
+    r->verdict.verdict = SS_FAIL;
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "degenerate on spoke %s (valence %d): det[a' | B] = 0 along it (%zu of %zu "
+             "samples below %.0e relative; %zu of %zu spokes degenerate; double "
+             "precision, not proven)",
+             name, sp->valence, sp->ndegenerate, sp->nsamples, SS_PSI_SPOKE_DEGENERATE,
+             sk->ndegenerate, sk->n);
+    return;
+  }
+  if (r->nundecided == 0 && r->pieces > 0 && r->sign != 0) {
+    r->verdict.verdict = SS_PASS;
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "psi's pieces of one sign on %.1f %% of its ring; the tubes round its %zu "
+             "spokes (%.1f %%) by evidence: det[a' | B] of the ring's sign at every "
+             "sample (double precision, not proven)",
+             100.0 * r->covered, sk->n, 100.0 * r->uncovered);
+    return;
+  }
+  const size_t n = strlen(r->verdict.reason);
+  snprintf(r->verdict.reason + n, sizeof r->verdict.reason - n,
+           "; its %zu spokes of the ring's sign (evidence)", sk->n);
+}
+
+/* Classify the spokes when tubes are left and no piece decided a fold. */
+static ss_status spokes(ss_limit *L, const ss_local *M, walk *w, ss_error *err) {
+  ss_psi_result *r = w->r;
+  if (r->nuncovered == 0 || r->verdict.verdict != SS_UNDECIDED) return SS_OK;
+  ss_psi_spokes sk;
+  ss_error se = {0};
+  const ss_status st = ss_psi_spokes_classify(L, M, &sk, &se);
+  if (st == SS_ENOMEM) {
+    *err = se;
+    return st;
+  }
+  if (st) { /* a run refused (defective, modes not told apart): evidence missing */
+    snprintf(r->spoke_why, sizeof r->spoke_why, "spokes not classified: %.170s", se.msg);
+    return SS_OK;
+  }
+  r->spokes = 1;
+  r->nspokes = sk.n;
+  r->nspoke_one = sk.none;
+  r->nspoke_change = sk.nchange;
+  r->nspoke_deg = sk.ndegenerate;
+  decide_spokes(w, &sk);
+  ss_psi_spokes_free(&sk);
+  return SS_OK;
+}
+
 ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
                        const ss_psi_opts *o, ss_psi_result *out, ss_error *err) {
   memset(out, 0, sizeof *out);
   out->verdict = (ss_verdict){SS_UNDECIDED, "", 0, SS_ON_NOTHING};
+  out->spoke_vertex = -1;
   if (o->maxdepth < 1 || o->maxdepth > 8 || o->piece_depth < 0 || o->piece_depth > 8)
     return ss_error_set(err, SS_EINPUT,
                         "psi options out of range: box depth %d (1..8), piece depth %d "
@@ -210,13 +296,11 @@ ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
              "psi's pieces are tricubic: this case's cells are not hexahedra");
     return SS_OK;
   }
-  ss_cx *cx = NULL;
   ss_limit *L = NULL;
   ss_status st = SS_OK;
   walk w = {o, 0, {0, 0, 0, 0}, out, {0, 0}, {{0}}, 0};
-  if ((st = two_ring_mesh(M, x, &cx, err))) goto done;
   ss_error le = {0};
-  st = ss_limit_new(s, cx, &L, &le);
+  st = ss_psi_two_ring_limit(s, M, x, &L, &le);
   if (st == SS_EINPUT) { /* not a limit evaluator's scheme: no pieces */
     snprintf(out->why, sizeof out->why, "no polynomial pieces: %.130s", le.msg);
     st = SS_OK;
@@ -226,11 +310,10 @@ ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
     *err = le;
     goto done;
   }
-  if ((st = walk_cells(L, M, &w, err))) goto done;
+  if ((st = walk_cells(L, M, &w, err)) || (st = spokes(L, M, &w, err))) goto done;
   out->ran = 1;
 done:
   ss_limit_free(L);
-  ss_cx_free(cx);
   out->seconds = ss_clock_cpu() - t0;
   return st;
 }
@@ -247,10 +330,19 @@ void ss_psi_apply(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj) {
     /* psi o sigma = psi failed it already, about psi (and perhaps proven):
      * that verdict stays, the witnesses added */
     char text[200];
-    snprintf(text, sizeof text,
-             "psi's pieces agree: det Dpsi %.4g and %.4g (double precision)",
-             r->witness[0].det[0], r->witness[1].det[0]);
+    if (r->degenerate)
+      snprintf(text, sizeof text, "psi %.190s", r->verdict.reason);
+    else
+      snprintf(text, sizeof text,
+               "psi's pieces agree: det Dpsi %.4g and %.4g (double precision)",
+               r->witness[0].det[0], r->witness[1].det[0]);
     append(reg, text);
+    return;
+  }
+  if (r->verdict.verdict == SS_FAIL && r->degenerate) {
+    /* not a fold: regularity fails (det Dpsi = 0 on the spoke), injectivity
+     * is the net's */
+    *reg = r->verdict;
     return;
   }
   if (r->verdict.verdict == SS_FAIL) {

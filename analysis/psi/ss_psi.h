@@ -34,6 +34,24 @@
  *              self-similar);
  *   undecided  otherwise (uncovered tubes, pieces still in doubt): covered
  *              says how much of the ring is proven of one sign.
+ * The tubes (ss_psi_spoke.h): when boxes are left uncovered and no piece
+ * folds, each spoke is classified by the sign of its coefficient det[a' |
+ * B] (evidence in double precision at sample points, not a proof), and
+ *   a spoke whose s changes sign                  -> fail (psi folds across
+ *                                                    it; witnesses: two probe
+ *                                                    points near it);
+ *   a spoke of one sign opposite to the ring's    -> fail (witnesses: a
+ *                                                    proven piece's corner
+ *                                                    and a probe point);
+ *   a degenerate spoke (s = 0 relatively, no sign -> fail of regularity,
+ *   change)                                         "degenerate on spoke a"
+ *                                                    (Reif's condition needs
+ *                                                    det Dpsi != 0; not a
+ *                                                    fold: injectivity is
+ *                                                    left to the net);
+ *   every spoke of the ring's sign, every piece   -> pass "by evidence in the
+ *   proven of it                                     tubes", never proven;
+ *   otherwise the verdict stays undecided, the spokes named in the reason.
  * Not certified: the pieces' points are the refined patches' in double
  * precision (their enclosure from the exact path's basis is the next step),
  * and the Bernstein test's double path is exact only up to its flat
@@ -99,6 +117,17 @@ typedef struct {
                               positive first when equal); 0 when none is proven */
   int nwitness;            /* 2 when failing, else 0 */
   ss_psi_point witness[2]; /* with fail: det Dpsi of opposite strict signs */
+  int spokes;              /* 1 if the spokes were classified (ss_psi_spoke.h:
+                              boxes left uncovered and no fold on the pieces) */
+  size_t nspokes;          /* spokes (edges from p of valence other than 4) */
+  size_t nspoke_one;       /* of these, s of one sign */
+  size_t nspoke_change;    /* s changes sign */
+  size_t nspoke_deg;       /* s = 0 (relatively) somewhere */
+  int spoke_vertex;        /* the link vertex (0-based) of the spoke that
+                              decided a failure, else -1 */
+  int degenerate;          /* 1 if psi fails by a degenerate spoke (not a fold:
+                              injectivity is not decided by it) */
+  char spoke_why[200];     /* spokes not classified: why (else empty) */
   int maxdepth;            /* the options used */
   int piece_depth;
   double seconds; /* thread CPU time of the test */
@@ -119,10 +148,11 @@ ss_status ss_psi_judge(const ss_scheme *s, const ss_local *M, const double *x,
  * verdicts of the control net, reg and inj: psi fails -> both fail, judged on
  * psi, with the witnesses in the reason, not certified (a regularity failure
  * already about psi, psi o sigma = psi, is kept with the witnesses added);
- * psi passes -> regularity passes judged on psi (injectivity is left: a regular psi may
- * still overlap itself); undecided -> the net's verdicts stay, with psi's
- * coverage added to their reason, and a regularity failure of the net (not
- * one already judged on psi) is no longer certified. */
+ * psi fails by a degenerate spoke -> regularity fails, judged on psi
+ * (injectivity is left); psi passes -> regularity passes judged on psi
+ * (injectivity is left: a regular psi may still overlap itself); undecided -> the net's
+ * verdicts stay, with psi's coverage added to their reason, and a regularity failure of
+ * the net (not one already judged on psi) is no longer certified. */
 void ss_psi_apply(const ss_psi_result *r, ss_verdict *reg, ss_verdict *inj);
 
 SS_END_DECLS
