@@ -238,6 +238,19 @@ static void decide_spokes(walk *w, const ss_psi_spokes *sk) {
              sk->ndegenerate, sk->n);
     return;
   }
+  for (size_t i = 0; i < sk->n; i++) {
+    const ss_psi_spoke *sp = &sk->spoke[i];
+    if (sp->ndisagree == 0) continue;
+    /* the leading term does not yet rule det Dpsi 2^-12 off the spoke: the
+     * tube is not decided by it */
+    spoke_name(sp->vertex, name);
+    const size_t n = strlen(r->verdict.reason);
+    snprintf(r->verdict.reason + n, sizeof r->verdict.reason - n,
+             "; spoke %s: det Dpsi 2^-%d off it has the sign opposite to det[a' | B] "
+             "det Dchi at %zu of %zu samples: its tube not decided",
+             name, SS_PSI_SPOKE_PROBE, sp->ndisagree, sp->nsamples);
+    return;
+  }
   if (r->nundecided == 0 && r->pieces > 0 && r->sign != 0) {
     r->verdict.verdict = SS_PASS;
     snprintf(r->verdict.reason, sizeof r->verdict.reason,

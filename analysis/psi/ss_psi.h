@@ -50,7 +50,8 @@
  *                                                    fold: injectivity is
  *                                                    left to the net);
  *   every spoke of the ring's sign, every piece   -> pass "by evidence in the
- *   proven of it                                     tubes", never proven;
+ *   proven of it, and det Dpsi by ss_limit_eval      tubes", never proven;
+ *   of that sign at every sample
  *   otherwise the verdict stays undecided, the spokes named in the reason.
  * Not certified: the pieces' points are the refined patches' in double
  * precision (their enclosure from the exact path's basis is the next step),
