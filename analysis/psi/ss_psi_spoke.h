@@ -1,6 +1,6 @@
 /* ss_psi_spoke.h — the spokes of a vertex case: the sign of det Dpsi in the
  * thin tube round each edge from p of valence other than 4, which psi's
- * polynomial pieces never reach (ss_psi.h; DESIGN section 10).
+ * polynomial pieces never reach (ss_psi.h; DESIGN section 5, "The spokes").
  *
  * Near a spoke of valence n, psi(x, y) = a(x) + B(x) chi(y) + o(|chi|), x
  * along the spoke, y across it, chi the edge's 2D characteristic map
