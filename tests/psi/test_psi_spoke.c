@@ -21,6 +21,8 @@
  *     under sigma): those spokes are degenerate, and det Dpsi (2 mu)^-2j
  *     falls to 0 near them (route (b)); the icosahedron's reflections have
  *     det R = -1 (pieces all of one sign) and its spokes are not;
+ *   - psi's verdict with degenerate spokes (a flattened net): regularity
+ *     fails as "degenerate on spoke", without witnesses, injectivity left;
  *   - a fold across a spoke: the net pushed through F(y) = ((y1 - c)^2, y2,
  *     y3), c = psi's first coordinate at a point of a spoke, changes the
  *     spoke's sign along it (det DF = 2 (y1 - c)): sign change, with two
@@ -50,6 +52,7 @@
 #include "ss_link.h"
 #include "ss_local.h"
 #include "ss_pipeline.h"
+#include "ss_psi.h"
 #include "ss_psi_spoke.h"
 #include "ss_scheme.h"
 #include "ss_test.h"
@@ -486,6 +489,45 @@ done:
   ss_pipeline_free(p);
 }
 
+/* psi's verdict with a degenerate spoke: the icosahedron's net flattened,
+ * X diag(1, 1, 0), has det Dpsi = 0 everywhere: no piece of one sign (none
+ * folds either), so the spokes are consulted, every one has s = 0, and
+ * regularity fails as "degenerate on spoke", not as a fold: no witnesses,
+ * injectivity left to the net (ss_psi_apply). */
+static void degenerate_verdict(const ss_scheme *s) {
+  ss_pipeline *p = run(s, "icosahedron", 0);
+  double *y = p ? malloc(p->M->n2 * 3 * sizeof *y) : NULL;
+  if (!y) {
+    CHECK(0, "degenerate verdict: set up");
+    ss_pipeline_free(p);
+    return;
+  }
+  for (size_t i = 0; i < p->M->n2; i++) {
+    y[3 * i] = p->cm->x[3 * i];
+    y[3 * i + 1] = p->cm->x[3 * i + 1];
+    y[3 * i + 2] = 0.0;
+  }
+  ss_psi_opts o = ss_psi_defaults();
+  o.maxdepth = 2;
+  ss_psi_result r;
+  ss_error err = {0};
+  const ss_status st = ss_psi_judge(s, p->M, y, &o, &r, &err);
+  CHECK(!st && r.ran && r.nfolded == 0 && r.spokes && r.nspokes == 12 &&
+            r.nspoke_deg == 12 && r.degenerate && r.nwitness == 0 &&
+            r.verdict.verdict == SS_FAIL && !r.verdict.certified &&
+            strncmp(r.verdict.reason, "degenerate on spoke ", 20) == 0,
+        "flattened net: %s (%s), %zu of %zu spokes degenerate",
+        ss_verdict_name(r.verdict.verdict), r.verdict.reason, r.nspoke_deg, r.nspokes);
+  ss_verdict reg = {SS_UNDECIDED, "", 0, SS_ON_NET}, inj = {SS_PASS, "", 0, SS_ON_NET};
+  ss_psi_apply(&r, &reg, &inj);
+  CHECK(reg.verdict == SS_FAIL && reg.on == SS_ON_PSI && inj.verdict == SS_PASS &&
+            inj.on == SS_ON_NET,
+        "degenerate: regularity %s on psi, injectivity left (%s)",
+        ss_verdict_name(reg.verdict), ss_verdict_name(inj.verdict));
+  free(y);
+  ss_pipeline_free(p);
+}
+
 static void bad_input(const ss_scheme *s) {
   ss_pipeline *p = run(s, "icosahedron", 0);
   ss_limit *L = NULL;
@@ -520,6 +562,7 @@ int main(void) {
   relabelling(s, K10);
   reflection(s);
   fold(s);
+  degenerate_verdict(s);
   bad_input(s);
   ss_scheme_free(s);
   return ss_test_done("psi_spoke");
