@@ -144,6 +144,12 @@ static void print_map(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
                : "double precision",
            ss_verdict_name(q->verdict.verdict), q->pieces, 100.0 * q->covered,
            100.0 * q->opposite, 100.0 * q->doubtful, 100.0 * q->uncovered);
+    if (q->spokes)
+      printf("  its %zu spokes by det[a' | B] along them (double precision, evidence): "
+             "%zu of one sign, %zu changing sign, %zu degenerate\n",
+             q->nspokes, q->nspoke_one, q->nspoke_change, q->nspoke_deg);
+    else if (q->spoke_why[0])
+      printf("  its spokes: %s\n", q->spoke_why);
     if (!p->forced && p->v.reg.on == SS_ON_PSI && reg->verdict.verdict != rv->verdict)
       printf("  the control net's verdict: %s%s%s\n",
              ss_verdict_name(reg->verdict.verdict), reg->verdict.reason[0] ? ": " : "",

@@ -60,6 +60,27 @@ static json_object *psi_json(const ss_psi_result *r) {
                          json_object_new_int64((int64_t)r->nuncovered));
   json_object_object_add(o, "box_depth", json_object_new_int(r->maxdepth));
   json_object_object_add(o, "piece_depth", json_object_new_int(r->piece_depth));
+  if (r->spokes || r->spoke_why[0]) { /* the tubes' evidence (ss_psi_spoke.h) */
+    json_object *k = json_object_new_object();
+    json_object_object_add(k, "classified", json_object_new_boolean(r->spokes));
+    json_object_object_add(k, "why", json_object_new_string(r->spoke_why));
+    json_object_object_add(k, "count", json_object_new_int64((int64_t)r->nspokes));
+    json_object_object_add(k, "one_sign", json_object_new_int64((int64_t)r->nspoke_one));
+    json_object_object_add(k, "sign_change",
+                           json_object_new_int64((int64_t)r->nspoke_change));
+    json_object_object_add(k, "degenerate",
+                           json_object_new_int64((int64_t)r->nspoke_deg));
+    json_object_object_add(k, "degenerate_verdict",
+                           json_object_new_boolean(r->degenerate));
+    char name[16]; /* the link vertex's name, as the verdict's reason has it */
+    if (r->spoke_vertex >= 0 && r->spoke_vertex < 26)
+      snprintf(name, sizeof name, "%c", 'a' + r->spoke_vertex);
+    else
+      snprintf(name, sizeof name, "#%d", r->spoke_vertex + 1);
+    json_object_object_add(k, "decided_by",
+                           r->spoke_vertex >= 0 ? json_object_new_string(name) : NULL);
+    json_object_object_add(o, "spokes", k);
+  }
   return o;
 }
 

@@ -237,4 +237,33 @@ ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
 ss_status ss_lim_tensor_of(ss_limit *L, size_t i, int k, ss_lim_tensor **out,
                            ss_error *err);
 
+/* ---- the walk's point and steps, shared with ss_limit_edge.c
+ * (ss_limit_walk.c) ---- */
+
+/* A point in the current sub-cell, exactly: coordinate a is d[a] from the
+ * corner side s[a] (x = s ? 1 - d : d), with d <= 1/2.  Doubling, picking a
+ * child and turning the frame (a reflection only flips s) are then exact in
+ * binary floating point, so a point 1e-300 from an extraordinary vertex stays
+ * that far through any frame; x itself (with rounding) is formed only for the
+ * B-spline of a regular sub-cell. */
+typedef struct {
+  int s[3];    /* the corner side each coordinate is measured from */
+  double d[3]; /* the distance from it, in [0, 1/2] */
+} ss_lim_pt;
+
+/* The point at parameters x (in [0,1]^3), unframed. */
+ss_lim_pt ss_lim_pt_make(const double x[3]);
+/* The child holding the point: bit a set iff x_a >= 1/2. */
+int ss_lim_child_of(const ss_lim_pt *p);
+/* How many consecutive steps from p go into child bits b (-1: for ever). */
+long ss_lim_run_length(const ss_lim_pt *p, unsigned b);
+/* One step into child k, then frame g; M <- G 2 M. */
+void ss_lim_advance(ss_lim_pt *p, int k, const ss_lim_frame *g, double M[3][3]);
+/* The walk from state s with patch points P (taken over and freed), relative
+ * to the origin o, at pt; M maps the current frame's derivatives to the
+ * caller's (rows d/dx_a); no_tensor: never by eq. (1). */
+ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
+                      double M[3][3], int derivatives, int no_tensor, size_t cell,
+                      ss_limit_point *out, ss_error *err);
+
 #endif

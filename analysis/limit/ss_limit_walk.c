@@ -30,17 +30,6 @@ static ss_status check_args(const ss_limit *L, size_t cell, const double x[3],
   return SS_OK;
 }
 
-/* A point in the current sub-cell, exactly: coordinate a is d[a] from the
- * corner side s[a] (x = s ? 1 - d : d), with d <= 1/2.  Doubling, picking a
- * child and turning the frame (a reflection only flips s) are then exact in
- * binary floating point, so a point 1e-300 from an extraordinary vertex stays
- * that far through any frame; x itself (with rounding) is formed only for the
- * B-spline of a regular sub-cell. */
-typedef struct {
-  int s[3];    /* the corner side each coordinate is measured from */
-  double d[3]; /* the distance from it, in [0, 1/2] */
-} ss_lim_pt;
-
 static void pt_normalize(ss_lim_pt *p) {
   for (int a = 0; a < 3; a++)
     if (p->d[a] > 0.5) {
@@ -49,7 +38,7 @@ static void pt_normalize(ss_lim_pt *p) {
     }
 }
 
-static ss_lim_pt pt_make(const double x[3]) {
+ss_lim_pt ss_lim_pt_make(const double x[3]) {
   ss_lim_pt p;
   for (int a = 0; a < 3; a++) {
     p.s[a] = 0;
@@ -65,7 +54,7 @@ static void pt_x(const ss_lim_pt *p, double x[3]) {
 }
 
 /* The child holding the point: bit a set iff x_a >= 1/2. */
-static int child_of(const ss_lim_pt *p) {
+int ss_lim_child_of(const ss_lim_pt *p) {
   unsigned b = 0;
   for (int a = 0; a < 3; a++)
     if (p->s[a] || p->d[a] == 0.5) b |= 1u << a;
@@ -74,7 +63,7 @@ static int child_of(const ss_lim_pt *p) {
 
 /* How many consecutive steps from p go into child bits b (-1: for ever);
  * exact, from the binary exponents of the distances to that corner. */
-static long run_length(const ss_lim_pt *p, unsigned b) {
+long ss_lim_run_length(const ss_lim_pt *p, unsigned b) {
   long m = -1;
   for (int a = 0; a < 3; a++) {
     int bit = (int)((b >> a) & 1u), e;
@@ -99,7 +88,7 @@ static void pt_jump(ss_lim_pt *p, unsigned b, long m) {
 }
 
 /* One step into child k, then frame g; M <- G 2 M. */
-static void advance(ss_lim_pt *p, int k, const ss_lim_frame *g, double M[3][3]) {
+void ss_lim_advance(ss_lim_pt *p, int k, const ss_lim_frame *g, double M[3][3]) {
   pt_jump(p, ss_cube_corner_bits(3, k), 1);
   ss_lim_pt q;
   double G[3][3], N[3][3];
@@ -161,10 +150,6 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
       cell + 1, steps, steps);
   (void)L;
 }
-
-static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
-                      double M[3][3], int derivatives, int no_tensor, size_t cell,
-                      ss_limit_point *out, ss_error *err);
 
 /* The Jacobian at a fixed point: corner b (bits) of state s, whose run
  * matrix has eigen-decomposition e, patch points P.  With P = sum_i v_i c_i^T
@@ -239,7 +224,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsi
     ss_limit_point phi;
     double oq[3] = {0, 0, 0};
     memset(&phi, 0, sizeof phi);
-    if ((st = walk(L, s, Qa, oq, y, I3, 0, 1, cell, &phi, err))) goto done;
+    if ((st = ss_lim_walk(L, s, Qa, oq, y, I3, 0, 1, cell, &phi, err))) goto done;
     const double sign = (b >> a) & 1u ? -2.0 : 2.0;
     for (int d = 0; d < 3; d++)
       J[a][d] = sign * phi.p[d];
@@ -299,7 +284,8 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
     memcpy(M2, M, sizeof M2);
     ss_limit_point r;
     memset(&r, 0, sizeof r);
-    if ((st = walk(L, s, Q, oq, p0, M2, pass == 0 ? derivatives : 0, 1, cell, &r, err)))
+    if ((st = ss_lim_walk(L, s, Q, oq, p0, M2, pass == 0 ? derivatives : 0, 1, cell, &r,
+                          err)))
       return st;
     if (pass == 0) {
       *out = r;
@@ -317,7 +303,7 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
 
 /* The walk from state s with patch points P (taken over and freed), relative
  * to the origin o (recentred on the way; out->p is absolute). */
-static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
+ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
                       ss_limit_point *out, ss_error *err) {
   ss_status st = SS_OK;
@@ -332,7 +318,7 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
         out->p[d] += o[d];
       break;
     }
-    int k = child_of(&pt);
+    int k = ss_lim_child_of(&pt);
     ss_lim_trans *t = NULL;
     if ((st = ss_lim_transition(L, s, k, &t, err))) goto done;
     S = L->st[s];
@@ -348,7 +334,7 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
           goto done;
         }
       }
-      long m = run_length(&pt, ss_cube_corner_bits(3, k));
+      long m = ss_lim_run_length(&pt, ss_cube_corner_bits(3, k));
       if (m < 0 || m >= JUMP_MIN) {
         if (!t->eig) {
           if ((st = ss_lim_eig_new(t->W, S->patch.nv, &t->eig, err))) goto done;
@@ -395,7 +381,7 @@ static ss_status walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
       }
     }
     if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, &P, err))) goto done;
-    advance(&pt, k, &t->g, M);
+    ss_lim_advance(&pt, k, &t->g, M);
     out->steps++;
     out->products++;
     s = t->next;
@@ -420,7 +406,7 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
     return st;
   /* the cell's canonical frame: turned, not recomputed (exact) */
   const ss_lim_frame *g0 = &L->cell[cell].g;
-  ss_lim_pt pt = pt_make(x), q;
+  ss_lim_pt pt = ss_lim_pt_make(x), q;
   for (int a = 0; a < 3; a++) {
     q.s[a] = pt.s[g0->perm[a]] ^ g0->flip[a];
     q.d[a] = pt.d[g0->perm[a]];
@@ -433,7 +419,7 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
   for (size_t i = 0; i < K0; i++)
     memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
   double o[3] = {0, 0, 0};
-  return walk(L, s, P, o, q, M, derivatives, 0, cell, out, err);
+  return ss_lim_walk(L, s, P, o, q, M, derivatives, 0, cell, out, err);
 }
 
 ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
@@ -441,7 +427,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
                                   ss_error *err) {
   ss_status st;
   double x[3] = {u, v, w}, M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  ss_lim_pt pt = pt_make(x);
+  ss_lim_pt pt = ss_lim_pt_make(x);
   ss_lim_patch p;
   ss_cx *pcx = NULL;
   double *P = NULL;
@@ -474,7 +460,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
           cell + 1, max_depth, max_depth);
       goto done;
     }
-    int k = child_of(&pt);
+    int k = ss_lim_child_of(&pt);
     ss_lim_patch child;
     ss_cx *ccx;
     if ((st = ss_lim_step(L->s, pcx, k, 0, &child, &g, &ccx, NULL, err))) goto done;
@@ -482,7 +468,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
     ss_cx_free(pcx);
     p = child;
     pcx = ccx;
-    advance(&pt, k, &g, M);
+    ss_lim_advance(&pt, k, &g, M);
     out->steps++;
     out->products++;
   }

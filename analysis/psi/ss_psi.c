@@ -14,6 +14,7 @@
 #include "ss_limit.h"
 #include "ss_limit_pieces.h"
 #include "ss_psi_bernstein.h"
+#include "ss_psi_spoke.h"
 
 ss_psi_opts ss_psi_defaults(void) {
   return (ss_psi_opts){SS_PSI_BOX_DEPTH, SS_PSI_PIECE_DEPTH};
@@ -360,6 +361,126 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   return st;
 }
 
+/* A spoke's name: its link vertex's letter (plantri's), or #index. */
+static void spoke_name(int v, char name[16]) {
+  if (v >= 0 && v < 26)
+    snprintf(name, 16, "%c", 'a' + v);
+  else
+    snprintf(name, 16, "#%d", v + 1);
+}
+
+static ss_psi_point spoke_point(const ss_psi_spoke_sample *q) {
+  ss_psi_point pt = {q->cell, {q->at[0], q->at[1], q->at[2]}, {q->det_eval, q->det_eval}};
+  return pt;
+}
+
+/* Fail by spoke sp: its two samples of opposite signs, or (ring's proven
+ * point rp) its tube's sign opposite to the ring's. */
+static void fail_spoke(ss_psi_result *r, const ss_psi_spoke *sp, const ss_psi_point *rp) {
+  char name[16];
+  spoke_name(sp->vertex, name);
+  r->spoke_vertex = sp->vertex;
+  r->verdict.verdict = SS_FAIL;
+  r->nwitness = 2;
+  if (sp->cls == SS_SPOKE_SIGN_CHANGE) {
+    r->witness[0] = spoke_point(&sp->w[0]);
+    r->witness[1] = spoke_point(&sp->w[1]);
+  } else {
+    r->witness[0] = *rp;
+    r->witness[1] = spoke_point(&sp->min);
+  }
+  snprintf(r->verdict.reason, sizeof r->verdict.reason,
+           "psi folds %s spoke %s (valence %d): det Dpsi %.6g at cell %zu (%.6g, %.6g, "
+           "%.6g) and %.6g at cell %zu (%.6g, %.6g, %.6g) (double precision, evidence "
+           "in the tube, not proven)",
+           sp->cls == SS_SPOKE_SIGN_CHANGE ? "across" : "in the tube round", name,
+           sp->valence, r->witness[0].det[0], r->witness[0].cell, r->witness[0].at[0],
+           r->witness[0].at[1], r->witness[0].at[2], r->witness[1].det[0],
+           r->witness[1].cell, r->witness[1].at[0], r->witness[1].at[1],
+           r->witness[1].at[2]);
+}
+
+/* The verdict with the spokes classified (ss_psi.h, "The tubes"). */
+static void decide_spokes(walk *w, const ss_psi_spokes *sk) {
+  ss_psi_result *r = w->r;
+  const ss_psi_spoke *bad = NULL;
+  for (size_t i = 0; i < sk->n && !bad; i++)
+    if (sk->spoke[i].cls == SS_SPOKE_SIGN_CHANGE) bad = &sk->spoke[i];
+  for (size_t i = 0; i < sk->n && !bad && r->sign; i++)
+    if (sk->spoke[i].cls == SS_SPOKE_ONE_SIGN && sk->spoke[i].sign != r->sign)
+      bad = &sk->spoke[i];
+  if (bad) {
+    fail_spoke(r, bad, &w->pt[r->sign > 0 ? 0 : 1]);
+    return;
+  }
+  char name[16];
+  for (size_t i = 0; i < sk->n; i++) {
+    const ss_psi_spoke *sp = &sk->spoke[i];
+    if (sp->cls != SS_SPOKE_DEGENERATE) continue;
+    spoke_name(sp->vertex, name);
+    r->spoke_vertex = sp->vertex;
+    r->degenerate = 1;
+    r->verdict.verdict = SS_FAIL;
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "degenerate on spoke %s (valence %d): det[a' | B] = 0 along it (%zu of %zu "
+             "samples below %.0e relative; %zu of %zu spokes degenerate; double "
+             "precision, not proven)",
+             name, sp->valence, sp->ndegenerate, sp->nsamples, SS_PSI_SPOKE_DEGENERATE,
+             sk->ndegenerate, sk->n);
+    return;
+  }
+  for (size_t i = 0; i < sk->n; i++) {
+    const ss_psi_spoke *sp = &sk->spoke[i];
+    if (sp->ndisagree == 0) continue;
+    /* the leading term does not yet rule det Dpsi 2^-12 off the spoke: the
+     * tube is not decided by it */
+    spoke_name(sp->vertex, name);
+    const size_t n = strlen(r->verdict.reason);
+    snprintf(r->verdict.reason + n, sizeof r->verdict.reason - n,
+             "; spoke %s: det Dpsi 2^-%d off it has the sign opposite to det[a' | B] "
+             "det Dchi at %zu of %zu samples: its tube not decided",
+             name, SS_PSI_SPOKE_PROBE, sp->ndisagree, sp->nsamples);
+    return;
+  }
+  if (r->nundecided == 0 && r->pieces > 0 && r->sign != 0) {
+    r->verdict.verdict = SS_PASS;
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "psi's pieces of one sign on %.1f %% of its ring; the tubes round its %zu "
+             "spokes (%.1f %%) by evidence: det[a' | B] of the ring's sign at every "
+             "sample (double precision, not proven)",
+             100.0 * r->covered, sk->n, 100.0 * r->uncovered);
+    return;
+  }
+  const size_t n = strlen(r->verdict.reason);
+  snprintf(r->verdict.reason + n, sizeof r->verdict.reason - n,
+           "; its %zu spokes of the ring's sign (evidence)", sk->n);
+}
+
+/* Classify the spokes when tubes are left and no piece decided a fold. */
+static ss_status spokes(ss_limit *L, const ss_local *M, walk *w, ss_error *err) {
+  ss_psi_result *r = w->r;
+  if (r->nuncovered == 0 || r->verdict.verdict != SS_UNDECIDED) return SS_OK;
+  ss_psi_spokes sk;
+  ss_error se = {0};
+  const ss_status st = ss_psi_spokes_classify(L, M, &sk, &se);
+  if (st == SS_ENOMEM) {
+    *err = se;
+    return st;
+  }
+  if (st) { /* a run refused (defective, modes not told apart): evidence missing */
+    snprintf(r->spoke_why, sizeof r->spoke_why, "spokes not classified: %.170s", se.msg);
+    return SS_OK;
+  }
+  r->spokes = 1;
+  r->nspokes = sk.n;
+  r->nspoke_one = sk.none;
+  r->nspoke_change = sk.nchange;
+  r->nspoke_deg = sk.ndegenerate;
+  decide_spokes(w, &sk);
+  ss_psi_spokes_free(&sk);
+  return SS_OK;
+}
+
 /* ss_psi_judge, and with e the proof passes. */
 static ss_status judge(const ss_scheme *s, const ss_local *M, const double *x,
                        const ss_psi_enclosure *e, const ss_psi_opts *o,
@@ -397,6 +518,7 @@ static ss_status judge(const ss_scheme *s, const ss_local *M, const double *x,
   decide(&w, 0.875 * (double)(ncentre ? ncentre : 1));
   if (e && (st = prove(L, M, e, &w, err))) goto done;
   describe(out);
+  if ((st = spokes(L, M, &w, err))) goto done; /* the tubes, by evidence */
   out->ran = 1;
 done:
   ss_limit_free(L);
@@ -410,6 +532,7 @@ static ss_status check(const ss_psi_opts *o, const void *net, ss_psi_result *out
                        ss_error *err) {
   memset(out, 0, sizeof *out);
   out->verdict = (ss_verdict){SS_UNDECIDED, "", 0, SS_ON_NOTHING};
+  out->spoke_vertex = -1;
   if (o->maxdepth < 1 || o->maxdepth > 8 || o->piece_depth < 0 || o->piece_depth > 8)
     return ss_error_set(err, SS_EINPUT,
                         "psi options out of range: box depth %d (1..8), piece depth %d "
@@ -462,13 +585,22 @@ static void apply_decided(const ss_psi_result *r, ss_verdict *reg, ss_verdict *i
   if (reg->on == SS_ON_PSI && reg->verdict == SS_FAIL) {
     /* psi o sigma = psi failed it already, about psi (and perhaps proven):
      * that verdict stays, the witnesses added (and its proof, if it had none) */
-    snprintf(text, sizeof text, "psi's pieces agree: det Dpsi %.4g and %.4g (%s)",
-             r->witness[0].det[0], r->witness[1].det[0], how);
+    if (r->degenerate)
+      snprintf(text, sizeof text, "psi %.190s", r->verdict.reason);
+    else
+      snprintf(text, sizeof text, "psi's pieces agree: det Dpsi %.4g and %.4g (%s)",
+               r->witness[0].det[0], r->witness[1].det[0], how);
     append(reg, text);
     if (r->verdict.certified) {
       reg->certified = 1;
       if (inj->verdict == SS_FAIL) inj->certified = 1;
     }
+    return;
+  }
+  if (r->degenerate) {
+    /* not a fold: regularity fails (det Dpsi = 0 on the spoke), injectivity
+     * is the net's */
+    *reg = r->verdict;
     return;
   }
   /* what the net's verdict said, kept after psi's (an unproven failure of
@@ -495,13 +627,13 @@ void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdi
   }
   /* psi undecided, or decided in doubles where a proof was asked for */
   char text[200];
-  if (k == SS_FAIL)
+  if (k == SS_FAIL && !r->degenerate)
     snprintf(text, sizeof text,
              "psi folds in double precision (det Dpsi %.4g and %.4g), not proven",
              r->witness[0].det[0], r->witness[1].det[0]);
-  else if (k == SS_PASS)
-    snprintf(text, sizeof text,
-             "psi of one sign on every piece in double precision, not proven");
+  else if (k != SS_UNDECIDED)
+    snprintf(text, sizeof text, "psi %s, not proven: %.150s", ss_verdict_name(k),
+             r->verdict.reason);
   else
     snprintf(text, sizeof text,
              "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",

@@ -34,6 +34,26 @@
  *              self-similar);
  *   undecided  otherwise (uncovered tubes, pieces still in doubt): covered
  *              says how much of the ring is proven of one sign.
+ * The tubes (ss_psi_spoke.h): when boxes are left uncovered and no piece
+ * folds, each spoke is classified by the sign of its coefficient det[a' |
+ * B] (evidence in double precision at sample points, not a proof), and
+ *   a spoke whose s changes sign                  -> fail (psi folds across
+ *                                                    it; witnesses: two probe
+ *                                                    points near it);
+ *   a spoke of one sign opposite to the ring's    -> fail (witnesses: a
+ *                                                    proven piece's corner
+ *                                                    and a probe point);
+ *   a degenerate spoke (s = 0 relatively, no sign -> fail of regularity,
+ *   change)                                         "degenerate on spoke a"
+ *                                                    (Reif's condition needs
+ *                                                    det Dpsi != 0; not a
+ *                                                    fold: injectivity is
+ *                                                    left to the net);
+ *   every spoke of the ring's sign, every piece   -> pass "by evidence in the
+ *   proven of it, and det Dpsi by ss_limit_eval      tubes", never proven;
+ *   of that sign at every sample
+ *   otherwise the verdict stays undecided, the spokes named in the reason.
+ *
  * Proof (ss_psi_certify).  Given an enclosure of the true net (the exact
  * path's subdominant basis, ss_exact_basis) the same traversal runs on the
  * enclosure's midpoints in doubles, and then a decided verdict is proven or
@@ -116,6 +136,17 @@ typedef struct {
   size_t nundecided;       /* no proof either way at piece_depth */
   size_t nuncovered;       /* boxes left without a piece at maxdepth */
   int enclosed;            /* 1 if the proof passes ran (ss_psi_certify) */
+  int spokes;              /* 1 if the spokes were classified (ss_psi_spoke.h:
+                              boxes left uncovered and no fold on the pieces) */
+  size_t nspokes;          /* spokes (edges from p of valence other than 4) */
+  size_t nspoke_one;       /* of these, s of one sign */
+  size_t nspoke_change;    /* s changes sign */
+  size_t nspoke_deg;       /* s = 0 (relatively) somewhere */
+  int spoke_vertex;        /* the link vertex (0-based) of the spoke that
+                              decided a failure, else -1 */
+  int degenerate;          /* 1 if psi fails by a degenerate spoke (not a fold:
+                              injectivity is not decided by it) */
+  char spoke_why[200];     /* spokes not classified: why (else empty) */
   int sign;                /* the ring's sign: of the larger proven volume (+1
                               positive first when equal); 0 when none is proven */
   int nwitness;            /* 2 when failing, else 0 */
@@ -156,7 +187,8 @@ ss_status ss_psi_certify(const ss_scheme *s, const ss_local *M, const ss_psi_enc
 /* Combine the verdict on psi r (ran) into the regularity and injectivity
  * verdicts of the control net, reg and inj.  A verdict on psi that decides —
  * any pass or fail without certify; with certify (nonzero) only a proven one
- * — replaces the net's: psi fails -> both fail, judged on psi, the
+ * — replaces the net's: psi fails by a degenerate spoke -> regularity fails,
+ * judged on psi (injectivity is left); psi folds -> both fail, judged on psi, the
  * witnesses in the reason (a regularity failure already about psi, psi o
  * sigma = psi, is kept with the witnesses added, and proven if psi's is);
  * psi passes -> regularity passes judged on psi (injectivity is left: a
