@@ -11,7 +11,8 @@
 # reports/exhaustive.sh), the k = 11 sweep (reports/vertices-k11-certified.md,
 # made by `subspectra sweep`), and the sources beside them (*.c, *.h,
 # meson.build).
-# About 2 minutes on an idle machine (psi on the MLCA and ccsolid vertex tables).
+# About 3 minutes on an idle machine (psi and its spokes on the MLCA and ccsolid
+# vertex tables).
 set -u
 exe=$1
 src=$2
