@@ -202,29 +202,6 @@ static int visit(const ss_limit_piece *pc, void *arg) {
   return w->mode == WALK_JUDGE ? judge_piece(pc, w) : prove_piece(pc, w);
 }
 
-/* The two-ring's cells (hexes: M->cell is SS_HEX) as a mesh with points x
- * (n2 x 3 row by row) into *out.  SS_ENOMEM only. */
-static ss_status two_ring_mesh(const ss_local *M, const double *x, ss_cx **out,
-                               ss_error *err) {
-  ss_cx *cx = NULL;
-  ss_status st;
-  if ((st = ss_cx_new(3, &cx, err)) || (st = ss_cx_reserve_vertices(cx, M->n2, err)) ||
-      (st = ss_cx_reserve_cells(cx, SS_HEX, M->ncells, err)))
-    goto done;
-  for (size_t i = 0; i < M->n2 && !st; i++)
-    st = ss_cx_add_vertex(cx, x + 3 * i, 0, err);
-  for (size_t c = 0; c < M->ncells && !st; c++) {
-    ss_idx v[8];
-    for (int j = 0; j < 8; j++)
-      v[j] = (ss_idx)M->corner[c * SS_MAXCELLVERTS + (size_t)j];
-    st = ss_cx_add_cell(cx, SS_HEX, v, 0, err);
-  }
-done:
-  if (st) ss_cx_free(cx);
-  *out = st ? NULL : cx;
-  return st;
-}
-
 /* The verdict from the counts (ss_psi.h); its reason is written later
  * (describe), once the proof passes have run. */
 static void decide(walk *w, double ring) {
@@ -493,7 +470,6 @@ static ss_status judge(const ss_scheme *s, const ss_local *M, const double *x,
              "psi's pieces are tricubic: this case's cells are not hexahedra");
     return SS_OK;
   }
-  ss_cx *cx = NULL;
   ss_limit *L = NULL;
   ss_status st = SS_OK;
   walk w;
@@ -501,9 +477,8 @@ static ss_status judge(const ss_scheme *s, const ss_local *M, const double *x,
   w.o = o;
   w.r = out;
   w.mode = WALK_JUDGE;
-  if ((st = two_ring_mesh(M, x, &cx, err))) goto done;
   ss_error le = {0};
-  st = ss_limit_new(s, cx, &L, &le);
+  st = ss_psi_two_ring_limit(s, M, x, &L, &le);
   if (st == SS_EINPUT) { /* not a limit evaluator's scheme: no pieces */
     snprintf(out->why, sizeof out->why, "no polynomial pieces: %.130s", le.msg);
     st = SS_OK;
@@ -522,7 +497,6 @@ static ss_status judge(const ss_scheme *s, const ss_local *M, const double *x,
   out->ran = 1;
 done:
   ss_limit_free(L);
-  ss_cx_free(cx);
   out->seconds = ss_clock_cpu() - t0;
   return st;
 }
