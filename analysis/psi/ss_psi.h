@@ -1,6 +1,6 @@
 /* ss_psi.h — the characteristic map judged on itself, not on its control
- * net: its polynomial pieces on the ring (DESIGN section 10, "Verdicts about
- * psi").
+ * net: its polynomial pieces on the ring (DESIGN section 5, "Eigenstructure
+ * and verdicts").
  *
  * For a scheme that is the tricubic B-spline on regular grids and whose rule
  * reads only the cells at a fine vertex's birth element (the limit
