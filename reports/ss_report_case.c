@@ -9,6 +9,7 @@
 
 #include "ss_diag.h"
 #include "ss_exact.h"
+#include "ss_psi_spoke.h"
 #include "ss_report_table.h"
 
 static json_object *level_json(const ss_ring_level *L, int l) {
@@ -73,10 +74,7 @@ static json_object *psi_json(const ss_psi_result *r) {
     json_object_object_add(k, "degenerate_verdict",
                            json_object_new_boolean(r->degenerate));
     char name[16]; /* the link vertex's name, as the verdict's reason has it */
-    if (r->spoke_vertex >= 0 && r->spoke_vertex < 26)
-      snprintf(name, sizeof name, "%c", 'a' + r->spoke_vertex);
-    else
-      snprintf(name, sizeof name, "#%d", r->spoke_vertex + 1);
+    ss_psi_spoke_name(r->spoke_vertex, name);
     json_object_object_add(k, "decided_by",
                            r->spoke_vertex >= 0 ? json_object_new_string(name) : NULL);
     json_object_object_add(o, "spokes", k);

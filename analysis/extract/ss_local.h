@@ -148,6 +148,10 @@ void ss_local_free(ss_local *L);
  * point of the two-ring.  Cost O(log n2). */
 size_t ss_local_label_index(const ss_local *M, const ss_star_coord *x);
 
+/* The corner (0 .. SS_MAXCELLVERTS - 1, ss_cx.h's vertex order) of cell c of
+ * M that is the centre p (label 0), or -1 when p is not a corner of c. */
+int ss_local_centre_corner(const ss_local *M, size_t c);
+
 /* Largest absolute coordinate of a label (its distance from p in the chart's
  * max-norm, in grid units). */
 int ss_local_label_norm(const ss_star_coord *c);

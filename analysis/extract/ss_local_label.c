@@ -143,3 +143,9 @@ size_t ss_local_label_index(const ss_local *M, const ss_star_coord *x) {
         bsearch(x, M->label + M->n1, M->n2 - M->n1, sizeof *M->label, ss_local_label_cmp);
   return hit ? (size_t)(hit - M->label) : SIZE_MAX;
 }
+
+int ss_local_centre_corner(const ss_local *M, size_t c) {
+  for (int j = 0; j < SS_MAXCELLVERTS; j++)
+    if (M->corner[c * SS_MAXCELLVERTS + (size_t)j] == 0) return j;
+  return -1;
+}

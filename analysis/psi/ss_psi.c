@@ -87,11 +87,11 @@ static int skip_box(size_t cell, int depth, const double origin[3], void *arg) {
   return 1;
 }
 
-/* The cell's parameters of the piece's parameter t. */
-static void to_cell(const ss_limit_piece *pc, const double t[3], double x[3]) {
-  const double h = ldexp(1.0, -pc->depth);
+/* The cell's parameters of parameter t of the box (depth, origin). */
+static void to_cell(int depth, const double origin[3], const double t[3], double x[3]) {
+  const double h = ldexp(1.0, -depth);
   for (int a = 0; a < 3; a++)
-    x[a] = pc->origin[a] + h * t[a];
+    x[a] = origin[a] + h * t[a];
 }
 
 /* det Dpsi at the piece's corner t = 0, from ss_limit_bspline's Jacobian (an
@@ -145,7 +145,7 @@ static int judge_piece(const ss_limit_piece *pc, walk *w) {
     const double sc = ldexp(1.0, 3 * pc->depth);
     for (int i = 0; i < 2; i++) {
       r->witness[i].cell = pc->cell;
-      to_cell(pc, ps.where[i], r->witness[i].at);
+      to_cell(pc->depth, pc->origin, ps.where[i], r->witness[i].at);
       r->witness[i].det[0] = ps.det[i][0] * sc;
       r->witness[i].det[1] = ps.det[i][1] * sc;
     }
@@ -156,14 +156,13 @@ static int judge_piece(const ss_limit_piece *pc, walk *w) {
   return 0;
 }
 
-/* The index of the target that is piece pc, or -1. */
+/* The index of the target that is piece pc (holds it at its own depth), or
+ * -1. */
 static int target_of(const walk *w, const ss_limit_piece *pc) {
-  for (int i = 0; i < w->ntarget; i++) {
-    const box_id *b = &w->target[i];
-    if (b->cell == pc->cell && b->depth == pc->depth && b->origin[0] == pc->origin[0] &&
-        b->origin[1] == pc->origin[1] && b->origin[2] == pc->origin[2])
+  for (int i = 0; i < w->ntarget; i++)
+    if (w->target[i].depth == pc->depth &&
+        holds(pc->cell, pc->depth, pc->origin, &w->target[i]))
       return i;
-  }
   return -1;
 }
 
@@ -263,10 +262,8 @@ static ss_status walk_cells(ss_limit *L, const ss_local *M, const ss_limit_enclo
                             walk *w, size_t *ncentre, ss_error *err) {
   *ncentre = 0;
   for (size_t c = 0; c < M->ncells; c++) {
-    int j = 0;
-    while (j < 8 && M->corner[c * SS_MAXCELLVERTS + (size_t)j] != 0)
-      j++;
-    if (j == 8) continue;
+    const int j = ss_local_centre_corner(M, c);
+    if (j < 0) continue;
     ++*ncentre;
     w->pbits = ss_cube_corner_bits(3, j);
     const ss_status st =
@@ -309,12 +306,9 @@ static ss_status prove_fail(ss_limit *L, const ss_local *M, const ss_limit_enclo
   w->found[0] = 0;
   if ((st = walk_cells(L, M, enc, w, &n, err))) return st;
   if (!w->found[0] || w->ps.sign != SS_JAC_FOLDED) return SS_OK;
-  const ss_limit_piece pc = {w->fbox.cell, w->fbox.depth, {0}, NULL, NULL, NULL};
   for (int i = 0; i < 2; i++) {
-    ss_limit_piece at = pc;
-    memcpy(at.origin, w->fbox.origin, sizeof at.origin);
     r->witness[i].cell = w->fbox.cell;
-    to_cell(&at, w->ps.where[i], r->witness[i].at);
+    to_cell(w->fbox.depth, w->fbox.origin, w->ps.where[i], r->witness[i].at);
     memcpy(r->witness[i].det, w->ps.det[i], sizeof w->ps.det[i]);
   }
   r->verdict.certified = 1;
@@ -338,14 +332,6 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   return st;
 }
 
-/* A spoke's name: its link vertex's letter (plantri's), or #index. */
-static void spoke_name(int v, char name[16]) {
-  if (v >= 0 && v < 26)
-    snprintf(name, 16, "%c", 'a' + v);
-  else
-    snprintf(name, 16, "#%d", v + 1);
-}
-
 static ss_psi_point spoke_point(const ss_psi_spoke_sample *q) {
   ss_psi_point pt = {q->cell, {q->at[0], q->at[1], q->at[2]}, {q->det_eval, q->det_eval}};
   return pt;
@@ -355,7 +341,7 @@ static ss_psi_point spoke_point(const ss_psi_spoke_sample *q) {
  * point rp) its tube's sign opposite to the ring's. */
 static void fail_spoke(ss_psi_result *r, const ss_psi_spoke *sp, const ss_psi_point *rp) {
   char name[16];
-  spoke_name(sp->vertex, name);
+  ss_psi_spoke_name(sp->vertex, name);
   r->spoke_vertex = sp->vertex;
   r->verdict.verdict = SS_FAIL;
   r->nwitness = 2;
@@ -394,7 +380,7 @@ static void decide_spokes(walk *w, const ss_psi_spokes *sk) {
   for (size_t i = 0; i < sk->n; i++) {
     const ss_psi_spoke *sp = &sk->spoke[i];
     if (sp->cls != SS_SPOKE_DEGENERATE) continue;
-    spoke_name(sp->vertex, name);
+    ss_psi_spoke_name(sp->vertex, name);
     r->spoke_vertex = sp->vertex;
     r->degenerate = 1;
     r->verdict.verdict = SS_FAIL;
@@ -411,7 +397,7 @@ static void decide_spokes(walk *w, const ss_psi_spokes *sk) {
     if (sp->ndisagree == 0) continue;
     /* the leading term does not yet rule det Dpsi 2^-12 off the spoke: the
      * tube is not decided by it */
-    spoke_name(sp->vertex, name);
+    ss_psi_spoke_name(sp->vertex, name);
     const size_t n = strlen(r->verdict.reason);
     snprintf(r->verdict.reason + n, sizeof r->verdict.reason - n,
              "; spoke %s: det Dpsi 2^-%d off it has the sign opposite to det[a' | B] "
@@ -600,6 +586,8 @@ void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdi
     return;
   }
   /* psi undecided, or decided in doubles where a proof was asked for */
+  if (reg->on == SS_ON_PSI) return; /* psi o sigma = psi: already about psi */
+  if (reg->verdict == SS_PASS) return;
   char text[200];
   if (k == SS_FAIL && !r->degenerate)
     snprintf(text, sizeof text,
@@ -612,7 +600,6 @@ void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdi
     snprintf(text, sizeof text,
              "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",
              100.0 * r->covered);
-  if (reg->on == SS_ON_PSI) return; /* psi o sigma = psi: already about psi */
   if (reg->verdict == SS_FAIL) {
     /* a fold of the net that psi does not (provably) show */
     if (certify)
@@ -621,7 +608,7 @@ void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdi
       reg->certified = 0;
       append(reg, text);
     }
-  } else if (reg->verdict == SS_UNDECIDED) {
+  } else {
     append(reg, text);
   }
 }

@@ -3,6 +3,7 @@
 #include "ss_psi_spoke.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -54,10 +55,8 @@ done:
 
 /* p's corner (bits) in cell c, or -1 when p is not a corner. */
 static int centre_bits(const ss_local *M, size_t c) {
-  for (int j = 0; j < 8; j++)
-    if (M->corner[c * SS_MAXCELLVERTS + (size_t)j] == 0)
-      return (int)ss_cube_corner_bits(3, j);
-  return -1;
+  const int j = ss_local_centre_corner(M, c);
+  return j < 0 ? -1 : (int)ss_cube_corner_bits(3, j);
 }
 
 /* The two-ring label at the far end of cell c's edge from p along axis a. */
@@ -198,4 +197,11 @@ ss_status ss_psi_spokes_of(const ss_scheme *s, const ss_local *M, const double *
   if (!st) st = ss_psi_spokes_classify(L, M, out, err);
   ss_limit_free(L);
   return st;
+}
+
+void ss_psi_spoke_name(int v, char name[16]) {
+  if (v >= 0 && v < 26)
+    snprintf(name, 16, "%c", 'a' + v);
+  else
+    snprintf(name, 16, "#%d", v + 1);
 }

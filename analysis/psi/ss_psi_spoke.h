@@ -126,6 +126,10 @@ ss_status ss_psi_spokes_of(const ss_scheme *s, const ss_local *M, const double *
 /* Free the spokes' array (the struct itself is the caller's). */
 void ss_psi_spokes_free(ss_psi_spokes *r);
 
+/* A spoke's name, as verdicts and JSON give it: its link vertex v (0-based)
+ * as plantri's letter ('a' + v) when v < 26, else "#" and v + 1. */
+void ss_psi_spoke_name(int v, char name[16]);
+
 /* The name of a class: "one sign", "sign change", "degenerate". */
 const char *ss_psi_spoke_class_name(ss_psi_spoke_class c);
 

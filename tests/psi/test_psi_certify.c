@@ -115,12 +115,9 @@ static void enclosed_pieces(const ss_scheme *s) {
   ss_limit_enclosure en = {p->cm->x, p->cm->x, weight_exact, (void *)&maxden};
   cover c = {0, 0.0}, h = {0, 0.0};
   ss_error err = {0};
-  size_t cell = 0; /* a cell round p: one with corner label 0 */
-  for (int found = 0; cell < p->M->ncells && !found;) {
-    for (int j = 0; j < 8; j++)
-      found |= p->M->corner[cell * SS_MAXCELLVERTS + (size_t)j] == 0;
-    if (!found) cell++;
-  }
+  size_t cell = 0; /* a cell round p */
+  while (cell < p->M->ncells && ss_local_centre_corner(p->M, cell) < 0)
+    cell++;
   CHECK(!ss_limit_pieces_enclosed(L, cell, 3, &en, NULL, visit_cover, &c, &err),
         "exact weights: %s", err.msg);
   CHECK(c.pieces > 0 && c.worst <= 1e-13,
