@@ -7,12 +7,16 @@
 # reports/README.md, "Exhaustive tables".
 #
 #   reports/exhaustive.sh [--max-k K] [--db FILE] [--out DIR] [--jobs N]
-#                         [--schemes "mlca tetoct boxspline"] [--no-sweep]
+#                         [--schemes "mlca tetoct boxspline"] [--psi-depth N]
+#                         [--no-sweep]
 #
 # It runs, for each scheme S,
 #   subspectra sweep --scheme S --vertices 4..K --certify --db FILE --jobs N
 # (resumable: an interrupted run, rerun with the same arguments, computes only
-# what is missing), then writes from the store
+# what is missing; with --psi-depth N > 0 the schemes whose characteristic map
+# is judged on its polynomial pieces, mlca and ccsolid, are swept with
+# --psi-depth N too, and the tables count their verdicts about psi), then
+# writes from the store
 #   DIR/exhaustive-vertices-k4-K.md        subspectra report --table exhaustive
 #   DIR/exhaustive-vertices-k4-K.csv       the same counts, --format csv
 #   DIR/data/exhaustive-vertices-k4-K-not-passing.csv.xz
@@ -33,7 +37,7 @@ usage() {
   sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'
 }
 
-kmax=12 db=exhaustive.db out=reports jobs=1 schemes="mlca tetoct boxspline" sweep=1
+kmax=12 db=exhaustive.db out=reports jobs=1 schemes="mlca tetoct boxspline" sweep=1 psi=0
 while (($#)); do
   case "$1" in
   --max-k) kmax=${2:?--max-k needs a value}; shift 2 ;;
@@ -41,6 +45,7 @@ while (($#)); do
   --out) out=${2:?--out needs a folder}; shift 2 ;;
   --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
   --schemes) schemes=${2:?--schemes needs names}; shift 2 ;;
+  --psi-depth) psi=${2:?--psi-depth needs a value}; shift 2 ;;
   --no-sweep) sweep=0; shift ;;
   -h | --help) usage; exit 0 ;;
   *) echo "exhaustive.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
@@ -50,6 +55,12 @@ if ! [[ $kmax =~ ^[0-9]+$ ]] || ((kmax < 4 || kmax > 20)); then
   echo "exhaustive.sh: --max-k '$kmax' is not an integer 4..20" >&2
   exit 2
 fi
+if ! [[ $psi =~ ^[0-9]+$ ]] || ((psi > 8)); then
+  echo "exhaustive.sh: --psi-depth '$psi' is not an integer 0..8" >&2
+  exit 2
+fi
+# the sweep's --psi-depth for scheme $1: N for the schemes psi is judged for
+psi_of() { case "$1" in mlca | ccsolid) echo "$psi" ;; *) echo 0 ;; esac; }
 for s in $schemes; do
   case "$s" in
   mlca | tetoct | boxspline | boxspline-avg | ccsolid) ;;
@@ -69,9 +80,10 @@ mkdir -p "$out/data"
 
 for s in $schemes; do
   ((sweep)) || break
-  echo "exhaustive.sh: sweep --scheme $s --vertices 4..$kmax --certify (store $db)" >&2
+  d=$(psi_of "$s")
+  echo "exhaustive.sh: sweep --scheme $s --vertices 4..$kmax --certify --psi-depth $d (store $db)" >&2
   rc=0
-  "$exe" sweep --scheme "$s" --vertices "4..$kmax" --certify --jobs "$jobs" --db "$db" || rc=$?
+  "$exe" sweep --scheme "$s" --vertices "4..$kmax" --certify --psi-depth "$d" --jobs "$jobs" --db "$db" || rc=$?
   # 1 = some case fails or is undecided: the tables are about exactly that
   if ((rc != 0 && rc != 1)); then
     echo "exhaustive.sh: the $s sweep ended with status $rc; rerun to resume" >&2
@@ -83,6 +95,12 @@ done
 names=$(printf "'%s'," $schemes)
 where="kind IN ('vertex','edge-point') AND k BETWEEN 4 AND $kmax AND scheme IN (${names%,})"
 where+=" AND identity LIKE '% certified%'"
+# one identity per scheme: with psi-depth=N where the sweep asked for it
+for s in $schemes; do
+  d=$(psi_of "$s")
+  if ((d > 0)); then where+=" AND (scheme != '$s' OR identity LIKE '% psi-depth=$d')"
+  else where+=" AND (scheme != '$s' OR identity NOT LIKE '% psi-depth=%')"; fi
+done
 # the (scheme, k) the store holds only in part: compared with the number of
 # links with k vertices
 declare -A want
@@ -107,7 +125,12 @@ stem=$out/exhaustive-vertices-k4-$kmax
   echo "# Exhaustive tables: every vertex one-ring with 4..$kmax vertices"
   echo
   echo "Written by \`reports/exhaustive.sh --max-k $kmax\` (the sweeps"
-  echo "\`subspectra sweep --scheme S --vertices 4..$kmax --certify\` for S in"
+  if ((psi > 0)); then
+    echo "\`subspectra sweep --scheme S --vertices 4..$kmax --certify\` (with \`--psi-depth $psi\` for"
+    echo "mlca and ccsolid: their columns \"on psi\" count verdicts about the characteristic map) for S in"
+  else
+    echo "\`subspectra sweep --scheme S --vertices 4..$kmax --certify\` for S in"
+  fi
   echo "$(printf '`%s` ' $schemes)into one store, then \`subspectra report --table exhaustive\`);"
   echo "not part of \`./run\`.  How long it takes, and what \"certified\" covers:"
   echo "reports/README.md, \"Exhaustive tables\".  The links that do not pass:"

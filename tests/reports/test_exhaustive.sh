@@ -162,7 +162,21 @@ bad=$(awk '/^- tetoct k = / { h = $6; sub(/\(/, "", h); if (h + 0 >= $8 + 0) pri
   /^\| [0-9]+ \|/ { n[4]=1; n[5]=1; n[6]=2; n[7]=5; n[8]=14; if ($4 != n[$2]) print }' "$md")
 [[ $named -ge 1 && -z $bad ]] && ok "partial store: $named rows named as incomplete, the rest whole" ||
   fail "partial store: $named named; $bad"
-for args in "--max-k 3" "--max-k x" "--schemes loop" "--bogus"; do
+# --psi-depth: MLCA swept again under the identity with psi-depth=2 (a
+# second section of the same store, the first left out); k <= 6 all pass,
+# and the octahedron is the regular vertex, whose psi is linear: a proven
+# pass on psi (DESIGN section 5)
+SUBSPECTRA=$exe "$script" --max-k 6 --schemes mlca --psi-depth 2 --db "$tmp/e.db" \
+  --out "$tmp/q" --jobs 2 2> "$tmp/err" || { cat "$tmp/err"; fail "exhaustive.sh --psi-depth 2"; }
+md=$tmp/q/exhaustive-vertices-k4-6.md
+[[ $(grep -c '^## ' "$md") == 1 ]] && grep -q '^## mlca .* certified psi-depth=2$' "$md" &&
+  ok "exhaustive.sh --psi-depth 2: one section, the psi identity" ||
+  fail "exhaustive.sh --psi-depth 2: sections $(grep '^## ' "$md")"
+row6=$(awk -F'|' '/^\| 6 \|/ { gsub(/ /, ""); print $3 "," $4 "," $(NF - 3) }' "$md")
+[[ $row6 == 2,2,* && ${row6##*,} -ge 1 ]] &&
+  ok "k = 6 with psi: 2 of 2 pass, ${row6##*,} on psi (the octahedron's linear psi)" ||
+  fail "k = 6 with psi: links,pass,on-psi-pass = $row6"
+for args in "--max-k 3" "--max-k x" "--schemes loop" "--psi-depth 9" "--bogus"; do
   # shellcheck disable=SC2086
   SUBSPECTRA=$exe "$script" $args --db "$tmp/u.db" --out "$tmp/u" > /dev/null 2> "$tmp/err"
   rc=$?
