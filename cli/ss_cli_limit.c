@@ -390,9 +390,15 @@ int ss_cli_limit(int argc, char **argv) {
   ss_cx *mesh = NULL;
   ss_limit *L = NULL;
   if (ss_scheme_new(o.scheme, &s, &err) ||
-      ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) ||
-      ss_limit_new(s, mesh, &L, &err) || (!o.npts && grid_points(&o, L, &err)) ||
-      eval_points(&o, L, &err) || write_points(&o, &err))
+      ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) || ss_limit_new(s, mesh, &L, &err))
+    rc = ss_cli_fail(&err);
+  else if (ss_cx_check_orientation(mesh, &err)) {
+    /* flat, folded or inverted hexes, refused as subdivide and enumerate
+     * mesh refuse them: the parametrisation has no consistent sign there */
+    fprintf(stderr, "subspectra: %s: %s\n", o.mesh, err.msg);
+    rc = SS_EXIT_USAGE;
+  } else if ((!o.npts && grid_points(&o, L, &err)) || eval_points(&o, L, &err) ||
+             write_points(&o, &err))
     rc = ss_cli_fail(&err);
   free(o.pts);
   ss_limit_free(L);

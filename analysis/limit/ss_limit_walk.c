@@ -224,7 +224,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsi
     ss_limit_point phi;
     double oq[3] = {0, 0, 0};
     memset(&phi, 0, sizeof phi);
-    if ((st = ss_lim_walk(L, s, Qa, oq, y, I3, 0, 1, cell, &phi, err))) goto done;
+    if ((st = ss_lim_walk(L, s, Qa, oq, 0, y, I3, 0, 1, cell, &phi, err))) goto done;
     const double sign = (b >> a) & 1u ? -2.0 : 2.0;
     for (int d = 0; d < 3; d++)
       J[a][d] = sign * phi.p[d];
@@ -240,13 +240,34 @@ done:
  * the current sub-cell keeps their differences -- of the order of the
  * sub-cell's size, 2^-m after m steps -- to full relative precision, which
  * absolute coordinates would lose (an error of eps |P| 2^m in the Jacobian). */
-static void recentre(double *P, size_t K, double o[3]) {
+static void recentre(double *P, size_t K, double o[3], int sc) {
   double c[3] = {P[0], P[1], P[2]};
   for (size_t i = 0; i < K; i++)
     for (int d = 0; d < 3; d++)
       P[i * 3 + (size_t)d] -= c[d];
   for (int d = 0; d < 3; d++)
-    o[d] += c[d];
+    o[d] += ldexp(c[d], -sc);
+}
+
+/* Exponent-aware scaling: the walk keeps 2^sc times the points relative to
+ * o, and M divided by 2^sc (the Jacobian, bilinear in the two, is the same).
+ * After about 1000 steps the points' differences (|lambda|^m) would be
+ * subnormal or 0 and M (2^m) infinite: when the largest |P| falls below
+ * 2^-256, P is scaled up to [1/2, 1) and M down by the same power of 2.
+ * Exact, and never done at ordinary depths (results there are unchanged to
+ * the bit). */
+static void rescale(double *P, size_t K, double M[3][3], int *sc) {
+  double mx = 0.0;
+  for (size_t i = 0; i < K * 3; i++)
+    if (fabs(P[i]) > mx) mx = fabs(P[i]);
+  if (!(mx > 0.0) || mx >= 0x1p-256) return;
+  int k = -ilogb(mx) - 1;
+  for (size_t i = 0; i < K * 3; i++)
+    P[i] = ldexp(P[i], k);
+  for (int a = 0; a < 3; a++)
+    for (int j = 0; j < 3; j++)
+      M[a][j] = ldexp(M[a][j], -k);
+  *sc += k;
 }
 
 /* The point and Jacobian at pt of state s (whose child k is a stationary
@@ -256,7 +277,7 @@ static void recentre(double *P, size_t K, double o[3]) {
  * edge, reached by one jump whatever x_a's digits; and the derivative along
  * the edge is the limit at (0, y) of the net with N_l'. */
 static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
-                             const double *P, const double o[3], ss_lim_pt pt,
+                             const double *P, const double o[3], int sc, ss_lim_pt pt,
                              double M[3][3], int derivatives, size_t cell,
                              ss_limit_point *out, ss_error *err) {
   ss_status st;
@@ -284,8 +305,8 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
     memcpy(M2, M, sizeof M2);
     ss_limit_point r;
     memset(&r, 0, sizeof r);
-    if ((st = ss_lim_walk(L, s, Q, oq, p0, M2, pass == 0 ? derivatives : 0, 1, cell, &r,
-                          err)))
+    if ((st = ss_lim_walk(L, s, Q, oq, pass == 0 ? sc : 0, p0, M2,
+                          pass == 0 ? derivatives : 0, 1, cell, &r, err)))
       return st;
     if (pass == 0) {
       *out = r;
@@ -301,21 +322,23 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
   return SS_OK;
 }
 
-/* The walk from state s with patch points P (taken over and freed), relative
- * to the origin o (recentred on the way; out->p is absolute). */
-ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
+/* The walk from state s with patch points P (taken over and freed), 2^sc
+ * times their offsets from the origin o (recentred and rescaled on the way;
+ * out->p is absolute). */
+ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
                       ss_limit_point *out, ss_error *err) {
   ss_status st = SS_OK;
   double *P0 = NULL;
   int plain = 0;
-  recentre(P, L->st[s]->patch.nv, o);
+  recentre(P, L->st[s]->patch.nv, o, sc);
+  rescale(P, L->st[s]->patch.nv, M, &sc);
   for (;;) {
     ss_lim_state *S = L->st[s];
     if (S->patch.regular) {
       finish_regular(&S->patch, P, &pt, M, derivatives, out);
       for (int d = 0; d < 3; d++)
-        out->p[d] += o[d];
+        out->p[d] = ldexp(out->p[d], -sc) + o[d];
       break;
     }
     int k = ss_lim_child_of(&pt);
@@ -328,7 +351,7 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
         if ((st = ss_lim_tensor_of(L, s, k, &T, err))) goto done;
         if (T->status == 1) {
           int steps = out->steps, products = out->products;
-          st = tensor_eval(L, s, T, P, o, pt, M, derivatives, cell, out, err);
+          st = tensor_eval(L, s, T, P, o, sc, pt, M, derivatives, cell, out, err);
           out->steps += steps;
           out->products += products;
           goto done;
@@ -349,14 +372,16 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
           memcpy(P0, P, S->patch.nv * 3 * sizeof *P0);
         }
         double shift[3];
-        if ((st = ss_lim_eig_power(t->eig, m, P, shift, err))) goto done;
+        int js = 0;
+        if ((st = ss_lim_eig_power(t->eig, m, P, shift, &js, err))) goto done;
         for (int d = 0; d < 3; d++)
-          o[d] += shift[d];
+          o[d] += ldexp(shift[d], -sc);
+        sc += js;
         out->products++;
         if (m < 0) {
           /* a fixed point: every patch point is its limit */
           for (int d = 0; d < 3; d++)
-            out->p[d] = o[d] + P[d];
+            out->p[d] = o[d] + ldexp(P[d], -sc);
           if (derivatives) {
             double J[3][3];
             if ((st = fixed_jacobian(L, s, t->eig, ss_cube_corner_bits(3, k), P0, cell, J,
@@ -374,9 +399,10 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
         pt_jump(&pt, ss_cube_corner_bits(3, k), m);
         for (int a = 0; a < 3; a++)
           for (int j = 0; j < 3; j++)
-            M[a][j] = ldexp(M[a][j], (int)m);
+            M[a][j] = ldexp(M[a][j], (int)m - js);
         out->steps += (int)m;
-        recentre(P, S->patch.nv, o);
+        recentre(P, S->patch.nv, o, sc);
+        rescale(P, S->patch.nv, M, &sc);
         continue;
       }
     }
@@ -385,7 +411,8 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
     out->steps++;
     out->products++;
     s = t->next;
-    recentre(P, L->st[s]->patch.nv, o);
+    recentre(P, L->st[s]->patch.nv, o, sc);
+    rescale(P, L->st[s]->patch.nv, M, &sc);
     if (++plain > SS_LIMIT_MAXSTEPS) {
       st = not_reached(L, cell, plain, err);
       goto done;
@@ -395,6 +422,26 @@ done:
   free(P0);
   free(P);
   return st;
+}
+
+/* No non-finite number leaves the evaluator as a value: a point or Jacobian
+ * entry beyond DBL_MAX (the Jacobian grows like d^(-1 - log2 lambda) at
+ * distance d from a vertex whose subdominant eigenvalue lambda exceeds 1/2)
+ * is refused with the reason. */
+static ss_status check_finite(size_t cell, const double x[3], int derivatives,
+                              const ss_limit_point *out, ss_error *err) {
+  int ok = 1;
+  for (int d = 0; d < 3; d++) {
+    ok &= isfinite(out->p[d]) != 0;
+    for (int a = 0; a < 3 && derivatives; a++)
+      ok &= isfinite(out->jac[a][d]) != 0;
+  }
+  if (ok) return SS_OK;
+  return ss_error_set(err, SS_ENUMERIC,
+                      "cell %zu at (%.17g, %.17g, %.17g): the %s is not a finite double "
+                      "(beyond the range of doubles): refused",
+                      cell + 1, x[0], x[1], x[2],
+                      derivatives ? "limit point or its Jacobian" : "limit point");
 }
 
 ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
@@ -418,8 +465,9 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
   if (!P) return ss_error_nomem(err, "patch points");
   for (size_t i = 0; i < K0; i++)
     memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
-  double o[3] = {0, 0, 0};
-  return ss_lim_walk(L, s, P, o, q, M, derivatives, 0, cell, out, err);
+  double o[3] = {0, 0, 0}, x0[3] = {u, v, w};
+  if ((st = ss_lim_walk(L, s, P, o, 0, q, M, derivatives, 0, cell, out, err))) return st;
+  return check_finite(cell, x0, derivatives, out, err);
 }
 
 ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
@@ -438,7 +486,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
   if ((st = ss_lim_patch_complex(L->mesh, &p, &pcx, err))) goto done;
   double o[3] = {0, 0, 0}; /* the patch is kept relative to o (recentre) */
   for (int depth = 0;; depth++) {
-    recentre(pcx->x, pcx->nv, o);
+    recentre(pcx->x, pcx->nv, o, 0);
     if (p.regular) {
       P = malloc((p.nv * 3 + 1) * sizeof *P);
       if (!P) {
@@ -472,6 +520,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
     out->steps++;
     out->products++;
   }
+  if (!st) st = check_finite(cell, (const double[3]){u, v, w}, derivatives, out, err);
 done:
   free(P);
   ss_lim_patch_free(&p);
