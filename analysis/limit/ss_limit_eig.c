@@ -370,3 +370,95 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
   if (scale) *scale = (int)s;
   return SS_OK;
 }
+
+ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const double *P,
+                               double *Q, ss_error *err) {
+  ss_status st = SS_OK;
+  const size_t K = e->K;
+  size_t k = 0;
+  double bad = 0.0;
+  for (size_t j = 0; j < K; j++) {
+    if (cabs(e->lam[j] - 0.5) <= 1e-6)
+      k++;
+    else if (j != e->one && cabs(e->lam[j]) > 0.5 - 1e-8 && bad == 0.0)
+      bad = cabs(e->lam[j]);
+  }
+  memset(Q, 0, K * 3 * sizeof *Q);
+  if (bad > 0.0)
+    return ss_error_set(err, SS_ENUMERIC,
+                        "an eigenvalue of modulus %.6g (>= 1/2, not 1/2) of a defective "
+                        "run: the parametric Jacobian is unbounded there",
+                        bad);
+  if (!k) return SS_OK; /* every component but the point has derivative 0 */
+  double *A = malloc((3 * K * K + K + k * k + 1) * sizeof *A);
+  lapack_int *ipiv = malloc((k + 1) * sizeof *ipiv);
+  if (!A || !ipiv) {
+    st = ss_error_nomem(err, "eigenvalue-1/2 projector");
+    goto done;
+  }
+  double *U = A + K * K, *VT = U + K * K, *sv = VT + K * K, *G = sv + K, sup[1];
+  for (size_t i = 0; i < K * K; i++)
+    A[i] = W[i];
+  for (size_t i = 0; i < K; i++)
+    A[i * K + i] -= 0.5;
+  (void)sup;
+  double *work = malloc((K + 1) * sizeof *work);
+  if (!work) {
+    st = ss_error_nomem(err, "eigenvalue-1/2 projector");
+    goto done;
+  }
+  lapack_int info =
+      LAPACKE_dgesvd(LAPACK_ROW_MAJOR, 'A', 'A', (lapack_int)K, (lapack_int)K, A,
+                     (lapack_int)K, sv, U, (lapack_int)K, VT, (lapack_int)K, work);
+  free(work);
+  if (info) {
+    st = ss_error_set(err, SS_ENUMERIC, "dgesvd failed (info %d)", (int)info);
+    goto done;
+  }
+  /* semisimple: exactly k singular values of W - I/2 vanish */
+  if (!(sv[K - k] <= 1e-10) || (k < K && !(sv[K - k - 1] > 1e-7))) {
+    st = ss_error_set(err, SS_ENUMERIC,
+                      "the eigenvalue 1/2 (%zu-fold) of a run has a Jordan block "
+                      "(singular values %.3g, %.3g of W - I/2): the parametric Jacobian "
+                      "is unbounded there",
+                      k, sv[K - k], k < K ? sv[K - k - 1] : 0.0);
+    goto done;
+  }
+  /* right eigenvectors X = the last k rows of VT, left ones Y = the last k
+   * columns of U; the projector X (Y^T X)^-1 Y^T */
+  for (size_t a = 0; a < k; a++)
+    for (size_t b = 0; b < k; b++) {
+      double s = 0.0;
+      for (size_t r = 0; r < K; r++)
+        s += U[r * K + (K - k + a)] * VT[(K - k + b) * K + r];
+      G[a * k + b] = s;
+    }
+  double Z[3 * 64];
+  if (k > 64) {
+    st = ss_error_set(err, SS_ENUMERIC, "eigenvalue 1/2 of multiplicity %zu", k);
+    goto done;
+  }
+  for (size_t a = 0; a < k; a++)
+    for (int d = 0; d < 3; d++) {
+      double s = 0.0;
+      for (size_t r = 0; r < K; r++)
+        s += U[r * K + (K - k + a)] * P[r * 3 + (size_t)d];
+      Z[a * 3 + (size_t)d] = s;
+    }
+  info = LAPACKE_dgesv(LAPACK_ROW_MAJOR, (lapack_int)k, 3, G, (lapack_int)k, ipiv, Z, 3);
+  if (info) {
+    st = ss_error_set(err, SS_ENUMERIC,
+                      "the eigenvalue 1/2 of a run: its left and right eigenvectors are "
+                      "singular together (dgesv info %d)",
+                      (int)info);
+    goto done;
+  }
+  for (size_t r = 0; r < K; r++)
+    for (size_t b = 0; b < k; b++)
+      for (int d = 0; d < 3; d++)
+        Q[r * 3 + (size_t)d] += VT[(K - k + b) * K + r] * Z[b * 3 + (size_t)d];
+done:
+  free(A);
+  free(ipiv);
+  return st;
+}

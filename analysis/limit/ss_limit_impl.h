@@ -144,6 +144,16 @@ void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C);
 ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
                            int *scale, ss_error *err);
 
+/* Q (K x 3) <- the eigenvalue-1/2 part of P for a run W with the
+ * decomposition e (used when e is defective: eigenvectors of the other
+ * eigenvalues are not needed), by the spectral projector X (Y^T X)^-1 Y^T
+ * from the null spaces of W - I/2 (SVD); Q = 0 when 1/2 is no eigenvalue.
+ * SS_ENUMERIC (with the reason) when 1/2 has a Jordan block or another
+ * eigenvalue but 1 has modulus >= 1/2: the parametric Jacobian at the run's
+ * fixed point is then unbounded; SS_ENOMEM. */
+ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const double *P,
+                               double *Q, ss_error *err);
+
 /* ---- the evaluator's cache and object (ss_limit.c, ss_limit_state.c,
  * ss_limit_tensor.c, ss_limit_walk.c) ---- */
 

@@ -160,21 +160,30 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
  * any other component with |lambda| >= 1/2 makes the Jacobian unbounded or
  * direction-dependent, and is refused.  J receives rows d/dx_a in the
  * current frame. */
-static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsigned b,
+static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_trans *t, unsigned b,
                                 const double *P, size_t cell, double J[3][3],
                                 ss_error *err) {
   ss_status st = SS_OK;
+  const ss_lim_eig *e = t->eig;
   const size_t K = e->K;
   double *Q = NULL;
-  if (e->pw)
-    return ss_error_set(
-        err, SS_ENUMERIC,
-        "cell %zu: the Jacobian at this point (an extraordinary vertex or "
-        "edge, or the boundary) needs the eigenvectors of a defective "
-        "matrix: %s",
-        cell + 1, e->why);
   Q = calloc(K * 3 + 1, sizeof *Q);
   if (!Q) return ss_error_nomem(err, "fixed-point Jacobian");
+  if (e->pw) {
+    /* a defective run (a Jordan block, or a multiple eigenvalue LAPACK
+     * returned with nearly parallel eigenvectors): only the eigenvalue-1/2
+     * part matters, by its spectral projector */
+    if ((st = ss_lim_eig_half_part(e, t->W, P, Q, err))) {
+      ss_status st2 = ss_error_set(err, SS_ENUMERIC,
+                                   "cell %zu: the parametric Jacobian is not defined at "
+                                   "this point (an extraordinary vertex or edge, or the "
+                                   "boundary): %s",
+                                   cell + 1, err->msg);
+      free(Q);
+      return st == SS_ENOMEM ? st : st2;
+    }
+    goto axes;
+  }
   double scale = 0.0;
   for (size_t j = 0; j < K * 3; j++)
     if (fabs(P[j] - P[j % 3]) > scale) scale = fabs(P[j] - P[j % 3]);
@@ -192,10 +201,14 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsi
       if (e->pair[i] == 1) i++;
       continue;
     }
-    if (fabs(al - 0.5) <= 1e-8 && e->pair[i] == 0) {
-      for (size_t r = 0; r < K; r++)
-        for (int d = 0; d < 3; d++)
-          Q[r * 3 + (size_t)d] += e->V[i * K + r] * c[d];
+    if (cabs(e->lam[i] - 0.5) <= 1e-8) {
+      /* 1/2, real, or a pair 1/2 +- i eps (a double 1/2 split by rounding:
+       * W is 1/2 on the span of its x and y, whose condition was checked) */
+      for (size_t w = 0; w < (e->pair[i] == 1 ? 2u : 1u); w++)
+        for (size_t r = 0; r < K; r++)
+          for (int d = 0; d < 3; d++)
+            Q[r * 3 + (size_t)d] += e->V[(i + w) * K + r] * c[w * 3 + (size_t)d];
+      if (e->pair[i] == 1) i++;
       continue;
     }
     st =
@@ -208,6 +221,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsi
     goto done;
   }
   free(C);
+axes:
   for (int a = 0; a < 3; a++) {
     ss_lim_pt y;
     for (int d = 0; d < 3; d++) {
@@ -384,7 +398,7 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_
             out->p[d] = o[d] + ldexp(P[d], -sc);
           if (derivatives) {
             double J[3][3];
-            if ((st = fixed_jacobian(L, s, t->eig, ss_cube_corner_bits(3, k), P0, cell, J,
+            if ((st = fixed_jacobian(L, s, t, ss_cube_corner_bits(3, k), P0, cell, J,
                                      err)))
               goto done;
             for (int i = 0; i < 3; i++)
