@@ -386,8 +386,8 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const doubl
   memset(Q, 0, K * 3 * sizeof *Q);
   if (bad > 0.0)
     return ss_error_set(err, SS_ENUMERIC,
-                        "an eigenvalue of modulus %.6g (>= 1/2, not 1/2) of a defective "
-                        "run: the parametric Jacobian is unbounded there",
+                        "its run (a defective matrix) has an eigenvalue of modulus "
+                        "%.6g, >= 1/2 and not 1/2",
                         bad);
   if (!k) return SS_OK; /* every component but the point has derivative 0 */
   double *A = malloc((3 * K * K + K + k * k + 1) * sizeof *A);
@@ -418,9 +418,9 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const doubl
   /* semisimple: exactly k singular values of W - I/2 vanish */
   if (!(sv[K - k] <= 1e-10) || (k < K && !(sv[K - k - 1] > 1e-7))) {
     st = ss_error_set(err, SS_ENUMERIC,
-                      "the eigenvalue 1/2 (%zu-fold) of a run has a Jordan block "
-                      "(singular values %.3g, %.3g of W - I/2): the parametric Jacobian "
-                      "is unbounded there",
+                      "the eigenvalue 1/2 (%zu-fold) of its run has a Jordan block "
+                      "(singular values %.3g, %.3g of W - I/2): the Jacobian is "
+                      "unbounded",
                       k, sv[K - k], k < K ? sv[K - k - 1] : 0.0);
     goto done;
   }

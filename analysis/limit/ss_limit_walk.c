@@ -25,8 +25,8 @@ static ss_status check_args(const ss_limit *L, size_t cell, const double x[3],
   static const char *const name[3] = {"u", "v", "w"};
   for (int a = 0; a < 3; a++)
     if (!(x[a] >= 0.0 && x[a] <= 1.0))
-      return ss_error_set(err, SS_EINPUT, "parameter %s = %g is outside [0, 1]", name[a],
-                          x[a]);
+      return ss_error_set(err, SS_EINPUT, "parameter %s = %.17g is outside [0, 1]",
+                          name[a], x[a]);
   return SS_OK;
 }
 
