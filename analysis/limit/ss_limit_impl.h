@@ -121,8 +121,9 @@ typedef struct {
 
 /* Decompose W (K x K row-major).  When V is singular or its condition
  * exceeds SS_LIMIT_MAXCOND (a Jordan block: W is defective) the powers
- * W^(2^i) are kept instead (why says so), and W^m costs popcount(m) <=
- * SS_LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK fails outright. */
+ * W^(2^i) and D^(2^i) are kept instead (why says so), and W^m costs
+ * popcount(m) <= SS_LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK
+ * fails outright. */
 ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err);
 void ss_lim_eig_free(ss_lim_eig *e);
 /* C (K x 3) = V^-1 P (P K x 3, row-major): the coefficients of P's points on
