@@ -390,27 +390,20 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const doubl
                         "%.6g, >= 1/2 and not 1/2",
                         bad);
   if (!k) return SS_OK; /* every component but the point has derivative 0 */
-  double *A = malloc((3 * K * K + K + k * k + 1) * sizeof *A);
+  double *A = malloc((3 * K * K + 2 * K + k * k + 1) * sizeof *A);
   lapack_int *ipiv = malloc((k + 1) * sizeof *ipiv);
   if (!A || !ipiv) {
     st = ss_error_nomem(err, "eigenvalue-1/2 projector");
     goto done;
   }
-  double *U = A + K * K, *VT = U + K * K, *sv = VT + K * K, *G = sv + K, sup[1];
+  double *U = A + K * K, *VT = U + K * K, *sv = VT + K * K, *work = sv + K, *G = work + K;
   for (size_t i = 0; i < K * K; i++)
     A[i] = W[i];
   for (size_t i = 0; i < K; i++)
     A[i * K + i] -= 0.5;
-  (void)sup;
-  double *work = malloc((K + 1) * sizeof *work);
-  if (!work) {
-    st = ss_error_nomem(err, "eigenvalue-1/2 projector");
-    goto done;
-  }
   lapack_int info =
       LAPACKE_dgesvd(LAPACK_ROW_MAJOR, 'A', 'A', (lapack_int)K, (lapack_int)K, A,
                      (lapack_int)K, sv, U, (lapack_int)K, VT, (lapack_int)K, work);
-  free(work);
   if (info) {
     st = ss_error_set(err, SS_ENUMERIC, "dgesvd failed (info %d)", (int)info);
     goto done;
@@ -434,7 +427,7 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const doubl
       G[a * k + b] = s;
     }
   double Z[3 * 64];
-  if (k > 64) {
+  if (k > 64) { /* beyond any patch met (K ~ 100, 1/2 at most 3-fold) */
     st = ss_error_set(err, SS_ENUMERIC, "eigenvalue 1/2 of multiplicity %zu", k);
     goto done;
   }

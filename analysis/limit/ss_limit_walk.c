@@ -7,6 +7,7 @@
 #include <complex.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -174,13 +175,14 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_trans *t, un
      * returned with nearly parallel eigenvectors): only the eigenvalue-1/2
      * part matters, by its spectral projector */
     if ((st = ss_lim_eig_half_part(e, t->W, P, Q, err))) {
-      ss_status st2 = ss_error_set(err, SS_ENUMERIC,
-                                   "cell %zu: the parametric Jacobian is not defined at "
-                                   "this point (an extraordinary vertex or edge, or the "
-                                   "boundary): %s",
-                                   cell + 1, err->msg);
       free(Q);
-      return st == SS_ENOMEM ? st : st2;
+      if (st != SS_ENUMERIC) return st;
+      char why[sizeof err->msg];
+      snprintf(why, sizeof why, "%s", err->msg);
+      return ss_error_set(err, SS_ENUMERIC,
+                          "cell %zu: the parametric Jacobian is not defined at this "
+                          "point (an extraordinary vertex or edge, or the boundary): %s",
+                          cell + 1, why);
     }
     goto axes;
   }

@@ -321,6 +321,65 @@ static void test_no_limit(gsl_rng *r) {
   }
 }
 
+/* The eigenvalue-1/2 part of a defective run (ss_lim_eig_half_part): W = T D
+ * T^-1 with a Jordan block at 0.1 (so the run is declared defective) and 1/2
+ * double and semisimple: Q satisfies W Q = Q / 2 and P - Q is annihilated by
+ * (W - 1)(W - 0.3)(W - 0.1)^2 (it has no 1/2 part); no 1/2 at all (1, 0.45,
+ * 0.3, 0.2, 0.1, 0.1): Q = 0;
+ * a Jordan block at 1/2, or an eigenvalue 0.6, is refused with the reason. */
+static void test_half_part(gsl_rng *r) {
+  enum { K = 6 };
+  const double diag[4][K] = {{1.0, 0.5, 0.5, 0.3, 0.1, 0.1},
+                             {1.0, 0.45, 0.2, 0.3, 0.1, 0.1},
+                             {1.0, 0.5, 0.5, 0.3, 0.1, 0.1},
+                             {1.0, 0.6, 0.5, 0.3, 0.1, 0.1}};
+  const char *what[4] = {"1/2 semisimple", "no 1/2", "a Jordan block at 1/2", "0.6"};
+  for (int t = 0; t < 4; t++) {
+    double D[K * K] = {0}, W[K * K], P[K * 3], Q[K * 3], R[K * 3];
+    for (int i = 0; i < K; i++)
+      D[i * K + i] = diag[t][i];
+    D[4 * K + 5] = 1.0;             /* a Jordan block at 0.1 */
+    if (t == 2) D[1 * K + 2] = 1.0; /* and one at 1/2 */
+    similar(K, D, W);
+    ss_lim_eig *e = NULL;
+    ss_error err = {0};
+    REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
+    CHECK(e->pw != NULL, "%s: not declared defective (cond %g)", what[t], e->cond);
+    points(r, K, P);
+    ss_status st = ss_lim_eig_half_part(e, W, P, Q, &err);
+    if (t >= 2) {
+      CHECK(st == SS_ENUMERIC && strstr(err.msg, t == 2 ? "Jordan block" : "modulus 0.6"),
+            "%s: not refused: %d %s", what[t], (int)st, err.msg);
+      ss_lim_eig_free(e);
+      continue;
+    }
+    CHECK(st == SS_OK, "%s: %s", what[t], err.msg);
+    /* W Q = Q / 2 */
+    memcpy(R, Q, sizeof R);
+    repeat(W, K, 1, R);
+    for (size_t i = 0; i < K * 3; i++)
+      R[i] -= 0.5 * Q[i];
+    CHECK(maxdiff(R, (double[K * 3]){0}, K * 3) <= 1e-12, "%s: W Q - Q/2 = %g", what[t],
+          maxdiff(R, (double[K * 3]){0}, K * 3));
+    /* (W - 1)(W - 0.3)(W - 0.1)^2 (P - Q) = 0 */
+    for (size_t i = 0; i < K * 3; i++)
+      R[i] = P[i] - Q[i];
+    for (int q = 0; q < K; q++) { /* the roots: D's diagonal but 1/2 */
+      if (diag[t][q] == 0.5) continue;
+      double S[K * 3];
+      memcpy(S, R, sizeof S);
+      repeat(W, K, 1, S);
+      for (size_t i = 0; i < K * 3; i++)
+        R[i] = S[i] - diag[t][q] * R[i];
+    }
+    double zero[K * 3] = {0}, qn = maxdiff(Q, zero, K * 3);
+    CHECK(maxdiff(R, zero, K * 3) <= 1e-12, "%s: P - Q has a 1/2 part: %g", what[t],
+          maxdiff(R, zero, K * 3));
+    CHECK(t == 0 ? qn > 1e-3 : qn == 0.0, "%s: |Q| = %g", what[t], qn);
+    ss_lim_eig_free(e);
+  }
+}
+
 int main(void) {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(r, 1033);
@@ -328,6 +387,7 @@ int main(void) {
   test_averaging(r);
   test_defective(r);
   test_no_limit(r);
+  test_half_part(r);
   gsl_rng_free(r);
   return ss_test_done("limit_eig");
 }
