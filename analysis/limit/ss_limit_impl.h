@@ -138,9 +138,10 @@ void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C);
  * so that differences of size |lambda_2|^m |P| keep their relative
  * precision instead of drowning in the rounding of the translation).  With
  * scale not NULL (and shift not NULL), P receives 2^*scale P' instead, *scale
- * >= 0 chosen so that the dominant part does not underflow (0 whenever
+ * chosen so that the dominant part does not underflow (0 whenever
  * |lambda_2|^m >= 2^-400 and the run is not defective: then P' is exactly the
- * unscaled result); with scale NULL, P' itself (parts below DBL_MIN lost).
+ * unscaled result; a defective run's P' is normalised to entries below 1);
+ * with scale NULL, P' itself (parts below DBL_MIN lost).
  * SS_ENUMERIC when the limit is not defined; SS_ENOMEM. */
 ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
                            int *scale, ss_error *err);
