@@ -55,22 +55,37 @@
  * once its binary digits have run out it is a corner of its sub-cell, the
  * fixed point of an infinite run.  Its Jacobian comes from that run's
  * eigenvectors: components with |lambda| < 1/2 have derivative 0 there,
- * those with lambda = 1/2 are linear along rays (their derivative is read
- * from one more evaluation per axis); any other |lambda| >= 1/2 (besides the
- * constant 1), or a defective run, makes the parametric Jacobian unbounded or
+ * those with lambda = 1/2 (real, or a pair 1/2 +- i eps: a double 1/2 split
+ * by rounding) are linear along rays (their derivative is read from one more
+ * evaluation per axis); any other |lambda| >= 1/2 (besides the constant 1),
+ * or a Jordan block at 1/2, makes the parametric Jacobian unbounded or
  * undefined there: SS_ENUMERIC.
  *
  * Precision: patch points are kept relative to a point of the current
  * sub-cell (the rows of W sum to 1, so a shift commutes with every step);
  * their differences, of the size of the sub-cell, keep full relative
  * precision, and the Jacobian after m steps does not lose a factor 2^m.
+ * Depth: the walk keeps 2^s times those points and the derivative map
+ * divided by 2^s, rescaled by powers of 2 (exact) when the points fall below
+ * 2^-256, and a jump forms lambda^m 2^s with the exponent apart, so that
+ * nothing under- or overflows down to parameters of 2^-1074; a point or
+ * Jacobian that is still not a finite double (it exceeds DBL_MAX) is
+ * refused, SS_ENUMERIC.  The Jacobian is accurate normwise (to about 1e-13
+ * of its largest entry); where its rows grow at different rates (across and
+ * along an extraordinary edge) a small row carries that absolute error --
+ * it is that much more sensitive to the mesh's coordinates (README).
  *
  * Defective eigenstructure (a run's W not diagonalisable to working accuracy:
  * condition of V above SS_LIMIT_MAXCOND, as MLCA's icosahedron vertex, where
- * 1/8 has a Jordan block): W^m is then formed from the cached powers
- * W^(2^i) (at most 12 products, exact to rounding), and only a Jacobian at
- * such a run's fixed point, which needs its eigenvectors, is refused
- * (SS_ENUMERIC with the reason) -- never a silent wrong point.
+ * 1/8 has a Jordan block): W^m is then formed from cached powers (at most 12
+ * products): the translation from W^(2^i), the points' differences from the
+ * powers of the difference map D ((W P)_r - (W P)_0 from P_r - P_0, the
+ * eigenvalue 1 removed), stored scaled, so that differences of size
+ * |lambda_2|^m keep their relative precision.  A Jacobian at such a run's
+ * fixed point takes the eigenvalue-1/2 part by its spectral projector (null
+ * spaces of W - I/2, by SVD); refused (SS_ENUMERIC with the reason) when 1/2
+ * has a Jordan block or another |lambda| >= 1/2 -- never a silent wrong
+ * point.
  *
  * Memory: the transitions of patches that only coarse cells have are kept
  * for the 64 most recent ones (and rebuilt when needed again); first use of
@@ -144,9 +159,11 @@ void ss_limit_set_tensor(ss_limit *L, int on);
  * `derivatives` the Jacobian, by the walk above.  SS_EINPUT for an unknown
  * cell, a parameter outside [0,1] or not finite, a walk that does not end
  * within SS_LIMIT_MAXSTEPS plain steps; SS_ENUMERIC for a fixed point whose
- * limit is not defined (eigenvalue 1 not simple), or derivatives asked at a
+ * limit is not defined (eigenvalue 1 not simple), derivatives asked at a
  * fixed point where the parametric Jacobian is unbounded or undefined (see
- * above); SS_ENOMEM. */
+ * above), or a result beyond the range of doubles; SS_ENOMEM.  The mesh's
+ * cells are not checked for orientation (flat and folded ones are evaluated
+ * as they are; the CLI refuses them). */
 ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
                         int derivatives, ss_limit_point *out, ss_error *err);
 

@@ -140,7 +140,7 @@ static ss_status eval_net(ss_limit *L, size_t s, double *Q, ss_lim_pt y, int der
                           size_t cell, ss_limit_point *out, ss_error *err) {
   double o[3] = {0, 0, 0}, I3[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   memset(out, 0, sizeof *out);
-  return ss_lim_walk(L, s, Q, o, y, I3, derivatives, 1, cell, out, err);
+  return ss_lim_walk(L, s, Q, o, 0, y, I3, derivatives, 1, cell, out, err);
 }
 
 /* The point b + e_af / 2 of the fixed point's cell (on the edge). */

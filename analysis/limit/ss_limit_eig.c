@@ -15,6 +15,7 @@
 void ss_lim_eig_free(ss_lim_eig *e) {
   if (!e) return;
   free(e->pw);
+  free(e->pd);
   free(e->V);
   free(e->Vinv);
   free(e->lam);
@@ -22,41 +23,96 @@ void ss_lim_eig_free(ss_lim_eig *e) {
   free(e);
 }
 
+/* c = a b (n x n, row-major; c aliases neither). */
+static void square_into(const double *a, const double *b, size_t n, double *c) {
+  memset(c, 0, n * n * sizeof *c);
+  for (size_t i = 0; i < n; i++)
+    for (size_t q = 0; q < n; q++) {
+      double x = a[i * n + q];
+      if (x == 0.0) continue;
+      for (size_t j = 0; j < n; j++)
+        c[i * n + j] += x * b[q * n + j];
+    }
+}
+
+/* a (n entries) <- a 2^-k with the largest |entry| in [1/2, 1), *ex += k
+ * (exact but for entries that become subnormal, negligible beside the
+ * largest); all zeros are left alone. */
+static void normalize(double *a, size_t n, long *ex) {
+  double mx = 0.0;
+  for (size_t i = 0; i < n; i++)
+    if (fabs(a[i]) > mx) mx = fabs(a[i]);
+  if (!(mx > 0.0) || !isfinite(mx)) return;
+  int k = ilogb(mx) + 1;
+  for (size_t i = 0; i < n; i++)
+    a[i] = ldexp(a[i], -k);
+  *ex += k;
+}
+
 /* The fallback for a defective W: W^(2^i), i = 0 .. SS_LIM_NPOW - 1, by repeated
  * squaring (products of averaging matrices: stable, whatever the Jordan
- * structure). */
+ * structure), and the same powers of the difference map D (scaled: they
+ * shrink like |lambda_2|^(2^i), below DBL_MIN for i = 11). */
 static ss_status make_powers(const double *W, size_t K, ss_lim_eig *e, ss_error *err) {
+  const size_t n = K - 1;
   e->pw = malloc((SS_LIM_NPOW * K * K + 1) * sizeof *e->pw);
-  if (!e->pw) return ss_error_nomem(err, "matrix powers");
+  e->pd = malloc((SS_LIM_NPOW * n * n + 1) * sizeof *e->pd);
+  if (!e->pw || !e->pd) return ss_error_nomem(err, "matrix powers");
   memcpy(e->pw, W, K * K * sizeof *W);
+  for (int p = 1; p < SS_LIM_NPOW; p++)
+    square_into(e->pw + (size_t)(p - 1) * K * K, e->pw + (size_t)(p - 1) * K * K, K,
+                e->pw + (size_t)p * K * K);
+  for (size_t r = 1; r < K; r++)
+    for (size_t j = 1; j < K; j++)
+      e->pd[(r - 1) * n + (j - 1)] = W[r * K + j] - W[j];
+  e->pdexp[0] = 0;
+  normalize(e->pd, n * n, &e->pdexp[0]);
   for (int p = 1; p < SS_LIM_NPOW; p++) {
-    const double *A = e->pw + (size_t)(p - 1) * K * K;
-    double *B = e->pw + (size_t)p * K * K;
-    memset(B, 0, K * K * sizeof *B);
-    for (size_t i = 0; i < K; i++)
-      for (size_t q = 0; q < K; q++) {
-        double a = A[i * K + q];
-        if (a == 0.0) continue;
-        for (size_t j = 0; j < K; j++)
-          B[i * K + j] += a * A[q * K + j];
-      }
+    double *B = e->pd + (size_t)p * n * n;
+    square_into(e->pd + (size_t)(p - 1) * n * n, e->pd + (size_t)(p - 1) * n * n, n, B);
+    e->pdexp[p] = 2 * e->pdexp[p - 1];
+    normalize(B, n * n, &e->pdexp[p]);
   }
   return SS_OK;
 }
 
-/* P <- A P (K x K times K x 3). */
-static void matvec(const double *A, size_t K, double *P, double *tmp) {
-  for (size_t i = 0; i < K; i++) {
+/* x^m 2^s, formed with the exponent kept apart (binary powering on the
+ * mantissa, about 2 log2(m) roundings), so that it neither underflows nor
+ * overflows on the way when the result is a normal number. */
+static double pow_scaled(double x, long m, long s) {
+  if (m == 0) return ldexp(1.0, (int)s);
+  if (x == 0.0) return 0.0;
+  int t;
+  double b = frexp(fabs(x), &t), r = 1.0;
+  long eb = t, er = 0;
+  for (long k = m; k > 0; k >>= 1) {
+    if (k & 1) {
+      r = frexp(r * b, &t);
+      er += eb + t;
+    }
+    if (k > 1) {
+      b = frexp(b * b, &t);
+      eb = 2 * eb + t;
+    }
+  }
+  er += s;
+  double v = ldexp(r, (int)(er < -2200 ? -2200 : er > 2200 ? 2200 : er));
+  return x < 0.0 && (m & 1) ? -v : v;
+}
+
+/* P <- A P (n x n times n x 3). */
+static void matvec(const double *A, size_t n, double *P, double *tmp) {
+  for (size_t i = 0; i < n; i++) {
     double acc[3] = {0, 0, 0};
-    for (size_t j = 0; j < K; j++) {
-      double a = A[i * K + j];
+    for (size_t j = 0; j < n; j++) {
+      double a = A[i * n + j];
       if (a == 0.0) continue;
       for (int d = 0; d < 3; d++)
         acc[d] += a * P[j * 3 + (size_t)d];
     }
     memcpy(tmp + i * 3, acc, sizeof acc);
   }
-  memcpy(P, tmp, K * 3 * sizeof *P);
+  memcpy(P, tmp, n * 3 * sizeof *P);
 }
 
 ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err) {
@@ -167,9 +223,82 @@ void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C) {
   }
 }
 
+/* A defective run: W^m P from the powers W^(2^i) (the limit for m < 0, as
+ * W^(2^(SS_LIM_NPOW-1)) applied until |lambda_1|^(2^i) has vanished); with
+ * shift, the first point of W^m P (row 0 of W^m, formed as a row vector) is
+ * the shift and the differences come from the scaled powers of D. */
+static ss_status power_defective(const ss_lim_eig *e, long m, double *P, double shift[3],
+                                 int *scale, ss_error *err) {
+  const size_t K = e->K, n = K - 1;
+  double *tmp = malloc((K * 3 + K + 1) * sizeof *tmp), *row = tmp + K * 3;
+  if (!tmp) return ss_error_nomem(err, "matrix powers");
+  if (m >= 0 && m >> SS_LIM_NPOW) {
+    free(tmp);
+    return ss_error_set(err, SS_EINTERNAL, "run too long for the matrix powers");
+  }
+  if (m < 0) {
+    double l1 = e->second, r = l1;
+    int reps = 0;
+    for (int p = 0; p < SS_LIM_NPOW - 1; p++)
+      r *= r;
+    do {
+      matvec(e->pw + (size_t)(SS_LIM_NPOW - 1) * K * K, K, P, tmp);
+      reps++;
+      l1 = reps == 1 ? r : l1 * r;
+    } while (l1 > 1e-300 && reps < 64);
+  } else if (!shift) {
+    for (int p = 0; p < SS_LIM_NPOW && m >> p; p++)
+      if ((m >> p) & 1) matvec(e->pw + (size_t)p * K * K, K, P, tmp);
+  } else {
+    /* row 0 of W^m: e_0^T times the powers (they commute) */
+    memset(row, 0, K * sizeof *row);
+    row[0] = 1.0;
+    for (int p = 0; p < SS_LIM_NPOW && m >> p; p++) {
+      if (!((m >> p) & 1)) continue;
+      const double *A = e->pw + (size_t)p * K * K;
+      for (size_t j = 0; j < K; j++) {
+        double acc = 0.0;
+        for (size_t q = 0; q < K; q++)
+          acc += row[q] * A[q * K + j];
+        tmp[j] = acc;
+      }
+      memcpy(row, tmp, K * sizeof *row);
+    }
+    for (int d = 0; d < 3; d++) {
+      double acc = 0.0;
+      for (size_t q = 0; q < K; q++)
+        acc += row[q] * P[q * 3 + (size_t)d];
+      shift[d] = acc;
+    }
+    /* the differences P_r - P_0 through D^m, scaled as they go */
+    long ex = 0;
+    double *y = P + 3;
+    for (size_t r = 0; r < n; r++)
+      for (int d = 0; d < 3; d++)
+        y[r * 3 + (size_t)d] -= P[d];
+    P[0] = P[1] = P[2] = 0.0;
+    normalize(y, n * 3, &ex);
+    for (int p = 0; p < SS_LIM_NPOW && m >> p; p++) {
+      if (!((m >> p) & 1)) continue;
+      matvec(e->pd + (size_t)p * n * n, n, y, tmp);
+      ex += e->pdexp[p];
+      normalize(y, n * 3, &ex);
+    }
+    if (scale) {
+      *scale = (int)-ex;
+    } else {
+      for (size_t j = 0; j < n * 3; j++)
+        y[j] = ldexp(y[j], (int)ex);
+    }
+  }
+  free(tmp);
+  return SS_OK;
+}
+
 ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
-                           ss_error *err) {
+                           int *scale, ss_error *err) {
   const size_t K = e->K;
+  if (scale) *scale = 0;
   if (!e->ok) return ss_error_set(err, SS_ENUMERIC, "%s", e->why);
   if (m < 0 && e->one == SIZE_MAX)
     return ss_error_set(
@@ -177,37 +306,17 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
         "the limit at a fixed point needs the eigenvalue 1 simple and all "
         "others inside the unit circle; this run's matrix has not");
   if (shift) shift[0] = shift[1] = shift[2] = 0.0;
-  if (e->pw) {
-    /* W^m by the binary digits of m; the limit as W^(2^(SS_LIM_NPOW-1)) applied
-     * until |lambda_1|^(2^i) has vanished */
-    double *tmp = malloc((K * 3 + 1) * sizeof *tmp);
-    if (!tmp) return ss_error_nomem(err, "matrix powers");
-    if (m < 0) {
-      double l1 = e->second, r = l1;
-      int reps = 0;
-      for (int p = 0; p < SS_LIM_NPOW - 1; p++)
-        r *= r;
-      do {
-        matvec(e->pw + (size_t)(SS_LIM_NPOW - 1) * K * K, K, P, tmp);
-        reps++;
-        l1 = reps == 1 ? r : l1 * r;
-      } while (l1 > 1e-300 && reps < 64);
-    } else {
-      for (int p = 0; p < SS_LIM_NPOW && m > 0; p++, m >>= 1)
-        if (m & 1) matvec(e->pw + (size_t)p * K * K, K, P, tmp);
-      if (m > 0) {
-        free(tmp);
-        return ss_error_set(err, SS_EINTERNAL, "run too long for the matrix powers");
-      }
-    }
-    free(tmp);
-    return SS_OK;
-  }
+  if (e->pw) return power_defective(e, m, P, shift, scale, err);
   /* C = V^-1 P, then diag-block(lambda)^m C, then P = V C; for finite m
    * the eigenvalue-1 part (a uniform translation: its eigenvector is
    * constant) goes to shift, not into P, so that its rounding (eps cond |P|,
    * which does not shrink with m) does not swamp the differences of the
-   * result (|lambda_1|^m |P|) */
+   * result (|lambda_1|^m |P|).  When |lambda_1|^m would fall below 2^-400
+   * the factors are lambda^m 2^s, s = -log2 |lambda_1|^m (rounded down),
+   * formed without underflow. */
+  long s = 0;
+  if (scale && shift && m > 0 && e->second > 0.0 && (double)m * log2(e->second) < -400.0)
+    s = (long)floor(-(double)m * log2(e->second));
   double sh[3] = {0, 0, 0};
   double *C = malloc((K * 3 + 1) * sizeof *C);
   if (!C) return ss_error_nomem(err, "eigen power");
@@ -231,7 +340,8 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
     }
     if (e->pair[i] == 1) {
       /* [c_i; c_i+1] <- r^m [cos m t, sin m t; -sin m t, cos m t] [c_i; c_i+1] */
-      double r = pow(cabs(e->lam[i]), (double)m), t = (double)m * carg(e->lam[i]);
+      double r = s ? pow_scaled(cabs(e->lam[i]), m, s) : pow(cabs(e->lam[i]), (double)m);
+      double t = (double)m * carg(e->lam[i]);
       double cs = r * cos(t), sn = r * sin(t), *c2 = c + 3;
       for (int d = 0; d < 3; d++) {
         double x = c[d], y = c2[d];
@@ -241,7 +351,7 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
       i++;
       continue;
     }
-    double f = pow(creal(e->lam[i]), (double)m);
+    double f = s ? pow_scaled(creal(e->lam[i]), m, s) : pow(creal(e->lam[i]), (double)m);
     for (int d = 0; d < 3; d++)
       c[d] *= f;
   }
@@ -257,5 +367,91 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
   }
   free(C);
   if (shift) memcpy(shift, sh, sizeof sh);
+  if (scale) *scale = (int)s;
   return SS_OK;
+}
+
+ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const double *P,
+                               double *Q, ss_error *err) {
+  ss_status st = SS_OK;
+  const size_t K = e->K;
+  size_t k = 0;
+  double bad = 0.0;
+  for (size_t j = 0; j < K; j++) {
+    if (cabs(e->lam[j] - 0.5) <= 1e-6)
+      k++;
+    else if (j != e->one && cabs(e->lam[j]) > 0.5 - 1e-8 && bad == 0.0)
+      bad = cabs(e->lam[j]);
+  }
+  memset(Q, 0, K * 3 * sizeof *Q);
+  if (bad > 0.0)
+    return ss_error_set(err, SS_ENUMERIC,
+                        "its run (a defective matrix) has an eigenvalue of modulus "
+                        "%.6g, >= 1/2 and not 1/2",
+                        bad);
+  if (!k) return SS_OK; /* every component but the point has derivative 0 */
+  double *A = malloc((3 * K * K + 2 * K + k * k + 1) * sizeof *A);
+  lapack_int *ipiv = malloc((k + 1) * sizeof *ipiv);
+  if (!A || !ipiv) {
+    st = ss_error_nomem(err, "eigenvalue-1/2 projector");
+    goto done;
+  }
+  double *U = A + K * K, *VT = U + K * K, *sv = VT + K * K, *work = sv + K, *G = work + K;
+  for (size_t i = 0; i < K * K; i++)
+    A[i] = W[i];
+  for (size_t i = 0; i < K; i++)
+    A[i * K + i] -= 0.5;
+  lapack_int info =
+      LAPACKE_dgesvd(LAPACK_ROW_MAJOR, 'A', 'A', (lapack_int)K, (lapack_int)K, A,
+                     (lapack_int)K, sv, U, (lapack_int)K, VT, (lapack_int)K, work);
+  if (info) {
+    st = ss_error_set(err, SS_ENUMERIC, "dgesvd failed (info %d)", (int)info);
+    goto done;
+  }
+  /* semisimple: exactly k singular values of W - I/2 vanish */
+  if (!(sv[K - k] <= 1e-10) || (k < K && !(sv[K - k - 1] > 1e-7))) {
+    st = ss_error_set(err, SS_ENUMERIC,
+                      "the eigenvalue 1/2 (%zu-fold) of its run has a Jordan block "
+                      "(singular values %.3g, %.3g of W - I/2): the Jacobian is "
+                      "unbounded",
+                      k, sv[K - k], k < K ? sv[K - k - 1] : 0.0);
+    goto done;
+  }
+  /* right eigenvectors X = the last k rows of VT, left ones Y = the last k
+   * columns of U; the projector X (Y^T X)^-1 Y^T */
+  for (size_t a = 0; a < k; a++)
+    for (size_t b = 0; b < k; b++) {
+      double s = 0.0;
+      for (size_t r = 0; r < K; r++)
+        s += U[r * K + (K - k + a)] * VT[(K - k + b) * K + r];
+      G[a * k + b] = s;
+    }
+  double Z[3 * 64];
+  if (k > 64) { /* beyond any patch met (K ~ 100, 1/2 at most 3-fold) */
+    st = ss_error_set(err, SS_ENUMERIC, "eigenvalue 1/2 of multiplicity %zu", k);
+    goto done;
+  }
+  for (size_t a = 0; a < k; a++)
+    for (int d = 0; d < 3; d++) {
+      double s = 0.0;
+      for (size_t r = 0; r < K; r++)
+        s += U[r * K + (K - k + a)] * P[r * 3 + (size_t)d];
+      Z[a * 3 + (size_t)d] = s;
+    }
+  info = LAPACKE_dgesv(LAPACK_ROW_MAJOR, (lapack_int)k, 3, G, (lapack_int)k, ipiv, Z, 3);
+  if (info) {
+    st = ss_error_set(err, SS_ENUMERIC,
+                      "the eigenvalue 1/2 of a run: its left and right eigenvectors are "
+                      "singular together (dgesv info %d)",
+                      (int)info);
+    goto done;
+  }
+  for (size_t r = 0; r < K; r++)
+    for (size_t b = 0; b < k; b++)
+      for (int d = 0; d < 3; d++)
+        Q[r * 3 + (size_t)d] += VT[(K - k + b) * K + r] * Z[b * 3 + (size_t)d];
+done:
+  free(A);
+  free(ipiv);
+  return st;
 }

@@ -90,34 +90,40 @@ ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical
                       ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
                       ss_error *err);
 
-/* Eigen-decomposition of a stationary run's matrix W (K x K, row-major):
- * W = V diag(lam) V^-1. */
-typedef struct {
-  size_t K;            /* size */
-  int ok;              /* 1 if usable; 0: why says why */
-  char why[256];       /* reason it is not */
-  double cond;         /* ||V||_1 ||V^-1||_1 with unit columns */
-  double *V;           /* K x K, column-major: column j the eigenvector of a
-                          real lam[j]; for a pair a +- ib (pair 1, 2) the
-                          real and imaginary parts x, y of x + iy, so that
-                          W [x y] = [x y] [a b; -b a] */
-  double *Vinv;        /* K x K, column-major: V^-1 */
-  double complex *lam; /* K eigenvalues */
-  int *pair;           /* K: 0 real, 1 first of a complex pair, 2 second */
-  size_t one;          /* index of the eigenvalue 1, or SIZE_MAX if not simple */
-  double second;       /* largest |lambda| other than 1 */
-  double *pw;          /* cond > SS_LIMIT_MAXCOND: W^(2^i), i < SS_LIM_NPOW, each
-                          K x K row-major; else NULL */
-} ss_lim_eig;
-
 #define SS_LIM_NPOW                                                                      \
   12 /* powers W^(2^i) kept for a defective run: runs are at most                        \
         about 1075 steps (the binary exponents of doubles) */
 
+/* Eigen-decomposition of a stationary run's matrix W (K x K, row-major):
+ * W = V diag(lam) V^-1. */
+typedef struct {
+  size_t K;                /* size */
+  int ok;                  /* 1 if usable; 0: why says why */
+  char why[256];           /* reason it is not */
+  double cond;             /* ||V||_1 ||V^-1||_1 with unit columns */
+  double *V;               /* K x K, column-major: column j the eigenvector of a
+                              real lam[j]; for a pair a +- ib (pair 1, 2) the
+                              real and imaginary parts x, y of x + iy, so that
+                              W [x y] = [x y] [a b; -b a] */
+  double *Vinv;            /* K x K, column-major: V^-1 */
+  double complex *lam;     /* K eigenvalues */
+  int *pair;               /* K: 0 real, 1 first of a complex pair, 2 second */
+  size_t one;              /* index of the eigenvalue 1, or SIZE_MAX if not simple */
+  double second;           /* largest |lambda| other than 1 */
+  double *pw;              /* cond > SS_LIMIT_MAXCOND: W^(2^i), i < SS_LIM_NPOW, each
+                              K x K row-major; else NULL */
+  double *pd;              /* with pw: the powers D^(2^i) of the difference map D
+                              ((K-1) x (K-1): (W P)_r - (W P)_0 from P_r - P_0,
+                              r >= 1; eigenvalue 1 removed), each scaled by a
+                              power of 2 to entries of at most 1 */
+  long pdexp[SS_LIM_NPOW]; /* with pd: D^(2^i) = 2^pdexp[i] times the i-th */
+} ss_lim_eig;
+
 /* Decompose W (K x K row-major).  When V is singular or its condition
  * exceeds SS_LIMIT_MAXCOND (a Jordan block: W is defective) the powers
- * W^(2^i) are kept instead (why says so), and W^m costs popcount(m) <=
- * SS_LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK fails outright. */
+ * W^(2^i) and D^(2^i) are kept instead (why says so), and W^m costs
+ * popcount(m) <= SS_LIM_NPOW products.  SS_ENOMEM; SS_ENUMERIC if LAPACK
+ * fails outright. */
 ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err);
 void ss_lim_eig_free(ss_lim_eig *e);
 /* C (K x 3) = V^-1 P (P K x 3, row-major): the coefficients of P's points on
@@ -125,13 +131,30 @@ void ss_lim_eig_free(ss_lim_eig *e);
 void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C);
 /* P (K x 3, row-major) <- W^m P; m < 0 means the limit m -> infinity (the
  * projection on the eigenvalue 1, which must be simple and every other
- * |lambda| < 1).  With shift not NULL and m >= 0, the eigenvalue-1 part of
- * the result (a translation, the same for every point) is left out of P and
- * written to shift instead (zero when W^m is formed from powers): W^m P =
- * P + shift, row by row.  SS_ENUMERIC when the limit is not defined;
- * SS_ENOMEM. */
+ * |lambda| < 1).  With shift not NULL and m >= 0, a translation (the same for
+ * every point) is left out of P and written to shift instead: W^m P = P' +
+ * shift, row by row -- the eigenvalue-1 part, or for a defective run the
+ * new first point (then P' is formed from the powers of the difference map,
+ * so that differences of size |lambda_2|^m |P| keep their relative
+ * precision instead of drowning in the rounding of the translation).  With
+ * scale not NULL (and shift not NULL), P receives 2^*scale P' instead, *scale
+ * chosen so that the dominant part does not underflow (0 whenever
+ * |lambda_2|^m >= 2^-400 and the run is not defective: then P' is exactly the
+ * unscaled result; a defective run's P' is normalised to entries below 1);
+ * with scale NULL, P' itself (parts below DBL_MIN lost).
+ * SS_ENUMERIC when the limit is not defined; SS_ENOMEM. */
 ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
-                           ss_error *err);
+                           int *scale, ss_error *err);
+
+/* Q (K x 3) <- the eigenvalue-1/2 part of P for a run W with the
+ * decomposition e (used when e is defective: eigenvectors of the other
+ * eigenvalues are not needed), by the spectral projector X (Y^T X)^-1 Y^T
+ * from the null spaces of W - I/2 (SVD); Q = 0 when 1/2 is no eigenvalue.
+ * SS_ENUMERIC (with the reason) when 1/2 has a Jordan block or another
+ * eigenvalue but 1 has modulus >= 1/2: the parametric Jacobian at the run's
+ * fixed point is then unbounded; SS_ENOMEM. */
+ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const double *P,
+                               double *Q, ss_error *err);
 
 /* ---- the evaluator's cache and object (ss_limit.c, ss_limit_state.c,
  * ss_limit_tensor.c, ss_limit_walk.c) ---- */
@@ -259,10 +282,11 @@ int ss_lim_child_of(const ss_lim_pt *p);
 long ss_lim_run_length(const ss_lim_pt *p, unsigned b);
 /* One step into child k, then frame g; M <- G 2 M. */
 void ss_lim_advance(ss_lim_pt *p, int k, const ss_lim_frame *g, double M[3][3]);
-/* The walk from state s with patch points P (taken over and freed), relative
- * to the origin o, at pt; M maps the current frame's derivatives to the
- * caller's (rows d/dx_a); no_tensor: never by eq. (1). */
-ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
+/* The walk from state s with patch points P (taken over and freed), 2^sc
+ * times their offsets from the origin o, at pt; M maps the current frame's
+ * derivatives to the caller's (rows d/dx_a), divided by 2^sc; no_tensor:
+ * never by eq. (1). */
+ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
                       ss_limit_point *out, ss_error *err);
 

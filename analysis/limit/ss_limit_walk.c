@@ -7,6 +7,7 @@
 #include <complex.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,8 +26,8 @@ static ss_status check_args(const ss_limit *L, size_t cell, const double x[3],
   static const char *const name[3] = {"u", "v", "w"};
   for (int a = 0; a < 3; a++)
     if (!(x[a] >= 0.0 && x[a] <= 1.0))
-      return ss_error_set(err, SS_EINPUT, "parameter %s = %g is outside [0, 1]", name[a],
-                          x[a]);
+      return ss_error_set(err, SS_EINPUT, "parameter %s = %.17g is outside [0, 1]",
+                          name[a], x[a]);
   return SS_OK;
 }
 
@@ -160,21 +161,31 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
  * any other component with |lambda| >= 1/2 makes the Jacobian unbounded or
  * direction-dependent, and is refused.  J receives rows d/dx_a in the
  * current frame. */
-static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsigned b,
+static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_trans *t, unsigned b,
                                 const double *P, size_t cell, double J[3][3],
                                 ss_error *err) {
   ss_status st = SS_OK;
+  const ss_lim_eig *e = t->eig;
   const size_t K = e->K;
   double *Q = NULL;
-  if (e->pw)
-    return ss_error_set(
-        err, SS_ENUMERIC,
-        "cell %zu: the Jacobian at this point (an extraordinary vertex or "
-        "edge, or the boundary) needs the eigenvectors of a defective "
-        "matrix: %s",
-        cell + 1, e->why);
   Q = calloc(K * 3 + 1, sizeof *Q);
   if (!Q) return ss_error_nomem(err, "fixed-point Jacobian");
+  if (e->pw) {
+    /* a defective run (a Jordan block, or a multiple eigenvalue LAPACK
+     * returned with nearly parallel eigenvectors): only the eigenvalue-1/2
+     * part matters, by its spectral projector */
+    if ((st = ss_lim_eig_half_part(e, t->W, P, Q, err))) {
+      free(Q);
+      if (st != SS_ENUMERIC) return st;
+      char why[sizeof err->msg];
+      snprintf(why, sizeof why, "%s", err->msg);
+      return ss_error_set(err, SS_ENUMERIC,
+                          "cell %zu: the parametric Jacobian is not defined at this "
+                          "point (an extraordinary vertex or edge, or the boundary): %s",
+                          cell + 1, why);
+    }
+    goto axes;
+  }
   double scale = 0.0;
   for (size_t j = 0; j < K * 3; j++)
     if (fabs(P[j] - P[j % 3]) > scale) scale = fabs(P[j] - P[j % 3]);
@@ -192,10 +203,14 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsi
       if (e->pair[i] == 1) i++;
       continue;
     }
-    if (fabs(al - 0.5) <= 1e-8 && e->pair[i] == 0) {
-      for (size_t r = 0; r < K; r++)
-        for (int d = 0; d < 3; d++)
-          Q[r * 3 + (size_t)d] += e->V[i * K + r] * c[d];
+    if (cabs(e->lam[i] - 0.5) <= 1e-8) {
+      /* 1/2, real, or a pair 1/2 +- i eps (a double 1/2 split by rounding:
+       * W is 1/2 on the span of its x and y, whose condition was checked) */
+      for (size_t w = 0; w < (e->pair[i] == 1 ? 2u : 1u); w++)
+        for (size_t r = 0; r < K; r++)
+          for (int d = 0; d < 3; d++)
+            Q[r * 3 + (size_t)d] += e->V[(i + w) * K + r] * c[w * 3 + (size_t)d];
+      if (e->pair[i] == 1) i++;
       continue;
     }
     st =
@@ -208,6 +223,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsi
     goto done;
   }
   free(C);
+axes:
   for (int a = 0; a < 3; a++) {
     ss_lim_pt y;
     for (int d = 0; d < 3; d++) {
@@ -224,7 +240,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_eig *e, unsi
     ss_limit_point phi;
     double oq[3] = {0, 0, 0};
     memset(&phi, 0, sizeof phi);
-    if ((st = ss_lim_walk(L, s, Qa, oq, y, I3, 0, 1, cell, &phi, err))) goto done;
+    if ((st = ss_lim_walk(L, s, Qa, oq, 0, y, I3, 0, 1, cell, &phi, err))) goto done;
     const double sign = (b >> a) & 1u ? -2.0 : 2.0;
     for (int d = 0; d < 3; d++)
       J[a][d] = sign * phi.p[d];
@@ -240,13 +256,34 @@ done:
  * the current sub-cell keeps their differences -- of the order of the
  * sub-cell's size, 2^-m after m steps -- to full relative precision, which
  * absolute coordinates would lose (an error of eps |P| 2^m in the Jacobian). */
-static void recentre(double *P, size_t K, double o[3]) {
+static void recentre(double *P, size_t K, double o[3], int sc) {
   double c[3] = {P[0], P[1], P[2]};
   for (size_t i = 0; i < K; i++)
     for (int d = 0; d < 3; d++)
       P[i * 3 + (size_t)d] -= c[d];
   for (int d = 0; d < 3; d++)
-    o[d] += c[d];
+    o[d] += ldexp(c[d], -sc);
+}
+
+/* Exponent-aware scaling: the walk keeps 2^sc times the points relative to
+ * o, and M divided by 2^sc (the Jacobian, bilinear in the two, is the same).
+ * After about 1000 steps the points' differences (|lambda|^m) would be
+ * subnormal or 0 and M (2^m) infinite: when the largest |P| falls below
+ * 2^-256, P is scaled up to [1/2, 1) and M down by the same power of 2.
+ * Exact, and never done at ordinary depths (results there are unchanged to
+ * the bit). */
+static void rescale(double *P, size_t K, double M[3][3], int *sc) {
+  double mx = 0.0;
+  for (size_t i = 0; i < K * 3; i++)
+    if (fabs(P[i]) > mx) mx = fabs(P[i]);
+  if (!(mx > 0.0) || mx >= 0x1p-256) return;
+  int k = -ilogb(mx) - 1;
+  for (size_t i = 0; i < K * 3; i++)
+    P[i] = ldexp(P[i], k);
+  for (int a = 0; a < 3; a++)
+    for (int j = 0; j < 3; j++)
+      M[a][j] = ldexp(M[a][j], -k);
+  *sc += k;
 }
 
 /* The point and Jacobian at pt of state s (whose child k is a stationary
@@ -256,7 +293,7 @@ static void recentre(double *P, size_t K, double o[3]) {
  * edge, reached by one jump whatever x_a's digits; and the derivative along
  * the edge is the limit at (0, y) of the net with N_l'. */
 static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
-                             const double *P, const double o[3], ss_lim_pt pt,
+                             const double *P, const double o[3], int sc, ss_lim_pt pt,
                              double M[3][3], int derivatives, size_t cell,
                              ss_limit_point *out, ss_error *err) {
   ss_status st;
@@ -284,8 +321,8 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
     memcpy(M2, M, sizeof M2);
     ss_limit_point r;
     memset(&r, 0, sizeof r);
-    if ((st = ss_lim_walk(L, s, Q, oq, p0, M2, pass == 0 ? derivatives : 0, 1, cell, &r,
-                          err)))
+    if ((st = ss_lim_walk(L, s, Q, oq, pass == 0 ? sc : 0, p0, M2,
+                          pass == 0 ? derivatives : 0, 1, cell, &r, err)))
       return st;
     if (pass == 0) {
       *out = r;
@@ -301,21 +338,23 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
   return SS_OK;
 }
 
-/* The walk from state s with patch points P (taken over and freed), relative
- * to the origin o (recentred on the way; out->p is absolute). */
-ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt pt,
+/* The walk from state s with patch points P (taken over and freed), 2^sc
+ * times their offsets from the origin o (recentred and rescaled on the way;
+ * out->p is absolute). */
+ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
                       ss_limit_point *out, ss_error *err) {
   ss_status st = SS_OK;
   double *P0 = NULL;
   int plain = 0;
-  recentre(P, L->st[s]->patch.nv, o);
+  recentre(P, L->st[s]->patch.nv, o, sc);
+  rescale(P, L->st[s]->patch.nv, M, &sc);
   for (;;) {
     ss_lim_state *S = L->st[s];
     if (S->patch.regular) {
       finish_regular(&S->patch, P, &pt, M, derivatives, out);
       for (int d = 0; d < 3; d++)
-        out->p[d] += o[d];
+        out->p[d] = ldexp(out->p[d], -sc) + o[d];
       break;
     }
     int k = ss_lim_child_of(&pt);
@@ -328,7 +367,7 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
         if ((st = ss_lim_tensor_of(L, s, k, &T, err))) goto done;
         if (T->status == 1) {
           int steps = out->steps, products = out->products;
-          st = tensor_eval(L, s, T, P, o, pt, M, derivatives, cell, out, err);
+          st = tensor_eval(L, s, T, P, o, sc, pt, M, derivatives, cell, out, err);
           out->steps += steps;
           out->products += products;
           goto done;
@@ -349,17 +388,19 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
           memcpy(P0, P, S->patch.nv * 3 * sizeof *P0);
         }
         double shift[3];
-        if ((st = ss_lim_eig_power(t->eig, m, P, shift, err))) goto done;
+        int js = 0;
+        if ((st = ss_lim_eig_power(t->eig, m, P, shift, &js, err))) goto done;
         for (int d = 0; d < 3; d++)
-          o[d] += shift[d];
+          o[d] += ldexp(shift[d], -sc);
+        sc += js;
         out->products++;
         if (m < 0) {
           /* a fixed point: every patch point is its limit */
           for (int d = 0; d < 3; d++)
-            out->p[d] = o[d] + P[d];
+            out->p[d] = o[d] + ldexp(P[d], -sc);
           if (derivatives) {
             double J[3][3];
-            if ((st = fixed_jacobian(L, s, t->eig, ss_cube_corner_bits(3, k), P0, cell, J,
+            if ((st = fixed_jacobian(L, s, t, ss_cube_corner_bits(3, k), P0, cell, J,
                                      err)))
               goto done;
             for (int i = 0; i < 3; i++)
@@ -374,9 +415,10 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
         pt_jump(&pt, ss_cube_corner_bits(3, k), m);
         for (int a = 0; a < 3; a++)
           for (int j = 0; j < 3; j++)
-            M[a][j] = ldexp(M[a][j], (int)m);
+            M[a][j] = ldexp(M[a][j], (int)m - js);
         out->steps += (int)m;
-        recentre(P, S->patch.nv, o);
+        recentre(P, S->patch.nv, o, sc);
+        rescale(P, S->patch.nv, M, &sc);
         continue;
       }
     }
@@ -385,7 +427,8 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], ss_lim_pt p
     out->steps++;
     out->products++;
     s = t->next;
-    recentre(P, L->st[s]->patch.nv, o);
+    recentre(P, L->st[s]->patch.nv, o, sc);
+    rescale(P, L->st[s]->patch.nv, M, &sc);
     if (++plain > SS_LIMIT_MAXSTEPS) {
       st = not_reached(L, cell, plain, err);
       goto done;
@@ -395,6 +438,26 @@ done:
   free(P0);
   free(P);
   return st;
+}
+
+/* No non-finite number leaves the evaluator as a value: a point or Jacobian
+ * entry beyond DBL_MAX (the Jacobian grows like d^(-1 - log2 lambda) at
+ * distance d from a vertex whose subdominant eigenvalue lambda exceeds 1/2)
+ * is refused with the reason. */
+static ss_status check_finite(size_t cell, const double x[3], int derivatives,
+                              const ss_limit_point *out, ss_error *err) {
+  int ok = 1;
+  for (int d = 0; d < 3; d++) {
+    ok &= isfinite(out->p[d]) != 0;
+    for (int a = 0; a < 3 && derivatives; a++)
+      ok &= isfinite(out->jac[a][d]) != 0;
+  }
+  if (ok) return SS_OK;
+  return ss_error_set(err, SS_ENUMERIC,
+                      "cell %zu at (%.17g, %.17g, %.17g): the %s is not a finite double "
+                      "(beyond the range of doubles): refused",
+                      cell + 1, x[0], x[1], x[2],
+                      derivatives ? "limit point or its Jacobian" : "limit point");
 }
 
 ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
@@ -418,8 +481,9 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
   if (!P) return ss_error_nomem(err, "patch points");
   for (size_t i = 0; i < K0; i++)
     memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
-  double o[3] = {0, 0, 0};
-  return ss_lim_walk(L, s, P, o, q, M, derivatives, 0, cell, out, err);
+  double o[3] = {0, 0, 0}, x0[3] = {u, v, w};
+  if ((st = ss_lim_walk(L, s, P, o, 0, q, M, derivatives, 0, cell, out, err))) return st;
+  return check_finite(cell, x0, derivatives, out, err);
 }
 
 ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
@@ -438,7 +502,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
   if ((st = ss_lim_patch_complex(L->mesh, &p, &pcx, err))) goto done;
   double o[3] = {0, 0, 0}; /* the patch is kept relative to o (recentre) */
   for (int depth = 0;; depth++) {
-    recentre(pcx->x, pcx->nv, o);
+    recentre(pcx->x, pcx->nv, o, 0);
     if (p.regular) {
       P = malloc((p.nv * 3 + 1) * sizeof *P);
       if (!P) {
@@ -472,6 +536,7 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
     out->steps++;
     out->products++;
   }
+  if (!st) st = check_finite(cell, (const double[3]){u, v, w}, derivatives, out, err);
 done:
   free(P);
   ss_lim_patch_free(&p);

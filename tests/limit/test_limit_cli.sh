@@ -56,4 +56,70 @@ expect 2 "No such file" "$exe" limit --scheme mlca /nonexistent.mesh --gauss 1
 # the Jacobian exactly at the extraordinary vertex is not defined: exit 1
 expect 1 "Jacobian" "$exe" limit --scheme mlca "$mesh" --at "1 0 0 0" --derivatives
 expect 0 "" "$exe" limit --scheme mlca "$mesh" --at "1 0 0 0"
+# issue 35: deep points near the icosahedron vertex (a defective run) grow
+# like d^(-1 - log2 lambda), lambda = 0.628884076988 (test_limit_depth):
+# J(2^-158 x) = (2 lambda)^100 J(2^-58 x) (the old walk printed noise with
+# its sign flipped), and agree with the reference at 2^-58 to 1e-11
+j1=$("$exe" limit --scheme mlca "$mesh" --at "1 0x1p-58 0x1p-58 0x1p-58" -d | cut -d' ' -f8)
+j2=$("$exe" limit --scheme mlca "$mesh" --at "1 0x1p-158 0x1p-158 0x1p-158" -d | cut -d' ' -f8)
+r=$(awk -v a="$j1" -v b="$j2" 'BEGIN {g = b / a; e = exp(100 * log(2 * 0.628884076988)); print (a > 0 && g > (1 - 1e-6) * e && g < (1 + 1e-6) * e) ? "ok" : g / e}')
+checks=$((checks + 1)); [ "$r" = "ok" ] || fail "J[0][0] at 2^-58, 2^-158: $j1, $j2 (ratio / (2 lambda)^100 = $r)"
+d=3.4694469519536142e-18
+a=$("$exe" limit --scheme mlca "$mesh" --at "1 $d $d $d" -d)
+b=$("$exe" limit --scheme mlca "$mesh" --at "1 $d $d $d" -d --reference)
+r=$(paste <(echo "$a") <(echo "$b") | awk '{for (i = 8; i <= 16; i++) {e = $i - $(i + 16); if (e < 0) e = -e; if (e > m) m = e; s = $(i + 16); if (s < 0) s = -s; if (s > n) n = s}} END {print (m <= 1e-11 * n) ? "ok" : m / n}')
+checks=$((checks + 1)); [ "$r" = "ok" ] || fail "2^-58: direct vs reference Jacobian off by $r of |J|"
+# subnormal parameters: finite numbers and valid JSON (no NaN, inf)
+grid="$tmp/grid.mesh"
+{
+  printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n64\n'
+  for k in 0 1 2 3; do for j in 0 1 2 3; do for i in 0 1 2 3; do echo "$i $j $k 0"; done; done; done
+  printf 'Hexahedra\n27\n'
+  for k in 0 1 2; do for j in 0 1 2; do for i in 0 1 2; do
+    v=$((i + 4 * j + 16 * k + 1))
+    echo "$v $((v + 1)) $((v + 5)) $((v + 4)) $((v + 16)) $((v + 17)) $((v + 21)) $((v + 20)) 0"
+  done; done; done
+  printf 'End\n'
+} > "$grid"
+for s in mlca ccsolid; do
+  out=$("$exe" limit --scheme $s "$grid" --at "1 1e-310 0.3 0.6" --at "1 4.9406564584124654e-324 1e-320 0.3" --at "14 1e-310 0.5 0.5" -d --format json)
+  checks=$((checks + 1)); [ $? -eq 0 ] && ! echo "$out" | grep -qi 'nan\|inf' || fail "$s: subnormal parameters: $out"
+  out=$("$exe" limit --scheme $s "$grid" --at "1 1e-310 0.3 0.6" -d --format vtk)
+  checks=$((checks + 1)); ! echo "$out" | grep -qi 'nan\|inf' || fail "$s: subnormal parameters in VTK"
+done
+# ccsolid on grids of 1, 2, 3 cells a side: every sample (boundary edges and
+# corners included) has a Jacobian
+for n in 1 2 3; do
+  awk -v n=$n 'BEGIN {
+    printf "MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n", (n + 1) ^ 3
+    for (k = 0; k <= n; k++) for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) print i, j, k, 0
+    printf "Hexahedra\n%d\n", n ^ 3
+    for (k = 0; k < n; k++) for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+      v = i + (n + 1) * (j + (n + 1) * k) + 1; r = n + 1; l = r * r
+      print v, v + 1, v + 1 + r, v + r, v + l, v + 1 + l, v + 1 + r + l, v + r + l, 0 }
+    print "End" }' > "$tmp/g$n.mesh"
+  n3=$(( 27 * n * n * n ))
+  c=$("$exe" limit --scheme ccsolid "$tmp/g$n.mesh" --samples 3 -d | wc -l)
+  checks=$((checks + 1)); [ "$c" -eq "$n3" ] || fail "ccsolid grid $n: $c sample lines, not $n3"
+done
+# flat, folded and inverted hexes are refused as subdivide refuses them
+two() {
+  printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n16\n'
+  for k in 0 1; do for j in 0 1; do for i in 0 1 2; do echo "$i $j $k 0"; done; done; done
+  printf '1 0 0 0\n2 0 0 0\n2 1 0 0\n1 1 0 0\n'
+  printf 'Hexahedra\n2\n1 2 5 4 7 8 11 10 0\n%s 0\nEnd\n' "$1"
+}
+two "2 3 6 5 8 9 12 11" > "$tmp/ok.mesh"
+two "2 5 6 3 8 11 12 9" > "$tmp/mirrored.mesh"
+two "2 3 6 5 8 12 9 11" > "$tmp/folded.mesh"
+two "2 3 6 5 13 14 15 16" > "$tmp/flat.mesh"
+expect 0 "" "$exe" limit --scheme mlca "$tmp/ok.mesh" --at "2 0.5 0.5 0.5" -d
+expect 2 "hexahedron 2 is inverted" "$exe" limit --scheme mlca "$tmp/mirrored.mesh" --at "2 0.5 0.5 0.5" -d
+expect 2 "hexahedron 2 is flat or folded" "$exe" limit --scheme mlca "$tmp/folded.mesh" --at "2 0.5 0.5 0.5" -d
+expect 2 "hexahedron 2 is flat or folded" "$exe" limit --scheme ccsolid "$tmp/flat.mesh" --samples 2
+# hostile parameters: exit 2 naming the parameter
+expect 2 "parameter u = 1.0000000000000002 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 1.0000000000000002 0.5 0.5"
+expect 2 "parameter w = -4.9406564584124654e-324 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 0.5 -4.9406564584124654e-324"
+expect 2 "parameter v = nan is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 nan 0.5"
+expect 2 "parameter u = inf is outside" "$exe" limit --scheme mlca "$mesh" --at "1 inf 0.5 0.5"
 expect_done limit_cli

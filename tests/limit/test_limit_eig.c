@@ -104,10 +104,10 @@ static void check_powers(const ss_lim_eig *e, const double *W, size_t K, gsl_rng
     memcpy(Q, P, sizeof Q);
     memcpy(R, P, sizeof R);
     repeat(W, K, ms[t], Q);
-    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], P, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], P, NULL, NULL, &err), &err);
     CHECK(maxdiff(P, Q, K * 3) <= 1e-12, "%s: W^%ld P off by %g", what, ms[t],
           maxdiff(P, Q, K * 3));
-    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], R, shift, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], R, shift, NULL, &err), &err);
     for (size_t i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
         R[i * 3 + (size_t)d] += shift[d];
@@ -119,7 +119,7 @@ static void check_powers(const ss_lim_eig *e, const double *W, size_t K, gsl_rng
   points(r, K, P);
   memcpy(Q, P, sizeof Q);
   limit_by_squaring(W, K, Q);
-  REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, &err), &err);
+  REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, NULL, &err), &err);
   CHECK(maxdiff(P, Q, K * 3) <= 1e-10, "%s: limit off by %g", what, maxdiff(P, Q, K * 3));
 }
 
@@ -264,7 +264,7 @@ static void test_averaging(gsl_rng *r) {
     for (int i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
         want[d] += pi[i] * P[i * 3 + d];
-    REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, NULL, &err), &err);
     double off = 0.0;
     for (int i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
@@ -292,7 +292,7 @@ static void test_defective(gsl_rng *r) {
   check_powers(e, W, K, r, 4095, 1, "Jordan block");
   double P[K * 3];
   points(r, K, P);
-  CHECK(ss_lim_eig_power(e, 4096, P, NULL, &err) != SS_OK,
+  CHECK(ss_lim_eig_power(e, 4096, P, NULL, NULL, &err) != SS_OK,
         "Jordan block: W^4096 accepted");
   ss_lim_eig_free(e);
 }
@@ -314,9 +314,68 @@ static void test_no_limit(gsl_rng *r) {
     CHECK(e->one == SIZE_MAX, "%s: eigenvalue 1 called simple", names[t]);
     double P[K * 3];
     points(r, K, P);
-    CHECK(ss_lim_eig_power(e, -1, P, NULL, &err) == SS_ENUMERIC,
+    CHECK(ss_lim_eig_power(e, -1, P, NULL, NULL, &err) == SS_ENUMERIC,
           "%s: a limit that does not exist was given", names[t]);
     check_powers(e, Ws[t], K, r, 40, 0, names[t]);
+    ss_lim_eig_free(e);
+  }
+}
+
+/* The eigenvalue-1/2 part of a defective run (ss_lim_eig_half_part): W = T D
+ * T^-1 with a Jordan block at 0.1 (so the run is declared defective) and 1/2
+ * double and semisimple: Q satisfies W Q = Q / 2 and P - Q is annihilated by
+ * (W - 1)(W - 0.3)(W - 0.1)^2 (it has no 1/2 part); no 1/2 at all (1, 0.45,
+ * 0.3, 0.2, 0.1, 0.1): Q = 0;
+ * a Jordan block at 1/2, or an eigenvalue 0.6, is refused with the reason. */
+static void test_half_part(gsl_rng *r) {
+  enum { K = 6 };
+  const double diag[4][K] = {{1.0, 0.5, 0.5, 0.3, 0.1, 0.1},
+                             {1.0, 0.45, 0.2, 0.3, 0.1, 0.1},
+                             {1.0, 0.5, 0.5, 0.3, 0.1, 0.1},
+                             {1.0, 0.6, 0.5, 0.3, 0.1, 0.1}};
+  const char *what[4] = {"1/2 semisimple", "no 1/2", "a Jordan block at 1/2", "0.6"};
+  for (int t = 0; t < 4; t++) {
+    double D[K * K] = {0}, W[K * K], P[K * 3], Q[K * 3], R[K * 3];
+    for (int i = 0; i < K; i++)
+      D[i * K + i] = diag[t][i];
+    D[4 * K + 5] = 1.0;             /* a Jordan block at 0.1 */
+    if (t == 2) D[1 * K + 2] = 1.0; /* and one at 1/2 */
+    similar(K, D, W);
+    ss_lim_eig *e = NULL;
+    ss_error err = {0};
+    REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
+    CHECK(e->pw != NULL, "%s: not declared defective (cond %g)", what[t], e->cond);
+    points(r, K, P);
+    ss_status st = ss_lim_eig_half_part(e, W, P, Q, &err);
+    if (t >= 2) {
+      CHECK(st == SS_ENUMERIC && strstr(err.msg, t == 2 ? "Jordan block" : "modulus 0.6"),
+            "%s: not refused: %d %s", what[t], (int)st, err.msg);
+      ss_lim_eig_free(e);
+      continue;
+    }
+    CHECK(st == SS_OK, "%s: %s", what[t], err.msg);
+    /* W Q = Q / 2 */
+    memcpy(R, Q, sizeof R);
+    repeat(W, K, 1, R);
+    for (size_t i = 0; i < K * 3; i++)
+      R[i] -= 0.5 * Q[i];
+    CHECK(maxdiff(R, (double[K * 3]){0}, K * 3) <= 1e-12, "%s: W Q - Q/2 = %g", what[t],
+          maxdiff(R, (double[K * 3]){0}, K * 3));
+    /* (W - 1)(W - 0.3)(W - 0.1)^2 (P - Q) = 0 */
+    for (size_t i = 0; i < K * 3; i++)
+      R[i] = P[i] - Q[i];
+    for (int q = 0; q < K; q++) { /* the roots: D's diagonal but 1/2 */
+      if (diag[t][q] == 0.5) continue;
+      double S[K * 3];
+      memcpy(S, R, sizeof S);
+      repeat(W, K, 1, S);
+      for (size_t i = 0; i < K * 3; i++)
+        R[i] = S[i] - diag[t][q] * R[i];
+    }
+    double zero[K * 3] = {0}, qn = maxdiff(Q, zero, K * 3);
+    CHECK(maxdiff(R, zero, K * 3) <= 1e-12, "%s: P - Q has a 1/2 part: %g", what[t],
+          maxdiff(R, zero, K * 3));
+    CHECK(t == 0 ? qn > 1e-3 : qn == 0.0, "%s: |Q| = %g", what[t], qn);
     ss_lim_eig_free(e);
   }
 }
@@ -328,6 +387,7 @@ int main(void) {
   test_averaging(r);
   test_defective(r);
   test_no_limit(r);
+  test_half_part(r);
   gsl_rng_free(r);
   return ss_test_done("limit_eig");
 }
