@@ -58,13 +58,15 @@ static int ring_rows(const ss_local_levels *W, int w, int r, unsigned char *cons
   R->ptr = malloc((nv + 1) * sizeof *R->ptr);
   R->col = malloc((nnz + 1) * sizeof *R->col);
   R->w = malloc((nnz + 1) * sizeof *R->w);
-  if (!R->ptr || !R->col || !R->w) {
+  R->coord = malloc((nv + 1) * sizeof *R->coord);
+  if (!R->ptr || !R->col || !R->w || !R->coord) {
     ss_error_nomem(err, "ring rows");
     return SS_LOCAL_HARD;
   }
   size_t q = 0, i = 0;
   for (size_t f = 0; f < F->cx->nv; f++) {
     if (!need[l][f]) continue;
+    R->coord[i] = F->rel[f];
     R->ptr[i++] = q;
     for (int e = C->R->p[f]; e < C->R->p[f + 1]; e++) {
       R->col[q] = idx[l - 1][C->R->i[e]];
@@ -195,7 +197,20 @@ void ss_local_rings_free(ss_local *M) {
     free(M->ring[r].w);
     free(M->ring[r].ctype);
     free(M->ring[r].corner);
+    free(M->ring[r].coord);
     memset(M->ring + r, 0, sizeof M->ring[r]);
   }
   M->nring = 0;
+}
+
+void ss_local_ring_push(const ss_local_ring *R, const double *prev, int dim,
+                        double *out) {
+  for (size_t i = 0; i < R->nv; i++) {
+    double v[3] = {0.0, 0.0, 0.0};
+    for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++)
+      for (int d = 0; d < dim; d++)
+        v[d] += R->w[q] * prev[R->col[q] * (size_t)dim + (size_t)d];
+    for (int d = 0; d < dim; d++)
+      out[i * (size_t)dim + (size_t)d] = v[d];
+  }
 }

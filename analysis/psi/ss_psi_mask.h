@@ -1,0 +1,123 @@
+/* ss_psi_mask.h — det Dψ at the regular vertices of ψ's ring, read exactly
+ * from the refined net with the regular neighbourhood's tangent masks (issue
+ * 34, section 1; DESIGN section 5, "Tangent masks").
+ *
+ * Where a vertex q of ring level r (ss_local.h) lies inside one cell cone of
+ * the star (its chart coordinates supported on exactly dim link vertices,
+ * all positive) together with its whole one-ring O(q) — the smallest set of
+ * offsets o with q + o closed under the rule: the rows of the level-(r+1)
+ * points 2q + o read only level-r points q + o' — the scheme there is the
+ * regular lattice's, and the limit's derivatives at q are linear functionals
+ * of the net on q + O:
+ *   A[i][j] = weight of q + o_j in the row of 2q + o_i      (|O| x |O|),
+ *   X[i]    = o_i, the offsets' chart coordinates             (|O| x dim),
+ * A X = X / 2 when the rule reproduces linear functions (checked), and if
+ * 1/2 is a semisimple eigenvalue of A with eigenspace spanned by X (the
+ * regular vertex's subdominant triple), the tangent masks L (dim x |O|) are
+ * the unique solution of L (A - I/2) = 0, L X = I: then D_d ψ(q) = sum_i
+ * L[d][i] ψ(q + o_i) is the derivative along chart axis d (the limit of the
+ * net X is the linear chart map, so its dual basis reads derivatives).  The
+ * masks are solved by least squares (LAPACK dgelsd) and kept only when the
+ * system has full rank and is solved to SS_PSI_MASK_TOL relative residual;
+ * (O, A) pairs are shared by every q with the same neighbourhood (one solve
+ * per distinct pair).
+ *
+ * Stationarity: the masks are read from one level pair, and hold for q
+ * only if the same (O, A) governs every finer level round q.  Inside a cell
+ * cone every cell is a child of one base cell and the split's rules read
+ * only cell types round a vertex, so an interior neighbourhood of the
+ * regular lattice stays one (true of every split here); this is checked
+ * where the ring has the levels for it — (O, A) read again at q's own
+ * point one level down must agree (a neighbourhood seen to differ is not
+ * used) — and otherwise assumed, such vertices counted as unchecked (the
+ * deepest ring level's; all of tet/oct's, whose one-ring of 19 points
+ * fits inside a cone only from ring level 2 on).  The masks are also used
+ * only when A's spectrum is a smooth regular vertex's: 1 simple, 1/2 dim
+ * times, everything else below 1/2 in modulus (LAPACK, to
+ * SS_PSI_MASK_TOL).
+ *
+ * Orientation: every chart is linear on a cone (positions = sum of
+ * coordinates times axes, ss_star.h), and each cone's orientation is read
+ * from the ring's cells inside it (positive in space, ss_local.h): the sign
+ * of their edge vectors' determinant in chart coordinates.  det Dψ(q) is
+ * reported in the cone's chart times that sign, i.e. with the sign of det
+ * Dψ against positively oriented space coordinates, and in units of level
+ * w's grid (derivatives along level-w chart axes).
+ *
+ * Verdict: two regular vertices with det Dψ of strict, opposite signs are
+ * witnesses that ψ is not regular: the ring is connected, and a local
+ * homeomorphism has one local degree on it, which at a point of
+ * differentiability with det Dψ != 0 is the sign of det Dψ (so this holds
+ * even across a spoke, where ψ need not be C^1).  A value is flat (no sign)
+ * when |det| <= SS_JAC_FLAT times the product of the derivatives' norms.
+ * Double
+ * precision: witnesses of a few rounding errors' size are not proofs. */
+#ifndef SS_PSI_MASK_H
+#define SS_PSI_MASK_H
+
+#include <stddef.h>
+
+#include "ss_api.h"
+#include "ss_error.h"
+#include "ss_local.h"
+
+SS_BEGIN_DECLS
+
+/* Relative residual below which a tangent-mask solve is accepted; also the
+ * tolerance of the linear-reproduction check A X = X / 2. */
+#define SS_PSI_MASK_TOL 1e-10
+/* Two neighbourhoods with the same offsets are the same when their weights
+ * agree to this (absolute; weights are at most 1): rounding of the rule's
+ * rational weights, summed in different orders, is of order 1e-16. */
+#define SS_PSI_MASK_SAME 1e-13
+/* Largest one-ring (offsets) a regular vertex may have. */
+#define SS_PSI_MASK_MAXO 256
+
+/* One regular vertex where det Dψ was read. */
+typedef struct {
+  int level;    /* ring level r of q */
+  size_t point; /* q's index among ring level r's points */
+  int cone[3];  /* the link vertices (chart coordinate indices) of q's
+                   cone, ascending; unused: -1 */
+  double x[3];  /* q's chart coordinates on those, in level-w grid units */
+  double det;   /* det Dψ(q) (see above) */
+} ss_psi_mask_point;
+
+/* det Dψ over the ring's regular vertices. */
+typedef struct {
+  size_t interior;        /* ring points inside a cone (support of size dim) */
+  size_t judged;          /* of these, regular vertices where det Dψ was read */
+  size_t unchecked;       /* of these, read with a neighbourhood not seen on
+                             two consecutive levels (the deepest ones) */
+  size_t positive;        /* of these, det of strict sign + */
+  size_t negative;        /* ... of strict sign - */
+  size_t flat;            /* ... with no sign (flat to rounding) */
+  ss_psi_mask_point wpos; /* witness of the largest positive det (level -1
+                             if none) */
+  ss_psi_mask_point wneg; /* of the most negative det (level -1 if none) */
+  size_t nmasks;          /* distinct (O, A) pairs whose masks were solved */
+  size_t maxo;            /* the largest one-ring met */
+} ss_psi_mask_result;
+
+/* det Dψ at the regular vertices of M's ring levels 0 .. M->nring - 2,
+ * for the net x on the two-ring (M->n2 points, dim = M->dim coordinates
+ * each, in the order of M's labels; e.g. the characteristic map's control
+ * net, ss_charmap.h), pushed through the ring's rows.  M's rings must carry
+ * coordinates (ss_local_ring.coord) and be of a vertex case (conical charts).
+ * SS_EINPUT for a net of another size or a case that is not a vertex case,
+ * SS_EINTERNAL if two cells of one cone disagree on its orientation,
+ * SS_ENOMEM.  Nothing is printed. */
+ss_status ss_psi_mask_judge(const ss_local *M, const double *x, size_t n,
+                            ss_psi_mask_result *out, ss_error *err);
+
+/* Called for each regular vertex read, with its sign (+1, -1; 0 flat). */
+typedef void (*ss_psi_mask_fn)(const ss_psi_mask_point *pt, int sign, void *arg);
+
+/* As ss_psi_mask_judge, calling fn(pt, sign, arg) for every vertex read. */
+ss_status ss_psi_mask_each(const ss_local *M, const double *x, size_t n,
+                           ss_psi_mask_fn fn, void *arg, ss_psi_mask_result *out,
+                           ss_error *err);
+
+SS_END_DECLS
+
+#endif
