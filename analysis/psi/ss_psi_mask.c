@@ -1,6 +1,7 @@
 /* ss_psi_mask.c — det Dψ at the ring's regular vertices from tangent masks
  * (ss_psi_mask.h). */
 #include "ss_psi_mask.h"
+#include "ss_psi_mask_impl.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -11,49 +12,8 @@
 #include "ss_dense.h"
 #include "ss_jac.h"
 
-/* A point's chart coordinates on its cone: the cone's link vertices
- * (ascending) and the values on them, all positive. */
-typedef struct {
-  int cone[3];
-  int v[3];
-} cpt;
-
-/* A point's coordinates and index, sorted for lookup. */
-typedef struct {
-  ss_star_coord c;
-  size_t i;
-} keyed;
-
-/* One ring level's points sorted by coordinates. */
-typedef struct {
-  const ss_local_ring *R;
-  keyed *ord; /* R->nv points, ascending by ss_star_coord_cmp */
-} level_ix;
-
-/* A distinct neighbourhood: offsets, matrix and (if solved) masks. */
-typedef struct {
-  size_t n;       /* offsets */
-  int (*o)[3];    /* n offsets, ascending (lexicographic) */
-  double *A;      /* n x n, row-major */
-  double *L;      /* dim x n masks, row-major; NULL if there are none */
-  int tried;      /* masks solved (L may still be NULL) */
-  int stationary; /* 1 seen equal on two consecutive levels, -1 seen
-                     different (not used), 0 not checked */
-} nbhd;
-
-typedef struct {
-  const ss_local *M;
-  int dim;
-  level_ix *lev; /* M->nring levels */
-  double **net;  /* M->nring pushed nets */
-  nbhd *nb;      /* distinct neighbourhoods */
-  size_t nnb, cap;
-  int (*orient)[4]; /* cones met: 3 link vertices and the sign (+-1) */
-  size_t norient, capo;
-} ctx;
-
 /* The support of c as a cone (size must be dim, values positive): 0, else -1 */
-static int cone_of(const ss_star_coord *c, int dim, cpt *p) {
+int ss_psi_mask_cone_of(const ss_star_coord *c, int dim, ss_psi_mask_cpt *p) {
   if (c->n != dim) return -1;
   for (int i = 0; i < 3; i++) {
     p->cone[i] = i < dim ? c->idx[i] : -1;
@@ -111,7 +71,8 @@ static long off_find(int (*o)[3], size_t n, const int *x) {
  * O's sorted order), into nb (o, A allocated here) and *pidx.  Returns 0,
  * 1 if O is not whole inside q's cone on these levels (or too large), -1
  * out of memory. */
-static int closure(const ctx *t, int r, const cpt *q, nbhd *nb, size_t **pidx) {
+int ss_psi_mask_closure(const ss_psi_mask_ctx *t, int r, const ss_psi_mask_cpt *q,
+                        ss_psi_mask_nbhd *nb, size_t **pidx) {
   const level_ix *C = t->lev + r, *F = t->lev + r + 1;
   const int dim = t->dim;
   int(*o)[3] = malloc(SS_PSI_MASK_MAXO * sizeof *o);
@@ -129,8 +90,8 @@ static int closure(const ctx *t, int r, const cpt *q, nbhd *nb, size_t **pidx) {
     if (cc.n == 0 || (child[i] = find(F, &cc)) == SIZE_MAX) goto fail;
     const ss_local_ring *R = F->R;
     for (size_t e = R->ptr[child[i]]; e < R->ptr[child[i] + 1]; e++) {
-      cpt p;
-      if (cone_of(C->R->coord + R->col[e], dim, &p) ||
+      ss_psi_mask_cpt p;
+      if (ss_psi_mask_cone_of(C->R->coord + R->col[e], dim, &p) ||
           memcmp(p.cone, q->cone, sizeof p.cone))
         goto fail;
       int off[3] = {0, 0, 0};
@@ -162,8 +123,8 @@ static int closure(const ctx *t, int r, const cpt *q, nbhd *nb, size_t **pidx) {
     const size_t ci = find(F, &cc);
     const ss_local_ring *R = F->R;
     for (size_t e = R->ptr[ci]; e < R->ptr[ci + 1]; e++) {
-      cpt p;
-      cone_of(C->R->coord + R->col[e], dim, &p);
+      ss_psi_mask_cpt p;
+      ss_psi_mask_cone_of(C->R->coord + R->col[e], dim, &p);
       int off[3] = {0, 0, 0};
       for (int d = 0; d < dim; d++)
         off[d] = p.v[d] - q->v[d];
@@ -188,7 +149,7 @@ fail:
 /* Same offsets, and weights equal to SS_PSI_MASK_SAME (the rule's weights
  * are rationals computed in doubles: one weight summed in another order
  * differs in its last bits) */
-static int nbhd_equal(const nbhd *a, const nbhd *b) {
+static int nbhd_equal(const ss_psi_mask_nbhd *a, const ss_psi_mask_nbhd *b) {
   if (a->n != b->n || memcmp(a->o, b->o, a->n * sizeof *a->o)) return 0;
   for (size_t k = 0; k < a->n * a->n; k++)
     if (!(fabs(a->A[k] - b->A[k]) <= SS_PSI_MASK_SAME)) return 0;
@@ -203,7 +164,7 @@ static int by_modulus_desc(const void *a, const void *b) {
 /* Whether A's spectrum is a smooth regular vertex's: 1 simple, then 1/2
  * dim times, every other eigenvalue of modulus below 1/2 (to
  * SS_PSI_MASK_TOL).  0 also when LAPACK fails or memory runs out. */
-static int spectrum_ok(int dim, const nbhd *nb) {
+static int spectrum_ok(int dim, const ss_psi_mask_nbhd *nb) {
   const size_t n = nb->n;
   double *a = malloc((n * n + 1) * sizeof *a), *wr = malloc((n + 1) * sizeof *wr);
   double *wi = malloc((n + 1) * sizeof *wi);
@@ -232,7 +193,7 @@ static int spectrum_ok(int dim, const nbhd *nb) {
 /* The tangent masks of nb (ss_psi_mask.h) into nb->L, or nb->L = NULL when
  * A does not reproduce linear functions or the system is singular or not
  * solved to SS_PSI_MASK_TOL.  Returns -1 out of memory, else 0. */
-static int masks(int dim, nbhd *nb) {
+static int masks(int dim, ss_psi_mask_nbhd *nb) {
   const size_t n = nb->n, m = n + (size_t)dim;
   nb->L = NULL;
   double omax = 1.0;
@@ -294,7 +255,7 @@ static int masks(int dim, nbhd *nb) {
  * cell types with a determinant (tets, hexes; triangles, quads), recorded
  * in t->orient.  Returns 0, 1 if two cells of one cone disagree, -1 out of
  * memory. */
-static int orientations(ctx *t) {
+static int orientations(ss_psi_mask_ctx *t) {
   static const int corners[SS_NCELLTYPES][4] = {[SS_TET] = {0, 1, 2, 3},
                                                 [SS_HEX] = {0, 1, 3, 4},
                                                 [SS_TRIANGLE] = {0, 1, 2, -1},
@@ -365,20 +326,20 @@ static int orientations(ctx *t) {
   return 0;
 }
 
-static int orient_of(const ctx *t, const int *cone) {
+int ss_psi_mask_orient_of(const ss_psi_mask_ctx *t, const int *cone) {
   for (size_t k = 0; k < t->norient; k++)
     if (!memcmp(t->orient[k], cone, 3 * sizeof *cone)) return t->orient[k][3];
   return 0;
 }
 
 /* The neighbourhood equal to nb among t's, else nb itself added (moved). */
-static nbhd *intern(ctx *t, nbhd *nb, int *added) {
+static ss_psi_mask_nbhd *intern(ss_psi_mask_ctx *t, ss_psi_mask_nbhd *nb, int *added) {
   *added = 0;
   for (size_t k = 0; k < t->nnb; k++)
     if (nbhd_equal(t->nb + k, nb)) return t->nb + k;
   if (t->nnb == t->cap) {
     const size_t cap = 2 * t->cap + 4;
-    nbhd *m = realloc(t->nb, cap * sizeof *m);
+    ss_psi_mask_nbhd *m = realloc(t->nb, cap * sizeof *m);
     if (!m) return NULL;
     t->nb = m;
     t->cap = cap;
@@ -391,7 +352,7 @@ static nbhd *intern(ctx *t, nbhd *nb, int *added) {
   return t->nb + t->nnb++;
 }
 
-static void nbhd_free(nbhd *nb) {
+void ss_psi_mask_nbhd_free(ss_psi_mask_nbhd *nb) {
   free(nb->o);
   free(nb->A);
   free(nb->L);
@@ -401,34 +362,34 @@ static void nbhd_free(nbhd *nb) {
  * its sign (0 flat) — or *sign = 2 when q is not a regular vertex here —
  * and *checked whether its neighbourhood was seen stationary.  Returns 0,
  * -1 out of memory. */
-static int judge_point(ctx *t, int r, size_t qi, const cpt *q, ss_psi_mask_point *pt,
-                       int *sign, int *checked) {
+static int judge_point(ss_psi_mask_ctx *t, int r, size_t qi, const ss_psi_mask_cpt *q,
+                       ss_psi_mask_point *pt, int *sign, int *checked) {
   const int dim = t->dim;
-  nbhd nb, nb2;
+  ss_psi_mask_nbhd nb, nb2;
   size_t *idx = NULL, *idx2 = NULL;
   *sign = 2;
-  int rc = closure(t, r, q, &nb, &idx);
+  int rc = ss_psi_mask_closure(t, r, q, &nb, &idx);
   if (rc) return rc < 0 ? -1 : 0;
   int added = 0;
-  nbhd *h = intern(t, &nb, &added);
+  ss_psi_mask_nbhd *h = intern(t, &nb, &added);
   if (!h) {
-    nbhd_free(&nb);
+    ss_psi_mask_nbhd_free(&nb);
     free(idx);
     return -1;
   }
-  if (!added) nbhd_free(&nb);
+  if (!added) ss_psi_mask_nbhd_free(&nb);
   if (!h->stationary && r + 2 < t->M->nring) { /* read again one level down */
-    cpt q2 = *q;
+    ss_psi_mask_cpt q2 = *q;
     for (int d = 0; d < dim; d++)
       q2.v[d] = 2 * q->v[d];
-    rc = closure(t, r + 1, &q2, &nb2, &idx2);
+    rc = ss_psi_mask_closure(t, r + 1, &q2, &nb2, &idx2);
     if (rc < 0) {
       free(idx);
       return -1;
     }
     if (rc == 0) {
       h->stationary = nbhd_equal(h, &nb2) ? 1 : -1;
-      nbhd_free(&nb2);
+      ss_psi_mask_nbhd_free(&nb2);
       free(idx2);
     }
   }
@@ -459,7 +420,7 @@ static int judge_point(ctx *t, int r, size_t qi, const cpt *q, ss_psi_mask_point
   double norms = 1.0;
   for (int d = 0; d < dim; d++)
     norms *= sqrt(D[d][0] * D[d][0] + D[d][1] * D[d][1] + D[d][2] * D[d][2]);
-  const int o = orient_of(t, q->cone);
+  const int o = ss_psi_mask_orient_of(t, q->cone);
   pt->level = r;
   pt->point = qi;
   for (int d = 0; d < 3; d++) {
@@ -467,11 +428,12 @@ static int judge_point(ctx *t, int r, size_t qi, const cpt *q, ss_psi_mask_point
     pt->x[d] = d < dim ? ldexp((double)q->v[d], -(r + 1)) : 0.0;
   }
   pt->det = det * o;
+  pt->lo = pt->hi = pt->det;
   *sign = (o == 0 || !(fabs(det) > SS_JAC_FLAT * norms)) ? 0 : pt->det > 0 ? 1 : -1;
   return 0;
 }
 
-static void ctx_free(ctx *t) {
+void ss_psi_mask_ctx_free(ss_psi_mask_ctx *t) {
   for (int r = 0; r < t->M->nring; r++) {
     if (t->lev) free(t->lev[r].ord);
     if (t->net) free(t->net[r]);
@@ -479,13 +441,13 @@ static void ctx_free(ctx *t) {
   free(t->lev);
   free(t->net);
   for (size_t k = 0; k < t->nnb; k++)
-    nbhd_free(t->nb + k);
+    ss_psi_mask_nbhd_free(t->nb + k);
   free(t->nb);
   free(t->orient);
 }
 
 /* The levels' lookups and the nets pushed from x.  Returns 0 or -1. */
-static int ctx_build(ctx *t, const double *x) {
+int ss_psi_mask_ctx_build(ss_psi_mask_ctx *t, const double *x) {
   const ss_local *M = t->M;
   const int nr = M->nring;
   t->lev = calloc((size_t)nr + 1, sizeof *t->lev);
@@ -507,7 +469,7 @@ static int ctx_build(ctx *t, const double *x) {
     ss_local_ring_push(R, prev, t->dim, t->net[r]);
     prev = t->net[r];
   }
-  return 0;
+  return orientations(t);
 }
 
 ss_status ss_psi_mask_judge(const ss_local *M, const double *x, size_t n,
@@ -528,11 +490,10 @@ ss_status ss_psi_mask_each(const ss_local *M, const double *x, size_t n,
     if (!M->ring[r].coord)
       return ss_error_set(err, SS_EINPUT, "psi masks: ring level %d has no coordinates",
                           r);
-  ctx t = {M, M->dim, NULL, NULL, NULL, 0, 0, NULL, 0, 0};
-  int rc = ctx_build(&t, x);
-  if (!rc) rc = orientations(&t);
+  ss_psi_mask_ctx t = {M, M->dim, NULL, NULL, NULL, 0, 0, NULL, 0, 0};
+  int rc = ss_psi_mask_ctx_build(&t, x);
   if (rc) {
-    ctx_free(&t);
+    ss_psi_mask_ctx_free(&t);
     return rc > 0 ? ss_error_set(err, SS_EINTERNAL,
                                  "psi masks: two ring cells of one cone disagree on "
                                  "its orientation")
@@ -541,8 +502,8 @@ ss_status ss_psi_mask_each(const ss_local *M, const double *x, size_t n,
   for (int r = 0; r + 1 < M->nring && !rc; r++) {
     const ss_local_ring *R = M->ring + r;
     for (size_t i = 0; i < R->nv && !rc; i++) {
-      cpt q;
-      if (cone_of(R->coord + i, t.dim, &q)) continue;
+      ss_psi_mask_cpt q;
+      if (ss_psi_mask_cone_of(R->coord + i, t.dim, &q)) continue;
       out->interior++;
       ss_psi_mask_point pt;
       int sign, checked = 0;
@@ -565,6 +526,6 @@ ss_status ss_psi_mask_each(const ss_local *M, const double *x, size_t n,
     out->nmasks += t.nb[k].L != NULL;
     if (t.nb[k].n > out->maxo) out->maxo = t.nb[k].n;
   }
-  ctx_free(&t);
+  ss_psi_mask_ctx_free(&t);
   return rc ? ss_error_nomem(err, "psi masks") : SS_OK;
 }

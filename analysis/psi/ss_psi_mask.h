@@ -51,7 +51,28 @@
  * even across a spoke, where ψ need not be C^1).  A value is flat (no sign)
  * when |det| <= SS_JAC_FLAT times the product of the derivatives' norms.
  * Double
- * precision: witnesses of a few rounding errors' size are not proofs. */
+ * precision: witnesses of a few rounding errors' size are not proofs.
+ *
+ * Proof (ss_psi_mask_certify), given an enclosure of ψ's true net (the
+ * exact path's subdominant basis, as for ss_psi_certify): the witnesses are
+ * found on its midpoints as above, then at each witness q
+ *   - A is read exactly (every weight the rational of bounded denominator
+ *     it stands for, ss_exact_rational), A X = X / 2 checked in rationals,
+ *     the left nullspace N of A - I/2 computed over Q (FLINT) and required
+ *     of dimension dim, and L = (N^T X)^-1 N^T exactly;
+ *   - A's eigenvalue condition proven by the exact path (ss_exact: 1
+ *     simple, then dim real non-defective eigenvalues separated from the
+ *     rest) with 1/2 its second root, of multiplicity dim: so 1/2 is the
+ *     subdominant eigenvalue, semisimple, with eigenspace spanned by X,
+ *     and L P is the derivative (given that the regular scheme is C^1, and
+ *     the stationarity above);
+ *   - the net on q + O enclosed by pushing the enclosure through the ring
+ *     levels in interval arithmetic with the rational weights
+ *     (ss_charmap_push_interval), and det(L P) enclosed in interval
+ *     arithmetic.
+ * Two witnesses whose enclosures have opposite strict signs prove that ψ
+ * (of the rule with those rational weights, in the enclosure's basis) is
+ * not regular.  Stationarity stays the assumption named above. */
 #ifndef SS_PSI_MASK_H
 #define SS_PSI_MASK_H
 
@@ -60,6 +81,7 @@
 #include "ss_api.h"
 #include "ss_error.h"
 #include "ss_local.h"
+#include "ss_psi.h"
 
 SS_BEGIN_DECLS
 
@@ -75,12 +97,15 @@ SS_BEGIN_DECLS
 
 /* One regular vertex where det Dψ was read. */
 typedef struct {
-  int level;    /* ring level r of q */
-  size_t point; /* q's index among ring level r's points */
-  int cone[3];  /* the link vertices (chart coordinate indices) of q's
-                   cone, ascending; unused: -1 */
-  double x[3];  /* q's chart coordinates on those, in level-w grid units */
-  double det;   /* det Dψ(q) (see above) */
+  int level;     /* ring level r of q */
+  size_t point;  /* q's index among ring level r's points */
+  int cone[3];   /* the link vertices (chart coordinate indices) of q's
+                    cone, ascending; unused: -1 */
+  double x[3];   /* q's chart coordinates on those, in level-w grid units */
+  double det;    /* det Dψ(q) (see above) */
+  double lo, hi; /* with ss_psi_mask_certify, for the two witnesses: an
+                    enclosure of det Dψ(q) of the exact rule on the enclosed
+                    net (else lo = hi = det) */
 } ss_psi_mask_point;
 
 /* det Dψ over the ring's regular vertices. */
@@ -97,6 +122,9 @@ typedef struct {
   ss_psi_mask_point wneg; /* of the most negative det (level -1 if none) */
   size_t nmasks;          /* distinct (O, A) pairs whose masks were solved */
   size_t maxo;            /* the largest one-ring met */
+  int enclosed;           /* 1 if ss_psi_mask_certify ran its proof */
+  int proven;             /* 1 if the witnesses' enclosures have opposite
+                             strict signs: psi's fold proven */
 } ss_psi_mask_result;
 
 /* det Dψ at the regular vertices of M's ring levels 0 .. M->nring - 2,
@@ -117,6 +145,13 @@ typedef void (*ss_psi_mask_fn)(const ss_psi_mask_point *pt, int sign, void *arg)
 ss_status ss_psi_mask_each(const ss_local *M, const double *x, size_t n,
                            ss_psi_mask_fn fn, void *arg, ss_psi_mask_result *out,
                            ss_error *err);
+
+/* As ss_psi_mask_judge on the midpoints of enclosure e of ψ's net (as for
+ * ss_psi_certify), then the two witnesses proven ("Proof" above):
+ * out->proven = 1 when their enclosures of det Dψ have opposite strict
+ * signs.  SS_EINPUT for an enclosure that is not of finite intervals. */
+ss_status ss_psi_mask_certify(const ss_local *M, const ss_psi_enclosure *e,
+                              ss_psi_mask_result *out, ss_error *err);
 
 SS_END_DECLS
 

@@ -24,6 +24,7 @@
 #include "psi_case.h"
 #include "ss_case.h"
 #include "ss_charmap.h"
+#include "ss_exact.h"
 #include "ss_local.h"
 #include "ss_psi_mask.h"
 #include "ss_star.h"
@@ -371,6 +372,82 @@ static void test_tetoct_fd(const char *link) {
   mcase_free(&m);
 }
 
+/* ---- the proof: exact masks, enclosed nets ---- */
+
+/* the exact path's enclosure of the basis (point-major n2 x 3), widened by
+ * eps times its largest entry */
+static int enclosure(const mcase *m, double eps, double **lo, double **hi) {
+  const size_t n = m->p->M->n2;
+  double *bl = malloc(3 * n * sizeof *bl), *bh = malloc(3 * n * sizeof *bh);
+  *lo = malloc(3 * n * sizeof **lo);
+  *hi = malloc(3 * n * sizeof **hi);
+  ss_error err = {0};
+  if (!m->p->ex || ss_exact_basis(m->p->ex, bl, bh, &err)) {
+    free(bl), free(bh), free(*lo), free(*hi);
+    return -1;
+  }
+  double big = 0.0;
+  for (size_t i = 0; i < 3 * n; i++)
+    big = fmax(big, fabs(bh[i]));
+  for (size_t i = 0; i < n; i++)
+    for (size_t d = 0; d < 3; d++) {
+      (*lo)[3 * i + d] = bl[d * n + i] - eps * big;
+      (*hi)[3 * i + d] = bh[d * n + i] + eps * big;
+    }
+  free(bl), free(bh);
+  return 0;
+}
+
+static void test_certify(const char *scheme, const char *link) {
+  mcase m;
+  memset(&m, 0, sizeof m);
+  ss_error err = {0};
+  if (ss_scheme_new(scheme, &m.s, &err) || ss_link_parse(link, &m.l, &err)) {
+    CHECK(0, "certify %s %s: %s", scheme, link, err.msg);
+    return;
+  }
+  m.c = (ss_case){SS_CASE_VERTEX, m.l, 0, SS_DIAG_BFS, 0};
+  ss_pipeline_opts o = ss_pipeline_defaults();
+  o.certify = 1;
+  if (ss_pipeline_compute(m.s, &m.c, &o, SS_PIPE_VERDICTS, NULL, &m.p, &err) ||
+      ss_local_ring_deepen(m.s, &m.c, SS_LOCAL_MAXRING, m.p->M, &err)) {
+    CHECK(0, "certify %s %s: %s", scheme, link, err.msg);
+    mcase_free(&m);
+    return;
+  }
+  static const double eps[3] = {0.0, 1e-9, 1e-1};
+  for (int k = 0; k < 3; k++) {
+    double *lo, *hi;
+    if (enclosure(&m, eps[k], &lo, &hi)) {
+      CHECK(0, "certify %s %s: no basis enclosure", scheme, link);
+      break;
+    }
+    const ss_psi_enclosure e = {lo, hi, ss_exact_defaults(3).maxden};
+    ss_psi_mask_result r;
+    REQUIRE_OK_VOID(ss_psi_mask_certify(m.p->M, &e, &r, &err), &err);
+    printf("certify %s %s, enclosure widened by %g: witnesses [%.10g, %.10g] and "
+           "[%.10g, %.10g], proven %d\n",
+           scheme, link, eps[k], r.wpos.lo, r.wpos.hi, r.wneg.lo, r.wneg.hi, r.proven);
+    if (k < 2) {
+      CHECK(r.enclosed && r.proven && r.wpos.lo <= r.wpos.det &&
+                r.wpos.det <= r.wpos.hi && r.wneg.lo <= r.wneg.det &&
+                r.wneg.det <= r.wneg.hi,
+            "certify %s %s (widened %g): the fold proven, the midpoint values inside the "
+            "enclosures",
+            scheme, link, eps[k]);
+      CHECK(r.wpos.hi - r.wpos.lo <= (k ? 1e-3 : 1e-9) * r.wpos.det,
+            "certify %s %s (widened %g): enclosure width %.2e of %.6g", scheme, link,
+            eps[k], r.wpos.hi - r.wpos.lo, r.wpos.det);
+    } else {
+      CHECK(r.enclosed && !r.proven && r.wpos.lo <= 0.0,
+            "certify %s %s: an enclosure widened by 10 %% proves nothing", scheme, link);
+    }
+    free(lo);
+    free(hi);
+  }
+  mcase_free(&m);
+}
+
 static void test_bad_input(void) {
   mcase m;
   if (mcase_new("mlca", "octahedron", &m)) {
@@ -392,6 +469,8 @@ int main(void) {
   test_tetoct_fold();
   test_tetoct_fd("icosahedron");
   test_tetoct_fd(FINDING1);
+  test_certify("tetoct", FINDING1);
+  test_certify("mlca", FINDING1);
   test_bad_input();
   return ss_test_done("psi_mask");
 }
