@@ -17,6 +17,7 @@
  *     swap for det G < 0);
  *   - bad input refused. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,7 +28,9 @@
 #include "ss_exact.h"
 #include "ss_local.h"
 #include "ss_psi_mask.h"
+#include "ss_split.h"
 #include "ss_star.h"
+#include <gsl/gsl_spmatrix.h>
 #include "ss_test.h"
 
 #define FINDING1 "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb"
@@ -448,6 +451,155 @@ static void test_certify(const char *scheme, const char *link) {
   mcase_free(&m);
 }
 
+/* ---- tet/oct: the honeycomb's neighbourhood is stationary ---- */
+
+static int off_cmp(const void *a, const void *b) {
+  const int *x = a, *y = b;
+  for (int d = 0; d < 3; d++)
+    if (x[d] != y[d]) return x[d] < y[d] ? -1 : 1;
+  return 0;
+}
+
+/* The masks' assumption for tet/oct (ss_psi_mask.h, "Stationarity"), which
+ * the vertex case's four ring levels cannot check: one tet refined five
+ * times by the scheme (split positions: the lattice), the one-ring of every
+ * vertex strictly inside on level 3 read from the rows of level 4, and the
+ * same point's on level 4 from the rows of level 5: one neighbourhood of
+ * 19 points, the same matrix on both levels and at every vertex. */
+typedef struct {
+  int64_t key;
+  size_t i;
+} kv;
+
+static int64_t key_of(const double *x, int l) {
+  int64_t k = 0;
+  for (int d = 0; d < 3; d++)
+    k = k * 4096 + (int64_t)lround(ldexp(x[d], l)) + 1024;
+  return k;
+}
+
+static int kv_cmp(const void *a, const void *b) {
+  const int64_t x = ((const kv *)a)->key, y = ((const kv *)b)->key;
+  return x < y ? -1 : x > y;
+}
+
+static long kv_find(const kv *t, size_t n, int64_t key) {
+  const kv k = {key, 0}, *h = bsearch(&k, t, n, sizeof *t, kv_cmp);
+  return h ? (long)h->i : -1;
+}
+
+/* A of the vertex at integer position q (level l) from R (rows of level
+ * l + 1), offsets sorted, into o (n x 3) and A (n x n, up to 32): n, or 0
+ * when a point leaves the tet's interior or is missing */
+static size_t honeycomb_A(const ss_cx *cx[], const kv *tab[], const gsl_spmatrix *R,
+                          int l, const int *q, int (*o)[3], double *A) {
+  const int side = 1 << l;
+  size_t n = 1;
+  memset(o[0], 0, sizeof o[0]);
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass) {
+      qsort(o, n, sizeof *o, off_cmp);
+      memset(A, 0, n * n * sizeof *A);
+    }
+    for (size_t i = 0; i < n; i++) {
+      double x[3];
+      for (int d = 0; d < 3; d++)
+        x[d] = ldexp(2.0 * q[d] + o[i][d], -(l + 1));
+      const long c = kv_find(tab[l + 1], cx[l + 1]->nv, key_of(x, l + 1));
+      if (c < 0) return 0;
+      for (int e = R->p[c]; e < R->p[c + 1]; e++) {
+        const double *y = cx[l]->x + 3 * (size_t)R->i[e];
+        int off[3], sum = 0;
+        for (int d = 0; d < 3; d++) {
+          const int v = (int)lround(ldexp(y[d], l));
+          off[d] = v - q[d];
+          sum += v;
+          if (v <= 0) return 0;
+        }
+        if (sum >= side) return 0;
+        size_t k = 0;
+        while (k < n && memcmp(o[k], off, sizeof off))
+          k++;
+        if (pass)
+          A[i * n + k] += R->data[e];
+        else if (k == n) {
+          if (n == 32) return 0;
+          memcpy(o[n++], off, sizeof off);
+        }
+      }
+    }
+  }
+  return n;
+}
+
+static void test_stationary_tetoct(void) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  ss_cx *cx[6] = {NULL};
+  gsl_spmatrix *R[5] = {NULL};
+  kv *tab[6] = {NULL};
+  static const double P[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const ss_idx tet[4] = {0, 1, 2, 3};
+  REQUIRE_OK_VOID(ss_scheme_new("tetoct", &s, &err), &err);
+  REQUIRE_OK_VOID(ss_cx_new(3, &cx[0], &err), &err);
+  for (int v = 0; v < 4; v++)
+    REQUIRE_OK_VOID(ss_cx_add_vertex(cx[0], P[v], 0, &err), &err);
+  REQUIRE_OK_VOID(ss_cx_add_cell(cx[0], SS_TET, tet, 0, &err), &err);
+  for (int l = 0; l < 5; l++) {
+    ss_split *L = NULL;
+    REQUIRE_OK_VOID(ss_split_refine(ss_scheme_split_kind(s), cx[l], &cx[l + 1], &L, &err),
+                    &err);
+    REQUIRE_OK_VOID(ss_scheme_step_rows(s, cx[l], cx[l + 1], L, NULL, &R[l], &err), &err);
+    ss_split_free(L);
+  }
+  for (int l = 0; l < 6; l++) {
+    tab[l] = malloc(cx[l]->nv * sizeof *tab[l]);
+    for (size_t i = 0; i < cx[l]->nv; i++)
+      tab[l][i] = (kv){key_of(cx[l]->x + 3 * i, l), i};
+    qsort(tab[l], cx[l]->nv, sizeof *tab[l], kv_cmp);
+  }
+  int o0[32][3], o1[32][3], oref[32][3];
+  double A0[32 * 32], A1[32 * 32], Aref[32 * 32];
+  size_t nref = 0;
+  long seen = 0, bad = 0;
+  for (size_t v = 0; v < cx[3]->nv; v++) {
+    int q[3];
+    for (int d = 0; d < 3; d++)
+      q[d] = (int)lround(ldexp(cx[3]->x[3 * v + (size_t)d], 3));
+    const size_t n0 =
+        honeycomb_A((const ss_cx **)cx, (const kv **)tab, R[3], 3, q, o0, A0);
+    const int q2[3] = {2 * q[0], 2 * q[1], 2 * q[2]};
+    const size_t n1 =
+        honeycomb_A((const ss_cx **)cx, (const kv **)tab, R[4], 4, q2, o1, A1);
+    if (!n0 || !n1) continue;
+    if (!nref) {
+      nref = n0;
+      memcpy(oref, o0, sizeof oref);
+      memcpy(Aref, A0, sizeof Aref);
+    }
+    seen++;
+    int same = n0 == nref && n1 == nref && !memcmp(o0, oref, nref * sizeof *o0) &&
+               !memcmp(o1, oref, nref * sizeof *o1);
+    for (size_t k = 0; same && k < nref * nref; k++)
+      same = fabs(A0[k] - Aref[k]) <= 1e-13 && fabs(A1[k] - Aref[k]) <= 1e-13;
+    bad += !same;
+  }
+  printf("tet/oct honeycomb: %ld interior vertices of level 3 read on levels 3 and 4, "
+         "one-ring %zu, %ld differ\n",
+         seen, nref, bad);
+  CHECK(seen >= 1 && bad == 0 && nref == 19,
+        "tet/oct honeycomb: %ld interior vertices of level 3, one neighbourhood of %zu "
+        "points on levels 3 and 4 (%ld differ)",
+        seen, nref, bad);
+  for (int l = 0; l < 6; l++) {
+    ss_cx_free(cx[l]);
+    free(tab[l]);
+  }
+  for (int l = 0; l < 5; l++)
+    if (R[l]) gsl_spmatrix_free(R[l]);
+  ss_scheme_free(s);
+}
+
 static void test_bad_input(void) {
   mcase m;
   if (mcase_new("mlca", "octahedron", &m)) {
@@ -471,6 +623,7 @@ int main(void) {
   test_tetoct_fd(FINDING1);
   test_certify("tetoct", FINDING1);
   test_certify("mlca", FINDING1);
+  test_stationary_tetoct();
   test_bad_input();
   return ss_test_done("psi_mask");
 }
