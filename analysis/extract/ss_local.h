@@ -73,16 +73,21 @@ SS_BEGIN_DECLS
 /* One level of the ring: points pushed from the previous level, and the ring's
  * cells on this level. */
 typedef struct {
-  size_t nv;           /* points of this level */
-  size_t nprev;        /* points of the previous level (the two-ring for level 0) */
-  size_t *ptr;         /* nv + 1 row starts into col and w */
-  size_t *col;         /* previous-level point of each entry */
-  double *w;           /* weight of each entry; every row sums to 1 */
-  size_t ncells;       /* ring cells on this level */
-  ss_cell_type *ctype; /* ncells cell types */
-  size_t *corner;      /* ncells * SS_MAXCELLVERTS corners, indices into this
-                          level's points, vertex order of ss_cx.h; unused slots
-                          SIZE_MAX */
+  size_t nv;            /* points of this level */
+  size_t nprev;         /* points of the previous level (the two-ring for level 0) */
+  size_t *ptr;          /* nv + 1 row starts into col and w */
+  size_t *col;          /* previous-level point of each entry */
+  double *w;            /* weight of each entry; every row sums to 1 */
+  size_t ncells;        /* ring cells on this level */
+  ss_cell_type *ctype;  /* ncells cell types */
+  size_t *corner;       /* ncells * SS_MAXCELLVERTS corners, indices into this
+                           level's points, vertex order of ss_cx.h; unused slots
+                           SIZE_MAX */
+  ss_star_coord *coord; /* nv coordinates of the points relative to p, in
+                           units of this level's grid (level w + 1 + r for
+                           ring level r; ss_star.h), so a point of ring level
+                           r with coordinates x is the label x / 2^(r + 1)
+                           when that is one */
 } ss_local_ring;
 
 /* The local subdivision matrix of one case. */

@@ -58,13 +58,15 @@ static int ring_rows(const ss_local_levels *W, int w, int r, unsigned char *cons
   R->ptr = malloc((nv + 1) * sizeof *R->ptr);
   R->col = malloc((nnz + 1) * sizeof *R->col);
   R->w = malloc((nnz + 1) * sizeof *R->w);
-  if (!R->ptr || !R->col || !R->w) {
+  R->coord = malloc((nv + 1) * sizeof *R->coord);
+  if (!R->ptr || !R->col || !R->w || !R->coord) {
     ss_error_nomem(err, "ring rows");
     return SS_LOCAL_HARD;
   }
   size_t q = 0, i = 0;
   for (size_t f = 0; f < F->cx->nv; f++) {
     if (!need[l][f]) continue;
+    R->coord[i] = F->rel[f];
     R->ptr[i++] = q;
     for (int e = C->R->p[f]; e < C->R->p[f + 1]; e++) {
       R->col[q] = idx[l - 1][C->R->i[e]];
@@ -195,6 +197,7 @@ void ss_local_rings_free(ss_local *M) {
     free(M->ring[r].w);
     free(M->ring[r].ctype);
     free(M->ring[r].corner);
+    free(M->ring[r].coord);
     memset(M->ring + r, 0, sizeof M->ring[r]);
   }
   M->nring = 0;
