@@ -186,7 +186,7 @@ ss_status ss_psi_tet_judge(const ss_scheme *s, const ss_case *c, const ss_local 
   if (st) return st;
   if (deep) M = deep;
   size_t bad, off, skipped = 0;
-  if (bad_cells(M, x, reg->nlevels - 1, reg->sign, &bad, &off)) {
+  if (bad_cells(M, x, M->nring - 1, reg->sign, &bad, &off)) {
     ss_local_free(deep);
     return ss_error_nomem(err, "tet spokes: the net's cells");
   }
