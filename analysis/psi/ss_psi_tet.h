@@ -43,9 +43,13 @@
  * A spoke with no usable point is not classified (ss_psi_tet_spoke.cls -1).
  *
  * Proven: nothing.  Evidence in double precision at finitely many points of
- * ring levels 0..nring-1 (x0 = t / 2^(r+1) in (1/2, 1), the ends excluded by
- * the matching): a zero of s between two points is not excluded, and the
- * degenerate threshold cannot tell s = 0 from a tiny s. */
+ * ring levels 0..nring-1 (x0 = t / 2^(r+1); psi(x / 2) = Lambda psi(x) with
+ * Lambda positive, so s at x0 / 2 has the sign of s at x0 and a period
+ * [x0, 2 x0) of the spoke decides it): a zero of s between two points is
+ * not excluded, and the degenerate threshold cannot tell s = 0 from a tiny
+ * s.  Checked (tests/psi/test_psi_spoke_tet.c): the label map against the
+ * edge case's S row by row on the ring, and the sign against a second path
+ * (the matched points refined by the edge's S alone, the tets at its centre). */
 #ifndef SS_PSI_TET_H
 #define SS_PSI_TET_H
 
@@ -113,11 +117,16 @@ ss_status ss_psi_tet_spokes_classify(const ss_scheme *s, const ss_local *M,
                                      const ss_link *l, const double *x,
                                      ss_psi_spokes *out, size_t *nskipped, ss_error *err);
 
-/* psi of tet vertex case c (M, its net x = the characteristic map's, reg the
- * control net's regularity verdict of x on M's ring) judged by its spokes.
- * Runs (out->ran = 1) only when reg is undecided with a sign; then the bad
- * cells of reg's last level (not of the ring's sign) are located: when each
- * has a corner on a spoke, the spokes decide,
+/* psi of tet/oct vertex case c (M, its net x = the characteristic map's,
+ * reg the control net's regularity verdict of x on M's ring) judged by its
+ * spokes.  Runs (out->ran = 1) only for tetoct (boxspline reads major
+ * diagonals; boxspline-avg's split is not checked against its edge cases)
+ * and when reg is undecided with a sign.  The case is extracted again with
+ * SS_LOCAL_MAXRING whole ring levels (ss_local_opts.whole: the points round
+ * the whole spoke, 18 usable points per spoke covering x0 in [3/16, 7/8],
+ * a full period of psi's self-similarity at step 1/16), and the bad cells of
+ * its deepest ring level (the ring's cells, not of the ring's sign) are
+ * located: when each has a corner on a spoke, the spokes decide,
  *   a sign change                      -> fail, witnesses its two points;
  *   one sign opposite to the ring's    -> fail, witnesses its point of least
  *                                         |s| and a point of a spoke of the
@@ -127,7 +136,8 @@ ss_status ss_psi_tet_spokes_classify(const ss_scheme *s, const ss_local *M,
  * never certified (ss_psi_apply with certify then leaves the net's verdict,
  * the finding in its reason); otherwise undecided with the reason.  The
  * witnesses' det holds s (the sign of det Dpsi in the tube, not its value);
- * covered and uncovered are 0. */
+ * covered and uncovered are 0, by_spokes 1.  SS_ENOMEM; the errors of the
+ * extraction. */
 ss_status ss_psi_tet_judge(const ss_scheme *s, const ss_case *c, const ss_local *M,
                            const double *x, const ss_regularity *reg, ss_psi_result *out,
                            ss_error *err);

@@ -48,12 +48,16 @@ static ss_link *parse(const char *text) {
   return l;
 }
 
-/* The tet/oct vertex case of l with every ring level. */
+/* The tet/oct vertex case of l with every ring level, whole (as
+ * ss_psi_tet_judge reads it). */
 static ss_local *deep_case(const ss_scheme *s, const ss_link *l) {
   const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
   ss_local *M = NULL;
   ss_error err = {0};
-  if (ss_local_new_ring(s, &c, SS_LOCAL_MAXRING, &M, &err)) {
+  ss_local_opts o = ss_local_defaults();
+  o.nring = SS_LOCAL_MAXRING;
+  o.whole = 1;
+  if (ss_local_new_opts(s, &c, &o, &M, &err)) {
     fprintf(stderr, "local: %s\n", err.msg);
     return NULL;
   }
@@ -170,7 +174,7 @@ static ss_pipeline *run(const ss_scheme *s, const ss_link *l) {
 static void all_of_sign(const ss_psi_spokes *sk, int sign, const char *what) {
   for (size_t i = 0; i < sk->n; i++)
     CHECK(sk->spoke[i].cls == SS_SPOKE_ONE_SIGN && sk->spoke[i].sign == sign &&
-              sk->spoke[i].nsamples >= 9 && sk->spoke[i].relmin > 1e-3,
+              sk->spoke[i].nsamples == 18 && sk->spoke[i].relmin > 1e-3,
           "%s spoke %c (valence %d): class %d, sign %d (ring %d), %zu points, relative "
           "|s| >= %g",
           what, 'a' + sk->spoke[i].vertex, sk->spoke[i].valence, sk->spoke[i].cls,
@@ -325,7 +329,7 @@ static void undecided_k9(const ss_scheme *s) {
         "k = 9: the net leaves regularity undecided");
   all_of_sign(&sk, p->reg.sign, "k = 9");
   const size_t n = second_path(s, M, p->cm->x, p->c.judged.link, &sk, "k = 9");
-  CHECK(n == 9 * sk.n, "k = 9: %zu points by the second path", n);
+  CHECK(n == 18 * sk.n, "k = 9: %zu points by the second path", n);
   CHECK(p->psi.ran && p->psi.by_spokes && p->v.reg.verdict == SS_PASS &&
             p->v.reg.on == SS_ON_PSI && !p->v.reg.certified,
         "k = 9: passes on psi by evidence: %s", p->v.reg.reason);
@@ -352,8 +356,8 @@ static void icosahedron(const ss_scheme *s) {
   }
   CHECK(p->reg.verdict.verdict == SS_PASS && sk.n == 12, "icosahedron: the net passes");
   all_of_sign(&sk, p->reg.sign, "icosahedron");
-  CHECK(second_path(s, M, p->cm->x, p->c.judged.link, &sk, "icosahedron") == 9 * sk.n,
-        "icosahedron: 9 points per spoke by the second path");
+  CHECK(second_path(s, M, p->cm->x, p->c.judged.link, &sk, "icosahedron") == 18 * sk.n,
+        "icosahedron: 18 points per spoke by the second path");
   CHECK(!p->psi.ran, "icosahedron: the net decides, the spokes are not consulted");
   ss_psi_spokes_free(&sk);
 done:
