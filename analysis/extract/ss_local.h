@@ -110,6 +110,8 @@ typedef struct {
                            as a corner: the cells around p, which the ring
                            does not contain */
   int nring;            /* ring levels built (see above) */
+  int whole;            /* 1 if each ring level holds every cell of Omega_w on
+                           its level, not only the ring's (ss_local_opts.whole) */
   ss_local_ring ring[SS_LOCAL_MAXRING]; /* ring levels 0 .. nring - 1 */
   struct ss_local_levels *levels;       /* the refined star's levels, kept
                                            for ss_local_ring_deepen when asked
@@ -185,10 +187,16 @@ typedef struct {
                            borrowed and only read (level 0 is its complex),
                            it must outlive the result when keep_levels is
                            set; NULL (the default): built here */
+  int whole;            /* non-zero: each ring level holds every cell of
+                           Omega_w on its level (Omega_{w+1}'s too, the cells
+                           at p included) and the points they need: psi's
+                           points round the whole of each spoke, for
+                           ss_psi_tet.h; not a ring to judge a map on
+                           (default 0) */
 } ss_local_opts;
 
 /* nring SS_LOCAL_RING, no budget, no progress, levels not kept, the star
- * built here. */
+ * built here, not whole. */
 ss_local_opts ss_local_defaults(void);
 
 /* ss_local_new_ring with options o (budget and progress). */

@@ -596,6 +596,8 @@ void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdi
   else if (k != SS_UNDECIDED)
     snprintf(text, sizeof text, "psi %s, not proven: %.150s", ss_verdict_name(k),
              r->verdict.reason);
+  else if (r->by_spokes)
+    snprintf(text, sizeof text, "psi by its spokes: %.180s", r->verdict.reason);
   else
     snprintf(text, sizeof text,
              "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",

@@ -147,6 +147,9 @@ typedef struct {
   int degenerate;          /* 1 if psi fails by a degenerate spoke (not a fold:
                               injectivity is not decided by it) */
   char spoke_why[200];     /* spokes not classified: why (else empty) */
+  int by_spokes;           /* 1 if judged by the spokes alone (a tet/oct vertex,
+                              ss_psi_tet.h: no pieces, the ring's sign from the
+                              net's verdict) */
   int sign;                /* the ring's sign: of the larger proven volume (+1
                               positive first when equal); 0 when none is proven */
   int nwitness;            /* 2 when failing, else 0 */
