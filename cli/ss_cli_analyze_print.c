@@ -134,7 +134,15 @@ static void print_map(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
          rv->certified ? ", certified" : "", rv->reason[0] ? ": " : "", rv->reason);
   if (p->psi.ran) {
     const ss_psi_result *q = &p->psi;
-    if (q->by_spokes)
+    if (q->by_masks)
+      printf(
+          "  psi at its regular vertices (the regular lattice's tangent masks, %s): %s; "
+          "%zu regular vertices, %zu positive, %zu negative\n",
+          q->verdict.certified ? "proven on the exact basis's enclosure"
+                               : "double precision",
+          ss_verdict_name(q->verdict.verdict), q->nregular, q->nregular_pos,
+          q->nregular_neg);
+    else if (q->by_spokes)
       printf("  psi by its spokes alone (no polynomial pieces; the edge cases' modes on "
              "the ring's points): %s\n",
              ss_verdict_name(q->verdict.verdict));

@@ -529,3 +529,55 @@ ss_status ss_psi_mask_each(const ss_local *M, const double *x, size_t n,
   ss_psi_mask_ctx_free(&t);
   return rc ? ss_error_nomem(err, "psi masks") : SS_OK;
 }
+
+ss_psi_point ss_psi_mask_point_of(const ss_local *M, const ss_psi_mask_point *pt) {
+  ss_psi_point out = {SIZE_MAX, {0, 0, 0}, {pt->lo, pt->hi}, 1, {-1, -1, -1}, {0, 0, 0}};
+  for (int d = 0; d < 3; d++) {
+    out.cone[d] = pt->cone[d];
+    out.x[d] = pt->x[d];
+  }
+  if (M->dim != 3) return out;
+  for (size_t c = 0; c < M->ncells; c++) {
+    if (M->ctype[c] != SS_TET) continue;
+    double v[4][3] = {{0}};
+    int ok = 1;
+    for (int k = 0; k < 4 && ok; k++) {
+      const ss_star_coord *q = M->label + M->corner[c * SS_MAXCELLVERTS + (size_t)k];
+      for (int e = 0; e < q->n && ok; e++) {
+        int a = 0;
+        while (a < 3 && pt->cone[a] != q->idx[e])
+          a++;
+        if (a == 3)
+          ok = 0;
+        else
+          v[k][a] = q->val[e];
+      }
+    }
+    if (!ok) continue;
+    double E[3][3], y[3];
+    for (int k = 0; k < 3; k++)
+      for (int a = 0; a < 3; a++)
+        E[k][a] = v[k + 1][a] - v[0][a];
+    for (int a = 0; a < 3; a++)
+      y[a] = pt->x[a] - v[0][a];
+    /* x - v0 = sum_k b_k E[k]: Cramer's rule on the columns */
+    const double det = ss_dense_det3(E[0], E[1], E[2]);
+    if (det == 0.0) continue;
+    double b[3], sum = 0.0;
+    for (int k = 0; k < 3; k++) {
+      double F[3][3];
+      memcpy(F, E, sizeof F);
+      memcpy(F[k], y, sizeof y);
+      b[k] = ss_dense_det3(F[0], F[1], F[2]) / det;
+      sum += b[k];
+    }
+    if (b[0] < -1e-12 || b[1] < -1e-12 || b[2] < -1e-12 || sum > 1.0 + 1e-12) continue;
+    out.cell = c;
+    for (int k = 0; k < 3; k++)
+      out.at[k] = b[k];
+    out.det[0] = pt->lo * fabs(det); /* along the tet's edges: det E times */
+    out.det[1] = pt->hi * fabs(det);
+    return out;
+  }
+  return out;
+}

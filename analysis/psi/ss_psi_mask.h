@@ -146,6 +146,13 @@ ss_status ss_psi_mask_each(const ss_local *M, const double *x, size_t n,
                            ss_psi_mask_fn fn, void *arg, ss_psi_mask_result *out,
                            ss_error *err);
 
+/* Witness pt as a point of psi's domain (ss_psi.h): its chart, and the
+ * two-ring tet holding it (barycentric coordinates, det along the tet's
+ * edges from corner 0: |det E| times the chart's, E the edge vectors in
+ * the chart, a small integer, so the product is exact) when there is one;
+ * else cell SIZE_MAX, det along the chart's axes. */
+ss_psi_point ss_psi_mask_point_of(const ss_local *M, const ss_psi_mask_point *pt);
+
 /* As ss_psi_mask_judge on the midpoints of enclosure e of ψ's net (as for
  * ss_psi_certify), then the two witnesses proven ("Proof" above):
  * out->proven = 1 when their enclosures of det Dψ have opposite strict

@@ -118,15 +118,20 @@ ss_status ss_psi_tet_spokes_classify(const ss_scheme *s, const ss_local *M,
                                      ss_psi_spokes *out, size_t *nskipped, ss_error *err);
 
 /* psi of tet/oct vertex case c (M, its net x = the characteristic map's,
- * reg the control net's regularity verdict of x on M's ring) judged by its
- * spokes.  Runs (out->ran = 1) only for tetoct (boxspline reads major
- * diagonals; boxspline-avg's split is not checked against its edge cases)
- * and when reg is undecided with a sign.  The case is extracted again with
- * SS_LOCAL_MAXRING whole ring levels (ss_local_opts.whole: the points round
- * the whole spoke, 18 usable points per spoke covering x0 in [3/16, 7/8],
- * a full period of psi's self-similarity at step 1/16), and the bad cells of
- * its deepest ring level (the ring's cells, not of the ring's sign) are
- * located: when each has a corner on a spoke, the spokes decide,
+ * e NULL or the exact path's enclosure of that net in its own basis, reg
+ * the control net's regularity verdict of x on M's ring) judged at its
+ * regular vertices and by its spokes.  Runs (out->ran = 1) only for tetoct
+ * (boxspline reads major diagonals; boxspline-avg's split is not checked
+ * against its edge cases) and unless reg passes.  The case is extracted
+ * again with SS_LOCAL_MAXRING whole ring levels (ss_local_opts.whole: the
+ * points round the whole spoke, 18 usable points per spoke covering x0 in
+ * [3/16, 7/8], a full period of psi's self-similarity at step 1/16).
+ * First the regular vertices (ss_psi_mask.h): two of opposite strict signs
+ * -> fail on psi, witnesses those two (their chart points; with e only when
+ * proven, ss_psi_mask_certify, and then certified).  Then, when reg is
+ * undecided with a sign, the bad cells of the deepest ring level (the
+ * ring's cells, not of the ring's sign) are located: when each has a corner
+ * on a spoke, the spokes decide,
  *   a sign change                      -> fail, witnesses its two points;
  *   one sign opposite to the ring's    -> fail, witnesses its point of least
  *                                         |s| and a point of a spoke of the
@@ -135,12 +140,12 @@ ss_status ss_psi_tet_spokes_classify(const ss_scheme *s, const ss_local *M,
  *   all of the ring's sign             -> pass, by evidence on the spokes;
  * never certified (ss_psi_apply with certify then leaves the net's verdict,
  * the finding in its reason); otherwise undecided with the reason.  The
- * witnesses' det holds s (the sign of det Dpsi in the tube, not its value);
- * covered and uncovered are 0, by_spokes 1.  SS_ENOMEM; the errors of the
- * extraction. */
+ * spokes' witnesses' det holds s (the sign of det Dpsi in the tube, not its
+ * value); covered and uncovered are 0, by_spokes 1.  SS_ENOMEM; the errors
+ * of the extraction and of ss_psi_mask_certify. */
 ss_status ss_psi_tet_judge(const ss_scheme *s, const ss_case *c, const ss_local *M,
-                           const double *x, const ss_regularity *reg, ss_psi_result *out,
-                           ss_error *err);
+                           const double *x, const ss_psi_enclosure *e,
+                           const ss_regularity *reg, ss_psi_result *out, ss_error *err);
 
 SS_END_DECLS
 

@@ -6,6 +6,7 @@
 
 #include "ss_clock.h"
 #include "ss_jac.h"
+#include "ss_psi_mask.h"
 #include "ss_psi_tet.h"
 
 /* Whether a coordinate lies on a spoke (one nonzero entry). */
@@ -43,13 +44,7 @@ static int bad_cells(const ss_local *M, const double *x, int last, int sign, siz
       free(net);
       return -1;
     }
-    for (size_t i = 0; i < R->nv; i++)
-      for (int d = 0; d < 3; d++) {
-        double v = 0.0;
-        for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++)
-          v += R->w[q] * prev[3 * R->col[q] + (size_t)d];
-        next[3 * i + (size_t)d] = v;
-      }
+    ss_local_ring_push(R, prev, 3, next);
     free(net);
     net = next;
     prev = net;
@@ -77,7 +72,8 @@ static int bad_cells(const ss_local *M, const double *x, int last, int sign, siz
 }
 
 static ss_psi_point point_of(const ss_psi_spoke_sample *q) {
-  ss_psi_point pt = {q->cell, {q->at[0], q->at[1], q->at[2]}, {q->s, q->s}};
+  ss_psi_point pt = {
+      q->cell, {q->at[0], q->at[1], q->at[2]}, {q->s, q->s}, 0, {-1, -1, -1}, {0, 0, 0}};
   return pt;
 }
 
@@ -172,6 +168,35 @@ static void decide(ss_psi_result *r, const ss_psi_spokes *sk, int level, size_t 
       bad, level, sk->n, points(sk));
 }
 
+/* Fail by the tangent masks' witnesses (ss_psi_mask.h), proven or not. */
+static void fail_masks(ss_psi_result *r, const ss_local *M, const ss_psi_mask_result *m) {
+  r->verdict.verdict = SS_FAIL;
+  r->verdict.certified = m->proven;
+  r->by_masks = 1;
+  r->enclosed = m->enclosed;
+  r->nregular = m->judged;
+  r->nregular_pos = m->positive;
+  r->nregular_neg = m->negative;
+  r->nwitness = 2;
+  r->witness[0] = ss_psi_mask_point_of(M, &m->wpos);
+  r->witness[1] = ss_psi_mask_point_of(M, &m->wneg);
+  if (m->proven)
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "psi folds: det Dpsi at two regular vertices of the ring, read with the "
+             "regular lattice's tangent masks, is in [%.6g, %.6g] and in [%.6g, %.6g] "
+             "(of %zu regular vertices %zu positive, %zu negative; proven: exact masks, "
+             "the exact basis's enclosure pushed through the ring in interval "
+             "arithmetic)",
+             m->wpos.lo, m->wpos.hi, m->wneg.lo, m->wneg.hi, m->judged, m->positive,
+             m->negative);
+  else
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "psi folds: det Dpsi at two regular vertices of the ring, read with the "
+             "regular lattice's tangent masks, is %.6g and %.6g (of %zu regular vertices "
+             "%zu positive, %zu negative; double precision)",
+             m->wpos.det, m->wneg.det, m->judged, m->positive, m->negative);
+}
+
 /* M again with every ring level whole (SS_LOCAL_MAXRING of them, every cell
  * of Omega_w: the spokes' points lie on levels 1..3, and round the whole
  * spoke): *deep, a new extraction whose S and labels must be M's (else
@@ -192,8 +217,8 @@ static ss_status deepest(const ss_scheme *s, const ss_case *c, const ss_local *M
 }
 
 ss_status ss_psi_tet_judge(const ss_scheme *s, const ss_case *c, const ss_local *M,
-                           const double *x, const ss_regularity *reg, ss_psi_result *out,
-                           ss_error *err) {
+                           const double *x, const ss_psi_enclosure *e,
+                           const ss_regularity *reg, ss_psi_result *out, ss_error *err) {
   const double t0 = ss_clock_cpu();
   memset(out, 0, sizeof *out);
   out->verdict = (ss_verdict){SS_UNDECIDED, "", 0, SS_ON_PSI};
@@ -212,16 +237,37 @@ ss_status ss_psi_tet_judge(const ss_scheme *s, const ss_case *c, const ss_local 
              ss_scheme_name(s));
     return SS_OK;
   }
-  if (reg->verdict.verdict != SS_UNDECIDED || reg->sign == 0 || reg->nlevels < 1 ||
-      reg->nlevels > M->nring) {
-    snprintf(out->why, sizeof out->why,
-             "the control net decides (or has no ring sign): the spokes are not needed");
+  if (reg->verdict.verdict == SS_PASS) {
+    snprintf(out->why, sizeof out->why, "the control net passes: psi is not needed");
     return SS_OK;
   }
   ss_local *deep = NULL;
   ss_status st = deepest(s, c, M, &deep, err);
   if (st) return st;
   M = deep;
+  /* the regular vertices first: a fold of psi there decides (proven with e) */
+  ss_psi_mask_result mr;
+  st = e ? ss_psi_mask_certify(M, e, &mr, err) : ss_psi_mask_judge(M, x, M->n2, &mr, err);
+  if (st) {
+    ss_local_free(deep);
+    return st;
+  }
+  if (mr.wpos.level >= 0 && mr.wneg.level >= 0 && (!e || mr.proven)) {
+    out->ran = 1;
+    out->sign = reg->sign;
+    fail_masks(out, M, &mr);
+    ss_local_free(deep);
+    out->seconds = ss_clock_cpu() - t0;
+    return SS_OK;
+  }
+  if (reg->verdict.verdict != SS_UNDECIDED || reg->sign == 0 || reg->nlevels < 1 ||
+      reg->nlevels > M->nring) {
+    ss_local_free(deep);
+    snprintf(out->why, sizeof out->why,
+             "the control net decides (or has no ring sign), and the regular vertices "
+             "show no fold of psi: the spokes are not needed");
+    return SS_OK;
+  }
   const int level = M->nring - 1;
   size_t bad, off, skipped = 0;
   if (bad_cells(M, x, level, reg->sign, &bad, &off)) {
