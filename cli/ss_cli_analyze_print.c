@@ -134,16 +134,30 @@ static void print_map(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
          rv->certified ? ", certified" : "", rv->reason[0] ? ": " : "", rv->reason);
   if (p->psi.ran) {
     const ss_psi_result *q = &p->psi;
-    printf("  psi on its polynomial pieces (boxes to side 1/%d, %s): %s; "
-           "%zu pieces, of one sign on %.2f %% of the ring, opposite %.2f %%, folded or "
-           "in doubt %.2f %%, uncovered %.2f %% (round the spokes)\n",
-           1 << q->maxdepth,
-           q->verdict.certified ? "proven on the exact basis's enclosure"
-           : q->enclosed && q->verdict.verdict != SS_UNDECIDED
-               ? "double precision, not proven"
-               : "double precision",
-           ss_verdict_name(q->verdict.verdict), q->pieces, 100.0 * q->covered,
-           100.0 * q->opposite, 100.0 * q->doubtful, 100.0 * q->uncovered);
+    if (q->by_masks)
+      printf(
+          "  psi at its regular vertices (the regular lattice's tangent masks, %s): %s; "
+          "%zu regular vertices, %zu positive, %zu negative\n",
+          q->verdict.certified ? "proven on the exact basis's enclosure"
+                               : "double precision",
+          ss_verdict_name(q->verdict.verdict), q->nregular, q->nregular_pos,
+          q->nregular_neg);
+    else if (q->by_spokes)
+      printf("  psi by its spokes alone (no polynomial pieces; the edge cases' modes on "
+             "the ring's points): %s\n",
+             ss_verdict_name(q->verdict.verdict));
+    else
+      printf(
+          "  psi on its polynomial pieces (boxes to side 1/%d, %s): %s; "
+          "%zu pieces, of one sign on %.2f %% of the ring, opposite %.2f %%, folded or "
+          "in doubt %.2f %%, uncovered %.2f %% (round the spokes)\n",
+          1 << q->maxdepth,
+          q->verdict.certified ? "proven on the exact basis's enclosure"
+          : q->enclosed && q->verdict.verdict != SS_UNDECIDED
+              ? "double precision, not proven"
+              : "double precision",
+          ss_verdict_name(q->verdict.verdict), q->pieces, 100.0 * q->covered,
+          100.0 * q->opposite, 100.0 * q->doubtful, 100.0 * q->uncovered);
     if (q->spokes)
       printf("  its %zu spokes by det[a' | B] along them (double precision, evidence): "
              "%zu of one sign, %zu changing sign, %zu degenerate\n",

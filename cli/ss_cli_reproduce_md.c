@@ -4,6 +4,7 @@
  * on the same cases side by side; every quoted value with its source. */
 #include <limits.h>
 #include <math.h>
+#include <string.h>
 
 #include "ss_cli_reproduce.h"
 #include "ss_report_exhaustive.h"
@@ -40,7 +41,23 @@ static void md_head(ss_strbuf *md, const ss_reproduce_table *t,
             "be proven is undecided, \"not certified\", with the double-precision "
             "verdict in its reason."
           : " Verdicts are double precision (`reproduce --certify` proves them).");
-  if (l->o.psi_depth > 0)
+  if (l->o.psi_depth > 0 && !strcmp(t->scheme, "tetoct"))
+    ss_sb_printf(
+        md,
+        "ψ itself is judged where the net does not pass (`analyze --psi-depth %d`): at "
+        "the ring's regular vertices, where the regular lattice's tangent masks read "
+        "det Dψ from the refined net%s, and on the spokes by the edge cases' modes "
+        "(%s).  A regularity verdict whose reason begins \"psi folds\", or \"psi o "
+        "sigma = psi\", is a statement about ψ (two regular vertices with det Dψ of "
+        "opposite signs, or a symmetry of ψ); any other is about the control "
+        "net.\n\n",
+        l->o.psi_depth,
+        l->o.certify ? " (exact masks, the net enclosed: a fold of ψ marked ✓ is proven)"
+                     : " (double precision)",
+        l->o.certify ? "evidence only: under `--certify` it decides nothing, its finding "
+                       "appended to the net's reason"
+                     : "evidence in double precision: a pass by it says \"by evidence\"");
+  else if (l->o.psi_depth > 0)
     ss_sb_printf(
         md,
         "ψ itself is judged on its polynomial pieces (boxes of the ring to side 1/%d; "

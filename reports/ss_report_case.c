@@ -31,11 +31,26 @@ static json_object *level_json(const ss_ring_level *L, int l) {
 
 static json_object *psi_point_json(const ss_psi_point *x) {
   json_object *o = json_object_new_object();
-  json_object_object_add(o, "cell", json_object_new_int64((int64_t)x->cell));
-  json_object *a = json_object_new_array();
-  for (int d = 0; d < 3; d++)
+  const int cell = x->cell != SIZE_MAX;
+  json_object_object_add(o, "cell",
+                         cell ? json_object_new_int64((int64_t)x->cell) : NULL);
+  json_object *a = cell ? json_object_new_array() : NULL;
+  for (int d = 0; d < 3 && cell; d++)
     json_object_array_add(a, json_object_new_double(x->at[d]));
   json_object_object_add(o, "at", a);
+  if (x->chart) { /* a regular vertex of the ring (ss_psi_mask.h) */
+    json_object *c = json_object_new_object(), *v = json_object_new_array(),
+                *y = json_object_new_array();
+    for (int d = 0; d < 3; d++) {
+      char name[16];
+      ss_psi_spoke_name(x->cone[d], name);
+      json_object_array_add(v, json_object_new_string(name));
+      json_object_array_add(y, json_object_new_double(x->x[d]));
+    }
+    json_object_object_add(c, "cone", v);
+    json_object_object_add(c, "x", y);
+    json_object_object_add(o, "chart", c);
+  }
   json_object *v = json_object_new_array();
   json_object_array_add(v, json_object_new_double(x->det[0]));
   json_object_array_add(v, json_object_new_double(x->det[1]));
@@ -61,6 +76,15 @@ static json_object *psi_json(const ss_psi_result *r) {
                          json_object_new_int64((int64_t)r->nuncovered));
   json_object_object_add(o, "box_depth", json_object_new_int(r->maxdepth));
   json_object_object_add(o, "piece_depth", json_object_new_int(r->piece_depth));
+  if (r->by_masks) { /* decided at the ring's regular vertices (ss_psi_mask.h) */
+    json_object *m = json_object_new_object();
+    json_object_object_add(m, "count", json_object_new_int64((int64_t)r->nregular));
+    json_object_object_add(m, "positive",
+                           json_object_new_int64((int64_t)r->nregular_pos));
+    json_object_object_add(m, "negative",
+                           json_object_new_int64((int64_t)r->nregular_neg));
+    json_object_object_add(o, "regular_vertices", m);
+  }
   if (r->spokes || r->spoke_why[0]) { /* the tubes' evidence (ss_psi_spoke.h) */
     json_object *k = json_object_new_object();
     json_object_object_add(k, "classified", json_object_new_boolean(r->spokes));

@@ -146,11 +146,12 @@ static const char legend[] =
 
 static const char legend_psi[] =
     "On psi (sweeps with --psi-depth): the vertex cases whose characteristic map "
-    "was judged on its polynomial pieces, by their regularity verdict when it is a "
-    "statement about psi itself (pass: det Dpsi of one sign on its whole ring, fail: "
-    "of both signs, or psi o sigma = psi; with --certify both proven), else "
-    "undecided (psi neither proven regular nor folded: the spoke tubes, say); – "
-    "where it was judged for no case of that k.\n";
+    "was judged itself (on its polynomial pieces for mlca and ccsolid; at its "
+    "regular vertices and on its spokes for tetoct), by their regularity verdict "
+    "when it is a statement about psi itself (pass: det Dpsi of one sign on its "
+    "whole ring, fail: of both signs, or psi o sigma = psi; with --certify both "
+    "proven), else undecided (psi neither proven regular nor folded: the spoke "
+    "tubes, say); – where it was judged for no case of that k.\n";
 
 /* One CSV row of the counts e of identity id, scheme sc; psi: the table has
  * the columns on psi. */

@@ -51,19 +51,6 @@ double ss_charmap_cell_measure(const ss_jac_result *j, int sign) {
                     : -j->max_scaled;
 }
 
-/* Push a net (dim coordinates per point) through ring level R: out[i] = sum
- * of R's row i applied to prev. */
-static void push(const ss_local_ring *R, const double *prev, int dim, double *out) {
-  for (size_t i = 0; i < R->nv; i++) {
-    double v[3] = {0.0, 0.0, 0.0};
-    for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++)
-      for (int d = 0; d < dim; d++)
-        v[d] += R->w[q] * prev[R->col[q] * (size_t)dim + (size_t)d];
-    for (int d = 0; d < dim; d++)
-      out[i * (size_t)dim + (size_t)d] = v[d];
-  }
-}
-
 /* Translate x (n points) to the centroid of the ring's points and map it by
  * C^(-1/2) (ss_charmap.h).  The ring's points: the corners of ring level 0's
  * cells, pushed from x; without a ring, the two-ring itself.  Returns 0, -1
@@ -79,7 +66,7 @@ static int normalise(double *x, size_t n, int dim, const ss_local *M, double *ce
     net = malloc((R->nv * (size_t)dim + 1) * sizeof *net);
     use = calloc(R->nv + 1, 1);
     if (!net || !use) goto done;
-    push(R, x, dim, net);
+    ss_local_ring_push(R, x, dim, net);
     for (size_t q = 0; q < R->ncells * SS_MAXCELLVERTS; q++)
       if (R->corner[q] != SIZE_MAX) use[R->corner[q]] = 1;
     pts = net;
@@ -348,7 +335,7 @@ static ss_status judge_levels(ss_charmap *cm, const ss_local *M, const ss_charma
       free(jac);
       return ss_error_nomem(err, "ring net");
     }
-    push(R, prev, dim, net);
+    ss_local_ring_push(R, prev, dim, net);
     if (prev != cm->x) free(prev);
     prev = net;
     if (l < first) continue; /* judged before: the same cells, the same net */

@@ -272,6 +272,15 @@ ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
 
 /* ---- certified verdicts (ss_charmap_cert.c) ---- */
 
+/* Push an interval net (plo <= net <= phi, R->nprev points of dim
+ * coordinates) through ring level R into olo, ohi (R->nv points), each
+ * weight replaced by the enclosure of the rational of denominator at most
+ * maxden it stands for (ss_exact_rational_enclose), in interval arithmetic
+ * with outward rounding: the result holds the exact rule's net for every
+ * net inside the input.  0, or -1 for a weight that is no such rational. */
+int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
+                             int dim, long maxden, double *olo, double *ohi);
+
 /* Prove the verdicts r (from ss_charmap_judge) and inj (ss_charmap_injectivity)
  * of case c, or mark them unproven, with an enclosure lo <= X <= hi (n2 x m,
  * column-major, the rows in S's order) of a basis of the subdominant

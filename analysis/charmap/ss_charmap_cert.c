@@ -30,32 +30,32 @@ static int inet_alloc(inet *x, size_t n, int dim) {
   return x->lo && x->hi ? 0 : -1;
 }
 
-/* The exact weight w (a reconstructed rational p/q) as an interval; 0, or -1
- * when w is not a rational of bounded denominator. */
-static int weight(double w, long maxden, di_t *out) {
-  double lo, hi;
-  if (!ss_exact_rational_enclose(w, maxden, &lo, &hi)) return -1;
-  *out = di_interval(lo, hi);
-  return 0;
-}
-
-/* Push the interval net prev through ring level R into out (allocated). */
-static int push(const ss_local_ring *R, const inet *prev, int dim, long maxden,
-                inet *out) {
-  if (inet_alloc(out, R->nv, dim)) return -1;
+int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
+                             int dim, long maxden, double *olo, double *ohi) {
   for (size_t i = 0; i < R->nv; i++)
     for (int d = 0; d < dim; d++) {
       di_t s = di_interval(0.0, 0.0);
       for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
-        di_t w;
-        if (weight(R->w[q], maxden, &w)) return -2;
+        double lo, hi;
+        if (!ss_exact_rational_enclose(R->w[q], maxden, &lo, &hi)) return -1;
         const size_t k = R->col[q] * (size_t)dim + (size_t)d;
-        s = di_fast_add(s, di_fast_mul(w, di_interval(prev->lo[k], prev->hi[k])));
+        s = di_fast_add(s, di_fast_mul(di_interval(lo, hi), di_interval(plo[k], phi[k])));
       }
-      out->lo[i * (size_t)dim + (size_t)d] = s.a;
-      out->hi[i * (size_t)dim + (size_t)d] = s.b;
+      olo[i * (size_t)dim + (size_t)d] = s.a;
+      ohi[i * (size_t)dim + (size_t)d] = s.b;
     }
   return 0;
+}
+
+/* Push the interval net prev through ring level R into out (allocated):
+ * 0, -1 out of memory, -2 a weight that is not a rational of bounded
+ * denominator. */
+static int push(const ss_local_ring *R, const inet *prev, int dim, long maxden,
+                inet *out) {
+  if (inet_alloc(out, R->nv, dim)) return -1;
+  return ss_charmap_push_interval(R, prev->lo, prev->hi, dim, maxden, out->lo, out->hi)
+             ? -2
+             : 0;
 }
 
 typedef ss_charmap_proven proven;

@@ -8,7 +8,7 @@
 #include "ss_local_impl.h"
 
 ss_local_opts ss_local_defaults(void) {
-  return (ss_local_opts){SS_LOCAL_RING, 0.0, {NULL, NULL}, 0, NULL};
+  return (ss_local_opts){SS_LOCAL_RING, 0.0, {NULL, NULL}, 0, NULL, 0};
 }
 
 ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
@@ -87,6 +87,7 @@ ss_status ss_local_new_ws(const ss_scheme *s, const ss_case *c, const ss_local_o
     w++;
   }
   w--;
+  M->whole = o->whole != 0;
   if (!st) st = ss_local_rings_make(&W, w, nring, M, err);
   ss_local_ws_release(&own);
   W.ws = NULL; /* the caller's workspace is not the kept levels' */

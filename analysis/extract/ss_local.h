@@ -73,16 +73,21 @@ SS_BEGIN_DECLS
 /* One level of the ring: points pushed from the previous level, and the ring's
  * cells on this level. */
 typedef struct {
-  size_t nv;           /* points of this level */
-  size_t nprev;        /* points of the previous level (the two-ring for level 0) */
-  size_t *ptr;         /* nv + 1 row starts into col and w */
-  size_t *col;         /* previous-level point of each entry */
-  double *w;           /* weight of each entry; every row sums to 1 */
-  size_t ncells;       /* ring cells on this level */
-  ss_cell_type *ctype; /* ncells cell types */
-  size_t *corner;      /* ncells * SS_MAXCELLVERTS corners, indices into this
-                          level's points, vertex order of ss_cx.h; unused slots
-                          SIZE_MAX */
+  size_t nv;            /* points of this level */
+  size_t nprev;         /* points of the previous level (the two-ring for level 0) */
+  size_t *ptr;          /* nv + 1 row starts into col and w */
+  size_t *col;          /* previous-level point of each entry */
+  double *w;            /* weight of each entry; every row sums to 1 */
+  size_t ncells;        /* ring cells on this level */
+  ss_cell_type *ctype;  /* ncells cell types */
+  size_t *corner;       /* ncells * SS_MAXCELLVERTS corners, indices into this
+                           level's points, vertex order of ss_cx.h; unused slots
+                           SIZE_MAX */
+  ss_star_coord *coord; /* nv coordinates of the points relative to p, in
+                           units of this level's grid (level w + 1 + r for
+                           ring level r; ss_star.h), so a point of ring level
+                           r with coordinates x is the label x / 2^(r + 1)
+                           when that is one */
 } ss_local_ring;
 
 /* The local subdivision matrix of one case. */
@@ -105,6 +110,8 @@ typedef struct {
                            as a corner: the cells around p, which the ring
                            does not contain */
   int nring;            /* ring levels built (see above) */
+  int whole;            /* 1 if each ring level holds every cell of Omega_w on
+                           its level, not only the ring's (ss_local_opts.whole) */
   ss_local_ring ring[SS_LOCAL_MAXRING]; /* ring levels 0 .. nring - 1 */
   struct ss_local_levels *levels;       /* the refined star's levels, kept
                                            for ss_local_ring_deepen when asked
@@ -144,6 +151,10 @@ ss_status ss_local_ring_deepen(const ss_scheme *s, const ss_case *c, int nring,
 /* Free; NULL is a no-op. */
 void ss_local_free(ss_local *L);
 
+/* Push a net (dim coordinates per point, 1..3) through ring level R: out[i]
+ * = sum over R's row i of w * prev[col] (prev: R->nprev points, out: R->nv). */
+void ss_local_ring_push(const ss_local_ring *R, const double *prev, int dim, double *out);
+
 /* The index of the label x among M's labels, or SIZE_MAX if x labels no
  * point of the two-ring.  Cost O(log n2). */
 size_t ss_local_label_index(const ss_local *M, const ss_star_coord *x);
@@ -176,10 +187,16 @@ typedef struct {
                            borrowed and only read (level 0 is its complex),
                            it must outlive the result when keep_levels is
                            set; NULL (the default): built here */
+  int whole;            /* non-zero: each ring level holds every cell of
+                           Omega_w on its level (Omega_{w+1}'s too, the cells
+                           at p included) and the points they need: psi's
+                           points round the whole of each spoke, for
+                           ss_psi_tet.h; not a ring to judge a map on
+                           (default 0) */
 } ss_local_opts;
 
 /* nring SS_LOCAL_RING, no budget, no progress, levels not kept, the star
- * built here. */
+ * built here, not whole. */
 ss_local_opts ss_local_defaults(void);
 
 /* ss_local_new_ring with options o (budget and progress). */

@@ -14,7 +14,8 @@ static int all_marked(const ss_idx *v, int nv, const unsigned char *mark) {
 }
 
 /* Ring level r on grid level l = w + 1 + r (ss_local.h): the top cells of
- * level l inside Omega_w (om marks) and not inside Omega_{w+1} (om1 marks);
+ * level l inside Omega_w (om marks) and not inside Omega_{w+1} (om1 marks;
+ * NULL: no such exclusion, ss_local.whole);
  * counts them, or with M->ring[r] allocated, lists them with corners as
  * vertex indices of level l (renumbered by the caller). */
 static size_t ring_cells(const ss_local_level *L, const unsigned char *om,
@@ -27,7 +28,7 @@ static size_t ring_cells(const ss_local_level *L, const unsigned char *om,
     const int nv = ss_cell_nverts((ss_cell_type)t);
     for (size_t i = 0; i < cx->nc[t]; i++) {
       const ss_idx *v = ss_cx_cell(cx, (ss_cell_type)t, i);
-      if (!all_marked(v, nv, om) || all_marked(v, nv, om1)) continue;
+      if (!all_marked(v, nv, om) || (om1 && all_marked(v, nv, om1))) continue;
       if (R) {
         R->ctype[n] = (ss_cell_type)t;
         for (int j = 0; j < SS_MAXCELLVERTS; j++)
@@ -58,13 +59,15 @@ static int ring_rows(const ss_local_levels *W, int w, int r, unsigned char *cons
   R->ptr = malloc((nv + 1) * sizeof *R->ptr);
   R->col = malloc((nnz + 1) * sizeof *R->col);
   R->w = malloc((nnz + 1) * sizeof *R->w);
-  if (!R->ptr || !R->col || !R->w) {
+  R->coord = malloc((nv + 1) * sizeof *R->coord);
+  if (!R->ptr || !R->col || !R->w || !R->coord) {
     ss_error_nomem(err, "ring rows");
     return SS_LOCAL_HARD;
   }
   size_t q = 0, i = 0;
   for (size_t f = 0; f < F->cx->nv; f++) {
     if (!need[l][f]) continue;
+    R->coord[i] = F->rel[f];
     R->ptr[i++] = q;
     for (int e = C->R->p[f]; e < C->R->p[f + 1]; e++) {
       R->col[q] = idx[l - 1][C->R->i[e]];
@@ -112,7 +115,8 @@ static int build_ring(const ss_local_levels *W, int w, int nring, ss_local *M,
   for (int r = 0; r < nring; r++) {
     const int l = w + 1 + r;
     ss_local_ring *R = M->ring + r;
-    R->ncells = ring_cells(W->lev + l, om[l - w], om1[l - w - 1], NULL);
+    const unsigned char *in1 = M->whole ? NULL : om1[l - w - 1];
+    R->ncells = ring_cells(W->lev + l, om[l - w], in1, NULL);
     R->ctype = malloc((R->ncells + 1) * sizeof *R->ctype);
     R->corner = malloc((R->ncells * SS_MAXCELLVERTS + 1) * sizeof *R->corner);
     if (!R->ctype || !R->corner) {
@@ -120,7 +124,7 @@ static int build_ring(const ss_local_levels *W, int w, int nring, ss_local *M,
       rc = SS_LOCAL_HARD;
       goto done;
     }
-    ring_cells(W->lev + l, om[l - w], om1[l - w - 1], R);
+    ring_cells(W->lev + l, om[l - w], in1, R);
     for (size_t q = 0; q < R->ncells * SS_MAXCELLVERTS; q++)
       if (R->corner[q] != SIZE_MAX) need[l][R->corner[q]] = 1;
   }
@@ -195,7 +199,20 @@ void ss_local_rings_free(ss_local *M) {
     free(M->ring[r].w);
     free(M->ring[r].ctype);
     free(M->ring[r].corner);
+    free(M->ring[r].coord);
     memset(M->ring + r, 0, sizeof M->ring[r]);
   }
   M->nring = 0;
+}
+
+void ss_local_ring_push(const ss_local_ring *R, const double *prev, int dim,
+                        double *out) {
+  for (size_t i = 0; i < R->nv; i++) {
+    double v[3] = {0.0, 0.0, 0.0};
+    for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++)
+      for (int d = 0; d < dim; d++)
+        v[d] += R->w[q] * prev[R->col[q] * (size_t)dim + (size_t)d];
+    for (int d = 0; d < dim; d++)
+      out[i * (size_t)dim + (size_t)d] = v[d];
+  }
 }

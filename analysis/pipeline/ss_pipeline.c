@@ -8,6 +8,7 @@
 #include "ss_diag.h"
 #include "ss_jac.h"
 #include "ss_psi.h"
+#include "ss_psi_tet.h"
 
 ss_pipeline_opts ss_pipeline_defaults(void) {
   const ss_charmap_opts co = ss_charmap_defaults();
@@ -169,8 +170,25 @@ static ss_status psi(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
   ss_psi_opts o = ss_psi_defaults();
   o.maxdepth = p->opts.psi_depth;
   double c1 = tm ? ss_clock_cpu() : 0.0;
-  ss_progress_step(&p->opts.progress, "psi on its polynomial pieces", 0, 0);
   ss_status st = SS_OK;
+  if (p->M->cell == SS_TET) { /* no pieces: regular vertices and spokes */
+    ss_progress_step(&p->opts.progress, "psi at its regular vertices and spokes", 0, 0);
+    double *lo = NULL, *hi = NULL;
+    ss_psi_enclosure e = {NULL, NULL, ss_exact_defaults(p->M->dim).maxden};
+    if (p->opts.certify && !psi_enclosure(p, &lo, &hi, err, &st)) {
+      e.lo = lo;
+      e.hi = hi;
+    }
+    if (!st)
+      st = ss_psi_tet_judge(p->scheme, &p->c.judged, p->M, p->cm->x, e.lo ? &e : NULL,
+                            &p->reg, &p->psi, err);
+    free(lo);
+    free(hi);
+    if (!st) ss_psi_apply(&p->psi, p->opts.certify, &p->v.reg, &p->v.inj);
+    if (tm) ss_clock_lap(&tm->psi, &c1);
+    return st;
+  }
+  ss_progress_step(&p->opts.progress, "psi on its polynomial pieces", 0, 0);
   double *lo = NULL, *hi = NULL;
   if (p->opts.certify && !psi_enclosure(p, &lo, &hi, err, &st)) {
     const ss_psi_enclosure e = {lo, hi, ss_exact_defaults(p->M->dim).maxden};

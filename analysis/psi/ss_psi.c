@@ -333,7 +333,12 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
 }
 
 static ss_psi_point spoke_point(const ss_psi_spoke_sample *q) {
-  ss_psi_point pt = {q->cell, {q->at[0], q->at[1], q->at[2]}, {q->det_eval, q->det_eval}};
+  ss_psi_point pt = {q->cell,
+                     {q->at[0], q->at[1], q->at[2]},
+                     {q->det_eval, q->det_eval},
+                     0,
+                     {-1, -1, -1},
+                     {0, 0, 0}};
   return pt;
 }
 
@@ -548,8 +553,9 @@ static void apply_decided(const ss_psi_result *r, ss_verdict *reg, ss_verdict *i
     if (r->degenerate)
       snprintf(text, sizeof text, "psi %.190s", r->verdict.reason);
     else
-      snprintf(text, sizeof text, "psi's pieces agree: det Dpsi %.4g and %.4g (%s)",
-               r->witness[0].det[0], r->witness[1].det[0], how);
+      snprintf(text, sizeof text, "psi's %s agree: det Dpsi %.4g and %.4g (%s)",
+               r->by_masks ? "regular vertices" : "pieces", r->witness[0].det[0],
+               r->witness[1].det[0], how);
     append(reg, text);
     if (r->verdict.certified) {
       reg->certified = 1;
@@ -596,6 +602,8 @@ void ss_psi_apply(const ss_psi_result *r, int certify, ss_verdict *reg, ss_verdi
   else if (k != SS_UNDECIDED)
     snprintf(text, sizeof text, "psi %s, not proven: %.150s", ss_verdict_name(k),
              r->verdict.reason);
+  else if (r->by_spokes)
+    snprintf(text, sizeof text, "psi by its spokes: %.180s", r->verdict.reason);
   else
     snprintf(text, sizeof text,
              "psi: of one sign on %.1f %% of its ring, no fold found on its pieces",

@@ -109,12 +109,20 @@ typedef struct {
 /* A point of psi's domain with det Dpsi there. */
 typedef struct {
   size_t cell;   /* the two-ring cell holding it (an index into M's cells,
-                    one of the cells around p) */
-  double at[3];  /* its parameters (u, v, w) in the cell's vertex order
-                    (ss_cx.h: u along corner 0 -> 1, v along 0 -> 3, w along
-                    0 -> 4) */
+                    one of the cells around p); SIZE_MAX: none given (a
+                    chart point inside an octahedron) */
+  double at[3];  /* its parameters in the cell's vertex order: hexes (u, v,
+                    w) (ss_cx.h: u along corner 0 -> 1, v along 0 -> 3, w
+                    along 0 -> 4); tets the barycentric coordinates of
+                    corners 1, 2, 3 */
   double det[2]; /* an enclosure [lo, hi] of det Dpsi there, derivatives in
-                    those parameters (double path: lo = hi = the value) */
+                    those parameters (without a cell: along the chart's
+                    axes, level-w grid units, oriented as space); double
+                    path: lo = hi = the value */
+  int chart;     /* 1 if cone and x are given (tangent-mask witnesses,
+                    ss_psi_mask.h), else 0 */
+  int cone[3];   /* the link vertices (0-based) of its chart cone */
+  double x[3];   /* its conical coordinates on them, level-w grid units */
 } ss_psi_point;
 
 /* What the test on psi found. */
@@ -147,6 +155,14 @@ typedef struct {
   int degenerate;          /* 1 if psi fails by a degenerate spoke (not a fold:
                               injectivity is not decided by it) */
   char spoke_why[200];     /* spokes not classified: why (else empty) */
+  int by_spokes;           /* 1 if judged by the spokes alone (a tet/oct vertex,
+                              ss_psi_tet.h: no pieces, the ring's sign from the
+                              net's verdict) */
+  int by_masks;            /* 1 if decided at the ring's regular vertices by
+                              tangent masks (a tet/oct vertex, ss_psi_mask.h) */
+  size_t nregular;         /* regular vertices read by tangent masks */
+  size_t nregular_pos;     /* of these, det Dpsi > 0 */
+  size_t nregular_neg;     /* det Dpsi < 0 */
   int sign;                /* the ring's sign: of the larger proven volume (+1
                               positive first when equal); 0 when none is proven */
   int nwitness;            /* 2 when failing, else 0 */

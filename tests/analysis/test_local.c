@@ -835,9 +835,12 @@ static void test_estimate(void) {
   ss_scheme_free(tetoct);
 }
 
-/* Whether rings a and b are equal bit for bit (points, rows, cells). */
+/* Whether rings a and b are equal bit for bit (points, rows, cells,
+ * coordinates). */
 static int same_ring(const ss_local_ring *a, const ss_local_ring *b) {
   if (a->nv != b->nv || a->nprev != b->nprev || a->ncells != b->ncells) return 0;
+  for (size_t i = 0; i < a->nv; i++)
+    if (ss_star_coord_cmp(a->coord + i, b->coord + i)) return 0;
   const size_t nnz = a->ptr[a->nv];
   return nnz == b->ptr[b->nv] && !memcmp(a->ptr, b->ptr, (a->nv + 1) * sizeof *a->ptr) &&
          !memcmp(a->col, b->col, nnz * sizeof *a->col) &&

@@ -71,6 +71,8 @@ static void compare_local(const ss_local *a, const ss_local *b, const char *what
            same(x->w, y->w, nnz * sizeof *x->w) &&
            same(x->ctype, y->ctype, x->ncells * sizeof *x->ctype) &&
            same(x->corner, y->corner, x->ncells * SS_MAXCELLVERTS * sizeof *x->corner);
+      for (size_t i = 0; ok && i < x->nv; i++)
+        ok = ss_star_coord_cmp(x->coord + i, y->coord + i) == 0;
     }
     CHECK(ok, "%s: ring level %d differs", what, r);
   }

@@ -15,8 +15,8 @@
 /* The pipeline of vertex case `link` under s through its verdicts, psi
  * judged to box depth psi_depth, with the exact path if certify; NULL (the
  * reason printed) on failure. */
-static ss_pipeline *psi_run(const ss_scheme *s, const char *link, int psi_depth,
-                            int certify) {
+static inline ss_pipeline *psi_run(const ss_scheme *s, const char *link, int psi_depth,
+                                   int certify) {
   ss_link *l = NULL;
   ss_error err = {0};
   if (ss_link_named(link, &l, &err) && ss_link_parse(link, &l, &err)) {
@@ -36,7 +36,8 @@ static ss_pipeline *psi_run(const ss_scheme *s, const char *link, int psi_depth,
 
 /* The two-ring's hexes of p's case with points x (n2 x 3) as a limit
  * evaluator under s; NULL (the reason printed) on failure. */
-static ss_limit *psi_limit(const ss_scheme *s, const ss_pipeline *p, const double *x) {
+static inline ss_limit *psi_limit(const ss_scheme *s, const ss_pipeline *p,
+                                  const double *x) {
   ss_error err = {0};
   ss_cx *cx = NULL;
   ss_limit *L = NULL;
@@ -56,7 +57,7 @@ done:
   return L;
 }
 
-static double psi_det3(double J[3][3]) {
+static inline double psi_det3(double J[3][3]) {
   return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
          J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
          J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
