@@ -115,15 +115,16 @@ static void help(const char *cmd) {
         "                         ball arithmetic (arb) and the ring's Jacobians in\n"
         "                         interval arithmetic; what cannot be proven becomes\n"
         "                         undecided (\"not certified: ...\")\n"
-        "  --psi-depth N          judge psi itself on its polynomial pieces (mlca,\n"
-        "                         ccsolid vertices: where psi is a tricubic B-spline,\n"
-        "                         the Bernstein form of det Dpsi), the ring cut in\n"
-        "                         boxes down to side 2^-N (1..8, default %d; 0: not);\n"
-        "                         a fold of psi fails regularity and injectivity\n"
-        "                         judged on psi, a ring fully covered and of one sign\n"
-        "                         passes regularity; double precision, not proven:\n"
-        "                         with --certify psi is reported (json \"psi\") but\n"
-        "                         decides nothing\n",
+        "  --psi-depth N          judge psi itself, not only its control net (1..8,\n"
+        "                         default %d; 0: not): mlca and ccsolid vertices on\n"
+        "                         its polynomial pieces (where psi is a tricubic\n"
+        "                         B-spline, the Bernstein form of det Dpsi; the ring\n"
+        "                         cut in boxes down to side 2^-N) and the spokes'\n"
+        "                         tubes; tetoct vertices at the ring's regular\n"
+        "                         vertices (tangent masks) and on the spokes; a fold\n"
+        "                         of psi fails regularity and injectivity judged on\n"
+        "                         psi; the spokes decide by evidence only; with\n"
+        "                         --certify only what is proven about psi decides\n",
         SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels,
         SS_PSI_BOX_DEPTH);
   if (!m && !d)
