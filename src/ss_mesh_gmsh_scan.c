@@ -233,7 +233,6 @@ static int int_of(const char *t, int *out) {
 /* A number as strtod reads it, whole token. */
 static int number_of(const char *t) {
   char *end;
-  errno = 0;
   (void)strtod(t, &end);
   return end != t && !*end;
 }
@@ -310,9 +309,9 @@ static ss_status supported(scan *s, int gt, ss_cell_type *ct, const char *where)
   if (ss_mesh_gmsh_cell_type(gt, ct)) return SS_OK;
   const char *name = ss_mesh_gmsh_type_name(gt);
   return fail(s,
-              "%s is of gmsh type %d (%s), which has no cell here (read: points, "
+              "%s is of gmsh type %d%s%s%s, which has no cell here (read: points, "
               "lines, triangles, quadrangles, tetrahedra, hexahedra, of first order)",
-              where, gt, name ? name : "not named here");
+              where, gt, name ? " (" : "", name ? name : "", name ? ")" : "");
 }
 
 /* ---- version 2: $Nodes N, N nodes; $Elements M, M elements ---- */
