@@ -30,6 +30,8 @@
 #include <string.h>
 
 #if SS_HAVE_GMSH
+#include "ss_mesh_gmsh_scan.h"
+
 #include <dlfcn.h>
 #include <gmshc.h>
 #include <locale.h>
@@ -138,32 +140,6 @@ static ss_status load_api(gmsh_api *g, const char *path, ss_error *err) {
 
 /* gmsh's API is global state: one read at a time in the whole process. */
 static pthread_mutex_t gmsh_lock = PTHREAD_MUTEX_INITIALIZER;
-
-/* gmsh element types that are cells here (gmsh manual, "MSH file format"). */
-static int cell_type_of(int gmsh_type, ss_cell_type *t) {
-  switch (gmsh_type) {
-  case 15: /* 1-node point */
-    *t = SS_VERTEX;
-    return 1;
-  case 1: /* 2-node line */
-    *t = SS_SEGMENT;
-    return 1;
-  case 2: /* 3-node triangle */
-    *t = SS_TRIANGLE;
-    return 1;
-  case 3: /* 4-node quadrangle */
-    *t = SS_QUAD;
-    return 1;
-  case 4: /* 4-node tetrahedron: corner order and orientation as ss_cx.h */
-    *t = SS_TET;
-    return 1;
-  case 5: /* 8-node hexahedron: bottom 0-3, top 4-7 above them, as ss_cx.h */
-    *t = SS_HEX;
-    return 1;
-  default:
-    return 0;
-  }
-}
 
 /* The text of gmsh's last error, or a fallback. */
 static void last_error(const gmsh_api *g, char *buf, size_t n) {
@@ -286,7 +262,7 @@ static ss_status add_block(const gmsh_api *g, const char *path, int type, size_t
                            ss_error *err) {
   ss_status st = SS_OK;
   ss_cell_type ct;
-  if (!cell_type_of(type, &ct)) {
+  if (!ss_mesh_gmsh_cell_type(type, &ct)) { /* the scan refused these */
     char *name = NULL;
     int edim, order_, nnod, nprim, ierr2 = 0;
     double *lc = NULL;
@@ -569,9 +545,38 @@ nomem:
   return -2;
 }
 
+/* What gmsh read (cx) against what the file declares (the scan): every
+ * element a cell, no node beyond those declared (version 2 drops the nodes
+ * no element uses).  gmsh's reader is lenient, and a difference is cells
+ * lost without a word. */
+static ss_status check_counts(const char *path, const ss_gmsh_decl *d, const ss_cx *cx,
+                              ss_error *err) {
+  size_t total = 0;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    total += cx->nc[t];
+    if (d->per_type && cx->nc[t] != d->cells[t])
+      return ss_error_set(err, SS_EINPUT,
+                          "%s: gmsh read %zu %s where $Elements declares %zu: refused "
+                          "rather than lose or invent cells",
+                          path, cx->nc[t], ss_cell_plural((ss_cell_type)t), d->cells[t]);
+  }
+  if (total != d->elements)
+    return ss_error_set(err, SS_EINPUT,
+                        "%s: gmsh read %zu cells where $Elements declares %zu: refused "
+                        "rather than lose or invent cells",
+                        path, total, d->elements);
+  if (cx->nv > d->nodes)
+    return ss_error_set(err, SS_EINPUT,
+                        "%s: gmsh read %zu nodes where $Nodes declares %zu", path, cx->nv,
+                        d->nodes);
+  return SS_OK;
+}
+
 ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
   *out = NULL;
   ss_status st = check_header(path, err);
+  ss_gmsh_decl decl;
+  if (!st) st = ss_mesh_gmsh_scan(path, &decl, err);
   if (st) return st;
   /* gmsh 4.8 dereferences bad node tags in some malformed binary files and
    * dies of SIGSEGV: it reads in a child process, whose death becomes a
@@ -647,6 +652,10 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
              : ss_error_set(err, SS_EINPUT, "%s: the gmsh reader's answer is cut", path);
   }
   free(buf);
+  if (!st && (st = check_counts(path, &decl, *out, err))) {
+    ss_cx_free(*out);
+    *out = NULL;
+  }
   return st;
 }
 
