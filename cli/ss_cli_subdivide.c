@@ -65,11 +65,13 @@ static const char *const usage_text =
     "overflow when averaged): the message names the input vertices it derives\n"
     "from, and OUT is not written.\n";
 
-/* Cells after one more level, per type (exact: splits have fixed child counts). */
-static void next_counts(const double *in, double *out) {
+/* Cells after one more level, per type: exact for the splits with fixed child
+ * counts; for a bisection split (quasi48: each triangle copied or halved) the
+ * bound 2 per triangle. */
+static void next_counts(const double *in, double *out, int bisect) {
   out[SS_VERTEX] = in[SS_VERTEX];
   out[SS_SEGMENT] = 2 * in[SS_SEGMENT];
-  out[SS_TRIANGLE] = 4 * in[SS_TRIANGLE];
+  out[SS_TRIANGLE] = (bisect ? 2 : 4) * in[SS_TRIANGLE];
   out[SS_QUAD] = 4 * in[SS_QUAD];
   out[SS_HEX] = 8 * in[SS_HEX];
   out[SS_TET] = 4 * in[SS_TET] + 8 * in[SS_OCT];
@@ -188,24 +190,27 @@ static int parse(int argc, char **argv, sub_opts *o) {
   return 0;
 }
 
-/* Refuse, before any work, a refinement of cx by levels levels that would
- * make more than 2e9 cells (counted exactly from the split's child counts):
+/* Refuse, before any work, a refinement of cx by levels levels with scheme s
+ * that would make more than 2e9 cells (counted exactly from the split's child
+ * counts, or bounded by 2 per triangle and level for a bisection split):
  * 0, or the exit status 2 with the message printed. */
-static int check_size(const ss_cx *cx, long levels) {
+static int check_size(const ss_scheme *s, const ss_cx *cx, long levels) {
+  const ss_split_kind k = ss_scheme_split_kind(s);
+  const int bisect = k == SS_SPLIT_BISECT || k == SS_SPLIT_NVB;
   double n[SS_NCELLTYPES], m[SS_NCELLTYPES], total = 0;
   for (int t = 0; t < SS_NCELLTYPES; t++)
     n[t] = (double)cx->nc[t];
   for (long l = 0; l < levels; l++) {
-    next_counts(n, m);
+    next_counts(n, m, bisect);
     memcpy(n, m, sizeof n);
   }
   for (int t = 0; t < SS_NCELLTYPES; t++)
     total += n[t];
   if (total <= 2e9) return 0;
   fprintf(stderr,
-          "subspectra subdivide: %ld levels would make %.3g cells (the limit is 2e9); "
+          "subspectra subdivide: %ld levels would make %s%.3g cells (the limit is 2e9); "
           "use fewer levels\n",
-          levels, total);
+          levels, bisect ? "up to " : "", total);
   return SS_EXIT_USAGE;
 }
 
@@ -319,7 +324,7 @@ int ss_cli_subdivide(int argc, char **argv) {
       goto done;
     }
   }
-  if ((rc = check_size(cx, o.levels))) goto done;
+  if ((rc = check_size(scheme, cx, o.levels))) goto done;
   summary_start(&o, cx, reads_diag, dpairs, dbad, &report, &lv);
   input = cx; /* kept to name input vertices if a level overflows */
   if ((rc = refine_levels(&o, scheme, input, &cx, lv))) goto done;

@@ -49,14 +49,31 @@ static int cmp_ranked(const void *a, const void *b) {
   return (x->hi > y->hi) - (x->hi < y->hi);
 }
 
-static double len2(const ss_cx *cx, ss_idx a, ss_idx b) {
+/* Squared length of the edge (a, b) with every coordinate difference
+ * multiplied by `scale`, a power of two chosen from the whole mesh (see
+ * diff_scale): exact rescaling, so the ranking does not depend on the mesh's
+ * units, and neither tiny (1e-170) nor huge (1e160) coordinates under- or
+ * overflow the square. */
+static double len2(const ss_cx *cx, ss_idx a, ss_idx b, double scale) {
   const size_t dim = (size_t)cx->dim;
   double s = 0.0;
   for (size_t r = 0; r < dim; r++) {
-    double d = cx->x[(size_t)a * dim + r] - cx->x[(size_t)b * dim + r];
+    double d = (cx->x[(size_t)a * dim + r] - cx->x[(size_t)b * dim + r]) * scale;
     s += d * d;
   }
   return s;
+}
+
+/* Largest |coordinate difference| along the edge (a, b); +inf or NaN if a
+ * coordinate or the difference is not finite. */
+static double max_diff(const ss_cx *cx, ss_idx a, ss_idx b) {
+  const size_t dim = (size_t)cx->dim;
+  double m = 0.0;
+  for (size_t r = 0; r < dim; r++) {
+    double d = fabs(cx->x[(size_t)a * dim + r] - cx->x[(size_t)b * dim + r]);
+    if (!(d <= m)) m = d; /* NaN propagates */
+  }
+  return m;
 }
 
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
@@ -99,9 +116,9 @@ ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_ou
     st = ss_error_nomem(err, "bisection split");
     goto done;
   }
-  double big = 0.0;
+  double big = 0.0, dmax = 0.0;
   for (size_t e = 0; e < ne; e++) {
-    double l = len2(coarse, te->end[2 * e], te->end[2 * e + 1]);
+    double l = max_diff(coarse, te->end[2 * e], te->end[2 * e + 1]);
     if (!(l > 0.0)) {
       st = ss_error_set(err, SS_EINPUT,
                         "degenerate edge: vertices %lu and %lu coincide (zero-length "
@@ -118,11 +135,21 @@ ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_ou
                         (unsigned long)te->end[2 * e + 1] + 1);
       goto done;
     }
-    if (l > big) big = l;
+    if (l > dmax) dmax = l;
     mid[e] = SS_IDX_NONE;
   }
+  /* 2^-k with dmax * 2^-k in [1/2, 1): the scaled squares neither overflow
+   * nor (for the longest edges) underflow; a power of two keeps every
+   * ranking key bit for bit what it is unscaled when nothing overflows */
+  int ex;
+  (void)frexp(dmax, &ex);
+  const double scale = ldexp(1.0, ex < -1020 ? 1020 : -ex); /* 2^1020: finite */
   for (size_t e = 0; e < ne; e++) {
-    double q = len2(coarse, te->end[2 * e], te->end[2 * e + 1]) / big;
+    double l = len2(coarse, te->end[2 * e], te->end[2 * e + 1], scale);
+    if (l > big) big = l;
+  }
+  for (size_t e = 0; e < ne; e++) {
+    double q = len2(coarse, te->end[2 * e], te->end[2 * e + 1], scale) / big;
     order[e] =
         (ranked){(uint64_t)llround(ldexp(q, 36)), te->end[2 * e], te->end[2 * e + 1], e};
   }

@@ -59,6 +59,11 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\
 expect 2 "non-manifold edge: the edge between vertices 1 and 2 is held by 3 triangles" "$exe" subdivide --scheme quasi48 "$tmp/nm.obj" -o "$tmp/q.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 1 3\n' > "$tmp/pillow.obj"
 expect 2 "doubled triangle: both triangles on the edge between vertices 1 and 2 have the third corner 3" "$exe" subdivide --scheme quasi48 "$tmp/pillow.obj" -o "$tmp/q.obj"
+# the level cap counts at most 2 triangles per triangle and level for quasi48
+# (a bisection), not 4 as for Loop: 320 * 2^12 cells are allowed (issue 35)
+"$exe" subdivide --scheme loop --levels 2 "$m/icosahedron.obj" -o "$tmp/ico320.obj" >/dev/null 2>&1
+expect 0 "quasi48 level 12: [0-9]+ vertices, [0-9]+ triangles" "$exe" subdivide --scheme quasi48 --levels 12 "$tmp/ico320.obj" -o "$tmp/q.vtk"
+expect 2 "12 levels would make 5.37e\+09 cells" "$exe" subdivide --scheme loop --levels 12 "$tmp/ico320.obj" -o "$tmp/q.vtk"
 # quasi48 analysis (issue 19): surface vertices of class 4 or 8 only
 expect 0 "valence 8, 4-8 class 8" "$exe" analyze --scheme quasi48 --surface-vertex 8 --eigenvalues 4
 expect 0 "valence 5, 4-8 class 4" "$exe" analyze --scheme quasi48 --surface-vertex 5 --class 4 --eigenvalues 4

@@ -567,6 +567,43 @@ static void test_relabel(const ss_cx *ico) {
   ss_scheme_free(s);
 }
 
+/* The longest-edge order does not depend on units: the jittered icosahedron
+ * scaled by 2^-565 (about 1e-170) and by 2^531 (about 1e160) refines to the
+ * same triangles, each position the unit one times the factor exactly (issue
+ * 35: both scales were refused, one as "coincide", one as "no finite
+ * length"). */
+static void test_scale(const ss_cx *ico) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  ss_cx *j = NULL, *a = NULL;
+  if (ss_cx_copy(ico, &j, &err) || ss_scheme_new("quasi48", &s, &err)) exit(1);
+  tm_jitter(j, 0.05, 5);
+  if (ss_scheme_refine_levels(s, j, 4, &a, &err)) exit(1);
+  const int ex[2] = {-565, 531};
+  for (int k = 0; k < 2; k++) {
+    ss_cx *c = NULL, *b = NULL;
+    if (ss_cx_copy(j, &c, &err)) exit(1);
+    for (size_t i = 0; i < c->nv * (size_t)c->dim; i++)
+      c->x[i] = ldexp(c->x[i], ex[k]);
+    ss_status st = ss_scheme_refine_levels(s, c, 4, &b, &err);
+    CHECK(st == SS_OK, "scale 2^%d: status %d, '%s'", ex[k], (int)st, err.msg);
+    if (st == SS_OK) {
+      size_t nt = a->nc[SS_TRIANGLE], bad = 0;
+      CHECK(b->nv == a->nv && b->nc[SS_TRIANGLE] == nt, "scale 2^%d: other sizes", ex[k]);
+      for (size_t i = 0; b->nv == a->nv && i < a->nv * (size_t)a->dim; i++)
+        bad += b->x[i] != ldexp(a->x[i], ex[k]);
+      for (size_t i = 0; b->nc[SS_TRIANGLE] == nt && i < 3 * nt; i++)
+        bad += b->cells[SS_TRIANGLE][i] != a->cells[SS_TRIANGLE][i];
+      CHECK(bad == 0, "scale 2^%d: %zu coordinates or corners differ", ex[k], bad);
+    }
+    ss_cx_free(b);
+    ss_cx_free(c);
+  }
+  ss_cx_free(a);
+  ss_cx_free(j);
+  ss_scheme_free(s);
+}
+
 /* Non-manifold and zero-length edges and quadrilaterals are refused, each
  * with a message naming the problem. */
 static void test_bad_input(void) {
@@ -626,6 +663,7 @@ int main(int argc, char **argv) {
   REQUIRE_OK(ss_mesh_read(path, SS_MESH_AUTO, &ico, &err), &err);
   claims("icosahedron.obj", ico, 10);
   test_relabel(ico);
+  test_scale(ico);
   ss_cx *cube = NULL;
   snprintf(path, sizeof path, "%s/cube-surface.obj", argv[1]);
   REQUIRE_OK(ss_mesh_read(path, SS_MESH_AUTO, &cube, &err), &err);
