@@ -369,6 +369,27 @@ static void fail_spoke(ss_psi_result *r, const ss_psi_spoke *sp, const ss_psi_po
 }
 
 /* The verdict with the spokes classified (ss_psi.h, "The tubes"). */
+int ss_psi_fail_degenerate(ss_psi_result *r, const ss_psi_spokes *sk, const char *points,
+                           const char *source) {
+  for (size_t i = 0; i < sk->n; i++) {
+    const ss_psi_spoke *sp = &sk->spoke[i];
+    if (sp->cls != SS_SPOKE_DEGENERATE) continue;
+    char name[16];
+    ss_psi_spoke_name(sp->vertex, name);
+    r->spoke_vertex = sp->vertex;
+    r->degenerate = 1;
+    r->verdict.verdict = SS_FAIL;
+    snprintf(r->verdict.reason, sizeof r->verdict.reason,
+             "degenerate on spoke %s (valence %d): det[a' | B] = 0 along it (%zu of %zu "
+             "%s below %.0e relative; %zu of %zu spokes degenerate; %sdouble "
+             "precision, not proven)",
+             name, sp->valence, sp->ndegenerate, sp->nsamples, points,
+             SS_PSI_SPOKE_DEGENERATE, sk->ndegenerate, sk->n, source);
+    return 1;
+  }
+  return 0;
+}
+
 static void decide_spokes(walk *w, const ss_psi_spokes *sk) {
   ss_psi_result *r = w->r;
   const ss_psi_spoke *bad = NULL;
@@ -381,22 +402,8 @@ static void decide_spokes(walk *w, const ss_psi_spokes *sk) {
     fail_spoke(r, bad, &w->pt[r->sign > 0 ? 0 : 1]);
     return;
   }
+  if (ss_psi_fail_degenerate(r, sk, "samples", "")) return;
   char name[16];
-  for (size_t i = 0; i < sk->n; i++) {
-    const ss_psi_spoke *sp = &sk->spoke[i];
-    if (sp->cls != SS_SPOKE_DEGENERATE) continue;
-    ss_psi_spoke_name(sp->vertex, name);
-    r->spoke_vertex = sp->vertex;
-    r->degenerate = 1;
-    r->verdict.verdict = SS_FAIL;
-    snprintf(r->verdict.reason, sizeof r->verdict.reason,
-             "degenerate on spoke %s (valence %d): det[a' | B] = 0 along it (%zu of %zu "
-             "samples below %.0e relative; %zu of %zu spokes degenerate; double "
-             "precision, not proven)",
-             name, sp->valence, sp->ndegenerate, sp->nsamples, SS_PSI_SPOKE_DEGENERATE,
-             sk->ndegenerate, sk->n);
-    return;
-  }
   for (size_t i = 0; i < sk->n; i++) {
     const ss_psi_spoke *sp = &sk->spoke[i];
     if (sp->ndisagree == 0) continue;

@@ -90,6 +90,7 @@
 #include "ss_api.h"
 #include "ss_error.h"
 #include "ss_local.h"
+#include "ss_psi_spoke.h"
 #include "ss_scheme.h"
 #include "ss_verdict.h"
 
@@ -171,6 +172,14 @@ typedef struct {
   int piece_depth;
   double seconds; /* thread CPU time of the test */
 } ss_psi_result;
+
+/* If a spoke of sk is degenerate (ss_psi_spoke.h), r fails regularity by
+ * the first one: "degenerate on spoke a (valence n): ..." with its counts
+ * of `points` (the word for what was sampled) and `source` (how they were
+ * read, a phrase ending in ", ", or ""); r->spoke_vertex and r->degenerate
+ * set.  Returns 1 then, else 0 (r untouched). */
+int ss_psi_fail_degenerate(ss_psi_result *r, const ss_psi_spokes *sk, const char *points,
+                           const char *source);
 
 /* What the exact path knows of psi's net (ss_psi_certify). */
 typedef struct {

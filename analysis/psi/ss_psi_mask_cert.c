@@ -152,9 +152,9 @@ static di_t idet(di_t D[3][3], int dim) {
   return s;
 }
 
-/* The interval nets of ring levels 0..r pushed from the enclosure; lo, hi
- * of level r returned (allocated), NULL on a weight without enclosure or
- * out of memory (*bad says which: 1 weight, -1 memory). */
+/* The interval net of ring level r, pushed from the enclosure through levels
+ * 0..r, into *lo, *hi (allocated): 0; 1 for a weight that is not a rational
+ * of bounded denominator, -1 out of memory (both NULL then). */
 static int inets(const ss_local *M, const ss_psi_enclosure *e, int r, int dim,
                  double **lo, double **hi) {
   const double *plo = e->lo, *phi = e->hi;

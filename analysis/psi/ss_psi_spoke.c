@@ -119,9 +119,11 @@ static ss_status sample(ss_limit *L, size_t c, int pbits, int a, double x0,
   return SS_OK;
 }
 
-/* The class from the samples (sign holds bits 1 positive, 2 negative). */
-static void classify(ss_psi_spoke *sp) {
-  if (sp->sign == 3) {
+void ss_psi_spoke_classify(ss_psi_spoke *sp) {
+  if (sp->nsamples == 0) {
+    sp->cls = (ss_psi_spoke_class)-1;
+    sp->sign = 0;
+  } else if (sp->sign == 3) {
     sp->cls = SS_SPOKE_SIGN_CHANGE;
     sp->sign = 0;
   } else if (sp->ndegenerate > 0) {
@@ -176,7 +178,7 @@ ss_status ss_psi_spokes_classify(ss_limit *L, const ss_local *M, ss_psi_spokes *
             st = sample(L, c, pb, a, 0.5 + i / 16.0, sp, err);
     }
     if (st) break;
-    classify(sp);
+    ss_psi_spoke_classify(sp);
     out->none += sp->cls == SS_SPOKE_ONE_SIGN;
     out->nchange += sp->cls == SS_SPOKE_SIGN_CHANGE;
     out->ndegenerate += sp->cls == SS_SPOKE_DEGENERATE;

@@ -126,6 +126,12 @@ ss_status ss_psi_spokes_of(const ss_scheme *s, const ss_local *M, const double *
 /* Free the spokes' array (the struct itself is the caller's). */
 void ss_psi_spokes_free(ss_psi_spokes *r);
 
+/* sp's class from its samples (sp->sign holding bits 1 positive and 2
+ * negative, as they were seen; set to the class's sign): sign change,
+ * degenerate, one sign (above); (ss_psi_spoke_class)-1 and sign 0 when it
+ * has no samples. */
+void ss_psi_spoke_classify(ss_psi_spoke *sp);
+
 /* A spoke's name, as verdicts and JSON give it: its link vertex v (0-based)
  * as plantri's letter ('a' + v) when v < 26, else "#" and v + 1. */
 void ss_psi_spoke_name(int v, char name[16]);

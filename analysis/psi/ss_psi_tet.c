@@ -330,23 +330,6 @@ static void add_sample(ss_psi_spoke *sp, const ss_psi_spoke_sample *smp) {
   sp->sign |= 1 << k;
 }
 
-/* The class from the samples; -1 (as cls) when there were none. */
-static void classify(ss_psi_spoke *sp) {
-  if (sp->nsamples == 0) {
-    sp->cls = (ss_psi_spoke_class)-1;
-    sp->sign = 0;
-  } else if (sp->sign == 3) {
-    sp->cls = SS_SPOKE_SIGN_CHANGE;
-    sp->sign = 0;
-  } else if (sp->ndegenerate > 0) {
-    sp->cls = SS_SPOKE_DEGENERATE;
-    sp->sign = 0;
-  } else {
-    sp->cls = SS_SPOKE_ONE_SIGN;
-    sp->sign = sp->sign == 1 ? 1 : -1;
-  }
-}
-
 /* The edge model of valence n, built on first use. */
 static ss_status edge_of(const ss_scheme *s, tet_ctx *T, int n, ss_psi_tet_edge **m,
                          ss_error *err) {
@@ -387,7 +370,7 @@ static ss_status one_spoke(const ss_scheme *s, tet_ctx *T, int a, ss_psi_spoke *
         add_sample(sp, &smp);
     }
   }
-  classify(sp);
+  ss_psi_spoke_classify(sp);
   return SS_OK;
 }
 

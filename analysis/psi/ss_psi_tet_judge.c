@@ -134,22 +134,9 @@ static void decide(ss_psi_result *r, const ss_psi_spokes *sk, int level, size_t 
     fail_spoke(r, flip, ring ? &ring->min : NULL);
     return;
   }
-  char name[16];
-  for (size_t i = 0; i < sk->n; i++) {
-    const ss_psi_spoke *sp = &sk->spoke[i];
-    if (sp->cls != SS_SPOKE_DEGENERATE) continue;
-    ss_psi_spoke_name(sp->vertex, name);
-    r->spoke_vertex = sp->vertex;
-    r->degenerate = 1;
-    r->verdict.verdict = SS_FAIL;
-    snprintf(r->verdict.reason, sizeof r->verdict.reason,
-             "degenerate on spoke %s (valence %d): det[a' | B] = 0 along it (%zu of %zu "
-             "points below %.0e relative; %zu of %zu spokes degenerate; the edge case's "
-             "modes on the ring's points, double precision, not proven)",
-             name, sp->valence, sp->ndegenerate, sp->nsamples, SS_PSI_SPOKE_DEGENERATE,
-             sk->ndegenerate, sk->n);
+  if (ss_psi_fail_degenerate(r, sk, "points",
+                             "the edge case's modes on the ring's points, "))
     return;
-  }
   if (empty || off) {
     snprintf(r->verdict.reason, sizeof r->verdict.reason,
              "the spokes do not decide: %zu of the net's %zu bad cells on ring level %d "
