@@ -12,6 +12,7 @@
 #include "ss_cx.h"
 #include "ss_error.h"
 #include "ss_limit.h"
+#include "ss_limit_tube.h"
 #include "ss_scheme.h"
 
 /* Vertex-to-cell incidence and face neighbours of the hexes of a complex. */
@@ -181,6 +182,29 @@ typedef struct {
   size_t ncol;        /* columns */
   size_t (*colpt)[4]; /* ncol x 4: the point of each column in each layer */
 } ss_lim_tensor;
+
+/* The layers (positions along T->axis + 1) and columns (the ends of every
+ * cell edge along it, joined; uf: P->nv + 1 scratch) of patch P into T, whose
+ * axis is set and layer, col, colpt have room for P->nv entries; T->ncol is
+ * counted from 0.  Returns 0 unless the points form columns of exactly 4
+ * layers. */
+int ss_lim_tensor_columns(const ss_lim_patch *P, ss_lim_tensor *T, size_t *uf);
+
+/* The exact layered structure of an uncovered box (ss_limit_tube.h). */
+typedef struct ss_lim_tube ss_lim_tube;
+
+/* The tube of the box with patch p (complex pcx, cell 0 the box; elo, ehi:
+ * the enclosure of its points by patch vertex, 3 per vertex, or NULL), its
+ * points translated by -x0, weights read by rat: *out NULL when the box has
+ * no such structure (nothing claimed).  SS_ENOMEM; a refinement step's
+ * errors. */
+ss_status ss_lim_tube_build(const ss_scheme *s, const ss_lim_patch *p, const ss_cx *pcx,
+                            const double *elo, const double *ehi, const double x0[3],
+                            ss_limit_rational_fn rat, void *arg, ss_lim_tube **out,
+                            ss_error *err);
+void ss_lim_tube_free(ss_lim_tube *u);
+/* The public view (valid while u lives); NULL for NULL. */
+const ss_limit_tube *ss_lim_tube_view(const ss_lim_tube *u);
 
 /* A patch topology met so far. */
 typedef struct {

@@ -18,7 +18,9 @@ typedef struct {
   ss_limit_box_skip skip;
   ss_limit_piece_fn fn;
   void *arg;
-  int stop; /* the callback asked to stop */
+  ss_limit_rational_fn rat; /* non-NULL: tubes for the uncovered boxes */
+  void *rarg;               /* passed to rat */
+  int stop;                 /* the callback asked to stop */
 } trav;
 
 /* An enclosure of a patch's points: lo[3 i + d] <= point i's coordinate d <=
@@ -94,8 +96,8 @@ static void piece_net(const ss_lim_patch *p, const ss_cx *pcx, const box_enc *e,
 static ss_status box(trav *t, ss_lim_patch *p, ss_cx *pcx, box_enc *e, int depth,
                      const double origin[3], ss_error *err) {
   ss_status st = SS_OK;
-  ss_limit_piece pc = {t->cell, depth, {origin[0], origin[1], origin[2]},
-                       NULL,    NULL,  NULL};
+  ss_limit_piece pc = {t->cell, depth, {origin[0], origin[1], origin[2]}, NULL, NULL,
+                       NULL,    NULL};
   if (p->regular) {
     double net[64][3], lo[64][3], hi[64][3];
     piece_net(p, pcx, e, net, lo, hi);
@@ -106,7 +108,13 @@ static ss_status box(trav *t, ss_lim_patch *p, ss_cx *pcx, box_enc *e, int depth
     }
     t->stop = t->fn(&pc, t->arg);
   } else if (depth >= t->maxdepth) {
+    ss_lim_tube *u = NULL;
+    if (t->rat && (st = ss_lim_tube_build(t->L->s, p, pcx, e->lo, e->hi, pcx->x, t->rat,
+                                          t->rarg, &u, err)))
+      goto out;
+    pc.tube = ss_lim_tube_view(u);
     t->stop = t->fn(&pc, t->arg);
+    ss_lim_tube_free(u);
   } else {
     const double h = ldexp(1.0, -depth - 1);
     for (int k = 0; k < 8 && !st && !t->stop; k++) {
@@ -133,6 +141,7 @@ static ss_status box(trav *t, ss_lim_patch *p, ss_cx *pcx, box_enc *e, int depth
       st = box(t, &child, ccx, &ce, depth + 1, o, err);
     }
   }
+out:
   ss_lim_patch_free(p);
   ss_cx_free(pcx);
   enc_free(e);
@@ -196,8 +205,15 @@ ss_status ss_limit_pieces(ss_limit *L, size_t cell, int maxdepth, ss_limit_box_s
 ss_status ss_limit_pieces_enclosed(ss_limit *L, size_t cell, int maxdepth,
                                    const ss_limit_enclosure *enc, ss_limit_box_skip skip,
                                    ss_limit_piece_fn fn, void *arg, ss_error *err) {
+  return ss_limit_pieces_tubes(L, cell, maxdepth, enc, NULL, NULL, skip, fn, arg, err);
+}
+
+ss_status ss_limit_pieces_tubes(ss_limit *L, size_t cell, int maxdepth,
+                                const ss_limit_enclosure *enc, ss_limit_rational_fn rat,
+                                void *rarg, ss_limit_box_skip skip, ss_limit_piece_fn fn,
+                                void *arg, ss_error *err) {
   const ss_status st = check(L, cell, maxdepth, enc, err);
   if (st) return st;
-  trav t = {L, cell, maxdepth, enc, skip, fn, arg, 0};
+  trav t = {L, cell, maxdepth, enc, skip, fn, arg, rat, rarg, 0};
   return root(&t, err);
 }

@@ -30,6 +30,7 @@
 #include "ss_api.h"
 #include "ss_error.h"
 #include "ss_limit.h"
+#include "ss_limit_tube.h"
 
 SS_BEGIN_DECLS
 
@@ -46,6 +47,10 @@ typedef struct {
                              same vector <= hi[q] (valid during the
                              callback); NULL without one or without a piece */
   const double (*hi)[3];
+  const ss_limit_tube *tube; /* an uncovered box's exact layered structure
+                                round an extraordinary edge (valid during the
+                                callback), with ss_limit_pieces_tubes; else
+                                NULL */
 } ss_limit_piece;
 
 /* An enclosure of the rule's weight w (as the scheme computes it in
@@ -82,6 +87,14 @@ ss_status ss_limit_pieces(ss_limit *L, size_t cell, int maxdepth, ss_limit_box_s
 ss_status ss_limit_pieces_enclosed(ss_limit *L, size_t cell, int maxdepth,
                                    const ss_limit_enclosure *enc, ss_limit_box_skip skip,
                                    ss_limit_piece_fn fn, void *arg, ss_error *err);
+
+/* As ss_limit_pieces_enclosed (enc may be NULL), and each box left uncovered
+ * at maxdepth with its tube (ss_limit_tube.h) where it has one, its weights
+ * read by rat (rarg passed to it). */
+ss_status ss_limit_pieces_tubes(ss_limit *L, size_t cell, int maxdepth,
+                                const ss_limit_enclosure *enc, ss_limit_rational_fn rat,
+                                void *rarg, ss_limit_box_skip skip, ss_limit_piece_fn fn,
+                                void *arg, ss_error *err);
 
 SS_END_DECLS
 

@@ -62,25 +62,22 @@ static ss_status tensor_axis(ss_limit *L, size_t i, int k, int *axis, ss_lim_tra
   return SS_OK;
 }
 
-/* The layers (positions along T->axis) and columns (the ends of every cell
- * edge along it, joined; uf: K + 1 scratch) of state S's patch into T.
- * Returns 0 unless the points form columns of exactly 4 layers. */
-static int tensor_columns(const ss_lim_state *S, ss_lim_tensor *T, size_t *uf) {
-  const size_t K = S->patch.nv;
+/* ss_limit_impl.h */
+int ss_lim_tensor_columns(const ss_lim_patch *P, ss_lim_tensor *T, size_t *uf) {
+  const size_t K = P->nv;
   const int axis = T->axis;
   for (size_t v = 0; v < K; v++) {
-    int l = S->patch.pos[v][axis] + 1;
+    int l = P->pos[v][axis] + 1;
     if (l < 0 || l > 3) return 0;
     T->layer[v] = l;
     uf[v] = v;
   }
   /* columns: the ends of every cell edge along the axis */
-  for (size_t c = 0; c < S->patch.ncells; c++)
+  for (size_t c = 0; c < P->ncells; c++)
     for (unsigned b = 0; b < 8; b++)
       if (!((b >> axis) & 1u)) {
-        size_t u = S->patch.key[c * 8 + (size_t)ss_cube_corner_index(3, b)];
-        size_t w =
-            S->patch.key[c * 8 + (size_t)ss_cube_corner_index(3, b | (1u << axis))];
+        size_t u = P->key[c * 8 + (size_t)ss_cube_corner_index(3, b)];
+        size_t w = P->key[c * 8 + (size_t)ss_cube_corner_index(3, b | (1u << axis))];
         uf[uf_find(uf, u)] = uf_find(uf, w);
       }
   for (size_t v = 0; v < K; v++)
@@ -179,7 +176,7 @@ ss_status ss_lim_tensor_of(ss_limit *L, size_t i, int k, ss_lim_tensor **out,
     st = ss_error_nomem(err, "layers");
     goto done;
   }
-  if (!tensor_columns(S, T, uf)) goto done;
+  if (!ss_lim_tensor_columns(&S->patch, T, uf)) goto done;
   /* both halves: W[u][w] = A_b[layer u][layer w] F[col u][col w] */
   F = malloc((T->ncol * T->ncol + 64 * T->ncol + 1) * sizeof *F);
   if (!F) {

@@ -15,6 +15,7 @@
 #include "ss_limit_pieces.h"
 #include "ss_psi_bernstein.h"
 #include "ss_psi_spoke.h"
+#include "ss_psi_tube.h"
 
 ss_psi_opts ss_psi_defaults(void) {
   return (ss_psi_opts){SS_PSI_BOX_DEPTH, SS_PSI_PIECE_DEPTH};
@@ -53,6 +54,10 @@ typedef struct {
   ss_psi_piece_result ps; /* WALK_FOLD: the target's interval verdict */
   int need;               /* WALK_ALL: the sign every piece must have (+-1);
                              0 once one does not */
+  int tubes;              /* WALK_ALL: prove the uncovered boxes' tubes too */
+  long maxden;            /* the rule's rationals (with the enclosure) */
+  ss_status st;           /* an error met in the callback */
+  ss_error *err;          /* where it is described */
 } walk;
 
 /* Whether a box of a cell around p lies in p's octant [0,1/2]^3 (in the
@@ -167,16 +172,42 @@ static int target_of(const walk *w, const ss_limit_piece *pc) {
 }
 
 /* The proof passes: intervals from the enclosed net of the piece. */
+/* WALK_ALL at an uncovered box: its tube's sign proven (ss_psi_tube.h), or
+ * 0 with r->tube_why set. */
+static int prove_tube(const ss_limit_piece *pc, walk *w) {
+  ss_psi_result *r = w->r;
+  if (!w->tubes || !pc->tube) {
+    snprintf(r->tube_why, sizeof r->tube_why,
+             "cell %zu box (%.6g, %.6g, %.6g) of side 2^-%d: %s", pc->cell + 1,
+             pc->origin[0], pc->origin[1], pc->origin[2], pc->depth,
+             w->tubes ? "not the layered structure of an extraordinary edge"
+                      : "tubes not asked for");
+    return 0;
+  }
+  ss_psi_tube_result tr;
+  w->st = ss_psi_tube_sign(pc->tube, w->maxden, w->o->piece_depth, &tr, w->err);
+  if (w->st) return 0;
+  if (tr.sign) {
+    r->ntubes++;
+    if (tr.layers > r->tube_layers) r->tube_layers = tr.layers;
+  } else {
+    snprintf(r->tube_why, sizeof r->tube_why,
+             "cell %zu box (%.6g, %.6g, %.6g) of side 2^-%d: %.150s", pc->cell + 1,
+             pc->origin[0], pc->origin[1], pc->origin[2], pc->depth, tr.why);
+  }
+  return tr.sign;
+}
+
 static int prove_piece(const ss_limit_piece *pc, walk *w) {
   if (w->mode == WALK_ALL) {
     ss_psi_piece_result ps;
     if (pc->net) ss_psi_piece_sign_interval(pc->lo, pc->hi, w->o->piece_depth, &ps);
-    const int sign = !pc->net                     ? 0
+    const int sign = !pc->net                     ? prove_tube(pc, w)
                      : ps.sign == SS_JAC_POSITIVE ? 1
                      : ps.sign == SS_JAC_NEGATIVE ? -1
                                                   : 0;
     if (sign != w->need) w->need = 0;
-    return w->need == 0; /* one piece not proven: stop */
+    return w->need == 0 || w->st; /* one piece not proven: stop */
   }
   const int i = target_of(w, pc);
   if (i < 0 || !pc->net) return 0;
@@ -242,6 +273,12 @@ static void describe(ss_psi_result *r) {
              r->witness[0].at[0], r->witness[0].at[1], r->witness[0].at[2],
              r->witness[1].det[0], r->witness[1].det[1], r->witness[1].cell,
              r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2], how);
+  else if (v->verdict == SS_PASS && r->enclosed && r->ntubes)
+    snprintf(v->reason, sizeof v->reason,
+             "det Dpsi of one sign on all %zu pieces and in the tubes of all %zu boxes "
+             "round its spokes (every layer to the spoke: up to %d one by one, the rest "
+             "by a bound on the edge's smaller modes)%s",
+             r->pieces, r->ntubes, r->tube_layers, how);
   else if (v->verdict == SS_PASS && r->enclosed)
     snprintf(v->reason, sizeof v->reason, "det Dpsi of one sign on all %zu pieces%s",
              r->pieces, how);
@@ -256,6 +293,11 @@ static void describe(ss_psi_result *r) {
         100.0 * r->doubtful);
 }
 
+/* The rule's weight as an exact rational (ss_exact_rational). */
+static int exact_rational(double wt, void *arg, long long *p, long long *q) {
+  return ss_exact_rational(wt, *(const long *)arg, p, q) ? 0 : -1;
+}
+
 /* Walk the ring of every cell around p (enc: the pieces' enclosures, or
  * NULL); the number of cells around p into *ncentre. */
 static ss_status walk_cells(ss_limit *L, const ss_local *M, const ss_limit_enclosure *enc,
@@ -267,8 +309,12 @@ static ss_status walk_cells(ss_limit *L, const ss_local *M, const ss_limit_enclo
     ++*ncentre;
     w->pbits = ss_cube_corner_bits(3, j);
     const ss_status st =
-        ss_limit_pieces_enclosed(L, c, w->o->maxdepth, enc, skip_box, visit, w, err);
+        w->tubes ? ss_limit_pieces_tubes(L, c, w->o->maxdepth, enc, exact_rational,
+                                         &w->maxden, skip_box, visit, w, err)
+                 : ss_limit_pieces_enclosed(L, c, w->o->maxdepth, enc, skip_box, visit,
+                                            w, err);
     if (st) return st;
+    if (w->st) return w->st;
   }
   return SS_OK;
 }
@@ -320,15 +366,26 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
                        ss_error *err) {
   long maxden = e->maxden;
   const ss_limit_enclosure enc = {e->lo, e->hi, exact_weight, &maxden};
-  w->r->enclosed = 1;
-  if (w->r->verdict.verdict == SS_FAIL) return prove_fail(L, M, &enc, w, err);
-  if (w->r->verdict.verdict != SS_PASS) return SS_OK;
+  ss_psi_result *r = w->r;
+  r->enclosed = 1;
+  if (r->verdict.verdict == SS_FAIL) return prove_fail(L, M, &enc, w, err);
+  /* undecided only for the tubes round the spokes: prove them too */
+  const int tubes = r->verdict.verdict == SS_UNDECIDED && r->nuncovered > 0 &&
+                    r->nundecided == 0 && r->nfolded == 0 && r->sign != 0 &&
+                    r->opposite == 0.0 && r->pieces > 0;
+  if (r->verdict.verdict != SS_PASS && !tubes) return SS_OK;
   w->mode = WALK_ALL;
   w->ntarget = 0;
-  w->need = w->r->sign;
+  w->need = r->sign;
+  w->tubes = tubes;
+  w->maxden = e->maxden;
+  w->err = err;
   size_t n;
   const ss_status st = walk_cells(L, M, &enc, w, &n, err);
-  if (!st && w->need != 0) w->r->verdict.certified = 1;
+  if (!st && w->need != 0) {
+    r->verdict.verdict = SS_PASS;
+    r->verdict.certified = 1;
+  }
   return st;
 }
 

@@ -199,3 +199,21 @@ void ss_psi_piece_sign_interval(const double (*lo)[3], const double (*hi)[3],
   extremes_di(lv[0].c, r);
   piece_sign_di(lv, clamp_depth(maxdepth), 0.0, r);
 }
+
+void ss_psi_piece_sign_interval3(const double (*const lo[3])[3],
+                                 const double (*const hi[3])[3], int maxdepth,
+                                 ss_psi_piece_result *r) {
+  memset(r, 0, sizeof *r);
+  for (int a = 0; a < 3; a++)
+    if (!good_boxes(lo[a], hi[a])) {
+      no_verdict(r);
+      return;
+    }
+  box_di lv[SS_PSI_MAXDEPTH + 1];
+  di_t B[3][64][3];
+  for (int a = 0; a < 3; a++)
+    bezier_net_di(lo[a], hi[a], B[a]);
+  det_coef3_di(B[0], B[1], B[2], lv[0].c);
+  extremes_di(lv[0].c, r);
+  piece_sign_di(lv, clamp_depth(maxdepth), 0.0, r);
+}

@@ -142,6 +142,16 @@ void ss_psi_piece_sign(const double (*net)[3], int maxdepth, ss_psi_piece_result
 void ss_psi_piece_sign_interval(const double (*lo)[3], const double (*hi)[3],
                                 int maxdepth, ss_psi_piece_result *r);
 
+/* As ss_psi_piece_sign_interval for the polynomial det[∂_u ψ0 | ∂_v ψ1 |
+ * ∂_w ψ2] of three tricubics, net a known within lo[a] <= net a <= hi[a]:
+ * column a of the Jacobian from net a.  With three equal nets it is det Dψ;
+ * the spoke tubes (ss_psi_tube.h) take the column along a spoke from one net
+ * and the columns across it from another, scaled apart (det changes by a
+ * positive factor only).  The same coefficients, traversal and verdicts. */
+void ss_psi_piece_sign_interval3(const double (*const lo[3])[3],
+                                 const double (*const hi[3])[3], int maxdepth,
+                                 ss_psi_piece_result *r);
+
 SS_END_DECLS
 
 #endif

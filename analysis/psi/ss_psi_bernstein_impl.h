@@ -109,16 +109,17 @@ static void PN(cross)(NUM (*dv)[3], NUM (*dw)[3], NUM (*X)[3]) {
       }
 }
 
-/* The 729 Bernstein coefficients of det Dψ into c from the Bezier net B
- * (times 216, as bezier).  Each difference of B is 216 / 3 = 72 times the
+/* The 729 Bernstein coefficients into c of det[∂_u ψ0 | ∂_v ψ1 | ∂_w ψ2],
+ * ψa the tricubic of Bezier net Ba (times 216, as bezier); det Dψ when the
+ * three nets are one.  Each difference of a net is 216 / 3 = 72 times the
  * derivative's coefficient, so the triple product of the scaled differences
  * is PSI_SCALE = 72^3 times C(8,a) C(8,b) C(8,c) times coefficient (a,b,c):
  * one division per coefficient by that exact integer (<= 1.3e11). */
-static void PN(det_coef)(NUM (*B)[3], NUM *c) {
+static inline void PN(det_coef3)(NUM (*B0)[3], NUM (*B1)[3], NUM (*B2)[3], NUM *c) {
   NUM du[48][3], dv[48][3], dw[48][3], X[252][3];
-  PN(diffs)(B, 0, du);
-  PN(diffs)(B, 1, dv);
-  PN(diffs)(B, 2, dw);
+  PN(diffs)(B0, 0, du);
+  PN(diffs)(B1, 1, dv);
+  PN(diffs)(B2, 2, dw);
   PN(binom_scale)(du, 0);
   PN(binom_scale)(dv, 1);
   PN(binom_scale)(dw, 2);
@@ -146,6 +147,11 @@ static void PN(det_coef)(NUM (*B)[3], NUM *c) {
         const double d = psi_binom8[i] * psi_binom8[j] * psi_binom8[k] * PSI_SCALE;
         c[i + 9 * j + 81 * k] = PN(divd)(c[i + 9 * j + 81 * k], d);
       }
+}
+
+/* The 729 Bernstein coefficients of det Dψ of the Bezier net B */
+static inline void PN(det_coef)(NUM (*B)[3], NUM *c) {
+  PN(det_coef3)(B, B, B, c);
 }
 
 /* ---- subdivision and the sign traversal ---- */

@@ -1,0 +1,505 @@
+/* ss_psi_tube.c — det Dψ's sign proven in a spoke's tube (method:
+ * ss_psi_tube.h).  Ball arithmetic (arb) at PREC bits for the change of
+ * basis, the tail and the nets; ss_psi_bernstein's interval test for the
+ * signs; ss_exact for F's spectrum and eigenspace. */
+#include "ss_psi_tube.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <arb.h>
+#include <arb_mat.h>
+
+#include "ss_exact.h"
+#include "ss_psi_bernstein.h"
+
+#define PREC  128
+#define NNORM 160 /* powers of N / mu whose norms are bounded */
+#define QMAX  96  /* the period q of the tail bound is at most this */
+
+/* the layers after which the tail is tried (m0) */
+static const int tail_at[] = {2, 4, 8, 12, 16, 24, 32, 40, 48, 64};
+#define NTAIL ((int)(sizeof tail_at / sizeof tail_at[0]))
+
+/* What the proof holds (method: ss_psi_tube.h). */
+typedef struct {
+  const ss_limit_tube *t;
+  size_t n;        /* columns */
+  size_t r;        /* n - 3: the rows of N */
+  arb_t mu;        /* the across eigenvalue */
+  arb_mat_t X;     /* n x 2: mu's eigenvectors */
+  size_t piv[3];   /* T's pivot rows (no unit vector there) */
+  size_t *eidx;    /* n: row i of E's unit vector is e_i for beta's row
+                      eidx[i]; SIZE_MAX at the pivots */
+  arb_mat_t C;     /* 3 x r */
+  arb_mat_t N;     /* r x r */
+  arb_mat_t beta;  /* r x 12 (layer l, coordinate d at column 3 l + d) */
+  arb_mat_t b1;    /* (I - N)^-1 beta */
+  arb_mat_t bmu;   /* (mu I - N)^-1 beta */
+  arb_mat_t a;     /* 1 x 12: the spoke's curve's points */
+  arb_mat_t b;     /* 2 x 12: B's coefficients */
+  arb_mat_t G[3];  /* 16 x n: the quadrants' factors */
+  double norm[NNORM]; /* upper bounds of ||(N / mu)^m||_inf */
+  int depth;       /* the pieces' subdivision depth */
+} tube_ws;
+
+static void ws_clear(tube_ws *w) {
+  arb_clear(w->mu);
+  arb_mat_clear(w->X);
+  arb_mat_clear(w->C);
+  arb_mat_clear(w->N);
+  arb_mat_clear(w->beta);
+  arb_mat_clear(w->b1);
+  arb_mat_clear(w->bmu);
+  arb_mat_clear(w->a);
+  arb_mat_clear(w->b);
+  for (int c = 0; c < 3; c++)
+    arb_mat_clear(w->G[c]);
+  free(w->eidx);
+}
+
+static void ws_init(tube_ws *w, const ss_limit_tube *t) {
+  memset(w, 0, sizeof *w);
+  w->t = t;
+  w->n = t->ncol;
+  w->r = t->ncol - 3;
+  arb_init(w->mu);
+  arb_mat_init(w->X, (slong)w->n, 2);
+  arb_mat_init(w->C, 3, (slong)w->r);
+  arb_mat_init(w->N, (slong)w->r, (slong)w->r);
+  arb_mat_init(w->beta, (slong)w->r, 12);
+  arb_mat_init(w->b1, (slong)w->r, 12);
+  arb_mat_init(w->bmu, (slong)w->r, 12);
+  arb_mat_init(w->a, 1, 12);
+  arb_mat_init(w->b, 2, 12);
+  for (int c = 0; c < 3; c++) {
+    arb_mat_init(w->G[c], 16, (slong)w->n);
+    for (size_t i = 0; i < 16 * w->n; i++) {
+      arb_set_si(arb_mat_entry(w->G[c], (slong)(i / w->n), (slong)(i % w->n)),
+                 t->Gp[c][i]);
+      arb_div_si(arb_mat_entry(w->G[c], (slong)(i / w->n), (slong)(i % w->n)),
+                 arb_mat_entry(w->G[c], (slong)(i / w->n), (slong)(i % w->n)), t->Gq[c][i],
+                 PREC);
+    }
+  }
+}
+
+/* x <- [lo, hi] */
+static void ball_of(arb_t x, double lo, double hi) {
+  arf_t a, b;
+  arf_init(a);
+  arf_init(b);
+  arf_set_d(a, lo);
+  arf_set_d(b, hi);
+  arb_set_interval_arf(x, a, b, PREC);
+  arf_clear(a);
+  arf_clear(b);
+}
+
+/* [lo, hi] holding x, outward rounded to doubles */
+static void bounds_of(const arb_t x, double *lo, double *hi) {
+  arf_t u;
+  arf_init(u);
+  arb_get_lbound_arf(u, x, PREC);
+  *lo = arf_get_d(u, ARF_RND_FLOOR);
+  arb_get_ubound_arf(u, x, PREC);
+  *hi = arf_get_d(u, ARF_RND_CEIL);
+  arf_clear(u);
+}
+
+/* F's spectrum proven as the method needs, mu and X enclosed. */
+static ss_status spectrum(tube_ws *w, long maxden, ss_psi_tube_result *r, ss_error *err) {
+  const ss_limit_tube *t = w->t;
+  const size_t n = w->n;
+  double *F = malloc((n * n + 1) * sizeof *F), *lo = malloc((2 * n + 1) * sizeof *lo),
+         *hi = malloc((2 * n + 1) * sizeof *hi);
+  ss_exact *x = NULL;
+  ss_status st = SS_OK;
+  if (!F || !lo || !hi) {
+    st = ss_error_nomem(err, "psi tube");
+    goto done;
+  }
+  for (size_t i = 0; i < n * n; i++)
+    F[i] = (double)t->Fp[i] / (double)t->Fq[i];
+  ss_exact_opts o = ss_exact_defaults(2);
+  o.maxden = maxden;
+  o.basis = 1;
+  ss_error xe = {0};
+  if (ss_exact_new(F, n, n, &o, &x, &xe)) {
+    snprintf(r->why, sizeof r->why, "the cross-section's matrix: %.150s", xe.msg);
+    goto done;
+  }
+  for (size_t i = 0; i < n * n; i++) {
+    long long p, q;
+    if (!ss_exact_entry(x, i / n, i % n, &p, &q) || p != t->Fp[i] || q != t->Fq[i]) {
+      snprintf(r->why, sizeof r->why,
+               "the cross-section's entry (%zu, %zu) is not read back exactly", i / n + 1,
+               i % n + 1);
+      goto done;
+    }
+  }
+  ss_verdict v;
+  int cert = 0;
+  ss_exact_condition(x, &v, &cert);
+  size_t nr = 0;
+  const ss_exact_root *rt = ss_exact_roots(x, &nr);
+  if (v.verdict != SS_PASS || !cert || nr < 2 || rt[1].mult != 2 || !rt[1].real) {
+    snprintf(r->why, sizeof r->why,
+             "the cross-section's spectrum is not 1, mu, mu, smaller (proven): %.120s",
+             v.reason);
+    goto done;
+  }
+  r->mu = rt[1].re;
+  r->ratio = nr > 2 ? hypot(rt[2].re, rt[2].im) / rt[1].re : 0.0;
+  arb_set_d(w->mu, rt[1].re);
+  mag_set_d(arb_radref(w->mu), rt[1].rad); /* an upper bound of rad */
+  if (ss_exact_basis(x, lo, hi, &xe)) {
+    snprintf(r->why, sizeof r->why, "mu's eigenvectors: %.150s", xe.msg);
+    goto done;
+  }
+  for (size_t j = 0; j < 2; j++)
+    for (size_t i = 0; i < n; i++)
+      ball_of(arb_mat_entry(w->X, (slong)i, (slong)j), lo[j * n + i], hi[j * n + i]);
+done:
+  ss_exact_free(x);
+  free(F), free(lo), free(hi);
+  return st;
+}
+
+/* Three pivot rows of [1 X] (midpoints, partial pivoting). */
+static int pivots(tube_ws *w) {
+  const size_t n = w->n;
+  double *A = malloc((3 * n + 1) * sizeof *A);
+  if (!A) return -1;
+  for (size_t i = 0; i < n; i++) {
+    A[3 * i] = 1.0;
+    for (int j = 0; j < 2; j++)
+      A[3 * i + 1 + (size_t)j] = arf_get_d(arb_midref(arb_mat_entry(w->X, (slong)i, j)),
+                                           ARF_RND_NEAR);
+  }
+  unsigned char *used = calloc(n + 1, 1);
+  int ok = used != NULL;
+  for (int j = 0; j < 3 && ok; j++) {
+    size_t best = SIZE_MAX;
+    for (size_t i = 0; i < n; i++)
+      if (!used[i] && (best == SIZE_MAX || fabs(A[3 * i + j]) > fabs(A[3 * best + j])))
+        best = i;
+    ok = best != SIZE_MAX && A[3 * best + j] != 0.0;
+    if (!ok) break;
+    used[best] = 1;
+    w->piv[j] = best;
+    for (size_t i = 0; i < n; i++)
+      if (!used[i]) {
+        const double f = A[3 * i + j] / A[3 * best + (size_t)j];
+        for (int k = j; k < 3; k++)
+          A[3 * i + (size_t)k] -= f * A[3 * best + (size_t)k];
+      }
+  }
+  free(A);
+  free(used);
+  return ok ? 0 : 1;
+}
+
+/* T = [1 | X | E], M = T^-1 F T: C and N; the points' coordinates and the
+ * limits a, b.  0, 1 with why set, -1 out of memory. */
+static int basis_change(tube_ws *w, ss_psi_tube_result *res) {
+  const ss_limit_tube *t = w->t;
+  const slong n = (slong)w->n, r = (slong)w->r;
+  w->eidx = malloc(((size_t)n + 1) * sizeof *w->eidx);
+  if (!w->eidx) return -1;
+  arb_mat_t T, F, FT, M, P, Y, I;
+  arb_mat_init(T, n, n), arb_mat_init(F, n, n), arb_mat_init(FT, n, n);
+  arb_mat_init(M, n, n), arb_mat_init(P, n, 12), arb_mat_init(Y, n, 12);
+  arb_mat_init(I, r, r);
+  int out = 1;
+  slong k = 3;
+  for (slong i = 0; i < n; i++) {
+    const int pv = (size_t)i == w->piv[0] || (size_t)i == w->piv[1] || (size_t)i == w->piv[2];
+    w->eidx[i] = pv ? SIZE_MAX : (size_t)(k - 3);
+    arb_one(arb_mat_entry(T, i, 0));
+    arb_set(arb_mat_entry(T, i, 1), arb_mat_entry(w->X, i, 0));
+    arb_set(arb_mat_entry(T, i, 2), arb_mat_entry(w->X, i, 1));
+    if (!pv) arb_one(arb_mat_entry(T, i, k++));
+    for (slong j = 0; j < n; j++) {
+      arb_set_si(arb_mat_entry(F, i, j), t->Fp[i * n + j]);
+      arb_div_si(arb_mat_entry(F, i, j), arb_mat_entry(F, i, j), t->Fq[i * n + j], PREC);
+    }
+    for (int l = 0; l < 4; l++)
+      for (int d = 0; d < 3; d++) {
+        const size_t q = 3 * ((size_t)l * w->n + (size_t)i) + (size_t)d;
+        ball_of(arb_mat_entry(P, i, 3 * l + d), t->lo[q], t->hi[q]);
+      }
+  }
+  arb_mat_mul(FT, F, T, PREC);
+  if (!arb_mat_solve(M, T, FT, PREC) || !arb_mat_solve(Y, T, P, PREC)) {
+    snprintf(res->why, sizeof res->why, "the change of basis [1 | X | E] is not proven "
+                                        "invertible");
+    goto done;
+  }
+  for (slong i = 3; i < n; i++) /* the invariant columns: exactly 0 below */
+    for (slong j = 0; j < 3; j++)
+      if (!arb_contains_zero(arb_mat_entry(M, i, j))) {
+        snprintf(res->why, sizeof res->why, "[1 | X] is not invariant under F");
+        goto done;
+      }
+  for (slong i = 0; i < 3; i++)
+    for (slong j = 0; j < r; j++)
+      arb_set(arb_mat_entry(w->C, i, j), arb_mat_entry(M, i, 3 + j));
+  for (slong i = 0; i < r; i++) {
+    for (slong j = 0; j < r; j++)
+      arb_set(arb_mat_entry(w->N, i, j), arb_mat_entry(M, 3 + i, 3 + j));
+    for (slong j = 0; j < 12; j++)
+      arb_set(arb_mat_entry(w->beta, i, j), arb_mat_entry(Y, 3 + i, j));
+  }
+  /* b1 = (I - N)^-1 beta, bmu = (mu I - N)^-1 beta */
+  arb_mat_neg(I, w->N);
+  for (slong i = 0; i < r; i++)
+    arb_add_si(arb_mat_entry(I, i, i), arb_mat_entry(I, i, i), 1, PREC);
+  int ok = arb_mat_solve(w->b1, I, w->beta, PREC);
+  arb_mat_neg(I, w->N);
+  for (slong i = 0; i < r; i++)
+    arb_add(arb_mat_entry(I, i, i), arb_mat_entry(I, i, i), w->mu, PREC);
+  ok = ok && arb_mat_solve(w->bmu, I, w->beta, PREC);
+  if (!ok) {
+    snprintf(res->why, sizeof res->why, "I - N or mu I - N not proven invertible");
+    goto done;
+  }
+  /* a = alpha_1 + C_1 b1, b = alpha_mu + C_mu bmu */
+  for (slong j = 0; j < 12; j++) {
+    arb_set(arb_mat_entry(w->a, 0, j), arb_mat_entry(Y, 0, j));
+    arb_set(arb_mat_entry(w->b, 0, j), arb_mat_entry(Y, 1, j));
+    arb_set(arb_mat_entry(w->b, 1, j), arb_mat_entry(Y, 2, j));
+    for (slong i = 0; i < r; i++) {
+      arb_addmul(arb_mat_entry(w->a, 0, j), arb_mat_entry(w->C, 0, i),
+                 arb_mat_entry(w->b1, i, j), PREC);
+      for (slong e = 0; e < 2; e++)
+        arb_addmul(arb_mat_entry(w->b, e, j), arb_mat_entry(w->C, 1 + e, i),
+                   arb_mat_entry(w->bmu, i, j), PREC);
+    }
+  }
+  out = 0;
+done:
+  arb_mat_clear(T), arb_mat_clear(F), arb_mat_clear(FT), arb_mat_clear(M);
+  arb_mat_clear(P), arb_mat_clear(Y), arb_mat_clear(I);
+  return out;
+}
+
+/* Upper bounds of ||(N / mu)^m||_inf, m < NNORM. */
+static void norms(tube_ws *w) {
+  const slong r = (slong)w->r;
+  arb_mat_t S, P, Q;
+  arb_mat_init(S, r, r), arb_mat_init(P, r, r), arb_mat_init(Q, r, r);
+  arb_mat_scalar_div_arb(S, w->N, w->mu, PREC);
+  arb_mat_one(P);
+  mag_t b;
+  mag_init(b);
+  for (int m = 0; m < NNORM; m++) {
+    arb_mat_bound_inf_norm(b, P);
+    w->norm[m] = mag_get_d(b);
+    arb_mat_mul(Q, P, S, PREC);
+    arb_mat_swap(P, Q);
+  }
+  mag_clear(b);
+  arb_mat_clear(S), arb_mat_clear(P), arb_mat_clear(Q);
+}
+
+/* eps for the layers m >= m0: max ||tau_r|| over r in [m0, m0 + q), q the
+ * first period with ||tau_q|| <= 1; NaN if there is none in reach. */
+static double tail_eps(const tube_ws *w, int m0) {
+  int q = 0;
+  for (int k = 1; k <= QMAX && !q; k++)
+    if (w->norm[k] <= 1.0) q = k;
+  if (!q || m0 + q > NNORM) return NAN;
+  double e = 0.0;
+  for (int m = m0; m < m0 + q; m++)
+    e = fmax(e, w->norm[m]);
+  return e;
+}
+
+/* Layer nets Vx (n x 12, along) and Vy (across) for tau (r x r) and s =
+ * mu^m (ss_psi_tube.h):  Vy = X (b - C_mu tau bmu) + E tau beta,  Vx = 1 a +
+ * s (Vy - 1 C_1 tau b1). */
+static void layer_nets(const tube_ws *w, const arb_mat_t tau, const arb_t s, arb_mat_t Vx,
+                       arb_mat_t Vy) {
+  const slong n = (slong)w->n, r = (slong)w->r;
+  arb_mat_t TB, TM, T1, cf;
+  arb_mat_init(TB, r, 12), arb_mat_init(TM, r, 12), arb_mat_init(T1, r, 12);
+  arb_mat_init(cf, 3, 12);
+  arb_mat_mul(TB, tau, w->beta, PREC);
+  arb_mat_mul(TM, tau, w->bmu, PREC);
+  arb_mat_mul(T1, tau, w->b1, PREC);
+  arb_t v;
+  arb_init(v);
+  for (slong j = 0; j < 12; j++) {
+    /* cf row 0: C_1 tau b1; rows 1, 2: b - C_mu tau bmu */
+    arb_zero(arb_mat_entry(cf, 0, j));
+    for (slong e = 0; e < 2; e++)
+      arb_set(arb_mat_entry(cf, 1 + e, j), arb_mat_entry(w->b, e, j));
+    for (slong i = 0; i < r; i++) {
+      arb_addmul(arb_mat_entry(cf, 0, j), arb_mat_entry(w->C, 0, i),
+                 arb_mat_entry(T1, i, j), PREC);
+      for (slong e = 0; e < 2; e++)
+        arb_submul(arb_mat_entry(cf, 1 + e, j), arb_mat_entry(w->C, 1 + e, i),
+                   arb_mat_entry(TM, i, j), PREC);
+    }
+  }
+  for (slong i = 0; i < n; i++)
+    for (slong j = 0; j < 12; j++) {
+      arb_ptr y = arb_mat_entry(Vy, i, j);
+      arb_mul(y, arb_mat_entry(w->X, i, 0), arb_mat_entry(cf, 1, j), PREC);
+      arb_addmul(y, arb_mat_entry(w->X, i, 1), arb_mat_entry(cf, 2, j), PREC);
+      if (w->eidx[i] != SIZE_MAX) arb_add(y, y, arb_mat_entry(TB, (slong)w->eidx[i], j), PREC);
+      arb_sub(v, y, arb_mat_entry(cf, 0, j), PREC);
+      arb_mul(v, v, s, PREC);
+      arb_add(arb_mat_entry(Vx, i, j), v, arb_mat_entry(w->a, 0, j), PREC);
+    }
+  arb_clear(v);
+  arb_mat_clear(TB), arb_mat_clear(TM), arb_mat_clear(T1), arb_mat_clear(cf);
+}
+
+/* The sign of det Dψ on quadrant c of a layer with nets Vx, Vy: +1, -1, or 0
+ * (folded or undecided: *fold set if folded). */
+static int judge_quadrant(const tube_ws *w, int c, const arb_mat_t Vx, const arb_mat_t Vy,
+                          int *fold) {
+  const ss_limit_tube *t = w->t;
+  double lo[2][64][3], hi[2][64][3];
+  arb_t x;
+  arb_init(x);
+  for (int g0 = 0; g0 < 4; g0++)
+    for (int g1 = 0; g1 < 4; g1++)
+      for (int l = 0; l < 4; l++) {
+        int ix[3];
+        ix[t->axis] = l, ix[t->across[0]] = g0, ix[t->across[1]] = g1;
+        const int q = ix[0] + 4 * ix[1] + 16 * ix[2];
+        for (int d = 0; d < 3; d++)
+          for (int k = 0; k < 2; k++) {
+            const arb_mat_struct *V = k ? Vy : Vx;
+            arb_zero(x);
+            for (slong j = 0; j < (slong)w->n; j++)
+              arb_addmul(x, arb_mat_entry(w->G[c], g0 + 4 * g1, j),
+                         arb_mat_entry(V, j, 3 * l + d), PREC);
+            bounds_of(x, &lo[k][q][d], &hi[k][q][d]);
+          }
+      }
+  arb_clear(x);
+  const double(*l3[3])[3], (*h3[3])[3];
+  for (int a = 0; a < 3; a++) {
+    const int k = a == t->axis ? 0 : 1;
+    l3[a] = (const double(*)[3])lo[k];
+    h3[a] = (const double(*)[3])hi[k];
+  }
+  ss_psi_piece_result pr;
+  ss_psi_piece_sign_interval3(l3, h3, w->depth, &pr);
+  *fold = pr.sign == SS_JAC_FOLDED;
+  return pr.sign == SS_JAC_POSITIVE ? 1 : pr.sign == SS_JAC_NEGATIVE ? -1 : 0;
+}
+
+/* One layer (tau, s): the three quadrants' common strict sign, or 0 with
+ * why. */
+static int judge_layer(const tube_ws *w, const arb_mat_t tau, const arb_t s,
+                       const char *what, ss_psi_tube_result *r) {
+  arb_mat_t Vx, Vy;
+  arb_mat_init(Vx, (slong)w->n, 12), arb_mat_init(Vy, (slong)w->n, 12);
+  layer_nets(w, tau, s, Vx, Vy);
+  int sign = 0;
+  for (int c = 0; c < 3; c++) {
+    int fold = 0;
+    const int sc = judge_quadrant(w, c, Vx, Vy, &fold);
+    if (sc == 0 || (c && sc != sign)) {
+      snprintf(r->why, sizeof r->why, "%s, quadrant %d: %s", what, c + 1,
+               fold ? "det Dpsi takes both signs" : sc ? "the other sign" : "no sign proven");
+      sign = 0;
+      break;
+    }
+    sign = sc;
+  }
+  arb_mat_clear(Vx), arb_mat_clear(Vy);
+  return sign;
+}
+
+/* The layers one by one, and the tail tried after tail_at[] of them. */
+static void layers(tube_ws *w, ss_psi_tube_result *r) {
+  const slong k = (slong)w->r;
+  arb_mat_t tau, S, Q, E;
+  arb_mat_init(tau, k, k), arb_mat_init(S, k, k), arb_mat_init(Q, k, k);
+  arb_mat_init(E, k, k);
+  arb_mat_one(tau);
+  arb_mat_scalar_div_arb(S, w->N, w->mu, PREC);
+  arb_t s, st;
+  arb_init(s), arb_init(st);
+  arb_one(s);
+  int sign = 0, ti = 0;
+  char what[64], tail_why[sizeof r->why] = "";
+  for (int m = 0; m < tail_at[NTAIL - 1]; m++) {
+    snprintf(what, sizeof what, "layer %d", m);
+    const int sl = judge_layer(w, tau, s, what, r);
+    if (!sl || (sign && sl != sign)) {
+      if (sl) snprintf(r->why, sizeof r->why, "layer %d has the other sign", m);
+      goto done;
+    }
+    sign = sl;
+    arb_mat_mul(Q, tau, S, PREC);
+    arb_mat_swap(tau, Q);
+    arb_mul(s, s, w->mu, PREC);
+    if (ti >= NTAIL || m + 1 != tail_at[ti]) continue;
+    ti++;
+    const double eps = tail_eps(w, m + 1);
+    if (isnan(eps)) continue;
+    for (slong i = 0; i < k; i++)
+      for (slong j = 0; j < k; j++)
+        ball_of(arb_mat_entry(E, i, j), -eps, eps);
+    double slo, shi;
+    bounds_of(s, &slo, &shi);
+    ball_of(st, 0.0, shi);
+    snprintf(what, sizeof what, "the layers from %d on (tail bound %.3g)", m + 1, eps);
+    if (judge_layer(w, E, st, what, r) == sign) {
+      r->sign = sign;
+      r->layers = m + 1;
+      r->eps = eps;
+      r->why[0] = '\0';
+      goto done;
+    }
+    memcpy(tail_why, r->why, sizeof tail_why);
+    r->why[0] = '\0';
+  }
+  snprintf(r->why, sizeof r->why, "%.190s", tail_why[0] ? tail_why : "no tail bound");
+done:
+  arb_clear(s), arb_clear(st);
+  arb_mat_clear(tau), arb_mat_clear(S), arb_mat_clear(Q), arb_mat_clear(E);
+}
+
+ss_status ss_psi_tube_sign(const ss_limit_tube *t, long maxden, int piece_depth,
+                           ss_psi_tube_result *r, ss_error *err) {
+  memset(r, 0, sizeof *r);
+  r->eps = NAN;
+  if (!t || !t->lo || !t->hi)
+    return ss_error_set(err, SS_EINPUT, "psi tube: no enclosure of its points");
+  if (t->ncol < 4) {
+    snprintf(r->why, sizeof r->why, "%zu columns across the spoke", t->ncol);
+    return SS_OK;
+  }
+  tube_ws w;
+  ws_init(&w, t);
+  w.depth = piece_depth;
+  ss_status st = spectrum(&w, maxden, r, err);
+  if (st || r->why[0]) goto done;
+  const int pv = pivots(&w);
+  if (pv) {
+    if (pv < 0) st = ss_error_nomem(err, "psi tube");
+    else snprintf(r->why, sizeof r->why, "no three independent rows of [1 | X]");
+    goto done;
+  }
+  const int bc = basis_change(&w, r);
+  if (bc) {
+    if (bc < 0) st = ss_error_nomem(err, "psi tube");
+    goto done;
+  }
+  norms(&w);
+  layers(&w, r);
+done:
+  ws_clear(&w);
+  return st;
+}

@@ -1,0 +1,66 @@
+/* ss_psi_tube.h — the sign of det Dψ proven in the tube round a spoke
+ * (issue 34, section 3; DESIGN section 5, "Tubes proven").
+ *
+ * Input: a box of ψ's ring left uncovered by the polynomial pieces, with its
+ * exact layered structure (ss_limit_tube.h): points P (4 layers along the
+ * spoke x ncol columns across, enclosed), the runs' cross factor F and the
+ * three regular quadrants' factors G_c, so that ψ on the box minus the spoke
+ * is the union over m >= 0 and c of the tricubics of nets (I_4 (x) G_c F^m) P.
+ *
+ * Spectrum of F, proven (ss_exact, dimension 2): 1 simple, then mu a double
+ * real root, non-defective, above every other root; an enclosure of a basis X
+ * (ncol x 2) of mu's eigenspace.  With T = [1 | X | E] (E the unit vectors
+ * of all rows but three pivots, T invertible, proven in ball arithmetic),
+ * T^-1 F T = [diag(1, mu, mu)  C; 0  N] exactly (the first three columns of T
+ * are invariant), and with T^-1 P = [alpha; beta], tau_m = (N / mu)^m:
+ *     F^m P = 1 (a - mu^m C_1 tau_m b1) + mu^m X (b - C_mu tau_m bmu)
+ *             + mu^m E tau_m beta,
+ * a = alpha_1 + C_1 b1, b = alpha_mu + C_mu bmu, b1 = (I - N)^-1 beta, bmu =
+ * (mu I - N)^-1 beta (ball arithmetic, solves proven).  So
+ *     along the spoke:  F^m P = 1 a + mu^m (Vy_m - 1 C_1 tau_m b1)
+ *     across it:        mu^-m F^m P = Vy_m + (a multiple of 1),
+ *     Vy_m = X (b - C_mu tau_m bmu) + E tau_m beta,
+ * and a multiple of 1 changes no difference across (G_c's rows sum to 1).
+ * The sign of det Dψ on layer m's quadrant c is that of det[∂_along of net
+ * G_c(1 a + mu^m (...)) | ∂_across of net G_c Vy_m] (the across columns
+ * scaled by mu^-m > 0): ss_psi_piece_sign_interval3 on the two nets.
+ *
+ * Layers m = 0 .. m0 - 1 are judged one by one with tau_m computed; every
+ * layer m >= m0 at once with tau_m replaced by the matrix of entries in
+ * [-eps, eps] and mu^m by [0, mu^m0], where eps = max ||tau_r||_inf over r in
+ * [m0, m0 + q) for a q with ||tau_q||_inf <= 1 (then ||tau_m|| <= eps for
+ * every m >= m0).  All of them of one strict sign: det Dψ has that sign on
+ * the whole box minus the spoke, proven.  The tail's leading term is
+ * det[a' | B] det Dchi, so this is the issue's "det[a' | B] of one strict sign
+ * and chi regular", with the error terms bounded rather than neglected. */
+#ifndef SS_PSI_TUBE_H
+#define SS_PSI_TUBE_H
+
+#include "ss_api.h"
+#include "ss_error.h"
+#include "ss_limit_tube.h"
+
+SS_BEGIN_DECLS
+
+/* What the proof in one tube box found. */
+typedef struct {
+  int sign;      /* +1 / -1: det Dψ proven of that strict sign on the box
+                    minus the spoke; 0: not proven (why says why) */
+  int layers;    /* m0: the layers judged one by one before the tail */
+  double mu;     /* the across eigenvalue (midpoint of its enclosure) */
+  double ratio;  /* |next root| / mu (midpoints): the tail's rate */
+  double eps;    /* the tail bound used, or NaN */
+  char why[200]; /* sign 0: the reason; else empty */
+} ss_psi_tube_result;
+
+/* Prove the sign of det Dψ in tube t (its points enclosed: t->lo, t->hi
+ * must be set), reading F's rationals with maxden as the exact path does,
+ * each piece judged with subdivision down to piece_depth.  A tube the method
+ * cannot settle is not an error: sign 0 with the reason.  SS_EINPUT for a
+ * tube without an enclosure; SS_ENOMEM. */
+ss_status ss_psi_tube_sign(const ss_limit_tube *t, long maxden, int piece_depth,
+                           ss_psi_tube_result *r, ss_error *err);
+
+SS_END_DECLS
+
+#endif
