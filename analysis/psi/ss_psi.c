@@ -288,9 +288,9 @@ static void describe(ss_psi_result *r) {
     snprintf(
         v->reason, sizeof v->reason,
         "psi of one sign on %.1f %% of its ring (%zu polynomial pieces); %.1f %% left "
-        "uncovered round the spokes at box depth %d, %.1f %% in doubt",
+        "uncovered round the spokes at box depth %d, %.1f %% in doubt%s%.240s",
         100.0 * r->covered, r->pieces, 100.0 * r->uncovered, r->maxdepth,
-        100.0 * r->doubtful);
+        100.0 * r->doubtful, r->tube_why[0] ? "; a tube not proven: " : "", r->tube_why);
 }
 
 /* The rule's weight as an exact rational (ss_exact_rational). */

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include <arb.h>
+#include <acb_mat.h>
 #include <arb_mat.h>
 
 #include "ss_exact.h"
@@ -110,6 +111,75 @@ static void bounds_of(const arb_t x, double *lo, double *hi) {
   arf_clear(u);
 }
 
+/* mu and X enclosed at PREC bits (ss_exact exports them as doubles, and
+ * the powers of N would widen their ulps by |N|^m): Rump's method on F
+ * (acb_mat_eig_enclosure_rump, as ss_exact_basis uses it) from X's
+ * midpoints, the two rows of largest |det| moved last (frozen).  It proves F
+ * X' = X' J with J's eigenvalues in a ball; that ball meeting no root of F
+ * but mu (rt: F's roots, enclosed) makes X' a basis of mu's eigenspace (mu
+ * non-defective), real (the frozen rows real).  0, 1 not proven, -1 out of
+ * memory. */
+static int refine(tube_ws *w, const ss_exact_root *rt, size_t nr) {
+  const slong n = (slong)w->n;
+  slong *perm = malloc(((size_t)n + 1) * sizeof *perm);
+  if (!perm) return -1;
+  /* the frozen rows: the pair (i, j) of largest |det X[{i,j}]| (midpoints) */
+  slong bi = 0, bj = 1;
+  double best = -1.0;
+  for (slong i = 0; i < n; i++)
+    for (slong j = i + 1; j < n; j++) {
+      const double a = arf_get_d(arb_midref(arb_mat_entry(w->X, i, 0)), ARF_RND_NEAR),
+                   b = arf_get_d(arb_midref(arb_mat_entry(w->X, i, 1)), ARF_RND_NEAR),
+                   c = arf_get_d(arb_midref(arb_mat_entry(w->X, j, 0)), ARF_RND_NEAR),
+                   d = arf_get_d(arb_midref(arb_mat_entry(w->X, j, 1)), ARF_RND_NEAR);
+      if (fabs(a * d - b * c) > best) best = fabs(a * d - b * c), bi = i, bj = j;
+    }
+  for (slong i = 0, k = 0; i < n; i++)
+    if (i != bi && i != bj) perm[k++] = i;
+  perm[n - 2] = bi, perm[n - 1] = bj;
+  acb_mat_t A, Xa, X;
+  acb_t lam, lr;
+  acb_mat_init(A, n, n), acb_mat_init(Xa, n, 2), acb_mat_init(X, n, 2);
+  acb_init(lam), acb_init(lr);
+  for (slong i = 0; i < n; i++) {
+    for (slong j = 0; j < n; j++) {
+      arb_ptr e = acb_realref(acb_mat_entry(A, i, j));
+      arb_set_si(e, w->t->Fp[perm[i] * n + perm[j]]);
+      arb_div_si(e, e, w->t->Fq[perm[i] * n + perm[j]], PREC);
+    }
+    for (slong j = 0; j < 2; j++)
+      arf_set(arb_midref(acb_realref(acb_mat_entry(Xa, i, j))),
+              arb_midref(arb_mat_entry(w->X, perm[i], j)));
+  }
+  arf_set(arb_midref(acb_realref(lam)), arb_midref(w->mu));
+  int out = 1;
+  for (int round = 0; round < 2; round++) {
+    acb_mat_eig_enclosure_rump(lr, NULL, X, A, lam, Xa, PREC);
+    if (!acb_is_finite(lr) || !acb_mat_is_finite(X)) goto done;
+    if (round == 0) acb_mat_get_mid(Xa, X);
+  }
+  for (size_t k = 0; k < nr; k++) { /* only mu's ball may meet lr */
+    acb_t z;
+    acb_init(z);
+    acb_set_d_d(z, rt[k].re, rt[k].im);
+    mag_set_d(arb_radref(acb_realref(z)), rt[k].rad);
+    mag_set_d(arb_radref(acb_imagref(z)), rt[k].rad);
+    const int meets = acb_overlaps(lr, z);
+    acb_clear(z);
+    if (meets != (k == 1)) goto done;
+  }
+  for (slong i = 0; i < n; i++)
+    for (slong j = 0; j < 2; j++)
+      arb_set(arb_mat_entry(w->X, perm[i], j), acb_realref(acb_mat_entry(X, i, j)));
+  arb_set(w->mu, acb_realref(lr));
+  out = 0;
+done:
+  acb_mat_clear(A), acb_mat_clear(Xa), acb_mat_clear(X);
+  acb_clear(lam), acb_clear(lr);
+  free(perm);
+  return out;
+}
+
 /* F's spectrum proven as the method needs, mu and X enclosed. */
 static ss_status spectrum(tube_ws *w, long maxden, ss_psi_tube_result *r, ss_error *err) {
   const ss_limit_tube *t = w->t;
@@ -163,6 +233,10 @@ static ss_status spectrum(tube_ws *w, long maxden, ss_psi_tube_result *r, ss_err
   for (size_t j = 0; j < 2; j++)
     for (size_t i = 0; i < n; i++)
       ball_of(arb_mat_entry(w->X, (slong)i, (slong)j), lo[j * n + i], hi[j * n + i]);
+  const int rf = refine(w, rt, nr);
+  if (rf < 0) st = ss_error_nomem(err, "psi tube");
+  else if (rf > 0)
+    snprintf(r->why, sizeof r->why, "mu's eigenvectors not enclosed at %d bits", PREC);
 done:
   ss_exact_free(x);
   free(F), free(lo), free(hi);
@@ -319,18 +393,51 @@ static double tail_eps(const tube_ws *w, int m0) {
   return e;
 }
 
-/* Layer nets Vx (n x 12, along) and Vy (across) for tau (r x r) and s =
- * mu^m (ss_psi_tube.h):  Vy = X (b - C_mu tau bmu) + E tau beta,  Vx = 1 a +
+/* Layer nets Vx (n x 12, along) and Vy (across) for tau (r x r; or, eps >=
+ * 0, every tau of norm <= eps) and s = mu^m (ss_psi_tube.h):  Vy = X (b - C_mu tau bmu) + E tau beta,  Vx = 1 a +
  * s (Vy - 1 C_1 tau b1). */
-static void layer_nets(const tube_ws *w, const arb_mat_t tau, const arb_t s, arb_mat_t Vx,
-                       arb_mat_t Vy) {
+/* Y <- a matrix holding tau B for every tau with ||tau||_inf <= eps: column
+ * j's entries in [-eps m_j, eps m_j], m_j >= max_i |B_ij|. */
+static void tail_product(arb_mat_t Y, const arb_mat_t B, double eps) {
+  mag_t m, e;
+  mag_init(m), mag_init(e);
+  for (slong j = 0; j < arb_mat_ncols(B); j++) {
+    mag_zero(m);
+    for (slong i = 0; i < arb_mat_nrows(B); i++) {
+      arb_get_mag(e, arb_mat_entry(B, i, j));
+      mag_max(m, m, e);
+    }
+    mag_set_d(e, eps);
+    mag_mul(m, m, e);
+    for (slong i = 0; i < arb_mat_nrows(Y); i++) {
+      arb_zero(arb_mat_entry(Y, i, j));
+      mag_set(arb_radref(arb_mat_entry(Y, i, j)), m);
+    }
+  }
+  mag_clear(m), mag_clear(e);
+}
+
+/* tau beta, tau bmu, tau b1: by products (tau given) or bounded (eps >= 0) */
+static void products(const tube_ws *w, const arb_mat_t tau, double eps, arb_mat_t TB,
+                     arb_mat_t TM, arb_mat_t T1) {
+  if (eps >= 0.0) {
+    tail_product(TB, w->beta, eps);
+    tail_product(TM, w->bmu, eps);
+    tail_product(T1, w->b1, eps);
+    return;
+  }
+  arb_mat_mul(TB, tau, w->beta, PREC);
+  arb_mat_mul(TM, tau, w->bmu, PREC);
+  arb_mat_mul(T1, tau, w->b1, PREC);
+}
+
+static void layer_nets(const tube_ws *w, const arb_mat_t tau, double eps, const arb_t s,
+                       arb_mat_t Vx, arb_mat_t Vy) {
   const slong n = (slong)w->n, r = (slong)w->r;
   arb_mat_t TB, TM, T1, cf;
   arb_mat_init(TB, r, 12), arb_mat_init(TM, r, 12), arb_mat_init(T1, r, 12);
   arb_mat_init(cf, 3, 12);
-  arb_mat_mul(TB, tau, w->beta, PREC);
-  arb_mat_mul(TM, tau, w->bmu, PREC);
-  arb_mat_mul(T1, tau, w->b1, PREC);
+  products(w, tau, eps, TB, TM, T1);
   arb_t v;
   arb_init(v);
   for (slong j = 0; j < 12; j++) {
@@ -393,17 +500,20 @@ static int judge_quadrant(const tube_ws *w, int c, const arb_mat_t Vx, const arb
   }
   ss_psi_piece_result pr;
   ss_psi_piece_sign_interval3(l3, h3, w->depth, &pr);
+  if (pr.sign == SS_JAC_UNDECIDED && w->depth < SS_PSI_MAXDEPTH) /* near a zero of the
+                                                                    leading term */
+    ss_psi_piece_sign_interval3(l3, h3, SS_PSI_MAXDEPTH, &pr);
   *fold = pr.sign == SS_JAC_FOLDED;
   return pr.sign == SS_JAC_POSITIVE ? 1 : pr.sign == SS_JAC_NEGATIVE ? -1 : 0;
 }
 
-/* One layer (tau, s): the three quadrants' common strict sign, or 0 with
+/* One layer (tau or eps as layer_nets, s): the three quadrants' common strict sign, or 0 with
  * why. */
-static int judge_layer(const tube_ws *w, const arb_mat_t tau, const arb_t s,
+static int judge_layer(const tube_ws *w, const arb_mat_t tau, double eps, const arb_t s,
                        const char *what, ss_psi_tube_result *r) {
   arb_mat_t Vx, Vy;
   arb_mat_init(Vx, (slong)w->n, 12), arb_mat_init(Vy, (slong)w->n, 12);
-  layer_nets(w, tau, s, Vx, Vy);
+  layer_nets(w, tau, eps, s, Vx, Vy);
   int sign = 0;
   for (int c = 0; c < 3; c++) {
     int fold = 0;
@@ -423,9 +533,8 @@ static int judge_layer(const tube_ws *w, const arb_mat_t tau, const arb_t s,
 /* The layers one by one, and the tail tried after tail_at[] of them. */
 static void layers(tube_ws *w, ss_psi_tube_result *r) {
   const slong k = (slong)w->r;
-  arb_mat_t tau, S, Q, E;
+  arb_mat_t tau, S, Q;
   arb_mat_init(tau, k, k), arb_mat_init(S, k, k), arb_mat_init(Q, k, k);
-  arb_mat_init(E, k, k);
   arb_mat_one(tau);
   arb_mat_scalar_div_arb(S, w->N, w->mu, PREC);
   arb_t s, st;
@@ -435,7 +544,7 @@ static void layers(tube_ws *w, ss_psi_tube_result *r) {
   char what[64], tail_why[sizeof r->why] = "";
   for (int m = 0; m < tail_at[NTAIL - 1]; m++) {
     snprintf(what, sizeof what, "layer %d", m);
-    const int sl = judge_layer(w, tau, s, what, r);
+    const int sl = judge_layer(w, tau, -1.0, s, what, r);
     if (!sl || (sign && sl != sign)) {
       if (sl) snprintf(r->why, sizeof r->why, "layer %d has the other sign", m);
       goto done;
@@ -448,14 +557,11 @@ static void layers(tube_ws *w, ss_psi_tube_result *r) {
     ti++;
     const double eps = tail_eps(w, m + 1);
     if (isnan(eps)) continue;
-    for (slong i = 0; i < k; i++)
-      for (slong j = 0; j < k; j++)
-        ball_of(arb_mat_entry(E, i, j), -eps, eps);
     double slo, shi;
     bounds_of(s, &slo, &shi);
     ball_of(st, 0.0, shi);
     snprintf(what, sizeof what, "the layers from %d on (tail bound %.3g)", m + 1, eps);
-    if (judge_layer(w, E, st, what, r) == sign) {
+    if (judge_layer(w, tau, eps, st, what, r) == sign) {
       r->sign = sign;
       r->layers = m + 1;
       r->eps = eps;
@@ -468,7 +574,7 @@ static void layers(tube_ws *w, ss_psi_tube_result *r) {
   snprintf(r->why, sizeof r->why, "%.190s", tail_why[0] ? tail_why : "no tail bound");
 done:
   arb_clear(s), arb_clear(st);
-  arb_mat_clear(tau), arb_mat_clear(S), arb_mat_clear(Q), arb_mat_clear(E);
+  arb_mat_clear(tau), arb_mat_clear(S), arb_mat_clear(Q);
 }
 
 ss_status ss_psi_tube_sign(const ss_limit_tube *t, long maxden, int piece_depth,
