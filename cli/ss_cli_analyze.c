@@ -124,7 +124,12 @@ static void help(const char *cmd) {
         "                         vertices (tangent masks) and on the spokes; a fold\n"
         "                         of psi fails regularity and injectivity judged on\n"
         "                         psi; the spokes decide by evidence only; with\n"
-        "                         --certify only what is proven about psi decides\n",
+        "                         --certify only what is proven about psi decides\n"
+        "  --psi-tubes            with --certify (mlca): prove the tubes round the\n"
+        "                         spokes too (the edge's layered structure, its\n"
+        "                         smaller modes bounded), so a ring of one sign on\n"
+        "                         its pieces is a proven pass on psi (seconds per\n"
+        "                         case)\n",
         SS_JAC_DEPTH, SS_LOCAL_MAXRING, ss_charmap_defaults().ring_levels,
         SS_PSI_BOX_DEPTH);
   if (!m && !d)
@@ -194,6 +199,7 @@ enum {
   O_STENCIL,
   O_RINGS,
   O_PSI,
+  O_TUBES,
   O_CERTIFY,
   O_MAXMEM,
   O_PROGRESS,
@@ -323,6 +329,10 @@ static int analysis_option(opts *o, int c, const char *arg) {
                                 arg);
     o->psi_depth = (int)v;
     break;
+  case O_TUBES:
+    if (m || d) return ss_cli_usage_error(o->cmd, "--psi-tubes is an option of analyze");
+    o->psi_tubes = 1;
+    break;
   case O_MAXMEM:
     if (ss_cli_parse_bytes(arg, &o->max_memory))
       return ss_cli_usage_error(
@@ -388,6 +398,10 @@ static int check_options(const opts *o) {
   if (d && !o->out) return ss_cli_usage_error(o->cmd, "-o FILE is required");
   if (o->left && !o->nvec)
     return ss_cli_usage_error(o->cmd, "--left needs --eigenvectors K");
+  if (o->psi_tubes && (!o->certify || !o->psi_depth))
+    return ss_cli_usage_error(o->cmd, "--psi-tubes needs --certify and a --psi-depth "
+                                      "above 0 (the tubes are proven, never judged in "
+                                      "doubles)");
   if (o->nvec && !m && !d && o->format != FMT_JSON)
     return ss_cli_usage_error(o->cmd,
                               "--eigenvectors: analyze writes them with --format "
@@ -420,6 +434,7 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"ring-levels", required_argument, 0, O_RINGS},
                                      {"certify", no_argument, 0, O_CERTIFY},
                                      {"psi-depth", required_argument, 0, O_PSI},
+                                     {"psi-tubes", no_argument, 0, O_TUBES},
                                      {"max-memory", required_argument, 0, O_MAXMEM},
                                      {"progress", no_argument, 0, O_PROGRESS},
                                      {"eigenvectors", required_argument, 0, O_EIGVEC},
@@ -468,6 +483,7 @@ static int parse(int argc, char **argv, opts *o) {
     case O_CERTIFY:
     case O_RINGS:
     case O_PSI:
+    case O_TUBES:
     case O_MAXMEM:
     case O_CLASS:
       rc = analysis_option(o, c, optarg);
@@ -570,6 +586,7 @@ static int one_case(const opts *o, const ss_scheme *s, const char *link_text,
   po.ring_levels = o->ring_levels;
   po.certify = o->certify;
   po.psi_depth = o->psi_depth;
+  po.psi_tubes = o->psi_tubes;
   po.force = o->force;
   /* the case as analysed: the canonical labelling, as sweep and reproduce
    * analyse it (isomorphic links give the same numbers to the last bit), a

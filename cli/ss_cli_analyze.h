@@ -34,6 +34,8 @@ typedef struct {
   int certify;              /* --certify: the exact path too (ss_certify) */
   int psi_depth;            /* --psi-depth: psi judged on its polynomial pieces
                                down to boxes of side 2^-psi_depth (0: not) */
+  int psi_tubes;            /* --psi-tubes: with --certify, the spokes' tubes
+                               proven too */
   ss_report_draw_opts draw; /* draw: picture options */
   ss_diag_mode diag;        /* --diagonals: major diagonals of tet stars */
   int force;                /* draw --force: a map even when the condition fails */

@@ -215,7 +215,8 @@ static ss_status alloc_all(ss_lim_tube *u, size_t K, int enc, ss_error *err) {
   return ok ? SS_OK : ss_error_nomem(err, "limit tube");
 }
 
-/* The points by (layer, column), translated by -x0 (any common vector: no derivative changes); the enclosure outward. */
+/* The points by (layer, column), translated by -x0 (any common vector: no derivative
+ * changes); the enclosure outward. */
 static void points(ss_lim_tube *u, const ss_cx *pcx, const double *elo, const double *ehi,
                    const double x0[3]) {
   const size_t n = u->T.ncol;
@@ -225,8 +226,8 @@ static void points(ss_lim_tube *u, const ss_cx *pcx, const double *elo, const do
       for (int d = 0; d < 3; d++) {
         u->P[3 * r + (size_t)d] = pcx->x[3 * v + (size_t)d] - x0[d];
         if (!elo) continue;
-        const di_t y =
-            di_fast_sub_d(di_interval(elo[3 * v + (size_t)d], ehi[3 * v + (size_t)d]), x0[d]);
+        const di_t y = di_fast_sub_d(
+            di_interval(elo[3 * v + (size_t)d], ehi[3 * v + (size_t)d]), x0[d]);
         u->lo[3 * r + (size_t)d] = y.a;
         u->hi[3 * r + (size_t)d] = y.b;
       }

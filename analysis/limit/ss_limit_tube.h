@@ -41,21 +41,21 @@ typedef int (*ss_limit_rational_fn)(double w, void *arg, long long *p, long long
 /* The layered structure of one uncovered box (valid during the callback of
  * ss_limit_pieces_tubes). */
 typedef struct {
-  int axis;             /* the edge's axis in the box's parameters */
-  int across[2];        /* the two other axes, increasing */
-  unsigned corner;      /* the box corner the edge runs through, as bits (bit
-                           axis 0) */
-  size_t ncol;          /* columns across the edge */
-  const double *P;      /* 4 ncol x 3: the point of column c in layer l at row
-                           l ncol + c (layer l at position l - 1 along axis),
-                           translated by a common vector (which changes no
-                           derivative) */
-  const double *lo;     /* its enclosure likewise, or NULL without one */
-  const double *hi;     /* (lo <= true point - that vector <= hi) */
-  const long long *Fp;  /* ncol x ncol row-major: F = Fp / Fq exactly */
-  const long long *Fq;  /* (Fq > 0, lowest terms) */
-  unsigned quad[3];     /* the three quadrants besides the edge's: their
-                           corner bits across (bit axis 0) */
+  int axis;               /* the edge's axis in the box's parameters */
+  int across[2];          /* the two other axes, increasing */
+  unsigned corner;        /* the box corner the edge runs through, as bits (bit
+                             axis 0) */
+  size_t ncol;            /* columns across the edge */
+  const double *P;        /* 4 ncol x 3: the point of column c in layer l at row
+                             l ncol + c (layer l at position l - 1 along axis),
+                             translated by a common vector (which changes no
+                             derivative) */
+  const double *lo;       /* its enclosure likewise, or NULL without one */
+  const double *hi;       /* (lo <= true point - that vector <= hi) */
+  const long long *Fp;    /* ncol x ncol row-major: F = Fp / Fq exactly */
+  const long long *Fq;    /* (Fq > 0, lowest terms) */
+  unsigned quad[3];       /* the three quadrants besides the edge's: their
+                             corner bits across (bit axis 0) */
   const long long *Gp[3]; /* 16 x ncol each: G_c = Gp / Gq exactly, row
                              g0 + 4 g1 the child's net point at grid
                              positions g0 - 1 along across[0] and g1 - 1 along

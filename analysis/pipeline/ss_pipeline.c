@@ -169,6 +169,7 @@ static ss_status psi(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
     return SS_OK;
   ss_psi_opts o = ss_psi_defaults();
   o.maxdepth = p->opts.psi_depth;
+  o.tubes = p->opts.psi_tubes;
   double c1 = tm ? ss_clock_cpu() : 0.0;
   ss_status st = SS_OK;
   if (p->M->cell == SS_TET) { /* no pieces: regular vertices and spokes */

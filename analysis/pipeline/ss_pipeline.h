@@ -87,6 +87,8 @@ typedef struct {
                            of side 2^-psi_depth, 0..8 (SS_PSI_BOX_DEPTH for
                            analyze); 0, the default: not at all (the verdicts
                            are the control net's) */
+  int psi_tubes;        /* nonzero, with certify and psi_depth: the tubes round
+                           the spokes proven too (ss_psi_opts.tubes) */
   double max_bytes;     /* memory budget of the case (ss_local_opts);
                            <= 0: none */
   ss_progress progress; /* steps of the stages (default silent) */

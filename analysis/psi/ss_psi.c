@@ -18,7 +18,7 @@
 #include "ss_psi_tube.h"
 
 ss_psi_opts ss_psi_defaults(void) {
-  return (ss_psi_opts){SS_PSI_BOX_DEPTH, SS_PSI_PIECE_DEPTH};
+  return (ss_psi_opts){SS_PSI_BOX_DEPTH, SS_PSI_PIECE_DEPTH, 0};
 }
 
 /* A box of a cell's parameters: side 2^-depth, corner origin. */
@@ -47,17 +47,18 @@ typedef struct {
   int folded;         /* a folded piece's two witnesses are in r->witness */
   box_id fbox;        /* that piece */
   /* the proof passes */
-  int ntarget;            /* WALK_CORNERS, WALK_FOLD: pieces to visit (else 0) */
-  box_id target[2];       /* those pieces */
-  int found[2];           /* a target was reached and its value enclosed */
-  double encl[2][2];      /* WALK_CORNERS: det Dpsi at each target's corner */
-  ss_psi_piece_result ps; /* WALK_FOLD: the target's interval verdict */
-  int need;               /* WALK_ALL: the sign every piece must have (+-1);
-                             0 once one does not */
-  int tubes;              /* WALK_ALL: prove the uncovered boxes' tubes too */
-  long maxden;            /* the rule's rationals (with the enclosure) */
-  ss_status st;           /* an error met in the callback */
-  ss_error *err;          /* where it is described */
+  int ntarget;               /* WALK_CORNERS, WALK_FOLD: pieces to visit (else 0) */
+  box_id target[2];          /* those pieces */
+  int found[2];              /* a target was reached and its value enclosed */
+  double encl[2][2];         /* WALK_CORNERS: det Dpsi at each target's corner */
+  ss_psi_piece_result ps;    /* WALK_FOLD: the target's interval verdict */
+  int need;                  /* WALK_ALL: the sign every piece must have (+-1);
+                                0 once one does not */
+  int tubes;                 /* WALK_ALL: prove the uncovered boxes' tubes too */
+  long maxden;               /* the rule's rationals (with the enclosure) */
+  ss_status st;              /* an error met in the callback */
+  ss_error *err;             /* where it is described */
+  ss_psi_tube_cache *tcache; /* WALK_ALL with tubes: the cross-sections met */
 } walk;
 
 /* Whether a box of a cell around p lies in p's octant [0,1/2]^3 (in the
@@ -185,7 +186,8 @@ static int prove_tube(const ss_limit_piece *pc, walk *w) {
     return 0;
   }
   ss_psi_tube_result tr;
-  w->st = ss_psi_tube_sign(pc->tube, w->maxden, w->o->piece_depth, &tr, w->err);
+  w->st =
+      ss_psi_tube_sign(pc->tube, w->maxden, w->o->piece_depth, w->tcache, &tr, w->err);
   if (w->st) return 0;
   if (tr.sign) {
     r->ntubes++;
@@ -311,8 +313,8 @@ static ss_status walk_cells(ss_limit *L, const ss_local *M, const ss_limit_enclo
     const ss_status st =
         w->tubes ? ss_limit_pieces_tubes(L, c, w->o->maxdepth, enc, exact_rational,
                                          &w->maxden, skip_box, visit, w, err)
-                 : ss_limit_pieces_enclosed(L, c, w->o->maxdepth, enc, skip_box, visit,
-                                            w, err);
+                 : ss_limit_pieces_enclosed(L, c, w->o->maxdepth, enc, skip_box, visit, w,
+                                            err);
     if (st) return st;
     if (w->st) return w->st;
   }
@@ -370,9 +372,9 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   r->enclosed = 1;
   if (r->verdict.verdict == SS_FAIL) return prove_fail(L, M, &enc, w, err);
   /* undecided only for the tubes round the spokes: prove them too */
-  const int tubes = r->verdict.verdict == SS_UNDECIDED && r->nuncovered > 0 &&
-                    r->nundecided == 0 && r->nfolded == 0 && r->sign != 0 &&
-                    r->opposite == 0.0 && r->pieces > 0;
+  const int tubes = w->o->tubes && r->verdict.verdict == SS_UNDECIDED &&
+                    r->nuncovered > 0 && r->nundecided == 0 && r->nfolded == 0 &&
+                    r->sign != 0 && r->opposite == 0.0 && r->pieces > 0;
   if (r->verdict.verdict != SS_PASS && !tubes) return SS_OK;
   w->mode = WALK_ALL;
   w->ntarget = 0;
@@ -381,7 +383,11 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   w->maxden = e->maxden;
   w->err = err;
   size_t n;
+  if (tubes && !(w->tcache = ss_psi_tube_cache_new()))
+    return ss_error_nomem(err, "psi tubes");
   const ss_status st = walk_cells(L, M, &enc, w, &n, err);
+  ss_psi_tube_cache_free(w->tcache);
+  w->tcache = NULL;
   if (!st && w->need != 0) {
     r->verdict.verdict = SS_PASS;
     r->verdict.certified = 1;

@@ -105,6 +105,10 @@ typedef struct {
                       around p, 1..8 (SS_PSI_BOX_DEPTH) */
   int piece_depth; /* subdivision depth of one piece's Bernstein test, 0..8
                       (SS_PSI_PIECE_DEPTH) */
+  int tubes;       /* nonzero: with the enclosure (ss_psi_certify), prove the
+                      tubes round the spokes too (ss_psi_tube.h): a ring of
+                      one sign on its pieces becomes a proven pass; a few
+                      seconds per case (default 0) */
 } ss_psi_opts;
 
 /* A point of psi's domain with det Dpsi there. */
@@ -170,14 +174,14 @@ typedef struct {
   ss_psi_point witness[2]; /* with fail: det Dpsi of opposite strict signs */
   int maxdepth;            /* the options used */
   int piece_depth;
-  double seconds;          /* thread CPU time of the test */
-  size_t ntubes;           /* uncovered boxes whose tube round a spoke was
-                              proven of the ring's sign (ss_psi_tube.h; with
-                              the enclosure only) */
-  int tube_layers;         /* the most layers one of them judged one by one
-                              before its tail bound */
-  char tube_why[240];      /* the first tube not proven: where and why (else
-                              empty) */
+  double seconds;     /* thread CPU time of the test */
+  size_t ntubes;      /* uncovered boxes whose tube round a spoke was
+                         proven of the ring's sign (ss_psi_tube.h; with
+                         the enclosure only) */
+  int tube_layers;    /* the most layers one of them judged one by one
+                         before its tail bound */
+  char tube_why[240]; /* the first tube not proven: where and why (else
+                         empty) */
 } ss_psi_result;
 
 /* If a spoke of sk is degenerate (ss_psi_spoke.h), r fails regularity by

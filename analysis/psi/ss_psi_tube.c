@@ -20,34 +20,56 @@
 #define PREC  128
 #define NNORM 160 /* powers of N / mu whose norms are bounded */
 #define QMAX  96  /* the period q of the tail bound is at most this */
+#define NTAU  64  /* layers judged one by one at most */
 
 /* the layers after which the tail is tried (m0) */
-static const int tail_at[] = {2, 4, 8, 12, 16, 24, 32, 40, 48, 64};
+static const int tail_at[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 63};
 #define NTAIL ((int)(sizeof tail_at / sizeof tail_at[0]))
 
 /* What the proof holds (method: ss_psi_tube.h). */
 typedef struct {
   const ss_limit_tube *t;
-  size_t n;        /* columns */
-  size_t r;        /* n - 3: the rows of N */
-  arb_t mu;        /* the across eigenvalue */
-  arb_mat_t X;     /* n x 2: mu's eigenvectors */
-  size_t piv[3];   /* T's pivot rows (no unit vector there) */
-  size_t *eidx;    /* n: row i of E's unit vector is e_i for beta's row
-                      eidx[i]; SIZE_MAX at the pivots */
-  arb_mat_t C;     /* 3 x r */
-  arb_mat_t N;     /* r x r */
-  arb_mat_t beta;  /* r x 12 (layer l, coordinate d at column 3 l + d) */
-  arb_mat_t b1;    /* (I - N)^-1 beta */
-  arb_mat_t bmu;   /* (mu I - N)^-1 beta */
-  arb_mat_t a;     /* 1 x 12: the spoke's curve's points */
-  arb_mat_t b;     /* 2 x 12: B's coefficients */
-  arb_mat_t G[3];  /* 16 x n: the quadrants' factors */
-  double norm[NNORM]; /* upper bounds of ||(N / mu)^m||_inf */
-  int depth;       /* the pieces' subdivision depth */
+  size_t n;            /* columns */
+  size_t r;            /* n - 3: the rows of N */
+  arb_t mu;            /* the across eigenvalue */
+  arb_mat_t X;         /* n x 2: mu's eigenvectors */
+  size_t piv[3];       /* T's pivot rows (no unit vector there) */
+  size_t *eidx;        /* n: row i of E's unit vector is e_i for beta's row
+                          eidx[i]; SIZE_MAX at the pivots */
+  arb_mat_t C;         /* 3 x r */
+  arb_mat_t N;         /* r x r */
+  arb_mat_t beta;      /* r x 12 (layer l, coordinate d at column 3 l + d) */
+  arb_mat_t b1;        /* (I - N)^-1 beta */
+  arb_mat_t bmu;       /* (mu I - N)^-1 beta */
+  arb_mat_t a;         /* 1 x 12: the spoke's curve's points */
+  arb_mat_t b;         /* 2 x 12: B's coefficients */
+  arb_mat_t G[3];      /* 16 x n: the quadrants' factors */
+  double norm[NNORM];  /* upper bounds of ||(N / mu)^m||_inf */
+  int depth;           /* the pieces' subdivision depth */
+  arb_mat_t T;         /* n x n: [1 | X | E] */
+  arb_mat_struct *tau; /* NTAU: (N / mu)^m, m < NTAU (the cache's) */
+  int tail_m0;         /* the tail being judged: layers m >= tail_m0 */
+  int tail_q;          /* its period (tail_period) */
 } tube_ws;
 
+/* One cross-section met: everything that depends on F alone (a whole
+ * tube_ws, its points' part unused), kept for the next box of the same F. */
+typedef struct {
+  long long *Fp, *Fq;  /* the key: F exactly */
+  size_t n;            /* its size */
+  char why[200];       /* not provable for this F: why (else empty) */
+  double mu, ratio;    /* for the result */
+  tube_ws w;           /* mu, X, piv, eidx, C, N, norm, T */
+  arb_mat_struct *tau; /* NTAU powers */
+} tube_spec;
+
+struct ss_psi_tube_cache {
+  tube_spec **s; /* the cross-sections met */
+  size_t n, cap; /* their number and room */
+};
+
 static void ws_clear(tube_ws *w) {
+  arb_mat_clear(w->T);
   arb_clear(w->mu);
   arb_mat_clear(w->X);
   arb_mat_clear(w->C);
@@ -57,17 +79,17 @@ static void ws_clear(tube_ws *w) {
   arb_mat_clear(w->bmu);
   arb_mat_clear(w->a);
   arb_mat_clear(w->b);
-  for (int c = 0; c < 3; c++)
-    arb_mat_clear(w->G[c]);
   free(w->eidx);
 }
 
+/* Everything but the quadrants' factors G (gfactor). */
 static void ws_init(tube_ws *w, const ss_limit_tube *t) {
   memset(w, 0, sizeof *w);
   w->t = t;
   w->n = t->ncol;
   w->r = t->ncol - 3;
   arb_init(w->mu);
+  arb_mat_init(w->T, (slong)w->n, (slong)w->n);
   arb_mat_init(w->X, (slong)w->n, 2);
   arb_mat_init(w->C, 3, (slong)w->r);
   arb_mat_init(w->N, (slong)w->r, (slong)w->r);
@@ -76,16 +98,28 @@ static void ws_init(tube_ws *w, const ss_limit_tube *t) {
   arb_mat_init(w->bmu, (slong)w->r, 12);
   arb_mat_init(w->a, 1, 12);
   arb_mat_init(w->b, 2, 12);
-  for (int c = 0; c < 3; c++) {
-    arb_mat_init(w->G[c], 16, (slong)w->n);
-    for (size_t i = 0; i < 16 * w->n; i++) {
-      arb_set_si(arb_mat_entry(w->G[c], (slong)(i / w->n), (slong)(i % w->n)),
-                 t->Gp[c][i]);
-      arb_div_si(arb_mat_entry(w->G[c], (slong)(i / w->n), (slong)(i % w->n)),
-                 arb_mat_entry(w->G[c], (slong)(i / w->n), (slong)(i % w->n)), t->Gq[c][i],
-                 PREC);
-    }
+}
+
+/* w->G[c] from the tube's exact G_c (initialised here). */
+static void gfactor(tube_ws *w, int c) {
+  const size_t n = w->n;
+  arb_mat_init(w->G[c], 16, (slong)n);
+  for (size_t i = 0; i < 16 * n; i++) {
+    arb_ptr e = arb_mat_entry(w->G[c], (slong)(i / n), (slong)(i % n));
+    arb_set_si(e, w->t->Gp[c][i]);
+    arb_div_si(e, e, w->t->Gq[c][i], PREC);
   }
+}
+
+static void spec_free(tube_spec *sp) {
+  if (!sp) return;
+  ws_clear(&sp->w);
+  for (int m = 0; m < NTAU && sp->tau; m++)
+    arb_mat_clear(sp->tau + m);
+  free(sp->tau);
+  free(sp->Fp);
+  free(sp->Fq);
+  free(sp);
 }
 
 /* x <- [lo, hi] */
@@ -234,7 +268,8 @@ static ss_status spectrum(tube_ws *w, long maxden, ss_psi_tube_result *r, ss_err
     for (size_t i = 0; i < n; i++)
       ball_of(arb_mat_entry(w->X, (slong)i, (slong)j), lo[j * n + i], hi[j * n + i]);
   const int rf = refine(w, rt, nr);
-  if (rf < 0) st = ss_error_nomem(err, "psi tube");
+  if (rf < 0)
+    st = ss_error_nomem(err, "psi tube");
   else if (rf > 0)
     snprintf(r->why, sizeof r->why, "mu's eigenvectors not enclosed at %d bits", PREC);
 done:
@@ -251,8 +286,8 @@ static int pivots(tube_ws *w) {
   for (size_t i = 0; i < n; i++) {
     A[3 * i] = 1.0;
     for (int j = 0; j < 2; j++)
-      A[3 * i + 1 + (size_t)j] = arf_get_d(arb_midref(arb_mat_entry(w->X, (slong)i, j)),
-                                           ARF_RND_NEAR);
+      A[3 * i + 1 + (size_t)j] =
+          arf_get_d(arb_midref(arb_mat_entry(w->X, (slong)i, j)), ARF_RND_NEAR);
   }
   unsigned char *used = calloc(n + 1, 1);
   int ok = used != NULL;
@@ -277,57 +312,75 @@ static int pivots(tube_ws *w) {
   return ok ? 0 : 1;
 }
 
-/* T = [1 | X | E], M = T^-1 F T: C and N; the points' coordinates and the
- * limits a, b.  0, 1 with why set, -1 out of memory. */
-static int basis_change(tube_ws *w, ss_psi_tube_result *res) {
+/* T = [1 | X | E], M = T^-1 F T: C and N (F alone).  0, 1 with why set,
+ * -1 out of memory. */
+static int basis_change(tube_ws *w, char *why, size_t len) {
   const ss_limit_tube *t = w->t;
   const slong n = (slong)w->n, r = (slong)w->r;
   w->eidx = malloc(((size_t)n + 1) * sizeof *w->eidx);
   if (!w->eidx) return -1;
-  arb_mat_t T, F, FT, M, P, Y, I;
-  arb_mat_init(T, n, n), arb_mat_init(F, n, n), arb_mat_init(FT, n, n);
-  arb_mat_init(M, n, n), arb_mat_init(P, n, 12), arb_mat_init(Y, n, 12);
-  arb_mat_init(I, r, r);
+  arb_mat_t F, FT, M;
+  arb_mat_init(F, n, n), arb_mat_init(FT, n, n), arb_mat_init(M, n, n);
   int out = 1;
   slong k = 3;
   for (slong i = 0; i < n; i++) {
-    const int pv = (size_t)i == w->piv[0] || (size_t)i == w->piv[1] || (size_t)i == w->piv[2];
+    const int pv =
+        (size_t)i == w->piv[0] || (size_t)i == w->piv[1] || (size_t)i == w->piv[2];
     w->eidx[i] = pv ? SIZE_MAX : (size_t)(k - 3);
-    arb_one(arb_mat_entry(T, i, 0));
-    arb_set(arb_mat_entry(T, i, 1), arb_mat_entry(w->X, i, 0));
-    arb_set(arb_mat_entry(T, i, 2), arb_mat_entry(w->X, i, 1));
-    if (!pv) arb_one(arb_mat_entry(T, i, k++));
+    arb_one(arb_mat_entry(w->T, i, 0));
+    arb_set(arb_mat_entry(w->T, i, 1), arb_mat_entry(w->X, i, 0));
+    arb_set(arb_mat_entry(w->T, i, 2), arb_mat_entry(w->X, i, 1));
+    if (!pv) arb_one(arb_mat_entry(w->T, i, k++));
     for (slong j = 0; j < n; j++) {
       arb_set_si(arb_mat_entry(F, i, j), t->Fp[i * n + j]);
       arb_div_si(arb_mat_entry(F, i, j), arb_mat_entry(F, i, j), t->Fq[i * n + j], PREC);
     }
-    for (int l = 0; l < 4; l++)
-      for (int d = 0; d < 3; d++) {
-        const size_t q = 3 * ((size_t)l * w->n + (size_t)i) + (size_t)d;
-        ball_of(arb_mat_entry(P, i, 3 * l + d), t->lo[q], t->hi[q]);
-      }
   }
-  arb_mat_mul(FT, F, T, PREC);
-  if (!arb_mat_solve(M, T, FT, PREC) || !arb_mat_solve(Y, T, P, PREC)) {
-    snprintf(res->why, sizeof res->why, "the change of basis [1 | X | E] is not proven "
-                                        "invertible");
+  arb_mat_mul(FT, F, w->T, PREC);
+  if (!arb_mat_solve(M, w->T, FT, PREC)) {
+    snprintf(why, len, "the change of basis [1 | X | E] is not proven invertible");
     goto done;
   }
   for (slong i = 3; i < n; i++) /* the invariant columns: exactly 0 below */
     for (slong j = 0; j < 3; j++)
       if (!arb_contains_zero(arb_mat_entry(M, i, j))) {
-        snprintf(res->why, sizeof res->why, "[1 | X] is not invariant under F");
+        snprintf(why, len, "[1 | X] is not invariant under F");
         goto done;
       }
   for (slong i = 0; i < 3; i++)
     for (slong j = 0; j < r; j++)
       arb_set(arb_mat_entry(w->C, i, j), arb_mat_entry(M, i, 3 + j));
-  for (slong i = 0; i < r; i++) {
+  for (slong i = 0; i < r; i++)
     for (slong j = 0; j < r; j++)
       arb_set(arb_mat_entry(w->N, i, j), arb_mat_entry(M, 3 + i, 3 + j));
+  out = 0;
+done:
+  arb_mat_clear(F), arb_mat_clear(FT), arb_mat_clear(M);
+  return out;
+}
+
+/* The points' coordinates T^-1 P = [alpha; beta], b1, bmu and the limits a,
+ * b.  0, 1 with why set. */
+static int coordinates(tube_ws *w, ss_psi_tube_result *res) {
+  const ss_limit_tube *t = w->t;
+  const slong n = (slong)w->n, r = (slong)w->r;
+  arb_mat_t P, Y, I;
+  arb_mat_init(P, n, 12), arb_mat_init(Y, n, 12), arb_mat_init(I, r, r);
+  int out = 1;
+  for (slong i = 0; i < n; i++)
+    for (int l = 0; l < 4; l++)
+      for (int d = 0; d < 3; d++) {
+        const size_t q = 3 * ((size_t)l * w->n + (size_t)i) + (size_t)d;
+        ball_of(arb_mat_entry(P, i, 3 * l + d), t->lo[q], t->hi[q]);
+      }
+  if (!arb_mat_solve(Y, w->T, P, PREC)) {
+    snprintf(res->why, sizeof res->why,
+             "the points' coordinates: T not proven invertible");
+    goto done;
+  }
+  for (slong i = 0; i < r; i++)
     for (slong j = 0; j < 12; j++)
       arb_set(arb_mat_entry(w->beta, i, j), arb_mat_entry(Y, 3 + i, j));
-  }
   /* b1 = (I - N)^-1 beta, bmu = (mu I - N)^-1 beta */
   arb_mat_neg(I, w->N);
   for (slong i = 0; i < r; i++)
@@ -356,13 +409,13 @@ static int basis_change(tube_ws *w, ss_psi_tube_result *res) {
   }
   out = 0;
 done:
-  arb_mat_clear(T), arb_mat_clear(F), arb_mat_clear(FT), arb_mat_clear(M);
   arb_mat_clear(P), arb_mat_clear(Y), arb_mat_clear(I);
   return out;
 }
 
-/* Upper bounds of ||(N / mu)^m||_inf, m < NNORM. */
-static void norms(tube_ws *w) {
+/* Upper bounds of ||(N / mu)^m||_inf, m < NNORM, and the powers m < NTAU
+ * into tau. */
+static void norms(tube_ws *w, arb_mat_struct *tau) {
   const slong r = (slong)w->r;
   arb_mat_t S, P, Q;
   arb_mat_init(S, r, r), arb_mat_init(P, r, r), arb_mat_init(Q, r, r);
@@ -373,6 +426,7 @@ static void norms(tube_ws *w) {
   for (int m = 0; m < NNORM; m++) {
     arb_mat_bound_inf_norm(b, P);
     w->norm[m] = mag_get_d(b);
+    if (m < NTAU) arb_mat_set(tau + m, P);
     arb_mat_mul(Q, P, S, PREC);
     arb_mat_swap(P, Q);
   }
@@ -380,50 +434,62 @@ static void norms(tube_ws *w) {
   arb_mat_clear(S), arb_mat_clear(P), arb_mat_clear(Q);
 }
 
-/* eps for the layers m >= m0: max ||tau_r|| over r in [m0, m0 + q), q the
- * first period with ||tau_q|| <= 1; NaN if there is none in reach. */
-static double tail_eps(const tube_ws *w, int m0) {
+/* The period q of the tail bound: the first q with ||tau_q||_inf <= 1 (0 if
+ * none in reach); *eps = max ||tau_r||_inf over r in [m0, m0 + q) (reported:
+ * the matrices' bound; the tail uses the vectors', tail_product). */
+static int tail_period(const tube_ws *w, int m0, double *eps) {
   int q = 0;
   for (int k = 1; k <= QMAX && !q; k++)
     if (w->norm[k] <= 1.0) q = k;
-  if (!q || m0 + q > NNORM) return NAN;
-  double e = 0.0;
+  if (!q || m0 + q > NNORM || m0 >= NTAU) return 0;
+  *eps = 0.0;
   for (int m = m0; m < m0 + q; m++)
-    e = fmax(e, w->norm[m]);
-  return e;
+    *eps = fmax(*eps, w->norm[m]);
+  return q;
 }
 
-/* Layer nets Vx (n x 12, along) and Vy (across) for tau (r x r; or, eps >=
- * 0, every tau of norm <= eps) and s = mu^m (ss_psi_tube.h):  Vy = X (b - C_mu tau bmu) + E tau beta,  Vx = 1 a +
- * s (Vy - 1 C_1 tau b1). */
-/* Y <- a matrix holding tau B for every tau with ||tau||_inf <= eps: column
- * j's entries in [-eps m_j, eps m_j], m_j >= max_i |B_ij|. */
-static void tail_product(arb_mat_t Y, const arb_mat_t B, double eps) {
-  mag_t m, e;
-  mag_init(m), mag_init(e);
-  for (slong j = 0; j < arb_mat_ncols(B); j++) {
-    mag_zero(m);
-    for (slong i = 0; i < arb_mat_nrows(B); i++) {
-      arb_get_mag(e, arb_mat_entry(B, i, j));
-      mag_max(m, m, e);
-    }
-    mag_set_d(e, eps);
-    mag_mul(m, m, e);
-    for (slong i = 0; i < arb_mat_nrows(Y); i++) {
-      arb_zero(arb_mat_entry(Y, i, j));
-      mag_set(arb_radref(arb_mat_entry(Y, i, j)), m);
-    }
+/* Y <- a matrix holding tau_m B for every m >= m0 (w->tail_m0, period q =
+ * w->tail_q with ||tau_q||_inf <= 1): m = r + k q with r in [m0, m0 + q), so
+ * tau_m B = tau_q^k (tau_r B) and every column of it is bounded in |.|_inf by
+ * that column's max over r of |tau_r B|_inf: column j's entries in [-e_j,
+ * e_j]. */
+static void tail_product(arb_mat_t Y, const arb_mat_t B, const tube_ws *w) {
+  const slong r = (slong)w->r;
+  arb_mat_t V, U, S;
+  arb_mat_init(V, r, 12), arb_mat_init(U, r, 12), arb_mat_init(S, r, r);
+  arb_mat_scalar_div_arb(S, w->N, w->mu, PREC);
+  arb_mat_mul(V, w->tau + w->tail_m0, B, PREC);
+  mag_t m[12], e;
+  mag_init(e);
+  for (int j = 0; j < 12; j++)
+    mag_init(m[j]);
+  for (int k = 0; k < w->tail_q; k++) {
+    for (slong j = 0; j < 12; j++)
+      for (slong i = 0; i < r; i++) {
+        arb_get_mag(e, arb_mat_entry(V, i, j));
+        mag_max(m[j], m[j], e);
+      }
+    arb_mat_mul(U, S, V, PREC);
+    arb_mat_swap(U, V);
   }
-  mag_clear(m), mag_clear(e);
+  for (slong j = 0; j < 12; j++)
+    for (slong i = 0; i < r; i++) {
+      arb_zero(arb_mat_entry(Y, i, j));
+      mag_set(arb_radref(arb_mat_entry(Y, i, j)), m[j]);
+    }
+  for (int j = 0; j < 12; j++)
+    mag_clear(m[j]);
+  mag_clear(e);
+  arb_mat_clear(V), arb_mat_clear(U), arb_mat_clear(S);
 }
 
 /* tau beta, tau bmu, tau b1: by products (tau given) or bounded (eps >= 0) */
 static void products(const tube_ws *w, const arb_mat_t tau, double eps, arb_mat_t TB,
                      arb_mat_t TM, arb_mat_t T1) {
   if (eps >= 0.0) {
-    tail_product(TB, w->beta, eps);
-    tail_product(TM, w->bmu, eps);
-    tail_product(T1, w->b1, eps);
+    tail_product(TB, w->beta, w);
+    tail_product(TM, w->bmu, w);
+    tail_product(T1, w->b1, w);
     return;
   }
   arb_mat_mul(TB, tau, w->beta, PREC);
@@ -458,7 +524,8 @@ static void layer_nets(const tube_ws *w, const arb_mat_t tau, double eps, const 
       arb_ptr y = arb_mat_entry(Vy, i, j);
       arb_mul(y, arb_mat_entry(w->X, i, 0), arb_mat_entry(cf, 1, j), PREC);
       arb_addmul(y, arb_mat_entry(w->X, i, 1), arb_mat_entry(cf, 2, j), PREC);
-      if (w->eidx[i] != SIZE_MAX) arb_add(y, y, arb_mat_entry(TB, (slong)w->eidx[i], j), PREC);
+      if (w->eidx[i] != SIZE_MAX)
+        arb_add(y, y, arb_mat_entry(TB, (slong)w->eidx[i], j), PREC);
       arb_sub(v, y, arb_mat_entry(cf, 0, j), PREC);
       arb_mul(v, v, s, PREC);
       arb_add(arb_mat_entry(Vx, i, j), v, arb_mat_entry(w->a, 0, j), PREC);
@@ -507,8 +574,8 @@ static int judge_quadrant(const tube_ws *w, int c, const arb_mat_t Vx, const arb
   return pr.sign == SS_JAC_POSITIVE ? 1 : pr.sign == SS_JAC_NEGATIVE ? -1 : 0;
 }
 
-/* One layer (tau or eps as layer_nets, s): the three quadrants' common strict sign, or 0 with
- * why. */
+/* One layer (tau or eps as layer_nets, s): the three quadrants' common strict sign, or 0
+ * with why. */
 static int judge_layer(const tube_ws *w, const arb_mat_t tau, double eps, const arb_t s,
                        const char *what, ss_psi_tube_result *r) {
   arb_mat_t Vx, Vy;
@@ -520,7 +587,9 @@ static int judge_layer(const tube_ws *w, const arb_mat_t tau, double eps, const 
     const int sc = judge_quadrant(w, c, Vx, Vy, &fold);
     if (sc == 0 || (c && sc != sign)) {
       snprintf(r->why, sizeof r->why, "%s, quadrant %d: %s", what, c + 1,
-               fold ? "det Dpsi takes both signs" : sc ? "the other sign" : "no sign proven");
+               fold ? "det Dpsi takes both signs"
+               : sc ? "the other sign"
+                    : "no sign proven");
       sign = 0;
       break;
     }
@@ -532,11 +601,6 @@ static int judge_layer(const tube_ws *w, const arb_mat_t tau, double eps, const 
 
 /* The layers one by one, and the tail tried after tail_at[] of them. */
 static void layers(tube_ws *w, ss_psi_tube_result *r) {
-  const slong k = (slong)w->r;
-  arb_mat_t tau, S, Q;
-  arb_mat_init(tau, k, k), arb_mat_init(S, k, k), arb_mat_init(Q, k, k);
-  arb_mat_one(tau);
-  arb_mat_scalar_div_arb(S, w->N, w->mu, PREC);
   arb_t s, st;
   arb_init(s), arb_init(st);
   arb_one(s);
@@ -544,24 +608,24 @@ static void layers(tube_ws *w, ss_psi_tube_result *r) {
   char what[64], tail_why[sizeof r->why] = "";
   for (int m = 0; m < tail_at[NTAIL - 1]; m++) {
     snprintf(what, sizeof what, "layer %d", m);
-    const int sl = judge_layer(w, tau, -1.0, s, what, r);
+    const int sl = judge_layer(w, w->tau + m, -1.0, s, what, r);
     if (!sl || (sign && sl != sign)) {
       if (sl) snprintf(r->why, sizeof r->why, "layer %d has the other sign", m);
       goto done;
     }
     sign = sl;
-    arb_mat_mul(Q, tau, S, PREC);
-    arb_mat_swap(tau, Q);
     arb_mul(s, s, w->mu, PREC);
     if (ti >= NTAIL || m + 1 != tail_at[ti]) continue;
     ti++;
-    const double eps = tail_eps(w, m + 1);
-    if (isnan(eps)) continue;
+    double eps = NAN;
+    w->tail_q = tail_period(w, m + 1, &eps);
+    w->tail_m0 = m + 1;
+    if (!w->tail_q) continue;
     double slo, shi;
     bounds_of(s, &slo, &shi);
     ball_of(st, 0.0, shi);
     snprintf(what, sizeof what, "the layers from %d on (tail bound %.3g)", m + 1, eps);
-    if (judge_layer(w, tau, eps, st, what, r) == sign) {
+    if (judge_layer(w, w->tau, eps, st, what, r) == sign) {
       r->sign = sign;
       r->layers = m + 1;
       r->eps = eps;
@@ -574,11 +638,75 @@ static void layers(tube_ws *w, ss_psi_tube_result *r) {
   snprintf(r->why, sizeof r->why, "%.190s", tail_why[0] ? tail_why : "no tail bound");
 done:
   arb_clear(s), arb_clear(st);
-  arb_mat_clear(tau), arb_mat_clear(S), arb_mat_clear(Q);
+}
+
+/* The cross-section of F (t's) into *out, from the cache or made (and kept
+ * there if c): a spec with why set when F is not provable. */
+static ss_status spec_of(const ss_limit_tube *t, long maxden, ss_psi_tube_cache *c,
+                         tube_spec **out, ss_error *err) {
+  const size_t n = t->ncol;
+  ss_status st = SS_OK;
+  for (size_t i = 0; c && i < c->n; i++) {
+    tube_spec *sp = c->s[i];
+    if (sp->n == n && !memcmp(sp->Fp, t->Fp, n * n * sizeof *t->Fp) &&
+        !memcmp(sp->Fq, t->Fq, n * n * sizeof *t->Fq))
+      return *out = sp, SS_OK;
+  }
+  tube_spec *sp = calloc(1, sizeof *sp);
+  if (!sp) return ss_error_nomem(err, "psi tube");
+  sp->n = n;
+  sp->Fp = malloc((n * n + 1) * sizeof *sp->Fp);
+  sp->Fq = malloc((n * n + 1) * sizeof *sp->Fq);
+  sp->tau = malloc(NTAU * sizeof *sp->tau);
+  ws_init(&sp->w, t);
+  for (int m = 0; m < NTAU && sp->tau; m++)
+    arb_mat_init(sp->tau + m, (slong)sp->w.r, (slong)sp->w.r);
+  if (!sp->Fp || !sp->Fq || !sp->tau) goto nomem;
+  memcpy(sp->Fp, t->Fp, n * n * sizeof *t->Fp);
+  memcpy(sp->Fq, t->Fq, n * n * sizeof *t->Fq);
+  ss_psi_tube_result r;
+  memset(&r, 0, sizeof r);
+  if ((st = spectrum(&sp->w, maxden, &r, err))) goto fail;
+  int pv = r.why[0] ? 0 : pivots(&sp->w);
+  if (pv > 0) snprintf(r.why, sizeof r.why, "no three independent rows of [1 | X]");
+  if (!pv && !r.why[0]) pv = basis_change(&sp->w, r.why, sizeof r.why);
+  if (pv < 0) goto nomem;
+  if (!r.why[0]) norms(&sp->w, sp->tau);
+  memcpy(sp->why, r.why, sizeof sp->why);
+  sp->mu = r.mu, sp->ratio = r.ratio;
+  *out = sp;
+  if (!c) return SS_OK;
+  if (c->n == c->cap) {
+    const size_t cap = c->cap ? 2 * c->cap : 8;
+    tube_spec **q = realloc(c->s, cap * sizeof *q);
+    if (!q) goto nomem;
+    c->s = q, c->cap = cap;
+  }
+  c->s[c->n++] = sp;
+  return SS_OK;
+nomem:
+  st = ss_error_nomem(err, "psi tube");
+fail:
+  spec_free(sp);
+  *out = NULL;
+  return st;
+}
+
+ss_psi_tube_cache *ss_psi_tube_cache_new(void) {
+  return calloc(1, sizeof(ss_psi_tube_cache));
+}
+
+void ss_psi_tube_cache_free(ss_psi_tube_cache *c) {
+  if (!c) return;
+  for (size_t i = 0; i < c->n; i++)
+    spec_free(c->s[i]);
+  free(c->s);
+  free(c);
 }
 
 ss_status ss_psi_tube_sign(const ss_limit_tube *t, long maxden, int piece_depth,
-                           ss_psi_tube_result *r, ss_error *err) {
+                           ss_psi_tube_cache *cache, ss_psi_tube_result *r,
+                           ss_error *err) {
   memset(r, 0, sizeof *r);
   r->eps = NAN;
   if (!t || !t->lo || !t->hi)
@@ -587,25 +715,29 @@ ss_status ss_psi_tube_sign(const ss_limit_tube *t, long maxden, int piece_depth,
     snprintf(r->why, sizeof r->why, "%zu columns across the spoke", t->ncol);
     return SS_OK;
   }
-  tube_ws w;
-  ws_init(&w, t);
+  tube_spec *sp = NULL;
+  ss_status st = spec_of(t, maxden, cache, &sp, err);
+  if (st) return st;
+  r->mu = sp->mu, r->ratio = sp->ratio;
+  if (sp->why[0]) {
+    memcpy(r->why, sp->why, sizeof r->why);
+    goto done;
+  }
+  /* the points' part in a workspace of their own, the rest shared */
+  tube_ws w = sp->w;
+  w.t = t;
   w.depth = piece_depth;
-  ss_status st = spectrum(&w, maxden, r, err);
-  if (st || r->why[0]) goto done;
-  const int pv = pivots(&w);
-  if (pv) {
-    if (pv < 0) st = ss_error_nomem(err, "psi tube");
-    else snprintf(r->why, sizeof r->why, "no three independent rows of [1 | X]");
-    goto done;
-  }
-  const int bc = basis_change(&w, r);
-  if (bc) {
-    if (bc < 0) st = ss_error_nomem(err, "psi tube");
-    goto done;
-  }
-  norms(&w);
-  layers(&w, r);
+  w.tau = sp->tau;
+  arb_mat_init(w.beta, (slong)w.r, 12), arb_mat_init(w.b1, (slong)w.r, 12);
+  arb_mat_init(w.bmu, (slong)w.r, 12), arb_mat_init(w.a, 1, 12), arb_mat_init(w.b, 2, 12);
+  for (int c = 0; c < 3; c++)
+    gfactor(&w, c);
+  if (!coordinates(&w, r)) layers(&w, r);
+  arb_mat_clear(w.beta), arb_mat_clear(w.b1), arb_mat_clear(w.bmu);
+  arb_mat_clear(w.a), arb_mat_clear(w.b);
+  for (int c = 0; c < 3; c++)
+    arb_mat_clear(w.G[c]);
 done:
-  ws_clear(&w);
+  if (!cache) spec_free(sp);
   return st;
 }

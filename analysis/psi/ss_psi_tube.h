@@ -53,13 +53,25 @@ typedef struct {
   char why[200]; /* sign 0: the reason; else empty */
 } ss_psi_tube_result;
 
+/* What F alone determines (its spectrum, eigenspace, change of basis and the
+ * powers of N / mu), kept between the boxes of one case: the boxes along a
+ * spoke share their cross-section.  Opaque; not shared between threads. */
+typedef struct ss_psi_tube_cache ss_psi_tube_cache;
+
+/* A new, empty cache (NULL out of memory); free with ss_psi_tube_cache_free
+ * (NULL is a no-op). */
+ss_psi_tube_cache *ss_psi_tube_cache_new(void);
+void ss_psi_tube_cache_free(ss_psi_tube_cache *c);
+
 /* Prove the sign of det Dψ in tube t (its points enclosed: t->lo, t->hi
  * must be set), reading F's rationals with maxden as the exact path does,
- * each piece judged with subdivision down to piece_depth.  A tube the method
+ * each piece judged with subdivision down to piece_depth (and, where that
+ * leaves doubt, SS_PSI_MAXDEPTH); cache may be NULL.  A tube the method
  * cannot settle is not an error: sign 0 with the reason.  SS_EINPUT for a
  * tube without an enclosure; SS_ENOMEM. */
 ss_status ss_psi_tube_sign(const ss_limit_tube *t, long maxden, int piece_depth,
-                           ss_psi_tube_result *r, ss_error *err);
+                           ss_psi_tube_cache *cache, ss_psi_tube_result *r,
+                           ss_error *err);
 
 SS_END_DECLS
 

@@ -12,26 +12,33 @@
 #include "ss_pipeline.h"
 #include "ss_scheme.h"
 
-/* The pipeline of vertex case `link` under s through its verdicts, psi
- * judged to box depth psi_depth, with the exact path if certify; NULL (the
- * reason printed) on failure. */
-static inline ss_pipeline *psi_run(const ss_scheme *s, const char *link, int psi_depth,
-                                   int certify) {
+/* The pipeline of vertex case `link` under s through its verdicts with
+ * options o; NULL (the reason printed) on failure. */
+static inline ss_pipeline *psi_run_with(const ss_scheme *s, const char *link,
+                                        const ss_pipeline_opts *o) {
   ss_link *l = NULL;
   ss_error err = {0};
   if (ss_link_named(link, &l, &err) && ss_link_parse(link, &l, &err)) {
     fprintf(stderr, "%s: %s\n", link, err.msg);
     return NULL;
   }
-  ss_pipeline_opts o = ss_pipeline_defaults();
-  o.psi_depth = psi_depth;
-  o.certify = certify;
   const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
   ss_pipeline *p = NULL;
-  if (ss_pipeline_compute(s, &c, &o, SS_PIPE_VERDICTS, NULL, &p, &err))
+  if (ss_pipeline_compute(s, &c, o, SS_PIPE_VERDICTS, NULL, &p, &err))
     fprintf(stderr, "%s: %s\n", link, err.msg);
   ss_link_free(l);
   return p;
+}
+
+/* The pipeline of vertex case `link` under s through its verdicts, psi
+ * judged to box depth psi_depth, with the exact path if certify; NULL (the
+ * reason printed) on failure. */
+static inline ss_pipeline *psi_run(const ss_scheme *s, const char *link, int psi_depth,
+                                   int certify) {
+  ss_pipeline_opts o = ss_pipeline_defaults();
+  o.psi_depth = psi_depth;
+  o.certify = certify;
+  return psi_run_with(s, link, &o);
 }
 
 /* The two-ring's hexes of p's case with points x (n2 x 3) as a limit

@@ -70,16 +70,19 @@ static int exact_weight(double w, void *arg, double *lo, double *hi) {
 
 /* What the traversal of the tubes found. */
 typedef struct {
-  ss_limit *L;     /* the two-ring's evaluator (midpoint net) */
-  unsigned pbits;  /* the centre's corner of the current cell */
+  ss_limit *L;    /* the two-ring's evaluator (midpoint net) */
+  unsigned pbits; /* the centre's corner of the current cell */
   long maxden;
-  size_t boxes;    /* uncovered boxes */
-  size_t tubes;    /* with a tube */
-  size_t proven[2]; /* proven positive, negative */
-  size_t evals, agree; /* ss_limit_eval's signs checked, agreeing */
-  int mutate;      /* 0 none, 1 fold (layer 3 := layer 0), 2 degenerate */
-  size_t folded;   /* mutated tubes: "both signs" reported */
-  char why[200];   /* the first unproven tube's reason */
+  size_t boxes;                  /* uncovered boxes */
+  size_t tubes;                  /* with a tube */
+  size_t proven[2];              /* proven positive, negative */
+  size_t evals, agree;           /* ss_limit_eval's signs checked, agreeing */
+  int mutate;                    /* 0 none, 1 fold (layer 3 := layer 0), 2 degenerate */
+  size_t folded;                 /* mutated tubes: "both signs" reported */
+  char why[200];                 /* the first unproven tube's reason */
+  ss_psi_tube_cache *cache;      /* F's analyses, or NULL (each tube alone) */
+  size_t hist[65];               /* proven tubes by the layers they judged one by one */
+  double mu_lo, mu_hi, ratio_hi; /* the range of mu and |next| / mu met */
 } trav;
 
 static int skip_octant(size_t cell, int depth, const double o[3], void *arg) {
@@ -105,7 +108,8 @@ static void check_eval(trav *t, const ss_limit_piece *pc, int s) {
       x[u->axis] = pc->origin[u->axis] + h * 0.37;
       for (int k = 0; k < 2; k++) {
         const int a = u->across[k];
-        const int at_hi = (int)((u->corner >> a) & 1u), q_hi = (int)((u->quad[c] >> a) & 1u);
+        const int at_hi = (int)((u->corner >> a) & 1u),
+                  q_hi = (int)((u->quad[c] >> a) & 1u);
         /* inside quadrant c of the layer m: offset 2^-m (0.3 or 0.7) of the box
          * from the spoke's corner, towards the quadrant */
         const double f = ldexp(q_hi == at_hi ? 0.3 : 0.7, -m);
@@ -144,10 +148,14 @@ static int visit(const ss_limit_piece *pc, void *arg) {
   }
   ss_psi_tube_result r;
   ss_error err = {0};
-  if (ss_psi_tube_sign(&u, t->maxden, 4, &r, &err)) {
+  if (ss_psi_tube_sign(&u, t->maxden, 4, t->cache, &r, &err)) {
     fprintf(stderr, "tube: %s\n", err.msg);
   } else if (r.sign) {
     t->proven[r.sign > 0 ? 0 : 1]++;
+    t->hist[r.layers < 64 ? r.layers : 64]++;
+    if (t->mu_lo == 0.0 || r.mu < t->mu_lo) t->mu_lo = r.mu;
+    if (r.mu > t->mu_hi) t->mu_hi = r.mu;
+    if (r.ratio > t->ratio_hi) t->ratio_hi = r.ratio;
     if (!t->mutate && t->L) check_eval(t, pc, r.sign);
   } else {
     if (!t->why[0]) snprintf(t->why, sizeof t->why, "%.190s", r.why);
@@ -160,13 +168,14 @@ static int visit(const ss_limit_piece *pc, void *arg) {
 
 /* Every uncovered box of the ring of `link` at depth 2, with the basis's
  * columns times g. */
-static int tubes_of(const ss_scheme *s, const ss_pipeline *p, const double g[3], int mutate,
-                    int eval, trav *t) {
+static int tubes_of(const ss_scheme *s, const ss_pipeline *p, const double g[3],
+                    int mutate, int eval, trav *t) {
   memset(t, 0, sizeof *t);
   encl e;
   if (encl_get(p, g, &e)) return -1;
   t->maxden = ss_exact_defaults(3).maxden;
   t->mutate = mutate;
+  t->cache = mutate == 2 ? NULL : ss_psi_tube_cache_new(); /* one run without */
   ss_limit *L = psi_limit(s, p, e.mid);
   if (eval) t->L = L;
   const ss_limit_enclosure en = {e.lo, e.hi, exact_weight, &t->maxden};
@@ -183,6 +192,8 @@ static int tubes_of(const ss_scheme *s, const ss_pipeline *p, const double g[3],
     }
   }
   ss_limit_free(L);
+  ss_psi_tube_cache_free(t->cache);
+  t->cache = NULL;
   encl_free(&e);
   return rc;
 }
@@ -235,7 +246,7 @@ static void three_nets(void) {
         J[k][d] = A[k][k][d] * (flipz && d == 2 ? -1.0 : 1.0);
     const double det = psi_det3(J);
     const double(*L[3])[3] = {(cnet)nl[0], (cnet)nl[1], (cnet)nl[2]},
-                 (*H[3])[3] = {(cnet)nh[0], (cnet)nh[1], (cnet)nh[2]};
+          (*H[3])[3] = {(cnet)nh[0], (cnet)nh[1], (cnet)nh[2]};
     ss_psi_piece_sign_interval3(L, H, 2, &b);
     CHECK(det != 0.0 && b.sign == (det > 0 ? SS_JAC_POSITIVE : SS_JAC_NEGATIVE) &&
               fabs(b.min_coef - det) <= 1e-9 * fabs(det),
@@ -258,15 +269,16 @@ static void icosahedron(const ss_scheme *s) {
         "icosahedron: every tube proven, of one sign (%s)", t.why);
   CHECK(t.evals > 1000 && t.agree == t.evals,
         "icosahedron: ss_limit_eval's det Dpsi 2^-1..2^-40 off the spokes has the proven "
-        "sign (%zu of %zu)", t.agree, t.evals);
+        "sign (%zu of %zu)",
+        t.agree, t.evals);
   const size_t neg = t.proven[1];
   CHECK(!tubes_of(s, p, flip, 0, 0, &t) && t.tubes > 0 &&
             t.proven[0] + t.proven[1] == t.tubes && t.proven[0] == neg,
         "basis X G (det G = -1): every tube proven, of the other sign (%zu+ %zu-)",
         t.proven[0], t.proven[1]);
-  CHECK(!tubes_of(s, p, id, 1, 0, &t) && t.proven[0] + t.proven[1] == 0 &&
-            t.folded > 0,
-        "tubes whose spoke curve turns back: none proven, %zu fold (%s)", t.folded, t.why);
+  CHECK(!tubes_of(s, p, id, 1, 0, &t) && t.proven[0] + t.proven[1] == 0 && t.folded > 0,
+        "tubes whose spoke curve turns back: none proven, %zu fold (%s)", t.folded,
+        t.why);
   CHECK(!tubes_of(s, p, id, 2, 0, &t) && t.proven[0] + t.proven[1] == 0,
         "tubes with a' = 0 (degenerate): none proven (%s)", t.why);
   ss_pipeline_free(p);
@@ -274,8 +286,20 @@ static void icosahedron(const ss_scheme *s) {
 
 /* ss_psi_certify (through the pipeline): the verdict a proven pass on psi
  * with its tubes; the net had left k = 10's links undecided. */
+static ss_pipeline *run_tubes(const ss_scheme *s, const char *link, int tubes) {
+  ss_pipeline_opts o = ss_pipeline_defaults();
+  o.psi_depth = 2;
+  o.certify = 1;
+  o.psi_tubes = tubes;
+  return psi_run_with(s, link, &o);
+}
+
 static void certified(const ss_scheme *s, const char *link) {
-  ss_pipeline *p = psi_run(s, link, 2, 1);
+  ss_pipeline *q = run_tubes(s, link, 0);
+  CHECK(q && q->psi.ran && !q->psi.verdict.certified && q->psi.ntubes == 0,
+        "%s: without psi_tubes no proven verdict on psi (the tubes not proven)", link);
+  ss_pipeline_free(q);
+  ss_pipeline *p = run_tubes(s, link, 1);
   CHECK(p && p->psi.ran && p->psi.enclosed, "%s: psi judged on an enclosure", link);
   if (p && p->psi.ran) {
     const ss_psi_result *r = &p->psi;
@@ -295,7 +319,7 @@ static void refusals(void) {
   memset(&u, 0, sizeof u);
   ss_psi_tube_result r;
   ss_error err = {0};
-  CHECK(ss_psi_tube_sign(&u, 1 << 18, 4, &r, &err) == SS_EINPUT && r.sign == 0,
+  CHECK(ss_psi_tube_sign(&u, 1 << 18, 4, NULL, &r, &err) == SS_EINPUT && r.sign == 0,
         "a tube without an enclosure: SS_EINPUT (%s)", err.msg);
 }
 
@@ -311,6 +335,11 @@ int main(int argc, char **argv) {
       printf("%zu uncovered boxes, %zu tubes, proven %zu+ %zu-; ss_limit_eval %zu of %zu "
              "agree; first not proven: %s\n",
              t.boxes, t.tubes, t.proven[0], t.proven[1], t.agree, t.evals, t.why);
+    printf("mu in [%g, %g], |next| / mu <= %g; layers judged one by one:", t.mu_lo,
+           t.mu_hi, t.ratio_hi);
+    for (int m = 0; m < 65; m++)
+      if (t.hist[m]) printf(" %d: %zu", m, t.hist[m]);
+    printf("\n");
     ss_pipeline_free(p);
   } else {
     three_nets();
