@@ -76,6 +76,14 @@ static json_object *psi_json(const ss_psi_result *r) {
                          json_object_new_int64((int64_t)r->nuncovered));
   json_object_object_add(o, "box_depth", json_object_new_int(r->maxdepth));
   json_object_object_add(o, "piece_depth", json_object_new_int(r->piece_depth));
+  if (r->tubes) { /* the tubes proven (ss_psi_tube.h) */
+    json_object *t = json_object_new_object();
+    json_object_object_add(t, "proven", json_object_new_int64((int64_t)r->ntubes));
+    json_object_object_add(t, "boxes", json_object_new_int64((int64_t)r->nuncovered));
+    json_object_object_add(t, "layers", json_object_new_int(r->tube_layers));
+    json_object_object_add(t, "why", json_object_new_string(r->tube_why));
+    json_object_object_add(o, "tubes", t);
+  }
   if (r->by_masks) { /* decided at the ring's regular vertices (ss_psi_mask.h) */
     json_object *m = json_object_new_object();
     json_object_object_add(m, "count", json_object_new_int64((int64_t)r->nregular));

@@ -380,6 +380,7 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   w->ntarget = 0;
   w->need = r->sign;
   w->tubes = tubes;
+  r->tubes = tubes;
   w->maxden = e->maxden;
   w->err = err;
   size_t n;

@@ -175,6 +175,8 @@ typedef struct {
   int maxdepth;            /* the options used */
   int piece_depth;
   double seconds;     /* thread CPU time of the test */
+  int tubes;          /* 1 if the tubes' proofs ran (ss_psi_opts.tubes, the
+                         enclosure, a ring of one sign on its pieces) */
   size_t ntubes;      /* uncovered boxes whose tube round a spoke was
                          proven of the ring's sign (ss_psi_tube.h; with
                          the enclosure only) */

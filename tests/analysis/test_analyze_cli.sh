@@ -131,6 +131,12 @@ PY
 expect_in 0 '"judged_on":"control-net"' "" "$exe" analyze --scheme mlca --vertex octahedron --psi-depth 0 --format json
 expect_in 0 "psi on its polynomial pieces .*: pass; 8 pieces" "" "$exe" analyze --scheme mlca --vertex octahedron
 expect_in 2 "psi-depth: .* 0..8, not '9'" "" "$exe" analyze --scheme mlca --vertex octahedron --psi-depth 9
+# --psi-tubes: the spokes' tubes proven (the icosahedron: a certified pass on psi,
+# every one of its 120 tube boxes proven); only with --certify and a psi depth
+expect_in 0 '"tubes":{"proven":120,"boxes":120' "" "$exe" analyze --scheme mlca --vertex icosahedron --certify --psi-depth 2 --psi-tubes --format json
+expect_in 0 "regularity: pass, certified: det Dpsi of one sign on all 440 pieces and in the tubes of all 120 boxes" "" "$exe" analyze --scheme mlca --vertex icosahedron --certify --psi-depth 2 --psi-tubes
+expect_in 2 "--psi-tubes needs --certify" "" "$exe" analyze --scheme mlca --vertex icosahedron --psi-tubes
+expect_in 2 "--psi-tubes needs --certify" "" "$exe" analyze --scheme mlca --vertex icosahedron --certify --psi-depth 0 --psi-tubes
 expect_in 1 "regularity: undecided: no characteristic map" "" "$exe" analyze --scheme mlca --edge 8
 
 # --certify: proven verdicts.  The regular vertex: the exact roots 1 and 1/2
