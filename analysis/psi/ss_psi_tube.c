@@ -634,6 +634,7 @@ static void layers(tube_ws *w, ss_psi_tube_result *r) {
     }
     memcpy(tail_why, r->why, sizeof tail_why);
     r->why[0] = '\0';
+    w->tail_q = 0; /* back to single layers */
   }
   snprintf(r->why, sizeof r->why, "%.190s", tail_why[0] ? tail_why : "no tail bound");
 done:
