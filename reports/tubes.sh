@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# reports/tubes.sh — the MLCA vertex links the certified control net leaves
+# undecided, judged on psi with its spoke tubes proven (issue 34 section 3;
+# reports/README.md, finding 5).  Not part of ./run (about 6 s of CPU a link).
+#
+#   reports/tubes.sh [--max-k K] [--exe PATH] [--list FILE]
+#
+# Reads the links from the exhaustive tables' not-passing list
+# (reports/data/exhaustive-vertices-k4-12-not-passing.csv.xz: scheme mlca,
+# eigenvalue condition pass, regularity undecided, k <= K, default 11), or
+# from FILE (one plantri link per line), and runs for each
+#   subspectra analyze --scheme mlca --vertex LINK --certify --psi-depth 2 \
+#       --psi-tubes --format json
+# printing one JSON line per link (link, regularity and injectivity verdicts,
+# certified, judged_on, the tubes proven, the reason) and, on standard error,
+# the counts per k.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+maxk=11
+exe=${SUBSPECTRA:-"$here/../build/cli/subspectra"}
+list=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+  --max-k) maxk=$2; shift 2 ;;
+  --exe) exe=$2; shift 2 ;;
+  --list) list=$2; shift 2 ;;
+  -h | --help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  *) echo "tubes.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+case "$maxk" in
+'' | *[!0-9]*) echo "tubes.sh: --max-k expects an integer, not '$maxk'" >&2; exit 2 ;;
+esac
+[ -x "$exe" ] || { echo "tubes.sh: no subspectra at '$exe' (--exe PATH)" >&2; exit 2; }
+links=$(mktemp)
+trap 'rm -f "$links"' EXIT
+if [ -n "$list" ]; then
+  [ -r "$list" ] || { echo "tubes.sh: cannot read '$list'" >&2; exit 2; }
+  cp "$list" "$links"
+else
+  xz -dc "$here/data/exhaustive-vertices-k4-12-not-passing.csv.xz" | python3 -c '
+import csv, sys
+for r in csv.DictReader(sys.stdin):
+    if (r["scheme"] == "mlca" and r["eigen_condition"] == "pass"
+            and r["regularity"] == "undecided" and int(r["k"]) <= int(sys.argv[1])):
+        print(r["link"])
+' "$maxk" >"$links"
+fi
+while IFS= read -r link; do
+  [ -z "$link" ] && continue
+  # exit status 1 is a failing verdict, still a whole JSON object
+  out=$("$exe" analyze --scheme mlca --vertex "$link" --certify --psi-depth 2 \
+    --psi-tubes --format json) || [ $? -eq 1 ] ||
+    { echo "tubes.sh: analyze failed on '$link'" >&2; exit 2; }
+  printf '%s' "$out" | python3 -c '
+import json, sys
+o = json.load(sys.stdin)
+r, i = o["regularity"], o["injectivity"]
+t = (r.get("psi") or {}).get("tubes")
+print(json.dumps({"link": sys.argv[1], "regularity": r["verdict"],
+                  "certified": r["certified"], "judged_on": r.get("judged_on"),
+                  "injectivity": i["verdict"], "injectivity_certified": i["certified"],
+                  "tubes": t, "reason": r["reason"]}))
+' "$link"
+done <"$links" | tee "$links.out"
+python3 -c '
+import collections, json, sys
+c = collections.Counter()
+for line in open(sys.argv[1]):
+    o = json.loads(line)
+    k = o["link"].split()[0]
+    c[(k, o.get("regularity"), o.get("certified"), o.get("judged_on"))] += 1
+for (k, v, cert, on), n in sorted(c.items()):
+    print("k = %s: %d %s%s (judged on %s)" % (k, n, v, ", certified" if cert else "", on),
+          file=sys.stderr)
+' "$links.out"
+rm -f "$links.out"
