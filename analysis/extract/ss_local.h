@@ -24,7 +24,8 @@
  *     belong to a vertex inside the patch (not on its boundary, where the rule
  *     is truncated), and S read at levels (w, w+1) must equal S read at
  *     (w+1, w+2) (the stationary regime).  If room runs out, w grows, up to a
- *     limit; any other failure is SS_EINTERNAL, never a wrong matrix.
+ *     limit (and a cap on the patch's cells: SS_ENOMEM); any other failure
+ *     is SS_EINTERNAL, never a wrong matrix.
  *
  * Cells: the cells of level w whose corners all lie in the two-ring (the
  * cells the characteristic map's regularity is judged on; 64 hexes for the
@@ -124,7 +125,10 @@ typedef struct {
  * *out is owned by the caller (ss_local_free).  SS_EINPUT as ss_case_star;
  * SS_EINTERNAL if the two-ring or one-ring is not invariant, a row would be
  * read at the patch boundary even at the deepest level tried, or the matrix is
- * not stationary; SS_ENOMEM.  Cost: refining the star about w + 2 times, i.e.
+ * not stationary; SS_ENOMEM when an allocation fails or the refined patch
+ * would exceed its cap of 6e6 cells (a resource limit: quasi48 surface
+ * vertices of valence above about 600, Catmull-Clark or Loop ones of valence
+ * 100000).  Cost: refining the star about w + 2 times, i.e.
  * O(cells of the star * 8^(w+2)). */
 ss_status ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out,
                        ss_error *err);

@@ -240,8 +240,10 @@ ss_status ss_local_add_level(ss_local_levels *W, const unsigned char *near, int 
     if (st) return st;
   }
   if (8 * ss_cx_ncells(C->cx) > MAXCELLS)
-    return ss_error_set(err, SS_EINTERNAL,
-                        "no stationary neighbourhood before the patch exceeds %d cells",
+    return ss_error_set(err, SS_ENOMEM,
+                        "too large a case: the refined patch would exceed the cap of %d "
+                        "cells before a stationary neighbourhood is found (a resource "
+                        "limit, not a failed check)",
                         MAXCELLS);
   ss_progress_step(W->prog, "refining the star to level", (size_t)W->nlev, 0);
   ss_status st;

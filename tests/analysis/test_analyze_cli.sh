@@ -13,6 +13,10 @@ expect_in 0 "Matrix Market" "" "$exe" matrix --help
 expect_in 2 "unknown scheme 'nope'" "" "$exe" analyze --scheme nope --edge 4
 expect_in 2 "give exactly one of --scheme and --stencil" "" "$exe" analyze --edge 4
 expect_in 2 "exactly one of" "" "$exe" analyze --scheme mlca
+# a quasi48 surface vertex whose patch outgrows the extraction's cell cap is
+# a resource limit: exit 2 naming the cap, not 1 as a failed check (issue 35)
+expect_in 2 "too large a case: the refined patch would exceed the cap of 6000000 cells" "" "$exe" analyze --scheme quasi48 --surface-vertex 700
+expect_in 0 "patch's cap of 6e6 cells holds class 8 to N = 688" "" "$exe" analyze --help
 # stencil files: the shipped MLCA stencil gives the built-in scheme's result
 st="$(dirname "$0")/../../data/stencils"
 a=$("$exe" analyze --stencil "$st/mlca.ini" --vertex octahedron --format json | sed 's/"scheme":"[^"]*",//')
