@@ -14,6 +14,8 @@
  *     proven;
  *   - ss_psi_certify: the icosahedron's ψ a certified pass with its tubes;
  *     k = 10 links whose net is undecided: certified pass on ψ;
+ *   - on the edge of the proof: the points' enclosure widened by 1e-9 of its
+ *     spread, every tube still proven; by 10 %, none;
  *   - refusals: a tube without an enclosure (SS_EINPUT). */
 #include <math.h>
 #include <stdlib.h>
@@ -139,11 +141,20 @@ static int visit(const ss_limit_piece *pc, void *arg) {
     lo = malloc(4 * n * sizeof *lo), hi = malloc(4 * n * sizeof *hi);
     memcpy(lo, u.lo, 4 * n * sizeof *lo);
     memcpy(hi, u.hi, 4 * n * sizeof *hi);
-    for (int l = 1; l < 4; l++)
-      if (t->mutate == 2 || l == 3) {
-        memcpy(lo + (size_t)l * n, u.lo, n * sizeof *lo);
-        memcpy(hi + (size_t)l * n, u.hi, n * sizeof *hi);
-      }
+    if (t->mutate <= 2) {
+      for (int l = 1; l < 4; l++)
+        if (t->mutate == 2 || l == 3) {
+          memcpy(lo + (size_t)l * n, u.lo, n * sizeof *lo);
+          memcpy(hi + (size_t)l * n, u.hi, n * sizeof *hi);
+        }
+    } else { /* widened by a share of the points' spread: 1e-9 (3), 0.1 (4) */
+      double mn = INFINITY, mx = -INFINITY;
+      for (size_t i = 0; i < 4 * n; i++)
+        mn = fmin(mn, lo[i]), mx = fmax(mx, hi[i]);
+      const double d = (t->mutate == 3 ? 1e-9 : 0.1) * (mx - mn);
+      for (size_t i = 0; i < 4 * n; i++)
+        lo[i] -= d, hi[i] += d;
+    }
     u.lo = lo, u.hi = hi;
   }
   ss_psi_tube_result r;
@@ -281,6 +292,12 @@ static void icosahedron(const ss_scheme *s) {
         t.why);
   CHECK(!tubes_of(s, p, id, 2, 0, &t) && t.proven[0] + t.proven[1] == 0,
         "tubes with a' = 0 (degenerate): none proven (%s)", t.why);
+  /* the proof on both sides of its edge: it uses the points' enclosure */
+  CHECK(!tubes_of(s, p, id, 3, 0, &t) && t.proven[1] == t.tubes && t.tubes > 0,
+        "enclosure widened by 1e-9 of its spread: every tube still proven (%zu of %zu)",
+        t.proven[1], t.tubes);
+  CHECK(!tubes_of(s, p, id, 4, 0, &t) && t.proven[0] + t.proven[1] == 0,
+        "enclosure widened by 10 %% of its spread: no tube proven (%s)", t.why);
   ss_pipeline_free(p);
 }
 
