@@ -276,11 +276,12 @@ static void describe(ss_psi_result *r) {
              r->witness[1].det[0], r->witness[1].det[1], r->witness[1].cell,
              r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2], how);
   else if (v->verdict == SS_PASS && r->enclosed && r->ntubes)
-    snprintf(v->reason, sizeof v->reason,
-             "det Dpsi of one sign on all %zu pieces and in the tubes of all %zu boxes "
-             "round its spokes (every layer to the spoke: up to %d one by one, the rest "
-             "by a bound on the edge's smaller modes)%s",
-             r->pieces, r->ntubes, r->tube_layers, how);
+    snprintf(
+        v->reason, sizeof v->reason,
+        "det Dpsi of one sign on all %zu pieces and in the tubes of all %zu boxes "
+        "round its spokes (every layer to the spoke: the first %d directly, the rest "
+        "by a bound on the edge's smaller modes)%s",
+        r->pieces, r->ntubes, r->tube_layers, how);
   else if (v->verdict == SS_PASS && r->enclosed)
     snprintf(v->reason, sizeof v->reason, "det Dpsi of one sign on all %zu pieces%s",
              r->pieces, how);

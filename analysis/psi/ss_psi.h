@@ -180,7 +180,7 @@ typedef struct {
   size_t ntubes;      /* uncovered boxes whose tube round a spoke was
                          proven of the ring's sign (ss_psi_tube.h; with
                          the enclosure only) */
-  int tube_layers;    /* the most layers one of them judged one by one
+  int tube_layers;    /* the most layers one of them judged directly
                          before its tail bound */
   char tube_why[240]; /* the first tube not proven: where and why (else
                          empty) */

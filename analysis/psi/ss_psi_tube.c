@@ -20,11 +20,7 @@
 #define PREC  128
 #define NNORM 160 /* powers of N / mu whose norms are bounded */
 #define QMAX  96  /* the period q of the tail bound is at most this */
-#define NTAU  64  /* layers judged one by one at most */
-
-/* the layers after which the tail is tried (m0) */
-static const int tail_at[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 63};
-#define NTAIL ((int)(sizeof tail_at / sizeof tail_at[0]))
+#define NTAU  64  /* layers judged directly at most */
 
 /* What the proof holds (method: ss_psi_tube.h). */
 typedef struct {
@@ -484,7 +480,27 @@ static void tail_product(arb_mat_t Y, const arb_mat_t B, const tube_ws *w) {
 }
 
 /* tau beta, tau bmu, tau b1: by products (tau given) or bounded (eps >= 0) */
-static void products(const tube_ws *w, const arb_mat_t tau, double eps, arb_mat_t TB,
+/* Y <- a matrix holding tau_m B for every m in [m1, m2): their hull, entry by
+ * entry (tau_m computed, w->tau). */
+static void window_product(arb_mat_t Y, const arb_mat_t B, const tube_ws *w, int m1,
+                           int m2) {
+  arb_mat_mul(Y, w->tau + m1, B, PREC);
+  if (m2 <= m1 + 1) return;
+  arb_mat_t Z;
+  arb_mat_init(Z, arb_mat_nrows(Y), arb_mat_ncols(Y));
+  for (int m = m1 + 1; m < m2; m++) {
+    arb_mat_mul(Z, w->tau + m, B, PREC);
+    for (slong i = 0; i < arb_mat_nrows(Y); i++)
+      for (slong j = 0; j < arb_mat_ncols(Y); j++)
+        arb_union(arb_mat_entry(Y, i, j), arb_mat_entry(Y, i, j), arb_mat_entry(Z, i, j),
+                  PREC);
+  }
+  arb_mat_clear(Z);
+}
+
+/* tau beta, tau bmu, tau b1: over the layers [m1, m2) (their hull), or for
+ * every layer from w->tail_m0 on (eps >= 0: the tail, bounded) */
+static void products(const tube_ws *w, int m1, int m2, double eps, arb_mat_t TB,
                      arb_mat_t TM, arb_mat_t T1) {
   if (eps >= 0.0) {
     tail_product(TB, w->beta, w);
@@ -492,18 +508,18 @@ static void products(const tube_ws *w, const arb_mat_t tau, double eps, arb_mat_
     tail_product(T1, w->b1, w);
     return;
   }
-  arb_mat_mul(TB, tau, w->beta, PREC);
-  arb_mat_mul(TM, tau, w->bmu, PREC);
-  arb_mat_mul(T1, tau, w->b1, PREC);
+  window_product(TB, w->beta, w, m1, m2);
+  window_product(TM, w->bmu, w, m1, m2);
+  window_product(T1, w->b1, w, m1, m2);
 }
 
-static void layer_nets(const tube_ws *w, const arb_mat_t tau, double eps, const arb_t s,
+static void layer_nets(const tube_ws *w, int m1, int m2, double eps, const arb_t s,
                        arb_mat_t Vx, arb_mat_t Vy) {
   const slong n = (slong)w->n, r = (slong)w->r;
   arb_mat_t TB, TM, T1, cf;
   arb_mat_init(TB, r, 12), arb_mat_init(TM, r, 12), arb_mat_init(T1, r, 12);
   arb_mat_init(cf, 3, 12);
-  products(w, tau, eps, TB, TM, T1);
+  products(w, m1, m2, eps, TB, TM, T1);
   arb_t v;
   arb_init(v);
   for (slong j = 0; j < 12; j++) {
@@ -576,11 +592,11 @@ static int judge_quadrant(const tube_ws *w, int c, const arb_mat_t Vx, const arb
 
 /* One layer (tau or eps as layer_nets, s): the three quadrants' common strict sign, or 0
  * with why. */
-static int judge_layer(const tube_ws *w, const arb_mat_t tau, double eps, const arb_t s,
+static int judge_layer(const tube_ws *w, int m1, int m2, double eps, const arb_t s,
                        const char *what, ss_psi_tube_result *r) {
   arb_mat_t Vx, Vy;
   arb_mat_init(Vx, (slong)w->n, 12), arb_mat_init(Vy, (slong)w->n, 12);
-  layer_nets(w, tau, eps, s, Vx, Vy);
+  layer_nets(w, m1, m2, eps, s, Vx, Vy);
   int sign = 0;
   for (int c = 0; c < 3; c++) {
     int fold = 0;
@@ -599,42 +615,66 @@ static int judge_layer(const tube_ws *w, const arb_mat_t tau, double eps, const 
   return sign;
 }
 
-/* The layers one by one, and the tail tried after tail_at[] of them. */
+/* The layers [m1, m2) at once (tau_m's and mu^m's hulls), halved where that
+ * does not settle them, down to single layers: 1 if all have the strict sign
+ * *sign (set by the first), else 0 with why. */
+static int judge_window(const tube_ws *w, int m1, int m2, int *sign,
+                        ss_psi_tube_result *r) {
+  arb_t s, t;
+  arb_init(s), arb_init(t);
+  arb_pow_ui(s, w->mu, (ulong)m1, PREC);
+  arb_pow_ui(t, w->mu, (ulong)(m2 - 1), PREC);
+  arb_union(s, s, t, PREC);
+  char what[64];
+  if (m2 == m1 + 1)
+    snprintf(what, sizeof what, "layer %d", m1);
+  else
+    snprintf(what, sizeof what, "layers %d..%d", m1, m2 - 1);
+  const int sl = judge_layer(w, m1, m2, -1.0, s, what, r);
+  arb_clear(s), arb_clear(t);
+  if (sl && (!*sign || sl == *sign)) {
+    *sign = sl;
+    r->why[0] = '\0';
+    return 1;
+  }
+  if (m2 == m1 + 1) {
+    if (sl) snprintf(r->why, sizeof r->why, "layer %d has the other sign", m1);
+    return 0;
+  }
+  const int mid = (m1 + m2) / 2;
+  return judge_window(w, m1, mid, sign, r) && judge_window(w, mid, m2, sign, r);
+}
+
+/* The layers in windows [0, 1), [1, 2), [2, 4), [4, 8), ... and after each the
+ * tail from its end on. */
 static void layers(tube_ws *w, ss_psi_tube_result *r) {
   arb_t s, st;
   arb_init(s), arb_init(st);
-  arb_one(s);
-  int sign = 0, ti = 0;
+  int sign = 0;
   char what[64], tail_why[sizeof r->why] = "";
-  for (int m = 0; m < tail_at[NTAIL - 1]; m++) {
-    snprintf(what, sizeof what, "layer %d", m);
-    const int sl = judge_layer(w, w->tau + m, -1.0, s, what, r);
-    if (!sl || (sign && sl != sign)) {
-      if (sl) snprintf(r->why, sizeof r->why, "layer %d has the other sign", m);
-      goto done;
-    }
-    sign = sl;
-    arb_mul(s, s, w->mu, PREC);
-    if (ti >= NTAIL || m + 1 != tail_at[ti]) continue;
-    ti++;
+  for (int m = 0, width = 1; m < NTAU - 1; width *= 2) {
+    const int m2 = m + width < NTAU - 1 ? m + width : NTAU - 1;
+    if (!judge_window(w, m, m2, &sign, r)) goto done;
+    m = m2;
     double eps = NAN;
-    w->tail_q = tail_period(w, m + 1, &eps);
-    w->tail_m0 = m + 1;
+    w->tail_q = tail_period(w, m, &eps);
+    w->tail_m0 = m;
     if (!w->tail_q) continue;
     double slo, shi;
+    arb_pow_ui(s, w->mu, (ulong)m, PREC);
     bounds_of(s, &slo, &shi);
     ball_of(st, 0.0, shi);
-    snprintf(what, sizeof what, "the layers from %d on (tail bound %.3g)", m + 1, eps);
-    if (judge_layer(w, w->tau, eps, st, what, r) == sign) {
+    snprintf(what, sizeof what, "the layers from %d on (tail bound %.3g)", m, eps);
+    if (judge_layer(w, 0, 0, eps, st, what, r) == sign) {
       r->sign = sign;
-      r->layers = m + 1;
+      r->layers = m;
       r->eps = eps;
       r->why[0] = '\0';
       goto done;
     }
     memcpy(tail_why, r->why, sizeof tail_why);
     r->why[0] = '\0';
-    w->tail_q = 0; /* back to single layers */
+    w->tail_q = 0; /* back to the windows */
   }
   snprintf(r->why, sizeof r->why, "%.190s", tail_why[0] ? tail_why : "no tail bound");
 done:

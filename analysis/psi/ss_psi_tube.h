@@ -25,8 +25,11 @@
  * G_c(1 a + mu^m (...)) | ∂_across of net G_c Vy_m] (the across columns
  * scaled by mu^-m > 0): ss_psi_piece_sign_interval3 on the two nets.
  *
- * Layers m = 0 .. m0 - 1 are judged one by one with tau_m computed; every
- * layer m >= m0 at once with tau_m replaced by the matrix of entries in
+ * Layers m = 0 .. m0 - 1 are judged directly with tau_m computed, in windows
+ * [0, 1), [1, 2), [2, 4), [4, 8), ... (a window at once with the hulls of its
+ * tau_m beta and mu^m, halved down to single layers where that does not
+ * settle it), and after each window every layer m >= m0 (its end) at once with tau_m
+ * replaced by the matrix of entries in
  * [-eps, eps] and mu^m by [0, mu^m0], where eps = max ||tau_r||_inf over r in
  * [m0, m0 + q) for a q with ||tau_q||_inf <= 1 (then ||tau_m|| <= eps for
  * every m >= m0).  All of them of one strict sign: det Dψ has that sign on
@@ -46,7 +49,7 @@ SS_BEGIN_DECLS
 typedef struct {
   int sign;      /* +1 / -1: det Dψ proven of that strict sign on the box
                     minus the spoke; 0: not proven (why says why) */
-  int layers;    /* m0: the layers judged one by one before the tail */
+  int layers;    /* m0: the layers judged directly before the tail */
   double mu;     /* the across eigenvalue (midpoint of its enclosure) */
   double ratio;  /* |next root| / mu (midpoints): the tail's rate */
   double eps;    /* the tail bound used, or NaN */

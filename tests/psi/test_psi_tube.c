@@ -83,7 +83,7 @@ typedef struct {
   size_t folded;                 /* mutated tubes: "both signs" reported */
   char why[200];                 /* the first unproven tube's reason */
   ss_psi_tube_cache *cache;      /* F's analyses, or NULL (each tube alone) */
-  size_t hist[65];               /* proven tubes by the layers they judged one by one */
+  size_t hist[65];               /* proven tubes by the layers they judged directly */
   double mu_lo, mu_hi, ratio_hi; /* the range of mu and |next| / mu met */
 } trav;
 
@@ -352,8 +352,8 @@ int main(int argc, char **argv) {
       printf("%zu uncovered boxes, %zu tubes, proven %zu+ %zu-; ss_limit_eval %zu of %zu "
              "agree; first not proven: %s\n",
              t.boxes, t.tubes, t.proven[0], t.proven[1], t.agree, t.evals, t.why);
-    printf("mu in [%g, %g], |next| / mu <= %g; layers judged one by one:", t.mu_lo,
-           t.mu_hi, t.ratio_hi);
+    printf("mu in [%g, %g], |next| / mu <= %g; layers judged directly:", t.mu_lo, t.mu_hi,
+           t.ratio_hi);
     for (int m = 0; m < 65; m++)
       if (t.hist[m]) printf(" %d: %zu", m, t.hist[m]);
     printf("\n");
