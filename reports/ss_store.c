@@ -163,6 +163,13 @@ static ss_status validate(ss_store *st, int *empty, int *old, ss_error *err) {
              rc == SQLITE_ROW ? (const char *)sqlite3_column_text(q, 0)
                               : sqlite3_errmsg(st->db));
     sqlite3_finalize(q);
+    /* a row against a constraint (a hand edit with ignore_check_constraints):
+     * name it as ss_store_check_rows does */
+    ss_status s;
+    if (ver == SS_STORE_SCHEMA &&
+        (!strncmp(what, "CHECK constraint", 16) || !strncmp(what, "NULL value in", 13)) &&
+        (s = ss_store_check_rows(st, err)))
+      return s;
     return ss_error_set(err, SS_EINPUT, "%s: corrupt results store (%s)", st->path, what);
   }
   sqlite3_finalize(q);
@@ -280,6 +287,7 @@ ss_status ss_store_open(const char *path, ss_store_mode mode, ss_store **out,
     }
   }
   if (old && (s = ss_store_schema_upgrade(st, err))) goto fail;
+  if ((s = ss_store_check_rows(st, err))) goto fail;
   if ((s = prepare(st, err))) goto fail;
   *out = st;
   return SS_OK;
@@ -595,7 +603,13 @@ ss_status ss_store_each(ss_store *st, const char *where, ss_store_visit visit, v
     ss_result *r = &row.r;
     const int kind = kind_of((const char *)sqlite3_column_text(q, 2));
     if (kind < 0 || parse_eig((const char *)sqlite3_column_text(q, 8), r)) {
-      s = ss_error_set(err, SS_EINPUT, "%s: malformed result row", st->path);
+      s = ss_error_set(
+          err, SS_EINPUT,
+          "%s: invalid row (hand-edited?): table result, row (%s, kind '%s', "
+          "k %d, link '%.200s'): eigenvalues = '%.60s' is not a JSON list of "
+          "at most %d [re, im, multiplicity]",
+          st->path, row.identity, sqlite3_column_text(q, 2), sqlite3_column_int(q, 3),
+          sqlite3_column_text(q, 4), sqlite3_column_text(q, 8), SS_RESULT_NEIG);
       break;
     }
     r->kind = (ss_case_kind)kind;

@@ -97,9 +97,11 @@ void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n);
 /* Open path (see ss_store_mode).  An existing file must be a subspectra store
  * of this schema version or of version 2 (upgraded when opened to write, read
  * as it is when read-only: see "Versions" above) and pass SQLite's
- * quick_check.  *out is owned by the
- * caller (ss_store_close).  SS_EINPUT: not SQLite, corrupt, a foreign
- * database, or another schema version (the message says which); SS_EIO: the
+ * quick_check, and every row must be valid: each column of the type, range or
+ * names this program writes, each result's scheme row there.  *out is owned
+ * by the caller (ss_store_close).  SS_EINPUT: not SQLite, corrupt, a foreign
+ * database, another schema version, or invalid rows (a hand edit: the
+ * message names the table, row, column and value of the first ones); SS_EIO: the
  * file cannot be opened or created, or (SS_STORE_WRITE) this process cannot
  * write it or create its -wal and -shm files (a read-only file system, the
  * file's or directory's permissions), or another process has held it

@@ -44,4 +44,10 @@ ss_status ss_store_schema_create(ss_store *st, int *raced, ss_error *err);
  * in temp first) show the missing columns as NULL.  SS_EIO. */
 ss_status ss_store_schema_upgrade(ss_store *st, ss_error *err);
 
+/* Every row of the store valid: each column of the type, range or names
+ * ss_store_put and ss_store_scheme_id write, each result's scheme row there
+ * (ss_store_check.c).  SS_EINPUT naming the store and the first invalid rows
+ * (table, row, column, value, what it should be); SS_EIO, SS_ENOMEM. */
+ss_status ss_store_check_rows(ss_store *st, ss_error *err);
+
 #endif

@@ -532,30 +532,11 @@ static ss_status elements_v41(scan *s, ss_gmsh_decl *d) {
   return blocks_end(s, h, total, "elements", "$EndElements");
 }
 
-/* ---- version 4.0: the header's total (ASCII line or two binary unsigned
- * longs: blocks, then the count), then the section is only required to end ---- */
-
-static ss_status section_v40(scan *s, const char *name, uint64_t *count) {
-  uint64_t h[2];
-  ss_status st = SS_OK;
-  if (s->binary) {
-    if (!(st = rd_size(s, h, "the header")) && !(st = rd_size(s, h + 1, "the header")))
-      *count = h[1];
-  } else {
-    const int k = data_line(s, "the header 'BLOCKS COUNT'");
-    if (k < 0) return SS_EINPUT;
-    if (k != 2 || !count_of(s->tok[0], h) || !count_of(s->tok[1], h + 1))
-      return fail(s, "the header 'BLOCKS COUNT' expected, found '%s'", quote(s));
-    *count = h[1];
-  }
-  return st ? st : skip_section(s, name);
-}
-
 /* ---- $MeshFormat, then the sections ---- */
 
 /* "$MeshFormat", "VERSION TYPE SIZE", in binary the integer 1 on a line of its
  * own, "$EndMeshFormat". */
-static ss_status mesh_format(scan *s, ss_gmsh_decl *d, int *v40) {
+static ss_status mesh_format(scan *s, ss_gmsh_decl *d) {
   s->sec = "$MeshFormat";
   if (!get_line(s) || !is(s, "$MeshFormat"))
     return fail(s, "'$MeshFormat' expected on the first line");
@@ -567,7 +548,9 @@ static ss_status mesh_format(scan *s, ss_gmsh_decl *d, int *v40) {
   ver = strtod(s->tok[0], NULL);
   d->version = (int)ver;
   if (d->version != 2 && d->version != 4) return fail(s, "version %.20s", s->tok[0]);
-  *v40 = d->version == 4 && ver < 4.05;
+  if (d->version == 4 && ver < 4.05) /* (ss_mesh_gmsh.c refuses it first) */
+    return fail(s,
+                "MSH 4.0 is not supported; re-save as 4.1 (gmsh -format msh41) or 2.2");
   d->binary = s->binary = type;
   if (s->binary) {
     uint32_t one;
@@ -585,30 +568,18 @@ static ss_status mesh_format(scan *s, ss_gmsh_decl *d, int *v40) {
 }
 
 /* One section whose "$Name" line was just read. */
-static ss_status section(scan *s, ss_gmsh_decl *d, int v40, int *seen) {
+static ss_status section(scan *s, ss_gmsh_decl *d, int *seen) {
   if (is(s, "$Nodes") || is(s, "$ParametricNodes")) {
     const int par = s->buf[1] == 'P';
     s->sec = par ? "$ParametricNodes" : "$Nodes";
     if (seen[0]++) return fail(s, "a second node section");
     if (par && d->version != 2) return fail(s, "parametric nodes are read in version 2");
-    if (v40) {
-      uint64_t n = 0;
-      ss_status st = section_v40(s, "$Nodes", &n);
-      d->nodes = (size_t)n;
-      return st;
-    }
     return d->version == 2 ? nodes_v2(s, par, d) : nodes_v41(s, d);
   }
   if (is(s, "$Elements")) {
     s->sec = "$Elements";
     if (seen[1]++) return fail(s, "a second $Elements section");
     if (!seen[0]) return fail(s, "elements before any nodes");
-    if (v40) {
-      uint64_t n = 0;
-      ss_status st = section_v40(s, "$Elements", &n);
-      d->elements = (size_t)n;
-      return st;
-    }
     return d->version == 2 ? elements_v2(s, d) : elements_v41(s, d);
   }
   static const char word[] =
@@ -634,11 +605,11 @@ ss_status ss_mesh_gmsh_scan(const char *path, ss_gmsh_decl *decl, ss_error *err)
     free(s);
     return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(e));
   }
-  int v40 = 0, seen[2] = {0, 0};
-  ss_status st = mesh_format(s, decl, &v40);
+  int seen[2] = {0, 0};
+  ss_status st = mesh_format(s, decl);
   while (!st && get_line(s)) {
     if (blank(s)) continue;
-    st = section(s, decl, v40, seen);
+    st = section(s, decl, seen);
     s->sec = "";
   }
   if (!st && ferror(s->f))
@@ -649,7 +620,6 @@ ss_status ss_mesh_gmsh_scan(const char *path, ss_gmsh_decl *decl, ss_error *err)
     st = fail(s, "no $Elements section: the %zu nodes make no cells", decl->nodes);
   else if (!st && !decl->elements)
     st = fail(s, "$Elements declares no elements: a mesh needs cells");
-  decl->per_type = !v40;
   fclose(s->f);
   free(s);
   return st;

@@ -8,8 +8,8 @@
  * binary) and checks that every count agrees with what follows it, every
  * element has the nodes of its type, the type is one read here, and every
  * section ends with its $End line; ss_mesh_gmsh.c then compares what gmsh
- * returns with the counts declared.  Version 4.0 is scanned for its sections
- * and its $Elements total only.  Coordinates and tags are not interpreted
+ * returns with the counts declared.  Version 4.0 ("4", "4.0") is refused:
+ * its entity blocks are not checked.  Coordinates and tags are not interpreted
  * (gmsh does that); sections other than $MeshFormat, $Nodes and $Elements are
  * only required to end. */
 #ifndef SS_MESH_GMSH_SCAN_H
@@ -24,14 +24,13 @@
 typedef struct {
   int version;                 /* major version: 2 or 4 */
   int binary;                  /* 1: binary data sections, 0: ASCII */
-  int per_type;                /* 1: cells[] holds the counts per type (all but 4.0) */
   size_t nodes;                /* nodes in $Nodes */
   size_t elements;             /* elements in $Elements (all of them cells here) */
   size_t cells[SS_NCELLTYPES]; /* of the elements, how many of each cell type */
 } ss_gmsh_decl;
 
 /* Scan the .msh file at path (its first two lines already checked to be a
- * version 2 or 4 $MeshFormat) into *decl.  SS_EINPUT with "path:LINE:
+ * version 2 or 4.1 $MeshFormat) into *decl.  SS_EINPUT with "path:LINE:
  * $Section: problem" for any inconsistency: a count that does not match what
  * follows, an element line with more or fewer nodes than its type, an element
  * type that has no cell here (polygons, prisms, second order...), a missing

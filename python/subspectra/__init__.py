@@ -10,7 +10,8 @@ is compiled).  A case is one of
     surface_vertex=N       a 2D vertex of valence N
 
 with diagonals="bfs"|"proper"|"skew"|"center" for schemes that read major
-diagonals.
+diagonals.  Integer arguments must be integers (edge=5.7 or 5.0 raises
+TypeError naming the argument); arguments that do not apply are refused.
 
     local_matrix(scheme, **case)   the local subdivision matrix S (scipy.sparse CSR)
     eigenvalues(scheme, **case)    all eigenvalues of S (NumPy complex array,
@@ -27,6 +28,7 @@ The library is looked for in $SUBSPECTRA_LIBRARY, then where `meson install`
 put it, then by the dynamic linker's search (libsubspectra.so.0).
 """
 import json
+import operator
 import os
 
 import numpy as np
@@ -174,6 +176,18 @@ def scheme_names():
     return out
 
 
+def _integer(name, v):
+    """v as an int, or TypeError naming the argument: a float (5.7, or 5.0)
+    or a string is not silently truncated to an integer; bool is refused;
+    integers of other types (numpy's) are taken through __index__."""
+    if isinstance(v, bool):
+        raise TypeError("%s: expected an integer, not %r" % (name, v))
+    try:
+        return operator.index(v)
+    except TypeError:
+        raise TypeError("%s: expected an integer, not %r" % (name, v)) from None
+
+
 class _Case:
     """A scheme and a case, built in C; freed on exit (a context manager)."""
 
@@ -191,7 +205,13 @@ class _Case:
         try:
             _check(_lib.ss_scheme_new(scheme.encode(), self._s, self.err), self.err)
             self.scheme = self._s[0]
+            if cls is not None and surface_vertex is None:
+                raise ValueError("cls: the 4-8 class of a quasi48 surface_vertex; no "
+                                 "other case has one")
             if diagonals is not None:
+                if not isinstance(diagonals, str):
+                    raise TypeError("diagonals: expected bfs, proper, skew or center, "
+                                    "not %r" % (diagonals,))
                 d = _ffi.new("int *")
                 if _lib.ss_diag_parse(diagonals.encode(), d):
                     raise ValueError("diagonals: expected bfs, proper, skew or center, not %r"
@@ -201,13 +221,14 @@ class _Case:
                 _check(_lib.ss_link_parse(vertex.encode(), self._l, self.err), self.err)
                 self.c.kind, self.c.link = _VERTEX, self._l[0]
             elif edge is not None:
-                self.c.kind, self.c.n = _EDGE, int(edge)
+                self.c.kind, self.c.n = _EDGE, _integer("edge", edge)
             elif face:
                 self.c.kind = _FACE
             else:
-                self.c.kind, self.c.n = _SURFACE_VERTEX, int(surface_vertex)
+                self.c.kind, self.c.n = _SURFACE_VERTEX, _integer("surface_vertex",
+                                                                  surface_vertex)
             if cls is not None:  # quasi48: the 4-8 class, as analyze --class
-                if cls not in (4, 8):
+                if _integer("cls", cls) not in (4, 8):
                     raise ValueError("cls: expected 4 or 8, not %r" % (cls,))
                 self.c.cls = cls
         except BaseException:
@@ -282,7 +303,7 @@ def eigenvectors(scheme, k=4, tol=1e-6, **case):
     left[:, 0] is the limit-position mask, the next columns the tangent masks."""
     def use(M, err):
         pv = _ffi.new("ss_eigvec **")
-        _check(_lib.ss_eigvec_new(M.S, M.n2, int(k), tol, pv, err), err)
+        _check(_lib.ss_eigvec_new(M.S, M.n2, _integer("k", k), tol, pv, err), err)
         try:
             v = pv[0]
             n, kk = v.n, v.k
@@ -314,11 +335,11 @@ def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, dia
         if tol is not None:
             o.tol = tol
         if eigenvalues is not None:
-            o.neig = eigenvalues
+            o.neig = _integer("eigenvalues", eigenvalues)
         if depth is not None:
-            o.depth = depth
+            o.depth = _integer("depth", depth)
         if ring_levels is not None:
-            o.ring_levels = ring_levels
+            o.ring_levels = _integer("ring_levels", ring_levels)
         o.certify = 1 if certify else 0
         out = _ffi.new("char **")
         _check(_lib.ss_report_analyze(c.scheme, c.c, o, out, c.err), c.err)

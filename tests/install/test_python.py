@@ -176,6 +176,50 @@ try:
     fail("two cases did not raise")
 except ValueError:
     pass
+# arguments that are not integers, or do not apply, are refused by name
+# (issue 35: edge=5.7 was read as 5, cls=8 ignored for mlca, diagonals="skew"
+# on mlca's edge said "only for the edge case")
+for kw, exc, what in (
+        ({"edge": 5.7}, TypeError, "edge: expected an integer, not 5.7"),
+        ({"edge": 5.0}, TypeError, "edge: expected an integer, not 5.0"),
+        ({"edge": "5"}, TypeError, "edge: expected an integer, not '5'"),
+        ({"edge": True}, TypeError, "edge: expected an integer, not True"),
+        ({"surface_vertex": 4.5}, TypeError, "surface_vertex: expected an integer"),
+        ({"edge": 5, "depth": 2.5}, TypeError, "depth: expected an integer, not 2.5"),
+        ({"edge": 5, "eigenvalues": 3.5}, TypeError, "eigenvalues: expected an integer"),
+        ({"edge": 5, "ring_levels": 1.5}, TypeError, "ring_levels: expected an integer"),
+        ({"edge": 5, "cls": 8}, ValueError, "cls: the 4-8 class of a quasi48 surface_vertex"),
+        ({"vertex": "octahedron", "cls": 4}, ValueError, "cls: the 4-8 class"),
+        ({"edge": 5, "diagonals": 1}, TypeError, "diagonals: expected bfs"),
+        ({"edge": 5, "diagonals": "skew"}, subspectra.SubspectraError,
+         "scheme mlca does not read major diagonals: diagonals 'skew' do not apply")):
+    try:
+        subspectra.analyze("mlca", **kw)
+        fail("analyze('mlca', %s) did not raise" % kw)
+    except exc as e:
+        if what not in str(e) or "only for the edge case" in str(e):
+            fail("analyze('mlca', %s): %s" % (kw, e))
+    except Exception as e:  # noqa: BLE001 -- the wrong kind of error
+        fail("analyze('mlca', %s): %s, not %s: %s" % (kw, type(e).__name__, exc.__name__, e))
+for kw, what in (({"surface_vertex": 5, "cls": 8}, "a 4-8 vertex class exists only for "
+                  "quasi48"),):
+    try:
+        subspectra.analyze("loop", **kw)
+        fail("analyze('loop', %s) did not raise" % kw)
+    except subspectra.SubspectraError as e:
+        if what not in str(e):
+            fail("analyze('loop', %s): %s" % (kw, e))
+try:
+    subspectra.eigenvectors("mlca", k=2.5, edge=4)
+    fail("eigenvectors(k=2.5) did not raise")
+except TypeError as e:
+    if "k: expected an integer, not 2.5" not in str(e):
+        fail("eigenvectors(k=2.5): %s" % e)
+# what still holds: integers of numpy's types, quasi48's class 4
+if subspectra.analyze("mlca", edge=np.int64(5))["case"] != "edge":
+    fail("edge=np.int64(5) is not the edge case")
+if subspectra.analyze("quasi48", surface_vertex=5, cls=np.int32(4)).get("class") != 4:
+    fail("quasi48 cls=np.int32(4) is not class 4")
 print("ok: bad input")
 
 sys.exit(1 if fails else 0)

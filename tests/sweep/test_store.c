@@ -407,6 +407,98 @@ static void schema_versions(const char *dir, const ss_scheme *mlca, const ss_lin
   refused_newer(newer);
 }
 
+/* One hand edit of a copy of the valid store at path: open (read and write)
+ * and merge refuse it, saying each of want (NULL-terminated) and the copy's
+ * name; the original still merges. */
+static void edited(const char *dir, const char *path, const char *edit, ...) {
+  char copy[300], q[700];
+  static int n;
+  snprintf(copy, sizeof copy, "%s/edited%d.db", dir, n++);
+  snprintf(q, sizeof q, "VACUUM INTO '%s'", copy);
+  sql(path, q);
+  sql(copy, edit);
+  const char *want[8];
+  int nw = 0;
+  va_list ap;
+  va_start(ap, edit);
+  for (const char *w; nw < 8 && (w = va_arg(ap, const char *));)
+    want[nw++] = w;
+  va_end(ap);
+  ss_error err = {0};
+  ss_store *st = NULL;
+  for (int mode = 0; mode < 3; mode++) {
+    ss_status s;
+    memset(&err, 0, sizeof err);
+    if (mode < 2) {
+      s = ss_store_open(copy, mode ? SS_STORE_WRITE : SS_STORE_READ, &st, &err);
+      ss_store_close(st);
+      st = NULL;
+    } else { /* merged into a fresh store: refused, nothing written */
+      char out[300];
+      snprintf(out, sizeof out, "%s/merged%d.db", dir, n);
+      if (ss_store_open(out, SS_STORE_WRITE, &st, &err)) {
+        CHECK(0, "%s: %s", out, err.msg);
+        return;
+      }
+      s = ss_store_merge(st, copy, SS_STORE_PREFER_NONE, NULL, &err);
+      int rows = 0;
+      ss_error e2 = {0};
+      CHECK(ss_store_each(st, NULL, count_visit, &rows, &e2) == SS_OK && rows == 0,
+            "%s: %d rows merged from a refused store", edit, rows);
+      ss_store_close(st);
+      st = NULL;
+    }
+    int ok = s == SS_EINPUT && strstr(err.msg, copy);
+    for (int i = 0; i < nw; i++)
+      ok = ok && strstr(err.msg, want[i]);
+    CHECK(ok, "%s (%s): status %d, '%s'", edit, mode == 2 ? "merge" : "open", (int)s,
+          err.msg);
+  }
+}
+
+/* Hand-edited stores: every invalid row is refused by name (issue 35). */
+static void hand_edited(const char *dir, const char *path) {
+  edited(dir, path, "UPDATE result SET k = 'x' WHERE kind = 'edge' AND k = 8",
+         "1 invalid row", "table result, row (scheme_id 1, kind 'edge', k 'x', link '')",
+         "k = 'x' is not an integer in 0..2147483647", NULL);
+  edited(dir, path, "UPDATE result SET cells = -1 WHERE kind = 'edge' AND k = 8",
+         "kind 'edge', k 8", "cells = -1 is not an integer in 0..", NULL);
+  edited(dir, path,
+         "UPDATE result SET regularity = 'maybe' WHERE kind = 'edge' AND k = 8",
+         "regularity = 'maybe' is not one of 'pass','fail','undecided'", NULL);
+  edited(dir, path, "UPDATE result SET eigen_certified = 2.5 WHERE kind = 'edge'",
+         "eigen_certified = 2.5 is not an integer in 0..1", NULL);
+  edited(dir, path, "UPDATE result SET regularity_on = 'guess' WHERE kind = 'edge'",
+         "regularity_on = 'guess' is not NULL or one of", NULL);
+  edited(dir, path, "DELETE FROM scheme WHERE name = 'mlca'",
+         "scheme_id = 1 is not the id of a row of table scheme", NULL);
+  edited(dir, path,
+         "PRAGMA ignore_check_constraints = 1; UPDATE result SET kind = 'vortex' WHERE "
+         "kind = 'edge' AND k = 8",
+         "kind 'vortex'", "kind = 'vortex' is not one of 'vertex','edge'", NULL);
+  edited(dir, path, "UPDATE scheme SET diagonals = 'diag' WHERE name = 'mlca'",
+         "table scheme, row id 1: diagonals = 'diag' is not NULL or one of 'bfs'", NULL);
+  edited(dir, path, "UPDATE scheme SET tol = 0 WHERE name = 'mlca'",
+         "table scheme, row id 1: tol = 0.0 is not a finite number > 0", NULL);
+  edited(dir, path, "UPDATE result SET seconds = -1", "5 invalid rows",
+         "seconds = -1.0 is not a finite number >= 0", "; and more", NULL);
+  /* a malformed eigenvalue list: found as the rows are read */
+  char copy[300], q[700];
+  snprintf(copy, sizeof copy, "%s/eig.db", dir);
+  snprintf(q, sizeof q, "VACUUM INTO '%s'", copy);
+  sql(path, q);
+  sql(copy, "UPDATE result SET eigenvalues = '[1' WHERE kind = 'edge' AND k = 8");
+  ss_error err = {0};
+  ss_store *st = NULL;
+  int rows = 0;
+  CHECK(ss_store_open(copy, SS_STORE_READ, &st, &err) == SS_OK, "%s: %s", copy, err.msg);
+  CHECK(st && ss_store_each(st, NULL, count_visit, &rows, &err) == SS_EINPUT &&
+            strstr(err.msg, "kind 'edge', k 8") &&
+            strstr(err.msg, "eigenvalues = '[1' is not a JSON list"),
+        "malformed eigenvalues: %s", err.msg);
+  ss_store_close(st);
+}
+
 int main(void) {
   char dir[] = "/tmp/ss_test_storeXXXXXX";
   if (!mkdtemp(dir)) return 1;
@@ -613,6 +705,7 @@ int main(void) {
         "missing file: %s", err.msg);
 
   schema_versions(dir, mlca, oct);
+  hand_edited(dir, path);
 
   for (int i = 0; i < NCASES; i++)
     ss_result_clear(r + i);

@@ -155,6 +155,38 @@ expect 2 "noise.db: not a subspectra results store" "$exe" merge "$tmp/m2.db" "$
 expect 2 "foreign.db: a foreign SQLite database" "$exe" merge "$tmp/m2.db" "$tmp/foreign.db"
 expect 2 "nothere.db: no such results store" "$exe" merge "$tmp/m2.db" "$tmp/nothere.db"
 
+# hand-edited stores (issue 35): report, merge and sweep exit 2 naming the row,
+# the column and the value (report read k = 'x' as 0, cells = -1 as 2^64 - 1,
+# 'maybe' as undecided, results without their scheme as an empty store; merge
+# of a kind outside the CHECK said "unknown error")
+edit() { # edit NAME SQL: a copy of ref.db with SQL applied
+  cp "$tmp/ref.db" "$tmp/$1.db"
+  q "$tmp/$1.db" "$2" >/dev/null
+}
+edit k "UPDATE result SET k = 'x' WHERE scheme_id = 1 AND kind = 'edge' AND k = 5"
+edit cells "UPDATE result SET cells = -1 WHERE scheme_id = 1 AND kind = 'edge' AND k = 5"
+edit maybe "UPDATE result SET injectivity = 'maybe' WHERE scheme_id = 1 AND kind = 'edge' AND k = 5"
+edit orphan "DELETE FROM scheme WHERE id = 1"
+edit kind "PRAGMA ignore_check_constraints = 1; UPDATE result SET kind = 'vortex' WHERE scheme_id = 1 AND kind = 'edge' AND k = 5"
+row="table result, row \\(scheme_id 1, kind 'edge', k"
+for cmd in report merge sweep; do
+  for f in k cells maybe orphan kind; do
+    case $f in
+    k) want="1 invalid row.*$row 'x', link ''\\): k = 'x' is not an integer" ;;
+    cells) want="1 invalid row.*$row 5, link ''\\): cells = -1 is not an integer in 0\\.\\." ;;
+    maybe) want="1 invalid row.*$row 5, .*injectivity = 'maybe' is not one of 'pass','fail','undecided'" ;;
+    orphan) want="$(q "$tmp/ref.db" "SELECT count(*) FROM result WHERE scheme_id = 1") invalid rows.*scheme_id = 1 is not the id of a row of table scheme" ;;
+    kind) want="1 invalid row.*kind = 'vortex' is not one of 'vertex','edge'" ;;
+    esac
+    case $cmd in
+    report) expect 2 "$f.db: $want" "$exe" report --db "$tmp/$f.db" ;;
+    merge) expect 2 "$f.db: $want" "$exe" merge "$tmp/m3.db" "$tmp/$f.db" ;;
+    sweep) expect 2 "$f.db: $want" "$exe" sweep --scheme mlca --edges 3..3 --db "$tmp/$f.db" ;;
+    esac
+  done
+done
+expect 0 "^0\$" sqlite3 "$tmp/m3.db" "SELECT count(*) FROM result"
+
 # merge conflicts: the same case with other values is reported, OUT's row
 # kept, exit 1, the other rows merged; --prefer old keeps, --prefer new
 # replaces; a different timing alone is no conflict
