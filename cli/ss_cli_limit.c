@@ -27,6 +27,12 @@ static const char *const usage_text =
     "--derivatives the 3x3 Jacobian (rows d/dU, d/dV, d/dW).  Cells are numbered\n"
     "from 1 as in the file.\n"
     "\n"
+    "Fields: coordinates past the third (a Medit 4th coordinate, the field w)\n"
+    "are scalar values per control point; they are subdivided like the\n"
+    "coordinates (the same weights), and their limit values are written with\n"
+    "each point, with --derivatives also their gradients in the cell's\n"
+    "parameters (d/dU, d/dV, d/dW).  A mesh without them is evaluated as before.\n"
+    "\n"
     "  -s, --scheme S     mlca or ccsolid (any scheme that splits hexahedra\n"
     "                     multilinearly with a one-ring rule and is the\n"
     "                     tricubic B-spline on regular grids)\n"
@@ -38,13 +44,22 @@ static const char *const usage_text =
     "  -d, --derivatives  also the Jacobian\n"
     "      --reference    evaluate by repeated local subdivision instead (slow;\n"
     "                     for checking), at most 60 steps\n"
-    "  -f, --format F     text (default: CELL U V W X Y Z [9 Jacobian entries]),\n"
-    "                     json (one object per line with cell, u, v, w, point and\n"
-    "                     jacobian) or vtk (legacy VTK for ParaView: with --samples\n"
-    "                     N >= 2 the sampled volume as hexahedra, otherwise points)\n"
+    "  -f, --format F     text (default: CELL U V W X Y Z [9 Jacobian entries]\n"
+    "                     [each field's value] [each field's 3 derivatives]),\n"
+    "                     json (one object per line with cell, u, v, w, point,\n"
+    "                     jacobian, and with fields \"fields\": {NAME: value} and\n"
+    "                     \"field_gradients\": {NAME: [d/dU, d/dV, d/dW]}) or vtk\n"
+    "                     (legacy VTK for ParaView: with --samples N >= 2 the\n"
+    "                     sampled volume as hexahedra, otherwise points; point\n"
+    "                     data: cell, jacobian_det, each field NAME and its\n"
+    "                     NAME_gradient, 3 components)\n"
     "  -o, --output FILE  write there (whole or not at all) instead of stdout\n"
     "  -h, --help         this text\n"
-    "\n"
+    "\n";
+
+/* The usage text's second half (one literal would exceed the 4095 characters
+ * C11 compilers must support). */
+static const char *const usage_how =
     "How (README, \"Limit evaluation\"): the cell's patch is refined in the\n"
     "scheme's own global rule, following the child that holds the point, until\n"
     "the sub-cell is regular (then the tricubic B-spline).  Each patch topology\n"
@@ -73,7 +88,8 @@ static const char *const usage_text =
     "is not defined; a result beyond the range of doubles); 2 bad usage or\n"
     "input (unknown cell, parameter outside [0,1], a mesh with cells other than\n"
     "hexahedra, not manifold, or with flat, folded or inverted hexahedra, a\n"
-    "scheme that does not split hexahedra or is no tricubic B-spline on grids).\n";
+    "scheme that does not split hexahedra or is no tricubic B-spline on grids,\n"
+    "a field value that is not a finite number).\n";
 
 /* One point to evaluate and its result. */
 typedef struct {
@@ -81,7 +97,53 @@ typedef struct {
   double x[3];      /* parameters */
   double weight;    /* Gauss weight on [0,1]^3, or 0 */
   ss_limit_point r; /* result */
+  double *f;        /* the fields' values (nf; in fields.val), or NULL */
+  double (*df)[3];  /* their derivatives d/dU, d/dV, d/dW (nf rows), or NULL */
 } point;
+
+/* The mesh's fields: its coordinates past the third. */
+typedef struct {
+  size_t nf;                /* how many (0..SS_MAXDIM - 3) */
+  char name[SS_MAXDIM][16]; /* their names: the 4th coordinate is "w" */
+  double *val;              /* npts * nf values (owned) */
+  double (*grad)[3];        /* npts * nf derivatives (owned) */
+} fields;
+
+/* Name of field i, the coordinate 4 + i of the mesh file. */
+static void field_name(size_t i, char name[16]) {
+  if (i == 0)
+    snprintf(name, 16, "w");
+  else
+    snprintf(name, 16, "x%zu", i + 4);
+}
+
+/* The mesh's positions (*pos, a 3-coordinate copy) and its coordinates past
+ * the third as fields (*val, nv * nf, vertex-major); mesh->dim >= 3.
+ * SS_ENOMEM. */
+static ss_status split_fields(const ss_cx *mesh, ss_cx **pos, double **val, fields *fl,
+                              ss_error *err) {
+  const size_t dim = (size_t)mesh->dim, nf = dim - 3;
+  ss_status st = ss_cx_copy(mesh, pos, err);
+  *val = NULL;
+  fl->nf = nf;
+  if (st || !nf) return st;
+  if (!(*val = malloc((mesh->nv * nf + 1) * sizeof **val))) {
+    ss_cx_free(*pos);
+    *pos = NULL;
+    return ss_error_nomem(err, "fields");
+  }
+  double *x = (*pos)->x; /* compacted in place to 3 per vertex */
+  for (size_t v = 0; v < mesh->nv; v++) {
+    for (size_t d = 0; d < 3; d++)
+      x[v * 3 + d] = mesh->x[v * dim + d];
+    for (size_t i = 0; i < nf; i++)
+      (*val)[v * nf + i] = mesh->x[v * dim + 3 + i];
+  }
+  (*pos)->dim = 3;
+  for (size_t i = 0; i < nf; i++)
+    field_name(i, fl->name[i]);
+  return SS_OK;
+}
 
 /* Gauss-Legendre nodes and weights on [0,1] (Newton on P_q from the
  * Chebyshev guesses; weights 2 / ((1 - t^2) P_q'(t)^2), halved for [0,1]). */
@@ -122,7 +184,7 @@ static int parse_at(const char *s, point *p) {
   return *end ? -1 : 0;
 }
 
-static void write_text(FILE *f, const point *p, size_t n, int derivs) {
+static void write_text(FILE *f, const point *p, size_t n, int derivs, const fields *fl) {
   for (size_t i = 0; i < n; i++) {
     fprintf(f, "%zu %.17g %.17g %.17g %.17g %.17g %.17g", p[i].cell + 1, p[i].x[0],
             p[i].x[1], p[i].x[2], p[i].r.p[0], p[i].r.p[1], p[i].r.p[2]);
@@ -130,11 +192,34 @@ static void write_text(FILE *f, const point *p, size_t n, int derivs) {
       for (int a = 0; a < 3; a++)
         for (int d = 0; d < 3; d++)
           fprintf(f, " %.17g", p[i].r.jac[a][d]);
+    for (size_t k = 0; k < fl->nf; k++)
+      fprintf(f, " %.17g", p[i].f[k]);
+    for (size_t k = 0; k < fl->nf && derivs; k++)
+      for (int a = 0; a < 3; a++)
+        fprintf(f, " %.17g", p[i].df[k][a]);
     fputc('\n', f);
   }
 }
 
-static void write_json(FILE *f, const point *p, size_t n, int derivs) {
+/* JSON "fields": {NAME: value} and with derivs "field_gradients": {NAME:
+ * [3]} of point p into o. */
+static void json_fields(json_object *o, const point *p, int derivs, const fields *fl) {
+  if (!fl->nf) return;
+  json_object *v = json_object_new_object(),
+              *g = derivs ? json_object_new_object() : NULL;
+  for (size_t k = 0; k < fl->nf; k++) {
+    json_object_object_add(v, fl->name[k], json_object_new_double(p->f[k]));
+    if (!g) continue;
+    json_object *row = json_object_new_array();
+    for (int a = 0; a < 3; a++)
+      json_object_array_add(row, json_object_new_double(p->df[k][a]));
+    json_object_object_add(g, fl->name[k], row);
+  }
+  json_object_object_add(o, "fields", v);
+  if (g) json_object_object_add(o, "field_gradients", g);
+}
+
+static void write_json(FILE *f, const point *p, size_t n, int derivs, const fields *fl) {
   for (size_t i = 0; i < n; i++) {
     json_object *o = json_object_new_object();
     json_object_object_add(o, "cell", json_object_new_int64((int64_t)p[i].cell + 1));
@@ -157,6 +242,7 @@ static void write_json(FILE *f, const point *p, size_t n, int derivs) {
       }
       json_object_object_add(o, "jacobian", J);
     }
+    json_fields(o, p + i, derivs, fl);
     fprintf(f, "%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN));
     json_object_put(o);
   }
@@ -164,8 +250,10 @@ static void write_json(FILE *f, const point *p, size_t n, int derivs) {
 
 /* Legacy VTK: points; with samples >= 2 (points cell by cell, i fastest) the
  * (N-1)^3 sample hexes of every cell, else one vertex cell per point.  Point
- * data: the cell number and, with derivatives, det J. */
-static void write_vtk(FILE *f, const point *p, size_t n, int samples, int derivs) {
+ * data: the cell number and, with derivatives, det J; each field and with
+ * derivatives its gradient NAME_gradient (3 components: d/dU, d/dV, d/dW). */
+static void write_vtk(FILE *f, const point *p, size_t n, int samples, int derivs,
+                      const fields *fl) {
   fprintf(f,
           "# vtk DataFile Version 3.0\nsubspectra limit\nASCII\nDATASET "
           "UNSTRUCTURED_GRID\nPOINTS %zu double\n",
@@ -209,6 +297,15 @@ static void write_vtk(FILE *f, const point *p, size_t n, int samples, int derivs
       fprintf(f, "%.17g\n", det);
     }
   }
+  for (size_t k = 0; k < fl->nf; k++) {
+    fprintf(f, "SCALARS %s double 1\nLOOKUP_TABLE default\n", fl->name[k]);
+    for (size_t i = 0; i < n; i++)
+      fprintf(f, "%.17g\n", p[i].f[k]);
+    if (!derivs) continue;
+    fprintf(f, "SCALARS %s_gradient double 3\nLOOKUP_TABLE default\n", fl->name[k]);
+    for (size_t i = 0; i < n; i++)
+      fprintf(f, "%.17g %.17g %.17g\n", p[i].df[k][0], p[i].df[k][1], p[i].df[k][2]);
+  }
 }
 
 /* The command line of limit. */
@@ -223,6 +320,7 @@ typedef struct {
   int format;         /* 0 text, 1 json, 2 vtk */
   point *pts;         /* --at points (owned) */
   size_t npts, cap;   /* how many, allocated */
+  fields fl;          /* the mesh's fields and their results */
 } limit_opts;
 
 /* --at TEXT appended to o->pts: 0, or the exit status 2 with the message
@@ -300,6 +398,7 @@ static int parse(int argc, char **argv, limit_opts *o) {
       break;
     case 'h':
       fputs(usage_text, stdout);
+      fputs(usage_how, stdout);
       return SS_EXIT_OK;
     default:
       return ss_cli_option_error("limit", c, argv);
@@ -352,13 +451,22 @@ static ss_status grid_points(limit_opts *o, const ss_limit *L, ss_error *err) {
 /* The limit (and derivatives) at every point of o, in place (L caches what
  * the evaluation builds: not const). */
 static ss_status eval_points(limit_opts *o, ss_limit *L, ss_error *err) {
+  const size_t nf = o->fl.nf;
+  if (nf) {
+    o->fl.val = calloc(o->npts * nf + 1, sizeof *o->fl.val);
+    o->fl.grad = calloc(o->npts * nf + 1, sizeof *o->fl.grad);
+    if (!o->fl.val || !o->fl.grad) return ss_error_nomem(err, "field values");
+  }
   for (size_t i = 0; i < o->npts; i++) {
     point *p = o->pts + i;
+    p->f = nf ? o->fl.val + i * nf : NULL;
+    p->df = nf ? o->fl.grad + i * nf : NULL;
     ss_status st =
         o->reference
-            ? ss_limit_eval_reference(L, p->cell, p->x[0], p->x[1], p->x[2], o->derivs,
-                                      60, &p->r, err)
-            : ss_limit_eval(L, p->cell, p->x[0], p->x[1], p->x[2], o->derivs, &p->r, err);
+            ? ss_limit_eval_reference_fields(L, p->cell, p->x[0], p->x[1], p->x[2],
+                                             o->derivs, 60, &p->r, p->f, p->df, err)
+            : ss_limit_eval_fields(L, p->cell, p->x[0], p->x[1], p->x[2], o->derivs,
+                                   &p->r, p->f, p->df, err);
     if (st) return st;
   }
   return SS_OK;
@@ -374,11 +482,12 @@ static ss_status write_points(const limit_opts *o, ss_error *err) {
   }
   FILE *f = out ? ss_outfile_file(out) : stdout;
   if (o->format == 0)
-    write_text(f, o->pts, o->npts, o->derivs);
+    write_text(f, o->pts, o->npts, o->derivs, &o->fl);
   else if (o->format == 1)
-    write_json(f, o->pts, o->npts, o->derivs);
+    write_json(f, o->pts, o->npts, o->derivs, &o->fl);
   else
-    write_vtk(f, o->pts, o->npts, o->samples > 0 ? (int)o->samples : 0, o->derivs);
+    write_vtk(f, o->pts, o->npts, o->samples > 0 ? (int)o->samples : 0, o->derivs,
+              &o->fl);
   return out ? ss_outfile_commit(out, err) : SS_OK;
 }
 
@@ -392,12 +501,15 @@ int ss_cli_limit(int argc, char **argv) {
   rc = SS_EXIT_OK;
   ss_error err = {0};
   ss_scheme *s = NULL;
-  ss_cx *mesh = NULL;
+  ss_cx *mesh = NULL, *pos = NULL;
   ss_limit *L = NULL;
+  double *fv = NULL;
   if (ss_scheme_new(o.scheme, &s, &err) ||
-      ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) || ss_limit_new(s, mesh, &L, &err))
+      ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) ||
+      (mesh->dim > 3 && split_fields(mesh, &pos, &fv, &o.fl, &err)) ||
+      ss_limit_new_fields(s, pos ? pos : mesh, o.fl.nf, fv, &L, &err))
     rc = ss_cli_fail(&err);
-  else if (ss_cx_check_orientation(mesh, &err)) {
+  else if (ss_cx_check_orientation(pos ? pos : mesh, &err)) {
     /* flat, folded or inverted hexes, refused as subdivide and enumerate
      * mesh refuse them: the parametrisation has no consistent sign there */
     fprintf(stderr, "subspectra: %s: %s\n", o.mesh, err.msg);
@@ -406,7 +518,11 @@ int ss_cli_limit(int argc, char **argv) {
              write_points(&o, &err))
     rc = ss_cli_fail(&err);
   free(o.pts);
+  free(o.fl.val);
+  free(o.fl.grad);
+  free(fv);
   ss_limit_free(L);
+  ss_cx_free(pos);
   ss_cx_free(mesh);
   ss_scheme_free(s);
   return rc;

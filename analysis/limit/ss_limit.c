@@ -16,6 +16,10 @@ size_t ss_limit_ncells(const ss_limit *L) {
   return L->mesh->nc[SS_HEX];
 }
 
+size_t ss_limit_nfields(const ss_limit *L) {
+  return L->nf;
+}
+
 ss_limit_stats ss_limit_get_stats(const ss_limit *L) {
   return L->stats;
 }
@@ -35,13 +39,33 @@ void ss_limit_free(ss_limit *L) {
       free(L->cell[c].src);
   free(L->cell);
   free(L->loc);
+  free(L->fld);
   ss_lim_adj_free(&L->adj);
   ss_cx_free(L->mesh);
   free(L);
 }
 
+/* SS_EINPUT naming the first field value that is not finite. */
+static ss_status check_fields(size_t nv, size_t nf, const double *fields, ss_error *err) {
+  if (nf && !fields)
+    return ss_error_set(err, SS_EINPUT, "limit evaluation: %zu fields but no values", nf);
+  for (size_t v = 0; v < nv; v++)
+    for (size_t i = 0; i < nf; i++)
+      if (!isfinite(fields[v * nf + i]))
+        return ss_error_set(err, SS_EINPUT,
+                            "limit evaluation: field %zu of vertex %zu is %g, not a "
+                            "finite number",
+                            i + 1, v + 1, fields[v * nf + i]);
+  return SS_OK;
+}
+
 ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
                        ss_error *err) {
+  return ss_limit_new_fields(s, mesh, 0, NULL, out, err);
+}
+
+ss_status ss_limit_new_fields(const ss_scheme *s, const ss_cx *mesh, size_t nf,
+                              const double *fields, ss_limit **out, ss_error *err) {
   ss_status st;
   *out = NULL;
   if (ss_scheme_split_kind(s) != SS_SPLIT_MULTILINEAR || !ss_scheme_accepts(s, SS_HEX) ||
@@ -64,11 +88,21 @@ ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
                           mesh->nc[t], ss_cell_plural((ss_cell_type)t));
   if (!mesh->nc[SS_HEX])
     return ss_error_set(err, SS_EINPUT, "limit evaluation: the mesh has no hexahedra");
-  if ((st = ss_cx_validate(mesh, err))) return st;
+  if ((st = ss_cx_validate(mesh, err)) || (st = check_fields(mesh->nv, nf, fields, err)))
+    return st;
   ss_limit *L = calloc(1, sizeof *L);
   if (!L) return ss_error_nomem(err, "limit evaluator");
   L->s = s;
   L->tensor = 1;
+  if (nf) {
+    if (mesh->nv > SIZE_MAX / sizeof *L->fld / nf ||
+        !(L->fld = malloc(mesh->nv * nf * sizeof *L->fld))) {
+      st = ss_error_nomem(err, "limit fields");
+      goto done;
+    }
+    memcpy(L->fld, fields, mesh->nv * nf * sizeof *L->fld);
+    L->nf = nf;
+  }
   if ((st = ss_cx_copy(mesh, &L->mesh, err))) goto done;
   if ((st = ss_lim_adj_build(L->mesh, &L->adj, err))) goto done;
   L->loc = malloc((mesh->nv + 1) * sizeof *L->loc);

@@ -92,6 +92,20 @@
  * an irregular coarse cell costs about a millisecond (its canonical frame and
  * one refinement of its patch per child visited).
  *
+ * Fields.  Scalar values stored per control point (density, stiffness: the
+ * paper's "scalar properties") are subdivided by the same rules as the
+ * coordinates (the schemes are linear and act on every coordinate alike), so
+ * the walk carries a net of D = 3 + nf columns, every step, jump and
+ * B-spline acting on each column alike: a field's limit value and its
+ * derivatives in (u, v, w) come from the same weights as the point's.  A
+ * field whose values are an affine function of the coordinates has that
+ * function of the limit point as its limit (the rows of every step sum to 1).
+ * Without fields asked the net has the 3 coordinates only, exactly as
+ * before.  At a fixed point the components of the net are judged negligible
+ * per column group (the coordinates together, each field alone: their units
+ * differ); a field whose gradient is unbounded there refuses the point with
+ * derivatives as the Jacobian does.
+ *
  * The evaluator caches what it learns and is therefore not thread-safe: give
  * each thread its own. */
 #ifndef SS_LIMIT_H
@@ -139,8 +153,21 @@ typedef struct {
 ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
                        ss_error *err);
 
+/* As ss_limit_new, with nf fields per vertex: fields[v * nf + i] is field i
+ * at mesh vertex v (mesh->nv * nf values, copied; NULL when nf = 0).
+ * SS_EINPUT besides ss_limit_new's reasons when a value is not finite (NaN
+ * or infinite: its limit would spread it to every point of the patches
+ * around) or fields is NULL with nf > 0.  The mesh has 3 coordinates; to
+ * evaluate extra coordinates (a Medit 4th coordinate) as fields, pass them
+ * here (the CLI does). */
+ss_status ss_limit_new_fields(const ss_scheme *s, const ss_cx *mesh, size_t nf,
+                              const double *fields, ss_limit **out, ss_error *err);
+
 /* Free; NULL is a no-op. */
 void ss_limit_free(ss_limit *L);
+
+/* Number of fields per vertex (0 unless made by ss_limit_new_fields). */
+size_t ss_limit_nfields(const ss_limit *L);
 
 /* Number of cells (hexahedra) of the mesh. */
 size_t ss_limit_ncells(const ss_limit *L);
@@ -167,6 +194,17 @@ void ss_limit_set_tensor(ss_limit *L, int on);
 ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
                         int derivatives, ss_limit_point *out, ss_error *err);
 
+/* As ss_limit_eval, and the fields' limits: f (ss_limit_nfields(L)
+ * entries) receives their values and, with derivatives, df (as many rows;
+ * may be NULL without derivatives) their derivatives d/du, d/dv, d/dw in the
+ * cell's parameters, by the same walk (the fields go through the same
+ * weights).  f NULL: no fields, exactly ss_limit_eval.  Errors as
+ * ss_limit_eval (SS_ENUMERIC also when a field's derivatives are unbounded at
+ * a fixed point). */
+ss_status ss_limit_eval_fields(ss_limit *L, size_t cell, double u, double v, double w,
+                               int derivatives, ss_limit_point *out, double *f,
+                               double (*df)[3], ss_error *err);
+
 /* The reference: the same point by repeated local subdivision of the actual
  * patch (refine, keep the child's patch, until it is regular; nothing cached,
  * no eigenvalues), at most max_depth steps (SS_ENUMERIC beyond: the point
@@ -176,6 +214,12 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
 ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
                                   int derivatives, int max_depth, ss_limit_point *out,
                                   ss_error *err);
+/* The reference with fields (f, df as ss_limit_eval_fields): the positions by
+ * refining the patch as above, the fields by the rows of each step. */
+ss_status ss_limit_eval_reference_fields(ss_limit *L, size_t cell, double u, double v,
+                                         double w, int derivatives, int max_depth,
+                                         ss_limit_point *out, double *f, double (*df)[3],
+                                         ss_error *err);
 
 /* The tricubic B-spline of a 4x4x4 net at (u, v, w) in [0,1]^3: net[i + 4j +
  * 16k] is the control point at grid position (i - 1, j - 1, k - 1), the cell

@@ -140,7 +140,11 @@ static ss_status eval_net(ss_limit *L, size_t s, double *Q, ss_lim_pt y, int der
                           size_t cell, ss_limit_point *out, ss_error *err) {
   double o[3] = {0, 0, 0}, I3[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   memset(out, 0, sizeof *out);
-  return ss_lim_walk(L, s, Q, o, 0, y, I3, derivatives, 1, cell, out, err);
+  ss_lim_res r = {3, out->p, &out->jac[0][0], 0, 0};
+  ss_status st = ss_lim_walk(L, s, Q, o, 0, y, I3, derivatives, 1, cell, &r, err);
+  out->steps = r.steps;
+  out->products = r.products;
+  return st;
 }
 
 /* The point b + e_af / 2 of the fixed point's cell (on the edge). */
@@ -311,7 +315,7 @@ ss_status ss_limit_edge_model(ss_limit *L, size_t cell, const double x[3], int a
     st = ss_error_nomem(err, "edge modes");
     goto done;
   }
-  ss_lim_eig_coef(e, f.P, C);
+  ss_lim_eig_coef(e, 3, f.P, C);
   st = model(L, &f, e, C, axis, cell, out, err);
   free(C);
 done:

@@ -100,19 +100,20 @@ static double pow_scaled(double x, long m, long s) {
   return x < 0.0 && (m & 1) ? -v : v;
 }
 
-/* P <- A P (n x n times n x 3). */
-static void matvec(const double *A, size_t n, double *P, double *tmp) {
+/* P <- A P (n x n times n x D); tmp holds n x D. */
+static void matvec(const double *A, size_t n, size_t D, double *P, double *tmp) {
   for (size_t i = 0; i < n; i++) {
-    double acc[3] = {0, 0, 0};
+    double *acc = tmp + i * D;
+    for (size_t d = 0; d < D; d++)
+      acc[d] = 0.0;
     for (size_t j = 0; j < n; j++) {
       double a = A[i * n + j];
       if (a == 0.0) continue;
-      for (int d = 0; d < 3; d++)
-        acc[d] += a * P[j * 3 + (size_t)d];
+      for (size_t d = 0; d < D; d++)
+        acc[d] += a * P[j * D + d];
     }
-    memcpy(tmp + i * 3, acc, sizeof acc);
   }
-  memcpy(P, tmp, n * 3 * sizeof *P);
+  memcpy(P, tmp, n * D * sizeof *P);
 }
 
 ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err) {
@@ -209,16 +210,15 @@ done:
   return st;
 }
 
-void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C) {
+void ss_lim_eig_coef(const ss_lim_eig *e, size_t D, const double *P, double *C) {
   const size_t K = e->K;
-  memset(C, 0, K * 3 * sizeof *C);
+  memset(C, 0, K * D * sizeof *C);
   for (size_t j = 0; j < K; j++) {
-    const double *col = e->Vinv + j * K, *p = P + j * 3;
+    const double *col = e->Vinv + j * K, *p = P + j * D;
     for (size_t i = 0; i < K; i++) {
       double v = col[i];
-      C[i * 3] += v * p[0];
-      C[i * 3 + 1] += v * p[1];
-      C[i * 3 + 2] += v * p[2];
+      for (size_t d = 0; d < D; d++)
+        C[i * D + d] += v * p[d];
     }
   }
 }
@@ -227,10 +227,10 @@ void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C) {
  * W^(2^(SS_LIM_NPOW-1)) applied until |lambda_1|^(2^i) has vanished); with
  * shift, the first point of W^m P (row 0 of W^m, formed as a row vector) is
  * the shift and the differences come from the scaled powers of D. */
-static ss_status power_defective(const ss_lim_eig *e, long m, double *P, double shift[3],
-                                 int *scale, ss_error *err) {
+static ss_status power_defective(const ss_lim_eig *e, long m, size_t D, double *P,
+                                 double *shift, int *scale, ss_error *err) {
   const size_t K = e->K, n = K - 1;
-  double *tmp = malloc((K * 3 + K + 1) * sizeof *tmp), *row = tmp + K * 3;
+  double *tmp = malloc((K * D + K + 1) * sizeof *tmp), *row = tmp + K * D;
   if (!tmp) return ss_error_nomem(err, "matrix powers");
   if (m >= 0 && m >> SS_LIM_NPOW) {
     free(tmp);
@@ -242,13 +242,13 @@ static ss_status power_defective(const ss_lim_eig *e, long m, double *P, double 
     for (int p = 0; p < SS_LIM_NPOW - 1; p++)
       r *= r;
     do {
-      matvec(e->pw + (size_t)(SS_LIM_NPOW - 1) * K * K, K, P, tmp);
+      matvec(e->pw + (size_t)(SS_LIM_NPOW - 1) * K * K, K, D, P, tmp);
       reps++;
       l1 = reps == 1 ? r : l1 * r;
     } while (l1 > 1e-300 && reps < 64);
   } else if (!shift) {
     for (int p = 0; p < SS_LIM_NPOW && m >> p; p++)
-      if ((m >> p) & 1) matvec(e->pw + (size_t)p * K * K, K, P, tmp);
+      if ((m >> p) & 1) matvec(e->pw + (size_t)p * K * K, K, D, P, tmp);
   } else {
     /* row 0 of W^m: e_0^T times the powers (they commute) */
     memset(row, 0, K * sizeof *row);
@@ -264,30 +264,31 @@ static ss_status power_defective(const ss_lim_eig *e, long m, double *P, double 
       }
       memcpy(row, tmp, K * sizeof *row);
     }
-    for (int d = 0; d < 3; d++) {
+    for (size_t d = 0; d < D; d++) {
       double acc = 0.0;
       for (size_t q = 0; q < K; q++)
-        acc += row[q] * P[q * 3 + (size_t)d];
+        acc += row[q] * P[q * D + d];
       shift[d] = acc;
     }
     /* the differences P_r - P_0 through D^m, scaled as they go */
     long ex = 0;
-    double *y = P + 3;
+    double *y = P + D;
     for (size_t r = 0; r < n; r++)
-      for (int d = 0; d < 3; d++)
-        y[r * 3 + (size_t)d] -= P[d];
-    P[0] = P[1] = P[2] = 0.0;
-    normalize(y, n * 3, &ex);
+      for (size_t d = 0; d < D; d++)
+        y[r * D + d] -= P[d];
+    for (size_t d = 0; d < D; d++)
+      P[d] = 0.0;
+    normalize(y, n * D, &ex);
     for (int p = 0; p < SS_LIM_NPOW && m >> p; p++) {
       if (!((m >> p) & 1)) continue;
-      matvec(e->pd + (size_t)p * n * n, n, y, tmp);
+      matvec(e->pd + (size_t)p * n * n, n, D, y, tmp);
       ex += e->pdexp[p];
-      normalize(y, n * 3, &ex);
+      normalize(y, n * D, &ex);
     }
     if (scale) {
       *scale = (int)-ex;
     } else {
-      for (size_t j = 0; j < n * 3; j++)
+      for (size_t j = 0; j < n * D; j++)
         y[j] = ldexp(y[j], (int)ex);
     }
   }
@@ -295,8 +296,8 @@ static ss_status power_defective(const ss_lim_eig *e, long m, double *P, double 
   return SS_OK;
 }
 
-ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
-                           int *scale, ss_error *err) {
+ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, size_t D, double *P,
+                           double *shift, int *scale, ss_error *err) {
   const size_t K = e->K;
   if (scale) *scale = 0;
   if (!e->ok) return ss_error_set(err, SS_ENUMERIC, "%s", e->why);
@@ -305,8 +306,10 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
         err, SS_ENUMERIC,
         "the limit at a fixed point needs the eigenvalue 1 simple and all "
         "others inside the unit circle; this run's matrix has not");
-  if (shift) shift[0] = shift[1] = shift[2] = 0.0;
-  if (e->pw) return power_defective(e, m, P, shift, scale, err);
+  if (shift)
+    for (size_t d = 0; d < D; d++)
+      shift[d] = 0.0;
+  if (e->pw) return power_defective(e, m, D, P, shift, scale, err);
   /* C = V^-1 P, then diag-block(lambda)^m C, then P = V C; for finite m
    * the eigenvalue-1 part (a uniform translation: its eigenvector is
    * constant) goes to shift, not into P, so that its rounding (eps cond |P|,
@@ -317,14 +320,17 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
   long s = 0;
   if (scale && shift && m > 0 && e->second > 0.0 && (double)m * log2(e->second) < -400.0)
     s = (long)floor(-(double)m * log2(e->second));
-  double sh[3] = {0, 0, 0};
-  double *C = malloc((K * 3 + 1) * sizeof *C);
+  double *C = malloc((K * D + D + 1) * sizeof *C), *sh = C + K * D;
   if (!C) return ss_error_nomem(err, "eigen power");
-  ss_lim_eig_coef(e, P, C);
+  for (size_t d = 0; d < D; d++)
+    sh[d] = 0.0;
+  ss_lim_eig_coef(e, D, P, C);
   for (size_t i = 0; i < K; i++) {
-    double *c = C + i * 3;
+    double *c = C + i * D;
     if (m < 0) {
-      if (i != e->one) c[0] = c[1] = c[2] = 0.0;
+      if (i != e->one)
+        for (size_t d = 0; d < D; d++)
+          c[d] = 0.0;
       continue;
     }
     if (i == e->one && shift) {
@@ -332,7 +338,7 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
       for (size_t r = 0; r < K; r++)
         vbar += e->V[i * K + r];
       vbar /= (double)K;
-      for (int d = 0; d < 3; d++) {
+      for (size_t d = 0; d < D; d++) {
         sh[d] = vbar * c[d];
         c[d] = 0.0;
       }
@@ -342,8 +348,8 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
       /* [c_i; c_i+1] <- r^m [cos m t, sin m t; -sin m t, cos m t] [c_i; c_i+1] */
       double r = s ? pow_scaled(cabs(e->lam[i]), m, s) : pow(cabs(e->lam[i]), (double)m);
       double t = (double)m * carg(e->lam[i]);
-      double cs = r * cos(t), sn = r * sin(t), *c2 = c + 3;
-      for (int d = 0; d < 3; d++) {
+      double cs = r * cos(t), sn = r * sin(t), *c2 = c + D;
+      for (size_t d = 0; d < D; d++) {
         double x = c[d], y = c2[d];
         c[d] = cs * x + sn * y;
         c2[d] = -sn * x + cs * y;
@@ -352,27 +358,28 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[
       continue;
     }
     double f = s ? pow_scaled(creal(e->lam[i]), m, s) : pow(creal(e->lam[i]), (double)m);
-    for (int d = 0; d < 3; d++)
+    for (size_t d = 0; d < D; d++)
       c[d] *= f;
   }
-  memset(P, 0, K * 3 * sizeof *P);
+  memset(P, 0, K * D * sizeof *P);
   for (size_t i = 0; i < K; i++) {
-    const double *col = e->V + i * K, *c = C + i * 3;
-    if (c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0) continue;
-    for (size_t r = 0; r < K; r++) {
-      P[r * 3] += col[r] * c[0];
-      P[r * 3 + 1] += col[r] * c[1];
-      P[r * 3 + 2] += col[r] * c[2];
-    }
+    const double *col = e->V + i * K, *c = C + i * D;
+    size_t nz = 0;
+    while (nz < D && c[nz] == 0.0)
+      nz++;
+    if (nz == D) continue;
+    for (size_t r = 0; r < K; r++)
+      for (size_t d = 0; d < D; d++)
+        P[r * D + d] += col[r] * c[d];
   }
+  if (shift) memcpy(shift, sh, D * sizeof *sh);
   free(C);
-  if (shift) memcpy(shift, sh, sizeof sh);
   if (scale) *scale = (int)s;
   return SS_OK;
 }
 
-ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const double *P,
-                               double *Q, ss_error *err) {
+ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, size_t D,
+                               const double *P, double *Q, ss_error *err) {
   ss_status st = SS_OK;
   const size_t K = e->K;
   size_t k = 0;
@@ -383,20 +390,21 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const doubl
     else if (j != e->one && cabs(e->lam[j]) > 0.5 - 1e-8 && bad == 0.0)
       bad = cabs(e->lam[j]);
   }
-  memset(Q, 0, K * 3 * sizeof *Q);
+  memset(Q, 0, K * D * sizeof *Q);
   if (bad > 0.0)
     return ss_error_set(err, SS_ENUMERIC,
                         "its run (a defective matrix) has an eigenvalue of modulus "
                         "%.6g, >= 1/2 and not 1/2",
                         bad);
   if (!k) return SS_OK; /* every component but the point has derivative 0 */
-  double *A = malloc((3 * K * K + 2 * K + k * k + 1) * sizeof *A);
+  double *A = malloc((3 * K * K + 2 * K + k * k + k * D + 1) * sizeof *A);
   lapack_int *ipiv = malloc((k + 1) * sizeof *ipiv);
   if (!A || !ipiv) {
     st = ss_error_nomem(err, "eigenvalue-1/2 projector");
     goto done;
   }
-  double *U = A + K * K, *VT = U + K * K, *sv = VT + K * K, *work = sv + K, *G = work + K;
+  double *U = A + K * K, *VT = U + K * K, *sv = VT + K * K, *work = sv + K, *G = work + K,
+         *Z = G + k * k;
   for (size_t i = 0; i < K * K; i++)
     A[i] = W[i];
   for (size_t i = 0; i < K; i++)
@@ -426,19 +434,19 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const doubl
         s += U[r * K + (K - k + a)] * VT[(K - k + b) * K + r];
       G[a * k + b] = s;
     }
-  double Z[3 * 64];
   if (k > 64) { /* beyond any patch met (K ~ 100, 1/2 at most 3-fold) */
     st = ss_error_set(err, SS_ENUMERIC, "eigenvalue 1/2 of multiplicity %zu", k);
     goto done;
   }
   for (size_t a = 0; a < k; a++)
-    for (int d = 0; d < 3; d++) {
+    for (size_t d = 0; d < D; d++) {
       double s = 0.0;
       for (size_t r = 0; r < K; r++)
-        s += U[r * K + (K - k + a)] * P[r * 3 + (size_t)d];
-      Z[a * 3 + (size_t)d] = s;
+        s += U[r * K + (K - k + a)] * P[r * D + d];
+      Z[a * D + d] = s;
     }
-  info = LAPACKE_dgesv(LAPACK_ROW_MAJOR, (lapack_int)k, 3, G, (lapack_int)k, ipiv, Z, 3);
+  info = LAPACKE_dgesv(LAPACK_ROW_MAJOR, (lapack_int)k, (lapack_int)D, G, (lapack_int)k,
+                       ipiv, Z, (lapack_int)D);
   if (info) {
     st = ss_error_set(err, SS_ENUMERIC,
                       "the eigenvalue 1/2 of a run: its left and right eigenvectors are "
@@ -448,8 +456,8 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const doubl
   }
   for (size_t r = 0; r < K; r++)
     for (size_t b = 0; b < k; b++)
-      for (int d = 0; d < 3; d++)
-        Q[r * 3 + (size_t)d] += VT[(K - k + b) * K + r] * Z[b * 3 + (size_t)d];
+      for (size_t d = 0; d < D; d++)
+        Q[r * D + d] += VT[(K - k + b) * K + r] * Z[b * D + d];
 done:
   free(A);
   free(ipiv);

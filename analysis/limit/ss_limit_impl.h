@@ -127,10 +127,15 @@ typedef struct {
  * fails outright. */
 ss_status ss_lim_eig_new(const double *W, size_t K, ss_lim_eig **out, ss_error *err);
 void ss_lim_eig_free(ss_lim_eig *e);
-/* C (K x 3) = V^-1 P (P K x 3, row-major): the coefficients of P's points on
- * the eigenvectors (real ones, and x, y of a pair). */
-void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C);
-/* P (K x 3, row-major) <- W^m P; m < 0 means the limit m -> infinity (the
+/* Nets: the functions below take K points of D columns each (K x D,
+ * row-major): the 3 coordinates, then any fields (ss_limit.h); every
+ * operation acts on each column alike, so a column's result does not depend
+ * on the others (but for a common power-of-2 scale). */
+
+/* C (K x D) = V^-1 P (P K x D): the coefficients of P's points on the
+ * eigenvectors (real ones, and x, y of a pair). */
+void ss_lim_eig_coef(const ss_lim_eig *e, size_t D, const double *P, double *C);
+/* P (K x D) <- W^m P; m < 0 means the limit m -> infinity (the
  * projection on the eigenvalue 1, which must be simple and every other
  * |lambda| < 1).  With shift not NULL and m >= 0, a translation (the same for
  * every point) is left out of P and written to shift instead: W^m P = P' +
@@ -144,18 +149,18 @@ void ss_lim_eig_coef(const ss_lim_eig *e, const double *P, double *C);
  * unscaled result; a defective run's P' is normalised to entries below 1);
  * with scale NULL, P' itself (parts below DBL_MIN lost).
  * SS_ENUMERIC when the limit is not defined; SS_ENOMEM. */
-ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, double *P, double shift[3],
-                           int *scale, ss_error *err);
+ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, size_t D, double *P,
+                           double *shift, int *scale, ss_error *err);
 
-/* Q (K x 3) <- the eigenvalue-1/2 part of P for a run W with the
+/* Q (K x D) <- the eigenvalue-1/2 part of P (K x D) for a run W with the
  * decomposition e (used when e is defective: eigenvectors of the other
  * eigenvalues are not needed), by the spectral projector X (Y^T X)^-1 Y^T
  * from the null spaces of W - I/2 (SVD); Q = 0 when 1/2 is no eigenvalue.
  * SS_ENUMERIC (with the reason) when 1/2 has a Jordan block or another
  * eigenvalue but 1 has modulus >= 1/2: the parametric Jacobian at the run's
  * fixed point is then unbounded; SS_ENOMEM. */
-ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, const double *P,
-                               double *Q, ss_error *err);
+ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, size_t D,
+                               const double *P, double *Q, ss_error *err);
 
 /* ---- the evaluator's cache and object (ss_limit.c, ss_limit_state.c,
  * ss_limit_tensor.c, ss_limit_walk.c) ---- */
@@ -230,7 +235,9 @@ typedef struct {
 
 struct ss_limit {
   const ss_scheme *s; /* borrowed */
-  ss_cx *mesh;        /* owned copy */
+  ss_cx *mesh;        /* owned copy (3 coordinates) */
+  size_t nf;          /* fields per vertex (ss_limit_new_fields) */
+  double *fld;        /* mesh->nv * nf field values, vertex-major, or NULL */
   ss_lim_adj adj;     /* hex adjacency of the mesh */
   int64_t *loc;       /* scratch, mesh->nv entries, all -1 between calls */
   ss_lim_cell *cell;  /* per hex */
@@ -306,12 +313,24 @@ int ss_lim_child_of(const ss_lim_pt *p);
 long ss_lim_run_length(const ss_lim_pt *p, unsigned b);
 /* One step into child k, then frame g; M <- G 2 M. */
 void ss_lim_advance(ss_lim_pt *p, int k, const ss_lim_frame *g, double M[3][3]);
-/* The walk from state s with patch points P (taken over and freed), 2^sc
- * times their offsets from the origin o, at pt; M maps the current frame's
- * derivatives to the caller's (rows d/dx_a), divided by 2^sc; no_tensor:
- * never by eq. (1). */
-ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_lim_pt pt,
+/* A walk's result for a net of D columns per point (positions, then
+ * fields); the caller provides the arrays.  With D = 3 they may point into an
+ * ss_limit_point (p, and jac as 3 x 3 row-major). */
+typedef struct {
+  size_t D;     /* columns per point */
+  double *p;    /* D: the limit */
+  double *jac;  /* 3 x D row-major, with derivatives: row a = d/dx_a */
+  int steps;    /* as ss_limit_point */
+  int products; /* as ss_limit_point */
+} ss_lim_res;
+
+/* The walk from state s with patch points P (K x out->D, taken over and
+ * freed), 2^sc times their offsets from the origin o (out->D entries), at
+ * pt; M maps the current frame's derivatives to the caller's (rows d/dx_a),
+ * divided by 2^sc; no_tensor: never by eq. (1).  out->steps and
+ * out->products are added to. */
+ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
-                      ss_limit_point *out, ss_error *err);
+                      ss_lim_res *out, ss_error *err);
 
 #endif

@@ -109,33 +109,57 @@ void ss_lim_advance(ss_lim_pt *p, int k, const ss_lim_frame *g, double M[3][3]) 
   memcpy(M, N, sizeof N);
 }
 
-/* Point and Jacobian from a regular patch's points P (patch numbering). */
-static void finish_regular(const ss_lim_patch *p, const double *P, const ss_lim_pt *pt,
-                           double M[3][3], int derivatives, ss_limit_point *out) {
-  double net[64][3], J[3][3], x[3];
-  pt_x(pt, x);
-  for (int i = 0; i < 64; i++)
-    memcpy(net[i], P + (size_t)p->net[i] * 3, sizeof net[i]);
-  ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], out->p, J);
-  if (derivatives)
-    for (int i = 0; i < 3; i++)
-      for (int d = 0; d < 3; d++) {
-        out->jac[i][d] = 0.0;
-        for (int a = 0; a < 3; a++)
-          out->jac[i][d] += J[a][d] * M[a][i];
-      }
+/* out->jac <- the rows J (3 x D, current frame) through M (rows d/dx_a of
+ * the caller's parameters). */
+static void jac_through(const double *J, double M[3][3], ss_lim_res *out) {
+  const size_t D = out->D;
+  for (int i = 0; i < 3; i++)
+    for (size_t d = 0; d < D; d++) {
+      double acc = 0.0;
+      for (int a = 0; a < 3; a++)
+        acc += J[(size_t)a * D + d] * M[a][i];
+      out->jac[(size_t)i * D + d] = acc;
+    }
 }
 
-/* P <- W P (Kc x K times K x 3) into a new buffer. */
-static ss_status apply(const double *W, size_t Kc, size_t K, double **P, ss_error *err) {
-  double *Q = calloc(Kc * 3 + 1, sizeof *Q);
+/* Point and Jacobian from a regular patch's points P (patch numbering),
+ * three columns at a time (ss_limit_bspline).  SS_ENOMEM. */
+static ss_status finish_regular(const ss_lim_patch *p, const double *P,
+                                const ss_lim_pt *pt, double M[3][3], int derivatives,
+                                ss_lim_res *out, ss_error *err) {
+  const size_t D = out->D;
+  double net[64][3], J[3][3], x[3], v[3];
+  double *Jbuf = malloc((3 * D + 1) * sizeof *Jbuf);
+  if (!Jbuf) return ss_error_nomem(err, "limit Jacobian");
+  pt_x(pt, x);
+  for (size_t d0 = 0; d0 < D; d0 += 3) {
+    const size_t nd = D - d0 < 3 ? D - d0 : 3;
+    for (int i = 0; i < 64; i++)
+      for (size_t d = 0; d < 3; d++)
+        net[i][d] = d < nd ? P[(size_t)p->net[i] * D + d0 + d] : 0.0;
+    ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], v, J);
+    for (size_t d = 0; d < nd; d++) {
+      out->p[d0 + d] = v[d];
+      for (int a = 0; a < 3; a++)
+        Jbuf[(size_t)a * D + d0 + d] = J[a][d];
+    }
+  }
+  if (derivatives) jac_through(Jbuf, M, out);
+  free(Jbuf);
+  return SS_OK;
+}
+
+/* P <- W P (Kc x K times K x D) into a new buffer. */
+static ss_status apply(const double *W, size_t Kc, size_t K, size_t D, double **P,
+                       ss_error *err) {
+  double *Q = calloc(Kc * D + 1, sizeof *Q);
   if (!Q) return ss_error_nomem(err, "patch points");
   for (size_t i = 0; i < Kc; i++)
     for (size_t j = 0; j < K; j++) {
       double w = W[i * K + j];
       if (w == 0.0) continue;
-      for (int d = 0; d < 3; d++)
-        Q[i * 3 + (size_t)d] += w * (*P)[j * 3 + (size_t)d];
+      for (size_t d = 0; d < D; d++)
+        Q[i * D + d] += w * (*P)[j * D + d];
     }
   free(*P);
   *P = Q;
@@ -152,29 +176,95 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
   (void)L;
 }
 
+/* Column groups of a net of D columns judged together: the 3 coordinates,
+ * then each field alone (a field's size says nothing about a coordinate's). */
+static size_t group_end(size_t g0, size_t D) {
+  return g0 == 0 ? (D < 3 ? D : 3) : g0 + 1;
+}
+
+/* Whether the coefficients c (with c2 the second of a pair, or NULL) of one
+ * eigencomponent are negligible in every column group: at most 1e-9 of the
+ * group's spread scale[g0] (1-norm over the group's columns). */
+static int negligible(const double *c, const double *c2, const double *scale, size_t D) {
+  for (size_t g0 = 0; g0 < D; g0 = group_end(g0, D)) {
+    double cn = 0.0;
+    for (size_t d = g0; d < group_end(g0, D); d++)
+      cn += fabs(c[d]);
+    if (c2)
+      for (size_t d = g0; d < group_end(g0, D); d++)
+        cn += fabs(c2[d]);
+    if (!(cn <= 1e-9 * scale[g0])) return 0;
+  }
+  return 1;
+}
+
+/* Q (K x D) <- the eigenvalue-1/2 part of P for a run that is not
+ * defective, from its eigenvectors; SS_ENUMERIC if a component that is not
+ * negligible has |lambda| >= 1/2 and is not 1/2 or 1. */
+static ss_status half_part(const ss_lim_eig *e, size_t D, const double *P, double *Q,
+                           size_t cell, ss_error *err) {
+  const size_t K = e->K;
+  double *C = malloc((K * D + D + 1) * sizeof *C), *scale = C + K * D;
+  if (!C) return ss_error_nomem(err, "fixed-point Jacobian");
+  for (size_t d = 0; d < D; d++)
+    scale[d] = 0.0;
+  for (size_t g0 = 0; g0 < D; g0 = group_end(g0, D))
+    for (size_t r = 0; r < K; r++)
+      for (size_t d = g0; d < group_end(g0, D); d++)
+        if (fabs(P[r * D + d] - P[d]) > scale[g0]) scale[g0] = fabs(P[r * D + d] - P[d]);
+  ss_lim_eig_coef(e, D, P, C);
+  for (size_t i = 0; i < K; i++) {
+    const double *c = C + i * D;
+    const double al = cabs(e->lam[i]);
+    if (i == e->one || negligible(c, e->pair[i] == 1 ? c + D : NULL, scale, D) ||
+        al < 0.5 - 1e-8) {
+      if (e->pair[i] == 1) i++;
+      continue;
+    }
+    if (cabs(e->lam[i] - 0.5) <= 1e-8) {
+      /* 1/2, real, or a pair 1/2 +- i eps (a double 1/2 split by rounding:
+       * W is 1/2 on the span of its x and y, whose condition was checked) */
+      for (size_t w = 0; w < (e->pair[i] == 1 ? 2u : 1u); w++)
+        for (size_t r = 0; r < K; r++)
+          for (size_t d = 0; d < D; d++)
+            Q[r * D + d] += e->V[(i + w) * K + r] * c[w * D + d];
+      if (e->pair[i] == 1) i++;
+      continue;
+    }
+    free(C);
+    return ss_error_set(err, SS_ENUMERIC,
+                        "cell %zu: the parametric Jacobian is not defined at this point "
+                        "(an extraordinary vertex or edge, or the boundary): the "
+                        "eigenvalue %.6g%+.6gi of its run has modulus >= 1/2 and is not "
+                        "1/2",
+                        cell + 1, creal(e->lam[i]), cimag(e->lam[i]));
+  }
+  free(C);
+  return SS_OK;
+}
+
 /* The Jacobian at a fixed point: corner b (bits) of state s, whose run
- * matrix has eigen-decomposition e, patch points P.  With P = sum_i v_i c_i^T
- * and phi_i the limit of the net v_i, phi_i(b + (y - b)/2) = lambda_i
- * phi_i(y): a component with |lambda| < 1/2 has derivative 0 at b, one with
- * lambda = 1/2 (real, not defective) is homogeneous of degree 1 along rays,
- * so its derivative along axis a is 2 phi_i(b moved 1/2 along a), signed;
- * any other component with |lambda| >= 1/2 makes the Jacobian unbounded or
- * direction-dependent, and is refused.  J receives rows d/dx_a in the
- * current frame. */
+ * matrix has eigen-decomposition e, patch points P (K x D).  With P = sum_i
+ * v_i c_i^T and phi_i the limit of the net v_i, phi_i(b + (y - b)/2) =
+ * lambda_i phi_i(y): a component with |lambda| < 1/2 has derivative 0 at b,
+ * one with lambda = 1/2 (real, not defective) is homogeneous of degree 1
+ * along rays, so its derivative along axis a is 2 phi_i(b moved 1/2 along
+ * a), signed; any other component with |lambda| >= 1/2 makes the Jacobian
+ * unbounded or direction-dependent, and is refused.  J (3 x D) receives rows
+ * d/dx_a in the current frame. */
 static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_trans *t, unsigned b,
-                                const double *P, size_t cell, double J[3][3],
+                                size_t D, const double *P, size_t cell, double *J,
                                 ss_error *err) {
   ss_status st = SS_OK;
   const ss_lim_eig *e = t->eig;
   const size_t K = e->K;
-  double *Q = NULL;
-  Q = calloc(K * 3 + 1, sizeof *Q);
+  double *Q = calloc(K * D + 2 * D + 1, sizeof *Q), *oq = Q + K * D, *phip = oq + D;
   if (!Q) return ss_error_nomem(err, "fixed-point Jacobian");
   if (e->pw) {
     /* a defective run (a Jordan block, or a multiple eigenvalue LAPACK
      * returned with nearly parallel eigenvectors): only the eigenvalue-1/2
      * part matters, by its spectral projector */
-    if ((st = ss_lim_eig_half_part(e, t->W, P, Q, err))) {
+    if ((st = ss_lim_eig_half_part(e, t->W, D, P, Q, err))) {
       free(Q);
       if (st != SS_ENUMERIC) return st;
       char why[sizeof err->msg];
@@ -184,85 +274,47 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_trans *t, un
                           "point (an extraordinary vertex or edge, or the boundary): %s",
                           cell + 1, why);
     }
-    goto axes;
-  }
-  double scale = 0.0;
-  for (size_t j = 0; j < K * 3; j++)
-    if (fabs(P[j] - P[j % 3]) > scale) scale = fabs(P[j] - P[j % 3]);
-  double *C = malloc((K * 3 + 1) * sizeof *C);
-  if (!C) {
-    free(Q);
-    return ss_error_nomem(err, "fixed-point Jacobian");
-  }
-  ss_lim_eig_coef(e, P, C);
-  for (size_t i = 0; i < K; i++) {
-    const double *c = C + i * 3;
-    double cn = fabs(c[0]) + fabs(c[1]) + fabs(c[2]), al = cabs(e->lam[i]);
-    if (e->pair[i] == 1) cn += fabs(c[3]) + fabs(c[4]) + fabs(c[5]);
-    if (i == e->one || cn <= 1e-9 * scale || al < 0.5 - 1e-8) {
-      if (e->pair[i] == 1) i++;
-      continue;
-    }
-    if (cabs(e->lam[i] - 0.5) <= 1e-8) {
-      /* 1/2, real, or a pair 1/2 +- i eps (a double 1/2 split by rounding:
-       * W is 1/2 on the span of its x and y, whose condition was checked) */
-      for (size_t w = 0; w < (e->pair[i] == 1 ? 2u : 1u); w++)
-        for (size_t r = 0; r < K; r++)
-          for (int d = 0; d < 3; d++)
-            Q[r * 3 + (size_t)d] += e->V[(i + w) * K + r] * c[w * 3 + (size_t)d];
-      if (e->pair[i] == 1) i++;
-      continue;
-    }
-    st =
-        ss_error_set(err, SS_ENUMERIC,
-                     "cell %zu: the parametric Jacobian is not defined at this point (an "
-                     "extraordinary vertex or edge, or the boundary): the eigenvalue "
-                     "%.6g%+.6gi of its run has modulus >= 1/2 and is not 1/2",
-                     cell + 1, creal(e->lam[i]), cimag(e->lam[i]));
-    free(C);
+  } else if ((st = half_part(e, D, P, Q, cell, err)))
     goto done;
-  }
-  free(C);
-axes:
   for (int a = 0; a < 3; a++) {
     ss_lim_pt y;
     for (int d = 0; d < 3; d++) {
       y.s[d] = (int)((b >> d) & 1u);
       y.d[d] = d == a ? 0.5 : 0.0;
     }
-    double *Qa = malloc((K * 3 + 1) * sizeof *Qa),
+    double *Qa = malloc((K * D + 1) * sizeof *Qa),
            I3[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     if (!Qa) {
       st = ss_error_nomem(err, "fixed-point Jacobian");
       goto done;
     }
-    memcpy(Qa, Q, K * 3 * sizeof *Qa);
-    ss_limit_point phi;
-    double oq[3] = {0, 0, 0};
-    memset(&phi, 0, sizeof phi);
+    memcpy(Qa, Q, K * D * sizeof *Qa);
+    for (size_t d = 0; d < D; d++)
+      oq[d] = 0.0;
+    ss_lim_res phi = {D, phip, NULL, 0, 0};
     if ((st = ss_lim_walk(L, s, Qa, oq, 0, y, I3, 0, 1, cell, &phi, err))) goto done;
     const double sign = (b >> a) & 1u ? -2.0 : 2.0;
-    for (int d = 0; d < 3; d++)
-      J[a][d] = sign * phi.p[d];
+    for (size_t d = 0; d < D; d++)
+      J[(size_t)a * D + d] = sign * phip[d];
   }
 done:
   free(Q);
   return st;
 }
 
-/* Move the origin o to the first of K points P (3 coordinates each) and make
+/* Move the origin o to the first of K points P (D columns each) and make
  * P relative to it.  The rows of W sum to 1, so W (P - o) = W P - o: a shift
  * commutes with every step, and keeping the points relative to a point of
  * the current sub-cell keeps their differences -- of the order of the
  * sub-cell's size, 2^-m after m steps -- to full relative precision, which
  * absolute coordinates would lose (an error of eps |P| 2^m in the Jacobian). */
-static void recentre(double *P, size_t K, double o[3], int sc) {
-  double c[3] = {P[0], P[1], P[2]};
-  for (size_t i = 0; i < K; i++)
-    for (int d = 0; d < 3; d++)
-      P[i * 3 + (size_t)d] -= c[d];
-  for (int d = 0; d < 3; d++)
-    o[d] += ldexp(c[d], -sc);
+static void recentre(double *P, size_t K, size_t D, double *o, int sc) {
+  for (size_t d = 0; d < D; d++) {
+    const double c = P[d];
+    for (size_t i = 0; i < K; i++)
+      P[i * D + d] -= c;
+    o[d] += ldexp(c, -sc);
+  }
 }
 
 /* Exponent-aware scaling: the walk keeps 2^sc times the points relative to
@@ -272,13 +324,13 @@ static void recentre(double *P, size_t K, double o[3], int sc) {
  * 2^-256, P is scaled up to [1/2, 1) and M down by the same power of 2.
  * Exact, and never done at ordinary depths (results there are unchanged to
  * the bit). */
-static void rescale(double *P, size_t K, double M[3][3], int *sc) {
+static void rescale(double *P, size_t K, size_t D, double M[3][3], int *sc) {
   double mx = 0.0;
-  for (size_t i = 0; i < K * 3; i++)
+  for (size_t i = 0; i < K * D; i++)
     if (fabs(P[i]) > mx) mx = fabs(P[i]);
   if (!(mx > 0.0) || mx >= 0x1p-256) return;
   int k = -ilogb(mx) - 1;
-  for (size_t i = 0; i < K * 3; i++)
+  for (size_t i = 0; i < K * D; i++)
     P[i] = ldexp(P[i], k);
   for (int a = 0; a < 3; a++)
     for (int j = 0; j < 3; j++)
@@ -293,11 +345,11 @@ static void rescale(double *P, size_t K, double M[3][3], int *sc) {
  * edge, reached by one jump whatever x_a's digits; and the derivative along
  * the edge is the limit at (0, y) of the net with N_l'. */
 static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
-                             const double *P, const double o[3], int sc, ss_lim_pt pt,
+                             const double *P, const double *o, int sc, ss_lim_pt pt,
                              double M[3][3], int derivatives, size_t cell,
-                             ss_limit_point *out, ss_error *err) {
-  ss_status st;
-  const size_t K = L->st[s]->patch.nv;
+                             ss_lim_res *out, ss_error *err) {
+  ss_status st = SS_OK;
+  const size_t K = L->st[s]->patch.nv, D = out->D;
   const int a = T->axis;
   double x[3], bw[2][4];
   pt_x(&pt, x);
@@ -305,55 +357,60 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
   ss_lim_pt p0 = pt;
   p0.s[a] = 0;
   p0.d[a] = 0.0;
+  double *buf = malloc((2 * D + 1) * sizeof *buf), *oq = buf, *rp = buf + D;
+  if (!buf) return ss_error_nomem(err, "layered net");
   for (int pass = 0; pass < (derivatives ? 2 : 1); pass++) {
-    double *Q = malloc((K * 3 + 1) * sizeof *Q), oq[3] = {0, 0, 0}, M2[3][3];
-    if (!Q) return ss_error_nomem(err, "layered net");
+    double *Q = malloc((K * D + 1) * sizeof *Q), M2[3][3];
+    if (!Q) {
+      st = ss_error_nomem(err, "layered net");
+      break;
+    }
     for (size_t v = 0; v < K; v++)
-      for (int d = 0; d < 3; d++) {
+      for (size_t d = 0; d < D; d++) {
         double acc = 0.0;
         for (int l = 0; l < 4; l++)
-          acc += bw[pass][l] * P[T->colpt[T->col[v]][l] * 3 + (size_t)d];
-        Q[v * 3 + (size_t)d] = acc;
+          acc += bw[pass][l] * P[T->colpt[T->col[v]][l] * D + d];
+        Q[v * D + d] = acc;
       }
-    if (pass == 0)
-      for (int d = 0; d < 3; d++)
-        oq[d] = o[d];
+    for (size_t d = 0; d < D; d++)
+      oq[d] = pass == 0 ? o[d] : 0.0;
     memcpy(M2, M, sizeof M2);
-    ss_limit_point r;
-    memset(&r, 0, sizeof r);
+    ss_lim_res r = {D, pass == 0 ? out->p : rp, pass == 0 ? out->jac : NULL, 0, 0};
     if ((st = ss_lim_walk(L, s, Q, oq, pass == 0 ? sc : 0, p0, M2,
                           pass == 0 ? derivatives : 0, 1, cell, &r, err)))
-      return st;
+      break;
     if (pass == 0) {
-      *out = r;
-      out->products++;
+      out->steps = r.steps;
+      out->products = r.products + 1;
     } else {
       out->products += r.products + 1;
       /* d/dx_a in the current frame, then through M like the other rows */
       for (int i = 0; i < 3; i++)
-        for (int d = 0; d < 3; d++)
-          out->jac[i][d] += r.p[d] * M[a][i];
+        for (size_t d = 0; d < D; d++)
+          out->jac[(size_t)i * D + d] += rp[d] * M[a][i];
     }
   }
-  return SS_OK;
+  free(buf);
+  return st;
 }
 
 /* The walk from state s with patch points P (taken over and freed), 2^sc
  * times their offsets from the origin o (recentred and rescaled on the way;
  * out->p is absolute). */
-ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_lim_pt pt,
+ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_lim_pt pt,
                       double M[3][3], int derivatives, int no_tensor, size_t cell,
-                      ss_limit_point *out, ss_error *err) {
+                      ss_lim_res *out, ss_error *err) {
   ss_status st = SS_OK;
-  double *P0 = NULL;
+  const size_t D = out->D;
+  double *P0 = NULL, *shift = NULL;
   int plain = 0;
-  recentre(P, L->st[s]->patch.nv, o, sc);
-  rescale(P, L->st[s]->patch.nv, M, &sc);
+  recentre(P, L->st[s]->patch.nv, D, o, sc);
+  rescale(P, L->st[s]->patch.nv, D, M, &sc);
   for (;;) {
     ss_lim_state *S = L->st[s];
     if (S->patch.regular) {
-      finish_regular(&S->patch, P, &pt, M, derivatives, out);
-      for (int d = 0; d < 3; d++)
+      if ((st = finish_regular(&S->patch, P, &pt, M, derivatives, out, err))) goto done;
+      for (size_t d = 0; d < D; d++)
         out->p[d] = ldexp(out->p[d], -sc) + o[d];
       break;
     }
@@ -380,35 +437,33 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_
           L->stats.eigs++;
         }
         if (m < 0 && derivatives) {
-          P0 = malloc((S->patch.nv * 3 + 1) * sizeof *P0);
+          P0 = malloc((S->patch.nv * D + 1) * sizeof *P0);
           if (!P0) {
             st = ss_error_nomem(err, "patch points");
             goto done;
           }
-          memcpy(P0, P, S->patch.nv * 3 * sizeof *P0);
+          memcpy(P0, P, S->patch.nv * D * sizeof *P0);
         }
-        double shift[3];
+        if (!shift && !(shift = malloc((3 * D + 1) * sizeof *shift))) {
+          st = ss_error_nomem(err, "patch points");
+          goto done;
+        }
         int js = 0;
-        if ((st = ss_lim_eig_power(t->eig, m, P, shift, &js, err))) goto done;
-        for (int d = 0; d < 3; d++)
+        if ((st = ss_lim_eig_power(t->eig, m, D, P, shift, &js, err))) goto done;
+        for (size_t d = 0; d < D; d++)
           o[d] += ldexp(shift[d], -sc);
         sc += js;
         out->products++;
         if (m < 0) {
           /* a fixed point: every patch point is its limit */
-          for (int d = 0; d < 3; d++)
+          for (size_t d = 0; d < D; d++)
             out->p[d] = o[d] + ldexp(P[d], -sc);
           if (derivatives) {
-            double J[3][3];
-            if ((st = fixed_jacobian(L, s, t, ss_cube_corner_bits(3, k), P0, cell, J,
+            double *J = shift; /* 3 x D, the shift no longer needed */
+            if ((st = fixed_jacobian(L, s, t, ss_cube_corner_bits(3, k), D, P0, cell, J,
                                      err)))
               goto done;
-            for (int i = 0; i < 3; i++)
-              for (int d = 0; d < 3; d++) {
-                out->jac[i][d] = 0.0;
-                for (int a = 0; a < 3; a++)
-                  out->jac[i][d] += J[a][d] * M[a][i];
-              }
+            jac_through(J, M, out);
           }
           goto done;
         }
@@ -417,54 +472,72 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double o[3], int sc, ss_
           for (int j = 0; j < 3; j++)
             M[a][j] = ldexp(M[a][j], (int)m - js);
         out->steps += (int)m;
-        recentre(P, S->patch.nv, o, sc);
-        rescale(P, S->patch.nv, M, &sc);
+        recentre(P, S->patch.nv, D, o, sc);
+        rescale(P, S->patch.nv, D, M, &sc);
         continue;
       }
     }
-    if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, &P, err))) goto done;
+    if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, D, &P, err))) goto done;
     ss_lim_advance(&pt, k, &t->g, M);
     out->steps++;
     out->products++;
     s = t->next;
-    recentre(P, L->st[s]->patch.nv, o, sc);
-    rescale(P, L->st[s]->patch.nv, M, &sc);
+    recentre(P, L->st[s]->patch.nv, D, o, sc);
+    rescale(P, L->st[s]->patch.nv, D, M, &sc);
     if (++plain > SS_LIMIT_MAXSTEPS) {
       st = not_reached(L, cell, plain, err);
       goto done;
     }
   }
 done:
+  free(shift);
   free(P0);
   free(P);
   return st;
 }
 
-/* No non-finite number leaves the evaluator as a value: a point or Jacobian
- * entry beyond DBL_MAX (the Jacobian grows like d^(-1 - log2 lambda) at
- * distance d from a vertex whose subdominant eigenvalue lambda exceeds 1/2)
- * is refused with the reason. */
+/* No non-finite number leaves the evaluator as a value: a point, field or
+ * Jacobian entry beyond DBL_MAX (the Jacobian grows like d^(-1 - log2
+ * lambda) at distance d from a vertex whose subdominant eigenvalue lambda
+ * exceeds 1/2) is refused with the reason. */
 static ss_status check_finite(size_t cell, const double x[3], int derivatives,
-                              const ss_limit_point *out, ss_error *err) {
+                              const ss_lim_res *out, ss_error *err) {
   int ok = 1;
-  for (int d = 0; d < 3; d++) {
+  for (size_t d = 0; d < out->D; d++) {
     ok &= isfinite(out->p[d]) != 0;
-    for (int a = 0; a < 3 && derivatives; a++)
-      ok &= isfinite(out->jac[a][d]) != 0;
+    for (size_t a = 0; a < 3 && derivatives; a++)
+      ok &= isfinite(out->jac[a * out->D + d]) != 0;
   }
   if (ok) return SS_OK;
-  return ss_error_set(err, SS_ENUMERIC,
-                      "cell %zu at (%.17g, %.17g, %.17g): the %s is not a finite double "
-                      "(beyond the range of doubles): refused",
-                      cell + 1, x[0], x[1], x[2],
-                      derivatives ? "limit point or its Jacobian" : "limit point");
+  return ss_error_set(
+      err, SS_ENUMERIC,
+      "cell %zu at (%.17g, %.17g, %.17g): the %s is not a finite double "
+      "(beyond the range of doubles): refused",
+      cell + 1, x[0], x[1], x[2],
+      out->D > 3 ? (derivatives ? "limit point, a field or a derivative"
+                                : "limit point or a field")
+                 : (derivatives ? "limit point or its Jacobian" : "limit point"));
 }
 
-ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
-                        int derivatives, ss_limit_point *out, ss_error *err) {
+/* The net of a patch (K x D, row-major) from the mesh vertices src: the
+ * coordinates, then (D > 3) the fields.  SS_ENOMEM. */
+static ss_status patch_net(const ss_limit *L, const ss_idx *src, size_t K, size_t D,
+                           double **P, ss_error *err) {
+  *P = malloc((K * D + 1) * sizeof **P);
+  if (!*P) return ss_error_nomem(err, "patch points");
+  for (size_t i = 0; i < K; i++) {
+    memcpy(*P + i * D, L->mesh->x + (size_t)src[i] * 3, 3 * sizeof **P);
+    if (D > 3)
+      memcpy(*P + i * D + 3, L->fld + (size_t)src[i] * L->nf, L->nf * sizeof **P);
+  }
+  return SS_OK;
+}
+
+/* The walk for cell at x into r (r->D columns: 3, or 3 + L->nf). */
+static ss_status eval_net(ss_limit *L, size_t cell, const double x0[3], int derivatives,
+                          ss_lim_res *r, ss_error *err) {
   ss_status st;
-  double x[3] = {u, v, w}, M[3][3];
-  memset(out, 0, sizeof *out);
+  double x[3] = {x0[0], x0[1], x0[2]}, M[3][3], *P, *o;
   if ((st = check_args(L, cell, x, err)) || (st = ss_lim_cell_state(L, cell, err)))
     return st;
   /* the cell's canonical frame: turned, not recomputed (exact) */
@@ -476,43 +549,106 @@ ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
   }
   ss_lim_frame_apply(g0, x, x, M);
   size_t s = L->cell[cell].state;
-  const size_t K0 = L->st[s]->patch.nv;
-  double *P = malloc((K0 * 3 + 1) * sizeof *P);
-  if (!P) return ss_error_nomem(err, "patch points");
-  for (size_t i = 0; i < K0; i++)
-    memcpy(P + i * 3, L->mesh->x + (size_t)L->cell[cell].src[i] * 3, 3 * sizeof *P);
-  double o[3] = {0, 0, 0}, x0[3] = {u, v, w};
-  if ((st = ss_lim_walk(L, s, P, o, 0, q, M, derivatives, 0, cell, out, err))) return st;
-  return check_finite(cell, x0, derivatives, out, err);
+  if (!(o = calloc(r->D + 1, sizeof *o))) return ss_error_nomem(err, "patch points");
+  if (!(st = patch_net(L, L->cell[cell].src, L->st[s]->patch.nv, r->D, &P, err)))
+    st = ss_lim_walk(L, s, P, o, 0, q, M, derivatives, 0, cell, r, err);
+  free(o);
+  return st ? st : check_finite(cell, x0, derivatives, r, err);
 }
 
-ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
-                                  int derivatives, int max_depth, ss_limit_point *out,
-                                  ss_error *err) {
+/* Space for a result of D columns, or with fields NULL (D = 3) the arrays of
+ * out itself.  SS_ENOMEM. */
+static ss_status res_open(ss_limit_point *out, const double *fields, size_t nf,
+                          ss_lim_res *r, ss_error *err) {
+  memset(out, 0, sizeof *out);
+  *r = (ss_lim_res){3, out->p, &out->jac[0][0], 0, 0};
+  if (!fields) return SS_OK;
+  r->D = 3 + nf;
+  r->p = calloc(4 * r->D, sizeof *r->p);
+  if (!r->p) return ss_error_nomem(err, "limit fields");
+  r->jac = r->p + r->D;
+  return SS_OK;
+}
+
+/* Copy r into out, f and df (when r is not out's own) and free its space. */
+static void res_close(const ss_lim_res *r, ss_limit_point *out, double *f,
+                      double (*df)[3]) {
+  out->steps = r->steps;
+  out->products = r->products;
+  if (r->p == out->p) return;
+  const size_t D = r->D;
+  for (size_t d = 0; d < D; d++) {
+    if (d < 3)
+      out->p[d] = r->p[d];
+    else
+      f[d - 3] = r->p[d];
+    for (size_t a = 0; a < 3; a++) {
+      if (d < 3)
+        out->jac[a][d] = r->jac[a * D + d];
+      else if (df)
+        df[d - 3][a] = r->jac[a * D + d];
+    }
+  }
+  free(r->p);
+}
+
+ss_status ss_limit_eval_fields(ss_limit *L, size_t cell, double u, double v, double w,
+                               int derivatives, ss_limit_point *out, double *f,
+                               double (*df)[3], ss_error *err) {
+  ss_lim_res r;
+  const double x[3] = {u, v, w};
+  ss_status st = res_open(out, f, L->nf, &r, err);
+  if (st) return st;
+  st = eval_net(L, cell, x, derivatives, &r, err);
+  res_close(&r, out, f, derivatives ? df : NULL);
+  return st;
+}
+
+ss_status ss_limit_eval(ss_limit *L, size_t cell, double u, double v, double w,
+                        int derivatives, ss_limit_point *out, ss_error *err) {
+  return ss_limit_eval_fields(L, cell, u, v, w, derivatives, out, NULL, NULL, err);
+}
+
+/* The reference's walk into r: the patch complex refined (its positions),
+ * the fields (r->D > 3) carried by the rows of each step. */
+static ss_status reference_net(ss_limit *L, size_t cell, const double x[3],
+                               int derivatives, int max_depth, ss_lim_res *r,
+                               ss_error *err) {
   ss_status st;
-  double x[3] = {u, v, w}, M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  double M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const size_t D = r->D, nf = D - 3;
   ss_lim_pt pt = ss_lim_pt_make(x);
   ss_lim_patch p;
   ss_cx *pcx = NULL;
-  double *P = NULL;
-  memset(out, 0, sizeof *out);
+  double *P = NULL, *F = NULL, *W = NULL, *o = NULL;
   if ((st = check_args(L, cell, x, err))) return st;
   ss_lim_frame g = ss_lim_frame_id();
   if ((st = ss_lim_patch_build(&L->adj, cell, &g, L->loc, &p, err))) return st;
   if ((st = ss_lim_patch_complex(L->mesh, &p, &pcx, err))) goto done;
-  double o[3] = {0, 0, 0}; /* the patch is kept relative to o (recentre) */
+  if (!(o = calloc(D + 1, sizeof *o))) { /* the patch is kept relative to o */
+    st = ss_error_nomem(err, "patch points");
+    goto done;
+  }
+  if (nf) {
+    if ((st = patch_net(L, p.src, p.nv, D, &F, err))) goto done;
+    for (size_t i = 0; i < p.nv; i++) /* F: the fields only, K x nf */
+      memmove(F + i * nf, F + i * D + 3, nf * sizeof *F);
+  }
   for (int depth = 0;; depth++) {
-    recentre(pcx->x, pcx->nv, o, 0);
+    recentre(pcx->x, pcx->nv, 3, o, 0);
+    if (nf) recentre(F, pcx->nv, nf, o + 3, 0);
     if (p.regular) {
-      P = malloc((p.nv * 3 + 1) * sizeof *P);
-      if (!P) {
+      if (!(P = malloc((p.nv * D + 1) * sizeof *P))) {
         st = ss_error_nomem(err, "patch points");
         goto done;
       }
-      memcpy(P, pcx->x, p.nv * 3 * sizeof *P);
-      finish_regular(&p, P, &pt, M, derivatives, out);
-      for (int d = 0; d < 3; d++)
-        out->p[d] += o[d];
+      for (size_t i = 0; i < p.nv; i++) {
+        memcpy(P + i * D, pcx->x + i * 3, 3 * sizeof *P);
+        if (nf) memcpy(P + i * D + 3, F + i * nf, nf * sizeof *P);
+      }
+      if ((st = finish_regular(&p, P, &pt, M, derivatives, r, err))) goto done;
+      for (size_t d = 0; d < D; d++)
+        r->p[d] += o[d];
       break;
     }
     if (depth >= max_depth) {
@@ -527,19 +663,50 @@ ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, 
     int k = ss_lim_child_of(&pt);
     ss_lim_patch child;
     ss_cx *ccx;
-    if ((st = ss_lim_step(L->s, pcx, k, 0, &child, &g, &ccx, NULL, err))) goto done;
+    if ((st = ss_lim_step(L->s, pcx, k, 0, &child, &g, &ccx, nf ? &W : NULL, err)))
+      goto done;
+    if (nf && (st = apply(W, child.nv, p.nv, nf, &F, err))) {
+      ss_lim_patch_free(&child);
+      ss_cx_free(ccx);
+      goto done;
+    }
+    free(W);
+    W = NULL;
     ss_lim_patch_free(&p);
     ss_cx_free(pcx);
     p = child;
     pcx = ccx;
     ss_lim_advance(&pt, k, &g, M);
-    out->steps++;
-    out->products++;
+    r->steps++;
+    r->products++;
   }
-  if (!st) st = check_finite(cell, (const double[3]){u, v, w}, derivatives, out, err);
+  st = check_finite(cell, x, derivatives, r, err);
 done:
   free(P);
+  free(F);
+  free(W);
+  free(o);
   ss_lim_patch_free(&p);
   ss_cx_free(pcx);
   return st;
+}
+
+ss_status ss_limit_eval_reference_fields(ss_limit *L, size_t cell, double u, double v,
+                                         double w, int derivatives, int max_depth,
+                                         ss_limit_point *out, double *f, double (*df)[3],
+                                         ss_error *err) {
+  ss_lim_res r;
+  const double x[3] = {u, v, w};
+  ss_status st = res_open(out, f, L->nf, &r, err);
+  if (st) return st;
+  st = reference_net(L, cell, x, derivatives, max_depth, &r, err);
+  res_close(&r, out, f, derivatives ? df : NULL);
+  return st;
+}
+
+ss_status ss_limit_eval_reference(ss_limit *L, size_t cell, double u, double v, double w,
+                                  int derivatives, int max_depth, ss_limit_point *out,
+                                  ss_error *err) {
+  return ss_limit_eval_reference_fields(L, cell, u, v, w, derivatives, max_depth, out,
+                                        NULL, NULL, err);
 }

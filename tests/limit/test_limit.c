@@ -666,7 +666,7 @@ static void test_eig_power(void) {
     double P[K * 3], Q[K * 3];
     for (int i = 0; i < K * 3; i++)
       P[i] = Q[i] = sin(1.0 + i);
-    REQUIRE_OK_VOID(ss_lim_eig_power(e, m, P, NULL, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, m, 3, P, NULL, NULL, &err), &err);
     for (long step = 0; step < m; step++) {
       double N[K * 3] = {0};
       for (int i = 0; i < K; i++)

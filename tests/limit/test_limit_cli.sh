@@ -122,4 +122,54 @@ expect 2 "parameter u = 1.0000000000000002 is outside" "$exe" limit --scheme mlc
 expect 2 "parameter w = -4.9406564584124654e-324 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 0.5 -4.9406564584124654e-324"
 expect 2 "parameter v = nan is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 nan 0.5"
 expect 2 "parameter u = inf is outside" "$exe" limit --scheme mlca "$mesh" --at "1 inf 0.5 0.5"
+# fields (issue 36): a Medit 4th coordinate is the field w.  The 3x3x3 grid,
+# jittered, with w = 2x - 3y + z/2 + 1 (an affine field reproduces itself:
+# w = a.p + b at the limit point, its gradient J a) and inverted hexes' check
+# done on the positions
+awk 'BEGIN { srand(11)
+  printf "MeshVersionFormatted 2\nDimension 4\nVertices\n64\n"
+  for (k = 0; k < 4; k++) for (j = 0; j < 4; j++) for (i = 0; i < 4; i++) {
+    x = i + 0.2 * (rand() - 0.5); y = j + 0.2 * (rand() - 0.5); z = k + 0.2 * (rand() - 0.5)
+    printf "%.17g %.17g %.17g %.17g 0\n", x, y, z, 2 * x - 3 * y + z / 2 + 1 }
+  printf "Hexahedra\n27\n"
+  for (k = 0; k < 3; k++) for (j = 0; j < 3; j++) for (i = 0; i < 3; i++) {
+    v = i + 4 * (j + 4 * k) + 1
+    print v, v + 1, v + 5, v + 4, v + 16, v + 17, v + 21, v + 20, 0 }
+  print "End" }' > "$tmp/w.mesh"
+# the same positions without w
+awk 'NR == 2 {print "Dimension 3"; next} NF == 5 {print $1, $2, $3, $5; next} {print}' "$tmp/w.mesh" > "$tmp/p.mesh"
+for s in mlca ccsolid; do
+  "$exe" limit --scheme $s "$tmp/w.mesh" --samples 3 -d > "$tmp/w.txt"
+  "$exe" limit --scheme $s "$tmp/p.mesh" --samples 3 -d > "$tmp/p.txt"
+  checks=$((checks + 1)); [ "$(wc -l < "$tmp/w.txt")" -eq 729 ] || fail "$s: fields: not 729 lines"
+  r=$(awk '{w = 2 * $5 - 3 * $6 + $7 / 2 + 1; e = $17 - w; if (e < 0) e = -e; if (e > m) m = e
+            for (a = 0; a < 3; a++) { g = 2 * $(8 + 3 * a) - 3 * $(9 + 3 * a) + $(10 + 3 * a) / 2
+              e = $(18 + a) - g; if (e < 0) e = -e; if (e > n) n = e }
+            if (NF != 20) bad = 1 }
+          END {print (!bad && m <= 1e-12 && n <= 1e-12) ? "ok" : m " " n " " bad}' "$tmp/w.txt")
+  checks=$((checks + 1)); [ "$r" = "ok" ] || fail "$s: affine field w off by $r (value, gradient)"
+  # the positions and Jacobians are those of the mesh without w, bit for bit
+  checks=$((checks + 1)); cmp -s <(cut -d' ' -f1-16 "$tmp/w.txt") "$tmp/p.txt" || fail "$s: positions change with a field"
+  # the reference carries the field too
+  a=$("$exe" limit --scheme $s "$tmp/w.mesh" --at "14 0.3 0.6 0.2" --at "1 0.01 0.5 0.7" -d)
+  b=$("$exe" limit --scheme $s "$tmp/w.mesh" --at "14 0.3 0.6 0.2" --at "1 0.01 0.5 0.7" -d --reference)
+  d=$(paste -d' ' <(echo "$a") <(echo "$b") | awk '{for (i = 17; i <= 20; i++) {e = $i - $(i + 20); if (e < 0) e = -e; if (e > m) m = e}} END {print (m <= 1e-12) ? "ok" : m}')
+  checks=$((checks + 1)); [ "$d" = "ok" ] || fail "$s: field: direct vs reference differ by $d"
+done
+expect 0 '"point":\[.*"fields":{"w":.*"field_gradients":{"w":\[' "$exe" limit --scheme mlca "$tmp/w.mesh" --at "14 0.5 0.5 0.5" -d --format json
+out=$("$exe" limit --scheme mlca "$tmp/w.mesh" --at "14 0.5 0.5 0.5" --format json)
+checks=$((checks + 1)); echo "$out" | grep -q '"fields":{"w":' && ! echo "$out" | grep -q field_gradients || fail "fields without -d: $out"
+"$exe" limit --scheme mlca "$tmp/w.mesh" --samples 2 -d --format vtk -o "$tmp/w.vtk"
+checks=$((checks + 1)); grep -q "^SCALARS w double 1" "$tmp/w.vtk" && grep -q "^SCALARS w_gradient double 3" "$tmp/w.vtk" || fail "vtk: no w, w_gradient"
+# a vertex without its w shifts the section: refused by the reader, exit 2
+awk 'NR == 9 {print $1, $2, $3, $5; next} {print}' "$tmp/w.mesh" > "$tmp/short.mesh"
+expect 2 "short.mesh:[0-9]*: vertex reference .* is not an integer" "$exe" limit --scheme mlca "$tmp/short.mesh" --samples 2
+awk 'NR == 9 {print $1, $2, $3, "nan", $5; next} {print}' "$tmp/w.mesh" > "$tmp/nan.mesh"
+expect 2 "coordinate 'nan' is not a finite number" "$exe" limit --scheme mlca "$tmp/nan.mesh" --samples 2
+# subdivide keeps w: in Medit as the 4th coordinate, in VTK as point data w
+expect 0 "" "$exe" subdivide --scheme mlca "$tmp/w.mesh" -o "$tmp/s.mesh"
+checks=$((checks + 1)); grep -q "^Dimension 4" "$tmp/s.mesh" || fail "subdivide: w dropped in Medit"
+expect 0 "" "$exe" subdivide --scheme mlca "$tmp/w.mesh" -o "$tmp/s.vtk"
+checks=$((checks + 1)); grep -q "^SCALARS w double 1" "$tmp/s.vtk" || fail "subdivide: w dropped in VTK"
+expect 2 "OBJ holds at most 3 coordinates, not 4" "$exe" subdivide --scheme mlca "$tmp/w.mesh" -o "$tmp/s.obj"
 expect_done limit_cli

@@ -104,10 +104,10 @@ static void check_powers(const ss_lim_eig *e, const double *W, size_t K, gsl_rng
     memcpy(Q, P, sizeof Q);
     memcpy(R, P, sizeof R);
     repeat(W, K, ms[t], Q);
-    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], P, NULL, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], 3, P, NULL, NULL, &err), &err);
     CHECK(maxdiff(P, Q, K * 3) <= 1e-12, "%s: W^%ld P off by %g", what, ms[t],
           maxdiff(P, Q, K * 3));
-    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], R, shift, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], 3, R, shift, NULL, &err), &err);
     for (size_t i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
         R[i * 3 + (size_t)d] += shift[d];
@@ -119,7 +119,7 @@ static void check_powers(const ss_lim_eig *e, const double *W, size_t K, gsl_rng
   points(r, K, P);
   memcpy(Q, P, sizeof Q);
   limit_by_squaring(W, K, Q);
-  REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, NULL, &err), &err);
+  REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, 3, P, NULL, NULL, &err), &err);
   CHECK(maxdiff(P, Q, K * 3) <= 1e-10, "%s: limit off by %g", what, maxdiff(P, Q, K * 3));
 }
 
@@ -219,7 +219,7 @@ static void test_diagonalisable(gsl_rng *r) {
   /* coefficients: V C = P */
   double P[K * 3], C[K * 3], VC[K * 3] = {0};
   points(r, K, P);
-  ss_lim_eig_coef(e, P, C);
+  ss_lim_eig_coef(e, 3, P, C);
   for (size_t i = 0; i < K; i++)
     for (size_t j = 0; j < K; j++)
       for (int d = 0; d < 3; d++)
@@ -264,7 +264,7 @@ static void test_averaging(gsl_rng *r) {
     for (int i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
         want[d] += pi[i] * P[i * 3 + d];
-    REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, P, NULL, NULL, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, 3, P, NULL, NULL, &err), &err);
     double off = 0.0;
     for (int i = 0; i < K; i++)
       for (int d = 0; d < 3; d++)
@@ -292,7 +292,7 @@ static void test_defective(gsl_rng *r) {
   check_powers(e, W, K, r, 4095, 1, "Jordan block");
   double P[K * 3];
   points(r, K, P);
-  CHECK(ss_lim_eig_power(e, 4096, P, NULL, NULL, &err) != SS_OK,
+  CHECK(ss_lim_eig_power(e, 4096, 3, P, NULL, NULL, &err) != SS_OK,
         "Jordan block: W^4096 accepted");
   ss_lim_eig_free(e);
 }
@@ -314,7 +314,7 @@ static void test_no_limit(gsl_rng *r) {
     CHECK(e->one == SIZE_MAX, "%s: eigenvalue 1 called simple", names[t]);
     double P[K * 3];
     points(r, K, P);
-    CHECK(ss_lim_eig_power(e, -1, P, NULL, NULL, &err) == SS_ENUMERIC,
+    CHECK(ss_lim_eig_power(e, -1, 3, P, NULL, NULL, &err) == SS_ENUMERIC,
           "%s: a limit that does not exist was given", names[t]);
     check_powers(e, Ws[t], K, r, 40, 0, names[t]);
     ss_lim_eig_free(e);
@@ -346,7 +346,7 @@ static void test_half_part(gsl_rng *r) {
     REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
     CHECK(e->pw != NULL, "%s: not declared defective (cond %g)", what[t], e->cond);
     points(r, K, P);
-    ss_status st = ss_lim_eig_half_part(e, W, P, Q, &err);
+    ss_status st = ss_lim_eig_half_part(e, W, 3, P, Q, &err);
     if (t >= 2) {
       CHECK(st == SS_ENUMERIC && strstr(err.msg, t == 2 ? "Jordan block" : "modulus 0.6"),
             "%s: not refused: %d %s", what[t], (int)st, err.msg);
