@@ -84,16 +84,20 @@ static void kids_free(kids *k) {
   }
 }
 
-static ss_status kids_make(const ss_scheme *s, const ss_cx *pcx, kids *k, ss_error *err) {
+/* The 8 children; *framed 0 if one comes in a frame other than the box's
+ * (not expected: then no tube). */
+static ss_status kids_make(const ss_scheme *s, const ss_cx *pcx, kids *k, int *framed,
+                           ss_error *err) {
   memset(k, 0, sizeof *k);
-  for (int i = 0; i < 8; i++) {
+  *framed = 1;
+  for (int i = 0; i < 8 && *framed; i++) {
     ss_lim_frame g;
     ss_cx *ccx = NULL;
     const ss_status st = ss_lim_step(s, pcx, i, 0, &k->ch[i], &g, &ccx, &k->W[i], err);
     ss_cx_free(ccx);
     if (st) return st;
     k->made[i] = 1;
-    if (!ss_lim_frame_is_id(&g)) return SS_EINPUT; /* not expected: no tube */
+    *framed = ss_lim_frame_is_id(&g);
   }
   return SS_OK;
 }
@@ -102,7 +106,7 @@ static ss_status kids_make(const ss_scheme *s, const ss_cx *pcx, kids *k, ss_err
  * (A_b's row) and cross row ru[u]; X (nr x ncol) read from the rows of layer
  * 1 when first is set, else checked against. */
 static int factor_rows(const double *W, size_t nc, const int *lu, const size_t *ru,
-                       size_t nr, const ss_lim_tensor *T, int b, int first, long long *Xp,
+                       const ss_lim_tensor *T, int b, int first, long long *Xp,
                        long long *Xq, ss_limit_rational_fn rat, void *arg) {
   const size_t n = T->ncol, K = 4 * n;
   const long long a11 = (long long)(8.0 * ss_lim_bspline_half[b][1][1]);
@@ -117,7 +121,6 @@ static int factor_rows(const double *W, size_t nc, const int *lu, const size_t *
         Xq[ru[u] * n + q] = x.q;
       }
     }
-    (void)nr;
   }
   for (size_t u = 0; u < nc; u++)
     for (size_t w = 0; w < K; w++) {
@@ -135,18 +138,12 @@ static int factor_rows(const double *W, size_t nc, const int *lu, const size_t *
 static int runs_factor(ss_lim_tube *u, const ss_lim_patch *p, const kids *k,
                        ss_limit_rational_fn rat, void *arg) {
   const ss_lim_tensor *T = &u->T;
-  const size_t K = p->nv;
-  size_t *ru = malloc((K + 1) * sizeof *ru);
-  if (!ru) return -1;
-  for (size_t v = 0; v < K; v++)
-    ru[v] = T->col[v];
   int ok = 1;
   for (int b = 0; b < 2 && ok; b++) {
     const int kk = ss_cube_corner_index(3, u->t.corner | ((unsigned)b << u->t.axis));
-    ok = factor_rows(k->W[kk], K, T->layer, ru, T->ncol, T, b, b == 0, u->Fp, u->Fq, rat,
+    ok = factor_rows(k->W[kk], p->nv, T->layer, T->col, T, b, b == 0, u->Fp, u->Fq, rat,
                      arg);
   }
-  free(ru);
   return ok;
 }
 
@@ -165,7 +162,7 @@ static int quad_factor(ss_lim_tube *u, int c, const kids *k, ss_limit_rational_f
       lu[cp->net[g]] = ix[ax];
       ru[cp->net[g]] = (size_t)(ix[o0] + 4 * ix[o1]);
     }
-    if (!factor_rows(k->W[kk], 64, lu, ru, 16, &u->T, b, b == 0, u->Gp[c], u->Gq[c], rat,
+    if (!factor_rows(k->W[kk], 64, lu, ru, &u->T, b, b == 0, u->Gp[c], u->Gq[c], rat,
                      arg))
       return 0;
   }
@@ -240,11 +237,11 @@ ss_status ss_lim_tube_build(const ss_scheme *s, const ss_lim_patch *p, const ss_
                             ss_error *err) {
   *out = NULL;
   kids k;
-  ss_status st = kids_make(s, pcx, &k, err);
-  if (st == SS_EINPUT) st = SS_OK; /* an unexpected frame: no tube */
+  int framed = 0;
+  ss_status st = kids_make(s, pcx, &k, &framed, err);
   ss_lim_tube *u = NULL;
   size_t *uf = NULL;
-  if (st || !k.made[7]) goto done;
+  if (st || !framed) goto done;
   u = calloc(1, sizeof *u);
   if (!u) {
     st = ss_error_nomem(err, "limit tube");
@@ -259,12 +256,8 @@ ss_status ss_lim_tube_build(const ss_scheme *s, const ss_lim_patch *p, const ss_
   int ok = find_axis(p, &k, &u->t);
   u->T.axis = u->t.axis;
   ok = ok && ss_lim_tensor_columns(p, &u->T, uf);
-  if (ok) {
-    const int r = runs_factor(u, p, &k, rat, arg);
-    if (r < 0) st = ss_error_nomem(err, "limit tube");
-    ok = r > 0;
-  }
-  for (int c = 0; c < 3 && ok && !st; c++)
+  ok = ok && runs_factor(u, p, &k, rat, arg);
+  for (int c = 0; c < 3 && ok; c++)
     ok = quad_factor(u, c, &k, rat, arg);
   if (st || !ok) goto done;
   points(u, pcx, elo, ehi, x0);

@@ -172,23 +172,20 @@ static int target_of(const walk *w, const ss_limit_piece *pc) {
   return -1;
 }
 
-/* The proof passes: intervals from the enclosed net of the piece. */
 /* WALK_ALL at an uncovered box: its tube's sign proven (ss_psi_tube.h), or
  * 0 with r->tube_why set. */
 static int prove_tube(const ss_limit_piece *pc, walk *w) {
   ss_psi_result *r = w->r;
+  ss_psi_tube_result tr = {0};
   if (!w->tubes || !pc->tube) {
-    snprintf(r->tube_why, sizeof r->tube_why,
-             "cell %zu box (%.6g, %.6g, %.6g) of side 2^-%d: %s", pc->cell + 1,
-             pc->origin[0], pc->origin[1], pc->origin[2], pc->depth,
+    snprintf(tr.why, sizeof tr.why, "%s",
              w->tubes ? "not the layered structure of an extraordinary edge"
                       : "tubes not asked for");
-    return 0;
+  } else {
+    w->st =
+        ss_psi_tube_sign(pc->tube, w->maxden, w->o->piece_depth, w->tcache, &tr, w->err);
+    if (w->st) return 0;
   }
-  ss_psi_tube_result tr;
-  w->st =
-      ss_psi_tube_sign(pc->tube, w->maxden, w->o->piece_depth, w->tcache, &tr, w->err);
-  if (w->st) return 0;
   if (tr.sign) {
     r->ntubes++;
     if (tr.layers > r->tube_layers) r->tube_layers = tr.layers;
@@ -200,6 +197,7 @@ static int prove_tube(const ss_limit_piece *pc, walk *w) {
   return tr.sign;
 }
 
+/* The proof passes: intervals from the enclosed net of the piece. */
 static int prove_piece(const ss_limit_piece *pc, walk *w) {
   if (w->mode == WALK_ALL) {
     ss_psi_piece_result ps;
@@ -312,10 +310,8 @@ static ss_status walk_cells(ss_limit *L, const ss_local *M, const ss_limit_enclo
     ++*ncentre;
     w->pbits = ss_cube_corner_bits(3, j);
     const ss_status st =
-        w->tubes ? ss_limit_pieces_tubes(L, c, w->o->maxdepth, enc, exact_rational,
-                                         &w->maxden, skip_box, visit, w, err)
-                 : ss_limit_pieces_enclosed(L, c, w->o->maxdepth, enc, skip_box, visit, w,
-                                            err);
+        ss_limit_pieces_tubes(L, c, w->o->maxdepth, enc, w->tubes ? exact_rational : NULL,
+                              &w->maxden, skip_box, visit, w, err);
     if (st) return st;
     if (w->st) return w->st;
   }
@@ -367,8 +363,8 @@ static ss_status prove_fail(ss_limit *L, const ss_local *M, const ss_limit_enclo
 /* The proof passes of a decided double verdict, with the enclosure e. */
 static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e, walk *w,
                        ss_error *err) {
-  long maxden = e->maxden;
-  const ss_limit_enclosure enc = {e->lo, e->hi, exact_weight, &maxden};
+  w->maxden = e->maxden;
+  const ss_limit_enclosure enc = {e->lo, e->hi, exact_weight, &w->maxden};
   ss_psi_result *r = w->r;
   r->enclosed = 1;
   if (r->verdict.verdict == SS_FAIL) return prove_fail(L, M, &enc, w, err);
@@ -382,7 +378,6 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   w->need = r->sign;
   w->tubes = tubes;
   r->tubes = tubes;
-  w->maxden = e->maxden;
   w->err = err;
   size_t n;
   if (tubes && !(w->tcache = ss_psi_tube_cache_new()))

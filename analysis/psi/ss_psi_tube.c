@@ -70,15 +70,11 @@ static void ws_clear(tube_ws *w) {
   arb_mat_clear(w->X);
   arb_mat_clear(w->C);
   arb_mat_clear(w->N);
-  arb_mat_clear(w->beta);
-  arb_mat_clear(w->b1);
-  arb_mat_clear(w->bmu);
-  arb_mat_clear(w->a);
-  arb_mat_clear(w->b);
   free(w->eidx);
 }
 
-/* Everything but the quadrants' factors G (gfactor). */
+/* What F alone determines (the points' part and the quadrants' factors G
+ * are ss_psi_tube_sign's and gfactor's). */
 static void ws_init(tube_ws *w, const ss_limit_tube *t) {
   memset(w, 0, sizeof *w);
   w->t = t;
@@ -89,11 +85,6 @@ static void ws_init(tube_ws *w, const ss_limit_tube *t) {
   arb_mat_init(w->X, (slong)w->n, 2);
   arb_mat_init(w->C, 3, (slong)w->r);
   arb_mat_init(w->N, (slong)w->r, (slong)w->r);
-  arb_mat_init(w->beta, (slong)w->r, 12);
-  arb_mat_init(w->b1, (slong)w->r, 12);
-  arb_mat_init(w->bmu, (slong)w->r, 12);
-  arb_mat_init(w->a, 1, 12);
-  arb_mat_init(w->b, 2, 12);
 }
 
 /* w->G[c] from the tube's exact G_c (initialised here). */

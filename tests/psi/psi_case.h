@@ -5,8 +5,10 @@
 #define PSI_CASE_H
 
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "ss_cx.h"
+#include "ss_exact.h"
 #include "ss_limit.h"
 #include "ss_link.h"
 #include "ss_pipeline.h"
@@ -68,6 +70,44 @@ static inline double psi_det3(double J[3][3]) {
   return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
          J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
          J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+}
+
+/* The exact path's enclosure of p's basis, as rows (n2 x 3), column d times
+ * g[d] (g NULL: 1; a diagonal basis change) and widened by delta, and its
+ * midpoints. */
+typedef struct {
+  double *lo, *hi, *mid;
+  size_t n;
+} psi_encl;
+
+/* 0, or -1 (the reason printed) if the basis is not enclosed. */
+static inline int psi_encl_get(const ss_pipeline *p, double delta, const double *g,
+                               psi_encl *e) {
+  const size_t n = p->M->n2;
+  double *bl = malloc(3 * n * sizeof *bl), *bh = malloc(3 * n * sizeof *bh);
+  e->lo = malloc(3 * n * sizeof *e->lo);
+  e->hi = malloc(3 * n * sizeof *e->hi);
+  e->mid = malloc(3 * n * sizeof *e->mid);
+  e->n = n;
+  ss_error err = {0};
+  int rc = ss_exact_basis(p->ex, bl, bh, &err) ? -1 : 0;
+  for (size_t i = 0; i < n && !rc; i++)
+    for (size_t d = 0; d < 3; d++) {
+      const double f = g ? g[d] : 1.0, a = f * bl[d * n + i], b = f * bh[d * n + i];
+      e->lo[3 * i + d] = (a < b ? a : b) - delta;
+      e->hi[3 * i + d] = (a < b ? b : a) + delta;
+      e->mid[3 * i + d] = 0.5 * e->lo[3 * i + d] + 0.5 * e->hi[3 * i + d];
+    }
+  free(bl);
+  free(bh);
+  if (rc) fprintf(stderr, "basis enclosure: %s\n", err.msg);
+  return rc;
+}
+
+static inline void psi_encl_free(psi_encl *e) {
+  free(e->lo);
+  free(e->hi);
+  free(e->mid);
 }
 
 #endif

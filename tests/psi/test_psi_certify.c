@@ -34,40 +34,6 @@ static ss_pipeline *run(const ss_scheme *s, const char *link) {
   return psi_run(s, link, 4, 1);
 }
 
-/* The exact path's enclosure of the basis, as rows (n2 x 3), widened by
- * delta (relative to the largest |entry|, 1), and its midpoints. */
-typedef struct {
-  double *lo, *hi, *mid;
-  size_t n;
-} encl;
-
-static int encl_get(const ss_pipeline *p, double delta, encl *e) {
-  const size_t n = p->M->n2;
-  double *bl = malloc(3 * n * sizeof *bl), *bh = malloc(3 * n * sizeof *bh);
-  e->lo = malloc(3 * n * sizeof *e->lo);
-  e->hi = malloc(3 * n * sizeof *e->hi);
-  e->mid = malloc(3 * n * sizeof *e->mid);
-  e->n = n;
-  ss_error err = {0};
-  int rc = ss_exact_basis(p->ex, bl, bh, &err) ? -1 : 0;
-  for (size_t i = 0; i < n && !rc; i++)
-    for (size_t d = 0; d < 3; d++) {
-      e->lo[3 * i + d] = bl[d * n + i] - delta;
-      e->hi[3 * i + d] = bh[d * n + i] + delta;
-      e->mid[3 * i + d] = 0.5 * e->lo[3 * i + d] + 0.5 * e->hi[3 * i + d];
-    }
-  free(bl);
-  free(bh);
-  if (rc) fprintf(stderr, "basis enclosure: %s\n", err.msg);
-  return rc;
-}
-
-static void encl_free(encl *e) {
-  free(e->lo);
-  free(e->hi);
-  free(e->mid);
-}
-
 /* What the enclosed traversal found, piece by piece. */
 typedef struct {
   size_t pieces;
@@ -176,9 +142,9 @@ static void proven_fold(const ss_scheme *s, const char *link, int net_certified)
             p->v.reg.on == SS_ON_PSI && p->v.inj.verdict == SS_FAIL && p->v.inj.certified,
         "%s: %s%s: %s", link, ss_verdict_name(p->v.reg.verdict),
         p->v.reg.certified ? " (certified)" : "", p->v.reg.reason);
-  encl e = {0};
+  psi_encl e = {0};
   ss_limit *L = NULL;
-  if (r->nwitness == 2 && !encl_get(p, 0.0, &e)) L = psi_limit(s, p, e.mid);
+  if (r->nwitness == 2 && !psi_encl_get(p, 0.0, NULL, &e)) L = psi_limit(s, p, e.mid);
   for (int i = 0; i < 2 && L; i++) {
     const ss_psi_point *w = &r->witness[i];
     ss_limit_point pt;
@@ -194,7 +160,7 @@ static void proven_fold(const ss_scheme *s, const char *link, int net_certified)
           w->det[1], d);
   }
   ss_limit_free(L);
-  encl_free(&e);
+  psi_encl_free(&e);
   ss_pipeline_free(p);
 }
 
@@ -211,8 +177,8 @@ static void widened(const ss_scheme *s) {
   double width[2] = {0, 0};
   const double delta[3] = {1e-12, 1e-9, 1e-2};
   for (int k = 0; k < 3; k++) {
-    encl e = {0};
-    if (encl_get(p, delta[k], &e)) break;
+    psi_encl e = {0};
+    if (psi_encl_get(p, delta[k], NULL, &e)) break;
     const ss_psi_enclosure pe = {e.lo, e.hi, maxden};
     ss_psi_result q;
     ss_error err = {0};
@@ -227,13 +193,13 @@ static void widened(const ss_scheme *s) {
        * make its enclosure far wider than that: the proof must refuse */
       CHECK(!q.verdict.certified && q.enclosed, "delta %g: not proven", delta[k]);
     }
-    encl_free(&e);
+    psi_encl_free(&e);
   }
   CHECK(width[1] > 100.0 * width[0], "enclosures widen with delta: %.3g then %.3g",
         width[0], width[1]);
   /* refusals */
-  encl e = {0};
-  if (!encl_get(p, 0.0, &e)) {
+  psi_encl e = {0};
+  if (!psi_encl_get(p, 0.0, NULL, &e)) {
     ss_psi_result q;
     ss_error err = {0};
     ss_psi_enclosure pe = {e.lo, e.hi, maxden};
@@ -247,7 +213,7 @@ static void widened(const ss_scheme *s) {
           "weights beyond maxden: SS_ENUMERIC (%s)", err.msg);
     CHECK(ss_psi_certify(s, p->M, NULL, &o, &q, &err) == SS_EINPUT, "no enclosure");
   }
-  encl_free(&e);
+  psi_encl_free(&e);
   ss_pipeline_free(p);
 }
 

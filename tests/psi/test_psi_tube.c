@@ -29,39 +29,6 @@
 #include "ss_psi_tube.h"
 #include "ss_test.h"
 
-/* The exact path's enclosure of the basis as rows (n2 x 3), columns times
- * g[j] (a diagonal basis change), and its midpoints. */
-typedef struct {
-  double *lo, *hi, *mid;
-} encl;
-
-static int encl_get(const ss_pipeline *p, const double g[3], encl *e) {
-  const size_t n = p->M->n2;
-  double *bl = malloc(3 * n * sizeof *bl), *bh = malloc(3 * n * sizeof *bh);
-  e->lo = malloc(3 * n * sizeof *e->lo);
-  e->hi = malloc(3 * n * sizeof *e->hi);
-  e->mid = malloc(3 * n * sizeof *e->mid);
-  ss_error err = {0};
-  int rc = ss_exact_basis(p->ex, bl, bh, &err) ? -1 : 0;
-  for (size_t i = 0; i < n && !rc; i++)
-    for (size_t d = 0; d < 3; d++) {
-      const double a = g[d] * bl[d * n + i], b = g[d] * bh[d * n + i];
-      e->lo[3 * i + d] = fmin(a, b);
-      e->hi[3 * i + d] = fmax(a, b);
-      e->mid[3 * i + d] = 0.5 * e->lo[3 * i + d] + 0.5 * e->hi[3 * i + d];
-    }
-  free(bl);
-  free(bh);
-  if (rc) fprintf(stderr, "basis enclosure: %s\n", err.msg);
-  return rc;
-}
-
-static void encl_free(encl *e) {
-  free(e->lo);
-  free(e->hi);
-  free(e->mid);
-}
-
 static int exact_rat(double w, void *arg, long long *p, long long *q) {
   return ss_exact_rational(w, *(const long *)arg, p, q) ? 0 : -1;
 }
@@ -182,8 +149,8 @@ static int visit(const ss_limit_piece *pc, void *arg) {
 static int tubes_of(const ss_scheme *s, const ss_pipeline *p, const double g[3],
                     int mutate, int eval, trav *t) {
   memset(t, 0, sizeof *t);
-  encl e;
-  if (encl_get(p, g, &e)) return -1;
+  psi_encl e;
+  if (psi_encl_get(p, 0.0, g, &e)) return -1;
   t->maxden = ss_exact_defaults(3).maxden;
   t->mutate = mutate;
   t->cache = mutate == 2 ? NULL : ss_psi_tube_cache_new(); /* one run without */
@@ -205,7 +172,7 @@ static int tubes_of(const ss_scheme *s, const ss_pipeline *p, const double g[3],
   ss_limit_free(L);
   ss_psi_tube_cache_free(t->cache);
   t->cache = NULL;
-  encl_free(&e);
+  psi_encl_free(&e);
   return rc;
 }
 
