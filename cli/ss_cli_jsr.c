@@ -38,8 +38,11 @@ static void usage(FILE *f) {
       "subdominant eigenvalue of S_1 = min(lambda1, 1/2)) and the verdict: pass if\n"
       "upper < threshold, fail if lower >= threshold, otherwise undecided.\n"
       "\"certified\": the bounds account for the rounding in the products of the\n"
-      "computed Y_i (not for the rounding in forming Y_i from S_i).\n\n"
-      "  --scheme S        tetoct or boxspline (schemes with the tet/oct split)\n"
+      "computed Y_i (not for the rounding in forming Y_i from S_i).\n\n");
+  fprintf(
+      f,
+      "  --scheme S        a scheme with the tet/oct split: tetoct, boxspline or\n"
+      "                    boxspline-avg\n"
       "  --face            the face shared by two tets\n"
       "  --edge N          an edge of valence N (3..64)\n"
       "  --depth K         word length of rho_k and the lower bound (1..12, default 8)\n"
@@ -64,15 +67,25 @@ static void usage(FILE *f) {
       "                    --norm ellipsoid or auto only.  The\n"
       "                    bound stays proven for any K (tet/oct face, 60 s:\n"
       "                    see README, \"Joint spectral radius\")\n"
-      "  --diagonals D     major diagonals of tet stars (boxspline): bfs (default),\n"
+      "  --diagonals D     major diagonals of tet stars, for boxspline (the only rule\n"
+      "                    that reads them; refused for the others): bfs (default),\n"
       "                    proper; skew and center for edges only\n"
-      "  --max-seconds T   time limit of the branch and bound, the ellipsoid's fit\n"
-      "                    included (at most a quarter of it; default 60)\n"
+      "  --max-seconds T   time limit (0 < T < 1e7, default 60) of everything after\n"
+      "                    the maps are built (a fixed cost of 1-2 s): the\n"
+      "                    products for rho_k from length 2 on (a length it cuts\n"
+      "                    short is left out of rho_k and of the upper bound, and\n"
+      "                    said so), the ellipsoid's fit (at most a quarter of\n"
+      "                    it), the polytope and the branch and bound\n"
       "  --format F        text (default) or json (keys: lower, upper, threshold,\n"
-      "                    rho_k, rho_k_2, verdict, certified, ...)\n\n"
+      "                    rho_k, rho_k_2, verdict, certified, ...; when the time\n"
+      "                    limit cut rho_k short also stopped_by, depth,\n"
+      "                    depth_complete, cut_length, cut_words, cut_of; when the\n"
+      "                    reduction does not apply applies = false, reason, the\n"
+      "                    result keys null and verdict n/a)\n\n"
       "Exit status: 0 pass, 1 fail or undecided (or the reduction does not apply:\n"
       "the spectrum of S_1 is not of the required form, the subspace is not\n"
-      "invariant), 2 bad usage or bad input.\n");
+      "invariant), 2 bad usage or bad input.  A time limit is not an error: the\n"
+      "bounds found by then are proven, and the verdict is judged on them.\n");
 }
 
 enum {
@@ -116,6 +129,7 @@ typedef struct {
   const char *scheme_name; /* --scheme */
   ss_case c;               /* --face or --edge N, with --diagonals */
   int have_case;           /* --face or --edge was given */
+  int diag_given;          /* --diagonals was given */
   int json;                /* --format json */
   ss_jsr_opts o;           /* --depth, --gap, --norm, --fit-words, --max-seconds */
 } jsr_args;
@@ -174,14 +188,15 @@ static int parse_option(int ch, char **argv, jsr_args *a) {
     a->o.max_seconds = strtod(optarg, &end);
     if (end == optarg || *end || !(a->o.max_seconds > 0 && a->o.max_seconds < 1e7))
       return ss_cli_usage_error(cmd,
-                                "--max-seconds: expected a positive number, not "
-                                "'%s'",
+                                "--max-seconds: expected a positive number of seconds "
+                                "below 1e7 (the cap), not '%s'",
                                 optarg);
     break;
   case O_DIAG:
     if (ss_diag_parse(optarg, &a->c.diag))
       return ss_cli_usage_error(
           cmd, "--diagonals: expected bfs, proper, skew or center, not '%s'", optarg);
+    a->diag_given = 1;
     break;
   case O_FORMAT:
     if (ss_cli_format_option(cmd, optarg, &a->json)) return SS_EXIT_USAGE;
@@ -217,6 +232,11 @@ static int parse_args(int argc, char **argv, jsr_args *a) {
   return -1;
 }
 
+/* m^k, the number of words of length k over the maps of L. */
+static double words_of(const ss_levin *L, int k) {
+  return pow((double)L->m, k);
+}
+
 /* The result as one JSON object on standard output. */
 static void print_json(const jsr_args *a, const ss_levin *L, const ss_jsr_result *r,
                        const char *verdict, const char *thr_name) {
@@ -245,6 +265,15 @@ static void print_json(const jsr_args *a, const ss_levin *L, const ss_jsr_result
   }
   json_object_object_add(j, "rho_k", rk);
   json_object_object_add(j, "rho_k_2", r2);
+  if (r->cut_len > 0) { /* only then: the bytes of complete runs are as before */
+    json_object_object_add(j, "stopped_by", json_object_new_string("max-seconds"));
+    json_object_object_add(j, "depth", json_object_new_int(a->o.depth));
+    json_object_object_add(j, "depth_complete", json_object_new_int(r->depth));
+    json_object_object_add(j, "cut_length", json_object_new_int(r->cut_len));
+    json_object_object_add(j, "cut_words", json_object_new_int64((int64_t)r->cut_words));
+    json_object_object_add(j, "cut_of",
+                           json_object_new_int64((int64_t)words_of(L, r->cut_len)));
+  }
   json_object_object_add(j, "lower", json_object_new_double(r->lower));
   for (int k = 0; k < r->lower_len; k++)
     json_object_array_add(w, json_object_new_int(r->lower_word[k] + 1));
@@ -285,6 +314,12 @@ static void print_text(const jsr_args *a, const ss_levin *L, const ss_jsr_result
   printf("\n%-4s %-12s %-12s\n", "k", "rho_k (inf)", "rho_k (2)");
   for (int k = 0; k < r->depth; k++)
     printf("%-4d %-12.6g %-12.6g\n", k + 1, r->rho_inf[k], r->rho_2[k]);
+  if (r->cut_len > 0)
+    printf("time limit (--max-seconds %g): rho_k for k = 1..%d of --depth %d; the "
+           "words of length %d were cut short after %zu of %.0f (they count for the "
+           "lower bound only)\n",
+           a->o.max_seconds, r->depth, a->o.depth, r->cut_len, r->cut_words,
+           words_of(L, r->cut_len));
   char fitted[48] = "";
   if (a->o.fit_words > 1 && r->norm == SS_JSR_NORM_ELLIPSOID)
     snprintf(fitted, sizeof fitted, " fitted to words of length %d", a->o.fit_words);
@@ -302,6 +337,45 @@ static void print_text(const jsr_args *a, const ss_levin *L, const ss_jsr_result
   printf("threshold %.6g: %s\nverdict: %s\n", L->threshold, thr_name, verdict);
 }
 
+/* The reduction does not apply (ss_levin_new's SS_EINTERNAL, reason in
+ * msg): with --format json the object with the case, the reason and a null
+ * result, so that a reader of standard output gets one object per run. */
+static void print_json_na(const jsr_args *a, const char *msg) {
+  const ss_case c = a->c;
+  json_object *j = json_object_new_object();
+  json_object_object_add(j, "scheme", json_object_new_string(a->scheme_name));
+  json_object_object_add(j, "case", json_object_new_string(ss_case_name(c.kind)));
+  if (c.kind == SS_CASE_EDGE) json_object_object_add(j, "n", json_object_new_int(c.n));
+  json_object_object_add(j, "diagonals", json_object_new_string(ss_diag_name(c.diag)));
+  json_object_object_add(j, "applies", json_object_new_boolean(0));
+  json_object_object_add(j, "reason", json_object_new_string(msg));
+  static const char *const nulls[] = {"rho_k", "rho_k_2",   "lower",
+                                      "upper", "threshold", "certified"};
+  for (size_t k = 0; k < sizeof nulls / sizeof *nulls; k++)
+    json_object_object_add(j, nulls[k], NULL);
+  json_object_object_add(j, "verdict", json_object_new_string("n/a"));
+  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
+  json_object_put(j);
+}
+
+/* The scheme and the Levin-Levin reduction of the case into *s and *L; -1 to
+ * go on, else the exit status with the message printed (and with --format
+ * json the object of print_json_na when the reduction does not apply). */
+static int build_case(const jsr_args *a, ss_scheme **s, ss_levin **L) {
+  ss_error err = {0};
+  if (ss_scheme_new(a->scheme_name, s, &err)) return ss_cli_fail(&err);
+  if (a->diag_given && !ss_scheme_reads_diagonals(*s))
+    return ss_cli_usage_error("jsr",
+                              "--diagonals: scheme %s reads no major diagonals (only "
+                              "boxspline's rule does); leave the option out",
+                              a->scheme_name);
+  if (ss_levin_new(*s, &a->c, L, &err)) {
+    if (err.status == SS_EINTERNAL && a->json) print_json_na(a, err.msg);
+    return ss_cli_fail(&err);
+  }
+  return -1;
+}
+
 int ss_cli_jsr(int argc, char **argv) {
   jsr_args a;
   int rc = parse_args(argc, argv, &a);
@@ -312,9 +386,10 @@ int ss_cli_jsr(int argc, char **argv) {
   ss_levin *L = NULL;
   ss_jsr_result r;
   memset(&r, 0, sizeof r);
+  rc = build_case(&a, &s, &L);
+  if (rc >= 0) goto done;
   rc = SS_EXIT_OK;
-  if (ss_scheme_new(a.scheme_name, &s, &err) || ss_levin_new(s, &c, &L, &err) ||
-      ss_jsr_compute(L->m, L->n - L->r, (const double *const *)L->Y, &a.o, &r, &err)) {
+  if (ss_jsr_compute(L->m, L->n - L->r, (const double *const *)L->Y, &a.o, &r, &err)) {
     rc = ss_cli_fail(&err);
     goto done;
   }

@@ -79,7 +79,8 @@ typedef struct {
                              (POLYTOPE runs the polytope first, then the branch
                              and bound as AUTO) */
   double t0;              /* the start (ss_clock_wall) */
-  double deadline;        /* t0 + o->max_seconds, 0 for no time limit */
+  double deadline;        /* t0 + o->max_seconds, 0 for no time limit: every
+                             stage's */
   const double *const *Y; /* the inputs in use: the caller's or yn */
   int ex;                 /* the inputs in use are the caller's times 2^ex */
   double *ybuf;           /* m * n * n: the scaled inputs, NULL if ex == 0 */
@@ -228,16 +229,19 @@ static ss_status scale_inputs(jsr_run *r, ss_error *err) {
   return SS_OK;
 }
 
-/* The brute force to depth K: the profiles, the lower bound, and the first
- * upper bound.  min_k rho_k bounds rho(Y); the rigorous inf-norm profile is
- * used (the branch and bound's first pass, at depth K, is at least as good in
- * its own norm: max over words of the min over prefixes <= min_k rho_k). */
+/* The brute force to depth K, within the deadline: the profiles, the lower
+ * bound, and the first upper bound.  min_k rho_k over the complete lengths
+ * bounds rho(Y); the rigorous inf-norm profile is used (the branch and
+ * bound's first pass, at depth K, is at least as good in its own norm: max
+ * over words of the min over prefixes <= min_k rho_k). */
 static ss_status brute_stage(jsr_run *r, ss_jsr_result *out, ss_error *err) {
   ss_jsr_ws *w = &r->w;
-  ss_jsr_brute_force(w, r->K, out->rho_inf, out->rho_2, r->rho_cert);
+  out->depth = ss_jsr_brute_force(w, r->K, r->deadline, out->rho_inf, out->rho_2,
+                                  r->rho_cert, &out->cut_words);
   if (w->st != SS_OK) return lapack_failed(w, err);
+  out->cut_len = out->depth < r->K ? out->depth + 1 : 0;
   r->upper = INFINITY;
-  for (int k = 0; k < r->K; k++)
+  for (int k = 0; k < out->depth; k++)
     if (r->rho_cert[k] < r->upper) r->upper = r->rho_cert[k];
   r->brute_nodes = w->nodes;
   return SS_OK;
@@ -260,7 +264,6 @@ static ss_status norms_stage(jsr_run *r, ss_error *err) {
     ss_jsr_choose_scaling(w, r->Y, r->K, r->best_d, &have);
     if (w->st != SS_OK) return lapack_failed(w, err);
   }
-  r->deadline = o->max_seconds > 0 ? r->t0 + o->max_seconds : 0;
   int have_ell = 0;
   if ((o->norm == SS_JSR_NORM_ELLIPSOID || (r->auto_ && w->n <= ELL_AUTO_MAX_N)) &&
       r->upper > w->lower * (1 + o->gap)) {
@@ -371,7 +374,7 @@ static ss_status bound_stage(jsr_run *r, ss_jsr_result *out, ss_error *err) {
  * bounds scaled back by 2^-ex, the flags and the time taken. */
 static ss_status finish(jsr_run *r, ss_jsr_result *out, ss_error *err) {
   const ss_jsr_ws *w = &r->w;
-  const int K = r->K, ex = r->ex;
+  const int ex = r->ex;
   out->lower_word = malloc((size_t)(w->lower_len > 0 ? w->lower_len : 1) * sizeof(int));
   if (!out->lower_word) return ss_error_nomem(err, "jsr lower word");
   out->lower_len = w->lower_len;
@@ -394,7 +397,7 @@ static ss_status finish(jsr_run *r, ss_jsr_result *out, ss_error *err) {
   if (out->lower > 0 && out->lower < DBL_MIN) out->lower = nextafter(out->lower, 0.0);
   if (out->upper > 0 && out->upper < DBL_MIN)
     out->upper = nextafter(out->upper, INFINITY);
-  for (int k = 0; k < K; k++) {
+  for (int k = 0; k < out->depth; k++) {
     out->rho_inf[k] = ldexp(out->rho_inf[k], -ex);
     out->rho_2[k] = ldexp(out->rho_2[k], -ex);
   }
@@ -420,13 +423,13 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
   jsr_run r;
   memset(&r, 0, sizeof r);
   r.o = o, r.K = o->depth, r.t0 = t0, r.Y = Y;
+  r.deadline = o->max_seconds > 0 ? t0 + o->max_seconds : 0;
   r.auto_ = o->norm == SS_JSR_NORM_AUTO || o->norm == SS_JSR_NORM_POLYTOPE;
   st = run_alloc(&r, m, n, out, err);
   if (st == SS_OK) st = scale_inputs(&r, err);
   if (st == SS_OK) {
     r.w.Y = r.Y;
     ss_jsr_ws_scale(&r.w, r.Y, NULL);
-    out->depth = r.K;
     st = brute_stage(&r, out, err);
   }
   if (st == SS_OK) st = norms_stage(&r, err);

@@ -7,9 +7,11 @@
  *   max_{|w| = k} rho(Y_w)^{1/k}  <=  rho(Y)  <=  max_{|w| = k} ||Y_w||^{1/k}.
  *
  * Method (ss_jsr.c).
- *  - Brute force over the m + m^2 + ... + m^K words of length <= K, depth
- *    first, each product formed from its prefix's (one matrix product per
- *    word): the profiles rho_inf, rho_2 and the lower bound.  Eigenvalues are
+ *  - Brute force over the m + m^2 + ... + m^K words of length <= K, one
+ *    length at a time (depth first to that length, each product formed from
+ *    its prefix's; the prefixes are formed again for each length, about
+ *    1 / (m - 1) more products, but a time limit then leaves complete
+ *    lengths): the profiles rho_inf, rho_2 and the lower bound.  Eigenvalues are
  *    computed for Lyndon words only (rho(Y_w)^{1/|w|} is invariant under
  *    rotating w and under powers) and only when ||Y_w||_inf could beat the
  *    current lower bound.
@@ -101,7 +103,12 @@ typedef struct {
                          its first pass; see ss_jsr_norm) */
   size_t max_nodes;   /* most products the branch and bound may form; 0: no
                          limit besides max_seconds */
-  double max_seconds; /* wall-clock limit of the branch and bound; <= 0: none */
+  double max_seconds; /* wall-clock limit of the whole call (<= 0: none): the
+                         brute force from length 2 on (a length it cuts short
+                         is left out of rho_inf, rho_2 and the upper bound:
+                         see depth, cut_len), the ellipsoid's fit (its first
+                         quarter), the polytope (half of what is left) and
+                         the branch and bound */
   int max_depth;      /* longest word the branch and bound forms; 0: no limit
                          besides max_nodes / max_seconds (>= depth to matter) */
   int weighted;       /* 1: the inf-norm branch and bound may switch to a
@@ -117,9 +124,17 @@ typedef struct {
 ss_jsr_opts ss_jsr_defaults(void);
 
 typedef struct {
-  int depth;            /* K, the length of rho_inf and rho_2 */
-  double *rho_inf;      /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k}, k = 1..K
-                           (floating point, the plain inf-norm of the inputs) */
+  int depth;            /* the length of rho_inf and rho_2: the complete word
+                           lengths of the brute force, o->depth unless the time
+                           limit stopped it (cut_len) */
+  int cut_len;          /* 0, or the word length whose products the time limit
+                           cut short (then depth = cut_len - 1 < o->depth) */
+  size_t cut_words;     /* words of length cut_len judged before the limit (of
+                           m^cut_len; 0 if cut_len is 0); they count for the
+                           lower bound only */
+  double *rho_inf;      /* rho_inf[k-1] = max_{|w| = k} ||Y_w||_inf^{1/k},
+                           k = 1..depth (floating point, the plain inf-norm of
+                           the inputs); o->depth entries allocated */
   double *rho_2;        /* the same in the 2-norm (LAPACK's singular values) */
   double lower;         /* lower bound: max over the words of length <= K (and the
                            Lyndon words the branch and bound met) of
@@ -129,7 +144,8 @@ typedef struct {
   int *lower_word;      /* that word, indices 0..m-1, lower_len of them (first
                            factor applied first) */
   double upper;         /* proven upper bound on rho(Y): min of the rigorous
-                           inf-norm profile and the branch and bound in o->norm */
+                           inf-norm profile (complete lengths) and the branch
+                           and bound in o->norm */
   int converged;        /* 1 if upper <= lower * (1 + gap) */
   size_t nodes;         /* products formed by the branch and bound (including
                            ranking the weightings), not by the brute force */
@@ -160,13 +176,14 @@ typedef struct {
  * (m + ... + m^K), fit_words outside 1..5 or m^fit_words > 4096; SS_ENOMEM; SS_ENUMERIC
  * if LAPACK's eigenvalue or singular value computation fails, or if norm ELLIPSOID was
  * asked for and the fitted L could not be proven invertible (AUTO then just
- * skips that norm).  Cost: (m^{K+1} - m) / (m - 1) products with a norm
- * each (an SVD for rho_2) for the profiles; the ellipsoid's fit, at most
- * 750 L-BFGS steps of O(m n^3) (within a quarter of max_seconds; with
- * fit_words K > 1 as many more of O(m^K n^3) on the products), and its
- * enclosure, O(m n^3) in 128-bit balls; then the branch and bound within
- * max_nodes / max_seconds / max_depth (converged = 0 when a limit stops it);
- * memory O((K + L) n^2 + m n^2), about (26 + 2 m) n^2 more for the fit. */
+ * skips that norm).  Cost: about m / (m - 1) times (m^{K+1} - m) / (m - 1)
+ * products, a norm each for the (m^{K+1} - m) / (m - 1) words (an SVD for
+ * rho_2), for the profiles (within max_seconds after length 1); the ellipsoid's fit, at
+ * most 750 L-BFGS steps of O(m n^3) (within a quarter of max_seconds; with fit_words K >
+ * 1 as many more of O(m^K n^3) on the products), and its enclosure, O(m n^3) in 128-bit
+ * balls; then the branch and bound within max_nodes / max_seconds / max_depth (converged
+ * = 0 when a limit stops it); memory O((K + L) n^2 + m n^2), about (26 + 2 m) n^2 more
+ * for the fit. */
 ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_jsr_opts *o,
                          ss_jsr_result *out, ss_error *err);
 

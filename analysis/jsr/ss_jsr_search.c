@@ -1,7 +1,7 @@
 /* ss_jsr_search.c — the JSR's walks over words: the brute force to a fixed
- * length, the branch and bound pass (Gripenberg 1996), the lower bound from
- * the spectral radii of Lyndon words, and the choice of the norm the branch
- * and bound runs in: the diagonal weighting from Perron vectors, the
+ * length (one length at a time, within a deadline), the branch and bound pass (Gripenberg
+ * 1996), the lower bound from the spectral radii of Lyndon words, and the choice of the
+ * norm the branch and bound runs in: the diagonal weighting from Perron vectors, the
  * ellipsoidal copies (ss_jsr_ws.h). */
 #include <lapacke.h>
 #include <stdlib.h>
@@ -34,46 +34,87 @@ static int is_lyndon(const int *w, int len) {
   return i == 0 && j == len;
 }
 
+/* 1 if the word a (length la) comes before b (length lb) in the depth-first
+ * order of the walks: lexicographic, a prefix before its extensions. */
+static int word_before(const int *a, int la, const int *b, int lb) {
+  for (int j = 0; j < la && j < lb; j++)
+    if (a[j] != b[j]) return a[j] < b[j];
+  return la < lb;
+}
+
 /* Offer the word at levels 0..k to the lower bound.  rho(P) <= ||P||_inf, so
  * the eigenvalue computation is skipped when the norm cannot beat the bound,
- * and for words that are not Lyndon words (is_lyndon). */
-static void ws_offer_lower(ss_jsr_ws *w, int k) {
+ * and for words that are not Lyndon words (is_lyndon).  With ties, a word
+ * whose value equals the bound (often: products with the same spectral
+ * radius up to rounding) replaces the bound's word if it comes first in the
+ * depth-first order (word_before): the brute force, which walks the lengths
+ * one at a time, then keeps the word a single depth-first walk would keep
+ * (the weighting and so the branch and bound depend on it). */
+static void ws_offer_lower(ss_jsr_ws *w, int k, int ties) {
   const double lim = pow(w->lower, (double)(k + 1));
   if (fmin(w->nhat_inf[k], w->cap2[k]) * (1 + 1e-12) <= lim || !isfinite(w->nhat_inf[k]))
     return;
   if (!is_lyndon(w->word, k + 1)) return;
   const double r = ss_jsr_ws_specrad(w, k);
-  if (r <= lim) return;
+  if (r <= lim && !ties) return;
   const double v = pow(r, 1.0 / (k + 1));
-  if (v > w->lower) {
+  if (v > w->lower || (ties && v == w->lower &&
+                       word_before(w->word, k + 1, w->lower_word, w->lower_len))) {
     w->lower = v;
     w->lower_len = k + 1;
     memcpy(w->lower_word, w->word, (size_t)(k + 1) * sizeof *w->word);
   }
 }
 
-/* Brute force over all m^K words of length <= K: rho_inf, rho_2 (floating
- * point), rigorous inf-norm profile rho_cert, and the lower bound. */
-void ss_jsr_brute_force(ss_jsr_ws *w, int K, double *rho_inf, double *rho_2,
-                        double *rho_cert) {
-  for (int k = 0; k < K; k++)
-    rho_inf[k] = rho_2[k] = rho_cert[k] = 0;
+/* The words of length t + 1 (level t), each formed from its prefix (the
+ * prefixes' products re-formed, not judged): their largest norms into
+ * rho_inf[t], rho_2[t], rho_cert[t] (not yet rooted), and the lower bound.
+ * With t > 0 and deadline > 0 the wall clock is read before every product;
+ * returns 1 if the length is complete, 0 if the deadline stopped it (then
+ * *words of its words were judged). */
+static int brute_length(ss_jsr_ws *w, int t, double deadline, double *rho_inf,
+                        double *rho_2, double *rho_cert, size_t *words) {
+  const double p = 1.0 / (t + 1);
   int k = 0;
+  *words = 0;
   w->word[0] = -1;
   while (ws_next(w, &k)) {
+    if (t > 0 && deadline > 0 && ss_clock_wall() > deadline) return 0;
     ss_jsr_ws_push(w, k, (size_t)w->word[k]);
-    const double p = 1.0 / (k + 1);
-    rho_inf[k] = fmax(rho_inf[k], pow(w->nhat_inf[k], p));
-    rho_cert[k] = fmax(rho_cert[k], ss_jsr_ws_norm_inf_up(w, k));
+    if (k < t) {
+      w->word[++k] = -1;
+      continue;
+    }
+    ++*words;
+    rho_inf[t] = fmax(rho_inf[t], pow(w->nhat_inf[k], p));
+    rho_cert[t] = fmax(rho_cert[t], ss_jsr_ws_norm_inf_up(w, k));
     /* ||P||_2 <= min(sqrt(||P||_1 ||P||_inf), ||P||_F) skips the SVD when
      * it cannot raise the maximum */
-    if (w->cap2[k] * (1 + 1e-12) > pow(rho_2[k], (double)(k + 1)))
-      rho_2[k] = fmax(rho_2[k], pow(ss_jsr_ws_norm_2(w, k), p));
-    ws_offer_lower(w, k);
-    if (k + 1 < K) w->word[++k] = -1;
+    if (w->cap2[k] * (1 + 1e-12) > pow(rho_2[t], (double)(k + 1)))
+      rho_2[t] = fmax(rho_2[t], pow(ss_jsr_ws_norm_2(w, k), p));
+    ws_offer_lower(w, k, 1);
   }
-  for (k = 0; k < K; k++)
-    rho_cert[k] = ss_jsr_root_up(rho_cert[k], k + 1);
+  return 1;
+}
+
+/* Brute force over the words of length 1..K, one length at a time (so that
+ * a time limit leaves complete lengths): rho_inf, rho_2 (floating point), the
+ * rigorous inf-norm profile rho_cert, and the lower bound.  Returns the
+ * number of complete lengths; *cut_words: words of the next length judged
+ * before the deadline (0 if all K are complete). */
+int ss_jsr_brute_force(ss_jsr_ws *w, int K, double deadline, double *rho_inf,
+                       double *rho_2, double *rho_cert, size_t *cut_words) {
+  for (int k = 0; k < K; k++)
+    rho_inf[k] = rho_2[k] = rho_cert[k] = 0;
+  *cut_words = 0;
+  int done = 0;
+  while (done < K &&
+         brute_length(w, done, deadline, rho_inf, rho_2, rho_cert, cut_words)) {
+    rho_cert[done] = ss_jsr_root_up(rho_cert[done], done + 1);
+    *cut_words = 0;
+    done++;
+  }
+  return done;
 }
 
 /* min over k <= s of the rigorous max_{|w| = k} ||Y_w||_inf^{1/k} for the
@@ -226,7 +267,7 @@ int ss_jsr_bnb_pass(ss_jsr_ws *w, int L, ss_jsr_norm norm, double gap, size_t ma
         (deadline > 0 && ss_clock_wall() > deadline))
       return 0;
     ss_jsr_ws_push(w, k, (size_t)w->word[k]);
-    ws_offer_lower(w, k);
+    ws_offer_lower(w, k, 0);
     double b;
     if (norm == SS_JSR_NORM_INF) {
       b = ss_jsr_root_up(ss_jsr_ws_norm_inf_up(w, k), k + 1);

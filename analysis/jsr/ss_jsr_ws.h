@@ -109,10 +109,14 @@ void ss_jsr_ws_scale(ss_jsr_ws *w, const double *const *Y, const double *d);
 
 /* --- ss_jsr_search.c: the walks over words and the choice of the norm --- */
 
-/* Brute force over all m^K words of length <= K: rho_inf, rho_2 (floating
- * point), the rigorous inf-norm profile rho_cert, and the lower bound. */
-void ss_jsr_brute_force(ss_jsr_ws *w, int K, double *rho_inf, double *rho_2,
-                        double *rho_cert);
+/* Brute force over the m^k words of length k = 1..K, one length at a time:
+ * rho_inf, rho_2 (floating point), the rigorous inf-norm profile rho_cert,
+ * and the lower bound.  From length 2 on, the wall-clock deadline (> 0) is
+ * read before every product.  Returns the number of complete lengths (K, or
+ * fewer if the deadline stopped it; then *cut_words words of the next length
+ * were judged, else 0). */
+int ss_jsr_brute_force(ss_jsr_ws *w, int K, double deadline, double *rho_inf,
+                       double *rho_2, double *rho_cert, size_t *cut_words);
 /* Choose the diagonal weighting of the inf-norm for the branch and bound
  * (*have = 1 and best_d if one beats the identity) and leave it active. */
 void ss_jsr_choose_scaling(ss_jsr_ws *w, const double *const *Y, int K, double *best_d,

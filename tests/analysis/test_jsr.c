@@ -380,6 +380,79 @@ static void test_limits(gsl_rng *rng) {
   ss_jsr_result_clear(&r);
 }
 
+/* The time limit holds in the brute force too (issue 35, item 12): with
+ * words of length up to 12 over 4 maps (16.8 M at the last length) and
+ * 0.3 s, the walk stops inside some length L; the lengths before it are
+ * complete and their profile is bit for bit the one an unlimited run to depth
+ * L - 1 computes; the cut length is reported with how many of its m^L words
+ * were judged, and the bounds stay ordered. */
+static void test_brute_deadline(gsl_rng *rng) {
+  enum { n = 12, m = 4 };
+  static double mats[m][n * n];
+  const double *Y[m] = {mats[0], mats[1], mats[2], mats[3]};
+  for (int i = 0; i < m; i++)
+    for (int e = 0; e < n * n; e++)
+      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.depth = 12;
+  o.max_seconds = 0.3;
+  int ok;
+  ss_jsr_result r = run(m, n, Y, o, &ok);
+  if (!ok) return;
+  CHECK(r.depth >= 1 && r.depth < 12, "deadline: %d complete lengths of 12", r.depth);
+  CHECK(r.cut_len == r.depth + 1, "deadline: cut length %d after %d complete", r.cut_len,
+        r.depth);
+  CHECK(r.cut_words < (size_t)pow(m, r.cut_len), "deadline: %zu words of length %d",
+        r.cut_words, r.cut_len);
+  CHECK(r.seconds < 30, "deadline: %g s for a 0.3 s limit", r.seconds);
+  CHECK(r.lower <= r.upper, "deadline: [%g, %g]", r.lower, r.upper);
+  double best = INFINITY;
+  for (int k = 0; k < r.depth; k++)
+    best = fmin(best, r.rho_inf[k]);
+  CHECK(r.upper <= best * (1 + 1e-9),
+        "deadline: upper %.17g above the complete "
+        "lengths' min rho_k %.17g",
+        r.upper, best);
+  ss_jsr_opts u = ss_jsr_defaults();
+  u.depth = r.depth;
+  u.max_seconds = 0;
+  u.max_nodes = 1;
+  ss_jsr_result f = run(m, n, Y, u, &ok);
+  if (ok) {
+    CHECK(f.depth == r.depth && f.cut_len == 0 && f.cut_words == 0,
+          "unlimited: depth %d cut %d/%zu", f.depth, f.cut_len, f.cut_words);
+    for (int k = 0; k < r.depth; k++)
+      CHECK(f.rho_inf[k] == r.rho_inf[k] && f.rho_2[k] == r.rho_2[k],
+            "rho_%d: cut run %.17g %.17g, unlimited %.17g %.17g", k + 1, r.rho_inf[k],
+            r.rho_2[k], f.rho_inf[k], f.rho_2[k]);
+  }
+  ss_jsr_result_clear(&f);
+  ss_jsr_result_clear(&r);
+}
+
+/* Ties in the lower bound are broken as one depth-first walk over all
+ * lengths would (the brute force now walks one length at a time): Y0 = E21
+ * (nilpotent), Y1 = E11 + E12 (upper triangular, rho 1); either product of
+ * the two is diag(1, 0, 0) or has the single nonzero row (1, 1, 0) in row 2,
+ * rho 1 with LAPACK's balancing exact, so the words (1) and (0, 1) (0-based)
+ * both give exactly 1, and (0, 1) comes first depth first. */
+static void test_tie(void) {
+  const double Y0[9] = {0, 0, 0, 1, 0, 0, 0, 0, 0}, Y1[9] = {1, 1, 0, 0, 0, 0, 0, 0, 0};
+  const double *Y[2] = {Y0, Y1};
+  ss_jsr_opts o = ss_jsr_defaults();
+  o.depth = 3;
+  o.max_nodes = 1; /* the brute force's lower bound is the point */
+  int ok;
+  ss_jsr_result r = run(2, 3, Y, o, &ok);
+  if (ok) {
+    CHECK(r.lower == 1, "tie: lower %.17g, not 1", r.lower);
+    CHECK(r.lower_len == 2 && r.lower_word[0] == 0 && r.lower_word[1] == 1,
+          "tie: lower word of length %d starting %d, not (0, 1)", r.lower_len,
+          r.lower_word[0]);
+  }
+  ss_jsr_result_clear(&r);
+}
+
 /* ---- brute force, independently ------------------------------------------- */
 
 typedef struct {
@@ -880,6 +953,8 @@ int main(void) {
   test_triangular(rng);
   test_single();
   test_limits(rng);
+  test_brute_deadline(rng);
+  test_tie();
   test_brute(rng);
   test_permutation(rng);
   test_ellipsoid(rng);

@@ -93,4 +93,44 @@ PY
 # box-spline faces with the diagonals of Algorithm 2 have the eigenvalue
 # 0.512 > 1/2: the reduction does not apply, exit 1 with the spectrum
 expect_in 1 "are not 1, 1/2 x3, 1/4 x6" "" "$exe" jsr --scheme boxspline --face --depth 2 --max-seconds 1
+# --max-seconds holds in the products for rho_k too (issue 35, item 12: depth
+# 12 ran for minutes): the run stops in time, says which lengths are complete,
+# and their rho_k are those of an unlimited run to that depth
+t0=$(date +%s)
+cut=$("$exe" jsr --scheme tetoct --face --depth 12 --max-seconds 1 --format json)
+t1=$(date +%s)
+checks=$((checks + 1))
+[ $((t1 - t0)) -lt 30 ] || fail "jsr --depth 12 --max-seconds 1 took $((t1 - t0)) s"
+d=$(python3 -c 'import json,sys; print(json.loads(sys.argv[1])["depth_complete"])' "$cut")
+full=$("$exe" jsr --scheme tetoct --face --depth "$d" --max-seconds 5 --format json)
+checks=$((checks + 1))
+python3 - "$cut" "$full" <<'PY' || fail "time-limited rho_k: $cut / $full"
+import json, sys
+c, f = (json.loads(x) for x in sys.argv[1:])
+assert c["stopped_by"] == "max-seconds" and c["depth"] == 12
+d = c["depth_complete"]
+assert 1 <= d < 12 and c["cut_length"] == d + 1
+assert 0 <= c["cut_words"] < c["cut_of"] == 4 ** (d + 1)
+assert c["rho_k"] == f["rho_k"] and c["rho_k_2"] == f["rho_k_2"] and len(c["rho_k"]) == d
+assert "stopped_by" not in f and "cut_length" not in f
+assert c["lower"] <= c["upper"] <= min(c["rho_k"]) * (1 + 1e-9)
+PY
+expect_in 0 "were cut short after" "" "$exe" jsr --scheme tetoct --face --depth 12 --max-seconds 1
+expect_in 2 "below 1e7 \(the cap\), not '1e7'" "" "$exe" jsr --scheme tetoct --face --max-seconds 1e7
+# --diagonals only where the rule reads them (tet/oct's does not: it changed
+# rho_k without meaning anything)
+expect_in 2 "scheme tetoct reads no major diagonals" "" "$exe" jsr --scheme tetoct --edge 5 --diagonals skew
+expect_in 2 "scheme tetoct reads no major diagonals" "" "$exe" jsr --scheme tetoct --face --diagonals bfs
+# where the reduction does not apply, --format json still prints one object
+out=$("$exe" jsr --scheme boxspline --face --depth 2 --max-seconds 1 --format json)
+rc=$?
+checks=$((checks + 1))
+[ "$rc" = 1 ] || fail "boxspline face json: exit $rc"
+python3 - "$out" <<'PY' || fail "boxspline face JSON when the reduction does not apply: $out"
+import json, sys
+j = json.loads(sys.argv[1])
+assert j["applies"] is False and j["verdict"] == "n/a"
+assert "1, 1/2 x3, 1/4 x6" in j["reason"]
+assert j["lower"] is None and j["upper"] is None and j["rho_k"] is None
+PY
 expect_done test_jsr_cli
