@@ -97,10 +97,12 @@ static ss_status box(trav *t, ss_lim_patch *p, ss_cx *pcx, box_enc *e, int depth
                      const double origin[3], ss_error *err) {
   ss_status st = SS_OK;
   ss_limit_piece pc = {t->cell, depth, {origin[0], origin[1], origin[2]}, NULL, NULL,
-                       NULL,    NULL};
+                       NULL,    NULL,  {pcx->x[0], pcx->x[1], pcx->x[2]}};
   if (p->regular) {
     double net[64][3], lo[64][3], hi[64][3];
     piece_net(p, pcx, e, net, lo, hi);
+    for (int d = 0; d < 3; d++) /* piece_net's x0 */
+      pc.shift[d] = pcx->x[3 * (size_t)p->net[21] + (size_t)d];
     pc.net = (const double(*)[3])net;
     if (e->lo) {
       pc.lo = (const double(*)[3])lo;

@@ -51,6 +51,10 @@ typedef struct {
                                 round an extraordinary edge (valid during the
                                 callback), with ss_limit_pieces_tubes; else
                                 NULL */
+  double shift[3];           /* the common vector net, lo, hi and the tube's
+                                points are translated by: a true point is
+                                shift + its translated one (an exactly
+                                representable double point of the patch) */
 } ss_limit_piece;
 
 /* An enclosure of the rule's weight w (as the scheme computes it in
