@@ -84,6 +84,20 @@ static json_object *psi_json(const ss_psi_result *r) {
     json_object_object_add(t, "why", json_object_new_string(r->tube_why));
     json_object_object_add(o, "tubes", t);
   }
+  if (r->inject_why[0]) { /* the winding number on the boundary (ss_psi_inject.h) */
+    json_object *t = json_object_new_object();
+    json_object_object_add(t, "decided",
+                           json_object_new_string(r->inject > 0   ? "injective"
+                                                  : r->inject < 0 ? "not injective"
+                                                                  : "undecided"));
+    json_object_object_add(t, "proven", json_object_new_boolean(r->inject != 0));
+    json_object_object_add(
+        t, "winding", r->degree || r->inject ? json_object_new_int(r->degree) : NULL);
+    json_object_object_add(t, "squares",
+                           json_object_new_int64((int64_t)r->boundary_squares));
+    json_object_object_add(t, "why", json_object_new_string(r->inject_why));
+    json_object_object_add(o, "injectivity", t);
+  }
   if (r->by_masks) { /* decided at the ring's regular vertices (ss_psi_mask.h) */
     json_object *m = json_object_new_object();
     json_object_object_add(m, "count", json_object_new_int64((int64_t)r->nregular));

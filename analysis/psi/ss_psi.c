@@ -14,6 +14,7 @@
 #include "ss_limit.h"
 #include "ss_limit_pieces.h"
 #include "ss_psi_bernstein.h"
+#include "ss_psi_inject.h"
 #include "ss_psi_spoke.h"
 #include "ss_psi_tube.h"
 
@@ -59,6 +60,7 @@ typedef struct {
   ss_status st;              /* an error met in the callback */
   ss_error *err;             /* where it is described */
   ss_psi_tube_cache *tcache; /* WALK_ALL with tubes: the cross-sections met */
+  ss_psi_inject *inj;        /* WALK_ALL: the star's boundary gathered */
 } walk;
 
 /* Whether a box of a cell around p lies in p's octant [0,1/2]^3 (in the
@@ -207,6 +209,8 @@ static int prove_piece(const ss_limit_piece *pc, walk *w) {
                      : ps.sign == SS_JAC_NEGATIVE ? -1
                                                   : 0;
     if (sign != w->need) w->need = 0;
+    if (w->need && !w->st && w->inj)
+      w->st = ss_psi_inject_box(w->inj, pc, w->pbits, w->err);
     return w->need == 0 || w->st; /* one piece not proven: stop */
   }
   const int i = target_of(w, pc);
@@ -382,13 +386,27 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   size_t n;
   if (tubes && !(w->tcache = ss_psi_tube_cache_new()))
     return ss_error_nomem(err, "psi tubes");
-  const ss_status st = walk_cells(L, M, &enc, w, &n, err);
+  if (!(w->inj = ss_psi_inject_new(M, w->o->maxdepth))) {
+    ss_psi_tube_cache_free(w->tcache);
+    return ss_error_nomem(err, "psi boundary");
+  }
+  ss_status st = walk_cells(L, M, &enc, w, &n, err);
   ss_psi_tube_cache_free(w->tcache);
   w->tcache = NULL;
   if (!st && w->need != 0) {
     r->verdict.verdict = SS_PASS;
     r->verdict.certified = 1;
+    ss_psi_inject_result ir;
+    st = ss_psi_inject_degree(w->inj, w->need, &ir, err);
+    if (!st) {
+      r->inject = ir.decided;
+      r->degree = ir.degree;
+      r->boundary_squares = ir.squares;
+      snprintf(r->inject_why, sizeof r->inject_why, "%s", ir.why);
+    }
   }
+  ss_psi_inject_free(w->inj);
+  w->inj = NULL;
   return st;
 }
 
@@ -612,6 +630,15 @@ static void apply_decided(const ss_psi_result *r, ss_verdict *reg, ss_verdict *i
   char text[200];
   if (r->verdict.verdict == SS_PASS) {
     *reg = r->verdict;
+    if (r->inject) { /* the winding number on the boundary decided (proven) */
+      snprintf(text, sizeof text, "the control net: %s%s%.150s",
+               ss_verdict_name(inj->verdict), inj->reason[0] ? ": " : "", inj->reason);
+      inj->verdict = r->inject > 0 ? SS_PASS : SS_FAIL;
+      inj->on = SS_ON_PSI;
+      inj->certified = 1;
+      snprintf(inj->reason, sizeof inj->reason, "%s", r->inject_why);
+      append(inj, text);
+    }
     return;
   }
   if (reg->on == SS_ON_PSI && reg->verdict == SS_FAIL) {

@@ -174,16 +174,23 @@ typedef struct {
   ss_psi_point witness[2]; /* with fail: det Dpsi of opposite strict signs */
   int maxdepth;            /* the options used */
   int piece_depth;
-  double seconds;     /* thread CPU time of the test */
-  int tubes;          /* 1 if the tubes' proofs ran (ss_psi_opts.tubes, the
-                         enclosure, a ring of one sign on its pieces) */
-  size_t ntubes;      /* uncovered boxes whose tube round a spoke was
-                         proven of the ring's sign (ss_psi_tube.h; with
-                         the enclosure only) */
-  int tube_layers;    /* the most layers one of them judged directly
-                         before its tail bound */
-  char tube_why[240]; /* the first tube not proven: where and why (else
-                         empty) */
+  double seconds;          /* thread CPU time of the test */
+  int tubes;               /* 1 if the tubes' proofs ran (ss_psi_opts.tubes, the
+                              enclosure, a ring of one sign on its pieces) */
+  size_t ntubes;           /* uncovered boxes whose tube round a spoke was
+                              proven of the ring's sign (ss_psi_tube.h; with
+                              the enclosure only) */
+  int tube_layers;         /* the most layers one of them judged directly
+                              before its tail bound */
+  char tube_why[240];      /* the first tube not proven: where and why (else
+                              empty) */
+  int inject;              /* with a proven pass: 1 psi injective, -1 psi not
+                              injective (both proven, ss_psi_inject.h: the
+                              winding number on the star's boundary), 0 not
+                              decided or not run */
+  int degree;              /* that winding number (0 when not computed) */
+  size_t boundary_squares; /* boundary squares it was computed on */
+  char inject_why[200];    /* the reason, decided or not (empty: not run) */
 } ss_psi_result;
 
 /* If a spoke of sk is degenerate (ss_psi_spoke.h), r fails regularity by
@@ -229,8 +236,10 @@ ss_status ss_psi_certify(const ss_scheme *s, const ss_local *M, const ss_psi_enc
  * judged on psi (injectivity is left); psi folds -> both fail, judged on psi, the
  * witnesses in the reason (a regularity failure already about psi, psi o
  * sigma = psi, is kept with the witnesses added, and proven if psi's is);
- * psi passes -> regularity passes judged on psi (injectivity is left: a
- * regular psi may still overlap itself).  Otherwise the net's verdicts stay
+ * psi passes -> regularity passes judged on psi, and injectivity is
+ * psi's where its winding number on the star's boundary decided it (r->inject,
+ * proven: ss_psi_inject.h), else left to the net (a regular psi may still
+ * overlap itself).  Otherwise the net's verdicts stay
  * with psi's finding added to their reason, and a regularity failure of the
  * net (not one already judged on psi) is no longer proven: without certify
  * it loses certified, with certify it becomes undecided

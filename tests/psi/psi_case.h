@@ -4,6 +4,7 @@
 #ifndef PSI_CASE_H
 #define PSI_CASE_H
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -108,6 +109,28 @@ static inline void psi_encl_free(psi_encl *e) {
   free(e->lo);
   free(e->hi);
   free(e->mid);
+}
+
+/* Whether a box (depth, origin) of a cell around p, p at corner bits pbits,
+ * lies in p's octant [0,1/2]^3: psi's ring leaves it out. */
+static inline int psi_in_octant(unsigned pbits, int depth, const double o[3]) {
+  if (depth < 1) return 0;
+  const double h = ldexp(1.0, -depth);
+  for (int a = 0; a < 3; a++) {
+    const int hi = (int)((pbits >> a) & 1u);
+    if (hi ? o[a] < 0.5 : o[a] + h > 0.5) return 0;
+  }
+  return 1;
+}
+
+/* The rule's weight as an exact rational, and enclosed (the exact path's
+ * readers; arg: the long maxden). */
+static inline int psi_exact_rat(double w, void *arg, long long *p, long long *q) {
+  return ss_exact_rational(w, *(const long *)arg, p, q) ? 0 : -1;
+}
+
+static inline int psi_exact_weight(double w, void *arg, double *lo, double *hi) {
+  return ss_exact_rational_enclose(w, *(const long *)arg, lo, hi) ? 0 : -1;
 }
 
 #endif

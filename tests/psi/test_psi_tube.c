@@ -29,14 +29,6 @@
 #include "ss_psi_tube.h"
 #include "ss_test.h"
 
-static int exact_rat(double w, void *arg, long long *p, long long *q) {
-  return ss_exact_rational(w, *(const long *)arg, p, q) ? 0 : -1;
-}
-
-static int exact_weight(double w, void *arg, double *lo, double *hi) {
-  return ss_exact_rational_enclose(w, *(const long *)arg, lo, hi) ? 0 : -1;
-}
-
 /* What the traversal of the tubes found. */
 typedef struct {
   ss_limit *L;    /* the two-ring's evaluator (midpoint net) */
@@ -57,13 +49,7 @@ typedef struct {
 static int skip_octant(size_t cell, int depth, const double o[3], void *arg) {
   const trav *t = arg;
   (void)cell;
-  if (depth < 1) return 0;
-  const double h = ldexp(1.0, -depth);
-  for (int a = 0; a < 3; a++) {
-    const int hi = (int)((t->pbits >> a) & 1u);
-    if (hi ? o[a] < 0.5 : o[a] + h > 0.5) return 0;
-  }
-  return 1;
+  return psi_in_octant(t->pbits, depth, o);
 }
 
 /* det Dψ by ss_limit_eval at points 2^-m off the spoke in each quadrant of
@@ -156,15 +142,15 @@ static int tubes_of(const ss_scheme *s, const ss_pipeline *p, const double g[3],
   t->cache = mutate == 2 ? NULL : ss_psi_tube_cache_new(); /* one run without */
   ss_limit *L = psi_limit(s, p, e.mid);
   if (eval) t->L = L;
-  const ss_limit_enclosure en = {e.lo, e.hi, exact_weight, &t->maxden};
+  const ss_limit_enclosure en = {e.lo, e.hi, psi_exact_weight, &t->maxden};
   ss_error err = {0};
   int rc = L ? 0 : -1;
   for (size_t c = 0; c < p->M->ncells && !rc; c++) {
     const int j = ss_local_centre_corner(p->M, c);
     if (j < 0) continue;
     t->pbits = ss_cube_corner_bits(3, j);
-    if (ss_limit_pieces_tubes(L, c, 2, &en, exact_rat, &t->maxden, skip_octant, visit, t,
-                              &err)) {
+    if (ss_limit_pieces_tubes(L, c, 2, &en, psi_exact_rat, &t->maxden, skip_octant, visit,
+                              t, &err)) {
       fprintf(stderr, "pieces: %s\n", err.msg);
       rc = -1;
     }
