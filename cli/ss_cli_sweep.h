@@ -49,6 +49,7 @@ typedef struct {
   int json;                     /* --format json */
   int certify;                  /* --certify */
   long psi_depth;               /* --psi-depth (0: psi not judged) */
+  int psi_tubes;                /* --psi-tubes */
   int jobs_given;               /* --jobs was given */
 } ss_sweep_opts;
 

@@ -16,6 +16,7 @@ static const char *const sweep_usage =
     "usage: subspectra sweep (--scheme S | --stencil FILE) CASES [--db FILE]\n"
     "                        [--jobs N] [--part I/N] [--tol T] [--depth D]\n"
     "                        [--diagonals D] [--certify] [--psi-depth N]\n"
+    "                        [--psi-tubes]\n"
     "                        [--max-memory SIZE]\n"
     "\n"
     "Analyse every case asked for, exactly as `subspectra analyze` does, and store\n"
@@ -61,6 +62,9 @@ static const char *const sweep_usage =
     "                    in boxes down to side 2^-N (0..8, default 0: not); the\n"
     "                    store keeps psi's verdict and shares, and what each verdict\n"
     "                    was judged on (`report --format json`)\n"
+    "  --psi-tubes       with --certify and --psi-depth (mlca): prove the tubes\n"
+    "                    round the spokes too, as `analyze --psi-tubes` (seconds\n"
+    "                    per case); the identity says psi-tubes\n"
     "  --max-memory SIZE memory budget shared by the threads (K, M, G, T: powers of\n"
     "                    1000; default half the physical memory, 3/4 of ulimit -v\n"
     "                    and -d when set): a case whose estimate exceeds SIZE / N\n"
@@ -113,6 +117,7 @@ enum {
   O_FORMAT,
   O_CERTIFY,
   O_PSI,
+  O_TUBES,
   O_MAXMEM
 };
 
@@ -132,6 +137,7 @@ static const struct option sweep_options[] = {
     {"format", required_argument, NULL, O_FORMAT},
     {"certify", no_argument, NULL, O_CERTIFY},
     {"psi-depth", required_argument, NULL, O_PSI},
+    {"psi-tubes", no_argument, NULL, O_TUBES},
     {"max-memory", required_argument, NULL, O_MAXMEM},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0}};
@@ -197,6 +203,9 @@ static int parse_option(int c, char **argv, ss_sweep_opts *o) {
       return ss_cli_usage_error(
           "sweep", "--psi-depth: expects an integer in 0..8, not '%s'", optarg);
     break;
+  case O_TUBES:
+    o->psi_tubes = 1;
+    break;
   case O_MAXMEM:
     if (ss_cli_parse_bytes(optarg, &o->max_memory))
       return ss_cli_usage_error(
@@ -235,6 +244,9 @@ int ss_sweep_parse(int argc, char **argv, ss_sweep_opts *o) {
   }
   if (optind < argc)
     return ss_cli_usage_error("sweep", "unexpected argument '%s'", argv[optind]);
+  if (o->psi_tubes && (!o->certify || !o->psi_depth))
+    return ss_cli_usage_error("sweep", "--psi-tubes needs --certify and a --psi-depth "
+                                       "of at least 1");
   if (ss_cli_opt_scheme_source("sweep", o->scheme, o->stencil)) return SS_EXIT_USAGE;
   if (!o->vtext && o->eb < o->ea && !o->face && !o->links)
     return ss_cli_usage_error("sweep",

@@ -426,6 +426,7 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
   ro.depth = (int)a.depth;
   ro.certify = a.certify;
   ro.psi_depth = (int)a.psi_depth;
+  ro.psi_tubes = a.psi_tubes;
   /* the budget is shared by the threads, one case each */
   ro.max_bytes = ss_cli_budget(a.max_memory) / (double)a.jobs;
   *w = (ss_sweep){.opt = a,

@@ -321,7 +321,10 @@ void ss_store_identity(const ss_store_scheme *sc, char *buf, size_t n) {
   if (sc->reads_diagonals)
     len = snprintf(tail, sizeof tail, " diagonals=%s", ss_diag_name(sc->diag));
   if (sc->opts.psi_depth) /* (appended: identities without psi are as before) */
-    snprintf(tail + len, sizeof tail - (size_t)len, " psi-depth=%d", sc->opts.psi_depth);
+    len += snprintf(tail + len, sizeof tail - (size_t)len, " psi-depth=%d",
+                    sc->opts.psi_depth);
+  if (sc->opts.psi_tubes) /* (the identity alone records it: no column) */
+    snprintf(tail + len, sizeof tail - (size_t)len, " psi-tubes");
   exact_real(sc->opts.tol, tol, sizeof tol);
   if (sc->stencil)
     snprintf(buf, n, "stencil:%016" PRIx64 " tol=%s depth=%d rings=%d%s%s",

@@ -33,6 +33,8 @@ typedef struct {
                        proven or undecided */
   int psi_depth;    /* psi judged on its polynomial pieces down to boxes of
                        side 2^-psi_depth, 0..8 (ss_pipeline_opts); 0: not */
+  int psi_tubes;    /* nonzero, with certify and psi_depth: the tubes round
+                       the spokes proven too (ss_pipeline_opts.psi_tubes) */
   double max_bytes; /* memory budget of one case (ss_local_opts): a case whose
                        estimate exceeds it fails with SS_ENOMEM before anything
                        is built; <= 0: none.  Not part of the identity: it

@@ -148,4 +148,32 @@ for r in csv.DictReader(open(d + "/both.csv", newline="")):
     assert (r["psi_pass"] == "") == ("psi-depth" not in r["identity"]), r
 PY
 
+# --psi-tubes (with --certify and --psi-depth): the identity says so, and the
+# store keeps, link by link, the verdicts `analyze --psi-tubes` gives (the
+# regular vertex and the octahedron: injectivity judged on psi, proven)
+expect 2 "sweep: --psi-tubes needs --certify and a --psi-depth of at least 1" \
+  "$exe" sweep --scheme mlca --vertices 6..6 --psi-tubes --db "$tmp/bad.db"
+expect 2 "sweep: --psi-tubes needs --certify and a --psi-depth of at least 1" \
+  "$exe" sweep --scheme mlca --vertices 6..6 --certify --psi-tubes --db "$tmp/bad.db"
+expect 0 "2 cases of mlca tol=1e-06 depth=6 rings=3 certified psi-depth=2 psi-tubes in " \
+  "$exe" sweep --scheme mlca --vertices 6..6 --certify --psi-depth 2 --psi-tubes \
+  --db "$tmp/tubes.db" --jobs 2
+"$exe" report --db "$tmp/tubes.db" --format json >"$tmp/tubes.json"
+checks=$((checks + 1))
+python3 - "$tmp/tubes.json" "$exe" <<'PY' || fail "sweep --psi-tubes: the store against analyze"
+import json, subprocess, sys
+cases = json.load(open(sys.argv[1]))["cases"]
+assert len(cases) == 2
+for c in cases:
+    assert c["identity"].endswith(" certified psi-depth=2 psi-tubes"), c["identity"]
+    a = json.loads(subprocess.run([sys.argv[2], "analyze", "--scheme", "mlca", "--vertex",
+                                   c["link"], "--certify", "--psi-depth", "2",
+                                   "--psi-tubes", "--format", "json"],
+                                  capture_output=True, text=True).stdout)
+    for v in ("regularity", "injectivity"):
+        assert c[v]["verdict"] == a[v]["verdict"], (v, c[v], a[v])
+        assert c[v]["judged_on"] == a[v]["judged_on"] == "psi", (v, c[v], a[v])
+        assert c[v]["certified"] and a[v]["certified"], v
+PY
+
 expect_done test_sweep_psi
