@@ -377,9 +377,12 @@ static ss_status eval_point(const limit_opts *o, ss_limit *L, ss_limit_cli_point
   if (!st) return SS_OK;
   if (st == SS_ENUMERIC && o->derivs) {
     const ss_status st2 = eval_one(o, L, p, 0, &e2);
-    if (!st2) p->status = SS_LIMIT_CLI_NO_DERIVATIVES;
-    if (st2 && st2 != SS_ENUMERIC) e = e2; /* the point itself is refused */
-    if (st2) st = st2;
+    if (!st2)
+      p->status = SS_LIMIT_CLI_NO_DERIVATIVES;
+    else { /* the point itself fails: its own reason */
+      e = e2;
+      st = st2;
+    }
   }
   if (st != SS_OK && st != SS_ENUMERIC && st != SS_EINPUT) {
     *err = e;
