@@ -76,6 +76,18 @@ checks=$((checks + 1))
 [ "$(sed -n '/^SCALARS status int 1/,$p' "$tmp/batch.vtk" | tail -n +3 | tr '\n' ' ')" = "0 3 1 0 " ] || fail "vtk batch: status array"
 checks=$((checks + 1)); [ "$(sed -n 7p "$tmp/batch.vtk")" = "nan nan nan" ] || fail "vtk batch: refused point not nan"
 
+# a point that fails by itself (the reference walk finds no regular
+# sub-cell at the vertex, with or without derivatives): failed, nan, the
+# reason that of the point (not of its Jacobian), the other as alone
+"$exe" limit --scheme mlca "$mesh" --reference -d --at "$g1" --at "$ev" > "$tmp/ref.txt" 2> "$tmp/ref.err"
+rc=$?
+"$exe" limit --scheme mlca "$mesh" --reference -d --at "$g1" > "$tmp/ref1.txt"
+checks=$((checks + 1))
+r=$(awk 'NR == FNR {a = $0; next} {st[FNR] = $NF; $NF = ""; sub(/ $/, ""); l[FNR] = $0}
+  END {split(l[2], b, " "); for (i = 5; i <= 16; i++) if (b[i] != "nan") bad = 1
+       print (l[1] == a && st[1] == "ok" && st[2] == "failed" && !bad) ? "ok" : "bad"}' "$tmp/ref1.txt" "$tmp/ref.txt")
+[ $rc -eq 1 ] && [ "$r" = "ok" ] && grep -q "failed: .*no regular sub-cell in 60 steps" "$tmp/ref.err" || fail "--reference batch: exit $rc, $r, $(cat "$tmp/ref.err")"
+
 # --- fields and non-finite parameters: null in JSON, never NaN
 awk 'BEGIN {
   printf "MeshVersionFormatted 2\nDimension 4\nVertices\n64\n"
