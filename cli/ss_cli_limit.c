@@ -11,6 +11,7 @@
 #include <json-c/json.h>
 
 #include "ss_cli.h"
+#include "ss_cli_limit.h"
 #include "ss_limit.h"
 #include "ss_mesh.h"
 #include "ss_outfile.h"
@@ -18,8 +19,8 @@
 
 static const char *const usage_text =
     "usage: subspectra limit --scheme S MESH (--at \"CELL U V W\" | --samples N |\n"
-    "                        --gauss Q) [--derivatives] [--format text|json|vtk]\n"
-    "                        [-o FILE]\n"
+    "                        --gauss Q) [--derivatives]\n"
+    "                        [--format text|json|vtk|vtu] [-o FILE]\n"
     "\n"
     "The limit volume of the hexahedral mesh MESH under scheme S: the limit point\n"
     "at parameters (U, V, W) in [0,1]^3 of a cell (U along the cell's corners\n"
@@ -50,9 +51,15 @@ static const char *const usage_text =
     "                     jacobian, and with fields \"fields\": {NAME: value} and\n"
     "                     \"field_gradients\": {NAME: [d/dU, d/dV, d/dW]}) or vtk\n"
     "                     (legacy VTK for ParaView: with --samples N >= 2 the\n"
-    "                     sampled volume as hexahedra, otherwise points; point\n"
-    "                     data: cell, jacobian_det, each field NAME and its\n"
-    "                     NAME_gradient, 3 components)\n"
+    "                     sampled volume as hexahedra, every cell with its own\n"
+    "                     points, otherwise points; point data: cell,\n"
+    "                     jacobian_det, each field NAME and its NAME_gradient,\n"
+    "                     3 components) or vtu (VTK XML: the same, but a sample\n"
+    "                     that neighbouring cells share is one point, and the\n"
+    "                     point data hold status and the Jacobian as the\n"
+    "                     9-component tensor jacobian, component 3a+d =\n"
+    "                     jacobian[a][d]; a shared point's data are those of\n"
+    "                     its first cell with the best status, named by cell)\n"
     "  -o, --output FILE  write there (whole or not at all) instead of stdout\n"
     "  -h, --help         this text\n"
     "\n";
@@ -82,32 +89,37 @@ static const char *const usage_how =
     "accurate to about 1e-13 of its largest entry (rows much smaller than that,\n"
     "e.g. along an extraordinary edge very near it, carry that absolute error).\n"
     "\n"
-    "Exit status: 0 all points evaluated; 1 a numerical failure (a Jacobian asked\n"
-    "at a fixed point with an eigenvalue of modulus >= 1/2 other than 1/2 or 1,\n"
-    "where it is unbounded, e.g. at an extraordinary vertex; a run whose limit\n"
-    "is not defined; a result beyond the range of doubles); 2 bad usage or\n"
-    "input (unknown cell, parameter outside [0,1], a mesh with cells other than\n"
-    "hexahedra, not manifold, or with flat, folded or inverted hexahedra, a\n"
+    "Exit status: 0 all points evaluated; 1 some point not evaluated in full\n"
+    "(below; every point is written all the same); 2 bad usage or input,\n"
+    "before anything is evaluated (bad options, an --at that is not \"CELL U V\n"
+    "W\", an unreadable mesh, a mesh with cells other than hexahedra, not\n"
+    "manifold across a face, or with flat, folded or inverted hexahedra, a\n"
     "scheme that does not split hexahedra or is no tricubic B-spline on grids,\n"
     "a field value that is not a finite number).\n";
 
-/* One point to evaluate and its result. */
-typedef struct {
-  size_t cell;      /* 0-based */
-  double x[3];      /* parameters */
-  double weight;    /* Gauss weight on [0,1]^3, or 0 */
-  ss_limit_point r; /* result */
-  double *f;        /* the fields' values (nf; in fields.val), or NULL */
-  double (*df)[3];  /* their derivatives d/dU, d/dV, d/dW (nf rows), or NULL */
-} point;
-
-/* The mesh's fields: its coordinates past the third. */
-typedef struct {
-  size_t nf;                /* how many (0..SS_MAXDIM - 3) */
-  char name[SS_MAXDIM][16]; /* their names: the 4th coordinate is "w" */
-  double *val;              /* npts * nf values (owned) */
-  double (*grad)[3];        /* npts * nf derivatives (owned) */
-} fields;
+/* The usage text's third part: batches. */
+static const char *const usage_batch =
+    "\n"
+    "Batches: a point that cannot be evaluated does not stop the others.  Every\n"
+    "point is written, with its status:\n"
+    "  0 ok              evaluated\n"
+    "  1 no_derivatives  the point and field values, but with --derivatives\n"
+    "                    no Jacobian or field gradients: at a fixed point with\n"
+    "                    an eigenvalue of modulus >= 1/2 other than 1/2 or 1\n"
+    "                    (e.g. an extraordinary vertex) or a Jordan block at\n"
+    "                    1/2 they are unbounded or undefined\n"
+    "  2 failed          a numerical failure of the point itself (a run whose\n"
+    "                    limit is not defined, a result beyond the range of\n"
+    "                    doubles, --reference beyond 60 steps): no value\n"
+    "  3 refused         not a point the evaluator takes (unknown cell, a\n"
+    "                    parameter outside [0,1] or not a number, a cell whose\n"
+    "                    patch is not manifold at a vertex): no value\n"
+    "Values a point does not have are nan in text and VTK and null in JSON.\n"
+    "When some point is not ok the text gets a last column (the status name),\n"
+    "each JSON object \"status\" (the name) and, unless ok, \"reason\" (the\n"
+    "evaluator's message), VTK the point data status (the code); the first ten\n"
+    "such points and their count go to stderr, and the exit status is 1.  When\n"
+    "every point is ok the output has no status (VTU always has its array).\n";
 
 /* Name of field i, the coordinate 4 + i of the mesh file. */
 static void field_name(size_t i, char name[16]) {
@@ -120,8 +132,8 @@ static void field_name(size_t i, char name[16]) {
 /* The mesh's positions (*pos, a 3-coordinate copy) and its coordinates past
  * the third as fields (*val, nv * nf, vertex-major); mesh->dim >= 3.
  * SS_ENOMEM. */
-static ss_status split_fields(const ss_cx *mesh, ss_cx **pos, double **val, fields *fl,
-                              ss_error *err) {
+static ss_status split_fields(const ss_cx *mesh, ss_cx **pos, double **val,
+                              ss_limit_cli_fields *fl, ss_error *err) {
   const size_t dim = (size_t)mesh->dim, nf = dim - 3;
   ss_status st = ss_cx_copy(mesh, pos, err);
   *val = NULL;
@@ -168,7 +180,7 @@ static void gauss(int q, double *node, double *weight) {
 }
 
 /* Parse "CELL U V W" strictly. */
-static int parse_at(const char *s, point *p) {
+static int parse_at(const char *s, ss_limit_cli_point *p) {
   char *end;
   errno = 0;
   long long c = strtoll(s, &end, 10);
@@ -184,143 +196,19 @@ static int parse_at(const char *s, point *p) {
   return *end ? -1 : 0;
 }
 
-static void write_text(FILE *f, const point *p, size_t n, int derivs, const fields *fl) {
-  for (size_t i = 0; i < n; i++) {
-    fprintf(f, "%zu %.17g %.17g %.17g %.17g %.17g %.17g", p[i].cell + 1, p[i].x[0],
-            p[i].x[1], p[i].x[2], p[i].r.p[0], p[i].r.p[1], p[i].r.p[2]);
-    if (derivs)
-      for (int a = 0; a < 3; a++)
-        for (int d = 0; d < 3; d++)
-          fprintf(f, " %.17g", p[i].r.jac[a][d]);
-    for (size_t k = 0; k < fl->nf; k++)
-      fprintf(f, " %.17g", p[i].f[k]);
-    for (size_t k = 0; k < fl->nf && derivs; k++)
-      for (int a = 0; a < 3; a++)
-        fprintf(f, " %.17g", p[i].df[k][a]);
-    fputc('\n', f);
-  }
-}
-
-/* JSON "fields": {NAME: value} and with derivs "field_gradients": {NAME:
- * [3]} of point p into o. */
-static void json_fields(json_object *o, const point *p, int derivs, const fields *fl) {
-  if (!fl->nf) return;
-  json_object *v = json_object_new_object(),
-              *g = derivs ? json_object_new_object() : NULL;
-  for (size_t k = 0; k < fl->nf; k++) {
-    json_object_object_add(v, fl->name[k], json_object_new_double(p->f[k]));
-    if (!g) continue;
-    json_object *row = json_object_new_array();
-    for (int a = 0; a < 3; a++)
-      json_object_array_add(row, json_object_new_double(p->df[k][a]));
-    json_object_object_add(g, fl->name[k], row);
-  }
-  json_object_object_add(o, "fields", v);
-  if (g) json_object_object_add(o, "field_gradients", g);
-}
-
-static void write_json(FILE *f, const point *p, size_t n, int derivs, const fields *fl) {
-  for (size_t i = 0; i < n; i++) {
-    json_object *o = json_object_new_object();
-    json_object_object_add(o, "cell", json_object_new_int64((int64_t)p[i].cell + 1));
-    static const char *const key[3] = {"u", "v", "w"};
-    for (int a = 0; a < 3; a++)
-      json_object_object_add(o, key[a], json_object_new_double(p[i].x[a]));
-    if (p[i].weight > 0)
-      json_object_object_add(o, "weight", json_object_new_double(p[i].weight));
-    json_object *pt = json_object_new_array();
-    for (int d = 0; d < 3; d++)
-      json_object_array_add(pt, json_object_new_double(p[i].r.p[d]));
-    json_object_object_add(o, "point", pt);
-    if (derivs) {
-      json_object *J = json_object_new_array();
-      for (int a = 0; a < 3; a++) {
-        json_object *row = json_object_new_array();
-        for (int d = 0; d < 3; d++)
-          json_object_array_add(row, json_object_new_double(p[i].r.jac[a][d]));
-        json_object_array_add(J, row);
-      }
-      json_object_object_add(o, "jacobian", J);
-    }
-    json_fields(o, p + i, derivs, fl);
-    fprintf(f, "%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN));
-    json_object_put(o);
-  }
-}
-
-/* Legacy VTK: points; with samples >= 2 (points cell by cell, i fastest) the
- * (N-1)^3 sample hexes of every cell, else one vertex cell per point.  Point
- * data: the cell number and, with derivatives, det J; each field and with
- * derivatives its gradient NAME_gradient (3 components: d/dU, d/dV, d/dW). */
-static void write_vtk(FILE *f, const point *p, size_t n, int samples, int derivs,
-                      const fields *fl) {
-  fprintf(f,
-          "# vtk DataFile Version 3.0\nsubspectra limit\nASCII\nDATASET "
-          "UNSTRUCTURED_GRID\nPOINTS %zu double\n",
-          n);
-  for (size_t i = 0; i < n; i++)
-    fprintf(f, "%.17g %.17g %.17g\n", p[i].r.p[0], p[i].r.p[1], p[i].r.p[2]);
-  if (samples >= 2) {
-    size_t N = (size_t)samples, per = N * N * N, m = N - 1, ncell = n / per * m * m * m;
-    fprintf(f, "CELLS %zu %zu\n", ncell, ncell * 9);
-    for (size_t c = 0; c < n / per; c++)
-      for (size_t k = 0; k < m; k++)
-        for (size_t j = 0; j < m; j++)
-          for (size_t i = 0; i < m; i++) {
-#define ID(a, b, d) (c * per + (i + (a)) + N * ((j + (b)) + N * (k + (d))))
-            fprintf(f, "8 %zu %zu %zu %zu %zu %zu %zu %zu\n", ID(0, 0, 0), ID(1, 0, 0),
-                    ID(1, 1, 0), ID(0, 1, 0), ID(0, 0, 1), ID(1, 0, 1), ID(1, 1, 1),
-                    ID(0, 1, 1));
-#undef ID
-          }
-    fprintf(f, "CELL_TYPES %zu\n", ncell);
-    for (size_t c = 0; c < ncell; c++)
-      fprintf(f, "12\n");
-  } else {
-    fprintf(f, "CELLS %zu %zu\n", n, 2 * n);
-    for (size_t i = 0; i < n; i++)
-      fprintf(f, "1 %zu\n", i);
-    fprintf(f, "CELL_TYPES %zu\n", n);
-    for (size_t i = 0; i < n; i++)
-      fprintf(f, "1\n");
-  }
-  fprintf(f, "POINT_DATA %zu\nSCALARS cell int 1\nLOOKUP_TABLE default\n", n);
-  for (size_t i = 0; i < n; i++)
-    fprintf(f, "%zu\n", p[i].cell + 1);
-  if (derivs) {
-    fprintf(f, "SCALARS jacobian_det double 1\nLOOKUP_TABLE default\n");
-    for (size_t i = 0; i < n; i++) {
-      const double(*J)[3] = p[i].r.jac;
-      double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-                   J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-                   J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-      fprintf(f, "%.17g\n", det);
-    }
-  }
-  for (size_t k = 0; k < fl->nf; k++) {
-    fprintf(f, "SCALARS %s double 1\nLOOKUP_TABLE default\n", fl->name[k]);
-    for (size_t i = 0; i < n; i++)
-      fprintf(f, "%.17g\n", p[i].f[k]);
-    if (!derivs) continue;
-    fprintf(f, "SCALARS %s_gradient double 3\nLOOKUP_TABLE default\n", fl->name[k]);
-    for (size_t i = 0; i < n; i++)
-      fprintf(f, "%.17g %.17g %.17g\n", p[i].df[k][0], p[i].df[k][1], p[i].df[k][2]);
-  }
-}
-
 /* The command line of limit. */
 typedef struct {
-  const char *scheme; /* --scheme */
-  const char *out;    /* -o FILE, or NULL: stdout */
-  const char *mesh;   /* MESH */
-  long samples;       /* --samples N per direction, or 0 */
-  long gq;            /* --gauss Q points per direction, or 0 */
-  int derivs;         /* --derivatives */
-  int reference;      /* --reference: the slow reference evaluation */
-  int format;         /* 0 text, 1 json, 2 vtk */
-  point *pts;         /* --at points (owned) */
-  size_t npts, cap;   /* how many, allocated */
-  fields fl;          /* the mesh's fields and their results */
+  const char *scheme;      /* --scheme */
+  const char *out;         /* -o FILE, or NULL: stdout */
+  const char *mesh;        /* MESH */
+  long samples;            /* --samples N per direction, or 0 */
+  long gq;                 /* --gauss Q points per direction, or 0 */
+  int derivs;              /* --derivatives */
+  int reference;           /* --reference: the slow reference evaluation */
+  int format;              /* 0 text, 1 json, 2 vtk, 3 vtu */
+  ss_limit_cli_point *pts; /* --at points (owned) */
+  size_t npts, cap;        /* how many, allocated */
+  ss_limit_cli_fields fl;  /* the mesh's fields and their results */
 } limit_opts;
 
 /* --at TEXT appended to o->pts: 0, or the exit status 2 with the message
@@ -328,7 +216,7 @@ typedef struct {
 static int add_at(limit_opts *o, const char *text) {
   if (o->npts == o->cap) {
     const size_t cap = o->cap ? 2 * o->cap : 8;
-    point *q = realloc(o->pts, cap * sizeof *q);
+    ss_limit_cli_point *q = realloc(o->pts, cap * sizeof *q);
     if (!q) {
       fprintf(stderr, "subspectra limit: out of memory\n");
       return SS_EXIT_USAGE;
@@ -389,9 +277,11 @@ static int parse(int argc, char **argv, limit_opts *o) {
         o->format = 1;
       else if (!strcmp(optarg, "vtk"))
         o->format = 2;
+      else if (!strcmp(optarg, "vtu"))
+        o->format = 3;
       else
         return ss_cli_usage_error(
-            "limit", "--format: expected text, json or vtk, not '%s'", optarg);
+            "limit", "--format: expected text, json, vtk or vtu, not '%s'", optarg);
       break;
     case 'o':
       o->out = optarg;
@@ -399,6 +289,7 @@ static int parse(int argc, char **argv, limit_opts *o) {
     case 'h':
       fputs(usage_text, stdout);
       fputs(usage_how, stdout);
+      fputs(usage_batch, stdout);
       return SS_EXIT_OK;
     default:
       return ss_cli_option_error("limit", c, argv);
@@ -448,47 +339,128 @@ static ss_status grid_points(limit_opts *o, const ss_limit *L, ss_error *err) {
   return SS_OK;
 }
 
+/* Point p by the walk (or the reference), with derivatives or not. */
+static ss_status eval_one(const limit_opts *o, ss_limit *L, ss_limit_cli_point *p,
+                          int derivs, ss_error *err) {
+  return o->reference
+             ? ss_limit_eval_reference_fields(L, p->cell, p->x[0], p->x[1], p->x[2],
+                                              derivs, 60, &p->r, p->f, p->df, err)
+             : ss_limit_eval_fields(L, p->cell, p->x[0], p->x[1], p->x[2], derivs, &p->r,
+                                    p->f, p->df, err);
+}
+
+/* NaN in p's values it does not have: all of them, or (values = 1) only the
+ * Jacobian and the field gradients. */
+static void no_values(ss_limit_cli_point *p, size_t nf, int values) {
+  for (int a = 0; a < 3; a++) {
+    if (!values) p->r.p[a] = NAN;
+    for (int d = 0; d < 3; d++)
+      p->r.jac[a][d] = NAN;
+  }
+  for (size_t k = 0; k < nf; k++) {
+    if (!values) p->f[k] = NAN;
+    for (int a = 0; a < 3; a++)
+      p->df[k][a] = NAN;
+  }
+}
+
+/* Point p evaluated, with its status: a Jacobian that fails numerically is
+ * retried without derivatives (the point may still exist: no_derivatives);
+ * the evaluator's refusals (SS_EINPUT: refused) and numerical failures
+ * (SS_ENUMERIC: failed) are the point's, with the reason kept.  SS_OK, or a
+ * failure that ends the batch (SS_ENOMEM, SS_EINTERNAL) in err. */
+static ss_status eval_point(const limit_opts *o, ss_limit *L, ss_limit_cli_point *p,
+                            ss_error *err) {
+  ss_error e = {0}, e2 = {0};
+  ss_status st = eval_one(o, L, p, o->derivs, &e);
+  p->status = SS_LIMIT_CLI_OK;
+  if (!st) return SS_OK;
+  if (st == SS_ENUMERIC && o->derivs) {
+    const ss_status st2 = eval_one(o, L, p, 0, &e2);
+    if (!st2)
+      p->status = SS_LIMIT_CLI_NO_DERIVATIVES;
+    else { /* the point itself fails: its own reason */
+      e = e2;
+      st = st2;
+    }
+  }
+  if (st != SS_OK && st != SS_ENUMERIC && st != SS_EINPUT) {
+    *err = e;
+    return st;
+  }
+  if (!p->status)
+    p->status = st == SS_EINPUT ? SS_LIMIT_CLI_REFUSED : SS_LIMIT_CLI_FAILED;
+  no_values(p, o->fl.nf, p->status == SS_LIMIT_CLI_NO_DERIVATIVES);
+  if (!(p->why = strdup(e.msg[0] ? e.msg : ss_status_name(st))))
+    return ss_error_nomem(err, "reasons");
+  return SS_OK;
+}
+
 /* The limit (and derivatives) at every point of o, in place (L caches what
- * the evaluation builds: not const). */
-static ss_status eval_points(limit_opts *o, ss_limit *L, ss_error *err) {
+ * the evaluation builds: not const); *bad receives how many points failed
+ * (they have their status and reason).  SS_ENOMEM, SS_EINTERNAL. */
+static ss_status eval_points(limit_opts *o, ss_limit *L, size_t *bad, ss_error *err) {
   const size_t nf = o->fl.nf;
+  *bad = 0;
   if (nf) {
     o->fl.val = calloc(o->npts * nf + 1, sizeof *o->fl.val);
     o->fl.grad = calloc(o->npts * nf + 1, sizeof *o->fl.grad);
     if (!o->fl.val || !o->fl.grad) return ss_error_nomem(err, "field values");
   }
   for (size_t i = 0; i < o->npts; i++) {
-    point *p = o->pts + i;
+    ss_limit_cli_point *p = o->pts + i;
     p->f = nf ? o->fl.val + i * nf : NULL;
     p->df = nf ? o->fl.grad + i * nf : NULL;
-    ss_status st =
-        o->reference
-            ? ss_limit_eval_reference_fields(L, p->cell, p->x[0], p->x[1], p->x[2],
-                                             o->derivs, 60, &p->r, p->f, p->df, err)
-            : ss_limit_eval_fields(L, p->cell, p->x[0], p->x[1], p->x[2], o->derivs,
-                                   &p->r, p->f, p->df, err);
+    const ss_status st = eval_point(o, L, p, err);
     if (st) return st;
+    *bad += p->status != SS_LIMIT_CLI_OK;
   }
   return SS_OK;
 }
 
-/* The points of o, as text, JSON or VTK, to -o FILE (whole or not at all)
- * or stdout. */
-static ss_status write_points(const limit_opts *o, ss_error *err) {
+/* The points of o, as text, JSON, VTK or VTU (statuses written when bad >
+ * 0), to -o FILE (whole or not at all) or stdout. */
+static ss_status write_points(const limit_opts *o, const ss_cx *mesh, size_t bad,
+                              ss_error *err) {
+  const ss_limit_cli_out w = {o->pts,    o->npts, o->samples > 0 ? (int)o->samples : 0,
+                              o->derivs, bad > 0, &o->fl,
+                              mesh};
   ss_outfile *out = NULL;
-  if (o->out) {
-    const ss_status st = ss_outfile_open(o->out, &out, err);
-    if (st) return st;
-  }
+  ss_status st = SS_OK;
+  if (o->out && (st = ss_outfile_open(o->out, &out, err))) return st;
   FILE *f = out ? ss_outfile_file(out) : stdout;
   if (o->format == 0)
-    write_text(f, o->pts, o->npts, o->derivs, &o->fl);
+    ss_cli_limit_write_text(f, &w);
   else if (o->format == 1)
-    write_json(f, o->pts, o->npts, o->derivs, &o->fl);
+    ss_cli_limit_write_json(f, &w);
+  else if (o->format == 2)
+    ss_cli_limit_write_vtk(f, &w);
   else
-    write_vtk(f, o->pts, o->npts, o->samples > 0 ? (int)o->samples : 0, o->derivs,
-              &o->fl);
+    st = ss_cli_limit_write_vtu(f, &w, err);
+  if (st) {
+    ss_outfile_abort(out);
+    return st;
+  }
   return out ? ss_outfile_commit(out, err) : SS_OK;
+}
+
+/* The failed points on stderr (the first ten, then a count) after writing:
+ * the exit status 1. */
+static int report_failed(const limit_opts *o, size_t bad) {
+  size_t shown = 0;
+  for (size_t i = 0; i < o->npts && shown < 10; i++) {
+    const ss_limit_cli_point *p = o->pts + i;
+    if (p->status == SS_LIMIT_CLI_OK) continue;
+    fprintf(stderr, "subspectra: cell %zu at (%.17g, %.17g, %.17g): %s: %s\n",
+            p->cell + 1, p->x[0], p->x[1], p->x[2], ss_cli_limit_status_name(p->status),
+            p->why);
+    shown++;
+  }
+  fprintf(stderr,
+          "subspectra: limit: %zu of %zu points not evaluated in full%s (written with "
+          "their status)\n",
+          bad, o->npts, bad > shown ? ", the first ten shown above" : "");
+  return SS_EXIT_FAIL;
 }
 
 int ss_cli_limit(int argc, char **argv) {
@@ -504,6 +476,7 @@ int ss_cli_limit(int argc, char **argv) {
   ss_cx *mesh = NULL, *pos = NULL;
   ss_limit *L = NULL;
   double *fv = NULL;
+  size_t bad = 0;
   if (ss_scheme_new(o.scheme, &s, &err) ||
       ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) ||
       (mesh->dim > 3 && split_fields(mesh, &pos, &fv, &o.fl, &err)) ||
@@ -514,9 +487,13 @@ int ss_cli_limit(int argc, char **argv) {
      * mesh refuse them: the parametrisation has no consistent sign there */
     fprintf(stderr, "subspectra: %s: %s\n", o.mesh, err.msg);
     rc = SS_EXIT_USAGE;
-  } else if ((!o.npts && grid_points(&o, L, &err)) || eval_points(&o, L, &err) ||
-             write_points(&o, &err))
+  } else if ((!o.npts && grid_points(&o, L, &err)) || eval_points(&o, L, &bad, &err) ||
+             write_points(&o, pos ? pos : mesh, bad, &err))
     rc = ss_cli_fail(&err);
+  else if (bad)
+    rc = report_failed(&o, bad);
+  for (size_t i = 0; i < o.npts; i++)
+    free(o.pts[i].why);
   free(o.pts);
   free(o.fl.val);
   free(o.fl.grad);

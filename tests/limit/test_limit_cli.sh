@@ -7,6 +7,7 @@ set -u
 exe=$1
 SS_EXPECT_TIMEOUT=120
 . "$(dirname "$0")/../ss_expect.sh"
+. "$(dirname "$0")/limit_grid.sh"
 mesh="$(dirname "$0")/../../data/meshes/hexstar-icosahedron.mesh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -40,9 +41,11 @@ checks=$((checks + 1)); grep -q "^CELLS 160 1440" "$tmp/v.vtk" || fail "vtk: no 
 expect 0 "" "$exe" limit --scheme mlca "$mesh" --gauss 2 --format vtk -d -o "$tmp/g.vtk"
 checks=$((checks + 1)); grep -q "^SCALARS jacobian_det" "$tmp/g.vtk" || fail "vtk: no det J"
 checks=$((checks + 1)); grep -q "^CELLS 160 320" "$tmp/g.vtk" || fail "vtk: no 160 points"
+# a point refused (unknown cell, parameter outside [0,1]) is written with
+# its status and the message, exit 1 (test_limit_batch.sh: batches)
+expect 1 "cell 21 does not exist" "$exe" limit --scheme mlca "$mesh" --at "21 0.5 0.5 0.5"
+expect 1 "parameter u = 1.5 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 1.5 0.5 0.5"
 # bad input: exit 2 with a message
-expect 2 "cell 21 does not exist" "$exe" limit --scheme mlca "$mesh" --at "21 0.5 0.5 0.5"
-expect 2 "parameter u = 1.5 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 1.5 0.5 0.5"
 expect 2 "expected \"CELL U V W\"" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 0.5"
 expect 2 "expected \"CELL U V W\"" "$exe" limit --scheme mlca "$mesh" --at "0 0.5 0.5 0.5"
 expect 2 "exactly one of --at, --samples and --gauss" "$exe" limit --scheme mlca "$mesh"
@@ -51,7 +54,7 @@ expect 2 "--scheme is required" "$exe" limit "$mesh" --samples 2
 expect 2 "tetoct is not one" "$exe" limit --scheme tetoct "$mesh" --samples 2
 expect 2 "hexahedra only" "$exe" limit --scheme mlca "$(dirname "$0")/../../data/meshes/cube-6tets.mesh" --samples 2
 expect 2 "--gauss '0'" "$exe" limit --scheme mlca "$mesh" --gauss 0
-expect 2 "--format" "$exe" limit --scheme mlca "$mesh" --gauss 1 --format xml
+expect 2 "--format: expected text, json, vtk or vtu" "$exe" limit --scheme mlca "$mesh" --gauss 1 --format xml
 expect 2 "No such file" "$exe" limit --scheme mlca /nonexistent.mesh --gauss 1
 # the Jacobian exactly at the extraordinary vertex is not defined: exit 1
 expect 1 "Jacobian" "$exe" limit --scheme mlca "$mesh" --at "1 0 0 0" --derivatives
@@ -90,14 +93,7 @@ done
 # ccsolid on grids of 1, 2, 3 cells a side: every sample (boundary edges and
 # corners included) has a Jacobian
 for n in 1 2 3; do
-  awk -v n=$n 'BEGIN {
-    printf "MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n", (n + 1) ^ 3
-    for (k = 0; k <= n; k++) for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) print i, j, k, 0
-    printf "Hexahedra\n%d\n", n ^ 3
-    for (k = 0; k < n; k++) for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
-      v = i + (n + 1) * (j + (n + 1) * k) + 1; r = n + 1; l = r * r
-      print v, v + 1, v + 1 + r, v + r, v + l, v + 1 + l, v + 1 + r + l, v + r + l, 0 }
-    print "End" }' > "$tmp/g$n.mesh"
+  limit_grid $n > "$tmp/g$n.mesh"
   n3=$(( 27 * n * n * n ))
   c=$("$exe" limit --scheme ccsolid "$tmp/g$n.mesh" --samples 3 -d | wc -l)
   checks=$((checks + 1)); [ "$c" -eq "$n3" ] || fail "ccsolid grid $n: $c sample lines, not $n3"
@@ -117,11 +113,11 @@ expect 0 "" "$exe" limit --scheme mlca "$tmp/ok.mesh" --at "2 0.5 0.5 0.5" -d
 expect 2 "hexahedron 2 is inverted" "$exe" limit --scheme mlca "$tmp/mirrored.mesh" --at "2 0.5 0.5 0.5" -d
 expect 2 "hexahedron 2 is flat or folded" "$exe" limit --scheme mlca "$tmp/folded.mesh" --at "2 0.5 0.5 0.5" -d
 expect 2 "hexahedron 2 is flat or folded" "$exe" limit --scheme ccsolid "$tmp/flat.mesh" --samples 2
-# hostile parameters: exit 2 naming the parameter
-expect 2 "parameter u = 1.0000000000000002 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 1.0000000000000002 0.5 0.5"
-expect 2 "parameter w = -4.9406564584124654e-324 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 0.5 -4.9406564584124654e-324"
-expect 2 "parameter v = nan is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 nan 0.5"
-expect 2 "parameter u = inf is outside" "$exe" limit --scheme mlca "$mesh" --at "1 inf 0.5 0.5"
+# hostile parameters: the point refused naming the parameter, exit 1
+expect 1 "parameter u = 1.0000000000000002 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 1.0000000000000002 0.5 0.5"
+expect 1 "parameter w = -4.9406564584124654e-324 is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 0.5 -4.9406564584124654e-324"
+expect 1 "parameter v = nan is outside" "$exe" limit --scheme mlca "$mesh" --at "1 0.5 nan 0.5"
+expect 1 "parameter u = inf is outside" "$exe" limit --scheme mlca "$mesh" --at "1 inf 0.5 0.5"
 # fields (issue 36): a Medit 4th coordinate is the field w.  The 3x3x3 grid,
 # jittered, with w = 2x - 3y + z/2 + 1 (an affine field reproduces itself:
 # w = a.p + b at the limit point, its gradient J a) and inverted hexes' check
