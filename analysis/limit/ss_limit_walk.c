@@ -375,6 +375,18 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
     for (size_t d = 0; d < D; d++)
       oq[d] = pass == 0 ? o[d] : 0.0;
     memcpy(M2, M, sizeof M2);
+    /* The first pass's net is the same in every layer, so its limit on the
+     * cell, sum_c Q_c phi_c(y) sum_l N_l(x_a), does not depend on x_a (the
+     * N_l sum to 1): its derivative along the edge is 0 exactly, and the
+     * second pass gives that row alone.  The walk would form it from
+     * differences of nets equal along the edge, and near the edge their
+     * rounding (eps |Q| times the growth of the across parts, (2 mu)^m after
+     * m steps) is all it would add; dropping its row of M (rows are only
+     * permuted, signed and scaled by powers of 2 on the way) leaves it out
+     * exactly. */
+    if (pass == 0)
+      for (int j = 0; j < 3; j++)
+        M2[a][j] = 0.0;
     ss_lim_res r = {D, pass == 0 ? out->p : rp, pass == 0 ? out->jac : NULL, 0, 0};
     if ((st = ss_lim_walk(L, s, Q, oq, pass == 0 ? sc : 0, p0, M2,
                           pass == 0 ? derivatives : 0, 1, cell, &r, err)))
