@@ -122,27 +122,49 @@ static void jac_through(const double *J, double M[3][3], ss_lim_res *out) {
     }
 }
 
-/* Point and Jacobian from a regular patch's points P (patch numbering),
- * three columns at a time (ss_limit_bspline).  SS_ENOMEM. */
-static ss_status finish_regular(const ss_lim_patch *p, const double *P,
-                                const ss_lim_pt *pt, double M[3][3], int derivatives,
-                                ss_lim_res *out, ss_error *err) {
-  const size_t D = out->D;
-  double net[64][3], J[3][3], x[3], v[3];
-  double *Jbuf = malloc((3 * D + 1) * sizeof *Jbuf);
-  if (!Jbuf) return ss_error_nomem(err, "limit Jacobian");
+/* Point and Jacobian (3 x D, current frame: Jbuf) of the regular patch p's
+ * points P (patch numbering) at pt, three columns at a time
+ * (ss_limit_bspline); v NULL: the Jacobian only. */
+static void regular_eval(const ss_lim_patch *p, const double *P, const ss_lim_pt *pt,
+                         size_t D, double *v, double *Jbuf) {
+  double net[64][3], J[3][3], x[3], val[3];
   pt_x(pt, x);
   for (size_t d0 = 0; d0 < D; d0 += 3) {
     const size_t nd = D - d0 < 3 ? D - d0 : 3;
     for (int i = 0; i < 64; i++)
       for (size_t d = 0; d < 3; d++)
         net[i][d] = d < nd ? P[(size_t)p->net[i] * D + d0 + d] : 0.0;
-    ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], v, J);
+    ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], val, J);
     for (size_t d = 0; d < nd; d++) {
-      out->p[d0 + d] = v[d];
+      if (v) v[d0 + d] = val[d];
       for (int a = 0; a < 3; a++)
         Jbuf[(size_t)a * D + d0 + d] = J[a][d];
     }
+  }
+}
+
+/* Point and Jacobian from a regular patch's points P (patch numbering); the
+ * row along each A[j]'s axis from its differences while it carries them
+ * (ss_lim_along; A may be NULL).  SS_ENOMEM. */
+static ss_status finish_regular(const ss_lim_patch *p, const double *P,
+                                const ss_lim_pt *pt, double M[3][3], int derivatives,
+                                const ss_lim_along *A, ss_lim_res *out, ss_error *err) {
+  const size_t D = out->D;
+  double *Jbuf = malloc((6 * D + 1) * sizeof *Jbuf), *Q = NULL;
+  if (!Jbuf) return ss_error_nomem(err, "limit Jacobian");
+  regular_eval(p, P, pt, D, out->p, Jbuf);
+  for (int j = 0; j < 3 && derivatives && A; j++) {
+    if (!A[j].on) continue;
+    ss_status st = ss_lim_along_net(&A[j], p, &Q, err);
+    if (st) {
+      free(Jbuf);
+      return st;
+    }
+    const size_t ax = (size_t)A[j].axis;
+    regular_eval(p, Q, pt, D, NULL, Jbuf + 3 * D);
+    for (size_t d = 0; d < D; d++)
+      Jbuf[ax * D + d] = ldexp(Jbuf[(3 + ax) * D + d], A[j].e);
+    free(Q);
   }
   if (derivatives) jac_through(Jbuf, M, out);
   free(Jbuf);
@@ -323,8 +345,9 @@ static void recentre(double *P, size_t K, size_t D, double *o, int sc) {
  * subnormal or 0 and M (2^m) infinite: when the largest |P| falls below
  * 2^-256, P is scaled up to [1/2, 1) and M down by the same power of 2.
  * Exact, and never done at ordinary depths (results there are unchanged to
- * the bit). */
-static void rescale(double *P, size_t K, size_t D, double M[3][3], int *sc) {
+ * the bit).  A's differences follow the net's scale. */
+static void rescale(double *P, size_t K, size_t D, double M[3][3], int *sc,
+                    ss_lim_along *A) {
   double mx = 0.0;
   for (size_t i = 0; i < K * D; i++)
     if (fabs(P[i]) > mx) mx = fabs(P[i]);
@@ -336,6 +359,8 @@ static void rescale(double *P, size_t K, size_t D, double M[3][3], int *sc) {
     for (int j = 0; j < 3; j++)
       M[a][j] = ldexp(M[a][j], -k);
   *sc += k;
+  for (int j = 0; j < 3; j++)
+    A[j].e += k; /* the differences carried apart are at the net's scale */
 }
 
 /* The point and Jacobian at pt of state s (whose child k is a stationary
@@ -406,6 +431,41 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
   return st;
 }
 
+/* A's differences through one plain step by t (parent patch pp, child cp),
+ * pt already in the child's frame. */
+static ss_status along_advance(ss_lim_along *A, const ss_lim_trans *t,
+                               const ss_lim_patch *pp, const ss_lim_patch *cp,
+                               const ss_lim_pt *pt, ss_error *err) {
+  int ca = 0;
+  while (t->g.perm[ca] != A->axis)
+    ca++;
+  return ss_lim_along_step(A, t->W, pp, cp, ca, pt->s[ca], 1, err);
+}
+
+/* A run of m steps by W from state S, the point pt on the plane x_a = 0 or 1
+ * of the sub-cell for some axes a: the differences across each such plane
+ * are carried apart from here on (ss_lim_along: the point stays on it), in
+ * A[a]'s slot or another free one, and through the run. */
+static ss_status along_jump(ss_lim_along A[3], const ss_lim_state *S, const ss_lim_pt *pt,
+                            size_t D, const double *P, const double *W, long m,
+                            ss_error *err) {
+  ss_status st;
+  for (int a = 0; a < 3; a++) {
+    int have = 0, slot = -1;
+    for (int j = 0; j < 3; j++) {
+      have |= A[j].on && A[j].axis == a;
+      if (!A[j].on && slot < 0) slot = j;
+    }
+    if (!have && slot >= 0 && pt->d[a] == 0.0)
+      ss_lim_along_start(&A[slot], &S->patch, pt, a, D, P);
+  }
+  for (int j = 0; j < 3; j++)
+    if (A[j].on && (st = ss_lim_along_step(&A[j], W, &S->patch, &S->patch, A[j].axis,
+                                           A[j].side, m, err)))
+      return st;
+  return SS_OK;
+}
+
 /* The walk from state s with patch points P (taken over and freed), 2^sc
  * times their offsets from the origin o (recentred and rescaled on the way;
  * out->p is absolute). */
@@ -416,12 +476,14 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
   const size_t D = out->D;
   double *P0 = NULL, *shift = NULL;
   int plain = 0;
+  ss_lim_along A[3] = {{0}, {0}, {0}};
   recentre(P, L->st[s]->patch.nv, D, o, sc);
-  rescale(P, L->st[s]->patch.nv, D, M, &sc);
+  rescale(P, L->st[s]->patch.nv, D, M, &sc, A);
   for (;;) {
     ss_lim_state *S = L->st[s];
     if (S->patch.regular) {
-      if ((st = finish_regular(&S->patch, P, &pt, M, derivatives, out, err))) goto done;
+      if ((st = finish_regular(&S->patch, P, &pt, M, derivatives, A, out, err)))
+        goto done;
       for (size_t d = 0; d < D; d++)
         out->p[d] = ldexp(out->p[d], -sc) + o[d];
       break;
@@ -460,11 +522,15 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
           st = ss_error_nomem(err, "patch points");
           goto done;
         }
+        if (m > 0 && derivatives && (st = along_jump(A, S, &pt, D, P, t->W, m, err)))
+          goto done;
         int js = 0;
         if ((st = ss_lim_eig_power(t->eig, m, D, P, shift, &js, err))) goto done;
         for (size_t d = 0; d < D; d++)
           o[d] += ldexp(shift[d], -sc);
         sc += js;
+        for (int j = 0; j < 3; j++)
+          A[j].e += js;
         out->products++;
         if (m < 0) {
           /* a fixed point: every patch point is its limit */
@@ -485,23 +551,29 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
             M[a][j] = ldexp(M[a][j], (int)m - js);
         out->steps += (int)m;
         recentre(P, S->patch.nv, D, o, sc);
-        rescale(P, S->patch.nv, D, M, &sc);
+        rescale(P, S->patch.nv, D, M, &sc, A);
         continue;
       }
     }
     if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, D, &P, err))) goto done;
     ss_lim_advance(&pt, k, &t->g, M);
+    for (int j = 0; j < 3; j++)
+      if (A[j].on &&
+          (st = along_advance(&A[j], t, &S->patch, &L->st[t->next]->patch, &pt, err)))
+        goto done;
     out->steps++;
     out->products++;
     s = t->next;
     recentre(P, L->st[s]->patch.nv, D, o, sc);
-    rescale(P, L->st[s]->patch.nv, D, M, &sc);
+    rescale(P, L->st[s]->patch.nv, D, M, &sc, A);
     if (++plain > SS_LIMIT_MAXSTEPS) {
       st = not_reached(L, cell, plain, err);
       goto done;
     }
   }
 done:
+  for (int j = 0; j < 3; j++)
+    ss_lim_along_free(&A[j]);
   free(shift);
   free(P0);
   free(P);
@@ -658,7 +730,7 @@ static ss_status reference_net(ss_limit *L, size_t cell, const double x[3],
         memcpy(P + i * D, pcx->x + i * 3, 3 * sizeof *P);
         if (nf) memcpy(P + i * D + 3, F + i * nf, nf * sizeof *P);
       }
-      if ((st = finish_regular(&p, P, &pt, M, derivatives, r, err))) goto done;
+      if ((st = finish_regular(&p, P, &pt, M, derivatives, NULL, r, err))) goto done;
       for (size_t d = 0; d < D; d++)
         r->p[d] += o[d];
       break;
