@@ -79,17 +79,20 @@ static const char *const usage_how =
     "has a zero normal derivative on the boundary).\n"
     "\n"
     "Every double parameter is walked exactly, down to 2^-1074; the Jacobian is\n"
-    "accurate to about 1e-13 of its largest entry (rows much smaller than that,\n"
-    "e.g. along an extraordinary edge very near it, carry that absolute error).\n"
+    "accurate to about 1e-13 of its largest entry, and the row along an\n"
+    "extraordinary edge very near it, which grows far slower than the others,\n"
+    "is computed apart (README: \"Jacobians ... and precision\"); a row whose\n"
+    "estimated rounding still exceeds 1e-9 of its size is refused.\n"
     "\n"
     "Exit status: 0 all points evaluated; 1 a numerical failure (a Jacobian asked\n"
     "at a fixed point with an eigenvalue of modulus >= 1/2 other than 1/2 or 1,\n"
     "where it is unbounded, e.g. at an extraordinary vertex; a run whose limit\n"
-    "is not defined; a result beyond the range of doubles); 2 bad usage or\n"
-    "input (unknown cell, parameter outside [0,1], a mesh with cells other than\n"
-    "hexahedra, not manifold, or with flat, folded or inverted hexahedra, a\n"
-    "scheme that does not split hexahedra or is no tricubic B-spline on grids,\n"
-    "a field value that is not a finite number).\n";
+    "is not defined; a result beyond the range of doubles; a Jacobian row that\n"
+    "cannot be trusted, e.g. along an extraordinary edge on the boundary very\n"
+    "near it); 2 bad usage or input (unknown cell, parameter outside [0,1], a\n"
+    "mesh with cells other than hexahedra, not manifold, or with flat, folded or\n"
+    "inverted hexahedra, a scheme that does not split hexahedra or is no\n"
+    "tricubic B-spline on grids, a field value that is not a finite number).\n";
 
 /* One point to evaluate and its result. */
 typedef struct {

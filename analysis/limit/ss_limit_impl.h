@@ -322,6 +322,10 @@ typedef struct {
   double *jac;  /* 3 x D row-major, with derivatives: row a = d/dx_a */
   int steps;    /* as ss_limit_point */
   int products; /* as ss_limit_point */
+  double *jerr; /* NULL, or 3 x D: receives an estimate of jac's rounding
+                   error (eps times the final net's spread times the
+                   growth of the rows read from it; 0 for rows carried
+                   apart, ss_lim_along, and at fixed points) */
 } ss_lim_res;
 
 /* The differences across the plane x_axis = side (a corner side of the

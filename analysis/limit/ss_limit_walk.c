@@ -5,6 +5,7 @@
 #include "ss_limit.h"
 
 #include <complex.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -122,6 +123,34 @@ static void jac_through(const double *J, double M[3][3], ss_lim_res *out) {
     }
 }
 
+/* out->jerr <- the rounding error of out->jac read from the regular net P
+ * (K x D) through M: the net's entries (relative to its first point) carry
+ * an error of a few eps times their largest, and the B-spline's derivative
+ * weights sum to at most 2 in modulus per axis, so row i's error is about
+ * 8 eps max |P| sum_a |M[a][i]| over the axes a read from the net (rows
+ * carried apart by A, ss_lim_along, are not).  An estimate, not a bound: the
+ * walk's earlier steps rounded too, but their error is below the final
+ * net's own once the net has shrunk by more than a few steps. */
+static void jac_error(size_t K, const double *P, double M[3][3], const ss_lim_along *A,
+                      ss_lim_res *out) {
+  const size_t D = out->D;
+  for (size_t d = 0; d < D; d++) {
+    double mx = 0.0;
+    for (size_t r = 0; r < K; r++)
+      mx = fmax(mx, fabs(P[r * D + d]));
+    for (int i = 0; i < 3; i++) {
+      double g = 0.0;
+      for (int a = 0; a < 3; a++) {
+        int carried = 0;
+        for (int j = 0; j < 3 && A; j++)
+          carried |= A[j].on && A[j].axis == a;
+        if (!carried) g += fabs(M[a][i]);
+      }
+      out->jerr[(size_t)i * D + d] = 8.0 * DBL_EPSILON * mx * g;
+    }
+  }
+}
+
 /* Point and Jacobian (3 x D, current frame: Jbuf) of the regular patch p's
  * points P (patch numbering) at pt, three columns at a time
  * (ss_limit_bspline); v NULL: the Jacobian only. */
@@ -167,6 +196,7 @@ static ss_status finish_regular(const ss_lim_patch *p, const double *P,
     free(Q);
   }
   if (derivatives) jac_through(Jbuf, M, out);
+  if (derivatives && out->jerr) jac_error(p->nv, P, M, A, out);
   free(Jbuf);
   return SS_OK;
 }
@@ -313,7 +343,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_trans *t, un
     memcpy(Qa, Q, K * D * sizeof *Qa);
     for (size_t d = 0; d < D; d++)
       oq[d] = 0.0;
-    ss_lim_res phi = {D, phip, NULL, 0, 0};
+    ss_lim_res phi = {D, phip, NULL, 0, 0, NULL};
     if ((st = ss_lim_walk(L, s, Qa, oq, 0, y, I3, 0, 1, cell, &phi, err))) goto done;
     const double sign = (b >> a) & 1u ? -2.0 : 2.0;
     for (size_t d = 0; d < D; d++)
@@ -412,7 +442,8 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
     if (pass == 0)
       for (int j = 0; j < 3; j++)
         M2[a][j] = 0.0;
-    ss_lim_res r = {D, pass == 0 ? out->p : rp, pass == 0 ? out->jac : NULL, 0, 0};
+    ss_lim_res r = {D, pass == 0 ? out->p : rp,     pass == 0 ? out->jac : NULL, 0,
+                    0, pass == 0 ? out->jerr : NULL};
     if ((st = ss_lim_walk(L, s, Q, oq, pass == 0 ? sc : 0, p0, M2,
                           pass == 0 ? derivatives : 0, 1, cell, &r, err)))
       break;
@@ -542,6 +573,7 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
                                      err)))
               goto done;
             jac_through(J, M, out);
+            if (out->jerr) jac_error(S->patch.nv, P0, M, NULL, out);
           }
           goto done;
         }
@@ -603,6 +635,40 @@ static ss_status check_finite(size_t cell, const double x[3], int derivatives,
                  : (derivatives ? "limit point or its Jacobian" : "limit point"));
 }
 
+/* Nothing silently wrong: a Jacobian row (per column group) whose rounding
+ * estimate r->jerr exceeds 1e-9 of its size -- or of the coarse net's spread
+ * where the row is smaller (a derivative about 0, e.g. MLCA's normal one on
+ * the boundary) -- is refused with the figures.  Near an extraordinary edge
+ * on the mesh boundary the walk reads the along-edge row from a net whose
+ * spread across the edge has shrunk like mu^m and whose along differences
+ * like 2^-m: the row's error grows like eps (2 mu)^m, and without the mirror
+ * symmetry that carries them apart (ss_lim_along) nothing recovers it. */
+static ss_status check_rounding(size_t cell, const double x[3], const ss_lim_res *r,
+                                const double *spread, ss_error *err) {
+  static const char *const row[3] = {"U", "V", "W"};
+  const size_t D = r->D;
+  for (size_t g0 = 0; g0 < D; g0 = group_end(g0, D))
+    for (size_t i = 0; i < 3; i++) {
+      double e = 0.0, v = 0.0, sp = 0.0;
+      for (size_t d = g0; d < group_end(g0, D); d++) {
+        e = fmax(e, r->jerr[i * D + d]);
+        v = fmax(v, fabs(r->jac[i * D + d]));
+        sp = fmax(sp, spread[d]);
+      }
+      if (e <= 1e-9 * fmax(v, sp)) continue;
+      return ss_error_set(err, SS_ENUMERIC,
+                          "cell %zu at (%.17g, %.17g, %.17g): the derivative d/d%s%s "
+                          "cannot be trusted: it is read from a net whose rounding, "
+                          "grown by the depth, is about %.3g, over 1e-9 of %.3g (its "
+                          "size, or the cell's if larger; near an extraordinary edge "
+                          "on the boundary, or another run no exact structure "
+                          "carries apart): refused",
+                          cell + 1, x[0], x[1], x[2], row[i],
+                          g0 == 0 ? "" : " of a field", e, fmax(v, sp));
+    }
+  return SS_OK;
+}
+
 /* The net of a patch (K x D, row-major) from the mesh vertices src: the
  * coordinates, then (D > 3) the fields.  SS_ENOMEM. */
 static ss_status patch_net(const ss_limit *L, const ss_idx *src, size_t K, size_t D,
@@ -633,11 +699,22 @@ static ss_status eval_net(ss_limit *L, size_t cell, const double x0[3], int deri
   }
   ss_lim_frame_apply(g0, x, x, M);
   size_t s = L->cell[cell].state;
-  if (!(o = calloc(r->D + 1, sizeof *o))) return ss_error_nomem(err, "patch points");
-  if (!(st = patch_net(L, L->cell[cell].src, L->st[s]->patch.nv, r->D, &P, err)))
+  const size_t D = r->D, K = L->st[s]->patch.nv;
+  /* o, then with derivatives the rounding estimate (3 x D) and the coarse
+   * net's spread per column (D) */
+  if (!(o = calloc(5 * D + 1, sizeof *o))) return ss_error_nomem(err, "patch points");
+  double *spread = o + 4 * D;
+  if (!(st = patch_net(L, L->cell[cell].src, K, D, &P, err))) {
+    for (size_t i = 0; i < K * D; i++)
+      spread[i % D] = fmax(spread[i % D], fabs(P[i] - P[i % D]));
+    if (derivatives) r->jerr = o + D;
     st = ss_lim_walk(L, s, P, o, 0, q, M, derivatives, 0, cell, r, err);
+  }
+  if (!st) st = check_finite(cell, x0, derivatives, r, err);
+  if (!st && derivatives) st = check_rounding(cell, x0, r, spread, err);
+  r->jerr = NULL;
   free(o);
-  return st ? st : check_finite(cell, x0, derivatives, r, err);
+  return st;
 }
 
 /* Space for a result of D columns, or with fields NULL (D = 3) the arrays of
@@ -645,7 +722,7 @@ static ss_status eval_net(ss_limit *L, size_t cell, const double x0[3], int deri
 static ss_status res_open(ss_limit_point *out, const double *fields, size_t nf,
                           ss_lim_res *r, ss_error *err) {
   memset(out, 0, sizeof *out);
-  *r = (ss_lim_res){3, out->p, &out->jac[0][0], 0, 0};
+  *r = (ss_lim_res){3, out->p, &out->jac[0][0], 0, 0, NULL};
   if (!fields) return SS_OK;
   r->D = 3 + nf;
   r->p = calloc(4 * r->D, sizeof *r->p);
