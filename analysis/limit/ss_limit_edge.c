@@ -140,7 +140,7 @@ static ss_status eval_net(ss_limit *L, size_t s, double *Q, ss_lim_pt y, int der
                           size_t cell, ss_limit_point *out, ss_error *err) {
   double o[3] = {0, 0, 0}, I3[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   memset(out, 0, sizeof *out);
-  ss_lim_res r = {3, out->p, &out->jac[0][0], 0, 0};
+  ss_lim_res r = {3, out->p, &out->jac[0][0], 0, 0, NULL};
   ss_status st = ss_lim_walk(L, s, Q, o, 0, y, I3, derivatives, 1, cell, &r, err);
   out->steps = r.steps;
   out->products = r.products;

@@ -322,7 +322,58 @@ typedef struct {
   double *jac;  /* 3 x D row-major, with derivatives: row a = d/dx_a */
   int steps;    /* as ss_limit_point */
   int products; /* as ss_limit_point */
+  double *jerr; /* NULL, or 3 x D: receives an estimate of jac's rounding
+                   error (eps times the final net's spread times the
+                   growth of the rows read from it; 0 for rows carried
+                   apart, ss_lim_along, and at fixed points) */
 } ss_lim_res;
+
+/* The differences across the plane x_axis = side (a corner side of the
+ * current sub-cell) carried apart from the net while the walk stays on it
+ * (ss_limit_along.c).  Near an extraordinary edge the walk's last long run
+ * keeps the point on such a plane through the edge's fixed point; the net's
+ * spread across the edge then shrinks like mu^m (mu the run's across
+ * eigenvalue, above 1/2) while its differences along the edge shrink like
+ * 2^-m, so the derivative along the edge, read from the net, would carry the
+ * net's rounding times (2 mu)^m (1e25 at 1e-300 from a valence-5 edge).
+ * Where a step's rows give the child's differences P[side + 1] - P[side - 1]
+ * (per column along the axis) from the parent's alone -- the other layers'
+ * weights cancel, as the mirror symmetry of the rules about the plane makes
+ * them do -- those differences are carried by that map instead, to their own
+ * relative precision, and the derivative along the axis at the plane is read
+ * from them (the B-spline's at a knot: 1/2 the difference, weighted across).
+ * Where a step's rows do not, carrying stops (on = 0) and the net's row is
+ * used as before. */
+typedef struct {
+  int on;             /* 1 while carried */
+  int axis;           /* the plane's axis in the current frame */
+  int side;           /* the plane: x_axis = side (0 or 1) */
+  size_t D;           /* columns per point */
+  size_t ncol;        /* columns of the current patch along axis */
+  size_t (*colpt)[4]; /* ncol x 4: the point of each column at positions -1..2 */
+  double *dl;         /* ncol x D: the differences, 2^-e times the net's scale */
+  int e;              /* see dl */
+} ss_lim_along;
+
+/* Start carrying the differences of net P (patch p, D columns) across axis,
+ * on which pt must lie on a corner side of the sub-cell; A->on = 0 if it
+ * does not or p's points do not form columns along it (or memory is short:
+ * carrying is an accuracy measure, never needed). */
+void ss_lim_along_start(ss_lim_along *A, const ss_lim_patch *p, const ss_lim_pt *pt,
+                        int axis, size_t D, const double *P);
+/* m steps by W (child patch cp from parent patch pp; m > 1 only for a run,
+ * cp = pp); in the child's frame the plane is x_caxis = cside.  Stops carrying
+ * (A->on = 0) where W's rows do not give the child's differences from the
+ * parent's alone.  SS_ENOMEM. */
+ss_status ss_lim_along_step(ss_lim_along *A, const double *W, const ss_lim_patch *pp,
+                            const ss_lim_patch *cp, int caxis, int cside, long m,
+                            ss_error *err);
+/* The net (p->nv x D, caller frees) with the differences at position side + 1
+ * and 0 elsewhere: its B-spline derivative along the axis at the plane is
+ * the net's, 2^-e times.  SS_ENOMEM. */
+ss_status ss_lim_along_net(const ss_lim_along *A, const ss_lim_patch *p, double **Q,
+                           ss_error *err);
+void ss_lim_along_free(ss_lim_along *A);
 
 /* The walk from state s with patch points P (K x out->D, taken over and
  * freed), 2^sc times their offsets from the origin o (out->D entries), at

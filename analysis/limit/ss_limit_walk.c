@@ -5,6 +5,7 @@
 #include "ss_limit.h"
 
 #include <complex.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -122,29 +123,80 @@ static void jac_through(const double *J, double M[3][3], ss_lim_res *out) {
     }
 }
 
-/* Point and Jacobian from a regular patch's points P (patch numbering),
- * three columns at a time (ss_limit_bspline).  SS_ENOMEM. */
-static ss_status finish_regular(const ss_lim_patch *p, const double *P,
-                                const ss_lim_pt *pt, double M[3][3], int derivatives,
-                                ss_lim_res *out, ss_error *err) {
+/* out->jerr <- the rounding error of out->jac read from the regular net P
+ * (K x D) through M: the net's entries (relative to its first point) carry
+ * an error of a few eps times their largest, and the B-spline's derivative
+ * weights sum to at most 2 in modulus per axis, so row i's error is about
+ * 8 eps max |P| sum_a |M[a][i]| over the axes a read from the net (rows
+ * carried apart by A, ss_lim_along, are not).  An estimate, not a bound: the
+ * walk's earlier steps rounded too, but their error is below the final
+ * net's own once the net has shrunk by more than a few steps. */
+static void jac_error(size_t K, const double *P, double M[3][3], const ss_lim_along *A,
+                      ss_lim_res *out) {
   const size_t D = out->D;
-  double net[64][3], J[3][3], x[3], v[3];
-  double *Jbuf = malloc((3 * D + 1) * sizeof *Jbuf);
-  if (!Jbuf) return ss_error_nomem(err, "limit Jacobian");
+  for (size_t d = 0; d < D; d++) {
+    double mx = 0.0;
+    for (size_t r = 0; r < K; r++)
+      mx = fmax(mx, fabs(P[r * D + d]));
+    for (int i = 0; i < 3; i++) {
+      double g = 0.0;
+      for (int a = 0; a < 3; a++) {
+        int carried = 0;
+        for (int j = 0; j < 3 && A; j++)
+          carried |= A[j].on && A[j].axis == a;
+        if (!carried) g += fabs(M[a][i]);
+      }
+      out->jerr[(size_t)i * D + d] = 8.0 * DBL_EPSILON * mx * g;
+    }
+  }
+}
+
+/* Point and Jacobian (3 x D, current frame: Jbuf) of the regular patch p's
+ * points P (patch numbering) at pt, three columns at a time
+ * (ss_limit_bspline); v NULL: the Jacobian only. */
+static void regular_eval(const ss_lim_patch *p, const double *P, const ss_lim_pt *pt,
+                         size_t D, double *v, double *Jbuf) {
+  double net[64][3], J[3][3], x[3], val[3];
   pt_x(pt, x);
   for (size_t d0 = 0; d0 < D; d0 += 3) {
     const size_t nd = D - d0 < 3 ? D - d0 : 3;
     for (int i = 0; i < 64; i++)
       for (size_t d = 0; d < 3; d++)
         net[i][d] = d < nd ? P[(size_t)p->net[i] * D + d0 + d] : 0.0;
-    ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], v, J);
+    ss_limit_bspline((const double(*)[3])net, x[0], x[1], x[2], val, J);
     for (size_t d = 0; d < nd; d++) {
-      out->p[d0 + d] = v[d];
+      if (v) v[d0 + d] = val[d];
       for (int a = 0; a < 3; a++)
         Jbuf[(size_t)a * D + d0 + d] = J[a][d];
     }
   }
+}
+
+/* Point and Jacobian from a regular patch's points P (patch numbering); the
+ * row along each A[j]'s axis from its differences while it carries them
+ * (ss_lim_along; A may be NULL).  SS_ENOMEM. */
+static ss_status finish_regular(const ss_lim_patch *p, const double *P,
+                                const ss_lim_pt *pt, double M[3][3], int derivatives,
+                                const ss_lim_along *A, ss_lim_res *out, ss_error *err) {
+  const size_t D = out->D;
+  double *Jbuf = malloc((6 * D + 1) * sizeof *Jbuf), *Q = NULL;
+  if (!Jbuf) return ss_error_nomem(err, "limit Jacobian");
+  regular_eval(p, P, pt, D, out->p, Jbuf);
+  for (int j = 0; j < 3 && derivatives && A; j++) {
+    if (!A[j].on) continue;
+    ss_status st = ss_lim_along_net(&A[j], p, &Q, err);
+    if (st) {
+      free(Jbuf);
+      return st;
+    }
+    const size_t ax = (size_t)A[j].axis;
+    regular_eval(p, Q, pt, D, NULL, Jbuf + 3 * D);
+    for (size_t d = 0; d < D; d++)
+      Jbuf[ax * D + d] = ldexp(Jbuf[(3 + ax) * D + d], A[j].e);
+    free(Q);
+  }
   if (derivatives) jac_through(Jbuf, M, out);
+  if (derivatives && out->jerr) jac_error(p->nv, P, M, A, out);
   free(Jbuf);
   return SS_OK;
 }
@@ -291,7 +343,7 @@ static ss_status fixed_jacobian(ss_limit *L, size_t s, const ss_lim_trans *t, un
     memcpy(Qa, Q, K * D * sizeof *Qa);
     for (size_t d = 0; d < D; d++)
       oq[d] = 0.0;
-    ss_lim_res phi = {D, phip, NULL, 0, 0};
+    ss_lim_res phi = {D, phip, NULL, 0, 0, NULL};
     if ((st = ss_lim_walk(L, s, Qa, oq, 0, y, I3, 0, 1, cell, &phi, err))) goto done;
     const double sign = (b >> a) & 1u ? -2.0 : 2.0;
     for (size_t d = 0; d < D; d++)
@@ -323,8 +375,9 @@ static void recentre(double *P, size_t K, size_t D, double *o, int sc) {
  * subnormal or 0 and M (2^m) infinite: when the largest |P| falls below
  * 2^-256, P is scaled up to [1/2, 1) and M down by the same power of 2.
  * Exact, and never done at ordinary depths (results there are unchanged to
- * the bit). */
-static void rescale(double *P, size_t K, size_t D, double M[3][3], int *sc) {
+ * the bit).  A's differences follow the net's scale. */
+static void rescale(double *P, size_t K, size_t D, double M[3][3], int *sc,
+                    ss_lim_along *A) {
   double mx = 0.0;
   for (size_t i = 0; i < K * D; i++)
     if (fabs(P[i]) > mx) mx = fabs(P[i]);
@@ -336,6 +389,8 @@ static void rescale(double *P, size_t K, size_t D, double M[3][3], int *sc) {
     for (int j = 0; j < 3; j++)
       M[a][j] = ldexp(M[a][j], -k);
   *sc += k;
+  for (int j = 0; j < 3; j++)
+    A[j].e += k; /* the differences carried apart are at the net's scale */
 }
 
 /* The point and Jacobian at pt of state s (whose child k is a stationary
@@ -375,7 +430,20 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
     for (size_t d = 0; d < D; d++)
       oq[d] = pass == 0 ? o[d] : 0.0;
     memcpy(M2, M, sizeof M2);
-    ss_lim_res r = {D, pass == 0 ? out->p : rp, pass == 0 ? out->jac : NULL, 0, 0};
+    /* The first pass's net is the same in every layer, so its limit on the
+     * cell, sum_c Q_c phi_c(y) sum_l N_l(x_a), does not depend on x_a (the
+     * N_l sum to 1): its derivative along the edge is 0 exactly, and the
+     * second pass gives that row alone.  The walk would form it from
+     * differences of nets equal along the edge, and near the edge their
+     * rounding (eps |Q| times the growth of the across parts, (2 mu)^m after
+     * m steps) is all it would add; dropping its row of M (rows are only
+     * permuted, signed and scaled by powers of 2 on the way) leaves it out
+     * exactly. */
+    if (pass == 0)
+      for (int j = 0; j < 3; j++)
+        M2[a][j] = 0.0;
+    ss_lim_res r = {D, pass == 0 ? out->p : rp,     pass == 0 ? out->jac : NULL, 0,
+                    0, pass == 0 ? out->jerr : NULL};
     if ((st = ss_lim_walk(L, s, Q, oq, pass == 0 ? sc : 0, p0, M2,
                           pass == 0 ? derivatives : 0, 1, cell, &r, err)))
       break;
@@ -394,6 +462,41 @@ static ss_status tensor_eval(ss_limit *L, size_t s, const ss_lim_tensor *T,
   return st;
 }
 
+/* A's differences through one plain step by t (parent patch pp, child cp),
+ * pt already in the child's frame. */
+static ss_status along_advance(ss_lim_along *A, const ss_lim_trans *t,
+                               const ss_lim_patch *pp, const ss_lim_patch *cp,
+                               const ss_lim_pt *pt, ss_error *err) {
+  int ca = 0;
+  while (t->g.perm[ca] != A->axis)
+    ca++;
+  return ss_lim_along_step(A, t->W, pp, cp, ca, pt->s[ca], 1, err);
+}
+
+/* A run of m steps by W from state S, the point pt on the plane x_a = 0 or 1
+ * of the sub-cell for some axes a: the differences across each such plane
+ * are carried apart from here on (ss_lim_along: the point stays on it), in
+ * A[a]'s slot or another free one, and through the run. */
+static ss_status along_jump(ss_lim_along A[3], const ss_lim_state *S, const ss_lim_pt *pt,
+                            size_t D, const double *P, const double *W, long m,
+                            ss_error *err) {
+  ss_status st;
+  for (int a = 0; a < 3; a++) {
+    int have = 0, slot = -1;
+    for (int j = 0; j < 3; j++) {
+      have |= A[j].on && A[j].axis == a;
+      if (!A[j].on && slot < 0) slot = j;
+    }
+    if (!have && slot >= 0 && pt->d[a] == 0.0)
+      ss_lim_along_start(&A[slot], &S->patch, pt, a, D, P);
+  }
+  for (int j = 0; j < 3; j++)
+    if (A[j].on && (st = ss_lim_along_step(&A[j], W, &S->patch, &S->patch, A[j].axis,
+                                           A[j].side, m, err)))
+      return st;
+  return SS_OK;
+}
+
 /* The walk from state s with patch points P (taken over and freed), 2^sc
  * times their offsets from the origin o (recentred and rescaled on the way;
  * out->p is absolute). */
@@ -404,12 +507,14 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
   const size_t D = out->D;
   double *P0 = NULL, *shift = NULL;
   int plain = 0;
+  ss_lim_along A[3] = {{0}, {0}, {0}};
   recentre(P, L->st[s]->patch.nv, D, o, sc);
-  rescale(P, L->st[s]->patch.nv, D, M, &sc);
+  rescale(P, L->st[s]->patch.nv, D, M, &sc, A);
   for (;;) {
     ss_lim_state *S = L->st[s];
     if (S->patch.regular) {
-      if ((st = finish_regular(&S->patch, P, &pt, M, derivatives, out, err))) goto done;
+      if ((st = finish_regular(&S->patch, P, &pt, M, derivatives, A, out, err)))
+        goto done;
       for (size_t d = 0; d < D; d++)
         out->p[d] = ldexp(out->p[d], -sc) + o[d];
       break;
@@ -448,11 +553,15 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
           st = ss_error_nomem(err, "patch points");
           goto done;
         }
+        if (m > 0 && derivatives && (st = along_jump(A, S, &pt, D, P, t->W, m, err)))
+          goto done;
         int js = 0;
         if ((st = ss_lim_eig_power(t->eig, m, D, P, shift, &js, err))) goto done;
         for (size_t d = 0; d < D; d++)
           o[d] += ldexp(shift[d], -sc);
         sc += js;
+        for (int j = 0; j < 3; j++)
+          A[j].e += js;
         out->products++;
         if (m < 0) {
           /* a fixed point: every patch point is its limit */
@@ -464,6 +573,7 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
                                      err)))
               goto done;
             jac_through(J, M, out);
+            if (out->jerr) jac_error(S->patch.nv, P0, M, NULL, out);
           }
           goto done;
         }
@@ -473,23 +583,29 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
             M[a][j] = ldexp(M[a][j], (int)m - js);
         out->steps += (int)m;
         recentre(P, S->patch.nv, D, o, sc);
-        rescale(P, S->patch.nv, D, M, &sc);
+        rescale(P, S->patch.nv, D, M, &sc, A);
         continue;
       }
     }
     if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, D, &P, err))) goto done;
     ss_lim_advance(&pt, k, &t->g, M);
+    for (int j = 0; j < 3; j++)
+      if (A[j].on &&
+          (st = along_advance(&A[j], t, &S->patch, &L->st[t->next]->patch, &pt, err)))
+        goto done;
     out->steps++;
     out->products++;
     s = t->next;
     recentre(P, L->st[s]->patch.nv, D, o, sc);
-    rescale(P, L->st[s]->patch.nv, D, M, &sc);
+    rescale(P, L->st[s]->patch.nv, D, M, &sc, A);
     if (++plain > SS_LIMIT_MAXSTEPS) {
       st = not_reached(L, cell, plain, err);
       goto done;
     }
   }
 done:
+  for (int j = 0; j < 3; j++)
+    ss_lim_along_free(&A[j]);
   free(shift);
   free(P0);
   free(P);
@@ -517,6 +633,40 @@ static ss_status check_finite(size_t cell, const double x[3], int derivatives,
       out->D > 3 ? (derivatives ? "limit point, a field or a derivative"
                                 : "limit point or a field")
                  : (derivatives ? "limit point or its Jacobian" : "limit point"));
+}
+
+/* Nothing silently wrong: a Jacobian row (per column group) whose rounding
+ * estimate r->jerr exceeds 1e-9 of its size -- or of the coarse net's spread
+ * where the row is smaller (a derivative about 0, e.g. MLCA's normal one on
+ * the boundary) -- is refused with the figures.  Near an extraordinary edge
+ * on the mesh boundary the walk reads the along-edge row from a net whose
+ * spread across the edge has shrunk like mu^m and whose along differences
+ * like 2^-m: the row's error grows like eps (2 mu)^m, and without the mirror
+ * symmetry that carries them apart (ss_lim_along) nothing recovers it. */
+static ss_status check_rounding(size_t cell, const double x[3], const ss_lim_res *r,
+                                const double *spread, ss_error *err) {
+  static const char *const row[3] = {"U", "V", "W"};
+  const size_t D = r->D;
+  for (size_t g0 = 0; g0 < D; g0 = group_end(g0, D))
+    for (size_t i = 0; i < 3; i++) {
+      double e = 0.0, v = 0.0, sp = 0.0;
+      for (size_t d = g0; d < group_end(g0, D); d++) {
+        e = fmax(e, r->jerr[i * D + d]);
+        v = fmax(v, fabs(r->jac[i * D + d]));
+        sp = fmax(sp, spread[d]);
+      }
+      if (e <= 1e-9 * fmax(v, sp)) continue;
+      return ss_error_set(err, SS_ENUMERIC,
+                          "cell %zu at (%.17g, %.17g, %.17g): the derivative d/d%s%s "
+                          "cannot be trusted: it is read from a net whose rounding, "
+                          "grown by the depth, is about %.3g, over 1e-9 of %.3g (its "
+                          "size, or the cell's if larger; near an extraordinary edge "
+                          "on the boundary, or another run no exact structure "
+                          "carries apart): refused",
+                          cell + 1, x[0], x[1], x[2], row[i],
+                          g0 == 0 ? "" : " of a field", e, fmax(v, sp));
+    }
+  return SS_OK;
 }
 
 /* The net of a patch (K x D, row-major) from the mesh vertices src: the
@@ -549,11 +699,22 @@ static ss_status eval_net(ss_limit *L, size_t cell, const double x0[3], int deri
   }
   ss_lim_frame_apply(g0, x, x, M);
   size_t s = L->cell[cell].state;
-  if (!(o = calloc(r->D + 1, sizeof *o))) return ss_error_nomem(err, "patch points");
-  if (!(st = patch_net(L, L->cell[cell].src, L->st[s]->patch.nv, r->D, &P, err)))
+  const size_t D = r->D, K = L->st[s]->patch.nv;
+  /* o, then with derivatives the rounding estimate (3 x D) and the coarse
+   * net's spread per column (D) */
+  if (!(o = calloc(5 * D + 1, sizeof *o))) return ss_error_nomem(err, "patch points");
+  double *spread = o + 4 * D;
+  if (!(st = patch_net(L, L->cell[cell].src, K, D, &P, err))) {
+    for (size_t i = 0; i < K * D; i++)
+      spread[i % D] = fmax(spread[i % D], fabs(P[i] - P[i % D]));
+    if (derivatives) r->jerr = o + D;
     st = ss_lim_walk(L, s, P, o, 0, q, M, derivatives, 0, cell, r, err);
+  }
+  if (!st) st = check_finite(cell, x0, derivatives, r, err);
+  if (!st && derivatives) st = check_rounding(cell, x0, r, spread, err);
+  r->jerr = NULL;
   free(o);
-  return st ? st : check_finite(cell, x0, derivatives, r, err);
+  return st;
 }
 
 /* Space for a result of D columns, or with fields NULL (D = 3) the arrays of
@@ -561,7 +722,7 @@ static ss_status eval_net(ss_limit *L, size_t cell, const double x0[3], int deri
 static ss_status res_open(ss_limit_point *out, const double *fields, size_t nf,
                           ss_lim_res *r, ss_error *err) {
   memset(out, 0, sizeof *out);
-  *r = (ss_lim_res){3, out->p, &out->jac[0][0], 0, 0};
+  *r = (ss_lim_res){3, out->p, &out->jac[0][0], 0, 0, NULL};
   if (!fields) return SS_OK;
   r->D = 3 + nf;
   r->p = calloc(4 * r->D, sizeof *r->p);
@@ -646,7 +807,7 @@ static ss_status reference_net(ss_limit *L, size_t cell, const double x[3],
         memcpy(P + i * D, pcx->x + i * 3, 3 * sizeof *P);
         if (nf) memcpy(P + i * D + 3, F + i * nf, nf * sizeof *P);
       }
-      if ((st = finish_regular(&p, P, &pt, M, derivatives, r, err))) goto done;
+      if ((st = finish_regular(&p, P, &pt, M, derivatives, NULL, r, err))) goto done;
       for (size_t d = 0; d < D; d++)
         r->p[d] += o[d];
       break;

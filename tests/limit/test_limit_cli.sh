@@ -98,6 +98,29 @@ for n in 1 2 3; do
   c=$("$exe" limit --scheme ccsolid "$tmp/g$n.mesh" --samples 3 -d | wc -l)
   checks=$((checks + 1)); [ "$c" -eq "$n3" ] || fail "ccsolid grid $n: $c sample lines, not $n3"
 done
+# 5 wedges x 3 layers around an edge of valence 5, straight along z (issue 35
+# item 3): at (d, d, 1/2) of a middle-layer cell the along row is (0, 0, 1)
+# (the mesh is its own mirror image in z = 3/2, and z = layer is reproduced)
+# down to 1e-300 and below; on the bottom boundary there it is refused, exit 1
+awk 'BEGIN { pi = atan2(0, -1)
+  printf "MeshVersionFormatted 2\nDimension 3\nVertices\n44\n"
+  for (k = 0; k <= 3; k++) {
+    print 0, 0, k, 0
+    for (s = 0; s < 5; s++) printf "%.17g %.17g %d 0\n", cos(2 * pi * s / 5), sin(2 * pi * s / 5), k
+    for (s = 0; s < 5; s++) printf "%.17g %.17g %d 0\n", cos(2 * pi * s / 5) + cos(2 * pi * (s + 1) / 5), sin(2 * pi * s / 5) + sin(2 * pi * (s + 1) / 5), k }
+  printf "Hexahedra\n15\n"
+  for (k = 0; k < 3; k++) for (s = 0; s < 5; s++) {
+    b = 11 * k + 1; t = b + 11
+    print b, b + 1 + s, b + 6 + s, b + 1 + (s + 1) % 5, t, t + 1 + s, t + 6 + s, t + 1 + (s + 1) % 5, 0 }
+  print "End" }' > "$tmp/ring5.mesh"
+for s in mlca ccsolid; do
+  for d in 1e-20 1e-150 1e-200 1e-300 4.9406564584124654e-324; do
+    r=$("$exe" limit --scheme $s "$tmp/ring5.mesh" --at "6 $d $d 0.5" -d | awk '{e = $14; if (e < 0) e = -e; f = $15; if (f < 0) f = -f; g = $16 - 1; if (g < 0) g = -g
+      m = e > f ? e : f; m = m > g ? m : g; print (NF == 16 && m <= 1e-14) ? "ok" : $14 " " $15 " " $16}')
+    checks=$((checks + 1)); [ "$r" = "ok" ] || fail "$s: along row at ($d, $d, 1/2) of 5 wedges: $r"
+  done
+  expect 1 "the derivative d/dW cannot be trusted" "$exe" limit --scheme $s "$tmp/ring5.mesh" --at "1 1e-300 1e-300 0" -d
+done
 # flat, folded and inverted hexes are refused as subdivide refuses them
 two() {
   printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n16\n'
