@@ -81,7 +81,8 @@ static void help(const char *cmd) {
       "  --diagonals D          major diagonals of tet stars (boxspline): bfs\n"
       "                         (Algorithm 2, default), or around the edge of\n"
       "                         --edge: skew (the same turn all round) or center\n"
-      "                         (all toward the edge)\n",
+      "                         (all toward the edge); other rules read none\n"
+      "                         and refuse all but bfs\n",
       m || d
           ? "the\n                         link from standard input (exactly one)"
           : "one link per\n                         line on standard input (one result "

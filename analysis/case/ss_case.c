@@ -99,10 +99,10 @@ ss_status ss_case_star(const ss_scheme *s, const ss_case *c, ss_star **out,
   if (st0) return st0;
   if (c->kind == SS_CASE_VERTEX && !c->link)
     return ss_error_set(err, SS_EINPUT, "the vertex case needs a link");
-  /* (refused only where the star cannot carry them, so a scheme reading no
-   * diagonals is told so rather than "only for the edge case" on an edge) */
-  if ((c->diag == SS_DIAG_SKEW || c->diag == SS_DIAG_CENTER) &&
-      (c->kind != SS_CASE_EDGE || t != SS_TET) && !ss_scheme_reads_diagonals(s))
+  /* a choice other than the default for a rule that reads none is refused:
+   * on a tet star it would only relabel the star (its rcond, orientation and
+   * the inf-norm profiles change, nothing the rule computes) */
+  if (c->diag != SS_DIAG_BFS && !ss_scheme_reads_diagonals(s))
     return ss_error_set(err, SS_EINPUT,
                         "scheme %s does not read major diagonals: diagonals '%s' do not "
                         "apply to it",

@@ -182,6 +182,9 @@ expect_in 2 "--force is an option of draw only" "" "$exe" analyze --scheme boxsp
 # The counts of improper pairs below are REGRESSION PINS (the program's own
 # output); the diagonals themselves are tested in tests/scheme/test_boxspline.c.
 expect_in 0 "major diagonals: skew; 9 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --edge 9 --diagonals skew --eigenvalues 4
+# a rule that reads no diagonals refuses a choice (it would only relabel the star)
+expect_in 2 "scheme tetoct does not read major diagonals: diagonals .skew. do not apply" "" "$exe" analyze --scheme tetoct --edge 5 --diagonals skew
+expect_in 2 "scheme tetoct does not read major diagonals: diagonals .proper. do not apply" "" "$exe" analyze --scheme tetoct --vertex octahedron --diagonals proper
 expect_in 1 "major diagonals: center; 0 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --edge 9 --diagonals center --eigenvalues 4
 expect_in 1 "major diagonals: proper; 2 of 9 face-adjacent pairs improper" "" "$exe" analyze --scheme boxspline --vertex bipyramid:3 --diagonals proper
 expect_in 2 "defined around an edge" "" "$exe" analyze --scheme boxspline --vertex bipyramid:3 --diagonals skew

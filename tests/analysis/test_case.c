@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "ss_case.h"
+#include "ss_link.h"
 #include "ss_test.h"
 
 static void test_names(void) {
@@ -149,6 +150,22 @@ static void test_stars(void) {
   CHECK(ss_case_star(s, &skew, &star, &err) == SS_OK, "skew edge: %s", err.msg);
   ss_star_free(star);
   star = NULL;
+  ss_scheme_free(s);
+  /* tet/oct's rule reads no diagonals: a choice would only relabel its star
+   * (issue 35), so anything but the default is refused */
+  REQUIRE_OK_VOID(ss_scheme_new("tetoct", &s, &err), &err);
+  const ss_case tskew = {SS_CASE_EDGE, NULL, 5, SS_DIAG_SKEW, 0},
+                tproper = {SS_CASE_VERTEX, NULL, 0, SS_DIAG_PROPER, 0};
+  ss_link *oct = NULL;
+  REQUIRE_OK_VOID(ss_link_named("octahedron", &oct, &err), &err);
+  ss_case tp = tproper;
+  tp.link = oct;
+  CHECK(ss_case_star(s, &tskew, &star, &err) == SS_EINPUT && !star &&
+            strstr(err.msg, "does not read major diagonals"),
+        "tetoct edge with skew diagonals refused: %s", err.msg);
+  CHECK(ss_case_star(s, &tp, &star, &err) == SS_EINPUT && !star,
+        "tetoct vertex with proper diagonals refused");
+  ss_link_free(oct);
   ss_scheme_free(s);
   REQUIRE_OK_VOID(ss_scheme_new("loop", &s, &err), &err);
   const ss_case cls = {SS_CASE_SURFACE_VERTEX, NULL, 6, SS_DIAG_BFS, 8};
