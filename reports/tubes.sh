@@ -3,33 +3,40 @@
 # undecided, judged on psi with its spoke tubes proven (issue 34 section 3;
 # reports/README.md, finding 5).  Not part of ./run (about 6 s of CPU a link).
 #
-#   reports/tubes.sh [--max-k K] [--exe PATH] [--list FILE]
+#   reports/tubes.sh [--max-k K] [--psi-depth N] [--exe PATH] [--list FILE]
 #
 # Reads the links from the exhaustive tables' not-passing list
 # (reports/data/exhaustive-vertices-k4-12-not-passing.csv.xz: scheme mlca,
 # eigenvalue condition pass, regularity undecided, k <= K, default 11), or
 # from FILE (one plantri link per line), and runs for each
-#   subspectra analyze --scheme mlca --vertex LINK --certify --psi-depth 2 \
+#   subspectra analyze --scheme mlca --vertex LINK --certify --psi-depth N \
 #       --psi-tubes --format json
-# printing one JSON line per link (link, regularity and injectivity verdicts,
-# certified, judged_on, the tubes proven, the reason) and, on standard error,
-# the counts per k.
+# (N default 2) printing one JSON line per link (link, regularity and
+# injectivity verdicts, certified, judged_on, the tubes proven, psi's
+# injectivity from its boundary's winding number, the reason) and, on standard
+# error, the counts per k.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 maxk=11
+depth=2
 exe=${SUBSPECTRA:-"$here/../build/cli/subspectra"}
 list=""
 while [ $# -gt 0 ]; do
   case "$1" in
   --max-k) maxk=$2; shift 2 ;;
+  --psi-depth) depth=$2; shift 2 ;;
   --exe) exe=$2; shift 2 ;;
   --list) list=$2; shift 2 ;;
-  -h | --help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  -h | --help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "tubes.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 case "$maxk" in
 '' | *[!0-9]*) echo "tubes.sh: --max-k expects an integer, not '$maxk'" >&2; exit 2 ;;
+esac
+case "$depth" in
+[1-8]) ;;
+*) echo "tubes.sh: --psi-depth expects an integer in 1..8, not '$depth'" >&2; exit 2 ;;
 esac
 [ -x "$exe" ] || { echo "tubes.sh: no subspectra at '$exe' (--exe PATH)" >&2; exit 2; }
 links=$(mktemp)
@@ -49,7 +56,7 @@ fi
 while IFS= read -r link; do
   [ -z "$link" ] && continue
   # exit status 1 is a failing verdict, still a whole JSON object
-  out=$("$exe" analyze --scheme mlca --vertex "$link" --certify --psi-depth 2 \
+  out=$("$exe" analyze --scheme mlca --vertex "$link" --certify --psi-depth "$depth" \
     --psi-tubes --format json) || [ $? -eq 1 ] ||
     { echo "tubes.sh: analyze failed on '$link'" >&2; exit 2; }
   printf '%s' "$out" | python3 -c '
@@ -60,6 +67,8 @@ t = (r.get("psi") or {}).get("tubes")
 print(json.dumps({"link": sys.argv[1], "regularity": r["verdict"],
                   "certified": r["certified"], "judged_on": r.get("judged_on"),
                   "injectivity": i["verdict"], "injectivity_certified": i["certified"],
+                  "injectivity_judged_on": i.get("judged_on"),
+                  "psi_injectivity": (r.get("psi") or {}).get("injectivity"),
                   "tubes": t, "reason": r["reason"]}))
 ' "$link"
 done <"$links" | tee "$links.out"
@@ -69,9 +78,11 @@ c = collections.Counter()
 for line in open(sys.argv[1]):
     o = json.loads(line)
     k = o["link"].split()[0]
-    c[(k, o.get("regularity"), o.get("certified"), o.get("judged_on"))] += 1
-for (k, v, cert, on), n in sorted(c.items()):
-    print("k = %s: %d %s%s (judged on %s)" % (k, n, v, ", certified" if cert else "", on),
-          file=sys.stderr)
+    c[(k, "regularity", o.get("regularity"), o.get("certified"), o.get("judged_on"))] += 1
+    c[(k, "injectivity", o.get("injectivity"), o.get("injectivity_certified"),
+       o.get("injectivity_judged_on"))] += 1
+for (k, what, v, cert, on), n in sorted(c.items()):
+    print("k = %s: %s %d %s%s (judged on %s)" % (k, what, n, v,
+          ", certified" if cert else "", on), file=sys.stderr)
 ' "$links.out"
 rm -f "$links.out"

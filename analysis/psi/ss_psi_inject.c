@@ -259,24 +259,53 @@ static void subnet(const ss_limit_piece *pc, int levels, const int64_t idx[3], d
       half_along(lo, hi, a, (int)((idx[a] >> l) & 1));
 }
 
-/* d = the mean of the enclosed points' midpoints (true positions) and
- * whether d.x > 0 is proven on all of them. */
+/* A direction d with d.x > 0 on the enclosed points (true positions), found
+ * on their midpoints by the perceptron (start: the sum of their unit
+ * vectors; while the worst point's cosine is below 1e-3, add its unit
+ * vector: finite if a margin exists), then proven on the enclosures (arb).
+ * 0 if none is proven. */
 static int hull_direction(const double *lo, const double *hi, size_t n,
                           const double shift[3], double d[3]) {
-  for (int k = 0; k < 3; k++) {
-    double m = 0.0;
-    for (size_t i = 0; i < n; i++)
-      m += 0.5 * lo[3 * i + (size_t)k] + 0.5 * hi[3 * i + (size_t)k];
-    d[k] = m / (double)n + shift[k];
+  d[0] = d[1] = d[2] = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    double x[3], r = 0.0;
+    for (int k = 0; k < 3; k++) {
+      x[k] = 0.5 * lo[3 * i + (size_t)k] + 0.5 * hi[3 * i + (size_t)k] + shift[k];
+      r += x[k] * x[k];
+    }
+    r = sqrt(r);
+    for (int k = 0; k < 3 && r > 0.0; k++)
+      d[k] += x[k] / r;
+  }
+  for (int it = 0; it < 2000; it++) {
+    double worst = INFINITY, u[3] = {0.0, 0.0, 0.0};
+    const double dn = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (size_t i = 0; i < n; i++) {
+      double x[3], r = 0.0, c = 0.0;
+      for (int k = 0; k < 3; k++) {
+        x[k] = 0.5 * lo[3 * i + (size_t)k] + 0.5 * hi[3 * i + (size_t)k] + shift[k];
+        r += x[k] * x[k];
+        c += x[k] * d[k];
+      }
+      r = sqrt(r);
+      if (r == 0.0 || dn == 0.0) return 0;
+      if (c / (r * dn) < worst) {
+        worst = c / (r * dn);
+        for (int k = 0; k < 3; k++)
+          u[k] = x[k] / r;
+      }
+    }
+    if (worst > 1e-3) break;
+    for (int k = 0; k < 3; k++)
+      d[k] = d[k] / dn + u[k];
   }
   return positive_on(lo, hi, n, shift, d);
 }
 
 /* The offer of the double point at grid g of the box (a piece: psi there; a
- * tube: the direction, its patch's mean). */
+ * tube: its patch's mean). */
 static int offer_at(ss_psi_inject *b, const ss_limit_piece *pc, const int64_t g[3],
-                    const int64_t o[3], int64_t side, const double d[3],
-                    const ss_star_coord *key) {
+                    const int64_t o[3], int64_t side, const ss_star_coord *key) {
   if (!grow((void **)&b->of, &b->capof, b->nof + 1, sizeof *b->of)) return 0;
   offer *f = &b->of[b->nof];
   f->key = *key;
@@ -290,7 +319,14 @@ static int offer_at(ss_psi_inject *b, const ss_limit_piece *pc, const int64_t g[
       f->v[k] = p[k] + pc->shift[k];
     f->prio = 1;
   } else {
-    memcpy(f->v, d, sizeof f->v);
+    const ss_limit_tube *u = pc->tube; /* the patch's mean, a point near psi there */
+    const size_t n = 4 * u->ncol;
+    for (int k = 0; k < 3; k++) {
+      double m = 0.0;
+      for (size_t i = 0; i < n; i++)
+        m += 0.5 * u->lo[3 * i + (size_t)k] + 0.5 * u->hi[3 * i + (size_t)k];
+      f->v[k] = m / (double)n + pc->shift[k];
+    }
     f->prio = 0;
   }
   return 1;
@@ -356,7 +392,7 @@ static ss_status face_squares(ss_psi_inject *b, const ss_limit_piece *pc,
           stop(b, "a boundary point's star coordinates do not fit");
           return SS_OK;
         }
-        if (!offer_at(b, pc, g, o, side, dt, &q->key[v]))
+        if (!offer_at(b, pc, g, o, side, &q->key[v]))
           return ss_error_nomem(err, "psi boundary vertices");
       }
       b->nsq++;
