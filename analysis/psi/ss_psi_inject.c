@@ -32,9 +32,26 @@ typedef struct {
   size_t seq;
 } offer;
 
+/* A box of the traversal touching the boundary, kept (the grid is built
+ * once every box is known, at the finest level it needs). */
+typedef struct {
+  size_t cell;    /* the cell round p */
+  unsigned pbits; /* p's corner in it */
+  int depth;      /* the box: side 2^-depth, corner origin */
+  double origin[3];
+  double shift[3]; /* true point = shift + translated point */
+  int tube;        /* 1: a tube's box (its patch), 0: a piece (its net) */
+  size_t n;        /* points: 64 or the patch's 4 ncol */
+  double *lo, *hi; /* n x 3: their enclosures (translated) */
+  double *net;     /* a piece: its 64 double points (translated); else NULL */
+} bbox;
+
 struct ss_psi_inject {
   const ss_local *M;
-  int N;      /* the grid: side 2^-N */
+  int N;    /* the box depth: boxes have side 2^-N at most deep */
+  int G;    /* the grid being built: side 2^-G, G >= N */
+  bbox *bx; /* the boundary's boxes */
+  size_t nbx, capbx;
   square *sq; /* the squares */
   size_t nsq, capsq;
   offer *of; /* the vertex offers */
@@ -54,6 +71,12 @@ ss_psi_inject *ss_psi_inject_new(const ss_local *M, int depth) {
 
 void ss_psi_inject_free(ss_psi_inject *b) {
   if (!b) return;
+  for (size_t i = 0; i < b->nbx; i++) {
+    free(b->bx[i].lo);
+    free(b->bx[i].hi);
+    free(b->bx[i].net);
+  }
+  free(b->bx);
   free(b->sq);
   free(b->of);
   free(b);
@@ -250,10 +273,10 @@ static void half_along(double *lo, double *hi, int a, int b) {
 
 /* The enclosed net of the sub-box of the piece at `levels` deeper, index
  * idx (per axis, 0 .. 2^levels - 1), into lo, hi (64 x 3). */
-static void subnet(const ss_limit_piece *pc, int levels, const int64_t idx[3], double *lo,
+static void subnet(const bbox *x, int levels, const int64_t idx[3], double *lo,
                    double *hi) {
-  memcpy(lo, &pc->lo[0][0], 64 * 3 * sizeof *lo);
-  memcpy(hi, &pc->hi[0][0], 64 * 3 * sizeof *hi);
+  memcpy(lo, x->lo, 64 * 3 * sizeof *lo);
+  memcpy(hi, x->hi, 64 * 3 * sizeof *hi);
   for (int l = levels - 1; l >= 0; l--)
     for (int a = 0; a < 3; a++)
       half_along(lo, hi, a, (int)((idx[a] >> l) & 1));
@@ -302,67 +325,65 @@ static int hull_direction(const double *lo, const double *hi, size_t n,
   return positive_on(lo, hi, n, shift, d);
 }
 
-/* The offer of the double point at grid g of the box (a piece: psi there; a
- * tube: its patch's mean). */
-static int offer_at(ss_psi_inject *b, const ss_limit_piece *pc, const int64_t g[3],
+/* The offer of the double point at grid g (level G) of box x, corner o,
+ * side squares a side (a piece: psi there; a tube: its patch's mean). */
+static int offer_at(ss_psi_inject *b, const bbox *x, const int64_t g[3],
                     const int64_t o[3], int64_t side, const ss_star_coord *key) {
   if (!grow((void **)&b->of, &b->capof, b->nof + 1, sizeof *b->of)) return 0;
   offer *f = &b->of[b->nof];
   f->key = *key;
   f->seq = b->nof++;
-  if (pc->net) {
+  if (!x->tube) {
     double p[3], J[3][3];
-    ss_limit_bspline(pc->net, (double)(g[0] - o[0]) / (double)side,
+    ss_limit_bspline((const double(*)[3])x->net, (double)(g[0] - o[0]) / (double)side,
                      (double)(g[1] - o[1]) / (double)side,
                      (double)(g[2] - o[2]) / (double)side, p, J);
     for (int k = 0; k < 3; k++)
-      f->v[k] = p[k] + pc->shift[k];
+      f->v[k] = p[k] + x->shift[k];
     f->prio = 1;
-  } else {
-    const ss_limit_tube *u = pc->tube; /* the patch's mean, a point near psi there */
-    const size_t n = 4 * u->ncol;
+  } else { /* the patch's mean, a point near psi there */
     for (int k = 0; k < 3; k++) {
       double m = 0.0;
-      for (size_t i = 0; i < n; i++)
-        m += 0.5 * u->lo[3 * i + (size_t)k] + 0.5 * u->hi[3 * i + (size_t)k];
-      f->v[k] = m / (double)n + pc->shift[k];
+      for (size_t i = 0; i < x->n; i++)
+        m += 0.5 * x->lo[3 * i + (size_t)k] + 0.5 * x->hi[3 * i + (size_t)k];
+      f->v[k] = m / (double)x->n + x->shift[k];
     }
     f->prio = 0;
   }
   return 1;
 }
 
-/* Stop with "0 not separated from the hull of" the box or sub-box. */
-static void not_separated(ss_psi_inject *b, const ss_limit_piece *pc, int depth,
+/* Stop with "0 not separated from the hull of" the box or sub-box (corner g
+ * at grid level G, side 2^-depth). */
+static void not_separated(ss_psi_inject *b, const bbox *x, int depth,
                           const int64_t g[3]) {
   char why[200];
   snprintf(why, sizeof why,
            "0 not separated from the hull of cell %zu's box (%.6g, %.6g, %.6g) of side "
            "2^-%d",
-           pc->cell + 1, ldexp((double)g[0], -b->N), ldexp((double)g[1], -b->N),
-           ldexp((double)g[2], -b->N), depth);
+           x->cell + 1, ldexp((double)g[0], -b->G), ldexp((double)g[1], -b->G),
+           ldexp((double)g[2], -b->G), depth);
   stop(b, why);
 }
 
 /* The direction proven positive on the hull of the square's sub-box of side
- * 2^-N (a piece: its net refined there; a tube's box: dt, its patch's). */
-static int square_direction(ss_psi_inject *b, const ss_limit_piece *pc,
-                            const int64_t o[3], const int64_t sub[3], const double dt[3],
-                            double d[3]) {
-  if (!pc->net) {
+ * 2^-G (a piece: its net refined there; a tube's box: dt, its patch's). */
+static int square_direction(ss_psi_inject *b, const bbox *x, const int64_t o[3],
+                            const int64_t sub[3], const double dt[3], double d[3]) {
+  if (x->tube) {
     memcpy(d, dt, 3 * sizeof *d);
     return 1;
   }
   double lo[64 * 3], hi[64 * 3];
   const int64_t idx[3] = {sub[0] - o[0], sub[1] - o[1], sub[2] - o[2]};
-  subnet(pc, b->N - pc->depth, idx, lo, hi);
-  if (hull_direction(lo, hi, 64, pc->shift, d)) return 1;
-  not_separated(b, pc, b->N, sub);
+  subnet(x, b->G - x->depth, idx, lo, hi);
+  if (hull_direction(lo, hi, 64, x->shift, d)) return 1;
+  not_separated(b, x, b->G, sub);
   return 0;
 }
 
-/* The squares of the box on the face of axis a opposite p (far side f). */
-static ss_status face_squares(ss_psi_inject *b, const ss_limit_piece *pc,
+/* The squares of box x on the face of axis a opposite p (far side f). */
+static ss_status face_squares(ss_psi_inject *b, const bbox *x,
                               const ss_star_coord *const *c, int a, int f,
                               const int64_t o[3], int64_t side, const double dt[3],
                               ss_error *err) {
@@ -381,22 +402,93 @@ static ss_status face_squares(ss_psi_inject *b, const ss_limit_piece *pc,
       sub[a] = f ? o[a] + side - 1 : o[a];
       sub[e1] = o[e1] + s1;
       sub[e2] = o[e2] + s2;
-      if (!square_direction(b, pc, o, sub, dt, q->d)) return SS_OK;
+      if (!square_direction(b, x, o, sub, dt, q->d)) return SS_OK;
       for (int v = 0; v < 4; v++) {
         const int r = f ? v : (4 - v) % 4; /* outward: e1 x e2 = e_a */
         int64_t g[3];
-        g[a] = f ? (int64_t)1 << b->N : 0;
+        g[a] = f ? (int64_t)1 << b->G : 0;
         g[e1] = o[e1] + s1 + ccw[r][0];
         g[e2] = o[e2] + s2 + ccw[r][1];
-        if (!grid_name(c, b->N, g, &q->key[v])) {
+        if (!grid_name(c, b->G, g, &q->key[v])) {
           stop(b, "a boundary point's star coordinates do not fit");
           return SS_OK;
         }
-        if (!offer_at(b, pc, g, o, side, &q->key[v]))
+        if (!offer_at(b, x, g, o, side, &q->key[v]))
           return ss_error_nomem(err, "psi boundary vertices");
       }
       b->nsq++;
     }
+  return SS_OK;
+}
+
+/* Which faces opposite p box x touches at grid level G (touches[a]), its
+ * corner o and squares per side; 0 if none. */
+static int box_faces(const ss_psi_inject *b, const bbox *x, int touches[3], int64_t o[3],
+                     int64_t *side) {
+  *side = (int64_t)1 << (b->G - x->depth);
+  const int64_t one = (int64_t)1 << b->G;
+  int any = 0;
+  for (int a = 0; a < 3; a++) {
+    o[a] = (int64_t)ldexp(x->origin[a], b->G);
+    touches[a] = !((x->pbits >> a) & 1u) ? o[a] + *side == one : o[a] == 0;
+    any |= touches[a];
+  }
+  return any;
+}
+
+/* The squares of every kept box at grid level b->G. */
+static ss_status build_grid(ss_psi_inject *b, ss_error *err) {
+  b->nsq = b->nof = 0;
+  for (size_t i = 0; i < b->nbx && !b->stop; i++) {
+    const bbox *x = &b->bx[i];
+    int touches[3];
+    int64_t o[3], side;
+    if (!box_faces(b, x, touches, o, &side)) continue;
+    const ss_star_coord *c[8];
+    if (!cell_corners(b->M, x->cell, c)) {
+      stop(b, "a cell round p that is not an affine cube of the star's chart");
+      break;
+    }
+    double dt[3] = {0.0, 0.0, 0.0}; /* a tube's box: the hull of its patch */
+    if (x->tube && !hull_direction(x->lo, x->hi, x->n, x->shift, dt)) {
+      not_separated(b, x, x->depth, o);
+      break;
+    }
+    for (int a = 0; a < 3 && !b->stop; a++) {
+      if (!touches[a]) continue;
+      const ss_status st =
+          face_squares(b, x, c, a, !((x->pbits >> a) & 1u), o, side, dt, err);
+      if (st) return st;
+    }
+  }
+  return SS_OK;
+}
+
+/* A copy of box pc into b->bx. */
+static ss_status keep(ss_psi_inject *b, const ss_limit_piece *pc, unsigned pbits,
+                      ss_error *err) {
+  if (!grow((void **)&b->bx, &b->capbx, b->nbx + 1, sizeof *b->bx))
+    return ss_error_nomem(err, "psi boundary boxes");
+  bbox *x = &b->bx[b->nbx];
+  memset(x, 0, sizeof *x);
+  x->cell = pc->cell, x->pbits = pbits, x->depth = pc->depth;
+  memcpy(x->origin, pc->origin, sizeof x->origin);
+  memcpy(x->shift, pc->shift, sizeof x->shift);
+  x->tube = !pc->net;
+  x->n = pc->net ? 64 : 4 * pc->tube->ncol;
+  const double *lo = pc->net ? &pc->lo[0][0] : pc->tube->lo,
+               *hi = pc->net ? &pc->hi[0][0] : pc->tube->hi;
+  x->lo = malloc(3 * x->n * sizeof *x->lo);
+  x->hi = malloc(3 * x->n * sizeof *x->hi);
+  if (pc->net) x->net = malloc(64 * 3 * sizeof *x->net);
+  if (!x->lo || !x->hi || (pc->net && !x->net)) {
+    free(x->lo), free(x->hi), free(x->net);
+    return ss_error_nomem(err, "psi boundary boxes");
+  }
+  memcpy(x->lo, lo, 3 * x->n * sizeof *x->lo);
+  memcpy(x->hi, hi, 3 * x->n * sizeof *x->hi);
+  if (pc->net) memcpy(x->net, &pc->net[0][0], 64 * 3 * sizeof *x->net);
+  b->nbx++;
   return SS_OK;
 }
 
@@ -407,17 +499,14 @@ ss_status ss_psi_inject_box(ss_psi_inject *b, const ss_limit_piece *pc, unsigned
     stop(b, "a box deeper than the boundary grid");
     return SS_OK;
   }
-  const int64_t side = (int64_t)1 << (b->N - pc->depth); /* squares per box side */
-  const int64_t one = (int64_t)1 << b->N;
-  int64_t o[3];
-  int touches[3], any = 0;
-  for (int a = 0; a < 3; a++) {
-    o[a] = (int64_t)ldexp(pc->origin[a], b->N);
-    const int f = !((pbits >> a) & 1u);
-    touches[a] = f ? o[a] + side == one : o[a] == 0;
-    any |= touches[a];
-  }
-  if (!any) return SS_OK;
+  const bbox probe = {
+      pc->cell,  pbits, pc->depth, {pc->origin[0], pc->origin[1], pc->origin[2]},
+      {0, 0, 0}, 0,     0,         NULL,
+      NULL,      NULL};
+  int touches[3];
+  int64_t o[3], side;
+  b->G = b->N;
+  if (!box_faces(b, &probe, touches, o, &side)) return SS_OK;
   if (pc->net
           ? !pc->lo || !pc->hi
           : !pc->tube || !pc->tube->lo || !pc->tube->hi ||
@@ -432,23 +521,7 @@ ss_status ss_psi_inject_box(ss_psi_inject *b, const ss_limit_piece *pc, unsigned
         stop(b, "a boundary tube whose quadrant rows are not nonnegative");
         return SS_OK;
       }
-  const ss_star_coord *c[8];
-  if (!cell_corners(b->M, pc->cell, c)) {
-    stop(b, "a cell round p that is not an affine cube of the star's chart");
-    return SS_OK;
-  }
-  double d[3] = {0.0, 0.0, 0.0}; /* a tube's box: the hull of its patch */
-  if (!pc->net &&
-      !hull_direction(pc->tube->lo, pc->tube->hi, 4 * pc->tube->ncol, pc->shift, d)) {
-    not_separated(b, pc, pc->depth, o);
-    return SS_OK;
-  }
-  for (int a = 0; a < 3; a++) {
-    if (!touches[a]) continue;
-    const ss_status st = face_squares(b, pc, c, a, !((pbits >> a) & 1u), o, side, d, err);
-    if (st || b->stop) return st;
-  }
-  return SS_OK;
+  return keep(b, pc, pbits, err);
 }
 
 /* --- phase 2: the surface T and its winding number --------------------- */
@@ -607,19 +680,35 @@ static int winding(const ss_psi_inject *b, ss_psi_inject_result *out) {
 ss_status ss_psi_inject_degree(ss_psi_inject *b, int sign, ss_psi_inject_result *out,
                                ss_error *err) {
   memset(out, 0, sizeof *out);
-  out->squares = b->nsq;
-  if (!b->stop && b->nsq == 0) stop(b, "no square of the star's boundary was met");
   if (b->stop) {
     snprintf(out->why, sizeof out->why, "injectivity of psi not decided: %.150s", b->why);
     return SS_OK;
   }
-  const size_t nv = unify(b);
-  for (size_t q = 0; q < b->nsq && !b->stop; q++)
-    for (int v = 0; v < 4 && !b->stop; v++) {
-      const size_t i = b->sq[q].vi[v];
-      if (i == SIZE_MAX || !dot_positive(b->sq[q].d, b->of[i].v))
-        stop(b, "0 not separated from a boundary square of T");
+  /* the grid at the box depth, finer while 0 is not separated (up to
+   * SS_PSI_INJECT_REFINE levels more, and 8) */
+  size_t nv = 0;
+  for (b->G = b->N; b->G <= b->N + SS_PSI_INJECT_REFINE && b->G <= 8; b->G++) {
+    b->stop = 0;
+    ss_status st = build_grid(b, err);
+    if (st) return st;
+    if (!b->stop && b->nsq == 0) stop(b, "no square of the star's boundary was met");
+    if (!b->stop) {
+      nv = unify(b);
+      for (size_t q = 0; q < b->nsq && !b->stop; q++)
+        for (int v = 0; v < 4 && !b->stop; v++) {
+          const size_t i = b->sq[q].vi[v];
+          if (i == SIZE_MAX || !dot_positive(b->sq[q].d, b->of[i].v))
+            stop(b, "0 not separated from a boundary square of T");
+        }
     }
+    if (!b->stop || strncmp(b->why, "0 not separated", 15) != 0) break;
+  }
+  if (b->G > b->N + SS_PSI_INJECT_REFINE || b->G > 8) b->G--;
+  out->squares = b->nsq;
+  if (b->stop) {
+    snprintf(out->why, sizeof out->why, "injectivity of psi not decided: %.150s", b->why);
+    return SS_OK;
+  }
   int ok = 0;
   ss_status st = b->stop ? SS_OK : closed(b, err, &ok);
   if (st) return st;

@@ -61,7 +61,8 @@
 
 SS_BEGIN_DECLS
 
-#define SS_PSI_INJECT_MAXSQ 2000000 /* most boundary squares (memory bound) */
+#define SS_PSI_INJECT_MAXSQ  2000000 /* most boundary squares (memory bound) */
+#define SS_PSI_INJECT_REFINE 3       /* grid levels tried below the box depth */
 
 /* The boundary's squares and vertices gathered during a traversal. */
 typedef struct ss_psi_inject ss_psi_inject;
@@ -81,6 +82,10 @@ typedef struct {
 /* For the cells of M around p, boundary grid of side 2^-depth (1..8).  NULL
  * when out of memory. */
 ss_psi_inject *ss_psi_inject_new(const ss_local *M, int depth);
+/* (The grid starts at the box depth and is refined, up to
+ * SS_PSI_INJECT_REFINE levels and side 2^-8, while a square's hull is not
+ * separated from 0: pieces' nets are refined to the square; a tube's box
+ * keeps its patch's hull, its squares' inner vertices its patch's mean.) */
 void ss_psi_inject_free(ss_psi_inject *b);
 
 /* One box of ss_limit_pieces_tubes with an enclosure (a piece, or a tube's
