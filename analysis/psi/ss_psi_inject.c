@@ -44,6 +44,13 @@ typedef struct {
   size_t n;        /* points: 64 or the patch's 4 ncol */
   double *lo, *hi; /* n x 3: their enclosures (translated) */
   double *net;     /* a piece: its 64 double points (translated); else NULL */
+  /* a tube's box: its layered structure (ss_limit_tube.h) */
+  int axis, across[2]; /* the edge's axis, the two others */
+  unsigned corner;     /* the box corner the edge runs through */
+  unsigned quad[3];    /* the other quadrants' corner bits across */
+  size_t ncol;         /* columns */
+  double *w;           /* enclosures of F (ncol^2) then G_0..G_2 (16 ncol
+                          each): lo, hi pairs, row-major */
 } bbox;
 
 struct ss_psi_inject {
@@ -75,6 +82,7 @@ void ss_psi_inject_free(ss_psi_inject *b) {
     free(b->bx[i].lo);
     free(b->bx[i].hi);
     free(b->bx[i].net);
+    free(b->bx[i].w);
   }
   free(b->bx);
   free(b->sq);
@@ -273,13 +281,17 @@ static void half_along(double *lo, double *hi, int a, int b) {
 
 /* The enclosed net of the sub-box of the piece at `levels` deeper, index
  * idx (per axis, 0 .. 2^levels - 1), into lo, hi (64 x 3). */
+static void refine64(double *lo, double *hi, int levels, const int64_t idx[3]) {
+  for (int l = levels - 1; l >= 0; l--)
+    for (int a = 0; a < 3; a++)
+      half_along(lo, hi, a, (int)((idx[a] >> l) & 1));
+}
+
 static void subnet(const bbox *x, int levels, const int64_t idx[3], double *lo,
                    double *hi) {
   memcpy(lo, x->lo, 64 * 3 * sizeof *lo);
   memcpy(hi, x->hi, 64 * 3 * sizeof *hi);
-  for (int l = levels - 1; l >= 0; l--)
-    for (int a = 0; a < 3; a++)
-      half_along(lo, hi, a, (int)((idx[a] >> l) & 1));
+  refine64(lo, hi, levels, idx);
 }
 
 /* A direction d with d.x > 0 on the enclosed points (true positions), found
@@ -325,6 +337,129 @@ static int hull_direction(const double *lo, const double *hi, size_t n,
   return positive_on(lo, hi, n, shift, d);
 }
 
+/* An enclosure [lo, hi] of the rational p / q >= 0 (q > 0): the division in
+ * doubles moved out by three ulps (the conversions and the division round
+ * by less than two). */
+static void rat_enclose(long long p, long long q, double *lo, double *hi) {
+  const double v = (double)p / (double)q;
+  *lo = v, *hi = v;
+  for (int i = 0; i < 3; i++)
+    *lo = nextafter(*lo, -INFINITY), *hi = nextafter(*hi, INFINITY);
+  if (*lo < 0.0) *lo = 0.0;
+}
+
+/* out[r] = sum_c W[r][c] x[c] over rows r < nr, c < nc, W nonnegative
+ * intervals (w: lo, hi pairs), x intervals of 3 coordinates, outward: each
+ * product's bound picked by the sign of x, the sums widened by (nc + 2)
+ * 1.2e-16 of their magnitude and 1e-300. */
+static void wmul(const double *w, size_t nr, size_t nc, const double *xlo,
+                 const double *xhi, double *olo, double *ohi) {
+  for (size_t r = 0; r < nr; r++)
+    for (int k = 0; k < 3; k++) {
+      double sl = 0.0, sh = 0.0, ml = 0.0, mh = 0.0;
+      for (size_t c = 0; c < nc; c++) {
+        const double wl = w[2 * (r * nc + c)], wh = w[2 * (r * nc + c) + 1];
+        if (wh == 0.0) continue;
+        const double pl = xlo[3 * c + (size_t)k], ph = xhi[3 * c + (size_t)k];
+        const double a = pl >= 0.0 ? wl * pl : wh * pl, z = ph >= 0.0 ? wh * ph : wl * ph;
+        sl += a, sh += z, ml += fabs(a), mh += fabs(z);
+      }
+      const double e = (double)(nc + 2) * 1.2e-16;
+      olo[3 * r + (size_t)k] = sl - e * ml - 1e-300;
+      ohi[3 * r + (size_t)k] = sh + e * mh + 1e-300;
+    }
+}
+
+/* The child of a tube's patch (lo, hi: 4 layers x ncol) in along half hb:
+ * k < 0 the tube child (the box again: 4 x ncol points, (A_hb (x) F) P), else
+ * the regular child of quadrant k (64 points in ss_limit_bspline's layout,
+ * (A_hb (x) G_k) P).  Returns 0 without memory. */
+static int tube_child(const bbox *x, const double *lo, const double *hi, int hb, int k,
+                      double *olo, double *ohi) {
+  const size_t n = x->ncol, rows = k < 0 ? n : 16;
+  const double *w = k < 0 ? x->w : x->w + 2 * n * n + 2 * 16 * n * (size_t)k;
+  double *ql = malloc(4 * rows * 3 * sizeof *ql), *qh = malloc(4 * rows * 3 * sizeof *qh);
+  if (!ql || !qh) {
+    free(ql), free(qh);
+    return 0;
+  }
+  for (size_t l = 0; l < 4; l++) /* across first, layer by layer */
+    wmul(w, rows, n, lo + 3 * n * l, hi + 3 * n * l, ql + 3 * rows * l,
+         qh + 3 * rows * l);
+  for (size_t l2 = 0; l2 < 4; l2++) /* then along: a B-spline half, exact eighths */
+    for (size_t r = 0; r < rows; r++) {
+      size_t at = l2 * rows + r; /* the tube child's layout */
+      if (k >= 0) {              /* the regular child's: along, g0, g1 across */
+        size_t id[3];
+        id[x->axis] = l2, id[x->across[0]] = r % 4, id[x->across[1]] = r / 4;
+        at = id[0] + 4 * id[1] + 16 * id[2];
+      }
+      for (size_t d = 0; d < 3; d++) {
+        double sl = 0.0, sh = 0.0, ml = 0.0, mh = 0.0;
+        for (size_t l = 0; l < 4; l++) {
+          const double a = HALF[hb][l2][l] / 8.0;
+          const size_t from = 3 * (l * rows + r) + d;
+          sl += a * ql[from], sh += a * qh[from];
+          ml += fabs(a * ql[from]), mh += fabs(a * qh[from]);
+        }
+        olo[3 * at + d] = sl - 4e-16 * ml - 1e-300;
+        ohi[3 * at + d] = sh + 4e-16 * mh + 1e-300;
+      }
+    }
+  free(ql), free(qh);
+  return 1;
+}
+
+/* The hull of the sub-box idx (levels deeper, relative) of tube box x: down
+ * the tube children while the sub-box holds the spoke, then the regular
+ * child's net refined to it.  Its direction into d (proven) and, when a net
+ * was reached, its midpoints into vnet (*have = 1).  Returns -1 without
+ * memory, 0 if 0 is not separated, 1 if it is. */
+static int tube_direction(const bbox *x, int levels, const int64_t idx[3], double d[3],
+                          double vnet[64][3], int *have) {
+  const size_t np = 4 * x->ncol;
+  double *lo = malloc(np * 3 * sizeof *lo), *hi = malloc(np * 3 * sizeof *hi),
+         *clo = malloc(np * 3 * sizeof *clo), *chi = malloc(np * 3 * sizeof *chi);
+  double nlo[64 * 3], nhi[64 * 3];
+  int rc = -1;
+  *have = 0;
+  if (!lo || !hi || !clo || !chi) goto out;
+  memcpy(lo, x->lo, np * 3 * sizeof *lo);
+  memcpy(hi, x->hi, np * 3 * sizeof *hi);
+  const unsigned amask = (1u << x->across[0]) | (1u << x->across[1]);
+  for (int l = levels - 1; l >= 0; l--) {
+    unsigned q = 0;
+    for (int a = 0; a < 3; a++)
+      if (a != x->axis && ((idx[a] >> l) & 1)) q |= 1u << a;
+    const int hb = (int)((idx[x->axis] >> l) & 1);
+    int k = -1;
+    for (int j = 0; j < 3 && q != (x->corner & amask); j++)
+      if (x->quad[j] == q) k = j;
+    if (q != (x->corner & amask) && k < 0) { /* (four quadrants: not met) */
+      rc = 0;
+      goto out;
+    }
+    if (k < 0) {
+      if (!tube_child(x, lo, hi, hb, -1, clo, chi)) goto out;
+      memcpy(lo, clo, np * 3 * sizeof *lo);
+      memcpy(hi, chi, np * 3 * sizeof *hi);
+      continue;
+    }
+    if (!tube_child(x, lo, hi, hb, k, nlo, nhi)) goto out;
+    refine64(nlo, nhi, l, idx);
+    for (int i = 0; i < 64; i++)
+      for (int c = 0; c < 3; c++)
+        vnet[i][c] = 0.5 * nlo[3 * i + c] + 0.5 * nhi[3 * i + c];
+    *have = 1;
+    rc = hull_direction(nlo, nhi, 64, x->shift, d);
+    goto out;
+  }
+  rc = hull_direction(lo, hi, np, x->shift, d);
+out:
+  free(lo), free(hi), free(clo), free(chi);
+  return rc;
+}
+
 /* The offer of the double point at grid g (level G) of box x, corner o,
  * side squares a side (a piece: psi there; a tube: its patch's mean). */
 static int offer_at(ss_psi_inject *b, const bbox *x, const int64_t g[3],
@@ -367,26 +502,30 @@ static void not_separated(ss_psi_inject *b, const bbox *x, int depth,
 }
 
 /* The direction proven positive on the hull of the square's sub-box of side
- * 2^-G (a piece: its net refined there; a tube's box: dt, its patch's). */
+ * 2^-G (a piece: its net refined there; a tube's box: its children down to
+ * it, vnet then the net reached, if any: *have).  1 if proven; 0 with why
+ * set; -1 without memory. */
 static int square_direction(ss_psi_inject *b, const bbox *x, const int64_t o[3],
-                            const int64_t sub[3], const double dt[3], double d[3]) {
-  if (x->tube) {
-    memcpy(d, dt, 3 * sizeof *d);
-    return 1;
-  }
-  double lo[64 * 3], hi[64 * 3];
+                            const int64_t sub[3], double d[3], double vnet[64][3],
+                            int *have) {
   const int64_t idx[3] = {sub[0] - o[0], sub[1] - o[1], sub[2] - o[2]};
-  subnet(x, b->G - x->depth, idx, lo, hi);
-  if (hull_direction(lo, hi, 64, x->shift, d)) return 1;
-  not_separated(b, x, b->G, sub);
-  return 0;
+  *have = 0;
+  int rc;
+  if (x->tube) {
+    rc = tube_direction(x, b->G - x->depth, idx, d, vnet, have);
+  } else {
+    double lo[64 * 3], hi[64 * 3];
+    subnet(x, b->G - x->depth, idx, lo, hi);
+    rc = hull_direction(lo, hi, 64, x->shift, d);
+  }
+  if (rc == 0) not_separated(b, x, b->G, sub);
+  return rc;
 }
 
 /* The squares of box x on the face of axis a opposite p (far side f). */
 static ss_status face_squares(ss_psi_inject *b, const bbox *x,
                               const ss_star_coord *const *c, int a, int f,
-                              const int64_t o[3], int64_t side, const double dt[3],
-                              ss_error *err) {
+                              const int64_t o[3], int64_t side, ss_error *err) {
   const int e1 = (a + 1) % 3, e2 = (a + 2) % 3;
   static const int ccw[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (int64_t s1 = 0; s1 < side; s1++)
@@ -402,7 +541,11 @@ static ss_status face_squares(ss_psi_inject *b, const bbox *x,
       sub[a] = f ? o[a] + side - 1 : o[a];
       sub[e1] = o[e1] + s1;
       sub[e2] = o[e2] + s2;
-      if (!square_direction(b, x, o, sub, dt, q->d)) return SS_OK;
+      double vnet[64][3];
+      int have;
+      const int rc = square_direction(b, x, o, sub, q->d, vnet, &have);
+      if (rc < 0) return ss_error_nomem(err, "psi boundary tubes");
+      if (rc == 0) return SS_OK;
       for (int v = 0; v < 4; v++) {
         const int r = f ? v : (4 - v) % 4; /* outward: e1 x e2 = e_a */
         int64_t g[3];
@@ -415,6 +558,15 @@ static ss_status face_squares(ss_psi_inject *b, const bbox *x,
         }
         if (!offer_at(b, x, g, o, side, &q->key[v]))
           return ss_error_nomem(err, "psi boundary vertices");
+        if (have) { /* a tube's regular child reached: psi at the corner */
+          double t[3], pt[3], J[3][3];
+          t[a] = f, t[e1] = ccw[r][0], t[e2] = ccw[r][1];
+          ss_limit_bspline((const double(*)[3])vnet, t[0], t[1], t[2], pt, J);
+          offer *fo = &b->of[b->nof - 1];
+          for (int k = 0; k < 3; k++)
+            fo->v[k] = pt[k] + x->shift[k];
+          fo->prio = 1;
+        }
       }
       b->nsq++;
     }
@@ -449,15 +601,10 @@ static ss_status build_grid(ss_psi_inject *b, ss_error *err) {
       stop(b, "a cell round p that is not an affine cube of the star's chart");
       break;
     }
-    double dt[3] = {0.0, 0.0, 0.0}; /* a tube's box: the hull of its patch */
-    if (x->tube && !hull_direction(x->lo, x->hi, x->n, x->shift, dt)) {
-      not_separated(b, x, x->depth, o);
-      break;
-    }
     for (int a = 0; a < 3 && !b->stop; a++) {
       if (!touches[a]) continue;
       const ss_status st =
-          face_squares(b, x, c, a, !((x->pbits >> a) & 1u), o, side, dt, err);
+          face_squares(b, x, c, a, !((x->pbits >> a) & 1u), o, side, err);
       if (st) return st;
     }
   }
@@ -489,6 +636,21 @@ static ss_status keep(ss_psi_inject *b, const ss_limit_piece *pc, unsigned pbits
   memcpy(x->hi, hi, 3 * x->n * sizeof *x->hi);
   if (pc->net) memcpy(x->net, &pc->net[0][0], 64 * 3 * sizeof *x->net);
   b->nbx++;
+  if (pc->net) return SS_OK;
+  const ss_limit_tube *u = pc->tube;
+  const size_t n = u->ncol;
+  x->axis = u->axis, x->across[0] = u->across[0], x->across[1] = u->across[1];
+  x->corner = u->corner, x->ncol = n;
+  memcpy(x->quad, u->quad, sizeof x->quad);
+  if (!(x->w = malloc(2 * (n * n + 3 * 16 * n) * sizeof *x->w)))
+    return ss_error_nomem(err, "psi boundary tubes");
+  for (size_t i = 0; i < n * n; i++)
+    rat_enclose(u->Fp[i], u->Fq[i], &x->w[2 * i], &x->w[2 * i + 1]);
+  for (size_t k = 0; k < 3; k++)
+    for (size_t i = 0; i < 16 * n; i++) {
+      const size_t at = n * n + k * 16 * n + i;
+      rat_enclose(u->Gp[k][i], u->Gq[k][i], &x->w[2 * at], &x->w[2 * at + 1]);
+    }
   return SS_OK;
 }
 
@@ -499,10 +661,10 @@ ss_status ss_psi_inject_box(ss_psi_inject *b, const ss_limit_piece *pc, unsigned
     stop(b, "a box deeper than the boundary grid");
     return SS_OK;
   }
-  const bbox probe = {
-      pc->cell,  pbits, pc->depth, {pc->origin[0], pc->origin[1], pc->origin[2]},
-      {0, 0, 0}, 0,     0,         NULL,
-      NULL,      NULL};
+  bbox probe;
+  memset(&probe, 0, sizeof probe);
+  probe.cell = pc->cell, probe.pbits = pbits, probe.depth = pc->depth;
+  memcpy(probe.origin, pc->origin, sizeof probe.origin);
   int touches[3];
   int64_t o[3], side;
   b->G = b->N;

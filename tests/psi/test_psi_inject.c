@@ -15,7 +15,9 @@
  *     decided); the wrong sign is not a proof; a cell left out (an open
  *     surface) and every box given twice (edges twice one way) are refused;
  *   - one of the MLCA links with k = 11 whose double net fails injectivity
- *     (overlapping ring cells, not proven): ψ injective, proven. */
+ *     (overlapping ring cells, not proven): ψ injective, proven;
+ *   - a k = 10 link whose tube boxes' patches do not separate 0: decided
+ *     through the tubes' children, its winding recomputed by ss_limit_eval. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -188,6 +190,31 @@ static void icosahedron(const ss_scheme *s) {
   ss_pipeline_free(p);
 }
 
+/* A k = 10 link whose boundary needs the tubes' children: at box depth 2 the
+ * tube boxes' patches do not separate 0, the grid is refined into their
+ * children ((A_b (x) F) P and (A_b (x) G_c) P, exact weights enclosed): psi
+ * injective, on more squares than the box depth's, and its winding the one
+ * ss_limit_eval's points give. */
+static void tube_children(const ss_scheme *s) {
+  const char *link = "10 bcdefghi,aic,abid,acie,adif,aeihjg,afjh,agjfi,ahfedcb,fhg";
+  ss_pipeline_opts o = ss_pipeline_defaults();
+  o.psi_depth = 2;
+  o.certify = 1;
+  o.psi_tubes = 1;
+  ss_pipeline *p = psi_run_with(s, link, &o);
+  CHECK(p && p->psi.ran, "%s: psi judged", link);
+  if (!p || !p->psi.ran) return;
+  const ss_psi_result *r = &p->psi;
+  CHECK(r->inject == 1 && r->boundary_squares > p->M->ncentre * 3 * 16,
+        "%s: injective on %zu squares (the box depth's: %zu): %s", link,
+        r->boundary_squares, p->M->ncentre * 3 * 16, r->inject_why);
+  size_t nsq;
+  const double w = winding_by_eval(s, p, 3, &nsq);
+  CHECK(fabs(w - r->degree) < 1e-6,
+        "%s: ss_limit_eval's surface winds %.12g, the proof %d", link, w, r->degree);
+  ss_pipeline_free(p);
+}
+
 /* A k = 11 link whose ψ the tubes prove regular and whose double net's ring
  * cells overlap (injectivity fails on the net, not proven). */
 static void net_overlaps(const ss_scheme *s) {
@@ -212,6 +239,7 @@ int main(void) {
   REQUIRE_OK(ss_scheme_new("mlca", &s, &err), &err);
   icosahedron(s);
   net_overlaps(s);
+  tube_children(s);
   ss_scheme_free(s);
   return ss_test_done("test_psi_inject");
 }
