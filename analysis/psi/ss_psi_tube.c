@@ -636,14 +636,15 @@ static int judge_window(const tube_ws *w, int m1, int m2, int *sign,
   return judge_window(w, m1, mid, sign, r) && judge_window(w, mid, m2, sign, r);
 }
 
-/* The layers in windows [0, 1), [1, 2), [2, 4), [4, 8), ... and after each the
- * tail from its end on. */
+/* The layers in windows [0, 1), [1, 2), [2, 4), [4, 8), [8, 16), then of 16
+ * (the tail is tried after each, from its end on: a tail that fails from one
+ * start may hold from another, so the starts must not grow too sparse) */
 static void layers(tube_ws *w, ss_psi_tube_result *r) {
   arb_t s, st;
   arb_init(s), arb_init(st);
   int sign = 0;
   char what[64], tail_why[sizeof r->why] = "";
-  for (int m = 0, width = 1; m < NTAU - 1; width *= 2) {
+  for (int m = 0, width = 1; m < NTAU - 1; width = width < 16 ? 2 * width : 16) {
     const int m2 = m + width < NTAU - 1 ? m + width : NTAU - 1;
     if (!judge_window(w, m, m2, &sign, r)) goto done;
     m = m2;
