@@ -50,6 +50,7 @@
 
 #include "ss_api.h"
 #include "ss_eig.h"
+#include "ss_exact.h"
 #include "ss_jac.h"
 #include "ss_local.h"
 
@@ -98,6 +99,13 @@ typedef struct {
   double symmetry;  /* ss_charmap_symmetry */
   double injective; /* ss_charmap_injectivity (ss_certify_verdicts) */
   long deep;        /* cases that needed deeper ring levels */
+  /* the exact path (ss_certify), with certify only: */
+  double certify;       /* ss_certify whole: the exact spectrum and the proofs */
+  ss_exact_times exact; /* the exact spectrum's stages */
+  double cert_level[SS_LOCAL_MAXRING]; /* ss_charmap_certify: the interval
+                                          net pushed to ring level l and its
+                                          cells' Jacobians in intervals */
+  double cert_sym;                     /* ss_charmap_certify: psi o sigma = psi proven */
 } ss_charmap_times;
 
 /* Options of the regularity test. */

@@ -11,6 +11,7 @@
 #include "double_interval.h"
 #include "ss_charmap.h"
 #include "ss_charmap_cert_impl.h"
+#include "ss_clock.h"
 #include "ss_exact.h"
 
 /* An interval net: lo and hi, point by point (dim coordinates each). */
@@ -154,8 +155,11 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       snprintf(why, sizeof why, "the basis enclosure is not finite");
       goto uncertified;
     }
+  ss_charmap_times *tm = o->times;
+  double c1 = tm ? ss_clock_cpu() : 0.0;
   if (r->sym.found) {
     const int p = sym_proven(M, c, &r->sym, lo, hi, m, maxden, err);
+    if (tm) ss_clock_lap(&tm->cert_sym, &c1);
     if (p < 0) return ss_error_nomem(err, "certification");
     if (p) {
       r->verdict.certified = inj->verdict.certified = 1;
@@ -191,6 +195,7 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       goto uncertified;
     }
     judge(M->ring + l, &prev, m, o->depth, pr + l);
+    if (tm) ss_clock_lap(&tm->cert_level[l], &c1);
   }
   inet_free(&prev);
   if (nl < 1) {

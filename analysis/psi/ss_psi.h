@@ -174,16 +174,18 @@ typedef struct {
   ss_psi_point witness[2]; /* with fail: det Dpsi of opposite strict signs */
   int maxdepth;            /* the options used */
   int piece_depth;
-  double seconds;     /* thread CPU time of the test */
-  int tubes;          /* 1 if the tubes' proofs ran (ss_psi_opts.tubes, the
-                         enclosure, a ring of one sign on its pieces) */
-  size_t ntubes;      /* uncovered boxes whose tube round a spoke was
-                         proven of the ring's sign (ss_psi_tube.h; with
-                         the enclosure only) */
-  int tube_layers;    /* the most layers one of them judged directly
-                         before its tail bound */
-  char tube_why[240]; /* the first tube not proven: where and why (else
-                         empty) */
+  double seconds;       /* thread CPU time of the test */
+  double prove_seconds; /* of which the proof passes (ss_psi_certify) */
+  double spoke_seconds; /* of which the spokes' classification */
+  int tubes;            /* 1 if the tubes' proofs ran (ss_psi_opts.tubes, the
+                           enclosure, a ring of one sign on its pieces) */
+  size_t ntubes;        /* uncovered boxes whose tube round a spoke was
+                           proven of the ring's sign (ss_psi_tube.h; with
+                           the enclosure only) */
+  int tube_layers;      /* the most layers one of them judged directly
+                           before its tail bound */
+  char tube_why[240];   /* the first tube not proven: where and why (else
+                           empty) */
 } ss_psi_result;
 
 /* If a spoke of sk is degenerate (ss_psi_spoke.h), r fails regularity by

@@ -121,17 +121,37 @@ SS_BEGIN_DECLS
 
 typedef struct ss_exact ss_exact; /* opaque: FLINT matrices, factors, balls */
 
+/* Thread CPU seconds of the exact path's stages, added to (never reset) when
+ * the options carry one (ss_exact_opts.times): where a certified case's time
+ * goes, for benchmarks (bench_pipeline --phases --certify).  Timing reads
+ * clocks only: no result depends on it. */
+typedef struct {
+  double rational; /* S reconstructed as rationals, row sums checked, the
+                      outer block's components */
+  double charpoly; /* the diagonal blocks' characteristic polynomials
+                      (scaled to integers, fmpz_mat_charpoly) */
+  double factor;   /* their factorisation over Q and the merged factors */
+  double isolate;  /* root isolation in ball arithmetic: the first, and every
+                      refinement (the order's and the basis's) */
+  double decide;   /* the order and the condition without the refinements:
+                      classes, comparisons, exact ranks (non-defectiveness) */
+  double basis;    /* the subdominant basis enclosure without refinements */
+  long cases;      /* exact spectra timed */
+} ss_exact_times;
+
 /* Options of the exact path. */
 typedef struct {
-  long maxden;      /* largest denominator of the rational reconstruction
-                       (default 1 << 18) */
-  long prec;        /* first working precision of the root balls, bits (128) */
-  long maxprec;     /* precision at which separation gives up (4096) */
-  int dim;          /* 3: volume condition (lambda1..3); 2: surface */
-  size_t max_block; /* largest diagonal block (one-ring or outer) whose
-                       characteristic polynomial is computed (default 400);
-                       larger: every verdict undecided, not certified */
-  int basis;        /* nonzero: enclose the subdominant basis on a pass */
+  long maxden;           /* largest denominator of the rational reconstruction
+                            (default 1 << 18) */
+  long prec;             /* first working precision of the root balls, bits (128) */
+  long maxprec;          /* precision at which separation gives up (4096) */
+  int dim;               /* 3: volume condition (lambda1..3); 2: surface */
+  size_t max_block;      /* largest diagonal block (one-ring or outer) whose
+                            characteristic polynomial is computed (default 400);
+                            larger: every verdict undecided, not certified */
+  int basis;             /* nonzero: enclose the subdominant basis on a pass */
+  ss_exact_times *times; /* NULL (the default), or where to add the stages'
+                            thread CPU times (above); borrowed */
 } ss_exact_opts;
 
 /* One distinct eigenvalue of S. */

@@ -14,6 +14,7 @@
 #include "arb_fmpz_poly.h"
 #include "arf.h"
 
+#include "ss_clock.h"
 #include "ss_exact_impl.h"
 
 /* Index of the factor equal to g (normalised), or -1. */
@@ -98,8 +99,12 @@ static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t
   if (ss_exact_principal(x, idx, len, D, M)) {
     st = ss_error_nomem(err, "characteristic polynomial");
   } else {
+    ss_exact_times *tm = x->o.times;
+    double c1 = tm ? ss_clock_cpu() : 0.0;
     fmpz_mat_charpoly(cp, M);
+    if (tm) ss_clock_lap(&tm->charpoly, &c1);
     fmpz_poly_factor(fac, cp);
+    if (tm) ss_clock_lap(&tm->factor, &c1);
     for (slong i = 0; i < fac->num && !st; i++) {
       const slong d = fmpz_poly_degree(fac->p + i);
       fmpz_poly_zero(g);
@@ -185,6 +190,7 @@ done:
 }
 
 void ss_exact_isolate(ss_exact *x, size_t k, long prec) {
+  double c1 = x->o.times ? ss_clock_cpu() : 0.0;
   ss_exact_factor *F = x->fac + k;
   const slong d = fmpz_poly_degree(F->f);
   ss_exact_rt *R = x->rt + F->root0;
@@ -220,6 +226,7 @@ void ss_exact_isolate(ss_exact *x, size_t k, long prec) {
     }
   }
   F->prec = prec;
+  if (x->o.times) ss_clock_lap(&x->o.times->isolate, &c1);
 }
 
 /* The root count, reflections, exact moduli, and first isolation.
