@@ -40,6 +40,8 @@ void ss_exact_free(ss_exact *x) {
   free(x->hi);
   free(x->bnum);
   free(x->bden);
+  free(x->ev);
+  free(x->evf);
   free(x);
 }
 
@@ -93,6 +95,12 @@ ss_status ss_exact_new(const double *S, size_t n, size_t n1, const ss_exact_opts
     goto done;
   }
   if ((st = ss_exact_all_blocks(x, err))) goto done; /* times its own stages */
+  if (tm) c1 = ss_clock_cpu();
+  if (ss_exact_eigen_seeds(x)) { /* the seeds are isolation's */
+    st = ss_error_nomem(err, "root seeds");
+    goto done;
+  }
+  if (tm) ss_clock_lap(&tm->isolate, &c1);
   if ((st = ss_exact_roots_init(x, err))) goto done; /* isolation only */
   if (tm) c1 = ss_clock_cpu();
   double iso = tm ? tm->isolate : 0.0; /* the refinements are isolation's */

@@ -189,46 +189,6 @@ done:
   return st;
 }
 
-void ss_exact_isolate(ss_exact *x, size_t k, long prec) {
-  double c1 = x->o.times ? ss_clock_cpu() : 0.0;
-  ss_exact_factor *F = x->fac + k;
-  const slong d = fmpz_poly_degree(F->f);
-  ss_exact_rt *R = x->rt + F->root0;
-  if (d == 1) { /* -c0 / c1, exactly */
-    fmpq_t r;
-    fmpq_init(r);
-    fmpz_neg(fmpq_numref(r), F->f->coeffs);
-    fmpz_set(fmpq_denref(r), F->f->coeffs + 1);
-    fmpq_canonicalise(r);
-    arb_set_fmpq(acb_realref(&R->z), r, prec);
-    arb_zero(acb_imagref(&R->z));
-    R->real = 1;
-    fmpq_clear(r);
-  } else {
-    acb_ptr z = _acb_vec_init(d);
-    arb_fmpz_poly_complex_roots(z, F->f, 0, prec); /* F->f is irreducible */
-    for (slong i = 0; i < d; i++) {
-      acb_set(&R[i].z, z + i);
-      R[i].real = acb_is_real(z + i);
-    }
-    _acb_vec_clear(z, d);
-  }
-  const long mp = x->o.maxprec + 64;
-  for (slong i = 0; i < d; i++) {
-    if (F->exact_nsq) {
-      arb_t t;
-      arb_init(t);
-      arb_set_fmpq(t, &R[i].nsq, mp);
-      arb_sqrt(&R[i].mod, t, mp);
-      arb_clear(t);
-    } else {
-      acb_abs(&R[i].mod, &R[i].z, prec + 32);
-    }
-  }
-  F->prec = prec;
-  if (x->o.times) ss_clock_lap(&x->o.times->isolate, &c1);
-}
-
 /* The root count, reflections, exact moduli, and first isolation.
  * SS_ENOMEM. */
 ss_status ss_exact_roots_init(ss_exact *x, ss_error *err) {
