@@ -13,7 +13,11 @@
  *    exactly its degree of them), and the seeded path (ss_exact_complex_
  *    roots with those seeds) and a refinement from the balls to 256 bits
  *    give arb's roots too; seeds that cannot converge (all equal) fall back
- *    to arb's own result, ball for ball. */
+ *    to arb's own result, ball for ball;
+ *  - ss_exact_rational reads dyadic rationals (the rules' weights) exactly
+ *    when their denominator is within the bound, and otherwise by its rule. */
+#include <math.h>
+
 #include <flint/fmpq_mat.h>
 #include <flint/fmpq_poly.h>
 
@@ -158,7 +162,37 @@ done:
   ss_scheme_free(s);
 }
 
+/* ss_exact_rational on dyadic rationals M / 2^k (M odd; the rules' weights
+ * are such): exactly (M, 2^k) when 2^k <= maxden, else within the rule's
+ * window with a denominator <= maxden, or refused. */
+static void check_dyadic(void) {
+  const long maxden[] = {1000, 1L << 18, 1L << 31};
+  int bad = 0, n = 0;
+  for (int md = 0; md < 3; md++)
+    for (int k = 0; k <= 34; k++)
+      for (long long M = -999; M <= 999; M += 14) {
+        const long long Mo = M % 2 ? M : M + 1;
+        const double s = ldexp((double)Mo, -k);
+        long long p = 0, q = 0;
+        const int ok = ss_exact_rational(s, maxden[md], &p, &q);
+        n++;
+        if ((1LL << k) <= maxden[md])
+          bad += !ok || p != Mo || q != (1LL << k);
+        else if (ok)
+          bad += q < 1 || q > maxden[md] ||
+                 fabs((double)p / (double)q - s) > ldexp(fmax(1.0, fabs(s)), -39);
+      }
+  CHECK(bad == 0, "ss_exact_rational: %d of %d dyadic rationals read wrongly", bad, n);
+  long long p, q;
+  CHECK(ss_exact_rational(-1048576.0, 1L << 18, &p, &q) && p == -1048576 && q == 1,
+        "-2^20");
+  CHECK(!ss_exact_rational(ldexp(1.0, -19), 1L << 18, &p, &q), "2^-19 accepted");
+  CHECK(ss_exact_rational(0.375, 8, &p, &q) && p == 3 && q == 8, "3/8");
+  CHECK(!ss_exact_rational(0.375, 4, &p, &q), "3/8 with denominators <= 4");
+}
+
 int main(void) {
+  check_dyadic();
   const char *k10 = "10 hgjecidf,hfdceg,aebdi,aicbf,ajgbc,adbh,ahbej,afbg,acd,age";
   const char *k12a =
       "12 bkigecdfhjl,aljhfdcegik,aebd,acbf,agbc,adbh,aibe,afbj,akbg,ahbl,abi,ajb";
