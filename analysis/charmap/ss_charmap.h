@@ -285,7 +285,8 @@ ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
  * weight replaced by the enclosure of the rational of denominator at most
  * maxden it stands for (ss_exact_rational_enclose), in interval arithmetic
  * with outward rounding: the result holds the exact rule's net for every
- * net inside the input.  0, or -1 for a weight that is no such rational. */
+ * net inside the input.  0, or -1 for a weight that is no such rational
+ * (or dim outside 1..3). */
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi);
 

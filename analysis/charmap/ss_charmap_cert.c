@@ -33,18 +33,25 @@ static int inet_alloc(inet *x, size_t n, int dim) {
 
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi) {
-  for (size_t i = 0; i < R->nv; i++)
-    for (int d = 0; d < dim; d++) {
-      di_t s = di_interval(0.0, 0.0);
-      for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
-        double lo, hi;
-        if (!ss_exact_rational_enclose(R->w[q], maxden, &lo, &hi)) return -1;
+  if (dim < 1 || dim > 3) return -1;
+  for (size_t i = 0; i < R->nv; i++) {
+    /* each weight enclosed once for the coordinates; each coordinate's sum
+     * still runs over the row in order */
+    di_t s[3] = {di_interval(0.0, 0.0), di_interval(0.0, 0.0), di_interval(0.0, 0.0)};
+    for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
+      double lo, hi;
+      if (!ss_exact_rational_enclose(R->w[q], maxden, &lo, &hi)) return -1;
+      const di_t w = di_interval(lo, hi);
+      for (int d = 0; d < dim; d++) {
         const size_t k = R->col[q] * (size_t)dim + (size_t)d;
-        s = di_fast_add(s, di_fast_mul(di_interval(lo, hi), di_interval(plo[k], phi[k])));
+        s[d] = di_fast_add(s[d], di_fast_mul(w, di_interval(plo[k], phi[k])));
       }
-      olo[i * (size_t)dim + (size_t)d] = s.a;
-      ohi[i * (size_t)dim + (size_t)d] = s.b;
     }
+    for (int d = 0; d < dim; d++) {
+      olo[i * (size_t)dim + (size_t)d] = s[d].a;
+      ohi[i * (size_t)dim + (size_t)d] = s[d].b;
+    }
+  }
   return 0;
 }
 
