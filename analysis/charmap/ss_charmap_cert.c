@@ -175,8 +175,14 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
     snprintf(why, sizeof why, "psi o sigma = psi is not proven by the enclosure");
     goto uncertified;
   }
-  /* the ring levels the double-precision verdict judged, in intervals */
+  /* the ring levels the double-precision verdict judged, in intervals: the
+   * net pushed through all of them (a weight that is not a rational of
+   * bounded denominator, on any level, leaves the verdict unproven), but
+   * only the levels the rules below read judged (a pass: the deciding level;
+   * a fail: it and the one before; anything else is not certified whatever
+   * the counts) */
   proven pr[SS_LOCAL_MAXRING];
+  memset(pr, 0, sizeof pr);
   inet prev = {NULL, NULL}, cur = {NULL, NULL};
   if (inet_alloc(&prev, n, m)) return ss_error_nomem(err, "certification");
   for (size_t i = 0; i < n; i++)
@@ -185,6 +191,8 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       prev.hi[i * (size_t)m + (size_t)d] = hi[(size_t)d * n + i];
     }
   const int nl = r->nlevels < M->nring ? r->nlevels : M->nring;
+  const int last = r->ring_level >= 0 && r->ring_level < nl ? r->ring_level : nl - 1;
+  const int first = v->verdict == SS_PASS ? last : v->verdict == SS_FAIL ? last - 1 : nl;
   for (int l = 0; l < nl; l++) {
     const int rc = push(M->ring + l, &prev, m, maxden, &cur);
     inet_free(&prev);
@@ -201,7 +209,7 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       inet_free(&prev);
       goto uncertified;
     }
-    judge(M->ring + l, &prev, m, o->depth, pr + l);
+    if (l >= first && l <= last) judge(M->ring + l, &prev, m, o->depth, pr + l);
     if (tm) ss_clock_lap(&tm->cert_level[l], &c1);
   }
   inet_free(&prev);
@@ -209,7 +217,6 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
     snprintf(why, sizeof why, "no ring level was judged");
     goto uncertified;
   }
-  const int last = r->ring_level >= 0 && r->ring_level < nl ? r->ring_level : nl - 1;
   const proven *L = pr + last;
   if (v->verdict == SS_PASS) {
     if (L->pos == L->cells || L->neg == L->cells) {
