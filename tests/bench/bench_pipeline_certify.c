@@ -13,29 +13,26 @@
  * rest.  Results of the certified and double runs are compared case by case
  * (the double path's verdicts do not change between its runs).
  *
- * Measured 2026-12-05 18:37 UTC (issue 37; load 5-6: a reproduce, the test
- * suite and other sessions' builds beside it), the branch's start (3662edd,
- * main with the timing hooks) and its end alternately, 11 links each, psi
- * not judged, CPU s per case (share of the certified whole):
+ * Measured 2026-12-05 18:51 UTC (issue 37; load 5: a reproduce and other
+ * sessions' builds beside it), the branch's start (3662edd, main with the
+ * timing hooks) and its end alternately, 11 links each, psi not judged, CPU
+ * s per case (share of the certified whole):
  *   MLCA k = 12                            before           after
- *   extraction + eigen + double regularity 0.0192 ( 7 %)    0.0279 (18 %)
- *   exact: characteristic polynomials      0.0085 ( 3 %)    0.0124 ( 8 %)
- *   exact: factoring over Q                0.0061 ( 2 %)    0.0086 ( 5 %)
- *   exact: root isolation                  0.1146 (41 %)    0.0068 ( 4 %)
- *   exact: basis enclosure                 0.0740 (27 %)    0.0406 (26 %)
- *   interval Jacobians, levels 0 / 1 / 2   0.004 / 0.007 / 0.041
- *                                                   0.002 / 0.008 / 0.050 (31 %)
- *   certified whole                        0.276            0.158
- *   double path whole                      0.0189           0.0275
- *   certified / double (median per case)   14.6 (15.5)      5.8 (6.4)
- * (the double path is the same code in both: its 45 % move is the load's;
- * the certified whole moved by -43 %).  Ratio of the means, before -> after:
- * MLCA k = 10 10.3 -> 4.8; tet/oct k = 12 6.7 -> 4.0 (isolation 0.006 ->
- * 0.006, basis 0.005 -> 0.004, interval Jacobians of level 2 0.019 ->
- * 0.008), k = 10 4.7 -> 3.5; box-spline k = 12 2.2 -> 1.6, k = 10 2.0 ->
- * 1.6.  With --psi-depth 4 (an earlier pair, 18:28-18:32, load 5-9):
- * psi's traversal is 60-75 % of either path; certified / double MLCA k = 12
- * 1.42 -> 1.13, tet/oct 2.40 -> 1.44, box-spline (no psi) 2.08 -> 1.59. */
+ *   extraction + eigen + double regularity 0.0167 ( 7 %)    0.0173 (13 %)
+ *   exact: characteristic polynomials      0.0075 ( 3 %)    0.0076 ( 6 %)
+ *   exact: factoring over Q                0.0051 ( 2 %)    0.0053 ( 4 %)
+ *   exact: root isolation                  0.1018 (42 %)    0.0040 ( 3 %)
+ *   exact: basis enclosure                 0.0631 (26 %)    0.0638 (47 %)
+ *   interval Jacobians, levels 0 / 1 / 2   0.004 / 0.007 / 0.037
+ *                                                   0.002 / 0.005 / 0.030 (22 %)
+ *   certified whole                        0.243            0.136
+ *   double path whole                      0.0169           0.0174
+ *   certified / double (median per case)   14.4 (15.7)      7.8 (7.9)
+ * Ratio of the means, before -> after: MLCA k = 10 9.8 -> 6.9; tet/oct
+ * k = 12 5.7 -> 3.8 (interval Jacobians of level 2 0.011 -> 0.004), k = 10
+ * 4.9 -> 3.6; box-spline k = 12 2.0 -> 1.6, k = 10 1.9 -> 1.6.  With
+ * --psi-depth 4 psi's traversal is 60-75 % of either path (MLCA k = 12
+ * certified / double 1.4, tet/oct 2.4 before). */
 #include "bench_pipeline_certify.h"
 
 #include <stdio.h>
