@@ -18,10 +18,13 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
   ss_exact *ex = NULL;
   double *lo = NULL, *hi = NULL;
   ss_exact_opts eo = ss_exact_defaults(M->dim);
+  eo.times = o->times ? &o->times->exact : NULL;
+  double c1 = o->times ? ss_clock_cpu() : 0.0;
   ss_error xe = {0};
   ss_status st = ss_exact_new(M->S, M->n2, M->n1, &eo, &ex, &xe);
   if (st == SS_ENOMEM || st == SS_EINPUT) {
     *err = xe;
+    if (o->times) ss_clock_lap(&o->times->certify, &c1);
     return st;
   }
   if (st) { /* not rational, or FLINT could not: nothing is proven */
@@ -80,6 +83,7 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
 done:
   free(lo);
   free(hi);
+  if (o->times) ss_clock_lap(&o->times->certify, &c1);
   out->seconds = ss_clock_wall() - t0;
   if (x && !st)
     *x = ex;

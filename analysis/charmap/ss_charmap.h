@@ -50,6 +50,7 @@
 
 #include "ss_api.h"
 #include "ss_eig.h"
+#include "ss_exact.h"
 #include "ss_jac.h"
 #include "ss_local.h"
 
@@ -98,6 +99,13 @@ typedef struct {
   double symmetry;  /* ss_charmap_symmetry */
   double injective; /* ss_charmap_injectivity (ss_certify_verdicts) */
   long deep;        /* cases that needed deeper ring levels */
+  /* the exact path (ss_certify), with certify only: */
+  double certify;       /* ss_certify whole: the exact spectrum and the proofs */
+  ss_exact_times exact; /* the exact spectrum's stages */
+  double cert_level[SS_LOCAL_MAXRING]; /* ss_charmap_certify: the interval
+                                          net pushed to ring level l and its
+                                          cells' Jacobians in intervals */
+  double cert_sym;                     /* ss_charmap_certify: psi o sigma = psi proven */
 } ss_charmap_times;
 
 /* Options of the regularity test. */
@@ -277,7 +285,8 @@ ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
  * weight replaced by the enclosure of the rational of denominator at most
  * maxden it stands for (ss_exact_rational_enclose), in interval arithmetic
  * with outward rounding: the result holds the exact rule's net for every
- * net inside the input.  0, or -1 for a weight that is no such rational. */
+ * net inside the input.  0, or -1 for a weight that is no such rational
+ * (or dim outside 1..3). */
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi);
 

@@ -11,6 +11,7 @@
 #include "double_interval.h"
 #include "ss_charmap.h"
 #include "ss_charmap_cert_impl.h"
+#include "ss_clock.h"
 #include "ss_exact.h"
 
 /* An interval net: lo and hi, point by point (dim coordinates each). */
@@ -32,18 +33,25 @@ static int inet_alloc(inet *x, size_t n, int dim) {
 
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi) {
-  for (size_t i = 0; i < R->nv; i++)
-    for (int d = 0; d < dim; d++) {
-      di_t s = di_interval(0.0, 0.0);
-      for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
-        double lo, hi;
-        if (!ss_exact_rational_enclose(R->w[q], maxden, &lo, &hi)) return -1;
+  if (dim < 1 || dim > 3) return -1;
+  for (size_t i = 0; i < R->nv; i++) {
+    /* each weight enclosed once for the coordinates; each coordinate's sum
+     * still runs over the row in order */
+    di_t s[3] = {di_interval(0.0, 0.0), di_interval(0.0, 0.0), di_interval(0.0, 0.0)};
+    for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
+      double lo, hi;
+      if (!ss_exact_rational_enclose(R->w[q], maxden, &lo, &hi)) return -1;
+      const di_t w = di_interval(lo, hi);
+      for (int d = 0; d < dim; d++) {
         const size_t k = R->col[q] * (size_t)dim + (size_t)d;
-        s = di_fast_add(s, di_fast_mul(di_interval(lo, hi), di_interval(plo[k], phi[k])));
+        s[d] = di_fast_add(s[d], di_fast_mul(w, di_interval(plo[k], phi[k])));
       }
-      olo[i * (size_t)dim + (size_t)d] = s.a;
-      ohi[i * (size_t)dim + (size_t)d] = s.b;
     }
+    for (int d = 0; d < dim; d++) {
+      olo[i * (size_t)dim + (size_t)d] = s[d].a;
+      ohi[i * (size_t)dim + (size_t)d] = s[d].b;
+    }
+  }
   return 0;
 }
 
@@ -154,8 +162,11 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       snprintf(why, sizeof why, "the basis enclosure is not finite");
       goto uncertified;
     }
+  ss_charmap_times *tm = o->times;
+  double c1 = tm ? ss_clock_cpu() : 0.0;
   if (r->sym.found) {
     const int p = sym_proven(M, c, &r->sym, lo, hi, m, maxden, err);
+    if (tm) ss_clock_lap(&tm->cert_sym, &c1);
     if (p < 0) return ss_error_nomem(err, "certification");
     if (p) {
       r->verdict.certified = inj->verdict.certified = 1;
@@ -164,8 +175,14 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
     snprintf(why, sizeof why, "psi o sigma = psi is not proven by the enclosure");
     goto uncertified;
   }
-  /* the ring levels the double-precision verdict judged, in intervals */
+  /* the ring levels the double-precision verdict judged, in intervals: the
+   * net pushed through all of them (a weight that is not a rational of
+   * bounded denominator, on any level, leaves the verdict unproven), but
+   * only the levels the rules below read judged (a pass: the deciding level;
+   * a fail: it and the one before; anything else is not certified whatever
+   * the counts) */
   proven pr[SS_LOCAL_MAXRING];
+  memset(pr, 0, sizeof pr);
   inet prev = {NULL, NULL}, cur = {NULL, NULL};
   if (inet_alloc(&prev, n, m)) return ss_error_nomem(err, "certification");
   for (size_t i = 0; i < n; i++)
@@ -174,6 +191,8 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       prev.hi[i * (size_t)m + (size_t)d] = hi[(size_t)d * n + i];
     }
   const int nl = r->nlevels < M->nring ? r->nlevels : M->nring;
+  const int last = r->ring_level >= 0 && r->ring_level < nl ? r->ring_level : nl - 1;
+  const int first = v->verdict == SS_PASS ? last : v->verdict == SS_FAIL ? last - 1 : nl;
   for (int l = 0; l < nl; l++) {
     const int rc = push(M->ring + l, &prev, m, maxden, &cur);
     inet_free(&prev);
@@ -190,14 +209,14 @@ ss_status ss_charmap_certify(const ss_local *M, const ss_case *c, const double *
       inet_free(&prev);
       goto uncertified;
     }
-    judge(M->ring + l, &prev, m, o->depth, pr + l);
+    if (l >= first && l <= last) judge(M->ring + l, &prev, m, o->depth, pr + l);
+    if (tm) ss_clock_lap(&tm->cert_level[l], &c1);
   }
   inet_free(&prev);
   if (nl < 1) {
     snprintf(why, sizeof why, "no ring level was judged");
     goto uncertified;
   }
-  const int last = r->ring_level >= 0 && r->ring_level < nl ? r->ring_level : nl - 1;
   const proven *L = pr + last;
   if (v->verdict == SS_PASS) {
     if (L->pos == L->cells || L->neg == L->cells) {

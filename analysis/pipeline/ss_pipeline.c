@@ -200,7 +200,11 @@ static ss_status psi(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) {
   free(lo);
   free(hi);
   if (!st) ss_psi_apply(&p->psi, p->opts.certify, &p->v.reg, &p->v.inj);
-  if (tm) ss_clock_lap(&tm->psi, &c1);
+  if (tm) {
+    ss_clock_lap(&tm->psi, &c1);
+    tm->psi_prove += p->psi.prove_seconds;
+    tm->psi_spokes += p->psi.spoke_seconds;
+  }
   return st;
 }
 

@@ -66,7 +66,11 @@ typedef struct {
   double diagonals;         /* schemes reading major diagonals: their count */
   double eig;               /* LAPACK and the condition */
   ss_charmap_times charmap; /* the regularity and injectivity tests */
-  double psi;               /* psi judged on its polynomial pieces (ss_psi) */
+  double psi;               /* psi judged on its polynomial pieces (ss_psi),
+                               with certify its enclosure from the exact
+                               path's basis */
+  double psi_prove;         /* of psi: the proof passes (ss_psi_certify) */
+  double psi_spokes;        /* of psi: the spokes' classification */
   long cases;               /* cases timed */
 } ss_pipeline_times;
 

@@ -567,9 +567,12 @@ static ss_status judge(const ss_scheme *s, const ss_local *M, const double *x,
   size_t ncentre;
   if ((st = walk_cells(L, M, NULL, &w, &ncentre, err))) goto done;
   decide(&w, 0.875 * (double)(ncentre ? ncentre : 1));
+  double c1 = ss_clock_cpu();
   if (e && (st = prove(L, M, e, &w, err))) goto done;
+  ss_clock_lap(&out->prove_seconds, &c1);
   describe(out);
   if ((st = spokes(L, M, &w, err))) goto done; /* the tubes, by evidence */
+  ss_clock_lap(&out->spoke_seconds, &c1);
   out->ran = 1;
 done:
   ss_limit_free(L);

@@ -175,6 +175,8 @@ typedef struct {
   int maxdepth;            /* the options used */
   int piece_depth;
   double seconds;          /* thread CPU time of the test */
+  double prove_seconds;    /* of which the proof passes (ss_psi_certify) */
+  double spoke_seconds;    /* of which the spokes' classification */
   int tubes;               /* 1 if the tubes' proofs ran (ss_psi_opts.tubes, the
                               enclosure, a ring of one sign on its pieces) */
   size_t ntubes;           /* uncovered boxes whose tube round a spoke was

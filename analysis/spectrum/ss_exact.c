@@ -9,10 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ss_clock.h"
 #include "ss_exact_impl.h"
 
 ss_exact_opts ss_exact_defaults(int dim) {
-  ss_exact_opts o = {1L << 18, 128, 4096, dim, 400, 1};
+  ss_exact_opts o = {1L << 18, 128, 4096, dim, 400, 1, NULL};
   return o;
 }
 
@@ -39,6 +40,8 @@ void ss_exact_free(ss_exact *x) {
   free(x->hi);
   free(x->bnum);
   free(x->bden);
+  free(x->ev);
+  free(x->evf);
   free(x);
 }
 
@@ -65,11 +68,15 @@ ss_status ss_exact_new(const double *S, size_t n, size_t n1, const ss_exact_opts
   x->m = o->dim;
   x->bstatus = SS_EINPUT;
   snprintf(x->bmsg, sizeof x->bmsg, "%s", "the subdominant basis was not requested");
+  ss_exact_times *tm = o->times;
+  double c1 = tm ? ss_clock_cpu() : 0.0;
+  if (tm) tm->cases++;
   if ((st = ss_exact_reconstruct(x, S, err))) goto done;
   if (ss_scc_make(&x->A, n, n1, &x->K)) {
     st = ss_error_nomem(err, "outer blocks");
     goto done;
   }
+  if (tm) ss_clock_lap(&tm->rational, &c1);
   x->nblk = 1 + (size_t)x->K.n;
   if (n1 > o->max_block || x->K.largest > o->max_block) {
     int inner = n1 > o->max_block;
@@ -87,11 +94,28 @@ ss_status ss_exact_new(const double *S, size_t n, size_t n1, const ss_exact_opts
     st = ss_error_nomem(err, "blocks");
     goto done;
   }
-  if ((st = ss_exact_all_blocks(x, err))) goto done;
-  if ((st = ss_exact_roots_init(x, err))) goto done;
+  if ((st = ss_exact_all_blocks(x, err))) goto done; /* times its own stages */
+  if (tm) c1 = ss_clock_cpu();
+  if (ss_exact_eigen_seeds(x)) { /* the seeds are isolation's */
+    st = ss_error_nomem(err, "root seeds");
+    goto done;
+  }
+  if (tm) ss_clock_lap(&tm->isolate, &c1);
+  if ((st = ss_exact_roots_init(x, err))) goto done; /* isolation only */
+  if (tm) c1 = ss_clock_cpu();
+  double iso = tm ? tm->isolate : 0.0; /* the refinements are isolation's */
   if ((st = ss_exact_decide(x, err))) goto done;
+  if (tm) {
+    ss_clock_lap(&tm->decide, &c1);
+    tm->decide -= tm->isolate - iso;
+    iso = tm->isolate;
+  }
   if (o->basis && x->cond.verdict == SS_PASS && x->certified)
     st = ss_exact_basis_make(x, err);
+  if (tm) {
+    ss_clock_lap(&tm->basis, &c1);
+    tm->basis -= tm->isolate - iso;
+  }
 done:
   if (st) {
     ss_exact_free(x);

@@ -23,9 +23,12 @@
  * blocks are merged, multiplicities added.  Distinct irreducible factors have
  * no common root and each has simple roots, so the distinct eigenvalues of S
  * are exactly the roots of the merged factors, with the multiplicity of their
- * factor.  Roots are isolated in ball arithmetic (arb_fmpz_poly_complex_roots
- * on each squarefree factor) and refined until the moduli of all roots that
- * matter to the order are separated, or until maxprec bits.
+ * factor.  Roots are isolated in ball arithmetic (Durand-Kerner and arb's
+ * inclusion test, as arb_fmpz_poly_complex_roots on each squarefree factor,
+ * but started from A's eigenvalues computed by LAPACK where each factor of
+ * A gets its degree of them: ss_exact_isolate.c; the balls are accepted by
+ * the same tests whatever the start) and refined until the moduli of all
+ * roots that matter to the order are separated, or until maxprec bits.
  *
  * Order: distinct roots by decreasing modulus, real before complex, larger
  * real part first, then larger imaginary part (ss_eig's order).  Two distinct
@@ -105,9 +108,11 @@
  * flint_cleanup() per thread only at thread exit (the CLI does not).  FLINT
  * aborts on its own allocation failures; everything else is a status.
  *
- * Cost: dominated by the characteristic polynomial and factorisation of A
- * and by isolating the roots of its large irreducible factors (MLCA vertex
- * k = 12, a degree-58 factor: well under a second). */
+ * Cost (bench_pipeline --phases --certify, MLCA vertex k = 12, 0.15 s per
+ * case): the subdominant basis enclosure (Rump's method on A) about 0.06 s,
+ * the characteristic polynomials and factorisation about 0.015 s; isolating
+ * the roots of A's degree 50-60 factor 0.1 s from arb's generic start, 4 ms
+ * from the eigenvalues. */
 #ifndef SS_EXACT_H
 #define SS_EXACT_H
 
@@ -121,17 +126,37 @@ SS_BEGIN_DECLS
 
 typedef struct ss_exact ss_exact; /* opaque: FLINT matrices, factors, balls */
 
+/* Thread CPU seconds of the exact path's stages, added to (never reset) when
+ * the options carry one (ss_exact_opts.times): where a certified case's time
+ * goes, for benchmarks (bench_pipeline --phases --certify).  Timing reads
+ * clocks only: no result depends on it. */
+typedef struct {
+  double rational; /* S reconstructed as rationals, row sums checked, the
+                      outer block's components */
+  double charpoly; /* the diagonal blocks' characteristic polynomials
+                      (scaled to integers, fmpz_mat_charpoly) */
+  double factor;   /* their factorisation over Q and the merged factors */
+  double isolate;  /* root isolation in ball arithmetic: the first, and every
+                      refinement (the order's and the basis's) */
+  double decide;   /* the order and the condition without the refinements:
+                      classes, comparisons, exact ranks (non-defectiveness) */
+  double basis;    /* the subdominant basis enclosure without refinements */
+  long cases;      /* exact spectra timed */
+} ss_exact_times;
+
 /* Options of the exact path. */
 typedef struct {
-  long maxden;      /* largest denominator of the rational reconstruction
-                       (default 1 << 18) */
-  long prec;        /* first working precision of the root balls, bits (128) */
-  long maxprec;     /* precision at which separation gives up (4096) */
-  int dim;          /* 3: volume condition (lambda1..3); 2: surface */
-  size_t max_block; /* largest diagonal block (one-ring or outer) whose
-                       characteristic polynomial is computed (default 400);
-                       larger: every verdict undecided, not certified */
-  int basis;        /* nonzero: enclose the subdominant basis on a pass */
+  long maxden;           /* largest denominator of the rational reconstruction
+                            (default 1 << 18) */
+  long prec;             /* first working precision of the root balls, bits (128) */
+  long maxprec;          /* precision at which separation gives up (4096) */
+  int dim;               /* 3: volume condition (lambda1..3); 2: surface */
+  size_t max_block;      /* largest diagonal block (one-ring or outer) whose
+                            characteristic polynomial is computed (default 400);
+                            larger: every verdict undecided, not certified */
+  int basis;             /* nonzero: enclose the subdominant basis on a pass */
+  ss_exact_times *times; /* NULL (the default), or where to add the stages'
+                            thread CPU times (above); borrowed */
 } ss_exact_opts;
 
 /* One distinct eigenvalue of S. */

@@ -14,6 +14,7 @@
 #include "arb_fmpz_poly.h"
 #include "arf.h"
 
+#include "ss_clock.h"
 #include "ss_exact_impl.h"
 
 /* Index of the factor equal to g (normalised), or -1. */
@@ -98,8 +99,12 @@ static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t
   if (ss_exact_principal(x, idx, len, D, M)) {
     st = ss_error_nomem(err, "characteristic polynomial");
   } else {
+    ss_exact_times *tm = x->o.times;
+    double c1 = tm ? ss_clock_cpu() : 0.0;
     fmpz_mat_charpoly(cp, M);
+    if (tm) ss_clock_lap(&tm->charpoly, &c1);
     fmpz_poly_factor(fac, cp);
+    if (tm) ss_clock_lap(&tm->factor, &c1);
     for (slong i = 0; i < fac->num && !st; i++) {
       const slong d = fmpz_poly_degree(fac->p + i);
       fmpz_poly_zero(g);
@@ -182,44 +187,6 @@ done:
   free(jdx);
   free(first);
   return st;
-}
-
-void ss_exact_isolate(ss_exact *x, size_t k, long prec) {
-  ss_exact_factor *F = x->fac + k;
-  const slong d = fmpz_poly_degree(F->f);
-  ss_exact_rt *R = x->rt + F->root0;
-  if (d == 1) { /* -c0 / c1, exactly */
-    fmpq_t r;
-    fmpq_init(r);
-    fmpz_neg(fmpq_numref(r), F->f->coeffs);
-    fmpz_set(fmpq_denref(r), F->f->coeffs + 1);
-    fmpq_canonicalise(r);
-    arb_set_fmpq(acb_realref(&R->z), r, prec);
-    arb_zero(acb_imagref(&R->z));
-    R->real = 1;
-    fmpq_clear(r);
-  } else {
-    acb_ptr z = _acb_vec_init(d);
-    arb_fmpz_poly_complex_roots(z, F->f, 0, prec); /* F->f is irreducible */
-    for (slong i = 0; i < d; i++) {
-      acb_set(&R[i].z, z + i);
-      R[i].real = acb_is_real(z + i);
-    }
-    _acb_vec_clear(z, d);
-  }
-  const long mp = x->o.maxprec + 64;
-  for (slong i = 0; i < d; i++) {
-    if (F->exact_nsq) {
-      arb_t t;
-      arb_init(t);
-      arb_set_fmpq(t, &R[i].nsq, mp);
-      arb_sqrt(&R[i].mod, t, mp);
-      arb_clear(t);
-    } else {
-      acb_abs(&R[i].mod, &R[i].z, prec + 32);
-    }
-  }
-  F->prec = prec;
 }
 
 /* The root count, reflections, exact moduli, and first isolation.

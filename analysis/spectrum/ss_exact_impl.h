@@ -1,9 +1,9 @@
 /* ss_exact_impl.h — the inside of an ss_exact, shared by its stages: the
  * rational matrix (ss_exact_rational.c), the factors and roots by blocks
- * (ss_exact_factor.c), the order and the condition (ss_exact_condition.c),
- * the subdominant basis (ss_exact_basis.c), and the object that runs them
- * (ss_exact.c), which alone calls the others' stages: calls run one way.
- * Not a public header. */
+ * (ss_exact_factor.c; the roots' isolation, ss_exact_isolate.c), the order and the
+ * condition (ss_exact_condition.c), the subdominant basis (ss_exact_basis.c), and the
+ * object that runs them (ss_exact.c), which alone calls the others' stages: calls run one
+ * way. Not a public header. */
 #ifndef SS_EXACT_IMPL_H
 #define SS_EXACT_IMPL_H
 
@@ -74,6 +74,10 @@ struct ss_exact {
   double *lo, *hi;        /* n * m each, column-major, or NULL */
   long long *bnum, *bden; /* the exact basis when lambda1..m are rational and
                              it fits in int64, else NULL */
+  double *ev;             /* 2 n1: the one-ring block's eigenvalues in doubles
+                             (re, im interleaved; LAPACK), seeds of the roots'
+                             isolation only; NULL if none */
+  long *evf;              /* n1: the factor each was given to, or -1 */
 };
 
 /* Largest denominator bound accepted (so that numerators fit in 64 bits with
@@ -116,9 +120,30 @@ void ss_exact_set_verdict(ss_exact *x, ss_verdict_kind v, int certified, const c
  * a failure of this call (bstatus says so). */
 ss_status ss_exact_basis_make(ss_exact *x, ss_error *err);
 
-/* Isolate the roots of factor k at precision prec (sets z, mod, real).
- * Squarefree input only: the factors are irreducible. */
+/* Isolate the roots of factor k at precision prec (sets z, mod, real), a
+ * refinement from the balls it has when it was isolated before
+ * (ss_exact_isolate.c).  Squarefree input only: the factors are
+ * irreducible. */
 void ss_exact_isolate(ss_exact *x, size_t k, long prec);
+
+/* The d roots of the squarefree integer polynomial f (degree d >= 1) into
+ * roots, with what arb_fmpz_poly_complex_roots(roots, f, 0, target_prec)
+ * guarantees: isolating balls, each of relative accuracy >= target_prec
+ * bits, the real ones with an exact zero imaginary part, sorted as
+ * _acb_vec_sort_pretty sorts them, each complex root of positive imaginary
+ * part followed by its conjugate.  Durand-Kerner starts from seeds (d balls,
+ * e.g. the same roots at a lower precision, or the block's eigenvalues) at
+ * twice target_prec; without seeds, when that attempt does not isolate, and
+ * for factors of the form g(x^n) or with the root 0, it is
+ * arb_fmpz_poly_complex_roots itself (ss_exact_isolate.c). */
+void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds,
+                            slong target_prec);
+
+/* The one-ring block's eigenvalues in doubles (LAPACK on its rationals
+ * rounded) given to the factors of its characteristic polynomial, as seeds
+ * of their first isolation (x->ev, x->evf; ss_exact_isolate.c).  0, or -1
+ * when out of memory; LAPACK failing is not a failure (no seeds). */
+int ss_exact_eigen_seeds(ss_exact *x);
 
 /* The principal submatrix of S on rows and columns idx[0..len) scaled to
  * integers: D = the lcm of its entries' denominators, M = D times it (M

@@ -89,10 +89,45 @@ static void nearest_rational(fmpq_t r, const fmpq_t v, long maxden) {
   fmpz_clear(t);
 }
 
+/* s = M 2^e with M odd (or s = 0) in lowest terms when its denominator 2^-e
+ * is at most maxden: then s itself is the nearest rational of bounded
+ * denominator, at distance 0, and the general path below would return the
+ * same p / q.  The rules' weights are such dyadic rationals (1/8, 3/64,
+ * ...): the certified path reads each of them many times.  1 with *p, *q,
+ * or 0 (not such a rational: the general path decides).  s finite, |s| <=
+ * MAXABS. */
+static int dyadic(double s, long maxden, long long *p, long long *q) {
+  int ex;
+  const double m = frexp(s, &ex);               /* s = m 2^ex, 1/2 <= |m| < 1 */
+  long long M = (long long)ldexp(m, 53), d = 1; /* s = M 2^(ex - 53), exact */
+  int e = ex - 53;
+  if (M == 0) {
+    *p = 0;
+    *q = 1;
+    return 1;
+  }
+  while (M % 2 == 0) {
+    M /= 2;
+    e++;
+  }
+  if (e >= 0) { /* an integer: |s| <= MAXABS = 2^20 */
+    *p = M * (1LL << e);
+    *q = 1;
+    return 1;
+  }
+  if (-e > 31) return 0; /* 2^-e > SS_EXACT_MAXDEN_LIMIT >= maxden */
+  d <<= -e;
+  if (d > maxden) return 0;
+  *p = M;
+  *q = d;
+  return 1;
+}
+
 int ss_exact_rational(double s, long maxden, long long *p, long long *q) {
   if (!isfinite(s) || maxden < 1 || maxden > SS_EXACT_MAXDEN_LIMIT ||
       !(fabs(s) <= MAXABS))
     return 0;
+  if (dyadic(s, maxden, p, q)) return 1;
   arf_t f;
   fmpq_t v, r, d, bound;
   arf_init(f);

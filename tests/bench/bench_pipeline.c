@@ -25,6 +25,13 @@
  * cells and rows on levels that exist, ss_local_ring_deepen on kept levels)
  * measured on a second extraction beside it.
  *
+ * --phases --certify [--k K] [--scheme S] [--samples N] [--psi-depth D]:
+ * where a certified case's time goes (bench_pipeline_certify.c; default 10
+ * links, psi not judged as sweep runs it, --psi-depth 4 as analyze): each
+ * certified stage's CPU per case (the double path's stages, the exact
+ * spectrum's, the interval Jacobians per ring level, psi's parts) beside the
+ * double path's whole, best of 3 runs per case.
+ *
  * --project [--kmax K] [--samples N]: the exhaustive sweeps projected (issue
  * 20).  For each k = 4..K (default 16) every count/N-th link (default N =
  * 50; all of them when count <= N), count the published number, which the
@@ -325,6 +332,7 @@
 #include <gsl/gsl_statistics_double.h>
 
 #include "bench_counts.h"
+#include "bench_pipeline_certify.h"
 #include "ss_eig.h"
 #include "ss_enum.h"
 #include "ss_local.h"
@@ -718,7 +726,7 @@ static int project(const ss_scheme *sc, const ss_result_opts *ro, long want, int
 }
 
 int main(int argc, char **argv) {
-  int k = 12, jobs = 2, proj = 0, kmax = 16, ph = 0;
+  int k = 12, jobs = 2, proj = 0, kmax = 16, ph = 0, cert = 0, psi_depth = 0;
   long want = 0;
   const char *scheme = "mlca";
   for (int i = 1; i < argc; i++) {
@@ -730,18 +738,24 @@ int main(int argc, char **argv) {
       ph = 1;
       continue;
     }
+    if (!strcmp(argv[i], "--certify")) {
+      cert = 1;
+      continue;
+    }
     if (i + 1 == argc) break;
     if (!strcmp(argv[i], "--k")) k = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--kmax")) kmax = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--samples")) want = atol(argv[i + 1]);
     if (!strcmp(argv[i], "--jobs")) jobs = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--scheme")) scheme = argv[i + 1];
+    if (!strcmp(argv[i], "--psi-depth")) psi_depth = atoi(argv[i + 1]);
     i++;
   }
-  if (!want) want = proj ? 50 : 100;
-  if (k < 4 || k > 14 || kmax < 4 || kmax > 16 || want < 1 || jobs < 1) {
-    fprintf(stderr,
-            "bench_pipeline: --k 4..14, --kmax 4..16, --samples >= 1, --jobs >= 1\n");
+  if (!want) want = proj ? 50 : cert ? 10 : 100;
+  if (k < 4 || k > 14 || kmax < 4 || kmax > 16 || want < 1 || jobs < 1 || psi_depth < 0 ||
+      psi_depth > 8 || (cert && !ph)) {
+    fprintf(stderr, "bench_pipeline: --k 4..14, --kmax 4..16, --samples >= 1, --jobs "
+                    ">= 1, --psi-depth 0..8, --certify with --phases\n");
     return 2;
   }
 #if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
@@ -770,7 +784,8 @@ int main(int argc, char **argv) {
   printf("%s vertex pipeline, %zu of the %llu links with k = %d (every %ld-th)\n", scheme,
          s.n, (unsigned long long)counts[k], k, s.stride);
   if (ph) {
-    const int rc = phases(sc, &ro, &s);
+    const int rc =
+        cert ? bench_certify_phases(sc, s.l, s.n, psi_depth) : phases(sc, &ro, &s);
     for (size_t i = 0; i < s.n; i++)
       ss_link_free(s.l[i]);
     free(s.l);

@@ -1,0 +1,240 @@
+/* ss_exact_isolate.c — the roots of the exact spectrum's factors isolated in
+ * ball arithmetic (ss_exact_impl.h), started from the block's eigenvalues.
+ *
+ * arb_fmpz_poly_complex_roots starts Durand-Kerner from generic points on a
+ * spiral at 32 bits and doubles the precision until the roots are isolated
+ * and accurate.  The one-ring block's characteristic polynomial has an
+ * irreducible factor of degree 50-60 at k = 12 whose roots, clustered in
+ * (-0.2, 0.7), are badly conditioned in the monomial basis (in doubles they
+ * cannot even be approximated): its first isolation took most of a
+ * certified case's time (bench_pipeline --phases --certify: 41 % at MLCA
+ * k = 12, 0.15 s per factor).  The eigenproblem is well conditioned, so the
+ * block's eigenvalues from LAPACK (in doubles, from the rational entries)
+ * are accurate to about 1e-13: each is given to the factor of the block
+ * with the smallest Newton step |g / g'| there, and a factor of
+ * multiplicity 1 in the block that got exactly deg g of them starts
+ * Durand-Kerner from them at twice the target precision.  The balls are
+ * accepted only as arb accepts its own: every root isolated by the
+ * inclusion test (acb_poly_find_roots), relatively accurate to the target
+ * precision, the real ones proven real, no two balls meeting; so what is
+ * proven does not depend on where the iteration started, only the balls'
+ * last bits do.  A refinement to a higher precision starts from the balls
+ * it has.  Anything else (no seeds, a first attempt that does not isolate)
+ * is arb_fmpz_poly_complex_roots as before. */
+#include <math.h>
+#include <stdlib.h>
+
+#include <lapacke.h>
+
+#include "arb_fmpz_poly.h"
+#include "arf.h"
+
+#include "ss_clock.h"
+#include "ss_exact_impl.h"
+
+/* No two balls of the roots with nonnegative imaginary midpoints meet (the
+ * others are their conjugates). */
+static int isolated_balls(acb_srcptr z, slong d) {
+  for (slong i = 0; i < d; i++) {
+    if (arf_sgn(arb_midref(acb_imagref(z + i))) < 0) continue;
+    for (slong j = i + 1; j < d; j++)
+      if (arf_sgn(arb_midref(acb_imagref(z + j))) >= 0 && acb_overlaps(z + i, z + j))
+        return 0;
+  }
+  return 1;
+}
+
+static int accurate(acb_srcptr z, slong d, slong bits) {
+  for (slong i = 0; i < d; i++)
+    if (acb_rel_accuracy_bits(z + i) < bits) return 0;
+  return 1;
+}
+
+/* Sorted as arb sorts them (_acb_vec_sort_pretty), then the complex ones
+ * paired: each root of positive imaginary part followed by its conjugate.
+ * tmp has room for d balls. */
+static void arrange(acb_ptr z, slong d, acb_ptr tmp) {
+  _acb_vec_sort_pretty(z, d);
+  slong nreal = 0, m = 0;
+  for (slong i = 0; i < d; i++)
+    nreal += acb_is_real(z + i);
+  if (nreal == d) return;
+  for (slong i = nreal; i < d; i++)
+    if (arb_is_positive(acb_imagref(z + i))) acb_swap(tmp + m++, z + i);
+  for (slong i = 0; i < m; i++) {
+    acb_swap(z + nreal + 2 * i, tmp + i);
+    acb_conj(z + nreal + 2 * i + 1, z + nreal + 2 * i);
+  }
+}
+
+void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds,
+                            slong target_prec) {
+  const slong d = fmpz_poly_degree(f);
+  if (!seeds || d < 2 || fmpz_is_zero(f->coeffs) || arb_fmpz_poly_deflation(f) != 1) {
+    arb_fmpz_poly_complex_roots(roots, f, 0, target_prec);
+    return;
+  }
+  acb_ptr tmp = _acb_vec_init(d);
+  acb_poly_t cp;
+  acb_poly_init(cp);
+  const slong prec = 2 * target_prec;
+  acb_poly_set_fmpz_poly(cp, f, prec);
+  const slong got =
+      acb_poly_find_roots(roots, cp, seeds, FLINT_MIN(4 * d + 64, prec), prec);
+  int ok = got == d && accurate(roots, d, target_prec) &&
+           acb_poly_validate_real_roots(roots, cp, prec);
+  if (ok) {
+    for (slong i = 0; i < d; i++)
+      if (arb_contains_zero(acb_imagref(roots + i))) arb_zero(acb_imagref(roots + i));
+    ok = isolated_balls(roots, d);
+  }
+  if (ok)
+    arrange(roots, d, tmp);
+  else
+    arb_fmpz_poly_complex_roots(roots, f, 0, target_prec);
+  acb_poly_clear(cp);
+  _acb_vec_clear(tmp, d);
+}
+
+/* The block's eigenvalues (x->ev) given to the factors of block 0 (x->evf):
+ * each to the factor with the smallest Newton step |g(z) / g'(z)| at it, in
+ * balls at 128 bits (the double is exact there).  Seeds only: nothing
+ * proven depends on this. */
+static void give_eigenvalues(ss_exact *x) {
+  fmpz_poly_t dg;
+  acb_t z, v, w;
+  arb_t r, best;
+  fmpz_poly_init(dg);
+  acb_init(z);
+  acb_init(v);
+  acb_init(w);
+  arb_init(r);
+  arb_init(best);
+  for (size_t i = 0; i < x->n1; i++) {
+    x->evf[i] = -1;
+    acb_set_d_d(z, x->ev[2 * i], x->ev[2 * i + 1]);
+    for (size_t b = x->bstart[0]; b < x->bstart[1]; b++) {
+      const size_t k = x->bfac[b];
+      fmpz_poly_derivative(dg, x->fac[k].f);
+      arb_fmpz_poly_evaluate_acb(v, x->fac[k].f, z, 128);
+      arb_fmpz_poly_evaluate_acb(w, dg, z, 128);
+      acb_div(v, v, w, 128);
+      acb_abs(r, v, 128);
+      if (!arb_is_finite(r)) continue;
+      if (x->evf[i] < 0 || arf_cmp(arb_midref(r), arb_midref(best)) < 0) {
+        x->evf[i] = (long)k;
+        arb_set(best, r);
+      }
+    }
+  }
+  fmpz_poly_clear(dg);
+  acb_clear(z);
+  acb_clear(v);
+  acb_clear(w);
+  arb_clear(r);
+  arb_clear(best);
+}
+
+int ss_exact_eigen_seeds(ss_exact *x) {
+  const size_t n1 = x->n1;
+  double *a = malloc((n1 * n1 + 1) * sizeof *a);
+  x->ev = malloc((2 * n1 + 1) * sizeof *x->ev);
+  x->evf = malloc((n1 + 1) * sizeof *x->evf);
+  if (!a || !x->ev || !x->evf) {
+    free(a);
+    return -1;
+  }
+  for (size_t i = 0; i < n1 * n1; i++)
+    a[i] = 0.0;
+  for (size_t i = 0; i < n1; i++) /* row-major; the rationals rounded */
+    for (size_t k = x->A.ptr[i]; k < x->A.ptr[i + 1] && x->A.col[k] < n1; k++)
+      a[i * n1 + x->A.col[k]] = (double)x->q[k].num / (double)x->q[k].den;
+  double *wr = x->ev, *wi = x->ev + n1;
+  const lapack_int info = LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'N', (lapack_int)n1, a,
+                                        (lapack_int)n1, wr, wi, NULL, 1, NULL, 1);
+  free(a);
+  if (info) { /* no seeds: arb's own start */
+    free(x->ev);
+    free(x->evf);
+    x->ev = NULL;
+    x->evf = NULL;
+    return 0;
+  }
+  double *ev = malloc((2 * n1 + 1) * sizeof *ev); /* interleaved re, im */
+  if (!ev) return -1;
+  for (size_t i = 0; i < n1; i++) {
+    ev[2 * i] = wr[i];
+    ev[2 * i + 1] = wi[i];
+  }
+  free(x->ev);
+  x->ev = ev;
+  give_eigenvalues(x);
+  return 0;
+}
+
+/* Seeds for factor k from the block's eigenvalues given to it: a new vector
+ * of d balls when it got exactly d = deg of them and divides block 0 once,
+ * else NULL. */
+static acb_ptr eigen_seeds(const ss_exact *x, size_t k, slong d) {
+  if (!x->ev) return NULL;
+  int once = 0;
+  for (size_t b = x->bstart[0]; b < x->bstart[1]; b++)
+    if (x->bfac[b] == k) once = x->bmult[b] == 1;
+  slong got = 0;
+  for (size_t i = 0; i < x->n1; i++)
+    got += x->evf[i] == (long)k;
+  if (!once || got != d) return NULL;
+  acb_ptr s = _acb_vec_init(d);
+  got = 0;
+  for (size_t i = 0; i < x->n1; i++)
+    if (x->evf[i] == (long)k) acb_set_d_d(s + got++, x->ev[2 * i], x->ev[2 * i + 1]);
+  return s;
+}
+
+void ss_exact_isolate(ss_exact *x, size_t k, long prec) {
+  double c1 = x->o.times ? ss_clock_cpu() : 0.0;
+  ss_exact_factor *F = x->fac + k;
+  const slong d = fmpz_poly_degree(F->f);
+  ss_exact_rt *R = x->rt + F->root0;
+  if (d == 1) { /* -c0 / c1, exactly */
+    fmpq_t r;
+    fmpq_init(r);
+    fmpz_neg(fmpq_numref(r), F->f->coeffs);
+    fmpz_set(fmpq_denref(r), F->f->coeffs + 1);
+    fmpq_canonicalise(r);
+    arb_set_fmpq(acb_realref(&R->z), r, prec);
+    arb_zero(acb_imagref(&R->z));
+    R->real = 1;
+    fmpq_clear(r);
+  } else {
+    acb_ptr z = _acb_vec_init(d), s = NULL;
+    if (F->prec > 0) { /* a refinement: from the balls it has */
+      s = _acb_vec_init(d);
+      for (slong i = 0; i < d; i++)
+        acb_set(s + i, &R[i].z);
+    } else {
+      s = eigen_seeds(x, k, d);
+    }
+    ss_exact_complex_roots(z, F->f, s, prec); /* F->f is irreducible */
+    for (slong i = 0; i < d; i++) {
+      acb_set(&R[i].z, z + i);
+      R[i].real = acb_is_real(z + i);
+    }
+    _acb_vec_clear(z, d);
+    if (s) _acb_vec_clear(s, d);
+  }
+  const long mp = x->o.maxprec + 64;
+  for (slong i = 0; i < d; i++) {
+    if (F->exact_nsq) {
+      arb_t t;
+      arb_init(t);
+      arb_set_fmpq(t, &R[i].nsq, mp);
+      arb_sqrt(&R[i].mod, t, mp);
+      arb_clear(t);
+    } else {
+      acb_abs(&R[i].mod, &R[i].z, prec + 32);
+    }
+  }
+  F->prec = prec;
+  if (x->o.times) ss_clock_lap(&x->o.times->isolate, &c1);
+}

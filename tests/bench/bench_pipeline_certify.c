@@ -1,0 +1,256 @@
+/* bench_pipeline_certify.c — `bench_pipeline --phases --certify` (issue 37):
+ * where a certified case's time goes.  For each link of the sample the real
+ * pipeline (ss_result_compute_ws) runs three times with certify and three
+ * times without (the double path, the same psi depth), one after the other;
+ * of the certified runs the one with the least CPU is kept with its stage
+ * times (the library's timing hook: ss_pipeline_workspace.times, with the
+ * exact path's stages in ss_charmap_times.exact, the interval Jacobians per
+ * ring level in cert_level, psi's proof in psi_prove), of the double runs the
+ * least CPU.  Printed per stage: mean CPU seconds per case, share of the
+ * certified whole, and the double path's whole beside it with the ratio of
+ * the means and the median of the per-case ratios.  Thread CPU time, so the
+ * table means something on a loaded machine; best of 3 removes most of the
+ * rest.  Results of the certified and double runs are compared case by case
+ * (the double path's verdicts do not change between its runs).
+ *
+ * Measured 2026-12-05 18:51 UTC (issue 37; load 5: a reproduce and other
+ * sessions' builds beside it), the branch's start (3662edd, main with the
+ * timing hooks) and its end alternately, 11 links each, psi not judged, CPU
+ * s per case (share of the certified whole):
+ *   MLCA k = 12                            before           after
+ *   extraction + eigen + double regularity 0.0167 ( 7 %)    0.0173 (13 %)
+ *   exact: characteristic polynomials      0.0075 ( 3 %)    0.0076 ( 6 %)
+ *   exact: factoring over Q                0.0051 ( 2 %)    0.0053 ( 4 %)
+ *   exact: root isolation                  0.1018 (42 %)    0.0040 ( 3 %)
+ *   exact: basis enclosure                 0.0631 (26 %)    0.0638 (47 %)
+ *   interval Jacobians, levels 0 / 1 / 2   0.004 / 0.007 / 0.037
+ *                                                   0.002 / 0.005 / 0.030 (22 %)
+ *   certified whole                        0.243            0.136
+ *   double path whole                      0.0169           0.0174
+ *   certified / double (median per case)   14.4 (15.7)      7.8 (7.9)
+ * Ratio of the means, before -> after: MLCA k = 10 9.8 -> 6.9; tet/oct
+ * k = 12 5.7 -> 3.8 (interval Jacobians of level 2 0.011 -> 0.004), k = 10
+ * 4.9 -> 3.6; box-spline k = 12 2.0 -> 1.6, k = 10 1.9 -> 1.6.  With
+ * --psi-depth 4 psi's traversal is 60-75 % of either path (MLCA k = 12
+ * certified / double 1.4, tet/oct 2.4 before). */
+#include "bench_pipeline_certify.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_statistics_double.h>
+
+#include "ss_clock.h"
+#include "ss_result.h"
+
+enum {
+  C_CANON,    /* the double path's stages, run by certify too */
+  C_EXTRACT,  /* extraction */
+  C_DIAG,     /* major diagonals */
+  C_EIG,      /* LAPACK */
+  C_MAP,      /* charmap net */
+  C_JAC,      /* Jacobian test, levels 0-1 */
+  C_DEEPEN,   /* deeper ring level refinement */
+  C_DEEPJAC,  /* its Jacobian test */
+  C_SYM,      /* symmetry test */
+  C_INJ,      /* injectivity */
+  C_RAT,      /* the exact path */
+  C_CHARPOLY, /* characteristic polynomials */
+  C_FACTOR,   /* factoring */
+  C_ISOLATE,  /* root isolation */
+  C_DECIDE,   /* order, condition */
+  C_BASIS,    /* basis enclosure */
+  C_EXOTHER,  /* the rest of ss_certify */
+  C_LEV0,     /* interval Jacobians, ring level 0 */
+  C_LEV1,
+  C_LEV2,
+  C_LEV3,
+  C_CSYM,     /* psi o sigma = psi proven */
+  C_PSI,      /* psi without its proof and spokes */
+  C_PSIPROVE, /* psi's proof passes */
+  C_PSISPOKE, /* psi's spokes */
+  C_SUM,      /* sum of the stages */
+  C_WHOLE,    /* the certified pipeline, timed whole */
+  C_DOUBLE,   /* the double path, timed whole */
+  NC
+};
+
+static const char *const c_name[NC] = {
+    "canonical link",
+    "extraction (local matrix, ring levels 0-1)",
+    "major diagonals",
+    "eigen (LAPACK, double)",
+    "charmap net + normalisation",
+    "Jacobian test, levels 0-1 (double)",
+    "deeper ring level: refinement",
+    "deeper ring level: Jacobian test (double)",
+    "symmetry test (double)",
+    "injectivity test (double)",
+    "exact: rational S, components",
+    "exact: characteristic polynomials",
+    "exact: factoring over Q",
+    "exact: root isolation (all precisions)",
+    "exact: order + condition (ranks)",
+    "exact: basis enclosure",
+    "exact: rest of ss_certify",
+    "interval Jacobians, ring level 0",
+    "interval Jacobians, ring level 1",
+    "interval Jacobians, ring level 2",
+    "interval Jacobians, ring level 3",
+    "psi o sigma = psi proven",
+    "psi: traversal (+ enclosure)",
+    "psi: proof passes",
+    "psi: spokes' classification",
+    "sum of the stages",
+    "certified pipeline (timed whole)",
+    "double path (timed whole)",
+};
+
+/* The stage times of one certified run into v[0 .. C_SUM]. */
+static void stages(const ss_pipeline_times *tm, double *v) {
+  const ss_charmap_times *c = &tm->charmap;
+  const ss_exact_times *x = &c->exact;
+  const double ex[] = {x->rational, x->charpoly, x->factor,
+                       x->isolate,  x->decide,   x->basis};
+  double lev = 0.0;
+  for (int l = 0; l < 4; l++)
+    lev += c->cert_level[l];
+  const double w[C_SUM] = {tm->canon,
+                           tm->extract,
+                           tm->diagonals,
+                           tm->eig,
+                           c->map,
+                           c->jacobian,
+                           c->deepen,
+                           c->deep_jac,
+                           c->symmetry,
+                           c->injective,
+                           ex[0],
+                           ex[1],
+                           ex[2],
+                           ex[3],
+                           ex[4],
+                           ex[5],
+                           0.0,
+                           c->cert_level[0],
+                           c->cert_level[1],
+                           c->cert_level[2],
+                           c->cert_level[3],
+                           c->cert_sym,
+                           tm->psi - tm->psi_prove - tm->psi_spokes,
+                           tm->psi_prove,
+                           tm->psi_spokes};
+  double exsum = 0.0;
+  for (int p = 0; p < 6; p++)
+    exsum += ex[p];
+  memcpy(v, w, sizeof w);
+  v[C_EXOTHER] = c->certify - exsum - lev - c->cert_sym;
+  v[C_SUM] = 0.0;
+  for (int p = 0; p < C_SUM; p++)
+    v[C_SUM] += v[p];
+}
+
+/* One run of link l: the whole's thread CPU into *t, the stages into v
+ * (NULL: untimed stages), the result into *r.  0, or 1 on failure. */
+static int run(const ss_scheme *sc, const ss_link *l, const ss_result_opts *ro,
+               ss_pipeline_workspace *w, double *t, double *v, ss_result *r) {
+  ss_pipeline_times tm;
+  memset(&tm, 0, sizeof tm);
+  w->times = v ? &tm : NULL;
+  ss_error err = {0};
+  const ss_case cs = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
+  const double t0 = ss_clock_cpu();
+  const ss_status st = ss_result_compute_ws(sc, &cs, ro, w, r, &err);
+  *t = ss_clock_cpu() - t0;
+  w->times = NULL;
+  if (st) {
+    fprintf(stderr, "bench_pipeline: %s\n", err.msg);
+    return 1;
+  }
+  if (v) stages(&tm, v);
+  return 0;
+}
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The sample's double and certified runs, best of 3 each; t[p * n + i]. */
+static int measure(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_depth,
+                   double *t, int *proven, int *flips) {
+  ss_pipeline_workspace *w = ss_pipeline_workspace_new();
+  ss_result_opts rd = ss_result_defaults(), rc = rd;
+  rd.psi_depth = rc.psi_depth = psi_depth;
+  rc.certify = 1;
+  int failed = !w;
+  for (size_t i = 0; i < n && !failed; i++) {
+    double best = 1e300, bestd = 1e300, v[NC];
+    for (int rep = 0; rep < 3 && !failed; rep++) {
+      ss_result a, b;
+      double ta, tb;
+      failed += run(sc, l[i], &rd, w, &ta, NULL, &a);
+      if (failed) break;
+      failed += run(sc, l[i], &rc, w, &tb, v, &b);
+      if (failed) {
+        ss_result_clear(&a);
+        break;
+      }
+      if (ta < bestd) bestd = ta;
+      if (tb < best) {
+        best = tb;
+        for (int p = 0; p <= C_SUM; p++)
+          t[p * n + i] = v[p];
+      }
+      if (rep == 0) {
+        *proven += ss_result_certified(&b);
+        /* certify only proves or unproves: a decided verdict of b is a's */
+        const ss_verdict_kind vb = ss_result_verdict(&b);
+        *flips += vb != SS_UNDECIDED && vb != ss_result_verdict(&a);
+      }
+      ss_result_clear(&a);
+      ss_result_clear(&b);
+    }
+    t[C_WHOLE * n + i] = best;
+    t[C_DOUBLE * n + i] = bestd;
+  }
+  ss_pipeline_workspace_free(w);
+  return failed;
+}
+
+int bench_certify_phases(const ss_scheme *sc, ss_link *const *l, size_t n,
+                         int psi_depth) {
+  double *t = calloc(NC * n + 1, sizeof *t), *ratio = malloc((n + 1) * sizeof *ratio);
+  int proven = 0, flips = 0;
+  if (!t || !ratio) return 1;
+  const int failed = measure(sc, l, n, psi_depth, t, &proven, &flips);
+  if (failed) {
+    free(t);
+    free(ratio);
+    printf("failures: %d\n", failed);
+    return 1;
+  }
+  for (size_t i = 0; i < n; i++)
+    ratio[i] = t[C_WHOLE * n + i] / t[C_DOUBLE * n + i];
+  qsort(ratio, n, sizeof *ratio, cmp_double);
+  double mean[NC];
+  for (int p = 0; p < NC; p++)
+    mean[p] = gsl_stats_mean(t + p * n, 1, n);
+  printf("(phases --certify, psi depth %d) thread CPU per case over %zu links, best of "
+         "3 runs each; %d of %zu certified; %d decided verdicts differing from the "
+         "double path's\n",
+         psi_depth, n, proven, n, flips);
+  printf("  %-44s %11s %7s\n", "stage", "CPU s/case", "share");
+  for (int p = 0; p < NC; p++)
+    if (p >= C_SUM || mean[p] != 0.0)
+      printf("  %-44s %11.5f %6.1f%%\n", c_name[p], mean[p],
+             100.0 * mean[p] / mean[C_WHOLE]);
+  printf("  certified / double: %.2f (mean over mean); per case median %.2f, range "
+         "%.2f .. %.2f\n",
+         mean[C_WHOLE] / mean[C_DOUBLE], gsl_stats_median_from_sorted_data(ratio, 1, n),
+         ratio[0], ratio[n - 1]);
+  free(t);
+  free(ratio);
+  return 0;
+}
