@@ -66,6 +66,12 @@ static double ninf(size_t n, const double *a) {
   return mx;
 }
 
+/* a[0 .. len) uniform in [-1, 1), in order. */
+static void uniform_entries(gsl_rng *rng, double *a, size_t len) {
+  for (size_t e = 0; e < len; e++)
+    a[e] = 2 * gsl_rng_uniform(rng) - 1;
+}
+
 static ss_jsr_result run(size_t m, size_t n, const double *const *Y, ss_jsr_opts o,
                          int *ok) {
   ss_jsr_result r;
@@ -354,9 +360,8 @@ static void test_limits(gsl_rng *rng) {
   enum { n = 12, m = 3 };
   static double mats[m][n * n];
   const double *Y[m] = {mats[0], mats[1], mats[2]};
-  for (int i = 0; i < m; i++)
-    for (int e = 0; e < n * n; e++)
-      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  for (size_t i = 0; i < (size_t)m; i++)
+    uniform_entries(rng, mats[i], (size_t)n * (size_t)n);
   ss_jsr_opts o = ss_jsr_defaults();
   o.depth = 3;
   o.gap = 1e-9;
@@ -390,9 +395,8 @@ static void test_brute_deadline(gsl_rng *rng) {
   enum { n = 12, m = 4 };
   static double mats[m][n * n];
   const double *Y[m] = {mats[0], mats[1], mats[2], mats[3]};
-  for (int i = 0; i < m; i++)
-    for (int e = 0; e < n * n; e++)
-      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  for (size_t i = 0; i < (size_t)m; i++)
+    uniform_entries(rng, mats[i], (size_t)n * (size_t)n);
   ss_jsr_opts o = ss_jsr_defaults();
   o.depth = 12;
   o.max_seconds = 0.3;
@@ -485,9 +489,8 @@ static void test_brute(gsl_rng *rng) {
     const int K = 4 + trial % 3;
     double mats[3][NMAX * NMAX];
     const double *Y[3] = {mats[0], mats[1], mats[2]};
-    for (size_t i = 0; i < m; i++)
-      for (size_t e = 0; e < n * n; e++)
-        mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+    for (size_t i = 0; i < (size_t)m; i++)
+      uniform_entries(rng, mats[i], (size_t)n * (size_t)n);
     brute br = {m, n, Y, {0}, {0}};
     brute_rec(&br, K, 0, NULL, INFINITY);
     ss_jsr_opts o = ss_jsr_defaults();
@@ -733,9 +736,8 @@ static void test_fit_words(gsl_rng *rng) {
   {
     double mats[3][NMAX * NMAX];
     const double *Y[3] = {mats[0], mats[1], mats[2]};
-    for (int i = 0; i < 3; i++)
-      for (int e = 0; e < 25; e++)
-        mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+    for (size_t i = 0; i < 3; i++)
+      uniform_entries(rng, mats[i], 25);
     double L1[25], L2[25];
     CHECK(ss_jsr_ellipsoid_fit(3, 5, Y, 0, 0, L1) == SS_OK, "fit");
     CHECK(ss_jsr_ellipsoid_fit_words(3, 5, Y, 1, 0, L2) == SS_OK, "fit_words 1");
@@ -812,9 +814,8 @@ static void test_fit_words(gsl_rng *rng) {
     const size_t n = 3 + (size_t)trial % 3;
     double mats[2][NMAX * NMAX];
     const double *Y[2] = {mats[0], mats[1]};
-    for (int i = 0; i < 2; i++)
-      for (size_t q = 0; q < n * n; q++)
-        mats[i][q] = 2 * gsl_rng_uniform(rng) - 1;
+    for (size_t i = 0; i < 2; i++)
+      uniform_entries(rng, mats[i], (size_t)n * (size_t)n);
     ss_jsr_opts oi = ss_jsr_defaults(), o = ss_jsr_defaults();
     oi.norm = SS_JSR_NORM_INF;
     oi.depth = 8;
@@ -858,9 +859,8 @@ static void test_scaling(gsl_rng *rng) {
   enum { n = 4, m = 3 };
   double mats[m][n * n], sc[m][n * n];
   const double *Y[m] = {mats[0], mats[1], mats[2]}, *Z[m] = {sc[0], sc[1], sc[2]};
-  for (int i = 0; i < m; i++)
-    for (int e = 0; e < n * n; e++)
-      mats[i][e] = 2 * gsl_rng_uniform(rng) - 1;
+  for (size_t i = 0; i < (size_t)m; i++)
+    uniform_entries(rng, mats[i], (size_t)n * (size_t)n);
   ss_jsr_opts o = ss_jsr_defaults();
   o.depth = 4;
   o.max_depth = 8;

@@ -44,6 +44,18 @@ static inline ss_pipeline *psi_run(const ss_scheme *s, const char *link, int psi
   return psi_run_with(s, link, &o);
 }
 
+/* The certified pipeline of vertex case `link`, psi judged to box depth 2,
+ * its tubes proven if tubes (ss_pipeline_opts.psi_tubes); NULL (the reason
+ * printed) on failure. */
+static inline ss_pipeline *psi_run_tubes(const ss_scheme *s, const char *link,
+                                         int tubes) {
+  ss_pipeline_opts o = ss_pipeline_defaults();
+  o.psi_depth = 2;
+  o.certify = 1;
+  o.psi_tubes = tubes;
+  return psi_run_with(s, link, &o);
+}
+
 /* The two-ring's hexes of p's case with points x (n2 x 3) as a limit
  * evaluator under s; NULL (the reason printed) on failure. */
 static inline ss_limit *psi_limit(const ss_scheme *s, const ss_pipeline *p,

@@ -141,11 +141,7 @@ static double winding_by_eval(const ss_scheme *s, const ss_pipeline *p, int N,
 }
 
 static void icosahedron(const ss_scheme *s) {
-  ss_pipeline_opts o = ss_pipeline_defaults();
-  o.psi_depth = 2;
-  o.certify = 1;
-  o.psi_tubes = 1;
-  ss_pipeline *p = psi_run_with(s, "icosahedron", &o);
+  ss_pipeline *p = psi_run_tubes(s, "icosahedron", 1);
   CHECK(p && p->psi.ran && p->psi.verdict.certified,
         "icosahedron: a certified pass on psi");
   if (!p || !p->psi.ran) return;
@@ -197,11 +193,7 @@ static void icosahedron(const ss_scheme *s) {
  * ss_limit_eval's points give. */
 static void tube_children(const ss_scheme *s) {
   const char *link = "10 bcdefghi,aic,abid,acie,adif,aeihjg,afjh,agjfi,ahfedcb,fhg";
-  ss_pipeline_opts o = ss_pipeline_defaults();
-  o.psi_depth = 2;
-  o.certify = 1;
-  o.psi_tubes = 1;
-  ss_pipeline *p = psi_run_with(s, link, &o);
+  ss_pipeline *p = psi_run_tubes(s, link, 1);
   CHECK(p && p->psi.ran, "%s: psi judged", link);
   if (!p || !p->psi.ran) return;
   const ss_psi_result *r = &p->psi;
@@ -220,11 +212,7 @@ static void tube_children(const ss_scheme *s) {
 static void net_overlaps(const ss_scheme *s) {
   const char *link =
       "11 bcdefgh,ahc,abhd,achie,adijgf,aeg,afejkih,agidcb,dhgkje,eikg,gji";
-  ss_pipeline_opts o = ss_pipeline_defaults();
-  o.psi_depth = 2;
-  o.certify = 1;
-  o.psi_tubes = 1;
-  ss_pipeline *p = psi_run_with(s, link, &o);
+  ss_pipeline *p = psi_run_tubes(s, link, 1);
   CHECK(p && p->psi.ran, "%s: psi judged", link);
   if (!p || !p->psi.ran) return;
   CHECK(p->inj.verdict.verdict == SS_FAIL && p->psi.inject == 1,

@@ -256,20 +256,12 @@ static void icosahedron(const ss_scheme *s) {
 
 /* ss_psi_certify (through the pipeline): the verdict a proven pass on psi
  * with its tubes; the net had left k = 10's links undecided. */
-static ss_pipeline *run_tubes(const ss_scheme *s, const char *link, int tubes) {
-  ss_pipeline_opts o = ss_pipeline_defaults();
-  o.psi_depth = 2;
-  o.certify = 1;
-  o.psi_tubes = tubes;
-  return psi_run_with(s, link, &o);
-}
-
 static void certified(const ss_scheme *s, const char *link) {
-  ss_pipeline *q = run_tubes(s, link, 0);
+  ss_pipeline *q = psi_run_tubes(s, link, 0);
   CHECK(q && q->psi.ran && !q->psi.verdict.certified && q->psi.ntubes == 0,
         "%s: without psi_tubes no proven verdict on psi (the tubes not proven)", link);
   ss_pipeline_free(q);
-  ss_pipeline *p = run_tubes(s, link, 1);
+  ss_pipeline *p = psi_run_tubes(s, link, 1);
   CHECK(p && p->psi.ran && p->psi.enclosed, "%s: psi judged on an enclosure", link);
   if (p && p->psi.ran) {
     const ss_psi_result *r = &p->psi;
