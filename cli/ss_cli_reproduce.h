@@ -34,9 +34,11 @@ typedef enum {
                             --seed 1` */
   SS_REPRODUCE_VALENCES, /* edge or surface vertex of valence lo..hi */
   SS_REPRODUCE_FACE,     /* the one face case */
-  SS_REPRODUCE_QUASI48   /* surface vertices of valence lo..hi of 4-8 class 4,
+  SS_REPRODUCE_QUASI48,  /* surface vertices of valence lo..hi of 4-8 class 4,
                             then those of class 8 (even valences 6..hi); schemes
                             without classes run the same valences */
+  SS_REPRODUCE_LIST      /* the links of the entry's "links", each labelled
+                            (the configurations a paper names) */
 } ss_reproduce_source;
 
 /* Other schemes a table shows beside its own, at most. */
@@ -61,7 +63,17 @@ typedef struct {
                                          shown side by side (their results are
                                          not written separately) */
   int nvs;                            /* how many of vs are set */
+  void *list;   /* source list: the "links" array (json_object, owned by the
+                   spec's doc); NULL otherwise */
+  size_t nlist; /* its number of links */
 } ss_reproduce_table;
+
+/* Item i < t->nlist of a table of source list: its label and its link (plantri
+ * text or a name), pointing into the spec's doc. */
+void ss_reproduce_list_item(const ss_reproduce_table *t, size_t i, const char **label,
+                            const char **link);
+/* The label of case i of table t (source list), NULL for other sources. */
+const char *ss_reproduce_case_tag(const ss_reproduce_table *t, size_t i);
 
 /* One picture of a characteristic map (those reports/README.md shows). */
 typedef struct {
@@ -117,15 +129,22 @@ void ss_reproduce_results_free(ss_reproduce_results *l);
 
 /* One quoted value beside the computed one. */
 typedef struct {
-  size_t row;            /* index of the result */
+  size_t row;            /* index of the result; SS_REPRODUCE_TABLE_ROW for a
+                            value about the whole table (quantity links) */
   const ss_ref_row *ref; /* the quoted value */
   int note;              /* its footnote number (1-based) */
   char quoted[64];       /* as shown: value, "= x" for formulas */
   char computed[64];     /* our value */
   char diff[32];         /* computed - quoted, or "–" */
   char tol[32];          /* the tolerance applied */
+  char what[48];         /* the case in words when it is not row's label: a
+                            labelled case ("k = 8, 8(a)"), a count ("k = 4..7"),
+                            else empty */
   int match;             /* 1 match, 0 differ */
 } ss_reproduce_cmp;
+
+/* The row of a comparison about the whole table. */
+#define SS_REPRODUCE_TABLE_ROW ((size_t)-1)
 
 /* Counts for the summary line. */
 typedef struct {

@@ -71,6 +71,21 @@ ss_status ss_reproduce_cases(const ss_reproduce_table *t, const ss_scheme *s,
       ss_link_free(l);
       gsl_rng_free(r);
     }
+  } else if (t->src == SS_REPRODUCE_LIST) {
+    for (size_t i = 0; i < t->nlist && !st; i++) {
+      const char *label, *text;
+      ss_link *l = NULL;
+      ss_reproduce_list_item(t, i, &label, &text);
+      ss_error e = {0};
+      st = ss_link_parse(text, &l, &e);
+      if (st)
+        ss_error_set(err, st, "%s: link %s: %s", t->name, label, e.msg);
+      else {
+        ss_case c = {t->kind, l, 0, t->diag, 0};
+        st = add_case(out, s, &c, err);
+      }
+      ss_link_free(l);
+    }
   } else if (t->src == SS_REPRODUCE_VALENCES) {
     for (int n = t->lo; n <= t->hi && !st; n++) {
       ss_case c = {t->kind, NULL, n, t->diag, 0};

@@ -89,6 +89,38 @@ static ss_reproduce_cmp *append(ss_reproduce_cmps *out, size_t i, const ss_ref_r
   return c;
 }
 
+/* The quoted counts of links (quantity links, range A..B inside the table's
+ * k range, same scheme and case kind) beside the number of cases of table t
+ * (every link with t->lo..t->hi vertices) with A <= k <= B. */
+static ss_status count_links(const ss_reproduce_table *t, const ss_reproduce_results *l,
+                             const ss_ref *ref, ss_reproduce_cmps *out,
+                             ss_reproduce_tally *ty, ss_error *err) {
+  for (size_t j = 0; j < ref->n; j++) {
+    const ss_ref_row *q = ref->row + j;
+    if (strcmp(q->quantity, "links") || strcmp(q->scheme, t->scheme) ||
+        q->kind != t->kind || q->label || q->lo < t->lo || q->hi > t->hi)
+      continue;
+    ss_ref_value v;
+    ss_status st = ss_report_ref_eval(q->value, q->lo, &v, err);
+    if (st) return st;
+    size_t n = 0;
+    for (size_t i = 0; i < l->n; i++)
+      n += l->r[i].k >= q->lo && l->r[i].k <= q->hi;
+    ss_reproduce_cmp *c = append(out, SS_REPRODUCE_TABLE_ROW, q);
+    if (!c) return ss_error_nomem(err, "comparisons");
+    snprintf(c->what, sizeof c->what, "k = %d..%d", q->lo, q->hi);
+    snprintf(c->quoted, sizeof c->quoted, "%s", q->value);
+    snprintf(c->computed, sizeof c->computed, "%zu", n);
+    snprintf(c->diff, sizeof c->diff, "%+.2e", (double)n - v.x);
+    snprintf(c->tol, sizeof c->tol, v.exact ? "%.0e (exact)" : "±%.1g", v.tol);
+    c->match = v.kind == SS_REF_NUMBER && ss_report_ref_match(&v, (double)n);
+    out->n++;
+    ty->quoted++;
+    ty->match += (size_t)c->match;
+  }
+  return SS_OK;
+}
+
 ss_status ss_reproduce_compare(const ss_reproduce_table *t, const ss_reproduce_results *l,
                                const ss_ref *ref, ss_reproduce_cmps *out,
                                ss_reproduce_tally *ty, ss_error *err) {
@@ -101,17 +133,20 @@ ss_status ss_reproduce_compare(const ss_reproduce_table *t, const ss_reproduce_r
   for (size_t i = 0; i < l->n; i++) {
     const ss_result *r = l->r + i;
     const char *dname = r->has_diag ? ss_diag_name(t->diag) : NULL;
+    const char *tag = ss_reproduce_case_tag(t, i);
     if (ss_result_verdict(r) == SS_PASS) ty->pass++;
     ty->certified += (size_t)ss_result_certified(r);
     for (size_t j = 0; j < ref->n; j++) {
       const ss_ref_row *q = ref->row + j;
       if (!strncmp(q->quantity, "jsr_", 4) || /* the JSR tables' (ss_cli_reproduce_jsr) */
-          !ss_report_ref_applies(q, t->scheme, r->kind, r->k, dname))
+          !strcmp(q->quantity, "links") ||    /* the whole table's (below) */
+          !ss_report_ref_applies_label(q, t->scheme, r->kind, r->k, dname, tag))
         continue;
       ss_reproduce_cmp *c = append(out, i, q);
       if (!c) return ss_error_nomem(err, "comparisons");
       ss_status st = compare(r, q, c, err);
       if (st) return st;
+      if (tag) snprintf(c->what, sizeof c->what, "k = %d, %s", r->k, tag);
       out->n++;
       ty->quoted++;
       ty->match += (size_t)c->match;
@@ -119,7 +154,7 @@ ss_status ss_reproduce_compare(const ss_reproduce_table *t, const ss_reproduce_r
     }
     if (!out->row_status[i]) ty->unquoted++;
   }
-  return SS_OK;
+  return t->src == SS_REPRODUCE_LINKS ? count_links(t, l, ref, out, ty, err) : SS_OK;
 }
 
 void ss_reproduce_cmps_free(ss_reproduce_cmps *c) {

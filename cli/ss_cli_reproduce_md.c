@@ -116,7 +116,11 @@ static void md_columns(ss_strbuf *md, const ss_reproduce_table *t, int has_diag,
 static void md_row(ss_strbuf *md, const ss_reproduce_table *t, const ss_result *r,
                    size_t i, int has_diag, int m, int status) {
   char buf[64];
-  if (ss_result_has_link(r))
+  const char *tag = ss_reproduce_case_tag(t, i);
+  if (tag)
+    ss_sb_printf(md, "| %s | `%s`%s | %d | %zu |", tag, r->link,
+                 r->kind == SS_CASE_EDGE_POINT ? " (edge point)" : "", r->k, r->cells);
+  else if (ss_result_has_link(r))
     ss_sb_printf(md, "| %zu | `%s`%s | %d | %zu |", i + 1, r->link,
                  r->kind == SS_CASE_EDGE_POINT ? " (edge point)" : "", r->k, r->cells);
   else if (r->kind == SS_CASE_FACE)
@@ -262,9 +266,12 @@ static void md_quoted(ss_strbuf *md, const ss_reproduce_results *l,
                      "|---|---|---|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < cmp->n; i++) {
       const ss_reproduce_cmp *c = cmp->c + i;
-      char buf[32];
-      ss_sb_printf(md, "| %zu | %s | %s | %s | %s | %s | %s | %s | [%d] |\n", c->row + 1,
-                   ss_reproduce_case_label(l->r + c->row, buf, sizeof buf),
+      char buf[32], num[24] = "–";
+      const int whole = c->row == SS_REPRODUCE_TABLE_ROW;
+      if (!whole) snprintf(num, sizeof num, "%zu", c->row + 1);
+      ss_sb_printf(md, "| %s | %s | %s | %s | %s | %s | %s | %s | [%d] |\n", num,
+                   c->what[0] ? c->what
+                              : ss_reproduce_case_label(l->r + c->row, buf, sizeof buf),
                    c->ref->quantity, c->quoted, c->computed, c->diff, c->tol,
                    c->match ? "match" : "**differ**", c->note);
     }

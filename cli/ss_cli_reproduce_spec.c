@@ -12,8 +12,8 @@
 
 #include "ss_cli_reproduce.h"
 
-static const char *const source_names[] = {"links", "random", "valences", "face",
-                                           "quasi48"};
+static const char *const source_names[] = {"links", "random",  "valences",
+                                           "face",  "quasi48", "list"};
 
 /* The case kinds a table or figure may name (edge-point is a result only). */
 static int parse_kind(const char *name, ss_case_kind *out) {
@@ -117,6 +117,7 @@ static int source_fits(ss_reproduce_source src, ss_case_kind kind) {
   switch (src) {
   case SS_REPRODUCE_LINKS:
   case SS_REPRODUCE_RANDOM:
+  case SS_REPRODUCE_LIST:
     return kind == SS_CASE_VERTEX;
   case SS_REPRODUCE_VALENCES:
     return kind == SS_CASE_EDGE || kind == SS_CASE_SURFACE_VERTEX;
@@ -128,10 +129,50 @@ static int source_fits(ss_reproduce_source src, ss_case_kind kind) {
   return 0;
 }
 
+/* "links" of a table of source list: a non-empty array of objects, each
+ * with exactly the non-empty strings "label" and "link". */
+static ss_status get_list(const entry *e, ss_reproduce_table *t) {
+  json_object *v;
+  static const char *const msg = "not an array of {\"label\", \"link\"} objects";
+  if (!json_object_object_get_ex(e->o, "links", &v))
+    return t->src == SS_REPRODUCE_LIST ? bad(e, "links", "missing") : SS_OK;
+  if (t->src != SS_REPRODUCE_LIST) return bad(e, "links", "only for source list");
+  if (!json_object_is_type(v, json_type_array) || !json_object_array_length(v))
+    return bad(e, "links", msg);
+  for (size_t i = 0; i < json_object_array_length(v); i++) {
+    json_object *it = json_object_array_get_idx(v, i), *x;
+    if (!json_object_is_type(it, json_type_object) || json_object_object_length(it) != 2)
+      return bad(e, "links", msg);
+    for (int f = 0; f < 2; f++)
+      if (!json_object_object_get_ex(it, f ? "link" : "label", &x) ||
+          !json_object_is_type(x, json_type_string) || !json_object_get_string_len(x))
+        return bad(e, "links", msg);
+  }
+  t->list = v;
+  t->nlist = json_object_array_length(v);
+  return SS_OK;
+}
+
+void ss_reproduce_list_item(const ss_reproduce_table *t, size_t i, const char **label,
+                            const char **link) {
+  json_object *it = json_object_array_get_idx(t->list, i), *x;
+  json_object_object_get_ex(it, "label", &x);
+  *label = json_object_get_string(x);
+  json_object_object_get_ex(it, "link", &x);
+  *link = json_object_get_string(x);
+}
+
+const char *ss_reproduce_case_tag(const ss_reproduce_table *t, size_t i) {
+  const char *label = NULL, *link;
+  if (t->src == SS_REPRODUCE_LIST && i < t->nlist)
+    ss_reproduce_list_item(t, i, &label, &link);
+  return label;
+}
+
 static ss_status read_table(const entry *e, ss_reproduce_table *t) {
   static const char *const keys[] = {"name", "title",  "scheme",    "case",    "source",
                                      "from", "to",     "diagonals", "lambdas", "command",
-                                     "note", "beside", "psi_depth", NULL};
+                                     "note", "beside", "psi_depth", "links",   NULL};
   const char *src = NULL;
   memset(t, 0, sizeof *t);
   ss_status st = known_keys(e, keys);
@@ -146,12 +187,12 @@ static ss_status read_table(const entry *e, ss_reproduce_table *t) {
     while (i < sizeof source_names / sizeof *source_names && strcmp(src, source_names[i]))
       i++;
     if (i == sizeof source_names / sizeof *source_names)
-      st = bad(e, "source", "not links, random, valences, face or quasi48");
+      st = bad(e, "source", "not links, random, valences, face, quasi48 or list");
     t->src = (ss_reproduce_source)i;
   }
   if (!st && !source_fits(t->src, t->kind))
     st = bad(e, "case", "not a case kind this source yields");
-  const int range = !st && t->src != SS_REPRODUCE_FACE;
+  const int range = !st && t->src != SS_REPRODUCE_FACE && t->src != SS_REPRODUCE_LIST;
   if (range) st = get_int(e, "from", 1, 0, 1, 1000, &t->lo);
   if (range && !st) st = get_int(e, "to", 1, 0, t->lo, 1000, &t->hi);
   if (!st) st = get_diag(e, &t->diag);
@@ -160,6 +201,7 @@ static ss_status read_table(const entry *e, ss_reproduce_table *t) {
   if (!st) st = get_string(e, "command", 1, &t->command);
   if (!st) st = get_string(e, "note", 0, &t->note);
   if (!st) st = get_beside(e, t);
+  if (!st) st = get_list(e, t);
   return st;
 }
 

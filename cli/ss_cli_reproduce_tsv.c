@@ -30,10 +30,19 @@ void ss_reproduce_tsv(ss_strbuf *tsv, const ss_reproduce_table *t,
     for (; j < cmp->n && cmp->c[j].row == i; j++) {
       const ss_reproduce_cmp *c = cmp->c + j;
       ss_sb_printf(tsv, "%s\t%zu\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s:%ld\n",
-                   t->name, i + 1, ss_reproduce_case_label(r, buf, sizeof buf),
+                   t->name, i + 1,
+                   c->what[0] ? c->what : ss_reproduce_case_label(r, buf, sizeof buf),
                    r->link[0] ? r->link : "-", c->ref->quantity, c->quoted, c->computed,
                    c->diff, c->tol, c->match ? "match" : "differ", c->ref->paper,
                    c->ref->location, c->ref->file, c->ref->line);
     }
+  }
+  for (size_t j = 0; j < cmp->n; j++) { /* about the whole table: row "-" */
+    const ss_reproduce_cmp *c = cmp->c + j;
+    if (c->row == SS_REPRODUCE_TABLE_ROW)
+      ss_sb_printf(tsv, "%s\t-\t%s\t-\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s:%ld\n", t->name,
+                   c->what, c->ref->quantity, c->quoted, c->computed, c->diff, c->tol,
+                   c->match ? "match" : "differ", c->ref->paper, c->ref->location,
+                   c->ref->file, c->ref->line);
   }
 }

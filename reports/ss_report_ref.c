@@ -30,6 +30,7 @@ void ss_report_ref_free(ss_ref *ref) {
     free(r->value);
     free(r->quote);
     free(r->note);
+    free(r->label);
   }
   free(ref->row);
   memset(ref, 0, sizeof *ref);
@@ -38,7 +39,7 @@ void ss_report_ref_free(ss_ref *ref) {
 int ss_report_ref_quantity(const char *name, int *index) {
   static const char *const plain[] = {"two_ring",        "one_ring",   "verdict",
                                       "eigen_condition", "regularity", "jsr_threshold",
-                                      "jsr_verdict",     NULL};
+                                      "jsr_verdict",     "links",      NULL};
   *index = 0;
   for (int i = 0; plain[i]; i++)
     if (!strcmp(name, plain[i])) return 1;
@@ -47,6 +48,8 @@ int ss_report_ref_quantity(const char *name, int *index) {
     digits = name + 6;
   else if (!strncmp(name, "mult", 4))
     digits = name + 4;
+  else if (!strncmp(name, "jsr_rho", 7))
+    digits = name + 7;
   if (!digits || !isdigit((unsigned char)digits[0]) || digits[0] == '0') return 0;
   char *end;
   long i = strtol(digits, &end, 10);
@@ -158,7 +161,14 @@ int ss_report_ref_match(const ss_ref_value *q, double c) {
 
 int ss_report_ref_applies(const ss_ref_row *r, const char *scheme, ss_case_kind kind,
                           int k, const char *diagonals) {
+  return ss_report_ref_applies_label(r, scheme, kind, k, diagonals, NULL);
+}
+
+int ss_report_ref_applies_label(const ss_ref_row *r, const char *scheme,
+                                ss_case_kind kind, int k, const char *diagonals,
+                                const char *label) {
   if (strcmp(r->scheme, scheme) || r->kind != kind) return 0;
+  if (r->label && (!label || strcmp(r->label, label))) return 0;
   if (kind != SS_CASE_FACE && (k < r->lo || k > r->hi)) return 0;
   if (strcmp(r->diagonals, "-") && (!diagonals || strcmp(r->diagonals, diagonals)))
     return 0;
@@ -173,15 +183,23 @@ static int parse_kind(const char *s, ss_case_kind *out) {
   return 0;
 }
 
-static int parse_range(const char *s, int *lo, int *hi) {
+/* "A", "A..B", either with ":LABEL" (*label points at LABEL in s, else
+ * NULL). */
+static int parse_range(const char *s, int *lo, int *hi, const char **label) {
   long a, b;
   size_t i = read_uint(s, &a);
   if (!i) return -1;
   b = a;
-  if (s[i]) {
+  *label = NULL;
+  if (s[i] && s[i] != ':') {
     if (strncmp(s + i, "..", 2)) return -1;
     size_t j = read_uint(s + i + 2, &b);
-    if (!j || s[i + 2 + j]) return -1;
+    if (!j || (s[i + 2 + j] && s[i + 2 + j] != ':')) return -1;
+    i += 2 + j;
+  }
+  if (s[i] == ':') {
+    if (!s[i + 1]) return -1;
+    *label = s + i + 1;
   }
   if (a < 3 || b < a || b > 1000) return -1;
   *lo = (int)a;
@@ -192,6 +210,7 @@ static int parse_range(const char *s, int *lo, int *hi) {
 /* Check the fields f[0..9] of one line and store them as row r. */
 static ss_status parse_row(char **f, const char *path, long lineno, ss_ref_row *r,
                            ss_error *err) {
+  const char *label = NULL;
   memset(r, 0, sizeof *r);
   for (int i = 0; i < NFIELDS - 1; i++)
     if (!f[i][0])
@@ -210,9 +229,10 @@ static ss_status parse_row(char **f, const char *path, long lineno, ss_ref_row *
     if (strcmp(f[4], "-"))
       return ss_error_set(err, SS_EINPUT, "%s:%ld: range '%s': a face case takes '-'",
                           path, lineno, f[4]);
-  } else if (parse_range(f[4], &r->lo, &r->hi)) {
+  } else if (parse_range(f[4], &r->lo, &r->hi, &label)) {
     return ss_error_set(err, SS_EINPUT,
-                        "%s:%ld: range '%s': expected A or A..B with 3 <= A <= B <= 1000",
+                        "%s:%ld: range '%s': expected A or A..B with 3 <= A <= B <= "
+                        "1000, optionally followed by :LABEL",
                         path, lineno, f[4]);
   }
   ss_diag_mode dm;
@@ -225,7 +245,8 @@ static ss_status parse_row(char **f, const char *path, long lineno, ss_ref_row *
     return ss_error_set(err, SS_EINPUT,
                         "%s:%ld: quantity '%s': expected lambda1..lambda15, "
                         "mult1..mult15, two_ring, one_ring, verdict, eigen_condition, "
-                        "regularity, jsr_threshold or jsr_verdict",
+                        "regularity, links, jsr_threshold, jsr_verdict or "
+                        "jsr_rho1..jsr_rho15",
                         path, lineno, f[6]);
   ss_ref_value v;
   ss_error e2 = {0};
@@ -247,8 +268,9 @@ static ss_status parse_row(char **f, const char *path, long lineno, ss_ref_row *
   r->value = strdup(f[7]);
   r->quote = strdup(f[8]);
   r->note = strdup(f[9]);
+  r->label = label ? strdup(label) : NULL;
   if (!r->file || !r->paper || !r->location || !r->scheme || !r->diagonals ||
-      !r->quantity || !r->value || !r->quote || !r->note)
+      !r->quantity || !r->value || !r->quote || !r->note || (label && !r->label))
     return ss_error_nomem(err, "reference row");
   return SS_OK;
 }

@@ -11,14 +11,20 @@
  *   scheme     scheme name (ss_scheme.h): mlca, tetoct, boxspline, ...
  *   case       vertex, edge, face or surface-vertex
  *   range      the cases it speaks of: "A..B" or "A" = the link's vertex count
- *              k (vertex) or the valence n (edge, surface-vertex); "-" (face)
+ *              k (vertex) or the valence n (edge, surface-vertex); "-" (face);
+ *              either may end in ":LABEL" (a configuration the paper names,
+ *              e.g. "8:8(a)" for its table row 8(a)): then the row speaks only
+ *              of a case that a table labels LABEL (`reproduce`, source list)
  *   diagonals  "-" (any, or none read) or bfs, proper, skew, center
  *   quantity   lambdaI (I = 1..15: the real eigenvalue lambda_I after
  *              lambda0 = 1), multI (size of lambda_I's group of equal
  *              eigenvalues), two_ring, one_ring (matrix sizes), verdict (both
- *              conditions), eigen_condition, regularity; jsr_threshold and
- *              jsr_verdict (the joint spectral radius test's threshold and
- *              verdict: compared only by the JSR tables, ss_cli_reproduce_jsr)
+ *              conditions), eigen_condition, regularity; links (how many links
+ *              with k in the range a table of every link enumerates: compared
+ *              once per table); jsr_threshold, jsr_verdict and jsr_rhoI (the
+ *              joint spectral radius test's threshold, verdict and rho^[I] =
+ *              max ||Y_w||_inf^(1/I) over the words of length I = 1..15:
+ *              compared only by the JSR tables, ss_cli_reproduce_jsr)
  *   value      the quoted value as compared: a decimal as printed ("0.4101"),
  *              an exact fraction or integer ("1/2", "2"), a closed form
  *              linear in k or n ("5k-5", "2n+3"), a bound (">1/4") or a
@@ -52,6 +58,7 @@ typedef struct {
   char *scheme;      /* field 3 */
   ss_case_kind kind; /* field 4 */
   int lo, hi;        /* field 5: k or n range, inclusive (face: 0, 0) */
+  char *label;       /* field 5 after ':': the configuration's label, or NULL */
   char *diagonals;   /* field 6: "-" or a diagonal mode name */
   char *quantity;    /* field 7 */
   char *value;       /* field 8, as written */
@@ -100,13 +107,21 @@ ss_status ss_report_ref_eval(const char *v, int k, ss_ref_value *out, ss_error *
 int ss_report_ref_match(const ss_ref_value *q, double c);
 
 /* 1 if the quantity name is one ss_report_ref_load accepts; *index receives
- * I for lambdaI and multI (else 0). */
+ * I for lambdaI, multI and jsr_rhoI (else 0). */
 int ss_report_ref_quantity(const char *name, int *index);
 
 /* 1 if row r speaks of the case (scheme, kind, k or valence, diagonal mode
- * name or NULL when the scheme reads none). */
+ * name or NULL when the scheme reads none) of no label: a row with a label
+ * speaks of none. */
 int ss_report_ref_applies(const ss_ref_row *r, const char *scheme, ss_case_kind kind,
                           int k, const char *diagonals);
+
+/* As ss_report_ref_applies for a case labelled label (or NULL): a row with a
+ * label speaks only of a case with the same label, a row without one of
+ * every case its other fields name. */
+int ss_report_ref_applies_label(const ss_ref_row *r, const char *scheme,
+                                ss_case_kind kind, int k, const char *diagonals,
+                                const char *label);
 
 SS_END_DECLS
 

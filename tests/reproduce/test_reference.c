@@ -74,6 +74,9 @@ static void malformed(void) {
   bad("p.txt\ts\tmlca\tcorner\t4..8\t-\tverdict\tpass\tq\tn\n", "case 'corner'");
   bad("p.txt\ts\tmlca\tvertex\t8..4\t-\tverdict\tpass\tq\tn\n", "range '8..4'");
   bad("p.txt\ts\tmlca\tvertex\t2\t-\tverdict\tpass\tq\tn\n", "range '2'");
+  bad("p.txt\ts\tmlca\tvertex\t8:\t-\tverdict\tpass\tq\tn\n", "range '8:'");
+  bad("p.txt\ts\tmlca\tvertex\t8(a)\t-\tverdict\tpass\tq\tn\n", "range '8(a)'");
+  bad("p.txt\ts\tmlca\tvertex\t4..\t-\tverdict\tpass\tq\tn\n", "range '4..'");
   bad("p.txt\ts\tmlca\tface\t4\t-\tverdict\tpass\tq\tn\n", "a face case takes '-'");
   bad("p.txt\ts\tmlca\tvertex\t4\tdiagonal\tverdict\tpass\tq\tn\n",
       "diagonals 'diagonal'");
@@ -150,6 +153,47 @@ static void match_rule(void) {
   CHECK(ss_report_ref_quantity("mult1", &index) && index == 1, "mult1");
   CHECK(!ss_report_ref_quantity("lambda", &index), "lambda alone");
   CHECK(!ss_report_ref_quantity("lambda01", &index), "lambda01");
+  CHECK(ss_report_ref_quantity("jsr_rho9", &index) && index == 9, "jsr_rho9");
+  CHECK(!ss_report_ref_quantity("jsr_rho", &index), "jsr_rho alone");
+  CHECK(ss_report_ref_quantity("links", &index) && index == 0, "links");
+}
+
+/* A label after the range binds a row to the case a table labels so: it
+ * speaks of that case only, an unlabelled row of every case. */
+static void labels(void) {
+  char path[64] = "/tmp/ss_test_refXXXXXX";
+  int fd = mkstemp(path);
+  CHECK(fd >= 0, "temporary file");
+  if (fd < 0) return;
+  FILE *f = fdopen(fd, "w");
+  fprintf(f, "%s",
+          "p\ts\tboxspline\tvertex\t8:8(a)\t-\tlambda1\t0.480205\tq\tn\n"
+          "p\ts\tboxspline\tvertex\t4..10:x\t-\tlambda1\t1/2\tq\tn\n"
+          "p\ts\tboxspline\tvertex\t8\t-\tlambda1\t0.375\tq\tn\n");
+  fclose(f);
+  ss_ref ref = {0};
+  ss_error err = {0};
+  CHECK(ss_report_ref_load(path, &ref, &err) == SS_OK && ref.n == 3, "%s", err.msg);
+  unlink(path);
+  if (ref.n == 3) {
+    const ss_ref_row *a = ref.row, *x = ref.row + 1, *plain = ref.row + 2;
+    CHECK(a->lo == 8 && a->hi == 8 && a->label && !strcmp(a->label, "8(a)"), "8:8(a)");
+    CHECK(x->lo == 4 && x->hi == 10 && x->label && !strcmp(x->label, "x"), "4..10:x");
+    CHECK(!plain->label, "no label");
+    const ss_case_kind V = SS_CASE_VERTEX;
+    CHECK(ss_report_ref_applies_label(a, "boxspline", V, 8, "bfs", "8(a)"), "own label");
+    CHECK(!ss_report_ref_applies_label(a, "boxspline", V, 8, "bfs", "8(b)"),
+          "other label");
+    CHECK(!ss_report_ref_applies_label(a, "boxspline", V, 8, "bfs", NULL), "no label");
+    CHECK(!ss_report_ref_applies(a, "boxspline", V, 8, "bfs"), "unlabelled case");
+    CHECK(!ss_report_ref_applies_label(a, "boxspline", V, 9, "bfs", "8(a)"), "k = 9");
+    CHECK(ss_report_ref_applies_label(x, "boxspline", V, 10, NULL, "x"),
+          "range and label");
+    CHECK(ss_report_ref_applies_label(plain, "boxspline", V, 8, "bfs", "8(b)") &&
+              ss_report_ref_applies(plain, "boxspline", V, 8, "bfs"),
+          "an unlabelled row speaks of every case");
+  }
+  ss_report_ref_free(&ref);
 }
 
 /* The shipped reference files load, and rows apply as their ranges say. */
@@ -185,6 +229,7 @@ int main(int argc, char **argv) {
   }
   malformed();
   match_rule();
+  labels();
   shipped(argv[1]);
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;
