@@ -61,6 +61,7 @@ typedef struct {
   ss_error *err;             /* where it is described */
   ss_psi_tube_cache *tcache; /* WALK_ALL with tubes: the cross-sections met */
   ss_psi_inject *inj;        /* WALK_ALL: the star's boundary gathered */
+  int tube_fold;             /* WALK_ALL: a tube proven folded (r->witness) */
 } walk;
 
 /* Whether a box of a cell around p lies in p's octant [0,1/2]^3 (in the
@@ -191,7 +192,18 @@ static int prove_tube(const ss_limit_piece *pc, walk *w) {
   if (tr.sign) {
     r->ntubes++;
     if (tr.layers > r->tube_layers) r->tube_layers = tr.layers;
-  } else {
+  } else if (tr.fold && !w->tube_fold) { /* psi folds in the tube: a proven failure */
+    w->tube_fold = 1;
+    r->tube_fold_layer = tr.fold_layer;
+    for (int i = 0; i < 2; i++) {
+      r->witness[i] =
+          (ss_psi_point){pc->cell, {0, 0, 0}, {0, 0}, 0, {-1, -1, -1}, {0, 0, 0}};
+      to_cell(pc->depth, pc->origin, tr.where[i], r->witness[i].at);
+      for (int e = 0; e < 2; e++) /* d/dx = 2^depth d/dt, exactly */
+        r->witness[i].det[e] = ldexp(tr.det[i][e], 3 * pc->depth);
+    }
+  }
+  if (!tr.sign) {
     snprintf(r->tube_why, sizeof r->tube_why,
              "cell %zu box (%.6g, %.6g, %.6g) of side 2^-%d: %.150s", pc->cell + 1,
              pc->origin[0], pc->origin[1], pc->origin[2], pc->depth, tr.why);
@@ -277,7 +289,11 @@ static void describe(ss_psi_result *r) {
              r->witness[0].at[0], r->witness[0].at[1], r->witness[0].at[2],
              r->witness[1].det[0], r->witness[1].det[1], r->witness[1].cell,
              r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2], how);
-  else if (v->verdict == SS_PASS && r->enclosed && r->ntubes)
+  if (v->verdict == SS_FAIL && r->tube_fold_layer >= 0) {
+    const size_t n = strlen(v->reason);
+    snprintf(v->reason + n, sizeof v->reason - n,
+             "; both in the tube round a spoke, its layer %d", r->tube_fold_layer);
+  } else if (v->verdict == SS_PASS && r->enclosed && r->ntubes)
     snprintf(
         v->reason, sizeof v->reason,
         "det Dpsi of one sign on all %zu pieces and in the tubes of all %zu boxes "
@@ -318,6 +334,7 @@ static ss_status walk_cells(ss_limit *L, const ss_local *M, const ss_limit_enclo
                               &w->maxden, skip_box, visit, w, err);
     if (st) return st;
     if (w->st) return w->st;
+    if (w->mode == WALK_ALL && w->need == 0) break; /* a piece or tube not proven */
   }
   return SS_OK;
 }
@@ -393,7 +410,11 @@ static ss_status prove(ss_limit *L, const ss_local *M, const ss_psi_enclosure *e
   ss_status st = walk_cells(L, M, &enc, w, &n, err);
   ss_psi_tube_cache_free(w->tcache);
   w->tcache = NULL;
-  if (!st && w->need != 0) {
+  if (!st && w->tube_fold) { /* two proven values of opposite signs in a tube */
+    r->verdict.verdict = SS_FAIL;
+    r->verdict.certified = 1;
+    r->nwitness = 2;
+  } else if (!st && w->need != 0) {
     r->verdict.verdict = SS_PASS;
     r->verdict.certified = 1;
     ss_psi_inject_result ir;
@@ -586,6 +607,7 @@ static ss_status check(const ss_psi_opts *o, const void *net, ss_psi_result *out
   memset(out, 0, sizeof *out);
   out->verdict = (ss_verdict){SS_UNDECIDED, "", 0, SS_ON_NOTHING};
   out->spoke_vertex = -1;
+  out->tube_fold_layer = -1;
   if (o->maxdepth < 1 || o->maxdepth > 8 || o->piece_depth < 0 || o->piece_depth > 8)
     return ss_error_set(err, SS_EINPUT,
                         "psi options out of range: box depth %d (1..8), piece depth %d "

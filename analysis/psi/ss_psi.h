@@ -186,6 +186,9 @@ typedef struct {
                               before its tail bound */
   char tube_why[240];      /* the first tube not proven: where and why (else
                               empty) */
+  int tube_fold_layer;     /* a fail proven in a tube (the witnesses both in
+                              one layer of it, ss_psi_tube.h "A fold"): that
+                              layer; else -1 */
   int inject;              /* with a proven pass: 1 psi injective, -1 psi not
                               injective (both proven, ss_psi_inject.h: the
                               winding number on the star's boundary), 0 not

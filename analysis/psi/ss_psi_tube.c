@@ -18,9 +18,9 @@
 #include "ss_psi_bernstein.h"
 
 #define PREC  128
-#define NNORM 160 /* powers of N / mu whose norms are bounded */
+#define NNORM 224 /* powers of N / mu whose norms are bounded (>= NTAU + QMAX) */
 #define QMAX  96  /* the period q of the tail bound is at most this */
-#define NTAU  64  /* layers judged directly at most */
+#define NTAU  128 /* layers judged directly at most (> QMAX: tail_product) */
 
 /* What the proof holds (method: ss_psi_tube.h). */
 typedef struct {
@@ -401,24 +401,38 @@ done:
 }
 
 /* Upper bounds of ||(N / mu)^m||_inf, m < NNORM, and the powers m < NTAU
- * into tau. */
-static void norms(tube_ws *w, arb_mat_struct *tau) {
+ * into tau (-1 out of memory, else 0).  Each power is a product of two earlier ones, P_m
+ * = P_h P_(m-h) with h the largest power of two below m (P_2h = P_h P_h): a chain of at
+ * most log2 m products behind every P_m.  Multiplying by N / mu one step at a time
+ * instead lets the balls' radii grow like rho(|N / mu|)^m, which exceeds 1
+ * for a non-normal N although rho(N / mu) < 1 (the powers near m = 75 were
+ * wider than their midpoints that way). */
+static int norms(tube_ws *w, arb_mat_struct *tau) {
   const slong r = (slong)w->r;
-  arb_mat_t S, P, Q;
-  arb_mat_init(S, r, r), arb_mat_init(P, r, r), arb_mat_init(Q, r, r);
-  arb_mat_scalar_div_arb(S, w->N, w->mu, PREC);
+  arb_mat_struct *P = malloc(NNORM * sizeof *P);
+  if (!P) return -1;
+  for (int m = 0; m < NNORM; m++)
+    arb_mat_init(P + m, r, r);
   arb_mat_one(P);
+  arb_mat_scalar_div_arb(P + 1, w->N, w->mu, PREC);
   mag_t b;
   mag_init(b);
   for (int m = 0; m < NNORM; m++) {
-    arb_mat_bound_inf_norm(b, P);
+    if (m >= 2) {
+      int h = 1;
+      while (2 * h < m)
+        h *= 2;
+      arb_mat_mul(P + m, P + h, P + (m - h), PREC);
+    }
+    arb_mat_bound_inf_norm(b, P + m);
     w->norm[m] = mag_get_d(b);
-    if (m < NTAU) arb_mat_set(tau + m, P);
-    arb_mat_mul(Q, P, S, PREC);
-    arb_mat_swap(P, Q);
+    if (m < NTAU) arb_mat_set(tau + m, P + m);
   }
   mag_clear(b);
-  arb_mat_clear(S), arb_mat_clear(P), arb_mat_clear(Q);
+  for (int m = 0; m < NNORM; m++)
+    arb_mat_clear(P + m);
+  free(P);
+  return 0;
 }
 
 /* The period q of the tail bound: the first q with ||tau_q||_inf <= 1 (0 if
@@ -428,7 +442,7 @@ static int tail_period(const tube_ws *w, int m0, double *eps) {
   int q = 0;
   for (int k = 1; k <= QMAX && !q; k++)
     if (w->norm[k] <= 1.0) q = k;
-  if (!q || m0 + q > NNORM || m0 >= NTAU) return 0;
+  if (!q || m0 + q > NNORM || m0 >= NTAU || q >= NTAU) return 0;
   *eps = 0.0;
   for (int m = m0; m < m0 + q; m++)
     *eps = fmax(*eps, w->norm[m]);
@@ -439,25 +453,24 @@ static int tail_period(const tube_ws *w, int m0, double *eps) {
  * w->tail_q with ||tau_q||_inf <= 1): m = r + k q with r in [m0, m0 + q), so
  * tau_m B = tau_q^k (tau_r B) and every column of it is bounded in |.|_inf by
  * that column's max over r of |tau_r B|_inf: column j's entries in [-e_j,
- * e_j]. */
+ * e_j].  tau_r B = tau_m0 (tau_(r - m0) B), both powers from w->tau (q <=
+ * QMAX < NTAU), not by q steps of N / mu (whose balls would grow). */
 static void tail_product(arb_mat_t Y, const arb_mat_t B, const tube_ws *w) {
   const slong r = (slong)w->r;
-  arb_mat_t V, U, S;
-  arb_mat_init(V, r, 12), arb_mat_init(U, r, 12), arb_mat_init(S, r, r);
-  arb_mat_scalar_div_arb(S, w->N, w->mu, PREC);
-  arb_mat_mul(V, w->tau + w->tail_m0, B, PREC);
+  arb_mat_t V, U;
+  arb_mat_init(V, r, 12), arb_mat_init(U, r, 12);
   mag_t m[12], e;
   mag_init(e);
   for (int j = 0; j < 12; j++)
     mag_init(m[j]);
   for (int k = 0; k < w->tail_q; k++) {
+    arb_mat_mul(U, w->tau + k, B, PREC);
+    arb_mat_mul(V, w->tau + w->tail_m0, U, PREC);
     for (slong j = 0; j < 12; j++)
       for (slong i = 0; i < r; i++) {
         arb_get_mag(e, arb_mat_entry(V, i, j));
         mag_max(m[j], m[j], e);
       }
-    arb_mat_mul(U, S, V, PREC);
-    arb_mat_swap(U, V);
   }
   for (slong j = 0; j < 12; j++)
     for (slong i = 0; i < r; i++) {
@@ -467,7 +480,7 @@ static void tail_product(arb_mat_t Y, const arb_mat_t B, const tube_ws *w) {
   for (int j = 0; j < 12; j++)
     mag_clear(m[j]);
   mag_clear(e);
-  arb_mat_clear(V), arb_mat_clear(U), arb_mat_clear(S);
+  arb_mat_clear(V), arb_mat_clear(U);
 }
 
 /* tau beta, tau bmu, tau b1: by products (tau given) or bounded (eps >= 0) */
@@ -542,9 +555,9 @@ static void layer_nets(const tube_ws *w, int m1, int m2, double eps, const arb_t
 }
 
 /* The sign of det Dψ on quadrant c of a layer with nets Vx, Vy: +1, -1, or 0
- * (folded or undecided: *fold set if folded). */
+ * (folded or undecided: pr->sign says which, pr the piece's result). */
 static int judge_quadrant(const tube_ws *w, int c, const arb_mat_t Vx, const arb_mat_t Vy,
-                          int *fold) {
+                          ss_psi_piece_result *pr) {
   const ss_limit_tube *t = w->t;
   double lo[2][64][3], hi[2][64][3];
   arb_t x;
@@ -572,17 +585,44 @@ static int judge_quadrant(const tube_ws *w, int c, const arb_mat_t Vx, const arb
     l3[a] = (const double(*)[3])lo[k];
     h3[a] = (const double(*)[3])hi[k];
   }
-  ss_psi_piece_result pr;
-  ss_psi_piece_sign_interval3(l3, h3, w->depth, &pr);
-  if (pr.sign == SS_JAC_UNDECIDED && w->depth < SS_PSI_MAXDEPTH) /* near a zero of the
-                                                                    leading term */
-    ss_psi_piece_sign_interval3(l3, h3, SS_PSI_MAXDEPTH, &pr);
-  *fold = pr.sign == SS_JAC_FOLDED;
-  return pr.sign == SS_JAC_POSITIVE ? 1 : pr.sign == SS_JAC_NEGATIVE ? -1 : 0;
+  ss_psi_piece_sign_interval3(l3, h3, w->depth, pr);
+  if (pr->sign == SS_JAC_UNDECIDED && w->depth < SS_PSI_MAXDEPTH) /* near a zero of the
+                                                                     leading term */
+    ss_psi_piece_sign_interval3(l3, h3, SS_PSI_MAXDEPTH, pr);
+  return pr->sign == SS_JAC_POSITIVE ? 1 : pr->sign == SS_JAC_NEGATIVE ? -1 : 0;
+}
+
+/* A fold proven on quadrant c of the single layer m (pr FOLDED): its two
+ * points and det Dψ enclosures into r in the box's parameters (ss_psi_tube.h,
+ * "A fold"). */
+static void keep_fold(const tube_ws *w, int m, int c, const ss_psi_piece_result *pr,
+                      ss_psi_tube_result *r) {
+  const ss_limit_tube *t = w->t;
+  const double h = ldexp(1.0, -(m + 1));
+  for (int i = 0; i < 2; i++) {
+    r->where[i][t->axis] = pr->where[i][t->axis];
+    for (int k = 0; k < 2; k++) {
+      const int a = t->across[k];
+      const double low = ((t->corner >> a) & 1u) ? 1.0 - 2.0 * h : 0.0;
+      r->where[i][a] = low + h * (((t->quad[c] >> a) & 1u) + pr->where[i][a]);
+    }
+  }
+  arb_t f, d;
+  arb_init(f), arb_init(d);
+  arb_pow_ui(f, w->mu, 2 * (ulong)m, PREC);
+  arb_mul_2exp_si(f, f, 2 * (m + 1));
+  for (int i = 0; i < 2; i++) {
+    ball_of(d, pr->det[i][0], pr->det[i][1]);
+    arb_mul(d, d, f, PREC);
+    bounds_of(d, &r->det[i][0], &r->det[i][1]);
+  }
+  arb_clear(f), arb_clear(d);
+  r->fold = 1;
+  r->fold_layer = m;
 }
 
 /* One layer (tau or eps as layer_nets, s): the three quadrants' common strict sign, or 0
- * with why. */
+ * with why (a fold of a single layer m1 = m2 - 1 kept, keep_fold). */
 static int judge_layer(const tube_ws *w, int m1, int m2, double eps, const arb_t s,
                        const char *what, ss_psi_tube_result *r) {
   arb_mat_t Vx, Vy;
@@ -590,13 +630,15 @@ static int judge_layer(const tube_ws *w, int m1, int m2, double eps, const arb_t
   layer_nets(w, m1, m2, eps, s, Vx, Vy);
   int sign = 0;
   for (int c = 0; c < 3; c++) {
-    int fold = 0;
-    const int sc = judge_quadrant(w, c, Vx, Vy, &fold);
+    ss_psi_piece_result pr;
+    const int sc = judge_quadrant(w, c, Vx, Vy, &pr);
     if (sc == 0 || (c && sc != sign)) {
+      const int fold = pr.sign == SS_JAC_FOLDED;
       snprintf(r->why, sizeof r->why, "%s, quadrant %d: %s", what, c + 1,
-               fold ? "det Dpsi takes both signs"
+               fold ? "det Dpsi takes both signs (proven)"
                : sc ? "the other sign"
                     : "no sign proven");
+      if (fold && eps < 0.0 && m2 == m1 + 1) keep_fold(w, m1, c, &pr, r);
       sign = 0;
       break;
     }
@@ -704,7 +746,7 @@ static ss_status spec_of(const ss_limit_tube *t, long maxden, ss_psi_tube_cache 
   if (pv > 0) snprintf(r.why, sizeof r.why, "no three independent rows of [1 | X]");
   if (!pv && !r.why[0]) pv = basis_change(&sp->w, r.why, sizeof r.why);
   if (pv < 0) goto nomem;
-  if (!r.why[0]) norms(&sp->w, sp->tau);
+  if (!r.why[0] && norms(&sp->w, sp->tau)) goto nomem;
   memcpy(sp->why, r.why, sizeof sp->why);
   sp->mu = r.mu, sp->ratio = r.ratio;
   *out = sp;

@@ -33,9 +33,23 @@
  * [-eps, eps] and mu^m by [0, mu^m0], where eps = max ||tau_r||_inf over r in
  * [m0, m0 + q) for a q with ||tau_q||_inf <= 1 (then ||tau_m|| <= eps for
  * every m >= m0).  All of them of one strict sign: det Dψ has that sign on
- * the whole box minus the spoke, proven.  The tail's leading term is
+ * the whole box minus the spoke, proven (every tau_m a product of two earlier
+ * powers, tau_h tau_(m-h) with h the largest power of two below m, so that
+ * its ball is not the m-fold product of |N / mu|'s; m0 <= 127).  The tail's
+ * leading term is
  * det[a' | B] det Dchi, so this is the issue's "det[a' | B] of one strict sign
- * and chi regular", with the error terms bounded rather than neglected. */
+ * and chi regular", with the error terms bounded rather than neglected.
+ *
+ * A fold.  A single layer m whose quadrant c is proven to take both signs
+ * (two exact values of opposite strict signs, ss_psi_bernstein.h) proves
+ * that ψ folds: the quadrant's true net is G_c F^m P = G_c Vx_m (Vx_m = F^m
+ * P as above), whose across differences are mu^m those of G_c Vy_m, so
+ * det Dψ in the quadrant's parameters is mu^2m times the det judged; in
+ * the box's parameters the across axes are 2^(m+1) times finer.  The two
+ * points and their enclosures are returned in the box's parameters (the
+ * quadrant is [L, L + 2^-(m+1)] across, L = its corner bit's offset in the
+ * layer's corner region [0, 2^-m] or [1 - 2^-m, 1], and the whole box
+ * along). */
 #ifndef SS_PSI_TUBE_H
 #define SS_PSI_TUBE_H
 
@@ -47,13 +61,20 @@ SS_BEGIN_DECLS
 
 /* What the proof in one tube box found. */
 typedef struct {
-  int sign;      /* +1 / -1: det Dψ proven of that strict sign on the box
-                    minus the spoke; 0: not proven (why says why) */
-  int layers;    /* m0: the layers judged directly before the tail */
-  double mu;     /* the across eigenvalue (midpoint of its enclosure) */
-  double ratio;  /* |next root| / mu (midpoints): the tail's rate */
-  double eps;    /* the tail bound used, or NaN */
-  char why[200]; /* sign 0: the reason; else empty */
+  int sign;           /* +1 / -1: det Dψ proven of that strict sign on the box
+                         minus the spoke; 0: not proven (why says why) */
+  int layers;         /* m0: the layers judged directly before the tail */
+  double mu;          /* the across eigenvalue (midpoint of its enclosure) */
+  double ratio;       /* |next root| / mu (midpoints): the tail's rate */
+  double eps;         /* the tail bound used, or NaN */
+  char why[200];      /* sign 0: the reason; else empty */
+  int fold;           /* 1 if one layer's quadrant was proven to take both signs
+                         (sign 0): psi folds in the tube, witnessed below */
+  int fold_layer;     /* with fold: that layer m */
+  double where[2][3]; /* with fold: two points in the box's parameters
+                         [0,1]^3 */
+  double det[2][2];   /* with fold: enclosures of det Dψ there, derivatives
+                         in the box's parameters, of opposite strict signs */
 } ss_psi_tube_result;
 
 /* What F alone determines (its spectrum, eigenspace, change of basis and the

@@ -16,6 +16,13 @@
  *     k = 10 links whose net is undecided: certified pass on ψ;
  *   - on the edge of the proof: the points' enclosure widened by 1e-9 of its
  *     spread, every tube still proven; by 10 %, none;
+ *   - a k = 12 link whose tube folds at layer 1: a certified failure on ψ,
+ *     its two witnesses (in one layer of the tube) of opposite signs, and
+ *     det Dψ there recomputed by ss_limit_eval on the enclosure's midpoints
+ *     inside their enclosures (to 1e-9 relative: another path, doubles);
+ *   - a k = 12 link whose tail needed the powers of N / mu formed as
+ *     products of two earlier ones (by steps of N / mu their balls grow
+ *     wider than the powers near layer 75): a certified pass with its tubes;
  *   - refusals: a tube without an enclosure (SS_EINPUT). */
 #include <math.h>
 #include <stdlib.h>
@@ -276,6 +283,49 @@ static void certified(const ss_scheme *s, const char *link) {
   ss_pipeline_free(p);
 }
 
+/* A link whose tube folds (MLCA k = 12, found by reports/tubes.sh): the
+ * failure proven on psi, its witnesses checked by ss_limit_eval. */
+static void tube_fold(const ss_scheme *s, const char *link) {
+  ss_pipeline *p = psi_run_tubes(s, link, 1);
+  CHECK(p && p->psi.ran && p->psi.enclosed, "%s: psi judged on an enclosure", link);
+  if (!p || !p->psi.ran) {
+    ss_pipeline_free(p);
+    return;
+  }
+  const ss_psi_result *r = &p->psi;
+  ss_verdict reg = p->reg.verdict, inj = p->inj.verdict;
+  ss_psi_apply(r, 1, &reg, &inj);
+  CHECK(r->verdict.verdict == SS_FAIL && r->verdict.certified && r->nwitness == 2 &&
+            r->tube_fold_layer >= 0 && reg.verdict == SS_FAIL && reg.certified &&
+            reg.on == SS_ON_PSI && inj.verdict == SS_FAIL && inj.on == SS_ON_PSI,
+        "%s: psi folds in a tube, proven (%s)", link, r->verdict.reason);
+  const ss_psi_point *w = r->witness;
+  CHECK(
+      w[0].det[0] <= w[0].det[1] && w[1].det[0] <= w[1].det[1] &&
+          ((w[0].det[0] > 0 && w[1].det[1] < 0) || (w[0].det[1] < 0 && w[1].det[0] > 0)),
+      "%s: witnesses [%g, %g] and [%g, %g] of opposite strict signs", link, w[0].det[0],
+      w[0].det[1], w[1].det[0], w[1].det[1]);
+  psi_encl e = {0}; /* psi in the certified basis: its enclosure's midpoints */
+  ss_limit *L =
+      r->nwitness == 2 && !psi_encl_get(p, 0.0, NULL, &e) ? psi_limit(s, p, e.mid) : NULL;
+  CHECK(L != NULL, "%s: the enclosed basis as a limit evaluator", link);
+  for (int i = 0; i < 2 && L; i++) {
+    ss_limit_point pt;
+    ss_error err = {0};
+    const int ok =
+        !ss_limit_eval(L, w[i].cell, w[i].at[0], w[i].at[1], w[i].at[2], 1, &pt, &err);
+    const double d = ok ? psi_det3(pt.jac) : (double)NAN, tol = 1e-9 * fabs(w[i].det[0]);
+    CHECK(ok && d >= w[i].det[0] - tol && d <= w[i].det[1] + tol,
+          "%s: witness %d (cell %zu at %g, %g, %g): det Dpsi %.17g by ss_limit_eval in "
+          "[%.17g, %.17g] (%s)",
+          link, i, w[i].cell, w[i].at[0], w[i].at[1], w[i].at[2], d, w[i].det[0],
+          w[i].det[1], err.msg);
+  }
+  ss_limit_free(L);
+  psi_encl_free(&e);
+  ss_pipeline_free(p);
+}
+
 static void refusals(void) {
   ss_limit_tube u;
   memset(&u, 0, sizeof u);
@@ -311,6 +361,10 @@ int main(int argc, char **argv) {
     /* its tail holds from layer 47, not from 63: undecided while the
      * windows doubled to 32 and 63 */
     certified(s, "11 bcdefghijk,akc,abked,ace,adckgf,aeg,afekih,agi,ahgkj,aik,ajigecb");
+    certified(
+        s, "12 bcdefghij,ajc,abjd,acjfke,adkf,aekdjg,afjlh,aglji,ahj,aihlgfdcb,dfe,gjh");
+    tube_fold(
+        s, "12 bcdefghij,ajkc,abkd,acke,adkf,aekg,afkh,agkjli,ahlj,ailhkb,bjhgfedc,hji");
   }
   ss_scheme_free(s);
   return ss_test_done("psi_tube");
