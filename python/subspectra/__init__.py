@@ -28,6 +28,7 @@ The library is looked for in $SUBSPECTRA_LIBRARY, then where `meson install`
 put it, then by the dynamic linker's search (libsubspectra.so.0).
 """
 import json
+import numbers
 import operator
 import os
 
@@ -131,28 +132,44 @@ void free(void *p);
 _VERTEX, _EDGE, _FACE, _SURFACE_VERTEX = 0, 1, 2, 3
 
 
-def _load():
-    tried = []
-    for path in (os.environ.get("SUBSPECTRA_LIBRARY"), _config.LIBRARY, "libsubspectra.so.0"):
-        if not path:
-            continue
-        try:
-            return _ffi.dlopen(path)
-        except OSError as e:
-            tried.append("%s (%s)" % (path, e))
-    raise OSError("subspectra: cannot load libsubspectra: tried " + "; ".join(tried))
-
-
-_lib = _load()
-_libc = _ffi.dlopen(None)  # free() for the library's malloc'd strings
-
-
 class SubspectraError(Exception):
     """A library call failed: .status is its ss_status name, str() its message."""
 
     def __init__(self, status, message):
         super().__init__(message)
         self.status = status
+
+
+def _load():
+    """The shared library: $SUBSPECTRA_LIBRARY when set (and nothing else:
+    a path that does not load is an error, not a reason to take another
+    library), else the one the package was installed with (_config.LIBRARY,
+    relative to the package in a wheel), else the dynamic linker's
+    libsubspectra.so.0 when that file is gone.  Returns (library, path)."""
+    env = os.environ.get("SUBSPECTRA_LIBRARY")
+    if env:
+        try:
+            return _ffi.dlopen(env), env
+        except OSError as e:
+            raise SubspectraError("i/o error", "SUBSPECTRA_LIBRARY=%s: cannot load the "
+                                  "library: %s" % (env, e)) from None
+    own = os.path.join(os.path.dirname(os.path.abspath(__file__)), _config.LIBRARY)
+    if os.path.exists(own):
+        try:
+            return _ffi.dlopen(own), own
+        except OSError as e:
+            raise SubspectraError("i/o error", "%s: cannot load the library: %s"
+                                  % (own, e)) from None
+    try:
+        return _ffi.dlopen("libsubspectra.so.0"), "libsubspectra.so.0"
+    except OSError as e:
+        raise SubspectraError("i/o error", "cannot load libsubspectra: %s is not there and "
+                              "the dynamic linker says: %s (set SUBSPECTRA_LIBRARY to the "
+                              "library's path)" % (own, e)) from None
+
+
+_lib, library_path = _load()
+_libc = _ffi.dlopen(None)  # free() for the library's malloc'd strings
 
 
 _STATUS = ["ok", "out of memory", "bad input", "i/o error", "numerical failure",
@@ -188,12 +205,37 @@ def _integer(name, v):
         raise TypeError("%s: expected an integer, not %r" % (name, v)) from None
 
 
+def _text(name, v, what):
+    """v as a str, or TypeError naming the argument and what it should be
+    (vertex=5 or scheme=None would otherwise fail inside str.encode)."""
+    if not isinstance(v, str):
+        raise TypeError("%s: expected %s (a str), not %r" % (name, what, v))
+    return v
+
+
+def _flag(name, v):
+    """v as a bool, or TypeError naming the argument: face="no" or
+    certify=1 are not guessed at."""
+    if not isinstance(v, (bool, np.bool_)):
+        raise TypeError("%s: expected True or False, not %r" % (name, v))
+    return bool(v)
+
+
+def _real(name, v):
+    """v as a float, or TypeError naming the argument (a str or a bool is
+    refused; ints and NumPy's numbers are taken)."""
+    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Real, np.floating)):
+        raise TypeError("%s: expected a real number, not %r" % (name, v))
+    return float(v)
+
+
 class _Case:
     """A scheme and a case, built in C; freed on exit (a context manager)."""
 
     def __init__(self, scheme, vertex=None, edge=None, face=False, surface_vertex=None,
                  diagonals=None, cls=None):
-        given = [vertex is not None, edge is not None, bool(face), surface_vertex is not None]
+        given = [vertex is not None, edge is not None, _flag("face", face),
+                 surface_vertex is not None]
         if sum(given) != 1:
             raise ValueError("give exactly one case: vertex=LINK, edge=N, face=True or "
                              "surface_vertex=N")
@@ -203,6 +245,7 @@ class _Case:
         self._l = _ffi.new("ss_link **")
         self.scheme = None
         try:
+            scheme = _text("scheme", scheme, "a scheme name, one of scheme_names()")
             _check(_lib.ss_scheme_new(scheme.encode(), self._s, self.err), self.err)
             self.scheme = self._s[0]
             if cls is not None and surface_vertex is None:
@@ -218,6 +261,8 @@ class _Case:
                                      % diagonals)
                 self.c.diag = d[0]
             if vertex is not None:
+                vertex = _text("vertex", vertex, "a link: plantri ASCII such as "
+                               "'4 bcd,adc,abd,acb', or a name such as 'octahedron'")
                 _check(_lib.ss_link_parse(vertex.encode(), self._l, self.err), self.err)
                 self.c.kind, self.c.link = _VERTEX, self._l[0]
             elif edge is not None:
@@ -278,7 +323,7 @@ def eigenvalues(scheme, tol=1e-6, **case):
     as a NumPy int array: (values, multiplicities)."""
     def use(M, err):
         opts = _lib.ss_eig_defaults(M.dim)
-        opts.tol = tol
+        opts.tol = _real("tol", tol)
         po = _ffi.new("ss_eig_opts *", opts)
         pe = _ffi.new("ss_eig **")
         _check(_lib.ss_eig_new(M.S, M.n2, M.n1, po, pe, err), err)
@@ -303,7 +348,7 @@ def eigenvectors(scheme, k=4, tol=1e-6, **case):
     left[:, 0] is the limit-position mask, the next columns the tangent masks."""
     def use(M, err):
         pv = _ffi.new("ss_eigvec **")
-        _check(_lib.ss_eigvec_new(M.S, M.n2, _integer("k", k), tol, pv, err), err)
+        _check(_lib.ss_eigvec_new(M.S, M.n2, _integer("k", k), _real("tol", tol), pv, err), err)
         try:
             v = pv[0]
             n, kk = v.n, v.k
@@ -333,14 +378,14 @@ def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, dia
     with _Case(scheme, vertex, edge, face, surface_vertex, diagonals, cls) as c:
         o = _ffi.new("ss_report_analyze_opts *", _lib.ss_report_analyze_defaults())
         if tol is not None:
-            o.tol = tol
+            o.tol = _real("tol", tol)
         if eigenvalues is not None:
             o.neig = _integer("eigenvalues", eigenvalues)
         if depth is not None:
             o.depth = _integer("depth", depth)
         if ring_levels is not None:
             o.ring_levels = _integer("ring_levels", ring_levels)
-        o.certify = 1 if certify else 0
+        o.certify = 1 if _flag("certify", certify) else 0
         out = _ffi.new("char **")
         _check(_lib.ss_report_analyze(c.scheme, c.c, o, out, c.err), c.err)
         try:

@@ -15,7 +15,10 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
    and the regular MLCA edge's tricubic spectrum 1, 1/2 (x3), 1/4 (x6);
  - eigenvectors(): S R = R diag(v), L^T S = diag(v) L^T, L^T R = I, r_0 = 1,
    and Catmull-Clark's closed-form limit-position mask;
- - bad input raises SubspectraError naming the problem;
+ - bad input raises SubspectraError naming the problem, arguments of the
+   wrong type TypeError naming the argument (vertex=5, edge=5.9, tol="x",
+   certify=1, scheme=None), a SUBSPECTRA_LIBRARY that does not load
+   SubspectraError naming the path (no other library is taken);
  - the structure layouts the package declares to cffi equal the C compiler's
    (LAYOUT: lines "sizeof T N" and "offsetof T FIELD N" from the installed
    headers), so a field added to ss_case or ss_local is caught here.
@@ -23,6 +26,7 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
 import io
 import json
 import math
+import os
 import subprocess
 import sys
 
@@ -30,6 +34,9 @@ import numpy as np
 import scipy.io
 
 import subspectra
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ss_json_same  # noqa: E402 -- beside this file
 
 exe, layout = sys.argv[1], sys.argv[2]
 fails = 0
@@ -42,23 +49,8 @@ def fail(msg):
 
 
 def same(a, b, path):
-    """Recursive comparison; numbers within a relative 1e-12."""
-    if isinstance(a, dict) and isinstance(b, dict):
-        if set(a) != set(b):
-            fail("%s: keys differ: %s vs %s" % (path, sorted(set(a) ^ set(b)), ""))
-        for k in set(a) & set(b):
-            same(a[k], b[k], path + "." + k)
-    elif isinstance(a, list) and isinstance(b, list):
-        if len(a) != len(b):
-            fail("%s: lengths %d vs %d" % (path, len(a), len(b)))
-        for i, (x, y) in enumerate(zip(a, b)):
-            same(x, y, "%s[%d]" % (path, i))
-    elif isinstance(a, float) or isinstance(b, float):
-        if not (isinstance(a, (int, float)) and isinstance(b, (int, float))
-                and abs(a - b) <= 1e-12 * max(abs(a), abs(b), 1e-300)):
-            fail("%s: %r vs %r" % (path, a, b))
-    elif a != b:
-        fail("%s: %r vs %r" % (path, a, b))
+    """Recursive comparison; numbers within a relative 1e-12 (ss_json_same)."""
+    ss_json_same.same(a, b, path, fail)
 
 
 def cli(*args):
@@ -181,6 +173,13 @@ except ValueError:
 # on mlca's edge said "only for the edge case")
 for kw, exc, what in (
         ({"edge": 5.7}, TypeError, "edge: expected an integer, not 5.7"),
+        ({"edge": 5.9}, TypeError, "edge: expected an integer, not 5.9"),
+        ({"vertex": 5}, TypeError, "vertex: expected a link: plantri ASCII"),
+        ({"vertex": b"octahedron"}, TypeError, "vertex: expected a link"),
+        ({"face": "yes"}, TypeError, "face: expected True or False, not 'yes'"),
+        ({"edge": 5, "certify": 1}, TypeError, "certify: expected True or False, not 1"),
+        ({"edge": 5, "tol": "1e-6"}, TypeError, "tol: expected a real number, not '1e-6'"),
+        ({"edge": 5, "tol": True}, TypeError, "tol: expected a real number, not True"),
         ({"edge": 5.0}, TypeError, "edge: expected an integer, not 5.0"),
         ({"edge": "5"}, TypeError, "edge: expected an integer, not '5'"),
         ({"edge": True}, TypeError, "edge: expected an integer, not True"),
@@ -210,6 +209,21 @@ for kw, what in (({"surface_vertex": 5, "cls": 8}, "a 4-8 vertex class exists on
         if what not in str(e):
             fail("analyze('loop', %s): %s" % (kw, e))
 try:
+    subspectra.eigenvalues("mlca", "x", edge=4)
+    fail("eigenvalues(tol='x') did not raise")
+except TypeError as e:
+    if "tol: expected a real number, not 'x'" not in str(e):
+        fail("eigenvalues(tol='x'): %s" % e)
+for scheme in (5, None, b"mlca"):
+    try:
+        subspectra.analyze(scheme, edge=5)
+        fail("analyze(%r) did not raise" % (scheme,))
+    except TypeError as e:
+        if "scheme: expected a scheme name" not in str(e):
+            fail("analyze(%r): %s" % (scheme, e))
+    except Exception as e:  # noqa: BLE001
+        fail("analyze(%r): %s, not TypeError: %s" % (scheme, type(e).__name__, e))
+try:
     subspectra.eigenvectors("mlca", k=2.5, edge=4)
     fail("eigenvectors(k=2.5) did not raise")
 except TypeError as e:
@@ -221,5 +235,21 @@ if subspectra.analyze("mlca", edge=np.int64(5))["case"] != "edge":
 if subspectra.analyze("quasi48", surface_vertex=5, cls=np.int32(4)).get("class") != 4:
     fail("quasi48 cls=np.int32(4) is not class 4")
 print("ok: bad input")
+
+# the library: the one SUBSPECTRA_LIBRARY names; a path there that does not
+# load raises SubspectraError naming it, even when another library would load
+# (the staged one on LD_LIBRARY_PATH, where the dynamic linker finds it)
+lib = os.environ.get("SUBSPECTRA_LIBRARY", "")
+if subspectra.library_path != lib:
+    fail("library_path %r, SUBSPECTRA_LIBRARY %r" % (subspectra.library_path, lib))
+for bad in ("/nonexistent/dir/libsubspectra.so.0", os.path.abspath(__file__)):
+    env = dict(os.environ, SUBSPECTRA_LIBRARY=bad,
+               LD_LIBRARY_PATH=os.path.dirname(lib) + ":" + os.environ.get("LD_LIBRARY_PATH", ""))
+    p = subprocess.run([sys.executable, "-c", "import subspectra; print(subspectra.library_path)"],
+                       env=env, capture_output=True, text=True)
+    want = "subspectra.SubspectraError: SUBSPECTRA_LIBRARY=%s: cannot load the library" % bad
+    if p.returncode == 0 or want not in p.stderr:
+        fail("SUBSPECTRA_LIBRARY=%s: exit %d, %r%r" % (bad, p.returncode, p.stdout, p.stderr[-300:]))
+print("ok: SUBSPECTRA_LIBRARY that does not load: SubspectraError naming it, no other library")
 
 sys.exit(1 if fails else 0)
