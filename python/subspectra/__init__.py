@@ -31,102 +31,25 @@ import json
 import numbers
 import operator
 import os
+import queue
+import threading
 
 import numpy as np
 import scipy.sparse
 from cffi import FFI
 
-from . import _config
+from . import _cdef, _config
 
-__all__ = ["SubspectraError", "scheme_names", "local_matrix", "eigenvalues", "eigenvectors",
-           "analyze"]
+__all__ = ["SubspectraError", "scheme_names", "local_matrix", "local_labels", "eigenvalues",
+           "eigenvectors", "analyze", "jsr", "enumerate_links"]
 
 _ffi = FFI()
-#Declarations as in the installed headers(ss_error.h, ss_scheme.h, ss_link.h,
-#ss_case.h, ss_local.h, ss_eig.h, ss_report_case.h).Enumerations are passed as int.
-#ss_local and ss_eig are read through pointers only, so only their leading
-#fields are declared(in the headers' order; the rest is never touched).
-_ffi.cdef("""
-typedef struct {
-  int status;
-  char msg[512]; } ss_error;
-typedef struct ss_scheme ss_scheme;
-typedef struct ss_link_ ss_link;
-typedef struct {
-  int kind;
-  const ss_link *link;
-  int n;
-  int diag;
-  int cls; } ss_case;
-typedef struct {
-  size_t n2;
-  size_t n1;
-  double *S;
-  size_t nnz;
-  void *label;
-  int ncoord;
-  int dim;
-  int level;
-} ss_local;
-typedef struct {
-  double re, im, rcond;
-  int block, group, mult;
-  double err, cluster;
-} ss_eigval;
-typedef struct {
-  size_t n;
-  ss_eigval *val; } ss_eig;
-typedef struct {
-  void *fn;
-  void *ctx; } ss_progress;
-typedef struct {
-  double tol;
-  double cluster;
-  int dim;
-  int basis;
-  int force;
-  ss_progress progress;
-} ss_eig_opts;
-typedef struct {
-  double tol;
-  int neig;
-  int depth;
-  int ring_levels;
-  int certify; }
-  ss_report_analyze_opts;
-typedef struct {
-  size_t n;
-  int k;
-  double *re, *im;
-  int *group;
-  int *biorth;
-  double *right_re;
-  double *right_im;
-  double *left_re;
-  double *left_im;
-  int complex_any;
-} ss_eigvec;
-
-const char *const *ss_scheme_names(void);
-int ss_scheme_new(const char *name, ss_scheme **out, ss_error *err);
-void ss_scheme_free(ss_scheme *s);
-int ss_link_parse(const char *text, ss_link **out, ss_error *err);
-void ss_link_free(ss_link *l);
-int ss_diag_parse(const char *name, int *out);
-int ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out, ss_error *err);
-void ss_local_free(ss_local *L);
-ss_eig_opts ss_eig_defaults(int dim);
-int ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
-               ss_eig **out, ss_error *err);
-void ss_eig_free(ss_eig *e);
-ss_report_analyze_opts ss_report_analyze_defaults(void);
-int ss_report_analyze(const ss_scheme *s, const ss_case *c,
-                      const ss_report_analyze_opts *o, char **json, ss_error *err);
-int ss_eigvec_new(const double *S, size_t n, int k, double tol, ss_eigvec **out,
-                  ss_error *err);
-void ss_eigvec_free(ss_eigvec *v);
-void free(void *p);
-""")
+# The declarations of the types and functions used here, generated from the
+# public headers when the package is built (python/gen_cdef.py), so that the
+# structure layouts are the headers' own; and libc's free() for the strings
+# the library allocates.
+_ffi.cdef(_cdef.CDEF)
+_ffi.cdef("void free(void *p);")
 
 #ss_case_kind(ss_case.h)
 _VERTEX, _EDGE, _FACE, _SURFACE_VERTEX = 0, 1, 2, 3
@@ -255,7 +178,7 @@ class _Case:
                 if not isinstance(diagonals, str):
                     raise TypeError("diagonals: expected bfs, proper, skew or center, "
                                     "not %r" % (diagonals,))
-                d = _ffi.new("int *")
+                d = _ffi.new("ss_diag_mode *")
                 if _lib.ss_diag_parse(diagonals.encode(), d):
                     raise ValueError("diagonals: expected bfs, proper, skew or center, not %r"
                                      % diagonals)
@@ -392,3 +315,190 @@ def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, dia
             return json.loads(_ffi.string(out[0]).decode())
         finally:
             _libc.free(out[0])
+
+
+def local_labels(scheme, **case):
+    """Which point is which in S: (coords, n1).  coords is a NumPy int array
+    of shape (n2, d): row i the exact coordinates of S's point i relative to
+    the centre (row 0, all zeros), in units of the grid of the level S maps
+    from, in the star's chart (ss_star.h): conical coordinates over the link
+    for a vertex (d = k, one per link vertex), over the faces around the edge
+    and the edge itself for an edge (d = n + 1), over the n rays for a
+    surface vertex (d = n), barycentric for the face (d = 5).  Positions are
+    a linear image of the chart: coords @ axes, axes one row per
+    coordinate.  n1 is the one-ring's size, the first n1 rows.  The rows and
+    columns of local_matrix() are in this order, so S @ (coords @ axes) =
+    (coords @ axes) / 2 where the scheme reproduces linear functions on the
+    regular grid."""
+    def use(M, err):
+        d = M.ncoord
+        coords = np.zeros((M.n2, d), dtype=np.int64)
+        for i in range(M.n2):
+            lab = M.label[i]
+            for j in range(lab.n):
+                coords[i, lab.idx[j]] = lab.val[j]
+        return coords, int(M.n1)
+    return _with_local(scheme, case, use)
+
+
+_NORMS = ["inf", "2", "auto", "ellipsoid", "polytope"]
+_POLYTOPE = ["closed", "vertex cap", "time limit", "LP failed", "rho = 0"]
+
+
+def _jsr_dict(scheme, c, L, r, o, verdict):
+    """The dictionary of `subspectra jsr --format json` (cli/ss_cli_jsr.c)."""
+    edge = c.kind == _lib.SS_CASE_EDGE
+    d = {"scheme": scheme, "case": _ffi.string(_lib.ss_case_name(c.kind)).decode()}
+    if edge:
+        d["n"] = c.n
+    d["diagonals"] = _ffi.string(_lib.ss_diag_name(c.diag)).decode()
+    d.update(level=L.level, maps=L.m, support=L.n, subspace=L.r,
+             subspace_basis=_ffi.string(L.basis).decode(), invariance_defect=L.defect,
+             theta=[L.theta[i] for i in range(L.r)])
+    if edge:
+        d["lambda1"] = L.lambda1
+    d["rho_k"] = [r.rho_inf[k] for k in range(r.depth)]
+    d["rho_k_2"] = [r.rho_2[k] for k in range(r.depth)]
+    if r.cut_len > 0:
+        d.update(stopped_by="max-seconds", depth=o.depth, depth_complete=r.depth,
+                 cut_length=r.cut_len, cut_words=r.cut_words,
+                 cut_of=int(float(L.m) ** r.cut_len))
+    d["lower"] = r.lower
+    d["lower_word"] = [r.lower_word[k] + 1 for k in range(r.lower_len)]
+    if not edge:
+        thr = "1/4 (C^2 across the face)"
+    elif abs(L.lambda1 - 0.5) <= 1e-8:
+        thr = "lambda3 = lambda1 = 1/2"
+    else:
+        thr = "lambda3 = lambda1 (< 1/2)" if L.lambda1 < 0.5 else "lambda3 = 1/2 (< lambda1)"
+    d.update(upper=r.upper, threshold=L.threshold, threshold_name=thr,
+             verdict=_ffi.string(_lib.ss_verdict_name(verdict.verdict)).decode(),
+             certified=bool(r.certified), converged=bool(r.converged), nodes=r.nodes,
+             norm=_NORMS[r.norm], weighted=bool(r.weighted), fit_words=o.fit_words,
+             bnb_depth=r.bnb_depth,
+             polytope=_POLYTOPE[r.polytope] if 0 <= r.polytope < 5 else "not run",
+             polytope_vertices=r.poly_vertices)
+    if r.polytope == 0:
+        d["polytope_upper"] = r.poly_upper
+    return d
+
+
+def jsr(scheme, face=False, edge=None, diagonals=None, depth=None, gap=None, norm=None,
+        fit_words=None, max_seconds=None):
+    """The Levin-Levin joint-spectral-radius test across a tet/oct face
+    (face=True) or along an edge of valence N (edge=N): the dictionary
+    `subspectra jsr --scheme SCHEME (--face | --edge N) --format json`
+    prints -- the sub-patch maps' sizes, the invariant subspace, the profiles
+    rho_k (inf- and 2-norm), proven bounds lower <= JSR <= upper with the word
+    attaining lower, the threshold and the verdict ("pass" when upper is
+    below it).  Options as jsr's --depth, --gap, --norm (inf, 2, auto,
+    ellipsoid, polytope), --fit-words, --max-seconds and --diagonals; the
+    command's defaults otherwise.  Raises SubspectraError where the command
+    fails (the reduction does not apply: status "internal error")."""
+    if edge is None and not _flag("face", face):
+        raise ValueError("give face=True or edge=N")
+    if edge is not None and face:
+        raise ValueError("give face=True or edge=N, not both")
+    case = {"edge": edge} if edge is not None else {"face": True}
+    with _Case(scheme, diagonals=diagonals, **case) as c:
+        o = _ffi.new("ss_jsr_opts *", _lib.ss_jsr_defaults())
+        if depth is not None:
+            o.depth = _integer("depth", depth)
+        if gap is not None:
+            o.gap = _real("gap", gap)
+        if norm is not None:
+            if norm not in _NORMS:
+                raise ValueError("norm: expected one of %s, not %r" % (", ".join(_NORMS), norm))
+            o.norm = _NORMS.index(norm)
+        if fit_words is not None:
+            o.fit_words = _integer("fit_words", fit_words)
+        if max_seconds is not None:
+            o.max_seconds = _real("max_seconds", max_seconds)
+        pl = _ffi.new("ss_levin **")
+        _check(_lib.ss_levin_new(c.scheme, c.c, pl, c.err), c.err)
+        r = _ffi.new("ss_jsr_result *")
+        try:
+            L = pl[0]
+            _check(_lib.ss_jsr_compute(L.m, L.n - L.r, _ffi.cast("const double *const *", L.Y),
+                                       o, r, c.err), c.err)
+            v = _ffi.new("ss_verdict *")
+            _lib.ss_levin_verdict(L, r, v)
+            return _jsr_dict(scheme, c.c, L, r, o, v)
+        finally:
+            _lib.ss_jsr_result_clear(r)
+            _lib.ss_levin_free(pl[0])
+
+
+def enumerate_links(kmin, kmax=None, part=0, nparts=1):
+    """Every link (triangulation of the sphere, mirror images identified) with
+    kmin..kmax vertices (kmax = kmin by default; 4 <= kmin <= kmax <= 20),
+    each exactly once, as `subspectra enumerate links --vertices KMIN..KMAX
+    [--part PART/NPARTS]` lists them: an iterator of plantri ASCII strings
+    ("4 bcd,adc,abd,acb"), each usable as analyze(..., vertex=LINK).  Lazy:
+    the enumeration runs in a thread a few links ahead of the loop and stops
+    when the iterator is closed or dropped, so memory stays flat however many
+    links there are (k = 16 has 17490241)."""
+    kmin = _integer("kmin", kmin)
+    kmax = kmin if kmax is None else _integer("kmax", kmax)
+    opts = _ffi.new("ss_enum_opts *", {"kmin": kmin, "kmax": kmax,
+                                       "part": _integer("part", part),
+                                       "nparts": _integer("nparts", nparts)})
+    err = _ffi.new("ss_error *")
+    q = queue.Queue(maxsize=256)
+    stop = threading.Event()
+    failed = []
+
+    def offer(item):
+        """Put item on the queue unless the consumer has gone; False if it has."""
+        while not stop.is_set():
+            try:
+                q.put(item, timeout=0.1)
+                return True
+            except queue.Full:
+                pass
+        return False
+
+    @_ffi.callback("int(const ss_link *, void *)", onerror=lambda *exc: 1)
+    def visit(link, ctx):
+        p = _ffi.new("char **")
+        st = _lib.ss_link_format(link, p, err)
+        if st:
+            failed.append(st)
+            return 1
+        text = _ffi.string(p[0]).decode()
+        _libc.free(p[0])
+        return 0 if offer(text) else 1
+
+    def run():
+        st = _lib.ss_enum_links(opts, visit, _ffi.NULL, _ffi.NULL, err)
+        offer(_Done(failed[0] if failed else st))
+
+    # the options are checked before anything runs, in this thread
+    if not 4 <= kmin <= kmax <= _lib.SS_ENUM_MAXK or not 0 <= part < nparts:
+        raise ValueError("expected 4 <= kmin <= kmax <= %d and 0 <= part < nparts, not "
+                         "kmin=%d kmax=%d part=%d nparts=%d"
+                         % (_lib.SS_ENUM_MAXK, kmin, kmax, part, nparts))
+    return _links(q, stop, threading.Thread(target=run, daemon=True), err, visit)
+
+
+class _Done:
+    """The end of an enumeration, with its status."""
+
+    def __init__(self, status):
+        self.status = status
+
+
+def _links(q, stop, thread, err, keep):
+    """The generator of enumerate_links (keep: the callback, alive while it runs)."""
+    thread.start()
+    try:
+        while True:
+            item = q.get()
+            if isinstance(item, _Done):
+                _check(item.status, err)
+                return
+            yield item
+    finally:
+        stop.set()
+        thread.join()
+        del keep

@@ -19,6 +19,9 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
    wrong type TypeError naming the argument (vertex=5, edge=5.9, tol="x",
    certify=1, scheme=None), a SUBSPECTRA_LIBRARY that does not load
    SubspectraError naming the path (no other library is taken);
+ - local_labels() against linear precision on the regular grids (S P = P / 2);
+ - enumerate_links() against the counts of A000109 and `enumerate links`;
+ - jsr() equals `jsr --format json`;
  - the structure layouts the package declares to cffi equal the C compiler's
    (LAYOUT: lines "sizeof T N" and "offsetof T FIELD N" from the installed
    headers), so a field added to ss_case or ss_local is caught here.
@@ -152,6 +155,88 @@ for n in (3, 5, 7):
     if got.shape != want.shape or np.abs(got - want).max() > 1e-12:
         fail("catmull-clark n=%d: limit mask %s, closed form %s" % (n, got, want))
 print("ok: eigenvectors, Catmull-Clark's limit-position mask")
+
+# local_labels: the one-ring first, the centre at 0, all distinct; and the
+# rows of S agree with them: on the regular grids (tricubic MLCA edge 4,
+# bicubic Catmull-Clark and quartic box-spline Loop at the regular valence)
+# the schemes reproduce linear functions, so with the chart's axes (spokes at
+# angles 2 pi k / n, the edge along z) S P = P / 2 for the positions P
+def spokes(n):
+    return np.array([[math.cos(2 * math.pi * k / n), math.sin(2 * math.pi * k / n)]
+                     for k in range(n)])
+
+
+for scheme, case, axes in (
+        ("mlca", {"edge": 4}, np.block([[spokes(4), np.zeros((4, 1))],
+                                        [np.zeros((1, 2)), np.ones((1, 1))]])),
+        ("catmull-clark", {"surface_vertex": 4}, spokes(4)),
+        ("loop", {"surface_vertex": 6}, spokes(6))):
+    coords, n1 = subspectra.local_labels(scheme, **case)
+    S = subspectra.local_matrix(scheme, **case).toarray()
+    P = coords @ axes
+    if coords.shape != (S.shape[0], axes.shape[0]) or coords[0].any() \
+            or len(set(map(tuple, coords.tolist()))) != len(coords) \
+            or np.abs(S[:n1, n1:]).max() != 0:
+        fail("local_labels(%r, %s): shape %s, n1 %d" % (scheme, case, coords.shape, n1))
+    elif np.abs(S @ P - P / 2).max() > 1e-13:
+        fail("local_labels(%r, %s): S P != P / 2 (%g)" % (scheme, case,
+                                                          np.abs(S @ P - P / 2).max()))
+c5, n15 = subspectra.local_labels("mlca", edge=5)
+if c5.shape != (155, 6) or n15 != 33:  # 30n + 5 and 6n + 3 points; n + 1 coordinates
+    fail("local_labels mlca edge 5: %s, n1 %d" % (c5.shape, n15))
+print("ok: local_labels: linear precision S P = P / 2 on the regular grids")
+
+# enumerate_links: the numbers of triangulations of the sphere with k
+# vertices (OEIS A000109: 1, 1, 2, 5, 14, 50, 233 for k = 4..10), the same
+# links as `enumerate links`, lazy (closed early on k = 14's 339722)
+want = {4: 1, 5: 1, 6: 2, 7: 5, 8: 14, 9: 50, 10: 233}
+got = list(subspectra.enumerate_links(4, 10))
+counts = {k: sum(1 for t in got if int(t.split()[0]) == k) for k in want}
+if counts != want:
+    fail("enumerate_links(4, 10): counts %s, want %s" % (counts, want))
+if got != cli("enumerate", "links", "--vertices", "4..10").split("\n")[:-1]:
+    fail("enumerate_links(4, 10) differs from `enumerate links --vertices 4..10`")
+part = [sorted(subspectra.enumerate_links(9, part=i, nparts=3)) for i in range(3)]
+if sorted(sum(part, [])) != sorted(t for t in got if t.startswith("9 ")):
+    fail("enumerate_links(9, part=i, nparts=3): the parts are not a partition")
+it = subspectra.enumerate_links(14)
+first = [next(it) for _ in range(5)]
+it.close()
+if len(set(first)) != 5 or not all(t.startswith("14 ") for t in first):
+    fail("enumerate_links(14): %s" % first)
+for kw in ({"kmin": 3}, {"kmin": 5, "kmax": 4}, {"kmin": 21}, {"kmin": 5, "part": 2, "nparts": 2}):
+    try:
+        list(subspectra.enumerate_links(**kw))
+        fail("enumerate_links(%s) did not raise" % kw)
+    except ValueError:
+        pass
+print("ok: enumerate_links: A000109's counts, as `enumerate links`, lazy")
+
+# jsr: the dictionary of `jsr --format json`
+for scheme, case, args in (("tetoct", {"edge": 5}, ["--edge", "5"]),
+                           ("tetoct", {"edge": 4}, ["--edge", "4"]),
+                           ("boxspline", {"edge": 4, "diagonals": "proper"},
+                            ["--edge", "4", "--diagonals", "proper"])):
+    want = json.loads(cli("jsr", "--scheme", scheme, *args, "--depth", "3", "--format", "json"))
+    got = subspectra.jsr(scheme, depth=3, **case)
+    same(got, want, "jsr %s %s" % (scheme, case))
+    if not got["lower"] <= got["upper"]:
+        fail("jsr %s %s: lower %g > upper %g" % (scheme, case, got["lower"], got["upper"]))
+for kw, exc in (({}, ValueError), ({"face": True, "edge": 4}, ValueError),
+                ({"edge": 5, "norm": "1"}, ValueError), ({"edge": 5, "depth": 2.5}, TypeError),
+                ({"edge": 5, "gap": "x"}, TypeError)):
+    try:
+        subspectra.jsr("tetoct", **kw)
+        fail("jsr('tetoct', %s) did not raise" % kw)
+    except exc:
+        pass
+try:
+    subspectra.jsr("mlca", edge=5)
+    fail("jsr('mlca', edge=5) did not raise")
+except subspectra.SubspectraError as e:
+    if "tet stars only" not in str(e):
+        fail("jsr('mlca', edge=5): %s" % e)
+print("ok: jsr == jsr --format json")
 
 # bad input
 for kw, what in (({"edge": 3, "scheme": "nope"}, "unknown scheme 'nope'"),
