@@ -22,7 +22,7 @@ import sys
 # What subspectra/__init__.py uses, types before functions.
 NAMES = [
     # ss_error.h, ss_progress.h, ss_cx.h, ss_link.h, ss_star.h
-    "ss_status", "ss_error", "ss_progress_fn", "ss_progress", "ss_cell_type",
+    "ss_status", "ss_error", "ss_progress_fn", "ss_progress", "ss_cell_type", "ss_idx", "ss_cx",
     "ss_link", "ss_star_coord", "ss_diag_mode",
     # ss_scheme.h, ss_case.h
     "ss_scheme", "ss_case_kind", "ss_case",
@@ -42,6 +42,9 @@ NAMES = [
     "ss_enum_links",
     "ss_jsr_defaults", "ss_jsr_compute", "ss_jsr_result_clear",
     "ss_levin_new", "ss_levin_verdict", "ss_levin_free",
+    "ss_cx_new", "ss_cx_free", "ss_cx_reserve_vertices", "ss_cx_reserve_cells",
+    "ss_cx_validate", "ss_cx_check_orientation", "ss_cell_nverts",
+    "ss_scheme_refine_levels", "ss_scheme_reads_diagonals", "ss_diag_choose",
     "ss_case_name", "ss_diag_name", "ss_verdict_name",
 ]
 

@@ -41,7 +41,7 @@ from cffi import FFI
 from . import _cdef, _config
 
 __all__ = ["SubspectraError", "scheme_names", "local_matrix", "local_labels", "eigenvalues",
-           "eigenvectors", "analyze", "jsr", "enumerate_links"]
+           "eigenvectors", "analyze", "jsr", "enumerate_links", "subdivide"]
 
 _ffi = FFI()
 # The declarations of the types and functions used here, generated from the
@@ -502,3 +502,116 @@ def _links(q, stop, thread, err, keep):
         stop.set()
         thread.join()
         del keep
+
+
+# meshio's cell type names (VTK's vertex orders, which ss_cx.h follows) and
+# the library's cell types; meshio has no octahedron, so its key is ours
+_CELL_TYPES = {"vertex": "SS_VERTEX", "line": "SS_SEGMENT", "triangle": "SS_TRIANGLE",
+               "quad": "SS_QUAD", "tetra": "SS_TET", "hexahedron": "SS_HEX",
+               "octahedron": "SS_OCT"}
+
+
+def _cx_from_arrays(points, cells, err):
+    """A new ss_cx holding points (nv x dim) and cells (meshio's dict or list
+    of (type, array) pairs, or CellBlocks); its arrays filled directly."""
+    points = np.ascontiguousarray(points, dtype=np.float64)
+    if points.ndim != 2 or not 1 <= points.shape[1] <= 4:
+        raise ValueError("points: expected an array of shape (n, dim), dim 1..4, not %s"
+                         % (points.shape,))
+    if isinstance(cells, dict):
+        cells = list(cells.items())
+    blocks = [(b.type, b.data) if hasattr(b, "type") else b for b in cells]
+    pcx = _ffi.new("ss_cx **")
+    _check(_lib.ss_cx_new(points.shape[1], pcx, err), err)
+    cx = pcx[0]
+    try:
+        nv, dim = points.shape
+        _check(_lib.ss_cx_reserve_vertices(cx, nv, err), err)
+        _ffi.memmove(cx.x, points, points.nbytes)
+        _ffi.memmove(cx.vref, bytes(4 * nv), 4 * nv)
+        cx.nv = nv
+        for name, data in blocks:
+            if name not in _CELL_TYPES:
+                raise ValueError("cells: unknown cell type %r (expected one of %s)"
+                                 % (name, ", ".join(_CELL_TYPES)))
+            t = getattr(_lib, _CELL_TYPES[name])
+            k = _lib.ss_cell_nverts(t)
+            data = np.asarray(data)
+            if data.ndim != 2 or data.shape[1] != k or not np.issubdtype(data.dtype, np.integer):
+                raise ValueError("cells[%r]: expected integers of shape (m, %d), not %s %s"
+                                 % (name, k, data.dtype, data.shape))
+            if data.size and (data.min() < 0 or data.max() >= nv):
+                raise ValueError("cells[%r]: vertex indices outside 0..%d" % (name, nv - 1))
+            old = cx.nc[t]
+            data = np.ascontiguousarray(data, dtype=np.uint32)
+            _check(_lib.ss_cx_reserve_cells(cx, t, old + len(data), err), err)
+            _ffi.memmove(cx.cells[t] + old * k, data, data.nbytes)
+            _ffi.memmove(cx.cref[t] + old, bytes(4 * len(data)), 4 * len(data))
+            cx.nc[t] = old + len(data)
+        _check(_lib.ss_cx_validate(cx, err), err)
+        return cx
+    except BaseException:
+        _lib.ss_cx_free(cx)
+        raise
+
+
+def _cx_to_arrays(cx):
+    """(points, cells) of an ss_cx as NumPy arrays, cells a dict by meshio's names."""
+    pts = np.frombuffer(_ffi.buffer(cx.x, cx.nv * cx.dim * 8), dtype=np.float64)
+    cells = {}
+    for name, tname in _CELL_TYPES.items():
+        t = getattr(_lib, tname)
+        if cx.nc[t]:
+            k = _lib.ss_cell_nverts(t)
+            a = np.frombuffer(_ffi.buffer(cx.cells[t], cx.nc[t] * k * 4), dtype=np.uint32)
+            cells[name] = a.reshape(-1, k).astype(np.int64)
+    return pts.reshape(cx.nv, cx.dim).copy(), cells
+
+
+def subdivide(scheme, points, cells, levels=1, diagonals=None):
+    """Refine a mesh `levels` times with the scheme, as `subspectra subdivide
+    --scheme SCHEME --levels L IN -o OUT` does between reading IN and writing
+    OUT: (points, cells) in, (points, cells) out.  points is an (n, dim)
+    array (dim 1..4: every coordinate is refined alike, so extra columns
+    carry fields); cells is meshio's: a dict {type: (m, k) int array} or a
+    list of (type, array) pairs or CellBlocks, with meshio's (VTK's) types
+    and vertex orders -- vertex, line, triangle, quad, tetra, hexahedron --
+    and "octahedron" (opposite corners (0,3), (1,4), (2,5)) for what the
+    tet/oct split makes.  Returns new arrays, cells as a dict, so
+    meshio.Mesh(*subspectra.subdivide("mlca", m.points, m.cells_dict)) is
+    the refined mesh.  Cells must be positively oriented (SubspectraError
+    naming the first that is not, as the command); diagonals as subdivide's
+    --diagonals for the box-spline schemes: bfs (default), proper or given."""
+    levels = _integer("levels", levels)
+    if not 0 <= levels <= 12:
+        raise ValueError("levels: expected 0..12, not %d" % levels)
+    err = _ffi.new("ss_error *")
+    ps = _ffi.new("ss_scheme **")
+    _check(_lib.ss_scheme_new(_text("scheme", scheme, "a scheme name").encode(), ps, err), err)
+    cx, pf = _ffi.NULL, _ffi.new("ss_cx **")
+    try:
+        cx = _cx_from_arrays(points, cells, err)
+        _check(_lib.ss_cx_check_orientation(cx, err), err)
+        if _lib.ss_scheme_reads_diagonals(ps[0]):
+            _choose_diagonals(cx, diagonals, err)
+        elif diagonals is not None:
+            raise ValueError("diagonals: scheme %s reads no major diagonals" % scheme)
+        _check(_lib.ss_scheme_refine_levels(ps[0], cx, levels, pf, err), err)
+        return _cx_to_arrays(pf[0])
+    finally:
+        _lib.ss_cx_free(pf[0])
+        _lib.ss_cx_free(cx)
+        _lib.ss_scheme_free(ps[0])
+
+
+def _choose_diagonals(cx, diagonals, err):
+    """subdivide's --diagonals: bfs (default) or proper chosen here, given
+    kept as the tets' vertex orders carry them."""
+    diagonals = _text("diagonals", "bfs" if diagonals is None else diagonals,
+                      "bfs, proper or given")
+    if diagonals == "given":
+        return
+    d = _ffi.new("ss_diag_mode *")
+    if diagonals not in ("bfs", "proper") or _lib.ss_diag_parse(diagonals.encode(), d):
+        raise ValueError("diagonals: expected bfs, proper or given, not %r" % (diagonals,))
+    _check(_lib.ss_diag_choose(cx, d[0], 0, 0, err), err)

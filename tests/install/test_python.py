@@ -22,6 +22,8 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
  - local_labels() against linear precision on the regular grids (S P = P / 2);
  - enumerate_links() against the counts of A000109 and `enumerate links`;
  - jsr() equals `jsr --format json`;
+ - subdivide() equals `subdivide -o FILE.mesh` (read back by meshio), makes
+   the tet/oct split's counts, and is affine invariant;
  - the structure layouts the package declares to cffi equal the C compiler's
    (LAYOUT: lines "sizeof T N" and "offsetof T FIELD N" from the installed
    headers), so a field added to ss_case or ss_local is caught here.
@@ -30,8 +32,10 @@ import io
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 
 import numpy as np
 import scipy.io
@@ -237,6 +241,69 @@ except subspectra.SubspectraError as e:
     if "tet stars only" not in str(e):
         fail("jsr('mlca', edge=5): %s" % e)
 print("ok: jsr == jsr --format json")
+
+# subdivide: NumPy in and out, meshio's cells.  Against the command (the
+# Medit file it writes, read by meshio: the same points to the last bit, the
+# same cells); the tet/oct split's counts (a tet makes 4 tets and an
+# octahedron, an octahedron 8 tets and 6 octahedra); affine invariance (every
+# row of the rule sums to 1): subdividing A p + b gives A q + b
+src = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+try:
+    import meshio
+except ImportError:
+    meshio = None
+    print("subdivide against the command: SKIPPED (no meshio)")
+if meshio is not None:
+    tmpdir = tempfile.mkdtemp()
+    for scheme, mesh in (("mlca", "hexstar-icosahedron.mesh"), ("boxspline", "cube-6tets.mesh")):
+        m = meshio.read(os.path.join(src, "data", "meshes", mesh))
+        p, c = subspectra.subdivide(scheme, m.points, m.cells_dict)
+        out = os.path.join(tmpdir, "out.mesh")
+        cli("subdivide", "--scheme", scheme, os.path.join(src, "data", "meshes", mesh), "-o", out)
+        o = meshio.read(out)
+        oc = o.cells_dict
+        if "octahedron" in c:  # Medit has none: the command splits each into 4 tets
+            c = {"tetra": c["tetra"]}
+            oc = {"tetra": oc["tetra"][:len(c["tetra"])]}
+        if o.points.shape != p.shape or np.abs(o.points - p).max() != 0 \
+                or sorted(oc) != sorted(c) or any((oc[k] != c[k]).any() for k in c):
+            fail("subdivide(%r, %s) differs from the command's" % (scheme, mesh))
+    shutil.rmtree(tmpdir)
+    print("ok: subdivide == subdivide -o FILE.mesh")
+cube = np.array([[x, y, z] for z in (0, 1) for y in (0, 1) for x in (0, 1)], dtype=float)
+tets = np.array([[0, 1, 3, 7], [0, 1, 7, 5], [0, 5, 7, 4], [0, 3, 2, 7], [0, 2, 6, 7],
+                 [0, 6, 4, 7]])
+tets = np.array([t if np.linalg.det(cube[t[1:]] - cube[t[0]]) > 0 else t[[1, 0, 2, 3]]
+                 for t in tets])
+p1, c1 = subspectra.subdivide("tetoct", cube, {"tetra": tets}, levels=2)
+if {k: len(v) for k, v in c1.items()} != {"tetra": 6 * 4 * 4 + 6 * 8, "octahedron": 6 * 4 + 6 * 6}:
+    fail("tetoct on 6 tets, 2 levels: %s" % {k: len(v) for k, v in c1.items()})
+rng = np.random.default_rng(40)
+A, b = rng.normal(size=(3, 3)) + 3 * np.eye(3), rng.normal(size=3)
+p2, c2 = subspectra.subdivide("tetoct", cube @ A.T + b, [("tetra", tets)], levels=2)
+if np.abs(p2 - (p1 @ A.T + b)).max() > 1e-12 * np.abs(p2).max() or \
+        any((c2[k] != c1[k]).any() for k in c1):
+    fail("tetoct: subdivide(A p + b) != A subdivide(p) + b")
+p0, c0 = subspectra.subdivide("tetoct", cube, {"tetra": tets}, levels=0)
+if np.abs(p0 - cube).max() != 0 or (c0["tetra"] != tets).any():
+    fail("subdivide(levels=0) is not the input")
+for args, exc, what in (
+        ((cube, {"pyramid": tets}), ValueError, "unknown cell type 'pyramid'"),
+        ((cube, {"tetra": tets[:, :3]}), ValueError, "expected integers of shape (m, 4)"),
+        ((cube, {"tetra": tets + 1}), ValueError, "vertex indices outside 0..7"),
+        ((cube, {"tetra": tets * 1.0}), ValueError, "expected integers"),
+        ((np.zeros((8, 5)), {"tetra": tets}), ValueError, "dim 1..4"),
+        ((cube, {"tetra": np.vstack([tets[:1, [1, 0, 2, 3]], tets[1:]])}),
+         subspectra.SubspectraError, "tetrahedron 1"),
+        ((cube, {"hexahedron": np.array([[0, 1, 3, 2, 4, 5, 7, 6]])}),
+         subspectra.SubspectraError, "does not take")):
+    try:
+        subspectra.subdivide("tetoct", *args)
+        fail("subdivide(%s) did not raise" % what)
+    except exc as e:
+        if what not in str(e):
+            fail("subdivide: %r does not say %r" % (str(e), what))
+print("ok: subdivide: the tet/oct counts, affine invariance, bad input")
 
 # bad input
 for kw, what in (({"edge": 3, "scheme": "nope"}, "unknown scheme 'nope'"),
