@@ -10,10 +10,14 @@ is compiled).  A case is one of
     surface_vertex=N       a 2D vertex of valence N
 
 with diagonals="bfs"|"proper"|"skew"|"center" for schemes that read major
-diagonals.  Integer arguments must be integers (edge=5.7 or 5.0 raises
-TypeError naming the argument); arguments that do not apply are refused.
+diagonals.  Arguments are checked: integers must be integers (edge=5.7 or
+5.0 raises TypeError naming the argument), links and names strings
+(vertex=5 raises TypeError), flags True or False; arguments that do not
+apply are refused.
 
     local_matrix(scheme, **case)   the local subdivision matrix S (scipy.sparse CSR)
+    local_labels(scheme, **case)   which point is which in S: exact chart
+                                   coordinates (NumPy int array), one-ring size
     eigenvalues(scheme, **case)    all eigenvalues of S (NumPy complex array,
                                    by decreasing modulus) and their multiplicities
     eigenvectors(scheme, k, **case)
@@ -23,9 +27,19 @@ TypeError naming the argument); arguments that do not apply are refused.
                                    the dictionary `subspectra analyze --format
                                    json` prints; options tol, eigenvalues, depth,
                                    ring_levels, certify as its --tol, ...
+    jsr(scheme, face=True | edge=N, **options)
+                                   the dictionary of `subspectra jsr --format json`
+    enumerate_links(kmin, kmax)    an iterator of every link (plantri ASCII), lazy
+    subdivide(scheme, points, cells, levels)
+                                   refined NumPy points and meshio-style cells
+    scheme_names()                 the built-in schemes
 
-The library is looked for in $SUBSPECTRA_LIBRARY, then where `meson install`
-put it, then by the dynamic linker's search (libsubspectra.so.0).
+Errors of the library raise SubspectraError (.status, and its message).
+The library is $SUBSPECTRA_LIBRARY when set (one that does not load raises
+SubspectraError naming it), else the one the package was installed with
+(inside the package when pip installed it), else the dynamic linker's
+libsubspectra.so.0; library_path says which.  The cffi declarations come
+from the public headers at build time (python/gen_cdef.py, _cdef.py).
 """
 import json
 import numbers
@@ -106,7 +120,8 @@ def _check(st, err):
 
 
 def scheme_names():
-    """The built-in schemes' names."""
+    """The built-in schemes' names (a list of str), the values the scheme
+    argument of every function takes: mlca, tetoct, catmull-clark, ..."""
     p = _lib.ss_scheme_names()
     out = []
     i = 0

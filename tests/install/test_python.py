@@ -404,4 +404,15 @@ for bad in ("/nonexistent/dir/libsubspectra.so.0", os.path.abspath(__file__)):
         fail("SUBSPECTRA_LIBRARY=%s: exit %d, %r%r" % (bad, p.returncode, p.stdout, p.stderr[-300:]))
 print("ok: SUBSPECTRA_LIBRARY that does not load: SubspectraError naming it, no other library")
 
+# help(): the module and every public name documented
+for name in ["__init__"] + subspectra.__all__:
+    obj = subspectra if name == "__init__" else getattr(subspectra, name)
+    if len((obj.__doc__ or "").strip()) < 40:
+        fail("subspectra.%s has no docstring to speak of" % name)
+missing = [n for n in ("local_labels", "jsr", "enumerate_links", "subdivide")
+           if n not in subspectra.__doc__]
+if missing:
+    fail("the module's docstring does not list %s" % missing)
+print("ok: docstrings")
+
 sys.exit(1 if fails else 0)
