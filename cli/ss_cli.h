@@ -30,10 +30,10 @@ int ss_cli_enumerate_canonical(int argc, char **argv);
 int ss_cli_enumerate_random(int argc, char **argv);
 int ss_cli_enumerate_mesh(int argc, char **argv);
 
-/* Print "subspectra: <msg>" to stderr and return the exit status for a failed
- * library call: 2 for bad input, i/o or memory, 1 for numerical or internal
- * failures (the run happened but a check did not hold). */
-int ss_cli_fail(const ss_error *err);
+/* Print "subspectra CMD: <msg>" to stderr and return the exit status for a
+ * failed library call: 2 for bad input, i/o or memory, 1 for numerical or
+ * internal failures (the run happened but a check did not hold). */
+int ss_cli_fail(const char *cmd, const ss_error *err);
 /* The exit status of a failed library call's status, as ss_cli_fail: 2 for
  * SS_EINPUT, SS_EIO and SS_ENOMEM (out of memory is never "a check fails"),
  * 1 for SS_ENUMERIC and SS_EINTERNAL. */

@@ -90,6 +90,14 @@ static void print_case(const ss_pipeline *p) {
     printf(", valence %d\n", c->valence);
 }
 
+/* ", certified" for a proven verdict; with --certify ", not certified" for a
+ * decided one that is not (JSON's certified: false; an undecided verdict
+ * says why itself); otherwise nothing, as before --certify existed. */
+static const char *certified_text(const ss_pipeline *p, const ss_verdict *v) {
+  if (v->certified) return ", certified";
+  return p->opts.certify && v->verdict != SS_UNDECIDED ? ", not certified" : "";
+}
+
 /* The eigenvalues and the condition, in doubles and (--certify) exactly. */
 static void print_spectrum(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
   const ss_eig *e = p->e;
@@ -113,7 +121,7 @@ static void print_spectrum(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
   if (p->opts.certify) {
     const ss_verdict *cond = &p->v.cond;
     printf("eigenvalue condition, exact (%.2f s): %s%s%s%s\n", p->exact_seconds,
-           ss_verdict_name(cond->verdict), cond->certified ? ", certified" : "",
+           ss_verdict_name(cond->verdict), certified_text(p, cond),
            cond->reason[0] ? ": " : "", cond->reason);
     size_t nr = 0;
     const ss_exact_root *x = p->ex ? ss_exact_roots(p->ex, &nr) : NULL;
@@ -130,8 +138,8 @@ static void print_spectrum(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
 static void print_map(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
   const ss_regularity *reg = &p->reg;
   const ss_verdict *rv = p->forced ? &reg->verdict : &p->v.reg, *iv = &p->v.inj;
-  printf("regularity: %s%s%s%s\n", ss_verdict_name(rv->verdict),
-         rv->certified ? ", certified" : "", rv->reason[0] ? ": " : "", rv->reason);
+  printf("regularity: %s%s%s%s\n", ss_verdict_name(rv->verdict), certified_text(p, rv),
+         rv->reason[0] ? ": " : "", rv->reason);
   if (p->psi.ran) {
     const ss_psi_result *q = &p->psi;
     if (q->by_masks)
@@ -190,8 +198,8 @@ static void print_map(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
         reg->min_scaled_jacobian, reg->ring_level, reg->worst_cell, reg->depth,
         reg->centre_corner_folds, p->M->ncentre);
   }
-  printf("injectivity: %s%s%s%s\n", ss_verdict_name(iv->verdict),
-         iv->certified ? ", certified" : "", iv->reason[0] ? ": " : "", iv->reason);
+  printf("injectivity: %s%s%s%s\n", ss_verdict_name(iv->verdict), certified_text(p, iv),
+         iv->reason[0] ? ": " : "", iv->reason);
   if (iv->verdict == SS_PASS)
     printf("  degree %d about psi(p); no two ring cells without a common vertex meet "
            "(piecewise-linear images, exact predicates)\n",

@@ -10,7 +10,7 @@ int ss_cli_draw_case(const ss_cli_analyze_opts *o, const ss_pipeline *p,
   ss_error err = {0};
   const ss_regularity *reg = &p->reg;
   if (!p->cm) {
-    fprintf(stderr, "subspectra draw: %sno characteristic map to draw: %s\n", where,
+    fprintf(stderr, "subspectra draw: %snothing to draw: %s\n", where,
             reg->verdict.reason);
     return SS_EXIT_FAIL;
   }

@@ -103,7 +103,7 @@ int ss_cli_enumerate_links(int argc, char **argv) {
   ss_error err = {0};
   double t0 = ss_cli_now();
   if (ss_enum_links(&o, count ? NULL : print_link, &ctx, counts, &err))
-    return ss_cli_fail(&err);
+    return ss_cli_fail("enumerate links", &err);
   double dt = ss_cli_now() - t0;
   /* the links could not be written (print_link stopped): main reports why */
   if (!count && ferror(stdout)) return SS_EXIT_OK;
@@ -175,7 +175,7 @@ int ss_cli_enumerate_canonical(int argc, char **argv) {
     char *text = NULL;
     if (ss_link_parse(p, &l, &err) || ss_link_canonical(l, &cl, NULL, &err) ||
         ss_link_automorphisms(l, &aut, &naut, &err) || ss_link_format(cl, &text, &err)) {
-      fprintf(stderr, "subspectra: stdin:%ld: %s\n", lineno, err.msg);
+      fprintf(stderr, "subspectra enumerate canonical: stdin:%ld: %s\n", lineno, err.msg);
       rc = SS_EXIT_USAGE; /* a bad link, or out of memory */
     } else if (json) {
       printf("{\"line\":%ld,\"vertices\":%d,\"automorphisms\":%d,\"canonical\":\"%s\"}\n",
@@ -192,7 +192,7 @@ int ss_cli_enumerate_canonical(int argc, char **argv) {
   }
   free(line);
   if (rc == SS_EXIT_OK && nread == 0) {
-    fprintf(stderr, "subspectra: stdin: no links read\n");
+    fprintf(stderr, "subspectra enumerate canonical: stdin: no links read\n");
     rc = SS_EXIT_USAGE;
   }
   return rc;

@@ -179,11 +179,11 @@ int ss_cli_enumerate_mesh(int argc, char **argv) {
   ss_meshlinks *ml = NULL;
   int rc = SS_EXIT_OK;
   if (ss_mesh_read(path, SS_MESH_AUTO, &cx, &err)) {
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail(cmd, &err);
     goto done;
   }
   if (ss_cx_check_orientation(cx, &err) || ss_meshlinks_compute(cx, &ml, &err)) {
-    fprintf(stderr, "subspectra: %s: %s\n", path, err.msg);
+    fprintf(stderr, "subspectra %s: %s: %s\n", cmd, path, err.msg);
     rc =
         err.status == SS_ENOMEM || err.status == SS_EINPUT ? SS_EXIT_USAGE : SS_EXIT_FAIL;
     goto done;

@@ -78,13 +78,13 @@ int ss_cli_enumerate_random(int argc, char **argv) {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   if (!r) {
     ss_error_nomem(&err, "random generator");
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail(cmd, &err);
     goto done;
   }
   gsl_rng_set(r, (unsigned long)seed);
   for (long i = 0; i < samples; i++) {
     if (ss_link_random((int)k, r, &l, &err) || ss_link_format(l, &text, &err)) {
-      rc = ss_cli_fail(&err);
+      rc = ss_cli_fail(cmd, &err);
       goto done;
     }
     if (json)

@@ -294,7 +294,8 @@ static void print_json(const jsr_args *a, const ss_levin *L, const ss_jsr_result
                          json_object_new_int64((int64_t)r->poly_vertices));
   if (r->polytope == 0)
     json_object_object_add(j, "polytope_upper", json_object_new_double(r->poly_upper));
-  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
+  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN |
+                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(j);
 }
 
@@ -354,7 +355,8 @@ static void print_json_na(const jsr_args *a, const char *msg) {
   for (size_t k = 0; k < sizeof nulls / sizeof *nulls; k++)
     json_object_object_add(j, nulls[k], NULL);
   json_object_object_add(j, "verdict", json_object_new_string("n/a"));
-  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
+  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN |
+                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
   json_object_put(j);
 }
 
@@ -363,7 +365,7 @@ static void print_json_na(const jsr_args *a, const char *msg) {
  * json the object of print_json_na when the reduction does not apply). */
 static int build_case(const jsr_args *a, ss_scheme **s, ss_levin **L) {
   ss_error err = {0};
-  if (ss_scheme_new(a->scheme_name, s, &err)) return ss_cli_fail(&err);
+  if (ss_scheme_new(a->scheme_name, s, &err)) return ss_cli_fail("jsr", &err);
   if (a->diag_given && !ss_scheme_reads_diagonals(*s))
     return ss_cli_usage_error("jsr",
                               "--diagonals: scheme %s reads no major diagonals (only "
@@ -371,7 +373,7 @@ static int build_case(const jsr_args *a, ss_scheme **s, ss_levin **L) {
                               a->scheme_name);
   if (ss_levin_new(*s, &a->c, L, &err)) {
     if (err.status == SS_EINTERNAL && a->json) print_json_na(a, err.msg);
-    return ss_cli_fail(&err);
+    return ss_cli_fail("jsr", &err);
   }
   return -1;
 }
@@ -390,7 +392,7 @@ int ss_cli_jsr(int argc, char **argv) {
   if (rc >= 0) goto done;
   rc = SS_EXIT_OK;
   if (ss_jsr_compute(L->m, L->n - L->r, (const double *const *)L->Y, &a.o, &r, &err)) {
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("jsr", &err);
     goto done;
   }
   ss_verdict jv;

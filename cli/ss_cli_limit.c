@@ -454,13 +454,13 @@ static int report_failed(const limit_opts *o, size_t bad) {
   for (size_t i = 0; i < o->npts && shown < 10; i++) {
     const ss_limit_cli_point *p = o->pts + i;
     if (p->status == SS_LIMIT_CLI_OK) continue;
-    fprintf(stderr, "subspectra: cell %zu at (%.17g, %.17g, %.17g): %s: %s\n",
+    fprintf(stderr, "subspectra limit: cell %zu at (%.17g, %.17g, %.17g): %s: %s\n",
             p->cell + 1, p->x[0], p->x[1], p->x[2], ss_cli_limit_status_name(p->status),
             p->why);
     shown++;
   }
   fprintf(stderr,
-          "subspectra: limit: %zu of %zu points not evaluated in full%s (written with "
+          "subspectra limit: %zu of %zu points not evaluated in full%s (written with "
           "their status)\n",
           bad, o->npts, bad > shown ? ", the first ten shown above" : "");
   return SS_EXIT_FAIL;
@@ -484,15 +484,15 @@ int ss_cli_limit(int argc, char **argv) {
       ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) ||
       (mesh->dim > 3 && split_fields(mesh, &pos, &fv, &o.fl, &err)) ||
       ss_limit_new_fields(s, pos ? pos : mesh, o.fl.nf, fv, &L, &err))
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("limit", &err);
   else if (ss_cx_check_orientation(pos ? pos : mesh, &err)) {
     /* flat, folded or inverted hexes, refused as subdivide and enumerate
      * mesh refuse them: the parametrisation has no consistent sign there */
-    fprintf(stderr, "subspectra: %s: %s\n", o.mesh, err.msg);
+    fprintf(stderr, "subspectra limit: %s: %s\n", o.mesh, err.msg);
     rc = SS_EXIT_USAGE;
   } else if ((!o.npts && grid_points(&o, L, &err)) || eval_points(&o, L, &bad, &err) ||
              write_points(&o, pos ? pos : mesh, bad, &err))
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("limit", &err);
   else if (bad)
     rc = report_failed(&o, bad);
   for (size_t i = 0; i < o.npts; i++)

@@ -22,7 +22,7 @@ int ss_cli_write_mtx(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
   const ss_local *M = p->M;
   ss_outfile *out = NULL;
   ss_error err = {0};
-  if (o->out && ss_outfile_open(o->out, &out, &err)) return ss_cli_fail(&err);
+  if (o->out && ss_outfile_open(o->out, &out, &err)) return ss_cli_fail(o->cmd, &err);
   FILE *f = out ? ss_outfile_file(out) : stdout;
   const size_t n = o->ring == 1 ? M->n1 : M->n2;
   size_t nnz = 0;
@@ -56,7 +56,7 @@ int ss_cli_write_mtx(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
     for (size_t j = 0; j < n; j++)
       if (M->S[i * M->n2 + j] != 0.0)
         fprintf(f, "%zu %zu %.17g\n", i + 1, j + 1, M->S[i * M->n2 + j]);
-  if (ss_outfile_commit(out, &err)) return ss_cli_fail(&err);
+  if (ss_outfile_commit(out, &err)) return ss_cli_fail(o->cmd, &err);
   return SS_EXIT_OK;
 }
 
@@ -95,7 +95,7 @@ int ss_cli_write_eigvec_mtx(const ss_cli_analyze_opts *o, const ss_pipeline *p) 
   ss_error err = {0};
   if (o->out && ss_outfile_open(o->out, &out, &err)) {
     ss_eigvec_free(v);
-    return ss_cli_fail(&err);
+    return ss_cli_fail(o->cmd, &err);
   }
   char head[256], buf[32];
   snprintf(head, sizeof head,
@@ -105,7 +105,7 @@ int ss_cli_write_eigvec_mtx(const ss_cli_analyze_opts *o, const ss_pipeline *p) 
            o->ring == 1 ? "one-ring block A" : "whole two-ring S");
   ss_cli_eigvec_mtx(out ? ss_outfile_file(out) : stdout, v, M, o->left, head);
   ss_eigvec_free(v);
-  if (ss_outfile_commit(out, &err)) return ss_cli_fail(&err);
+  if (ss_outfile_commit(out, &err)) return ss_cli_fail(o->cmd, &err);
   return SS_EXIT_OK;
 }
 

@@ -215,7 +215,7 @@ static int load_reference(const char *refdir, ss_ref *ref) {
   char *pat = malloc(strlen(refdir) + 16);
   if (!pat) {
     ss_error_nomem(&err, "path");
-    return ss_cli_fail(&err);
+    return ss_cli_fail("reproduce", &err);
   }
   sprintf(pat, "%s/*.tsv", refdir);
   if (glob(pat, 0, NULL, &g) != 0 || g.gl_pathc == 0) {
@@ -243,7 +243,7 @@ static int make_out_dirs(const char *out) {
   if (!path) {
     ss_error err = {0};
     ss_error_nomem(&err, "path");
-    return ss_cli_fail(&err);
+    return ss_cli_fail("reproduce", &err);
   }
   for (int i = 0; i < 3 && rc == SS_EXIT_OK; i++) {
     sprintf(path, "%s%s", out, sub[i]);

@@ -257,9 +257,9 @@ static int refine_levels(const sub_opts *o, const ss_scheme *scheme, const ss_cx
     ss_cx *fine = NULL;
     size_t bad;
     if (ss_scheme_refine_at(scheme, *cx, &fine, &bad, &err)) {
-      if (bad == SIZE_MAX) return ss_cli_fail(&err);
+      if (bad == SIZE_MAX) return ss_cli_fail("subdivide", &err);
       ss_scheme_explain_nonfinite(scheme, input, (int)l, bad, &err);
-      fprintf(stderr, "subspectra: %s: %s; nothing written\n", o->in, err.msg);
+      fprintf(stderr, "subspectra subdivide: %s: %s; nothing written\n", o->in, err.msg);
       return SS_EXIT_USAGE;
     }
     if (*cx != input) ss_cx_free(*cx);
@@ -301,11 +301,11 @@ int ss_cli_subdivide(int argc, char **argv) {
   json_object *report = NULL, *lv = NULL;
   if (ss_scheme_new(o.scheme, &scheme, &err) ||
       ss_mesh_read(o.in, SS_MESH_AUTO, &cx, &err)) {
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("subdivide", &err);
     goto done;
   }
   if (ss_cx_check_orientation(cx, &err)) {
-    fprintf(stderr, "subspectra: %s: %s\n", o.in, err.msg);
+    fprintf(stderr, "subspectra subdivide: %s: %s\n", o.in, err.msg);
     rc = SS_EXIT_USAGE;
     goto done;
   }
@@ -320,7 +320,7 @@ int ss_cli_subdivide(int argc, char **argv) {
     if (!o.diag) o.diag = "bfs";
     if ((!o.given && ss_diag_choose(cx, o.dmode, 0, 0, &err)) ||
         ss_diag_improper(cx, &dpairs, &dbad, &err)) {
-      rc = ss_cli_fail(&err);
+      rc = ss_cli_fail("subdivide", &err);
       goto done;
     }
   }
@@ -329,7 +329,7 @@ int ss_cli_subdivide(int argc, char **argv) {
   input = cx; /* kept to name input vertices if a level overflows */
   if ((rc = refine_levels(&o, scheme, input, &cx, lv))) goto done;
   if (ss_mesh_write(o.out, SS_MESH_AUTO, cx, &o.wopts, &err)) {
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("subdivide", &err);
     goto done;
   }
   /* Medit has no octahedron: say that the file holds tets in their place */

@@ -14,8 +14,8 @@
 #include "ss_clock.h"
 #include "ss_local.h"
 
-int ss_cli_fail(const ss_error *err) {
-  fprintf(stderr, "subspectra: %s\n",
+int ss_cli_fail(const char *cmd, const ss_error *err) {
+  fprintf(stderr, "subspectra %s: %s\n", cmd,
           err->msg[0] ? err->msg : ss_status_name(err->status));
   return ss_cli_exit_status(err->status);
 }

@@ -777,7 +777,7 @@ ss_status ss_report_draw(const ss_charmap *cm, const ss_regularity *r,
   ss_pic_format fmt;
   if (ss_report_pic_format(path, &fmt))
     return ss_error_set(err, SS_EINPUT,
-                        "draw: %s: unknown picture format (use .png, .svg, .pdf or .vtk)",
+                        "%s: unknown picture format (use .png, .svg, .pdf or .vtk)",
                         path);
   /* the picture's own frame (see the header): a copy of the net */
   ss_charmap f = *cm;

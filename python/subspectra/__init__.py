@@ -10,10 +10,14 @@ is compiled).  A case is one of
     surface_vertex=N       a 2D vertex of valence N
 
 with diagonals="bfs"|"proper"|"skew"|"center" for schemes that read major
-diagonals.  Integer arguments must be integers (edge=5.7 or 5.0 raises
-TypeError naming the argument); arguments that do not apply are refused.
+diagonals.  Arguments are checked: integers must be integers (edge=5.7 or
+5.0 raises TypeError naming the argument), links and names strings
+(vertex=5 raises TypeError), flags True or False; arguments that do not
+apply are refused.
 
     local_matrix(scheme, **case)   the local subdivision matrix S (scipy.sparse CSR)
+    local_labels(scheme, **case)   which point is which in S: exact chart
+                                   coordinates (NumPy int array), one-ring size
     eigenvalues(scheme, **case)    all eigenvalues of S (NumPy complex array,
                                    by decreasing modulus) and their multiplicities
     eigenvectors(scheme, k, **case)
@@ -23,128 +27,46 @@ TypeError naming the argument); arguments that do not apply are refused.
                                    the dictionary `subspectra analyze --format
                                    json` prints; options tol, eigenvalues, depth,
                                    ring_levels, certify as its --tol, ...
+    jsr(scheme, face=True | edge=N, **options)
+                                   the dictionary of `subspectra jsr --format json`
+    enumerate_links(kmin, kmax)    an iterator of every link (plantri ASCII), lazy
+    subdivide(scheme, points, cells, levels)
+                                   refined NumPy points and meshio-style cells
+    scheme_names()                 the built-in schemes
 
-The library is looked for in $SUBSPECTRA_LIBRARY, then where `meson install`
-put it, then by the dynamic linker's search (libsubspectra.so.0).
+Errors of the library raise SubspectraError (.status, and its message).
+The library is $SUBSPECTRA_LIBRARY when set (one that does not load raises
+SubspectraError naming it), else the one the package was installed with
+(inside the package when pip installed it), else the dynamic linker's
+libsubspectra.so.0; library_path says which.  The cffi declarations come
+from the public headers at build time (python/gen_cdef.py, _cdef.py).
 """
 import json
+import numbers
 import operator
 import os
+import queue
+import threading
 
 import numpy as np
 import scipy.sparse
 from cffi import FFI
 
-from . import _config
+from . import _cdef, _config
 
-__all__ = ["SubspectraError", "scheme_names", "local_matrix", "eigenvalues", "eigenvectors",
-           "analyze"]
+__all__ = ["SubspectraError", "scheme_names", "local_matrix", "local_labels", "eigenvalues",
+           "eigenvectors", "analyze", "jsr", "enumerate_links", "subdivide"]
 
 _ffi = FFI()
-#Declarations as in the installed headers(ss_error.h, ss_scheme.h, ss_link.h,
-#ss_case.h, ss_local.h, ss_eig.h, ss_report_case.h).Enumerations are passed as int.
-#ss_local and ss_eig are read through pointers only, so only their leading
-#fields are declared(in the headers' order; the rest is never touched).
-_ffi.cdef("""
-typedef struct {
-  int status;
-  char msg[512]; } ss_error;
-typedef struct ss_scheme ss_scheme;
-typedef struct ss_link_ ss_link;
-typedef struct {
-  int kind;
-  const ss_link *link;
-  int n;
-  int diag;
-  int cls; } ss_case;
-typedef struct {
-  size_t n2;
-  size_t n1;
-  double *S;
-  size_t nnz;
-  void *label;
-  int ncoord;
-  int dim;
-  int level;
-} ss_local;
-typedef struct {
-  double re, im, rcond;
-  int block, group, mult;
-  double err, cluster;
-} ss_eigval;
-typedef struct {
-  size_t n;
-  ss_eigval *val; } ss_eig;
-typedef struct {
-  void *fn;
-  void *ctx; } ss_progress;
-typedef struct {
-  double tol;
-  double cluster;
-  int dim;
-  int basis;
-  int force;
-  ss_progress progress;
-} ss_eig_opts;
-typedef struct {
-  double tol;
-  int neig;
-  int depth;
-  int ring_levels;
-  int certify; }
-  ss_report_analyze_opts;
-typedef struct {
-  size_t n;
-  int k;
-  double *re, *im;
-  int *group;
-  int *biorth;
-  double *right_re;
-  double *right_im;
-  double *left_re;
-  double *left_im;
-  int complex_any;
-} ss_eigvec;
-
-const char *const *ss_scheme_names(void);
-int ss_scheme_new(const char *name, ss_scheme **out, ss_error *err);
-void ss_scheme_free(ss_scheme *s);
-int ss_link_parse(const char *text, ss_link **out, ss_error *err);
-void ss_link_free(ss_link *l);
-int ss_diag_parse(const char *name, int *out);
-int ss_local_new(const ss_scheme *s, const ss_case *c, ss_local **out, ss_error *err);
-void ss_local_free(ss_local *L);
-ss_eig_opts ss_eig_defaults(int dim);
-int ss_eig_new(const double *S, size_t n, size_t n1, const ss_eig_opts *opts,
-               ss_eig **out, ss_error *err);
-void ss_eig_free(ss_eig *e);
-ss_report_analyze_opts ss_report_analyze_defaults(void);
-int ss_report_analyze(const ss_scheme *s, const ss_case *c,
-                      const ss_report_analyze_opts *o, char **json, ss_error *err);
-int ss_eigvec_new(const double *S, size_t n, int k, double tol, ss_eigvec **out,
-                  ss_error *err);
-void ss_eigvec_free(ss_eigvec *v);
-void free(void *p);
-""")
+# The declarations of the types and functions used here, generated from the
+# public headers when the package is built (python/gen_cdef.py), so that the
+# structure layouts are the headers' own; and libc's free() for the strings
+# the library allocates.
+_ffi.cdef(_cdef.CDEF)
+_ffi.cdef("void free(void *p);")
 
 #ss_case_kind(ss_case.h)
 _VERTEX, _EDGE, _FACE, _SURFACE_VERTEX = 0, 1, 2, 3
-
-
-def _load():
-    tried = []
-    for path in (os.environ.get("SUBSPECTRA_LIBRARY"), _config.LIBRARY, "libsubspectra.so.0"):
-        if not path:
-            continue
-        try:
-            return _ffi.dlopen(path)
-        except OSError as e:
-            tried.append("%s (%s)" % (path, e))
-    raise OSError("subspectra: cannot load libsubspectra: tried " + "; ".join(tried))
-
-
-_lib = _load()
-_libc = _ffi.dlopen(None)  # free() for the library's malloc'd strings
 
 
 class SubspectraError(Exception):
@@ -153,6 +75,38 @@ class SubspectraError(Exception):
     def __init__(self, status, message):
         super().__init__(message)
         self.status = status
+
+
+def _load():
+    """The shared library: $SUBSPECTRA_LIBRARY when set (and nothing else:
+    a path that does not load is an error, not a reason to take another
+    library), else the one the package was installed with (_config.LIBRARY,
+    relative to the package in a wheel), else the dynamic linker's
+    libsubspectra.so.0 when that file is gone.  Returns (library, path)."""
+    env = os.environ.get("SUBSPECTRA_LIBRARY")
+    if env:
+        try:
+            return _ffi.dlopen(env), env
+        except OSError as e:
+            raise SubspectraError("i/o error", "SUBSPECTRA_LIBRARY=%s: cannot load the "
+                                  "library: %s" % (env, e)) from None
+    own = os.path.join(os.path.dirname(os.path.abspath(__file__)), _config.LIBRARY)
+    if os.path.exists(own):
+        try:
+            return _ffi.dlopen(own), own
+        except OSError as e:
+            raise SubspectraError("i/o error", "%s: cannot load the library: %s"
+                                  % (own, e)) from None
+    try:
+        return _ffi.dlopen("libsubspectra.so.0"), "libsubspectra.so.0"
+    except OSError as e:
+        raise SubspectraError("i/o error", "cannot load libsubspectra: %s is not there and "
+                              "the dynamic linker says: %s (set SUBSPECTRA_LIBRARY to the "
+                              "library's path)" % (own, e)) from None
+
+
+_lib, library_path = _load()
+_libc = _ffi.dlopen(None)  # free() for the library's malloc'd strings
 
 
 _STATUS = ["ok", "out of memory", "bad input", "i/o error", "numerical failure",
@@ -166,7 +120,8 @@ def _check(st, err):
 
 
 def scheme_names():
-    """The built-in schemes' names."""
+    """The built-in schemes' names (a list of str), the values the scheme
+    argument of every function takes: mlca, tetoct, catmull-clark, ..."""
     p = _lib.ss_scheme_names()
     out = []
     i = 0
@@ -188,12 +143,37 @@ def _integer(name, v):
         raise TypeError("%s: expected an integer, not %r" % (name, v)) from None
 
 
+def _text(name, v, what):
+    """v as a str, or TypeError naming the argument and what it should be
+    (vertex=5 or scheme=None would otherwise fail inside str.encode)."""
+    if not isinstance(v, str):
+        raise TypeError("%s: expected %s (a str), not %r" % (name, what, v))
+    return v
+
+
+def _flag(name, v):
+    """v as a bool, or TypeError naming the argument: face="no" or
+    certify=1 are not guessed at."""
+    if not isinstance(v, (bool, np.bool_)):
+        raise TypeError("%s: expected True or False, not %r" % (name, v))
+    return bool(v)
+
+
+def _real(name, v):
+    """v as a float, or TypeError naming the argument (a str or a bool is
+    refused; ints and NumPy's numbers are taken)."""
+    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Real, np.floating)):
+        raise TypeError("%s: expected a real number, not %r" % (name, v))
+    return float(v)
+
+
 class _Case:
     """A scheme and a case, built in C; freed on exit (a context manager)."""
 
     def __init__(self, scheme, vertex=None, edge=None, face=False, surface_vertex=None,
                  diagonals=None, cls=None):
-        given = [vertex is not None, edge is not None, bool(face), surface_vertex is not None]
+        given = [vertex is not None, edge is not None, _flag("face", face),
+                 surface_vertex is not None]
         if sum(given) != 1:
             raise ValueError("give exactly one case: vertex=LINK, edge=N, face=True or "
                              "surface_vertex=N")
@@ -203,6 +183,7 @@ class _Case:
         self._l = _ffi.new("ss_link **")
         self.scheme = None
         try:
+            scheme = _text("scheme", scheme, "a scheme name, one of scheme_names()")
             _check(_lib.ss_scheme_new(scheme.encode(), self._s, self.err), self.err)
             self.scheme = self._s[0]
             if cls is not None and surface_vertex is None:
@@ -212,12 +193,14 @@ class _Case:
                 if not isinstance(diagonals, str):
                     raise TypeError("diagonals: expected bfs, proper, skew or center, "
                                     "not %r" % (diagonals,))
-                d = _ffi.new("int *")
+                d = _ffi.new("ss_diag_mode *")
                 if _lib.ss_diag_parse(diagonals.encode(), d):
                     raise ValueError("diagonals: expected bfs, proper, skew or center, not %r"
                                      % diagonals)
                 self.c.diag = d[0]
             if vertex is not None:
+                vertex = _text("vertex", vertex, "a link: plantri ASCII such as "
+                               "'4 bcd,adc,abd,acb', or a name such as 'octahedron'")
                 _check(_lib.ss_link_parse(vertex.encode(), self._l, self.err), self.err)
                 self.c.kind, self.c.link = _VERTEX, self._l[0]
             elif edge is not None:
@@ -278,7 +261,7 @@ def eigenvalues(scheme, tol=1e-6, **case):
     as a NumPy int array: (values, multiplicities)."""
     def use(M, err):
         opts = _lib.ss_eig_defaults(M.dim)
-        opts.tol = tol
+        opts.tol = _real("tol", tol)
         po = _ffi.new("ss_eig_opts *", opts)
         pe = _ffi.new("ss_eig **")
         _check(_lib.ss_eig_new(M.S, M.n2, M.n1, po, pe, err), err)
@@ -303,7 +286,7 @@ def eigenvectors(scheme, k=4, tol=1e-6, **case):
     left[:, 0] is the limit-position mask, the next columns the tangent masks."""
     def use(M, err):
         pv = _ffi.new("ss_eigvec **")
-        _check(_lib.ss_eigvec_new(M.S, M.n2, _integer("k", k), tol, pv, err), err)
+        _check(_lib.ss_eigvec_new(M.S, M.n2, _integer("k", k), _real("tol", tol), pv, err), err)
         try:
             v = pv[0]
             n, kk = v.n, v.k
@@ -333,17 +316,317 @@ def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, dia
     with _Case(scheme, vertex, edge, face, surface_vertex, diagonals, cls) as c:
         o = _ffi.new("ss_report_analyze_opts *", _lib.ss_report_analyze_defaults())
         if tol is not None:
-            o.tol = tol
+            o.tol = _real("tol", tol)
         if eigenvalues is not None:
             o.neig = _integer("eigenvalues", eigenvalues)
         if depth is not None:
             o.depth = _integer("depth", depth)
         if ring_levels is not None:
             o.ring_levels = _integer("ring_levels", ring_levels)
-        o.certify = 1 if certify else 0
+        o.certify = 1 if _flag("certify", certify) else 0
         out = _ffi.new("char **")
         _check(_lib.ss_report_analyze(c.scheme, c.c, o, out, c.err), c.err)
         try:
             return json.loads(_ffi.string(out[0]).decode())
         finally:
             _libc.free(out[0])
+
+
+def local_labels(scheme, **case):
+    """Which point is which in S: (coords, n1).  coords is a NumPy int array
+    of shape (n2, d): row i the exact coordinates of S's point i relative to
+    the centre (row 0, all zeros), in units of the grid of the level S maps
+    from, in the star's chart (ss_star.h): conical coordinates over the link
+    for a vertex (d = k, one per link vertex), over the faces around the edge
+    and the edge itself for an edge (d = n + 1), over the n rays for a
+    surface vertex (d = n), barycentric for the face (d = 5).  Positions are
+    a linear image of the chart: coords @ axes, axes one row per
+    coordinate.  n1 is the one-ring's size, the first n1 rows.  The rows and
+    columns of local_matrix() are in this order, so S @ (coords @ axes) =
+    (coords @ axes) / 2 where the scheme reproduces linear functions on the
+    regular grid."""
+    def use(M, err):
+        d = M.ncoord
+        coords = np.zeros((M.n2, d), dtype=np.int64)
+        for i in range(M.n2):
+            lab = M.label[i]
+            for j in range(lab.n):
+                coords[i, lab.idx[j]] = lab.val[j]
+        return coords, int(M.n1)
+    return _with_local(scheme, case, use)
+
+
+_NORMS = ["inf", "2", "auto", "ellipsoid", "polytope"]
+_POLYTOPE = ["closed", "vertex cap", "time limit", "LP failed", "rho = 0"]
+
+
+def _jsr_dict(scheme, c, L, r, o, verdict):
+    """The dictionary of `subspectra jsr --format json` (cli/ss_cli_jsr.c)."""
+    edge = c.kind == _lib.SS_CASE_EDGE
+    d = {"scheme": scheme, "case": _ffi.string(_lib.ss_case_name(c.kind)).decode()}
+    if edge:
+        d["n"] = c.n
+    d["diagonals"] = _ffi.string(_lib.ss_diag_name(c.diag)).decode()
+    d.update(level=L.level, maps=L.m, support=L.n, subspace=L.r,
+             subspace_basis=_ffi.string(L.basis).decode(), invariance_defect=L.defect,
+             theta=[L.theta[i] for i in range(L.r)])
+    if edge:
+        d["lambda1"] = L.lambda1
+    d["rho_k"] = [r.rho_inf[k] for k in range(r.depth)]
+    d["rho_k_2"] = [r.rho_2[k] for k in range(r.depth)]
+    if r.cut_len > 0:
+        d.update(stopped_by="max-seconds", depth=o.depth, depth_complete=r.depth,
+                 cut_length=r.cut_len, cut_words=r.cut_words,
+                 cut_of=int(float(L.m) ** r.cut_len))
+    d["lower"] = r.lower
+    d["lower_word"] = [r.lower_word[k] + 1 for k in range(r.lower_len)]
+    if not edge:
+        thr = "1/4 (C^2 across the face)"
+    elif abs(L.lambda1 - 0.5) <= 1e-8:
+        thr = "lambda3 = lambda1 = 1/2"
+    else:
+        thr = "lambda3 = lambda1 (< 1/2)" if L.lambda1 < 0.5 else "lambda3 = 1/2 (< lambda1)"
+    d.update(upper=r.upper, threshold=L.threshold, threshold_name=thr,
+             verdict=_ffi.string(_lib.ss_verdict_name(verdict.verdict)).decode(),
+             certified=bool(r.certified), converged=bool(r.converged), nodes=r.nodes,
+             norm=_NORMS[r.norm], weighted=bool(r.weighted), fit_words=o.fit_words,
+             bnb_depth=r.bnb_depth,
+             polytope=_POLYTOPE[r.polytope] if 0 <= r.polytope < 5 else "not run",
+             polytope_vertices=r.poly_vertices)
+    if r.polytope == 0:
+        d["polytope_upper"] = r.poly_upper
+    return d
+
+
+def jsr(scheme, face=False, edge=None, diagonals=None, depth=None, gap=None, norm=None,
+        fit_words=None, max_seconds=None):
+    """The Levin-Levin joint-spectral-radius test across a tet/oct face
+    (face=True) or along an edge of valence N (edge=N): the dictionary
+    `subspectra jsr --scheme SCHEME (--face | --edge N) --format json`
+    prints -- the sub-patch maps' sizes, the invariant subspace, the profiles
+    rho_k (inf- and 2-norm), proven bounds lower <= JSR <= upper with the word
+    attaining lower, the threshold and the verdict ("pass" when upper is
+    below it).  Options as jsr's --depth, --gap, --norm (inf, 2, auto,
+    ellipsoid, polytope), --fit-words, --max-seconds and --diagonals; the
+    command's defaults otherwise.  Raises SubspectraError where the command
+    fails (the reduction does not apply: status "internal error")."""
+    if edge is None and not _flag("face", face):
+        raise ValueError("give face=True or edge=N")
+    if edge is not None and face:
+        raise ValueError("give face=True or edge=N, not both")
+    case = {"edge": edge} if edge is not None else {"face": True}
+    with _Case(scheme, diagonals=diagonals, **case) as c:
+        o = _ffi.new("ss_jsr_opts *", _lib.ss_jsr_defaults())
+        if depth is not None:
+            o.depth = _integer("depth", depth)
+        if gap is not None:
+            o.gap = _real("gap", gap)
+        if norm is not None:
+            if norm not in _NORMS:
+                raise ValueError("norm: expected one of %s, not %r" % (", ".join(_NORMS), norm))
+            o.norm = _NORMS.index(norm)
+        if fit_words is not None:
+            o.fit_words = _integer("fit_words", fit_words)
+        if max_seconds is not None:
+            o.max_seconds = _real("max_seconds", max_seconds)
+        pl = _ffi.new("ss_levin **")
+        _check(_lib.ss_levin_new(c.scheme, c.c, pl, c.err), c.err)
+        r = _ffi.new("ss_jsr_result *")
+        try:
+            L = pl[0]
+            _check(_lib.ss_jsr_compute(L.m, L.n - L.r, _ffi.cast("const double *const *", L.Y),
+                                       o, r, c.err), c.err)
+            v = _ffi.new("ss_verdict *")
+            _lib.ss_levin_verdict(L, r, v)
+            return _jsr_dict(scheme, c.c, L, r, o, v)
+        finally:
+            _lib.ss_jsr_result_clear(r)
+            _lib.ss_levin_free(pl[0])
+
+
+def enumerate_links(kmin, kmax=None, part=0, nparts=1):
+    """Every link (triangulation of the sphere, mirror images identified) with
+    kmin..kmax vertices (kmax = kmin by default; 4 <= kmin <= kmax <= 20),
+    each exactly once, as `subspectra enumerate links --vertices KMIN..KMAX
+    [--part PART/NPARTS]` lists them: an iterator of plantri ASCII strings
+    ("4 bcd,adc,abd,acb"), each usable as analyze(..., vertex=LINK).  Lazy:
+    the enumeration runs in a thread a few links ahead of the loop and stops
+    when the iterator is closed or dropped, so memory stays flat however many
+    links there are (k = 16 has 17490241)."""
+    kmin = _integer("kmin", kmin)
+    kmax = kmin if kmax is None else _integer("kmax", kmax)
+    opts = _ffi.new("ss_enum_opts *", {"kmin": kmin, "kmax": kmax,
+                                       "part": _integer("part", part),
+                                       "nparts": _integer("nparts", nparts)})
+    err = _ffi.new("ss_error *")
+    q = queue.Queue(maxsize=256)
+    stop = threading.Event()
+    failed = []
+
+    def offer(item):
+        """Put item on the queue unless the consumer has gone; False if it has."""
+        while not stop.is_set():
+            try:
+                q.put(item, timeout=0.1)
+                return True
+            except queue.Full:
+                pass
+        return False
+
+    @_ffi.callback("int(const ss_link *, void *)", onerror=lambda *exc: 1)
+    def visit(link, ctx):
+        p = _ffi.new("char **")
+        st = _lib.ss_link_format(link, p, err)
+        if st:
+            failed.append(st)
+            return 1
+        text = _ffi.string(p[0]).decode()
+        _libc.free(p[0])
+        return 0 if offer(text) else 1
+
+    def run():
+        st = _lib.ss_enum_links(opts, visit, _ffi.NULL, _ffi.NULL, err)
+        offer(_Done(failed[0] if failed else st))
+
+    # the options are checked before anything runs, in this thread
+    if not 4 <= kmin <= kmax <= _lib.SS_ENUM_MAXK or not 0 <= part < nparts:
+        raise ValueError("expected 4 <= kmin <= kmax <= %d and 0 <= part < nparts, not "
+                         "kmin=%d kmax=%d part=%d nparts=%d"
+                         % (_lib.SS_ENUM_MAXK, kmin, kmax, part, nparts))
+    return _links(q, stop, threading.Thread(target=run, daemon=True), err, visit)
+
+
+class _Done:
+    """The end of an enumeration, with its status."""
+
+    def __init__(self, status):
+        self.status = status
+
+
+def _links(q, stop, thread, err, keep):
+    """The generator of enumerate_links (keep: the callback, alive while it runs)."""
+    thread.start()
+    try:
+        while True:
+            item = q.get()
+            if isinstance(item, _Done):
+                _check(item.status, err)
+                return
+            yield item
+    finally:
+        stop.set()
+        thread.join()
+        del keep
+
+
+# meshio's cell type names (VTK's vertex orders, which ss_cx.h follows) and
+# the library's cell types; meshio has no octahedron, so its key is ours
+_CELL_TYPES = {"vertex": "SS_VERTEX", "line": "SS_SEGMENT", "triangle": "SS_TRIANGLE",
+               "quad": "SS_QUAD", "tetra": "SS_TET", "hexahedron": "SS_HEX",
+               "octahedron": "SS_OCT"}
+
+
+def _cx_from_arrays(points, cells, err):
+    """A new ss_cx holding points (nv x dim) and cells (meshio's dict or list
+    of (type, array) pairs, or CellBlocks); its arrays filled directly."""
+    points = np.ascontiguousarray(points, dtype=np.float64)
+    if points.ndim != 2 or not 1 <= points.shape[1] <= 4:
+        raise ValueError("points: expected an array of shape (n, dim), dim 1..4, not %s"
+                         % (points.shape,))
+    if isinstance(cells, dict):
+        cells = list(cells.items())
+    blocks = [(b.type, b.data) if hasattr(b, "type") else b for b in cells]
+    pcx = _ffi.new("ss_cx **")
+    _check(_lib.ss_cx_new(points.shape[1], pcx, err), err)
+    cx = pcx[0]
+    try:
+        nv, dim = points.shape
+        _check(_lib.ss_cx_reserve_vertices(cx, nv, err), err)
+        _ffi.memmove(cx.x, points, points.nbytes)
+        _ffi.memmove(cx.vref, bytes(4 * nv), 4 * nv)
+        cx.nv = nv
+        for name, data in blocks:
+            if name not in _CELL_TYPES:
+                raise ValueError("cells: unknown cell type %r (expected one of %s)"
+                                 % (name, ", ".join(_CELL_TYPES)))
+            t = getattr(_lib, _CELL_TYPES[name])
+            k = _lib.ss_cell_nverts(t)
+            data = np.asarray(data)
+            if data.ndim != 2 or data.shape[1] != k or not np.issubdtype(data.dtype, np.integer):
+                raise ValueError("cells[%r]: expected integers of shape (m, %d), not %s %s"
+                                 % (name, k, data.dtype, data.shape))
+            if data.size and (data.min() < 0 or data.max() >= nv):
+                raise ValueError("cells[%r]: vertex indices outside 0..%d" % (name, nv - 1))
+            old = cx.nc[t]
+            data = np.ascontiguousarray(data, dtype=np.uint32)
+            _check(_lib.ss_cx_reserve_cells(cx, t, old + len(data), err), err)
+            _ffi.memmove(cx.cells[t] + old * k, data, data.nbytes)
+            _ffi.memmove(cx.cref[t] + old, bytes(4 * len(data)), 4 * len(data))
+            cx.nc[t] = old + len(data)
+        _check(_lib.ss_cx_validate(cx, err), err)
+        return cx
+    except BaseException:
+        _lib.ss_cx_free(cx)
+        raise
+
+
+def _cx_to_arrays(cx):
+    """(points, cells) of an ss_cx as NumPy arrays, cells a dict by meshio's names."""
+    pts = np.frombuffer(_ffi.buffer(cx.x, cx.nv * cx.dim * 8), dtype=np.float64)
+    cells = {}
+    for name, tname in _CELL_TYPES.items():
+        t = getattr(_lib, tname)
+        if cx.nc[t]:
+            k = _lib.ss_cell_nverts(t)
+            a = np.frombuffer(_ffi.buffer(cx.cells[t], cx.nc[t] * k * 4), dtype=np.uint32)
+            cells[name] = a.reshape(-1, k).astype(np.int64)
+    return pts.reshape(cx.nv, cx.dim).copy(), cells
+
+
+def subdivide(scheme, points, cells, levels=1, diagonals=None):
+    """Refine a mesh `levels` times with the scheme, as `subspectra subdivide
+    --scheme SCHEME --levels L IN -o OUT` does between reading IN and writing
+    OUT: (points, cells) in, (points, cells) out.  points is an (n, dim)
+    array (dim 1..4: every coordinate is refined alike, so extra columns
+    carry fields); cells is meshio's: a dict {type: (m, k) int array} or a
+    list of (type, array) pairs or CellBlocks, with meshio's (VTK's) types
+    and vertex orders -- vertex, line, triangle, quad, tetra, hexahedron --
+    and "octahedron" (opposite corners (0,3), (1,4), (2,5)) for what the
+    tet/oct split makes.  Returns new arrays, cells as a dict, so
+    meshio.Mesh(*subspectra.subdivide("mlca", m.points, m.cells_dict)) is
+    the refined mesh.  Cells must be positively oriented (SubspectraError
+    naming the first that is not, as the command); diagonals as subdivide's
+    --diagonals for the box-spline schemes: bfs (default), proper or given."""
+    levels = _integer("levels", levels)
+    if not 0 <= levels <= 12:
+        raise ValueError("levels: expected 0..12, not %d" % levels)
+    err = _ffi.new("ss_error *")
+    ps = _ffi.new("ss_scheme **")
+    _check(_lib.ss_scheme_new(_text("scheme", scheme, "a scheme name").encode(), ps, err), err)
+    cx, pf = _ffi.NULL, _ffi.new("ss_cx **")
+    try:
+        cx = _cx_from_arrays(points, cells, err)
+        _check(_lib.ss_cx_check_orientation(cx, err), err)
+        if _lib.ss_scheme_reads_diagonals(ps[0]):
+            _choose_diagonals(cx, diagonals, err)
+        elif diagonals is not None:
+            raise ValueError("diagonals: scheme %s reads no major diagonals" % scheme)
+        _check(_lib.ss_scheme_refine_levels(ps[0], cx, levels, pf, err), err)
+        return _cx_to_arrays(pf[0])
+    finally:
+        _lib.ss_cx_free(pf[0])
+        _lib.ss_cx_free(cx)
+        _lib.ss_scheme_free(ps[0])
+
+
+def _choose_diagonals(cx, diagonals, err):
+    """subdivide's --diagonals: bfs (default) or proper chosen here, given
+    kept as the tets' vertex orders carry them."""
+    diagonals = _text("diagonals", "bfs" if diagonals is None else diagonals,
+                      "bfs, proper or given")
+    if diagonals == "given":
+        return
+    d = _ffi.new("ss_diag_mode *")
+    if diagonals not in ("bfs", "proper") or _lib.ss_diag_parse(diagonals.encode(), d):
+        raise ValueError("diagonals: expected bfs, proper or given, not %r" % (diagonals,))
+    _check(_lib.ss_diag_choose(cx, d[0], 0, 0, err), err)

@@ -161,6 +161,32 @@ assert r[1]["minimal_polynomial"] == "2*x - 1", r[1]
 PY
 expect_in 1 "regularity: fail, certified: psi o sigma = psi" "" "$exe" analyze --scheme mlca --vertex "$k8" --certify
 expect_in 1 "regularity: undecided: not certified" "" "$exe" analyze --scheme loop --surface-vertex 5 --certify
+# the text says what the JSON's "certified" says (issue 40: injectivity was a
+# plain "pass" where the JSON said certified: false): each decided verdict of
+# --certify's text is ", certified" or ", not certified" as the JSON is true
+# or false, on a case with both (tetoct's octahedron: injectivity on the net)
+for a in "tetoct --vertex octahedron" "mlca --edge 5"; do
+  # shellcheck disable=SC2086
+  txt=$("$exe" analyze --scheme $a --certify)
+  # shellcheck disable=SC2086
+  js=$("$exe" analyze --scheme $a --certify --format json)
+  checks=$((checks + 1))
+  python3 - "$txt" "$js" <<'PY' || fail "analyze --scheme $a --certify: text and JSON disagree on certified"
+import json, re, sys
+txt, j = sys.argv[1], json.loads(sys.argv[2])
+seen = 0
+for key, label in (("regularity", "regularity"), ("injectivity", "injectivity")):
+    v = j[key]
+    if v["verdict"] == "undecided":
+        continue
+    m = re.search(r"^%s: %s(, (not )?certified)?" % (label, v["verdict"]), txt, re.M)
+    want = ", certified" if v["certified"] else ", not certified"
+    assert m and m.group(1) == want, (key, v, m and m.group(0))
+    seen += not v["certified"]
+assert "not certified" not in txt or seen
+PY
+done
+expect_in 0 "^injectivity: pass, not certified" "" "$exe" analyze --scheme tetoct --vertex octahedron --certify
 expect_in 2 "--certify is an option of analyze" "" "$exe" matrix --scheme mlca --edge 4 --certify
 expect_in 2 "--depth" "" "$exe" analyze --scheme mlca --edge 4 --depth 13
 
@@ -170,12 +196,12 @@ expect_in 0 "wrote $tmp/t.png \\(regularity pass\\)" "" "$exe" draw --scheme mlc
 expect_in 0 "wrote $tmp/t.svg" "" "$exe" draw --scheme catmull-clark --surface-vertex 5 -o "$tmp/t.svg"
 expect_in 0 "wrote $tmp/t.vtk" "" "$exe" draw --scheme tetoct --face -o "$tmp/t.vtk"
 expect_in 1 "regularity fail" "" "$exe" draw --scheme mlca --vertex "$k8" -o "$tmp/k8.png"
-expect_in 1 "no characteristic map to draw" "" "$exe" draw --scheme mlca --edge 8 -o "$tmp/e8.png"
+expect_in 1 "^subspectra draw: nothing to draw: no characteristic map: the eigenvalue condition fails" "" "$exe" draw --scheme mlca --edge 8 -o "$tmp/e8.png"
 expect_in 2 "-o FILE is required" "" "$exe" draw --scheme mlca --edge 4
 # box-spline solids: the figure-23 edge pair; "center" has no characteristic
 # map at valence 9 (lambda3 = lambda4), --force draws the would-be map
 expect_in 0 "regularity pass" "" "$exe" draw --scheme boxspline --edge 9 --diagonals skew -o "$tmp/s9.png"
-expect_in 1 "no characteristic map to draw" "" "$exe" draw --scheme boxspline --edge 9 --diagonals center -o "$tmp/c9.png"
+expect_in 1 "^subspectra draw: nothing to draw: no characteristic map" "" "$exe" draw --scheme boxspline --edge 9 --diagonals center -o "$tmp/c9.png"
 expect_in 1 "forced map, eigenvalue condition fails; its cells: fail" "" "$exe" draw --scheme boxspline --edge 9 --diagonals center --force -o "$tmp/c9.png"
 [ -s "$tmp/c9.png" ] || fail "draw --force wrote no picture"
 expect_in 2 "--force is an option of draw only" "" "$exe" analyze --scheme boxspline --edge 9 --force
@@ -192,7 +218,7 @@ expect_in 0 "scheme boxspline-avg, edge case, valence 5" "" "$exe" analyze --sch
 avgout=$("$exe" analyze --scheme boxspline-avg --edge 5 --format json)
 checks=$((checks + 1))
 grep -q '"diagonals"' <<<"$avgout" && fail "boxspline-avg reports diagonals it does not read"
-expect_in 2 "unknown picture format" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.gif"
+expect_in 2 "^subspectra draw: [^ ]*x.gif: unknown picture format" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.gif"
 expect_in 2 "cannot" "" "$exe" draw --scheme mlca --edge 4 -o /nonexistent/dir/x.png
 expect_in 2 "--size" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --size 10x10
 expect_in 2 "--view" "" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.png" --view 10

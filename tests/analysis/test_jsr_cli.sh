@@ -133,4 +133,10 @@ assert j["applies"] is False and j["verdict"] == "n/a"
 assert "1, 1/2 x3, 1/4 x6" in j["reason"]
 assert j["lower"] is None and j["upper"] is None and j["rho_k"] is None
 PY
+# slashes as the other commands write them (json-c escapes them as \/ unless
+# told not to): the edge's threshold name holds one
+out=$("$exe" jsr --scheme tetoct --edge 5 --depth 2 --format json)
+checks=$((checks + 1))
+grep -qF '"threshold_name":"lambda3 = lambda1 (< 1/2)"' <<<"$out" && ! grep -qF '\/' <<<"$out" ||
+  fail "jsr --format json escapes slashes: $out"
 expect_done test_jsr_cli

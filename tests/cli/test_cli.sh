@@ -90,10 +90,24 @@ expect 0 "mlca level 1" "$exe" subdivide --scheme mlca "$m/hexstar-icosahedron.m
 g=$src/tests/mesh/gmsh
 expect 2 "mixed.v4b.msh: mixed mesh \\(6 tetrahedra and 1 hexahedra\\)" "$exe" enumerate mesh "$g/mixed.v4b.msh"
 printf '$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n' > "$tmp/cut.msh"
-expect 2 "^subspectra: [^ ]*cut.msh:5: \\\$Nodes: the file ends where entity block 1 of 1 is expected$" "$exe" subdivide --scheme tetoct "$tmp/cut.msh" -o "$tmp/x.mesh"
+expect 2 "^subspectra subdivide: [^ ]*cut.msh:5: \\\$Nodes: the file ends where entity block 1 of 1 is expected$" "$exe" subdivide --scheme tetoct "$tmp/cut.msh" -o "$tmp/x.mesh"
 checks=$((checks + 1))
 lines=$("$exe" subdivide --scheme tetoct "$tmp/cut.msh" -o "$tmp/x.mesh" 2>&1 | wc -l)
 [ "$lines" -eq 1 ] || fail "a bad .msh: $lines lines of output, want the one message"
+
+# one message prefix (issue 40): a failure says "subspectra COMMAND: ...",
+# the library's message after it, whichever path reports it (the command's
+# own check, a failed library call, a file that cannot be read)
+expect 2 "^subspectra subdivide: /nonexistent/x.mesh: No such file" "$exe" subdivide --scheme mlca /nonexistent/x.mesh -o "$tmp/x.mesh"
+expect 2 "^subspectra limit: /nonexistent/x.mesh: No such file" "$exe" limit --scheme mlca --samples 2 /nonexistent/x.mesh
+expect 2 "^subspectra enumerate mesh: /nonexistent/x.mesh: No such file" "$exe" enumerate mesh /nonexistent/x.mesh
+expect_in 2 "^subspectra enumerate canonical: stdin:1: " "4 bcd" "$exe" enumerate canonical
+expect 2 "^subspectra jsr: unknown scheme 'nope'" "$exe" jsr --scheme nope --face
+expect 2 "^subspectra matrix: /nonexistent/x.mtx: cannot open" "$exe" matrix --scheme mlca --edge 4 -o /nonexistent/x.mtx
+expect 2 "^subspectra draw: [^ ]*x.gif: unknown picture format" "$exe" draw --scheme mlca --edge 4 -o "$tmp/x.gif"
+checks=$((checks + 1))
+"$exe" draw --scheme mlca --edge 8 -o "$tmp/e8.png" 2>&1 | grep -q "no characteristic map to draw: no characteristic map" &&
+  fail "draw says 'no characteristic map' twice"
 printf 'System "touch %s";\n' "$tmp/MARK" > "$tmp/script.msh"
 expect 2 "script.msh:1: not a gmsh mesh" "$exe" subdivide --scheme tetoct "$tmp/script.msh" -o "$tmp/x.mesh"
 expect 1 "" test -e "$tmp/MARK"

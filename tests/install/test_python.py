@@ -15,7 +15,15 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
    and the regular MLCA edge's tricubic spectrum 1, 1/2 (x3), 1/4 (x6);
  - eigenvectors(): S R = R diag(v), L^T S = diag(v) L^T, L^T R = I, r_0 = 1,
    and Catmull-Clark's closed-form limit-position mask;
- - bad input raises SubspectraError naming the problem;
+ - bad input raises SubspectraError naming the problem, arguments of the
+   wrong type TypeError naming the argument (vertex=5, edge=5.9, tol="x",
+   certify=1, scheme=None), a SUBSPECTRA_LIBRARY that does not load
+   SubspectraError naming the path (no other library is taken);
+ - local_labels() against linear precision on the regular grids (S P = P / 2);
+ - enumerate_links() against the counts of A000109 and `enumerate links`;
+ - jsr() equals `jsr --format json`;
+ - subdivide() equals `subdivide -o FILE.mesh` (read back by meshio), makes
+   the tet/oct split's counts, and is affine invariant;
  - the structure layouts the package declares to cffi equal the C compiler's
    (LAYOUT: lines "sizeof T N" and "offsetof T FIELD N" from the installed
    headers), so a field added to ss_case or ss_local is caught here.
@@ -23,13 +31,19 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
 import io
 import json
 import math
+import os
+import shutil
 import subprocess
 import sys
+import tempfile
 
 import numpy as np
 import scipy.io
 
 import subspectra
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ss_json_same  # noqa: E402 -- beside this file
 
 exe, layout = sys.argv[1], sys.argv[2]
 fails = 0
@@ -42,23 +56,8 @@ def fail(msg):
 
 
 def same(a, b, path):
-    """Recursive comparison; numbers within a relative 1e-12."""
-    if isinstance(a, dict) and isinstance(b, dict):
-        if set(a) != set(b):
-            fail("%s: keys differ: %s vs %s" % (path, sorted(set(a) ^ set(b)), ""))
-        for k in set(a) & set(b):
-            same(a[k], b[k], path + "." + k)
-    elif isinstance(a, list) and isinstance(b, list):
-        if len(a) != len(b):
-            fail("%s: lengths %d vs %d" % (path, len(a), len(b)))
-        for i, (x, y) in enumerate(zip(a, b)):
-            same(x, y, "%s[%d]" % (path, i))
-    elif isinstance(a, float) or isinstance(b, float):
-        if not (isinstance(a, (int, float)) and isinstance(b, (int, float))
-                and abs(a - b) <= 1e-12 * max(abs(a), abs(b), 1e-300)):
-            fail("%s: %r vs %r" % (path, a, b))
-    elif a != b:
-        fail("%s: %r vs %r" % (path, a, b))
+    """Recursive comparison; numbers within a relative 1e-12 (ss_json_same)."""
+    ss_json_same.same(a, b, path, fail)
 
 
 def cli(*args):
@@ -161,6 +160,151 @@ for n in (3, 5, 7):
         fail("catmull-clark n=%d: limit mask %s, closed form %s" % (n, got, want))
 print("ok: eigenvectors, Catmull-Clark's limit-position mask")
 
+# local_labels: the one-ring first, the centre at 0, all distinct; and the
+# rows of S agree with them: on the regular grids (tricubic MLCA edge 4,
+# bicubic Catmull-Clark and quartic box-spline Loop at the regular valence)
+# the schemes reproduce linear functions, so with the chart's axes (spokes at
+# angles 2 pi k / n, the edge along z) S P = P / 2 for the positions P
+def spokes(n):
+    return np.array([[math.cos(2 * math.pi * k / n), math.sin(2 * math.pi * k / n)]
+                     for k in range(n)])
+
+
+for scheme, case, axes in (
+        ("mlca", {"edge": 4}, np.block([[spokes(4), np.zeros((4, 1))],
+                                        [np.zeros((1, 2)), np.ones((1, 1))]])),
+        ("catmull-clark", {"surface_vertex": 4}, spokes(4)),
+        ("loop", {"surface_vertex": 6}, spokes(6))):
+    coords, n1 = subspectra.local_labels(scheme, **case)
+    S = subspectra.local_matrix(scheme, **case).toarray()
+    P = coords @ axes
+    if coords.shape != (S.shape[0], axes.shape[0]) or coords[0].any() \
+            or len(set(map(tuple, coords.tolist()))) != len(coords) \
+            or np.abs(S[:n1, n1:]).max() != 0:
+        fail("local_labels(%r, %s): shape %s, n1 %d" % (scheme, case, coords.shape, n1))
+    elif np.abs(S @ P - P / 2).max() > 1e-13:
+        fail("local_labels(%r, %s): S P != P / 2 (%g)" % (scheme, case,
+                                                          np.abs(S @ P - P / 2).max()))
+c5, n15 = subspectra.local_labels("mlca", edge=5)
+if c5.shape != (155, 6) or n15 != 33:  # 30n + 5 and 6n + 3 points; n + 1 coordinates
+    fail("local_labels mlca edge 5: %s, n1 %d" % (c5.shape, n15))
+print("ok: local_labels: linear precision S P = P / 2 on the regular grids")
+
+# enumerate_links: the numbers of triangulations of the sphere with k
+# vertices (OEIS A000109: 1, 1, 2, 5, 14, 50, 233 for k = 4..10), the same
+# links as `enumerate links`, lazy (closed early on k = 14's 339722)
+want = {4: 1, 5: 1, 6: 2, 7: 5, 8: 14, 9: 50, 10: 233}
+got = list(subspectra.enumerate_links(4, 10))
+counts = {k: sum(1 for t in got if int(t.split()[0]) == k) for k in want}
+if counts != want:
+    fail("enumerate_links(4, 10): counts %s, want %s" % (counts, want))
+if got != cli("enumerate", "links", "--vertices", "4..10").split("\n")[:-1]:
+    fail("enumerate_links(4, 10) differs from `enumerate links --vertices 4..10`")
+part = [sorted(subspectra.enumerate_links(9, part=i, nparts=3)) for i in range(3)]
+if sorted(sum(part, [])) != sorted(t for t in got if t.startswith("9 ")):
+    fail("enumerate_links(9, part=i, nparts=3): the parts are not a partition")
+it = subspectra.enumerate_links(14)
+first = [next(it) for _ in range(5)]
+it.close()
+if len(set(first)) != 5 or not all(t.startswith("14 ") for t in first):
+    fail("enumerate_links(14): %s" % first)
+for kw in ({"kmin": 3}, {"kmin": 5, "kmax": 4}, {"kmin": 21}, {"kmin": 5, "part": 2, "nparts": 2}):
+    try:
+        list(subspectra.enumerate_links(**kw))
+        fail("enumerate_links(%s) did not raise" % kw)
+    except ValueError:
+        pass
+print("ok: enumerate_links: A000109's counts, as `enumerate links`, lazy")
+
+# jsr: the dictionary of `jsr --format json`
+for scheme, case, args in (("tetoct", {"edge": 5}, ["--edge", "5"]),
+                           ("tetoct", {"edge": 4}, ["--edge", "4"]),
+                           ("boxspline", {"edge": 4, "diagonals": "proper"},
+                            ["--edge", "4", "--diagonals", "proper"])):
+    want = json.loads(cli("jsr", "--scheme", scheme, *args, "--depth", "3", "--format", "json"))
+    got = subspectra.jsr(scheme, depth=3, **case)
+    same(got, want, "jsr %s %s" % (scheme, case))
+    if not got["lower"] <= got["upper"]:
+        fail("jsr %s %s: lower %g > upper %g" % (scheme, case, got["lower"], got["upper"]))
+for kw, exc in (({}, ValueError), ({"face": True, "edge": 4}, ValueError),
+                ({"edge": 5, "norm": "1"}, ValueError), ({"edge": 5, "depth": 2.5}, TypeError),
+                ({"edge": 5, "gap": "x"}, TypeError)):
+    try:
+        subspectra.jsr("tetoct", **kw)
+        fail("jsr('tetoct', %s) did not raise" % kw)
+    except exc:
+        pass
+try:
+    subspectra.jsr("mlca", edge=5)
+    fail("jsr('mlca', edge=5) did not raise")
+except subspectra.SubspectraError as e:
+    if "tet stars only" not in str(e):
+        fail("jsr('mlca', edge=5): %s" % e)
+print("ok: jsr == jsr --format json")
+
+# subdivide: NumPy in and out, meshio's cells.  Against the command (the
+# Medit file it writes, read by meshio: the same points to the last bit, the
+# same cells); the tet/oct split's counts (a tet makes 4 tets and an
+# octahedron, an octahedron 8 tets and 6 octahedra); affine invariance (every
+# row of the rule sums to 1): subdividing A p + b gives A q + b
+src = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+try:
+    import meshio
+except ImportError:
+    meshio = None
+    print("subdivide against the command: SKIPPED (no meshio)")
+if meshio is not None:
+    tmpdir = tempfile.mkdtemp()
+    for scheme, mesh in (("mlca", "hexstar-icosahedron.mesh"), ("boxspline", "cube-6tets.mesh")):
+        m = meshio.read(os.path.join(src, "data", "meshes", mesh))
+        p, c = subspectra.subdivide(scheme, m.points, m.cells_dict)
+        out = os.path.join(tmpdir, "out.mesh")
+        cli("subdivide", "--scheme", scheme, os.path.join(src, "data", "meshes", mesh), "-o", out)
+        o = meshio.read(out)
+        oc = o.cells_dict
+        if "octahedron" in c:  # Medit has none: the command splits each into 4 tets
+            c = {"tetra": c["tetra"]}
+            oc = {"tetra": oc["tetra"][:len(c["tetra"])]}
+        if o.points.shape != p.shape or np.abs(o.points - p).max() != 0 \
+                or sorted(oc) != sorted(c) or any((oc[k] != c[k]).any() for k in c):
+            fail("subdivide(%r, %s) differs from the command's" % (scheme, mesh))
+    shutil.rmtree(tmpdir)
+    print("ok: subdivide == subdivide -o FILE.mesh")
+cube = np.array([[x, y, z] for z in (0, 1) for y in (0, 1) for x in (0, 1)], dtype=float)
+tets = np.array([[0, 1, 3, 7], [0, 1, 7, 5], [0, 5, 7, 4], [0, 3, 2, 7], [0, 2, 6, 7],
+                 [0, 6, 4, 7]])
+tets = np.array([t if np.linalg.det(cube[t[1:]] - cube[t[0]]) > 0 else t[[1, 0, 2, 3]]
+                 for t in tets])
+p1, c1 = subspectra.subdivide("tetoct", cube, {"tetra": tets}, levels=2)
+if {k: len(v) for k, v in c1.items()} != {"tetra": 6 * 4 * 4 + 6 * 8, "octahedron": 6 * 4 + 6 * 6}:
+    fail("tetoct on 6 tets, 2 levels: %s" % {k: len(v) for k, v in c1.items()})
+rng = np.random.default_rng(40)
+A, b = rng.normal(size=(3, 3)) + 3 * np.eye(3), rng.normal(size=3)
+p2, c2 = subspectra.subdivide("tetoct", cube @ A.T + b, [("tetra", tets)], levels=2)
+if np.abs(p2 - (p1 @ A.T + b)).max() > 1e-12 * np.abs(p2).max() or \
+        any((c2[k] != c1[k]).any() for k in c1):
+    fail("tetoct: subdivide(A p + b) != A subdivide(p) + b")
+p0, c0 = subspectra.subdivide("tetoct", cube, {"tetra": tets}, levels=0)
+if np.abs(p0 - cube).max() != 0 or (c0["tetra"] != tets).any():
+    fail("subdivide(levels=0) is not the input")
+for args, exc, what in (
+        ((cube, {"pyramid": tets}), ValueError, "unknown cell type 'pyramid'"),
+        ((cube, {"tetra": tets[:, :3]}), ValueError, "expected integers of shape (m, 4)"),
+        ((cube, {"tetra": tets + 1}), ValueError, "vertex indices outside 0..7"),
+        ((cube, {"tetra": tets * 1.0}), ValueError, "expected integers"),
+        ((np.zeros((8, 5)), {"tetra": tets}), ValueError, "dim 1..4"),
+        ((cube, {"tetra": np.vstack([tets[:1, [1, 0, 2, 3]], tets[1:]])}),
+         subspectra.SubspectraError, "tetrahedron 1"),
+        ((cube, {"hexahedron": np.array([[0, 1, 3, 2, 4, 5, 7, 6]])}),
+         subspectra.SubspectraError, "does not take")):
+    try:
+        subspectra.subdivide("tetoct", *args)
+        fail("subdivide(%s) did not raise" % what)
+    except exc as e:
+        if what not in str(e):
+            fail("subdivide: %r does not say %r" % (str(e), what))
+print("ok: subdivide: the tet/oct counts, affine invariance, bad input")
+
 # bad input
 for kw, what in (({"edge": 3, "scheme": "nope"}, "unknown scheme 'nope'"),
                  ({"vertex": "4 bcd,adc", "scheme": "mlca"}, "")):
@@ -181,6 +325,13 @@ except ValueError:
 # on mlca's edge said "only for the edge case")
 for kw, exc, what in (
         ({"edge": 5.7}, TypeError, "edge: expected an integer, not 5.7"),
+        ({"edge": 5.9}, TypeError, "edge: expected an integer, not 5.9"),
+        ({"vertex": 5}, TypeError, "vertex: expected a link: plantri ASCII"),
+        ({"vertex": b"octahedron"}, TypeError, "vertex: expected a link"),
+        ({"face": "yes"}, TypeError, "face: expected True or False, not 'yes'"),
+        ({"edge": 5, "certify": 1}, TypeError, "certify: expected True or False, not 1"),
+        ({"edge": 5, "tol": "1e-6"}, TypeError, "tol: expected a real number, not '1e-6'"),
+        ({"edge": 5, "tol": True}, TypeError, "tol: expected a real number, not True"),
         ({"edge": 5.0}, TypeError, "edge: expected an integer, not 5.0"),
         ({"edge": "5"}, TypeError, "edge: expected an integer, not '5'"),
         ({"edge": True}, TypeError, "edge: expected an integer, not True"),
@@ -210,6 +361,21 @@ for kw, what in (({"surface_vertex": 5, "cls": 8}, "a 4-8 vertex class exists on
         if what not in str(e):
             fail("analyze('loop', %s): %s" % (kw, e))
 try:
+    subspectra.eigenvalues("mlca", "x", edge=4)
+    fail("eigenvalues(tol='x') did not raise")
+except TypeError as e:
+    if "tol: expected a real number, not 'x'" not in str(e):
+        fail("eigenvalues(tol='x'): %s" % e)
+for scheme in (5, None, b"mlca"):
+    try:
+        subspectra.analyze(scheme, edge=5)
+        fail("analyze(%r) did not raise" % (scheme,))
+    except TypeError as e:
+        if "scheme: expected a scheme name" not in str(e):
+            fail("analyze(%r): %s" % (scheme, e))
+    except Exception as e:  # noqa: BLE001
+        fail("analyze(%r): %s, not TypeError: %s" % (scheme, type(e).__name__, e))
+try:
     subspectra.eigenvectors("mlca", k=2.5, edge=4)
     fail("eigenvectors(k=2.5) did not raise")
 except TypeError as e:
@@ -221,5 +387,32 @@ if subspectra.analyze("mlca", edge=np.int64(5))["case"] != "edge":
 if subspectra.analyze("quasi48", surface_vertex=5, cls=np.int32(4)).get("class") != 4:
     fail("quasi48 cls=np.int32(4) is not class 4")
 print("ok: bad input")
+
+# the library: the one SUBSPECTRA_LIBRARY names; a path there that does not
+# load raises SubspectraError naming it, even when another library would load
+# (the staged one on LD_LIBRARY_PATH, where the dynamic linker finds it)
+lib = os.environ.get("SUBSPECTRA_LIBRARY", "")
+if subspectra.library_path != lib:
+    fail("library_path %r, SUBSPECTRA_LIBRARY %r" % (subspectra.library_path, lib))
+for bad in ("/nonexistent/dir/libsubspectra.so.0", os.path.abspath(__file__)):
+    env = dict(os.environ, SUBSPECTRA_LIBRARY=bad,
+               LD_LIBRARY_PATH=os.path.dirname(lib) + ":" + os.environ.get("LD_LIBRARY_PATH", ""))
+    p = subprocess.run([sys.executable, "-c", "import subspectra; print(subspectra.library_path)"],
+                       env=env, capture_output=True, text=True)
+    want = "subspectra.SubspectraError: SUBSPECTRA_LIBRARY=%s: cannot load the library" % bad
+    if p.returncode == 0 or want not in p.stderr:
+        fail("SUBSPECTRA_LIBRARY=%s: exit %d, %r%r" % (bad, p.returncode, p.stdout, p.stderr[-300:]))
+print("ok: SUBSPECTRA_LIBRARY that does not load: SubspectraError naming it, no other library")
+
+# help(): the module and every public name documented
+for name in ["__init__"] + subspectra.__all__:
+    obj = subspectra if name == "__init__" else getattr(subspectra, name)
+    if len((obj.__doc__ or "").strip()) < 40:
+        fail("subspectra.%s has no docstring to speak of" % name)
+missing = [n for n in ("local_labels", "jsr", "enumerate_links", "subdivide")
+           if n not in subspectra.__doc__]
+if missing:
+    fail("the module's docstring does not list %s" % missing)
+print("ok: docstrings")
 
 sys.exit(1 if fails else 0)
