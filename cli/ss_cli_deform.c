@@ -17,7 +17,8 @@
 static const char *const usage_text =
     "usage: subspectra deform --scheme S MESH (--points FILE | --pattern grid|checker)\n"
     "                         [--displace FILE | --target MESH2] [--n N] [--samples K]\n"
-    "                         [--levels L] [--method auto|exact|levels]\n"
+    "                         [--levels L] [--method auto|exact|levels] [--embed-level "
+    "E]\n"
     "                         [--format text|json|vtk|vtu|png] [-o FILE]\n"
     "\n"
     "Embeds points in the volume of the base mesh MESH (each point's cell and\n"
@@ -47,6 +48,13 @@ static const char *const usage_text =
     "                     and --target nothing moves\n"
     "  -L, --levels L     levels of subdivision on the levels path (1..8; default\n"
     "                     3); memory grows by 8^L\n"
+    "  -E, --embed-level E  embed in the base mesh refined E times by the scheme\n"
+    "                     (0..4; default 0: the control net itself).  The\n"
+    "                     tet/oct paper's way (section 3): a point's cell and\n"
+    "                     parameters in the refined rest mesh, so that without\n"
+    "                     a move the pattern stays (nearly) where it is and the\n"
+    "                     picture shows the deformation, not the parametrisation;\n"
+    "                     cells are then those of the refined mesh\n"
     "  -m, --method M     auto (default: exact where the limit evaluator covers\n"
     "                     the scheme and mesh, else levels), exact or levels\n"
     "  -f, --format F     text (default; the columns are named in a '#' line),\n"
@@ -59,7 +67,11 @@ static const char *const usage_text =
     "                     control net).  Default from -o's extension\n"
     "  -o, --output FILE  write there (whole or not at all) instead of stdout\n"
     "  -h, --help         this text\n"
-    "\n"
+    "\n";
+
+/* The usage text's second half (one literal would exceed the 4095 characters
+ * C11 compilers must support). */
+static const char *const usage_paths =
     "Paths.  exact: the limit evaluator of `subspectra limit` (hexahedral meshes\n"
     "under mlca, ccsolid and the averaging family, no crease cells).  levels: L\n"
     "levels of the scheme's refinement, each point followed into its child cell\n"
@@ -83,6 +95,7 @@ typedef struct {
   const char *target;        /* --target MESH2, or NULL */
   const char *out;           /* -o FILE, or NULL: stdout */
   long n, samples, levels;   /* --n, --samples (0: default), --levels */
+  long embed;                /* --embed-level E */
   int method;                /* 0 auto, 1 exact, 2 levels */
   int format;                /* SS_DEFORM_FMT_*, or -1: from -o */
 } deform_opts;
@@ -108,11 +121,12 @@ static int parse(int argc, char **argv, deform_opts *o) {
                                        {"format", required_argument, NULL, 'f'},
                                        {"output", required_argument, NULL, 'o'},
                                        {"help", no_argument, NULL, 'h'},
+                                       {"embed-level", required_argument, NULL, 'E'},
                                        {NULL, 0, NULL, 0}};
   optind = 1;
   opterr = 0;
   int c;
-  while ((c = getopt_long(argc, argv, ":s:p:P:N:k:D:t:L:m:f:o:h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, ":s:p:P:N:k:D:t:L:m:f:o:hE:", opts, NULL)) != -1) {
     switch (c) {
     case 's':
       o->scheme = optarg;
@@ -135,6 +149,11 @@ static int parse(int argc, char **argv, deform_opts *o) {
       if (ss_cli_parse_int(optarg, 2, 400, &o->samples))
         return ss_cli_usage_error("deform", "--samples '%s' is not an integer in 2..400",
                                   optarg);
+      break;
+    case 'E':
+      if (ss_cli_parse_int(optarg, 0, 4, &o->embed))
+        return ss_cli_usage_error("deform",
+                                  "--embed-level '%s' is not an integer in 0..4", optarg);
       break;
     case 'D':
       o->displace = optarg;
@@ -168,6 +187,7 @@ static int parse(int argc, char **argv, deform_opts *o) {
       break;
     case 'h':
       fputs(usage_text, stdout);
+      fputs(usage_paths, stdout);
       return SS_EXIT_OK;
     default:
       return ss_cli_option_error("deform", c, argv);
@@ -482,6 +502,23 @@ static int write_out(const deform_opts *o, const ss_deform_cli_out *out) {
   return ss_outfile_commit(of, &err) ? ss_cli_fail(&err) : 0;
 }
 
+/* --embed-level E: both nets refined E times by the scheme (in place).  0
+ * or the exit status. */
+static int refine_both(const ss_scheme *s, int E, ss_cx **base, ss_cx **moved) {
+  ss_error err = {0};
+  ss_cx *b = NULL, *m = NULL;
+  if (ss_scheme_refine_levels(s, *base, E, &b, &err) ||
+      ss_scheme_refine_levels(s, *moved, E, &m, &err)) {
+    ss_cx_free(b);
+    return ss_cli_fail(&err);
+  }
+  ss_cx_free(*base);
+  ss_cx_free(*moved);
+  *base = b;
+  *moved = m;
+  return 0;
+}
+
 /* Evaluate by o->method and print the summary; 0, 1 or 2. */
 static int run(const deform_opts *o, const ss_scheme *s, const ss_cx *base,
                const ss_cx *moved, ss_deform_cli_point *pt, size_t n, size_t outside) {
@@ -567,8 +604,9 @@ int ss_cli_deform(int argc, char **argv) {
     rc = SS_EXIT_USAGE;
     goto done;
   }
-  if ((rc = embed(&o, base, pt, n, &outside))) goto done;
   if ((rc = moved_net(&o, base, &moved))) goto done;
+  if (o.embed > 0 && (rc = refine_both(s, (int)o.embed, &base, &moved))) goto done;
+  if ((rc = embed(&o, base, pt, n, &outside))) goto done;
   rc = run(&o, s, base, moved, pt, n, outside);
 done:
   free(pt);
