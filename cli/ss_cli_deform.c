@@ -519,9 +519,12 @@ static int refine_both(const ss_scheme *s, int E, ss_cx **base, ss_cx **moved) {
   return 0;
 }
 
-/* Evaluate by o->method and print the summary; 0, 1 or 2. */
+/* Evaluate by o->method (base and moved: the nets the points are embedded
+ * in; net: the moved control net, drawn in the picture), write, and print the
+ * summary; 0, 1 or 2. */
 static int run(const deform_opts *o, const ss_scheme *s, const ss_cx *base,
-               const ss_cx *moved, ss_deform_cli_point *pt, size_t n, size_t outside) {
+               const ss_cx *moved, const ss_cx *net, ss_deform_cli_point *pt, size_t n,
+               size_t outside) {
   ss_error err = {0};
   const int L = o->levels ? (int)o->levels : 3;
   int rc = -1, exact = 0;
@@ -549,7 +552,7 @@ static int run(const deform_opts *o, const ss_scheme *s, const ss_cx *base,
       rate = pt[i].rate;
     }
   }
-  ss_deform_cli_out out = {pt, n, exact, exact ? 0 : L, o->scheme, moved};
+  ss_deform_cli_out out = {pt, n, exact, exact ? 0 : L, o->scheme, net};
   int wc = write_out(o, &out);
   if (wc) return wc;
   fprintf(stderr, "subspectra deform: %zu points, %zu outside the mesh, %zu refused; ", n,
@@ -571,7 +574,7 @@ int ss_cli_deform(int argc, char **argv) {
   if (rc >= 0) return rc;
   ss_error err = {0};
   ss_scheme *s = NULL;
-  ss_cx *base = NULL, *moved = NULL;
+  ss_cx *base = NULL, *moved = NULL, *net = NULL;
   ss_deform_cli_point *pt = NULL;
   size_t n = 0, outside = 0;
   if (ss_scheme_new(o.scheme, &s, &err) ||
@@ -605,13 +608,18 @@ int ss_cli_deform(int argc, char **argv) {
     goto done;
   }
   if ((rc = moved_net(&o, base, &moved))) goto done;
+  if (ss_cx_copy(moved, &net, &err)) { /* the moved control net, for the picture */
+    rc = ss_cli_fail(&err);
+    goto done;
+  }
   if (o.embed > 0 && (rc = refine_both(s, (int)o.embed, &base, &moved))) goto done;
   if ((rc = embed(&o, base, pt, n, &outside))) goto done;
-  rc = run(&o, s, base, moved, pt, n, outside);
+  rc = run(&o, s, base, moved, net, pt, n, outside);
 done:
   free(pt);
   ss_cx_free(base);
   ss_cx_free(moved);
+  ss_cx_free(net);
   ss_scheme_free(s);
   return rc;
 }

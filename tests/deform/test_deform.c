@@ -24,10 +24,12 @@
 #include <string.h>
 
 #include "ss_deform.h"
+#include "ss_link.h"
 #include "ss_limit.h"
 #include "ss_scheme.h"
 #include "ss_split.h"
 #include "ss_test.h"
+#include "ss_testcase.h"
 #include "ss_testmesh.h"
 
 static double urand(unsigned long *s) {
@@ -250,6 +252,50 @@ static void test_levels_exact(const ss_scheme *s) {
   ss_cx_free(g);
 }
 
+/* At the extraordinary vertex of the icosahedron hex star (its centre, the
+ * corner 0 of cell 0 at parameters 0, which stays the corner at every
+ * level): from level 2 on the two-ring of the centre holds no boundary
+ * vertex, so the centre's control point moves by the centre's local
+ * subdivision matrix S, and the gap to the exact limit shrinks by the
+ * largest |eigenvalue| of S below 1 whose eigenvector is not 0 at the centre.
+ * The observed ratio must settle and be the modulus of an eigenvalue of S
+ * (computed here by the analysis pipeline, independently of both paths).
+ * Here it is 1/4, not lambda1 = 0.629 (x3) or 0.445 (x5): the centre is fixed
+ * by the star's icosahedral symmetry, so only eigenvectors invariant under it
+ * can be non-zero there, and the first of those has eigenvalue 1/4. */
+static void test_levels_extraordinary(const ss_scheme *s) {
+  tm_link *l = tm_link_named("icosahedron");
+  ss_cx *h = tm_hex_star(l);
+  tm_jitter(h, 0.05, 5);
+  ss_deform_loc loc[1] = {{SS_HEX, 0, {0.0, 0.0, 0.0}}};
+  double ratio[1][8];
+  levels_vs_exact(s, h, loc, 1, 5, ratio, "mlca icosahedron vertex");
+  ss_link *ico = NULL;
+  ss_error err = {0};
+  ss_testcase t;
+  CHECK(ss_link_parse("icosahedron", &ico, &err) == SS_OK, "%s", err.msg);
+  if (ico &&
+      !ss_testcase_run("mlca", (ss_case){SS_CASE_VERTEX, ico, 0, SS_DIAG_BFS, 0}, &t)) {
+    const double r = ratio[0][3]; /* gap_5 / gap_4 */
+    double best = INFINITY, lam = NAN;
+    for (size_t i = 1; i < t.e->n; i++) {
+      const double m = hypot(t.e->val[i].re, t.e->val[i].im);
+      if (fabs(m - r) < best) {
+        best = fabs(m - r);
+        lam = m;
+      }
+    }
+    printf("icosahedron vertex: ratio %.5f, nearest eigenvalue modulus %.5f\n", r, lam);
+    CHECK(fabs(ratio[0][3] - ratio[0][2]) <= 0.02 * r,
+          "the ratio has not settled: %.5f %.5f", ratio[0][2], ratio[0][3]);
+    CHECK(best <= 0.02 * r, "ratio %.5f is no eigenvalue of S (nearest %.5f)", r, lam);
+    ss_testcase_free(&t);
+  }
+  ss_link_free(ico);
+  ss_cx_free(h);
+  tm_link_free(l);
+}
+
 int main(int argc, char **argv) {
   (void)argc;
   (void)argv;
@@ -281,6 +327,7 @@ int main(int argc, char **argv) {
     test_affine(s, g, 2.5, 3.5, 1, 0, what);
     test_affine(s, g, 2.5, 3.5, 0, 3, what);
     if (i == 0) test_levels_exact(s);
+    if (i == 0) test_levels_extraordinary(s);
     ss_cx_free(g);
     ss_scheme_free(s);
   }
