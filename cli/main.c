@@ -27,6 +27,8 @@ static const command commands[] = {
     {"enumerate", ss_cli_enumerate, "links (vertex one-rings): all, random, of a mesh"},
     {"subdivide", ss_cli_subdivide, "refine a mesh L times with a scheme"},
     {"limit", ss_cli_limit, "points and Jacobians of a hex mesh's limit volume"},
+    {"deform", ss_cli_deform,
+     "test patterns embedded in a mesh, deformed through the limit"},
     {"check", ss_cli_check, "the CI gate: every case of a stencil file must pass"},
     {"sweep", ss_cli_sweep, "analyse many cases into a resumable SQLite store"},
     {"merge", ss_cli_merge, "join the stores of sweep parts into one"},

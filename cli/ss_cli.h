@@ -14,6 +14,7 @@ enum { SS_EXIT_OK = 0, SS_EXIT_FAIL = 1, SS_EXIT_USAGE = 2 };
 /* Subcommands: argv[0] is the subcommand name. */
 int ss_cli_subdivide(int argc, char **argv);
 int ss_cli_limit(int argc, char **argv);
+int ss_cli_deform(int argc, char **argv);
 int ss_cli_enumerate(int argc, char **argv);
 int ss_cli_analyze(int argc, char **argv);
 int ss_cli_matrix(int argc, char **argv);
