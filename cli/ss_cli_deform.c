@@ -327,7 +327,7 @@ static int read_rows(const char *path, const char *what, double (**rows)[3], siz
  * --target's positions after the topology check.  0 or 2 with the message. */
 static int moved_net(const deform_opts *o, const ss_cx *base, ss_cx **moved) {
   ss_error err = {0};
-  if (ss_cx_copy(base, moved, &err)) return ss_cli_fail(&err);
+  if (ss_cx_copy(base, moved, &err)) return ss_cli_fail("deform", &err);
   if (o->displace) {
     double(*d)[3] = NULL;
     size_t n = 0;
@@ -347,7 +347,7 @@ static int moved_net(const deform_opts *o, const ss_cx *base, ss_cx **moved) {
   }
   if (!o->target) return 0;
   ss_cx *t = NULL;
-  if (ss_mesh_read(o->target, SS_MESH_AUTO, &t, &err)) return ss_cli_fail(&err);
+  if (ss_mesh_read(o->target, SS_MESH_AUTO, &t, &err)) return ss_cli_fail("deform", &err);
   const char *why = NULL;
   char buf[160];
   if (t->dim != 3)
@@ -385,7 +385,7 @@ static int embed(const deform_opts *o, const ss_cx *base, ss_deform_cli_point *p
                  size_t n, size_t *outside) {
   ss_deform_locator *P = NULL;
   ss_error err = {0};
-  if (ss_deform_locator_new(base, &P, &err)) return ss_cli_fail(&err);
+  if (ss_deform_locator_new(base, &P, &err)) return ss_cli_fail("deform", &err);
   *outside = 0;
   size_t first = n;
   for (size_t i = 0; i < n; i++) {
@@ -419,7 +419,7 @@ static int eval_exact(const ss_scheme *s, const ss_cx *base, const ss_cx *moved,
   unsigned char *okb = malloc(n + 1), *okm = malloc(n + 1);
   int rc = 0;
   if (!loc || !vb || !vm || !okb || !okm) {
-    rc = ss_cli_fail((ss_error_nomem(err, "points"), err));
+    rc = ss_cli_fail("deform", (ss_error_nomem(err, "points"), err));
     goto done;
   }
   for (size_t i = 0; i < n; i++)
@@ -427,7 +427,7 @@ static int eval_exact(const ss_scheme *s, const ss_cx *base, const ss_cx *moved,
   ss_status st = ss_deform_eval_exact(s, base, loc, m, vb, okb, err);
   if (!st) st = ss_deform_eval_exact(s, moved, loc, m, vm, okm, err);
   if (st) {
-    rc = st == SS_EINPUT ? -1 : ss_cli_fail(err);
+    rc = st == SS_EINPUT ? -1 : ss_cli_fail("deform", err);
     goto done;
   }
   for (size_t i = 0, j = 0; i < n; i++) {
@@ -459,14 +459,14 @@ static int eval_levels(const ss_scheme *s, const ss_cx *base, const ss_cx *moved
   double(*vm)[3] = malloc(((size_t)(L + 1) * n + 1) * sizeof *vm);
   int rc = 0;
   if (!loc || !vb || !vm) {
-    rc = ss_cli_fail((ss_error_nomem(&err, "points"), &err));
+    rc = ss_cli_fail("deform", (ss_error_nomem(&err, "points"), &err));
     goto done;
   }
   for (size_t i = 0; i < n; i++)
     if (pt[i].status == SS_DEFORM_CLI_OK) loc[m++] = pt[i].loc;
   if (ss_deform_eval_levels(s, base, L, loc, m, vb, &err) ||
       ss_deform_eval_levels(s, moved, L, loc, m, vm, &err)) {
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("deform", &err);
     goto done;
   }
   for (size_t i = 0, j = 0; i < n; i++) {
@@ -487,9 +487,11 @@ done:
 static int write_out(const deform_opts *o, const ss_deform_cli_out *out) {
   ss_error err = {0};
   if (!o->out)
-    return ss_cli_deform_write_text(stdout, out, o->format, &err) ? ss_cli_fail(&err) : 0;
+    return ss_cli_deform_write_text(stdout, out, o->format, &err)
+               ? ss_cli_fail("deform", &err)
+               : 0;
   ss_outfile *of = NULL;
-  if (ss_outfile_open(o->out, &of, &err)) return ss_cli_fail(&err);
+  if (ss_outfile_open(o->out, &of, &err)) return ss_cli_fail("deform", &err);
   ss_status st = SS_OK;
   if (o->format == SS_DEFORM_FMT_PNG)
     st = ss_cli_deform_write_png(ss_outfile_file(of), out, &err);
@@ -497,9 +499,9 @@ static int write_out(const deform_opts *o, const ss_deform_cli_out *out) {
     st = ss_cli_deform_write_text(ss_outfile_file(of), out, o->format, &err);
   if (st) {
     ss_outfile_abort(of);
-    return ss_cli_fail(&err);
+    return ss_cli_fail("deform", &err);
   }
-  return ss_outfile_commit(of, &err) ? ss_cli_fail(&err) : 0;
+  return ss_outfile_commit(of, &err) ? ss_cli_fail("deform", &err) : 0;
 }
 
 /* --embed-level E: both nets refined E times by the scheme (in place).  0
@@ -510,7 +512,7 @@ static int refine_both(const ss_scheme *s, int E, ss_cx **base, ss_cx **moved) {
   if (ss_scheme_refine_levels(s, *base, E, &b, &err) ||
       ss_scheme_refine_levels(s, *moved, E, &m, &err)) {
     ss_cx_free(b);
-    return ss_cli_fail(&err);
+    return ss_cli_fail("deform", &err);
   }
   ss_cx_free(*base);
   ss_cx_free(*moved);
@@ -579,7 +581,7 @@ int ss_cli_deform(int argc, char **argv) {
   size_t n = 0, outside = 0;
   if (ss_scheme_new(o.scheme, &s, &err) ||
       ss_mesh_read(o.mesh, SS_MESH_AUTO, &base, &err)) {
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("deform", &err);
     goto done;
   }
   if (base->dim != 3) {
@@ -609,7 +611,7 @@ int ss_cli_deform(int argc, char **argv) {
   }
   if ((rc = moved_net(&o, base, &moved))) goto done;
   if (ss_cx_copy(moved, &net, &err)) { /* the moved control net, for the picture */
-    rc = ss_cli_fail(&err);
+    rc = ss_cli_fail("deform", &err);
     goto done;
   }
   if (o.embed > 0 && (rc = refine_both(s, (int)o.embed, &base, &moved))) goto done;
