@@ -102,8 +102,39 @@ typedef struct {
   rational w[SS_NCELLTYPES][4];  /* weights by type and role */
   unsigned given[SS_NCELLTYPES]; /* bit r: role r given */
   int has_mask[SS_NCELLTYPES];   /* a [mask.*] section seen */
-  char msg[256];                 /* the handler's complaint */
+  char msg[256];                 /* the handler's first complaint */
+  int msg_line;                  /* its line (1-based), 0 before any */
+  const char *text;              /* the file's text, read line by line */
+  const char *next;              /* where the next line starts in text */
+  int line;                      /* line of the text last handed to inih */
+  int newlines;                  /* newlines in text before next */
+  int long_line;                 /* first line longer than inih's buffer, or 0 */
 } reader;
+
+/* inih's line reader over R->text: copies the next line (at most num - 1
+ * bytes, a longer line in pieces) and counts lines, so that the handler knows
+ * the line it is called for (the line of the last piece read). */
+static char *read_line(char *str, int num, void *stream) {
+  reader *R = stream;
+  if (!*R->next || num < 2) return NULL;
+  R->line = R->newlines + 1;
+  int k = 0;
+  while (k < num - 1 && R->next[k])
+    if (R->next[k++] == '\n') {
+      R->newlines++;
+      break;
+    }
+  memcpy(str, R->next, (size_t)k);
+  str[k] = '\0';
+  R->next += k;
+  if (k > 0 && str[k - 1] != '\n' && *R->next) { /* too long: cut, keep counting */
+    while (*R->next && *R->next != '\n')
+      R->next++;
+    if (*R->next) R->next++, R->newlines++;
+    if (!R->long_line) R->long_line = R->line;
+  }
+  return str;
+}
 
 static int cell_type_of(const char *s, ss_cell_type *t) {
   for (int k = 0; k < SS_NCELLTYPES; k++)
@@ -114,8 +145,7 @@ static int cell_type_of(const char *s, ss_cell_type *t) {
   return -1;
 }
 
-static int handler(void *user, const char *section, const char *key, const char *value) {
-  reader *R = user;
+static int handle(reader *R, const char *section, const char *key, const char *value) {
   if (!strcmp(section, "scheme")) {
     if (!strcmp(key, "name")) {
       if (R->have_name++) goto repeated;
@@ -198,6 +228,20 @@ repeated:
   return 0;
 }
 
+/* inih's handler: handle, keeping the first complaint and its line (inih
+ * goes on after an error and reports the first error's line). */
+static int handler(void *user, const char *section, const char *key, const char *value) {
+  reader *R = user;
+  char first[sizeof R->msg];
+  memcpy(first, R->msg, sizeof first);
+  const int ok = handle(R, section, key, value);
+  if (!ok && !R->msg_line)
+    R->msg_line = R->line;
+  else if (!ok)
+    memcpy(R->msg, first, sizeof first);
+  return ok;
+}
+
 /* Line number (1-based) of the first line of text that is "[section]" after
  * trimming, or 0. */
 static int section_line(const char *text, const char *section) {
@@ -220,11 +264,17 @@ ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
   *out = NULL;
   reader *R = calloc(1, sizeof *R);
   if (!R) return ss_error_nomem(err, "stencil");
-  const int rc = ini_parse_string(text, handler, R);
+  R->text = R->next = text;
+  const int rc = ini_parse_stream(read_line, R, handler, R);
   ss_status st = SS_OK;
-  if (rc != 0) {
+  if (R->long_line && (rc == 0 || R->long_line <= rc)) {
+    st = ss_error_set(err, SS_EINPUT, "%s:%d: a line longer than %d characters", where,
+                      R->long_line, INI_MAX_LINE - 2);
+    goto done;
+  }
+  if (rc != 0) { /* the first error: the handler's, or a line inih cannot read */
     st = ss_error_set(err, SS_EINPUT, "%s:%d: %s", where, rc,
-                      R->msg[0] ? R->msg : "not an INI line");
+                      R->msg_line == rc ? R->msg : "not an INI line");
     goto done;
   }
   const int sl = section_line(text, "scheme");

@@ -140,6 +140,25 @@ static void test_bad(void) {
       "bad.ini:4: section [weights] is unknown");
   bad("[scheme]\nthis is no INI line\n", "bad.ini:2: not an INI line");
   bad("", "[scheme] needs name, family and split");
+  /* two errors: the first one's line with the first one's message (the
+   * message was the last error's, the line the first's) */
+  bad(HEAD "[mask.hex]\nself = 1/x\nedge = 0\nface = 0\nopposite = 0\nfoo = 1\n",
+      "bad.ini:6: [mask.hex] self = '1/x'");
+  bad(HEAD "[mask.hex]\nfoo = 1\nedge = 0\nthis is no INI line\n",
+      "bad.ini:6: [mask.hex]: role 'foo' is unknown");
+  bad(HEAD "this is no INI line\n[mask.hex]\nfoo = 1\n", "bad.ini:5: not an INI line");
+  /* a line longer than inih's buffer: named, and the lines after it keep
+   * their numbers */
+  {
+    char text[2048];
+    char longc[400];
+    memset(longc, 'x', sizeof longc - 1);
+    longc[sizeof longc - 1] = '\0';
+    snprintf(text, sizeof text, HEAD "; %s\n[mask.hex]\nself = 1/8\nfoo = 1\n", longc);
+    bad(text, "bad.ini:5: a line longer than 198 characters");
+    snprintf(text, sizeof text, HEAD "[mask.hex]\nfoo = 1\n; %s\n", longc);
+    bad(text, "bad.ini:6: [mask.hex]: role 'foo' is unknown");
+  }
   /* the exact sum: 1/3 three times is 1, not 0.999... */
   ss_scheme *s = NULL;
   ss_error err = {0};
