@@ -95,5 +95,27 @@ with tempfile.TemporaryDirectory() as d:
     rc, _, err = run(*case, "--format", "xml")
     check(rc == 2, "--format xml refused")
 
+# bad stencils: exit 2 naming the file, the first error's line and its key (a
+# file with two errors named line 6 with line 10's complaint), and the
+# valence where a sum is off
+HEAD = "[scheme]\nname = bad\nfamily = averaging\nsplit = multilinear\n[mask.hex]\n"
+with tempfile.TemporaryDirectory() as d:
+    bad2 = os.path.join(d, "bad2.ini")
+    with open(bad2, "w") as f:
+        f.write(HEAD + "self = 1/x\nedge = 0\nface = 0\nopposite = 0\nfoo = 1\n")
+    rc, out, err = run(bad2, "--edges", "4..4", "--format", "junit")
+    check(rc == 2 and f"{bad2}:6: [mask.hex] self = '1/x'" in err and "foo" not in err
+          and out == "", f"two errors: {rc} {err}")
+    off = os.path.join(d, "off.ini")
+    with open(off, "w") as f:  # 1/1000 too much at n = 5 only
+        f.write(HEAD + "self = 1/8\nedge = 1/8\nface = 1/8\n"
+                "opposite = 1/8 + (n-1)*(n-2)*(n-3)*(n-4)/24000\n")
+    rc, out, err = run(off, "--edges", "4..4")
+    if "libmatheval" in err:
+        print("SKIP the valence check: built without libmatheval")
+    else:
+        check(rc == 2 and f"{off}:5: [mask.hex]: the weights sum to 1001/1000 at n = 5"
+              in err, f"sum off at n = 5: {rc} {err}")
+
 print(f"check_report: {checks} checks, {failed} failed")
 sys.exit(1 if failed else 0)
