@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "ss_cli.h"
+#include "ss_cli_check.h"
+#include "ss_clock.h"
 #include "ss_enum.h"
 #include "ss_link.h"
 #include "ss_jac.h"
@@ -20,7 +22,8 @@
 static const char *const usage_text =
     "usage: subspectra check (STENCIL.ini | --scheme S) [--vertices A..B]\n"
     "                        [--edges A..B] [--face] [--tol T] [--depth D]\n"
-    "                        [--certify] [--max-memory SIZE]\n"
+    "                        [--certify] [--max-memory SIZE] [--jobs N]\n"
+    "                        [--format text|json|junit] [--baseline FILE]\n"
     "\n"
     "The CI gate for a new stencil: analyse every case and pass only if all pass.\n"
     "Each case: the local subdivision matrix from the stencil's global rule, its\n"
@@ -41,53 +44,84 @@ static const char *const usage_text =
     "                    default half the physical memory, 3/4 of ulimit -v and\n"
     "                    -d when set): a case whose estimate exceeds it is not run\n"
     "                    but listed as an error with the estimate\n"
+    "  --jobs N          cases analysed at once, on N threads (default 1); the\n"
+    "                    report is the same whatever N\n"
+    "  --format F        text (default), json (every case with its outcome,\n"
+    "                    condition and reason, and the counts) or junit (JUnit XML,\n"
+    "                    one testcase per case; fail and undecided are failures\n"
+    "                    with the verdict's reason): the document on stdout, the\n"
+    "                    heading and the summary on stderr\n"
+    "  --baseline FILE   the JSON of an earlier run (--format json): list the\n"
+    "                    regressions (cases that passed there and do not pass\n"
+    "                    now) and exit 1 only if there is one\n"
     "  -h, --help        this text\n"
     "With no case option: --vertices 4..6 --edges 3..6 (and --face for tetoct).\n"
     "\n"
     "Exit status: 0 every case passes both conditions, 1 some case fails or is\n"
     "undecided, 2 bad usage, a bad stencil file (the message names file, line\n"
-    "and key), or a case out of memory or beyond the memory budget.  In CI:  subspectra "
-    "check data/stencils/mine.ini || exit 1\n";
+    "and key), or a case out of memory or beyond the memory budget.  With\n"
+    "--baseline: 0 no regression, 1 some regression, 2 as above or an unreadable\n"
+    "baseline.  In CI:  subspectra check data/stencils/mine.ini || exit 1\n";
 
 typedef struct {
   const ss_scheme *s;
-  double tol;
-  int depth;
-  int certify;
-  double max_bytes; /* memory budget of one case */
-  long cases, pass, fail, undecided, errors;
-  long nomem; /* of the errors, cases out of memory or beyond the budget */
+  ss_result_opts ro; /* tolerance, depth, certify, budget of one case */
+  ss_check_run *run; /* the cases, filled by visit */
+  size_t cap;        /* room in run->cases */
+  int failed;        /* out of memory while listing */
 } gate;
 
-/* Analyse one case; print it unless it passes. */
-static void run_case(gate *g, ss_case c, const char *what) {
+/* Append a case named name (copied) with link l (copied, may be NULL). */
+static int add_case(gate *g, ss_case c, const ss_link *l, const char *name) {
+  ss_check_run *r = g->run;
+  if (r->ncases == g->cap) {
+    const size_t cap = g->cap ? 2 * g->cap : 64;
+    ss_check_case *k = realloc(r->cases, cap * sizeof *k);
+    if (!k) return -1;
+    r->cases = k;
+    g->cap = cap;
+  }
+  ss_check_case *k = r->cases + r->ncases;
+  memset(k, 0, sizeof *k);
+  ss_error err = {0};
+  if (!(k->name = strdup(name)) || (l && ss_link_copy(l, &k->link, &err))) {
+    free(k->name);
+    return -1;
+  }
+  k->c = c;
+  k->c.link = k->link;
+  r->ncases++;
+  return 0;
+}
+
+/* Analyse one case into k (thread-safe: the scheme is shared read-only). */
+static void run_case(const gate *g, ss_check_case *k) {
+  static const char *const names[3] = {"eigenvalue condition", "regularity",
+                                       "injectivity"};
   ss_error err = {0};
   ss_result r;
-  ss_result_opts ro = ss_result_defaults();
-  ro.tol = g->tol;
-  ro.depth = g->depth;
-  ro.certify = g->certify;
-  ro.max_bytes = g->max_bytes;
-  g->cases++;
-  if (ss_result_compute(g->s, &c, &ro, &r, &err)) {
-    printf("error      %s: %s\n", what, err.msg);
-    g->errors++;
-    g->nomem += err.status == SS_ENOMEM;
+  const double t0 = ss_clock_wall();
+  if (ss_result_compute(g->s, &k->c, &g->ro, &r, &err)) {
+    k->outcome = SS_CHECK_ERROR;
+    snprintf(k->reason, sizeof k->reason, "%s", err.msg);
+    k->nomem = err.status == SS_ENOMEM;
+    k->seconds = ss_clock_wall() - t0;
     return;
   }
   const ss_verdict_kind v = ss_result_verdict(&r);
-  ++*(v == SS_PASS ? &g->pass : v == SS_FAIL ? &g->fail : &g->undecided);
+  k->outcome = v == SS_PASS   ? SS_CHECK_PASS
+               : v == SS_FAIL ? SS_CHECK_FAIL
+                              : SS_CHECK_UNDECIDED;
   if (v != SS_PASS) { /* the first condition that does not pass */
     const int which = r.v.cond.verdict != SS_PASS  ? 0
                       : r.v.reg.verdict != SS_PASS ? 1
                                                    : 2;
-    static const char *const names[3] = {"eigenvalue condition", "regularity",
-                                         "injectivity"};
     const ss_verdict *why = which == 0 ? &r.v.cond : which == 1 ? &r.v.reg : &r.v.inj;
-    printf("%-10s %s: %s: %s\n", v == SS_UNDECIDED ? "undecided" : "fail", what,
-           names[which], why->reason);
+    k->condition = names[which];
+    snprintf(k->reason, sizeof k->reason, "%s", why->reason);
   }
   ss_result_clear(&r);
+  k->seconds = ss_clock_wall() - t0;
 }
 
 static int visit(const ss_link *l, void *ctx) {
@@ -95,17 +129,61 @@ static int visit(const ss_link *l, void *ctx) {
   ss_error err = {0};
   char *text = NULL;
   if (ss_link_format(l, &text, &err)) {
-    g->errors++;
+    g->failed = 1;
     return 1;
   }
   char what[512];
   snprintf(what, sizeof what, "vertex %s", text);
-  run_case(g, (ss_case){SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0}, what);
   free(text);
+  if (add_case(g, (ss_case){SS_CASE_VERTEX, NULL, 0, SS_DIAG_BFS, 0}, l, what)) {
+    g->failed = 1;
+    return 1;
+  }
   return 0;
 }
 
-int ss_cli_check(int argc, char **argv) {
+/* Run every case on `jobs` threads; in text format print each case that does
+ * not pass as soon as it and every case before it are done (the order of the
+ * list, whatever the threads). */
+static void run_all(gate *g, int jobs, int text) {
+  ss_check_run *r = g->run;
+  const long n = (long)r->ncases;
+#pragma omp parallel for schedule(dynamic, 1) ordered num_threads(jobs)
+  for (long i = 0; i < n; i++) {
+    run_case(g, r->cases + i);
+#pragma omp ordered
+    {
+      if (text) {
+        ss_check_print_case(r->cases + i);
+        fflush(stdout);
+      }
+    }
+  }
+  for (size_t i = 0; i < r->ncases; i++) {
+    r->count[r->cases[i].outcome]++;
+    r->nomem += r->cases[i].nomem;
+  }
+}
+
+static void run_free(ss_check_run *r) {
+  for (size_t i = 0; i < r->ncases; i++) {
+    free(r->cases[i].name);
+    ss_link_free(r->cases[i].link);
+  }
+  free(r->cases);
+}
+
+/* The options of a check run. */
+typedef struct {
+  long va, vb, ea, eb, depth, jobs;
+  int face, any, certify, format; /* format: 0 text, 1 json, 2 junit */
+  double tol, max_memory;
+  const char *scheme, *baseline;
+} check_opts;
+
+/* Parse argv into o; -1 done (help printed), else the exit status of a usage
+ * error or 0. */
+static int parse_opts(int argc, char **argv, check_opts *o) {
   static const struct option opts[] = {{"vertices", required_argument, NULL, 'v'},
                                        {"edges", required_argument, NULL, 'e'},
                                        {"face", no_argument, NULL, 'f'},
@@ -114,65 +192,147 @@ int ss_cli_check(int argc, char **argv) {
                                        {"certify", no_argument, NULL, 'c'},
                                        {"max-memory", required_argument, NULL, 'm'},
                                        {"scheme", required_argument, NULL, 's'},
+                                       {"format", required_argument, NULL, 'F'},
+                                       {"jobs", required_argument, NULL, 'j'},
+                                       {"baseline", required_argument, NULL, 'b'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
-  long va = 0, vb = -1, ea = 0, eb = -1, depth = SS_JAC_DEPTH;
-  int face = 0, any = 0, certify = 0;
-  double tol = 1e-6, max_memory = 0.0;
-  const char *scheme = NULL;
   optind = 1;
   opterr = 0;
   int c;
   while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
     switch (c) {
     case 'v':
-      if (ss_cli_parse_range(optarg, &va, &vb) || va < 4 || vb > 9 || va > vb)
+      if (ss_cli_parse_range(optarg, &o->va, &o->vb) || o->va < 4 || o->vb > 9 ||
+          o->va > o->vb)
         return ss_cli_usage_error(
             "check", "--vertices '%s' is not A..B with 4 <= A <= B <= 9", optarg);
-      any = 1;
+      o->any = 1;
       break;
     case 'e':
-      if (ss_cli_parse_range(optarg, &ea, &eb) || ea < 3 || eb > 64 || ea > eb)
+      if (ss_cli_parse_range(optarg, &o->ea, &o->eb) || o->ea < 3 || o->eb > 64 ||
+          o->ea > o->eb)
         return ss_cli_usage_error(
             "check", "--edges '%s' is not A..B with 3 <= A <= B <= 64", optarg);
-      any = 1;
+      o->any = 1;
       break;
     case 'f':
-      face = any = 1;
+      o->face = o->any = 1;
       break;
     case 't':
-      if (ss_cli_opt_tol("check", optarg, &tol)) return SS_EXIT_USAGE;
+      if (ss_cli_opt_tol("check", optarg, &o->tol)) return SS_EXIT_USAGE;
       break;
     case 'd':
-      if (ss_cli_opt_depth("check", optarg, &depth)) return SS_EXIT_USAGE;
+      if (ss_cli_opt_depth("check", optarg, &o->depth)) return SS_EXIT_USAGE;
       break;
     case 'c':
-      certify = 1;
+      o->certify = 1;
       break;
     case 's':
-      scheme = optarg;
+      o->scheme = optarg;
       break;
     case 'm':
-      if (ss_cli_parse_bytes(optarg, &max_memory))
+      if (ss_cli_parse_bytes(optarg, &o->max_memory))
         return ss_cli_usage_error(
             "check", "--max-memory '%s' is not a size such as 8G, 500M or 2.5G", optarg);
       break;
+    case 'F':
+      if (!strcmp(optarg, "text") || !strcmp(optarg, "json") || !strcmp(optarg, "junit"))
+        o->format = optarg[0] == 't' ? 0 : optarg[1] == 's' ? 1 : 2;
+      else
+        return ss_cli_usage_error(
+            "check", "--format '%s' is not one of text, json, junit", optarg);
+      break;
+    case 'j':
+      if (ss_cli_parse_int(optarg, 1, 1024, &o->jobs))
+        return ss_cli_usage_error("check", "--jobs '%s' is not an integer in 1..1024",
+                                  optarg);
+      break;
+    case 'b':
+      o->baseline = optarg;
+      break;
     case 'h':
       fputs(usage_text, stdout);
-      return SS_EXIT_OK;
+      return -1;
     default:
       return ss_cli_option_error("check", c, argv);
     }
   }
-  if (scheme && optind != argc)
+  if (o->scheme && optind != argc)
     return ss_cli_usage_error("check", "a stencil file and --scheme: give one of them");
-  if (!scheme && optind + 1 != argc)
+  if (!o->scheme && optind + 1 != argc)
     return ss_cli_usage_error("check", optind == argc ? "no stencil file given"
                                                       : "more than one stencil file");
-  const char *path = scheme ? "--scheme" : argv[optind];
+  return 0;
+}
+
+/* List the cases of o into g->run: 0, or an exit status. */
+static int list_cases(gate *g, const check_opts *o) {
+  ss_error err = {0};
+  if (o->vb >= o->va) {
+    ss_enum_opts eo = {(int)o->va, (int)o->vb, 0, 1};
+    if (ss_enum_links(&eo, visit, g, NULL, &err) || g->failed) {
+      fprintf(stderr, "subspectra check: %s\n", g->failed ? "out of memory" : err.msg);
+      return g->failed ? SS_EXIT_USAGE : ss_cli_exit_status(err.status);
+    }
+  }
+  for (long n = o->ea; n <= o->eb; n++) {
+    char what[32];
+    snprintf(what, sizeof what, "edge %ld", n);
+    if (add_case(g, (ss_case){SS_CASE_EDGE, NULL, (int)n, SS_DIAG_BFS, 0}, NULL, what))
+      goto nomem;
+  }
+  if (o->face &&
+      add_case(g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, NULL, "face"))
+    goto nomem;
+  return 0;
+nomem:
+  fprintf(stderr, "subspectra check: out of memory\n");
+  return SS_EXIT_USAGE;
+}
+
+/* Report r as o asks; then the exit status. */
+static int report(ss_check_run *r, const check_opts *o) {
+  if (o->baseline) {
+    char msg[1024];
+    if (ss_check_baseline(r, o->baseline, msg, sizeof msg)) {
+      fprintf(stderr, "subspectra check: %s\n", msg);
+      return SS_EXIT_USAGE;
+    }
+  }
+  FILE *info = o->format ? stderr : stdout; /* stdout is the document */
+  if ((o->format == 1 && ss_check_write_json(r)) ||
+      (o->format == 2 && ss_check_write_junit(r))) {
+    fprintf(stderr, "subspectra check: out of memory writing the report\n");
+    return SS_EXIT_USAGE;
+  }
+  fflush(stdout);
+  fprintf(info, "%zu cases: %ld pass, %ld fail, %ld undecided, %ld errors\n", r->ncases,
+          r->count[SS_CHECK_PASS], r->count[SS_CHECK_FAIL], r->count[SS_CHECK_UNDECIDED],
+          r->count[SS_CHECK_ERROR]);
+  if (o->baseline) {
+    fprintf(info, "%ld regressions against %s\n", r->regressions, o->baseline);
+    for (size_t i = 0; i < r->ncases; i++)
+      if (r->cases[i].regression)
+        fprintf(info, "regression %s: %s: %s\n", r->cases[i].name,
+                r->cases[i].condition ? r->cases[i].condition : "error",
+                r->cases[i].reason);
+  }
+  /* a case out of memory or beyond the budget: exit 2, never "a check fails" */
+  if (r->nomem) return SS_EXIT_USAGE;
+  if (o->baseline) return r->regressions ? SS_EXIT_FAIL : SS_EXIT_OK;
+  return r->count[SS_CHECK_PASS] == (long)r->ncases ? SS_EXIT_OK : SS_EXIT_FAIL;
+}
+
+int ss_cli_check(int argc, char **argv) {
+  check_opts o = {0, -1, 0, -1, SS_JAC_DEPTH, 1, 0, 0, 0, 0, 1e-6, 0.0, NULL, NULL};
+  const int pr = parse_opts(argc, argv, &o);
+  if (pr) return pr < 0 ? SS_EXIT_OK : pr;
+  const char *path = o.scheme ? "--scheme" : argv[optind];
   ss_error err = {0};
   ss_scheme *s = NULL;
-  if (scheme ? ss_scheme_new(scheme, &s, &err) : ss_stencil_load(path, &s, NULL, &err)) {
+  if (o.scheme ? ss_scheme_new(o.scheme, &s, &err)
+               : ss_stencil_load(path, &s, NULL, &err)) {
     fprintf(stderr, "subspectra check: %s\n", err.msg);
     return SS_EXIT_USAGE; /* a bad stencil file, or out of memory */
   }
@@ -181,36 +341,40 @@ int ss_cli_check(int argc, char **argv) {
     return SS_EXIT_USAGE;
   }
   const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
-  if (face && !tetoct) {
+  if (o.face && !tetoct) {
     ss_scheme_free(s);
     return ss_cli_usage_error("check", "--face: the %s's split is not tetoct",
-                              scheme ? "scheme" : "stencil");
+                              o.scheme ? "scheme" : "stencil");
   }
-  if (!any) va = 4, vb = 6, ea = 3, eb = 6, face = tetoct;
-  gate g = {s, tol, (int)depth, certify, ss_cli_budget(max_memory), 0, 0, 0, 0, 0, 0};
-  if (scheme)
-    printf("check scheme %s: relative tolerance %g, hex depth %ld%s\n", ss_scheme_name(s),
-           tol, depth, certify ? ", certified verdicts" : "");
+  if (!o.any) o.va = 4, o.vb = 6, o.ea = 3, o.eb = 6, o.face = tetoct;
+  ss_check_run run = {o.scheme ? NULL : path,
+                      ss_scheme_name(s),
+                      o.tol,
+                      (int)o.depth,
+                      o.certify,
+                      NULL,
+                      0,
+                      {0, 0, 0, 0},
+                      0,
+                      -1};
+  gate g = {s, ss_result_defaults(), &run, 0, 0};
+  g.ro.tol = o.tol;
+  g.ro.depth = (int)o.depth;
+  g.ro.certify = o.certify;
+  g.ro.max_bytes = ss_cli_budget(o.max_memory) / (double)o.jobs;
+  FILE *info = o.format ? stderr : stdout;
+  if (o.scheme)
+    fprintf(info, "check scheme %s: relative tolerance %g, hex depth %ld%s\n",
+            ss_scheme_name(s), o.tol, o.depth, o.certify ? ", certified verdicts" : "");
   else
-    printf("check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
-           ss_scheme_name(s), tol, depth, certify ? ", certified verdicts" : "");
-  if (vb >= va) {
-    ss_enum_opts eo = {(int)va, (int)vb, 0, 1};
-    if (ss_enum_links(&eo, visit, &g, NULL, &err)) {
-      fprintf(stderr, "subspectra check: %s\n", err.msg);
-      ss_scheme_free(s);
-      return ss_cli_exit_status(err.status);
-    }
+    fprintf(info, "check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
+            ss_scheme_name(s), o.tol, o.depth, o.certify ? ", certified verdicts" : "");
+  int status = list_cases(&g, &o);
+  if (!status) {
+    run_all(&g, (int)o.jobs, o.format == 0);
+    status = report(&run, &o);
   }
-  for (long n = ea; n <= eb; n++) {
-    char what[32];
-    snprintf(what, sizeof what, "edge %ld", n);
-    run_case(&g, (ss_case){SS_CASE_EDGE, NULL, (int)n, SS_DIAG_BFS, 0}, what);
-  }
-  if (face) run_case(&g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "face");
-  printf("%ld cases: %ld pass, %ld fail, %ld undecided, %ld errors\n", g.cases, g.pass,
-         g.fail, g.undecided, g.errors);
+  run_free(&run);
   ss_scheme_free(s);
-  /* a case out of memory or beyond the budget: exit 2, never "a check fails" */
-  return g.nomem ? SS_EXIT_USAGE : g.pass == g.cases ? SS_EXIT_OK : SS_EXIT_FAIL;
+  return status;
 }

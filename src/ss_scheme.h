@@ -47,6 +47,22 @@ typedef struct {
   double mask[SS_NCELLTYPES][4]; /* weight of a cell vertex by its role */
 } ss_averaging;
 
+/* Largest valence n of the valence-dependent weights (ss_averaging_vary). */
+#define SS_AVG_NMAX 256
+
+/* Weights of the averaging family that depend on the valence n of the fine
+ * vertex v moved: the number of cells of dimension dim[v] holding v (the
+ * count the rule averages over: at a vertex born at a coarse vertex the
+ * cells there, at one born on an edge of valence m a multiple of m). */
+typedef struct {
+  const double *w[SS_NCELLTYPES][4]; /* NULL: the mask's constant weight at every
+                                        valence; else w[t][r][n] is the weight of
+                                        role r at valence n = 1..SS_AVG_NMAX
+                                        (w[t][r][0] unused); copied */
+  int rational; /* 1: every weight is rational (the exact path may read them); 0:
+                   some is not, and certified verdicts say so, proving nothing */
+} ss_averaging_vary;
+
 /* Names of the built-in schemes, NULL-terminated. */
 const char *const *ss_scheme_names(void);
 
@@ -59,6 +75,23 @@ ss_status ss_scheme_new(const char *name, ss_scheme **out, ss_error *err);
  * split must take the type; otherwise SS_EINPUT naming the cell type. */
 ss_status ss_scheme_averaging_new(const char *name, const ss_averaging *a,
                                   ss_scheme **out, ss_error *err);
+
+/* ss_scheme_averaging_new with valence-dependent weights (vary may be NULL:
+ * then as ss_scheme_averaging_new).  Each mask must sum to 1 within 1e-12 at
+ * every valence n = 1..SS_AVG_NMAX (SS_EINPUT naming the type and n).  The
+ * rule refuses a fine vertex whose valence exceeds SS_AVG_NMAX for a type with
+ * varying weights (SS_EINPUT).  With every vary->w NULL and rational set, the
+ * scheme is ss_scheme_averaging_new's, bit for bit. */
+ss_status ss_scheme_averaging_vary_new(const char *name, const ss_averaging *a,
+                                       const ss_averaging_vary *vary, ss_scheme **out,
+                                       ss_error *err);
+
+/* Whether the scheme's weights are all rational, so that the exact path's
+ * rational reconstruction of a local matrix may stand for it: 0 only for an
+ * averaging scheme built with a weight known not to be rational
+ * (ss_averaging_vary.rational = 0); 1 for every built-in scheme (Loop's
+ * cos(2 pi / n) is found irrational by the reconstruction itself). */
+int ss_scheme_weights_rational(const ss_scheme *s);
 
 /* Free; NULL is a no-op. */
 void ss_scheme_free(ss_scheme *s);

@@ -93,10 +93,22 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
       continue;
     }
     /* val[v], the number of those cells */
-    const double scale = 1.0 / (double)(ptr[v + 1] - ptr[v]);
+    const size_t val = ptr[v + 1] - ptr[v];
+    const double scale = 1.0 / (double)val;
     for (size_t q = ptr[v]; q < ptr[v + 1]; q++) {
       const int t = (int)(inc[q] >> 4 & 0xf), i = (int)(inc[q] & 0xf);
-      ss_sink_emit_cell(k, cells + t, (size_t)(inc[q] >> 8), v, wrow[t][i], scale);
+      const double *row = wrow[t][i];
+      if (s->vrow[t]) { /* valence-dependent weights: the row at val */
+        if (val > SS_AVG_NMAX) {
+          st = ss_error_set(err, SS_EINPUT,
+                            "scheme %s: fine vertex %zu lies in %zu cells, beyond the "
+                            "valences its weights are given for (1..%d)",
+                            s->name, v + 1, val, SS_AVG_NMAX);
+          goto done;
+        }
+        row = s->vrow[t][val * (size_t)ss_cell_nverts((ss_cell_type)t) + (size_t)i];
+      }
+      ss_sink_emit_cell(k, cells + t, (size_t)(inc[q] >> 8), v, row, scale);
     }
   }
   goto done;
@@ -108,6 +120,61 @@ done:
   free(inc);
   for (int t = 0; t < SS_NCELLTYPES; t++)
     ss_sink_cells_clear(cells + t);
+  return st;
+}
+
+/* Fill s's valence tables of type t from a and vary (vary->w[t] not all
+ * NULL), checking each valence's sum: the rows of every place at every
+ * valence, equal rows sharing the first one's address. */
+static ss_status vary_tables(ss_scheme *s, ss_cell_type t, const ss_averaging *a,
+                             const ss_averaging_vary *vary, ss_error *err) {
+  const size_t nv = (size_t)ss_cell_nverts(t);
+  double *tab = s->vtab[t] = malloc((SS_AVG_NMAX + 1) * nv * nv * sizeof *tab);
+  const double **rows = s->vrow[t] = malloc((SS_AVG_NMAX + 1) * nv * sizeof *rows);
+  if (!tab || !rows) return ss_error_nomem(err, "valence tables");
+  for (size_t n = 0; n <= SS_AVG_NMAX; n++) {
+    double sum = 0.0;
+    for (size_t i = 0; i < nv; i++) {
+      double *w = tab + (n * nv + i) * nv;
+      for (size_t j = 0; j < nv; j++) {
+        const int r = ss_cell_role(t, (int)i, (int)j);
+        const double *vw = vary->w[t][r];
+        w[j] = n == 0 ? 0.0 : vw ? vw[n] : a->mask[t][r];
+        if (i == 0) sum += w[j];
+      }
+      rows[n * nv + i] = w;
+      for (size_t e = 0; e < i; e++)
+        if (!memcmp(rows[n * nv + e], w, nv * sizeof *w)) {
+          rows[n * nv + i] = rows[n * nv + e];
+          break;
+        }
+    }
+    if (n > 0 && !(fabs(sum - 1.0) <= 1e-12))
+      return ss_error_set(err, SS_EINPUT,
+                          "scheme %s: the %s mask sums to %.17g over the cell's vertices "
+                          "at valence n = %zu, not 1",
+                          s->name, ss_cell_name(t), sum, n);
+  }
+  return SS_OK;
+}
+
+ss_status ss_scheme_averaging_vary_new(const char *name, const ss_averaging *a,
+                                       const ss_averaging_vary *vary, ss_scheme **out,
+                                       ss_error *err) {
+  ss_status st = ss_scheme_averaging_new(name, a, out, err);
+  if (st || !vary) return st;
+  ss_scheme *s = *out;
+  s->irrational = !vary->rational;
+  for (int t = 0; t < SS_NCELLTYPES && !st; t++) {
+    int varies = 0;
+    for (int r = 0; r < 4; r++)
+      varies |= vary->w[t][r] != NULL;
+    if (varies && a->accepts[t]) st = vary_tables(s, (ss_cell_type)t, a, vary, err);
+  }
+  if (st) {
+    ss_scheme_free(s);
+    *out = NULL;
+  }
   return st;
 }
 

@@ -25,7 +25,16 @@ ss_status ss_scheme_alloc(const char *name, ss_split_kind split, unsigned accept
 }
 
 void ss_scheme_free(ss_scheme *s) {
+  if (!s) return;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    free(s->vtab[t]);
+    free(s->vrow[t]);
+  }
   free(s);
+}
+
+int ss_scheme_weights_rational(const ss_scheme *s) {
+  return !s->irrational;
 }
 
 int ss_scheme_reach(const ss_scheme *s) {

@@ -13,24 +13,33 @@ typedef ss_status (*ss_rule_fn)(const ss_scheme *s, const ss_cx *coarse,
                                 ss_error *err);
 
 struct ss_scheme {
-  char name[64];            /* scheme name, e.g. "mlca" */
-  ss_split_kind split;      /* topological split */
-  unsigned accepts;         /* bit t set: takes cells of type t */
-  ss_rule_fn rule;          /* the smoothing rule */
-  ss_averaging avg;         /* masks, for averaging-family schemes */
-  int reach;                /* 1: a fine vertex's rule reads only the coarse cells
-                               holding it; 2: it also reads the coarse
-                               neighbourhoods of the vertices it combines */
-  int diagonals;            /* 1 if the rule reads major diagonals (ss_diag.h) */
-  ss_split_kind step_split; /* the split of one analysis step
-                               (ss_scheme_refine_step): `split` for every scheme
-                               but quasi48, whose is the topological nvb */
-  int step_passes;          /* refinements in one analysis step: 1, or 2 for
-                               quasi48 (a full 4-8 cycle) */
-  int ring_depth;           /* ss_scheme_ring_depth */
-  int rows_in_order;        /* 1: the rule sends its rows one after another in
-                               increasing order, so R is written row by row
-                               (ss_rows); 0: in any order (ss_triplets) */
+  char name[64];               /* scheme name, e.g. "mlca" */
+  ss_split_kind split;         /* topological split */
+  unsigned accepts;            /* bit t set: takes cells of type t */
+  ss_rule_fn rule;             /* the smoothing rule */
+  ss_averaging avg;            /* masks, for averaging-family schemes */
+  int reach;                   /* 1: a fine vertex's rule reads only the coarse cells
+                                  holding it; 2: it also reads the coarse
+                                  neighbourhoods of the vertices it combines */
+  int diagonals;               /* 1 if the rule reads major diagonals (ss_diag.h) */
+  ss_split_kind step_split;    /* the split of one analysis step
+                                  (ss_scheme_refine_step): `split` for every scheme
+                                  but quasi48, whose is the topological nvb */
+  int step_passes;             /* refinements in one analysis step: 1, or 2 for
+                                  quasi48 (a full 4-8 cycle) */
+  int ring_depth;              /* ss_scheme_ring_depth */
+  int rows_in_order;           /* 1: the rule sends its rows one after another in
+                                  increasing order, so R is written row by row
+                                  (ss_rows); 0: in any order (ss_triplets) */
+  double *vtab[SS_NCELLTYPES]; /* averaging with valence-dependent weights of type
+                                  t: the weight rows by valence and place,
+                                  vtab[t][(n * nv + i) * nv + j] for n <=
+                                  SS_AVG_NMAX, nv = the type's vertices; NULL
+                                  for constant masks */
+  const double **vrow[SS_NCELLTYPES]; /* vrow[t][n * nv + i]: the row of place i
+                                         at valence n, the first equal one's
+                                         address (as wrow in the rule) */
+  int irrational;                     /* some weight is not rational */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every

@@ -3,11 +3,14 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <ini.h>
+
+#include "ss_expr.h"
 
 /* An exact rational num/den, den > 0, in lowest terms. */
 typedef struct {
@@ -99,11 +102,45 @@ typedef struct {
   char name[64]; /* [scheme] name */
   int have_name, have_family, have_split;
   ss_split_kind split;
-  rational w[SS_NCELLTYPES][4];  /* weights by type and role */
+  rational w[SS_NCELLTYPES][4];  /* weights by type and role (constant ones) */
+  ss_expr *ex[SS_NCELLTYPES][4]; /* the weights that are expressions, or NULL */
+  char *etext[SS_NCELLTYPES][4]; /* an expression's text, for messages */
+  int keyline[SS_NCELLTYPES][4]; /* the line of each weight */
   unsigned given[SS_NCELLTYPES]; /* bit r: role r given */
   int has_mask[SS_NCELLTYPES];   /* a [mask.*] section seen */
-  char msg[256];                 /* the handler's complaint */
+  char msg[384];                 /* the handler's first complaint */
+  int msg_line;                  /* its line (1-based), 0 before any */
+  const char *text;              /* the file's text, read line by line */
+  const char *next;              /* where the next line starts in text */
+  int line;                      /* line of the text last handed to inih */
+  int newlines;                  /* newlines in text before next */
+  int long_line;                 /* first line longer than inih's buffer, or 0 */
 } reader;
+
+/* inih's line reader over R->text: copies the next line (at most num - 1
+ * bytes, a longer line in pieces) and counts lines, so that the handler knows
+ * the line it is called for (the line of the last piece read). */
+static char *read_line(char *str, int num, void *stream) {
+  reader *R = stream;
+  if (!*R->next || num < 2) return NULL;
+  R->line = R->newlines + 1;
+  int k = 0;
+  while (k < num - 1 && R->next[k])
+    if (R->next[k++] == '\n') {
+      R->newlines++;
+      break;
+    }
+  memcpy(str, R->next, (size_t)k);
+  str[k] = '\0';
+  R->next += k;
+  if (k > 0 && str[k - 1] != '\n' && *R->next) { /* too long: cut, keep counting */
+    while (*R->next && *R->next != '\n')
+      R->next++;
+    if (*R->next) R->next++, R->newlines++;
+    if (!R->long_line) R->long_line = R->line;
+  }
+  return str;
+}
 
 static int cell_type_of(const char *s, ss_cell_type *t) {
   for (int k = 0; k < SS_NCELLTYPES; k++)
@@ -114,8 +151,7 @@ static int cell_type_of(const char *s, ss_cell_type *t) {
   return -1;
 }
 
-static int handler(void *user, const char *section, const char *key, const char *value) {
-  reader *R = user;
+static int handle(reader *R, const char *section, const char *key, const char *value) {
   if (!strcmp(section, "scheme")) {
     if (!strcmp(key, "name")) {
       if (R->have_name++) goto repeated;
@@ -185,17 +221,38 @@ static int handler(void *user, const char *section, const char *key, const char 
              section, key, value);
     return 0;
   }
-  if (pr) {
-    snprintf(R->msg, sizeof R->msg,
-             "[%.64s] %s = '%.64s' is not a rational p/q (digits, optional sign, q > 0)",
-             section, key, value);
-    return 0;
+  R->keyline[t][r] = R->line;
+  if (pr) { /* not p/q: an expression */
+    ss_error xe = {0};
+    if (ss_expr_new(value, &R->ex[t][r], &xe)) {
+      snprintf(R->msg, sizeof R->msg, "[%.64s] %s = '%.64s'%.160s", section, key, value,
+               xe.msg);
+      return 0;
+    }
+    if (!(R->etext[t][r] = strdup(value))) {
+      snprintf(R->msg, sizeof R->msg, "out of memory");
+      return 0;
+    }
   }
   R->given[t] |= 1u << r;
   return 1;
 repeated:
   snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
   return 0;
+}
+
+/* inih's handler: handle, keeping the first complaint and its line (inih
+ * goes on after an error and reports the first error's line). */
+static int handler(void *user, const char *section, const char *key, const char *value) {
+  reader *R = user;
+  char first[sizeof R->msg];
+  memcpy(first, R->msg, sizeof first);
+  const int ok = handle(R, section, key, value);
+  if (!ok && !R->msg_line)
+    R->msg_line = R->line;
+  else if (!ok)
+    memcpy(R->msg, first, sizeof first);
+  return ok;
 }
 
 /* Line number (1-based) of the first line of text that is "[section]" after
@@ -215,16 +272,133 @@ static int section_line(const char *text, const char *section) {
   return 0;
 }
 
+/* The values of one weight at the valences n = 1..SS_AVG_NMAX. */
+typedef struct {
+  double d[SS_AVG_NMAX + 1];            /* the value */
+  rational q[SS_AVG_NMAX + 1];          /* the exact value, where exact[n] */
+  unsigned char exact[SS_AVG_NMAX + 1]; /* 1: rational (q[n]) */
+} weight_values;
+
+/* Weight r of type t at every valence (only n = 1 unless it reads n): into
+ * *w; *varies |= it reads n.  SS_EINPUT "WHERE:LINE: [SEC] KEY = 'EXPR' is
+ * not finite at n = N ...", SS_ENOMEM. */
+static ss_status weight_at(const reader *R, ss_cell_type t, int r, const char *where,
+                           const char *sec, weight_values *w, int *varies,
+                           ss_error *err) {
+  const ss_expr *e = R->ex[t][r];
+  const int reads = e && ss_expr_uses_n(e);
+  *varies |= reads;
+  for (long n = 1; n <= (reads ? SS_AVG_NMAX : 1); n++) {
+    ss_expr_value v = {0.0, 1, R->w[t][r].num, R->w[t][r].den};
+    if (!e) v.value = (double)v.num / (double)v.den; /* as it always was */
+    ss_error xe = {0};
+    const ss_status st = e ? ss_expr_eval(e, n, &v, &xe) : SS_OK;
+    if (st == SS_ENOMEM) return ss_error_nomem(err, "weight expression");
+    if (st)
+      return ss_error_set(err, SS_EINPUT, "%s:%d: [%s] %s = '%.80s'%s", where,
+                          R->keyline[t][r], sec, role_names[t][r], R->etext[t][r],
+                          xe.msg);
+    w->d[n] = v.value;
+    w->exact[n] = (unsigned char)v.rational;
+    w->q[n] = (rational){v.num, v.den};
+  }
+  for (long n = 2; !reads && n <= SS_AVG_NMAX; n++) {
+    w->d[n] = w->d[1];
+    w->exact[n] = w->exact[1];
+    w->q[n] = w->q[1];
+  }
+  return SS_OK;
+}
+
+/* Check that the weights of type t sum to 1 over the cell's vertices (each
+ * with its role relative to vertex 0) at valence n: exactly when they are
+ * all rational there, else within 1e-12 (and then *all_rational = 0). */
+static ss_status sum_at(ss_cell_type t, const weight_values *w, long n, int varies,
+                        const char *where, const char *sec, int line, int *all_rational,
+                        ss_error *err) {
+  const int nv = ss_cell_nverts(t);
+  char at[48] = "";
+  if (varies) snprintf(at, sizeof at, " at n = %ld", n);
+  int exact = 1;
+  for (int j = 0; j < nv; j++)
+    exact &= w[ss_cell_role(t, 0, j)].exact[n];
+  if (!exact) {
+    *all_rational = 0;
+    double sum = 0.0;
+    for (int j = 0; j < nv; j++)
+      sum += w[ss_cell_role(t, 0, j)].d[n];
+    if (!(fabs(sum - 1.0) <= 1e-12))
+      return ss_error_set(err, SS_EINPUT,
+                          "%s:%d: [%s]: the weights sum to %.17g%s over the %d vertices "
+                          "of a %s, not 1 (within 1e-12: some weight is not rational)",
+                          where, line, sec, sum, at, nv, ss_cell_name(t));
+    return SS_OK;
+  }
+  rational sum = {0, 1};
+  int overflow = 0;
+  for (int j = 0; j < nv; j++)
+    overflow |= add_scaled(&sum, 1, w[ss_cell_role(t, 0, j)].q[n]);
+  if (overflow)
+    return ss_error_set(err, SS_EINPUT,
+                        "%s:%d: [%s]: weights too large to sum exactly in 64 bits%s",
+                        where, line, sec, at);
+  if (sum.num != sum.den)
+    return ss_error_set(
+        err, SS_EINPUT,
+        "%s:%d: [%s]: the weights sum to %lld/%lld%s over the %d vertices "
+        "of a %s, not 1",
+        where, line, sec, sum.num, sum.den, at, nv, ss_cell_name(t));
+  return SS_OK;
+}
+
+/* The weights of type t: a->mask[t] (the value at n = 1 for a weight that
+ * reads n), and for those that read n a table in tabs[r] (owned by the
+ * caller) named by vary->w[t][r]; every valence's sum checked.  Errors as
+ * weight_at and sum_at. */
+static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where,
+                              const char *sec, int line, ss_averaging *a,
+                              ss_averaging_vary *vary, double **tabs, ss_error *err) {
+  const int nr = ss_cell_nroles(t);
+  weight_values *w = malloc((size_t)nr * sizeof *w);
+  if (!w) return ss_error_nomem(err, "stencil weights");
+  int varies = 0;
+  ss_status st = SS_OK;
+  for (int r = 0; r < nr && !st; r++)
+    st = weight_at(R, t, r, where, sec, w + r, &varies, err);
+  for (long n = 1; !st && n <= (varies ? SS_AVG_NMAX : 1); n++)
+    st = sum_at(t, w, n, varies, where, sec, line, &vary->rational, err);
+  for (int r = 0; r < nr && !st; r++) {
+    a->mask[t][r] = w[r].d[1];
+    if (!R->ex[t][r] || !ss_expr_uses_n(R->ex[t][r])) continue;
+    if (!(tabs[r] = malloc(sizeof w[r].d))) {
+      st = ss_error_nomem(err, "stencil weights");
+      break;
+    }
+    memcpy(tabs[r], w[r].d, sizeof w[r].d);
+    vary->w[t][r] = tabs[r];
+  }
+  free(w);
+  return st;
+}
+
 ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
                            ss_error *err) {
   *out = NULL;
   reader *R = calloc(1, sizeof *R);
   if (!R) return ss_error_nomem(err, "stencil");
-  const int rc = ini_parse_string(text, handler, R);
+  double *tabs[SS_NCELLTYPES][4] = {{NULL}}; /* the valence tables of vary */
+  ss_averaging_vary vary = {{{NULL}}, 1};
+  R->text = R->next = text;
+  const int rc = ini_parse_stream(read_line, R, handler, R);
   ss_status st = SS_OK;
-  if (rc != 0) {
+  if (R->long_line && (rc == 0 || R->long_line <= rc)) {
+    st = ss_error_set(err, SS_EINPUT, "%s:%d: a line longer than %d characters", where,
+                      R->long_line, INI_MAX_LINE - 2);
+    goto done;
+  }
+  if (rc != 0) { /* the first error: the handler's, or a line inih cannot read */
     st = ss_error_set(err, SS_EINPUT, "%s:%d: %s", where, rc,
-                      R->msg[0] ? R->msg : "not an INI line");
+                      R->msg_line == rc ? R->msg : "not an INI line");
     goto done;
   }
   const int sl = section_line(text, "scheme");
@@ -258,37 +432,24 @@ ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
                           sec, role_names[t][r]);
         goto done;
       }
-    /* sum over the cell's vertices, each with its role relative to vertex 0 */
-    rational sum = {0, 1};
-    int overflow = 0;
-    for (int j = 0; j < ss_cell_nverts((ss_cell_type)t); j++)
-      overflow |= add_scaled(&sum, 1, R->w[t][ss_cell_role((ss_cell_type)t, 0, j)]);
-    if (overflow) {
-      st = ss_error_set(err, SS_EINPUT,
-                        "%s:%d: [%s]: weights too large to sum exactly in 64 bits", where,
-                        line, sec);
+    if ((st =
+             mask_weights(R, (ss_cell_type)t, where, sec, line, &a, &vary, tabs[t], err)))
       goto done;
-    }
-    if (sum.num != sum.den) {
-      st = ss_error_set(
-          err, SS_EINPUT,
-          "%s:%d: [%s]: the weights sum to %lld/%lld over the %d vertices of a "
-          "%s, not 1",
-          where, line, sec, sum.num, sum.den, ss_cell_nverts((ss_cell_type)t),
-          ss_cell_name((ss_cell_type)t));
-      goto done;
-    }
     a.accepts[t] = 1;
-    for (int r = 0; r < nr; r++)
-      a.mask[t][r] = (double)R->w[t][r].num / (double)R->w[t][r].den;
     nmask++;
   }
   if (nmask == 0) {
     st = ss_error_set(err, SS_EINPUT, "%s:%d: no [mask.TYPE] section", where, sl);
     goto done;
   }
-  st = ss_scheme_averaging_new(R->name, &a, out, err);
+  st = ss_scheme_averaging_vary_new(R->name, &a, &vary, out, err);
 done:
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    for (int r = 0; r < 4; r++) {
+      ss_expr_free(R->ex[t][r]);
+      free(R->etext[t][r]);
+      free(tabs[t][r]);
+    }
   free(R);
   return st;
 }

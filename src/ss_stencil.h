@@ -22,11 +22,15 @@
  * the cell types that have a mask; every mask lists every role of its type.
  *
  * Weights are rationals `p/q` or integers (an optional sign, decimal digits,
- * q > 0).  A mask's weights, each counted once per cell vertex of that role,
- * must sum to exactly 1 (checked in exact arithmetic).  Any violation —
- * missing [scheme] or key, unknown family, split, section, cell type or
- * role, a repeated key, a malformed rational, a sum other than 1 — is
- * SS_EINPUT with a message "FILE:LINE: ..." naming the key or section. */
+ * q > 0), or expressions in the valence n (ss_expr.h: read by libmatheval,
+ * exact by FLINT where rational; n = the number of cells the averaging rule
+ * divides by at the fine vertex moved).  A mask's weights, each counted once
+ * per cell vertex of that role, must sum to 1 — exactly when rational — at
+ * every valence n = 1..SS_AVG_NMAX.  Any violation — missing [scheme] or key,
+ * unknown family, split, section, cell type, role or name, a repeated key, a
+ * malformed weight, a weight not finite at some n, a sum other than 1 — is
+ * SS_EINPUT with a message "FILE:LINE: ..." naming the key or section (the
+ * first error of the file), and the valence n where it depends on one. */
 #ifndef SS_STENCIL_H
 #define SS_STENCIL_H
 

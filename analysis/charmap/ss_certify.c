@@ -126,6 +126,15 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
     if (o->times) ss_clock_lap(&o->times->injective, &t0);
   }
   if (!st) judged_on(*cm, &out->cond, reg, inj);
+  if (!st && certify && !ss_scheme_weights_rational(s)) {
+    /* a weight known not to be rational (a stencil's cos(2 pi / n)): the
+     * rational reconstruction of S would stand for another matrix */
+    ss_verdict_unproven(&out->cond, "weights not rational (the exact path reads rational "
+                                    "matrices only)");
+    ss_verdict_unproven(&reg->verdict, "weights not rational");
+    ss_verdict_unproven(&inj->verdict, "weights not rational");
+    return st;
+  }
   if (!st && certify) st = ss_certify(M, c, e, *cm, o, reg, inj, out, x, err);
   return st;
 }

@@ -9,32 +9,9 @@
 #include "ss_stencil.h"
 #include "ss_test.h"
 #include "ss_testmesh.h"
+#include "stencil_case.h"
 
 static const char *dir; /* data/stencils */
-
-/* Refine cx once with both schemes; their operators must be identical. */
-static void same_operator(const ss_scheme *a, const ss_scheme *b, const ss_cx *cx,
-                          const char *what) {
-  ss_error err = {0};
-  ss_cx *fa = NULL, *fb = NULL;
-  gsl_spmatrix *Ra = NULL, *Rb = NULL;
-  if (ss_scheme_refine(a, cx, &fa, &Ra, &err) ||
-      ss_scheme_refine(b, cx, &fb, &Rb, &err)) {
-    CHECK(0, "%s: %s", what, err.msg);
-  } else {
-    int same = Ra->size1 == Rb->size1 && Ra->size2 == Rb->size2 && Ra->nz == Rb->nz;
-    for (size_t r = 0; same && r <= Ra->size1; r++)
-      same = Ra->p[r] == Rb->p[r];
-    for (int q = 0; same && q < Ra->p[Ra->size1]; q++)
-      same = Ra->i[q] == Rb->i[q] && Ra->data[q] == Rb->data[q];
-    CHECK(same && Ra->nz > 0, "%s: the stencil's operator differs from the built-in one",
-          what);
-  }
-  if (Ra) gsl_spmatrix_free(Ra);
-  if (Rb) gsl_spmatrix_free(Rb);
-  ss_cx_free(fa);
-  ss_cx_free(fb);
-}
 
 static ss_scheme *load(const char *file) {
   char path[4096];
@@ -92,16 +69,6 @@ out:
   ss_scheme_free(tetoct);
 }
 
-/* A bad stencil: SS_EINPUT and a message containing want. */
-static void bad(const char *text, const char *want) {
-  ss_scheme *s = NULL;
-  ss_error err = {0};
-  const ss_status st = ss_stencil_parse(text, "bad.ini", &s, &err);
-  CHECK(st == SS_EINPUT && s == NULL && strstr(err.msg, want),
-        "want '%s', got status %d: %s", want, (int)st, err.msg);
-  ss_scheme_free(s);
-}
-
 #define HEAD "[scheme]\nname = x\nfamily = averaging\nsplit = multilinear\n"
 
 static void test_bad(void) {
@@ -111,7 +78,8 @@ static void test_bad(void) {
       "bad.ini:9: [mask.hex]: role 'corner' is unknown (known: self, edge, face, "
       "opposite)");
   bad(HEAD "[mask.hex]\nself = 1/8\nedge = 1/x\n", "bad.ini:7: [mask.hex] edge = '1/x'");
-  bad(HEAD "[mask.hex]\nself = 1/0\n", "bad.ini:6: [mask.hex] self = '1/0'");
+  bad(HEAD "[mask.hex]\nself = 1/0\nedge = 0\nface = 0\nopposite = 0\n",
+      "bad.ini:6: [mask.hex] self = '1/0'");
   bad(HEAD "[mask.hex]\nself = 0.125\n", "bad.ini:6: [mask.hex] self = '0.125'");
   /* beyond 64 bits: said so, not "not a rational"; leading zeros do not count */
   bad(HEAD "[mask.hex]\nself = 1/100000000000000000000\n",
@@ -140,6 +108,25 @@ static void test_bad(void) {
       "bad.ini:4: section [weights] is unknown");
   bad("[scheme]\nthis is no INI line\n", "bad.ini:2: not an INI line");
   bad("", "[scheme] needs name, family and split");
+  /* two errors: the first one's line with the first one's message (the
+   * message was the last error's, the line the first's) */
+  bad(HEAD "[mask.hex]\nself = 1/x\nedge = 0\nface = 0\nopposite = 0\nfoo = 1\n",
+      "bad.ini:6: [mask.hex] self = '1/x'");
+  bad(HEAD "[mask.hex]\nfoo = 1\nedge = 0\nthis is no INI line\n",
+      "bad.ini:6: [mask.hex]: role 'foo' is unknown");
+  bad(HEAD "this is no INI line\n[mask.hex]\nfoo = 1\n", "bad.ini:5: not an INI line");
+  /* a line longer than inih's buffer: named, and the lines after it keep
+   * their numbers */
+  {
+    char text[2048];
+    char longc[400];
+    memset(longc, 'x', sizeof longc - 1);
+    longc[sizeof longc - 1] = '\0';
+    snprintf(text, sizeof text, HEAD "; %s\n[mask.hex]\nself = 1/8\nfoo = 1\n", longc);
+    bad(text, "bad.ini:5: a line longer than 198 characters");
+    snprintf(text, sizeof text, HEAD "[mask.hex]\nfoo = 1\n; %s\n", longc);
+    bad(text, "bad.ini:6: [mask.hex]: role 'foo' is unknown");
+  }
   /* the exact sum: 1/3 three times is 1, not 0.999... */
   ss_scheme *s = NULL;
   ss_error err = {0};
