@@ -281,7 +281,7 @@ static void describe(ss_psi_result *r) {
   const char *how = v->certified  ? " (proven: interval arithmetic on the enclosed basis)"
                     : r->enclosed ? " (double precision; the enclosure did not prove it)"
                                   : " (double precision, not proven)";
-  if (v->verdict == SS_FAIL)
+  if (v->verdict == SS_FAIL) {
     snprintf(v->reason, sizeof v->reason,
              "psi folds: det Dpsi in [%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g) and in "
              "[%.6g, %.6g] at cell %zu (%.6g, %.6g, %.6g)%s",
@@ -289,10 +289,10 @@ static void describe(ss_psi_result *r) {
              r->witness[0].at[0], r->witness[0].at[1], r->witness[0].at[2],
              r->witness[1].det[0], r->witness[1].det[1], r->witness[1].cell,
              r->witness[1].at[0], r->witness[1].at[1], r->witness[1].at[2], how);
-  if (v->verdict == SS_FAIL && r->tube_fold_layer >= 0) {
     const size_t n = strlen(v->reason);
-    snprintf(v->reason + n, sizeof v->reason - n,
-             "; both in the tube round a spoke, its layer %d", r->tube_fold_layer);
+    if (r->tube_fold_layer >= 0)
+      snprintf(v->reason + n, sizeof v->reason - n,
+               "; both in the tube round a spoke, its layer %d", r->tube_fold_layer);
   } else if (v->verdict == SS_PASS && r->enclosed && r->ntubes)
     snprintf(
         v->reason, sizeof v->reason,

@@ -112,6 +112,12 @@ static void fold(const ss_scheme *s) {
             p->v.reg.verdict == SS_FAIL && p->v.inj.verdict == SS_FAIL &&
             !p->v.reg.certified,
         "finding 1: %s: %s", ss_verdict_name(p->v.reg.verdict), p->v.reg.reason);
+  /* the reason names the witnesses (their cells), not another branch's text */
+  char cell[40];
+  snprintf(cell, sizeof cell, "at cell %zu (", r->witness[0].cell);
+  CHECK(!strncmp(r->verdict.reason, "psi folds: det Dpsi in [", 24) &&
+            strstr(r->verdict.reason, cell) && !strstr(r->verdict.reason, "tube"),
+        "finding 1: psi's reason names its witnesses: %s", r->verdict.reason);
   if (r->nwitness == 2) {
     const double a = r->witness[0].det[0], b = r->witness[1].det[0];
     CHECK(a * b < 0.0, "witnesses of opposite signs: %g, %g", a, b);

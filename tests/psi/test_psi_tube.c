@@ -299,6 +299,9 @@ static void tube_fold(const ss_scheme *s, const char *link) {
             r->tube_fold_layer >= 0 && reg.verdict == SS_FAIL && reg.certified &&
             reg.on == SS_ON_PSI && inj.verdict == SS_FAIL && inj.on == SS_ON_PSI,
         "%s: psi folds in a tube, proven (%s)", link, r->verdict.reason);
+  CHECK(!strncmp(r->verdict.reason, "psi folds: det Dpsi in [", 24) &&
+            strstr(r->verdict.reason, "both in the tube round a spoke, its layer"),
+        "%s: the reason names the witnesses and the tube: %s", link, r->verdict.reason);
   const ss_psi_point *w = r->witness;
   CHECK(
       w[0].det[0] <= w[0].det[1] && w[1].det[0] <= w[1].det[1] &&
