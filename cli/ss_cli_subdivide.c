@@ -3,6 +3,8 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <json-c/json.h>
 
@@ -17,6 +19,7 @@ static const char *const usage_text =
     "Refine the mesh IN L times with scheme S and write the result to OUT.\n"
     "Formats follow the file extensions: .mesh (Medit; read and write), .obj\n"
     "(surfaces; read and write), .vtk (legacy VTK for ParaView; write only),\n"
+    ".vtu (VTK XML, binary appended; write only),\n"
     ".msh (gmsh, versions 2 and 4, ASCII or binary; read only), .node/.ele\n"
     "(TetGen or Triangle: X.node with X.ele and X.face if present; read only).\n"
     "\n"
@@ -24,7 +27,14 @@ static const char *const usage_text =
     "                        catmull-clark | loop | ccsolid | quasi48\n"
     "  -l, --levels L        number of refinement levels, 0..12 (default 1)\n"
     "  -o, --output OUT      output file (written whole or not at all: an old\n"
-    "                        OUT stays if writing fails)\n"
+    "                        OUT stays if writing fails); when OUT is standard\n"
+    "                        output (-o /dev/stdout) the summary goes to stderr\n"
+    "      --output-format F OUT's format whatever its name: medit, vtk, vtu or\n"
+    "                        obj (for a name without extension: /dev/stdout)\n"
+    "      --drop-unsupported  drop the cells below the mesh's top dimension that\n"
+    "                        the scheme does not take (TetGen's .face triangles,\n"
+    "                        gmsh's geometry points and curves) instead of\n"
+    "                        refusing the mesh; stderr says how many\n"
     "      --octahedra-keyword  .mesh: keep octahedra under this project's\n"
     "                        Octahedra keyword (not Medit's: meshio refuses the\n"
     "                        file, gmsh drops the cells); by default each one is\n"
@@ -92,15 +102,22 @@ static json_object *level_json(int level, const ss_cx *cx, double seconds) {
   return o;
 }
 
-static void level_text(const char *what, const ss_cx *cx, double seconds) {
-  printf("%s: %zu vertices", what, cx->nv);
+static void level_text(FILE *f, const char *what, const ss_cx *cx, double seconds) {
+  fprintf(f, "%s: %zu vertices", what, cx->nv);
   for (int t = 0; t < SS_NCELLTYPES; t++)
     if (cx->nc[t])
-      printf(", %zu %s", cx->nc[t],
-             cx->nc[t] == 1 ? ss_cell_name((ss_cell_type)t)
-                            : ss_cell_plural((ss_cell_type)t));
-  if (seconds >= 0) printf(" (%.3f s)", seconds);
-  printf("\n");
+      fprintf(f, ", %zu %s", cx->nc[t],
+              cx->nc[t] == 1 ? ss_cell_name((ss_cell_type)t)
+                             : ss_cell_plural((ss_cell_type)t));
+  if (seconds >= 0) fprintf(f, " (%.3f s)", seconds);
+  fprintf(f, "\n");
+}
+
+/* Whether path names the file or device standard output is on. */
+static int is_stdout(const char *path) {
+  struct stat a, b;
+  return stat(path, &a) == 0 && fstat(STDOUT_FILENO, &b) == 0 && a.st_dev == b.st_dev &&
+         a.st_ino == b.st_ino;
 }
 
 /* The command line of subdivide. */
@@ -115,6 +132,10 @@ typedef struct {
   int given;                /* --diagonals given: keep the file's */
   ss_mesh_write_opts wopts; /* --octahedra-keyword */
   int split_given;          /* --split-octahedra: the default, said explicitly */
+  ss_mesh_format ofmt;      /* OUT's format: --output-format, else its name's */
+  int drop;                 /* --drop-unsupported */
+  FILE *sum;                /* the summary's stream: stdout, or stderr when
+                               OUT is standard output */
 } sub_opts;
 
 /* argv into o: 0, -1 after --help (printed), or the exit status 2 with the
@@ -127,6 +148,8 @@ static int parse(int argc, char **argv, sub_opts *o) {
                                        {"octahedra-keyword", no_argument, NULL, 'K'},
                                        {"format", required_argument, NULL, 'F'},
                                        {"diagonals", required_argument, NULL, 'D'},
+                                       {"output-format", required_argument, NULL, 'O'},
+                                       {"drop-unsupported", no_argument, NULL, 'U'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   memset(o, 0, sizeof *o);
@@ -153,6 +176,16 @@ static int parse(int argc, char **argv, sub_opts *o) {
       break;
     case 'K':
       o->wopts.octahedra_keyword = 1;
+      break;
+    case 'O':
+      o->ofmt = ss_mesh_format_from_name(optarg);
+      if (!ss_mesh_format_writable(o->ofmt))
+        return ss_cli_usage_error(
+            "subdivide", "--output-format: expected medit, vtk, vtu or obj, not '%s'",
+            optarg);
+      break;
+    case 'U':
+      o->drop = 1;
       break;
     case 'F':
       if (ss_cli_format_option("subdivide", optarg, &o->json)) return SS_EXIT_USAGE;
@@ -181,7 +214,10 @@ static int parse(int argc, char **argv, sub_opts *o) {
                               "--split-octahedra and --octahedra-keyword contradict");
   if (!o->scheme) return ss_cli_usage_error("subdivide", "--scheme is required");
   if (!o->out) return ss_cli_usage_error("subdivide", "-o OUT is required");
-  if (!ss_mesh_format_writable(ss_mesh_format_from_path(o->out)))
+  o->sum = is_stdout(o->out) ? stderr : stdout;
+  if (o->ofmt) return 0;
+  o->ofmt = ss_mesh_format_from_path(o->out);
+  if (!ss_mesh_format_writable(o->ofmt))
     return ss_cli_usage_error("subdivide", "%s '%s' (write: %s)",
                               ss_mesh_format_from_path(o->out) == SS_MESH_AUTO
                                   ? "cannot tell the format of"
@@ -237,11 +273,13 @@ static void summary_start(const sub_opts *o, const ss_cx *cx, int reads_diag,
   } else {
     char what[64];
     snprintf(what, sizeof what, "read %s", o->in);
-    level_text(what, cx, -1);
+    level_text(o->sum, what, cx, -1);
     if (reads_diag)
-      printf("major diagonals: %s; %zu of %zu adjacent pairs improper (Definition 3.2 as "
-             "read in the README)\n",
-             o->diag, dbad, dpairs);
+      fprintf(
+          o->sum,
+          "major diagonals: %s; %zu of %zu adjacent pairs improper (Definition 3.2 as "
+          "read in the README)\n",
+          o->diag, dbad, dpairs);
   }
 }
 
@@ -270,7 +308,7 @@ static int refine_levels(const sub_opts *o, const ss_scheme *scheme, const ss_cx
     } else {
       char what[32];
       snprintf(what, sizeof what, "%s level %ld", o->scheme, l);
-      level_text(what, *cx, dt);
+      level_text(o->sum, what, *cx, dt);
     }
   }
   return SS_EXIT_OK;
@@ -279,15 +317,32 @@ static int refine_levels(const sub_opts *o, const ss_scheme *scheme, const ss_cx
 /* The end of the summary, once OUT is written: the output file and its
  * format, as text or closing the JSON report. */
 static void summary_end(const sub_opts *o, json_object *report) {
-  const char *format = ss_mesh_format_name(ss_mesh_format_from_path(o->out));
+  const char *format = ss_mesh_format_name(o->ofmt);
   if (o->json) {
     json_object_object_add(report, "output", json_object_new_string(o->out));
     json_object_object_add(report, "format", json_object_new_string(format));
-    printf("%s\n", json_object_to_json_string_ext(
-                       report, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+    fprintf(o->sum, "%s\n",
+            json_object_to_json_string_ext(report, JSON_C_TO_STRING_PLAIN |
+                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
   } else {
-    printf("wrote %s (%s)\n", o->out, format);
+    fprintf(o->sum, "wrote %s (%s)\n", o->out, format);
   }
+}
+
+/* --drop-unsupported: drop from cx the lower-dimensional cells the scheme
+ * does not take, saying on stderr how many of which type. */
+static void drop_unsupported(const sub_opts *o, const ss_scheme *scheme, ss_cx *cx) {
+  size_t n[SS_NCELLTYPES];
+  if (!ss_scheme_drop_lower(scheme, cx, n)) return;
+  fprintf(stderr, "subspectra subdivide: %s: dropped", o->in);
+  for (int t = 0, first = 1; t < SS_NCELLTYPES; t++)
+    if (n[t]) {
+      fprintf(stderr, "%s %zu %s", first ? "" : ",", n[t],
+              n[t] == 1 ? ss_cell_name((ss_cell_type)t)
+                        : ss_cell_plural((ss_cell_type)t));
+      first = 0;
+    }
+  fprintf(stderr, " that scheme %s does not take (--drop-unsupported)\n", o->scheme);
 }
 
 int ss_cli_subdivide(int argc, char **argv) {
@@ -304,6 +359,7 @@ int ss_cli_subdivide(int argc, char **argv) {
     rc = ss_cli_fail("subdivide", &err);
     goto done;
   }
+  if (o.drop) drop_unsupported(&o, scheme, cx);
   if (ss_cx_check_orientation(cx, &err)) {
     fprintf(stderr, "subspectra subdivide: %s: %s\n", o.in, err.msg);
     rc = SS_EXIT_USAGE;
@@ -328,13 +384,12 @@ int ss_cli_subdivide(int argc, char **argv) {
   summary_start(&o, cx, reads_diag, dpairs, dbad, &report, &lv);
   input = cx; /* kept to name input vertices if a level overflows */
   if ((rc = refine_levels(&o, scheme, input, &cx, lv))) goto done;
-  if (ss_mesh_write(o.out, SS_MESH_AUTO, cx, &o.wopts, &err)) {
+  if (ss_mesh_write(o.out, o.ofmt, cx, &o.wopts, &err)) {
     rc = ss_cli_fail("subdivide", &err);
     goto done;
   }
   /* Medit has no octahedron: say that the file holds tets in their place */
-  if (ss_mesh_format_from_path(o.out) == SS_MESH_MEDIT && cx->nc[SS_OCT] &&
-      !o.wopts.octahedra_keyword)
+  if (o.ofmt == SS_MESH_MEDIT && cx->nc[SS_OCT] && !o.wopts.octahedra_keyword)
     fprintf(stderr,
             "subspectra subdivide: %s: split %zu octahedra into %zu tetrahedra (Medit "
             "has no octahedron; --octahedra-keyword keeps them)\n",

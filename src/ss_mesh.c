@@ -16,7 +16,7 @@ ss_status ss_mesh_read(const char *path, ss_mesh_format fmt, ss_cx **out, ss_err
   if (fmt == SS_MESH_AUTO)
     return ss_error_set(err, SS_EINPUT, "%s: cannot tell the mesh format (read: %s)",
                         path, ss_mesh_readable_list());
-  if (fmt == SS_MESH_VTK)
+  if (fmt == SS_MESH_VTK || fmt == SS_MESH_VTU)
     return ss_error_set(err, SS_EINPUT, "%s: VTK files are written, not read (read: %s)",
                         path, ss_mesh_readable_list());
   if (fmt == SS_MESH_GMSH) return ss_mesh_read_gmsh(path, out, err);
@@ -54,6 +54,9 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
     break;
   case SS_MESH_VTK:
     st = ss_mesh_write_vtk(f, cx, err);
+    break;
+  case SS_MESH_VTU:
+    st = ss_mesh_write_vtu(f, cx, err);
     break;
   default:
     st = ss_mesh_write_obj(f, cx, err);

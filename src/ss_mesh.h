@@ -9,6 +9,9 @@
  * skipped; an unknown keyword where one is expected is an error.
  * Legacy VTK (.vtk): written only, UNSTRUCTURED_GRID for ParaView; octahedra
  * are written as two pyramids sharing their equator.
+ * VTK XML (.vtu): written only, the same grid and data as .vtk, binary
+ * (appended raw data, UInt64 byte counts, the machine's byte order): shared
+ * points; octahedra split as in .vtk (ss_mesh_vtk.c says why not a polyhedron).
  * OBJ (.obj): surfaces only — v, f (triangles and quadrilaterals), l (segments),
  * p (vertex cells); vt/vn/vp/o/g/s/usemtl/mtllib are ignored.
  * gmsh (.msh, versions 2 and 4, ASCII and binary): read only, by gmsh's own
@@ -34,7 +37,8 @@ typedef enum {
   SS_MESH_VTK,      /* .vtk (write only) */
   SS_MESH_OBJ,      /* .obj */
   SS_MESH_GMSH,     /* .msh (read only, through gmsh's API: ss_mesh_gmsh.c) */
-  SS_MESH_TETGEN    /* .node / .ele / .face (read only: ss_mesh_tetgen.c) */
+  SS_MESH_TETGEN,   /* .node / .ele / .face (read only: ss_mesh_tetgen.c) */
+  SS_MESH_VTU       /* .vtu, VTK XML (write only) */
 } ss_mesh_format;
 
 typedef struct {
@@ -49,8 +53,11 @@ typedef struct {
 /* The formats (ss_mesh_format.c, below the readers and writers).
  * Format implied by a path's extension (case-insensitive); SS_MESH_AUTO if none. */
 ss_mesh_format ss_mesh_format_from_path(const char *path);
-/* Name of a format ("medit", "vtk", "obj", "gmsh", "tetgen"). */
+/* Name of a format ("medit", "vtk", "vtu", "obj", "gmsh", "tetgen"). */
 const char *ss_mesh_format_name(ss_mesh_format fmt);
+/* The format of that name (as ss_mesh_format_name gives it, case-insensitive;
+ * "mesh" is medit too, "msh" gmsh), or SS_MESH_AUTO for any other name. */
+ss_mesh_format ss_mesh_format_from_name(const char *name);
 /* Whether ss_mesh_read / ss_mesh_write take fmt (.msh only when built with
  * gmsh: ss_mesh_gmsh_available). */
 int ss_mesh_format_readable(ss_mesh_format fmt);
@@ -107,6 +114,7 @@ ss_status ss_mesh_read_obj(FILE *f, const char *name, ss_cx **out, ss_error *err
 ss_status ss_mesh_write_medit(FILE *f, const ss_cx *cx, const ss_mesh_write_opts *opts,
                               ss_error *err);
 ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, ss_error *err);
+ss_status ss_mesh_write_vtu(FILE *f, const ss_cx *cx, ss_error *err);
 ss_status ss_mesh_write_obj(FILE *f, const ss_cx *cx, ss_error *err);
 
 SS_END_DECLS

@@ -19,6 +19,7 @@ ss_mesh_format ss_mesh_format_from_path(const char *path) {
   if (!dot || (slash && dot < slash)) return SS_MESH_AUTO;
   if (!strcasecmp(dot, ".mesh")) return SS_MESH_MEDIT;
   if (!strcasecmp(dot, ".vtk")) return SS_MESH_VTK;
+  if (!strcasecmp(dot, ".vtu")) return SS_MESH_VTU;
   if (!strcasecmp(dot, ".obj")) return SS_MESH_OBJ;
   if (!strcasecmp(dot, ".msh")) return SS_MESH_GMSH;
   if (!strcasecmp(dot, ".node") || !strcasecmp(dot, ".ele") || !strcasecmp(dot, ".face"))
@@ -32,7 +33,8 @@ int ss_mesh_format_readable(ss_mesh_format fmt) {
 }
 
 int ss_mesh_format_writable(ss_mesh_format fmt) {
-  return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_VTK;
+  return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_VTK ||
+         fmt == SS_MESH_VTU;
 }
 
 const char *ss_mesh_readable_list(void) {
@@ -43,7 +45,7 @@ const char *ss_mesh_readable_list(void) {
 }
 
 const char *ss_mesh_writable_list(void) {
-  return ".mesh (Medit), .vtk or .obj";
+  return ".mesh (Medit), .vtk, .vtu or .obj";
 }
 
 const char *ss_mesh_format_name(ss_mesh_format fmt) {
@@ -52,6 +54,8 @@ const char *ss_mesh_format_name(ss_mesh_format fmt) {
     return "medit";
   case SS_MESH_VTK:
     return "vtk";
+  case SS_MESH_VTU:
+    return "vtu";
   case SS_MESH_OBJ:
     return "obj";
   case SS_MESH_GMSH:
@@ -61,4 +65,13 @@ const char *ss_mesh_format_name(ss_mesh_format fmt) {
   default:
     return "auto";
   }
+}
+
+ss_mesh_format ss_mesh_format_from_name(const char *name) {
+  if (!strcasecmp(name, "mesh")) return SS_MESH_MEDIT;
+  if (!strcasecmp(name, "msh")) return SS_MESH_GMSH;
+  for (int f = SS_MESH_MEDIT; f <= SS_MESH_VTU; f++)
+    if (!strcasecmp(name, ss_mesh_format_name((ss_mesh_format)f)))
+      return (ss_mesh_format)f;
+  return SS_MESH_AUTO;
 }

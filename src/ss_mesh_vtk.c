@@ -1,25 +1,46 @@
-/* ss_mesh_vtk.c — legacy VTK (ASCII UNSTRUCTURED_GRID) writer for ParaView.
+/* ss_mesh_vtk.c — VTK writers for ParaView: legacy VTK (ASCII
+ * UNSTRUCTURED_GRID) and VTK XML (.vtu: binary, appended raw, UInt64 headers).
  *
  * Points are padded to 3 coordinates; a 4th coordinate travels as the point
  * scalar "w".  VTK has no octahedron, so each is written as two pyramids on its
  * equator 1 2 4 5 (apexes 0 and 3), both with the base normal towards the apex
  * as VTK requires.  Cell data: "ref" (the Medit reference) and "kind" (the
  * ss_cell_type of the cell a VTK cell came from, so split octahedra can be
- * told from pyramids). */
+ * told from pyramids).  Both formats hold the same points, cells and data;
+ * the VTU's reference arrays are Int32 like the complex's.  Octahedra are split
+ * in VTU too rather than written as VTK_POLYHEDRON (42): a polyhedron needs
+ * its faces spelled out, and meshio (5.x) refuses a grid that mixes polyhedra
+ * with other cells, which every tet-oct mesh does. */
+#include <inttypes.h>
+#include <stdint.h>
+
 #include "ss_mesh.h"
 
 /* VTK cell type numbers (vtkCellType.h) by ss_cell_type. */
 static const int vtk_type[SS_NCELLTYPES] = {1, 3, 5, 9, 10, 12, 14};
 static const int oct_pyramids[2][5] = {{1, 2, 4, 5, 0}, {1, 5, 4, 2, 3}};
 
-ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, ss_error *err) {
-  size_t ncells = 0, nints = 0;
+/* VTK cells per cell of type t: an octahedron is two pyramids. */
+static size_t pieces(int t) {
+  return t == SS_OCT ? 2 : 1;
+}
+
+/* The number of VTK cells of cx; *nints: of integers in the legacy CELLS
+ * list (each cell's vertex count and its vertices). */
+static size_t vtk_count(const ss_cx *cx, size_t *nints) {
+  size_t ncells = 0;
+  *nints = 0;
   for (int t = 0; t < SS_NCELLTYPES; t++) {
-    size_t pieces = t == SS_OCT ? 2 : 1;
     int nv = t == SS_OCT ? 5 : ss_cell_nverts((ss_cell_type)t);
-    ncells += pieces * cx->nc[t];
-    nints += pieces * cx->nc[t] * (size_t)(nv + 1);
+    ncells += pieces(t) * cx->nc[t];
+    *nints += pieces(t) * cx->nc[t] * (size_t)(nv + 1);
   }
+  return ncells;
+}
+
+ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, ss_error *err) {
+  size_t nints;
+  const size_t ncells = vtk_count(cx, &nints);
   fprintf(
       f,
       "# vtk DataFile Version 3.0\nsubspectra mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n");
@@ -73,6 +94,127 @@ ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, ss_error *err) {
         fprintf(f, "%.17g\n", cx->x[i * 4 + 3]);
     }
   }
+  if (ferror(f)) return ss_error_set(err, SS_EIO, "write error");
+  return SS_OK;
+}
+
+/* ---- VTK XML (.vtu): the same cells and data, binary, appended raw ---- */
+
+/* One array of the appended block: its element type and count. */
+typedef struct {
+  const char *type; /* VTK type name: "Float64", "Int64", "Int32", "UInt8" */
+  size_t size;      /* bytes per element */
+  size_t n;         /* elements (tuples times components) */
+} vtu_array;
+
+/* The arrays in the order they are declared and appended. */
+enum { A_POINTS, A_CONN, A_OFFSETS, A_TYPES, A_REF, A_KIND, A_VREF, A_W, A_COUNT };
+
+static void vtu_da(FILE *f, const vtu_array *a, int k, const char *name, int comps,
+                   uint64_t *offset) {
+  fprintf(f, "        <DataArray type=\"%s\"", a[k].type);
+  if (name) fprintf(f, " Name=\"%s\"", name);
+  if (comps > 1) fprintf(f, " NumberOfComponents=\"%d\"", comps);
+  fprintf(f, " format=\"appended\" offset=\"%" PRIu64 "\"/>\n", *offset);
+  *offset += 8 + (uint64_t)(a[k].n * a[k].size);
+}
+
+/* The byte count that opens an appended array (header_type UInt64). */
+static void vtu_head(FILE *f, const vtu_array *a) {
+  const uint64_t bytes = (uint64_t)(a->n * a->size);
+  fwrite(&bytes, sizeof bytes, 1, f);
+}
+
+static void put64(FILE *f, int64_t v) {
+  fwrite(&v, sizeof v, 1, f);
+}
+
+/* The appended arrays' contents, in the order of the enum above. */
+static void vtu_data(FILE *f, const ss_cx *cx, const vtu_array *a) {
+  vtu_head(f, &a[A_POINTS]);
+  for (size_t i = 0; i < cx->nv; i++) {
+    double x[3] = {0, 0, 0};
+    for (int k = 0; k < cx->dim && k < 3; k++)
+      x[k] = cx->x[i * (size_t)cx->dim + k];
+    fwrite(x, sizeof x[0], 3, f);
+  }
+  vtu_head(f, &a[A_CONN]);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    for (size_t i = 0; i < cx->nc[t]; i++) {
+      const ss_idx *v = ss_cx_cell(cx, (ss_cell_type)t, i);
+      if (t == SS_OCT)
+        for (int j = 0; j < 10; j++)
+          put64(f, v[oct_pyramids[j / 5][j % 5]]);
+      else
+        for (int j = 0; j < ss_cell_nverts((ss_cell_type)t); j++)
+          put64(f, v[j]);
+    }
+  vtu_head(f, &a[A_OFFSETS]);
+  int64_t end = 0;
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    for (size_t i = 0; i < cx->nc[t] * pieces(t); i++)
+      put64(f, end += t == SS_OCT ? 5 : ss_cell_nverts((ss_cell_type)t));
+  vtu_head(f, &a[A_TYPES]);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    for (size_t i = 0; i < cx->nc[t] * pieces(t); i++)
+      fputc(vtk_type[t], f);
+  vtu_head(f, &a[A_REF]);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    for (size_t i = 0; i < cx->nc[t] * pieces(t); i++) {
+      const int32_t r = cx->cref[t][i / pieces(t)];
+      fwrite(&r, sizeof r, 1, f);
+    }
+  vtu_head(f, &a[A_KIND]);
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    for (size_t i = 0; i < cx->nc[t] * pieces(t); i++) {
+      const int32_t k = t;
+      fwrite(&k, sizeof k, 1, f);
+    }
+  vtu_head(f, &a[A_VREF]);
+  fwrite(cx->vref, sizeof *cx->vref, cx->nv, f);
+  if (cx->dim == 4) {
+    vtu_head(f, &a[A_W]);
+    for (size_t i = 0; i < cx->nv; i++)
+      fwrite(&cx->x[i * 4 + 3], sizeof(double), 1, f);
+  }
+}
+
+ss_status ss_mesh_write_vtu(FILE *f, const ss_cx *cx, ss_error *err) {
+  size_t nints;
+  const size_t ncells = vtk_count(cx, &nints);
+  const vtu_array a[A_COUNT] = {
+      [A_POINTS] = {"Float64", 8, 3 * cx->nv}, [A_CONN] = {"Int64", 8, nints - ncells},
+      [A_OFFSETS] = {"Int64", 8, ncells},      [A_TYPES] = {"UInt8", 1, ncells},
+      [A_REF] = {"Int32", 4, ncells},          [A_KIND] = {"Int32", 4, ncells},
+      [A_VREF] = {"Int32", 4, cx->nv},         [A_W] = {"Float64", 8, cx->nv}};
+  const uint16_t one = 1;
+  const int little = *(const unsigned char *)&one == 1;
+  uint64_t off = 0;
+  fprintf(f,
+          "<?xml version=\"1.0\"?>\n"
+          "<!-- subspectra mesh; cell data kind: the ss_cell_type a cell came from "
+          "(6: one of the two pyramids of an octahedron) -->\n"
+          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"%s\" "
+          "header_type=\"UInt64\">\n"
+          "  <UnstructuredGrid>\n"
+          "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n"
+          "      <Points>\n",
+          little ? "LittleEndian" : "BigEndian", cx->nv, ncells);
+  vtu_da(f, a, A_POINTS, NULL, 3, &off);
+  fprintf(f, "      </Points>\n      <Cells>\n");
+  vtu_da(f, a, A_CONN, "connectivity", 1, &off);
+  vtu_da(f, a, A_OFFSETS, "offsets", 1, &off);
+  vtu_da(f, a, A_TYPES, "types", 1, &off);
+  fprintf(f, "      </Cells>\n      <CellData Scalars=\"ref\">\n");
+  vtu_da(f, a, A_REF, "ref", 1, &off);
+  vtu_da(f, a, A_KIND, "kind", 1, &off);
+  fprintf(f, "      </CellData>\n      <PointData Scalars=\"vref\">\n");
+  vtu_da(f, a, A_VREF, "vref", 1, &off);
+  if (cx->dim == 4) vtu_da(f, a, A_W, "w", 1, &off);
+  fprintf(f, "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
+             "  <AppendedData encoding=\"raw\">\n   _");
+  vtu_data(f, cx, a);
+  fprintf(f, "\n  </AppendedData>\n</VTKFile>\n");
   if (ferror(f)) return ss_error_set(err, SS_EIO, "write error");
   return SS_OK;
 }

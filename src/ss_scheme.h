@@ -100,6 +100,13 @@ const char *ss_scheme_name(const ss_scheme *s);
 ss_split_kind ss_scheme_split_kind(const ss_scheme *s);
 /* Whether the scheme takes cells of type t. */
 int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t);
+/* Remove from cx the cells of every type the scheme does not take whose
+ * dimension is below cx's top dimension (TetGen's boundary faces beside its
+ * tetrahedra, gmsh's geometry points and curves); cells of the top dimension
+ * and all vertices stay.  Nothing is dropped when the scheme does not take
+ * some cell of the top dimension (the mesh is refused anyway).  dropped[t] (may be NULL)
+ * receives how many cells of type t went; returns their total. */
+size_t ss_scheme_drop_lower(const ss_scheme *s, ss_cx *cx, size_t dropped[SS_NCELLTYPES]);
 
 /* How far a fine vertex's rule reaches: 1 if it reads only the coarse cells
  * holding the fine vertex (the averaging family, Catmull–Clark, Loop,

@@ -1,7 +1,7 @@
 /* ss_scheme_base.c — the scheme object: allocation with its parts, the
- * accessors, and the vertex lists of messages.  Below every scheme file
- * (ss_scheme_<name>.c builds its scheme with ss_scheme_alloc) and below the
- * registry and driver in ss_scheme.c. */
+ * accessors, the dropping of cells it does not take, and the vertex lists of messages.
+ * Below every scheme file (ss_scheme_<name>.c builds its scheme with ss_scheme_alloc) and
+ * below the registry and driver in ss_scheme.c. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -59,6 +59,27 @@ ss_split_kind ss_scheme_split_kind(const ss_scheme *s) {
 
 int ss_scheme_accepts(const ss_scheme *s, ss_cell_type t) {
   return (int)((s->accepts >> t) & 1u);
+}
+
+size_t ss_scheme_drop_lower(const ss_scheme *s, ss_cx *cx,
+                            size_t dropped[SS_NCELLTYPES]) {
+  const int top = ss_cx_topdim(cx);
+  int keep = 0; /* a top cell the scheme refuses: nothing dropped */
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    keep |= cx->nc[t] && ss_cell_dim((ss_cell_type)t) == top &&
+            !ss_scheme_accepts(s, (ss_cell_type)t);
+  size_t total = 0;
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    size_t n = 0;
+    if (!keep && !ss_scheme_accepts(s, (ss_cell_type)t) &&
+        ss_cell_dim((ss_cell_type)t) < top) {
+      n = cx->nc[t];
+      cx->nc[t] = 0; /* the slots stay allocated: ss_cx_free frees them */
+    }
+    if (dropped) dropped[t] = n;
+    total += n;
+  }
+  return total;
 }
 
 void ss_scheme_list_vertices(const ss_idx *v, size_t n, char *buf, size_t cap) {

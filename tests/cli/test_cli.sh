@@ -49,7 +49,7 @@ expect 0 "^" cmp "$tmp/c.mesh" "$tmp/c3.mesh"
 expect 0 "^wrote [^ ]*k.mesh \\(medit\\)$" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --octahedra-keyword -o "$tmp/k.mesh"
 expect 0 "read .*k.mesh: .* 24 tetrahedra, 6 octahedra" "$exe" subdivide --scheme tetoct --levels 0 "$tmp/k.mesh" -o "$tmp/k2.mesh"
 expect 2 "--split-octahedra and --octahedra-keyword contradict" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" --split-octahedra --octahedra-keyword -o "$tmp/c.mesh"
-expect 2 "cannot write the read-only format of .*x.msh' \\(write: .mesh \\(Medit\\), .vtk or .obj\\)" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o "$tmp/x.msh"
+expect 2 "cannot write the read-only format of .*x.msh' \\(write: .mesh \\(Medit\\), .vtk, .vtu or .obj\\)" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o "$tmp/x.msh"
 expect 0 "catmull-clark level 3: 386 vertices, 384 quadrilaterals" "$exe" subdivide --scheme catmull-clark --levels 3 "$m/cube-surface.obj" -o "$tmp/d.obj"
 expect 0 "loop level 2: 162 vertices, 320 triangles" "$exe" subdivide --scheme loop --levels 2 "$m/icosahedron.obj" -o "$tmp/e.obj"
 # quasi 4-8 surfaces: triangles only; non-manifold edges refused by name
