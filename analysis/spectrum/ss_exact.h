@@ -90,7 +90,8 @@
  *     components before c); each column scaled to max |entry| = 1.  The same
  *     X is returned exactly by ss_exact_basis_rational when all of
  *     lambda1..m are rational;
- *   - lambda irrational: Rump's method on A (acb_mat_eig_enclosure_rump),
+ *   - lambda irrational: Rump's method on A (acb_mat_eig_enclosure_rump; for
+ *     a simple root the same in real balls, ss_exact_rump.c),
  *     started from an approximate eigenspace (SVD of A - lambda in doubles,
  *     two steps of inverse iteration at the working precision) with the e
  *     best-conditioned rows frozen.  It proves A X = X J' with the
@@ -108,8 +109,9 @@
  * flint_cleanup() per thread only at thread exit (the CLI does not).  FLINT
  * aborts on its own allocation failures; everything else is a status.
  *
- * Cost (bench_pipeline --phases --certify, MLCA vertex k = 12, 0.15 s per
- * case): the subdominant basis enclosure (Rump's method on A) about 0.06 s,
+ * Cost (bench_pipeline --phases --certify, MLCA vertex k = 12, 0.1 s per
+ * case): the subdominant basis enclosure (Rump's method on A) about 0.025 s
+ * (0.07 s in complex balls),
  * the characteristic polynomials and factorisation about 0.015 s; isolating
  * the roots of A's degree 50-60 factor 0.1 s from arb's generic start, 4 ms
  * from the eigenvalues. */

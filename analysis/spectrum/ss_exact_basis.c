@@ -17,8 +17,12 @@
  *     balls), so X spans the generalised eigenspace of lambda in A, which
  *     (non-defective) is its eigenspace: A X = lambda X.  The true X with
  *     those frozen rows is unique and real (lambda, A real), so the real
- *     parts enclose it.  Extended by the same block solves in ball
- *     arithmetic (arb_mat_solve proves each block invertible).
+ *     parts enclose it.  A simple root (e = 1) runs all of this in real
+ *     balls (ss_exact_rump_real, its preconditioner from LAPACK: a quarter
+ *     of the complex method's multiplications); the complex method remains
+ *     for e > 1 and wherever the real one does not prove its inclusion.
+ *     Extended by the same block solves in ball arithmetic (arb_mat_solve
+ *     proves each block invertible).
  * C - lambda is invertible because lambda is no eigenvalue of C. */
 #include <math.h>
 #include <stdlib.h>
@@ -215,6 +219,107 @@ done:
   return rc;
 }
 
+/* P A P^T in balls at wp into Ap (zero on entry): row perm[i] of A is row
+ * i; inv (n1) receives the inverse permutation. */
+static void permuted(const ss_exact *x, const size_t *perm, size_t *inv, arb_mat_t Ap,
+                     long wp) {
+  const size_t n1 = x->n1;
+  for (size_t i = 0; i < n1; i++)
+    inv[perm[i]] = i;
+  for (size_t i = 0; i < n1; i++)
+    for (size_t k = x->A.ptr[perm[i]]; k < x->A.ptr[perm[i] + 1]; k++)
+      entry_ball(x, k, arb_mat_entry(Ap, (slong)i, (slong)inv[x->A.col[k]]), wp);
+}
+
+/* The eigenvalues of J' are roots of A: whether lr meets root r's ball and
+ * no other root's of A. */
+static int only_root(const ss_exact *x, size_t r, const acb_t lr) {
+  int self = 0;
+  for (size_t b = x->bstart[0]; b < x->bstart[1]; b++) {
+    const ss_exact_factor *G = x->fac + x->bfac[b];
+    for (slong i = 0; i < fmpz_poly_degree(G->f); i++) {
+      const size_t s2 = G->root0 + (size_t)i;
+      if (!acb_overlaps(lr, &x->rt[s2].z)) continue;
+      if (s2 != r) return 0;
+      self = 1;
+    }
+  }
+  return self;
+}
+
+/* As rump_block for a simple root (e = 1), all in real balls: two steps of
+ * inverse iteration on one LU of A - lambda~ (arb_mat_approx_*), then
+ * Rump's method twice in real arithmetic (ss_exact_rump_real).  1 proven, 0
+ * not, -1 out of memory. */
+static int rump_real_block(ss_exact *x, size_t r, const double *xa0, const size_t *perm,
+                           long wp, arb_ptr Xb) {
+  const size_t n1 = x->n1;
+  const slong m = (slong)n1;
+  arb_mat_t Ap, T, LU, Xa, X;
+  arb_t lam, lr, s;
+  acb_t lz;
+  slong *P = malloc((n1 + 1) * sizeof *P);
+  size_t *inv = malloc((n1 + 1) * sizeof *inv);
+  arb_mat_init(Ap, m, m);
+  arb_mat_init(T, m, m);
+  arb_mat_init(LU, m, m);
+  arb_mat_init(Xa, m, 1);
+  arb_mat_init(X, m, 1);
+  arb_init(lam);
+  arb_init(lr);
+  arb_init(s);
+  acb_init(lz);
+  int ok = 0;
+  if (!P || !inv) {
+    ok = -1;
+    goto done;
+  }
+  permuted(x, perm, inv, Ap, wp);
+  for (size_t i = 0; i < n1; i++)
+    arb_set_d(arb_mat_entry(Xa, (slong)i, 0), xa0[perm[i]]);
+  arb_get_mid_arb(lam, acb_realref(&x->rt[r].z));
+  arb_mat_get_mid(T, Ap);
+  for (slong i = 0; i < m; i++)
+    arb_sub(arb_mat_entry(T, i, i), arb_mat_entry(T, i, i), lam, wp);
+  if (!arb_mat_approx_lu(P, LU, T, wp)) goto done;
+  for (int it = 0; it < 2; it++) { /* each step scaled to max |entry| ~ 1 */
+    arb_mat_approx_solve_lu_precomp(X, P, LU, Xa, wp);
+    double big = 0.0;
+    for (slong i = 0; i < m; i++) {
+      const double v = fabs(arf_get_d(arb_midref(arb_mat_entry(X, i, 0)), ARF_RND_NEAR));
+      big = v > big ? v : big;
+    }
+    if (!(big > 0.0) || !isfinite(big)) goto done;
+    arb_set_d(s, 1.0 / big);
+    for (slong i = 0; i < m; i++)
+      arb_mul(arb_mat_entry(Xa, i, 0), arb_mat_entry(X, i, 0), s, wp);
+    arb_mat_get_mid(Xa, Xa);
+  }
+  for (int round = 0; round < 2; round++) { /* the second from the first's */
+    if (!ss_exact_rump_real(X, lr, Ap, lam, Xa, wp)) goto done;
+    if (round == 0) arb_mat_get_mid(Xa, X);
+  }
+  acb_set_arb(lz, lr);
+  /* only r's root in lr; the frozen row (the last) nonzero: full rank */
+  if (!only_root(x, r, lz) || arb_contains_zero(arb_mat_entry(X, m - 1, 0))) goto done;
+  for (size_t i = 0; i < n1; i++)
+    arb_set(Xb + perm[i], arb_mat_entry(X, (slong)i, 0));
+  ok = 1;
+done:
+  arb_mat_clear(Ap);
+  arb_mat_clear(T);
+  arb_mat_clear(LU);
+  arb_mat_clear(Xa);
+  arb_mat_clear(X);
+  arb_clear(lam);
+  arb_clear(lr);
+  arb_clear(s);
+  acb_clear(lz);
+  free(P);
+  free(inv);
+  return ok;
+}
+
 /* Rows < n1 of the ball basis Xb (n x e, column-major) for the root r at
  * precision wp, by Rump's method as above.  Returns 1 when proven, 0 when
  * not (at this precision), -1 when out of memory. */
@@ -241,12 +346,11 @@ static int rump_block(ss_exact *x, size_t r, int e, const double *xa0, const siz
     ok = -1;
     goto done;
   }
-  for (size_t i = 0; i < n1; i++)
-    inv[perm[i]] = i;
-  for (size_t i = 0; i < n1; i++) /* P A P^T: row perm[i] of A is row i */
-    for (size_t k = x->A.ptr[perm[i]]; k < x->A.ptr[perm[i] + 1]; k++)
-      entry_ball(x, k, acb_realref(acb_mat_entry(Ap, (slong)i, (slong)inv[x->A.col[k]])),
-                 wp);
+  arb_mat_t Ar;
+  arb_mat_init(Ar, (slong)n1, (slong)n1);
+  permuted(x, perm, inv, Ar, wp);
+  acb_mat_set_arb_mat(Ap, Ar); /* real parts, zero imaginary parts */
+  arb_mat_clear(Ar);
   for (size_t i = 0; i < n1; i++)
     for (int j = 0; j < e; j++)
       acb_set_d(acb_mat_entry(Xa, (slong)i, j), xa0[(size_t)j * n1 + perm[i]]);
@@ -282,17 +386,7 @@ static int rump_block(ss_exact *x, size_t r, int e, const double *xa0, const siz
     if (round == 0) acb_mat_get_mid(Xa, X);
   }
   /* the eigenvalues of J' are roots of A: only r's ball may meet lr */
-  int self = 0;
-  for (size_t b = x->bstart[0]; b < x->bstart[1]; b++) {
-    const ss_exact_factor *G = x->fac + x->bfac[b];
-    for (slong i = 0; i < fmpz_poly_degree(G->f); i++) {
-      const size_t s2 = G->root0 + (size_t)i;
-      if (!acb_overlaps(lr, &x->rt[s2].z)) continue;
-      if (s2 != r) goto done;
-      self = 1;
-    }
-  }
-  if (!self) goto done;
+  if (!only_root(x, r, lr)) goto done;
   /* full rank: the frozen rows (the last e, fixed at Xa's midpoints) */
   for (int i = 0; i < e; i++)
     for (int j = 0; j < e; j++)
@@ -375,7 +469,8 @@ static int ball_columns(ss_exact *x, size_t r, int e, int pos, double *lo, doubl
   if (approx_basis(x, lam, e, xa) || frozen_rows(xa, n1, e, perm)) goto done;
   for (ok = 0; !ok; wp *= 2) {
     if (x->fac[k].prec < wp) ss_exact_isolate(x, k, wp);
-    ok = rump_block(x, r, e, xa, perm, wp, Xb);
+    ok = e == 1 ? rump_real_block(x, r, xa, perm, wp, Xb) : 0;
+    if (!ok) ok = rump_block(x, r, e, xa, perm, wp, Xb); /* complex, as before */
     if (ok < 0) goto done;
     if (ok) ok = ball_extend(x, acb_realref(&x->rt[r].z), e, wp, Xb);
     if (!ok && 2 * wp > x->o.maxprec) {

@@ -12,6 +12,7 @@
 #include <flint/fmpz_poly.h>
 
 #include "acb.h"
+#include "arb_mat.h"
 #include "arb.h"
 
 #include "ss_exact.h"
@@ -138,6 +139,15 @@ void ss_exact_isolate(ss_exact *x, size_t k, long prec);
  * arb_fmpz_poly_complex_roots itself (ss_exact_isolate.c). */
 void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds,
                             slong target_prec);
+
+/* Rump's enclosure of a simple real eigenpair of the real ball matrix A
+ * (n x n, n >= 2) near lam (its midpoint used) and the approximate
+ * eigenvector Xa (n x 1, its last row frozen), in real balls at prec
+ * (ss_exact_rump.c): 1 with X (n x 1) enclosing the eigenvector whose last
+ * entry is Xa's and lr the eigenvalue, when the inclusion is proven; else 0
+ * (X, lr unspecified). */
+int ss_exact_rump_real(arb_mat_t X, arb_t lr, const arb_mat_t A, const arb_t lam,
+                       const arb_mat_t Xa, slong prec);
 
 /* The one-ring block's eigenvalues in doubles (LAPACK on its rationals
  * rounded) given to the factors of its characteristic polynomial, as seeds
