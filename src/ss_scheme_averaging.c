@@ -22,7 +22,6 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
                                 const ss_cx *fine, const ss_split *L, ss_sink *k,
                                 ss_error *err) {
   (void)coarse; /* the split complex and L say all this rule needs */
-  (void)L;
   const size_t nv = fine->nv;
   unsigned char *dimv = malloc(nv + 1);
   size_t *ptr = calloc(nv + 2, sizeof *ptr); /* v's cells: inc[ptr[v] .. ptr[v + 1]) */
@@ -30,8 +29,12 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
   size_t ninc = 0;
   ss_sink_cells cells[SS_NCELLTYPES];
   memset(cells, 0, sizeof cells);
+  ss_loop_surface *surf = NULL; /* Loop's rows on the triangles (tetoct) */
   ss_status st = SS_OK;
   if (!dimv || !ptr) goto nomem;
+  if (s->loop_surfaces && fine->nc[SS_TRIANGLE] &&
+      (st = ss_loop_surface_new(fine, L, &surf, err)))
+    goto done;
   for (size_t v = 0; v < nv; v++)
     dimv[v] = 0xff;
   for (int t = 0; t < SS_NCELLTYPES; t++) {
@@ -92,6 +95,7 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
       ss_sink_emit(k, v, v, 1.0);
       continue;
     }
+    if (surf && dimv[v] == 2 && ss_loop_surface_emit(surf, L, v, k)) continue;
     /* val[v], the number of those cells */
     const size_t val = ptr[v + 1] - ptr[v];
     const double scale = 1.0 / (double)val;
@@ -115,6 +119,7 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
 nomem:
   st = ss_error_nomem(err, "averaging valences");
 done:
+  ss_loop_surface_free(surf);
   free(dimv);
   free(ptr);
   free(inc);

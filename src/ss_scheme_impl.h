@@ -40,6 +40,9 @@ struct ss_scheme {
                                          at valence n, the first equal one's
                                          address (as wrow in the rule) */
   int irrational;                     /* some weight is not rational */
+  int loop_surfaces;                  /* averaging: the vertices whose lowest cells are
+                                         triangles take Loop's rows on the triangle cells
+                                         (ss_loop_surface) instead of the triangle mask */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every
@@ -85,5 +88,24 @@ double ss_scheme_loop_beta(size_t n);
 void ss_scheme_loop_vertex_emit(ss_sink *k, ss_idx x, const ss_idx *nb, size_t n);
 void ss_scheme_loop_edge_emit(ss_sink *k, ss_idx f, ss_idx a, ss_idx b, const ss_idx *opp,
                               size_t m);
+
+/* The triangle cells of a split complex as a Loop surface, for a rule that
+ * sends its rows in order (ss_scheme_averaging.c, tetoct's crease surfaces).
+ * The surface is the fine triangle, segment and vertex cells; its creases
+ * follow ss_crease.h on the split restricted to it (a fine vertex on none of
+ * those cells has no parents there, so an interior edge of a volume is no
+ * edge of the surface).  ss_loop_surface_emit sends fine vertex x's row —
+ * a coarse vertex: Loop's (1 - n b) x + b each of its n surface neighbours
+ * when smooth, 3/4 x + 1/8 each crease neighbour on a crease, x at a corner;
+ * an edge midpoint: 3/8 each end + 1/4 shared by the vertices opposite it,
+ * or the midpoint on a crease edge — and returns 1, or 0 (nothing sent) when
+ * x is on none of the surface's cells.  The same rows as ss_scheme_loop.c's
+ * rule on a complex of those cells alone. */
+typedef struct ss_loop_surface ss_loop_surface;
+ss_status ss_loop_surface_new(const ss_cx *fine, const ss_split *L, ss_loop_surface **out,
+                              ss_error *err);
+int ss_loop_surface_emit(const ss_loop_surface *S, const ss_split *L, ss_idx x,
+                         ss_sink *k);
+void ss_loop_surface_free(ss_loop_surface *S);
 
 #endif

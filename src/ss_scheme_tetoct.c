@@ -10,11 +10,19 @@
  * subdivision mask, so the composite mask is 1/8 of that mask convolved with
  * itself (the paper's appendix).
  *
- * Creases (our completion of the paper's "method of Hoppe et al.", which it does
- * not spell out): triangle cells average with self 1/4 and 3/8 per other vertex,
- * the same construction one dimension down (smoothing mask = 1/4 of the linear
- * triangle mask, which makes the regular composite rule Loop's quartic box
- * spline); segments with 1/2, 1/2 (cubic B-spline); vertex cells interpolate. */
+ * Creases: the paper's crease surfaces are "defined by Loop subdivision"
+ * (figure 8, after Hoppe et al.): a vertex whose lowest cells are triangles
+ * takes Loop's rows on the triangle cells (ss_loop_surface: Loop's beta(n) at
+ * a surface vertex of n surface neighbours, 3/8, 3/8, 1/8, 1/8 at an edge;
+ * the surface's boundary and non-manifold edges are crease curves).
+ * Segments average with 1/2, 1/2 (the cubic B-spline: 1/8, 3/4, 1/8 and the
+ * midpoint), vertex cells interpolate.  The triangle mask below (self 1/4,
+ * 3/8 per other vertex: the construction one dimension down, whose regular
+ * composite rule is Loop's quartic box spline too) is what the averaging
+ * family and `data/stencils/tetoct.ini` use; it differs from Loop at surface
+ * vertices of valence other than 6.  Loop's beta is irrational at most
+ * valences; no vertex, edge or face case of tet/oct holds a triangle, so the
+ * exact path never meets one. */
 #include "ss_scheme_impl.h"
 
 ss_status ss_scheme_tetoct_new(ss_scheme **out, ss_error *err) {
@@ -30,5 +38,7 @@ ss_status ss_scheme_tetoct_new(ss_scheme **out, ss_error *err) {
   a.mask[SS_OCT][0] = 3.0 / 8.0;
   a.mask[SS_OCT][1] = 1.0 / 12.0;
   a.mask[SS_OCT][2] = 7.0 / 24.0;
-  return ss_scheme_averaging_new("tetoct", &a, out, err);
+  ss_status st = ss_scheme_averaging_new("tetoct", &a, out, err);
+  if (!st) (*out)->loop_surfaces = 1;
+  return st;
 }
