@@ -35,6 +35,8 @@ static const char *const usage_text =
     "                        the scheme does not take (TetGen's .face triangles,\n"
     "                        gmsh's geometry points and curves) instead of\n"
     "                        refusing the mesh; stderr says how many\n"
+    "      --hexify          first split triangles into 3 quads, tets into 4 hexes\n"
+    "                        at their corners, the rest alike (MLCA paper, 3.3)\n"
     "      --octahedra-keyword  .mesh: keep octahedra under this project's\n"
     "                        Octahedra keyword (not Medit's: meshio refuses the\n"
     "                        file, gmsh drops the cells); by default each one is\n"
@@ -134,6 +136,7 @@ typedef struct {
   int split_given;          /* --split-octahedra: the default, said explicitly */
   ss_mesh_format ofmt;      /* OUT's format: --output-format, else its name's */
   int drop;                 /* --drop-unsupported */
+  int hexify;               /* --hexify */
   FILE *sum;                /* the summary's stream: stdout, or stderr when
                                OUT is standard output */
 } sub_opts;
@@ -150,6 +153,7 @@ static int parse(int argc, char **argv, sub_opts *o) {
                                        {"diagonals", required_argument, NULL, 'D'},
                                        {"output-format", required_argument, NULL, 'O'},
                                        {"drop-unsupported", no_argument, NULL, 'U'},
+                                       {"hexify", no_argument, NULL, 'X'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   memset(o, 0, sizeof *o);
@@ -186,6 +190,9 @@ static int parse(int argc, char **argv, sub_opts *o) {
       break;
     case 'U':
       o->drop = 1;
+      break;
+    case 'X':
+      o->hexify = 1;
       break;
     case 'F':
       if (ss_cli_format_option("subdivide", optarg, &o->json)) return SS_EXIT_USAGE;
@@ -345,6 +352,47 @@ static void drop_unsupported(const sub_opts *o, const ss_scheme *scheme, ss_cx *
   fprintf(stderr, " that scheme %s does not take (--drop-unsupported)\n", o->scheme);
 }
 
+/* --hexify: *cx made hexahedral by the hexify split (section 3.3), saying
+ * on stderr what was split; 0 or the exit status with the message printed. */
+static int hexify(const sub_opts *o, const ss_scheme *scheme, ss_cx **cx) {
+  ss_error err = {0};
+  if (ss_scheme_split_kind(scheme) != SS_SPLIT_MULTILINEAR)
+    return ss_cli_usage_error(
+        "subdivide",
+        "--hexify: scheme %s is not hexahedral (it refines with the "
+        "%s split)",
+        o->scheme, ss_split_name(ss_scheme_split_kind(scheme)));
+  if ((*cx)->nc[SS_OCT]) {
+    fprintf(stderr,
+            "subspectra subdivide: %s: --hexify: the mesh has %zu octahedra, whose "
+            "vertices have valence 4: no split into hexahedra at the corners (MLCA "
+            "paper, section 3.3); split them into tetrahedra first\n",
+            o->in, (*cx)->nc[SS_OCT]);
+    return SS_EXIT_USAGE;
+  }
+  ss_cx *h = NULL;
+  ss_split *L = NULL;
+  if (ss_split_refine(SS_SPLIT_HEXIFY, *cx, &h, &L, &err))
+    return ss_cli_fail("subdivide", &err);
+  ss_split_free(L);
+  fprintf(stderr, "subspectra subdivide: %s: hexified (MLCA paper, section 3.3):", o->in);
+  static const int each[SS_NCELLTYPES] = {1, 2, 3, 4, 4, 8, 0}; /* children per cell */
+  for (int t = SS_SEGMENT, first = 1; t < SS_NCELLTYPES; t++) {
+    const size_t n = (*cx)->nc[t];
+    if (!n) continue;
+    const ss_cell_type to = t == SS_TRIANGLE ? SS_QUAD : t == SS_TET ? SS_HEX : t;
+    const size_t m = n * (size_t)each[t];
+    fprintf(stderr, "%s %zu %s into %zu %s", first ? "" : ",", n,
+            n == 1 ? ss_cell_name((ss_cell_type)t) : ss_cell_plural((ss_cell_type)t), m,
+            m == 1 ? ss_cell_name(to) : ss_cell_plural(to));
+    first = 0;
+  }
+  fputc('\n', stderr);
+  ss_cx_free(*cx);
+  *cx = h;
+  return 0;
+}
+
 int ss_cli_subdivide(int argc, char **argv) {
   sub_opts o;
   int rc = parse(argc, argv, &o);
@@ -365,6 +413,7 @@ int ss_cli_subdivide(int argc, char **argv) {
     rc = SS_EXIT_USAGE;
     goto done;
   }
+  if (o.hexify && (rc = hexify(&o, scheme, &cx))) goto done;
   size_t dpairs = 0, dbad = 0;
   const int reads_diag = ss_scheme_reads_diagonals(scheme);
   if (o.diag && !reads_diag) {

@@ -37,11 +37,19 @@
  *    and the edge opposite it is split; (a, b, c) becomes (m, a, b) and
  *    (m, c, a).  Two passes are one full 4-8 cycle.  It reads no positions:
  *    the analysis of quasi48 refines stars with it (ss_split_nvb.c).
+ *  - hexify (MLCA paper, section 3.3): non-hexahedral input made hexahedral.
+ *    A cell whose vertices all have valence three splits into one cell per
+ *    vertex: the vertex, its edges' midpoints, its faces' centres, the
+ *    centroid.  Triangles give 3 quads, tets 4 hexes (each in the parent's
+ *    orientation), segments, quads and hexes split as by multilinear; shared
+ *    edges and faces share their points, so a mixed mesh stays conforming.
+ *    Octahedra (valence four) are not taken (ss_split_multilinear.c).
  * Vertex cells are copied.  Every child keeps the parent's reference.
  *
  * Fine cells of coarse cell i of type t occupy a contiguous block, in coarse
- * order (for the tet/oct split: each coarse cell's tets in the tet array and its
- * octahedra in the octahedron array, coarse tets first). */
+ * order (for hexify: a triangle's 3 quads after every quad's 4, a tet's 4
+ * hexes after every hex's 8; for the tet/oct split: each coarse cell's tets in the tet
+ * array and its octahedra in the octahedron array, coarse tets first). */
 #ifndef SS_SPLIT_H
 #define SS_SPLIT_H
 
@@ -58,7 +66,12 @@ typedef enum {
   SS_SPLIT_MULTILINEAR = 0, /* vertices, segments, quads, hexes */
   SS_SPLIT_TETOCT,          /* vertices, segments, triangles, tets, octahedra */
   SS_SPLIT_BISECT,          /* vertices, triangles: longest-edge bisection */
-  SS_SPLIT_NVB              /* vertices, triangles: newest-vertex bisection */
+  SS_SPLIT_NVB,             /* vertices, triangles: newest-vertex bisection */
+  SS_SPLIT_HEXIFY           /* vertices, segments, triangles, quads, tets, hexes:
+                               every cell split at its corners (MLCA paper,
+                               section 3.3): triangles into 3 quads, tets into
+                               4 hexes, the cubes as by the multilinear split;
+                               a step that makes such input hexahedral */
 } ss_split_kind;
 
 /* The linear refinement operator L in parent-list form. */
@@ -76,7 +89,7 @@ static inline size_t ss_split_npar(const ss_split *L, size_t f) {
 
 /* Whether a split accepts cells of type t. */
 int ss_split_accepts(ss_split_kind kind, ss_cell_type t);
-/* Name of a split ("multilinear", "tetoct", "bisect", "nvb"). */
+/* Name of a split ("multilinear", "tetoct", "bisect", "nvb", "hexify"). */
 const char *ss_split_name(ss_split_kind kind);
 
 /* Refine `coarse` once: *fine receives the refined complex with new vertices at

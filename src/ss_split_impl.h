@@ -8,6 +8,7 @@
 
 ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine, ss_split **L,
                                ss_error *err);
+ss_status ss_split_hexify(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 ss_status ss_split_tetoct(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);

@@ -1,11 +1,21 @@
-/* ss_split_multilinear.c — the multilinear split of d-cubes (MLCA paper, 2.1).
+/* ss_split_multilinear.c — the multilinear split of d-cubes (MLCA paper, 2.1),
+ * and the hexify split of non-hexahedral input (section 3.3).
  *
  * A d-cube is refined on the lattice {0,1,2}^d of its half-integer points: a
  * lattice point with s coordinates equal to 1 is the centroid of the 2^s coarse
  * corners of a face of dimension s.  Edge midpoints (s = 1) and quad-face centres
  * (s = 2) are shared between cells through hash tables keyed by vertex sets, hex
  * centres (s = 3) belong to one cell.  Child octant o has corner k' at lattice
- * point o + bits(k'). */
+ * point o + bits(k').
+ *
+ * Hexify (section 3.3): a polyhedron whose vertices all have valence three
+ * splits into one hexahedron per vertex — the vertex, the midpoints of its
+ * three edges, the centres of its three faces and the centroid — and a
+ * polygon into one quad per vertex likewise; on a d-cube this is the
+ * multilinear split.  So triangles become 3 quads and tetrahedra 4 hexes, the
+ * cubes split as above, and faces shared between cells share their centres
+ * (a triangle's keyed by its sorted corners and a padding word, a quad's by
+ * its sorted diagonals: keys of the two kinds never meet). */
 #include <stdlib.h>
 
 #include "ss_split_builder.h"
@@ -107,8 +117,65 @@ static ss_status split_cube(ml_state *s, int d, ss_cell_type type, const ss_cx *
   return SS_OK;
 }
 
-ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
+/* Fine index of the centre of the simplex face with corners v[0..n): n = 1 the
+ * corner, 2 an edge midpoint, 3 a triangle's centre (both shared). */
+static ss_status simplex_point(ml_state *s, const ss_idx *v, int n, ss_idx *out,
                                ss_error *err) {
+  if (n == 1) {
+    *out = v[0];
+    return SS_OK;
+  }
+  uint32_t key[4] = {v[0], v[1], n == 3 ? v[2] : 0, UINT32_MAX};
+  for (int i = 1; i < n; i++) /* insertion sort of the n corners */
+    for (int j = i; j > 0 && key[j - 1] > key[j]; j--) {
+      const uint32_t t = key[j];
+      key[j] = key[j - 1];
+      key[j - 1] = t;
+    }
+  return n == 2 ? ss_split_shared(&s->b, s->edges, key, v, 2, out, err)
+                : ss_split_shared(&s->b, s->faces, key, v, 3, out, err);
+}
+
+/* The corner split of a triangle (dim 2: 3 quads) or a tet (dim 3: 4 hexes).
+ * The child at corner c has cube corner bits b: the centre of c and the
+ * corners nb[c][i] with bit i set.  nb lists each corner's others in an
+ * order of the cell's orientation (the triangle's cyclic order; for the tet
+ * even permutations of 0 1 2 3), so children keep it: cube corner 1, 3, 4
+ * are towards nb[c][0], nb[c][1], nb[c][2]. */
+static ss_status split_simplex(ml_state *s, int d, ss_cell_type type, const ss_cx *coarse,
+                               size_t c, ss_cx *fine, ss_error *err) {
+  static const int nb2[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+  static const int nb3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  const ss_idx *v = ss_cx_cell(coarse, type, c);
+  const int32_t ref = coarse->cref[type][c];
+  ss_idx centroid = SS_IDX_NONE; /* a tet's own, in all four of its hexes */
+  if (d == 3) {
+    ss_status st = ss_split_builder_add(&s->b, v, 4, &centroid, err);
+    if (st) return st;
+  }
+  for (int k = 0; k <= d; k++) {
+    ss_idx child[8];
+    for (int q = 0; q < 1 << d; q++) {
+      const unsigned bits = ss_cube_corner_bits(d, q);
+      ss_idx par[4] = {v[k]};
+      int n = 1;
+      for (int i = 0; i < d; i++)
+        if (bits >> i & 1u) par[n++] = v[d == 2 ? nb2[k][i] : nb3[k][i]];
+      if (n == 4) {
+        child[q] = centroid;
+        continue;
+      }
+      ss_status st = simplex_point(s, par, n, &child[q], err);
+      if (st) return st;
+    }
+    ss_status st = ss_cx_add_cell(fine, d == 2 ? SS_QUAD : SS_HEX, child, ref, err);
+    if (st) return st;
+  }
+  return SS_OK;
+}
+
+static ss_status split_cubes(const ss_cx *coarse, int simplices, ss_cx **fine_out,
+                             ss_split **L_out, ss_error *err) {
   ml_state s = {{0}, NULL, NULL, {{{0, {0}}}}, {{{0}}}};
   for (int d = 1; d <= 3; d++)
     for (int p = 0; p < (d == 1 ? 3 : d == 2 ? 9 : 27); p++) {
@@ -130,18 +197,20 @@ ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine_out, ss_split *
   const size_t nseg = coarse->nc[SS_SEGMENT], nquad = coarse->nc[SS_QUAD],
                nhex = coarse->nc[SS_HEX];
   /* in a conforming hex grid there are about 3 edges and 3 faces per hex */
-  size_t expect_e = nseg + 2 * nquad + 4 * nhex, expect_f = nquad + 4 * nhex;
-  ss_status st = ss_split_builder_init(&s.b, coarse->nv, expect_e + expect_f + nhex, err);
+  const size_t ntri = coarse->nc[SS_TRIANGLE], ntet = coarse->nc[SS_TET];
+  size_t expect_e = nseg + 2 * nquad + 4 * nhex + 2 * ntri + 2 * ntet,
+         expect_f = nquad + 4 * nhex + ntri + 2 * ntet;
+  ss_status st =
+      ss_split_builder_init(&s.b, coarse->nv, expect_e + expect_f + nhex + ntet, err);
   if (st) goto done;
   if ((st = ss_hash_new(2, expect_e, &s.edges, err))) goto done;
   if ((st = ss_hash_new(4, expect_f, &s.faces, err))) goto done;
   if ((st = ss_cx_new(coarse->dim, &fine, err))) goto done;
-  static const int factor[SS_NCELLTYPES] = {1, 2, 0, 4, 0, 8, 0};
-  for (int t = 0; t < SS_NCELLTYPES; t++)
-    if (coarse->nc[t] &&
-        (st = ss_cx_reserve_cells(fine, (ss_cell_type)t,
-                                  (size_t)factor[t] * coarse->nc[t], err)))
-      goto done;
+  if ((st = ss_cx_reserve_cells(fine, SS_SEGMENT, 2 * nseg, err)) ||
+      (st = ss_cx_reserve_cells(fine, SS_QUAD, 4 * nquad + 3 * ntri, err)) ||
+      (st = ss_cx_reserve_cells(fine, SS_HEX, 8 * nhex + 4 * ntet, err)) ||
+      (st = ss_cx_reserve_cells(fine, SS_VERTEX, coarse->nc[SS_VERTEX], err)))
+    goto done;
 
   for (size_t c = 0; c < coarse->nc[SS_VERTEX]; c++)
     if ((st = ss_cx_add_cell(fine, SS_VERTEX, ss_cx_cell(coarse, SS_VERTEX, c),
@@ -153,6 +222,10 @@ ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine_out, ss_split *
     if ((st = split_cube(&s, 2, SS_QUAD, coarse, c, fine, err))) goto done;
   for (size_t c = 0; c < nhex; c++)
     if ((st = split_cube(&s, 3, SS_HEX, coarse, c, fine, err))) goto done;
+  for (size_t c = 0; simplices && c < ntri; c++)
+    if ((st = split_simplex(&s, 2, SS_TRIANGLE, coarse, c, fine, err))) goto done;
+  for (size_t c = 0; simplices && c < ntet; c++)
+    if ((st = split_simplex(&s, 3, SS_TET, coarse, c, fine, err))) goto done;
 
   ss_hash_free(s.edges);
   ss_hash_free(s.faces);
@@ -162,4 +235,14 @@ done:
   ss_hash_free(s.edges);
   ss_hash_free(s.faces);
   return ss_split_builder_hand_over(&s.b, st, fine, fine_out, L_out);
+}
+
+ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
+                               ss_error *err) {
+  return split_cubes(coarse, 0, fine_out, L_out, err);
+}
+
+ss_status ss_split_hexify(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
+                          ss_error *err) {
+  return split_cubes(coarse, 1, fine_out, L_out, err);
 }

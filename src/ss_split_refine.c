@@ -10,6 +10,9 @@
 int ss_split_accepts(ss_split_kind kind, ss_cell_type t) {
   if (kind == SS_SPLIT_MULTILINEAR)
     return t == SS_VERTEX || t == SS_SEGMENT || t == SS_QUAD || t == SS_HEX;
+  if (kind == SS_SPLIT_HEXIFY)
+    return t == SS_VERTEX || t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_QUAD ||
+           t == SS_TET || t == SS_HEX;
   if (kind == SS_SPLIT_BISECT || kind == SS_SPLIT_NVB)
     return t == SS_VERTEX || t == SS_TRIANGLE;
   return t == SS_VERTEX || t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET ||
@@ -20,6 +23,7 @@ const char *ss_split_name(ss_split_kind kind) {
   return kind == SS_SPLIT_MULTILINEAR ? "multilinear"
          : kind == SS_SPLIT_BISECT    ? "bisect"
          : kind == SS_SPLIT_NVB       ? "nvb"
+         : kind == SS_SPLIT_HEXIFY    ? "hexify"
                                       : "tetoct";
 }
 
@@ -36,6 +40,7 @@ ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
   if (st) return st;
   if (kind == SS_SPLIT_BISECT) return ss_split_bisect(coarse, fine, L, err);
   if (kind == SS_SPLIT_NVB) return ss_split_nvb(coarse, fine, L, err);
+  if (kind == SS_SPLIT_HEXIFY) return ss_split_hexify(coarse, fine, L, err);
   return kind == SS_SPLIT_MULTILINEAR ? ss_split_multilinear(coarse, fine, L, err)
                                       : ss_split_tetoct(coarse, fine, L, err);
 }

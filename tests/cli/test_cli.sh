@@ -38,6 +38,13 @@ expect 2 "no-such-file" "$exe" subdivide --scheme mlca "$tmp/no-such-file.mesh" 
 expect 0 "mlca level 2: " "$exe" subdivide --scheme mlca --levels 2 "$m/cube-creased.mesh" -o "$tmp/a.mesh"
 expect 0 "read .*a.mesh: 125 vertices, 96 quadrilaterals, 64 hexahedra" "$exe" subdivide --scheme mlca --levels 0 "$tmp/a.mesh" -o "$tmp/a2.mesh"
 expect 0 "tetoct level 1: .*24 tetrahedra, 6 octahedra" "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o "$tmp/b.vtk"
+# --hexify (MLCA paper, section 3.3): tets into hexes for the hexahedral schemes
+expect 2 "scheme mlca does not take tetrahedra" "$exe" subdivide --scheme mlca "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
+expect 0 "hexified \\(MLCA paper, section 3.3\\): 6 tetrahedra into 24 hexahedra" "$exe" subdivide --scheme mlca --hexify "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
+# 8 corners + 19 edges (12 of the cube, 6 face diagonals, the main one) + 18
+# triangles (12 on the boundary, 6 round the diagonal) + 6 tets = 51 points
+expect 0 "read .*: 51 vertices, 24 hexahedra" "$exe" subdivide --scheme ccsolid --hexify "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
+expect 2 "--hexify: scheme tetoct is not hexahedral" "$exe" subdivide --scheme tetoct --hexify "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
 expect 0 "UNSTRUCTURED_GRID" cat "$tmp/b.vtk"
 # Medit output: octahedra split into 4 tets each by default (said on stderr),
 # kept under the Octahedra extension keyword only on request
