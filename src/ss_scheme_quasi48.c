@@ -21,8 +21,19 @@
  *  - an interior old vertex with no new neighbour (n = 0, possible where the
  *    clusters leave a vertex untouched) keeps its position;
  *  - a new vertex on an interior edge that is adjacent to a boundary new
- *    vertex uses that vertex's (midpoint) value in the cascade as any other. */
+ *    vertex uses that vertex's (midpoint) value in the cascade as any other;
+ *  - tags (section 4.3, "a tagged vertex or edge is not affected by
+ *    smoothing"): a vertex cell keeps its vertex where it is, a segment cell
+ *    (a tagged edge; the split halves it with its edge) keeps the new vertex
+ *    on it at its midpoint — both then enter the cascade as boundary points
+ *    do.  The paper's other boundary rule, "boundary vertices are constrained
+ *    to move along the surface normal", depends on the positions, not only
+ *    on the mesh, and is not a linear rule: boundaries stay fixed here, as in
+ *    section 4.1, which is figure 15(b)'s "all boundary edges and vertices
+ *    tagged". */
 #include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "ss_scheme_impl.h"
 #include "ss_triedge.h"
@@ -39,8 +50,20 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
   ss_status st = ss_triedge_new(fine, &te, err);
   if (st) return st;
   const size_t nc = L->ncoarse;
+  /* fixed: on the boundary, or tagged (a vertex cell, a new vertex on a
+   * segment cell) */
+  unsigned char *fixed = malloc(fine->nv + 1);
+  if (!fixed) {
+    ss_triedge_free(te);
+    return ss_error_nomem(err, "quasi48 tags");
+  }
+  memcpy(fixed, te->vbnd, fine->nv);
+  for (size_t i = 0; i < fine->nc[SS_VERTEX]; i++)
+    fixed[fine->cells[SS_VERTEX][i]] = 1;
+  for (size_t i = 0; i < 2 * fine->nc[SS_SEGMENT]; i++)
+    if (fine->cells[SS_SEGMENT][i] >= nc) fixed[fine->cells[SS_SEGMENT][i]] = 1;
   for (size_t x = nc; x < fine->nv; x++) {
-    if (te->vbnd[x]) {
+    if (fixed[x]) {
       ss_sink_emit(k, x, x, 1.0);
       continue;
     }
@@ -49,6 +72,7 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
     const size_t val = te->vptr[x + 1] - te->vptr[x];
     if (val != 4) {
       ss_triedge_free(te);
+      free(fixed);
       return ss_error_set(err, SS_EINTERNAL,
                           "quasi48: new vertex %zu has valence %zu, not 4", x + 1, val);
     }
@@ -59,7 +83,7 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
     size_t n = 0;
     for (size_t q = te->vptr[v]; q < te->vptr[v + 1]; q++)
       n += te->vnbr[q] >= nc;
-    if (te->vbnd[v] || n == 0) {
+    if (fixed[v] || n == 0) {
       ss_sink_emit(k, v, v, 1.0);
       continue;
     }
@@ -68,7 +92,7 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
     for (size_t q = te->vptr[v]; q < te->vptr[v + 1]; q++) {
       size_t x = te->vnbr[q];
       if (x < nc) continue;
-      if (te->vbnd[x]) {
+      if (fixed[x]) {
         ss_sink_emit(k, v, x, w);
         continue;
       }
@@ -77,11 +101,12 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
     }
   }
   ss_triedge_free(te);
+  free(fixed);
   return SS_OK;
 }
 
 ss_status ss_scheme_quasi48_new(ss_scheme **out, ss_error *err) {
-  unsigned accepts = (1u << SS_VERTEX) | (1u << SS_TRIANGLE);
+  unsigned accepts = (1u << SS_VERTEX) | (1u << SS_SEGMENT) | (1u << SS_TRIANGLE);
   ss_status st =
       ss_scheme_alloc("quasi48", SS_SPLIT_BISECT, accepts, quasi48_rule, out, err);
   /* an old vertex reads the neighbours of its new neighbours: the coarse

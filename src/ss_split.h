@@ -65,7 +65,9 @@ SS_BEGIN_DECLS
 typedef enum {
   SS_SPLIT_MULTILINEAR = 0, /* vertices, segments, quads, hexes */
   SS_SPLIT_TETOCT,          /* vertices, segments, triangles, tets, octahedra */
-  SS_SPLIT_BISECT,          /* vertices, triangles: longest-edge bisection */
+  SS_SPLIT_BISECT,          /* vertices, segments, triangles: longest-edge
+                               bisection (segments: tagged edges, halved with
+                               their edge) */
   SS_SPLIT_NVB,             /* vertices, triangles: newest-vertex bisection */
   SS_SPLIT_HEXIFY           /* vertices, segments, triangles, quads, tets, hexes:
                                every cell split at its corners (MLCA paper,

@@ -25,8 +25,10 @@
  * its cluster is undefined), two triangles on an edge with the same third
  * corner (a doubled triangle: the split point would not have the four
  * neighbours of section 3.2) and a zero-length edge (the longest-edge order is
- * undefined among its triangle's edges).  Vertex cells are copied; the split
- * takes no other cells. */
+ * undefined among its triangle's edges).  Vertex cells are copied; a segment
+ * cell (a tagged edge, quasi 4-8 section 4.3) on a split edge becomes its two
+ * halves (a, m), (m, b), any other segment is copied; the split takes no
+ * other cells. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -74,6 +76,21 @@ static double max_diff(const ss_cx *cx, ss_idx a, ss_idx b) {
     if (!(d <= m)) m = d; /* NaN propagates */
   }
   return m;
+}
+
+/* The index of the edge (a, b) in te, or SIZE_MAX when no triangle has it. */
+static size_t find_edge(const ss_triedge *te, ss_idx a, ss_idx b) {
+  const ss_idx lo = a < b ? a : b, hi = a < b ? b : a;
+  size_t l = 0, h = te->ne;
+  while (l < h) { /* edges sorted by their (lo, hi) ends */
+    const size_t m = l + (h - l) / 2;
+    const ss_idx *e = te->end + 2 * m;
+    if (e[0] < lo || (e[0] == lo && e[1] < hi))
+      l = m + 1;
+    else
+      h = m;
+  }
+  return l < te->ne && te->end[2 * l] == lo && te->end[2 * l + 1] == hi ? l : SIZE_MAX;
 }
 
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_out,
@@ -182,6 +199,17 @@ ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine_out, ss_split **L_ou
     const ss_idx c0[3] = {apex, a, m}, c1[3] = {apex, m, c};
     if ((st = ss_cx_add_cell(fine, SS_TRIANGLE, c0, ref, err)) ||
         (st = ss_cx_add_cell(fine, SS_TRIANGLE, c1, ref, err)))
+      goto done;
+  }
+  for (size_t c = 0; c < coarse->nc[SS_SEGMENT]; c++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_SEGMENT, c);
+    const int32_t ref = coarse->cref[SS_SEGMENT][c];
+    const size_t e = find_edge(te, v[0], v[1]);
+    const ss_idx m = e == SIZE_MAX ? SS_IDX_NONE : mid[e];
+    const ss_idx h0[2] = {v[0], m}, h1[2] = {m, v[1]};
+    if ((m == SS_IDX_NONE && (st = ss_cx_add_cell(fine, SS_SEGMENT, v, ref, err))) ||
+        (m != SS_IDX_NONE && ((st = ss_cx_add_cell(fine, SS_SEGMENT, h0, ref, err)) ||
+                              (st = ss_cx_add_cell(fine, SS_SEGMENT, h1, ref, err)))))
       goto done;
   }
   st = ss_split_builder_finish(&b, coarse, fine, err);

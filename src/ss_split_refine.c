@@ -13,8 +13,9 @@ int ss_split_accepts(ss_split_kind kind, ss_cell_type t) {
   if (kind == SS_SPLIT_HEXIFY)
     return t == SS_VERTEX || t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_QUAD ||
            t == SS_TET || t == SS_HEX;
-  if (kind == SS_SPLIT_BISECT || kind == SS_SPLIT_NVB)
-    return t == SS_VERTEX || t == SS_TRIANGLE;
+  if (kind == SS_SPLIT_BISECT)
+    return t == SS_VERTEX || t == SS_SEGMENT || t == SS_TRIANGLE;
+  if (kind == SS_SPLIT_NVB) return t == SS_VERTEX || t == SS_TRIANGLE;
   return t == SS_VERTEX || t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET ||
          t == SS_OCT;
 }

@@ -648,6 +648,85 @@ static void test_bad_input(void) {
   ss_scheme_free(s);
 }
 
+/* Tags (section 4.3): a tagged vertex or edge "is not affected by
+ * smoothing".  On the icosahedron with vertex 4 a vertex cell and the five
+ * edges at vertex 1 segment cells: vertex 4 stays put, bit for bit, for two
+ * levels; every new vertex on a segment sits at the midpoint of its parents
+ * (the split halves a segment with its edge, so the tag follows it); without
+ * the tags both move. */
+static int tagged_points_fixed(const ss_cx *coarse, const ss_cx *fine, const ss_split *L,
+                               size_t *nmid) {
+  int ok = 1;
+  *nmid = 0;
+  for (size_t i = 0; i < 2 * fine->nc[SS_SEGMENT]; i++) {
+    const ss_idx x = fine->cells[SS_SEGMENT][i];
+    if (x < coarse->nv) continue;
+    ++*nmid;
+    const ss_idx a = L->parent[L->ptr[x]], b = L->parent[L->ptr[x] + 1];
+    for (int k = 0; k < 3; k++) {
+      const double m =
+          (coarse->x[3 * a + (size_t)k] + coarse->x[3 * b + (size_t)k]) / 2.0;
+      ok &= fabs(fine->x[3 * x + (size_t)k] - m) <= 1e-15;
+    }
+  }
+  return ok;
+}
+
+static void test_tags(const ss_cx *ico) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  REQUIRE_OK_VOID(ss_scheme_new("quasi48", &s, &err), &err);
+  ss_cx *tagged = NULL;
+  REQUIRE_OK_VOID(ss_cx_copy(ico, &tagged, &err), &err);
+  const ss_idx corner = 3;
+  REQUIRE_OK_VOID(ss_cx_add_cell(tagged, SS_VERTEX, &corner, 0, &err), &err);
+  size_t nseg = 0;
+  for (size_t t = 0; t < ico->nc[SS_TRIANGLE]; t++) { /* the edges (0, b) */
+    const ss_idx *v = ss_cx_cell(ico, SS_TRIANGLE, t);
+    for (int i = 0; i < 3; i++)
+      if (v[i] == 0 && v[(i + 1) % 3] != 0) {
+        const ss_idx e[2] = {0, v[(i + 1) % 3]};
+        REQUIRE_OK_VOID(ss_cx_add_cell(tagged, SS_SEGMENT, e, 0, &err), &err);
+        nseg++;
+      }
+  }
+  CHECK(nseg == 5, "icosahedron: %zu edges at vertex 1", nseg);
+  ss_cx *c = tagged, *f = NULL;
+  size_t split_total = 0;
+  for (int level = 1; level <= 2; level++) {
+    ss_split *L = NULL;
+    REQUIRE_OK_VOID(ss_scheme_refine_split(s, c, &f, NULL, &L, &err), &err);
+    size_t nmid;
+    CHECK(tagged_points_fixed(c, f, L, &nmid), "level %d: a tagged edge's point moved",
+          level);
+    /* each halved segment's new point is in its two halves */
+    CHECK(nmid % 2 == 0 && f->nc[SS_SEGMENT] == c->nc[SS_SEGMENT] + nmid / 2,
+          "level %d: %zu segments from %zu with %zu points on halves", level,
+          f->nc[SS_SEGMENT], c->nc[SS_SEGMENT], nmid);
+    CHECK(!memcmp(f->x + 3 * corner, ico->x + 3 * corner, 3 * sizeof(double)),
+          "level %d: the tagged vertex moved", level);
+    split_total += nmid;
+    ss_split_free(L);
+    if (c != tagged) ss_cx_free(c);
+    c = f;
+  }
+  CHECK(split_total > 0, "no tagged edge was split in two levels");
+  /* without the tags the same points move */
+  ss_cx *plain = NULL;
+  ss_split *Lp = NULL;
+  REQUIRE_OK_VOID(ss_scheme_refine_split(s, ico, &plain, NULL, &Lp, &err), &err);
+  double moved = 0.0;
+  for (int k = 0; k < 3; k++)
+    moved = fmax(moved,
+                 fabs(plain->x[3 * corner + (size_t)k] - ico->x[3 * corner + (size_t)k]));
+  CHECK(moved > 1e-3, "untagged, vertex 4 moves only %.3g", moved);
+  ss_split_free(Lp);
+  ss_cx_free(plain);
+  ss_cx_free(c);
+  ss_cx_free(tagged);
+  ss_scheme_free(s);
+}
+
 int main(int argc, char **argv) {
   test_lattice();
   test_fans();
@@ -664,6 +743,7 @@ int main(int argc, char **argv) {
   claims("icosahedron.obj", ico, 10);
   test_relabel(ico);
   test_scale(ico);
+  test_tags(ico);
   ss_cx *cube = NULL;
   snprintf(path, sizeof path, "%s/cube-surface.obj", argv[1]);
   REQUIRE_OK(ss_mesh_read(path, SS_MESH_AUTO, &cube, &err), &err);
