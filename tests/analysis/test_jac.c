@@ -21,7 +21,6 @@
 #include <string.h>
 
 #include "ss_jac.h"
-#include "ss_jac_num.h"
 #include "ss_test.h"
 
 /* deterministic uniform numbers in [-1, 1) */
@@ -718,28 +717,6 @@ static void test_interval_sign(void) {
         count[1], count[3]);
 }
 
-/* mul_di (ss_jac_num.h), di_fast_mul inline, gives arb's bits: intervals
- * of every sign pattern, with zero, subnormal, huge and infinite ends. */
-static void test_mul_inline(void) {
-  uint64_t seed = 77;
-  const double special[] = {0.0,   -0.0,   1e-310,   -1e-310,
-                            1e300, -1e300, INFINITY, -INFINITY};
-  int differ = 0, n = 0;
-  for (int t = 0; t < 20000; t++) {
-    double e[4];
-    for (int i = 0; i < 4; i++) {
-      const uint64_t k = seed_bits(&seed) % 16;
-      e[i] = k < 8 ? special[k] : ldexp(rnd(&seed), (int)(seed_bits(&seed) % 200) - 100);
-    }
-    const di_t x = {fmin(e[0], e[1]), fmax(e[0], e[1])};
-    const di_t y = {fmin(e[2], e[3]), fmax(e[2], e[3])};
-    const di_t a = mul_di(x, y), b = di_fast_mul(x, y);
-    differ += memcmp(&a, &b, sizeof a) != 0;
-    n++;
-  }
-  CHECK(differ == 0, "mul_di differs from di_fast_mul in %d of %d products", differ, n);
-}
-
 /* A flat cell: DEGENERATE in double, UNDECIDED for tight boxes. */
 static void flat_cell(ss_cell_type t, const double *x, const char *what) {
   ss_jac_result r;
@@ -1017,7 +994,6 @@ int main(void) {
   test_interval_tight();
   test_interval_proofs();
   test_interval_sign();
-  test_mul_inline();
   test_no_sign();
   test_bad_input();
   return ss_test_done("jac");
