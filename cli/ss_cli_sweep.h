@@ -112,6 +112,8 @@ struct ss_sweep {
   size_t computed;                      /* cases analysed and stored now */
   size_t skipped;                       /* cases found in the store */
   size_t pass, fail, undecided, errors; /* verdicts (stored cases included) */
+  size_t proven;         /* of the computed cases, those whose verdict is proven
+                            (--certify) */
   size_t nomem;          /* of the errors, cases out of memory or beyond the budget */
   double t0, last;       /* start, last progress line (seconds) */
   int tty;               /* stderr is a terminal: show progress */

@@ -77,8 +77,9 @@ static const char *const sweep_usage =
 /* (strings of their own: C's limit on a string literal's length) */
 static const char *const sweep_usage_end =
     "\n"
-    "Progress (cases done / total, rate, ETA, failures so far) goes to standard\n"
-    "error while it is a terminal; otherwise only the final summary is printed.\n"
+    "Progress (cases done / total, rate, ETA, failures so far; with --certify how\n"
+    "many computed cases were proven) goes to standard error while it is a\n"
+    "terminal; otherwise only the final summary is printed.\n"
     "SIGINT or SIGTERM: the cases being computed are finished and stored, the\n"
     "summary printed, and the sweep ends (rerun the same command to resume);\n"
     "while the links are still being counted it ends at once, saying so.\n"

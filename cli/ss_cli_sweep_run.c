@@ -84,12 +84,16 @@ static void progress(ss_sweep *w, int force) {
   const double rate = w->computed / (t - w->t0 > 1e-9 ? t - w->t0 : 1e-9);
   char eta[32];
   fmt_time(rate > 0 ? (double)(w->total - done) / rate : (double)NAN, eta, sizeof eta);
+  char proven[64] = ""; /* a certified sweep: how many it proved so far */
+  if (w->opt.certify)
+    snprintf(proven, sizeof proven, "; %zu of %zu computed proven", w->proven,
+             w->computed);
   fprintf(stderr,
           "%ssweep: %zu/%zu cases (%.1f%%), %.1f cases/s, ETA %s; %zu fail, %zu "
-          "undecided, %zu errors%s",
+          "undecided, %zu errors%s%s",
           w->tty ? "\r" : "", done, w->total,
           w->total ? 100.0 * (double)done / (double)w->total : 100.0, rate, eta, w->fail,
-          w->undecided, w->errors, w->tty ? "\033[K" : "\n");
+          w->undecided, w->errors, proven, w->tty ? "\033[K" : "\n");
 }
 
 static int job_k(const ss_sweep_job *j) {
@@ -185,6 +189,7 @@ void ss_sweep_record(ss_sweep *w, ss_case_kind kind, int n, const char *canon,
       else {
         /* a case given twice (isomorphic links) is stored once */
         ++*(added ? &w->computed : &w->skipped);
+        w->proven += added && ss_result_certified(r);
         const ss_verdict_kind v = ss_result_verdict(r);
         ++*(v == SS_PASS ? &w->pass : v == SS_FAIL ? &w->fail : &w->undecided);
       }

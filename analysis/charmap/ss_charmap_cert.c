@@ -2,6 +2,7 @@
  * to be unproven, with an enclosure of the subdominant basis.  Method:
  * ss_charmap.h. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +14,7 @@
 #include "ss_charmap_cert_impl.h"
 #include "ss_clock.h"
 #include "ss_exact.h"
+#include "ss_jac_num.h" /* mul_di: di_fast_mul inline, the same bits */
 
 /* An interval net: lo and hi, point by point (dim coordinates each). */
 typedef struct {
@@ -31,20 +33,52 @@ static int inet_alloc(inet *x, size_t n, int dim) {
   return x->lo && x->hi ? 0 : -1;
 }
 
+/* The rules' weights are few distinct values (1/8, 3/8, 1/64, ...) read
+ * once per row they stand in: their enclosures are remembered by the
+ * weight's bits, in a small table direct-mapped by a hash of the bits (a miss
+ * computes and replaces; the same bits give the same enclosure either way). */
+enum { WCACHE = 64 };
+typedef struct {
+  uint64_t key[WCACHE]; /* the weight's bits */
+  double lo[WCACHE], hi[WCACHE];
+  unsigned char used[WCACHE]; /* 1 where key, lo, hi hold a weight */
+} wcache;
+
+/* The enclosure of weight w through the cache: 1, or 0 for a weight that is
+ * no rational of denominator <= maxden (not remembered). */
+static int weight_enclose(wcache *c, double w, long maxden, double *lo, double *hi) {
+  uint64_t b;
+  memcpy(&b, &w, sizeof b);
+  const size_t h = (size_t)((b * 0x9E3779B97F4A7C15ULL) >> 58); /* 0..63 */
+  if (c->used[h] && c->key[h] == b) {
+    *lo = c->lo[h];
+    *hi = c->hi[h];
+    return 1;
+  }
+  if (!ss_exact_rational_enclose(w, maxden, lo, hi)) return 0;
+  c->used[h] = 1;
+  c->key[h] = b;
+  c->lo[h] = *lo;
+  c->hi[h] = *hi;
+  return 1;
+}
+
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi) {
   if (dim < 1 || dim > 3) return -1;
+  wcache wc;
+  memset(wc.used, 0, sizeof wc.used);
   for (size_t i = 0; i < R->nv; i++) {
     /* each weight enclosed once for the coordinates; each coordinate's sum
      * still runs over the row in order */
     di_t s[3] = {di_interval(0.0, 0.0), di_interval(0.0, 0.0), di_interval(0.0, 0.0)};
     for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
       double lo, hi;
-      if (!ss_exact_rational_enclose(R->w[q], maxden, &lo, &hi)) return -1;
+      if (!weight_enclose(&wc, R->w[q], maxden, &lo, &hi)) return -1;
       const di_t w = di_interval(lo, hi);
       for (int d = 0; d < dim; d++) {
         const size_t k = R->col[q] * (size_t)dim + (size_t)d;
-        s[d] = di_fast_add(s[d], di_fast_mul(w, di_interval(plo[k], phi[k])));
+        s[d] = di_fast_add(s[d], mul_di(w, di_interval(plo[k], phi[k])));
       }
     }
     for (int d = 0; d < dim; d++) {
@@ -82,7 +116,7 @@ static void judge(const ss_local_ring *R, const inet *x, int dim, int depth, pro
         hi[j * dim + d] = x->hi[k];
       }
     ss_jac_result res;
-    ss_jac_cell_interval(R->ctype[c], lo, hi, dim, depth, &res);
+    ss_jac_cell_interval_sign(R->ctype[c], lo, hi, dim, depth, &res);
     p->pos += res.sign == SS_JAC_POSITIVE;
     p->neg += res.sign == SS_JAC_NEGATIVE;
     p->folded += res.sign == SS_JAC_FOLDED;

@@ -126,6 +126,19 @@ void ss_jac_cell(ss_cell_type t, const double *x, int dim, int maxdepth,
 void ss_jac_cell_interval(ss_cell_type t, const double *lo, const double *hi, int dim,
                           int maxdepth, ss_jac_result *r);
 
+/* The verdict of ss_jac_cell_interval without the measures (min_scaled and
+ * max_scaled NaN), the certified path's cell test: for a hex, first the 27
+ * Bernstein coefficients enclosed from its 12 edge vectors (each derivative
+ * of the trilinear map at a Lagrange point is an edge or a half sum of
+ * edges: about a third of the operations), all of one sign giving that sign
+ * at depth 0; otherwise, and for the other cell types, exactly
+ * ss_jac_cell_interval's traversal.  Both enclosures are proofs, so the
+ * verdict is ss_jac_cell_interval's wherever that one is POSITIVE, NEGATIVE
+ * or FOLDED, and may be POSITIVE or NEGATIVE where that one is UNDECIDED
+ * (the two enclosures differ in their last bits). */
+void ss_jac_cell_interval_sign(ss_cell_type t, const double *lo, const double *hi,
+                               int dim, int maxdepth, ss_jac_result *r);
+
 /* Jacobian determinant of the trilinear map of the hex with corners x (8 x 3)
  * at the parameter point (u, v, w) in [0,1]^3: the reference value the
  * Bernstein test bounds (for tests and pictures). */

@@ -199,6 +199,18 @@ static void JN(box_point)(const JN(box) * b, int i, int j, int l, double *p) {
   p[2] = b->lo[2] + b->size * 0.5 * l;
 }
 
+/* The 27 Lagrange values on {0, 1/2, 1}^3 of a triquadratic into its
+ * Bernstein coefficients, in place, axis by axis: the middle of each line
+ * 2 c - (c_0 + c_2) / 2, its ends unchanged. */
+static void JN(bernstein)(NUM *c) {
+  for (int a = 0, stride = 1; a < 3; a++, stride *= 3)
+    for (int u = 0; u < 9; u++) {
+      const int q = JN(line_start)(a, u) + stride; /* the middle of the line */
+      c[q] = JN(sub)(JN(scale)(c[q], 2.0),
+                     JN(scale)(JN(add)(c[q - stride], c[q + stride]), 0.5));
+    }
+}
+
 /* The hex test (ss_jac.h): exact values are the corner coefficients of the
  * cell and of its sub-boxes.  Depth first; a box with a corner of no sign is
  * left in doubt without splitting it (every sub-box at that corner would keep
@@ -211,12 +223,7 @@ static void JN(hex_sign)(const NUM *x, int maxdepth, double thr, ss_jac_result *
   /* Lagrange values on {0, 1/2, 1}^3, converted axis by axis */
   JN(box) *b = stack + sp++;
   JN(hex_lagrange)(x, b->c);
-  for (int a = 0, stride = 1; a < 3; a++, stride *= 3)
-    for (int u = 0; u < 9; u++) {
-      const int q = JN(line_start)(a, u) + stride; /* the middle of the line */
-      b->c[q] = JN(sub)(JN(scale)(b->c[q], 2.0),
-                        JN(scale)(JN(add)(b->c[q - stride], b->c[q + stride]), 0.5));
-    }
+  JN(bernstein)(b->c);
   int flat = 1;
   for (int q = 0; q < 27; q++)
     flat &= JN(sign)(b->c[q], thr) == 0;

@@ -401,37 +401,39 @@ done:
 }
 
 /* Upper bounds of ||(N / mu)^m||_inf, m < NNORM, and the powers m < NTAU
- * into tau (-1 out of memory, else 0).  Each power is a product of two earlier ones, P_m
- * = P_h P_(m-h) with h the largest power of two below m (P_2h = P_h P_h): a chain of at
- * most log2 m products behind every P_m.  Multiplying by N / mu one step at a time
- * instead lets the balls' radii grow like rho(|N / mu|)^m, which exceeds 1
- * for a non-normal N although rho(N / mu) < 1 (the powers near m = 75 were
- * wider than their midpoints that way). */
+ * into tau (built there in place; 0, it cannot fail).  Each power is a
+ * product of two earlier ones, P_m = P_h P_(m-h) with h the largest power of
+ * two below m (P_2h = P_h P_h): a chain of at most log2 m products behind
+ * every P_m.  Multiplying by N / mu one step at a time instead lets the
+ * balls' radii grow like rho(|N / mu|)^m, which exceeds 1 for a non-normal N
+ * although rho(N / mu) < 1 (the powers near m = 75 were wider than their
+ * midpoints that way).  Beyond tau only P_NTAU is a factor again (m <= 2 NTAU:
+ * h = NTAU, m - h < NTAU); the others there are needed for their norms. */
 static int norms(tube_ws *w, arb_mat_struct *tau) {
+  _Static_assert(NNORM <= 2 * NTAU && (NTAU & (NTAU - 1)) == 0,
+                 "powers beyond tau have the factor P_NTAU and one in tau");
   const slong r = (slong)w->r;
-  arb_mat_struct *P = malloc(NNORM * sizeof *P);
-  if (!P) return -1;
-  for (int m = 0; m < NNORM; m++)
-    arb_mat_init(P + m, r, r);
-  arb_mat_one(P);
-  arb_mat_scalar_div_arb(P + 1, w->N, w->mu, PREC);
+  arb_mat_t top, other; /* P_NTAU; the P_m with m > NTAU, one at a time */
+  arb_mat_init(top, r, r);
+  arb_mat_init(other, r, r);
+  arb_mat_one(tau);
+  arb_mat_scalar_div_arb(tau + 1, w->N, w->mu, PREC);
   mag_t b;
   mag_init(b);
   for (int m = 0; m < NNORM; m++) {
+    arb_mat_struct *P = m < NTAU ? tau + m : m == NTAU ? top : other;
     if (m >= 2) {
       int h = 1;
       while (2 * h < m)
         h *= 2;
-      arb_mat_mul(P + m, P + h, P + (m - h), PREC);
+      arb_mat_mul(P, h < NTAU ? tau + h : top, tau + (m - h), PREC);
     }
-    arb_mat_bound_inf_norm(b, P + m);
+    arb_mat_bound_inf_norm(b, P);
     w->norm[m] = mag_get_d(b);
-    if (m < NTAU) arb_mat_set(tau + m, P + m);
   }
   mag_clear(b);
-  for (int m = 0; m < NNORM; m++)
-    arb_mat_clear(P + m);
-  free(P);
+  arb_mat_clear(top);
+  arb_mat_clear(other);
   return 0;
 }
 

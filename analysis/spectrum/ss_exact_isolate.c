@@ -74,19 +74,30 @@ void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds
     arb_fmpz_poly_complex_roots(roots, f, 0, target_prec);
     return;
   }
-  acb_ptr tmp = _acb_vec_init(d);
+  acb_ptr tmp = _acb_vec_init(d), start = _acb_vec_init(d);
   acb_poly_t cp;
   acb_poly_init(cp);
-  const slong prec = 2 * target_prec;
-  acb_poly_set_fmpz_poly(cp, f, prec);
-  const slong got =
-      acb_poly_find_roots(roots, cp, seeds, FLINT_MIN(4 * d + 64, prec), prec);
-  int ok = got == d && accurate(roots, d, target_prec) &&
-           acb_poly_validate_real_roots(roots, cp, prec);
-  if (ok) {
+  _acb_vec_set(start, seeds, d);
+  int ok = 0;
+  /* at 2, 4, 8 times the target: a badly conditioned factor (MLCA k = 14's
+   * degree 68-70 one) needs more than twice the bits to reach the target
+   * accuracy; each attempt starts from the last one's midpoints */
+  for (slong prec = 2 * target_prec; !ok && prec <= 8 * target_prec; prec *= 2) {
+    acb_poly_set_fmpz_poly(cp, f, prec);
+    const slong got =
+        acb_poly_find_roots(roots, cp, start, FLINT_MIN(4 * d + 64, prec), prec);
+    ok = got == d && accurate(roots, d, target_prec) &&
+         acb_poly_validate_real_roots(roots, cp, prec);
+    if (ok) {
+      for (slong i = 0; i < d; i++)
+        if (arb_contains_zero(acb_imagref(roots + i))) arb_zero(acb_imagref(roots + i));
+      ok = isolated_balls(roots, d);
+    }
+    int finite = 1;
     for (slong i = 0; i < d; i++)
-      if (arb_contains_zero(acb_imagref(roots + i))) arb_zero(acb_imagref(roots + i));
-    ok = isolated_balls(roots, d);
+      finite &= acb_is_finite(roots + i);
+    for (slong i = 0; !ok && finite && i < d; i++)
+      acb_get_mid(start + i, roots + i);
   }
   if (ok)
     arrange(roots, d, tmp);
@@ -94,12 +105,29 @@ void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds
     arb_fmpz_poly_complex_roots(roots, f, 0, target_prec);
   acb_poly_clear(cp);
   _acb_vec_clear(tmp, d);
+  _acb_vec_clear(start, d);
+}
+
+/* |g(z) / g'(z)| into r, at a precision that resolves it (doubled from 128
+ * bits until the quotient has 8 correct bits, at most 4096): the factors'
+ * coefficients are large and z is near a root, so at a fixed 128 bits the
+ * value of a degree 60-70 factor was noise and eigenvalues went to the
+ * wrong factors (MLCA k = 14: 41 of 68 given to the right one). */
+static void newton_step(arb_t r, const fmpz_poly_t g, const fmpz_poly_t dg, const acb_t z,
+                        acb_t v, acb_t w) {
+  for (slong p = 128;; p *= 2) {
+    arb_fmpz_poly_evaluate_acb(v, g, z, p);
+    arb_fmpz_poly_evaluate_acb(w, dg, z, p);
+    acb_div(v, v, w, p);
+    if (acb_rel_accuracy_bits(v) >= 8 || p >= 4096) break;
+  }
+  acb_abs(r, v, 128);
 }
 
 /* The block's eigenvalues (x->ev) given to the factors of block 0 (x->evf):
  * each to the factor with the smallest Newton step |g(z) / g'(z)| at it, in
- * balls at 128 bits (the double is exact there).  Seeds only: nothing
- * proven depends on this. */
+ * balls (the double is exact there).  Seeds only: nothing proven depends on
+ * this. */
 static void give_eigenvalues(ss_exact *x) {
   fmpz_poly_t dg;
   acb_t z, v, w;
@@ -116,10 +144,7 @@ static void give_eigenvalues(ss_exact *x) {
     for (size_t b = x->bstart[0]; b < x->bstart[1]; b++) {
       const size_t k = x->bfac[b];
       fmpz_poly_derivative(dg, x->fac[k].f);
-      arb_fmpz_poly_evaluate_acb(v, x->fac[k].f, z, 128);
-      arb_fmpz_poly_evaluate_acb(w, dg, z, 128);
-      acb_div(v, v, w, 128);
-      acb_abs(r, v, 128);
+      newton_step(r, x->fac[k].f, dg, z, v, w);
       if (!arb_is_finite(r)) continue;
       if (x->evf[i] < 0 || arf_cmp(arb_midref(r), arb_midref(best)) < 0) {
         x->evf[i] = (long)k;

@@ -32,7 +32,16 @@
  * k = 12 5.7 -> 3.8 (interval Jacobians of level 2 0.011 -> 0.004), k = 10
  * 4.9 -> 3.6; box-spline k = 12 2.0 -> 1.6, k = 10 1.9 -> 1.6.  With
  * --psi-depth 4 psi's traversal is 60-75 % of either path (MLCA k = 12
- * certified / double 1.4, tet/oct 2.4 before). */
+ * certified / double 1.4, tet/oct 2.4 before).
+ *
+ * Measured again 2026-12-06 00:31 UTC (load 8-12, other agents' jobs on the
+ * 2 cores), main 720751e (the real-ball Rump enclosure in use) against the
+ * seeded isolation retried, the interval Jacobians' quick start and the
+ * weights' enclosures remembered; certified / double, mean (median): MLCA
+ * k = 12 5.4 (6.1) -> 4.1 (3.5), k = 14 19.4 (30.3) -> 6.0 (8.6) (root
+ * isolation 0.36 -> 0.022 s per case); tet/oct k = 12 4.3 -> 2.9, k = 14
+ * 6.3 -> 4.6; box-spline k = 12 1.5 -> 1.3, k = 14 1.6 -> 1.4.  Largest
+ * stage now: the basis enclosure (MLCA k = 12 / 14: 36 / 39 %). */
 #include "bench_pipeline_certify.h"
 
 #include <stdio.h>

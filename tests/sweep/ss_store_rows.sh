@@ -3,6 +3,8 @@
 #   q DB SQL          sqlite3 (expect runs programs: call sqlite3 there)
 #   rows DB           those columns of every result, in a fixed order
 #   same NAME DB1 DB2 a check: equal rows, and not vacuously
+#   same_certified NAME DB1 DB2  the same with injectivity and every
+#                     certified flag too (for --certify stores)
 q() { sqlite3 "$@"; }  # (expect runs programs: call sqlite3 there)
 # every column that a result's mathematics determines (not the timing)
 rows() {
@@ -18,4 +20,18 @@ same() { # same NAME DB1 DB2: equal rows, and not vacuously
   a=$(rows "$2")
   b=$(rows "$3")
   [ -n "$a" ] && [ "$a" = "$b" ] || fail "$1: stores differ ($(diff <(echo "$a") <(echo "$b") | head -3))"
+}
+rows_certified() { # rows, then injectivity and the certified flags
+  q "$1" "SELECT s.identity, kind, k, link, eigen_certified, regularity_certified,
+          injectivity, injectivity_reason, degree, injectivity_certified
+          FROM result r JOIN scheme s ON s.id = r.scheme_id ORDER BY 1, 2, 3, 4"
+}
+same_certified() { # same_certified NAME DB1 DB2
+  same "$@"
+  checks=$((checks + 1))
+  local a b
+  a=$(rows_certified "$2")
+  b=$(rows_certified "$3")
+  [ -n "$a" ] && [ "$a" = "$b" ] ||
+    fail "$1: certified flags differ ($(diff <(echo "$a") <(echo "$b") | head -3))"
 }

@@ -309,5 +309,18 @@ command -v script >/dev/null || fail "script (util-linux) not installed: the ter
 tty=$(script -qec "$exe sweep --scheme mlca --vertices 4..9 --db $tmp/pt.db" /dev/null)
 grep -q "cases/s, ETA " <<<"$tty" && grep -q "sweep: 73 cases of mlca" <<<"$tty" ||
   fail "no progress line on a terminal: $(tail -c 300 <<<"$tty")"
+# a certified sweep's progress counts the computed cases it proved: never
+# more than computed, some, and at most the proven rows of the store
+checks=$((checks + 1))
+tty=$(script -qec "$exe sweep --scheme tetoct --vertices 4..10 --certify --jobs 1 --db $tmp/pc.db" /dev/null |
+  tr '\r' '\n' | grep -o "[0-9]* of [0-9]* computed proven")
+stored=$(q "$tmp/pc.db" "SELECT count(*) FROM cases WHERE
+  (verdict = 'pass' AND eigen_certified AND regularity_certified) OR (verdict = 'fail' AND
+  ((eigen_condition = 'fail' AND eigen_certified) OR (regularity = 'fail' AND regularity_certified)
+   OR (injectivity = 'fail' AND injectivity_certified)))")
+bad=$(awk -v s="$stored" '$1 > $3 || $1 > s' <<<"$tty")
+last=$(tail -1 <<<"$tty")
+[ -n "$tty" ] && [ -z "$bad" ] && [ "${last%% *}" -gt 0 ] ||
+  fail "certified progress: '$last' (store: $stored proven), inconsistent: '$bad'"
 
 expect_done test_sweep

@@ -6,7 +6,8 @@
 # SIGKILL mid-run leaves a sound partial store that the same command
 # completes, computing only what is missing; a stopped rank holds only its
 # piece (dynamic distribution), a rank ended alone by SIGTERM gives the rest
-# of its piece back; only rank 0 prints the summary.
+# of its piece back; only rank 0 prints the summary; a certified sweep (2
+# computing ranks) stores the single-process certified store.
 # MPI is "yes" when the build has MPI (meson option mpi); otherwise, or
 # without mpirun, the test is skipped (77) with the reason.
 set -u
@@ -79,6 +80,20 @@ expect 1 "29 cases .*\(0 computed.*2 ranks of 1 thread; 29 already stored\)" \
 expect 1 "29 cases of mlca .*29 computed, [0-9.]+ cases/s with 2 threads; 0 already stored" \
   "${mpi[@]}" -n 1 "$exe" sweep "${cases[@]}" --db "$tmp/one.db" --jobs 2
 same "mpirun -n 1 vs one process" "$tmp/ref.db" "$tmp/one.db"
+
+# a certified sweep as one MPI job with 2 computing ranks (mpirun -n 3; rank 0
+# stores) stores what the single-process certified sweep stores,
+# row for row with every certified flag; some verdicts are proven (not
+# vacuously equal)
+ccases=(--scheme mlca --vertices 4..8 --certify)
+expect 1 "23 cases of mlca .*certified.*23 computed.*1 thread; 0 already stored" \
+  "$exe" sweep "${ccases[@]}" --db "$tmp/cref.db" --jobs 1
+expect 1 "23 cases of mlca .*certified.*23 computed.*2 ranks of 1 thread; 0 already stored" \
+  "${mpi[@]}" -n 3 "$exe" sweep "${ccases[@]}" --db "$tmp/cmpi.db" --jobs 1
+same_certified "certified: mpirun -n 3 vs one process" "$tmp/cref.db" "$tmp/cmpi.db"
+n=$(q "$tmp/cmpi.db" "SELECT count(*) FROM result WHERE eigen_certified = 1 AND regularity_certified = 1")
+checks=$((checks + 1))
+[ "$n" -gt 10 ] || fail "certified sweep under mpirun: only $n of 23 rows proven"
 
 # bad usage is reported once (by rank 0), exit 2
 "${mpi[@]}" -n 3 "$exe" sweep --scheme mlca --vertices 4..9 --jobs 0 --db "$tmp/bad.db" \
