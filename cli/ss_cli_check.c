@@ -36,7 +36,7 @@ static const char *const usage_text =
     "                    hex stars for split multilinear, tet stars for tetoct)\n"
     "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
     "  --face            the face of two tets (split tetoct only)\n"
-    "  --scheme S        a built-in scheme instead of a stencil file (mlca, tetoct,\n"
+    "  -s, --scheme S    a built-in scheme instead of a stencil file (mlca, tetoct,\n"
     "                    boxspline, boxspline-avg, ccsolid)\n"
     "  --certify         prove every verdict (exact spectrum, interval Jacobians);\n"
     "                    a verdict that cannot be proven counts as undecided\n"
@@ -44,7 +44,7 @@ static const char *const usage_text =
     "                    default half the physical memory, 3/4 of ulimit -v and\n"
     "                    -d when set): a case whose estimate exceeds it is not run\n"
     "                    but listed as an error with the estimate\n"
-    "  --jobs N          cases analysed at once, on N threads (default 1); the\n"
+    "  -j, --jobs N      cases analysed at once, on N threads (default 1); the\n"
     "                    report is the same whatever N\n"
     "  --format F        text (default), json (every case with its outcome,\n"
     "                    condition and reason, and the counts) or junit (JUnit XML,\n"
@@ -200,7 +200,7 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
   optind = 1;
   opterr = 0;
   int c;
-  while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, ":hs:j:", opts, NULL)) != -1) {
     switch (c) {
     case 'v':
       if (ss_cli_parse_range(optarg, &o->va, &o->vb) || o->va < 4 || o->vb > 9 ||
