@@ -105,7 +105,7 @@ static const command *find(const char *name) {
  * `subspectra COMMAND [WHAT] --help` prints (one text, one place); an unknown
  * command is a usage error. */
 static int help(int argc, char **argv) {
-  if (argc < 3) {
+  if (argc < 3 || !strcmp(argv[2], "--help") || !strcmp(argv[2], "-h")) {
     overview(stdout);
     return SS_EXIT_OK;
   }

@@ -43,6 +43,7 @@ for c in "${all[@]}"; do
 done
 expect 0 "^commands:" "$exe" help
 [ "$("$exe" help)" = "$("$exe" --help)" ] || fail "help differs from --help"
+[ "$("$exe" help --help)" = "$("$exe" --help)" ] || fail "help --help differs from --help"
 expect 2 "subspectra help: unknown command 'frobnicate'" "$exe" help frobnicate
 expect 2 "subspectra help: too many arguments" "$exe" help analyze extra
 expect 2 "unknown 'enumerate bogus'" "$exe" help enumerate bogus
