@@ -146,6 +146,12 @@ expect_in 2 "stdin:2: " $'tetrahedron\nnot-a-link\n' "$exe" analyze -s mlca --ve
 expect 0 "^old$" cat "$tmp/keep.txt"
 expect 2 "nodir/x.txt" "$exe" analyze -s loop --surface-vertex 5 -o "$tmp/nodir/x.txt"
 
+# ---- check --progress: the last line says all cases are done ----
+expect 0 "subspectra check: \[[0-9.]+ s\] 4/4 cases done" "$exe" check -s mlca --vertices 4..5 --edges 3..4 --format json --progress -j 2
+checks=$((checks + 1))
+"$exe" check -s mlca --vertices 4..5 --edges 3..4 --format json 2>&1 >/dev/null | grep -q "cases done" &&
+  fail "check without --progress printed progress"
+
 # ---- sweep --progress / --quiet ----
 # --progress: the progress header even though stderr is a pipe; without it none
 expect 0 "sweep: 3 cases of loop .* into .* with 1 thread" "$exe" sweep -s loop --vertices 3..5 --db "$tmp/p.db" -j 1 --progress
