@@ -45,8 +45,8 @@ static void overview(FILE *f) {
           SS_VERSION_STRING);
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
-  fprintf(f, "\n'subspectra COMMAND --help' describes a command; 'subspectra [COMMAND] "
-             "--version'\nprints the version.\n"
+  fprintf(f, "\n'subspectra help COMMAND' (or 'subspectra COMMAND --help') describes a\n"
+             "command; 'subspectra [COMMAND] --version' prints the version.\n"
              "Exit status: 0 ran and everything checked holds, 1 ran and something "
              "checked fails,\n2 bad usage or bad input.\n");
 }
@@ -95,6 +95,42 @@ static int finish(int rc) {
   return SS_EXIT_USAGE;
 }
 
+static const command *find(const char *name) {
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    if (!strcmp(name, commands[i].name)) return &commands[i];
+  return NULL;
+}
+
+/* `subspectra help [COMMAND [WHAT]]`: the overview, or exactly what
+ * `subspectra COMMAND [WHAT] --help` prints (one text, one place); an unknown
+ * command is a usage error. */
+static int help(int argc, char **argv) {
+  if (argc < 3 || !strcmp(argv[2], "--help") || !strcmp(argv[2], "-h")) {
+    overview(stdout);
+    return SS_EXIT_OK;
+  }
+  const command *c = find(argv[2]);
+  char name[256];
+  if (!c) {
+    fprintf(stderr,
+            "subspectra help: unknown command '%s' (the commands are listed by "
+            "'subspectra help')\n",
+            ss_error_escape(name, sizeof name, argv[2]));
+    return SS_EXIT_USAGE;
+  }
+  if (argc > (strcmp(c->name, "enumerate") ? 3 : 4)) {
+    fprintf(stderr,
+            "subspectra help: too many arguments ('subspectra help %s%s' at "
+            "most)\n",
+            c->name, strcmp(c->name, "enumerate") ? "" : " WHAT");
+    return SS_EXIT_USAGE;
+  }
+  /* COMMAND [WHAT] --help: enumerate's WHAT names its sub-command */
+  char help_opt[] = "--help";
+  char *args[4] = {argv[2], argc > 3 ? argv[3] : help_opt, help_opt, NULL};
+  return c->run(argc > 3 ? 3 : 2, args);
+}
+
 static int run(int argc, char **argv) {
   /* library code reports through ss_status; GSL must not abort the process */
   gsl_set_error_handler_off();
@@ -102,27 +138,28 @@ static int run(int argc, char **argv) {
     overview(stderr);
     return SS_EXIT_USAGE;
   }
-  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     overview(stdout);
     return SS_EXIT_OK;
   }
+  if (!strcmp(argv[1], "help")) return help(argc, argv);
   if (!strcmp(argv[1], "--version")) {
     printf("subspectra %s\n", SS_VERSION_STRING);
     return SS_EXIT_OK;
   }
-  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-    if (!strcmp(argv[1], commands[i].name)) {
-      /* --version anywhere among a command's options, as every command's
-       * --help says: one place instead of one option per command */
-      for (int a = 2; a < argc && strcmp(argv[a], "--"); a++)
-        if (!strcmp(argv[a], "--version")) {
-          printf("subspectra %s\n", SS_VERSION_STRING);
-          return SS_EXIT_OK;
-        }
-      const int rc = commands[i].run(argc - 1, argv + 1);
-      flint_cleanup_master(); /* FLINT's caches (the exact path, --certify) */
-      return rc;
-    }
+  const command *c = find(argv[1]);
+  if (c) {
+    /* --version anywhere among a command's options, as every command's
+     * --help says: one place instead of one option per command */
+    for (int a = 2; a < argc && strcmp(argv[a], "--"); a++)
+      if (!strcmp(argv[a], "--version")) {
+        printf("subspectra %s\n", SS_VERSION_STRING);
+        return SS_EXIT_OK;
+      }
+    const int rc = c->run(argc - 1, argv + 1);
+    flint_cleanup_master(); /* FLINT's caches (the exact path, --certify) */
+    return rc;
+  }
   char name[256];
   fprintf(stderr, "subspectra: unknown command '%s' (see 'subspectra --help')\n",
           ss_error_escape(name, sizeof name, argv[1]));

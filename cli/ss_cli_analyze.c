@@ -14,6 +14,7 @@
 #include "ss_cli.h"
 #include "ss_cli_analyze.h"
 #include "ss_link.h"
+#include "ss_outfile.h"
 #include "ss_stencil.h"
 
 typedef ss_cli_analyze_opts opts;
@@ -70,7 +71,7 @@ static void help(const char *cmd) {
       "                         patch's cap of 6e6 cells holds class 8 to N = 688,\n"
       "                         class 4 to N = 326 (odd N: 343); beyond, exit 2)\n\n"
       "options:\n"
-      "  --scheme S             mlca, tetoct, boxspline, boxspline-avg, catmull-clark,\n"
+      "  -s, --scheme S         mlca, tetoct, boxspline, boxspline-avg, catmull-clark,\n"
       "                         loop, ccsolid, quasi48 (surface vertices only; S\n"
       "                         maps two binary steps, a full 4-8 cycle)\n"
       "  --class 4|8            quasi48: the 4-8 class of the surface vertex: 4 (all\n"
@@ -91,7 +92,7 @@ static void help(const char *cmd) {
     printf("  --ring 1|2             the one-ring block A or the whole two-ring (default "
            "2)\n"
            "  --format mtx           Matrix Market (the only format)\n"
-           "  -o FILE                write to FILE instead of standard output (whole or\n"
+           "  -o, --output FILE      write to FILE instead of standard output (whole or\n"
            "                         not at all: an old FILE stays if writing fails)\n"
            "  --eigenvectors K       instead of S (or A with --ring 1): the right\n"
            "                         eigenvectors of its K leading eigenvalues, a dense\n"
@@ -147,7 +148,7 @@ static void help(const char *cmd) {
         "                         subdominant eigenvalues, L^T R = I within a tie)\n");
   if (d)
     printf(
-        "  -o FILE                the picture: FILE.png, FILE.svg, FILE.pdf or FILE.vtk\n"
+        "  -o, --output FILE      the picture: FILE.png, FILE.svg, FILE.pdf or FILE.vtk\n"
         "                         (whole or not at all: an old FILE stays if writing\n"
         "                         fails)\n"
         "  --no-caption           no caption under the picture (the case, lambdas,\n"
@@ -162,7 +163,9 @@ static void help(const char *cmd) {
         "                         not a characteristic map; the caption says so\n");
   else if (!m)
     printf("  --eigenvalues K        how many leading eigenvalues to print (default 16)\n"
-           "  --format F             text (default), json (one object per case), tsv\n");
+           "  --format F             text (default), json (one object per case), tsv\n"
+           "  -o, --output FILE      write to FILE instead of standard output (whole or\n"
+           "                         not at all: an old FILE stays if writing fails)\n");
   printf("  --max-memory SIZE      memory budget of the case, SIZE with K, M, G or T\n"
          "                         (powers of 1000; default half the physical memory,\n"
          "                         3/4 of ulimit -v and -d when set): a case whose\n"
@@ -185,8 +188,7 @@ static void help(const char *cmd) {
 }
 
 enum {
-  O_SCHEME = 256,
-  O_VERTEX,
+  O_VERTEX = 256,
   O_EDGE,
   O_FACE,
   O_SURF,
@@ -419,7 +421,7 @@ static int check_options(const opts *o) {
  * caller set): 0, -1 after --help, or the exit status 2 with the message
  * printed. */
 static int parse(int argc, char **argv, opts *o) {
-  static const struct option lo[] = {{"scheme", required_argument, 0, O_SCHEME},
+  static const struct option lo[] = {{"scheme", required_argument, 0, 's'},
                                      {"vertex", required_argument, 0, O_VERTEX},
                                      {"edge", required_argument, 0, O_EDGE},
                                      {"face", no_argument, 0, O_FACE},
@@ -444,13 +446,13 @@ static int parse(int argc, char **argv, opts *o) {
                                      {"left", no_argument, 0, O_LEFT},
                                      {"no-caption", no_argument, 0, O_NOCAPTION},
                                      {"class", required_argument, 0, O_CLASS},
+                                     {"output", required_argument, 0, 'o'},
                                      {"help", no_argument, 0, 'h'},
                                      {0, 0, 0, 0}};
   optind = 1;
   opterr = 0;
   int c, rc = 0;
-  while (!rc && (c = getopt_long(argc, argv, is_matrix(o) || is_draw(o) ? ":ho:" : ":h",
-                                 lo, NULL)) != -1) {
+  while (!rc && (c = getopt_long(argc, argv, ":hs:o:", lo, NULL)) != -1) {
     switch (c) {
     case 'h':
       help(o->cmd);
@@ -458,7 +460,7 @@ static int parse(int argc, char **argv, opts *o) {
     case 'o':
       o->out = optarg;
       break;
-    case O_SCHEME:
+    case 's':
       o->scheme = optarg;
       break;
     case O_STENCIL:
@@ -640,9 +642,6 @@ done:
 /* matrix and draw write one case: `--vertex -` reads exactly one link from
  * standard input, and refuses a second one before writing anything (a stream
  * of results belongs to analyze). */
-/* matrix and draw write one case: `--vertex -` reads exactly one link from
- * standard input, and refuses a second one before writing anything (a stream
- * of results belongs to analyze). */
 static int one_case_stdin(const opts *o, const ss_scheme *s, int *header) {
   char *line = NULL, *first = NULL;
   size_t cap = 0;
@@ -671,6 +670,40 @@ static int one_case_stdin(const opts *o, const ss_scheme *s, int *header) {
 done:
   free(first);
   free(line);
+  return rc;
+}
+
+/* The cases of o (one, or a stream of links on standard input), printed on
+ * standard output; the exit status. */
+static int run_cases(const opts *o, const ss_scheme *s) {
+  int rc = SS_EXIT_OK, header = 0;
+  if (o->kind == SS_CASE_VERTEX && !strcmp(o->link, "-") && strcmp(o->cmd, "analyze"))
+    rc = one_case_stdin(o, s, &header);
+  else if (o->kind == SS_CASE_VERTEX && !strcmp(o->link, "-")) {
+    char *line = NULL;
+    size_t cap = 0;
+    long lineno = 0, nread = 0;
+    char *p;
+    while ((p = ss_cli_next_item(stdin, &line, &cap, &lineno))) {
+      char where[48];
+      snprintf(where, sizeof where, "stdin:%ld: ", lineno);
+      int one = one_case(o, s, p, where, &header);
+      nread++;
+      if (fflush(stdout) || ferror(stdout)) break; /* output lost: main reports it */
+      if (one == SS_EXIT_USAGE) {
+        rc = SS_EXIT_USAGE;
+        break;
+      }
+      if (one == SS_EXIT_FAIL) rc = SS_EXIT_FAIL;
+    }
+    free(line);
+    if (rc == SS_EXIT_OK && nread == 0) {
+      fprintf(stderr, "subspectra %s: stdin: no links read\n", o->cmd);
+      rc = SS_EXIT_USAGE;
+    }
+  } else {
+    rc = one_case(o, s, o->link, "", &header);
+  }
   return rc;
 }
 
@@ -704,33 +737,26 @@ static int run(int argc, char **argv, const char *cmd) {
                               "quasi48 has)",
                               o.stencil ? o.stencil : o.scheme);
   }
-  int rc = SS_EXIT_OK, header = 0;
-  if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-") && strcmp(cmd, "analyze"))
-    rc = one_case_stdin(&o, s, &header);
-  else if (o.kind == SS_CASE_VERTEX && !strcmp(o.link, "-")) {
-    char *line = NULL;
-    size_t cap = 0;
-    long lineno = 0, nread = 0;
-    char *p;
-    while ((p = ss_cli_next_item(stdin, &line, &cap, &lineno))) {
-      char where[48];
-      snprintf(where, sizeof where, "stdin:%ld: ", lineno);
-      int one = one_case(&o, s, p, where, &header);
-      nread++;
-      if (fflush(stdout) || ferror(stdout)) break; /* output lost: main reports it */
-      if (one == SS_EXIT_USAGE) {
-        rc = SS_EXIT_USAGE;
-        break;
-      }
-      if (one == SS_EXIT_FAIL) rc = SS_EXIT_FAIL;
+  ss_outfile *of = NULL;
+  FILE *const out = stdout;
+  int rc = SS_EXIT_OK;
+  if (o.out && !strcmp(cmd, "analyze")) {
+    /* analyze -o FILE: what analyze prints goes to FILE, written whole or
+     * not at all.  The printers write to stdout, so stdout is pointed at the
+     * file for the run (as main points it at its own stream) and restored */
+    if (ss_outfile_open(o.out, &of, &err)) {
+      ss_scheme_free(s);
+      return ss_cli_fail(cmd, &err);
     }
-    free(line);
-    if (rc == SS_EXIT_OK && nread == 0) {
-      fprintf(stderr, "subspectra %s: stdin: no links read\n", cmd);
-      rc = SS_EXIT_USAGE;
-    }
-  } else {
-    rc = one_case(&o, s, o.link, "", &header);
+    stdout = ss_outfile_file(of);
+  }
+  rc = run_cases(&o, s);
+  if (of) {
+    stdout = out;
+    if (rc == SS_EXIT_USAGE)
+      ss_outfile_abort(of); /* a bad link or input: the old FILE stays */
+    else if (ss_outfile_commit(of, &err))
+      rc = ss_cli_fail(cmd, &err);
   }
   ss_scheme_free(s);
   return rc;

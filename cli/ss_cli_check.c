@@ -24,6 +24,7 @@ static const char *const usage_text =
     "                        [--edges A..B] [--face] [--tol T] [--depth D]\n"
     "                        [--certify] [--max-memory SIZE] [--jobs N]\n"
     "                        [--format text|json|junit] [--baseline FILE]\n"
+    "                        [--progress]\n"
     "\n"
     "The CI gate for a new stencil: analyse every case and pass only if all pass.\n"
     "Each case: the local subdivision matrix from the stencil's global rule, its\n"
@@ -36,7 +37,7 @@ static const char *const usage_text =
     "                    hex stars for split multilinear, tet stars for tetoct)\n"
     "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
     "  --face            the face of two tets (split tetoct only)\n"
-    "  --scheme S        a built-in scheme instead of a stencil file (mlca, tetoct,\n"
+    "  -s, --scheme S    a built-in scheme instead of a stencil file (mlca, tetoct,\n"
     "                    boxspline, boxspline-avg, ccsolid)\n"
     "  --certify         prove every verdict (exact spectrum, interval Jacobians);\n"
     "                    a verdict that cannot be proven counts as undecided\n"
@@ -44,13 +45,15 @@ static const char *const usage_text =
     "                    default half the physical memory, 3/4 of ulimit -v and\n"
     "                    -d when set): a case whose estimate exceeds it is not run\n"
     "                    but listed as an error with the estimate\n"
-    "  --jobs N          cases analysed at once, on N threads (default 1); the\n"
+    "  -j, --jobs N      cases analysed at once, on N threads (default 1); the\n"
     "                    report is the same whatever N\n"
     "  --format F        text (default), json (every case with its outcome,\n"
     "                    condition and reason, and the counts) or junit (JUnit XML,\n"
     "                    one testcase per case; fail and undecided are failures\n"
     "                    with the verdict's reason): the document on stdout, the\n"
     "                    heading and the summary on stderr\n"
+    "  --progress        a line on stderr as the cases finish (at most one a\n"
+    "                    second, and the last): cases done of all, seconds\n"
     "  --baseline FILE   the JSON of an earlier run (--format json): list the\n"
     "                    regressions (cases that passed there and do not pass\n"
     "                    now) and exit 1 only if there is one\n"
@@ -144,10 +147,13 @@ static int visit(const ss_link *l, void *ctx) {
 
 /* Run every case on `jobs` threads; in text format print each case that does
  * not pass as soon as it and every case before it are done (the order of the
- * list, whatever the threads). */
-static void run_all(gate *g, int jobs, int text) {
+ * list, whatever the threads); with progress a line on stderr at most once a
+ * second as they are done, and after the last. */
+static void run_all(gate *g, int jobs, int text, int progress) {
   ss_check_run *r = g->run;
   const long n = (long)r->ncases;
+  const double t0 = ss_clock_wall();
+  double last = t0;
 #pragma omp parallel for schedule(dynamic, 1) ordered num_threads(jobs)
   for (long i = 0; i < n; i++) {
     run_case(g, r->cases + i);
@@ -156,6 +162,12 @@ static void run_all(gate *g, int jobs, int text) {
       if (text) {
         ss_check_print_case(r->cases + i);
         fflush(stdout);
+      }
+      const double t = ss_clock_wall();
+      if (progress && (t - last >= 1.0 || i == n - 1)) {
+        fprintf(stderr, "subspectra check: [%.1f s] %ld/%ld cases done\n", t - t0, i + 1,
+                n);
+        last = t;
       }
     }
   }
@@ -177,6 +189,7 @@ static void run_free(ss_check_run *r) {
 typedef struct {
   long va, vb, ea, eb, depth, jobs;
   int face, any, certify, format; /* format: 0 text, 1 json, 2 junit */
+  int progress;                   /* --progress: lines on stderr */
   double tol, max_memory;
   const char *scheme, *baseline;
 } check_opts;
@@ -195,12 +208,13 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
                                        {"format", required_argument, NULL, 'F'},
                                        {"jobs", required_argument, NULL, 'j'},
                                        {"baseline", required_argument, NULL, 'b'},
+                                       {"progress", no_argument, NULL, 'P'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   optind = 1;
   opterr = 0;
   int c;
-  while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, ":hs:j:", opts, NULL)) != -1) {
     switch (c) {
     case 'v':
       if (ss_cli_parse_range(optarg, &o->va, &o->vb) || o->va < 4 || o->vb > 9 ||
@@ -250,6 +264,9 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
       break;
     case 'b':
       o->baseline = optarg;
+      break;
+    case 'P':
+      o->progress = 1;
       break;
     case 'h':
       fputs(usage_text, stdout);
@@ -325,7 +342,7 @@ static int report(ss_check_run *r, const check_opts *o) {
 }
 
 int ss_cli_check(int argc, char **argv) {
-  check_opts o = {0, -1, 0, -1, SS_JAC_DEPTH, 1, 0, 0, 0, 0, 1e-6, 0.0, NULL, NULL};
+  check_opts o = {0, -1, 0, -1, SS_JAC_DEPTH, 1, 0, 0, 0, 0, 0, 1e-6, 0.0, NULL, NULL};
   const int pr = parse_opts(argc, argv, &o);
   if (pr) return pr < 0 ? SS_EXIT_OK : pr;
   const char *path = o.scheme ? "--scheme" : argv[optind];
@@ -371,7 +388,7 @@ int ss_cli_check(int argc, char **argv) {
             ss_scheme_name(s), o.tol, o.depth, o.certify ? ", certified verdicts" : "");
   int status = list_cases(&g, &o);
   if (!status) {
-    run_all(&g, (int)o.jobs, o.format == 0);
+    run_all(&g, (int)o.jobs, o.format == 0, o.progress);
     status = report(&run, &o);
   }
   run_free(&run);

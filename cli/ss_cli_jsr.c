@@ -41,7 +41,7 @@ static void usage(FILE *f) {
       "computed Y_i (not for the rounding in forming Y_i from S_i).\n\n");
   fprintf(
       f,
-      "  --scheme S        a scheme with the tet/oct split: tetoct, boxspline or\n"
+      "  -s, --scheme S    a scheme with the tet/oct split: tetoct, boxspline or\n"
       "                    boxspline-avg\n"
       "  --face            the face shared by two tets\n"
       "  --edge N          an edge of valence N (3..64)\n"
@@ -96,7 +96,6 @@ enum {
   O_DIAG,
   O_SECONDS,
   O_FORMAT,
-  O_SCHEME,
   O_NORM,
   O_FITWORDS
 };
@@ -111,7 +110,7 @@ static const char *poly_name(int p) {
 }
 
 static const struct option jsr_options[] = {
-    {"scheme", required_argument, 0, O_SCHEME},
+    {"scheme", required_argument, 0, 's'},
     {"face", no_argument, 0, O_FACE},
     {"edge", required_argument, 0, O_EDGE},
     {"depth", required_argument, 0, O_DEPTH},
@@ -144,7 +143,7 @@ static int parse_option(int ch, char **argv, jsr_args *a) {
   case 'h':
     usage(stdout);
     return SS_EXIT_OK;
-  case O_SCHEME:
+  case 's':
     a->scheme_name = optarg;
     break;
   case O_FACE:
@@ -215,7 +214,7 @@ static int parse_args(int argc, char **argv, jsr_args *a) {
   a->o.max_seconds = 60;
   optind = 1;
   opterr = 0;
-  for (int ch; (ch = getopt_long(argc, argv, ":h", jsr_options, NULL)) != -1;) {
+  for (int ch; (ch = getopt_long(argc, argv, ":hs:", jsr_options, NULL)) != -1;) {
     const int rc = parse_option(ch, argv, a);
     if (rc >= 0) return rc;
   }

@@ -44,7 +44,8 @@ static const char usage[] =
     "within half a unit in its last printed digit, an exact value (fraction,\n"
     "formula in k or n) within 1e-9, a verdict when equal.  One progress line\n"
     "per table on standard error.\n\n"
-    "  -o, --out DIR        output folder, created if missing (default reports)\n"
+    "  -o, --output DIR     output folder, created if missing (default reports;\n"
+    "                       --out DIR: the same)\n"
     "  -r, --reference DIR  reference files DIR/*.tsv; default:\n"
     "                       $SUBSPECTRA_DATADIR/reference when that is set, else\n"
     "                       data/reference when run from the source tree, else\n"
@@ -259,6 +260,7 @@ static int make_out_dirs(const char *out) {
 
 int ss_cli_reproduce(int argc, char **argv) {
   static const struct option opts[] = {{"out", required_argument, NULL, 'o'},
+                                       {"output", required_argument, NULL, 'o'},
                                        {"reference", required_argument, NULL, 'r'},
                                        {"tables", required_argument, NULL, 't'},
                                        {"certify", no_argument, NULL, 'c'},

@@ -51,6 +51,10 @@ typedef struct {
   long psi_depth;               /* --psi-depth (0: psi not judged) */
   int psi_tubes;                /* --psi-tubes */
   int jobs_given;               /* --jobs was given */
+  int progress;                 /* --progress: progress lines even when stderr
+                                   is not a terminal (one a second) */
+  int quiet;                    /* --quiet: no progress lines (the summary and
+                                   the failed cases' messages stay) */
 } ss_sweep_opts;
 
 /* argv (`sweep` and its options) into *o (ss_cli_sweep_opts.c): -1 to go

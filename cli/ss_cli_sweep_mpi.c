@@ -611,7 +611,7 @@ int ss_sweep_mpi(int argc, char **argv) {
       w->flush_ctx = &c;
       /* mpirun passes standard error on through a pipe, whatever it is
        * itself: no live line, but a line a minute in the job's log */
-      if (!w->tty) w->log_every = 60;
+      if (!w->tty && !w->opt.quiet && !w->opt.progress) w->log_every = 60;
       ss_sweep_run(w);
       finish(w, &c);
     }

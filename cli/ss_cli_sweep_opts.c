@@ -17,7 +17,7 @@ static const char *const sweep_usage =
     "                        [--jobs N] [--part I/N] [--tol T] [--depth D]\n"
     "                        [--diagonals D] [--certify] [--psi-depth N]\n"
     "                        [--psi-tubes]\n"
-    "                        [--max-memory SIZE]\n"
+    "                        [--max-memory SIZE] [--progress | --quiet]\n"
     "\n"
     "Analyse every case asked for, exactly as `subspectra analyze` does, and store\n"
     "each result in a SQLite results store (schema in the README).  Results are\n"
@@ -39,11 +39,14 @@ static const char *const sweep_usage =
     "                    isomorphic to an earlier one (or one --vertices covers)\n"
     "                    is run once and counted as repeated\n"
     "options:\n"
+    "  -s, --scheme S    a built-in scheme (mlca, tetoct, boxspline, ...; as\n"
+    "                    `analyze --scheme`)\n"
+    "  --stencil FILE    a stencil file instead of --scheme\n"
     "  --db FILE         the results store (default subspectra.db; created if\n"
     "                    missing; a file that is not a subspectra store is refused,\n"
     "                    and one that cannot be written is named as such: read-only\n"
     "                    file system or permissions, or locked by another program)\n"
-    "  --jobs N          threads (default: the number of processors; under MPI,\n"
+    "  -j, --jobs N      threads (default: the number of processors; under MPI,\n"
     "                    of each computing rank: its machine's processors shared\n"
     "                    by the computing ranks there)\n"
     "  --part I/N        only part I of N (0 <= I < N): the enumeration is split\n"
@@ -71,15 +74,20 @@ static const char *const sweep_usage =
     "                    (N threads) is not run but reported as an error, with\n"
     "                    the estimate\n"
     "  --format F        text (default) or json: the final summary also as one\n"
-    "                    JSON object on standard output\n"
-    "  -h, --help        this text\n";
+    "                    JSON object on standard output\n";
 
 /* (strings of their own: C's limit on a string literal's length) */
 static const char *const sweep_usage_end =
+    "  --progress        progress lines on standard error even when it is not a\n"
+    "                    terminal (a line a second, for a log)\n"
+    "  -q, --quiet       no progress lines (the summary and the messages of\n"
+    "                    failed cases stay)\n"
+    "  -h, --help        this text\n"
     "\n"
     "Progress (cases done / total, rate, ETA, failures so far; with --certify how\n"
     "many computed cases were proven) goes to standard error while it is a\n"
-    "terminal; otherwise only the final summary is printed.\n"
+    "terminal (a live line; --progress: also to a file or a pipe, --quiet:\n"
+    "never); otherwise only the final summary is printed.\n"
     "SIGINT or SIGTERM: the cases being computed are finished and stored, the\n"
     "summary printed, and the sweep ends (rerun the same command to resume);\n"
     "while the links are still being counted it ends at once, saying so.\n"
@@ -103,14 +111,12 @@ static const char *const sweep_usage_mpi =
 #endif
 
 enum {
-  O_SCHEME = 256,
-  O_STENCIL,
+  O_STENCIL = 256,
   O_VERT,
   O_EDGES,
   O_FACE,
   O_LINKS,
   O_DB,
-  O_JOBS,
   O_PART,
   O_TOL,
   O_DEPTH,
@@ -119,18 +125,19 @@ enum {
   O_CERTIFY,
   O_PSI,
   O_TUBES,
-  O_MAXMEM
+  O_MAXMEM,
+  O_PROGRESS
 };
 
 static const struct option sweep_options[] = {
-    {"scheme", required_argument, NULL, O_SCHEME},
+    {"scheme", required_argument, NULL, 's'},
     {"stencil", required_argument, NULL, O_STENCIL},
     {"vertices", required_argument, NULL, O_VERT},
     {"edges", required_argument, NULL, O_EDGES},
     {"face", no_argument, NULL, O_FACE},
     {"links", required_argument, NULL, O_LINKS},
     {"db", required_argument, NULL, O_DB},
-    {"jobs", required_argument, NULL, O_JOBS},
+    {"jobs", required_argument, NULL, 'j'},
     {"part", required_argument, NULL, O_PART},
     {"tol", required_argument, NULL, O_TOL},
     {"depth", required_argument, NULL, O_DEPTH},
@@ -140,6 +147,8 @@ static const struct option sweep_options[] = {
     {"psi-depth", required_argument, NULL, O_PSI},
     {"psi-tubes", no_argument, NULL, O_TUBES},
     {"max-memory", required_argument, NULL, O_MAXMEM},
+    {"progress", no_argument, NULL, O_PROGRESS},
+    {"quiet", no_argument, NULL, 'q'},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0}};
 
@@ -147,7 +156,7 @@ static const struct option sweep_options[] = {
  * status (0 after --help, 2 with the message printed). */
 static int parse_option(int c, char **argv, ss_sweep_opts *o) {
   switch (c) {
-  case O_SCHEME:
+  case 's':
     o->scheme = optarg;
     break;
   case O_STENCIL:
@@ -174,7 +183,7 @@ static int parse_option(int c, char **argv, ss_sweep_opts *o) {
   case O_DB:
     o->db = optarg;
     break;
-  case O_JOBS:
+  case 'j':
     if (ss_cli_parse_int(optarg, 1, 1024, &o->jobs))
       return ss_cli_usage_error("sweep", "--jobs '%s' is not an integer in 1..1024",
                                 optarg);
@@ -213,6 +222,12 @@ static int parse_option(int c, char **argv, ss_sweep_opts *o) {
           "sweep", "--max-memory: expected a size such as 8G, 500M or 2.5G, not '%s'",
           optarg);
     break;
+  case O_PROGRESS:
+    o->progress = 1;
+    break;
+  case 'q':
+    o->quiet = 1;
+    break;
   case O_FORMAT:
     if (ss_cli_format_option("sweep", optarg, &o->json)) return SS_EXIT_USAGE;
     break;
@@ -239,7 +254,7 @@ int ss_sweep_parse(int argc, char **argv, ss_sweep_opts *o) {
   optind = 1;
   opterr = 0;
   int c;
-  while ((c = getopt_long(argc, argv, ":h", sweep_options, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, ":hs:j:q", sweep_options, NULL)) != -1) {
     const int rc = parse_option(c, argv, o);
     if (rc >= 0) return rc;
   }
@@ -248,6 +263,8 @@ int ss_sweep_parse(int argc, char **argv, ss_sweep_opts *o) {
   if (o->psi_tubes && (!o->certify || !o->psi_depth))
     return ss_cli_usage_error("sweep", "--psi-tubes needs --certify and a --psi-depth "
                                        "of at least 1");
+  if (o->progress && o->quiet)
+    return ss_cli_usage_error("sweep", "--progress and --quiet: give one of them");
   if (ss_cli_opt_scheme_source("sweep", o->scheme, o->stencil)) return SS_EXIT_USAGE;
   if (!o->vtext && o->eb < o->ea && !o->face && !o->links)
     return ss_cli_usage_error("sweep",

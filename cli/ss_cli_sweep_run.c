@@ -441,7 +441,9 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
                   .jobs = (int)a.jobs,
                   .ranks = 1,
                   .flush = flush_threads,
-                  .tty = role == SS_SWEEP_WHOLE && isatty(STDERR_FILENO),
+                  .tty = role == SS_SWEEP_WHOLE && !a.quiet && isatty(STDERR_FILENO),
+                  /* --progress to a file or a pipe: a line a second */
+                  .log_every = a.progress && role != SS_SWEEP_WORKER ? 1.0 : 0.0,
                   .pool = calloc(1, sizeof(ss_sweep_wspool))};
   ss_store_scheme sc = {ss_scheme_name(s), a.stencil, hash, reads, a.diag, ro};
   ss_store_identity(&sc, w->ident, sizeof w->ident);

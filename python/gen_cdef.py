@@ -32,6 +32,10 @@ NAMES = [
     # ss_enum.h, ss_jsr.h, ss_levin.h
     "ss_enum_opts", "ss_enum_visit", "ss_jsr_norm", "ss_jsr_opts", "ss_jsr_result",
     "ss_levin",
+    # ss_limit.h (limit); ss_result.h, ss_store.h, ss_report_table.h (store)
+    "ss_limit", "ss_limit_point", "ss_verdicts", "ss_result_eigval", "ss_result_psi",
+    "ss_result", "ss_store", "ss_store_mode", "ss_report_row", "ss_report_rows",
+    "ss_report_summary", "ss_report_format",
     # functions
     "ss_scheme_names", "ss_scheme_new", "ss_scheme_free",
     "ss_link_parse", "ss_link_free", "ss_link_format", "ss_diag_parse",
@@ -46,6 +50,10 @@ NAMES = [
     "ss_cx_validate", "ss_cx_check_orientation", "ss_cell_nverts",
     "ss_scheme_refine_levels", "ss_scheme_reads_diagonals", "ss_diag_choose",
     "ss_case_name", "ss_diag_name", "ss_verdict_name",
+    "ss_limit_new_fields", "ss_limit_free", "ss_limit_ncells", "ss_limit_nfields",
+    "ss_limit_eval_fields", "ss_limit_eval_reference_fields",
+    "ss_store_open", "ss_store_close", "ss_report_rows_load", "ss_report_rows_clear",
+    "ss_report_table_write",
 ]
 
 

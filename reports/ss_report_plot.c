@@ -164,6 +164,12 @@ static int cmp_kind_k(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+int ss_report_plot_x(const ss_result *r) {
+  /* an edge point is stored with k = n + 2, the vertices of its link (the
+   * bipyramid over n), as ss_store reads it back; its panel is the edge's */
+  return r->kind == SS_CASE_EDGE_POINT ? r->k - 2 : r->k;
+}
+
 static double modulus(const ss_result *r, int i) {
   return i < r->neig ? hypot(r->eig[i].re, r->eig[i].im) : (double)NAN;
 }
@@ -177,8 +183,8 @@ static double offset(int q) {
 static void plot_lambda(cairo_t *cr, const frame *f, const ss_report_row **sel, size_t m,
                         double *v) {
   for (size_t i = 0, j; i < m; i = j) {
-    const int k = sel[i]->r.k;
-    for (j = i; j < m && sel[j]->r.k == k; j++)
+    const int k = ss_report_plot_x(&sel[i]->r);
+    for (j = i; j < m && ss_report_plot_x(&sel[j]->r) == k; j++)
       ;
     for (int q = 1; q <= NLAMBDA; q++) {
       size_t c = 0;
@@ -229,8 +235,8 @@ static void plot_sj(cairo_t *cr, const frame *f, const ss_report_row **sel, size
                   : order[pass] == SS_FAIL ? fail_colour
                                            : undecided_colour;
     for (size_t i = 0, j; i < m; i = j) {
-      const int k = sel[i]->r.k;
-      for (j = i; j < m && sel[j]->r.k == k; j++)
+      const int k = ss_report_plot_x(&sel[i]->r);
+      for (j = i; j < m && ss_report_plot_x(&sel[j]->r) == k; j++)
         ;
       for (size_t t = i; t < j; t++) {
         const ss_result *r = &sel[t]->r;
@@ -303,8 +309,8 @@ static void column(cairo_t *cr, ss_case_kind kind, const ss_report_row **sel, si
   top.h = bot.h = (h - 2 * (tmargin + bmargin)) / 2.0;
   top.y0 = y0 + tmargin;
   bot.y0 = top.y0 + top.h + bmargin + tmargin;
-  top.xmin = bot.xmin = sel[0]->r.k - 0.6;
-  top.xmax = bot.xmax = sel[m - 1]->r.k + 0.6;
+  top.xmin = bot.xmin = ss_report_plot_x(&sel[0]->r) - 0.6;
+  top.xmax = bot.xmax = ss_report_plot_x(&sel[m - 1]->r) + 0.6;
   double lo = INFINITY, hi = -INFINITY, slo = 0.0, shi = 0.0;
   for (size_t i = 0; i < m; i++) {
     for (int q = 1; q <= NLAMBDA; q++) {
@@ -322,7 +328,9 @@ static void column(cairo_t *cr, ss_case_kind kind, const ss_report_row **sel, si
   const char *kname = ss_case_name(kind);
   const char *xlabel = kind == SS_CASE_VERTEX ? "k (vertices of the link)"
                        : kind == SS_CASE_FACE ? ""
-                                              : "valence n";
+                       : kind == SS_CASE_EDGE_POINT
+                           ? "valence n of the edge (the link: the bipyramid over n)"
+                           : "valence n";
   char title[96];
   snprintf(title, sizeof title, "%s: |λ1|..|λ4|", kname);
   axes(cr, &top, kind, title, xlabel);
@@ -365,7 +373,8 @@ static void paint(cairo_t *cr, const ss_report_row **sel, size_t m, const char *
     text(cr, W / 2.0, H / 2.0, 0.5, "no cases selected");
     return;
   }
-  /* columns: one per kind present, in the order vertex, edge, face, surface */
+  /* columns: one per kind present, in the order vertex, edge, face, surface,
+   * edge point */
   qsort(sel, m, sizeof *sel, cmp_kind_k);
   int ncol = 0;
   for (size_t i = 0; i < m; i++)
@@ -405,7 +414,7 @@ ss_status ss_report_plot(const ss_report_row *rows, size_t n,
       kinds |= 1 << (int)rows[i].r.kind;
     }
   int ncol = 0;
-  for (int k = 0; k < 4; k++)
+  for (int k = 0; k < SS_NCASEKINDS; k++)
     ncol += (kinds >> k) & 1;
   const int W = o->width ? o->width : 20 + 560 * (ncol ? ncol : 1);
   const int H = o->height ? o->height : 720;

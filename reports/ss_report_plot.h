@@ -2,8 +2,9 @@
  * SVG through cairo).
  *
  * One figure per scheme identity.  It has one column of two panels per case
- * kind present (vertex: k = link vertices; edge and surface vertex: the
- * valence n; face: one position), x axis with integer ticks:
+ * kind present (vertex: k = link vertices; edge, edge point and surface
+ * vertex: the valence n; face: one position; ss_report_plot_x), x axis with
+ * integer ticks:
  *   top     |lambda1|..|lambda4| of the two-ring matrix: for each k and index
  *           i, a bar from the smallest to the largest |lambda_i| over the
  *           cases with that k and a marker at every distinct value (within a
@@ -33,6 +34,12 @@ typedef struct {
 
 /* Defaults: automatic size, the first row's identity. */
 ss_report_plot_opts ss_report_plot_defaults(void);
+
+/* The abscissa of a result in its panel: k, the link's vertices, for a
+ * vertex; the valence n for an edge, a surface vertex and an edge point (a
+ * vertex whose link is the bipyramid over n: its k is n + 2); 0 for the
+ * face. */
+int ss_report_plot_x(const ss_result *r);
 
 /* Plot the rows of rows[0..n) whose identity is o->identity (see
  * ss_report_plot_opts) into the file at path, PNG or SVG by its extension

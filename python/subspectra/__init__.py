@@ -32,6 +32,14 @@ apply are refused.
     enumerate_links(kmin, kmax)    an iterator of every link (plantri ASCII), lazy
     subdivide(scheme, points, cells, levels)
                                    refined NumPy points and meshio-style cells
+    limit(scheme, points, cells, cell, uvw, derivatives, fields)
+                                   the limit volume of a hex mesh at many points:
+                                   points, Jacobians, fields (NumPy arrays) as
+                                   `subspectra limit`; Limit(...) keeps the
+                                   evaluator (and its caches) for many calls
+    store_table(path, where)       a sweep's results store as a list of dicts
+                                   (report's CSV columns, typed; pandas.DataFrame
+                                   takes it), or a NumPy structured array
     scheme_names()                 the built-in schemes
 
 Errors of the library raise SubspectraError (.status, and its message).
@@ -55,7 +63,8 @@ from cffi import FFI
 from . import _cdef, _config
 
 __all__ = ["SubspectraError", "scheme_names", "local_matrix", "local_labels", "eigenvalues",
-           "eigenvectors", "analyze", "jsr", "enumerate_links", "subdivide"]
+           "eigenvectors", "analyze", "jsr", "enumerate_links", "subdivide", "limit", "Limit",
+           "LimitValues", "store_table"]
 
 _ffi = FFI()
 # The declarations of the types and functions used here, generated from the
@@ -630,3 +639,9 @@ def _choose_diagonals(cx, diagonals, err):
     if diagonals not in ("bfs", "proper") or _lib.ss_diag_parse(diagonals.encode(), d):
         raise ValueError("diagonals: expected bfs, proper or given, not %r" % (diagonals,))
     _check(_lib.ss_diag_choose(cx, d[0], 0, 0, err), err)
+
+
+# the limit volume and the results store, in modules of their own (they use
+# the helpers above, hence imported last)
+from ._limit import Limit, LimitValues, limit  # noqa: E402
+from ._store import store_table  # noqa: E402

@@ -33,7 +33,8 @@
 #    values and its tables (reproduce/tables.json) beside the program, and
 #    through SUBSPECTRA_DATADIR, and its --help names the compiled-in datadir;
 #  - the Python package, installed under the platform's site directory (PYDIR,
-#    empty when not built), through test_python.py (PYTEST).
+#    empty when not built), through test_python.py (PYTEST) and, beside it,
+#    test_python_limit.py (limit and the results store).
 set -u
 build=$1 src=$2 example=$3 prefix=$4 libdir=$5 datadir=$6 bindir=$7 mandir=$8 incdir=$9
 pydir=${10} pytest=${11} sanitize=${12} cxxprog=${13} checkexports=${14}
@@ -297,6 +298,8 @@ if [ -n "$pydir" ]; then
 #include <stdio.h>
 #include <subspectra/ss_eigvec.h>
 #include <subspectra/ss_report_case.h>
+#include <subspectra/ss_limit.h>
+#include <subspectra/ss_report_table.h>
 #define SZ(T) printf("sizeof %s %zu\n", #T, sizeof(T))
 #define OFF(T, f) printf("offsetof %s %s %zu\n", #T, #f, offsetof(T, f))
 int main(void) {
@@ -307,6 +310,9 @@ int main(void) {
   OFF(ss_eigval, mult), OFF(ss_eig_opts, tol), OFF(ss_eig_opts, progress);
   SZ(ss_eigvec), OFF(ss_eigvec, k), OFF(ss_eigvec, right_re), OFF(ss_eigvec, left_im);
   OFF(ss_eigvec, complex_any);
+  SZ(ss_limit_point), OFF(ss_limit_point, jac), OFF(ss_limit_point, products);
+  SZ(ss_result), OFF(ss_result, eig), OFF(ss_result, seconds), SZ(ss_report_row);
+  SZ(ss_report_rows), OFF(ss_report_rows, n);
   return 0;
 }
 EOC
@@ -315,6 +321,9 @@ EOC
       "$tmp/layout" >"$tmp/layout.txt" || fail "layout program"
     (cd "$tmp/elsewhere" && env "${pyenv[@]}" PYTHONPATH="$P" \
       SUBSPECTRA_LIBRARY="$L/libsubspectra.so.0" /usr/bin/python3 "$pytest" "$B/subspectra" "$tmp/layout.txt") || fail "python package"
+    (cd "$tmp/elsewhere" && env "${pyenv[@]}" PYTHONPATH="$P" \
+      SUBSPECTRA_LIBRARY="$L/libsubspectra.so.0" /usr/bin/python3 "$(dirname "$pytest")/test_python_limit.py" \
+      "$B/subspectra" "$src") || fail "python package: limit, store_table"
   else
     fail "python package not installed under ${P#"$stage"}"
   fi

@@ -699,6 +699,34 @@ static void test_plot(ss_store *st, const char *dir) {
   CHECK(s == SS_OK && plotted == 2 && red_pixels(png, &w, &h) == 0 && w == 20 + 2 * 560 &&
             h == 720,
         "tetoct plot: %zu cases, %dx%d", plotted, w, h);
+  /* an edge point (a vertex whose link is the bipyramid over n, stored with
+   * k = n + 2) is analysed as the edge of valence n: its panel's abscissa is
+   * that n, found here as the edge with the same leading eigenvalues */
+  size_t epoints = 0;
+  for (size_t i = 0; i < t.n; i++) {
+    const ss_result *p = &t.row[i].r;
+    if (p->kind != SS_CASE_EDGE_POINT) continue;
+    epoints++;
+    int same = 0;
+    for (size_t j = 0; j < t.n; j++) {
+      const ss_result *e = &t.row[j].r;
+      if (e->kind != SS_CASE_EDGE || strcmp(t.row[j].identity, t.row[i].identity) ||
+          e->neig < 3 || p->neig < 3)
+        continue;
+      int eq = 1;
+      for (int q = 0; q < 3; q++)
+        eq &= fabs(e->eig[q].re - p->eig[q].re) <= 1e-9 * fabs(e->eig[q].re) + 1e-12;
+      if (eq && ss_report_plot_x(e) == ss_report_plot_x(p)) same++;
+    }
+    CHECK(same == 1, "edge point k = %d at x = %d: %d edges with its spectrum there",
+          p->k, ss_report_plot_x(p), same);
+  }
+  CHECK(epoints == 2, "%zu edge points (bipyramid:3 and :5) in the store", epoints);
+  /* vertex, edge and edge point: three columns */
+  o.identity = ident_mlca;
+  s = ss_report_plot(t.row, t.n, &o, png, &plotted, &err);
+  CHECK(s == SS_OK && red_pixels(png, &w, &h) >= 0 && w == 20 + 3 * 560,
+        "mlca plot: %d, %dx%d", s, w, h);
   /* empty: a figure that says so */
   s = ss_report_plot(t.row, 0, &o, png, &plotted, &err);
   CHECK(s == SS_OK && plotted == 0 && file_size(png, head, 8) > 0, "empty plot");

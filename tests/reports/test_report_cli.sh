@@ -198,7 +198,8 @@ d = sys.argv[1]
 p = open(d + "/p.png", "rb").read()
 assert p[:8] == b"\x89PNG\r\n\x1a\n" and len(p) > 5000
 w, h = struct.unpack(">II", p[16:24])
-assert (w, h) == (20 + 2 * 560, 720), (w, h)
+# three columns: vertices, edges, and the edge points (bipyramid links)
+assert (w, h) == (20 + 3 * 560, 720), (w, h)
 s = open(d + "/p.svg").read()
 assert "<svg" in s and 'width="900pt"' in s and s.rstrip().endswith("</svg>"), s[:200]
 PY
