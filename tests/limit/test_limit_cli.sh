@@ -53,6 +53,16 @@ expect 2 "exactly one of --at, --samples and --gauss" "$exe" limit --scheme mlca
 expect 2 "--scheme is required" "$exe" limit "$mesh" --samples 2
 expect 2 "tetoct is not one" "$exe" limit --scheme tetoct "$mesh" --samples 2
 expect 2 "hexahedra only" "$exe" limit --scheme mlca "$(dirname "$0")/../../data/meshes/cube-6tets.mesh" --samples 2
+# creases (issue 36): the cube with crease quadrilaterals on its faces is
+# evaluated (every sample, with its Jacobian) as subdivide refines it; a
+# crease that lies on no hexahedron (a segment across a face) is refused
+cube="$(dirname "$0")/../../data/meshes/cube-creased.mesh"
+for s in mlca ccsolid; do
+  c=$("$exe" limit --scheme $s "$cube" --samples 4 -d | awk 'NF == 16' | wc -l)
+  checks=$((checks + 1)); [ "$c" -eq 64 ] || fail "$s: cube-creased.mesh: $c full sample lines, not 64"
+done
+sed 's/^Quadrilaterals$/Edges\n1\n1 4 0\nQuadrilaterals/' "$cube" > "$tmp/diag.mesh"
+expect 2 "segment 1 is not an edge of any hexahedron" "$exe" limit --scheme ccsolid "$tmp/diag.mesh" --samples 2
 expect 2 "--gauss '0'" "$exe" limit --scheme mlca "$mesh" --gauss 0
 expect 2 "--format: expected text, json, vtk or vtu" "$exe" limit --scheme mlca "$mesh" --gauss 1 --format xml
 expect 2 "No such file" "$exe" limit --scheme mlca /nonexistent.mesh --gauss 1
