@@ -16,7 +16,8 @@
  *     affine image of the grid is its own limit, with the constant Jacobian,
  *     in every cell and on every face, edge and corner;
  *   - the Jacobian against finite differences of limit values, one-sided on
- *     the boundary and on the crease plane.
+ *     the boundary and on the crease plane;
+ *   - the cached walk against the reference (plain steps, no runs).
  * Bad creases (off the hexahedra) are refused. */
 #include <math.h>
 #include <stdio.h>
@@ -357,6 +358,42 @@ static void test_differences(const ss_scheme *s) {
   ss_cx_free(g);
 }
 
+/* The cached walk (stationary runs as eigen-decompositions) against the
+ * reference (plain steps of the actual patch), at points near the creases
+ * and the boundary: the walk's runs and caches handle crease keys as the
+ * plain refinement does. */
+static void test_reference(const ss_scheme *s) {
+  const int n = 4;
+  ss_error err = {0};
+  ss_cx *g = creased_grid();
+  ss_limit *L;
+  REQUIRE_OK_VOID(ss_limit_new(s, g, &L, &err), &err);
+  const size_t cells[] = {gcell(n, 1, 2, 1), gcell(n, 2, 1, 2), gcell(n, 1, 0, 0),
+                          gcell(n, 3, 0, 1)};
+  const double xs[][3] = {
+      {0.3, 0.6, 0.999}, {0.7, 0.2, 0.001}, {0.01, 0.99, 0.98}, {0.999, 0.003, 0.6}};
+  double worst = 0.0;
+  for (size_t ci = 0; ci < sizeof cells / sizeof cells[0]; ci++)
+    for (size_t q = 0; q < sizeof xs / sizeof xs[0]; q++) {
+      ss_limit_point a, b;
+      REQUIRE_OK_VOID(
+          ss_limit_eval(L, cells[ci], xs[q][0], xs[q][1], xs[q][2], 1, &a, &err), &err);
+      REQUIRE_OK_VOID(ss_limit_eval_reference(L, cells[ci], xs[q][0], xs[q][1], xs[q][2],
+                                              1, 60, &b, &err),
+                      &err);
+      double e = dist3(a.p, b.p);
+      for (int r = 0; r < 3; r++)
+        e = fmax(e,
+                 dist3(a.jac[r], b.jac[r]) / fmax(1.0, dist3(b.jac[r], (double[3]){0})));
+      worst = fmax(worst, e);
+      CHECK(e <= 1e-11, "cell %zu at (%g %g %g): walk and reference differ by %g",
+            cells[ci] + 1, xs[q][0], xs[q][1], xs[q][2], e);
+    }
+  printf("%s creased grid: walk against reference %.2e\n", ss_scheme_name(s), worst);
+  ss_limit_free(L);
+  ss_cx_free(g);
+}
+
 /* A segment across a face (no edge of a hex) and a quad that is no face are
  * refused. */
 static void test_refused(const ss_scheme *s) {
@@ -389,6 +426,7 @@ int main(int argc, char **argv) {
     test_global(s);
     test_affine_box(s);
     test_differences(s);
+    test_reference(s);
     test_refused(s);
     ss_scheme_free(s);
   }
