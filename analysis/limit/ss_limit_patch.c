@@ -246,12 +246,13 @@ static ss_status patch_creases(const ss_lim_adj *a, size_t t, const ss_idx *tv,
       w[j] = UINT32_MAX;
     for (int j = 0; j < nvt; j++) {
       if (loc[cv[j]] < 0) {
+        const size_t bad = code[i] / 4;
         free(code);
         return ss_error_set(err, SS_EINPUT,
                             "hexahedron %zu: %s %zu at one of its corners is not a face, "
                             "edge or corner of the hexahedra there (limit evaluation "
                             "needs creases on the hexahedra)",
-                            t + 1, ss_cell_name(ty), code[i] / 4 + 1);
+                            t + 1, ss_cell_name(ty), bad + 1);
       }
       w[1 + j] = (uint32_t)loc[cv[j]];
     }
