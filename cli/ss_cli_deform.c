@@ -73,7 +73,8 @@ static const char *const usage_text =
  * C11 compilers must support). */
 static const char *const usage_paths =
     "Paths.  exact: the limit evaluator of `subspectra limit` (hexahedral meshes\n"
-    "under mlca, ccsolid and the averaging family, no crease cells).  levels: L\n"
+    "under mlca, ccsolid and the averaging family, creases on the hexahedra\n"
+    "included).  levels: L\n"
     "levels of the scheme's refinement, each point followed into its child cell\n"
     "through the linear split, evaluated by its level-L cell's interpolant; the\n"
     "error estimate is g_L lambda / (1 - lambda) with g_L the change from level\n"

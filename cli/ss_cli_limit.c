@@ -28,11 +28,18 @@ static const char *const usage_text =
     "--derivatives the 3x3 Jacobian (rows d/dU, d/dV, d/dW).  Cells are numbered\n"
     "from 1 as in the file.\n"
     "\n"
-    "Fields: coordinates past the third (a Medit 4th coordinate, the field w)\n"
-    "are scalar values per control point; they are subdivided like the\n"
-    "coordinates (the same weights), and their limit values are written with\n"
-    "each point, with --derivatives also their gradients in the cell's\n"
-    "parameters (d/dU, d/dV, d/dW).  A mesh without them is evaluated as before.\n"
+    "Boundaries and creases: corners (vertex cells), segments and quadrilaterals\n"
+    "on the hexahedra are creases, refined by the scheme's own crease rules (as\n"
+    "subdivide refines them); the limit on boundary and creased cells comes from\n"
+    "those rules, with one-sided derivatives on the boundary and on a crease\n"
+    "surface, where they exist (docs/limit.md).\n"
+    "\n"
+    "Fields: coordinates past the third (a Medit 4th coordinate, or a gmsh\n"
+    "scalar $NodeData: the field w) are scalar values per control point; they\n"
+    "are subdivided like the coordinates (the same weights), and their limit\n"
+    "values are written with each point, with --derivatives also their\n"
+    "gradients in the cell's parameters (d/dU, d/dV, d/dW).  A mesh without\n"
+    "them is evaluated as before.\n"
     "\n"
     "  -s, --scheme S     mlca or ccsolid (any scheme that splits hexahedra\n"
     "                     multilinearly with a one-ring rule and is the\n"
@@ -94,10 +101,10 @@ static const char *const usage_how =
     "Exit status: 0 all points evaluated; 1 some point not evaluated in full\n"
     "(below; every point is written all the same); 2 bad usage or input,\n"
     "before anything is evaluated (bad options, an --at that is not \"CELL U V\n"
-    "W\", an unreadable mesh, a mesh with cells other than hexahedra, not\n"
-    "manifold across a face, or with flat, folded or inverted hexahedra, a\n"
-    "scheme that does not split hexahedra or is no tricubic B-spline on grids,\n"
-    "a field value that is not a finite number).\n";
+    "W\", an unreadable mesh, a mesh with cells other than hexahedra and the\n"
+    "creases on them, not manifold across a face, or with flat, folded or\n"
+    "inverted hexahedra, a scheme that does not split hexahedra or is no\n"
+    "tricubic B-spline on grids, a field value that is not a finite number).\n";
 
 /* The usage text's third part: batches. */
 static const char *const usage_batch =

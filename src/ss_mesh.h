@@ -87,9 +87,13 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
  * is vertex k; cells keep the file's element order within each type; a
  * cell's reference is the first physical group of its entity, else the
  * entity's tag; vertex references are 0.  Coordinates: 2 when the mesh has no
- * 3D element and every z is 0, else 3.  gmsh runs in a child process (fork;
- * gmsh 4.8 crashes on some malformed files: then SS_EINPUT "gmsh crashed"),
- * one read at a time (a mutex: gmsh's API has global state); gmsh prints
+ * 3D element and every z is 0, else 3; with one scalar $NodeData field (a
+ * view of node data with one component: its first step), 4, the field the
+ * 4th coordinate (as a Medit "Dimension 4"; z = 0 in a plane).  Views of
+ * element data, vectors or tensors are not read; two scalar node fields,
+ * a node without a value or a value that is not finite are SS_EINPUT.  gmsh runs in a
+ * child process (fork; gmsh 4.8 crashes on some malformed files: then SS_EINPUT "gmsh
+ * crashed"), one read at a time (a mutex: gmsh's API has global state); gmsh prints
  * nothing.  SS_EIO if the
  * file cannot be opened; SS_EINPUT for a malformed file or an element type
  * that has no cell here (prisms, pyramids, higher order), and in a build

@@ -35,6 +35,7 @@
 #include <dlfcn.h>
 #include <gmshc.h>
 #include <locale.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -119,7 +120,9 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
   X(gmshModelGetPhysicalGroupsForEntity)                                                 \
   X(gmshModelMeshGetNodes)                                                               \
   X(gmshModelMeshGetElements)                                                            \
-  X(gmshModelMeshGetElementProperties)
+  X(gmshModelMeshGetElementProperties)                                                   \
+  X(gmshViewGetTags)                                                                     \
+  X(gmshViewGetHomogeneousModelData)
 
 typedef struct {
 #define SS_GMSH_FIELD(f) __typeof__(f) *f; /* gmsh's function f */
@@ -268,6 +271,99 @@ done:
   return st;
 }
 
+/* The scalar node field of view `tag` (its first step) as a 4th coordinate
+ * of cx's vertices (nd: their tags): *out a new complex of 4 coordinates
+ * (z = 0 for a plane), vertices only.  SS_EINPUT for a node without a value
+ * or a value that is not finite; SS_ENOMEM. */
+static ss_status field_complex(const char *path, const node_tags *nd, const ss_cx *cx,
+                               const size_t *tags, size_t ntags, const double *data,
+                               ss_cx **out, ss_error *err) {
+  ss_status st = SS_OK;
+  ss_cx *f = NULL;
+  double *w = malloc((cx->nv + 1) * sizeof *w);
+  if (!w) return ss_error_nomem(err, "gmsh node field");
+  for (size_t v = 0; v < cx->nv; v++)
+    w[v] = NAN;
+  for (size_t i = 0; i < ntags; i++) {
+    const size_t *k = bsearch(tags + i, nd->sorted, nd->n, sizeof *nd->sorted, cmp_size);
+    if (!k) continue; /* a node no element uses (version 2 drops it) */
+    if (!isfinite(data[i])) {
+      st = ss_error_set(err, SS_EINPUT,
+                        "%s: $NodeData: the value of node %zu is %g, not a finite number",
+                        path, tags[i], data[i]);
+      goto done;
+    }
+    w[k - nd->sorted] = data[i];
+  }
+  for (size_t v = 0; v < cx->nv; v++)
+    if (isnan(w[v])) {
+      st = ss_error_set(err, SS_EINPUT,
+                        "%s: $NodeData gives node %zu no value (a field needs one per "
+                        "node)",
+                        path, nd->sorted[v]);
+      goto done;
+    }
+  if ((st = ss_cx_new(4, &f, err)) || (st = ss_cx_reserve_vertices(f, cx->nv, err)))
+    goto done;
+  for (size_t v = 0; v < cx->nv; v++) {
+    double x[4] = {0, 0, 0, w[v]};
+    for (int d = 0; d < cx->dim; d++)
+      x[d] = cx->x[v * (size_t)cx->dim + (size_t)d];
+    if ((st = ss_cx_add_vertex(f, x, cx->vref[v], err))) goto done;
+  }
+done:
+  free(w);
+  if (st)
+    ss_cx_free(f);
+  else
+    *out = f;
+  return st;
+}
+
+/* A field per node: gmsh makes each $NodeData section (by name) a view.
+ * With one view of scalar node data, its first step becomes the 4th
+ * coordinate of the vertices in *cx (replaced), as a Medit "Dimension 4";
+ * views of element data or of vectors and tensors are not read.  SS_EINPUT
+ * for two scalar node views (a complex holds one field) and as
+ * field_complex; SS_ENOMEM. */
+static ss_status read_field(const gmsh_api *g, const char *path, const node_tags *nd,
+                            ss_cx **cx, ss_error *err) {
+  ss_status st = SS_OK;
+  int *vt = NULL, ierr = 0, found = -1;
+  size_t nvt = 0;
+  g->gmshViewGetTags(&vt, &nvt, &ierr);
+  if (ierr)
+    return ss_error_set(err, SS_EINPUT, "%s: gmsh could not list its views", path);
+  for (size_t i = 0; i < nvt && !st; i++) {
+    char *type = NULL;
+    size_t *tags = NULL, ntags = 0, ndata = 0;
+    double *data = NULL, time = 0.0;
+    int ncomp = 0;
+    g->gmshViewGetHomogeneousModelData(vt[i], 0, &type, &tags, &ntags, &data, &ndata,
+                                       &time, &ncomp, &ierr);
+    if (!ierr && type && !strcmp(type, "NodeData") && ncomp == 1 && ndata == ntags) {
+      if (found >= 0)
+        st = ss_error_set(err, SS_EINPUT,
+                          "%s: two scalar $NodeData fields; a mesh carries one (the 4th "
+                          "coordinate)",
+                          path);
+      else {
+        ss_cx *f = NULL;
+        found = vt[i];
+        if (!(st = field_complex(path, nd, *cx, tags, ntags, data, &f, err))) {
+          ss_cx_free(*cx);
+          *cx = f;
+        }
+      }
+    }
+    g->gmshFree(type);
+    g->gmshFree(tags);
+    g->gmshFree(data);
+  }
+  g->gmshFree(vt);
+  return st;
+}
+
 /* gmsh's element block of one type, `type`, on one entity: count elements,
  * tags[i] and their nodes nodes[i * nv ..], nnodes in all; into es with
  * reference ref, their nodes as vertex indices (nd).  SS_EINPUT for a type
@@ -412,6 +508,7 @@ static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
   ss_cx *cx = NULL;
   *out = NULL;
   ss_status st = read_nodes(g, path, &nd, &cx, err);
+  if (!st) st = read_field(g, path, &nd, &cx, err);
   if (!st) st = gather_elements(g, path, &nd, &es, err);
   if (!st) st = add_cells(cx, path, &es, err);
   if (!st) {
@@ -513,8 +610,8 @@ static int take(cursor *c, void *dst, size_t n) {
 static int decode(cursor *c, ss_cx **out, ss_error *err) {
   int32_t dim;
   uint64_t nv;
-  if (take(c, &dim, sizeof dim) || take(c, &nv, sizeof nv) || dim < 1 || dim > 3 ||
-      nv > c->left / (sizeof(double) * (size_t)dim))
+  if (take(c, &dim, sizeof dim) || take(c, &nv, sizeof nv) || dim < 1 ||
+      dim > SS_MAXDIM || nv > c->left / (sizeof(double) * (size_t)dim))
     return -1;
   ss_cx *cx = NULL;
   if (ss_cx_new(dim, &cx, err) || ss_cx_reserve_vertices(cx, (size_t)nv, err)) {
@@ -526,7 +623,7 @@ static int decode(cursor *c, ss_cx **out, ss_error *err) {
   c->p += nv * (size_t)dim * sizeof(double);
   c->left -= nv * (size_t)dim * sizeof(double);
   for (uint64_t i = 0; i < nv; i++) {
-    double x[3];
+    double x[SS_MAXDIM];
     int32_t ref;
     memcpy(x, xs + i * (size_t)dim * sizeof(double), (size_t)dim * sizeof(double));
     if (take(c, &ref, sizeof ref)) goto bad;

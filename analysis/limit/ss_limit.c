@@ -59,6 +59,48 @@ static ss_status check_fields(size_t nv, size_t nf, const double *fields, ss_err
   return SS_OK;
 }
 
+/* Whether crease cell v (type t) is a face, edge or corner of hex h: its
+ * corners' binary coordinates in h agree in 3 - dim(t) bits. */
+static int on_hex(const ss_cx *cx, size_t h, ss_cell_type t, const ss_idx *v) {
+  const ss_idx *hv = ss_cx_cell(cx, SS_HEX, h);
+  unsigned agree = 7u, first = 0;
+  for (int j = 0; j < ss_cell_nverts(t); j++) {
+    int k = -1;
+    for (int i = 0; i < 8; i++)
+      if (hv[i] == v[j]) k = i;
+    if (k < 0) return 0;
+    unsigned b = ss_cube_corner_bits(3, k);
+    if (!j) first = b;
+    agree &= ~(b ^ first);
+  }
+  int nagree = (int)(agree & 1u) + (int)((agree >> 1) & 1u) + (int)((agree >> 2) & 1u);
+  return nagree == 3 - ss_cell_dim(t);
+}
+
+/* SS_EINPUT naming the first crease cell (vertex cell, segment, quad) that
+ * is no corner, edge or face of a hex: a patch holds the cells on its hexes
+ * only. */
+static ss_status check_creases(const ss_lim_adj *a, ss_error *err) {
+  const ss_cx *cx = a->cx;
+  const ss_cell_type ts[] = {SS_VERTEX, SS_SEGMENT, SS_QUAD};
+  for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++)
+    for (size_t c = 0; c < cx->nc[ts[i]]; c++) {
+      const ss_idx *v = ss_cx_cell(cx, ts[i], c);
+      int found = 0;
+      for (size_t j = a->vptr[v[0]]; j < a->vptr[v[0] + 1] && !found; j++)
+        found = on_hex(cx, a->vcell[j], ts[i], v);
+      if (!found)
+        return ss_error_set(err, SS_EINPUT,
+                            "limit evaluation: %s %zu is not %s of any hexahedron "
+                            "(creases and boundary cells must lie on the hexahedra)",
+                            ss_cell_name(ts[i]), c + 1,
+                            ts[i] == SS_QUAD      ? "a face"
+                            : ts[i] == SS_SEGMENT ? "an edge"
+                                                  : "a corner");
+    }
+  return SS_OK;
+}
+
 ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,
                        ss_error *err) {
   return ss_limit_new_fields(s, mesh, 0, NULL, out, err);
@@ -79,13 +121,16 @@ ss_status ss_limit_new_fields(const ss_scheme *s, const ss_cx *mesh, size_t nf,
     return ss_error_set(err, SS_EINPUT,
                         "limit evaluation needs a mesh with 3 coordinates, not %d",
                         mesh->dim);
-  for (int t = 0; t < SS_NCELLTYPES; t++)
-    if (t != SS_HEX && mesh->nc[t])
+  for (int t = 0; t < SS_NCELLTYPES; t++) {
+    int crease = t == SS_VERTEX || t == SS_SEGMENT || t == SS_QUAD;
+    if (t != SS_HEX && mesh->nc[t] && (!crease || !ss_scheme_accepts(s, (ss_cell_type)t)))
       return ss_error_set(err, SS_EINPUT,
-                          "limit evaluation takes meshes of hexahedra only; this one has "
-                          "%zu %s (creases and boundary cells of lower dimension are not "
-                          "supported yet)",
-                          mesh->nc[t], ss_cell_plural((ss_cell_type)t));
+                          "limit evaluation takes meshes of hexahedra only (with "
+                          "corners, segments and quadrilaterals as creases where scheme "
+                          "%s takes them); this one has %zu %s",
+                          ss_scheme_name(s), mesh->nc[t],
+                          ss_cell_plural((ss_cell_type)t));
+  }
   if (!mesh->nc[SS_HEX])
     return ss_error_set(err, SS_EINPUT, "limit evaluation: the mesh has no hexahedra");
   if ((st = ss_cx_validate(mesh, err)) || (st = check_fields(mesh->nv, nf, fields, err)))
@@ -104,7 +149,9 @@ ss_status ss_limit_new_fields(const ss_scheme *s, const ss_cx *mesh, size_t nf,
     L->nf = nf;
   }
   if ((st = ss_cx_copy(mesh, &L->mesh, err))) goto done;
-  if ((st = ss_lim_adj_build(L->mesh, &L->adj, err))) goto done;
+  if ((st = ss_lim_adj_build(L->mesh, &L->adj, err)) ||
+      (st = check_creases(&L->adj, err)))
+    goto done;
   L->loc = malloc((mesh->nv + 1) * sizeof *L->loc);
   L->cell = calloc(mesh->nc[SS_HEX], sizeof *L->cell);
   L->captab = 64;

@@ -50,10 +50,14 @@
  *     coordinate in double precision, each a K x K product (K ~ 100 patch
  *     points).  Bounded, not constant.
  * Boundary cells are walked the same way (the patch holds the boundary rule's
- * cells).  A point on the boundary surface (or exactly on an extraordinary
- * vertex or edge) never reaches a regular patch: every double is dyadic, so
- * once its binary digits have run out it is a corner of its sub-cell, the
- * fixed point of an infinite run.  Its Jacobian comes from that run's
+ * cells), and so are creased ones: vertex cells, segments and quads on the
+ * hexes are the scheme's creases, and a patch carries (and its key names)
+ * those holding a corner of its cell -- the only ones the rules for its
+ * children's points read -- so every step applies the crease rules as a
+ * global refinement would; a patch with one is never regular.  A point on the boundary
+ * surface (or exactly on an extraordinary vertex or edge) never reaches a regular patch:
+ * every double is dyadic, so once its binary digits have run out it is a corner of its
+ * sub-cell, the fixed point of an infinite run.  Its Jacobian comes from that run's
  * eigenvectors: components with |lambda| < 1/2 have derivative 0 there,
  * those with lambda = 1/2 (real, or a pair 1/2 +- i eps: a double 1/2 split
  * by rounding) are linear along rays (their derivative is read from one more
@@ -147,7 +151,9 @@ typedef struct {
 /* An evaluator for the limit of `mesh` under scheme s.  The scheme is
  * borrowed (it must outlive the evaluator; schemes are immutable); the mesh
  * is copied.  SS_EINPUT when the mesh is not 3D, holds cells other than
- * hexahedra, has a face shared by more than two cells, or the scheme does not
+ * hexahedra and creases on them (vertex cells, segments, quads the scheme
+ * takes, each a corner, edge or face of a hex), has a face shared by more
+ * than two cells, or the scheme does not
  * split hexes multilinearly with a reach-1 rule or is not the tricubic
  * B-spline on a regular grid; SS_ENOMEM.  O(cells). */
 ss_status ss_limit_new(const ss_scheme *s, const ss_cx *mesh, ss_limit **out,

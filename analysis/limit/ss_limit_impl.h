@@ -15,14 +15,23 @@
 #include "ss_limit_tube.h"
 #include "ss_scheme.h"
 
-/* Vertex-to-cell incidence and face neighbours of the hexes of a complex. */
+/* Vertex-to-cell incidence and face neighbours of the hexes of a complex, and
+ * the crease cells (vertex cells, segments, quads: lower-dimensional cells,
+ * which the schemes refine as creases and boundaries) at each vertex. */
 typedef struct {
   const ss_cx *cx; /* the complex (borrowed) */
   size_t nh;       /* hexes */
   size_t *vptr;    /* nv + 1 offsets into vcell */
   size_t *vcell;   /* hexes at each vertex */
   int64_t *nb;     /* nh * 6: neighbour across stored face 2 * axis + side, or -1 */
+  size_t *cptr;    /* nv + 1 offsets into ccell */
+  size_t *ccell;   /* crease cells at each vertex, as 4 * index + type
+                      (SS_VERTEX, SS_SEGMENT or SS_QUAD) */
 } ss_lim_adj;
+
+/* Crease cell types a patch carries, and the words of one in a patch's
+ * crease key: the type, then its vertices (SS_LIM_CREASE_W - 1 at most). */
+#define SS_LIM_CREASE_W 5
 
 /* A cube symmetry: framed axis a is stored axis perm[a], reversed if flip[a]. */
 typedef struct {
@@ -43,11 +52,20 @@ typedef struct {
   unsigned posbad;  /* bit d set if some vertex was met at two different
                        positions along axis d (around an extraordinary edge
                        the positions across it disagree, along it they do not) */
-  int regular;      /* 1 if the patch is the 3x3x3 block of a grid */
+  size_t ncrease;   /* crease cells holding a corner of the target */
+  uint32_t *ckey;   /* ncrease * SS_LIM_CREASE_W: each crease cell's type, then
+                       its vertices as patch numbers (a segment ascending, a
+                       quad cyclic from its smallest towards the smaller
+                       neighbour; unused words UINT32_MAX), the cells in
+                       ascending order of these words */
+  int regular;      /* 1 if the patch is the 3x3x3 block of a grid, no
+                       crease cell holding a corner of the target */
   uint32_t net[64]; /* regular: patch vertex at grid position i + 4j + 16k,
                        position (i - 1, j - 1, k - 1) */
 } ss_lim_patch;
 
+/* The adjacency of cx's hexes and its crease cells' incidence.  SS_EINPUT for
+ * a face in more than two hexes (non-manifold); SS_ENOMEM. */
 ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err);
 void ss_lim_adj_free(ss_lim_adj *a);
 
@@ -60,23 +78,28 @@ int ss_lim_frame_is_id(const ss_lim_frame *g);
 void ss_lim_frame_apply(const ss_lim_frame *g, const double xs[3], double xf[3],
                         double G[3][3]);
 
-/* Cut the patch of hex t of a->cx in frame g.  loc is scratch of a->cx->nv
- * entries, all -1 on entry and on return.  SS_EINPUT when the cells around t
- * are not face-connected (a non-manifold vertex); SS_ENOMEM. */
+/* Cut the patch of hex t of a->cx in frame g, with the crease cells holding
+ * a corner of t (the others do not reach the limit on t: the rule of every
+ * fine vertex of a child's patch reads only cells holding a corner of t).
+ * loc is scratch of a->cx->nv entries, all -1 on entry and on return.
+ * SS_EINPUT when the cells around t are not face-connected (a non-manifold
+ * vertex) or a crease cell at a corner of t leaves the patch (it lies on no
+ * hex at that corner); SS_ENOMEM. */
 ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
                              int64_t *loc, ss_lim_patch *out, ss_error *err);
-/* As ss_lim_patch_build in the frame with the smallest key (the identity frame
- * first among equals); *g receives it. */
+/* As ss_lim_patch_build in the frame with the smallest key, then crease key
+ * (the identity frame first among equals); *g receives it. */
 ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
                                  ss_lim_patch *out, ss_lim_frame *g, ss_error *err);
 void ss_lim_patch_free(ss_lim_patch *p);
-/* Hash of a key. */
+/* Hash of a key and crease key. */
 uint64_t ss_lim_patch_hash(const ss_lim_patch *p);
-/* Whether two patches have the same key. */
+/* Whether two patches have the same key and crease key. */
 int ss_lim_patch_same(const ss_lim_patch *p, const ss_lim_patch *q);
 
 /* The patch as a complex: vertex i at cx's vertex p->src[i], the framed cells
- * in walk order (cell 0 the target, in its frame).  SS_ENOMEM. */
+ * in walk order (cell 0 the target, in its frame), then the crease cells in
+ * the crease key's order.  SS_ENOMEM. */
 ss_status ss_lim_patch_complex(const ss_cx *cx, const ss_lim_patch *p, ss_cx **out,
                                ss_error *err);
 

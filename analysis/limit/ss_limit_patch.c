@@ -19,7 +19,44 @@ void ss_lim_adj_free(ss_lim_adj *a) {
   free(a->vptr);
   free(a->vcell);
   free(a->nb);
+  free(a->cptr);
+  free(a->ccell);
   memset(a, 0, sizeof *a);
+}
+
+/* The crease cell types a patch carries. */
+static const ss_cell_type crease_types[] = {SS_VERTEX, SS_SEGMENT, SS_QUAD};
+#define NCREASE_TYPES (sizeof crease_types / sizeof crease_types[0])
+
+/* a->cptr, a->ccell: the crease cells at each vertex. */
+static ss_status crease_incidence(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
+  size_t n = 0;
+  for (size_t i = 0; i < NCREASE_TYPES; i++)
+    n += cx->nc[crease_types[i]] * (size_t)ss_cell_nverts(crease_types[i]);
+  a->cptr = calloc(cx->nv + 1, sizeof *a->cptr);
+  a->ccell = malloc((n + 1) * sizeof *a->ccell);
+  if (!a->cptr || !a->ccell) return ss_error_nomem(err, "crease incidence");
+  for (int pass = 0; pass < 2; pass++) {
+    for (size_t i = 0; i < NCREASE_TYPES; i++) {
+      ss_cell_type t = crease_types[i];
+      int nvt = ss_cell_nverts(t);
+      for (size_t c = 0; c < cx->nc[t]; c++)
+        for (int j = 0; j < nvt; j++) {
+          ss_idx v = ss_cx_cell(cx, t, c)[j];
+          if (pass)
+            a->ccell[a->cptr[v]++] = 4 * c + (size_t)t;
+          else
+            a->cptr[v + 1]++;
+        }
+    }
+    if (!pass)
+      for (size_t v = 0; v < cx->nv; v++)
+        a->cptr[v + 1] += a->cptr[v];
+  }
+  for (size_t v = cx->nv; v > 0; v--)
+    a->cptr[v] = a->cptr[v - 1];
+  a->cptr[0] = 0;
+  return SS_OK;
 }
 
 static int cmp_u32(const void *x, const void *y) {
@@ -53,6 +90,7 @@ ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
   a->vptr[0] = 0;
   for (size_t i = 0; i < a->nh * 6; i++)
     a->nb[i] = -1;
+  if ((st = crease_incidence(cx, a, err))) goto done;
   if ((st = ss_hash_new(4, a->nh * 3 + 1, &h, err))) goto done;
   /* each face by its sorted corners; the value is the first (cell, face) */
   for (size_t c = 0; c < a->nh; c++) {
@@ -124,6 +162,7 @@ void ss_lim_patch_free(ss_lim_patch *p) {
   free(p->key);
   free(p->src);
   free(p->pos);
+  free(p->ckey);
   memset(p, 0, sizeof *p);
 }
 
@@ -133,12 +172,96 @@ uint64_t ss_lim_patch_hash(const ss_lim_patch *p) {
     h ^= p->key[i];
     h *= 1099511628211ull;
   }
+  for (size_t i = 0; i < p->ncrease * SS_LIM_CREASE_W; i++) {
+    h ^= p->ckey[i];
+    h *= 1099511628211ull;
+  }
   return h;
 }
 
 int ss_lim_patch_same(const ss_lim_patch *p, const ss_lim_patch *q) {
-  return p->ncells == q->ncells && p->nv == q->nv &&
-         !memcmp(p->key, q->key, p->ncells * 8 * sizeof *p->key);
+  return p->ncells == q->ncells && p->nv == q->nv && p->ncrease == q->ncrease &&
+         !memcmp(p->key, q->key, p->ncells * 8 * sizeof *p->key) &&
+         (!p->ncrease ||
+          !memcmp(p->ckey, q->ckey, p->ncrease * SS_LIM_CREASE_W * sizeof *p->ckey));
+}
+
+static int cmp_size(const void *x, const void *y) {
+  size_t a = *(const size_t *)x, b = *(const size_t *)y;
+  return (a > b) - (a < b);
+}
+
+static int cmp_crease(const void *x, const void *y) {
+  const uint32_t *a = x, *b = y;
+  for (int i = 0; i < SS_LIM_CREASE_W; i++)
+    if (a[i] != b[i]) return a[i] < b[i] ? -1 : 1;
+  return 0;
+}
+
+/* w[1..n]: n vertex numbers of a cell of type t, in the crease key's order
+ * (a quad cyclic from its smallest towards the smaller neighbour). */
+static void crease_order(ss_cell_type t, uint32_t *w, int n) {
+  uint32_t v[4];
+  memcpy(v, w + 1, (size_t)n * sizeof *v);
+  if (t == SS_SEGMENT && v[1] < v[0]) {
+    w[1] = v[1];
+    w[2] = v[0];
+  } else if (t == SS_QUAD) {
+    int m = 0;
+    for (int i = 1; i < 4; i++)
+      if (v[i] < v[m]) m = i;
+    int dir = v[(m + 1) % 4] < v[(m + 3) % 4] ? 1 : 3;
+    for (int i = 0; i < 4; i++)
+      w[1 + i] = v[(m + dir * i) % 4];
+  }
+}
+
+/* out->ncrease, out->ckey: the crease cells holding a corner (tv) of the
+ * target, numbered by loc (the patch's numbering). */
+static ss_status patch_creases(const ss_lim_adj *a, size_t t, const ss_idx *tv,
+                               const int64_t *loc, ss_lim_patch *out, ss_error *err) {
+  size_t n = 0;
+  for (int i = 0; i < 8; i++)
+    n += a->cptr[tv[i] + 1] - a->cptr[tv[i]];
+  if (!n) return SS_OK;
+  size_t *code = malloc(n * sizeof *code);
+  out->ckey = malloc(n * SS_LIM_CREASE_W * sizeof *out->ckey);
+  if (!code || !out->ckey) {
+    free(code);
+    return ss_error_nomem(err, "patch creases");
+  }
+  n = 0;
+  for (int i = 0; i < 8; i++)
+    for (size_t j = a->cptr[tv[i]]; j < a->cptr[tv[i] + 1]; j++)
+      code[n++] = a->ccell[j];
+  qsort(code, n, sizeof *code, cmp_size);
+  for (size_t i = 0; i < n; i++) {
+    if (i && code[i] == code[i - 1]) continue; /* met from two corners */
+    ss_cell_type ty = (ss_cell_type)(code[i] & 3u);
+    const ss_idx *cv = ss_cx_cell(a->cx, ty, code[i] / 4);
+    int nvt = ss_cell_nverts(ty);
+    uint32_t *w = out->ckey + out->ncrease * SS_LIM_CREASE_W;
+    w[0] = (uint32_t)ty;
+    for (int j = 1; j < SS_LIM_CREASE_W; j++)
+      w[j] = UINT32_MAX;
+    for (int j = 0; j < nvt; j++) {
+      if (loc[cv[j]] < 0) {
+        const size_t bad = code[i] / 4;
+        free(code);
+        return ss_error_set(err, SS_EINPUT,
+                            "hexahedron %zu: %s %zu at one of its corners is not a face, "
+                            "edge or corner of the hexahedra there (limit evaluation "
+                            "needs creases on the hexahedra)",
+                            t + 1, ss_cell_name(ty), bad + 1);
+      }
+      w[1 + j] = (uint32_t)loc[cv[j]];
+    }
+    crease_order(ty, w, nvt);
+    out->ncrease++;
+  }
+  free(code);
+  qsort(out->ckey, out->ncrease, SS_LIM_CREASE_W * sizeof *out->ckey, cmp_crease);
+  return SS_OK;
 }
 
 /* One cell of the walk: which cell, the stored corner of each framed corner
@@ -258,7 +381,7 @@ static ss_status walk_across(const ss_lim_adj *a, const ss_idx *tv, const walk_c
 /* Regular: 27 cells, 64 vertices on distinct grid positions in [-1, 2]^3;
  * then out->net holds the grid. */
 static void mark_regular(ss_lim_patch *out, int posok) {
-  if (out->ncells == 27 && out->nv == 64 && posok) {
+  if (out->ncells == 27 && out->nv == 64 && posok && !out->ncrease) {
     int filled[64] = {0}, ok = 1;
     for (size_t v = 0; v < 64 && ok; v++) {
       int i = out->pos[v][0] + 1, j = out->pos[v][1] + 1, k = out->pos[v][2] + 1;
@@ -320,6 +443,7 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
                       t + 1);
     goto done;
   }
+  if ((st = patch_creases(a, t, tv, loc, out, err))) goto done;
   mark_regular(out, posok);
 done:
   for (size_t v = 0; v < out->nv; v++)
@@ -349,8 +473,13 @@ ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
         return st;
       }
       int better = out->key == NULL;
-      if (!better && cand.ncells == out->ncells)
-        better = memcmp(cand.key, out->key, cand.ncells * 8 * sizeof *cand.key) < 0;
+      if (!better && cand.ncells == out->ncells) {
+        int c = memcmp(cand.key, out->key, cand.ncells * 8 * sizeof *cand.key);
+        if (!c && cand.ncrease == out->ncrease && cand.ncrease)
+          c = memcmp(cand.ckey, out->ckey,
+                     cand.ncrease * SS_LIM_CREASE_W * sizeof *cand.ckey);
+        better = c < 0;
+      }
       if (better) {
         ss_lim_patch_free(out);
         *out = cand;
@@ -371,6 +500,10 @@ ss_status ss_lim_patch_complex(const ss_cx *cx, const ss_lim_patch *p, ss_cx **o
   if ((st = ss_cx_reserve_vertices(c, p->nv, err)) ||
       (st = ss_cx_reserve_cells(c, SS_HEX, p->ncells, err)))
     goto done;
+  for (size_t k = 0; k < p->ncrease; k++) {
+    const uint32_t *w = p->ckey + k * SS_LIM_CREASE_W;
+    if ((st = ss_cx_add_cell(c, (ss_cell_type)w[0], w + 1, 0, err))) goto done;
+  }
   for (size_t v = 0; v < p->nv; v++)
     if ((st = ss_cx_add_vertex(c, cx->x + (size_t)p->src[v] * (size_t)cx->dim, 0, err)))
       goto done;

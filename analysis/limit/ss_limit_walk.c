@@ -222,8 +222,8 @@ static ss_status not_reached(const ss_limit *L, size_t cell, int steps, ss_error
   return ss_error_set(
       err, SS_EINPUT,
       "cell %zu: no regular sub-cell after %d subdivision steps: the point "
-      "lies on (or within about 2^-%d of) the mesh boundary, and limit "
-      "points of the boundary surface are not supported yet",
+      "lies on (or within about 2^-%d of) the mesh boundary or a crease, "
+      "where the walk met no stationary run",
       cell + 1, steps, steps);
   (void)L;
 }

@@ -53,6 +53,16 @@ expect 2 "exactly one of --at, --samples and --gauss" "$exe" limit --scheme mlca
 expect 2 "--scheme is required" "$exe" limit "$mesh" --samples 2
 expect 2 "tetoct is not one" "$exe" limit --scheme tetoct "$mesh" --samples 2
 expect 2 "hexahedra only" "$exe" limit --scheme mlca "$(dirname "$0")/../../data/meshes/cube-6tets.mesh" --samples 2
+# creases (issue 36): the cube with crease quadrilaterals on its faces is
+# evaluated (every sample, with its Jacobian) as subdivide refines it; a
+# crease that lies on no hexahedron (a segment across a face) is refused
+cube="$(dirname "$0")/../../data/meshes/cube-creased.mesh"
+for s in mlca ccsolid; do
+  c=$("$exe" limit --scheme $s "$cube" --samples 4 -d | awk 'NF == 16' | wc -l)
+  checks=$((checks + 1)); [ "$c" -eq 64 ] || fail "$s: cube-creased.mesh: $c full sample lines, not 64"
+done
+sed 's/^Quadrilaterals$/Edges\n1\n1 4 0\nQuadrilaterals/' "$cube" > "$tmp/diag.mesh"
+expect 2 "segment 1 is not an edge of any hexahedron" "$exe" limit --scheme ccsolid "$tmp/diag.mesh" --samples 2
 expect 2 "--gauss '0'" "$exe" limit --scheme mlca "$mesh" --gauss 0
 expect 2 "--format: expected text, json, vtk or vtu" "$exe" limit --scheme mlca "$mesh" --gauss 1 --format xml
 expect 2 "No such file" "$exe" limit --scheme mlca /nonexistent.mesh --gauss 1
@@ -180,6 +190,38 @@ out=$("$exe" limit --scheme mlca "$tmp/w.mesh" --at "14 0.5 0.5 0.5" --format js
 checks=$((checks + 1)); echo "$out" | grep -q '"fields":{"w":' && ! echo "$out" | grep -q field_gradients || fail "fields without -d: $out"
 "$exe" limit --scheme mlca "$tmp/w.mesh" --samples 2 -d --format vtk -o "$tmp/w.vtk"
 checks=$((checks + 1)); grep -q "^SCALARS w double 1" "$tmp/w.vtk" && grep -q "^SCALARS w_gradient double 3" "$tmp/w.vtk" || fail "vtk: no w, w_gradient"
+# fields from gmsh (issue 36): the same mesh as a .msh with w as $NodeData
+# gives the same points, Jacobians, values and gradients, byte for byte, and
+# subdivide keeps it as Medit's 4th coordinate, the same vertices
+tomsh() { # tomsh MEDIT [NVAL]: the Medit file with w as $NodeData (its first NVAL values)
+  awk -v nval="${2:-64}" '/^Vertices/ {sec = "V"} /^Hexahedra/ {sec = "H"}
+    sec == "V" && NF == 5 {n++; X[n] = $1; Y[n] = $2; Z[n] = $3; W[n] = $4}
+    sec == "H" && NF == 9 {e++; H[e] = $1 " " $2 " " $3 " " $4 " " $5 " " $6 " " $7 " " $8}
+    END { printf "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n", n
+      for (i = 1; i <= n; i++) print i, X[i], Y[i], Z[i]
+      printf "$EndNodes\n$Elements\n%d\n", e
+      for (i = 1; i <= e; i++) print i, 5, 2, 1, 1, H[i]
+      printf "$EndElements\n$NodeData\n1\n\"density\"\n1\n0.0\n3\n0\n1\n%d\n", nval
+      for (i = 1; i <= nval; i++) print i, W[i]
+      printf "$EndNodeData\n" }' "$1"
+}
+tomsh "$tmp/w.mesh" > "$tmp/w.msh"
+if "$exe" limit --scheme mlca "$tmp/w.msh" --at "1 0.5 0.5 0.5" 2>&1 | grep -q "built without gmsh"; then
+  echo "gmsh \$NodeData: skipped (built without gmsh)"
+else
+  for s in mlca ccsolid; do
+    "$exe" limit --scheme $s "$tmp/w.mesh" --samples 3 -d > "$tmp/w.txt"
+    "$exe" limit --scheme $s "$tmp/w.msh" --samples 3 -d > "$tmp/wm.txt"
+    checks=$((checks + 1)); [ "$(wc -l < "$tmp/wm.txt")" -eq 729 ] && cmp -s "$tmp/w.txt" "$tmp/wm.txt" || fail "$s: \$NodeData field differs from Medit's w"
+  done
+  expect 0 "" "$exe" subdivide --scheme mlca "$tmp/w.msh" -o "$tmp/sm.mesh"
+  expect 0 "" "$exe" subdivide --scheme mlca "$tmp/w.mesh" -o "$tmp/s.mesh"
+  checks=$((checks + 1)); cmp -s <(awk 'NF == 5' "$tmp/sm.mesh") <(awk 'NF == 5' "$tmp/s.mesh") || fail "subdivide: \$NodeData not kept as w"
+  tomsh "$tmp/w.mesh" 63 > "$tmp/w63.msh"
+  expect 2 "NodeData gives node 64 no value" "$exe" limit --scheme mlca "$tmp/w63.msh" --samples 2
+  { tomsh "$tmp/w.mesh"; awk '/^\$NodeData/ {on = 1} on' "$tmp/w.msh" | sed 's/density/stiffness/'; } > "$tmp/w2.msh"
+  expect 2 "two scalar .NodeData fields" "$exe" limit --scheme mlca "$tmp/w2.msh" --samples 2
+fi
 # a vertex without its w shifts the section: refused by the reader, exit 2
 awk 'NR == 9 {print $1, $2, $3, $5; next} {print}' "$tmp/w.mesh" > "$tmp/short.mesh"
 expect 2 "short.mesh:[0-9]*: vertex reference .* is not an integer" "$exe" limit --scheme mlca "$tmp/short.mesh" --samples 2
