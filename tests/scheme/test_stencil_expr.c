@@ -7,7 +7,9 @@
  *     soundly (cos, sqrt, pi: not rational, even where the value is);
  *   - a weight sum off by 1/1000 at one valence only is refused naming that
  *     valence, the line and the file; unknown names, division by zero,
- *     decimals and characters libmatheval has no rule for are refused;
+ *     decimals and characters libmatheval has no rule for are refused, and
+ *     so is a zero divisor rounding hides (0*(1/(1/49*49-1)), which made
+ *     FLINT abort the process);
  *   - an irrational weight makes certified verdicts "weights not rational".
  * Exits 77 (skipped) when the build has no libmatheval. */
 #include <stdlib.h>
@@ -168,6 +170,20 @@ static void test_bad(void) {
              "opposite = 1/8 + 1/(n-3) - 1/(n-3)\n",
       "bad.ini:9: [mask.hex] opposite = '1/8 + 1/(n-3) - 1/(n-3)' is not finite at n = "
       "3");
+  /* a zero divisor that rounding makes nonzero (1/49*49 - 1 = -1.1e-16 in
+   * doubles), multiplied by 0: a finite double, and FLINT's parser aborted
+   * the process on it before its division was checked (DESIGN section 3) */
+  bad(HEAD_M "[mask.hex]\nself = 1/8\nedge = 1/8\nface = 1/8\n"
+             "opposite = 1/8 + 0*(1/(1/49*49-1))\n",
+      "bad.ini:9: [mask.hex] opposite = '1/8 + 0*(1/(1/49*49-1))' divides by exactly 0 "
+      "at n = 1");
+  /* the same in n: exactly 0 at every valence, rounded away at n = 49 only
+   * if at all; the first valence where libmatheval's value is finite is
+   * named (n = 1: 1/49*49 is 0.9999999999999999 in doubles) */
+  bad(HEAD_M "[mask.hex]\nself = 1/8 + 0*(1/(n/49*49-n))\nedge = 1/8\nface = 1/8\n"
+             "opposite = 1/8\n",
+      "bad.ini:6: [mask.hex] self = '1/8 + 0*(1/(n/49*49-n))' divides by exactly 0 at "
+      "n = 1");
   bad(HEAD_M "[mask.hex]\nself = 1/8\nedge = 1/8 + m\nface = 1/8\nopposite = 1/8\n",
       "bad.ini:7: [mask.hex] edge = '1/8 + m': the name 'm' is unknown (known: n)");
   bad(HEAD_M "[mask.hex]\nself = 1/8\nedge = foo(n)\n",
