@@ -5,6 +5,8 @@
 
 #include "ss_case.h"
 #include "ss_link.h"
+#include "ss_result.h"
+#include "ss_scheme.h"
 
 /* How one case ended. */
 typedef enum {
@@ -26,6 +28,7 @@ typedef struct {
   int nomem;                /* an error out of memory or beyond the budget */
   double seconds;           /* wall time of the case */
   int regression;           /* passed in the baseline, does not pass now */
+  double margin;            /* ss_check_margin of the result; -10 on error */
 } ss_check_case;
 
 /* A whole run. */
@@ -41,6 +44,33 @@ typedef struct {
   long nomem;           /* errors out of memory or beyond the budget */
   long regressions;     /* cases marked regression */
 } ss_check_run;
+
+/* List the cases into r->cases (appended): every vertex link with va..vb
+ * vertices (none when vb < va), every edge valence ea..eb (none when eb <
+ * ea), the face if face.  0, or an exit status after a message on stderr
+ * ("subspectra CMD: ..."). */
+int ss_check_list(ss_check_run *r, const char *cmd, long va, long vb, long ea, long eb,
+                  int face);
+
+/* Analyse every case of r under s (shared read-only) with ro on `jobs`
+ * threads: each case's outcome, reason and margin, r->count and r->nomem
+ * (reset first).  With text, print each case that does not pass as soon as
+ * it and every case before it are done (the list's order, whatever the
+ * threads). */
+void ss_check_analyse(ss_check_run *r, const ss_scheme *s, const ss_result_opts *ro,
+                      int jobs, int text);
+
+/* Free r's cases (names, links, the list). */
+void ss_check_run_free(ss_check_run *r);
+
+/* How far a case is from failing, the quantity `tune` maximises: the
+ * spectral gap (|lambda3| - |lambda4|) / |lambda3| of the leading moduli,
+ * and when the characteristic map is judged the smaller of it and the ring's
+ * minimum scaled Jacobian.  Positive when every verdict passes (a passing
+ * case has both positive); a case that does not pass gets min(gap or
+ * Jacobian, 0) - 0.01, so that failing is always below passing and a
+ * nearer failure above a farther one. */
+double ss_check_margin(const ss_result *r);
 
 /* The outcome's name: pass, fail, undecided, error. */
 const char *ss_check_outcome_name(ss_check_outcome o);
