@@ -673,9 +673,9 @@ ss_status ss_stencil_parse_at(const char *text, const char *where,
   return parse_with(text, where, values, out, err);
 }
 
-ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
+ss_status ss_stencil_read(const char *path, char **text, uint64_t *identity,
                           ss_error *err) {
-  *out = NULL;
+  *text = NULL;
   FILE *f = fopen(path, "rb");
   if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
   size_t cap = 4096, n = 0;
@@ -715,7 +715,16 @@ ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
       h = (h ^ (unsigned char)buf[i]) * 1099511628211ull;
     *identity = h;
   }
-  const ss_status st = ss_stencil_parse(buf, path, out, err);
-  free(buf);
+  *text = buf;
+  return SS_OK;
+}
+
+ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
+                          ss_error *err) {
+  *out = NULL;
+  char *text = NULL;
+  ss_status st = ss_stencil_read(path, &text, identity, err);
+  if (!st) st = ss_stencil_parse(text, path, out, err);
+  free(text);
   return st;
 }

@@ -68,6 +68,13 @@ SS_BEGIN_DECLS
 ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
                           ss_error *err);
 
+/* The text of the stencil file at path (*text, NUL-terminated, the caller
+ * frees it) and, if identity is not NULL, the hash ss_stencil_load gives.
+ * SS_EIO if it cannot be read; SS_EINPUT for a NUL byte or more than 16 MB;
+ * SS_ENOMEM. */
+ss_status ss_stencil_read(const char *path, char **text, uint64_t *identity,
+                          ss_error *err);
+
 /* As ss_stencil_load, from the text of a file; `where` names it in messages. */
 ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
                            ss_error *err);
