@@ -174,6 +174,15 @@ static double round_best(ss_tune *t, double keep, long long *num, long long *den
   return eval_rational(t, num, den);
 }
 
+/* "p/q", or "p" when q = 1, into buf (48 bytes). */
+static const char *fmt_rational(char *buf, long long num, long long den) {
+  if (den == 1)
+    snprintf(buf, 48, "%lld", num);
+  else
+    snprintf(buf, 48, "%lld/%lld", num, den);
+  return buf;
+}
+
 /* t->text with each free parameter's line replaced by "NAME = p/q ; ...";
  * NULL out of memory. */
 static char *tuned_text(const ss_tune *t, const long long *num, const long long *den,
@@ -193,11 +202,11 @@ static char *tuned_text(const ss_tune *t, const long long *num, const long long 
       o += n;
     } else {
       const ss_stencil_param *q = t->params.p + t->free[k];
+      char v[48], lo[48], hi[48];
       o += sprintf(
-          o,
-          "%s = %lld/%lld  ; tuned by subspectra tune in ?(%lld/%lld, %lld/%lld): "
-          "smallest margin %.6g\n",
-          q->name, num[k], den[k], q->lo[0], q->lo[1], q->hi[0], q->hi[1], margin);
+          o, "%s = %s  ; tuned by subspectra tune in ?(%s, %s): smallest margin %.6g\n",
+          q->name, fmt_rational(v, num[k], den[k]), fmt_rational(lo, q->lo[0], q->lo[1]),
+          fmt_rational(hi, q->hi[0], q->hi[1]), margin);
     }
     p += n, line++;
   }
@@ -366,6 +375,7 @@ static int tune(ss_tune *t, const tune_opts *o, const char *out) {
   const double searched = t->best;
   const long nsearch = t->evals;
   long long num[SS_STENCIL_MAXPARAMS], den[SS_STENCIL_MAXPARAMS];
+  char buf[48];
   const double m = round_best(t, o->keep, num, den);
   printf("search: %ld evaluations (DIRECT_L, then COBYLA): best smallest margin %.6g "
          "at",
@@ -374,7 +384,7 @@ static int tune(ss_tune *t, const tune_opts *o, const char *out) {
     printf(" %s = %.9g", t->params.p[t->free[i]].name, t->bestx[i]);
   printf("\nrounded:");
   for (int i = 0; i < t->nfree; i++)
-    printf(" %s = %lld/%lld", t->params.p[t->free[i]].name, num[i], den[i]);
+    printf(" %s = %s", t->params.p[t->free[i]].name, fmt_rational(buf, num[i], den[i]));
   printf(": smallest margin %.6g (%ld evaluations in all)\n", m, t->evals);
   char *text = tuned_text(t, num, den, m);
   if (!text) {

@@ -644,10 +644,9 @@ ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
   for (int i = 0; !st && i < pv.n; i++)
     if (pv.p[i].free)
       st = ss_error_set(err, SS_EINPUT,
-                        "%s:%d: [param] %s = ?(%lld/%lld, %lld/%lld) is free: choose it "
-                        "with `subspectra tune`",
-                        where, pv.p[i].line, pv.p[i].name, pv.p[i].lo[0], pv.p[i].lo[1],
-                        pv.p[i].hi[0], pv.p[i].hi[1]);
+                        "%s:%d: [param] %s is free (a range ?(LO, HI)): choose it with "
+                        "`subspectra tune`",
+                        where, pv.p[i].line, pv.p[i].name);
   return st ? st : parse_with(text, where, &pv, out, err);
 }
 

@@ -48,8 +48,8 @@
  * expression (ss_expr.h: needs libmatheval) and exact where rational.  At
  * most SS_STENCIL_MAXPARAMS parameters; each must be used by some weight.
  * ss_stencil_parse and ss_stencil_load refuse a file with a free parameter
- * ("FILE:LINE: [param] a = ?(...) is free: choose it with subspectra
- * tune"); ss_stencil_parse_at reads it with values given. */
+ * ("FILE:LINE: [param] a is free (a range ?(LO, HI)): choose it with
+ * `subspectra tune`"); ss_stencil_parse_at reads it with values given. */
 #ifndef SS_STENCIL_H
 #define SS_STENCIL_H
 

@@ -235,8 +235,8 @@ static void test_params(void) {
                            "other = 1-a\n[mask.quad]\nself = a^2\nedge = a*(1-a)\n"
                            "opposite = (1-a)^2\n[mask.hex]\nself = a^3\n"
                            "edge = a^2*(1-a)\nface = a*(1-a)^2\nopposite = (1-a)^3\n";
-  bad(fam,
-      "bad.ini:6: [param] a = ?(-7/4, 5/4) is free: choose it with `subspectra tune`");
+  bad(fam, "bad.ini:6: [param] a is free (a range ?(LO, HI)): choose it with `subspectra "
+           "tune`");
   ss_stencil_params pv;
   ss_error err = {0};
   ss_scheme *at = NULL, *mlca = NULL;
