@@ -198,8 +198,9 @@ void ss_check_run_free(ss_check_run *r) {
 
 /* The options of a check run. */
 typedef struct {
-  long va, vb, ea, eb, depth, jobs;
-  int face, any, certify, format; /* format: 0 text, 1 json, 2 junit */
+  ss_check_cases k; /* the cases */
+  long depth, jobs;
+  int certify, format; /* format: 0 text, 1 json, 2 junit */
   double tol, max_memory;
   const char *scheme, *baseline;
 } check_opts;
@@ -224,24 +225,12 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
   opterr = 0;
   int c;
   while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+    const int co = ss_check_case_option(c, optarg, "check", &o->k);
+    if (co >= 0) {
+      if (co) return co;
+      continue;
+    }
     switch (c) {
-    case 'v':
-      if (ss_cli_parse_range(optarg, &o->va, &o->vb) || o->va < 4 || o->vb > 9 ||
-          o->va > o->vb)
-        return ss_cli_usage_error(
-            "check", "--vertices '%s' is not A..B with 4 <= A <= B <= 9", optarg);
-      o->any = 1;
-      break;
-    case 'e':
-      if (ss_cli_parse_range(optarg, &o->ea, &o->eb) || o->ea < 3 || o->eb > 64 ||
-          o->ea > o->eb)
-        return ss_cli_usage_error(
-            "check", "--edges '%s' is not A..B with 3 <= A <= B <= 64", optarg);
-      o->any = 1;
-      break;
-    case 'f':
-      o->face = o->any = 1;
-      break;
     case 't':
       if (ss_cli_opt_tol("check", optarg, &o->tol)) return SS_EXIT_USAGE;
       break;
@@ -289,10 +278,39 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
   return 0;
 }
 
-int ss_check_list(ss_check_run *r, const char *cmd, long va, long vb, long ea, long eb,
-                  int face) {
+int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases *k) {
+  if (c == 'v') {
+    if (ss_cli_parse_range(arg, &k->va, &k->vb) || k->va < 4 || k->vb > 9 ||
+        k->va > k->vb)
+      return ss_cli_usage_error(cmd, "--vertices '%s' is not A..B with 4 <= A <= B <= 9",
+                                arg);
+  } else if (c == 'e') {
+    if (ss_cli_parse_range(arg, &k->ea, &k->eb) || k->ea < 3 || k->eb > 64 ||
+        k->ea > k->eb)
+      return ss_cli_usage_error(cmd, "--edges '%s' is not A..B with 3 <= A <= B <= 64",
+                                arg);
+  } else if (c == 'f') {
+    k->face = 1;
+  } else {
+    return -1;
+  }
+  k->any = 1;
+  return 0;
+}
+
+int ss_check_cases_default(ss_check_cases *k, const char *cmd, int tetoct,
+                           const char *what) {
+  if (k->face && !tetoct)
+    return ss_cli_usage_error(cmd, "--face: the %s's split is not tetoct", what);
+  if (!k->any) k->va = 4, k->vb = 6, k->ea = 3, k->eb = 6, k->face = tetoct;
+  return 0;
+}
+
+int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k) {
   gate G = {r, 0, 0}, *g = &G;
   ss_error err = {0};
+  const long va = k->va, vb = k->vb, ea = k->ea, eb = k->eb;
+  const int face = k->face;
   if (vb >= va) {
     ss_enum_opts eo = {(int)va, (int)vb, 0, 1};
     if (ss_enum_links(&eo, visit, g, NULL, &err) || g->failed) {
@@ -348,7 +366,7 @@ static int report(ss_check_run *r, const check_opts *o) {
 }
 
 int ss_cli_check(int argc, char **argv) {
-  check_opts o = {0, -1, 0, -1, SS_JAC_DEPTH, 1, 0, 0, 0, 0, 1e-6, 0.0, NULL, NULL};
+  check_opts o = {SS_CHECK_CASES_NONE, SS_JAC_DEPTH, 1, 0, 0, 1e-6, 0.0, NULL, NULL};
   const int pr = parse_opts(argc, argv, &o);
   if (pr) return pr < 0 ? SS_EXIT_OK : pr;
   const char *path = o.scheme ? "--scheme" : argv[optind];
@@ -364,12 +382,12 @@ int ss_cli_check(int argc, char **argv) {
     return SS_EXIT_USAGE;
   }
   const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
-  if (o.face && !tetoct) {
+  const int bad =
+      ss_check_cases_default(&o.k, "check", tetoct, o.scheme ? "scheme" : "stencil");
+  if (bad) {
     ss_scheme_free(s);
-    return ss_cli_usage_error("check", "--face: the %s's split is not tetoct",
-                              o.scheme ? "scheme" : "stencil");
+    return bad;
   }
-  if (!o.any) o.va = 4, o.vb = 6, o.ea = 3, o.eb = 6, o.face = tetoct;
   ss_check_run run = {o.scheme ? NULL : path,
                       ss_scheme_name(s),
                       o.tol,
@@ -392,7 +410,7 @@ int ss_cli_check(int argc, char **argv) {
   else
     fprintf(info, "check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
             ss_scheme_name(s), o.tol, o.depth, o.certify ? ", certified verdicts" : "");
-  int status = ss_check_list(&run, "check", o.va, o.vb, o.ea, o.eb, o.face);
+  int status = ss_check_list(&run, "check", &o.k);
   if (!status) {
     ss_check_analyse(&run, s, &ro, (int)o.jobs, o.format == 0);
     status = report(&run, &o);

@@ -45,12 +45,33 @@ typedef struct {
   long regressions;     /* cases marked regression */
 } ss_check_run;
 
-/* List the cases into r->cases (appended): every vertex link with va..vb
- * vertices (none when vb < va), every edge valence ea..eb (none when eb <
- * ea), the face if face.  0, or an exit status after a message on stderr
- * ("subspectra CMD: ..."). */
-int ss_check_list(ss_check_run *r, const char *cmd, long va, long vb, long ea, long eb,
-                  int face);
+/* The cases asked for on the command line (check, tune). */
+typedef struct {
+  long va, vb; /* vertex links with va..vb vertices; none when vb < va */
+  long ea, eb; /* edge valences ea..eb; none when eb < ea */
+  int face;    /* the face of two tets */
+  int any;     /* some case option was given */
+} ss_check_cases;
+
+/* No case yet. */
+#define SS_CHECK_CASES_NONE                                                              \
+  { 0, -1, 0, -1, 0, 0 }
+
+/* Option c of getopt_long with its argument arg if it is a case option
+ * ('v' --vertices A..B with 4 <= A <= B <= 9, 'e' --edges A..B with
+ * 3 <= A <= B <= 64, 'f' --face): 0 taken into k, SS_EXIT_USAGE after a
+ * message ("subspectra CMD: ..."), -1 not a case option. */
+int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases *k);
+
+/* After the options: --face refused unless tetoct (SS_EXIT_USAGE after a
+ * message naming what, "scheme" or "stencil"); with no case option the
+ * defaults --vertices 4..6 --edges 3..6, and --face for tetoct.  0 or 2. */
+int ss_check_cases_default(ss_check_cases *k, const char *cmd, int tetoct,
+                           const char *what);
+
+/* List the cases k into r->cases (appended).  0, or an exit status after a
+ * message on stderr ("subspectra CMD: ..."). */
+int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k);
 
 /* Analyse every case of r under s (shared read-only) with ro on `jobs`
  * threads: each case's outcome, reason and margin, r->count and r->nomem

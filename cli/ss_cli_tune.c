@@ -216,8 +216,9 @@ static char *tuned_text(const ss_tune *t, const long long *num, const long long 
 
 /* The options of a tune run. */
 typedef struct {
-  long va, vb, ea, eb, depth, jobs, evals;
-  int face, any, progress;
+  ss_check_cases k; /* the cases */
+  long depth, jobs, evals;
+  int progress;
   double tol, keep;
   const char *output;
 } tune_opts;
@@ -242,24 +243,12 @@ static int parse_opts(int argc, char **argv, tune_opts *o) {
   int c;
   char *end;
   while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+    const int co = ss_check_case_option(c, optarg, "tune", &o->k);
+    if (co >= 0) {
+      if (co) return co;
+      continue;
+    }
     switch (c) {
-    case 'v':
-      if (ss_cli_parse_range(optarg, &o->va, &o->vb) || o->va < 4 || o->vb > 9 ||
-          o->va > o->vb)
-        return ss_cli_usage_error(
-            "tune", "--vertices '%s' is not A..B with 4 <= A <= B <= 9", optarg);
-      o->any = 1;
-      break;
-    case 'e':
-      if (ss_cli_parse_range(optarg, &o->ea, &o->eb) || o->ea < 3 || o->eb > 64 ||
-          o->ea > o->eb)
-        return ss_cli_usage_error(
-            "tune", "--edges '%s' is not A..B with 3 <= A <= B <= 64", optarg);
-      o->any = 1;
-      break;
-    case 'f':
-      o->face = o->any = 1;
-      break;
     case 't':
       if (ss_cli_opt_tol("tune", optarg, &o->tol)) return SS_EXIT_USAGE;
       break;
@@ -403,7 +392,7 @@ static int tune(ss_tune *t, const tune_opts *o, const char *out) {
 }
 
 int ss_cli_tune(int argc, char **argv) {
-  tune_opts o = {0, -1, 0, -1, SS_JAC_DEPTH, 1, 120, 0, 0, 0, 1e-6, 0.9, NULL};
+  tune_opts o = {SS_CHECK_CASES_NONE, SS_JAC_DEPTH, 1, 120, 0, 1e-6, 0.9, NULL};
   const int pr = parse_opts(argc, argv, &o);
   if (pr) return pr < 0 ? SS_EXIT_OK : pr;
   const char *path = argv[optind];
@@ -436,11 +425,9 @@ int ss_cli_tune(int argc, char **argv) {
   if (!status) {
     const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
     run.scheme = ss_scheme_name(s);
-    if (o.face && !tetoct)
-      status = ss_cli_usage_error("tune", "--face: the stencil's split is not tetoct");
-    if (!o.any) o.va = 4, o.vb = 6, o.ea = 3, o.eb = 6, o.face = tetoct;
+    status = ss_check_cases_default(&o.k, "tune", tetoct, "stencil");
   }
-  if (!status) status = ss_check_list(&run, "tune", o.va, o.vb, o.ea, o.eb, o.face);
+  if (!status) status = ss_check_list(&run, "tune", &o.k);
   const size_t len = strlen(path);
   if (!status && !(t.margins = calloc(run.ncases + 1, sizeof *t.margins))) status = 2;
   if (!status && !o.output && (out = malloc(len + 16))) {
