@@ -14,7 +14,7 @@
 
 static const char *const usage_text =
     "usage: subspectra tune STENCIL.ini [--vertices A..B] [--edges A..B] [--face]\n"
-    "                       [--evals N] [--jobs N] [--output FILE] [--keep F]\n"
+    "                       [--evals N] [--jobs N] [-o FILE] [--keep F]\n"
     "                       [--tol T] [--depth D] [--progress]\n"
     "\n"
     "Choose the free parameters of a stencil file ([param] NAME = ?(LO, HI), used\n"
@@ -35,7 +35,7 @@ static const char *const usage_text =
     "  --evals N         evaluations of every case at one point (default 120,\n"
     "                    2..100000)\n"
     "  --jobs N          cases analysed at once, on N threads (default 1)\n"
-    "  --output FILE     the tuned stencil (default STENCIL-tuned.ini beside it)\n"
+    "  -o, --output FILE the tuned stencil (default STENCIL-tuned.ini beside it)\n"
     "  --keep F          the share of the best margin a rounded point must keep\n"
     "                    (0 < F <= 1, default 0.9)\n"
     "  --tol T, --depth D  as for check (relative tolerance, hex depth)\n"
@@ -242,7 +242,7 @@ static int parse_opts(int argc, char **argv, tune_opts *o) {
   opterr = 0;
   int c;
   char *end;
-  while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, ":ho:", opts, NULL)) != -1) {
     const int co = ss_check_case_option(c, optarg, "tune", &o->k);
     if (co >= 0) {
       if (co) return co;
@@ -429,12 +429,18 @@ int ss_cli_tune(int argc, char **argv) {
   }
   if (!status) status = ss_check_list(&run, "tune", &o.k);
   const size_t len = strlen(path);
-  if (!status && !(t.margins = calloc(run.ncases + 1, sizeof *t.margins))) status = 2;
+  if (!status && !(t.margins = calloc(run.ncases + 1, sizeof *t.margins))) {
+    fprintf(stderr, "subspectra tune: out of memory\n");
+    status = SS_EXIT_USAGE;
+  }
   if (!status && !o.output && (out = malloc(len + 16))) {
     const int ini = len > 4 && !strcmp(path + len - 4, ".ini");
     sprintf(out, "%.*s-tuned.ini", (int)(ini ? len - 4 : len), path);
   }
-  if (!status && !o.output && !out) status = SS_EXIT_USAGE;
+  if (!status && !o.output && !out) {
+    fprintf(stderr, "subspectra tune: out of memory\n");
+    status = SS_EXIT_USAGE;
+  }
   if (!status) {
     printf("tune %s (scheme %s): %d free parameter%s, %zu case%s, %ld evaluations\n",
            path, run.scheme, t.nfree, t.nfree == 1 ? "" : "s", run.ncases,

@@ -23,7 +23,10 @@ the rational it writes; over ?(-7/4, -1/2), whose middle fails, it lands in
 passes, it exits 1; the written files read again and pass `check --certify`;
 bad input exits 2.  Exits 77 (skipped) without NLopt or libmatheval.
 
-usage: test_tune.py SUBSPECTRA"""
+The shipped data/stencils/tensor-family.ini (the same family with segment
+and quad masks) is tuned the same way.
+
+usage: test_tune.py SUBSPECTRA SOURCE_ROOT"""
 import os
 import re
 import subprocess
@@ -32,7 +35,7 @@ import tempfile
 from fractions import Fraction
 
 
-exe = sys.argv[1]
+exe, root = sys.argv[1], sys.argv[2]
 failed = 0
 checks = 0
 
@@ -179,6 +182,14 @@ if a is not None:
     rc, so2, se2 = run("check", out, "--edges", "4..4", "--certify")
     check(rc == 0, "the tuned file does not pass check --certify: %s %s" % (so2, se2))
     check("check --certify" in so and "1 pass" in so, "no verification said: %s" % so)
+
+# the shipped example: the same family, the same answer
+out = os.path.join(tmp, "shipped-tuned.ini")
+rc, so, se = run("tune", os.path.join(root, "data", "stencils", "tensor-family.ini"),
+                 "--edges", "4..4", "--evals", "30", "-o", out)
+a, margin = tuned_value(out) if rc == 0 else (None, None)
+check(a is not None and gap_closed(float(a)) >= 0.9 * 0.5 - 1e-9,
+      "tensor-family.ini: exit %d, a = %s: %s %s" % (rc, a, so, se))
 
 # the middle of the range fails: the search must find the passing end
 rc, so, se, out = tune("-7/4", "-1/2", 40)
