@@ -262,6 +262,8 @@ static void test_params(void) {
     ss_cx_free(hs);
     tm_link_free(l);
   }
+  ss_scheme_free(at);
+  at = NULL;
   pv.p[0].num = 1234567; /* beyond expressions' 6 digits */
   CHECK(ss_stencil_parse_at(fam, "f.ini", &pv, &at, &err) == SS_EINPUT && !at,
         "a 7-digit value accepted");
