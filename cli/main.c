@@ -30,6 +30,7 @@ static const command commands[] = {
     {"deform", ss_cli_deform,
      "test patterns embedded in a mesh, deformed through the limit"},
     {"check", ss_cli_check, "the CI gate: every case of a stencil file must pass"},
+    {"tune", ss_cli_tune, "choose a stencil's free parameters so that every case passes"},
     {"sweep", ss_cli_sweep, "analyse many cases into a resumable SQLite store"},
     {"merge", ss_cli_merge, "join the stores of sweep parts into one"},
     {"report", ss_cli_report, "tables (md, csv, tex, json) and plots of a store"},

@@ -20,6 +20,7 @@ int ss_cli_analyze(int argc, char **argv);
 int ss_cli_matrix(int argc, char **argv);
 int ss_cli_draw(int argc, char **argv);
 int ss_cli_check(int argc, char **argv);
+int ss_cli_tune(int argc, char **argv);
 int ss_cli_sweep(int argc, char **argv);
 int ss_cli_merge(int argc, char **argv);
 int ss_cli_report(int argc, char **argv);

@@ -6,6 +6,7 @@
  * test, prints a summary and the cases that do not pass, and exits 0 when all
  * pass, 1 when any fails or is undecided, 2 on bad input. */
 #include <getopt.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,8 +68,6 @@ static const char *const usage_text =
     "baseline.  In CI:  subspectra check data/stencils/mine.ini || exit 1\n";
 
 typedef struct {
-  const ss_scheme *s;
-  ss_result_opts ro; /* tolerance, depth, certify, budget of one case */
   ss_check_run *run; /* the cases, filled by visit */
   size_t cap;        /* room in run->cases */
   int failed;        /* out of memory while listing */
@@ -97,20 +96,42 @@ static int add_case(gate *g, ss_case c, const ss_link *l, const char *name) {
   return 0;
 }
 
+double ss_check_margin(const ss_result *r) {
+  const double fails = -0.01; /* below 0 however close to passing */
+  double gap = -1.0;          /* (|lambda3| - |lambda4|) / |lambda3| */
+  if (r->neig > 4) {
+    const double l3 = hypot(r->eig[3].re, r->eig[3].im);
+    const double l4 = hypot(r->eig[4].re, r->eig[4].im);
+    if (l3 > 0) gap = (l3 - l4) / l3;
+  }
+  if (r->v.cond.verdict != SS_PASS) return fmin(gap, 0.0) + fails;
+  double m = gap;
+  if (r->v.reg.verdict != SS_PASS)
+    m = fmin(m, (isnan(r->min_sj) ? 0.0 : fmin(r->min_sj, 0.0)) + fails);
+  else if (!isnan(r->min_sj))
+    m = fmin(m, r->min_sj);
+  if (r->v.inj.verdict != SS_PASS) m = fmin(m, fails);
+  return m;
+}
+
 /* Analyse one case into k (thread-safe: the scheme is shared read-only). */
-static void run_case(const gate *g, ss_check_case *k) {
+static void run_case(const ss_scheme *s, const ss_result_opts *ro, ss_check_case *k) {
   static const char *const names[3] = {"eigenvalue condition", "regularity",
                                        "injectivity"};
   ss_error err = {0};
   ss_result r;
   const double t0 = ss_clock_wall();
-  if (ss_result_compute(g->s, &k->c, &g->ro, &r, &err)) {
+  k->margin = -10.0;
+  k->condition = NULL;
+  k->reason[0] = '\0';
+  if (ss_result_compute(s, &k->c, ro, &r, &err)) {
     k->outcome = SS_CHECK_ERROR;
     snprintf(k->reason, sizeof k->reason, "%s", err.msg);
     k->nomem = err.status == SS_ENOMEM;
     k->seconds = ss_clock_wall() - t0;
     return;
   }
+  k->margin = ss_check_margin(&r);
   const ss_verdict_kind v = ss_result_verdict(&r);
   k->outcome = v == SS_PASS   ? SS_CHECK_PASS
                : v == SS_FAIL ? SS_CHECK_FAIL
@@ -149,14 +170,16 @@ static int visit(const ss_link *l, void *ctx) {
  * not pass as soon as it and every case before it are done (the order of the
  * list, whatever the threads); with progress a line on stderr at most once a
  * second as they are done, and after the last. */
-static void run_all(gate *g, int jobs, int text, int progress) {
-  ss_check_run *r = g->run;
+void ss_check_analyse(ss_check_run *r, const ss_scheme *s, const ss_result_opts *ro,
+                      int jobs, int text, int progress) {
   const long n = (long)r->ncases;
+  memset(r->count, 0, sizeof r->count);
+  r->nomem = 0;
   const double t0 = ss_clock_wall();
   double last = t0;
 #pragma omp parallel for schedule(dynamic, 1) ordered num_threads(jobs)
   for (long i = 0; i < n; i++) {
-    run_case(g, r->cases + i);
+    run_case(s, ro, r->cases + i);
 #pragma omp ordered
     {
       if (text) {
@@ -177,7 +200,7 @@ static void run_all(gate *g, int jobs, int text, int progress) {
   }
 }
 
-static void run_free(ss_check_run *r) {
+void ss_check_run_free(ss_check_run *r) {
   for (size_t i = 0; i < r->ncases; i++) {
     free(r->cases[i].name);
     ss_link_free(r->cases[i].link);
@@ -187,9 +210,10 @@ static void run_free(ss_check_run *r) {
 
 /* The options of a check run. */
 typedef struct {
-  long va, vb, ea, eb, depth, jobs;
-  int face, any, certify, format; /* format: 0 text, 1 json, 2 junit */
-  int progress;                   /* --progress: lines on stderr */
+  ss_check_cases k; /* the cases */
+  long depth, jobs;
+  int certify, format; /* format: 0 text, 1 json, 2 junit */
+  int progress;        /* --progress: lines on stderr */
   double tol, max_memory;
   const char *scheme, *baseline;
 } check_opts;
@@ -215,24 +239,12 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
   opterr = 0;
   int c;
   while ((c = getopt_long(argc, argv, ":hs:j:", opts, NULL)) != -1) {
+    const int co = ss_check_case_option(c, optarg, "check", &o->k);
+    if (co >= 0) {
+      if (co) return co;
+      continue;
+    }
     switch (c) {
-    case 'v':
-      if (ss_cli_parse_range(optarg, &o->va, &o->vb) || o->va < 4 || o->vb > 9 ||
-          o->va > o->vb)
-        return ss_cli_usage_error(
-            "check", "--vertices '%s' is not A..B with 4 <= A <= B <= 9", optarg);
-      o->any = 1;
-      break;
-    case 'e':
-      if (ss_cli_parse_range(optarg, &o->ea, &o->eb) || o->ea < 3 || o->eb > 64 ||
-          o->ea > o->eb)
-        return ss_cli_usage_error(
-            "check", "--edges '%s' is not A..B with 3 <= A <= B <= 64", optarg);
-      o->any = 1;
-      break;
-    case 'f':
-      o->face = o->any = 1;
-      break;
     case 't':
       if (ss_cli_opt_tol("check", optarg, &o->tol)) return SS_EXIT_USAGE;
       break;
@@ -283,28 +295,57 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
   return 0;
 }
 
-/* List the cases of o into g->run: 0, or an exit status. */
-static int list_cases(gate *g, const check_opts *o) {
+int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases *k) {
+  if (c == 'v') {
+    if (ss_cli_parse_range(arg, &k->va, &k->vb) || k->va < 4 || k->vb > 9 ||
+        k->va > k->vb)
+      return ss_cli_usage_error(cmd, "--vertices '%s' is not A..B with 4 <= A <= B <= 9",
+                                arg);
+  } else if (c == 'e') {
+    if (ss_cli_parse_range(arg, &k->ea, &k->eb) || k->ea < 3 || k->eb > 64 ||
+        k->ea > k->eb)
+      return ss_cli_usage_error(cmd, "--edges '%s' is not A..B with 3 <= A <= B <= 64",
+                                arg);
+  } else if (c == 'f') {
+    k->face = 1;
+  } else {
+    return -1;
+  }
+  k->any = 1;
+  return 0;
+}
+
+int ss_check_cases_default(ss_check_cases *k, const char *cmd, int tetoct,
+                           const char *what) {
+  if (k->face && !tetoct)
+    return ss_cli_usage_error(cmd, "--face: the %s's split is not tetoct", what);
+  if (!k->any) k->va = 4, k->vb = 6, k->ea = 3, k->eb = 6, k->face = tetoct;
+  return 0;
+}
+
+int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k) {
+  gate G = {r, 0, 0}, *g = &G;
   ss_error err = {0};
-  if (o->vb >= o->va) {
-    ss_enum_opts eo = {(int)o->va, (int)o->vb, 0, 1};
+  const long va = k->va, vb = k->vb, ea = k->ea, eb = k->eb;
+  const int face = k->face;
+  if (vb >= va) {
+    ss_enum_opts eo = {(int)va, (int)vb, 0, 1};
     if (ss_enum_links(&eo, visit, g, NULL, &err) || g->failed) {
-      fprintf(stderr, "subspectra check: %s\n", g->failed ? "out of memory" : err.msg);
+      fprintf(stderr, "subspectra %s: %s\n", cmd, g->failed ? "out of memory" : err.msg);
       return g->failed ? SS_EXIT_USAGE : ss_cli_exit_status(err.status);
     }
   }
-  for (long n = o->ea; n <= o->eb; n++) {
+  for (long n = ea; n <= eb; n++) {
     char what[32];
     snprintf(what, sizeof what, "edge %ld", n);
     if (add_case(g, (ss_case){SS_CASE_EDGE, NULL, (int)n, SS_DIAG_BFS, 0}, NULL, what))
       goto nomem;
   }
-  if (o->face &&
-      add_case(g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, NULL, "face"))
+  if (face && add_case(g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, NULL, "face"))
     goto nomem;
   return 0;
 nomem:
-  fprintf(stderr, "subspectra check: out of memory\n");
+  fprintf(stderr, "subspectra %s: out of memory\n", cmd);
   return SS_EXIT_USAGE;
 }
 
@@ -342,7 +383,7 @@ static int report(ss_check_run *r, const check_opts *o) {
 }
 
 int ss_cli_check(int argc, char **argv) {
-  check_opts o = {0, -1, 0, -1, SS_JAC_DEPTH, 1, 0, 0, 0, 0, 0, 1e-6, 0.0, NULL, NULL};
+  check_opts o = {SS_CHECK_CASES_NONE, SS_JAC_DEPTH, 1, 0, 0, 0, 1e-6, 0.0, NULL, NULL};
   const int pr = parse_opts(argc, argv, &o);
   if (pr) return pr < 0 ? SS_EXIT_OK : pr;
   const char *path = o.scheme ? "--scheme" : argv[optind];
@@ -358,12 +399,12 @@ int ss_cli_check(int argc, char **argv) {
     return SS_EXIT_USAGE;
   }
   const int tetoct = ss_scheme_split_kind(s) == SS_SPLIT_TETOCT;
-  if (o.face && !tetoct) {
+  const int bad =
+      ss_check_cases_default(&o.k, "check", tetoct, o.scheme ? "scheme" : "stencil");
+  if (bad) {
     ss_scheme_free(s);
-    return ss_cli_usage_error("check", "--face: the %s's split is not tetoct",
-                              o.scheme ? "scheme" : "stencil");
+    return bad;
   }
-  if (!o.any) o.va = 4, o.vb = 6, o.ea = 3, o.eb = 6, o.face = tetoct;
   ss_check_run run = {o.scheme ? NULL : path,
                       ss_scheme_name(s),
                       o.tol,
@@ -374,11 +415,11 @@ int ss_cli_check(int argc, char **argv) {
                       {0, 0, 0, 0},
                       0,
                       -1};
-  gate g = {s, ss_result_defaults(), &run, 0, 0};
-  g.ro.tol = o.tol;
-  g.ro.depth = (int)o.depth;
-  g.ro.certify = o.certify;
-  g.ro.max_bytes = ss_cli_budget(o.max_memory) / (double)o.jobs;
+  ss_result_opts ro = ss_result_defaults();
+  ro.tol = o.tol;
+  ro.depth = (int)o.depth;
+  ro.certify = o.certify;
+  ro.max_bytes = ss_cli_budget(o.max_memory) / (double)o.jobs;
   FILE *info = o.format ? stderr : stdout;
   if (o.scheme)
     fprintf(info, "check scheme %s: relative tolerance %g, hex depth %ld%s\n",
@@ -386,12 +427,12 @@ int ss_cli_check(int argc, char **argv) {
   else
     fprintf(info, "check %s (scheme %s): relative tolerance %g, hex depth %ld%s\n", path,
             ss_scheme_name(s), o.tol, o.depth, o.certify ? ", certified verdicts" : "");
-  int status = list_cases(&g, &o);
+  int status = ss_check_list(&run, "check", &o.k);
   if (!status) {
-    run_all(&g, (int)o.jobs, o.format == 0, o.progress);
+    ss_check_analyse(&run, s, &ro, (int)o.jobs, o.format == 0, o.progress);
     status = report(&run, &o);
   }
-  run_free(&run);
+  ss_check_run_free(&run);
   ss_scheme_free(s);
   return status;
 }

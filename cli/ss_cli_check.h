@@ -5,6 +5,8 @@
 
 #include "ss_case.h"
 #include "ss_link.h"
+#include "ss_result.h"
+#include "ss_scheme.h"
 
 /* How one case ended. */
 typedef enum {
@@ -26,6 +28,7 @@ typedef struct {
   int nomem;                /* an error out of memory or beyond the budget */
   double seconds;           /* wall time of the case */
   int regression;           /* passed in the baseline, does not pass now */
+  double margin;            /* ss_check_margin of the result; -10 on error */
 } ss_check_case;
 
 /* A whole run. */
@@ -41,6 +44,55 @@ typedef struct {
   long nomem;           /* errors out of memory or beyond the budget */
   long regressions;     /* cases marked regression */
 } ss_check_run;
+
+/* The cases asked for on the command line (check, tune). */
+typedef struct {
+  long va, vb; /* vertex links with va..vb vertices; none when vb < va */
+  long ea, eb; /* edge valences ea..eb; none when eb < ea */
+  int face;    /* the face of two tets */
+  int any;     /* some case option was given */
+} ss_check_cases;
+
+/* No case yet. */
+#define SS_CHECK_CASES_NONE                                                              \
+  { 0, -1, 0, -1, 0, 0 }
+
+/* Option c of getopt_long with its argument arg if it is a case option
+ * ('v' --vertices A..B with 4 <= A <= B <= 9, 'e' --edges A..B with
+ * 3 <= A <= B <= 64, 'f' --face): 0 taken into k, SS_EXIT_USAGE after a
+ * message ("subspectra CMD: ..."), -1 not a case option. */
+int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases *k);
+
+/* After the options: --face refused unless tetoct (SS_EXIT_USAGE after a
+ * message naming what, "scheme" or "stencil"); with no case option the
+ * defaults --vertices 4..6 --edges 3..6, and --face for tetoct.  0 or 2. */
+int ss_check_cases_default(ss_check_cases *k, const char *cmd, int tetoct,
+                           const char *what);
+
+/* List the cases k into r->cases (appended).  0, or an exit status after a
+ * message on stderr ("subspectra CMD: ..."). */
+int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k);
+
+/* Analyse every case of r under s (shared read-only) with ro on `jobs`
+ * threads: each case's outcome, reason and margin, r->count and r->nomem
+ * (reset first).  With text, print each case that does not pass as soon as
+ * it and every case before it are done (the list's order, whatever the
+ * threads); with progress, a line on stderr at most once a second (check's
+ * --progress). */
+void ss_check_analyse(ss_check_run *r, const ss_scheme *s, const ss_result_opts *ro,
+                      int jobs, int text, int progress);
+
+/* Free r's cases (names, links, the list). */
+void ss_check_run_free(ss_check_run *r);
+
+/* How far a case is from failing, the quantity `tune` maximises: the
+ * spectral gap (|lambda3| - |lambda4|) / |lambda3| of the leading moduli,
+ * and when the characteristic map is judged the smaller of it and the ring's
+ * minimum scaled Jacobian.  Positive when every verdict passes (a passing
+ * case has both positive); a case that does not pass gets min(gap or
+ * Jacobian, 0) - 0.01, so that failing is always below passing and a
+ * nearer failure above a farther one. */
+double ss_check_margin(const ss_result *r);
 
 /* The outcome's name: pass, fail, undecided, error. */
 const char *ss_check_outcome_name(ss_check_outcome o);

@@ -158,20 +158,49 @@ static char *substitute(const ss_expr *e, long n) {
   return s;
 }
 
+/* FLINT's context with a flag beside it: the parser's ring callbacks get
+ * ctx back, and ours needs the flag (ctx first, so &ctx[0] is the whole). */
+typedef struct {
+  fmpq_mpoly_ctx_struct ctx; /* FLINT's context (one variable, unused) */
+  int divzero;               /* set when a divisor was exactly 0 */
+} flint_reader;
+
+/* The parser's division A = B / C, as FLINT's own callback
+ * (fmpq_mpoly_divides) but refusing an exact zero divisor — which FLINT
+ * would answer with flint_throw, an abort — by failing the parse. */
+static int divides_or_refuse(void *a, const void *b, const void *c, const void *ctx) {
+  flint_reader *F = (flint_reader *)ctx;
+  if (fmpq_mpoly_is_zero(c, &F->ctx)) {
+    F->divzero = 1;
+    return 0;
+  }
+  return fmpq_mpoly_divides(a, b, c, &F->ctx);
+}
+
 /* FLINT's exact reading of s (no variables left): 1 with *q, 0 if FLINT's
- * polynomial parser does not read it as a rational constant. */
+ * polynomial parser does not read it as a rational constant, -1 if it
+ * divides by an exact zero.  fmpq_mpoly_set_str_pretty's own steps with the
+ * division callback replaced: that function would abort on such a divisor,
+ * which libmatheval's double value misses when rounding made it nonzero
+ * and the quotient is then multiplied by 0 (0*(1/(1/49*49 - 1))). */
 static int flint_rational(const char *s, fmpq_t q) {
-  fmpq_mpoly_ctx_t ctx;
+  flint_reader F = {.divzero = 0};
   fmpq_mpoly_t A;
-  const char *vars[1] = {"_"}; /* no name of an accepted expression */
-  fmpq_mpoly_ctx_init(ctx, 1, ORD_LEX);
-  fmpq_mpoly_init(A, ctx);
-  const int ok =
-      fmpq_mpoly_set_str_pretty(A, s, vars, ctx) == 0 && fmpq_mpoly_is_fmpq(A, ctx);
-  if (ok) fmpq_mpoly_get_fmpq(q, A, ctx);
-  fmpq_mpoly_clear(A, ctx);
-  fmpq_mpoly_ctx_clear(ctx);
-  return ok;
+  mpoly_parse_t E;
+  fmpq_mpoly_ctx_init(&F.ctx, 1, ORD_LEX);
+  fmpq_mpoly_init(A, &F.ctx);
+  mpoly_void_ring_init_fmpq_mpoly_ctx(E->R, &F.ctx);
+  E->R->ctx = &F; /* the callbacks see F (F.ctx is its first member) */
+  E->R->divides = divides_or_refuse;
+  mpoly_parse_init(E);
+  /* no terminal: the polynomial has no name to read ("_" before) */
+  const int parsed = mpoly_parse_parse(E, A, s, (slong)strlen(s)) == 0;
+  mpoly_parse_clear(E);
+  const int ok = parsed && fmpq_mpoly_is_fmpq(A, &F.ctx);
+  if (ok) fmpq_mpoly_get_fmpq(q, A, &F.ctx);
+  fmpq_mpoly_clear(A, &F.ctx);
+  fmpq_mpoly_ctx_clear(&F.ctx);
+  return F.divzero ? -1 : ok;
 }
 #endif
 
@@ -191,12 +220,11 @@ ss_status ss_expr_eval(const ss_expr *e, long n, ss_expr_value *out, ss_error *e
     return ss_error_set(err, SS_EINPUT, " is not finite at n = %ld (a division by zero?)",
                         n);
   out->value = v;
-  /* FLINT prints and aborts on a division by an exact zero.  libmatheval's
-   * finite value says there is none, unless rounding made a zero divisor
-   * nonzero, as in 1/(1/49*49 - 1) = -9e15 in doubles: such values are far
-   * from every weight and refused here.  Left open: such a quotient
-   * multiplied by 0 (0*(1/(1/49*49 - 1))), which reaches FLINT's abort
-   * (DESIGN section 3). */
+  /* A divisor that is exactly 0 gives an infinite or NaN double, unless
+   * rounding made it nonzero, as in 1/(1/49*49 - 1) = -9e15 in doubles:
+   * such values are far from every weight and refused here; multiplied by 0
+   * (0*(1/(1/49*49 - 1))) they are finite and FLINT's exact reading finds
+   * the zero divisor (flint_rational). */
   if (!(fabs(v) <= 1048576.0))
     return ss_error_set(err, SS_EINPUT, " is %.6g at n = %ld, beyond 2^20", v, n);
   char *s = substitute(e, n);
@@ -204,7 +232,13 @@ ss_status ss_expr_eval(const ss_expr *e, long n, ss_expr_value *out, ss_error *e
   fmpq_t q;
   fmpq_init(q);
   ss_status st = SS_OK;
-  if (flint_rational(s, q)) {
+  const int fr = flint_rational(s, q);
+  if (fr < 0)
+    st = ss_error_set(err, SS_EINPUT,
+                      " divides by exactly 0 at n = %ld (rounding hides it from the "
+                      "double value %.17g)",
+                      n, v);
+  else if (fr) {
     const double qd = fmpq_get_d(q);
     if (!fmpz_fits_si(fmpq_numref(q)) || !fmpz_fits_si(fmpq_denref(q)))
       st = ss_error_set(err, SS_EINPUT,

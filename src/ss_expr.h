@@ -53,8 +53,11 @@ int ss_expr_uses_n(const ss_expr *e);
 
 /* The value of e at valence n >= 1 into *out.  SS_EINPUT "is not finite at
  * n = N (a division by zero?)" when libmatheval's value is not finite, and
- * when the rational FLINT reads differs from it, or when a rational's
- * numerator or denominator does not fit in 63 bits; SS_ENOMEM.  Cost: one
+ * when FLINT's exact reading divides by exactly 0 (a zero divisor that
+ * rounding made nonzero in libmatheval's double value, then multiplied by 0:
+ * 0*(1/(1/49*49 - 1))), when the rational FLINT reads differs from
+ * libmatheval's value, or when a rational's numerator or denominator does not
+ * fit in 63 bits; SS_ENOMEM.  Cost: one
  * parse of the expression. */
 ss_status ss_expr_eval(const ss_expr *e, long n, ss_expr_value *out, ss_error *err);
 

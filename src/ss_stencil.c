@@ -102,19 +102,25 @@ typedef struct {
   char name[64]; /* [scheme] name */
   int have_name, have_family, have_split;
   ss_split_kind split;
-  rational w[SS_NCELLTYPES][4];  /* weights by type and role (constant ones) */
-  ss_expr *ex[SS_NCELLTYPES][4]; /* the weights that are expressions, or NULL */
-  char *etext[SS_NCELLTYPES][4]; /* an expression's text, for messages */
-  int keyline[SS_NCELLTYPES][4]; /* the line of each weight */
-  unsigned given[SS_NCELLTYPES]; /* bit r: role r given */
-  int has_mask[SS_NCELLTYPES];   /* a [mask.*] section seen */
-  char msg[384];                 /* the handler's first complaint */
-  int msg_line;                  /* its line (1-based), 0 before any */
-  const char *text;              /* the file's text, read line by line */
-  const char *next;              /* where the next line starts in text */
-  int line;                      /* line of the text last handed to inih */
-  int newlines;                  /* newlines in text before next */
-  int long_line;                 /* first line longer than inih's buffer, or 0 */
+  rational w[SS_NCELLTYPES][4];   /* weights by type and role (constant ones) */
+  ss_expr *ex[SS_NCELLTYPES][4];  /* the weights that are expressions, or NULL */
+  char *etext[SS_NCELLTYPES][4];  /* an expression's text, for messages */
+  int keyline[SS_NCELLTYPES][4];  /* the line of each weight */
+  unsigned given[SS_NCELLTYPES];  /* bit r: role r given */
+  int has_mask[SS_NCELLTYPES];    /* a [mask.*] section seen */
+  char msg[384];                  /* the handler's first complaint */
+  int msg_line;                   /* its line (1-based), 0 before any */
+  const char *text;               /* the file's text, read line by line */
+  const char *next;               /* where the next line starts in text */
+  int line;                       /* line of the text last handed to inih */
+  int newlines;                   /* newlines in text before next */
+  int long_line;                  /* first line longer than inih's buffer, or 0 */
+  ss_stencil_params *collect;     /* the [param] pass: parameters read here
+                                     (every other section ignored); else NULL */
+  ss_stencil_params own;          /* the weights pass: [param] read again here,
+                                     so that its errors come in the file's order */
+  const ss_stencil_params *pv;    /* the weights pass: the values substituted */
+  int used[SS_STENCIL_MAXPARAMS]; /* weights that use parameter i */
 } reader;
 
 /* inih's line reader over R->text: copies the next line (at most num - 1
@@ -151,7 +157,14 @@ static int cell_type_of(const char *s, ss_cell_type *t) {
   return -1;
 }
 
+static int param_key(reader *R, const char *key, const char *value);
+static char *substitute_params(const char *value, const ss_stencil_params *pv, int *used);
+static int mask_key(reader *R, const char *section, const char *key, const char *text,
+                    const char *value, ss_cell_type t, int r);
+
 static int handle(reader *R, const char *section, const char *key, const char *value) {
+  if (!strcmp(section, "param")) return param_key(R, key, value);
+  if (R->collect) return 1; /* the [param] pass reads nothing else */
   if (!strcmp(section, "scheme")) {
     if (!strcmp(key, "name")) {
       if (R->have_name++) goto repeated;
@@ -188,7 +201,8 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   }
   if (strncmp(section, "mask.", 5)) {
     snprintf(R->msg, sizeof R->msg,
-             "section [%.64s] is unknown (known: [scheme], [mask.TYPE])", section);
+             "section [%.64s] is unknown (known: [scheme], [param], [mask.TYPE])",
+             section);
     return 0;
   }
   ss_cell_type t;
@@ -213,7 +227,26 @@ static int handle(reader *R, const char *section, const char *key, const char *v
     return 0;
   }
   if (R->given[t] & (1u << r)) goto repeated;
-  const int pr = parse_rational(value, &R->w[t][r]);
+  char *sub = NULL; /* value with the parameters' values, or NULL */
+  if (R->pv && R->pv->n) {
+    if (!(sub = substitute_params(value, R->pv, R->used))) {
+      snprintf(R->msg, sizeof R->msg, "out of memory");
+      return 0;
+    }
+  }
+  const int ok = mask_key(R, section, key, sub ? sub : value, value, t, r);
+  free(sub);
+  return ok;
+repeated:
+  snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
+  return 0;
+}
+
+/* Weight r of type t: text (value with the parameters' values), written as
+ * value in the file. */
+static int mask_key(reader *R, const char *section, const char *key, const char *text,
+                    const char *value, ss_cell_type t, int r) {
+  const int pr = parse_rational(text, &R->w[t][r]);
   if (pr == -2) {
     snprintf(R->msg, sizeof R->msg,
              "[%.32s] %s = '%.40s': a numerator or denominator has more than 17 digits "
@@ -224,7 +257,7 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   R->keyline[t][r] = R->line;
   if (pr) { /* not p/q: an expression */
     ss_error xe = {0};
-    if (ss_expr_new(value, &R->ex[t][r], &xe)) {
+    if (ss_expr_new(text, &R->ex[t][r], &xe)) {
       snprintf(R->msg, sizeof R->msg, "[%.64s] %s = '%.64s'%.160s", section, key, value,
                xe.msg);
       return 0;
@@ -236,9 +269,6 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   }
   R->given[t] |= 1u << r;
   return 1;
-repeated:
-  snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
-  return 0;
 }
 
 /* inih's handler: handle, keeping the first complaint and its line (inih
@@ -381,14 +411,151 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
   return st;
 }
 
-ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
-                           ss_error *err) {
+int ss_stencil_reserved(const char *name) {
+  static const char *const names[] = {
+      "n",     "exp",   "log",   "sqrt",    "sin",  "cos",     "tan",   "cot",
+      "sec",   "csc",   "asin",  "acos",    "atan", "acot",    "asec",  "acsc",
+      "sinh",  "cosh",  "tanh",  "coth",    "sech", "csch",    "asinh", "acosh",
+      "atanh", "acoth", "asech", "acsch",   "abs",  "step",    "delta", "nandelta",
+      "erf",   "e",     "log2e", "log10e",  "ln2",  "ln10",    "pi",    "pi_2",
+      "pi_4",  "2_pi",  "sqrt2", "sqrt1_2", "1_pi", "2_sqrtpi"};
+  for (size_t i = 0; i < sizeof names / sizeof *names; i++)
+    if (!strcmp(name, names[i])) return 1;
+  return 0;
+}
+
+/* A parameter's rational: p/q with |p|, q of at most 6 digits and |p/q| <=
+ * 1000 (it is written into expressions, whose literals have at most 6
+ * digits).  0 or -1. */
+static int param_rational(const char *s, rational *q) {
+  return parse_rational(s, q) || q->num > 999999 || q->num < -999999 || q->den > 999999 ||
+                 q->num > 1000 * q->den || q->num < -1000 * q->den
+             ? -1
+             : 0;
+}
+
+/* "?(LO, HI)": 0 with the bounds, -1 if malformed. */
+static int param_range(const char *value, ss_stencil_param *p) {
+  char buf[128];
+  const char *v = value;
+  while (isspace((unsigned char)*v))
+    v++;
+  if (strncmp(v, "?(", 2) || strlen(v) >= sizeof buf) return -1;
+  strcpy(buf, v + 2);
+  char *comma = strchr(buf, ','), *close = strrchr(buf, ')');
+  if (!comma || !close || close < comma) return -1;
+  for (const char *t = close + 1; *t; t++)
+    if (!isspace((unsigned char)*t)) return -1;
+  *comma = *close = '\0';
+  rational lo, hi;
+  if (param_rational(buf, &lo) || param_rational(comma + 1, &hi) ||
+      !(lo.num * hi.den < hi.num * lo.den))
+    return -1;
+  p->free = 1;
+  p->lo[0] = lo.num, p->lo[1] = lo.den, p->hi[0] = hi.num, p->hi[1] = hi.den;
+  return 0;
+}
+
+/* A key of [param] in the parameters pass: a name and its value or range. */
+static int param_key(reader *R, const char *key, const char *value) {
+  ss_stencil_params *P = R->collect ? R->collect : &R->own;
+  int ident = (isalpha((unsigned char)key[0]) || key[0] == '_') && strlen(key) < 32;
+  for (const char *k = key; ident && *k; k++)
+    ident = isalnum((unsigned char)*k) || *k == '_';
+  if (!ident || ss_stencil_reserved(key)) {
+    snprintf(R->msg, sizeof R->msg,
+             "[param] '%.64s' is not a parameter's name (an identifier of at most 31 "
+             "characters, not n nor a name of libmatheval's such as pi or cos)",
+             key);
+    return 0;
+  }
+  for (int i = 0; i < P->n; i++)
+    if (!strcmp(P->p[i].name, key)) {
+      snprintf(R->msg, sizeof R->msg, "[param] %.64s is given twice", key);
+      return 0;
+    }
+  if (P->n == SS_STENCIL_MAXPARAMS) {
+    snprintf(R->msg, sizeof R->msg, "[param]: more than %d parameters",
+             SS_STENCIL_MAXPARAMS);
+    return 0;
+  }
+  ss_stencil_param *p = P->p + P->n;
+  memset(p, 0, sizeof *p);
+  strcpy(p->name, key);
+  p->line = R->line;
+  rational q;
+  if (!param_rational(value, &q))
+    p->num = q.num, p->den = q.den;
+  else if (param_range(value, p)) {
+    snprintf(R->msg, sizeof R->msg,
+             "[param] %.64s = '%.64s' is neither p/q nor ?(LO, HI) with rationals LO < "
+             "HI (at most 6 digits each, |LO|, |HI| <= 1000)",
+             key, value);
+    return 0;
+  }
+  P->n++;
+  return 1;
+}
+
+/* value with every identifier that names a parameter of pv replaced by
+ * "(num/den)", counting uses in used[]; NULL out of memory. */
+static char *substitute_params(const char *value, const ss_stencil_params *pv,
+                               int *used) {
+  const size_t len = strlen(value);
+  char *out = malloc(len * 17 + 1), *o = out; /* "a" grows to "(-999999/999999)" */
+  if (!out) return NULL;
+  for (size_t i = 0; i < len;) {
+    const int start =
+        (isalpha((unsigned char)value[i]) || value[i] == '_') &&
+        !(i > 0 && (isalnum((unsigned char)value[i - 1]) || value[i - 1] == '_'));
+    size_t k = i;
+    while (start && k < len && (isalnum((unsigned char)value[k]) || value[k] == '_'))
+      k++;
+    int hit = -1;
+    for (int p = 0; start && p < pv->n; p++)
+      if (strlen(pv->p[p].name) == k - i && !strncmp(value + i, pv->p[p].name, k - i))
+        hit = p;
+    if (hit < 0) {
+      const size_t m = start ? k - i : 1;
+      memcpy(o, value + i, m);
+      o += m, i += m;
+      continue;
+    }
+    o += sprintf(o, "(%lld/%lld)", pv->p[hit].num, pv->p[hit].den);
+    used[hit]++;
+    i = k;
+  }
+  *o = '\0';
+  return out;
+}
+
+ss_status ss_stencil_read_params(const char *text, const char *where,
+                                 ss_stencil_params *out, ss_error *err) {
+  memset(out, 0, sizeof *out);
+  reader *R = calloc(1, sizeof *R);
+  if (!R) return ss_error_nomem(err, "stencil");
+  R->text = R->next = text;
+  R->collect = out;
+  const int rc = ini_parse_stream(read_line, R, handler, R);
+  ss_status st = SS_OK;
+  /* a [param] error that is the file's first; a line inih cannot read or
+   * too long is left to the weights pass, which sees every error in order */
+  if (rc != 0 && R->msg_line == rc)
+    st = ss_error_set(err, SS_EINPUT, "%s:%d: %s", where, rc, R->msg);
+  free(R);
+  return st;
+}
+
+/* ss_stencil_parse with the parameters' values pv (all fixed). */
+static ss_status parse_with(const char *text, const char *where,
+                            const ss_stencil_params *pv, ss_scheme **out, ss_error *err) {
   *out = NULL;
   reader *R = calloc(1, sizeof *R);
   if (!R) return ss_error_nomem(err, "stencil");
   double *tabs[SS_NCELLTYPES][4] = {{NULL}}; /* the valence tables of vary */
   ss_averaging_vary vary = {{{NULL}}, 1};
   R->text = R->next = text;
+  R->pv = pv;
   const int rc = ini_parse_stream(read_line, R, handler, R);
   ss_status st = SS_OK;
   if (R->long_line && (rc == 0 || R->long_line <= rc)) {
@@ -401,6 +568,12 @@ ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
                       R->msg_line == rc ? R->msg : "not an INI line");
     goto done;
   }
+  for (int i = 0; i < pv->n; i++)
+    if (!R->used[i]) {
+      st = ss_error_set(err, SS_EINPUT, "%s:%d: [param] %s is used by no weight", where,
+                        pv->p[i].line, pv->p[i].name);
+      goto done;
+    }
   const int sl = section_line(text, "scheme");
   if (!R->have_name || !R->have_family || !R->have_split) {
     st = ss_error_set(err, SS_EINPUT, "%s:%d: [scheme] needs name, family and split%s",
@@ -454,9 +627,54 @@ done:
   return st;
 }
 
-ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
-                          ss_error *err) {
+ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
+                           ss_error *err) {
   *out = NULL;
+  ss_stencil_params pv;
+  ss_status st = ss_stencil_read_params(text, where, &pv, err);
+  if (st) { /* the weights pass meets the same error, or an earlier one */
+    const ss_error first = *err;
+    if (parse_with(text, where, &pv, out, err) == SS_OK) {
+      ss_scheme_free(*out);
+      *out = NULL;
+      *err = first;
+    }
+    return err->status;
+  }
+  for (int i = 0; !st && i < pv.n; i++)
+    if (pv.p[i].free)
+      st = ss_error_set(err, SS_EINPUT,
+                        "%s:%d: [param] %s is free (a range ?(LO, HI)): choose it with "
+                        "`subspectra tune`",
+                        where, pv.p[i].line, pv.p[i].name);
+  return st ? st : parse_with(text, where, &pv, out, err);
+}
+
+ss_status ss_stencil_parse_at(const char *text, const char *where,
+                              const ss_stencil_params *values, ss_scheme **out,
+                              ss_error *err) {
+  *out = NULL;
+  ss_stencil_params pv;
+  const ss_status st = ss_stencil_read_params(text, where, &pv, err);
+  if (st) return st;
+  if (values->n != pv.n)
+    return ss_error_set(err, SS_EINPUT, "%s: %d parameter values for %d parameters",
+                        where, values->n, pv.n);
+  for (int i = 0; i < pv.n; i++) {
+    const ss_stencil_param *v = values->p + i;
+    if (strcmp(v->name, pv.p[i].name) || v->free || v->den <= 0 || v->num > 999999 ||
+        v->num < -999999 || v->den > 999999)
+      return ss_error_set(err, SS_EINPUT,
+                          "%s:%d: [param] %s: the value given is not p/q of at most 6 "
+                          "digits each (or names another parameter)",
+                          where, pv.p[i].line, pv.p[i].name);
+  }
+  return parse_with(text, where, values, out, err);
+}
+
+ss_status ss_stencil_read(const char *path, char **text, uint64_t *identity,
+                          ss_error *err) {
+  *text = NULL;
   FILE *f = fopen(path, "rb");
   if (!f) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
   size_t cap = 4096, n = 0;
@@ -496,7 +714,16 @@ ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
       h = (h ^ (unsigned char)buf[i]) * 1099511628211ull;
     *identity = h;
   }
-  const ss_status st = ss_stencil_parse(buf, path, out, err);
-  free(buf);
+  *text = buf;
+  return SS_OK;
+}
+
+ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
+                          ss_error *err) {
+  *out = NULL;
+  char *text = NULL;
+  ss_status st = ss_stencil_read(path, &text, identity, err);
+  if (!st) st = ss_stencil_parse(text, path, out, err);
+  free(text);
   return st;
 }

@@ -30,7 +30,26 @@
  * unknown family, split, section, cell type, role or name, a repeated key, a
  * malformed weight, a weight not finite at some n, a sum other than 1 — is
  * SS_EINPUT with a message "FILE:LINE: ..." naming the key or section (the
- * first error of the file), and the valence n where it depends on one. */
+ * first error of the file), and the valence n where it depends on one.
+ *
+ * Parameters: a [param] section names values that weights use by name,
+ *
+ *   [param]
+ *   a = ?(-7/4, 5/4)          ; free: `subspectra tune` chooses it in [lo, hi]
+ *   b = 3/16                  ; fixed: a named constant (what tune writes)
+ *   [mask.hex]
+ *   self = a^3
+ *
+ * A name is a C identifier of at most 31 characters, neither n nor a name
+ * libmatheval knows (functions, constants: ss_stencil_reserved); a value
+ * is p/q or ?(LO, HI) with rational LO < HI, |LO|, |HI| <= 1000.  Where a
+ * weight uses a parameter its text is read with every occurrence of the
+ * name replaced by "(num/den)", so a weight with parameters is an
+ * expression (ss_expr.h: needs libmatheval) and exact where rational.  At
+ * most SS_STENCIL_MAXPARAMS parameters; each must be used by some weight.
+ * ss_stencil_parse and ss_stencil_load refuse a file with a free parameter
+ * ("FILE:LINE: [param] a is free (a range ?(LO, HI)): choose it with
+ * `subspectra tune`"); ss_stencil_parse_at reads it with values given. */
 #ifndef SS_STENCIL_H
 #define SS_STENCIL_H
 
@@ -49,9 +68,55 @@ SS_BEGIN_DECLS
 ss_status ss_stencil_load(const char *path, ss_scheme **out, uint64_t *identity,
                           ss_error *err);
 
+/* The text of the stencil file at path (*text, NUL-terminated, the caller
+ * frees it) and, if identity is not NULL, the hash ss_stencil_load gives.
+ * SS_EIO if it cannot be read; SS_EINPUT for a NUL byte or more than 16 MB;
+ * SS_ENOMEM. */
+ss_status ss_stencil_read(const char *path, char **text, uint64_t *identity,
+                          ss_error *err);
+
 /* As ss_stencil_load, from the text of a file; `where` names it in messages. */
 ss_status ss_stencil_parse(const char *text, const char *where, ss_scheme **out,
                            ss_error *err);
+
+#define SS_STENCIL_MAXPARAMS 16 /* parameters of one file at most */
+
+/* A parameter of a stencil file, its value or its range. */
+typedef struct {
+  char name[32];      /* the identifier */
+  int line;           /* its line in the file (1-based) */
+  int free;           /* 1: ?(lo, hi), to be chosen; 0: fixed at num/den */
+  long long num, den; /* fixed: the value, lowest terms, den > 0 */
+  long long lo[2];    /* free: the lower bound, numerator and denominator */
+  long long hi[2];    /* free: the upper bound (lo < hi) */
+} ss_stencil_param;
+
+/* The parameters of a file, in the order of the file. */
+typedef struct {
+  ss_stencil_param p[SS_STENCIL_MAXPARAMS]; /* n parameters */
+  int n;                                    /* their number */
+} ss_stencil_params;
+
+/* Read the [param] section of a stencil file's text into *out (the other
+ * sections are not checked here).  SS_EINPUT "WHERE:LINE: ..." for a
+ * malformed name or value, a reserved or repeated name, too many
+ * parameters, a line inih cannot read. */
+ss_status ss_stencil_read_params(const char *text, const char *where,
+                                 ss_stencil_params *out, ss_error *err);
+
+/* As ss_stencil_parse, with the parameters' values taken from values (as
+ * ss_stencil_read_params returned them, every parameter fixed: free = 0,
+ * num/den set; a parameter left free is SS_EINPUT).  values's names must be
+ * the file's, in its order (SS_EINPUT otherwise).  Besides
+ * ss_stencil_parse's errors: a parameter no weight uses, "num/den" of more
+ * than 6 digits (expressions' literal limit). */
+ss_status ss_stencil_parse_at(const char *text, const char *where,
+                              const ss_stencil_params *values, ss_scheme **out,
+                              ss_error *err);
+
+/* Whether name is reserved in expressions (n, libmatheval's functions and
+ * constants): not a parameter's name. */
+int ss_stencil_reserved(const char *name);
 
 SS_END_DECLS
 

@@ -161,6 +161,9 @@ templates=(
   'enumerate mesh @'
   'check D/tetoct.ini --vertices @'
   'check D/tetoct.ini --edges @'
+  'tune D/tensor-family.ini --edges 4..4 --evals @ -o O/t.ini'
+  'tune D/tensor-family.ini --edges 4..4 --evals 2 --keep @ -o O/t.ini'
+  'tune D/tensor-family.ini --edges @ --evals 2 -o O/t.ini'
   '@'
   'analyze @'
 )

@@ -7,8 +7,14 @@
  *     soundly (cos, sqrt, pi: not rational, even where the value is);
  *   - a weight sum off by 1/1000 at one valence only is refused naming that
  *     valence, the line and the file; unknown names, division by zero,
- *     decimals and characters libmatheval has no rule for are refused;
- *   - an irrational weight makes certified verdicts "weights not rational".
+ *     decimals and characters libmatheval has no rule for are refused, and
+ *     so is a zero divisor rounding hides (0*(1/(1/49*49-1)), which made
+ *     FLINT abort the process);
+ *   - an irrational weight makes certified verdicts "weights not rational";
+ *   - [param]: a parameter at 1/2 in the tensor-product family gives MLCA's
+ *     operator bit for bit (in the file or through ss_stencil_parse_at); a
+ *     free, unused, reserved, repeated or malformed one is refused naming
+ *     its line, after any earlier error of the file.
  * Exits 77 (skipped) when the build has no libmatheval. */
 #include <stdlib.h>
 #include <string.h>
@@ -168,6 +174,20 @@ static void test_bad(void) {
              "opposite = 1/8 + 1/(n-3) - 1/(n-3)\n",
       "bad.ini:9: [mask.hex] opposite = '1/8 + 1/(n-3) - 1/(n-3)' is not finite at n = "
       "3");
+  /* a zero divisor that rounding makes nonzero (1/49*49 - 1 = -1.1e-16 in
+   * doubles), multiplied by 0: a finite double, and FLINT's parser aborted
+   * the process on it before its division was checked (DESIGN section 3) */
+  bad(HEAD_M "[mask.hex]\nself = 1/8\nedge = 1/8\nface = 1/8\n"
+             "opposite = 1/8 + 0*(1/(1/49*49-1))\n",
+      "bad.ini:9: [mask.hex] opposite = '1/8 + 0*(1/(1/49*49-1))' divides by exactly 0 "
+      "at n = 1");
+  /* the same in n: exactly 0 at every valence, rounded away at n = 49 only
+   * if at all; the first valence where libmatheval's value is finite is
+   * named (n = 1: 1/49*49 is 0.9999999999999999 in doubles) */
+  bad(HEAD_M "[mask.hex]\nself = 1/8 + 0*(1/(n/49*49-n))\nedge = 1/8\nface = 1/8\n"
+             "opposite = 1/8\n",
+      "bad.ini:6: [mask.hex] self = '1/8 + 0*(1/(n/49*49-n))' divides by exactly 0 at "
+      "n = 1");
   bad(HEAD_M "[mask.hex]\nself = 1/8\nedge = 1/8 + m\nface = 1/8\nopposite = 1/8\n",
       "bad.ini:7: [mask.hex] edge = '1/8 + m': the name 'm' is unknown (known: n)");
   bad(HEAD_M "[mask.hex]\nself = 1/8\nedge = foo(n)\n",
@@ -207,6 +227,62 @@ static void test_irrational_certified(void) {
   ss_scheme_free(s);
 }
 
+/* [param]: a parameter fixed at 1/2 in the tensor-product family is MLCA
+ * (hex mask 1/8 each), given in the file or through ss_stencil_parse_at;
+ * a free one is refused by ss_stencil_parse; errors name their lines. */
+static void test_params(void) {
+  const char *fam = HEAD_M "[param]\na = ?(-7/4, 5/4)\n[mask.segment]\nself = a\n"
+                           "other = 1-a\n[mask.quad]\nself = a^2\nedge = a*(1-a)\n"
+                           "opposite = (1-a)^2\n[mask.hex]\nself = a^3\n"
+                           "edge = a^2*(1-a)\nface = a*(1-a)^2\nopposite = (1-a)^3\n";
+  bad(fam, "bad.ini:6: [param] a is free (a range ?(LO, HI)): choose it with `subspectra "
+           "tune`");
+  ss_stencil_params pv;
+  ss_error err = {0};
+  ss_scheme *at = NULL, *mlca = NULL;
+  CHECK(ss_stencil_read_params(fam, "f.ini", &pv, &err) == SS_OK && pv.n == 1 &&
+            pv.p[0].free && pv.p[0].line == 6 && pv.p[0].lo[0] == -7 &&
+            pv.p[0].lo[1] == 4 && pv.p[0].hi[0] == 5 && pv.p[0].hi[1] == 4,
+        "read_params: %s", err.msg);
+  pv.p[0].free = 0, pv.p[0].num = 1, pv.p[0].den = 2;
+  CHECK(ss_stencil_parse_at(fam, "f.ini", &pv, &at, &err) == SS_OK, "parse_at: %s",
+        err.msg);
+  ss_scheme *fixed =
+      parse(HEAD_M "[param]\na = 1/2\n[mask.hex]\nself = a^3\n"
+                   "edge = a^2*(1-a)\nface = a*(1-a)^2\nopposite = (1-a)^3\n");
+  ss_scheme_new("mlca", &mlca, &err);
+  if (at && mlca && fixed) {
+    CHECK(ss_scheme_weights_rational(at), "a = 1/2 not rational");
+    tm_link *l = tm_link_named("bipyramid:5");
+    ss_cx *hs = tm_hex_star(l);
+    tm_jitter(hs, 0.1, 5);
+    same_operator(mlca, at, hs, "a = 1/2 (parse_at), hex star");
+    same_operator(mlca, fixed, hs, "a = 1/2 (in the file), hex star");
+    same_certified(mlca, at, 5);
+    ss_cx_free(hs);
+    tm_link_free(l);
+  }
+  ss_scheme_free(at);
+  at = NULL;
+  pv.p[0].num = 1234567; /* beyond expressions' 6 digits */
+  CHECK(ss_stencil_parse_at(fam, "f.ini", &pv, &at, &err) == SS_EINPUT && !at,
+        "a 7-digit value accepted");
+  ss_scheme_free(at);
+  ss_scheme_free(fixed);
+  ss_scheme_free(mlca);
+  bad(HEAD_M "[param]\nb = 1/3\n[mask.hex]\nself = 1\nedge = 0\nface = 0\nopposite = 0\n",
+      "bad.ini:6: [param] b is used by no weight");
+  bad(HEAD_M "[param]\npi = 1/3\n", "bad.ini:6: [param] 'pi' is not a parameter's name");
+  bad(HEAD_M "[param]\nb = ?(1, 0)\n", "bad.ini:6: [param] b = '?(1, 0)' is neither");
+  bad(HEAD_M "[param]\nb = 1/3\nb = 1/4\n", "bad.ini:7: [param] b is given twice");
+  /* the file's first error first, though the parameters are read before */
+  bad(HEAD_M "[mask.hex]\nfoo = 1\n[param]\npi = 1/3\n",
+      "bad.ini:6: [mask.hex]: role 'foo' is unknown");
+  bad(HEAD_M "[param]\nb = 1/3\n[mask.hex]\nself = b\nedge = 1/8\nface = 1/8\n"
+             "opposite = 1/8\n",
+      "bad.ini:7: [mask.hex]: the weights sum to 29/24");
+}
+
 int main(void) {
   if (!ss_expr_available()) {
     printf("SKIP: built without libmatheval: weight expressions are refused\n");
@@ -216,5 +292,6 @@ int main(void) {
   test_values();
   test_bad();
   test_irrational_certified();
+  test_params();
   return ss_test_done("stencil_expr");
 }
