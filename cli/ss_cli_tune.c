@@ -34,7 +34,7 @@ static const char *const usage_text =
     "  --face            the face of two tets (split tetoct only)\n"
     "  --evals N         evaluations of every case at one point (default 120,\n"
     "                    2..100000)\n"
-    "  --jobs N          cases analysed at once, on N threads (default 1)\n"
+    "  -j, --jobs N      cases analysed at once, on N threads (default 1)\n"
     "  -o, --output FILE the tuned stencil (default STENCIL-tuned.ini beside it)\n"
     "  --keep F          the share of the best margin a rounded point must keep\n"
     "                    (0 < F <= 1, default 0.9)\n"
@@ -242,7 +242,7 @@ static int parse_opts(int argc, char **argv, tune_opts *o) {
   opterr = 0;
   int c;
   char *end;
-  while ((c = getopt_long(argc, argv, ":ho:", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, ":ho:j:", opts, NULL)) != -1) {
     const int co = ss_check_case_option(c, optarg, "tune", &o->k);
     if (co >= 0) {
       if (co) return co;
