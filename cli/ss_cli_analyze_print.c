@@ -215,7 +215,7 @@ void ss_cli_print_text(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
       M->n2, M->n1, M->level, p->e->nblocks, p->e->largest_block);
   if (p->has_diag)
     printf("major diagonals: %s; %zu of %zu face-adjacent pairs improper (Definition 3.2 "
-           "as read in the README)\n",
+           "as read in docs/schemes.md)\n",
            ss_diag_name(p->c.asked.diag), p->improper, p->pairs);
   print_spectrum(o, p);
   if (p->e->basis_kind[0]) printf("subdominant basis: %s\n", p->e->basis_kind);

@@ -66,7 +66,7 @@ static void usage(FILE *f) {
       "                    maps first, then on the products); default 1; with\n"
       "                    --norm ellipsoid or auto only.  The\n"
       "                    bound stays proven for any K (tet/oct face, 60 s:\n"
-      "                    see README, \"Joint spectral radius\")\n"
+      "                    see docs/methods.md, \"Joint spectral radius\")\n"
       "  --diagonals D     major diagonals of tet stars, for boxspline (the only rule\n"
       "                    that reads them; refused for the others): bfs (default),\n"
       "                    proper; skew and center for edges only\n"

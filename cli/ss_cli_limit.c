@@ -74,7 +74,7 @@ static const char *const usage_text =
 /* The usage text's second half (one literal would exceed the 4095 characters
  * C11 compilers must support). */
 static const char *const usage_how =
-    "How (README, \"Limit evaluation\"): the cell's patch is refined in the\n"
+    "How (docs/methods.md, \"Limit evaluation\"): the cell's patch is refined in the\n"
     "scheme's own global rule, following the child that holds the point, until\n"
     "the sub-cell is regular (then the tricubic B-spline).  Each patch topology\n"
     "and step is computed once and cached; a stationary run of steps (towards an\n"

@@ -335,7 +335,7 @@ static int bnb_step(jsr_run *r, int L, double *u) {
  * passes refine it; recomputing the shallow levels costs a factor of about
  * m / (m - 1) at most.  AUTO does not try the invariant polytope: on the
  * cases it exists for (tet/oct face and edges) the polytope does not close
- * within thousands of vertices (README, "Joint spectral radius"), so its time
+ * within thousands of vertices (docs/methods.md, "Joint spectral radius"), so its time
  * would be taken from the branch and bound; --norm polytope asks for it. */
 static ss_status bound_stage(jsr_run *r, ss_jsr_result *out, ss_error *err) {
   ss_jsr_ws *w = &r->w;
