@@ -28,8 +28,7 @@ int ss_cli_print_json(const ss_cli_analyze_opts *o, const ss_pipeline *p,
     fprintf(stderr, "subspectra %s: %s\n", o->cmd, err.msg);
     return ss_cli_exit_status(err.status);
   }
-  printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+  printf("%s\n", json_object_to_json_string_ext(r, SS_CLI_JSON_FLAGS));
   json_object_put(r);
   return SS_EXIT_OK;
 }

@@ -329,9 +329,7 @@ static void summary_end(const sub_opts *o, json_object *report) {
   if (o->json) {
     json_object_object_add(report, "output", json_object_new_string(o->out));
     json_object_object_add(report, "format", json_object_new_string(format));
-    fprintf(o->sum, "%s\n",
-            json_object_to_json_string_ext(report, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+    fprintf(o->sum, "%s\n", json_object_to_json_string_ext(report, SS_CLI_JSON_FLAGS));
   } else {
     fprintf(o->sum, "wrote %s (%s)\n", o->out, format);
   }
