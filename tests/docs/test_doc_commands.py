@@ -168,6 +168,8 @@ def run_page(exe, src, path, text, out):
         for d in ('data', 'tests'):
             os.symlink(os.path.join(src, d), os.path.join(work, d))
         env = dict(os.environ, SS=exe, LC_ALL='C.UTF-8')
+        if env.get('LSAN_OPTIONS'):  # under the sanitizers: no statistics on stderr
+            env['LSAN_OPTIONS'] += ':print_suppressions=0'
         for line, cmd, shown, skip, extra in commands(text):
             pc = program_command(cmd)
             if skip is not None:
