@@ -59,7 +59,7 @@ static void overview(FILE *f) {
  * stdout's place (ss_outfile_fdopen: the same buffering, but it remembers the
  * first failure's errno), and every command ends in finish(): flush, check the
  * error flag, close.  A failure turns the command's status rc into 2 with
- * "subspectra: error writing standard output: REASON" (the output is lost,
+ * "subspectra COMMAND: error writing standard output: REASON" (the output is lost,
  * whatever was computed).  EPIPE is the exception: the reader closed the pipe
  * early (`| head`), which is its choice, not an error of ours -- no message and
  * rc kept.  (With SIGPIPE at its default, as we leave it, the kernel ends the
@@ -82,7 +82,7 @@ static void stdout_open(void) {
   stdout = f; /* glibc's stdout is a variable for this purpose */
 }
 
-static int finish(int rc) {
+static int finish(int rc, const char *cmd) {
   errno = 0;
   int bad = fflush(stdout) != 0;
   int e = errno;
@@ -91,8 +91,8 @@ static int finish(int rc) {
   if (fclose(stdout) != 0 && !bad) bad = 1, e = errno;
   if (bad && stdout_errno) e = stdout_errno; /* a closed fd 1 counts only if used */
   if (!bad || e == EPIPE) return rc;
-  fprintf(stderr, "subspectra: error writing standard output: %s\n",
-          strerror(e ? e : EIO));
+  fprintf(stderr, "subspectra%s%s: error writing standard output: %s\n", cmd ? " " : "",
+          cmd ? cmd : "", strerror(e ? e : EIO));
   return SS_EXIT_USAGE;
 }
 
@@ -185,5 +185,8 @@ static void malloc_tune(void) {
 int main(int argc, char **argv) {
   malloc_tune();
   stdout_open();
-  return finish(run(argc, argv));
+  /* the command the messages name: a known one (or help), else none */
+  const char *cmd =
+      argc > 1 && (find(argv[1]) || !strcmp(argv[1], "help")) ? argv[1] : NULL;
+  return finish(run(argc, argv), cmd);
 }

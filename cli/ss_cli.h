@@ -11,6 +11,13 @@
 
 enum { SS_EXIT_OK = 0, SS_EXIT_FAIL = 1, SS_EXIT_USAGE = 2 };
 
+/* The one setting every command writes JSON with (json-c's
+ * json_object_to_json_string_ext): compact, and '/' not escaped — json-c
+ * escapes it by default ("1\/2"), which JSON allows but which made the same
+ * value read differently from command to command (issue 40).  Needs
+ * <json-c/json.h>. */
+#define SS_CLI_JSON_FLAGS (JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE)
+
 /* Subcommands: argv[0] is the subcommand name. */
 int ss_cli_subdivide(int argc, char **argv);
 int ss_cli_limit(int argc, char **argv);

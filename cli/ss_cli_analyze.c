@@ -36,7 +36,7 @@ static void help(const char *cmd) {
            ".pdf (in both, text is text) or .vtk (for ParaView: the normalised net,\n"
            "the two-ring's cells and the deciding ring level's, with per-cell\n"
            "Jacobian sign and minimum scaled Jacobian in the map's orientation, as\n"
-           "analyze reports them; see the README).\n\n");
+           "analyze reports them; see docs/draw.md).\n\n");
   else if (m)
     printf("Write the local subdivision matrix S of one case in Matrix Market format,\n"
            "rows and columns labelled (in comments) by their exact coordinates relative\n"
@@ -181,7 +181,7 @@ static void help(const char *cmd) {
          "on surfaces),\n"
          "tetoct, boxspline and boxspline-avg tets, catmull-clark quads, loop\n"
          "triangles.  boxspline reports how many face-adjacent pairs of the star have\n"
-         "improper diagonals (Definition 3.2 as read in the README).\n"
+         "improper diagonals (Definition 3.2 as read in docs/schemes.md).\n"
          "Exit status: 0 all conditions hold, 1 a condition fails or is undecided (or\n"
          "the extraction failed a check), 2 bad usage or input, a case beyond the\n"
          "memory budget, or out of memory.\n");

@@ -28,8 +28,7 @@ int ss_cli_print_json(const ss_cli_analyze_opts *o, const ss_pipeline *p,
     fprintf(stderr, "subspectra %s: %s\n", o->cmd, err.msg);
     return ss_cli_exit_status(err.status);
   }
-  printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+  printf("%s\n", json_object_to_json_string_ext(r, SS_CLI_JSON_FLAGS));
   json_object_put(r);
   return SS_EXIT_OK;
 }
@@ -215,7 +214,7 @@ void ss_cli_print_text(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
       M->n2, M->n1, M->level, p->e->nblocks, p->e->largest_block);
   if (p->has_diag)
     printf("major diagonals: %s; %zu of %zu face-adjacent pairs improper (Definition 3.2 "
-           "as read in the README)\n",
+           "as read in docs/schemes.md)\n",
            ss_diag_name(p->c.asked.diag), p->improper, p->pairs);
   print_spectrum(o, p);
   if (p->e->basis_kind[0]) printf("subdominant basis: %s\n", p->e->basis_kind);

@@ -1,5 +1,6 @@
 /* ss_cli_check_out.c — `check`'s reports: the text lines, JSON, JUnit XML,
  * and the comparison with a baseline run's JSON (ss_cli_check.h). */
+#include "ss_cli.h"
 #include "ss_cli_check.h"
 
 #include <stdio.h>
@@ -84,9 +85,7 @@ int ss_check_write_json(const ss_check_run *r) {
     bad = json_object_object_add(doc, "cases", cases);
     cases = NULL;
   }
-  if (!bad)
-    printf("%s\n", json_object_to_json_string_ext(
-                       doc, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+  if (!bad) printf("%s\n", json_object_to_json_string_ext(doc, SS_CLI_JSON_FLAGS));
   json_object_put(sum);
   json_object_put(cases);
   json_object_put(doc);

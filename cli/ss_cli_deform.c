@@ -19,7 +19,7 @@ static const char *const usage_text =
     "                         [--displace FILE | --target MESH2] [--n N] [--samples K]\n"
     "                         [--levels L] [--method auto|exact|levels] [--embed-level "
     "E]\n"
-    "                         [--format text|json|vtk|vtu|png] [-o FILE]\n"
+    "                         [--format text|json|vtk|vtu|png] [-o FILE] [--progress]\n"
     "\n"
     "Embeds points in the volume of the base mesh MESH (each point's cell and\n"
     "parameters there: hexahedra by Newton's method on the trilinear map,\n"
@@ -66,6 +66,8 @@ static const char *const usage_text =
     "                     oblique view of the deformed pattern over the moved\n"
     "                     control net).  Default from -o's extension\n"
     "  -o, --output FILE  write there (whole or not at all) instead of stdout\n"
+    "      --progress     the phases on stderr as they start (reading, embedding,\n"
+    "                     evaluating, writing)\n"
     "  -h, --help         this text\n"
     "\n";
 
@@ -99,7 +101,14 @@ typedef struct {
   long embed;                /* --embed-level E */
   int method;                /* 0 auto, 1 exact, 2 levels */
   int format;                /* SS_DEFORM_FMT_*, or -1: from -o */
+  int want_progress;         /* --progress was given */
+  ss_cli_progress *progress; /* the phases' lines on stderr (--progress); NULL: none */
 } deform_opts;
+
+/* A phase starts: its line on stderr with --progress. */
+static void phase(const deform_opts *o, const char *what) {
+  if (o->progress) ss_cli_progress_fn(o->progress, what, 0, 0);
+}
 
 static int parse_format(const char *s) {
   static const char *const names[] = {"text", "json", "vtk", "vtu", "png"};
@@ -123,6 +132,7 @@ static int parse(int argc, char **argv, deform_opts *o) {
                                        {"output", required_argument, NULL, 'o'},
                                        {"help", no_argument, NULL, 'h'},
                                        {"embed-level", required_argument, NULL, 'E'},
+                                       {"progress", no_argument, NULL, 'G'},
                                        {NULL, 0, NULL, 0}};
   optind = 1;
   opterr = 0;
@@ -185,6 +195,9 @@ static int parse(int argc, char **argv, deform_opts *o) {
       break;
     case 'o':
       o->out = optarg;
+      break;
+    case 'G':
+      o->want_progress = 1;
       break;
     case 'h':
       fputs(usage_text, stdout);
@@ -531,6 +544,7 @@ static int run(const deform_opts *o, const ss_scheme *s, const ss_cx *base,
   ss_error err = {0};
   const int L = o->levels ? (int)o->levels : 3;
   int rc = -1, exact = 0;
+  phase(o, "evaluating the limit");
   if (o->method != 2) {
     rc = eval_exact(s, base, moved, pt, n, &err);
     if (rc == -1 && o->method == 1) {
@@ -556,6 +570,7 @@ static int run(const deform_opts *o, const ss_scheme *s, const ss_cx *base,
     }
   }
   ss_deform_cli_out out = {pt, n, exact, exact ? 0 : L, o->scheme, net};
+  phase(o, "writing");
   int wc = write_out(o, &out);
   if (wc) return wc;
   fprintf(stderr, "subspectra deform: %zu points, %zu outside the mesh, %zu refused; ", n,
@@ -575,6 +590,9 @@ int ss_cli_deform(int argc, char **argv) {
   o.format = -1;
   int rc = parse(argc, argv, &o);
   if (rc >= 0) return rc;
+  ss_cli_progress pr = {"deform", ss_cli_now(), 0, NULL, 0};
+  if (o.want_progress) o.progress = &pr;
+  phase(&o, "reading the mesh");
   ss_error err = {0};
   ss_scheme *s = NULL;
   ss_cx *base = NULL, *moved = NULL, *net = NULL;
@@ -616,6 +634,7 @@ int ss_cli_deform(int argc, char **argv) {
     goto done;
   }
   if (o.embed > 0 && (rc = refine_both(s, (int)o.embed, &base, &moved))) goto done;
+  phase(&o, "embedding the points");
   if ((rc = embed(&o, base, pt, n, &outside))) goto done;
   rc = run(&o, s, base, moved, net, pt, n, outside);
 done:

@@ -6,6 +6,7 @@
 
 #include <json-c/json.h>
 
+#include "ss_cli.h"
 #include "ss_cli_deform.h"
 
 const char *ss_cli_deform_status_name(int status) {
@@ -53,7 +54,7 @@ static void write_json(FILE *f, const ss_deform_cli_out *o) {
     if (p->label >= 0) json_object_object_add(j, "label", json_object_new_int(p->label));
     if (p->line >= 0)
       json_object_object_add(j, "line", json_object_new_int64(p->line + 1));
-    fprintf(f, "%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
+    fprintf(f, "%s\n", json_object_to_json_string_ext(j, SS_CLI_JSON_FLAGS));
     json_object_put(j);
   }
 }

@@ -76,34 +76,3 @@ json_object *ss_cli_eigvec_json(const ss_eigvec *v, const ss_local *M, int dim,
   }
   return r;
 }
-
-void ss_cli_eigvec_mtx(FILE *f, const ss_eigvec *v, const ss_local *M, int left,
-                       const char *head) {
-  const double *re = left ? v->left_re : v->right_re,
-               *im = left ? v->left_im : v->right_im;
-  fprintf(f, "%%%%MatrixMarket matrix array %s general\n",
-          v->complex_any ? "complex" : "real");
-  fprintf(f, "%s\n", head);
-  fprintf(f, "%% %s eigenvectors of the %d leading eigenvalues, one per column (%s)\n",
-          left ? "left" : "right", v->k,
-          left ? "row vectors l with l^T S = lambda l^T, no conjugation; L^T R = I "
-                 "within each group of equal eigenvalues"
-               : "S r = lambda r; maximum modulus 1, that entry real and positive");
-  for (int j = 0; j < v->k; j++)
-    fprintf(f, "%% eigenvalue %d: %.17g%+.17gi (group %d%s)\n", j + 1, v->re[j], v->im[j],
-            v->group[j], v->biorth[j] ? "" : ", defective: not biorthonormal");
-  char buf[256];
-  for (size_t i = 0; i < v->n; i++) {
-    ss_cli_label_text(M->label + i, buf, sizeof buf);
-    fprintf(f, "%% point %zu %s\n", i + 1, buf);
-  }
-  fprintf(f, "%zu %d\n", v->n, v->k);
-  for (int j = 0; j < v->k; j++)
-    for (size_t i = 0; i < v->n; i++) {
-      const size_t at = i + (size_t)j * v->n;
-      if (v->complex_any)
-        fprintf(f, "%.17g %.17g\n", re[at], im[at]);
-      else
-        fprintf(f, "%.17g\n", re[at]);
-    }
-}

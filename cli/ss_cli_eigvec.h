@@ -25,11 +25,4 @@ void ss_cli_label_text(const ss_star_coord *c, char *buf, size_t n);
 json_object *ss_cli_eigvec_json(const ss_eigvec *v, const ss_local *M, int dim,
                                 int masks_ok, const char *why_not);
 
-/* Matrix Market array (n x k, "real" or "complex general") of the right or
- * (left != 0) left eigenvectors, with comments naming the eigenvalues, their
- * normalisation and the points; head is a comment line already formatted
- * ("% subspectra ... case ..."). */
-void ss_cli_eigvec_mtx(FILE *f, const ss_eigvec *v, const ss_local *M, int left,
-                       const char *head);
-
 #endif

@@ -119,7 +119,7 @@ int ss_cli_enumerate_links(int argc, char **argv) {
       json_object_object_add(r, "part", json_object_new_int64(part));
       json_object_object_add(r, "parts", json_object_new_int64(nparts));
       json_object_object_add(r, "seconds", json_object_new_double(dt));
-      printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN));
+      printf("%s\n", json_object_to_json_string_ext(r, SS_CLI_JSON_FLAGS));
       json_object_put(r);
     } else {
       printf("# vertices\tlinks%s\n", nparts > 1 ? "\t(this part)" : "");
@@ -130,11 +130,11 @@ int ss_cli_enumerate_links(int argc, char **argv) {
   uint64_t total = 0;
   for (long k = a; k <= b; k++)
     total += counts[k];
-  fprintf(
-      stderr,
-      "enumerate links: %llu links with %ld..%ld vertices%s in %.2f s (%.0f links/s)\n",
-      (unsigned long long)total, a, b, nparts > 1 ? " (this part)" : "", dt,
-      dt > 0 ? (double)total / dt : 0.0);
+  fprintf(stderr,
+          "subspectra enumerate links: %llu links with %ld..%ld vertices%s in %.2f s "
+          "(%.0f links/s)\n",
+          (unsigned long long)total, a, b, nparts > 1 ? " (this part)" : "", dt,
+          dt > 0 ? (double)total / dt : 0.0);
   return SS_EXIT_OK;
 }
 

@@ -93,8 +93,7 @@ static void print_json(const char *path, const ss_meshlinks *ml) {
   for (size_t i = 0; i < ml->nv_nonmanifold; i++)
     json_object_array_add(nm, json_object_new_int64((int64_t)ml->nonmanifold[i] + 1));
   json_object_object_add(r, "nonmanifold_vertex_list", nm);
-  printf("%s\n", json_object_to_json_string_ext(r, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+  printf("%s\n", json_object_to_json_string_ext(r, SS_CLI_JSON_FLAGS));
   json_object_put(r);
 }
 

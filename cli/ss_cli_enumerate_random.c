@@ -21,7 +21,8 @@ static const char random_usage[] =
     "links, byte for byte, and the first M samples do not depend on --samples.\n\n"
     "  -k, --vertices K   link vertices, 4..100000\n"
     "  -n, --samples M    number of links, >= 1\n"
-    "  -s, --seed S       seed, 0..4294967295 (default 1; GSL maps 0 to 4357)\n"
+    "      --seed S       seed, 0..4294967295 (default 1; GSL maps 0 to 4357);\n"
+    "                     no -s: that is --scheme in the other commands\n"
     "      --format F     text (default) or json: one object per line\n"
     "                     {\"vertices\":K,\"seed\":S,\"sample\":i,\"link\":\"...\"},\n"
     "                     i = 0..M-1\n"
@@ -31,7 +32,7 @@ int ss_cli_enumerate_random(int argc, char **argv) {
   static const char cmd[] = "enumerate random";
   static const struct option opts[] = {{"vertices", required_argument, NULL, 'k'},
                                        {"samples", required_argument, NULL, 'n'},
-                                       {"seed", required_argument, NULL, 's'},
+                                       {"seed", required_argument, NULL, 'S'},
                                        {"format", required_argument, NULL, 'F'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
@@ -40,7 +41,7 @@ int ss_cli_enumerate_random(int argc, char **argv) {
   optind = 1;
   opterr = 0;
   int c;
-  while ((c = getopt_long(argc, argv, ":k:n:s:h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, ":k:n:h", opts, NULL)) != -1) {
     switch (c) {
     case 'k':
       if (ss_cli_parse_int(optarg, 4, SS_LINK_MAXK, &k))
@@ -51,7 +52,7 @@ int ss_cli_enumerate_random(int argc, char **argv) {
       if (ss_cli_parse_int(optarg, 1, 2000000000L, &samples))
         return ss_cli_usage_error(cmd, "--samples '%s' is not an integer >= 1", optarg);
       break;
-    case 's':
+    case 'S':
       if (ss_cli_parse_int(optarg, 0, 4294967295L, &seed))
         return ss_cli_usage_error(cmd, "--seed '%s' is not an integer in 0..4294967295",
                                   optarg);
@@ -63,6 +64,13 @@ int ss_cli_enumerate_random(int argc, char **argv) {
       fputs(random_usage, stdout);
       return SS_EXIT_OK;
     default:
+      /* -s was --seed here until the one convention made it --scheme
+       * everywhere (issue 40): say so rather than "unknown option" */
+      if (c == '?' && optopt == 's')
+        return ss_cli_usage_error(cmd,
+                                  "-s is no longer the seed (it means --scheme in the "
+                                  "other commands, and enumerate random has no "
+                                  "scheme): give --seed S");
       return ss_cli_option_error(cmd, c, argv);
     }
   }

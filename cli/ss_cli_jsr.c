@@ -18,7 +18,7 @@ static void usage(FILE *f) {
       f,
       "usage: subspectra jsr --scheme S (--face | --edge N) [--depth K] [--gap G]\n"
       "                      [--norm N] [--fit-words K] [--diagonals D]\n"
-      "                      [--max-seconds T] [--format text|json]\n\n"
+      "                      [--max-seconds T] [--format text|json] [--progress]\n\n"
       "The Levin-Levin smoothness test (tet/oct paper, appendix A).  From the scheme's\n"
       "global rule: the patch (face: the tet/tet + oct/oct pair of figure 10, a unit\n"
       "square of the face's grid; edge: a segment between two edge vertices), its\n"
@@ -66,7 +66,7 @@ static void usage(FILE *f) {
       "                    maps first, then on the products); default 1; with\n"
       "                    --norm ellipsoid or auto only.  The\n"
       "                    bound stays proven for any K (tet/oct face, 60 s:\n"
-      "                    see README, \"Joint spectral radius\")\n"
+      "                    see docs/methods.md, \"Joint spectral radius\")\n"
       "  --diagonals D     major diagonals of tet stars, for boxspline (the only rule\n"
       "                    that reads them; refused for the others): bfs (default),\n"
       "                    proper; skew and center for edges only\n"
@@ -81,7 +81,10 @@ static void usage(FILE *f) {
       "                    limit cut rho_k short also stopped_by, depth,\n"
       "                    depth_complete, cut_length, cut_words, cut_of; when the\n"
       "                    reduction does not apply applies = false, reason, the\n"
-      "                    result keys null and verdict n/a)\n\n"
+      "                    result keys null and verdict n/a)\n"
+      "  --progress        the phases on stderr as they start (building the maps,\n"
+      "                    the products, the norms' fit, each branch-and-bound\n"
+      "                    word length; at most a line a second within one)\n\n"
       "Exit status: 0 pass, 1 fail or undecided (or the reduction does not apply:\n"
       "the spectrum of S_1 is not of the required form, the subspace is not\n"
       "invariant), 2 bad usage or bad input.  A time limit is not an error: the\n"
@@ -97,7 +100,8 @@ enum {
   O_SECONDS,
   O_FORMAT,
   O_NORM,
-  O_FITWORDS
+  O_FITWORDS,
+  O_PROGRESS
 };
 
 static const char *const norm_names[] = {"inf", "2", "auto", "ellipsoid", "polytope"};
@@ -120,6 +124,7 @@ static const struct option jsr_options[] = {
     {"diagonals", required_argument, 0, O_DIAG},
     {"max-seconds", required_argument, 0, O_SECONDS},
     {"format", required_argument, 0, O_FORMAT},
+    {"progress", no_argument, 0, O_PROGRESS},
     {"help", no_argument, 0, 'h'},
     {0, 0, 0, 0}};
 
@@ -130,6 +135,7 @@ typedef struct {
   int have_case;           /* --face or --edge was given */
   int diag_given;          /* --diagonals was given */
   int json;                /* --format json */
+  int progress;            /* --progress: the phases on stderr */
   ss_jsr_opts o;           /* --depth, --gap, --norm, --fit-words, --max-seconds */
 } jsr_args;
 
@@ -199,6 +205,9 @@ static int parse_option(int ch, char **argv, jsr_args *a) {
     break;
   case O_FORMAT:
     if (ss_cli_format_option(cmd, optarg, &a->json)) return SS_EXIT_USAGE;
+    break;
+  case O_PROGRESS:
+    a->progress = 1;
     break;
   default:
     return ss_cli_option_error(cmd, ch, argv);
@@ -293,8 +302,7 @@ static void print_json(const jsr_args *a, const ss_levin *L, const ss_jsr_result
                          json_object_new_int64((int64_t)r->poly_vertices));
   if (r->polytope == 0)
     json_object_object_add(j, "polytope_upper", json_object_new_double(r->poly_upper));
-  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+  printf("%s\n", json_object_to_json_string_ext(j, SS_CLI_JSON_FLAGS));
   json_object_put(j);
 }
 
@@ -354,8 +362,7 @@ static void print_json_na(const jsr_args *a, const char *msg) {
   for (size_t k = 0; k < sizeof nulls / sizeof *nulls; k++)
     json_object_object_add(j, nulls[k], NULL);
   json_object_object_add(j, "verdict", json_object_new_string("n/a"));
-  printf("%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+  printf("%s\n", json_object_to_json_string_ext(j, SS_CLI_JSON_FLAGS));
   json_object_put(j);
 }
 
@@ -387,6 +394,11 @@ int ss_cli_jsr(int argc, char **argv) {
   ss_levin *L = NULL;
   ss_jsr_result r;
   memset(&r, 0, sizeof r);
+  ss_cli_progress pr = {"jsr", ss_cli_now(), 0, NULL, 0};
+  if (a.progress) {
+    a.o.progress = (ss_progress){ss_cli_progress_fn, &pr};
+    ss_cli_progress_fn(&pr, "building the maps", 0, 0);
+  }
   rc = build_case(&a, &s, &L);
   if (rc >= 0) goto done;
   rc = SS_EXIT_OK;

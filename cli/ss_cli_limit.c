@@ -20,7 +20,7 @@
 static const char *const usage_text =
     "usage: subspectra limit --scheme S MESH (--at \"CELL U V W\" | --samples N |\n"
     "                        --gauss Q) [--derivatives]\n"
-    "                        [--format text|json|vtk|vtu] [-o FILE]\n"
+    "                        [--format text|json|vtk|vtu] [-o FILE] [--progress]\n"
     "\n"
     "The limit volume of the hexahedral mesh MESH under scheme S: the limit point\n"
     "at parameters (U, V, W) in [0,1]^3 of a cell (U along the cell's corners\n"
@@ -68,13 +68,15 @@ static const char *const usage_text =
     "                     jacobian[a][d]; a shared point's data are those of\n"
     "                     its first cell with the best status, named by cell)\n"
     "  -o, --output FILE  write there (whole or not at all) instead of stdout\n"
+    "      --progress     the points evaluated of all on stderr (at most a line a\n"
+    "                     second, and after the last)\n"
     "  -h, --help         this text\n"
     "\n";
 
 /* The usage text's second half (one literal would exceed the 4095 characters
  * C11 compilers must support). */
 static const char *const usage_how =
-    "How (README, \"Limit evaluation\"): the cell's patch is refined in the\n"
+    "How (docs/methods.md, \"Limit evaluation\"): the cell's patch is refined in the\n"
     "scheme's own global rule, following the child that holds the point, until\n"
     "the sub-cell is regular (then the tricubic B-spline).  Each patch topology\n"
     "and step is computed once and cached; a stationary run of steps (towards an\n"
@@ -216,6 +218,7 @@ typedef struct {
   int derivs;              /* --derivatives */
   int reference;           /* --reference: the slow reference evaluation */
   int format;              /* 0 text, 1 json, 2 vtk, 3 vtu */
+  int progress;            /* --progress: points done on stderr */
   ss_limit_cli_point *pts; /* --at points (owned) */
   size_t npts, cap;        /* how many, allocated */
   ss_limit_cli_fields fl;  /* the mesh's fields and their results */
@@ -247,12 +250,17 @@ static int add_at(limit_opts *o, const char *text) {
 /* argv into o (o->pts owned by the caller, also on failure): -1 to go on,
  * else the exit status (0 after --help, 2 with the message printed). */
 static int parse(int argc, char **argv, limit_opts *o) {
-  static const struct option opts[] = {
-      {"scheme", required_argument, NULL, 's'},  {"at", required_argument, NULL, 'a'},
-      {"samples", required_argument, NULL, 'n'}, {"gauss", required_argument, NULL, 'g'},
-      {"derivatives", no_argument, NULL, 'd'},   {"reference", no_argument, NULL, 'R'},
-      {"format", required_argument, NULL, 'f'},  {"output", required_argument, NULL, 'o'},
-      {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {{"scheme", required_argument, NULL, 's'},
+                                       {"at", required_argument, NULL, 'a'},
+                                       {"samples", required_argument, NULL, 'n'},
+                                       {"gauss", required_argument, NULL, 'g'},
+                                       {"derivatives", no_argument, NULL, 'd'},
+                                       {"reference", no_argument, NULL, 'R'},
+                                       {"format", required_argument, NULL, 'f'},
+                                       {"output", required_argument, NULL, 'o'},
+                                       {"progress", no_argument, NULL, 'P'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
   optind = 1;
   opterr = 0;
   int c, rc;
@@ -279,6 +287,9 @@ static int parse(int argc, char **argv, limit_opts *o) {
       break;
     case 'R':
       o->reference = 1;
+      break;
+    case 'P':
+      o->progress = 1;
       break;
     case 'f':
       if (!strcmp(optarg, "text"))
@@ -417,6 +428,7 @@ static ss_status eval_points(limit_opts *o, ss_limit *L, size_t *bad, ss_error *
     o->fl.grad = calloc(o->npts * nf + 1, sizeof *o->fl.grad);
     if (!o->fl.val || !o->fl.grad) return ss_error_nomem(err, "field values");
   }
+  ss_cli_progress pr = {"limit", ss_cli_now(), 0, NULL, 0};
   for (size_t i = 0; i < o->npts; i++) {
     ss_limit_cli_point *p = o->pts + i;
     p->f = nf ? o->fl.val + i * nf : NULL;
@@ -424,6 +436,7 @@ static ss_status eval_points(limit_opts *o, ss_limit *L, size_t *bad, ss_error *
     const ss_status st = eval_point(o, L, p, err);
     if (st) return st;
     *bad += p->status != SS_LIMIT_CLI_OK;
+    if (o->progress) ss_cli_progress_fn(&pr, "points evaluated", i + 1, o->npts);
   }
   return SS_OK;
 }
@@ -461,9 +474,14 @@ static int report_failed(const limit_opts *o, size_t bad) {
   for (size_t i = 0; i < o->npts && shown < 10; i++) {
     const ss_limit_cli_point *p = o->pts + i;
     if (p->status == SS_LIMIT_CLI_OK) continue;
+    /* the evaluator's reason names the cell too: not twice on one line */
+    char own[48];
+    snprintf(own, sizeof own, "cell %zu: ", p->cell + 1);
+    const char *why = p->why ? p->why : "";
+    if (!strncmp(why, own, strlen(own))) why += strlen(own);
     fprintf(stderr, "subspectra limit: cell %zu at (%.17g, %.17g, %.17g): %s: %s\n",
             p->cell + 1, p->x[0], p->x[1], p->x[2], ss_cli_limit_status_name(p->status),
-            p->why);
+            why);
     shown++;
   }
   fprintf(stderr,

@@ -8,6 +8,7 @@
 
 #include <json-c/json.h>
 
+#include "ss_cli.h"
 #include "ss_cli_limit.h"
 
 const char *ss_cli_limit_status_name(int status) {
@@ -119,7 +120,7 @@ static json_object *json_point(const ss_limit_cli_point *p, const ss_limit_cli_o
 void ss_cli_limit_write_json(FILE *f, const ss_limit_cli_out *o) {
   for (size_t i = 0; i < o->n; i++) {
     json_object *j = json_point(o->pts + i, o);
-    fprintf(f, "%s\n", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN));
+    fprintf(f, "%s\n", json_object_to_json_string_ext(j, SS_CLI_JSON_FLAGS));
     json_object_put(j);
   }
 }

@@ -80,8 +80,8 @@ int ss_cli_merge(int argc, char **argv) {
       rc = SS_EXIT_USAGE;
       continue;
     }
-    fprintf(stderr, "merge: %s: %zu results added, %zu already in %s", files[i], ms.added,
-            ms.present, outname);
+    fprintf(stderr, "subspectra merge: %s: %zu results added, %zu already in %s",
+            files[i], ms.added, ms.present, outname);
     if (ms.conflicts && prefer == SS_STORE_PREFER_NEW)
       fprintf(stderr, ", %zu conflicting results replaced (--prefer new)", ms.replaced);
     else if (ms.conflicts && prefer == SS_STORE_PREFER_OLD)

@@ -157,7 +157,8 @@ static int run_table(const ss_reproduce_table *t, const char *out, const ss_ref 
     if (ro->certify)
       snprintf(cbuf, sizeof cbuf, " (%zu verdicts certified)", ty.certified);
     fprintf(stderr,
-            "reproduce: %s: %zu of %zu cases pass%s; %zu quoted values: %zu match, "
+            "subspectra reproduce: %s: %zu of %zu cases pass%s; %zu quoted values: %zu "
+            "match, "
             "%zu differ; %zu rows not quoted (%.1f s)\n",
             t->name, ty.pass, ty.cases, cbuf, ty.quoted, ty.match, ty.quoted - ty.match,
             ty.unquoted, ss_cli_now() - t1);
@@ -184,7 +185,8 @@ static int run_jsr_table(size_t i, const char *out, const ss_ref *ref, size_t *q
     return exit_for(&err);
   }
   fprintf(stderr,
-          "reproduce: %s: %zu of %zu cases pass the joint spectral radius test (the "
+          "subspectra reproduce: %s: %zu of %zu cases pass the joint spectral radius "
+          "test (the "
           "reduction applies to %zu); %zu quoted values: %zu match, %zu differ (%.1f "
           "s)\n",
           ss_reproduce_jsr_name(i), ty.pass, ty.cases, ty.reduced, ty.quoted, ty.match,
@@ -328,12 +330,13 @@ int ss_cli_reproduce(int argc, char **argv) {
     rc = exit_for(&err);
     goto done;
   }
-  fprintf(stderr,
-          "reproduce: figures: %zu pictures in %s/figures (%.1f s)\n"
-          "reproduce: wrote %zu tables to %s (%zu quoted values: %zu match, %zu "
-          "differ; %.1f s in all)\n",
-          spec.nfigures, out, ss_cli_now() - t2, spec.ntables + ss_reproduce_jsr_count(),
-          out, quoted, match, quoted - match, ss_cli_now() - t0);
+  fprintf(
+      stderr,
+      "subspectra reproduce: figures: %zu pictures in %s/figures (%.1f s)\n"
+      "subspectra reproduce: wrote %zu tables to %s (%zu quoted values: %zu match, %zu "
+      "differ; %.1f s in all)\n",
+      spec.nfigures, out, ss_cli_now() - t2, spec.ntables + ss_reproduce_jsr_count(), out,
+      quoted, match, quoted - match, ss_cli_now() - t0);
 done:
   ss_reproduce_spec_free(&spec);
   ss_report_ref_free(&ref);

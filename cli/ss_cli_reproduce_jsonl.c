@@ -6,6 +6,7 @@
 
 #include <json-c/json.h>
 
+#include "ss_cli.h"
 #include "ss_cli_reproduce.h"
 #include "ss_report_table.h"
 
@@ -55,9 +56,7 @@ void ss_reproduce_jsonl(ss_strbuf *js, const ss_reproduce_table *t,
                         const ss_reproduce_results *l) {
   for (size_t i = 0; i < l->n; i++) {
     json_object *o = result_json(t, l->r + i);
-    ss_sb_printf(js, "%s\n",
-                 json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+    ss_sb_printf(js, "%s\n", json_object_to_json_string_ext(o, SS_CLI_JSON_FLAGS));
     json_object_put(o);
   }
 }

@@ -49,7 +49,7 @@ static const char *const usage_text =
     "                        (0,1),(2,3) of each tet's vertex order in IN, as\n"
     "                        subdivide writes them); octahedra keep theirs, the\n"
     "                        pair (0,3).  The summary counts improper pairs\n"
-    "                        (Definition 3.2; see the README)\n"
+    "                        (Definition 3.2; see docs/schemes.md)\n"
     "      --format F        summary as text (default) or json, on stdout\n"
     "  -h, --help            this text\n"
     "\n"
@@ -286,7 +286,7 @@ static void summary_start(const sub_opts *o, const ss_cx *cx, int reads_diag,
       fprintf(
           o->sum,
           "major diagonals: %s; %zu of %zu adjacent pairs improper (Definition 3.2 as "
-          "read in the README)\n",
+          "read in docs/schemes.md)\n",
           o->diag, dbad, dpairs);
   }
 }
@@ -329,9 +329,7 @@ static void summary_end(const sub_opts *o, json_object *report) {
   if (o->json) {
     json_object_object_add(report, "output", json_object_new_string(o->out));
     json_object_object_add(report, "format", json_object_new_string(format));
-    fprintf(o->sum, "%s\n",
-            json_object_to_json_string_ext(report, JSON_C_TO_STRING_PLAIN |
-                                                       JSON_C_TO_STRING_NOSLASHESCAPE));
+    fprintf(o->sum, "%s\n", json_object_to_json_string_ext(report, SS_CLI_JSON_FLAGS));
   } else {
     fprintf(o->sum, "wrote %s (%s)\n", o->out, format);
   }

@@ -20,7 +20,7 @@ static const char *const sweep_usage =
     "                        [--max-memory SIZE] [--progress | --quiet]\n"
     "\n"
     "Analyse every case asked for, exactly as `subspectra analyze` does, and store\n"
-    "each result in a SQLite results store (schema in the README).  Results are\n"
+    "each result in a SQLite results store (schema in docs/sweep.md).  Results are\n"
     "keyed by the scheme's identity (its name, or the hash of the stencil file's\n"
     "bytes, with --tol, --depth, --diagonals, --certify and --psi-depth), the case\n"
     "and the canonical link:\n"

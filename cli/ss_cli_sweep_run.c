@@ -88,12 +88,13 @@ static void progress(ss_sweep *w, int force) {
   if (w->opt.certify)
     snprintf(proven, sizeof proven, "; %zu of %zu computed proven", w->proven,
              w->computed);
-  fprintf(stderr,
-          "%ssweep: %zu/%zu cases (%.1f%%), %.1f cases/s, ETA %s; %zu fail, %zu "
-          "undecided, %zu errors%s%s",
-          w->tty ? "\r" : "", done, w->total,
-          w->total ? 100.0 * (double)done / (double)w->total : 100.0, rate, eta, w->fail,
-          w->undecided, w->errors, proven, w->tty ? "\033[K" : "\n");
+  fprintf(
+      stderr,
+      "%ssubspectra sweep: %zu/%zu cases (%.1f%%), %.1f cases/s, ETA %s; %zu fail, %zu "
+      "undecided, %zu errors%s%s",
+      w->tty ? "\r" : "", done, w->total,
+      w->total ? 100.0 * (double)done / (double)w->total : 100.0, rate, eta, w->fail,
+      w->undecided, w->errors, proven, w->tty ? "\033[K" : "\n");
 }
 
 static int job_k(const ss_sweep_job *j) {
@@ -126,7 +127,7 @@ int ss_sweep_prepare(ss_sweep *w, const ss_sweep_job *j, char **canon) {
     }
     if (s) {
       w->errors++;
-      fprintf(stderr, "%ssweep: %s: %s\n", w->tty ? "\r\033[K" : "",
+      fprintf(stderr, "%ssubspectra sweep: %s: %s\n", w->tty ? "\r\033[K" : "",
               ss_case_name(j->kind), err.msg);
     }
   }
@@ -177,10 +178,10 @@ void ss_sweep_record(ss_sweep *w, ss_case_kind kind, int n, const char *canon,
       w->errors++;
       w->nomem += s == SS_ENOMEM;
       if (canon)
-        fprintf(stderr, "%ssweep: vertex %s: %s\n", w->tty ? "\r\033[K" : "", canon,
-                err->msg);
+        fprintf(stderr, "%ssubspectra sweep: vertex %s: %s\n", w->tty ? "\r\033[K" : "",
+                canon, err->msg);
       else
-        fprintf(stderr, "%ssweep: %s %d: %s\n", w->tty ? "\r\033[K" : "",
+        fprintf(stderr, "%ssubspectra sweep: %s %d: %s\n", w->tty ? "\r\033[K" : "",
                 ss_case_name(kind), n, err->msg);
     } else if (!w->stop) {
       int added = 0;
@@ -372,8 +373,8 @@ static int count_total(ss_sweep *w) {
     ss_enum_opts eo = {(int)w->opt.va, (int)w->opt.vb, (int)part, (int)nparts};
     uint64_t counts[SS_ENUM_MAXK + 1];
     if (w->tty && w->opt.vb >= 15)
-      fprintf(stderr, "sweep: counting the links with %ld..%ld vertices...\n", w->opt.va,
-              w->opt.vb);
+      fprintf(stderr, "subspectra sweep: counting the links with %ld..%ld vertices...\n",
+              w->opt.va, w->opt.vb);
     if (ss_enum_links(&eo, count_visit, NULL, counts, &err)) {
       fprintf(stderr, "subspectra sweep: %s\n", err.msg);
       return ss_cli_exit_status(err.status);
@@ -498,8 +499,8 @@ void ss_sweep_run(ss_sweep *w) {
   if ((w->tty || w->log_every > 0) && !w->counting_stopped) {
     char ranks[48] = "";
     if (w->ranks > 1) snprintf(ranks, sizeof ranks, "%d ranks of ", w->ranks);
-    fprintf(stderr, "sweep: %zu cases of %s into %s with %s%d thread%s%s\n", w->total,
-            w->ident, w->opt.db, ranks, w->jobs, w->jobs == 1 ? "" : "s",
+    fprintf(stderr, "subspectra sweep: %zu cases of %s into %s with %s%d thread%s%s\n",
+            w->total, w->ident, w->opt.db, ranks, w->jobs, w->jobs == 1 ? "" : "s",
             nparts > 1 ? " (this part)" : "");
   }
   w->t0 = w->last = ss_cli_now();
@@ -542,28 +543,30 @@ int ss_sweep_close(ss_sweep *w) {
   if (w->ranks > 1) snprintf(ranks, sizeof ranks, "%d ranks of ", w->ranks);
   if (w->counting_stopped)
     fprintf(stderr,
-            "sweep: interrupted (%s) while counting the cases, before any was "
+            "subspectra sweep: interrupted (%s) while counting the cases, before any was "
             "computed (store %s); the same command resumes\n",
             interrupted == SIGINT ? "SIGINT" : "SIGTERM", w->opt.db);
   else
+    fprintf(stderr,
+            "subspectra sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with "
+            "%s%d thread%s; "
+            "%zu already stored%s): %zu pass, %zu fail, %zu undecided, %zu errors; "
+            "store %s\n",
+            done, w->ident, took, w->computed, dt > 0 ? (double)w->computed / dt : 0.0,
+            ranks, w->jobs, w->jobs == 1 ? "" : "s", w->skipped, dupnote, w->pass,
+            w->fail, w->undecided, w->errors, w->opt.db);
+  if (interrupted && !w->counting_stopped)
     fprintf(
         stderr,
-        "sweep: %zu cases of %s in %s (%zu computed, %.1f cases/s with %s%d thread%s; "
-        "%zu already stored%s): %zu pass, %zu fail, %zu undecided, %zu errors; "
-        "store %s\n",
-        done, w->ident, took, w->computed, dt > 0 ? (double)w->computed / dt : 0.0, ranks,
-        w->jobs, w->jobs == 1 ? "" : "s", w->skipped, dupnote, w->pass, w->fail,
-        w->undecided, w->errors, w->opt.db);
-  if (interrupted && !w->counting_stopped)
-    fprintf(stderr,
-            "sweep: interrupted (%s) with %zu of %zu cases done; the same command "
-            "resumes\n",
-            interrupted == SIGINT ? "SIGINT" : "SIGTERM", done, w->total);
+        "subspectra sweep: interrupted (%s) with %zu of %zu cases done; the same command "
+        "resumes\n",
+        interrupted == SIGINT ? "SIGINT" : "SIGTERM", done, w->total);
   else if (w->ranks > 1 && done < w->total)
     /* every computing rank stopped (a signal) before the work did */
     fprintf(stderr,
-            "sweep: stopped with %zu of %zu cases done; the same command resumes\n", done,
-            w->total);
+            "subspectra sweep: stopped with %zu of %zu cases done; the same command "
+            "resumes\n",
+            done, w->total);
   if (w->opt.json) {
     json_object *o = json_object_new_object();
     json_object_object_add(o, "scheme", json_object_new_string(ss_scheme_name(w->s)));
@@ -589,8 +592,7 @@ int ss_sweep_close(ss_sweep *w) {
     json_object_object_add(o, "repeated_links", json_object_new_int64((int64_t)w->dups));
     json_object_object_add(o, "seconds", json_object_new_double(dt));
     json_object_object_add(o, "interrupted", json_object_new_boolean(interrupted != 0));
-    printf("%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN |
-                                                         JSON_C_TO_STRING_NOSLASHESCAPE));
+    printf("%s\n", json_object_to_json_string_ext(o, SS_CLI_JSON_FLAGS));
     json_object_put(o);
   }
   /* a case out of memory or beyond the budget was skipped (with its message):

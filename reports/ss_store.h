@@ -1,7 +1,7 @@
 /* ss_store.h — the results store: one SQLite database per sweep (or per
  * project), one row per analysed case (DESIGN sections 2 and 8).
  *
- * Schema (version 3; the README shows it in full):
+ * Schema (version 3; docs/sweep.md shows it in full):
  *   meta(key, value)       program = subspectra, schema = 3, created = UTC time
  *   scheme(id, identity, name, stencil, stencil_hash, tol, depth, ring_levels,
  *          certify, diagonals, psi_depth)

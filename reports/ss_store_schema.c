@@ -6,7 +6,7 @@
 
 #include "ss_store_impl.h"
 
-/* The tables.  Column comments are repeated in the README.  The columns after
+/* The tables.  Column comments are repeated in docs/sweep.md.  The columns after
  * `seconds` came with version 3 (see added_cols). */
 static const char *const tables_sql =
     "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);\n"

@@ -21,7 +21,7 @@
  * On a regular grid these are the tricubic B-spline rules (vertex 27/64 on P,
  * edge 9/32 on M, face 3/16 on A).  Along an extraordinary edge they are not
  * a tensor product of the Catmull-Clark surface rule and the cubic curve
- * rule (README, "Catmull-Clark solids").
+ * rule (docs/schemes.md, "Catmull-Clark solids").
  *
  * Boundaries and creases.  The "surface" of the mesh is its boundary faces
  * (quads of exactly one hex) together with the quad cells given explicitly

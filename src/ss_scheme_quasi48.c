@@ -13,7 +13,7 @@
  *                   neighbours x of v (the cascade of section 3.2, which for a
  *                   regular valence-8 vertex is the mask of figure 6 and for
  *                   valence n that of figure 7).
- * Choices the paper leaves open (also in README, "Quasi 4-8 surfaces"):
+ * Choices the paper leaves open (also in docs/schemes.md, "Quasi 4-8 surfaces"):
  *  - boundaries: section 4.1 keeps boundary vertices fixed; here an old vertex
  *    on a boundary edge (an edge held by one triangle) keeps its position and a
  *    new vertex on a boundary edge stays at its midpoint, so the boundary

@@ -1,5 +1,5 @@
 /* ss_mask48.h — the regular 4-8 lattice's dyadic mask, built by hand from the
- * quasi 4-8 rules (README, "Quasi 4-8 surfaces"), for the tests of the scheme
+ * quasi 4-8 rules (docs/schemes.md, "Quasi 4-8 surfaces"), for the tests of the scheme
  * (tests/scheme/test_quasi48.c) and of its local matrices
  * (tests/analysis/test_quasi48_local.c).
  *

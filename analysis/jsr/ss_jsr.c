@@ -24,7 +24,7 @@ enum { ELL_AUTO_MAX_N = 64 };
 enum { POLY_CAP = 20000 };
 
 ss_jsr_opts ss_jsr_defaults(void) {
-  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_AUTO, 10000000, 0.0, 0, 1, 1};
+  ss_jsr_opts o = {8, 1e-3, SS_JSR_NORM_AUTO, 10000000, 0.0, 0, 1, 1, {NULL, NULL}};
   return o;
 }
 
@@ -236,10 +236,13 @@ static ss_status scale_inputs(jsr_run *r, ss_error *err) {
  * over words of the min over prefixes <= min_k rho_k). */
 static ss_status brute_stage(jsr_run *r, ss_jsr_result *out, ss_error *err) {
   ss_jsr_ws *w = &r->w;
+  ss_progress_step(&r->o->progress, "products for rho_k", 0, (size_t)r->K);
   out->depth = ss_jsr_brute_force(w, r->K, r->deadline, out->rho_inf, out->rho_2,
                                   r->rho_cert, &out->cut_words);
   if (w->st != SS_OK) return lapack_failed(w, err);
   out->cut_len = out->depth < r->K ? out->depth + 1 : 0;
+  ss_progress_step(&r->o->progress, "products for rho_k", (size_t)out->depth,
+                   (size_t)r->K);
   r->upper = INFINITY;
   for (int k = 0; k < out->depth; k++)
     if (r->rho_cert[k] < r->upper) r->upper = r->rho_cert[k];
@@ -335,7 +338,7 @@ static int bnb_step(jsr_run *r, int L, double *u) {
  * passes refine it; recomputing the shallow levels costs a factor of about
  * m / (m - 1) at most.  AUTO does not try the invariant polytope: on the
  * cases it exists for (tet/oct face and edges) the polytope does not close
- * within thousands of vertices (README, "Joint spectral radius"), so its time
+ * within thousands of vertices (docs/methods.md, "Joint spectral radius"), so its time
  * would be taken from the branch and bound; --norm polytope asks for it. */
 static ss_status bound_stage(jsr_run *r, ss_jsr_result *out, ss_error *err) {
   ss_jsr_ws *w = &r->w;
@@ -352,6 +355,7 @@ static ss_status bound_stage(jsr_run *r, ss_jsr_result *out, ss_error *err) {
     if (o->max_depth && L > o->max_depth) break;
     if (!ss_jsr_ws_reserve(w, L))
       return ss_error_nomem(err, "jsr branch and bound stack");
+    ss_progress_step(&o->progress, "branch and bound, word length", (size_t)L, 0);
     double u;
     const int pass = bnb_step(r, L, &u);
     if (pass == PASS_FAILED) return lapack_failed(w, err);
@@ -432,7 +436,10 @@ ss_status ss_jsr_compute(size_t m, size_t n, const double *const *Y, const ss_js
     ss_jsr_ws_scale(&r.w, r.Y, NULL);
     st = brute_stage(&r, out, err);
   }
-  if (st == SS_OK) st = norms_stage(&r, err);
+  if (st == SS_OK) {
+    ss_progress_step(&o->progress, "fitting the norms", 0, 0);
+    st = norms_stage(&r, err);
+  }
   if (st == SS_OK) st = bound_stage(&r, out, err);
   if (st == SS_OK) st = finish(&r, out, err);
   ss_jsr_ws_free(&r.w);

@@ -75,6 +75,7 @@
 
 #include "ss_api.h"
 #include "ss_error.h"
+#include "ss_progress.h"
 
 SS_BEGIN_DECLS
 
@@ -95,32 +96,36 @@ typedef enum {
 } ss_jsr_norm;
 
 typedef struct {
-  int depth;          /* K in 1..64: products of length 1..K for rho_k and the lower
-                         bound (brute force over m^k words for k <= K) */
-  double gap;         /* the branch and bound stops when upper <= lower * (1 +
-                         gap) (relative; e.g. 1e-3) */
-  ss_jsr_norm norm;   /* the norm of the branch and bound (AUTO: chosen by
-                         its first pass; see ss_jsr_norm) */
-  size_t max_nodes;   /* most products the branch and bound may form; 0: no
-                         limit besides max_seconds */
-  double max_seconds; /* wall-clock limit of the whole call (<= 0: none): the
-                         brute force from length 2 on (a length it cuts short
-                         is left out of rho_inf, rho_2 and the upper bound:
-                         see depth, cut_len), the ellipsoid's fit (its first
-                         quarter), the polytope (half of what is left) and
-                         the branch and bound */
-  int max_depth;      /* longest word the branch and bound forms; 0: no limit
-                         besides max_nodes / max_seconds (>= depth to matter) */
-  int weighted;       /* 1: the inf-norm branch and bound may switch to a
-                         diagonally weighted inf-norm (default); 0: never */
-  int fit_words;      /* K in 1..5 (m^K <= 4096): the ellipsoidal norm is
-                         fitted to the m^K products of length K instead of
-                         the m maps (ss_jsr_ellipsoid_fit_words); 1 (default)
-                         the maps.  The bound stays proven for any K */
+  int depth;            /* K in 1..64: products of length 1..K for rho_k and the lower
+                           bound (brute force over m^k words for k <= K) */
+  double gap;           /* the branch and bound stops when upper <= lower * (1 +
+                           gap) (relative; e.g. 1e-3) */
+  ss_jsr_norm norm;     /* the norm of the branch and bound (AUTO: chosen by
+                           its first pass; see ss_jsr_norm) */
+  size_t max_nodes;     /* most products the branch and bound may form; 0: no
+                           limit besides max_seconds */
+  double max_seconds;   /* wall-clock limit of the whole call (<= 0: none): the
+                           brute force from length 2 on (a length it cuts short
+                           is left out of rho_inf, rho_2 and the upper bound:
+                           see depth, cut_len), the ellipsoid's fit (its first
+                           quarter), the polytope (half of what is left) and
+                           the branch and bound */
+  int max_depth;        /* longest word the branch and bound forms; 0: no limit
+                           besides max_nodes / max_seconds (>= depth to matter) */
+  int weighted;         /* 1: the inf-norm branch and bound may switch to a
+                           diagonally weighted inf-norm (default); 0: never */
+  int fit_words;        /* K in 1..5 (m^K <= 4096): the ellipsoidal norm is
+                           fitted to the m^K products of length K instead of
+                           the m maps (ss_jsr_ellipsoid_fit_words); 1 (default)
+                           the maps.  The bound stays proven for any K */
+  ss_progress progress; /* steps: "products for rho_k" (done of depth), "fitting
+                           the norms", "branch and bound, word length" (done =
+                           the length); {NULL, NULL}: none (default) */
 } ss_jsr_opts;
 
 /* Defaults: depth 8, gap 1e-3, norm AUTO, 10^7 nodes, no time or depth limit,
- * weighting allowed, the ellipsoid fitted to the maps (fit_words 1). */
+ * weighting allowed, the ellipsoid fitted to the maps (fit_words 1), no
+ * progress callback. */
 ss_jsr_opts ss_jsr_defaults(void);
 
 typedef struct {

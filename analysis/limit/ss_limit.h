@@ -33,7 +33,7 @@
  * idea), and m = infinity (a point exactly on the vertex, or an edge point
  * whose remaining digits vanish) is the projection on the eigenvalue 1.
  *
- * Cost per point (the finding, README "Limit evaluation"):
+ * Cost per point (the finding, docs/methods.md "Limit evaluation"):
  *   - regular cells: O(1), the B-spline;
  *   - cells at an extraordinary vertex, the point in the cells around it:
  *     O(1) -- one step to level 1, one jump over the run, one step out, the

@@ -22,7 +22,7 @@
  *   face   ell    [0.136807, 0.141422]  gap 3.4e-2  L 8  20604            ratio 1.7
  *   edge10 2      [0.494787, 0.527089]  gap 6.5e-2  L 11 11112            ratio 4.17
  *   edge10 ell    [0.494787, 0.494788]  gap 3.2e-7  L 4  2 products, 15 s  ratio 0.08
- * The face does not reach 1e-3 in any norm (README, "Joint spectral
+ * The face does not reach 1e-3 in any norm (docs/methods.md, "Joint spectral
  * radius": the fitted ellipsoid is 5% from extremal); the ellipsoid cuts the
  * gap tenfold against the inf-norm at the same depth.  On edge 10 the fitted
  * ellipsoid is extremal: the gap is reached at the first pass, the time is
@@ -55,7 +55,7 @@
  * value up to eps, but its LPs (n rows, 2 x vertices columns, 20-200 ms
  * each here) make it slower than a near-extremal norm's branch and bound;
  * on the face it does not close, and the face's gap 1e-3 is not reached by
- * any method here (README, "Joint spectral radius").
+ * any method here (docs/methods.md, "Joint spectral radius").
  * Later (2026-12-03, not by this bench): the ellipsoid fitted to the
  * products of length K (`jsr --fit-words K`) gives the face 0.139694 (K = 2),
  * 0.139085 (K = 4) and 0.139008 (K = 5) at 120 s, gap 1.6 %; balancing the

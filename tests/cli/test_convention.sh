@@ -9,7 +9,12 @@
 #    lists the pair as "-X, --LONG";
 #  - the short option reaches the same place as the long one (its value is
 #    the one named in messages and gives the same output);
-#  - analyze -o FILE and sweep --progress / --quiet.
+#  - analyze -o FILE and sweep --progress / --quiet;
+#  - --progress in jsr, limit and deform (phase lines with it, none without);
+#  - enumerate random has no -s (it was its seed; -s is --scheme elsewhere);
+#  - every command writes JSON with one json-c setting: '/' not escaped;
+#  - messages start "subspectra COMMAND: " (sweep's and merge's progress and
+#    summaries too) and name nothing twice ("draw: draw:", "cell 1: ... cell 1:").
 set -u
 exe=$1
 src=$2
@@ -154,7 +159,7 @@ checks=$((checks + 1))
 
 # ---- sweep --progress / --quiet ----
 # --progress: the progress header even though stderr is a pipe; without it none
-expect 0 "sweep: 3 cases of loop .* into .* with 1 thread" "$exe" sweep -s loop --vertices 3..5 --db "$tmp/p.db" -j 1 --progress
+expect 0 "^subspectra sweep: 3 cases of loop .* into .* with 1 thread" "$exe" sweep -s loop --vertices 3..5 --db "$tmp/p.db" -j 1 --progress
 checks=$((checks + 1))
 "$exe" sweep -s loop --vertices 3..6 --db "$tmp/q.db" -j 1 2>&1 | grep -q "cases of loop .* into .* with 1 thread" &&
   fail "sweep without --progress printed a progress line to a pipe"
@@ -167,5 +172,67 @@ if command -v script >/dev/null; then
   grep -q "cases of loop .* into .* with 1 thread" "$tmp/t1" && ! grep -q "into .* with 1 thread" "$tmp/t2" &&
     grep -q "5 pass" "$tmp/t2" || fail "sweep on a terminal: -q does not silence the progress"
 fi
+
+# ---- --progress in jsr, limit and deform; silent without it ----
+m=$src/data/meshes
+expect 0 "^subspectra jsr: \[[0-9.]+ s\] branch and bound, word length 4" "$exe" jsr -s tetoct --edge 3 --depth 4 --progress
+expect 0 "^subspectra limit: \[[0-9.]+ s\] points evaluated ([0-9]+)/\1$" "$exe" limit -s mlca "$m/hexstar-icosahedron.mesh" --samples 2 --progress
+expect 0 "^subspectra deform: \[[0-9.]+ s\] writing" "$exe" deform -s mlca "$m/hexstar-icosahedron.mesh" --pattern grid --n 2 --target "$m/hexstar-icosahedron.mesh" --progress
+for c in "jsr -s tetoct --edge 3 --depth 4" "limit -s mlca $m/hexstar-icosahedron.mesh --samples 2" \
+  "deform -s mlca $m/hexstar-icosahedron.mesh --pattern grid --n 2 --target $m/hexstar-icosahedron.mesh"; do
+  checks=$((checks + 1))
+  # shellcheck disable=SC2086 # the command's words
+  "$exe" $c 2>&1 >/dev/null | grep -q '\[[0-9.]* s\]' && fail "$c printed progress without --progress"
+done
+
+# ---- enumerate random: --seed only ----
+expect 2 "enumerate random: -s is no longer the seed .*give --seed S" "$exe" enumerate random --vertices 8 --samples 1 -s 7
+expect 0 "^8 bedch,ahfe,adgh,aefgc,abfd,bhgde,cdfh,acgfb$" "$exe" enumerate random --vertices 8 --samples 1 --seed 7
+
+# ---- one JSON setting: '/' is not escaped ----
+# limit's reason at the icosahedron vertex reads "... >= 1/2 and not 1/2"
+# (json-c's default wrote 1\/2 there, as jsr did before)
+expect 1 '>= 1/2 and not 1/2"' "$exe" limit -s mlca "$m/hexstar-icosahedron.mesh" --at "1 0 0 0" -d --format json
+expect 0 '"threshold_name":"1/4' "$exe" jsr -s tetoct --face --depth 2 --max-seconds 1 --format json
+checks=$((checks + 1))
+calls=$(cat "$src"/cli/*.c | tr -d ' \n' | grep -o 'json_object_to_json_string_ext([^;]*;' )
+[ -n "$calls" ] && ! grep -v 'SS_CLI_JSON_FLAGS)' <<<"$calls" | grep -q . ||
+  fail "a command writes JSON with its own json-c flags: $(grep -v SS_CLI_JSON_FLAGS <<<"$calls" | head -2)"
+
+# ---- messages: "subspectra COMMAND: ", nothing named twice ----
+"$exe" sweep -s loop --vertices 3..4 --db "$tmp/m1.db" -j 1 2>"$tmp/sw.err" >/dev/null
+expect 0 "^subspectra sweep: 2 cases of loop" cat "$tmp/sw.err"
+expect 0 "^subspectra merge: .*m1.db: 2 results added" "$exe" merge "$tmp/m2.db" "$tmp/m1.db"
+twice=0
+while IFS= read -r c; do
+  # shellcheck disable=SC2086 # the command's words
+  while IFS= read -r line; do
+    case $line in "subspectra "*) ;; "(see 'subspectra "*) continue ;; *)
+      fail "$c: a message without the prefix: $line"
+      continue
+      ;;
+    esac
+    # the fields after the prefix: none may begin with the first two words
+    # of an earlier one
+    dup=$(awk -F': ' '{ for (i = 2; i <= NF; i++) { split($i, w, " "); k = w[1] " " w[2];
+      if (w[2] != "" && k in seen) { print k; exit } seen[k] = 1 } }' <<<"$line")
+    [ -n "$dup" ] && fail "$c: '$dup' twice in: $line" && twice=1
+  done < <(cd "$tmp" && eval "\"$exe\" $c" 2>&1 >/dev/null)
+  checks=$((checks + 1))
+done <<EOF2
+draw -s mlca --vertex octahedron -o x.jpg
+draw -s mlca --edge 8 -o x.png
+limit -s mlca $m/hexstar-icosahedron.mesh --at '1 0 0 0' -d
+subdivide -s loop $m/cube-creased.mesh -o x.obj
+subdivide -s mlca $src/tests/mesh/bad/index-out-of-range.mesh -o x.mesh
+matrix -s mlca --edge 3 -o nodir/x.mtx
+sweep -s mlca --vertices 4..5 --db nodir/x.db
+merge m3.db nodir.db
+report --db nodir.db
+jsr -s mlca --face
+enumerate mesh nodir.mesh
+enumerate canonical < /dev/null --format xml
+analyze -s mlca --vertex bad
+EOF2
 
 expect_done test_convention

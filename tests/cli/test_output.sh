@@ -37,6 +37,9 @@ same() { # FILE TEXT: the file still holds TEXT
 expect 2 "$full" "${to_full[@]}" "$exe" --help
 expect 2 "$full" "${to_full[@]}" "$exe" --version
 expect 2 "$full" "${to_full[@]}" "$exe" analyze --help
+# the message names the command, as every message does
+expect 2 "^subspectra analyze: $full" "${to_full[@]}" "$exe" analyze --help
+expect 2 "^subspectra: $full" "${to_full[@]}" "$exe" --version
 for f in text json tsv; do
   expect 2 "$full" "${to_full[@]}" "$exe" analyze --scheme mlca --vertex octahedron --format $f
   expect_in 2 "$full" "octahedron" "${to_full[@]}" "$exe" analyze --scheme mlca --vertex - --format $f

@@ -28,7 +28,9 @@
 #        (5 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))))/16, lambda3 = 1/2
 #        and lambda4 = the second Fourier mode's (the same with 4pi/n, 2pi/n);
 #        two-ring 30n + 5, one-ring 6n + 3;
-#  - the man page is installed and names every command;
+#  - the man pages (when help2man was found: MAN = true) are installed, one per
+#    command of the overview and per sub-command of enumerate, each naming every
+#    long option its --help names, and groff has no warning on any;
 #  - `reproduce` run from outside the source tree finds the installed reference
 #    values and its tables (reproduce/tables.json) beside the program, and
 #    through SUBSPECTRA_DATADIR, and its --help names the compiled-in datadir;
@@ -37,7 +39,7 @@
 #    test_python_limit.py (limit and the results store).
 set -u
 build=$1 src=$2 example=$3 prefix=$4 libdir=$5 datadir=$6 bindir=$7 mandir=$8 incdir=$9
-pydir=${10} pytest=${11} sanitize=${12} cxxprog=${13} checkexports=${14}
+pydir=${10} pytest=${11} sanitize=${12} cxxprog=${13} checkexports=${14} man=${15}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -63,7 +65,7 @@ fi
 ok "meson install --destdir"
 
 for f in "$L/libsubspectra.a" "$L/libsubspectra.so" "$L/pkgconfig/subspectra.pc" \
-  "$INC/subspectra/ss_local.h" "$B/subspectra" "$MAN/man1/subspectra.1"; do
+  "$INC/subspectra/ss_local.h" "$B/subspectra"; do
   [ -e "$f" ] || fail "not installed: ${f#"$stage"}"
 done
 ls "$INC/subspectra" | grep -q '_impl\.h$' && fail "an *_impl.h header is installed"
@@ -231,18 +233,41 @@ check_edge() {
 [ -x "$tmp/ae" ] && check_edge "$tmp/ae" 4 && check_edge "$tmp/ae" 5
 [ -x "$tmp/aes" ] && check_edge "$tmp/aes" 4
 
-# the man page: every command of the overview has its section
-man1=$MAN/man1/subspectra.1
-if [ -f "$man1" ]; then
+# the man pages: one per command of the overview and per sub-command of
+# enumerate, each made from that command's --help (every long option of the
+# help is in the page; help2man writes "\-\-name" as roff)
+if [ "$man" = true ]; then
+  man1=$MAN/man1
+  pages=(subspectra)
   for c in $("$B/subspectra" --help | awk '/^commands:/ { on = 1; next } on && /^  [a-z]/ { print $1 } on && /^$/ { exit }'); do
-    grep -q "^\.SS $c\$" "$man1" || fail "man page: no section for $c"
+    pages+=("subspectra-$c")
   done
-  grep -q '^\.SS enumerate links$' "$man1" || fail "man page: no section for enumerate links"
-  if command -v groff >/dev/null; then
-    groff -k -man -Tutf8 -ww -z "$man1" 2>"$tmp/groff.log"
-    [ -s "$tmp/groff.log" ] && fail "groff warns on the man page: $(head -3 "$tmp/groff.log")"
-  fi
-  ok "man page"
+  for w in $("$B/subspectra" enumerate --help | awk '/^  [a-z]+  / { print $1 }'); do
+    pages+=("subspectra-enumerate-$w")
+  done
+  [ ${#pages[@]} -ge 15 ] || fail "man pages: the overview lists only ${#pages[@]} commands"
+  for p in "${pages[@]}"; do
+    f=$man1/$p.1
+    if [ ! -f "$f" ]; then
+      fail "man page $p(1) is not installed"
+      continue
+    fi
+    args=${p#subspectra}
+    args=${args//-/ }
+    # shellcheck disable=SC2086 # the command's words
+    for o in $("$B/subspectra" $args --help | grep -o -E -- '--[a-z][a-z0-9-]+' | sort -u); do
+      grep -q -F -- "$(sed 's/-/\\-/g' <<<"$o")" "$f" || fail "man page $p(1) lacks $o of its --help"
+    done
+    want=".TH $(tr '[:lower:]' '[:upper:]' <<<"$p" | sed 's/-/\\-/g') "
+    grep -q -F -- "$want" "$f" || fail "man page $p(1) is titled $(grep -m1 '^\.TH' "$f")"
+    if command -v groff >/dev/null; then
+      groff -k -man -Tutf8 -ww -z "$f" 2>"$tmp/groff.log"
+      [ -s "$tmp/groff.log" ] && fail "groff warns on $p(1): $(head -3 "$tmp/groff.log")"
+    fi
+  done
+  ok "man pages (${#pages[@]}, from --help by help2man)"
+else
+  echo "skip: man pages (built without help2man: the option man)"
 fi
 
 # reproduce from outside the source tree: the reference files and the tables

@@ -146,9 +146,9 @@ done
 cp "$stem.md" "$tmp/md1"
 cp "$out/data/exhaustive-vertices-k4-7-not-passing.csv.xz" "$tmp/xz1"
 SUBSPECTRA=$exe "$script" --max-k 7 --db "$tmp/e.db" --out "$out" --jobs 2 2> "$tmp/err2"
-[[ $(grep -c '^sweep: .*(0 computed' "$tmp/err2") == 3 ]] &&
+[[ $(grep -c '^subspectra sweep: .*(0 computed' "$tmp/err2") == 3 ]] &&
   ok "rerun resumes: nothing computed again" ||
-  fail "rerun: $(grep '^sweep:' "$tmp/err2")"
+  fail "rerun: $(grep '^subspectra sweep:' "$tmp/err2")"
 cmp -s "$stem.md" "$tmp/md1" && cmp -s "$out/data/exhaustive-vertices-k4-7-not-passing.csv.xz" "$tmp/xz1" &&
   ok "rerun: byte-identical tables" || fail "rerun changed the tables"
 # an interrupted sweep (here: half of the links): the rows it holds only in

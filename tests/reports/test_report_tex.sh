@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # test_report_tex.sh SUBSPECTRA — `report --format tex` compiles with pdflatex
 # in a one-column article and fits the page: no LaTeX error, no overfull box
-# (the summary of the README example was 117 pt too wide, its cases table a
+# (the summary of the docs/report.md example was 117 pt too wide, its cases table a
 # float 438 pt taller than a page), the cases table runs over pages as a
 # longtable with its header repeated, and the labels are set.  Cases: the
-# README's MLCA sweep (long k = 9 links, a failing case's reasons) and a
+# docs/report.md's MLCA sweep (long k = 9 links, a failing case's reasons) and a
 # box-spline sweep (the extra column of improper diagonal pairs).  Without
 # pdflatex (./run installs texlive-latex-recommended) it is SKIPPED (77).
 set -u

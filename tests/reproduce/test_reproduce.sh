@@ -172,7 +172,7 @@ grep -q '^face (bfs)	jsr_verdict	pass	pass	match' "$out/tetoct-jsr.tsv" &&
 # (ccsolid: edges 8..10 fail as MLCA's do, the surface factor's w = +-2 pair
 # reaching 1/2, a mode test_ccsolid shows to be the tensor product's; of the
 # vertices the tetrahedral link (lambda1 < 0) and two links with 9 vertices
-# (folds) fail; README "Catmull-Clark solids")
+# (folds) fail; docs/schemes.md "Catmull-Clark solids")
 want_summary="boxspline-avg-edges-4-9: 6 of 6 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 6 rows not quoted
 boxspline-avg-vertices-5-22: 16 of 18 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 18 rows not quoted
 boxspline-edges-4-9-center: 4 of 6 cases pass both conditions; 29 quoted values: 15 match, 14 differ; 0 rows not quoted
@@ -330,7 +330,7 @@ if bad:
 PYEOF
 # quasi48 (issue 19), derived without the program: the regular 4-8 vertex
 # (class 4 with valence 4, class 8 with valence 8) generates cubics (the dyadic
-# symbol's zeros at the other cosets are of order 4, README "Quasi 4-8
+# symbol's zeros at the other cosets are of order 4, docs/schemes.md "Quasi 4-8
 # surfaces"), so its leading eigenvalues are 1, 1/2 x2, 1/4 x3, 1/8 x4; a
 # class-4 vertex of valence n is a class-8 vertex of valence 2n after one
 # binary step, so those rows agree (n = 3..8); quasi48 is shown beside Loop

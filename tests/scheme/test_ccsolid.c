@@ -822,7 +822,7 @@ static void check_edge(int n) {
     CHECK(d0 > 1e-3 && dall > 1e-3,
           "edge %d: the mode-0 spectrum equals the tensor product's (%g, %g)", n, d0,
           dall);
-  /* the leading mode-0 eigenvalues after 1 (distinct values), for the README */
+  /* the leading mode-0 eigenvalues after 1 (distinct values), for docs/schemes.md */
   printf("edge %2d: rows off the edge equal (%.0e); modes w != 0 equal (%.0e); mode 0 "
          "differs by %.3g:",
          n, off, dswap, d0);

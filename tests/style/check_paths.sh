@@ -11,8 +11,9 @@
 #  2. docs/DESIGN.md names, in backquotes, a repository path that does not exist
 #     (a span that looks like a path: no spaces, and a '/' or a file extension;
 #     globs must match something; placeholders in capitals such as DIR/NAME.md
-#     or FILE.png are skipped), or links (markdown) to a file that does not
-#     exist or to a heading a Markdown file does not have;
+#     or FILE.png are skipped);
+#  2b. README.md or a page docs/*.md links (Markdown, relative to the file) to
+#     a file that does not exist or to a heading a Markdown file does not have;
 #  3. a file cites "DESIGN section N" for a section docs/DESIGN.md does not have.
 #
 # Before checking SRCDIR it checks itself on two small trees, one clean and one
@@ -51,6 +52,13 @@ in_files() {
 anchors() {
   grep -E '^#{1,6} ' "$1" | sed -E 's/^#+ +//' | tr '[:upper:]' '[:lower:]' |
     LC_ALL=C sed 's/[^a-z0-9 _-]//g; s/ /-/g'
+}
+
+# links FILE.md: the targets of its Markdown links and images, one per line,
+# outside code (indented blocks and fences) and inline code spans.
+links() {
+  awk '/^ *```/ { fence = !fence; next } !fence && !/^    /' "$1" |
+    sed 's/`[^`]*`//g' | grep -o '\]([^)]*)' | sed 's/^\](//; s/)$//; s/ .*//' | sort -u
 }
 
 # check_tree DIR: print one line per fault; return 1 if there was any.
@@ -96,20 +104,29 @@ check_tree() {
       echo "docs/DESIGN.md names \`$span\`, which is not in the repository"
       bad=1
     done < <(grep -o '`[^`]*`' "$design" | tr -d '`' | sort -u)
+  fi
+
+  # 2b. links in README.md and docs/*.md (relative to the file) to files and
+  # headings that exist
+  local md dir
+  while IFS= read -r md; do
+    dir=$(dirname "$md")
     while IFS= read -r span; do
       p=${span%%#*}
       [[ "$p" =~ ^[a-z]+: ]] && continue # http:, https:, mailto:
-      [ -z "$p" ] && p=DESIGN.md
-      if [ ! -e "$root/docs/$p" ]; then
-        echo "docs/DESIGN.md links to $span, which does not exist"
+      if [ -z "$p" ]; then
+        p=$(basename "$md")
+      fi
+      if [ ! -e "$root/$dir/$p" ]; then
+        echo "$md links to $span, which does not exist"
         bad=1
       elif [[ "$span" == *'#'* && "$p" == *.md ]] &&
-        ! anchors "$root/docs/$p" | grep -q -x -F "${span#*#}"; then
-        echo "docs/DESIGN.md links to $span: $p has no such heading"
+        ! anchors "$root/$dir/$p" | grep -q -x -F "${span#*#}"; then
+        echo "$md links to $span: $p has no such heading"
         bad=1
       fi
-    done < <(grep -o '\]([^)]*)' "$design" | sed 's/^\](//; s/)$//' | sort -u)
-  fi
+    done < <(links "$root/$md")
+  done < <(grep -E '^(README\.md|docs/[^/]*\.md)$' <<<"$files")
 
   # 3. "DESIGN section N" cited anywhere must exist
   if [ -f "$design" ]; then
@@ -132,10 +149,13 @@ self_test() {
   printf '# D\n## 1. One\nSee `src/a.c`, `src/*.c`, `a.c`, `DIR/NAME.md`, `1/2`, [r](../README.md#the-x-y).\n' \
     >"$t/good/docs/DESIGN.md"
   printf '/* a.c (DESIGN section 1) */\n' >"$t/good/src/a.c"
-  printf '# R\n## The `x` (y)\n' >"$t/good/README.md"
+  printf '# R\n## The `x` (y)\nSee [d](docs/DESIGN.md#1-one), [p](docs/p.md#a) and [s](#r).\n' >"$t/good/README.md"
+  printf '# P\n## A\n[back](../README.md#the-x-y), [self](#p), `[no](x.md)`\n\n    [code](y.md)\n' >"$t/good/docs/p.md"
   cp -r "$t/good/." "$t/bad/"
   printf '/* b.c: see %s (DESIGN sections 1 and 7) */\n' "/wo""rk/shared/x" >"$t/bad/src/b.c"
   printf 'See `src/missing.c`, `data/*.tsv` and [m](../MISSING.md), [z](../README.md#zz).\n' >>"$t/bad/docs/DESIGN.md"
+  printf '[q](docs/q.md) [b](#nowhere)\n' >>"$t/bad/README.md"
+  printf '[i](../img.png)\n' >>"$t/bad/docs/p.md"
   if ! out=$(check_tree "$t/good"); then
     echo "self-test: a clean tree was refused:"
     echo "$out"
@@ -146,7 +166,8 @@ self_test() {
     status=1
   }
   for want in "outside path: src/b.c" "src/missing.c" "data/\*.tsv" "MISSING.md" "README.md#zz: ../README.md has no such heading" \
-    "DESIGN section 7"; do
+    "README.md links to docs/q.md, which" "README.md links to #nowhere: README.md has no such heading" \
+    "docs/p.md links to ../img.png, which" "DESIGN section 7"; do
     if ! grep -q "$want" <<<"$out"; then
       echo "self-test: the fault '$want' was not found; the checker said:"
       echo "$out"
@@ -164,7 +185,7 @@ if ! self_test; then
 fi
 if out=$(check_tree "$src"); then
   echo "paths: $(list_files "$src" | wc -l) files name no path outside the repository;" \
-    "docs/DESIGN.md's paths, links and cited sections exist"
+    "docs/DESIGN.md's paths and cited sections and the links of README.md and docs/*.md exist"
   exit 0
 fi
 echo "$out"

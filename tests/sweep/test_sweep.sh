@@ -280,7 +280,7 @@ for r in 1 2 3; do
   for p in $pids; do wait "$p" || bad=$((bad + 1)); done
 done
 checks=$((checks + 1))
-[ "$bad" = 0 ] || fail "$bad of 12 sweeps creating one store at once failed: $(grep -hv '^sweep: 1 cases' "$tmp"/new*.out | head -2)"
+[ "$bad" = 0 ] || fail "$bad of 12 sweeps creating one store at once failed: $(grep -hv '^subspectra sweep: 1 cases' "$tmp"/new*.out | head -2)"
 expect 0 "^1\$" sqlite3 "$tmp/new3.db" "SELECT count(*) FROM result"
 
 # usage errors
@@ -301,7 +301,7 @@ expect 2 "need OUT.db" "$exe" merge "$tmp/u.db"
 # live line with rate and ETA on a terminal
 checks=$((checks + 1))
 err=$("$exe" sweep --scheme mlca --vertices 4..8 --db "$tmp/pr.db" 2>&1 >/dev/null)
-[ "$(wc -l <<<"$err")" = 1 ] && grep -q "^sweep: 23 cases" <<<"$err" ||
+[ "$(wc -l <<<"$err")" = 1 ] && grep -q "^subspectra sweep: 23 cases" <<<"$err" ||
   fail "non-terminal stderr should carry one summary line, got: $err"
 # (script is util-linux's, essential on Debian: always run, never skipped)
 checks=$((checks + 1))

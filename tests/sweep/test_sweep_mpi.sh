@@ -60,7 +60,7 @@ checks=$((checks + 1))
 [ "$rc" = 1 ] || fail "mpirun -n 3 sweep: exit status $rc, want 1 ($(head -3 "$tmp/mpi.err"))"
 same "mpirun -n 3 vs one process" "$tmp/ref.db" "$tmp/mpi.db"
 checks=$((checks + 1))
-n=$(grep -c "^sweep: 29 cases of mlca .*29 computed.*with 2 ranks of 1 thread" "$tmp/mpi.err")
+n=$(grep -c "^subspectra sweep: 29 cases of mlca .*29 computed.*with 2 ranks of 1 thread" "$tmp/mpi.err")
 [ "$n" = 1 ] || fail "mpirun -n 3: $n summary lines, want 1 (rank 0's): $(head -3 "$tmp/mpi.err")"
 checks=$((checks + 1))
 n=$(grep -c '"ranks":2' "$tmp/mpi.out")
@@ -174,7 +174,7 @@ pid=$!
 termed=$(signal_rank1_after 4 TERM "$db" "$pid")
 wait "$pid"
 checks=$((checks + 1))
-[ -n "$termed" ] && grep -q "^sweep: 29 cases of mlca .*; 0 already stored" "$tmp/term.err" ||
+[ -n "$termed" ] && grep -q "^subspectra sweep: 29 cases of mlca .*; 0 already stored" "$tmp/term.err" ||
   fail "SIGTERM to rank 1: the sweep did not report all 29 cases: $(head -3 "$tmp/term.err")"
 same "rank 1 stopped by SIGTERM vs one process" "$tmp/ref.db" "$db"
 
