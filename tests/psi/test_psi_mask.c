@@ -13,6 +13,12 @@
  *     opposite (the reflection with psi o sigma = psi maps one to the
  *     other), each confirmed by central differences of the net one ring
  *     level down (another estimate of the derivatives, to 50 %);
+ *   - box-spline (its masks since session 8): every regular vertex of the
+ *     icosahedron and of two failing links against central differences one
+ *     level down, the witnesses too; a fold proven on k = 6 (enclosures
+ *     widened on both sides of the proof); the pipeline's verdict on psi, and
+ *     an unproven one where the basis has no enclosure (k = 5); the regular
+ *     neighbourhood inside one refined tet stationary (one-ring 15);
  *   - a change of basis X G: every det times det G (counts of the two signs
  *     swap for det G < 0);
  *   - bad input refused. */
@@ -365,9 +371,11 @@ static void test_fd(const char *scheme, const char *link, int fold) {
     worst = fmax(worst, fmax(q, 1.0 / q));
     if (!(q >= 1.0 / 1.5 && q <= 1.5)) bad++;
   }
-  printf("%s %s: %zu regular vertices (+%zu -%zu flat %zu), %ld compared with central "
-         "differences, worst ratio %.3f\n",
-         scheme, link, r.judged, r.positive, r.negative, r.flat, used, worst);
+  printf("%s %s: %zu regular vertices (+%zu -%zu flat %zu; %zu read on one level only, "
+         "largest one-ring %zu), %ld compared with central differences, worst ratio "
+         "%.3f\n",
+         scheme, link, r.judged, r.positive, r.negative, r.flat, r.unchecked, r.maxo,
+         used, worst);
   CHECK(used >= 20 && bad == 0,
         "%s %s: masks and central differences agree in sign and to a factor 1.5 at "
         "%ld vertices (%ld off)",
@@ -508,7 +516,8 @@ static void test_pipeline_boxspline(const char *link, int proven) {
   ss_scheme_free(s);
 }
 
-/* ---- tet/oct: the honeycomb's neighbourhood is stationary ---- */
+/* ---- tet/oct and box-spline: the regular neighbourhood inside one refined tet
+ * is stationary ---- */
 
 static int off_cmp(const void *a, const void *b) {
   const int *x = a, *y = b;
@@ -589,7 +598,7 @@ static size_t honeycomb_A(const ss_cx *cx[], const kv *tab[], const gsl_spmatrix
   return n;
 }
 
-static void test_stationary_tetoct(void) {
+static void test_stationary(const char *scheme, size_t want) {
   ss_error err = {0};
   ss_scheme *s = NULL;
   ss_cx *cx[6] = {NULL};
@@ -597,7 +606,7 @@ static void test_stationary_tetoct(void) {
   kv *tab[6] = {NULL};
   static const double P[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   const ss_idx tet[4] = {0, 1, 2, 3};
-  REQUIRE_OK_VOID(ss_scheme_new("tetoct", &s, &err), &err);
+  REQUIRE_OK_VOID(ss_scheme_new(scheme, &s, &err), &err);
   REQUIRE_OK_VOID(ss_cx_new(3, &cx[0], &err), &err);
   for (int v = 0; v < 4; v++)
     REQUIRE_OK_VOID(ss_cx_add_vertex(cx[0], P[v], 0, &err), &err);
@@ -641,13 +650,13 @@ static void test_stationary_tetoct(void) {
       same = fabs(A0[k] - Aref[k]) <= 1e-13 && fabs(A1[k] - Aref[k]) <= 1e-13;
     bad += !same;
   }
-  printf("tet/oct honeycomb: %ld interior vertices of level 3 read on levels 3 and 4, "
+  printf("%s, one tet refined: %ld interior vertices of level 3 read on levels 3 and 4, "
          "one-ring %zu, %ld differ\n",
-         seen, nref, bad);
-  CHECK(seen >= 1 && bad == 0 && nref == 19,
-        "tet/oct honeycomb: %ld interior vertices of level 3, one neighbourhood of %zu "
+         scheme, seen, nref, bad);
+  CHECK(seen >= 1 && bad == 0 && nref == want,
+        "%s, one tet refined: %ld interior vertices of level 3, one neighbourhood of %zu "
         "points on levels 3 and 4 (%ld differ)",
-        seen, nref, bad);
+        scheme, seen, nref, bad);
   for (int l = 0; l < 6; l++) {
     ss_cx_free(cx[l]);
     free(tab[l]);
@@ -686,7 +695,8 @@ int main(void) {
   test_pipeline_boxspline(BOX_K6, 1);
   test_certify("tetoct", FINDING1);
   test_certify("mlca", FINDING1);
-  test_stationary_tetoct();
+  test_stationary("tetoct", 19);
+  test_stationary("boxspline", 15);
   test_bad_input();
   return ss_test_done("psi_mask");
 }
