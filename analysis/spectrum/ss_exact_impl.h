@@ -75,6 +75,10 @@ struct ss_exact {
   double *lo, *hi;        /* n * m each, column-major, or NULL */
   long long *bnum, *bden; /* the exact basis when lambda1..m are rational and
                              it fits in int64, else NULL */
+  arb_ptr qb;             /* A.ptr[n] balls of q at qb_prec bits (the basis
+                             enclosure's cache: each entry converted once per
+                             precision, not once per root and use), or NULL */
+  long qb_prec;           /* their precision */
   double *ev;             /* 2 n1: the one-ring block's eigenvalues in doubles
                              (re, im interleaved; LAPACK), seeds of the roots'
                              isolation only; NULL if none */
@@ -147,6 +151,14 @@ void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds
  * entry is Xa's and lr the eigenvalue, when the inclusion is proven; else 0
  * (X, lr unspecified). */
 int ss_exact_rump_real(arb_mat_t X, arb_t lr, const arb_mat_t A, const arb_t lam,
+                       const arb_mat_t Xa, slong prec);
+
+/* Rump's T = I - R M (ss_exact_rump.c), M = A - l I with its last column
+ * replaced by -Xa (A n x n balls, l a ball, Xa n x 1), R given as n x n
+ * doubles r (row-major, exact): computed in doubles by BLAS with a radius
+ * bounding every rounding error and M's balls, so that T contains I - R M
+ * for every M in them.  0, or -1 (memory, a value not finite). */
+int ss_exact_rump_tmat(arb_mat_t T, const double *r, const arb_mat_t A, const arb_t l,
                        const arb_mat_t Xa, slong prec);
 
 /* The one-ring block's eigenvalues in doubles (LAPACK on its rationals
