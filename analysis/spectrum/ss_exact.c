@@ -42,6 +42,7 @@ void ss_exact_free(ss_exact *x) {
   free(x->bnum);
   free(x->bden);
   free(x->ev);
+  free(x->evb);
   free(x->evf);
   free(x);
 }

@@ -79,10 +79,13 @@ struct ss_exact {
                              enclosure's cache: each entry converted once per
                              precision, not once per root and use), or NULL */
   long qb_prec;           /* their precision */
-  double *ev;             /* 2 n1: the one-ring block's eigenvalues in doubles
+  size_t nev;             /* eigenvalues in ev (the blocks of size >= 2) */
+  double *ev;             /* 2 nev: the diagonal blocks' eigenvalues in doubles
                              (re, im interleaved; LAPACK), seeds of the roots'
                              isolation only; NULL if none */
-  long *evf;              /* n1: the factor each was given to, or -1 */
+  size_t *evb;            /* nev: the block each is of (0: A, 1 + c: outer
+                             component c) */
+  long *evf;              /* nev: the factor each was given to, or -1 */
 };
 
 /* Largest denominator bound accepted (so that numerators fit in 64 bits with
@@ -161,10 +164,13 @@ int ss_exact_rump_real(arb_mat_t X, arb_t lr, const arb_mat_t A, const arb_t lam
 int ss_exact_rump_tmat(arb_mat_t T, const double *r, const arb_mat_t A, const arb_t l,
                        const arb_mat_t Xa, slong prec);
 
-/* The one-ring block's eigenvalues in doubles (LAPACK on its rationals
+/* Each diagonal block's eigenvalues in doubles (LAPACK on its rationals
  * rounded) given to the factors of its characteristic polynomial, as seeds
- * of their first isolation (x->ev, x->evf; ss_exact_isolate.c).  0, or -1
- * when out of memory; LAPACK failing is not a failure (no seeds). */
+ * of their first isolation (x->ev, x->evb, x->evf; ss_exact_isolate.c):
+ * the one-ring block's and, since tet/oct's one-ring block is small (15 at
+ * k = 14) and its degree-20+ factors are the outer blocks', the outer
+ * components' too.  0, or -1 when out of memory; LAPACK failing is not a
+ * failure (no seeds for that block). */
 int ss_exact_eigen_seeds(ss_exact *x);
 
 /* The principal submatrix of S on rows and columns idx[0..len) scaled to
