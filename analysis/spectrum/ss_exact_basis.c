@@ -181,6 +181,9 @@ done:
 /* For e = 1: the approximate eigenvector by two steps of inverse iteration
  * on one LU of A - lam in doubles (LAPACK), from a vector no eigenvector is
  * orthogonal to in practice (1 + i / (2 n1)); a tenth of the SVD's work.
+ * Its sign is canonical — the entry of largest modulus (the first of them)
+ * is positive — so the enclosed basis's orientation does not depend on
+ * LAPACK's conventions (the SVD's vectors have an arbitrary sign).
  * Returns 0, or -1 (singular to working precision, not finite, memory: the
  * caller falls back to the SVD). */
 static int approx_vector(const ss_exact *x, double lam, double *xa) {
@@ -197,12 +200,12 @@ static int approx_vector(const ss_exact *x, double lam, double *xa) {
   }
   const lapack_int nn = (lapack_int)n1;
   if (LAPACKE_dgetrf(LAPACK_COL_MAJOR, nn, nn, a, nn, piv)) goto done;
-  for (int it = 0; it < 2; it++) {
+  for (int it = 0; it < 2; it++) { /* scaled: the largest |entry| (first) is +1 */
     if (LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nn, 1, a, nn, piv, xa, nn)) goto done;
     double big = 0.0;
     for (size_t i = 0; i < n1; i++)
-      big = fmax(big, fabs(xa[i]));
-    if (!(big > 0.0) || !isfinite(big)) goto done;
+      if (fabs(xa[i]) > fabs(big)) big = xa[i];
+    if (!(big != 0.0) || !isfinite(big)) goto done;
     for (size_t i = 0; i < n1; i++)
       xa[i] /= big;
   }
