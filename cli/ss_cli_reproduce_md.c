@@ -41,7 +41,19 @@ static void md_head(ss_strbuf *md, const ss_reproduce_table *t,
             "be proven is undecided, \"not certified\", with the double-precision "
             "verdict in its reason."
           : " Verdicts are double precision (`reproduce --certify` proves them).");
-  if (l->o.psi_depth > 0 && !strcmp(t->scheme, "tetoct"))
+  if (l->o.psi_depth > 0 && !strcmp(t->scheme, "boxspline"))
+    ss_sb_printf(
+        md,
+        "ψ itself is judged where the net does not pass (`analyze --psi-depth %d`): at "
+        "the ring's regular vertices, where the regular lattice's tangent masks read "
+        "det Dψ from the refined net%s.  The spokes are not judged (they are matched to "
+        "the edge cases for tetoct only).  A regularity verdict whose reason begins "
+        "\"psi folds\" is a statement about ψ (two regular vertices with det Dψ of "
+        "opposite signs); any other is about the control net.\n\n",
+        l->o.psi_depth,
+        l->o.certify ? " (exact masks, the net enclosed: a fold of ψ marked ✓ is proven)"
+                     : " (double precision)");
+  else if (l->o.psi_depth > 0 && !strcmp(t->scheme, "tetoct"))
     ss_sb_printf(
         md,
         "ψ itself is judged where the net does not pass (`analyze --psi-depth %d`): at "

@@ -120,9 +120,10 @@ ss_status ss_psi_tet_spokes_classify(const ss_scheme *s, const ss_local *M,
 /* psi of tet/oct vertex case c (M, its net x = the characteristic map's,
  * e NULL or the exact path's enclosure of that net in its own basis, reg
  * the control net's regularity verdict of x on M's ring) judged at its
- * regular vertices and by its spokes.  Runs (out->ran = 1) only for tetoct
- * (boxspline reads major diagonals; boxspline-avg's split is not checked
- * against its edge cases) and unless reg passes.  The case is extracted
+ * regular vertices and by its spokes.  Runs (out->ran = 1) unless reg
+ * passes; the spokes only for tetoct (boxspline reads major diagonals;
+ * boxspline-avg's split is not checked against its edge cases), so for the
+ * other tet schemes only a fold at the regular vertices decides.  The case is extracted
  * again with SS_LOCAL_MAXRING whole ring levels (ss_local_opts.whole: the
  * points round the whole spoke, 18 usable points per spoke covering x0 in
  * [3/16, 7/8], a full period of psi's self-similarity at step 1/16).

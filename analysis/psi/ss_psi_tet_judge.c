@@ -214,16 +214,6 @@ ss_status ss_psi_tet_judge(const ss_scheme *s, const ss_case *c, const ss_local 
     snprintf(out->why, sizeof out->why, "not a tet vertex case");
     return SS_OK;
   }
-  if (strcmp(ss_scheme_name(s), "tetoct") != 0) {
-    /* boxspline reads major diagonals (round a spoke the vertex star's need
-     * not be the edge case's); boxspline-avg's split adds octahedron centres
-     * and is not checked against its edge cases (tests/psi/test_psi_spoke_tet.c
-     * checks tetoct's label map) */
-    snprintf(out->why, sizeof out->why,
-             "the spokes are matched to the edge cases for tetoct only, not %s",
-             ss_scheme_name(s));
-    return SS_OK;
-  }
   if (reg->verdict.verdict == SS_PASS) {
     snprintf(out->why, sizeof out->why, "the control net passes: psi is not needed");
     return SS_OK;
@@ -245,6 +235,19 @@ ss_status ss_psi_tet_judge(const ss_scheme *s, const ss_case *c, const ss_local 
     fail_masks(out, M, &mr);
     ss_local_free(deep);
     out->seconds = ss_clock_cpu() - t0;
+    return SS_OK;
+  }
+  if (strcmp(ss_scheme_name(s), "tetoct") != 0) {
+    /* boxspline reads major diagonals (round a spoke the vertex star's need
+     * not be the edge case's); boxspline-avg's split adds octahedron centres
+     * and is not checked against its edge cases (tests/psi/test_psi_spoke_tet.c
+     * checks tetoct's label map).  The regular vertices above need no edge
+     * case: their masks are read from the ring's own rows. */
+    ss_local_free(deep);
+    snprintf(out->why, sizeof out->why,
+             "the regular vertices show no fold of psi, and the spokes are matched to "
+             "the edge cases for tetoct only, not %s",
+             ss_scheme_name(s));
     return SS_OK;
   }
   if (reg->verdict.verdict != SS_UNDECIDED || reg->sign == 0 || reg->nlevels < 1 ||

@@ -26,6 +26,7 @@ void ss_exact_free(ss_exact *x) {
   }
   for (size_t k = 0; k < x->nfac; k++)
     fmpz_poly_clear(x->fac[k].f);
+  if (x->qb) _arb_vec_clear(x->qb, (slong)x->A.ptr[x->n]); /* before A */
   ss_csr_free(&x->A);
   ss_scc_free(&x->K);
   free(x->q);
@@ -41,6 +42,7 @@ void ss_exact_free(ss_exact *x) {
   free(x->bnum);
   free(x->bden);
   free(x->ev);
+  free(x->evb);
   free(x->evf);
   free(x);
 }

@@ -18,9 +18,11 @@
  *     (non-defective) is its eigenspace: A X = lambda X.  The true X with
  *     those frozen rows is unique and real (lambda, A real), so the real
  *     parts enclose it.  A simple root (e = 1) runs all of this in real
- *     balls (ss_exact_rump_real, its preconditioner from LAPACK: a quarter
- *     of the complex method's multiplications); the complex method remains
- *     for e > 1 and wherever the real one does not prove its inclusion.
+ *     balls (ss_exact_rump_real: its preconditioner and T = I - R M in
+ *     doubles with rigorous radii, the vector refined by Newton's steps at
+ *     the working precision instead of inverse iteration; ss_exact_rump.c);
+ *     the complex method remains for e > 1 and wherever the real one does
+ *     not prove its inclusion.
  *     Extended by the same block solves in ball arithmetic (arb_mat_solve
  *     proves each block invertible).
  * C - lambda is invertible because lambda is no eigenvalue of C. */
@@ -49,13 +51,30 @@ static void enclose(const arb_t b, double *lo, double *hi) {
   arf_clear(t);
 }
 
-/* The entry of S at CSR position k as a ball. */
+/* The entry of S at CSR position k as a ball (from the cache when it holds
+ * this precision). */
 static void entry_ball(const ss_exact *x, size_t k, arb_t b, long prec) {
+  if (x->qb && x->qb_prec == prec) {
+    arb_set(b, x->qb + k);
+    return;
+  }
   fmpq_t v;
   fmpq_init(v);
   fmpq_set_si(v, x->q[k].num, (ulong)x->q[k].den);
   arb_set_fmpq(b, v, prec);
   fmpq_clear(v);
+}
+
+/* Fill the cache of entry balls at prec (x->qb); 0, or -1 out of memory. */
+static int entry_cache(ss_exact *x, long prec) {
+  const size_t nnz = x->A.ptr[x->n];
+  if (x->qb && x->qb_prec == prec) return 0;
+  if (!x->qb && !(x->qb = _arb_vec_init((slong)nnz))) return -1;
+  x->qb_prec = 0; /* entry_ball below must not read a stale cache */
+  for (size_t k = 0; k < nnz; k++)
+    entry_ball(x, k, x->qb + k, prec);
+  x->qb_prec = prec;
+  return 0;
 }
 
 /* ---- exact columns for a rational eigenvalue ---- */
@@ -159,11 +178,51 @@ done:
 
 /* ---- enclosed columns for an irrational eigenvalue ---- */
 
+/* For e = 1: the approximate eigenvector by two steps of inverse iteration
+ * on one LU of A - lam in doubles (LAPACK), from a vector no eigenvector is
+ * orthogonal to in practice (1 + i / (2 n1)); a tenth of the SVD's work.
+ * Its sign is canonical — the entry of largest modulus (the first of them)
+ * is positive — so the enclosed basis's orientation does not depend on
+ * LAPACK's conventions (the SVD's vectors have an arbitrary sign).
+ * Returns 0, or -1 (singular to working precision, not finite, memory: the
+ * caller falls back to the SVD). */
+static int approx_vector(const ss_exact *x, double lam, double *xa) {
+  const size_t n1 = x->n1;
+  double *a = calloc(n1 * n1 + 1, sizeof *a);
+  lapack_int *piv = malloc((n1 + 1) * sizeof *piv);
+  int rc = -1;
+  if (!a || !piv) goto done;
+  for (size_t i = 0; i < n1; i++) {
+    for (size_t k = x->A.ptr[i]; k < x->A.ptr[i + 1]; k++)
+      a[x->A.col[k] * n1 + i] = x->A.val[k];
+    a[i * n1 + i] -= lam;
+    xa[i] = 1.0 + (double)i / (double)(2 * n1);
+  }
+  const lapack_int nn = (lapack_int)n1;
+  if (LAPACKE_dgetrf(LAPACK_COL_MAJOR, nn, nn, a, nn, piv)) goto done;
+  for (int it = 0; it < 2; it++) { /* scaled: the largest |entry| (first) is +1 */
+    if (LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nn, 1, a, nn, piv, xa, nn)) goto done;
+    double big = 0.0;
+    for (size_t i = 0; i < n1; i++)
+      if (fabs(xa[i]) > fabs(big)) big = xa[i];
+    if (!(big != 0.0) || !isfinite(big)) goto done;
+    for (size_t i = 0; i < n1; i++)
+      xa[i] /= big;
+  }
+  rc = 0;
+done:
+  free(a);
+  free(piv);
+  return rc;
+}
+
 /* Approximate basis (n1 x e, column-major doubles) of the eigenspace of
- * lambda ~ lam in A: the right singular vectors of A - lam of the e smallest
- * singular values.  Returns 0, or -1 (LAPACK or memory). */
+ * lambda ~ lam in A: for e = 1 by inverse iteration (approx_vector), else
+ * (or if that fails) the right singular vectors of A - lam of the e
+ * smallest singular values.  Returns 0, or -1 (LAPACK or memory). */
 static int approx_basis(const ss_exact *x, double lam, int e, double *xa) {
   const size_t n1 = x->n1;
+  if (e == 1 && !approx_vector(x, lam, xa)) return 0;
   double *a = calloc(n1 * n1 + 1, sizeof *a), *vt = malloc((n1 * n1 + 1) * sizeof *vt),
          *sv = malloc((n1 + 1) * sizeof *sv), *sup = malloc((n1 + 1) * sizeof *sup);
   int rc = -1;
@@ -247,30 +306,26 @@ static int only_root(const ss_exact *x, size_t r, const acb_t lr) {
   return self;
 }
 
-/* As rump_block for a simple root (e = 1), all in real balls: two steps of
- * inverse iteration on one LU of A - lambda~ (arb_mat_approx_*), then
- * Rump's method twice in real arithmetic (ss_exact_rump_real).  1 proven, 0
- * not, -1 out of memory. */
+/* As rump_block for a simple root (e = 1), all in real balls: Rump's method
+ * in real arithmetic (ss_exact_rump_real: Newton's steps at wp refine the
+ * double-precision vector xa0 first, then one inclusion).  1 proven, 0 not,
+ * -1 out of memory. */
 static int rump_real_block(ss_exact *x, size_t r, const double *xa0, const size_t *perm,
                            long wp, arb_ptr Xb) {
   const size_t n1 = x->n1;
   const slong m = (slong)n1;
-  arb_mat_t Ap, T, LU, Xa, X;
-  arb_t lam, lr, s;
+  arb_mat_t Ap, Xa, X;
+  arb_t lam, lr;
   acb_t lz;
-  slong *P = malloc((n1 + 1) * sizeof *P);
   size_t *inv = malloc((n1 + 1) * sizeof *inv);
   arb_mat_init(Ap, m, m);
-  arb_mat_init(T, m, m);
-  arb_mat_init(LU, m, m);
   arb_mat_init(Xa, m, 1);
   arb_mat_init(X, m, 1);
   arb_init(lam);
   arb_init(lr);
-  arb_init(s);
   acb_init(lz);
   int ok = 0;
-  if (!P || !inv) {
+  if (!inv) {
     ok = -1;
     goto done;
   }
@@ -278,27 +333,7 @@ static int rump_real_block(ss_exact *x, size_t r, const double *xa0, const size_
   for (size_t i = 0; i < n1; i++)
     arb_set_d(arb_mat_entry(Xa, (slong)i, 0), xa0[perm[i]]);
   arb_get_mid_arb(lam, acb_realref(&x->rt[r].z));
-  arb_mat_get_mid(T, Ap);
-  for (slong i = 0; i < m; i++)
-    arb_sub(arb_mat_entry(T, i, i), arb_mat_entry(T, i, i), lam, wp);
-  if (!arb_mat_approx_lu(P, LU, T, wp)) goto done;
-  for (int it = 0; it < 2; it++) { /* each step scaled to max |entry| ~ 1 */
-    arb_mat_approx_solve_lu_precomp(X, P, LU, Xa, wp);
-    double big = 0.0;
-    for (slong i = 0; i < m; i++) {
-      const double v = fabs(arf_get_d(arb_midref(arb_mat_entry(X, i, 0)), ARF_RND_NEAR));
-      big = v > big ? v : big;
-    }
-    if (!(big > 0.0) || !isfinite(big)) goto done;
-    arb_set_d(s, 1.0 / big);
-    for (slong i = 0; i < m; i++)
-      arb_mul(arb_mat_entry(Xa, i, 0), arb_mat_entry(X, i, 0), s, wp);
-    arb_mat_get_mid(Xa, Xa);
-  }
-  for (int round = 0; round < 2; round++) { /* the second from the first's */
-    if (!ss_exact_rump_real(X, lr, Ap, lam, Xa, wp)) goto done;
-    if (round == 0) arb_mat_get_mid(Xa, X);
-  }
+  if (!ss_exact_rump_real(X, lr, Ap, lam, Xa, wp)) goto done;
   acb_set_arb(lz, lr);
   /* only r's root in lr; the frozen row (the last) nonzero: full rank */
   if (!only_root(x, r, lz) || arb_contains_zero(arb_mat_entry(X, m - 1, 0))) goto done;
@@ -307,15 +342,11 @@ static int rump_real_block(ss_exact *x, size_t r, const double *xa0, const size_
   ok = 1;
 done:
   arb_mat_clear(Ap);
-  arb_mat_clear(T);
-  arb_mat_clear(LU);
   arb_mat_clear(Xa);
   arb_mat_clear(X);
   arb_clear(lam);
   arb_clear(lr);
-  arb_clear(s);
   acb_clear(lz);
-  free(P);
   free(inv);
   return ok;
 }
@@ -469,6 +500,10 @@ static int ball_columns(ss_exact *x, size_t r, int e, int pos, double *lo, doubl
   if (approx_basis(x, lam, e, xa) || frozen_rows(xa, n1, e, perm)) goto done;
   for (ok = 0; !ok; wp *= 2) {
     if (x->fac[k].prec < wp) ss_exact_isolate(x, k, wp);
+    if (entry_cache(x, wp)) {
+      ok = -1;
+      goto done;
+    }
     ok = e == 1 ? rump_real_block(x, r, xa, perm, wp, Xb) : 0;
     if (!ok) ok = rump_block(x, r, e, xa, perm, wp, Xb); /* complex, as before */
     if (ok < 0) goto done;

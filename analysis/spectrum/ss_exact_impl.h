@@ -75,10 +75,17 @@ struct ss_exact {
   double *lo, *hi;        /* n * m each, column-major, or NULL */
   long long *bnum, *bden; /* the exact basis when lambda1..m are rational and
                              it fits in int64, else NULL */
-  double *ev;             /* 2 n1: the one-ring block's eigenvalues in doubles
+  arb_ptr qb;             /* A.ptr[n] balls of q at qb_prec bits (the basis
+                             enclosure's cache: each entry converted once per
+                             precision, not once per root and use), or NULL */
+  long qb_prec;           /* their precision */
+  size_t nev;             /* eigenvalues in ev (the blocks of size >= 2) */
+  double *ev;             /* 2 nev: the diagonal blocks' eigenvalues in doubles
                              (re, im interleaved; LAPACK), seeds of the roots'
                              isolation only; NULL if none */
-  long *evf;              /* n1: the factor each was given to, or -1 */
+  size_t *evb;            /* nev: the block each is of (0: A, 1 + c: outer
+                             component c) */
+  long *evf;              /* nev: the factor each was given to, or -1 */
 };
 
 /* Largest denominator bound accepted (so that numerators fit in 64 bits with
@@ -149,10 +156,21 @@ void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds
 int ss_exact_rump_real(arb_mat_t X, arb_t lr, const arb_mat_t A, const arb_t lam,
                        const arb_mat_t Xa, slong prec);
 
-/* The one-ring block's eigenvalues in doubles (LAPACK on its rationals
+/* Rump's T = I - R M (ss_exact_rump.c), M = A - l I with its last column
+ * replaced by -Xa (A n x n balls, l a ball, Xa n x 1), R given as n x n
+ * doubles r (row-major, exact): computed in doubles by BLAS with a radius
+ * bounding every rounding error and M's balls, so that T contains I - R M
+ * for every M in them.  0, or -1 (memory, a value not finite). */
+int ss_exact_rump_tmat(arb_mat_t T, const double *r, const arb_mat_t A, const arb_t l,
+                       const arb_mat_t Xa, slong prec);
+
+/* Each diagonal block's eigenvalues in doubles (LAPACK on its rationals
  * rounded) given to the factors of its characteristic polynomial, as seeds
- * of their first isolation (x->ev, x->evf; ss_exact_isolate.c).  0, or -1
- * when out of memory; LAPACK failing is not a failure (no seeds). */
+ * of their first isolation (x->ev, x->evb, x->evf; ss_exact_isolate.c):
+ * the one-ring block's and, since tet/oct's one-ring block is small (15 at
+ * k = 14) and its degree-20+ factors are the outer blocks', the outer
+ * components' too.  0, or -1 when out of memory; LAPACK failing is not a
+ * failure (no seeds for that block). */
 int ss_exact_eigen_seeds(ss_exact *x);
 
 /* The principal submatrix of S on rows and columns idx[0..len) scaled to

@@ -124,10 +124,10 @@ static void newton_step(arb_t r, const fmpz_poly_t g, const fmpz_poly_t dg, cons
   acb_abs(r, v, 128);
 }
 
-/* The block's eigenvalues (x->ev) given to the factors of block 0 (x->evf):
- * each to the factor with the smallest Newton step |g(z) / g'(z)| at it, in
- * balls (the double is exact there).  Seeds only: nothing proven depends on
- * this. */
+/* The blocks' eigenvalues (x->ev, x->evb: block b's) each given to the factor
+ * of its own block with the smallest Newton step |g(z) / g'(z)| at it
+ * (x->evf), in balls (the double is exact there).  Seeds only: nothing
+ * proven depends on this. */
 static void give_eigenvalues(ss_exact *x) {
   fmpz_poly_t dg;
   acb_t z, v, w;
@@ -138,10 +138,11 @@ static void give_eigenvalues(ss_exact *x) {
   acb_init(w);
   arb_init(r);
   arb_init(best);
-  for (size_t i = 0; i < x->n1; i++) {
+  for (size_t i = 0; i < x->nev; i++) {
+    const size_t blk = x->evb[i];
     x->evf[i] = -1;
     acb_set_d_d(z, x->ev[2 * i], x->ev[2 * i + 1]);
-    for (size_t b = x->bstart[0]; b < x->bstart[1]; b++) {
+    for (size_t b = x->bstart[blk]; b < x->bstart[blk + 1]; b++) {
       const size_t k = x->bfac[b];
       fmpz_poly_derivative(dg, x->fac[k].f);
       newton_step(r, x->fac[k].f, dg, z, v, w);
@@ -160,58 +161,78 @@ static void give_eigenvalues(ss_exact *x) {
   arb_clear(best);
 }
 
-int ss_exact_eigen_seeds(ss_exact *x) {
-  const size_t n1 = x->n1;
-  double *a = malloc((n1 * n1 + 1) * sizeof *a);
-  x->ev = malloc((2 * n1 + 1) * sizeof *x->ev);
-  x->evf = malloc((n1 + 1) * sizeof *x->evf);
-  if (!a || !x->ev || !x->evf) {
-    free(a);
-    return -1;
-  }
-  for (size_t i = 0; i < n1 * n1; i++)
+/* Block blk's matrix (0: the one-ring block A; 1 + c: outer component c) as
+ * row-major doubles, the rationals rounded, into a (sz x sz). */
+static void block_doubles(const ss_exact *x, size_t blk, double *a, size_t sz) {
+  for (size_t i = 0; i < sz * sz; i++)
     a[i] = 0.0;
-  for (size_t i = 0; i < n1; i++) /* row-major; the rationals rounded */
-    for (size_t k = x->A.ptr[i]; k < x->A.ptr[i + 1] && x->A.col[k] < n1; k++)
-      a[i * n1 + x->A.col[k]] = (double)x->q[k].num / (double)x->q[k].den;
-  double *wr = x->ev, *wi = x->ev + n1;
-  const lapack_int info = LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'N', (lapack_int)n1, a,
-                                        (lapack_int)n1, wr, wi, NULL, 1, NULL, 1);
-  free(a);
-  if (info) { /* no seeds: arb's own start */
-    free(x->ev);
-    free(x->evf);
-    x->ev = NULL;
-    x->evf = NULL;
-    return 0;
+  for (size_t u = 0; u < sz; u++) {
+    const size_t row = blk ? x->n1 + x->K.comp[x->K.start[blk - 1] + u] : u;
+    for (size_t k = x->A.ptr[row]; k < x->A.ptr[row + 1]; k++) {
+      const size_t j = x->A.col[k];
+      const double q = (double)x->q[k].num / (double)x->q[k].den;
+      if (!blk && j < x->n1)
+        a[u * sz + j] = q;
+      else if (blk && j >= x->n1 && x->K.cid[j - x->n1] == blk - 1)
+        a[u * sz + x->K.pos[j - x->n1]] = q;
+    }
   }
-  double *ev = malloc((2 * n1 + 1) * sizeof *ev); /* interleaved re, im */
-  if (!ev) return -1;
-  for (size_t i = 0; i < n1; i++) {
-    ev[2 * i] = wr[i];
-    ev[2 * i + 1] = wi[i];
-  }
-  free(x->ev);
-  x->ev = ev;
-  give_eigenvalues(x);
-  return 0;
 }
 
-/* Seeds for factor k from the block's eigenvalues given to it: a new vector
- * of d balls when it got exactly d = deg of them and divides block 0 once,
- * else NULL. */
+int ss_exact_eigen_seeds(ss_exact *x) {
+  const size_t n = x->n;
+  x->ev = malloc((2 * n + 1) * sizeof *x->ev);
+  x->evf = malloc((n + 1) * sizeof *x->evf);
+  x->evb = malloc((n + 1) * sizeof *x->evb);
+  size_t big = x->n1;
+  for (long c = 0; c < x->K.n; c++)
+    big = FLINT_MAX(big, x->K.start[c + 1] - x->K.start[c]);
+  double *a = malloc((big * big + 1) * sizeof *a), *wr = malloc((big + 1) * sizeof *wr),
+         *wi = malloc((big + 1) * sizeof *wi);
+  int rc = -1;
+  if (!a || !wr || !wi || !x->ev || !x->evf || !x->evb) goto done;
+  x->nev = 0;
+  for (size_t blk = 0; blk < x->nblk; blk++) {
+    const size_t sz = blk ? x->K.start[blk] - x->K.start[blk - 1] : x->n1;
+    if (sz < 2) continue; /* a linear factor needs no seed */
+    block_doubles(x, blk, a, sz);
+    if (LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'N', (lapack_int)sz, a, (lapack_int)sz, wr,
+                      wi, NULL, 1, NULL, 1))
+      continue; /* no seeds for this block: arb's own start */
+    for (size_t i = 0; i < sz; i++, x->nev++) {
+      x->ev[2 * x->nev] = wr[i];
+      x->ev[2 * x->nev + 1] = wi[i];
+      x->evb[x->nev] = blk;
+    }
+  }
+  give_eigenvalues(x);
+  rc = 0;
+done:
+  free(a);
+  free(wr);
+  free(wi);
+  return rc;
+}
+
+/* Seeds for factor k from the eigenvalues given to it: a new vector of d
+ * balls when it got exactly d = deg of them and divides exactly one block,
+ * once, else NULL. */
 static acb_ptr eigen_seeds(const ss_exact *x, size_t k, slong d) {
   if (!x->ev) return NULL;
-  int once = 0;
-  for (size_t b = x->bstart[0]; b < x->bstart[1]; b++)
-    if (x->bfac[b] == k) once = x->bmult[b] == 1;
+  int once = 0, blocks = 0;
+  for (size_t blk = 0; blk < x->nblk; blk++)
+    for (size_t b = x->bstart[blk]; b < x->bstart[blk + 1]; b++)
+      if (x->bfac[b] == k) {
+        blocks++;
+        once = x->bmult[b] == 1;
+      }
   slong got = 0;
-  for (size_t i = 0; i < x->n1; i++)
+  for (size_t i = 0; i < x->nev; i++)
     got += x->evf[i] == (long)k;
-  if (!once || got != d) return NULL;
+  if (blocks != 1 || !once || got != d) return NULL;
   acb_ptr s = _acb_vec_init(d);
   got = 0;
-  for (size_t i = 0; i < x->n1; i++)
+  for (size_t i = 0; i < x->nev; i++)
     if (x->evf[i] == (long)k) acb_set_d_d(s + got++, x->ev[2 * i], x->ev[2 * i + 1]);
   return s;
 }

@@ -6,8 +6,16 @@
  *    enclosure succeeds (at least 90 % of them), its eigenvalue ball meets
  *    arb's, and its eigenvector, divided by its last entry, meets arb's
  *    likewise divided, entry by entry (the same direction whatever the
- *    normalisation); the vector's balls tight (radius below 1e-20 of the
- *    entry), the eigenvalue's below 1e-12 of it (one round from doubles);
+ *    normalisation); the vector's and the eigenvalue's balls tight (radius
+ *    below 1e-30 of the entry: Newton's steps at 128 bits refine the pair
+ *    before the inclusion; without them, one round from doubles gives
+ *    1e-20 and 1e-11);
+ *  - T = I - R M computed in doubles (ss_exact_rump_tmat) contains the
+ *    product at 1024 bits, entry by entry, for M of rational balls, and its
+ *    radii sum to no more than 1e4 times the midpoints' true errors (radii
+ *    1e4 times smaller miss entries: checked by mutation); with balls of
+ *    radius 1e-9 in M, T contains I - R M for the M in them that moves a
+ *    row most (without the balls' part of the radius it does not);
  *  - a wrong guess (halfway between two real eigenvalues, a vector of ones):
  *    no enclosure, or one holding a true eigenvalue (LAPACK's, to 1e-8);
  *  - a double eigenvalue (two equal diagonal blocks): no enclosure is
@@ -126,11 +134,11 @@ static void random_case(slong n, unsigned seed, int *tried, int *proven) {
     acb_set_arb(l2, lr);
     CHECK(acb_overlaps(l2, lz) && same_direction(X, R, n),
           "n = %ld, lambda %g: eigenvalue and eigenvector meet arb's", (long)n, wr[k]);
-    /* the eigenvector's ball is the approximation plus the correction's
-     * ball; the eigenvalue gets the correction's whole magnitude as radius
-     * (one round from a double-precision vector: ~ its residual) */
-    CHECK(rel_radius(X, n) < 1e-20 &&
-              mag_get_d(arb_radref(lr)) < 1e-12 * (1.0 + fabs(wr[k])),
+    /* the eigenvector's ball is the refined approximation plus the
+     * correction's ball; the eigenvalue gets the correction's whole
+     * magnitude as radius: ~ the residual left by Newton's steps */
+    CHECK(rel_radius(X, n) < 1e-30 &&
+              mag_get_d(arb_radref(lr)) < 1e-30 * (1.0 + fabs(wr[k])),
           "n = %ld, lambda %g: tight (vector %g, eigenvalue %g)", (long)n, wr[k],
           rel_radius(X, n), mag_get_d(arb_radref(lr)));
     acb_clear(l2);
@@ -193,6 +201,112 @@ static void refusals(void) {
   CHECK(!claims(c, z, 4, 3.0), "no eigenvector with that frozen entry: no enclosure");
 }
 
+/* T = I - R M in doubles against the same at 1024 bits: M = A - l I with its
+ * last column -x, A of rationals p/q (balls at 128 bits), R a perturbed
+ * inverse of M's doubles (any R: the bound must hold for each). */
+static void tmat_case(slong n, unsigned seed, double wide) {
+  srand(seed);
+  arb_mat_t A, Xa, T, M, Rb, E;
+  arb_t l, t;
+  arb_mat_init(A, n, n), arb_mat_init(Xa, n, 1), arb_mat_init(T, n, n);
+  arb_mat_init(M, n, n), arb_mat_init(Rb, n, n), arb_mat_init(E, n, n);
+  arb_init(l), arb_init(t);
+  double *r = malloc((size_t)(n * n) * sizeof *r);
+  lapack_int *piv = malloc((size_t)n * sizeof *piv);
+  for (slong i = 0; i < n; i++) {
+    for (slong j = 0; j < n; j++) { /* (rand in -50..50) / (rand in 1..97) */
+      arb_set_si(arb_mat_entry(A, i, j), rand() % 101 - 50);
+      arb_div_ui(arb_mat_entry(A, i, j), arb_mat_entry(A, i, j),
+                 (unsigned long)(rand() % 97 + 1), 128);
+      arb_set_d(t, wide); /* a ball of radius wide round p/q */
+      arb_add_error(arb_mat_entry(A, i, j), t);
+    }
+    arb_set_d(arb_mat_entry(Xa, i, 0), (double)(rand() % 2001 - 1000) / 997.0);
+  }
+  arb_set_d(l, 0.3183098861837907);
+  for (slong i = 0; i < n; i++) /* M at 1024 bits from the same balls' midpoints */
+    for (slong j = 0; j < n; j++) {
+      if (j == n - 1)
+        arb_neg(arb_mat_entry(M, i, j), arb_mat_entry(Xa, i, 0));
+      else
+        arb_get_mid_arb(arb_mat_entry(M, i, j), arb_mat_entry(A, i, j));
+      if (i == j && j != n - 1)
+        arb_sub(arb_mat_entry(M, i, j), arb_mat_entry(M, i, j), l, 1024);
+      r[i * n + j] = arf_get_d(arb_midref(arb_mat_entry(M, i, j)), ARF_RND_NEAR);
+    }
+  int ok = !LAPACKE_dgetrf(LAPACK_ROW_MAJOR, (lapack_int)n, (lapack_int)n, r,
+                           (lapack_int)n, piv) &&
+           !LAPACKE_dgetri(LAPACK_ROW_MAJOR, (lapack_int)n, r, (lapack_int)n, piv);
+  for (slong i = 0; i < n * n && ok; i++)
+    r[i] *= 1.0 + 1e-6 * (double)(rand() % 3 - 1); /* not quite the inverse */
+  CHECK(ok && !ss_exact_rump_tmat(T, r, A, l, Xa, 128), "tmat n = %ld: computed",
+        (long)n);
+  for (slong i = 0; i < n; i++)
+    for (slong j = 0; j < n; j++)
+      arb_set_d(arb_mat_entry(Rb, i, j), r[i * n + j]);
+  arb_mat_mul(E, Rb, M, 1024); /* exact but for 1024-bit rounding */
+  arb_mat_neg(E, E);
+  for (slong i = 0; i < n; i++)
+    arb_add_ui(arb_mat_entry(E, i, i), arb_mat_entry(E, i, i), 1, 1024);
+  long miss = 0, zero_holds = 0;
+  double srad = 0.0, serr = 0.0; /* sums of the radii and the true errors */
+  for (slong i = 0; i < n; i++)
+    for (slong j = 0; j < n; j++) {
+      const arb_struct *te = arb_mat_entry(T, i, j), *ee = arb_mat_entry(E, i, j);
+      miss += !arb_contains(te, ee);
+      arb_set_arf(t, arb_midref(te));
+      arb_sub(t, t, ee, 1024);
+      const double err = fabs(arf_get_d(arb_midref(t), ARF_RND_NEAR));
+      const double rad = mag_get_d(arb_radref(te));
+      zero_holds += err == 0.0;
+      srad += rad;
+      serr += err;
+    }
+  /* with wide balls: for rows i, the M in the balls that moves (R M)_ij
+   * most, delta_kj = rad * sign(R_ik), must be inside too */
+  long wmiss = 0;
+  for (slong i = 0; wide > 0.0 && i < n; i += 1 + n / 5) {
+    arb_mat_t Mw, Ew;
+    arb_mat_init(Mw, n, n), arb_mat_init(Ew, 1, n);
+    for (slong k = 0; k < n; k++)
+      for (slong j = 0; j < n; j++) {
+        arb_set(arb_mat_entry(Mw, k, j), arb_mat_entry(M, k, j));
+        if (j != n - 1) {
+          arb_set_d(t, r[i * n + k] >= 0.0 ? wide : -wide);
+          arb_add(arb_mat_entry(Mw, k, j), arb_mat_entry(Mw, k, j), t, 1024);
+        }
+      }
+    for (slong j = 0; j < n; j++) {
+      arb_zero(arb_mat_entry(Ew, 0, j));
+      for (slong k = 0; k < n; k++)
+        arb_addmul(arb_mat_entry(Ew, 0, j), arb_mat_entry(Rb, i, k),
+                   arb_mat_entry(Mw, k, j), 1024);
+      arb_neg(arb_mat_entry(Ew, 0, j), arb_mat_entry(Ew, 0, j));
+      if (i == j) arb_add_ui(arb_mat_entry(Ew, 0, j), arb_mat_entry(Ew, 0, j), 1, 1024);
+      wmiss += !arb_contains(arb_mat_entry(T, i, j), arb_mat_entry(Ew, 0, j));
+    }
+    arb_mat_clear(Mw), arb_mat_clear(Ew);
+  }
+  CHECK(wmiss == 0,
+        "tmat n = %ld: T contains I - R M for the extreme M of balls of radius %g too "
+        "(%ld missed)",
+        (long)n, wide, wmiss);
+  const double worst = srad / serr;
+  printf("tmat n = %ld: %ld of %ld entries missed, radii %.0f times the midpoints' true "
+         "errors (sums), %ld entries exact\n",
+         (long)n, miss, (long)(n * n), worst, zero_holds);
+  CHECK(miss == 0, "tmat n = %ld: T contains I - R M at 1024 bits (%ld missed)", (long)n,
+        miss);
+  CHECK((wide > 0.0 || worst < 1e4) && zero_holds < n * n / 2,
+        "tmat n = %ld: the radius not absurd (%.3g times the error), the midpoint not "
+        "exact",
+        (long)n, worst);
+  free(r), free(piv);
+  arb_mat_clear(A), arb_mat_clear(Xa), arb_mat_clear(T);
+  arb_mat_clear(M), arb_mat_clear(Rb), arb_mat_clear(E);
+  arb_clear(l), arb_clear(t);
+}
+
 int main(void) {
   const slong sizes[3] = {5, 20, 60};
   for (int s = 0; s < 3; s++) {
@@ -204,6 +318,10 @@ int main(void) {
           (long)sizes[s], proven, tried);
   }
   refusals();
+  tmat_case(7, 11, 0.0);
+  tmat_case(60, 12, 0.0);
+  tmat_case(150, 13, 0.0);
+  tmat_case(60, 14, 1e-9);
   flint_cleanup();
   return ss_test_done("exact_rump");
 }

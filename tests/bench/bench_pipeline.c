@@ -32,8 +32,9 @@
  * spectrum's, the interval Jacobians per ring level, psi's parts) beside the
  * double path's whole, best of 3 runs per case.
  *
- * --project [--kmax K] [--samples N]: the exhaustive sweeps projected (issue
- * 20).  For each k = 4..K (default 16) every count/N-th link (default N =
+ * --project [--kmax K] [--samples N] [--certify [--psi-depth D]]: the
+ * exhaustive sweeps projected (issue 20; certified, as `sweep --certify`
+ * computes each case, with --certify: issue 37).  For each k = 4..K (default 16) every count/N-th link (default N =
  * 50; all of them when count <= N), count the published number, which the
  * generator's count in the same pass must equal; the pipeline's thread CPU
  * per case on one thread: mean with its 95 % interval (Student's t, as if
@@ -753,9 +754,9 @@ int main(int argc, char **argv) {
   }
   if (!want) want = proj ? 50 : cert ? 10 : 100;
   if (k < 4 || k > 14 || kmax < 4 || kmax > 16 || want < 1 || jobs < 1 || psi_depth < 0 ||
-      psi_depth > 8 || (cert && !ph)) {
+      psi_depth > 8 || (cert && !ph && !proj)) {
     fprintf(stderr, "bench_pipeline: --k 4..14, --kmax 4..16, --samples >= 1, --jobs "
-                    ">= 1, --psi-depth 0..8, --certify with --phases\n");
+                    ">= 1, --psi-depth 0..8, --certify with --phases or --project\n");
     return 2;
   }
 #if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
@@ -768,8 +769,11 @@ int main(int argc, char **argv) {
     fprintf(stderr, "bench_pipeline: %s\n", err.msg);
     return 2;
   }
-  if (proj) {
-    const ss_result_opts pro = ss_result_defaults();
+  if (proj) { /* --certify: what `sweep --certify` computes per case */
+    ss_result_opts pro = ss_result_defaults();
+    pro.certify = cert;
+    pro.psi_depth = psi_depth;
+    if (cert) printf("certified (sweep --certify%s)\n", psi_depth ? " --psi-depth" : "");
     const int rc = project(sc, &pro, want, kmax, jobs);
     ss_scheme_free(sc);
     return rc;

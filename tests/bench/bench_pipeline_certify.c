@@ -41,7 +41,23 @@
  * k = 12 5.4 (6.1) -> 4.1 (3.5), k = 14 19.4 (30.3) -> 6.0 (8.6) (root
  * isolation 0.36 -> 0.022 s per case); tet/oct k = 12 4.3 -> 2.9, k = 14
  * 6.3 -> 4.6; box-spline k = 12 1.5 -> 1.3, k = 14 1.6 -> 1.4.  Largest
- * stage now: the basis enclosure (MLCA k = 12 / 14: 36 / 39 %). */
+ * stage now: the basis enclosure (MLCA k = 12 / 14: 36 / 39 %).
+ *
+ * Measured 2026-12-06 03:53 UTC (load 5-6: other agents' tests), main
+ * 5fa7694 against session 8's basis and isolation work, alternately, 11
+ * links each; certified / double, ratio of the means (certified s per case):
+ *   MLCA k = 12     3.99 (0.091) -> 3.09 (0.074)
+ *   MLCA k = 14     5.51 (0.130) -> 3.93 (0.090)
+ *   tet/oct k = 12  2.90 (0.017) -> 2.33 (0.014)
+ *   tet/oct k = 14  4.37 (0.026) -> 2.51 (0.015)
+ *   box-spline 12   1.29 -> 1.25;  k = 14 1.31 -> 1.26
+ * (the certified counts equal: 11, 11, 8, 7, 9, 9 of 11).  The basis
+ * enclosure 0.036 -> 0.010 s at MLCA k = 12 (ss_exact_rump.c: Newton steps at
+ * 128 bits, T = I - R M in doubles with a rigorous radius, inverse iteration
+ * instead of an SVD); tet/oct's root isolation 0.016 -> 0.0014 s at k = 14
+ * (its degree 20-23 factors are outer blocks', now seeded too).  MLCA k = 14
+ * is now characteristic polynomials 0.019, isolation 0.016, basis 0.013,
+ * factoring 0.009, interval Jacobians 0.009 of 0.093 s. */
 #include "bench_pipeline_certify.h"
 
 #include <stdio.h>

@@ -13,6 +13,12 @@
  *     opposite (the reflection with psi o sigma = psi maps one to the
  *     other), each confirmed by central differences of the net one ring
  *     level down (another estimate of the derivatives, to 50 %);
+ *   - box-spline (its masks since session 8): every regular vertex of the
+ *     icosahedron and of two failing links against central differences one
+ *     level down, the witnesses too; a fold proven on k = 6 (enclosures
+ *     widened on both sides of the proof); the pipeline's verdict on psi, and
+ *     an unproven one where the basis has no enclosure (k = 5); the regular
+ *     neighbourhood inside one refined tet stationary (one-ring 15);
  *   - a change of basis X G: every det times det G (counts of the two signs
  *     swap for det G < 0);
  *   - bad input refused. */
@@ -34,6 +40,10 @@
 #include "ss_test.h"
 
 #define FINDING1 "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb"
+/* box-spline links whose control net does not fail regularity (k = 5: it
+ * fails injectivity only) or fails it (k = 6), both folding on psi */
+#define BOX_K5 "5 bcde,aec,abed,ace,adcb"
+#define BOX_K6 "6 bcdef,afc,abfd,acfe,adf,aedcb"
 
 /* One vertex case through the pipeline, its ring deepened to 4 levels. */
 typedef struct {
@@ -322,10 +332,11 @@ static void test_tetoct_fold(void) {
   mcase_free(&m);
 }
 
-/* every regular vertex of a tet/oct case against central differences one
- * level down: the same sign, within a factor 1.5 where |det| is at least a
- * tenth of the largest (near a zero the difference estimate's error, a few
- * per cent of the largest, decides nothing) */
+/* every regular vertex of a tet case (tet/oct, box-spline) against central
+ * differences one level down: the same sign, within a factor 1.5 where |det|
+ * is at least a tenth of the largest (near a zero the difference estimate's
+ * error, a few per cent of the largest, decides nothing); with witnesses
+ * (fold = 1) both of them as well, whatever their size */
 typedef struct {
   ss_psi_mask_point pt[4096];
   size_t n;
@@ -339,10 +350,10 @@ static void pts_each(const ss_psi_mask_point *pt, int sign, void *arg) {
   a->big = fmax(a->big, fabs(pt->det));
 }
 
-static void test_tetoct_fd(const char *link) {
+static void test_fd(const char *scheme, const char *link, int fold) {
   mcase m;
-  if (mcase_new("tetoct", link, &m)) {
-    CHECK(0, "tetoct fd %s: case", link);
+  if (mcase_new(scheme, link, &m)) {
+    CHECK(0, "%s fd %s: case", scheme, link);
     return;
   }
   const ss_local *M = m.p->M;
@@ -360,14 +371,27 @@ static void test_tetoct_fd(const char *link) {
     worst = fmax(worst, fmax(q, 1.0 / q));
     if (!(q >= 1.0 / 1.5 && q <= 1.5)) bad++;
   }
-  printf(
-      "tetoct %s: %zu regular vertices (+%zu -%zu flat %zu), %ld compared with central "
-      "differences, worst ratio %.3f\n",
-      link, r.judged, r.positive, r.negative, r.flat, used, worst);
+  printf("%s %s: %zu regular vertices (+%zu -%zu flat %zu; %zu read on one level only, "
+         "largest one-ring %zu), %ld compared with central differences, worst ratio "
+         "%.3f\n",
+         scheme, link, r.judged, r.positive, r.negative, r.flat, r.unchecked, r.maxo,
+         used, worst);
   CHECK(used >= 20 && bad == 0,
-        "tetoct %s: masks and central differences agree in sign and to a factor 1.5 at "
+        "%s %s: masks and central differences agree in sign and to a factor 1.5 at "
         "%ld vertices (%ld off)",
-        link, used, bad);
+        scheme, link, used, bad);
+  if (fold) {
+    CHECK(r.wpos.level >= 0 && r.wneg.level >= 0,
+          "%s %s: witnesses of both signs (+%zu -%zu)", scheme, link, r.positive,
+          r.negative);
+    const ss_psi_mask_point *w[2] = {&r.wpos, &r.wneg};
+    for (int k = 0; k < 2 && r.wpos.level >= 0 && r.wneg.level >= 0; k++) {
+      const double q = fd_det(&m, net, w[k]) / w[k]->det;
+      CHECK(q >= 0.5 && q <= 2.0,
+            "%s %s: witness %d det %.6g, by central differences one level down %.6g",
+            scheme, link, k, w[k]->det, q * w[k]->det);
+    }
+  }
   for (int q = 0; q < M->nring; q++)
     free(net[q]);
   free(net);
@@ -451,7 +475,49 @@ static void test_certify(const char *scheme, const char *link) {
   mcase_free(&m);
 }
 
-/* ---- tet/oct: the honeycomb's neighbourhood is stationary ---- */
+/* the pipeline (analyze --certify --psi-depth 2): a box-spline link whose
+ * net's regularity is only undecided (k = 5: 0 folded cells persist; it
+ * fails injectivity) or failed (k = 6) is a regularity failure judged on
+ * psi, proven where the basis is enclosed (k = 6; k = 5's subdominant
+ * eigenvalue lies in an outer block: no enclosure, so not proven) */
+static void test_pipeline_boxspline(const char *link, int proven) {
+  ss_scheme *s = NULL;
+  ss_link *l = NULL;
+  ss_pipeline *p = NULL;
+  ss_error err = {0};
+  if (ss_scheme_new("boxspline", &s, &err) || ss_link_parse(link, &l, &err)) {
+    CHECK(0, "pipeline boxspline %s: %s", link, err.msg);
+    ss_scheme_free(s);
+    return;
+  }
+  const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
+  ss_pipeline_opts o = ss_pipeline_defaults();
+  o.certify = 1;
+  o.psi_depth = 2;
+  if (ss_pipeline_compute(s, &c, &o, SS_PIPE_VERDICTS, NULL, &p, &err)) {
+    CHECK(0, "pipeline boxspline %s: %s", link, err.msg);
+  } else {
+    const ss_verdict *v = &p->v.reg;
+    printf("pipeline boxspline %s: regularity %d certified %d on %d: %.100s\n", link,
+           (int)v->verdict, v->certified, (int)v->on, v->reason);
+    if (proven)
+      CHECK(v->verdict == SS_FAIL && v->certified && v->on == SS_ON_PSI &&
+                strstr(v->reason, "tangent masks"),
+            "pipeline boxspline %s: regularity fails, proven, judged on psi", link);
+    else
+      CHECK(v->verdict != SS_PASS && !v->certified && p->psi.ran && p->psi.by_masks &&
+                p->psi.witness[0].det[0] * p->psi.witness[1].det[0] < 0.0,
+            "pipeline boxspline %s: not a pass; psi's masks ran and found witnesses of "
+            "both signs, not proven",
+            link);
+  }
+  ss_pipeline_free(p);
+  ss_link_free(l);
+  ss_scheme_free(s);
+}
+
+/* ---- tet/oct and box-spline: the regular neighbourhood inside one refined tet
+ * is stationary ---- */
 
 static int off_cmp(const void *a, const void *b) {
   const int *x = a, *y = b;
@@ -532,7 +598,7 @@ static size_t honeycomb_A(const ss_cx *cx[], const kv *tab[], const gsl_spmatrix
   return n;
 }
 
-static void test_stationary_tetoct(void) {
+static void test_stationary(const char *scheme, size_t want) {
   ss_error err = {0};
   ss_scheme *s = NULL;
   ss_cx *cx[6] = {NULL};
@@ -540,7 +606,7 @@ static void test_stationary_tetoct(void) {
   kv *tab[6] = {NULL};
   static const double P[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   const ss_idx tet[4] = {0, 1, 2, 3};
-  REQUIRE_OK_VOID(ss_scheme_new("tetoct", &s, &err), &err);
+  REQUIRE_OK_VOID(ss_scheme_new(scheme, &s, &err), &err);
   REQUIRE_OK_VOID(ss_cx_new(3, &cx[0], &err), &err);
   for (int v = 0; v < 4; v++)
     REQUIRE_OK_VOID(ss_cx_add_vertex(cx[0], P[v], 0, &err), &err);
@@ -584,13 +650,13 @@ static void test_stationary_tetoct(void) {
       same = fabs(A0[k] - Aref[k]) <= 1e-13 && fabs(A1[k] - Aref[k]) <= 1e-13;
     bad += !same;
   }
-  printf("tet/oct honeycomb: %ld interior vertices of level 3 read on levels 3 and 4, "
+  printf("%s, one tet refined: %ld interior vertices of level 3 read on levels 3 and 4, "
          "one-ring %zu, %ld differ\n",
-         seen, nref, bad);
-  CHECK(seen >= 1 && bad == 0 && nref == 19,
-        "tet/oct honeycomb: %ld interior vertices of level 3, one neighbourhood of %zu "
+         scheme, seen, nref, bad);
+  CHECK(seen >= 1 && bad == 0 && nref == want,
+        "%s, one tet refined: %ld interior vertices of level 3, one neighbourhood of %zu "
         "points on levels 3 and 4 (%ld differ)",
-        seen, nref, bad);
+        scheme, seen, nref, bad);
   for (int l = 0; l < 6; l++) {
     ss_cx_free(cx[l]);
     free(tab[l]);
@@ -619,11 +685,18 @@ int main(void) {
   test_eval(FINDING1);
   test_regular("mlca");
   test_tetoct_fold();
-  test_tetoct_fd("icosahedron");
-  test_tetoct_fd(FINDING1);
+  test_fd("tetoct", "icosahedron", 0);
+  test_fd("tetoct", FINDING1, 1);
+  test_fd("boxspline", "icosahedron", 0);
+  test_fd("boxspline", BOX_K5, 1);
+  test_fd("boxspline", BOX_K6, 1);
+  test_certify("boxspline", BOX_K6);
+  test_pipeline_boxspline(BOX_K5, 0);
+  test_pipeline_boxspline(BOX_K6, 1);
   test_certify("tetoct", FINDING1);
   test_certify("mlca", FINDING1);
-  test_stationary_tetoct();
+  test_stationary("tetoct", 19);
+  test_stationary("boxspline", 15);
   test_bad_input();
   return ss_test_done("psi_mask");
 }
