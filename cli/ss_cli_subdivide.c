@@ -50,14 +50,22 @@ static const char *const usage_text =
     "                        subdivide writes them); octahedra keep theirs, the\n"
     "                        pair (0,3).  The summary counts improper pairs\n"
     "                        (Definition 3.2; see the README)\n"
+    "      --boundary-c C    boxspline, boxspline-avg: the weight c of a smooth\n"
+    "                        boundary vertex of valence k, (1 - k c) x + c each\n"
+    "                        neighbour (box-spline paper, figure 14(b)): loop\n"
+    "                        (Loop's beta(k), default) or 3/8k (c = 3/(8k))\n"
     "      --format F        summary as text (default) or json, on stdout\n"
     "  -h, --help            this text\n"
-    "\n"
+    "\n";
+
+/* The second half of the help (one literal stays within C's 4095 bytes). */
+static const char *const usage_schemes =
     "Schemes and the cells they take:\n"
     "  mlca           segments, quadrilaterals, hexahedra (+ corners); lower-\n"
     "                 dimensional cells are creases (MLCA paper, section 3.2)\n"
     "  tetoct         tetrahedra, octahedra (+ triangle/segment/corner creases)\n"
-    "  boxspline      tetrahedra, octahedra; boundary surfaces by Loop's rules\n"
+    "  boxspline      tetrahedra, octahedra, triangles: the boundary and the\n"
+    "                 triangles (surface parts) refine as one Loop surface\n"
     "  boxspline-avg  the same, averaged over the three diagonal directions\n"
     "                 (Appendix A): reads no diagonals\n"
     "  catmull-clark  quadrilateral surfaces; boundaries and segments are creases\n"
@@ -138,6 +146,8 @@ typedef struct {
   ss_mesh_format ofmt;      /* OUT's format: --output-format, else its name's */
   int drop;                 /* --drop-unsupported */
   int hexify;               /* --hexify */
+  const char *bc;           /* --boundary-c as given; NULL: not given */
+  ss_loop_c loop_c;         /* its choice */
   FILE *sum;                /* the summary's stream: stdout, or stderr when
                                OUT is standard output */
 } sub_opts;
@@ -155,6 +165,7 @@ static int parse(int argc, char **argv, sub_opts *o) {
                                        {"output-format", required_argument, NULL, 'O'},
                                        {"drop-unsupported", no_argument, NULL, 'U'},
                                        {"hexify", no_argument, NULL, 'X'},
+                                       {"boundary-c", required_argument, NULL, 'B'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   memset(o, 0, sizeof *o);
@@ -195,6 +206,13 @@ static int parse(int argc, char **argv, sub_opts *o) {
     case 'X':
       o->hexify = 1;
       break;
+    case 'B':
+      if (strcmp(optarg, "loop") && strcmp(optarg, "3/8k"))
+        return ss_cli_usage_error(
+            "subdivide", "--boundary-c: expected loop or 3/8k, not '%s'", optarg);
+      o->bc = optarg;
+      o->loop_c = strcmp(optarg, "loop") ? SS_LOOP_C_3_8K : SS_LOOP_C_BETA;
+      break;
     case 'F':
       if (ss_cli_format_option("subdivide", optarg, &o->json)) return SS_EXIT_USAGE;
       break;
@@ -208,6 +226,7 @@ static int parse(int argc, char **argv, sub_opts *o) {
       break;
     case 'h':
       fputs(usage_text, stdout);
+      fputs(usage_schemes, stdout);
       return -1;
     default:
       return ss_cli_option_error("subdivide", c, argv);
@@ -406,6 +425,10 @@ int ss_cli_subdivide(int argc, char **argv) {
   if (ss_scheme_new(o.scheme, &scheme, &err) ||
       ss_mesh_read(o.in, SS_MESH_AUTO, &cx, &err)) {
     rc = ss_cli_fail("subdivide", &err);
+    goto done;
+  }
+  if (o.bc && ss_scheme_set_loop_c(scheme, o.loop_c, &err)) {
+    rc = ss_cli_usage_error("subdivide", "--boundary-c: %s", err.msg);
     goto done;
   }
   if (o.drop) drop_unsupported(&o, scheme, cx);

@@ -37,6 +37,16 @@ int ss_scheme_weights_rational(const ss_scheme *s) {
   return !s->irrational;
 }
 
+ss_status ss_scheme_set_loop_c(ss_scheme *s, ss_loop_c c, ss_error *err) {
+  if (!s->loop_c_choice)
+    return ss_error_set(err, SS_EINPUT,
+                        "scheme %s has no choice of Loop's vertex weight (boxspline and "
+                        "boxspline-avg have, figure 14 of the box-spline paper)",
+                        s->name);
+  s->loop_c = c;
+  return SS_OK;
+}
+
 int ss_scheme_reach(const ss_scheme *s) {
   return s->reach;
 }

@@ -242,8 +242,8 @@ nomem:
  * over the split L (ss_loop_surface, shared with tet/oct's crease surfaces;
  * its edges in three or more faces, where a surface meets the solid, and its
  * own boundary are crease curves).  SS_ENOMEM. */
-static ss_status loop_surface(const ss_cx *fine, const ss_split *L, ss_loop_surface **out,
-                              ss_error *err) {
+static ss_status loop_surface(const ss_scheme *s, const ss_cx *fine, const ss_split *L,
+                              ss_loop_surface **out, ss_error *err) {
   *out = NULL;
   const size_t nt = fine->nc[SS_TET], no = fine->nc[SS_OCT];
   const size_t nvol = 4 * nt + 8 * no, ntri = fine->nc[SS_TRIANGLE];
@@ -286,7 +286,7 @@ static ss_status loop_surface(const ss_cx *fine, const ss_split *L, ss_loop_surf
   surf.nv = fine->nv;
   surf.nc[SS_TRIANGLE] = u;
   surf.cells[SS_TRIANGLE] = tri;
-  st = ss_loop_surface_new(&surf, L, out, err);
+  st = ss_loop_surface_new(&surf, L, s->loop_c, out, err);
   goto done;
 nomem:
   st = ss_error_nomem(err, "box-spline boundary surface");
@@ -368,13 +368,12 @@ static ss_status centres(const ss_cx *coarse, const ss_split *L, double w_end,
 static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
                                 const ss_cx *fine, const ss_split *L, ss_sink *k,
                                 ss_error *err) {
-  (void)s;
   const size_t nv = coarse->nv;
   topo T;
   ss_loop_surface *S = NULL;
   ss_status st = topo_make(coarse, L, 1, &T, err);
   if (st) return st;
-  if ((st = loop_surface(fine, L, &S, err))) goto done;
+  if ((st = loop_surface(s, fine, L, &S, err))) goto done;
   for (size_t x = 0; x < nv; x++)
     if (!ss_loop_surface_emit(S, L, x, k)) /* on the surface: Loop's row */
       vertex_rule(&T, x, k);               /* rho(x): (3.7), i.e. (3.3) at 14 */
@@ -403,13 +402,12 @@ static const double avg_vertex_opp = 6 * AVG3(1.0 / 32, 0.0, 0.0);          /* 1
 static ss_status boxspline_avg_rule(const ss_scheme *s, const ss_cx *coarse,
                                     const ss_cx *fine, const ss_split *L, ss_sink *k,
                                     ss_error *err) {
-  (void)s;
   const size_t nv = coarse->nv;
   topo T;
   ss_loop_surface *S = NULL;
   ss_status st = topo_make(coarse, L, 0, &T, err);
   if (st) return st;
-  if ((st = loop_surface(fine, L, &S, err))) goto done;
+  if ((st = loop_surface(s, fine, L, &S, err))) goto done;
   for (size_t x = 0; x < nv; x++) {
     const size_t ne = T.nb.ptr[x + 1] - T.nb.ptr[x], no = T.opp.ptr[x + 1] - T.opp.ptr[x];
     if (ss_loop_surface_emit(S, L, x, k)) {
@@ -466,6 +464,7 @@ ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err) {
   if (!st) {
     (*out)->reach = 2; /* rho(e) reads both ends' neighbourhoods */
     (*out)->diagonals = 1;
+    (*out)->loop_c_choice = 1; /* figure 14(b)'s c */
   }
   return st;
 }
@@ -474,6 +473,9 @@ ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err) {
   const unsigned accepts = (1u << SS_TRIANGLE) | (1u << SS_TET) | (1u << SS_OCT);
   ss_status st = ss_scheme_alloc("boxspline-avg", SS_SPLIT_TETOCT, accepts,
                                  boxspline_avg_rule, out, err);
-  if (!st) (*out)->reach = 2; /* common neighbours of both ends */
+  if (!st) {
+    (*out)->reach = 2; /* common neighbours of both ends */
+    (*out)->loop_c_choice = 1;
+  }
   return st;
 }

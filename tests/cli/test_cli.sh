@@ -45,6 +45,15 @@ expect 0 "hexified \\(MLCA paper, section 3.3\\): 6 tetrahedra into 24 hexahedra
 # triangles (12 on the boundary, 6 round the diagonal) + 6 tets = 51 points
 expect 0 "read .*: 51 vertices, 24 hexahedra" "$exe" subdivide --scheme ccsolid --hexify "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
 expect 2 "--hexify: scheme tetoct is not hexahedral" "$exe" subdivide --scheme tetoct --hexify "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
+# --boundary-c (box-spline paper, figure 14(b)): 3/(8k) moves the boundary
+# (test_boxspline_surface checks the weights); refused where Loop's beta is fixed
+expect 0 "wrote" "$exe" subdivide --scheme boxspline "$m/cube-6tets.mesh" -o "$tmp/c1.mesh"
+expect 0 "wrote" "$exe" subdivide --scheme boxspline --boundary-c 3/8k "$m/cube-6tets.mesh" -o "$tmp/c2.mesh"
+expect 0 "wrote" "$exe" subdivide --scheme boxspline --boundary-c loop "$m/cube-6tets.mesh" -o "$tmp/c3.mesh"
+expect 0 "^" cmp "$tmp/c1.mesh" "$tmp/c3.mesh"
+expect 1 "differ" cmp "$tmp/c1.mesh" "$tmp/c2.mesh"
+expect 2 "--boundary-c: expected loop or 3/8k, not 'beta'" "$exe" subdivide --scheme boxspline --boundary-c beta "$m/cube-6tets.mesh" -o "$tmp/c4.mesh"
+expect 2 "--boundary-c: scheme tetoct has no choice" "$exe" subdivide --scheme tetoct --boundary-c 3/8k "$m/cube-6tets.mesh" -o "$tmp/c4.mesh"
 expect 0 "UNSTRUCTURED_GRID" cat "$tmp/b.vtk"
 # Medit output: octahedra split into 4 tets each by default (said on stderr),
 # kept under the Octahedra extension keyword only on request

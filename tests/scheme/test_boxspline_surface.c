@@ -16,12 +16,20 @@
  *   - one level: the points off the surface are where the solid without the
  *     wall puts them, bit for bit (the rows of the solid read no triangle);
  *   - triangle cells that are the solid's own boundary faces (TetGen's .face)
- *     change nothing: the same complex and points within 1e-14. */
+ *     change nothing: the same complex and points within 1e-14.
+ * And figure 14(b)'s choice of the smooth boundary vertex's weight c at
+ * valence k, (1 - k c) x + c each neighbour, against closed forms: with
+ * c = 3/(8k) the vertex keeps 5/8 at every k (a tet's corner, k = 3: 5/8
+ * and 1/8; an octahedron's, k = 4: 5/8 and 3/32), with Loop's beta 7/16,
+ * 3/16 and 33/64, 31/256; at k = 6 both are figure 14(a)'s regular rule,
+ * 10/16 and 1/16; the edge rule, 3/8, 3/8, 1/8, 1/8, is the same for both;
+ * schemes whose papers fix Loop's beta (tetoct, loop) refuse the choice. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "ss_diag.h"
 #include "ss_scheme.h"
+#include "ss_split.h"
 #include "ss_test.h"
 #include "ss_testmesh.h"
 
@@ -276,10 +284,117 @@ static void test_faces_given(const char *scheme) {
   free(bnd);
 }
 
+/* R(r, c), 0 if absent. */
+static double entry(const gsl_spmatrix *R, size_t r, size_t c) {
+  for (int q = R->p[r]; q < R->p[r + 1]; q++)
+    if ((size_t)R->i[q] == c) return R->data[q];
+  return 0.0;
+}
+
+/* The operator of one refinement of cx by scheme with c chosen. */
+static gsl_spmatrix *operator_of(const char *scheme, ss_loop_c c, const ss_cx *cx,
+                                 ss_split **L) {
+  ss_error err = {0};
+  ss_scheme *s = NULL;
+  ss_cx *fine = NULL;
+  gsl_spmatrix *R = NULL;
+  if (ss_scheme_new(scheme, &s, &err) || ss_scheme_set_loop_c(s, c, &err) ||
+      ss_scheme_refine_split(s, cx, &fine, &R, L, &err))
+    CHECK(0, "%s: %s", scheme, err.msg);
+  ss_cx_free(fine);
+  ss_scheme_free(s);
+  return R;
+}
+
+/* Row r of R is w_self at r and w_nb at each of the n others it holds. */
+static void check_vertex_row(const gsl_spmatrix *R, size_t r, size_t n, double w_self,
+                             double w_nb, const char *what) {
+  CHECK_CLOSE(entry(R, r, r), w_self, 1e-15, "%s: self", what);
+  size_t m = 0;
+  for (int q = R->p[r]; q < R->p[r + 1]; q++) {
+    if ((size_t)R->i[q] == r) continue;
+    m++;
+    CHECK_CLOSE(R->data[q], w_nb, 1e-15, "%s: neighbour %d", what, R->i[q]);
+  }
+  CHECK(m == n, "%s: %zu neighbours, not %zu", what, m, n);
+}
+
+static void test_boundary_c(const char *scheme) {
+  ss_error err = {0};
+  const double tx[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const double ox[6][3] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1},
+                           {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  const ss_idx tv[4] = {0, 1, 2, 3}, ov[6] = {0, 1, 2, 3, 4, 5};
+  ss_cx *tet = NULL, *oct = NULL, *tet1 = NULL;
+  REQUIRE_OK_VOID(ss_cx_new(3, &tet, &err), &err);
+  REQUIRE_OK_VOID(ss_cx_new(3, &oct, &err), &err);
+  for (int i = 0; i < 4; i++)
+    ss_cx_add_vertex(tet, tx[i], 0, &err);
+  for (int i = 0; i < 6; i++)
+    ss_cx_add_vertex(oct, ox[i], 0, &err);
+  ss_cx_add_cell(tet, SS_TET, tv, 0, &err);
+  ss_cx_add_cell(oct, SS_OCT, ov, 0, &err);
+  ss_split *L = NULL;
+  REQUIRE_OK_VOID(ss_split_refine(SS_SPLIT_TETOCT, tet, &tet1, &L, &err), &err);
+  ss_split_free(L);
+  for (int mode = 0; mode < 2; mode++) {
+    const ss_loop_c c = mode ? SS_LOOP_C_3_8K : SS_LOOP_C_BETA;
+    char what[96];
+    gsl_spmatrix *R = operator_of(scheme, c, tet, &L);
+    if (R) {
+      snprintf(what, sizeof what, "%s %s, tet corner", scheme, mode ? "3/8k" : "beta");
+      check_vertex_row(R, 0, 3, mode ? 5.0 / 8 : 7.0 / 16, mode ? 1.0 / 8 : 3.0 / 16,
+                       what);
+      /* an edge point: 3/8 each end, 1/8 each opposite vertex */
+      const ss_idx a = L->parent[L->ptr[4]], b = L->parent[L->ptr[4] + 1];
+      for (ss_idx v = 0; v < 4; v++)
+        CHECK_CLOSE(entry(R, 4, v), v == a || v == b ? 3.0 / 8 : 1.0 / 8, 1e-15,
+                    "%s: edge point's weight of %u", what, v);
+      gsl_spmatrix_free(R);
+    }
+    ss_split_free(L);
+    if ((R = operator_of(scheme, c, oct, &L))) {
+      snprintf(what, sizeof what, "%s %s, octahedron corner", scheme,
+               mode ? "3/8k" : "beta");
+      check_vertex_row(R, 0, 4, mode ? 5.0 / 8 : 33.0 / 64, mode ? 3.0 / 32 : 31.0 / 256,
+                       what);
+      gsl_spmatrix_free(R);
+    }
+    ss_split_free(L);
+    /* the refined tet's edge midpoints have six surface neighbours */
+    if ((R = operator_of(scheme, c, tet1, &L))) {
+      snprintf(what, sizeof what, "%s %s, valence 6", scheme, mode ? "3/8k" : "beta");
+      check_vertex_row(R, 4, 6, 10.0 / 16, 1.0 / 16, what);
+      gsl_spmatrix_free(R);
+    }
+    ss_split_free(L);
+  }
+  ss_cx_free(tet);
+  ss_cx_free(tet1);
+  ss_cx_free(oct);
+}
+
+/* Schemes whose papers fix Loop's beta refuse the choice. */
+static void test_refused(void) {
+  const char *const names[] = {"tetoct", "loop", "mlca"};
+  for (int i = 0; i < 3; i++) {
+    ss_error err = {0};
+    ss_scheme *s = NULL;
+    REQUIRE_OK_VOID(ss_scheme_new(names[i], &s, &err), &err);
+    CHECK(ss_scheme_set_loop_c(s, SS_LOOP_C_3_8K, &err) == SS_EINPUT &&
+              strstr(err.msg, names[i]),
+          "%s took the choice of c: %s", names[i], err.msg);
+    ss_scheme_free(s);
+  }
+}
+
 int main(void) {
   test_hybrid("boxspline");
   test_hybrid("boxspline-avg");
   test_faces_given("boxspline");
   test_faces_given("boxspline-avg");
+  test_boundary_c("boxspline");
+  test_boundary_c("boxspline-avg");
+  test_refused();
   return ss_test_done("boxspline_surface");
 }
