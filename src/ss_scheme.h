@@ -146,6 +146,16 @@ typedef enum {
  * and loop are Loop's by their papers). */
 ss_status ss_scheme_set_loop_c(ss_scheme *s, ss_loop_c c, ss_error *err);
 
+/* Make the scheme's refinement adaptive (quasi48 only: its bisect split;
+ * ss_split_refine_adapt): each level refines the triangles `a` wants (copied)
+ * and their closure, and the rule smooths as on any level (an old vertex with
+ * no new neighbour keeps its place), so points away from the refined region
+ * stay where they are.  A is NULL: uniform again.  The analysis step
+ * (ss_scheme_refine_step) is never adaptive.  SS_EINPUT naming the scheme
+ * for other schemes, for a box with a non-finite bound or a lower bound above
+ * its upper one, and for a negative or non-finite edge length. */
+ss_status ss_scheme_set_adapt(ss_scheme *s, const ss_adapt *a, ss_error *err);
+
 /* Refine `coarse` once.  *fine receives the refined complex (caller owns).  If
  * R is not NULL, *R receives the refinement operator as a new CSR matrix of
  * size fine->nv x coarse->nv (caller frees), and the fine positions are R times

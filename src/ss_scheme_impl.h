@@ -46,6 +46,8 @@ struct ss_scheme {
   int loop_c_choice;                  /* 1: the boundary follows figure 14 of the
                                          box-spline paper and takes ss_scheme_set_loop_c */
   ss_loop_c loop_c;                   /* its smooth vertex weight (default Loop's beta) */
+  int adaptive;                       /* 1: refine with the adaptive bisect pass */
+  ss_adapt adapt;                     /* its criterion (ss_scheme_set_adapt) */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every
