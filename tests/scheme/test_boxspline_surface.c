@@ -33,58 +33,6 @@
 #include "ss_test.h"
 #include "ss_testmesh.h"
 
-static int cmp_face(const void *a, const void *b) {
-  const ss_idx *x = a, *y = b;
-  for (int i = 0; i < 3; i++)
-    if (x[i] != y[i]) return (x[i] > y[i]) - (x[i] < y[i]);
-  return 0;
-}
-
-static void sort3(ss_idx *t) {
-  for (int i = 0; i < 3; i++)
-    for (int j = i + 1; j < 3; j++)
-      if (t[j] < t[i]) {
-        ss_idx x = t[i];
-        t[i] = t[j];
-        t[j] = x;
-      }
-}
-
-/* The faces held by one tet or octahedron, sorted triples, into *out; their
- * count (written independently of the scheme's: the octahedron's faces as
- * the triples of one vertex from each opposite pair). */
-static size_t boundary_faces(const ss_cx *cx, ss_idx **out) {
-  const size_t nt = cx->nc[SS_TET], no = cx->nc[SS_OCT], n = 4 * nt + 8 * no;
-  ss_idx *f = malloc((3 * n + 1) * sizeof *f), *b = malloc((3 * n + 1) * sizeof *b);
-  size_t m = 0;
-  for (size_t t = 0; t < nt; t++) {
-    const ss_idx *v = ss_cx_cell(cx, SS_TET, t);
-    for (int skip = 0; skip < 4; skip++, m++)
-      for (int j = 0, q = 0; j < 4; j++)
-        if (j != skip) f[3 * m + (size_t)q++] = v[j];
-  }
-  for (size_t o = 0; o < no; o++) {
-    const ss_idx *v = ss_cx_cell(cx, SS_OCT, o);
-    for (int s = 0; s < 8; s++, m++)
-      for (int j = 0; j < 3; j++)
-        f[3 * m + (size_t)j] = v[(s >> j & 1) ? j + 3 : j];
-  }
-  for (size_t i = 0; i < n; i++)
-    sort3(f + 3 * i);
-  qsort(f, n, 3 * sizeof *f, cmp_face);
-  size_t k = 0;
-  for (size_t i = 0; i < n;) {
-    size_t j = i + 1;
-    while (j < n && !cmp_face(f + 3 * i, f + 3 * j))
-      j++;
-    if (j - i == 1) memcpy(b + 3 * k++, f + 3 * i, 3 * sizeof *b);
-    i = j;
-  }
-  free(f);
-  *out = b;
-  return k;
-}
-
 /* The cube with the wall's three new vertices (above the grid line y = 1 of
  * the top face z = N) and, with_wall, its four triangles on the grid edges
  * of that line. */
@@ -145,7 +93,7 @@ static ss_cx *refine(const char *scheme, const ss_cx *cx, int levels) {
 static unsigned char *surface_flags(const ss_cx *V) {
   unsigned char *on = calloc(V->nv + 1, 1);
   ss_idx *b = NULL;
-  const size_t nb = boundary_faces(V, &b);
+  const size_t nb = tm_boundary_faces(V, &b);
   for (size_t i = 0; i < 3 * nb; i++)
     on[b[i]] = 1;
   for (size_t i = 0; i < 3 * V->nc[SS_TRIANGLE]; i++)
@@ -204,7 +152,7 @@ static void test_hybrid(const char *scheme) {
   ss_idx wall[4][3];
   ss_cx *vol = hybrid(N, 1, wall);
   ss_idx *bnd = NULL;
-  const size_t nb = boundary_faces(vol, &bnd);
+  const size_t nb = tm_boundary_faces(vol, &bnd);
   CHECK(nb == 6u * 2u * (size_t)(N * N), "boundary triangles: %zu", nb);
   ss_idx *all = malloc((3 * (nb + 4) + 1) * sizeof *all);
   memcpy(all, bnd, 3 * nb * sizeof *all);
@@ -266,7 +214,7 @@ static void test_faces_given(const char *scheme) {
   ss_cx *vol = tm_kuhn(2), *faced = NULL;
   tm_jitter(vol, 0.08, 5);
   ss_idx *bnd = NULL;
-  const size_t nb = boundary_faces(vol, &bnd);
+  const size_t nb = tm_boundary_faces(vol, &bnd);
   REQUIRE_OK_VOID(ss_cx_copy(vol, &faced, &err), &err);
   for (size_t i = 0; i < nb; i++)
     REQUIRE_OK_VOID(ss_cx_add_cell(faced, SS_TRIANGLE, bnd + 3 * i, 0, &err), &err);
