@@ -58,8 +58,9 @@ static int same_complex(const ss_cx *a, const ss_cx *b) {
     return 0;
   for (int t = 0; t < SS_NCELLTYPES; t++)
     if (a->nc[t] != b->nc[t] ||
-        memcmp(a->cells[t], b->cells[t],
-               a->nc[t] * (size_t)ss_cell_nverts((ss_cell_type)t) * sizeof(ss_idx)))
+        (a->nc[t] &&
+         memcmp(a->cells[t], b->cells[t],
+                a->nc[t] * (size_t)ss_cell_nverts((ss_cell_type)t) * sizeof(ss_idx))))
       return 0;
   return 1;
 }
