@@ -235,30 +235,51 @@ nomem:
   return ss_error_nomem(err, "box-spline neighbours");
 }
 
+/* A coarse edge's midpoint in the split: parents a < b, fine vertex m. */
+typedef struct {
+  ss_idx a, b, m;
+} midpoint;
+
+static int mid_cmp(const void *x, const void *y) {
+  const midpoint *p = x, *q = y;
+  if (p->a != q->a) return (p->a > q->a) - (p->a < q->a);
+  return (p->b > q->b) - (p->b < q->b);
+}
+
+/* The fine vertex the split puts on the coarse edge (a, b), a < b. */
+static ss_idx mid_of(const midpoint *mids, size_t n, ss_idx a, ss_idx b) {
+  const midpoint key = {a, b, 0};
+  const midpoint *hit = bsearch(&key, mids, n, sizeof *mids, mid_cmp);
+  return hit ? hit->m : SS_IDX_NONE;
+}
+
 /* The surface Loop's rules refine (figure 14; figure 29's hybrid solid): the
- * fine faces held by one fine tet or octahedron — the solid's boundary — and
- * the fine triangle cells, each face once (a triangle cell on the boundary,
- * as TetGen's .face gives them, is that boundary face), as a Loop surface
- * over the split L (ss_loop_surface, shared with tet/oct's crease surfaces;
- * its edges in three or more faces, where a surface meets the solid, and its
- * own boundary are crease curves).  SS_ENOMEM. */
-static ss_status loop_surface(const ss_scheme *s, const ss_cx *fine, const ss_split *L,
-                              ss_loop_surface **out, ss_error *err) {
+ * coarse faces held by one tet or octahedron — the solid's boundary — and the
+ * coarse triangle cells, each face once (a triangle cell on the boundary, as
+ * TetGen's .face gives them, is that boundary face), each as its four fine
+ * triangles (the fine boundary faces are the split's children of the coarse
+ * ones), a Loop surface over the split L (ss_loop_surface, shared with
+ * tet/oct's crease surfaces; its edges in three or more faces, where a
+ * surface meets the solid, and its own boundary are crease curves).  Sorting
+ * coarse faces, not fine ones, keeps it cheap.  SS_ENOMEM, SS_EINTERNAL. */
+static ss_status loop_surface(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                              const ss_split *L, ss_loop_surface **out, ss_error *err) {
   *out = NULL;
-  const size_t nt = fine->nc[SS_TET], no = fine->nc[SS_OCT];
-  const size_t nvol = 4 * nt + 8 * no, ntri = fine->nc[SS_TRIANGLE];
-  face *f = malloc((nvol + ntri + 1) * sizeof *f);
+  const size_t nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
+  const size_t ntri = coarse->nc[SS_TRIANGLE], nc = L->ncoarse;
+  face *f = malloc((4 * nt + 8 * no + ntri + 1) * sizeof *f);
+  midpoint *mids = malloc((L->nfine - nc + 1) * sizeof *mids);
   ss_idx *tri = NULL;
   ss_status st = SS_OK;
-  if (!f) goto nomem;
-  size_t n = 0;
+  if (!f || !mids) goto nomem;
+  size_t n = 0, nm = 0;
   for (size_t t = 0; t < nt; t++) {
-    const ss_idx *v = ss_cx_cell(fine, SS_TET, t);
+    const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
     for (int i = 0; i < 4; i++)
       f[n++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
   }
   for (size_t o = 0; o < no; o++) {
-    const ss_idx *v = ss_cx_cell(fine, SS_OCT, o);
+    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
     for (int q = 0; q < 8; q++)
       f[n++] = make_face(v[q & 1 ? 3 : 0], v[q & 2 ? 4 : 1], v[q & 4 ? 5 : 2]);
   }
@@ -272,19 +293,34 @@ static ss_status loop_surface(const ss_scheme *s, const ss_cx *fine, const ss_sp
     i = j;
   }
   for (size_t t = 0; t < ntri; t++) {
-    const ss_idx *v = ss_cx_cell(fine, SS_TRIANGLE, t);
+    const ss_idx *v = ss_cx_cell(coarse, SS_TRIANGLE, t);
     f[m++] = make_face(v[0], v[1], v[2]);
   }
   qsort(f, m, sizeof *f, face_cmp);
-  if (!(tri = malloc((3 * m + 1) * sizeof *tri))) goto nomem;
+  for (size_t x = nc; x < L->nfine; x++) /* parents ascending (ss_split.h) */
+    if (ss_split_npar(L, x) == 2)
+      mids[nm++] = (midpoint){L->parent[L->ptr[x]], L->parent[L->ptr[x] + 1], (ss_idx)x};
+  qsort(mids, nm, sizeof *mids, mid_cmp);
+  if (!(tri = malloc((12 * m + 1) * sizeof *tri))) goto nomem;
   size_t u = 0;
-  for (size_t i = 0; i < m; i++)
-    if (i == 0 || face_cmp(f + i - 1, f + i) != 0)
-      memcpy(tri + 3 * u++, f[i].v, sizeof f[i].v);
+  for (size_t i = 0; i < m; i++) {
+    if (i > 0 && face_cmp(f + i - 1, f + i) == 0) continue;
+    const ss_idx *v = f[i].v; /* sorted corners */
+    const ss_idx m01 = mid_of(mids, nm, v[0], v[1]), m12 = mid_of(mids, nm, v[1], v[2]),
+                 m02 = mid_of(mids, nm, v[0], v[2]);
+    if (m01 == SS_IDX_NONE || m12 == SS_IDX_NONE || m02 == SS_IDX_NONE) {
+      st =
+          ss_error_set(err, SS_EINTERNAL, "box-spline surface: an edge with no midpoint");
+      goto done;
+    }
+    const ss_idx kids[4][3] = {
+        {v[0], m01, m02}, {v[1], m12, m01}, {v[2], m02, m12}, {m01, m12, m02}};
+    memcpy(tri + 12 * u++, kids, sizeof kids);
+  }
   ss_cx surf = {0};
   surf.dim = fine->dim;
   surf.nv = fine->nv;
-  surf.nc[SS_TRIANGLE] = u;
+  surf.nc[SS_TRIANGLE] = 4 * u;
   surf.cells[SS_TRIANGLE] = tri;
   st = ss_loop_surface_new(&surf, L, s->loop_c, out, err);
   goto done;
@@ -292,6 +328,7 @@ nomem:
   st = ss_error_nomem(err, "box-spline boundary surface");
 done:
   free(f);
+  free(mids);
   free(tri);
   return st;
 }
@@ -373,7 +410,7 @@ static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
   ss_loop_surface *S = NULL;
   ss_status st = topo_make(coarse, L, 1, &T, err);
   if (st) return st;
-  if ((st = loop_surface(s, fine, L, &S, err))) goto done;
+  if ((st = loop_surface(s, coarse, fine, L, &S, err))) goto done;
   for (size_t x = 0; x < nv; x++)
     if (!ss_loop_surface_emit(S, L, x, k)) /* on the surface: Loop's row */
       vertex_rule(&T, x, k);               /* rho(x): (3.7), i.e. (3.3) at 14 */
@@ -407,7 +444,7 @@ static ss_status boxspline_avg_rule(const ss_scheme *s, const ss_cx *coarse,
   ss_loop_surface *S = NULL;
   ss_status st = topo_make(coarse, L, 0, &T, err);
   if (st) return st;
-  if ((st = loop_surface(s, fine, L, &S, err))) goto done;
+  if ((st = loop_surface(s, coarse, fine, L, &S, err))) goto done;
   for (size_t x = 0; x < nv; x++) {
     const size_t ne = T.nb.ptr[x + 1] - T.nb.ptr[x], no = T.opp.ptr[x + 1] - T.opp.ptr[x];
     if (ss_loop_surface_emit(S, L, x, k)) {
