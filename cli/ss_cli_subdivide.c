@@ -1,7 +1,9 @@
 /* ss_cli_subdivide.c — `subspectra subdivide`: refine a whole mesh. */
 #include <getopt.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -50,14 +52,28 @@ static const char *const usage_text =
     "                        subdivide writes them); octahedra keep theirs, the\n"
     "                        pair (0,3).  The summary counts improper pairs\n"
     "                        (Definition 3.2; see docs/schemes.md)\n"
+    "      --boundary-c C    boxspline, boxspline-avg: the weight c of a smooth\n"
+    "                        boundary vertex of valence k, (1 - k c) x + c each\n"
+    "                        neighbour (box-spline paper, figure 14(b)): loop\n"
+    "                        (Loop's beta(k), default) or 3/8k (c = 3/(8k))\n"
+    "      --adapt-box X0,Y0,Z0,X1,Y1,Z1  quasi48: refine only the triangles\n"
+    "                        whose bounding box meets this box (and their closure:\n"
+    "                        the neighbours a wanted triangle needs refined first);\n"
+    "                        the mesh stays conforming, points away stay put\n"
+    "      --adapt-edge-length H  quasi48: refine only triangles with an edge\n"
+    "                        longer than H (with --adapt-box: both must hold)\n"
     "      --format F        summary as text (default) or json, on stdout\n"
     "  -h, --help            this text\n"
-    "\n"
+    "\n";
+
+/* The second half of the help (one literal stays within C's 4095 bytes). */
+static const char *const usage_schemes =
     "Schemes and the cells they take:\n"
     "  mlca           segments, quadrilaterals, hexahedra (+ corners); lower-\n"
     "                 dimensional cells are creases (MLCA paper, section 3.2)\n"
     "  tetoct         tetrahedra, octahedra (+ triangle/segment/corner creases)\n"
-    "  boxspline      tetrahedra, octahedra; boundary surfaces by Loop's rules\n"
+    "  boxspline      tetrahedra, octahedra, triangles: the boundary and the\n"
+    "                 triangles (surface parts) refine as one Loop surface\n"
     "  boxspline-avg  the same, averaged over the three diagonal directions\n"
     "                 (Appendix A): reads no diagonals\n"
     "  catmull-clark  quadrilateral surfaces; boundaries and segments are creases\n"
@@ -138,25 +154,46 @@ typedef struct {
   ss_mesh_format ofmt;      /* OUT's format: --output-format, else its name's */
   int drop;                 /* --drop-unsupported */
   int hexify;               /* --hexify */
+  const char *bc;           /* --boundary-c as given; NULL: not given */
+  ss_adapt adapt;           /* --adapt-box, --adapt-edge-length */
+  int adaptive;             /* either given */
+  ss_loop_c loop_c;         /* its choice */
   FILE *sum;                /* the summary's stream: stdout, or stderr when
                                OUT is standard output */
 } sub_opts;
 
+/* "X0,Y0,Z0,X1,Y1,Z1" into b: 0, or -1 if not six finite numbers with each
+ * lower bound at most its upper one. */
+static int parse_box(const char *s, double b[6]) {
+  const char *p = s;
+  for (int i = 0; i < 6; i++) {
+    char *end = NULL;
+    b[i] = strtod(p, &end);
+    if (end == p || !isfinite(b[i]) || *end != (i < 5 ? ',' : '\0')) return -1;
+    p = end + 1;
+  }
+  return b[0] > b[3] || b[1] > b[4] || b[2] > b[5] ? -1 : 0;
+}
+
 /* argv into o: 0, -1 after --help (printed), or the exit status 2 with the
  * message printed. */
 static int parse(int argc, char **argv, sub_opts *o) {
-  static const struct option opts[] = {{"scheme", required_argument, NULL, 's'},
-                                       {"levels", required_argument, NULL, 'l'},
-                                       {"output", required_argument, NULL, 'o'},
-                                       {"split-octahedra", no_argument, NULL, 'S'},
-                                       {"octahedra-keyword", no_argument, NULL, 'K'},
-                                       {"format", required_argument, NULL, 'F'},
-                                       {"diagonals", required_argument, NULL, 'D'},
-                                       {"output-format", required_argument, NULL, 'O'},
-                                       {"drop-unsupported", no_argument, NULL, 'U'},
-                                       {"hexify", no_argument, NULL, 'X'},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {
+      {"scheme", required_argument, NULL, 's'},
+      {"levels", required_argument, NULL, 'l'},
+      {"output", required_argument, NULL, 'o'},
+      {"split-octahedra", no_argument, NULL, 'S'},
+      {"octahedra-keyword", no_argument, NULL, 'K'},
+      {"format", required_argument, NULL, 'F'},
+      {"diagonals", required_argument, NULL, 'D'},
+      {"output-format", required_argument, NULL, 'O'},
+      {"drop-unsupported", no_argument, NULL, 'U'},
+      {"hexify", no_argument, NULL, 'X'},
+      {"boundary-c", required_argument, NULL, 'B'},
+      {"adapt-box", required_argument, NULL, 'A'},
+      {"adapt-edge-length", required_argument, NULL, 'E'},
+      {"help", no_argument, NULL, 'h'},
+      {NULL, 0, NULL, 0}};
   memset(o, 0, sizeof *o);
   o->levels = 1;
   o->dmode = SS_DIAG_BFS;
@@ -195,6 +232,31 @@ static int parse(int argc, char **argv, sub_opts *o) {
     case 'X':
       o->hexify = 1;
       break;
+    case 'A':
+      if (parse_box(optarg, o->adapt.box))
+        return ss_cli_usage_error("subdivide",
+                                  "--adapt-box: expected six numbers X0,Y0,Z0,X1,Y1,Z1 "
+                                  "with X0 <= X1, Y0 <= Y1, Z0 <= Z1, not '%s'",
+                                  optarg);
+      o->adapt.use_box = o->adaptive = 1;
+      break;
+    case 'E': {
+      char *end = NULL;
+      o->adapt.max_edge = strtod(optarg, &end);
+      if (end == optarg || *end || !isfinite(o->adapt.max_edge) ||
+          !(o->adapt.max_edge > 0.0))
+        return ss_cli_usage_error(
+            "subdivide", "--adapt-edge-length: expected a length > 0, not '%s'", optarg);
+      o->adaptive = 1;
+      break;
+    }
+    case 'B':
+      if (strcmp(optarg, "loop") && strcmp(optarg, "3/8k"))
+        return ss_cli_usage_error(
+            "subdivide", "--boundary-c: expected loop or 3/8k, not '%s'", optarg);
+      o->bc = optarg;
+      o->loop_c = strcmp(optarg, "loop") ? SS_LOOP_C_3_8K : SS_LOOP_C_BETA;
+      break;
     case 'F':
       if (ss_cli_format_option("subdivide", optarg, &o->json)) return SS_EXIT_USAGE;
       break;
@@ -208,6 +270,7 @@ static int parse(int argc, char **argv, sub_opts *o) {
       break;
     case 'h':
       fputs(usage_text, stdout);
+      fputs(usage_schemes, stdout);
       return -1;
     default:
       return ss_cli_option_error("subdivide", c, argv);
@@ -404,6 +467,14 @@ int ss_cli_subdivide(int argc, char **argv) {
   if (ss_scheme_new(o.scheme, &scheme, &err) ||
       ss_mesh_read(o.in, SS_MESH_AUTO, &cx, &err)) {
     rc = ss_cli_fail("subdivide", &err);
+    goto done;
+  }
+  if (o.bc && ss_scheme_set_loop_c(scheme, o.loop_c, &err)) {
+    rc = ss_cli_usage_error("subdivide", "--boundary-c: %s", err.msg);
+    goto done;
+  }
+  if (o.adaptive && ss_scheme_set_adapt(scheme, &o.adapt, &err)) {
+    rc = ss_cli_usage_error("subdivide", "--adapt-box/--adapt-edge-length: %s", err.msg);
     goto done;
   }
   if (o.drop) drop_unsupported(&o, scheme, cx);

@@ -206,6 +206,7 @@ ss_status ss_scheme_refine_step(const ss_scheme *s, const ss_cx *coarse, ss_cx *
   *L_out = NULL;
   ss_scheme t = *s; /* the same rule on the step's (topological) split */
   t.split = s->step_split;
+  t.adaptive = 0; /* a step is a whole 4-8 cycle */
   ss_cx *cx = NULL;
   gsl_spmatrix *R = NULL;
   ss_split *L = NULL;
@@ -342,7 +343,9 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
     st = ss_error_set(err, SS_EINPUT, "the mesh has no vertices");
     goto done;
   }
-  if ((st = ss_split_refine(s->split, coarse, &fine, &L, err))) goto done;
+  if ((st = ss_split_refine_adapt(s->split, coarse, s->adaptive ? &s->adapt : NULL, &fine,
+                                  &L, err)))
+    goto done;
   const size_t dim = (size_t)coarse->dim, nf = fine->nv;
   y = calloc(nf * dim + 1, sizeof *y);
   if (!y) {

@@ -131,6 +131,31 @@ int ss_scheme_ring_depth(const ss_scheme *s);
  * octahedra's vertex order (ss_diag.h): 1 for boxspline, 0 otherwise. */
 int ss_scheme_reads_diagonals(const ss_scheme *s);
 
+/* The weight c of a smooth vertex of valence k on a Loop surface, (1 - k c) x
+ * + c each neighbour: the box-spline paper's figure 14(b), "c can be chosen
+ * as 3/(8k) or (1/k)(5/8 - (3/8 + 1/4 cos(2 pi / k))^2)"; both are 1/16 at
+ * k = 6, the regular rule of its figure 14(a). */
+typedef enum {
+  SS_LOOP_C_BETA = 0, /* Loop's beta(k), the default */
+  SS_LOOP_C_3_8K = 1  /* 3/(8k): the vertex keeps 5/8 at every valence */
+} ss_loop_c;
+
+/* Choose c for the boundary surface of a scheme that follows figure 14
+ * (boxspline, boxspline-avg; their triangle cells too), before the scheme is
+ * shared or used.  SS_EINPUT naming the scheme for any other scheme (tet/oct
+ * and loop are Loop's by their papers). */
+ss_status ss_scheme_set_loop_c(ss_scheme *s, ss_loop_c c, ss_error *err);
+
+/* Make the scheme's refinement adaptive (quasi48 only: its bisect split;
+ * ss_split_refine_adapt): each level refines the triangles `a` wants (copied)
+ * and their closure, and the rule smooths as on any level (an old vertex with
+ * no new neighbour keeps its place), so points away from the refined region
+ * stay where they are.  A is NULL: uniform again.  The analysis step
+ * (ss_scheme_refine_step) is never adaptive.  SS_EINPUT naming the scheme
+ * for other schemes, for a box with a non-finite bound or a lower bound above
+ * its upper one, and for a negative or non-finite edge length. */
+ss_status ss_scheme_set_adapt(ss_scheme *s, const ss_adapt *a, ss_error *err);
+
 /* Refine `coarse` once.  *fine receives the refined complex (caller owns).  If
  * R is not NULL, *R receives the refinement operator as a new CSR matrix of
  * size fine->nv x coarse->nv (caller frees), and the fine positions are R times

@@ -33,7 +33,7 @@ static ss_status averaging_rule(const ss_scheme *s, const ss_cx *coarse,
   ss_status st = SS_OK;
   if (!dimv || !ptr) goto nomem;
   if (s->loop_surfaces && fine->nc[SS_TRIANGLE] &&
-      (st = ss_loop_surface_new(fine, L, &surf, err)))
+      (st = ss_loop_surface_new(fine, L, s->loop_c, &surf, err)))
     goto done;
   for (size_t v = 0; v < nv; v++)
     dimv[v] = 0xff;

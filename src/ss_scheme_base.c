@@ -2,6 +2,7 @@
  * accessors, the dropping of cells it does not take, and the vertex lists of messages.
  * Below every scheme file (ss_scheme_<name>.c builds its scheme with ss_scheme_alloc) and
  * below the registry and driver in ss_scheme.c. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -35,6 +36,41 @@ void ss_scheme_free(ss_scheme *s) {
 
 int ss_scheme_weights_rational(const ss_scheme *s) {
   return !s->irrational;
+}
+
+ss_status ss_scheme_set_loop_c(ss_scheme *s, ss_loop_c c, ss_error *err) {
+  if (!s->loop_c_choice)
+    return ss_error_set(err, SS_EINPUT,
+                        "scheme %s has no choice of Loop's vertex weight (boxspline and "
+                        "boxspline-avg have, figure 14 of the box-spline paper)",
+                        s->name);
+  s->loop_c = c;
+  return SS_OK;
+}
+
+ss_status ss_scheme_set_adapt(ss_scheme *s, const ss_adapt *a, ss_error *err) {
+  if (s->split != SS_SPLIT_BISECT)
+    return ss_error_set(err, SS_EINPUT,
+                        "scheme %s does not refine adaptively (quasi48 does: its "
+                        "bisection keeps the mesh conforming)",
+                        s->name);
+  if (!a) {
+    s->adaptive = 0;
+    return SS_OK;
+  }
+  for (int r = 0; a->use_box && r < 3; r++)
+    if (!isfinite(a->box[r]) || !isfinite(a->box[r + 3]) || a->box[r] > a->box[r + 3])
+      return ss_error_set(err, SS_EINPUT,
+                          "adaptive box: coordinate %d runs from %g to %g (finite, lower "
+                          "first)",
+                          r + 1, a->box[r], a->box[r + 3]);
+  if (!(a->max_edge >= 0.0) || !isfinite(a->max_edge))
+    return ss_error_set(err, SS_EINPUT,
+                        "adaptive edge length %g: expected a finite length >= 0",
+                        a->max_edge);
+  s->adapt = *a;
+  s->adaptive = 1;
+  return SS_OK;
 }
 
 int ss_scheme_reach(const ss_scheme *s) {

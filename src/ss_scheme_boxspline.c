@@ -1,8 +1,8 @@
 /* ss_scheme_boxspline.c — box-spline solid subdivision (Chang, McDonnell, Qin:
  * "A new solid subdivision scheme based on box splines", sections 3.3–3.6).
  *
- * Over the tet/oct split (tets and octahedra only), every fine vertex is a
- * combination of coarse vertices:
+ * Over the tet/oct split (tets and octahedra; triangle cells are surface parts,
+ * below), every fine vertex is a combination of coarse vertices:
  *   old vertex x, k = |rho(x)|:      9/16 x + 7/(16k) sum rho(x)          (3.7)
  *     (at k = 14 this is the regular rule (3.3): 18/32 x + 1/32 each)
  *   edge point of e = (a, b), k = |rho(e)|:
@@ -16,12 +16,17 @@
  * vertex order (ss_split.h): an octahedron's is its pair (0, 3), and the split
  * hands every child the diagonal parallel to its parent's (Algorithm 1).
  *
- * Boundary (section 3.6, figure 14): vertices and edges on the boundary
- * surface (triangular faces held by one cell) follow Loop's rules on that
- * surface: a vertex with n boundary neighbours (1 - n beta) x + beta each,
- * beta = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n; an edge 3/8 (a + b) + 1/8
- * of the vertex opposite it in each of its two boundary triangles (split
- * evenly when the boundary is not a manifold there).
+ * Boundary (section 3.6, figure 14) and surface parts (figure 29's hybrid
+ * solid): the surface made of the fine faces held by one cell and the fine
+ * triangle cells follows Loop's rules (ss_loop_surface, shared with tet/oct's
+ * crease surfaces): a vertex with n surface neighbours (1 - n beta) x + beta
+ * each, beta = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n; an edge 3/8 (a + b) +
+ * 1/8 of the vertex opposite it in each of its two triangles.  The paper
+ * leaves the hybrid's "additional rules" to Chang and Qin 2004; here an edge
+ * in three or more surface triangles (where a surface part meets the solid)
+ * and the edges of the surface's own boundary are crease curves (Hoppe's
+ * 1/8, 3/4, 1/8 and midpoints; corners as ss_crease.h says).  The solid's rules read only
+ * the tets' and octahedra's edges, so a point off the surface moves as without triangles.
  *
  * boxspline-avg (Appendix A): the mean of the three schemes whose major
  * diagonals all point one of the lattice's three ways.  It reads no diagonals.
@@ -94,11 +99,9 @@ static int adj_make(size_t nv, size_t n, const ss_idx *pairs, adjacency *A) {
   return 0;
 }
 
-/* Triangular faces of the coarse cells, as sorted triples with the opposite
- * vertex of their cell. */
+/* Triangular faces of the cells, as sorted triples. */
 typedef struct {
   ss_idx v[3]; /* sorted corners */
-  ss_idx opp;  /* 1 if a boundary face (held by one cell), else 0 */
 } face;
 
 static int face_cmp(const void *a, const void *b) {
@@ -106,7 +109,7 @@ static int face_cmp(const void *a, const void *b) {
 }
 
 static face make_face(ss_idx a, ss_idx b, ss_idx c) {
-  face f = {{a, b, c}, 0};
+  face f = {{a, b, c}};
   for (int i = 1; i < 3; i++)
     for (int j = i; j > 0 && f.v[j - 1] > f.v[j]; j--) {
       ss_idx t = f.v[j];
@@ -118,23 +121,18 @@ static face make_face(ss_idx a, ss_idx b, ss_idx c) {
 
 /* The coarse complex's neighbourhoods, shared by both variants. */
 typedef struct {
-  adjacency nb;       /* boxspline: rho (edges and diagonals); avg: edges */
-  adjacency bnd;      /* boundary edges (of faces held by one cell) */
-  adjacency opp;      /* avg: the corners opposite x in the octahedra holding x */
-  adjacency inoct;    /* avg: the octahedra holding x (as indices) */
-  face *faces;        /* all cell faces, sorted; opp = 1 marks boundary ones */
-  size_t nfa;         /* number of faces */
-  unsigned char *onb; /* nv flags: on the boundary surface */
-  ss_idx *common;     /* scratch for one edge's neighbours */
+  adjacency nb;    /* boxspline: rho (edges and diagonals); avg: edges; only the
+                      edges of tets and octahedra (a triangle cell's edges are
+                      Loop's business) */
+  adjacency opp;   /* avg: the corners opposite x in the octahedra holding x */
+  adjacency inoct; /* avg: the octahedra holding x (as indices) */
+  ss_idx *common;  /* scratch for one edge's neighbours */
 } topo;
 
 static void topo_free(topo *T) {
   adj_free(&T->nb);
-  adj_free(&T->bnd);
   adj_free(&T->opp);
   adj_free(&T->inoct);
-  free(T->faces);
-  free(T->onb);
   free(T->common);
 }
 
@@ -159,23 +157,25 @@ static ss_status topo_make(const ss_cx *coarse, const ss_split *L, int with_diag
   memset(T, 0, sizeof *T);
   ss_status st = check_parents(L, nv, err);
   if (st) return st;
-  size_t ne = 0;
-  for (size_t f = nv; f < L->nfine; f++)
-    ne += ss_split_npar(L, f) == 2;
-  const size_t nf = 4 * nt + 8 * no;
-  ss_idx *pairs = malloc((2 * (ne + 3 * no) + 1) * sizeof *pairs);
-  ss_idx *bpairs = malloc((6 * nf + 1) * sizeof *bpairs);
-  T->faces = malloc((nf + 1) * sizeof *T->faces);
-  T->onb = calloc(nv + 1, 1);
-  if (!pairs || !bpairs || !T->faces || !T->onb) goto nomem;
-  /* coarse edges: the fine vertices with two parents */
+  ss_idx *pairs = malloc((2 * (6 * nt + 12 * no + 3 * no) + 1) * sizeof *pairs);
+  if (!pairs) goto nomem;
+  /* the edges of the tets and octahedra (a triangle cell's own edges are no
+   * neighbours of rho: the solid's rules stay as without triangles) */
   size_t np = 0;
-  for (size_t f = nv; f < L->nfine; f++)
-    if (ss_split_npar(L, f) == 2) {
-      pairs[2 * np] = L->parent[L->ptr[f]];
-      pairs[2 * np + 1] = L->parent[L->ptr[f] + 1];
-      np++;
+  const ss_cell_type solid[2] = {SS_TET, SS_OCT};
+  for (int t = 0; t < 2; t++) {
+    const int ne = ss_cell_nedges(solid[t]);
+    for (size_t c = 0; c < coarse->nc[solid[t]]; c++) {
+      const ss_idx *v = ss_cx_cell(coarse, solid[t], c);
+      for (int e = 0; e < ne; e++) {
+        int a, b;
+        ss_cell_edge(solid[t], e, &a, &b);
+        pairs[2 * np] = v[a];
+        pairs[2 * np + 1] = v[b];
+        np++;
+      }
     }
+  }
   if (with_diag)
     for (size_t o = 0; o < no; o++) { /* major diagonals: pair (0, 3) */
       const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
@@ -215,41 +215,6 @@ static ss_status topo_make(const ss_cx *coarse, const ss_split *L, int with_diag
       }
     free(fill);
   }
-  /* boundary: faces held by one cell */
-  size_t nfa = 0;
-  for (size_t t = 0; t < nt; t++) {
-    const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
-    for (int i = 0; i < 4; i++)
-      T->faces[nfa++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
-  }
-  for (size_t o = 0; o < no; o++) {
-    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
-    for (int f = 0; f < 8; f++)
-      T->faces[nfa++] = make_face(v[f & 1 ? 3 : 0], v[f & 2 ? 4 : 1], v[f & 4 ? 5 : 2]);
-  }
-  qsort(T->faces, nfa, sizeof *T->faces, face_cmp);
-  T->nfa = nfa;
-  size_t nb = 0;
-  for (size_t i = 0; i < nfa;) {
-    size_t j = i + 1;
-    while (j < nfa && face_cmp(T->faces + i, T->faces + j) == 0)
-      j++;
-    if (j - i == 1) {
-      const ss_idx *v = T->faces[i].v;
-      for (int e = 0; e < 3; e++) {
-        bpairs[2 * nb] = v[e];
-        bpairs[2 * nb + 1] = v[(e + 1) % 3];
-        nb++;
-        T->onb[v[e]] = 1;
-      }
-      T->faces[i].opp = 1; /* mark: a boundary face */
-    } else {
-      for (size_t q = i; q < j; q++)
-        T->faces[q].opp = 0;
-    }
-    i = j;
-  }
-  if (adj_make(nv, nb, bpairs, &T->bnd)) goto nomem;
   size_t maxdeg = 0;
   for (size_t v = 0; v < nv; v++)
     maxdeg = T->nb.ptr[v + 1] - T->nb.ptr[v] > maxdeg ? T->nb.ptr[v + 1] - T->nb.ptr[v]
@@ -263,37 +228,109 @@ static ss_status topo_make(const ss_cx *coarse, const ss_split *L, int with_diag
   T->common = malloc((maxdeg + 2 * maxoct + 1) * sizeof *T->common);
   if (!T->common) goto nomem;
   free(pairs);
-  free(bpairs);
   return SS_OK;
 nomem:
   free(pairs);
-  free(bpairs);
   topo_free(T);
   return ss_error_nomem(err, "box-spline neighbours");
 }
 
-/* Loop's boundary rule for an old vertex on the boundary. */
-static void boundary_vertex(const topo *T, size_t x, ss_sink *k) {
-  ss_scheme_loop_vertex_emit(k, x, T->bnd.nb + T->bnd.ptr[x],
-                             T->bnd.ptr[x + 1] - T->bnd.ptr[x]);
+/* A coarse edge's midpoint in the split: parents a < b, fine vertex m. */
+typedef struct {
+  ss_idx a, b, m;
+} midpoint;
+
+static int mid_cmp(const void *x, const void *y) {
+  const midpoint *p = x, *q = y;
+  if (p->a != q->a) return (p->a > q->a) - (p->a < q->a);
+  return (p->b > q->b) - (p->b < q->b);
 }
 
-/* Loop's boundary rule for the edge point f of (a, b) if both ends are on the
- * boundary and the edge is in a boundary triangle; 1 if emitted. */
-static int boundary_edge(const topo *T, size_t f, ss_idx a, ss_idx b, ss_sink *k) {
-  if (!T->onb[a] || !T->onb[b]) return 0;
-  size_t m = 0;
-  for (size_t q = T->bnd.ptr[a]; q < T->bnd.ptr[a + 1]; q++) {
-    const ss_idx c = T->bnd.nb[q];
-    if (c == b) continue;
-    face t = make_face(a, b, c);
-    const face *hit = bsearch(&t, T->faces, T->nfa, sizeof *T->faces, face_cmp);
-    /* bsearch finds some copy; a boundary face occurs once */
-    if (hit && hit->opp) T->common[m++] = c;
+/* The fine vertex the split puts on the coarse edge (a, b), a < b. */
+static ss_idx mid_of(const midpoint *mids, size_t n, ss_idx a, ss_idx b) {
+  const midpoint key = {a, b, 0};
+  const midpoint *hit = bsearch(&key, mids, n, sizeof *mids, mid_cmp);
+  return hit ? hit->m : SS_IDX_NONE;
+}
+
+/* The surface Loop's rules refine (figure 14; figure 29's hybrid solid): the
+ * coarse faces held by one tet or octahedron — the solid's boundary — and the
+ * coarse triangle cells, each face once (a triangle cell on the boundary, as
+ * TetGen's .face gives them, is that boundary face), each as its four fine
+ * triangles (the fine boundary faces are the split's children of the coarse
+ * ones), a Loop surface over the split L (ss_loop_surface, shared with
+ * tet/oct's crease surfaces; its edges in three or more faces, where a
+ * surface meets the solid, and its own boundary are crease curves).  Sorting
+ * coarse faces, not fine ones, keeps it cheap.  SS_ENOMEM, SS_EINTERNAL. */
+static ss_status loop_surface(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
+                              const ss_split *L, ss_loop_surface **out, ss_error *err) {
+  *out = NULL;
+  const size_t nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
+  const size_t ntri = coarse->nc[SS_TRIANGLE], nc = L->ncoarse;
+  face *f = malloc((4 * nt + 8 * no + ntri + 1) * sizeof *f);
+  midpoint *mids = malloc((L->nfine - nc + 1) * sizeof *mids);
+  ss_idx *tri = NULL;
+  ss_status st = SS_OK;
+  if (!f || !mids) goto nomem;
+  size_t n = 0, nm = 0;
+  for (size_t t = 0; t < nt; t++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
+    for (int i = 0; i < 4; i++)
+      f[n++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
   }
-  if (m == 0) return 0;
-  ss_scheme_loop_edge_emit(k, f, a, b, T->common, m);
-  return 1;
+  for (size_t o = 0; o < no; o++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
+    for (int q = 0; q < 8; q++)
+      f[n++] = make_face(v[q & 1 ? 3 : 0], v[q & 2 ? 4 : 1], v[q & 4 ? 5 : 2]);
+  }
+  qsort(f, n, sizeof *f, face_cmp);
+  size_t m = 0; /* the faces held once, compacted in place */
+  for (size_t i = 0; i < n;) {
+    size_t j = i + 1;
+    while (j < n && face_cmp(f + i, f + j) == 0)
+      j++;
+    if (j - i == 1) f[m++] = f[i];
+    i = j;
+  }
+  for (size_t t = 0; t < ntri; t++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_TRIANGLE, t);
+    f[m++] = make_face(v[0], v[1], v[2]);
+  }
+  qsort(f, m, sizeof *f, face_cmp);
+  for (size_t x = nc; x < L->nfine; x++) /* parents ascending (ss_split.h) */
+    if (ss_split_npar(L, x) == 2)
+      mids[nm++] = (midpoint){L->parent[L->ptr[x]], L->parent[L->ptr[x] + 1], (ss_idx)x};
+  qsort(mids, nm, sizeof *mids, mid_cmp);
+  if (!(tri = malloc((12 * m + 1) * sizeof *tri))) goto nomem;
+  size_t u = 0;
+  for (size_t i = 0; i < m; i++) {
+    if (i > 0 && face_cmp(f + i - 1, f + i) == 0) continue;
+    const ss_idx *v = f[i].v; /* sorted corners */
+    const ss_idx m01 = mid_of(mids, nm, v[0], v[1]), m12 = mid_of(mids, nm, v[1], v[2]),
+                 m02 = mid_of(mids, nm, v[0], v[2]);
+    if (m01 == SS_IDX_NONE || m12 == SS_IDX_NONE || m02 == SS_IDX_NONE) {
+      st =
+          ss_error_set(err, SS_EINTERNAL, "box-spline surface: an edge with no midpoint");
+      goto done;
+    }
+    const ss_idx kids[4][3] = {
+        {v[0], m01, m02}, {v[1], m12, m01}, {v[2], m02, m12}, {m01, m12, m02}};
+    memcpy(tri + 12 * u++, kids, sizeof kids);
+  }
+  ss_cx surf = {0};
+  surf.dim = fine->dim;
+  surf.nv = fine->nv;
+  surf.nc[SS_TRIANGLE] = 4 * u;
+  surf.cells[SS_TRIANGLE] = tri;
+  st = ss_loop_surface_new(&surf, L, s->loop_c, out, err);
+  goto done;
+nomem:
+  st = ss_error_nomem(err, "box-spline boundary surface");
+done:
+  free(f);
+  free(mids);
+  free(tri);
+  return st;
 }
 
 /* The sorted intersection of the neighbour lists of a and b into
@@ -368,26 +405,24 @@ static ss_status centres(const ss_cx *coarse, const ss_split *L, double w_end,
 static ss_status boxspline_rule(const ss_scheme *s, const ss_cx *coarse,
                                 const ss_cx *fine, const ss_split *L, ss_sink *k,
                                 ss_error *err) {
-  (void)s;
-  (void)fine;
   const size_t nv = coarse->nv;
   topo T;
+  ss_loop_surface *S = NULL;
   ss_status st = topo_make(coarse, L, 1, &T, err);
   if (st) return st;
-  for (size_t x = 0; x < nv; x++) {
-    if (T.onb[x])
-      boundary_vertex(&T, x, k);
-    else
-      vertex_rule(&T, x, k); /* rho(x): (3.7), i.e. (3.3) at 14 */
-  }
+  if ((st = loop_surface(s, coarse, fine, L, &S, err))) goto done;
+  for (size_t x = 0; x < nv; x++)
+    if (!ss_loop_surface_emit(S, L, x, k)) /* on the surface: Loop's row */
+      vertex_rule(&T, x, k);               /* rho(x): (3.7), i.e. (3.3) at 14 */
   for (size_t f = nv; f < L->nfine; f++) {
-    if (ss_split_npar(L, f) != 2) continue;
+    if (ss_split_npar(L, f) != 2 || ss_loop_surface_emit(S, L, f, k)) continue;
     const ss_idx a = L->parent[L->ptr[f]], b = L->parent[L->ptr[f] + 1];
-    if (boundary_edge(&T, f, a, b, k)) continue;
     /* rho(e) = rho(a) ∩ rho(b): (3.4) at 6 is (3.8) */
     edge_rule(&T, f, a, b, common_neighbours(&T, a, b), k);
   }
   st = centres(coarse, L, 8.0 / 32.0, 4.0 / 32.0, k, err); /* (3.6) */
+done:
+  ss_loop_surface_free(S);
   topo_free(&T);
   return st;
 }
@@ -404,16 +439,16 @@ static const double avg_vertex_opp = 6 * AVG3(1.0 / 32, 0.0, 0.0);          /* 1
 static ss_status boxspline_avg_rule(const ss_scheme *s, const ss_cx *coarse,
                                     const ss_cx *fine, const ss_split *L, ss_sink *k,
                                     ss_error *err) {
-  (void)s;
-  (void)fine;
   const size_t nv = coarse->nv;
   topo T;
+  ss_loop_surface *S = NULL;
   ss_status st = topo_make(coarse, L, 0, &T, err);
   if (st) return st;
+  if ((st = loop_surface(s, coarse, fine, L, &S, err))) goto done;
   for (size_t x = 0; x < nv; x++) {
     const size_t ne = T.nb.ptr[x + 1] - T.nb.ptr[x], no = T.opp.ptr[x + 1] - T.opp.ptr[x];
-    if (T.onb[x]) {
-      boundary_vertex(&T, x, k);
+    if (ss_loop_surface_emit(S, L, x, k)) {
+      continue; /* on the surface: Loop's row */
     } else if (no == 0 || ne == 0) {
       vertex_rule(&T, x, k); /* no octahedron, no diagonal: (3.7) */
     } else {
@@ -425,9 +460,8 @@ static ss_status boxspline_avg_rule(const ss_scheme *s, const ss_cx *coarse,
     }
   }
   for (size_t f = nv; f < L->nfine; f++) {
-    if (ss_split_npar(L, f) != 2) continue;
+    if (ss_split_npar(L, f) != 2 || ss_loop_surface_emit(S, L, f, k)) continue;
     const ss_idx a = L->parent[L->ptr[f]], b = L->parent[L->ptr[f] + 1];
-    if (boundary_edge(&T, f, a, b, k)) continue;
     const size_t m = common_neighbours(&T, a, b);
     /* the corners opposite a and b in the octahedra holding both */
     size_t q = 0;
@@ -454,25 +488,31 @@ static ss_status boxspline_avg_rule(const ss_scheme *s, const ss_cx *coarse,
   /* (3.6) averaged: every corner is a diagonal end in one direction of three */
   const double c = AVG3(8.0 / 32, 4.0 / 32, 4.0 / 32);
   st = centres(coarse, L, c, c, k, err);
+done:
+  ss_loop_surface_free(S);
   topo_free(&T);
   return st;
 }
 
 ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err) {
-  const unsigned accepts = (1u << SS_TET) | (1u << SS_OCT);
+  const unsigned accepts = (1u << SS_TRIANGLE) | (1u << SS_TET) | (1u << SS_OCT);
   ss_status st =
       ss_scheme_alloc("boxspline", SS_SPLIT_TETOCT, accepts, boxspline_rule, out, err);
   if (!st) {
     (*out)->reach = 2; /* rho(e) reads both ends' neighbourhoods */
     (*out)->diagonals = 1;
+    (*out)->loop_c_choice = 1; /* figure 14(b)'s c */
   }
   return st;
 }
 
 ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err) {
-  const unsigned accepts = (1u << SS_TET) | (1u << SS_OCT);
+  const unsigned accepts = (1u << SS_TRIANGLE) | (1u << SS_TET) | (1u << SS_OCT);
   ss_status st = ss_scheme_alloc("boxspline-avg", SS_SPLIT_TETOCT, accepts,
                                  boxspline_avg_rule, out, err);
-  if (!st) (*out)->reach = 2; /* common neighbours of both ends */
+  if (!st) {
+    (*out)->reach = 2; /* common neighbours of both ends */
+    (*out)->loop_c_choice = 1;
+  }
   return st;
 }

@@ -43,6 +43,11 @@ struct ss_scheme {
   int loop_surfaces;                  /* averaging: the vertices whose lowest cells are
                                          triangles take Loop's rows on the triangle cells
                                          (ss_loop_surface) instead of the triangle mask */
+  int loop_c_choice;                  /* 1: the boundary follows figure 14 of the
+                                         box-spline paper and takes ss_scheme_set_loop_c */
+  ss_loop_c loop_c;                   /* its smooth vertex weight (default Loop's beta) */
+  int adaptive;                       /* 1: refine with the adaptive bisect pass */
+  ss_adapt adapt;                     /* its criterion (ss_scheme_set_adapt) */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every
@@ -76,19 +81,6 @@ ss_status ss_scheme_catmull_clark_emit(const ss_cx *surf, const ss_split *L,
                                        const unsigned char *on, ss_sink *k,
                                        ss_error *err);
 
-/* Loop's rules (ss_scheme_loop.c), for schemes whose boundary surfaces refine
- * by Loop (the box-spline solids, figure 14).  ss_scheme_loop_beta: Loop's
- * vertex weight b = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n for a vertex of
- * valence n >= 1.  ss_scheme_loop_vertex_emit: the row of vertex x on a
- * coarse surface, (1 - n b) x + b sum of its n neighbours nb (x alone if
- * n = 0).  ss_scheme_loop_edge_emit: the edge point f of (a, b), 3/8 each end
- * and 1/4 shared by the m >= 1 vertices opposite the edge (Loop's 1/8 each
- * when m = 2). */
-double ss_scheme_loop_beta(size_t n);
-void ss_scheme_loop_vertex_emit(ss_sink *k, ss_idx x, const ss_idx *nb, size_t n);
-void ss_scheme_loop_edge_emit(ss_sink *k, ss_idx f, ss_idx a, ss_idx b, const ss_idx *opp,
-                              size_t m);
-
 /* The triangle cells of a split complex as a Loop surface, for a rule that
  * sends its rows in order (ss_scheme_averaging.c, tetoct's crease surfaces).
  * The surface is the fine triangle, segment and vertex cells; its creases
@@ -100,10 +92,12 @@ void ss_scheme_loop_edge_emit(ss_sink *k, ss_idx f, ss_idx a, ss_idx b, const ss
  * an edge midpoint: 3/8 each end + 1/4 shared by the vertices opposite it,
  * or the midpoint on a crease edge — and returns 1, or 0 (nothing sent) when
  * x is on none of the surface's cells.  The same rows as ss_scheme_loop.c's
- * rule on a complex of those cells alone. */
+ * rule on a complex of those cells alone.  cmode picks the smooth vertex's
+ * weight b: Loop's beta(n) (SS_LOOP_C_BETA, what tet/oct and the loop scheme
+ * use) or 3/(8n) (SS_LOOP_C_3_8K, the box-spline paper's figure 14(b)). */
 typedef struct ss_loop_surface ss_loop_surface;
-ss_status ss_loop_surface_new(const ss_cx *fine, const ss_split *L, ss_loop_surface **out,
-                              ss_error *err);
+ss_status ss_loop_surface_new(const ss_cx *fine, const ss_split *L, ss_loop_c cmode,
+                              ss_loop_surface **out, ss_error *err);
 int ss_loop_surface_emit(const ss_loop_surface *S, const ss_split *L, ss_idx x,
                          ss_sink *k);
 void ss_loop_surface_free(ss_loop_surface *S);

@@ -19,24 +19,24 @@
 static const double loop_edge_end = 3.0 / 8.0;
 static const double loop_edge_opposite = 1.0 / 4.0;
 
-double ss_scheme_loop_beta(size_t n) {
+static double loop_beta(size_t n) {
   const double t = 3.0 / 8.0 + cos(2.0 * M_PI / (double)n) / 4.0;
   return (5.0 / 8.0 - t * t) / (double)n;
 }
 
-void ss_scheme_loop_vertex_emit(ss_sink *k, ss_idx x, const ss_idx *nb, size_t n) {
-  const double beta = n ? ss_scheme_loop_beta(n) : 0.0;
-  ss_sink_emit(k, x, x, 1.0 - (double)n * beta);
-  for (size_t q = 0; q < n; q++)
-    ss_sink_emit(k, x, nb[q], beta);
+/* A smooth surface vertex's weight c per neighbour at valence n >= 1: Loop's
+ * beta, or the box-spline paper's other choice, 3/(8n) (figure 14(b)). */
+static double vertex_weight(ss_loop_c c, size_t n) {
+  return c == SS_LOOP_C_3_8K ? 3.0 / (8.0 * (double)n) : loop_beta(n);
 }
 
-void ss_scheme_loop_edge_emit(ss_sink *k, ss_idx f, ss_idx a, ss_idx b, const ss_idx *opp,
-                              size_t m) {
-  ss_sink_emit(k, f, a, loop_edge_end);
-  ss_sink_emit(k, f, b, loop_edge_end);
-  for (size_t i = 0; i < m; i++)
-    ss_sink_emit(k, f, opp[i], loop_edge_opposite / (double)m);
+/* The row of vertex x on a coarse surface: (1 - n c) x + c each of its n
+ * neighbours nb (x alone if n = 0). */
+static void vertex_emit(ss_sink *k, ss_idx x, const ss_idx *nb, size_t n, ss_loop_c c) {
+  const double w = n ? vertex_weight(c, n) : 0.0;
+  ss_sink_emit(k, x, x, 1.0 - (double)n * w);
+  for (size_t q = 0; q < n; q++)
+    ss_sink_emit(k, x, nb[q], w);
 }
 
 /* The coarse vertex two edge midpoints share (they are edges of one triangle). */
@@ -72,14 +72,14 @@ static ss_status loop_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx 
     for (size_t p = L->ptr[x]; p < L->ptr[x + 1]; p++) {
       ss_idx a = L->parent[p], b = ss_crease_other(L, x, a);
       if (c->kind[a] == SS_SMOOTH)
-        ss_sink_emit(k, a, b, ss_scheme_loop_beta(c->nedge[a]));
+        ss_sink_emit(k, a, b, loop_beta(c->nedge[a]));
       else if (c->kind[a] == SS_CREASE && c->sharp[x])
         ss_sink_emit(k, a, b, 1.0 / 8.0);
     }
   }
   for (size_t v = 0; v < nc; v++) {
     const size_t n = c->nedge[v];
-    double self = c->kind[v] == SS_SMOOTH   ? 1.0 - (double)n * ss_scheme_loop_beta(n)
+    double self = c->kind[v] == SS_SMOOTH   ? 1.0 - (double)n * loop_beta(n)
                   : c->kind[v] == SS_CREASE ? 3.0 / 4.0
                                             : 1.0;
     ss_sink_emit(k, v, v, self);
@@ -97,6 +97,7 @@ ss_status ss_scheme_loop_new(ss_scheme **out, ss_error *err) {
  * rows on it one fine vertex at a time (header: ss_scheme_impl.h). */
 struct ss_loop_surface {
   ss_crease *c;          /* creases of the surface, on the split restricted to it */
+  ss_loop_c cmode;       /* the smooth vertex weight: Loop's beta or 3/(8k) */
   size_t *nptr;          /* per coarse vertex: its surface neighbours nb[nptr[v]..) */
   ss_idx *nb;            /* the neighbours (coarse), with */
   unsigned char *nsharp; /* 1 where the edge to that neighbour is a crease */
@@ -119,8 +120,8 @@ void ss_loop_surface_free(ss_loop_surface *S) {
   free(S);
 }
 
-ss_status ss_loop_surface_new(const ss_cx *fine, const ss_split *L, ss_loop_surface **out,
-                              ss_error *err) {
+ss_status ss_loop_surface_new(const ss_cx *fine, const ss_split *L, ss_loop_c cmode,
+                              ss_loop_surface **out, ss_error *err) {
   *out = NULL;
   const size_t nf = fine->nv, nc = L->ncoarse;
   ss_loop_surface *S = calloc(1, sizeof *S);
@@ -128,6 +129,7 @@ ss_status ss_loop_surface_new(const ss_cx *fine, const ss_split *L, ss_loop_surf
   ss_idx *par = malloc((L->ptr[nf] + 1) * sizeof *par);
   ss_status st = SS_OK;
   if (!S || !lptr || !par) goto nomem;
+  S->cmode = cmode;
   S->on = calloc(nf + 1, 1);
   S->nptr = calloc(nc + 2, sizeof *S->nptr);
   S->optr = calloc(nf + 2, sizeof *S->optr);
@@ -219,7 +221,7 @@ int ss_loop_surface_emit(const ss_loop_surface *S, const ss_split *L, ss_idx x,
     const ss_idx *nb = S->nb + S->nptr[x];
     const unsigned char *sharp = S->nsharp + S->nptr[x];
     if (c->kind[x] == SS_SMOOTH) {
-      ss_scheme_loop_vertex_emit(k, x, nb, n);
+      vertex_emit(k, x, nb, n, S->cmode);
     } else if (c->kind[x] == SS_CREASE) {
       ss_sink_emit(k, x, x, 3.0 / 4.0);
       for (size_t q = 0; q < n; q++)

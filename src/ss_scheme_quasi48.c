@@ -30,7 +30,11 @@
  *    to move along the surface normal", depends on the positions, not only
  *    on the mesh, and is not a linear rule: boundaries stay fixed here, as in
  *    section 4.1, which is figure 15(b)'s "all boundary edges and vertices
- *    tagged". */
+ *    tagged";
+ *  - adaptive levels (ss_scheme_set_adapt): the split bisects only where a
+ *    criterion asks (ss_split_refine_adapt); this rule is unchanged, and an
+ *    old vertex with no new neighbour keeps its place, so the mesh away from
+ *    the refined triangles stays put. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>

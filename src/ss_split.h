@@ -103,6 +103,27 @@ const char *ss_split_name(ss_split_kind kind);
 ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
                           ss_split **L, ss_error *err);
 
+/* Where an adaptive pass of the bisect split refines (quasi 4-8 adaptivity):
+ * a triangle is wanted when every criterion set holds. */
+typedef struct {
+  int use_box;     /* 1: wanted only if its bounding box meets `box` */
+  double box[6];   /* x0, y0, z0, x1, y1, z1 (the first min(dim, 3) pairs read) */
+  double max_edge; /* > 0: wanted only if an edge is longer than this; 0: not set */
+} ss_adapt;
+
+/* ss_split_refine with an adaptive bisect pass (kind SS_SPLIT_BISECT; adapt
+ * NULL: the whole pass, bit for bit ss_split_refine's).  Of the edges the
+ * whole pass would split (Algorithm 1: longest first, one per triangle),
+ * only those of a wanted triangle split, and of its closure: a wanted
+ * triangle none of whose edges splits (its neighbours' clusters marked them)
+ * has the neighbours that halve around it refined too, so that its longest
+ * edge can split in a later pass.  Every split edge halves both its
+ * triangles, so the result is conforming (no hanging vertex).  Errors as
+ * ss_split_refine, and SS_EINPUT for adapt with another split. */
+ss_status ss_split_refine_adapt(ss_split_kind kind, const ss_cx *coarse,
+                                const ss_adapt *adapt, ss_cx **fine, ss_split **L,
+                                ss_error *err);
+
 /* Free; NULL is a no-op. */
 void ss_split_free(ss_split *L);
 

@@ -11,6 +11,9 @@ ss_status ss_split_multilinear(const ss_cx *coarse, ss_cx **fine, ss_split **L,
 ss_status ss_split_hexify(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 ss_status ss_split_tetoct(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 ss_status ss_split_bisect(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
+/* ss_split_bisect restricted by adapt (NULL: the whole pass). */
+ss_status ss_split_bisect_adapt(const ss_cx *coarse, const ss_adapt *adapt, ss_cx **fine,
+                                ss_split **L, ss_error *err);
 ss_status ss_split_nvb(const ss_cx *coarse, ss_cx **fine, ss_split **L, ss_error *err);
 
 #endif

@@ -30,8 +30,17 @@ const char *ss_split_name(ss_split_kind kind) {
 
 ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
                           ss_split **L, ss_error *err) {
+  return ss_split_refine_adapt(kind, coarse, NULL, fine, L, err);
+}
+
+ss_status ss_split_refine_adapt(ss_split_kind kind, const ss_cx *coarse,
+                                const ss_adapt *adapt, ss_cx **fine, ss_split **L,
+                                ss_error *err) {
   *fine = NULL;
   *L = NULL;
+  if (adapt && kind != SS_SPLIT_BISECT)
+    return ss_error_set(err, SS_EINPUT, "the %s split is not adaptive (bisect is)",
+                        ss_split_name(kind));
   for (int t = 0; t < SS_NCELLTYPES; t++)
     if (coarse->nc[t] && !ss_split_accepts(kind, (ss_cell_type)t))
       return ss_error_set(
@@ -39,7 +48,7 @@ ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
           ss_split_name(kind), ss_cell_plural((ss_cell_type)t), coarse->nc[t]);
   ss_status st = ss_cx_validate(coarse, err);
   if (st) return st;
-  if (kind == SS_SPLIT_BISECT) return ss_split_bisect(coarse, fine, L, err);
+  if (kind == SS_SPLIT_BISECT) return ss_split_bisect_adapt(coarse, adapt, fine, L, err);
   if (kind == SS_SPLIT_NVB) return ss_split_nvb(coarse, fine, L, err);
   if (kind == SS_SPLIT_HEXIFY) return ss_split_hexify(coarse, fine, L, err);
   return kind == SS_SPLIT_MULTILINEAR ? ss_split_multilinear(coarse, fine, L, err)

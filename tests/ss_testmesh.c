@@ -606,3 +606,52 @@ ss_cx *tm_edge_ring(int n, int R, int nz) {
         }
   return cx;
 }
+
+static int tm_cmp_face(const void *a, const void *b) {
+  const ss_idx *x = a, *y = b;
+  for (int i = 0; i < 3; i++)
+    if (x[i] != y[i]) return (x[i] > y[i]) - (x[i] < y[i]);
+  return 0;
+}
+
+static void tm_sort3(ss_idx *t) {
+  for (int i = 0; i < 3; i++)
+    for (int j = i + 1; j < 3; j++)
+      if (t[j] < t[i]) {
+        ss_idx x = t[i];
+        t[i] = t[j];
+        t[j] = x;
+      }
+}
+
+size_t tm_boundary_faces(const ss_cx *cx, ss_idx **out) {
+  const size_t nt = cx->nc[SS_TET], no = cx->nc[SS_OCT], n = 4 * nt + 8 * no;
+  ss_idx *f = malloc((3 * n + 1) * sizeof *f), *b = malloc((3 * n + 1) * sizeof *b);
+  size_t m = 0;
+  for (size_t t = 0; t < nt; t++) {
+    const ss_idx *v = ss_cx_cell(cx, SS_TET, t);
+    for (int skip = 0; skip < 4; skip++, m++)
+      for (int j = 0, q = 0; j < 4; j++)
+        if (j != skip) f[3 * m + (size_t)q++] = v[j];
+  }
+  for (size_t o = 0; o < no; o++) {
+    const ss_idx *v = ss_cx_cell(cx, SS_OCT, o);
+    for (int s = 0; s < 8; s++, m++)
+      for (int j = 0; j < 3; j++)
+        f[3 * m + (size_t)j] = v[(s >> j & 1) ? j + 3 : j];
+  }
+  for (size_t i = 0; i < n; i++)
+    tm_sort3(f + 3 * i);
+  qsort(f, n, 3 * sizeof *f, tm_cmp_face);
+  size_t k = 0;
+  for (size_t i = 0; i < n;) {
+    size_t j = i + 1;
+    while (j < n && !tm_cmp_face(f + 3 * i, f + 3 * j))
+      j++;
+    if (j - i == 1) memcpy(b + 3 * k++, f + 3 * i, 3 * sizeof *b);
+    i = j;
+  }
+  free(f);
+  *out = b;
+  return k;
+}

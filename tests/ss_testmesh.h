@@ -45,6 +45,11 @@ ss_cx *tm_hex_grid(int nx, int ny, int nz);
  * sector's quad (i, j) in layer k; i = j = 0 touches the axis, with its
  * corner 0 on it and w along it. */
 ss_cx *tm_edge_ring(int n, int R, int nz);
+/* The faces held by one tet or octahedron (the boundary of a solid), as
+ * sorted vertex triples in ascending order, into *out (caller frees); their
+ * count.  Written apart from the schemes': an octahedron's faces are the
+ * triples of one vertex from each opposite pair. */
+size_t tm_boundary_faces(const ss_cx *cx, ss_idx **out);
 /* Move every vertex by a pseudo-random offset of size <= amp (seeded). */
 void tm_jitter(ss_cx *cx, double amp, unsigned long seed);
 /* A relabelled copy: vertices and cells permuted, each cell's vertex list turned

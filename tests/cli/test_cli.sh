@@ -45,6 +45,27 @@ expect 0 "hexified \\(MLCA paper, section 3.3\\): 6 tetrahedra into 24 hexahedra
 # triangles (12 on the boundary, 6 round the diagonal) + 6 tets = 51 points
 expect 0 "read .*: 51 vertices, 24 hexahedra" "$exe" subdivide --scheme ccsolid --hexify "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
 expect 2 "--hexify: scheme tetoct is not hexahedral" "$exe" subdivide --scheme tetoct --hexify "$m/cube-6tets.mesh" -o "$tmp/hx.mesh"
+# --boundary-c (box-spline paper, figure 14(b)): 3/(8k) moves the boundary
+# (test_boxspline_surface checks the weights); refused where Loop's beta is fixed
+expect 0 "wrote" "$exe" subdivide --scheme boxspline "$m/cube-6tets.mesh" -o "$tmp/c1.mesh"
+expect 0 "wrote" "$exe" subdivide --scheme boxspline --boundary-c 3/8k "$m/cube-6tets.mesh" -o "$tmp/c2.mesh"
+expect 0 "wrote" "$exe" subdivide --scheme boxspline --boundary-c loop "$m/cube-6tets.mesh" -o "$tmp/c3.mesh"
+expect 0 "^" cmp "$tmp/c1.mesh" "$tmp/c3.mesh"
+expect 1 "differ" cmp "$tmp/c1.mesh" "$tmp/c2.mesh"
+expect 2 "--boundary-c: expected loop or 3/8k, not 'beta'" "$exe" subdivide --scheme boxspline --boundary-c beta "$m/cube-6tets.mesh" -o "$tmp/c4.mesh"
+expect 2 "--boundary-c: scheme tetoct has no choice" "$exe" subdivide --scheme tetoct --boundary-c 3/8k "$m/cube-6tets.mesh" -o "$tmp/c4.mesh"
+# quasi48 adaptivity (test_quasi48_adapt checks conformity and confinement):
+# a box holding the mesh is plain subdivision, a small one refines less
+ico=$m/icosahedron.obj
+expect 0 "quasi48 level 4: 135 vertices" "$exe" subdivide --scheme quasi48 --levels 4 "$ico" -o "$tmp/q1.obj"
+expect 0 "quasi48 level 4: 135 vertices" "$exe" subdivide --scheme quasi48 --levels 4 --adapt-box -2,-2,-2,2,2,2 "$ico" -o "$tmp/q2.obj"
+expect 0 "^" cmp "$tmp/q1.obj" "$tmp/q2.obj"
+expect 0 "quasi48 level 4: [0-9]{2} vertices" "$exe" subdivide --scheme quasi48 --levels 4 --adapt-box 0,0,0,2,2,2 "$ico" -o "$tmp/q3.obj"
+expect 0 "quasi48 level 4: [0-9]{2} vertices" "$exe" subdivide --scheme quasi48 --levels 4 --adapt-edge-length 0.6 "$ico" -o "$tmp/q3.obj"
+expect 2 "--adapt-box: expected six numbers" "$exe" subdivide --scheme quasi48 --adapt-box 1,0,0,0,1,1 "$ico" -o "$tmp/q3.obj"
+expect 2 "--adapt-box: expected six numbers" "$exe" subdivide --scheme quasi48 --adapt-box 0,0,0,1,1 "$ico" -o "$tmp/q3.obj"
+expect 2 "--adapt-edge-length: expected a length > 0, not '-1'" "$exe" subdivide --scheme quasi48 --adapt-edge-length -1 "$ico" -o "$tmp/q3.obj"
+expect 2 "scheme loop does not refine adaptively" "$exe" subdivide --scheme loop --adapt-edge-length 1 "$ico" -o "$tmp/q3.obj"
 expect 0 "UNSTRUCTURED_GRID" cat "$tmp/b.vtk"
 # Medit output: octahedra split into 4 tets each by default (said on stderr),
 # kept under the Octahedra extension keyword only on request

@@ -179,7 +179,7 @@ boxspline-edges-4-9-center: 4 of 6 cases pass both conditions; 29 quoted values:
 boxspline-edges-4-9-skew: 6 of 6 cases pass both conditions; 52 quoted values: 43 match, 9 differ; 0 rows not quoted
 boxspline-vertices-5-22: 16 of 18 cases pass both conditions; 36 quoted values: 36 match, 0 differ; 0 rows not quoted
 boxspline-vertices-5-22-proper: 16 of 18 cases pass both conditions; 36 quoted values: 36 match, 0 differ; 0 rows not quoted
-boxspline-vertices-table2: 12 of 17 cases pass both conditions; 124 quoted values: 118 match, 6 differ; 0 rows not quoted
+boxspline-vertices-table2: 17 of 22 cases pass both conditions; 159 quoted values: 153 match, 6 differ; 0 rows not quoted
 catmull-clark-surface-vertices-3-8: 6 of 6 cases pass both conditions; 24 quoted values: 24 match, 0 differ; 0 rows not quoted
 mlca-edges-3-8: 5 of 6 cases pass both conditions; 0 quoted values: 0 match, 0 differ; 6 rows not quoted
 mlca-surface-vertices-3-8: 6 of 6 cases pass both conditions; 18 quoted values: 18 match, 0 differ; 0 rows not quoted

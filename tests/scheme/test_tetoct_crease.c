@@ -26,52 +26,6 @@
 #include "ss_test.h"
 #include "ss_testmesh.h"
 
-/* Sorted triple of a tet face. */
-static void sort3(ss_idx *t) {
-  for (int i = 0; i < 3; i++)
-    for (int j = i + 1; j < 3; j++)
-      if (t[j] < t[i]) {
-        ss_idx x = t[i];
-        t[i] = t[j];
-        t[j] = x;
-      }
-}
-
-static int cmp_face(const void *a, const void *b) {
-  const ss_idx *x = a, *y = b;
-  for (int i = 0; i < 3; i++)
-    if (x[i] != y[i]) return (x[i] > y[i]) - (x[i] < y[i]);
-  return 0;
-}
-
-/* The faces held by one tet, sorted triples, into *out; returns their count. */
-static size_t boundary_faces(const ss_cx *cx, ss_idx **out) {
-  const size_t nt = cx->nc[SS_TET];
-  ss_idx *f = malloc(12 * nt * sizeof *f), *b = malloc(12 * nt * sizeof *b);
-  static const int face[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  for (size_t t = 0; t < nt; t++) {
-    const ss_idx *v = ss_cx_cell(cx, SS_TET, t);
-    for (int i = 0; i < 4; i++) {
-      ss_idx *q = f + 3 * (4 * t + (size_t)i);
-      for (int j = 0; j < 3; j++)
-        q[j] = v[face[i][j]];
-      sort3(q);
-    }
-  }
-  qsort(f, 4 * nt, 3 * sizeof *f, cmp_face);
-  size_t n = 0;
-  for (size_t i = 0; i < 4 * nt;) {
-    size_t j = i + 1;
-    while (j < 4 * nt && !cmp_face(f + 3 * i, f + 3 * j))
-      j++;
-    if (j - i == 1) memcpy(b + 3 * n++, f + 3 * i, 3 * sizeof *b);
-    i = j;
-  }
-  free(f);
-  *out = b;
-  return n;
-}
-
 /* Add the triangles, and with creases the square round the bottom face
  * (grid edges with z = 0 and one more coordinate at 0 or N) as segments and
  * its four corners as vertex cells; grid: the unjittered positions.  The top
@@ -169,7 +123,7 @@ static void test_loop_surface(const char *stencils, int creases) {
   memcpy(grid, vol->x, 3 * vol->nv * sizeof *grid);
   tm_jitter(vol, 0.08, 11);
   ss_idx *tri = NULL;
-  const size_t ntri = boundary_faces(vol, &tri);
+  const size_t ntri = tm_boundary_faces(vol, &tri);
   CHECK(ntri == 6u * 2u * (size_t)(N * N), "boundary triangles: %zu", ntri);
   ss_cx *surf = NULL;
   REQUIRE_OK_VOID(ss_cx_new(3, &surf, &err), &err);
