@@ -34,13 +34,13 @@
  *
  * --project [--kmax K] [--samples N] [--certify [--psi-depth D]]: the
  * exhaustive sweeps projected (issue 20; certified, as `sweep --certify`
- * computes each case, with --certify: issue 37).  For each k = 4..K (default 16) every count/N-th link (default N =
- * 50; all of them when count <= N), count the published number, which the
- * generator's count in the same pass must equal; the pipeline's thread CPU
- * per case on one thread: mean with its 95 % interval (Student's t, as if
- * the evenly spaced sample were a random one), median; the CPU-hours of
- * the whole k (count x mean) and of all k' <= k (half-widths summed in
- * quadrature); then the thread efficiency e = cases per CPU second with
+ * computes each case, with --certify: issue 37).  For each k = 4..K (default 16) every
+ * count/N-th link (default N = 50; all of them when count <= N), count the published
+ * number, which the generator's count in the same pass must equal; the pipeline's thread
+ * CPU per case on one thread: mean with its 95 % interval (Student's t, as if the evenly
+ * spaced sample were a random one), median; the CPU-hours of the whole k (count x mean)
+ * and of all k' <= k (half-widths summed in quadrature); then the thread efficiency e =
+ * cases per CPU second with
  * --jobs threads over those with one, on the k = 13 sample, and the wall
  * time on 2 free cores = CPU / (2 min(e, 1)).  It is a projection of the
  * pipeline alone: enumeration, canonical forms and the store are not in it
