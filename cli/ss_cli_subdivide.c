@@ -133,7 +133,8 @@ typedef struct {
   const char *diag;         /* --diagonals as given; NULL: the default, bfs */
   ss_diag_mode dmode;       /* its mode, unless given */
   int given;                /* --diagonals given: keep the file's */
-  ss_mesh_write_opts wopts; /* --octahedra-keyword */
+  ss_mesh_write_opts wopts; /* --octahedra-keyword; the field names */
+  ss_mesh_fields names;     /* IN's field names, written with OUT's */
   int split_given;          /* --split-octahedra: the default, said explicitly */
   ss_mesh_format ofmt;      /* OUT's format: --output-format, else its name's */
   int drop;                 /* --drop-unsupported */
@@ -404,10 +405,11 @@ int ss_cli_subdivide(int argc, char **argv) {
   ss_cx *cx = NULL, *input = NULL;
   json_object *report = NULL, *lv = NULL;
   if (ss_scheme_new(o.scheme, &scheme, &err) ||
-      ss_mesh_read(o.in, SS_MESH_AUTO, &cx, &err)) {
+      ss_mesh_read_fields(o.in, SS_MESH_AUTO, &cx, &o.names, &err)) {
     rc = ss_cli_fail("subdivide", &err);
     goto done;
   }
+  o.wopts.fields = &o.names;
   if (o.drop) drop_unsupported(&o, scheme, cx);
   if (ss_cx_check_orientation(cx, &err)) {
     fprintf(stderr, "subspectra subdivide: %s: %s\n", o.in, err.msg);

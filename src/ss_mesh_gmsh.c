@@ -774,3 +774,10 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
 }
 
 #endif
+
+ss_status ss_mesh_read_gmsh_fields(const char *path, ss_cx **out, ss_mesh_fields *names,
+                                   ss_error *err) {
+  ss_status st = ss_mesh_read_gmsh(path, out, err);
+  if (!st && names) ss_mesh_fields_default((*out)->dim, names);
+  return st;
+}

@@ -555,14 +555,14 @@ static void test_names(void) {
   CHECK(!ss_mesh_format_writable(SS_MESH_GMSH) &&
             !ss_mesh_format_writable(SS_MESH_TETGEN),
         "read-only formats");
-  /* the refusal of an unreadable format names the readable ones, and no
-   * longer offers .vtk (which is only written) */
+  /* the refusal of an unreadable format names the readable ones, .vtk and
+   * .vtu among them since they are read (issue 36) */
   CHECK(ss_mesh_read("x.stl", SS_MESH_AUTO, &cx, &err) == SS_EINPUT &&
             strstr(err.msg, ".mesh") && strstr(err.msg, ".node/.ele") &&
-            strstr(err.msg, ".msh") && !strstr(err.msg, ".vtk"),
+            strstr(err.msg, ".msh") && strstr(err.msg, ".vtk") && strstr(err.msg, ".vtu"),
         "unknown extension: %s", err.msg);
-  CHECK(ss_mesh_read("x.vtk", SS_MESH_AUTO, &cx, &err) == SS_EINPUT &&
-            strstr(err.msg, "written, not read") && strstr(err.msg, ".obj"),
+  CHECK(ss_mesh_read("x.vtk", SS_MESH_AUTO, &cx, &err) == SS_EIO &&
+            strstr(err.msg, "x.vtk: No such file"),
         "VTK: %s", err.msg);
   CHECK(ss_mesh_write("x.msh", SS_MESH_AUTO, cx, NULL, &err) == SS_EINPUT &&
             strstr(err.msg, "read, not written"),
