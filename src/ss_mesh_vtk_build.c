@@ -1,7 +1,9 @@
 /* ss_mesh_vtk_build.c — an unstructured grid read from a VTK file (legacy or
  * XML) as a complex: cells by type, references, and point data as named
  * fields (ss_mesh_vtk_impl.h). */
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +21,33 @@ void ss_vtk_grid_done(ss_vtk_grid *g) {
   free(g->pdata);
   free(g->cdata);
   memset(g, 0, sizeof *g);
+}
+
+ss_status ss_vtk_slurp(const char *path, char **buf, size_t *len, ss_error *err) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
+  size_t cap = 1 << 16, n = 0;
+  char *b = malloc(cap + 64);
+  for (size_t r; b && (r = fread(b + n, 1, cap - n, fp)) > 0;) {
+    n += r;
+    if (n == cap) {
+      char *nb = realloc(b, 2 * cap + 64);
+      if (!nb) free(b);
+      b = nb;
+      cap *= 2;
+    }
+  }
+  const int bad = ferror(fp);
+  fclose(fp);
+  if (!b) return ss_error_nomem(err, "VTU file");
+  if (bad) {
+    free(b);
+    return ss_error_set(err, SS_EIO, "%s: read error", path);
+  }
+  b[n] = '\0';
+  *buf = b;
+  *len = n;
+  return SS_OK;
 }
 
 ss_status ss_vtk_array_add(const char *path, ss_vtk_array **list, size_t *n,

@@ -34,6 +34,10 @@ typedef struct {
   size_t ncd;          /* how many */
 } ss_vtk_grid;
 
+/* The whole file at path in a new buffer *buf (NUL-terminated after its
+ * *len bytes).  SS_EIO, SS_ENOMEM. */
+ss_status ss_vtk_slurp(const char *path, char **buf, size_t *len, ss_error *err);
+
 /* Free g's arrays (not g). */
 void ss_vtk_grid_done(ss_vtk_grid *g);
 

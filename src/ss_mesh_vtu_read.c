@@ -469,33 +469,6 @@ static ss_status read_doc(vtu_file *f, xmlDoc *doc, ss_vtk_grid *g) {
   return read_piece(f, piece, g);
 }
 
-/* The whole file into a new buffer. */
-static ss_status slurp(const char *path, char **buf, size_t *len, ss_error *err) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return ss_error_set(err, SS_EIO, "%s: %s", path, strerror(errno));
-  size_t cap = 1 << 16, n = 0;
-  char *b = malloc(cap + 64);
-  for (size_t r; b && (r = fread(b + n, 1, cap - n, fp)) > 0;) {
-    n += r;
-    if (n == cap) {
-      char *nb = realloc(b, 2 * cap + 64);
-      if (!nb) free(b);
-      b = nb;
-      cap *= 2;
-    }
-  }
-  const int bad = ferror(fp);
-  fclose(fp);
-  if (!b) return ss_error_nomem(err, "VTU file");
-  if (bad) {
-    free(b);
-    return ss_error_set(err, SS_EIO, "%s: read error", path);
-  }
-  *buf = b;
-  *len = n;
-  return SS_OK;
-}
-
 /* Cut the appended data out of the text buf[0..*len): f->app points at the
  * bytes after '_', and the text is closed after <AppendedData ...> so that
  * libxml2 parses XML only. */
@@ -524,7 +497,7 @@ ss_status ss_mesh_read_vtu(const char *path, ss_cx **out, ss_mesh_fields *names,
   *out = NULL;
   char *buf = NULL, *xml = NULL;
   size_t len = 0;
-  ss_status st = slurp(path, &buf, &len, err);
+  ss_status st = ss_vtk_slurp(path, &buf, &len, err);
   if (st) return st;
   vtu_file f = {.path = path, .err = err};
   cut_appended(&f, buf, &len);

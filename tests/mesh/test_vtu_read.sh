@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# test_vtu_read.sh SUBSPECTRA — reading VTK XML (.vtu) meshes with point data
+# test_vtu_read.sh SUBSPECTRA — reading VTK XML (.vtu) and legacy VTK (.vtk)
+# meshes with point data
 # (issue 36, issue 40 "Meshes in and out"; ss_mesh_vtu_read.c: libxml2 +
 # zlib).  SKIPPED (77) in a build without libxml2.
 #  1. Round trips through our own writer: subdivide IN -o A.vtu, then
@@ -8,7 +9,7 @@
 #     references; loop on the icosahedron: triangles; tetoct: octahedra as
 #     pyramid pairs, kept with --octahedra-keyword; a Dimension-5 grid whose
 #     fields w and x5 come back under those names).
-#  2. Files written by tests/mesh/vtu_make.py, not by our writer, in every
+#  2. Files written by tests/mesh/vtk_make.py, not by our writer, in every
 #     layout the reader takes (ascii, inline base64 with UInt32/UInt64
 #     headers encoded apart or together, appended raw and base64, zlib in
 #     one or several blocks, big-endian): each reads as the Medit file of the
@@ -42,14 +43,16 @@ same() { # WHAT A B: the two files hold the same bytes
 }
 
 # 1. round trips through our writer
-trip() { # NAME SCHEME LEVELS IN [options]
+trip() { # NAME SCHEME LEVELS IN [options]: through .vtu and legacy .vtk
   local name=$1 scheme=$2 levels=$3 in=$4
   shift 4
-  expect 0 "wrote" "$exe" subdivide -s "$scheme" -l "$levels" "$in" -o "$tmp/$name.vtu"
-  expect 0 "wrote" "$exe" subdivide -s "$scheme" -l "$levels" "$in" -o "$tmp/$name.mesh" "$@"
-  expect 0 "read .*$name.vtu" "$exe" subdivide -s "$scheme" -l 0 "$tmp/$name.vtu" \
-    -o "$tmp/$name.back.mesh" "$@"
-  same "$name round trip" "$tmp/$name.mesh" "$tmp/$name.back.mesh"
+  expect 0 "wrote" "$exe" subdivide -s "$scheme" -l "$levels" "$in" -o "$tmp/$name.direct.mesh" "$@"
+  for x in vtu vtk; do
+    expect 0 "wrote" "$exe" subdivide -s "$scheme" -l "$levels" "$in" -o "$tmp/$name.$x"
+    expect 0 "read .*$name.$x" "$exe" subdivide -s "$scheme" -l 0 "$tmp/$name.$x" \
+      -o "$tmp/$name.back-$x.mesh" "$@"
+    same "$name round trip through .$x" "$tmp/$name.direct.mesh" "$tmp/$name.back-$x.mesh"
+  done
 }
 trip creased mlca 1 "$m/cube-creased.mesh"
 trip ico loop 2 "$m/icosahedron.obj"
@@ -72,7 +75,7 @@ expect 0 "wrote" "$exe" subdivide -s mlca -l 0 "$tmp/f5.vtu" -o "$tmp/f5.again.v
 same "f5 vtu -> vtu" "$tmp/f5.vtu" "$tmp/f5.again.vtu"
 
 # 2. files of every layout, not written by us
-python3 "$src/tests/mesh/vtu_make.py" "$tmp" || fail "vtu_make.py"
+python3 "$src/tests/mesh/vtk_make.py" "$tmp" || fail "vtk_make.py"
 expect 0 "wrote" "$exe" subdivide -s mlca -l 0 "$tmp/ref.mesh" -o "$tmp/ref.out.mesh"
 for f in ascii b64-u32-apart b64-u64-joint app-raw app-raw-be app-b64 zlib-b64 zlib-app \
   zlib-app-be; do
@@ -80,14 +83,27 @@ for f in ascii b64-u32-apart b64-u64-joint app-raw app-raw-be app-b64 zlib-b64 z
     "$exe" subdivide -s mlca -l 0 "$tmp/$f.vtu" -o "$tmp/$f.out.mesh"
   same "$f.vtu as ref.mesh" "$tmp/ref.out.mesh" "$tmp/$f.out.mesh"
 done
+# legacy VTK: ASCII and BINARY, versions 3 and 5.1, SCALARS/VECTORS or FIELD
+# (the binary files' points are float32: ref32.mesh holds them rounded)
+expect 0 "wrote" "$exe" subdivide -s mlca -l 0 "$tmp/ref32.mesh" -o "$tmp/ref32.out.mesh"
+for f in leg-ascii leg-ascii-51 leg-bin leg-bin-51; do
+  expect 0 "read .*$f.vtk: 64 vertices" \
+    "$exe" subdivide -s mlca -l 0 "$tmp/$f.vtk" -o "$tmp/$f.out.mesh"
+  case $f in leg-bin*) r=ref32 ;; *) r=ref ;; esac
+  same "$f.vtk as $r.mesh" "$tmp/$r.out.mesh" "$tmp/$f.out.mesh"
+done
 
-# 3. limit: names, affine reproduction, a field equal to a coordinate
+# 3. limit: names, affine reproduction, a field equal to a coordinate (the
+# legacy file's too: the same names)
 # (exit 1: at the corners' and the crease's extraordinary points there is no
 # Jacobian, by design: status no_derivatives, values still given)
 expect 1 "26 of 729 points not evaluated in full" \
   "$exe" limit -s mlca "$tmp/zlib-app.vtu" --samples 3 -d -f json -o "$tmp/lim.json"
+expect 1 "26 of 729 points not evaluated in full" \
+  "$exe" limit -s mlca "$tmp/leg-ascii-51.vtk" --samples 3 -d -f json -o "$tmp/lim-vtk.json"
 checks=$((checks + 1))
-python3 - "$tmp/lim.json" <<'PY' || fail "limit's fields on a VTU"
+for lim in lim lim-vtk; do
+python3 - "$tmp/$lim.json" <<'PY' || fail "limit's fields on $lim"
 import json, sys
 worst, n, ok = 0.0, 0, 0
 for line in open(sys.argv[1]):
@@ -111,8 +127,9 @@ for line in open(sys.argv[1]):
     worst, n = max(worst, max(errs)), n + 1
 assert n == 27 * 27 and ok == n - 26, (n, ok)
 assert worst < 1e-13, worst
-print("limit on a VTU: %d points, worst relative error %.1e" % (n, worst))
+print("limit on %s: %d points, worst relative error %.1e" % (sys.argv[1], n, worst))
 PY
+done
 
 # 4. bad files
 expect 2 "nothing.vtu: No such file" "$exe" subdivide -s mlca "$tmp/nothing.vtu" -o "$tmp/x.mesh"
@@ -134,6 +151,17 @@ expect 2 "bad-xml.vtu:[0-9]+: not well-formed XML: Opening and ending tag mismat
   "$exe" subdivide -s mlca -l 0 "$tmp/bad-xml.vtu" -o "$tmp/x.mesh"
 expect 2 "bad-type.vtu: VTKFile type 'PolyData' is not read" \
   "$exe" subdivide -s mlca -l 0 "$tmp/bad-type.vtu" -o "$tmp/x.mesh"
+expect 2 "leg-bad-short.vtk:[0-9]+: density: not a number" \
+  "$exe" subdivide -s mlca -l 0 "$tmp/leg-bad-short.vtk" -o "$tmp/x.mesh"
+expect 2 "leg-bad-wedge.vtk: cell 0 has VTK cell type 13" \
+  "$exe" limit -s mlca "$tmp/leg-bad-wedge.vtk" --samples 2
+expect 2 "leg-bad-count.vtk:[0-9]+: POINT_DATA: its count is not that of the points" \
+  "$exe" subdivide -s mlca -l 0 "$tmp/leg-bad-count.vtk" -o "$tmp/x.mesh"
+expect 2 "leg-bad-bin.vtk:[0-9]+: CELLS: the binary data end early" \
+  "$exe" subdivide -s mlca -l 0 "$tmp/leg-bad-bin.vtk" -o "$tmp/x.mesh"
+expect 2 "leg-bad-dataset.vtk:4: DATASET UNSTRUCTURED_GRID expected" \
+  "$exe" subdivide -s mlca -l 0 "$tmp/leg-bad-dataset.vtk" -o "$tmp/x.mesh"
+expect 2 "nothing.vtk: No such file" "$exe" limit -s mlca "$tmp/nothing.vtk" --samples 2
 # two pieces; a pyramid that is no half of an octahedron; a long name
 sed 's#</UnstructuredGrid>#<Piece NumberOfPoints="0" NumberOfCells="0"/></UnstructuredGrid>#' \
   "$tmp/ascii.vtu" >"$tmp/two.vtu"
@@ -152,9 +180,11 @@ python3 - "$tmp" <<'PY' || fail "fuzz inputs"
 import os, random, sys
 d = sys.argv[1]
 random.seed(3640)
-srcs = ["ascii", "b64-u32-apart", "app-raw", "app-b64", "zlib-b64", "zlib-app-be"]
-for i in range(300):
-    b = bytearray(open(os.path.join(d, srcs[i % len(srcs)] + ".vtu"), "rb").read())
+srcs = ["ascii.vtu", "b64-u32-apart.vtu", "app-raw.vtu", "app-b64.vtu", "zlib-b64.vtu",
+        "zlib-app-be.vtu", "leg-ascii.vtk", "leg-bin.vtk", "leg-ascii-51.vtk", "leg-bin-51.vtk"]
+for i in range(400):
+    src = srcs[i % len(srcs)]
+    b = bytearray(open(os.path.join(d, src), "rb").read())
     k = random.randrange(3)
     if k == 0:
         b = b[:random.randrange(len(b))]
@@ -165,10 +195,10 @@ for i in range(300):
         ls = b.split(b"\n")
         del ls[random.randrange(len(ls))]
         b = bytearray(b"\n".join(ls))
-    open(os.path.join(d, "fz%03d.vtu" % i), "wb").write(b)
+    open(os.path.join(d, "fz%03d.%s" % (i, src[-3:])), "wb").write(b)
 PY
 fz_bad=0 fz_ok=0 fz_no=0
-for f in "$tmp"/fz*.vtu; do
+for f in "$tmp"/fz*.vt[uk]; do
   out=$("$exe" subdivide -s mlca -l 0 "$f" -o "$tmp/fz.mesh" 2>&1)
   rc=$?
   if [ "$rc" -eq 0 ]; then
@@ -181,6 +211,6 @@ for f in "$tmp"/fz*.vtu; do
   fi
 done
 checks=$((checks + 1))
-[ "$fz_bad" -eq 0 ] || fail "fuzz: $fz_bad of 300 inputs crashed or were refused without the file named"
-echo "fuzz: 300 damaged files, $fz_ok read, $fz_no refused with the file named"
+[ "$fz_bad" -eq 0 ] || fail "fuzz: $fz_bad of 400 inputs crashed or were refused without the file named"
+echo "fuzz: 400 damaged files, $fz_ok read, $fz_no refused with the file named"
 expect_done vtu_read

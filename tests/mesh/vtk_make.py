@@ -1,4 +1,4 @@
-"""vtu_make.py DIR -- VTK XML files written here, independently of subspectra's
+"""vtk_make.py DIR -- VTK XML files written here, independently of subspectra's
 writer, in every layout its reader takes (ascii; inline base64 with UInt32 and
 UInt64 headers, header and data encoded apart or together; appended raw and
 base64; zlib-compressed, several blocks; big-endian), each with the Medit file
@@ -6,7 +6,9 @@ of the same mesh (ref.mesh: Dimension 3 + fields, the fields in the order of
 the VTU's point data, a 3-vector as 3 fields) -- and bad files for the error
 messages.  A 3 x 3 x 3 grid of jittered hexahedra with a crease quad and two
 corners; point data: density (an affine function of the position), velocity
-(= the position) and vref; cell data ref."""
+(= the position) and vref; cell data ref.  Legacy VTK files of the same mesh too: ASCII and
+BINARY (big-endian), version 3 (CELLS with counts) and 5.1 (OFFSETS and
+CONNECTIVITY), point data as SCALARS + VECTORS or as one FIELD."""
 import base64, os, random, struct, sys, zlib
 
 d = sys.argv[1]
@@ -145,3 +147,81 @@ write("bad-index", "ascii", mutate=sub(b'format="ascii">\n%d ' % conn[0], b'form
 write("bad-nan", "ascii", mutate=sub(b'format="ascii">\n%r ' % dens[0], b'format="ascii">\nnan '))
 write("bad-xml", "ascii", mutate=sub(b"</Piece>", b"</Peace>"))
 write("bad-type", "ascii", mutate=sub(b'type="UnstructuredGrid"', b'type="PolyData"'))
+
+
+def legacy(name, binary, v51=False, field=False, mutate=None):
+    """A legacy .vtk of the same mesh."""
+    out = [b"# vtk DataFile Version %s\nsubspectra test\n%s\nDATASET UNSTRUCTURED_GRID\n"
+           % (b"5.1" if v51 else b"3.0", b"BINARY" if binary else b"ASCII")]
+
+    def data(vals, code):
+        if binary:
+            return struct.pack(">%d%s" % (len(vals), code), *vals) + b"\n"
+        return (" ".join(repr(v) for v in vals) + "\n").encode()
+    out.append(b"POINTS %d %s\n" % (len(P), b"double" if not binary else b"float"))
+    pts = [c for p in P for c in p]
+    if binary:  # float32 points: the Medit reference holds the rounded values
+        pts = list(struct.unpack(">%df" % len(pts), struct.pack(">%df" % len(pts), *pts)))
+    out.append(data(pts, "d" if not binary else "f"))
+    if v51:
+        out.append(b"CELLS %d %d\nOFFSETS vtktypeint64\n" % (len(cells) + 1, len(conn)))
+        out.append(data([0] + offs, "q"))
+        out.append(b"CONNECTIVITY vtktypeint64\n")
+        out.append(data(conn, "q"))
+    else:
+        flat = [v for c in cells for v in [len(c[1])] + c[1]]
+        out.append(b"CELLS %d %d\n" % (len(cells), len(flat)))
+        out.append(data(flat, "i"))
+    out.append(b"CELL_TYPES %d\n" % len(cells))
+    out.append(data([c[0] for c in cells], "i"))
+    out.append(b"CELL_DATA %d\nSCALARS ref int 1\nLOOKUP_TABLE default\n" % len(cells))
+    out.append(data([c[2] for c in cells], "i"))
+    out.append(b"POINT_DATA %d\n" % len(P))
+    if field:
+        out.append(b"FIELD FieldData 3\ndensity 1 %d double\n" % len(P))
+        out.append(data(dens, "d"))
+        out.append(b"velocity 3 %d double\n" % len(P))
+        out.append(data(pts, "d"))
+        out.append(b"vref 1 %d short\n" % len(P))
+        out.append(data(vref, "h"))
+    else:
+        out.append(b"SCALARS density double\nLOOKUP_TABLE default\n")
+        out.append(data(dens, "d"))
+        out.append(b"VECTORS velocity double\n")
+        out.append(data(pts, "d"))
+        out.append(b"SCALARS vref short 1\nLOOKUP_TABLE default\n")
+        out.append(data(vref, "h"))
+    text = b"".join(out)
+    if mutate:
+        text = mutate(text)
+    with open(os.path.join(d, name + ".vtk"), "wb") as f:
+        f.write(text)
+
+
+legacy("leg-ascii", False)
+legacy("leg-ascii-51", False, v51=True, field=True)
+legacy("leg-bin", True, field=True)
+legacy("leg-bin-51", True, v51=True)
+# the binary files' points are float32: their reference
+with open(os.path.join(d, "ref32.mesh"), "w") as f:
+    f.write(open(os.path.join(d, "ref.mesh")).read())
+P32 = []
+for p in P:
+    P32.append(struct.unpack(">3f", struct.pack(">3f", *p)))
+with open(os.path.join(d, "ref32.mesh"), "w") as f:
+    lines = open(os.path.join(d, "ref.mesh")).read().split("\n")
+    for v, p in enumerate(P32):  # coordinates rounded; fields as they were
+        w = lines[4 + v].split()
+        lines[4 + v] = " ".join([repr(c) for c in p] + w[3:4] + [repr(c) for c in p] + w[7:])
+    f.write("\n".join(lines))
+def drop_last_density(t):
+    a = t.index(b"SCALARS density double\nLOOKUP_TABLE default\n") + 44
+    e = t.index(b"\n", a)
+    return t[:a] + t[a:e].rsplit(b" ", 1)[0] + t[e:]
+
+
+legacy("leg-bad-short", False, mutate=drop_last_density)
+legacy("leg-bad-wedge", False, mutate=lambda t: t.replace(b"CELL_TYPES 30\n12", b"CELL_TYPES 30\n13"))
+legacy("leg-bad-count", False, mutate=lambda t: t.replace(b"POINT_DATA 64", b"POINT_DATA 63"))
+legacy("leg-bad-bin", True, mutate=lambda t: t[:len(t) // 3])
+legacy("leg-bad-dataset", False, mutate=lambda t: t.replace(b"UNSTRUCTURED_GRID", b"POLYDATA"))
