@@ -113,11 +113,13 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
  * is vertex k; cells keep the file's element order within each type; a
  * cell's reference is the first physical group of its entity, else the
  * entity's tag; vertex references are 0.  Coordinates: 2 when the mesh has no
- * 3D element and every z is 0, else 3; with one scalar $NodeData field (a
- * view of node data with one component: its first step), 4, the field the
- * 4th coordinate (as a Medit "Dimension 4"; z = 0 in a plane).  Views of
- * element data, vectors or tensors are not read; two scalar node fields,
- * a node without a value or a value that is not finite are SS_EINPUT.  gmsh runs in a
+ * 3D element and every z is 0, else 3; every $NodeData view of 1 or 3
+ * components (its first step) adds fields (ss_mesh_fields), in gmsh's order
+ * of views, named by the view (a vector's NAME_x, _y, _z; ss_mesh_read_gmsh_fields
+ * gives the names): one scalar is the 4th coordinate as in a Medit
+ * "Dimension 4" (z = 0 in a plane).  Views of element data or tensors are
+ * not read; a node without a value or a value that is not finite is
+ * SS_EINPUT.  gmsh runs in a
  * child process (fork; gmsh 4.8 crashes on some malformed files: then SS_EINPUT "gmsh
  * crashed"), one read at a time (a mutex: gmsh's API has global state); gmsh prints
  * nothing.  SS_EIO if the

@@ -220,7 +220,34 @@ else
   tomsh "$tmp/w.mesh" 63 > "$tmp/w63.msh"
   expect 2 "NodeData gives node 64 no value" "$exe" limit --scheme mlca "$tmp/w63.msh" --samples 2
   { tomsh "$tmp/w.mesh"; awk '/^\$NodeData/ {on = 1} on' "$tmp/w.msh" | sed 's/density/stiffness/'; } > "$tmp/w2.msh"
-  expect 2 "two scalar .NodeData fields" "$exe" limit --scheme mlca "$tmp/w2.msh" --samples 2
+  # field names (issue 36): the view's name; two views are two fields, a
+  # 3-component view (here the position) NAME_x, _y, _z
+  expect 0 '"fields":\{"density":' "$exe" limit -s mlca "$tmp/w.msh" --at "14 0.5 0.5 0.5" -f json
+  out=$("$exe" limit --scheme mlca "$tmp/w2.msh" --at "14 0.3 0.6 0.2" -f json)
+  checks=$((checks + 1))
+  echo "$out" | grep -Eq '"fields":\{"density":([-0-9.e]+),"stiffness":\1\}' ||
+    fail "two \$NodeData views: not density and stiffness, equal: $out"
+  { tomsh "$tmp/w.mesh"
+    awk '/^Vertices/ {sec = "V"} /^Hexahedra/ {sec = ""} sec == "V" && NF == 5 {n++; L[n] = n " " $1 " " $2 " " $3}
+      END { printf "$NodeData\n1\n\"pos\"\n1\n0.0\n3\n0\n3\n%d\n", n
+        for (i = 1; i <= n; i++) print L[i]
+        printf "$EndNodeData\n" }' "$tmp/w.mesh"; } > "$tmp/wv.msh"
+  "$exe" limit --scheme mlca "$tmp/wv.msh" --samples 3 -d -f json > "$tmp/wv.json"
+  checks=$((checks + 1))
+  python3 - "$tmp/wv.json" <<'PY' || fail "a vector \$NodeData view: pos_x/_y/_z are not the limit point and its Jacobian"
+import json, sys
+n = 0
+for line in open(sys.argv[1]):
+    p = json.loads(line)
+    f, g, x, J = p["fields"], p["field_gradients"], p["point"], p["jacobian"]
+    assert sorted(f) == ["density", "pos_x", "pos_y", "pos_z"], sorted(f)
+    for a, c in enumerate("xyz"):
+        assert abs(f["pos_" + c] - x[a]) <= 1e-13 * max(1, abs(x[a])), (f, x)
+        for r in range(3):
+            assert abs(g["pos_" + c][r] - J[r][a]) <= 1e-13 * max(1, abs(J[r][a]))
+    n += 1
+assert n == 729
+PY
 fi
 # a vertex without its w shifts the section: refused by the reader, exit 2
 awk 'NR == 9 {print $1, $2, $3, $5; next} {print}' "$tmp/w.mesh" > "$tmp/short.mesh"
