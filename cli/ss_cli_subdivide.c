@@ -187,8 +187,8 @@ static int parse(int argc, char **argv, sub_opts *o) {
       o->ofmt = ss_mesh_format_from_name(optarg);
       if (!ss_mesh_format_writable(o->ofmt))
         return ss_cli_usage_error(
-            "subdivide", "--output-format: expected medit, vtk, vtu or obj, not '%s'",
-            optarg);
+            "subdivide",
+            "--output-format: expected medit, vtk, vtu, gmsh or obj, not '%s'", optarg);
       break;
     case 'U':
       o->drop = 1;

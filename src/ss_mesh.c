@@ -93,6 +93,9 @@ ss_status ss_mesh_write(const char *path, ss_mesh_format fmt, const ss_cx *cx,
   case SS_MESH_VTU:
     st = ss_mesh_write_vtu(f, cx, opts, err);
     break;
+  case SS_MESH_GMSH:
+    st = ss_mesh_write_gmsh(f, path, cx, opts, err);
+    break;
   default:
     st = ss_mesh_write_obj(f, cx, err);
     break;

@@ -38,7 +38,7 @@ typedef enum {
   SS_MESH_MEDIT,    /* .mesh */
   SS_MESH_VTK,      /* .vtk, legacy VTK */
   SS_MESH_OBJ,      /* .obj */
-  SS_MESH_GMSH,     /* .msh (read only, through gmsh's API: ss_mesh_gmsh.c) */
+  SS_MESH_GMSH,     /* .msh, through gmsh's API (ss_mesh_gmsh.c, _write.c) */
   SS_MESH_TETGEN,   /* .node / .ele / .face (read only: ss_mesh_tetgen.c) */
   SS_MESH_VTU       /* .vtu, VTK XML (read with libxml2) */
 } ss_mesh_format;
@@ -180,6 +180,12 @@ ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, const ss_mesh_write_opts *
 ss_status ss_mesh_write_vtu(FILE *f, const ss_cx *cx, const ss_mesh_write_opts *opts,
                             ss_error *err);
 ss_status ss_mesh_write_obj(FILE *f, const ss_cx *cx, ss_error *err);
+/* gmsh .msh 4.1 ASCII through gmsh's API (ss_mesh_gmsh_write.c: the layout,
+ * references and fields as views); path names the file in messages.
+ * SS_EINPUT for octahedra (gmsh has none) and in a build without gmsh,
+ * SS_EIO, SS_ENOMEM. */
+ss_status ss_mesh_write_gmsh(FILE *f, const char *path, const ss_cx *cx,
+                             const ss_mesh_write_opts *opts, ss_error *err);
 
 SS_END_DECLS
 

@@ -35,7 +35,7 @@ int ss_mesh_format_readable(ss_mesh_format fmt) {
 
 int ss_mesh_format_writable(ss_mesh_format fmt) {
   return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_VTK ||
-         fmt == SS_MESH_VTU;
+         fmt == SS_MESH_VTU || (fmt == SS_MESH_GMSH && ss_mesh_gmsh_available());
 }
 
 const char *ss_mesh_readable_list(void) {
@@ -51,7 +51,10 @@ const char *ss_mesh_readable_list(void) {
 }
 
 const char *ss_mesh_writable_list(void) {
-  return ".mesh (Medit), .vtk, .vtu or .obj";
+  return ss_mesh_gmsh_available()
+             ? ".mesh (Medit), .vtk, .vtu, .msh (gmsh 4.1) or .obj"
+             : ".mesh (Medit), .vtk, .vtu or .obj; .msh needs a build "
+               "with gmsh";
 }
 
 const char *ss_mesh_format_name(ss_mesh_format fmt) {

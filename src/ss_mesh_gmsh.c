@@ -30,13 +30,11 @@
 #include <string.h>
 
 #if SS_HAVE_GMSH
+#include "ss_mesh_gmsh_api.h"
 #include "ss_mesh_gmsh_scan.h"
 
-#include <dlfcn.h>
 #include <gmshc.h>
-#include <locale.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -112,71 +110,7 @@ ss_status ss_mesh_read_gmsh_fields(const char *path, ss_cx **out, ss_mesh_fields
 
 #else
 
-/* gmsh's C API as function pointers, looked up in the child by load_api.
- * The types come from gmshc.h, so a changed signature is a compile error. */
-#define SS_GMSH_FUNCS(X)                                                                 \
-  X(gmshInitialize)                                                                      \
-  X(gmshFinalize)                                                                        \
-  X(gmshFree)                                                                            \
-  X(gmshOpen)                                                                            \
-  X(gmshOptionSetNumber)                                                                 \
-  X(gmshLoggerGetLastError)                                                              \
-  X(gmshModelGetDimension)                                                               \
-  X(gmshModelGetEntities)                                                                \
-  X(gmshModelGetPhysicalGroupsForEntity)                                                 \
-  X(gmshModelMeshGetNodes)                                                               \
-  X(gmshModelMeshGetElements)                                                            \
-  X(gmshModelMeshGetElementProperties)                                                   \
-  X(gmshViewGetTags)                                                                     \
-  X(gmshViewGetIndex)                                                                    \
-  X(gmshOptionGetString)                                                                 \
-  X(gmshViewGetHomogeneousModelData)
-
-typedef struct {
-#define SS_GMSH_FIELD(f) __typeof__(f) *f; /* gmsh's function f */
-  SS_GMSH_FUNCS(SS_GMSH_FIELD)
-#undef SS_GMSH_FIELD
-} gmsh_api;
-
-#define SS_STR_(x) #x
-#define SS_STR(x)  SS_STR_(x)
-/* The soname of the gmsh whose header this was compiled against. */
-#define SS_GMSH_SONAME                                                                   \
-  "libgmsh.so." SS_STR(GMSH_API_VERSION_MAJOR) "." SS_STR(GMSH_API_VERSION_MINOR)
-
-/* Open libgmsh and fill g.  The handle is never closed: the child exits
- * after the read.  Errors: SS_EINPUT naming the library and dlerror's text. */
-static ss_status load_api(gmsh_api *g, const char *path, ss_error *err) {
-  void *h = dlopen(SS_GMSH_SONAME, RTLD_NOW | RTLD_LOCAL);
-  if (!h)
-    return ss_error_set(err, SS_EINPUT, "%s: cannot load gmsh (%s) to read it: %s", path,
-                        SS_GMSH_SONAME, dlerror());
-    /* dlsym returns an object pointer; ISO C has no conversion to a function
-     * pointer, so the bits are copied (POSIX guarantees they are one) */
-#define SS_GMSH_LOAD(f)                                                                  \
-  {                                                                                      \
-    void *p = dlsym(h, #f);                                                              \
-    if (!p)                                                                              \
-      return ss_error_set(err, SS_EINPUT, "%s: %s has no %s: %s", path, SS_GMSH_SONAME,  \
-                          #f, dlerror());                                                \
-    memcpy(&g->f, &p, sizeof p);                                                         \
-  }
-  SS_GMSH_FUNCS(SS_GMSH_LOAD)
-#undef SS_GMSH_LOAD
-  return SS_OK;
-}
-
-/* gmsh's API is global state: one read at a time in the whole process. */
-static pthread_mutex_t gmsh_lock = PTHREAD_MUTEX_INITIALIZER;
-
-/* The text of gmsh's last error, or a fallback. */
-static void last_error(const gmsh_api *g, char *buf, size_t n) {
-  char *e = NULL;
-  int ierr = 0;
-  g->gmshLoggerGetLastError(&e, &ierr);
-  snprintf(buf, n, "%s", !ierr && e && *e ? e : "gmsh could not read the file");
-  g->gmshFree(e);
-}
+typedef ss_gmsh_api gmsh_api;
 
 static int cmp_size(const void *a, const void *b) {
   const size_t x = *(const size_t *)a, y = *(const size_t *)b;
@@ -564,31 +498,19 @@ static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
 static ss_status read_here(const char *path, ss_cx **out, ss_mesh_fields *names,
                            ss_error *err) {
   gmsh_api api = {0}, *g = &api;
-  ss_status st = load_api(g, path, err);
-  if (st) return st;
-  /* gmshInitialize sets the locale from the environment: keep the caller's */
-  const char *cur = setlocale(LC_ALL, NULL);
-  char *saved = cur ? strdup(cur) : NULL;
-  if (cur && !saved) return ss_error_nomem(err, "locale name");
+  char *saved = NULL;
+  ss_status st = ss_gmsh_api_load(g, path, err);
+  if (st || (st = ss_gmsh_begin(g, path, &saved, err))) return st;
   int ierr = 0;
-  g->gmshInitialize(0, NULL, 0, &ierr);
+  g->gmshOpen(path, &ierr);
   if (ierr) {
-    st = ss_error_set(err, SS_EINPUT, "%s: gmsh could not be initialised", path);
+    char msg[300];
+    ss_gmsh_last_error(g, msg, sizeof msg);
+    st = ss_error_set(err, SS_EINPUT, "%s: %s", path, msg);
   } else {
-    g->gmshOptionSetNumber("General.Terminal", 0, &ierr);
-    g->gmshOptionSetNumber("General.Verbosity", 0, &ierr);
-    g->gmshOpen(path, &ierr);
-    if (ierr) {
-      char msg[300];
-      last_error(g, msg, sizeof msg);
-      st = ss_error_set(err, SS_EINPUT, "%s: %s", path, msg);
-    } else {
-      st = extract(g, path, out, names, err);
-    }
-    g->gmshFinalize(&ierr);
+    st = extract(g, path, out, names, err);
   }
-  if (saved) setlocale(LC_ALL, saved);
-  free(saved);
+  ss_gmsh_end(g, saved);
   return st;
 }
 
@@ -753,10 +675,10 @@ ss_status ss_mesh_read_gmsh_fields(const char *path, ss_cx **out, ss_mesh_fields
    * dies of SIGSEGV: it reads in a child process, whose death becomes a
    * message.  The lock is held across fork, so the child (one thread) never
    * waits for it, and no two reads overlap. */
-  pthread_mutex_lock(&gmsh_lock);
+  ss_gmsh_lock();
   int fd[2];
   if (pipe(fd)) {
-    pthread_mutex_unlock(&gmsh_lock);
+    ss_gmsh_unlock();
     return ss_error_set(err, SS_EIO, "%s: no pipe for the gmsh reader: %s", path,
                         strerror(errno));
   }
@@ -765,7 +687,7 @@ ss_status ss_mesh_read_gmsh_fields(const char *path, ss_cx **out, ss_mesh_fields
     const int e = errno;
     close(fd[0]);
     close(fd[1]);
-    pthread_mutex_unlock(&gmsh_lock);
+    ss_gmsh_unlock();
     return ss_error_set(err, SS_EIO, "%s: cannot start the gmsh reader: %s", path,
                         strerror(e));
   }
@@ -801,7 +723,7 @@ ss_status ss_mesh_read_gmsh_fields(const char *path, ss_cx **out, ss_mesh_fields
   int wst = 0;
   while (waitpid(pid, &wst, 0) < 0 && errno == EINTR) {
   }
-  pthread_mutex_unlock(&gmsh_lock);
+  ss_gmsh_unlock();
   cursor c = {buf, len};
   int32_t s;
   if (nomem) {
