@@ -17,20 +17,29 @@ static const char *const usage_text =
     "usage: subspectra subdivide --scheme S [--levels L] IN -o OUT [options]\n"
     "\n"
     "Refine the mesh IN L times with scheme S and write the result to OUT.\n"
-    "Formats follow the file extensions: .mesh (Medit; read and write), .obj\n"
-    "(surfaces; read and write), .vtk (legacy VTK for ParaView; write only),\n"
-    ".vtu (VTK XML, binary appended; write only),\n"
-    ".msh (gmsh, versions 2 and 4, ASCII or binary; read only), .node/.ele\n"
-    "(TetGen or Triangle: X.node with X.ele and X.face if present; read only).\n"
+    "Formats follow the file extensions: .mesh (Medit), .obj (surfaces), .vtk\n"
+    "(legacy VTK), .vtu (VTK XML; read through libxml2), .msh (gmsh: versions 2\n"
+    "and 4 read, 4.1 binary written, through gmsh's API), all read and written;\n"
+    ".node/.ele (TetGen or Triangle: X.node with X.ele and X.face; read only).\n"
     "\n"
+    "Fields: coordinates past the third are refined like the position and kept\n"
+    "with their names: VTK point data (a 3-vector NAME is NAME_x, _y, _z), gmsh\n"
+    "$NodeData views (by name), a Medit 4th coordinate (w; then x5, x6, ...),\n"
+    "at most 13 (docs/command-line.md, \"Meshes in and out\").\n"
+    "\n";
+
+/* The usage text's second part (one literal would exceed the 4095
+ * characters C11 compilers must support). */
+static const char *const usage_options =
     "  -s, --scheme S        mlca | tetoct | boxspline | boxspline-avg |\n"
     "                        catmull-clark | loop | ccsolid | quasi48\n"
     "  -l, --levels L        number of refinement levels, 0..12 (default 1)\n"
     "  -o, --output OUT      output file (written whole or not at all: an old\n"
     "                        OUT stays if writing fails); when OUT is standard\n"
     "                        output (-o /dev/stdout) the summary goes to stderr\n"
-    "      --output-format F OUT's format whatever its name: medit, vtk, vtu or\n"
-    "                        obj (for a name without extension: /dev/stdout)\n"
+    "      --output-format F OUT's format whatever its name: medit, vtk, vtu,\n"
+    "                        gmsh or obj (for a name without extension:\n"
+    "                        /dev/stdout)\n"
     "      --drop-unsupported  drop the cells below the mesh's top dimension that\n"
     "                        the scheme does not take (TetGen's .face triangles,\n"
     "                        gmsh's geometry points and curves) instead of\n"
@@ -209,6 +218,7 @@ static int parse(int argc, char **argv, sub_opts *o) {
       break;
     case 'h':
       fputs(usage_text, stdout);
+      fputs(usage_options, stdout);
       return -1;
     default:
       return ss_cli_option_error("subdivide", c, argv);
