@@ -62,7 +62,16 @@ for s in mlca ccsolid; do
   checks=$((checks + 1)); [ "$c" -eq 64 ] || fail "$s: cube-creased.mesh: $c full sample lines, not 64"
 done
 sed 's/^Quadrilaterals$/Edges\n1\n1 4 0\nQuadrilaterals/' "$cube" > "$tmp/diag.mesh"
-expect 2 "segment 1 is not an edge of any hexahedron" "$exe" limit --scheme ccsolid "$tmp/diag.mesh" --samples 2
+# the refusal names the cell, its vertices and why; subdivide takes each of
+# these meshes, as the message says
+expect 2 "segment 1 \(vertices 1 4\) is not an edge of any hexahedron: its vertices are corners of hexahedron 1 but not the ends of one of its edges \(a diagonal\); subdivide refines it" "$exe" limit --scheme ccsolid "$tmp/diag.mesh" --samples 2
+expect 0 "wrote" "$exe" subdivide --scheme ccsolid "$tmp/diag.mesh" -o "$tmp/diag.out.mesh"
+sed 's/^Quadrilaterals$/Quadrilaterals\n7\n1 2 8 7 0/; 0,/^6$/{/^6$/d}' "$cube" > "$tmp/qdiag.mesh"
+expect 2 "quadrilateral 1 \(vertices 1 2 8 7\) is not a face of any hexahedron: its vertices are corners of hexahedron 1 but not one of its faces" "$exe" limit --scheme mlca "$tmp/qdiag.mesh" --samples 2
+expect 0 "wrote" "$exe" subdivide --scheme mlca "$tmp/qdiag.mesh" -o "$tmp/qdiag.out.mesh"
+awk '/^Vertices/ {print; getline; print $1 + 1; v = 1; next} v && /^$/ && !done {print "5 5 5 0"; done = 1} {print} END {print "Corners\n1\n9"}' "$cube" | sed '$!{/^End$/d}' > "$tmp/vfar.mesh"
+expect 2 "corner 1 \(vertices 9\) is not a corner of any hexahedron: its vertex 9 is on no hexahedron" "$exe" limit --scheme mlca "$tmp/vfar.mesh" --samples 2
+expect 0 "wrote" "$exe" subdivide --scheme mlca "$tmp/vfar.mesh" -o "$tmp/vfar.out.mesh"
 expect 2 "--gauss '0'" "$exe" limit --scheme mlca "$mesh" --gauss 0
 expect 2 "--format: expected text, json, vtk or vtu" "$exe" limit --scheme mlca "$mesh" --gauss 1 --format xml
 expect 2 "No such file" "$exe" limit --scheme mlca /nonexistent.mesh --gauss 1
