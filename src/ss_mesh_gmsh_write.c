@@ -46,6 +46,13 @@ static int vector_at(const ss_mesh_fields *nm, int i, size_t *len) {
   return 1;
 }
 
+/* SS_EINPUT with gmsh's last error. */
+static ss_status gmsh_failed(const ss_gmsh_api *g, const char *path, ss_error *err) {
+  char msg[300];
+  ss_gmsh_last_error(g, msg, sizeof msg);
+  return ss_error_set(err, SS_EINPUT, "%s: gmsh: %s", path, msg);
+}
+
 /* The cells of dimension d and reference r, type by type, on entity etag. */
 static int add_cells(const ss_gmsh_api *g, const ss_cx *cx, int d, int32_t r, int etag,
                      size_t *et, size_t *nt) {
@@ -113,11 +120,7 @@ static ss_status build(const ss_gmsh_api *g, const char *path, const ss_cx *cx,
   if (!st && !ierr && nodes_on < 0)
     st = ss_error_set(err, SS_EINPUT, "%s: a mesh without cells: gmsh keeps no nodes",
                       path);
-  if (!st && ierr) {
-    char msg[300];
-    ss_gmsh_last_error(g, msg, sizeof msg);
-    st = ss_error_set(err, SS_EINPUT, "%s: gmsh: %s", path, msg);
-  }
+  if (!st && ierr) st = gmsh_failed(g, path, err);
   free(et);
   free(nt);
   free(tags);
@@ -152,11 +155,7 @@ static ss_status views(const ss_gmsh_api *g, const char *path, const char *file,
     if (!ierr) g->gmshViewWrite(vt, file, 1, &ierr);
     i += nc;
   }
-  if (!st && ierr) {
-    char msg[300];
-    ss_gmsh_last_error(g, msg, sizeof msg);
-    st = ss_error_set(err, SS_EINPUT, "%s: gmsh: %s", path, msg);
-  }
+  if (!st && ierr) st = gmsh_failed(g, path, err);
   free(tags);
   free(val);
   return st;
@@ -177,13 +176,7 @@ static ss_status write_here(const char *path, const char *file, const ss_cx *cx,
   g->gmshOptionSetNumber("PostProcessing.SaveMesh", 0, &ierr);
   if (!(st = build(g, path, cx, err))) {
     g->gmshWrite(file, &ierr);
-    if (ierr) {
-      char msg[300];
-      ss_gmsh_last_error(g, msg, sizeof msg);
-      st = ss_error_set(err, SS_EINPUT, "%s: gmsh: %s", path, msg);
-    } else {
-      st = views(g, path, file, cx, nm, err);
-    }
+    st = ierr ? gmsh_failed(g, path, err) : views(g, path, file, cx, nm, err);
   }
   ss_gmsh_end(g, saved);
   return st;
