@@ -14,10 +14,10 @@
  * mean time of 2,000 further points of the cell (random, and 2^-20 .. 2^-1
  * from the same feature), caches warm, best of 5 rounds.
  *
- * The paper's Table 1: its caption and text are in
- * ../shared/papers/direct-limit-volumes-catmull-clark-solids.txt ("Table 1
- * lists the relative and absolute time required for each step"), but the
- * table's cells are not: no number of it is quoted here, and the row says
+ * The paper's Table 1 (docs/references.bib: altenhofen2018direct): the text
+ * of the paper we hold describes it ("Table 1 lists the relative and
+ * absolute time required for each step"), but the table's cells are not in
+ * it: no number of it is quoted here, and the row says
  * so rather than invent one.  What the text does quote is printed (Table 2:
  * "our approach evaluates all limit points in around 72 milliseconds"; the
  * break-even beyond two subdivision steps, bench_limit). */
