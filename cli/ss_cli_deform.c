@@ -598,9 +598,19 @@ int ss_cli_deform(int argc, char **argv) {
   ss_cx *base = NULL, *moved = NULL, *net = NULL;
   ss_deform_cli_point *pt = NULL;
   size_t n = 0, outside = 0;
+  ss_mesh_fields names;
   if (ss_scheme_new(o.scheme, &s, &err) ||
-      ss_mesh_read(o.mesh, SS_MESH_AUTO, &base, &err)) {
+      ss_mesh_read_fields(o.mesh, SS_MESH_AUTO, &base, &names, &err)) {
     rc = ss_cli_fail("deform", &err);
+    goto done;
+  }
+  if (base->dim > 3) { /* fields: named, and not evaluated here (yet) */
+    fprintf(stderr,
+            "subspectra deform: %s carries %d field%s (%s%s), which deform "
+            "does not evaluate yet (`subspectra limit` does)\n",
+            o.mesh, names.n, names.n == 1 ? "" : "s", names.name[0],
+            names.n > 1 ? ", ..." : "");
+    rc = SS_EXIT_USAGE;
     goto done;
   }
   if (base->dim != 3) {

@@ -34,8 +34,9 @@ static const char *const usage_text =
     "those rules, with one-sided derivatives on the boundary and on a crease\n"
     "surface, where they exist (docs/limit.md).\n"
     "\n"
-    "Fields: coordinates past the third (a Medit 4th coordinate, or a gmsh\n"
-    "scalar $NodeData: the field w) are scalar values per control point; they\n"
+    "Fields: coordinates past the third are scalar values per control point,\n"
+    "named by the file: VTK/VTU point data (a 3-vector NAME as NAME_x, _y, _z),\n"
+    "gmsh $NodeData views, a Medit 4th coordinate (w; then x5, x6, ...).  They\n"
     "are subdivided like the coordinates (the same weights), and their limit\n"
     "values are written with each point, with --derivatives also their\n"
     "gradients in the cell's parameters (d/dU, d/dV, d/dW).  A mesh without\n"
@@ -133,19 +134,11 @@ static const char *const usage_batch =
     "such points and their count go to stderr, and the exit status is 1.  When\n"
     "every point is ok the output has no status (VTU always has its array).\n";
 
-/* Name of field i, the coordinate 4 + i of the mesh file. */
-static void field_name(size_t i, char name[16]) {
-  if (i == 0)
-    snprintf(name, 16, "w");
-  else
-    snprintf(name, 16, "x%zu", i + 4);
-}
-
 /* The mesh's positions (*pos, a 3-coordinate copy) and its coordinates past
- * the third as fields (*val, nv * nf, vertex-major); mesh->dim >= 3.
- * SS_ENOMEM. */
-static ss_status split_fields(const ss_cx *mesh, ss_cx **pos, double **val,
-                              ss_limit_cli_fields *fl, ss_error *err) {
+ * the third as fields (*val, nv * nf, vertex-major) named by names (the
+ * mesh file's, ss_mesh_read_fields); mesh->dim >= 3.  SS_ENOMEM. */
+static ss_status split_fields(const ss_cx *mesh, const ss_mesh_fields *names, ss_cx **pos,
+                              double **val, ss_limit_cli_fields *fl, ss_error *err) {
   const size_t dim = (size_t)mesh->dim, nf = dim - 3;
   ss_status st = ss_cx_copy(mesh, pos, err);
   *val = NULL;
@@ -165,7 +158,7 @@ static ss_status split_fields(const ss_cx *mesh, ss_cx **pos, double **val,
   }
   (*pos)->dim = 3;
   for (size_t i = 0; i < nf; i++)
-    field_name(i, fl->name[i]);
+    memcpy(fl->name[i], names->name[i], sizeof fl->name[i]);
   return SS_OK;
 }
 
@@ -505,9 +498,10 @@ int ss_cli_limit(int argc, char **argv) {
   ss_limit *L = NULL;
   double *fv = NULL;
   size_t bad = 0;
+  ss_mesh_fields names;
   if (ss_scheme_new(o.scheme, &s, &err) ||
-      ss_mesh_read(o.mesh, SS_MESH_AUTO, &mesh, &err) ||
-      (mesh->dim > 3 && split_fields(mesh, &pos, &fv, &o.fl, &err)) ||
+      ss_mesh_read_fields(o.mesh, SS_MESH_AUTO, &mesh, &names, &err) ||
+      (mesh->dim > 3 && split_fields(mesh, &names, &pos, &fv, &o.fl, &err)) ||
       ss_limit_new_fields(s, pos ? pos : mesh, o.fl.nf, fv, &L, &err))
     rc = ss_cli_fail("limit", &err);
   else if (ss_cx_check_orientation(pos ? pos : mesh, &err)) {

@@ -17,6 +17,7 @@
 
 #include "ss_cx.h"
 #include "ss_limit.h"
+#include "ss_mesh.h"
 
 /* A point's status: its code in VTK/VTU point data; its name in text and
  * JSON (ss_cli_limit_status_name). */
@@ -47,10 +48,12 @@ typedef struct {
 
 /* The mesh's fields: its coordinates past the third. */
 typedef struct {
-  size_t nf;                /* how many (0..SS_MAXDIM - 3) */
-  char name[SS_MAXDIM][16]; /* their names: the 4th coordinate is "w" */
-  double *val;              /* npts * nf values (owned) */
-  double (*grad)[3];        /* npts * nf derivatives (owned) */
+  size_t nf;                               /* how many (0..SS_MAXDIM - 3) */
+  char name[SS_MAXDIM][SS_FIELD_NAME_MAX]; /* their names (ss_mesh_fields: the
+                                              file's, a Medit 4th coordinate
+                                              is "w") */
+  double *val;                             /* npts * nf values (owned) */
+  double (*grad)[3];                       /* npts * nf derivatives (owned) */
 } ss_limit_cli_fields;
 
 /* What a writer writes: the points and how they were made. */

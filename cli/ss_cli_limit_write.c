@@ -347,7 +347,7 @@ static void vtu_point_data(FILE *f, const ss_limit_cli_out *o, const size_t *src
     }
     vtu_end(f);
     if (!o->derivs) continue;
-    char name[32];
+    char name[SS_FIELD_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s_gradient", fl->name[k]);
     vtu_begin(f, "Float64", name, 3);
     for (size_t j = 0; j < nm; j++) {

@@ -19,20 +19,29 @@ static const char *const usage_text =
     "usage: subspectra subdivide --scheme S [--levels L] IN -o OUT [options]\n"
     "\n"
     "Refine the mesh IN L times with scheme S and write the result to OUT.\n"
-    "Formats follow the file extensions: .mesh (Medit; read and write), .obj\n"
-    "(surfaces; read and write), .vtk (legacy VTK for ParaView; write only),\n"
-    ".vtu (VTK XML, binary appended; write only),\n"
-    ".msh (gmsh, versions 2 and 4, ASCII or binary; read only), .node/.ele\n"
-    "(TetGen or Triangle: X.node with X.ele and X.face if present; read only).\n"
+    "Formats follow the file extensions: .mesh (Medit), .obj (surfaces), .vtk\n"
+    "(legacy VTK), .vtu (VTK XML; read through libxml2), .msh (gmsh: versions 2\n"
+    "and 4 read, 4.1 binary written, through gmsh's API), all read and written;\n"
+    ".node/.ele (TetGen or Triangle: X.node with X.ele and X.face; read only).\n"
     "\n"
+    "Fields: coordinates past the third are refined like the position and kept\n"
+    "with their names: VTK point data (a 3-vector NAME is NAME_x, _y, _z), gmsh\n"
+    "$NodeData views (by name), a Medit 4th coordinate (w; then x5, x6, ...),\n"
+    "at most 13 (docs/command-line.md, \"Meshes in and out\").\n"
+    "\n";
+
+/* The usage text's second part (one literal would exceed the 4095
+ * characters C11 compilers must support). */
+static const char *const usage_options =
     "  -s, --scheme S        mlca | tetoct | boxspline | boxspline-avg |\n"
     "                        catmull-clark | loop | ccsolid | quasi48\n"
     "  -l, --levels L        number of refinement levels, 0..12 (default 1)\n"
     "  -o, --output OUT      output file (written whole or not at all: an old\n"
     "                        OUT stays if writing fails); when OUT is standard\n"
     "                        output (-o /dev/stdout) the summary goes to stderr\n"
-    "      --output-format F OUT's format whatever its name: medit, vtk, vtu or\n"
-    "                        obj (for a name without extension: /dev/stdout)\n"
+    "      --output-format F OUT's format whatever its name: medit, vtk, vtu,\n"
+    "                        gmsh or obj (for a name without extension:\n"
+    "                        /dev/stdout)\n"
     "      --drop-unsupported  drop the cells below the mesh's top dimension that\n"
     "                        the scheme does not take (TetGen's .face triangles,\n"
     "                        gmsh's geometry points and curves) instead of\n"
@@ -149,7 +158,8 @@ typedef struct {
   const char *diag;         /* --diagonals as given; NULL: the default, bfs */
   ss_diag_mode dmode;       /* its mode, unless given */
   int given;                /* --diagonals given: keep the file's */
-  ss_mesh_write_opts wopts; /* --octahedra-keyword */
+  ss_mesh_write_opts wopts; /* --octahedra-keyword; the field names */
+  ss_mesh_fields names;     /* IN's field names, written with OUT's */
   int split_given;          /* --split-octahedra: the default, said explicitly */
   ss_mesh_format ofmt;      /* OUT's format: --output-format, else its name's */
   int drop;                 /* --drop-unsupported */
@@ -223,8 +233,8 @@ static int parse(int argc, char **argv, sub_opts *o) {
       o->ofmt = ss_mesh_format_from_name(optarg);
       if (!ss_mesh_format_writable(o->ofmt))
         return ss_cli_usage_error(
-            "subdivide", "--output-format: expected medit, vtk, vtu or obj, not '%s'",
-            optarg);
+            "subdivide",
+            "--output-format: expected medit, vtk, vtu, gmsh or obj, not '%s'", optarg);
       break;
     case 'U':
       o->drop = 1;
@@ -270,6 +280,7 @@ static int parse(int argc, char **argv, sub_opts *o) {
       break;
     case 'h':
       fputs(usage_text, stdout);
+      fputs(usage_options, stdout);
       fputs(usage_schemes, stdout);
       return -1;
     default:
@@ -465,7 +476,7 @@ int ss_cli_subdivide(int argc, char **argv) {
   ss_cx *cx = NULL, *input = NULL;
   json_object *report = NULL, *lv = NULL;
   if (ss_scheme_new(o.scheme, &scheme, &err) ||
-      ss_mesh_read(o.in, SS_MESH_AUTO, &cx, &err)) {
+      ss_mesh_read_fields(o.in, SS_MESH_AUTO, &cx, &o.names, &err)) {
     rc = ss_cli_fail("subdivide", &err);
     goto done;
   }
@@ -477,6 +488,7 @@ int ss_cli_subdivide(int argc, char **argv) {
     rc = ss_cli_usage_error("subdivide", "--adapt-box/--adapt-edge-length: %s", err.msg);
     goto done;
   }
+  o.wopts.fields = &o.names;
   if (o.drop) drop_unsupported(&o, scheme, cx);
   if (ss_cx_check_orientation(cx, &err)) {
     fprintf(stderr, "subspectra subdivide: %s: %s\n", o.in, err.msg);

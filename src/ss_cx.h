@@ -1,7 +1,8 @@
 /* ss_cx.h — cell complexes: vertices with coordinates and cells of mixed type.
  *
- * A complex holds `nv` vertices with `dim` coordinates each (1 <= dim <= 4; a
- * scheme acts on every coordinate alike, so dim = 1 carries a scalar field) and,
+ * A complex holds `nv` vertices with `dim` coordinates each (1 <= dim <=
+ * SS_MAXDIM; a scheme acts on every coordinate alike, so dim = 1 carries a
+ * scalar field, and coordinates past the third are fields, ss_mesh.h) and,
  * for every cell type, a flat array of cells.  Cells of different types and
  * dimensions may be mixed freely and need not form a manifold: lower-dimensional
  * cells act as creases (MLCA paper, section 3.2).
@@ -34,7 +35,9 @@ SS_BEGIN_DECLS
 
 typedef uint32_t ss_idx; /* vertex index: complexes hold at most 2^32-2 vertices */
 #define SS_IDX_NONE UINT32_MAX
-#define SS_MAXDIM   4 /* largest number of coordinates per vertex */
+#define SS_MAXDIM                                                                        \
+  16 /* largest number of coordinates per vertex: 3 for the                              \
+            position and 13 fields (ss_mesh.h) */
 
 typedef enum {
   SS_VERTEX = 0, /* 0-cube: 1 vertex */

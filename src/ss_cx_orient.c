@@ -214,7 +214,7 @@ static int measures(const ss_cx *cx, ss_cell_type t, const ss_idx *v, double *m,
       }
     }
   } else if (t == SS_OCT) {
-    double ctr[SS_MAXDIM] = {0, 0, 0, 0};
+    double ctr[SS_MAXDIM] = {0};
     for (int j = 0; j < 6; j++)
       for (int r = 0; r < c.dim; r++)
         ctr[r] += c.p[j][r] / 6.0;

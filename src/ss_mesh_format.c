@@ -29,23 +29,32 @@ ss_mesh_format ss_mesh_format_from_path(const char *path) {
 
 int ss_mesh_format_readable(ss_mesh_format fmt) {
   return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_TETGEN ||
+         fmt == SS_MESH_VTK || (fmt == SS_MESH_VTU && ss_mesh_vtu_available()) ||
          (fmt == SS_MESH_GMSH && ss_mesh_gmsh_available());
 }
 
 int ss_mesh_format_writable(ss_mesh_format fmt) {
   return fmt == SS_MESH_MEDIT || fmt == SS_MESH_OBJ || fmt == SS_MESH_VTK ||
-         fmt == SS_MESH_VTU;
+         fmt == SS_MESH_VTU || (fmt == SS_MESH_GMSH && ss_mesh_gmsh_available());
 }
 
 const char *ss_mesh_readable_list(void) {
-  return ss_mesh_gmsh_available()
-             ? ".mesh (Medit), .obj, .msh (gmsh) or .node/.ele (TetGen)"
-             : ".mesh (Medit), .obj or .node/.ele (TetGen); .msh needs a build "
-               "with gmsh";
+  static const char *const list[2][2] = {
+      {".mesh (Medit), .obj, .vtk or .node/.ele (TetGen); .msh needs a build with "
+       "gmsh, .vtu one with libxml2",
+       ".mesh (Medit), .obj, .vtk, .vtu or .node/.ele (TetGen); .msh needs a build "
+       "with gmsh"},
+      {".mesh (Medit), .obj, .vtk, .msh (gmsh) or .node/.ele (TetGen); .vtu needs a "
+       "build with libxml2",
+       ".mesh (Medit), .obj, .vtk, .vtu, .msh (gmsh) or .node/.ele (TetGen)"}};
+  return list[ss_mesh_gmsh_available() != 0][ss_mesh_vtu_available() != 0];
 }
 
 const char *ss_mesh_writable_list(void) {
-  return ".mesh (Medit), .vtk, .vtu or .obj";
+  return ss_mesh_gmsh_available()
+             ? ".mesh (Medit), .vtk, .vtu, .msh (gmsh 4.1) or .obj"
+             : ".mesh (Medit), .vtk, .vtu or .obj; .msh needs a build "
+               "with gmsh";
 }
 
 const char *ss_mesh_format_name(ss_mesh_format fmt) {

@@ -30,13 +30,11 @@
 #include <string.h>
 
 #if SS_HAVE_GMSH
+#include "ss_mesh_gmsh_api.h"
 #include "ss_mesh_gmsh_scan.h"
 
-#include <dlfcn.h>
 #include <gmshc.h>
-#include <locale.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -104,71 +102,15 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
                       path, path, ss_mesh_readable_list());
 }
 
+ss_status ss_mesh_read_gmsh_fields(const char *path, ss_cx **out, ss_mesh_fields *names,
+                                   ss_error *err) {
+  if (names) memset(names, 0, sizeof *names);
+  return ss_mesh_read_gmsh(path, out, err);
+}
+
 #else
 
-/* gmsh's C API as function pointers, looked up in the child by load_api.
- * The types come from gmshc.h, so a changed signature is a compile error. */
-#define SS_GMSH_FUNCS(X)                                                                 \
-  X(gmshInitialize)                                                                      \
-  X(gmshFinalize)                                                                        \
-  X(gmshFree)                                                                            \
-  X(gmshOpen)                                                                            \
-  X(gmshOptionSetNumber)                                                                 \
-  X(gmshLoggerGetLastError)                                                              \
-  X(gmshModelGetDimension)                                                               \
-  X(gmshModelGetEntities)                                                                \
-  X(gmshModelGetPhysicalGroupsForEntity)                                                 \
-  X(gmshModelMeshGetNodes)                                                               \
-  X(gmshModelMeshGetElements)                                                            \
-  X(gmshModelMeshGetElementProperties)                                                   \
-  X(gmshViewGetTags)                                                                     \
-  X(gmshViewGetHomogeneousModelData)
-
-typedef struct {
-#define SS_GMSH_FIELD(f) __typeof__(f) *f; /* gmsh's function f */
-  SS_GMSH_FUNCS(SS_GMSH_FIELD)
-#undef SS_GMSH_FIELD
-} gmsh_api;
-
-#define SS_STR_(x) #x
-#define SS_STR(x)  SS_STR_(x)
-/* The soname of the gmsh whose header this was compiled against. */
-#define SS_GMSH_SONAME                                                                   \
-  "libgmsh.so." SS_STR(GMSH_API_VERSION_MAJOR) "." SS_STR(GMSH_API_VERSION_MINOR)
-
-/* Open libgmsh and fill g.  The handle is never closed: the child exits
- * after the read.  Errors: SS_EINPUT naming the library and dlerror's text. */
-static ss_status load_api(gmsh_api *g, const char *path, ss_error *err) {
-  void *h = dlopen(SS_GMSH_SONAME, RTLD_NOW | RTLD_LOCAL);
-  if (!h)
-    return ss_error_set(err, SS_EINPUT, "%s: cannot load gmsh (%s) to read it: %s", path,
-                        SS_GMSH_SONAME, dlerror());
-    /* dlsym returns an object pointer; ISO C has no conversion to a function
-     * pointer, so the bits are copied (POSIX guarantees they are one) */
-#define SS_GMSH_LOAD(f)                                                                  \
-  {                                                                                      \
-    void *p = dlsym(h, #f);                                                              \
-    if (!p)                                                                              \
-      return ss_error_set(err, SS_EINPUT, "%s: %s has no %s: %s", path, SS_GMSH_SONAME,  \
-                          #f, dlerror());                                                \
-    memcpy(&g->f, &p, sizeof p);                                                         \
-  }
-  SS_GMSH_FUNCS(SS_GMSH_LOAD)
-#undef SS_GMSH_LOAD
-  return SS_OK;
-}
-
-/* gmsh's API is global state: one read at a time in the whole process. */
-static pthread_mutex_t gmsh_lock = PTHREAD_MUTEX_INITIALIZER;
-
-/* The text of gmsh's last error, or a fallback. */
-static void last_error(const gmsh_api *g, char *buf, size_t n) {
-  char *e = NULL;
-  int ierr = 0;
-  g->gmshLoggerGetLastError(&e, &ierr);
-  snprintf(buf, n, "%s", !ierr && e && *e ? e : "gmsh could not read the file");
-  g->gmshFree(e);
-}
+typedef ss_gmsh_api gmsh_api;
 
 static int cmp_size(const void *a, const void *b) {
   const size_t x = *(const size_t *)a, y = *(const size_t *)b;
@@ -271,44 +213,60 @@ done:
   return st;
 }
 
-/* The scalar node field of view `tag` (its first step) as a 4th coordinate
- * of cx's vertices (nd: their tags): *out a new complex of 4 coordinates
- * (z = 0 for a plane), vertices only.  SS_EINPUT for a node without a value
- * or a value that is not finite; SS_ENOMEM. */
+/* The node field of view `tag` (its first step, nc components per node) as
+ * coordinates appended to those of cx's vertices (nd: their tags): *out a
+ * new complex of max(3, dim) + nc coordinates (z = 0 for a plane), vertices
+ * only.  SS_EINPUT for a node without a value or a value that is not
+ * finite; SS_ENOMEM. */
 static ss_status field_complex(const char *path, const node_tags *nd, const ss_cx *cx,
                                const size_t *tags, size_t ntags, const double *data,
-                               ss_cx **out, ss_error *err) {
+                               int nc, ss_cx **out, ss_error *err) {
   ss_status st = SS_OK;
   ss_cx *f = NULL;
-  double *w = malloc((cx->nv + 1) * sizeof *w);
+  const size_t n = (size_t)nc;
+  double *w = malloc((cx->nv * n + 1) * sizeof *w);
   if (!w) return ss_error_nomem(err, "gmsh node field");
-  for (size_t v = 0; v < cx->nv; v++)
+  for (size_t v = 0; v < cx->nv * n; v++)
     w[v] = NAN;
   for (size_t i = 0; i < ntags; i++) {
     const size_t *k = bsearch(tags + i, nd->sorted, nd->n, sizeof *nd->sorted, cmp_size);
     if (!k) continue; /* a node no element uses (version 2 drops it) */
-    if (!isfinite(data[i])) {
-      st = ss_error_set(err, SS_EINPUT,
-                        "%s: $NodeData: the value of node %zu is %g, not a finite number",
-                        path, tags[i], data[i]);
-      goto done;
+    for (size_t c = 0; c < n; c++) {
+      if (!isfinite(data[i * n + c])) {
+        st = ss_error_set(
+            err, SS_EINPUT,
+            "%s: $NodeData: the value of node %zu is %g, not a finite number", path,
+            tags[i], data[i * n + c]);
+        goto done;
+      }
+      w[(size_t)(k - nd->sorted) * n + c] = data[i * n + c];
     }
-    w[k - nd->sorted] = data[i];
   }
   for (size_t v = 0; v < cx->nv; v++)
-    if (isnan(w[v])) {
+    if (isnan(w[v * n])) {
       st = ss_error_set(err, SS_EINPUT,
                         "%s: $NodeData gives node %zu no value (a field needs one per "
                         "node)",
                         path, nd->sorted[v]);
       goto done;
     }
-  if ((st = ss_cx_new(4, &f, err)) || (st = ss_cx_reserve_vertices(f, cx->nv, err)))
+  const int d0 = cx->dim < 3 ? 3 : cx->dim;
+  if (d0 + nc > SS_MAXDIM) {
+    st = ss_error_set(
+        err, SS_EINPUT,
+        "%s: the $NodeData views have more than %d components in all; a mesh "
+        "carries at most %d fields",
+        path, SS_MAXDIM - 3, SS_MAXDIM - 3);
+    goto done;
+  }
+  if ((st = ss_cx_new(d0 + nc, &f, err)) || (st = ss_cx_reserve_vertices(f, cx->nv, err)))
     goto done;
   for (size_t v = 0; v < cx->nv; v++) {
-    double x[4] = {0, 0, 0, w[v]};
+    double x[SS_MAXDIM] = {0};
     for (int d = 0; d < cx->dim; d++)
       x[d] = cx->x[v * (size_t)cx->dim + (size_t)d];
+    for (size_t c = 0; c < n; c++)
+      x[(size_t)d0 + c] = w[v * n + c];
     if ((st = ss_cx_add_vertex(f, x, cx->vref[v], err))) goto done;
   }
 done:
@@ -320,17 +278,36 @@ done:
   return st;
 }
 
-/* A field per node: gmsh makes each $NodeData section (by name) a view.
- * With one view of scalar node data, its first step becomes the 4th
- * coordinate of the vertices in *cx (replaced), as a Medit "Dimension 4";
- * views of element data or of vectors and tensors are not read.  SS_EINPUT
- * for two scalar node views (a complex holds one field) and as
+/* The name of view `tag` into names->name[k] (and k + 1, k + 2 with the
+ * suffixes _x, _y, _z for a vector). */
+static void view_name(const gmsh_api *g, int tag, int nc, ss_mesh_fields *names, int k) {
+  int ierr = 0;
+  const int idx = g->gmshViewGetIndex(tag, &ierr);
+  char opt[64], *name = NULL;
+  snprintf(opt, sizeof opt, "View[%d].Name", idx);
+  if (!ierr) g->gmshOptionGetString(opt, &name, &ierr);
+  const char *nm = !ierr && name && *name ? name : "field";
+  for (int c = 0; c < nc; c++)
+    if (nc == 1)
+      snprintf(names->name[k + c], SS_FIELD_NAME_MAX, "%.48s", nm);
+    else
+      snprintf(names->name[k + c], SS_FIELD_NAME_MAX, "%.48s_%c", nm, "xyz"[c]);
+  g->gmshFree(name);
+}
+
+/* Fields per node: gmsh makes each $NodeData section (by name) a view.
+ * Each view of node data with 1 or 3 components (a scalar, a vector), its
+ * first step, becomes coordinates appended to the vertices in *cx (replaced),
+ * in the order of gmsh's views: a scalar alone is a 4th coordinate as in a
+ * Medit "Dimension 4"; names->name the views' names (a vector's NAME_x, _y,
+ * _z).  Views of element data or of tensors are not read.  SS_EINPUT as
  * field_complex; SS_ENOMEM. */
 static ss_status read_field(const gmsh_api *g, const char *path, const node_tags *nd,
-                            ss_cx **cx, ss_error *err) {
+                            ss_cx **cx, ss_mesh_fields *names, ss_error *err) {
   ss_status st = SS_OK;
-  int *vt = NULL, ierr = 0, found = -1;
+  int *vt = NULL, ierr = 0;
   size_t nvt = 0;
+  names->n = 0;
   g->gmshViewGetTags(&vt, &nvt, &ierr);
   if (ierr)
     return ss_error_set(err, SS_EINPUT, "%s: gmsh could not list its views", path);
@@ -341,19 +318,14 @@ static ss_status read_field(const gmsh_api *g, const char *path, const node_tags
     int ncomp = 0;
     g->gmshViewGetHomogeneousModelData(vt[i], 0, &type, &tags, &ntags, &data, &ndata,
                                        &time, &ncomp, &ierr);
-    if (!ierr && type && !strcmp(type, "NodeData") && ncomp == 1 && ndata == ntags) {
-      if (found >= 0)
-        st = ss_error_set(err, SS_EINPUT,
-                          "%s: two scalar $NodeData fields; a mesh carries one (the 4th "
-                          "coordinate)",
-                          path);
-      else {
-        ss_cx *f = NULL;
-        found = vt[i];
-        if (!(st = field_complex(path, nd, *cx, tags, ntags, data, &f, err))) {
-          ss_cx_free(*cx);
-          *cx = f;
-        }
+    if (!ierr && type && !strcmp(type, "NodeData") && (ncomp == 1 || ncomp == 3) &&
+        ndata == ntags * (size_t)ncomp) {
+      ss_cx *f = NULL;
+      if (!(st = field_complex(path, nd, *cx, tags, ntags, data, ncomp, &f, err))) {
+        ss_cx_free(*cx);
+        *cx = f;
+        view_name(g, vt[i], ncomp, names, names->n);
+        names->n += ncomp;
       }
     }
     g->gmshFree(type);
@@ -501,14 +473,14 @@ static ss_status add_cells(ss_cx *cx, const char *path, elem_lists *es, ss_error
 /* Read the model gmsh holds into a new complex: its nodes, then the
  * elements of every entity, then those as cells. */
 static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
-                         ss_error *err) {
+                         ss_mesh_fields *names, ss_error *err) {
   node_tags nd = {NULL, 0};
   elem_lists es;
   memset(&es, 0, sizeof es);
   ss_cx *cx = NULL;
   *out = NULL;
   ss_status st = read_nodes(g, path, &nd, &cx, err);
-  if (!st) st = read_field(g, path, &nd, &cx, err);
+  if (!st) st = read_field(g, path, &nd, &cx, names, err);
   if (!st) st = gather_elements(g, path, &nd, &es, err);
   if (!st) st = add_cells(cx, path, &es, err);
   if (!st) {
@@ -523,33 +495,22 @@ static ss_status extract(const gmsh_api *g, const char *path, ss_cx **out,
 }
 
 /* Read path with gmsh in this process (the child of ss_mesh_read_gmsh). */
-static ss_status read_here(const char *path, ss_cx **out, ss_error *err) {
+static ss_status read_here(const char *path, ss_cx **out, ss_mesh_fields *names,
+                           ss_error *err) {
   gmsh_api api = {0}, *g = &api;
-  ss_status st = load_api(g, path, err);
-  if (st) return st;
-  /* gmshInitialize sets the locale from the environment: keep the caller's */
-  const char *cur = setlocale(LC_ALL, NULL);
-  char *saved = cur ? strdup(cur) : NULL;
-  if (cur && !saved) return ss_error_nomem(err, "locale name");
+  char *saved = NULL;
+  ss_status st = ss_gmsh_api_load(g, path, err);
+  if (st || (st = ss_gmsh_begin(g, path, &saved, err))) return st;
   int ierr = 0;
-  g->gmshInitialize(0, NULL, 0, &ierr);
+  g->gmshOpen(path, &ierr);
   if (ierr) {
-    st = ss_error_set(err, SS_EINPUT, "%s: gmsh could not be initialised", path);
+    char msg[300];
+    ss_gmsh_last_error(g, msg, sizeof msg);
+    st = ss_error_set(err, SS_EINPUT, "%s: %s", path, msg);
   } else {
-    g->gmshOptionSetNumber("General.Terminal", 0, &ierr);
-    g->gmshOptionSetNumber("General.Verbosity", 0, &ierr);
-    g->gmshOpen(path, &ierr);
-    if (ierr) {
-      char msg[300];
-      last_error(g, msg, sizeof msg);
-      st = ss_error_set(err, SS_EINPUT, "%s: %s", path, msg);
-    } else {
-      st = extract(g, path, out, err);
-    }
-    g->gmshFinalize(&ierr);
+    st = extract(g, path, out, names, err);
   }
-  if (saved) setlocale(LC_ALL, saved);
-  free(saved);
+  ss_gmsh_end(g, saved);
   return st;
 }
 
@@ -568,7 +529,8 @@ static int put_all(int fd, const void *p, size_t n) {
   return 0;
 }
 
-static void send_answer(int fd, ss_status st, const ss_cx *cx, const ss_error *err) {
+static void send_answer(int fd, ss_status st, const ss_cx *cx,
+                        const ss_mesh_fields *names, const ss_error *err) {
   int32_t s = (int32_t)st;
   if (put_all(fd, &s, sizeof s)) return;
   if (st) {
@@ -589,6 +551,9 @@ static void send_answer(int fd, ss_status st, const ss_cx *cx, const ss_error *e
         put_all(fd, cx->cref[t], cx->nc[t] * sizeof(int32_t)))
       return;
   }
+  int32_t n = names->n;
+  if (put_all(fd, &n, sizeof n)) return;
+  put_all(fd, names->name, (size_t)n * SS_FIELD_NAME_MAX);
 }
 
 /* A cursor over the child's answer. */
@@ -607,7 +572,7 @@ static int take(cursor *c, void *dst, size_t n) {
 
 /* Rebuild the complex the child sent; -1 if the answer is short or garbled,
  * -2 out of memory. */
-static int decode(cursor *c, ss_cx **out, ss_error *err) {
+static int decode(cursor *c, ss_cx **out, ss_mesh_fields *names, ss_error *err) {
   int32_t dim;
   uint64_t nv;
   if (take(c, &dim, sizeof dim) || take(c, &nv, sizeof nv) || dim < 1 ||
@@ -648,7 +613,13 @@ static int decode(cursor *c, ss_cx **out, ss_error *err) {
       if (ss_cx_add_cell(cx, (ss_cell_type)t, v, ref, err)) goto nomem;
     }
   }
-  if (c->left) goto bad;
+  int32_t n;
+  if (take(c, &n, sizeof n) || n != (cx->dim > 3 ? cx->dim - 3 : 0) ||
+      take(c, names->name, (size_t)n * SS_FIELD_NAME_MAX) || c->left)
+    goto bad;
+  names->n = n;
+  for (int32_t i = 0; i < n; i++)
+    names->name[i][SS_FIELD_NAME_MAX - 1] = '\0';
   *out = cx;
   return 0;
 bad:
@@ -687,6 +658,14 @@ static ss_status check_counts(const char *path, const ss_gmsh_decl *d, const ss_
 }
 
 ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
+  return ss_mesh_read_gmsh_fields(path, out, NULL, err);
+}
+
+ss_status ss_mesh_read_gmsh_fields(const char *path, ss_cx **out, ss_mesh_fields *names,
+                                   ss_error *err) {
+  ss_mesh_fields tmp;
+  if (!names) names = &tmp;
+  memset(names, 0, sizeof *names);
   *out = NULL;
   ss_status st = check_header(path, err);
   ss_gmsh_decl decl;
@@ -696,10 +675,10 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
    * dies of SIGSEGV: it reads in a child process, whose death becomes a
    * message.  The lock is held across fork, so the child (one thread) never
    * waits for it, and no two reads overlap. */
-  pthread_mutex_lock(&gmsh_lock);
+  ss_gmsh_lock();
   int fd[2];
   if (pipe(fd)) {
-    pthread_mutex_unlock(&gmsh_lock);
+    ss_gmsh_unlock();
     return ss_error_set(err, SS_EIO, "%s: no pipe for the gmsh reader: %s", path,
                         strerror(errno));
   }
@@ -708,7 +687,7 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
     const int e = errno;
     close(fd[0]);
     close(fd[1]);
-    pthread_mutex_unlock(&gmsh_lock);
+    ss_gmsh_unlock();
     return ss_error_set(err, SS_EIO, "%s: cannot start the gmsh reader: %s", path,
                         strerror(e));
   }
@@ -716,8 +695,10 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
     close(fd[0]);
     ss_error e = {0};
     ss_cx *cx = NULL;
-    const ss_status cst = read_here(path, &cx, &e);
-    send_answer(fd[1], cst, cx, &e);
+    ss_mesh_fields nm;
+    memset(&nm, 0, sizeof nm);
+    const ss_status cst = read_here(path, &cx, &nm, &e);
+    send_answer(fd[1], cst, cx, &nm, &e);
     _exit(0);
   }
   close(fd[1]);
@@ -742,7 +723,7 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
   int wst = 0;
   while (waitpid(pid, &wst, 0) < 0 && errno == EINTR) {
   }
-  pthread_mutex_unlock(&gmsh_lock);
+  ss_gmsh_unlock();
   cursor c = {buf, len};
   int32_t s;
   if (nomem) {
@@ -759,7 +740,7 @@ ss_status ss_mesh_read_gmsh(const char *path, ss_cx **out, ss_error *err) {
   } else if (s) {
     st = ss_error_set(err, (ss_status)s, "%.*s", (int)(c.left < 511 ? c.left : 511), c.p);
   } else {
-    const int d = decode(&c, out, err);
+    const int d = decode(&c, out, names, err);
     st = d == 0 ? SS_OK
          : d == -2
              ? ss_error_nomem(err, "mesh from gmsh")

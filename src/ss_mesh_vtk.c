@@ -1,8 +1,9 @@
 /* ss_mesh_vtk.c — VTK writers for ParaView: legacy VTK (ASCII
  * UNSTRUCTURED_GRID) and VTK XML (.vtu: binary, appended raw, UInt64 headers).
  *
- * Points are padded to 3 coordinates; a 4th coordinate travels as the point
- * scalar "w".  VTK has no octahedron, so each is written as two pyramids on its
+ * Points are padded to 3 coordinates; each coordinate past the third (a
+ * field, ss_mesh.h) travels as a point scalar of its name (opts->fields, else
+ * "w", "x5", ...).  VTK has no octahedron, so each is written as two pyramids on its
  * equator 1 2 4 5 (apexes 0 and 3), both with the base normal towards the apex
  * as VTK requires.  Cell data: "ref" (the Medit reference) and "kind" (the
  * ss_cell_type of the cell a VTK cell came from, so split octahedra can be
@@ -14,11 +15,22 @@
 #include <inttypes.h>
 #include <stdint.h>
 
+#include <string.h>
+
 #include "ss_mesh.h"
 
 /* VTK cell type numbers (vtkCellType.h) by ss_cell_type. */
 static const int vtk_type[SS_NCELLTYPES] = {1, 3, 5, 9, 10, 12, 14};
 static const int oct_pyramids[2][5] = {{1, 2, 4, 5, 0}, {1, 5, 4, 2, 3}};
+
+/* The names of cx's fields: opts's when it names them all, else the defaults
+ * (in *tmp). */
+static const ss_mesh_fields *names_of(const ss_cx *cx, const ss_mesh_write_opts *opts,
+                                      ss_mesh_fields *tmp) {
+  if (opts && opts->fields && opts->fields->n >= cx->dim - 3) return opts->fields;
+  ss_mesh_fields_default(cx->dim, tmp);
+  return tmp;
+}
 
 /* VTK cells per cell of type t: an octahedron is two pyramids. */
 static size_t pieces(int t) {
@@ -38,7 +50,10 @@ static size_t vtk_count(const ss_cx *cx, size_t *nints) {
   return ncells;
 }
 
-ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, ss_error *err) {
+ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, const ss_mesh_write_opts *opts,
+                            ss_error *err) {
+  ss_mesh_fields tmp;
+  const ss_mesh_fields *names = names_of(cx, opts, &tmp);
   size_t nints;
   const size_t ncells = vtk_count(cx, &nints);
   fprintf(
@@ -88,10 +103,11 @@ ss_status ss_mesh_write_vtk(FILE *f, const ss_cx *cx, ss_error *err) {
     fprintf(f, "POINT_DATA %zu\nSCALARS vref int 1\nLOOKUP_TABLE default\n", cx->nv);
     for (size_t i = 0; i < cx->nv; i++)
       fprintf(f, "%ld\n", (long)cx->vref[i]);
-    if (cx->dim == 4) {
-      fprintf(f, "SCALARS w double 1\nLOOKUP_TABLE default\n");
+    const size_t dim = (size_t)cx->dim;
+    for (size_t k = 3; k < dim; k++) {
+      fprintf(f, "SCALARS %s double 1\nLOOKUP_TABLE default\n", names->name[k - 3]);
       for (size_t i = 0; i < cx->nv; i++)
-        fprintf(f, "%.17g\n", cx->x[i * 4 + 3]);
+        fprintf(f, "%.17g\n", cx->x[i * dim + k]);
     }
   }
   if (ferror(f)) return ss_error_set(err, SS_EIO, "write error");
@@ -109,6 +125,7 @@ typedef struct {
 
 /* The arrays in the order they are declared and appended. */
 enum { A_POINTS, A_CONN, A_OFFSETS, A_TYPES, A_REF, A_KIND, A_VREF, A_W, A_COUNT };
+/* A_W stands for every field in turn (one array each, coordinate 3 + i). */
 
 static void vtu_da(FILE *f, const vtu_array *a, int k, const char *name, int comps,
                    uint64_t *offset) {
@@ -172,14 +189,18 @@ static void vtu_data(FILE *f, const ss_cx *cx, const vtu_array *a) {
     }
   vtu_head(f, &a[A_VREF]);
   fwrite(cx->vref, sizeof *cx->vref, cx->nv, f);
-  if (cx->dim == 4) {
+  const size_t dim = (size_t)cx->dim;
+  for (size_t k = 3; k < dim; k++) {
     vtu_head(f, &a[A_W]);
     for (size_t i = 0; i < cx->nv; i++)
-      fwrite(&cx->x[i * 4 + 3], sizeof(double), 1, f);
+      fwrite(&cx->x[i * dim + k], sizeof(double), 1, f);
   }
 }
 
-ss_status ss_mesh_write_vtu(FILE *f, const ss_cx *cx, ss_error *err) {
+ss_status ss_mesh_write_vtu(FILE *f, const ss_cx *cx, const ss_mesh_write_opts *opts,
+                            ss_error *err) {
+  ss_mesh_fields tmp;
+  const ss_mesh_fields *names = names_of(cx, opts, &tmp);
   size_t nints;
   const size_t ncells = vtk_count(cx, &nints);
   const vtu_array a[A_COUNT] = {
@@ -210,7 +231,8 @@ ss_status ss_mesh_write_vtu(FILE *f, const ss_cx *cx, ss_error *err) {
   vtu_da(f, a, A_KIND, "kind", 1, &off);
   fprintf(f, "      </CellData>\n      <PointData Scalars=\"vref\">\n");
   vtu_da(f, a, A_VREF, "vref", 1, &off);
-  if (cx->dim == 4) vtu_da(f, a, A_W, "w", 1, &off);
+  for (int k = 3; k < cx->dim; k++)
+    vtu_da(f, a, A_W, names->name[k - 3], 1, &off);
   fprintf(f, "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
              "  <AppendedData encoding=\"raw\">\n   _");
   vtu_data(f, cx, a);

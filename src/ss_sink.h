@@ -179,8 +179,10 @@ static inline void ss_sink_emit_many(ss_sink *k, size_t row, int n, const ss_idx
     ss_sink_emit_many_operator(k, row, n, src, w, scale);
     return;
   }
-  double acc[SS_MAXDIM] = {0.0};
+  double acc[SS_MAXDIM];
   const size_t dim = k->dim;
+  for (size_t r = 0; r < dim; r++)
+    acc[r] = 0.0;
   for (int j = 0; j < n; j++) {
     const double *x = k->xlin + (size_t)src[j] * dim;
     for (size_t r = 0; r < dim; r++)

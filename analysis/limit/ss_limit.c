@@ -77,9 +77,42 @@ static int on_hex(const ss_cx *cx, size_t h, ss_cell_type t, const ss_idx *v) {
   return nagree == 3 - ss_cell_dim(t);
 }
 
+/* Why crease cell v (type t, not on any hex) is not: its vertices on no
+ * hexahedron, on no common one, or corners of hexahedron h that span no
+ * edge or face of it (a diagonal). */
+static void why_off(const ss_lim_adj *a, ss_cell_type t, const ss_idx *v, char *buf,
+                    size_t n) {
+  const ss_cx *cx = a->cx;
+  const int nv = ss_cell_nverts(t);
+  for (int j = 0; j < nv; j++)
+    if (a->vptr[v[j]] == a->vptr[v[j] + 1]) {
+      snprintf(buf, n, "its vertex %lu is on no hexahedron", (unsigned long)v[j] + 1);
+      return;
+    }
+  for (size_t i = a->vptr[v[0]]; i < a->vptr[v[0] + 1]; i++) {
+    const size_t h = a->vcell[i];
+    const ss_idx *hv = ss_cx_cell(cx, SS_HEX, h);
+    int all = 1;
+    for (int j = 0; j < nv && all; j++) {
+      int in = 0;
+      for (int k = 0; k < 8; k++)
+        in |= hv[k] == v[j];
+      all = in;
+    }
+    if (all) {
+      snprintf(buf, n, "its vertices are corners of hexahedron %zu but %s", h + 1,
+               t == SS_SEGMENT ? "not the ends of one of its edges (a diagonal)"
+                               : "not one of its faces");
+      return;
+    }
+  }
+  snprintf(buf, n, "its vertices are not corners of one hexahedron");
+}
+
 /* SS_EINPUT naming the first crease cell (vertex cell, segment, quad) that
- * is no corner, edge or face of a hex: a patch holds the cells on its hexes
- * only. */
+ * is no corner, edge or face of a hex, its vertices (the file's numbers) and
+ * why: a patch holds the cells on its hexes only, though subdivide refines
+ * such a cell as a crease. */
 static ss_status check_creases(const ss_lim_adj *a, ss_error *err) {
   const ss_cx *cx = a->cx;
   const ss_cell_type ts[] = {SS_VERTEX, SS_SEGMENT, SS_QUAD};
@@ -89,14 +122,21 @@ static ss_status check_creases(const ss_lim_adj *a, ss_error *err) {
       int found = 0;
       for (size_t j = a->vptr[v[0]]; j < a->vptr[v[0] + 1] && !found; j++)
         found = on_hex(cx, a->vcell[j], ts[i], v);
-      if (!found)
-        return ss_error_set(err, SS_EINPUT,
-                            "limit evaluation: %s %zu is not %s of any hexahedron "
-                            "(creases and boundary cells must lie on the hexahedra)",
-                            ss_cell_name(ts[i]), c + 1,
-                            ts[i] == SS_QUAD      ? "a face"
-                            : ts[i] == SS_SEGMENT ? "an edge"
-                                                  : "a corner");
+      if (found) continue;
+      char verts[64] = "", why[160];
+      for (int j = 0, at = 0; j < ss_cell_nverts(ts[i]) && at < (int)sizeof verts; j++)
+        at += snprintf(verts + at, sizeof verts - (size_t)at, "%s%lu", j ? " " : "",
+                       (unsigned long)v[j] + 1);
+      why_off(a, ts[i], v, why, sizeof why);
+      return ss_error_set(err, SS_EINPUT,
+                          "limit evaluation: %s %zu (vertices %s) is not %s of any "
+                          "hexahedron: %s; subdivide refines it as a crease, but "
+                          "the limit is evaluated only with creases on the hexahedra",
+                          ss_cell_name(ts[i]), c + 1, verts,
+                          ts[i] == SS_QUAD      ? "a face"
+                          : ts[i] == SS_SEGMENT ? "an edge"
+                                                : "a corner",
+                          why);
     }
   return SS_OK;
 }

@@ -146,6 +146,11 @@ typedef struct {
   size_t transitions; /* (key, child) transitions computed */
   size_t eigs;        /* eigen-decompositions computed (stationary runs) */
   size_t tensor;      /* extraordinary-edge patches found to factor (eq. (1)) */
+  double matrix_s;    /* CPU seconds spent computing transitions: one
+                         refinement step of a patch and its matrix W (the
+                         direct-limit paper's "subdivision matrix" stage) */
+  double eig_s;       /* CPU seconds spent in eigen-decompositions of W (its
+                         "eigenstructure" stage) */
 } ss_limit_stats;
 
 /* An evaluator for the limit of `mesh` under scheme s.  The scheme is

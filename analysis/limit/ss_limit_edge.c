@@ -1,6 +1,7 @@
 /* ss_limit_edge.c — the leading terms of the limit near a point on an
  * extraordinary edge, from the stationary run's eigenvectors (method:
  * ss_limit_edge.h). */
+#include "ss_clock.h"
 #include "ss_limit_edge.h"
 
 #include <complex.h>
@@ -299,7 +300,9 @@ ss_status ss_limit_edge_model(ss_limit *L, size_t cell, const double x[3], int a
   out->axis = axis;
   out->steps = f.steps;
   if (!f.t->eig) {
+    double t0 = ss_clock_cpu();
     if ((st = ss_lim_eig_new(f.t->W, L->st[f.s]->patch.nv, &f.t->eig, err))) goto done;
+    ss_clock_lap(&L->stats.eig_s, &t0);
     L->stats.eigs++;
   }
   const ss_lim_eig *e = f.t->eig;

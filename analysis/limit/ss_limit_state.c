@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ss_clock.h"
 #include "ss_limit_impl.h"
 
 void ss_lim_tensor_free(ss_lim_tensor *t) {
@@ -169,6 +170,7 @@ ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
   if (!t) return ss_error_nomem(err, "transition");
   ss_lim_patch child;
   ss_cx *ccx;
+  double t0 = ss_clock_cpu();
   if ((st = ss_lim_step(L->s, s->cx, k, 1, &child, &t->g, &ccx, &t->W, err))) {
     free(t);
     return st;
@@ -178,6 +180,7 @@ ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
     free(t);
     return st;
   }
+  ss_clock_lap(&L->stats.matrix_s, &t0);
   L->st[i]->tr[k] = t; /* L->st may have moved, the state has not */
   L->stats.transitions++;
   L->st[t->next]->coarse_only = 0; /* a child's patch: keep its transitions */

@@ -2,6 +2,7 @@
  * eigen-jumps over stationary runs and eq. (1) along extraordinary edges,
  * the Jacobian at a fixed point, and the reference by repeated local
  * subdivision (method in ss_limit.h). */
+#include "ss_clock.h"
 #include "ss_limit.h"
 
 #include <complex.h>
@@ -538,7 +539,9 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
       long m = ss_lim_run_length(&pt, ss_cube_corner_bits(3, k));
       if (m < 0 || m >= JUMP_MIN) {
         if (!t->eig) {
+          double t0 = ss_clock_cpu();
           if ((st = ss_lim_eig_new(t->W, S->patch.nv, &t->eig, err))) goto done;
+          ss_clock_lap(&L->stats.eig_s, &t0);
           L->stats.eigs++;
         }
         if (m < 0 && derivatives) {

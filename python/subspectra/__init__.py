@@ -539,8 +539,9 @@ def _cx_from_arrays(points, cells, err):
     """A new ss_cx holding points (nv x dim) and cells (meshio's dict or list
     of (type, array) pairs, or CellBlocks); its arrays filled directly."""
     points = np.ascontiguousarray(points, dtype=np.float64)
-    if points.ndim != 2 or not 1 <= points.shape[1] <= 4:
-        raise ValueError("points: expected an array of shape (n, dim), dim 1..4, not %s"
+    if points.ndim != 2 or not 1 <= points.shape[1] <= 16:
+        raise ValueError("points: expected an array of shape (n, dim), dim 1..16 "
+                         "(SS_MAXDIM), not %s"
                          % (points.shape,))
     if isinstance(cells, dict):
         cells = list(cells.items())
@@ -596,7 +597,7 @@ def subdivide(scheme, points, cells, levels=1, diagonals=None):
     """Refine a mesh `levels` times with the scheme, as `subspectra subdivide
     --scheme SCHEME --levels L IN -o OUT` does between reading IN and writing
     OUT: (points, cells) in, (points, cells) out.  points is an (n, dim)
-    array (dim 1..4: every coordinate is refined alike, so extra columns
+    array (dim 1..16: every coordinate is refined alike, so extra columns
     carry fields); cells is meshio's: a dict {type: (m, k) int array} or a
     list of (type, array) pairs or CellBlocks, with meshio's (VTK's) types
     and vertex orders -- vertex, line, triangle, quad, tetra, hexahedron --

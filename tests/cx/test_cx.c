@@ -119,7 +119,12 @@ static void test_validate(void) {
   CHECK(ss_cx_validate(c, &err) == SS_EINPUT && strstr(err.msg, "out of range"),
         "index out of range: %s", err.msg);
   ss_cx_free(c);
-  CHECK(ss_cx_new(5, &c, &err) == SS_EINPUT && c == NULL, "dimension 5 rejected");
+  CHECK(ss_cx_new(SS_MAXDIM + 1, &c, &err) == SS_EINPUT && c == NULL,
+        "dimension SS_MAXDIM + 1 rejected");
+  CHECK(ss_cx_new(0, &c, &err) == SS_EINPUT && c == NULL, "dimension 0 rejected");
+  CHECK(ss_cx_new(SS_MAXDIM, &c, &err) == SS_OK && c && c->dim == SS_MAXDIM,
+        "dimension SS_MAXDIM (3 + 13 fields) taken");
+  ss_cx_free(c);
 }
 
 static void test_hash(void) {

@@ -17,6 +17,10 @@ trap 'rm -rf "$tmp"' EXIT
 expect 0 "--pattern P" "$exe" deform --help
 expect 2 "unknown pattern 'waves': expected grid or checker" "$exe" deform --scheme tetoct "$tets" --pattern waves
 expect 2 "exactly one of --points and --pattern" "$exe" deform --scheme tetoct "$tets"
+# a mesh with fields (issue 36): named, and refused rather than dropped silently
+awk '/^Dimension/ {print "Dimension 4"; next} /^Vertices/ {print; getline; print; n = $1; next}
+  n > 0 {$NF = 2.5 " " $NF; n--} {print}' "$tets" >"$tmp/f4.mesh"
+expect 2 "f4.mesh carries 1 field \\(w\\), which deform does not evaluate yet" "$exe" deform --scheme tetoct "$tmp/f4.mesh" --pattern grid
 printf '0.1 0.2 0.3\n0.5 0.5 0.5\n' > "$tmp/p.txt"
 printf '0 0 0\n0 0 1\n1 0 0\n' > "$tmp/d3.txt"
 expect 2 "d3.txt has 3 displacements; .*cube-6tets.mesh has 8 control points" "$exe" deform --scheme tetoct "$tets" --points "$tmp/p.txt" --displace "$tmp/d3.txt"

@@ -292,7 +292,7 @@ for args, exc, what in (
         ((cube, {"tetra": tets[:, :3]}), ValueError, "expected integers of shape (m, 4)"),
         ((cube, {"tetra": tets + 1}), ValueError, "vertex indices outside 0..7"),
         ((cube, {"tetra": tets * 1.0}), ValueError, "expected integers"),
-        ((np.zeros((8, 5)), {"tetra": tets}), ValueError, "dim 1..4"),
+        ((np.zeros((8, 17)), {"tetra": tets}), ValueError, "dim 1..16"),
         ((cube, {"tetra": np.vstack([tets[:1, [1, 0, 2, 3]], tets[1:]])}),
          subspectra.SubspectraError, "tetrahedron 1"),
         ((cube, {"hexahedron": np.array([[0, 1, 3, 2, 4, 5, 7, 6]])}),

@@ -62,7 +62,16 @@ for s in mlca ccsolid; do
   checks=$((checks + 1)); [ "$c" -eq 64 ] || fail "$s: cube-creased.mesh: $c full sample lines, not 64"
 done
 sed 's/^Quadrilaterals$/Edges\n1\n1 4 0\nQuadrilaterals/' "$cube" > "$tmp/diag.mesh"
-expect 2 "segment 1 is not an edge of any hexahedron" "$exe" limit --scheme ccsolid "$tmp/diag.mesh" --samples 2
+# the refusal names the cell, its vertices and why; subdivide takes each of
+# these meshes, as the message says
+expect 2 "segment 1 \(vertices 1 4\) is not an edge of any hexahedron: its vertices are corners of hexahedron 1 but not the ends of one of its edges \(a diagonal\); subdivide refines it" "$exe" limit --scheme ccsolid "$tmp/diag.mesh" --samples 2
+expect 0 "wrote" "$exe" subdivide --scheme ccsolid "$tmp/diag.mesh" -o "$tmp/diag.out.mesh"
+sed 's/^Quadrilaterals$/Quadrilaterals\n7\n1 2 8 7 0/; 0,/^6$/{/^6$/d}' "$cube" > "$tmp/qdiag.mesh"
+expect 2 "quadrilateral 1 \(vertices 1 2 8 7\) is not a face of any hexahedron: its vertices are corners of hexahedron 1 but not one of its faces" "$exe" limit --scheme mlca "$tmp/qdiag.mesh" --samples 2
+expect 0 "wrote" "$exe" subdivide --scheme mlca "$tmp/qdiag.mesh" -o "$tmp/qdiag.out.mesh"
+awk '/^Vertices/ {print; getline; print $1 + 1; v = 1; next} v && /^$/ && !done {print "5 5 5 0"; done = 1} {print} END {print "Corners\n1\n9"}' "$cube" | sed '$!{/^End$/d}' > "$tmp/vfar.mesh"
+expect 2 "corner 1 \(vertices 9\) is not a corner of any hexahedron: its vertex 9 is on no hexahedron" "$exe" limit --scheme mlca "$tmp/vfar.mesh" --samples 2
+expect 0 "wrote" "$exe" subdivide --scheme mlca "$tmp/vfar.mesh" -o "$tmp/vfar.out.mesh"
 expect 2 "--gauss '0'" "$exe" limit --scheme mlca "$mesh" --gauss 0
 expect 2 "--format: expected text, json, vtk or vtu" "$exe" limit --scheme mlca "$mesh" --gauss 1 --format xml
 expect 2 "No such file" "$exe" limit --scheme mlca /nonexistent.mesh --gauss 1
@@ -220,7 +229,34 @@ else
   tomsh "$tmp/w.mesh" 63 > "$tmp/w63.msh"
   expect 2 "NodeData gives node 64 no value" "$exe" limit --scheme mlca "$tmp/w63.msh" --samples 2
   { tomsh "$tmp/w.mesh"; awk '/^\$NodeData/ {on = 1} on' "$tmp/w.msh" | sed 's/density/stiffness/'; } > "$tmp/w2.msh"
-  expect 2 "two scalar .NodeData fields" "$exe" limit --scheme mlca "$tmp/w2.msh" --samples 2
+  # field names (issue 36): the view's name; two views are two fields, a
+  # 3-component view (here the position) NAME_x, _y, _z
+  expect 0 '"fields":\{"density":' "$exe" limit -s mlca "$tmp/w.msh" --at "14 0.5 0.5 0.5" -f json
+  out=$("$exe" limit --scheme mlca "$tmp/w2.msh" --at "14 0.3 0.6 0.2" -f json)
+  checks=$((checks + 1))
+  echo "$out" | grep -Eq '"fields":\{"density":([-0-9.e]+),"stiffness":\1\}' ||
+    fail "two \$NodeData views: not density and stiffness, equal: $out"
+  { tomsh "$tmp/w.mesh"
+    awk '/^Vertices/ {sec = "V"} /^Hexahedra/ {sec = ""} sec == "V" && NF == 5 {n++; L[n] = n " " $1 " " $2 " " $3}
+      END { printf "$NodeData\n1\n\"pos\"\n1\n0.0\n3\n0\n3\n%d\n", n
+        for (i = 1; i <= n; i++) print L[i]
+        printf "$EndNodeData\n" }' "$tmp/w.mesh"; } > "$tmp/wv.msh"
+  "$exe" limit --scheme mlca "$tmp/wv.msh" --samples 3 -d -f json > "$tmp/wv.json"
+  checks=$((checks + 1))
+  python3 - "$tmp/wv.json" <<'PY' || fail "a vector \$NodeData view: pos_x/_y/_z are not the limit point and its Jacobian"
+import json, sys
+n = 0
+for line in open(sys.argv[1]):
+    p = json.loads(line)
+    f, g, x, J = p["fields"], p["field_gradients"], p["point"], p["jacobian"]
+    assert sorted(f) == ["density", "pos_x", "pos_y", "pos_z"], sorted(f)
+    for a, c in enumerate("xyz"):
+        assert abs(f["pos_" + c] - x[a]) <= 1e-13 * max(1, abs(x[a])), (f, x)
+        for r in range(3):
+            assert abs(g["pos_" + c][r] - J[r][a]) <= 1e-13 * max(1, abs(J[r][a]))
+    n += 1
+assert n == 729
+PY
 fi
 # a vertex without its w shifts the section: refused by the reader, exit 2
 awk 'NR == 9 {print $1, $2, $3, $5; next} {print}' "$tmp/w.mesh" > "$tmp/short.mesh"

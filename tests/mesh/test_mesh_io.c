@@ -409,7 +409,7 @@ static void test_vtk(void) {
   char *buf = NULL;
   size_t len = 0;
   FILE *f = open_memstream(&buf, &len);
-  REQUIRE_OK_VOID(ss_mesh_write_vtk(f, a, &err), &err);
+  REQUIRE_OK_VOID(ss_mesh_write_vtk(f, a, NULL, &err), &err);
   fclose(f);
   size_t ncells = ss_cx_ncells(a) + a->nc[SS_OCT];
   char want[64];
@@ -457,7 +457,7 @@ static const struct {
     {"non-numeric-coordinate.mesh", 6, "coordinate 'abc' is not a number"},
     {"truncated.mesh", 7, "unexpected end of file in Vertices: 2 of 4 entries read"},
     {"negative-count.mesh", 4, "Vertices count -4 is out of range"},
-    {"bad-dimension.mesh", 2, "Dimension 7 is out of range 1..4"},
+    {"bad-dimension.mesh", 2, "Dimension 17 is out of range 1..16"},
     {"prisms.mesh", 11, "Prisms are not supported"},
     {"vertices-before-dimension.mesh", 2, "Vertices before Dimension"},
     {"nan-coordinate.mesh", 6, "coordinate 'nan' is not a finite number"},
@@ -525,7 +525,9 @@ static void test_bad_files(void) {
   CHECK(ss_mesh_read("/nonexistent/x.mesh", SS_MESH_AUTO, &cx, &err) == SS_EIO &&
             strstr(err.msg, "/nonexistent/x.mesh"),
         "missing file is SS_EIO naming the path: %s", err.msg);
-  CHECK(ss_mesh_read("x.vtk", SS_MESH_AUTO, &cx, &err) == SS_EINPUT, "VTK is write-only");
+  CHECK(ss_mesh_read("/nonexistent/x.vtk", SS_MESH_AUTO, &cx, &err) == SS_EIO &&
+            strstr(err.msg, "/nonexistent/x.vtk"),
+        "VTK is read (issue 36): a missing file is SS_EIO: %s", err.msg);
   CHECK(ss_mesh_read("x.stl", SS_MESH_AUTO, &cx, &err) == SS_EINPUT, "unknown extension");
 }
 

@@ -41,7 +41,7 @@ checks=$((checks + 1))
 cmp -s "$tmp/stdout.vtu" "$tmp/to.vtu" || fail "-o /dev/stdout --output-format vtu differs from to.vtu"
 checks=$((checks + 1))
 grep -q '^wrote /dev/stdout (vtu)$' "$tmp/stderr" || fail "no summary on stderr: $(cat "$tmp/stderr")"
-expect 2 "--output-format: expected medit, vtk, vtu or obj, not 'xml'" \
+expect 2 "--output-format: expected medit, vtk, vtu, gmsh or obj, not 'xml'" \
   "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o /dev/stdout --output-format xml
 expect 2 "cannot tell the format of '/dev/stdout'" \
   "$exe" subdivide --scheme tetoct "$m/cube-6tets.mesh" -o /dev/stdout
