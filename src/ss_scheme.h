@@ -63,6 +63,40 @@ typedef struct {
                    some is not, and certified verdicts say so, proving nothing */
 } ss_averaging_vary;
 
+/* The points family (ss_scheme_points.c): every new point a weighted sum of
+ * means of centroids of the coarse elements incident to its element (those
+ * containing it or contained in it).  A fine vertex of a split stands for a
+ * coarse element of dimension d (0 an old vertex, 1 an edge, 2 a face, 3 a
+ * cell); its new position is
+ *     sum over k of w[place][d][k](n) * (mean over the distinct coarse
+ *     elements E of dimension k with E in X or X in E of centroid(E)),
+ * X its element, n the number of elements of the place's top dimension at X,
+ * and place 0 (volume: points of a hex mesh off its surface, averaged over
+ * hexes), 1 (surface: the boundary faces and quad cells of a hex mesh as
+ * ccsolid takes them, or a triangle surface; averaged over its faces), 2
+ * (crease: crease edges and vertices after ss_crease.h, averaged over the
+ * crease edges).  Corners are interpolated. */
+enum { SS_PTS_VOLUME = 0, SS_PTS_SURFACE = 1, SS_PTS_CREASE = 2, SS_PTS_PLACES = 3 };
+
+typedef struct {
+  ss_split_kind split;                  /* SS_SPLIT_MULTILINEAR (hexes, quads, segments,
+                                           vertices) or SS_SPLIT_TETOCT (triangles, segments,
+                                           vertices: Loop's 1-to-4 split) */
+  const double *w[SS_PTS_PLACES][4][4]; /* w[place][d][k][n], n = 1..SS_AVG_NMAX
+                                           (w[..][0] unused), copied; NULL: 0 at
+                                           every n, and all NULL for (place, d):
+                                           the centroid of X (k = 0 weight 1) */
+  int rational; /* 1: every weight is rational at every n (the exact path may
+                   read them) */
+} ss_points;
+
+/* Build a points-family scheme (the weights copied).  For each (place, d)
+ * given, the weights must sum to 1 within 1e-12 at every n (SS_EINPUT naming
+ * them); SS_ENOMEM.  The rule refuses what ccsolid refuses (non-manifold hex
+ * meshes) and a fine vertex whose n exceeds SS_AVG_NMAX (SS_EINPUT). */
+ss_status ss_scheme_points_new(const char *name, const ss_points *p, ss_scheme **out,
+                               ss_error *err);
+
 /* Names of the built-in schemes, NULL-terminated. */
 const char *const *ss_scheme_names(void);
 

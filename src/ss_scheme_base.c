@@ -30,6 +30,7 @@ void ss_scheme_free(ss_scheme *s) {
     free(s->vtab[t]);
     free(s->vrow[t]);
   }
+  free(s->ptab);
   free(s);
 }
 

@@ -40,9 +40,12 @@ struct ss_scheme {
                                          at valence n, the first equal one's
                                          address (as wrow in the rule) */
   int irrational;                     /* some weight is not rational */
-  int loop_surfaces;                  /* averaging: the vertices whose lowest cells are
-                                         triangles take Loop's rows on the triangle cells
-                                         (ss_loop_surface) instead of the triangle mask */
+  double *ptab;      /* the points family: w[place][d][k][n] of ss_points at
+                        ptab[((place * 4 + d) * 4 + k) * (SS_AVG_NMAX + 1) + n]; NULL
+                        for every other scheme */
+  int loop_surfaces; /* averaging: the vertices whose lowest cells are
+                        triangles take Loop's rows on the triangle cells
+                        (ss_loop_surface) instead of the triangle mask */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every
@@ -88,6 +91,28 @@ double ss_scheme_loop_beta(size_t n);
 void ss_scheme_loop_vertex_emit(ss_sink *k, ss_idx x, const ss_idx *nb, size_t n);
 void ss_scheme_loop_edge_emit(ss_sink *k, ss_idx f, ss_idx a, ss_idx b, const ss_idx *opp,
                               size_t m);
+
+/* The surface of a split hex mesh as Catmull-Clark solids take it
+ * (ss_scheme_ccsolid.c, header comment "Boundaries and creases"): the fine
+ * quads of the boundary faces and of the explicit quad cells, with the fine
+ * segment and vertex cells; the vertices on them; and the split restricted
+ * to those (a fine vertex off the surface has no parents).  Built after the
+ * same manifold checks as the ccsolid rule (SS_EINPUT naming the vertices),
+ * for rules that refine hex meshes as ccsolid does with other weights
+ * (the points family, ss_scheme_points.c). */
+typedef struct {
+  ss_cx surf;        /* over fine's vertices: the surface quads (owned), fine's
+                        segment and vertex cells (borrowed) */
+  ss_split Ls;       /* the restricted split (ptr and parent owned) */
+  unsigned char *on; /* per fine vertex: 1 on the surface (owned) */
+} ss_hex_surface;
+
+/* Build *out for the split `fine` (a multilinear split of hexes, quads,
+ * segments and vertices) with L; clear it with ss_hex_surface_clear (also
+ * after a failure).  SS_EINPUT (non-manifold), SS_ENOMEM. */
+ss_status ss_hex_surface_build(const ss_cx *fine, const ss_split *L, ss_hex_surface *out,
+                               ss_error *err);
+void ss_hex_surface_clear(ss_hex_surface *h);
 
 /* The triangle cells of a split complex as a Loop surface, for a rule that
  * sends its rows in order (ss_scheme_averaging.c, tetoct's crease surfaces).

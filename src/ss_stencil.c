@@ -98,29 +98,47 @@ static int split_takes(ss_split_kind k, ss_cell_type t) {
   return t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET || t == SS_OCT;
 }
 
+/* One weight of the file as read. */
+typedef struct {
+  rational w;  /* a constant weight's value */
+  ss_expr *ex; /* the weight if an expression, or NULL */
+  char *etext; /* an expression's text, for messages */
+  int keyline; /* its line */
+} slot;
+
+/* Sections of the points family: [PLACE.POINT], keys the averages. */
+static const char *const place_names[SS_PTS_PLACES] = {"volume", "surface", "crease"};
+static const char *const dim_names[4] = {"vertex", "edge", "face", "cell"};
+static const int place_top[SS_PTS_PLACES] = {3, 2, 1}; /* dimension averaged over */
+
 typedef struct {
   char name[64]; /* [scheme] name */
   int have_name, have_family, have_split;
+  int points; /* family = points (else averaging) */
   ss_split_kind split;
-  rational w[SS_NCELLTYPES][4];   /* weights by type and role (constant ones) */
-  ss_expr *ex[SS_NCELLTYPES][4];  /* the weights that are expressions, or NULL */
-  char *etext[SS_NCELLTYPES][4];  /* an expression's text, for messages */
-  int keyline[SS_NCELLTYPES][4];  /* the line of each weight */
-  unsigned given[SS_NCELLTYPES];  /* bit r: role r given */
-  int has_mask[SS_NCELLTYPES];    /* a [mask.*] section seen */
-  char msg[384];                  /* the handler's first complaint */
-  int msg_line;                   /* its line (1-based), 0 before any */
-  const char *text;               /* the file's text, read line by line */
-  const char *next;               /* where the next line starts in text */
-  int line;                       /* line of the text last handed to inih */
-  int newlines;                   /* newlines in text before next */
-  int long_line;                  /* first line longer than inih's buffer, or 0 */
-  ss_stencil_params *collect;     /* the [param] pass: parameters read here
-                                     (every other section ignored); else NULL */
-  ss_stencil_params own;          /* the weights pass: [param] read again here,
-                                     so that its errors come in the file's order */
-  const ss_stencil_params *pv;    /* the weights pass: the values substituted */
-  int used[SS_STENCIL_MAXPARAMS]; /* weights that use parameter i */
+  slot m[SS_NCELLTYPES][4];          /* mask weights by type and role */
+  unsigned given[SS_NCELLTYPES];     /* bit r: role r given */
+  int has_mask[SS_NCELLTYPES];       /* a [mask.*] section seen */
+  slot p[SS_PTS_PLACES][4][4];       /* points: [place][point][average] */
+  unsigned pgiven[SS_PTS_PLACES][4]; /* bit k: average k given */
+  int has_pts[SS_PTS_PLACES][4];     /* a [PLACE.POINT] section seen */
+  int any_pts;                       /* some points section seen */
+  int pts_order[SS_PTS_PLACES * 4];  /* place * 4 + point of the sections seen,
+                                        in the file's order */
+  int npts;                          /* their number */
+  char msg[384];                     /* the handler's first complaint */
+  int msg_line;                      /* its line (1-based), 0 before any */
+  const char *text;                  /* the file's text, read line by line */
+  const char *next;                  /* where the next line starts in text */
+  int line;                          /* line of the text last handed to inih */
+  int newlines;                      /* newlines in text before next */
+  int long_line;                     /* first line longer than inih's buffer, or 0 */
+  ss_stencil_params *collect;        /* the [param] pass: parameters read here
+                                        (every other section ignored); else NULL */
+  ss_stencil_params own;             /* the weights pass: [param] read again here,
+                                        so that its errors come in the file's order */
+  const ss_stencil_params *pv;       /* the weights pass: the values substituted */
+  int used[SS_STENCIL_MAXPARAMS];    /* weights that use parameter i */
 } reader;
 
 /* inih's line reader over R->text: copies the next line (at most num - 1
@@ -160,7 +178,8 @@ static int cell_type_of(const char *s, ss_cell_type *t) {
 static int param_key(reader *R, const char *key, const char *value);
 static char *substitute_params(const char *value, const ss_stencil_params *pv, int *used);
 static int mask_key(reader *R, const char *section, const char *key, const char *text,
-                    const char *value, ss_cell_type t, int r);
+                    const char *value, slot *w);
+static int points_key(reader *R, const char *section, const char *key, const char *value);
 
 static int handle(reader *R, const char *section, const char *key, const char *value) {
   if (!strcmp(section, "param")) return param_key(R, key, value);
@@ -176,9 +195,10 @@ static int handle(reader *R, const char *section, const char *key, const char *v
       strcpy(R->name, value);
     } else if (!strcmp(key, "family")) {
       if (R->have_family++) goto repeated;
-      if (strcmp(value, "averaging")) {
+      R->points = !strcmp(value, "points");
+      if (strcmp(value, "averaging") && !R->points) {
         snprintf(R->msg, sizeof R->msg,
-                 "[scheme] family '%.64s' is unknown (known: averaging)", value);
+                 "[scheme] family '%.64s' is unknown (known: averaging, points)", value);
         return 0;
       }
     } else if (!strcmp(key, "split")) {
@@ -199,9 +219,15 @@ static int handle(reader *R, const char *section, const char *key, const char *v
     }
     return 1;
   }
+  for (int p = 0; p < SS_PTS_PLACES; p++) {
+    const size_t l = strlen(place_names[p]);
+    if (!strncmp(section, place_names[p], l) && section[l] == '.')
+      return points_key(R, section, key, value);
+  }
   if (strncmp(section, "mask.", 5)) {
     snprintf(R->msg, sizeof R->msg,
-             "section [%.64s] is unknown (known: [scheme], [param], [mask.TYPE])",
+             "section [%.64s] is unknown (known: [scheme], [param], [mask.TYPE], "
+             "[volume|surface|crease.POINT])",
              section);
     return 0;
   }
@@ -234,19 +260,20 @@ static int handle(reader *R, const char *section, const char *key, const char *v
       return 0;
     }
   }
-  const int ok = mask_key(R, section, key, sub ? sub : value, value, t, r);
+  const int ok = mask_key(R, section, key, sub ? sub : value, value, &R->m[t][r]);
   free(sub);
+  if (ok) R->given[t] |= 1u << r;
   return ok;
 repeated:
   snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
   return 0;
 }
 
-/* Weight r of type t: text (value with the parameters' values), written as
+/* A weight into *w: text (value with the parameters' values), written as
  * value in the file. */
 static int mask_key(reader *R, const char *section, const char *key, const char *text,
-                    const char *value, ss_cell_type t, int r) {
-  const int pr = parse_rational(text, &R->w[t][r]);
+                    const char *value, slot *w) {
+  const int pr = parse_rational(text, &w->w);
   if (pr == -2) {
     snprintf(R->msg, sizeof R->msg,
              "[%.32s] %s = '%.40s': a numerator or denominator has more than 17 digits "
@@ -254,21 +281,62 @@ static int mask_key(reader *R, const char *section, const char *key, const char 
              section, key, value);
     return 0;
   }
-  R->keyline[t][r] = R->line;
+  w->keyline = R->line;
   if (pr) { /* not p/q: an expression */
     ss_error xe = {0};
-    if (ss_expr_new(text, &R->ex[t][r], &xe)) {
+    if (ss_expr_new(text, &w->ex, &xe)) {
       snprintf(R->msg, sizeof R->msg, "[%.64s] %s = '%.64s'%.160s", section, key, value,
                xe.msg);
       return 0;
     }
-    if (!(R->etext[t][r] = strdup(value))) {
+    if (!(w->etext = strdup(value))) {
       snprintf(R->msg, sizeof R->msg, "out of memory");
       return 0;
     }
   }
-  R->given[t] |= 1u << r;
   return 1;
+}
+
+/* A key of a points section [PLACE.POINT]: an average's weight. */
+static int points_key(reader *R, const char *section, const char *key,
+                      const char *value) {
+  int p = 0, d = -1, k = -1;
+  while (strncmp(section, place_names[p], strlen(place_names[p])))
+    p++;
+  const char *point = section + strlen(place_names[p]) + 1;
+  for (int i = 0; i < 4; i++) {
+    if (!strcmp(point, dim_names[i])) d = i;
+    if (!strcmp(key, dim_names[i])) k = i;
+  }
+  R->any_pts = 1;
+  if (d < 0 || d > place_top[p]) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.64s]: unknown point '%.32s' (known on a %s: vertex%s%s%s)", section,
+             point, place_names[p], place_top[p] > 0 ? ", edge" : "",
+             place_top[p] > 1 ? ", face" : "", place_top[p] > 2 ? ", cell" : "");
+    return 0;
+  }
+  if (!R->has_pts[p][d]++) R->pts_order[R->npts++] = p * 4 + d;
+  if (k < 0 || k > place_top[p]) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.64s]: average '%.64s' is unknown (known: vertex%s%s%s)", section, key,
+             place_top[p] > 0 ? ", edge" : "", place_top[p] > 1 ? ", face" : "",
+             place_top[p] > 2 ? ", cell" : "");
+    return 0;
+  }
+  if (R->pgiven[p][d] & (1u << k)) {
+    snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
+    return 0;
+  }
+  char *sub = NULL;
+  if (R->pv && R->pv->n && !(sub = substitute_params(value, R->pv, R->used))) {
+    snprintf(R->msg, sizeof R->msg, "out of memory");
+    return 0;
+  }
+  const int ok = mask_key(R, section, key, sub ? sub : value, value, &R->p[p][d][k]);
+  free(sub);
+  if (ok) R->pgiven[p][d] |= 1u << k;
+  return ok;
 }
 
 /* inih's handler: handle, keeping the first complaint and its line (inih
@@ -309,25 +377,24 @@ typedef struct {
   unsigned char exact[SS_AVG_NMAX + 1]; /* 1: rational (q[n]) */
 } weight_values;
 
-/* Weight r of type t at every valence (only n = 1 unless it reads n): into
- * *w; *varies |= it reads n.  SS_EINPUT "WHERE:LINE: [SEC] KEY = 'EXPR' is
- * not finite at n = N ...", SS_ENOMEM. */
-static ss_status weight_at(const reader *R, ss_cell_type t, int r, const char *where,
+/* Weight sl, key `key` of section sec, at every valence (only n = 1 unless
+ * it reads n): into *w; *varies |= it reads n.  SS_EINPUT "WHERE:LINE: [SEC]
+ * KEY = 'EXPR' is not finite at n = N ...", SS_ENOMEM. */
+static ss_status weight_at(const slot *sl, const char *key, const char *where,
                            const char *sec, weight_values *w, int *varies,
                            ss_error *err) {
-  const ss_expr *e = R->ex[t][r];
+  const ss_expr *e = sl->ex;
   const int reads = e && ss_expr_uses_n(e);
   *varies |= reads;
   for (long n = 1; n <= (reads ? SS_AVG_NMAX : 1); n++) {
-    ss_expr_value v = {0.0, 1, R->w[t][r].num, R->w[t][r].den};
+    ss_expr_value v = {0.0, 1, sl->w.num, sl->w.den};
     if (!e) v.value = (double)v.num / (double)v.den; /* as it always was */
     ss_error xe = {0};
     const ss_status st = e ? ss_expr_eval(e, n, &v, &xe) : SS_OK;
     if (st == SS_ENOMEM) return ss_error_nomem(err, "weight expression");
     if (st)
       return ss_error_set(err, SS_EINPUT, "%s:%d: [%s] %s = '%.80s'%s", where,
-                          R->keyline[t][r], sec, role_names[t][r], R->etext[t][r],
-                          xe.msg);
+                          sl->keyline, sec, key, sl->etext, xe.msg);
     w->d[n] = v.value;
     w->exact[n] = (unsigned char)v.rational;
     w->q[n] = (rational){v.num, v.den};
@@ -394,12 +461,12 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
   int varies = 0;
   ss_status st = SS_OK;
   for (int r = 0; r < nr && !st; r++)
-    st = weight_at(R, t, r, where, sec, w + r, &varies, err);
+    st = weight_at(&R->m[t][r], role_names[t][r], where, sec, w + r, &varies, err);
   for (long n = 1; !st && n <= (varies ? SS_AVG_NMAX : 1); n++)
     st = sum_at(t, w, n, varies, where, sec, line, &vary->rational, err);
   for (int r = 0; r < nr && !st; r++) {
     a->mask[t][r] = w[r].d[1];
-    if (!R->ex[t][r] || !ss_expr_uses_n(R->ex[t][r])) continue;
+    if (!R->m[t][r].ex || !ss_expr_uses_n(R->m[t][r].ex)) continue;
     if (!(tabs[r] = malloc(sizeof w[r].d))) {
       st = ss_error_nomem(err, "stencil weights");
       break;
@@ -408,6 +475,126 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
     vary->w[t][r] = tabs[r];
   }
   free(w);
+  return st;
+}
+
+/* Check the sum of the weights of a points section at n: exactly when all
+ * are rational there, else within 1e-12 (*rational = 0 then). */
+static ss_status points_sum(const weight_values *w, unsigned given, long n, int varies,
+                            const char *where, const char *sec, int line, int *all_q,
+                            ss_error *err) {
+  char at[48] = "";
+  if (varies) snprintf(at, sizeof at, " at n = %ld", n);
+  int exact = 1, overflow = 0;
+  double d = 0.0;
+  rational q = {0, 1};
+  for (int k = 0; k < 4; k++)
+    if (given >> k & 1u) {
+      exact &= w[k].exact[n];
+      d += w[k].d[n];
+      overflow |= w[k].exact[n] && add_scaled(&q, 1, w[k].q[n]);
+    }
+  if (!exact) *all_q = 0;
+  if (exact && overflow)
+    return ss_error_set(err, SS_EINPUT,
+                        "%s:%d: [%s]: weights too large to sum exactly in 64 bits%s",
+                        where, line, sec, at);
+  if (exact && q.num != q.den)
+    return ss_error_set(err, SS_EINPUT,
+                        "%s:%d: [%s]: the weights sum to %lld/%lld%s, not 1", where, line,
+                        sec, q.num, q.den, at);
+  if (!exact && !(fabs(d - 1.0) <= 1e-12))
+    return ss_error_set(err, SS_EINPUT,
+                        "%s:%d: [%s]: the weights sum to %.17g%s, not 1 (within 1e-12: "
+                        "some weight is not rational)",
+                        where, line, sec, d, at);
+  return SS_OK;
+}
+
+/* Which points sections a split takes (1) and needs (2): hex meshes take
+ * every point up to the place's dimension (the cell and the surface's face
+ * points are centroids unless given), triangle surfaces no volume and no
+ * face points (Loop's split makes none). */
+static int points_section(int hexes, int p, int d) {
+  if (d > place_top[p] || (!hexes && (p == SS_PTS_VOLUME || d == 2))) return 0;
+  if (p == SS_PTS_VOLUME) return d <= 2 ? 2 : 1;
+  if (p == SS_PTS_SURFACE) return d <= 1 ? 2 : 1;
+  return d == 0 ? 2 : 1;
+}
+
+/* The points family's scheme from the sections read (ss_stencil.h). */
+static ss_status build_points(const reader *R, const char *text, const char *where,
+                              int sl, ss_scheme **out, ss_error *err) {
+  const int hexes = R->split == SS_SPLIT_MULTILINEAR;
+  const char *split = hexes ? "multilinear" : "tetoct";
+  char sec[32];
+  for (int t = 0; t < SS_NCELLTYPES; t++)
+    if (R->has_mask[t]) {
+      snprintf(sec, sizeof sec, "mask.%s", short_names[t]);
+      return ss_error_set(err, SS_EINPUT,
+                          "%s:%d: [%s]: family %s takes no masks (its sections are "
+                          "[volume|surface|crease.POINT])",
+                          where, section_line(text, sec), sec,
+                          R->points ? "points" : "averaging");
+    }
+  for (int p = 0; p < SS_PTS_PLACES; p++)
+    for (int d = 0; d < 4; d++) {
+      snprintf(sec, sizeof sec, "%s.%s", place_names[p], dim_names[d]);
+      const int how = points_section(hexes, p, d);
+      if (R->has_pts[p][d] && (!R->points || !how))
+        return ss_error_set(err, SS_EINPUT, "%s:%d: [%s]: %s", where,
+                            section_line(text, sec), sec,
+                            R->points ? "this split makes no such point"
+                                      : "family averaging takes masks only");
+    }
+  weight_values *w = malloc(4 * sizeof *w);
+  double *tabs[SS_PTS_PLACES][4][4];
+  memset(tabs, 0, sizeof tabs);
+  ss_points P;
+  memset(&P, 0, sizeof P);
+  P.split = R->split;
+  P.rational = 1;
+  ss_status st = w ? SS_OK : ss_error_nomem(err, "stencil weights");
+  for (int i = 0; i < R->npts && !st; i++) { /* in the file's order */
+    const int p = R->pts_order[i] / 4, d = R->pts_order[i] % 4;
+    snprintf(sec, sizeof sec, "%s.%s", place_names[p], dim_names[d]);
+    const int line = section_line(text, sec);
+    int varies = 0, ks[4], nk = 0;
+    for (int k = 0; k < 4; k++) /* the keys in the file's order */
+      if (R->pgiven[p][d] >> k & 1u) {
+        int j = nk++;
+        for (; j > 0 && R->p[p][d][ks[j - 1]].keyline > R->p[p][d][k].keyline; j--)
+          ks[j] = ks[j - 1];
+        ks[j] = k;
+      }
+    for (int j = 0; j < nk && !st; j++)
+      st = weight_at(&R->p[p][d][ks[j]], dim_names[ks[j]], where, sec, w + ks[j], &varies,
+                     err);
+    for (long n = 1; !st && n <= (varies ? SS_AVG_NMAX : 1); n++)
+      st = points_sum(w, R->pgiven[p][d], n, varies, where, sec, line, &P.rational, err);
+    for (int k = 0; k < 4 && !st; k++) {
+      if (!(R->pgiven[p][d] >> k & 1u)) continue;
+      if (!(tabs[p][d][k] = malloc(sizeof w[k].d))) {
+        st = ss_error_nomem(err, "stencil weights");
+        break;
+      }
+      memcpy(tabs[p][d][k], w[k].d, sizeof w[k].d);
+      P.w[p][d][k] = tabs[p][d][k];
+    }
+  }
+  for (int p = 0; p < SS_PTS_PLACES && !st; p++) /* after the file's own errors */
+    for (int d = 0; d < 4 && !st; d++) {
+      snprintf(sec, sizeof sec, "%s.%s", place_names[p], dim_names[d]);
+      if (!R->has_pts[p][d] && points_section(hexes, p, d) == 2)
+        st = ss_error_set(err, SS_EINPUT,
+                          "%s:%d: family points with split %s needs a [%s] section",
+                          where, sl, split, sec);
+    }
+  if (!st) st = ss_scheme_points_new(R->name, &P, out, err);
+  free(w);
+  for (int p = 0; p < SS_PTS_PLACES; p++)
+    for (int d = 0; d < 16; d++)
+      free(tabs[p][d / 4][d % 4]);
   return st;
 }
 
@@ -580,6 +767,10 @@ static ss_status parse_with(const char *text, const char *where,
                       where, sl ? sl : 1, sl ? "" : " (no [scheme] section)");
     goto done;
   }
+  if (R->points || R->any_pts) {
+    st = build_points(R, text, where, sl, out, err);
+    goto done;
+  }
   ss_averaging a;
   memset(&a, 0, sizeof a);
   a.split = R->split;
@@ -619,9 +810,14 @@ static ss_status parse_with(const char *text, const char *where,
 done:
   for (int t = 0; t < SS_NCELLTYPES; t++)
     for (int r = 0; r < 4; r++) {
-      ss_expr_free(R->ex[t][r]);
-      free(R->etext[t][r]);
+      ss_expr_free(R->m[t][r].ex);
+      free(R->m[t][r].etext);
       free(tabs[t][r]);
+    }
+  for (int p = 0; p < SS_PTS_PLACES; p++)
+    for (int d = 0; d < 16; d++) {
+      ss_expr_free(R->p[p][d / 4][d % 4].ex);
+      free(R->p[p][d / 4][d % 4].etext);
     }
   free(R);
   return st;
