@@ -98,13 +98,44 @@ static int split_takes(ss_split_kind k, ss_cell_type t) {
   return t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET || t == SS_OCT;
 }
 
+#define MAXOVER 16 /* valences one weight is given at apart (KEY@N) at most */
+
 /* One weight of the file as read. */
-typedef struct {
-  rational w;  /* a constant weight's value */
-  ss_expr *ex; /* the weight if an expression, or NULL */
-  char *etext; /* an expression's text, for messages */
-  int keyline; /* its line */
-} slot;
+typedef struct slot slot;
+struct slot {
+  rational w;        /* a constant weight's value */
+  ss_expr *ex;       /* the weight if an expression, or NULL */
+  char *etext;       /* an expression's text, for messages */
+  int keyline;       /* its line */
+  int nov;           /* KEY@N lines: the weight at valence ovn[i] is ov[i] */
+  long ovn[MAXOVER]; /* their valences, 1..SS_AVG_NMAX, distinct */
+  slot *ov[MAXOVER]; /* their values (owned; no overrides of their own) */
+};
+
+static void slot_clear(slot *sl) {
+  ss_expr_free(sl->ex);
+  free(sl->etext);
+  for (int i = 0; i < sl->nov; i++) {
+    slot_clear(sl->ov[i]);
+    free(sl->ov[i]);
+  }
+}
+
+/* "KEY@N": KEY into base (cap bytes) and N into *n (0 without @).  0, or -1
+ * when N is not a valence 1..SS_AVG_NMAX written in digits. */
+static int key_at(const char *key, char *base, size_t cap, long *n) {
+  const char *at = strchr(key, '@');
+  const size_t len = at ? (size_t)(at - key) : strlen(key);
+  snprintf(base, cap, "%.*s", (int)(len < cap ? len : cap - 1), key);
+  *n = 0;
+  if (!at) return 0;
+  char *end = NULL;
+  errno = 0;
+  const long v = isdigit((unsigned char)at[1]) ? strtol(at + 1, &end, 10) : -1;
+  if (v < 1 || v > SS_AVG_NMAX || errno || *end) return -1;
+  *n = v;
+  return 0;
+}
 
 /* Sections of the points family: [PLACE.POINT], keys the averages. */
 static const char *const place_names[SS_PTS_PLACES] = {"volume", "surface", "crease"};
@@ -176,6 +207,35 @@ static int cell_type_of(const char *s, ss_cell_type *t) {
 }
 
 static int param_key(reader *R, const char *key, const char *value);
+
+/* The slot a key writes: sl itself (n = 0), or a new override of sl at
+ * valence n; NULL with R->msg set (repeated valence, too many, no base). */
+static slot *slot_for(reader *R, slot *sl, int given, long n, const char *section,
+                      const char *key) {
+  if (n == 0) return sl;
+  if (!given) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.64s] %.64s: give the weight at every valence first (a key without @)",
+             section, key);
+    return NULL;
+  }
+  for (int i = 0; i < sl->nov; i++)
+    if (sl->ovn[i] == n) {
+      snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
+      return NULL;
+    }
+  if (sl->nov == MAXOVER) {
+    snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s: more than %d valences apart", section,
+             key, MAXOVER);
+    return NULL;
+  }
+  if (!(sl->ov[sl->nov] = calloc(1, sizeof *sl->ov[0]))) {
+    snprintf(R->msg, sizeof R->msg, "out of memory");
+    return NULL;
+  }
+  sl->ovn[sl->nov] = n;
+  return sl->ov[sl->nov++];
+}
 static char *substitute_params(const char *value, const ss_stencil_params *pv, int *used);
 static int mask_key(reader *R, const char *section, const char *key, const char *text,
                     const char *value, slot *w);
@@ -241,8 +301,11 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   }
   R->has_mask[t] = 1;
   int r = -1;
-  for (int q = 0; q < ss_cell_nroles(t); q++)
-    if (!strcmp(key, role_names[t][q])) r = q;
+  char base[64];
+  long at = 0;
+  const int bad_at = key_at(key, base, sizeof base, &at);
+  for (int q = 0; q < ss_cell_nroles(t) && !bad_at; q++)
+    if (!strcmp(base, role_names[t][q])) r = q;
   if (r < 0) {
     char known[64] = "";
     for (int q = 0; q < ss_cell_nroles(t); q++)
@@ -252,7 +315,9 @@ static int handle(reader *R, const char *section, const char *key, const char *v
              section, key, known);
     return 0;
   }
-  if (R->given[t] & (1u << r)) goto repeated;
+  if (!at && R->given[t] & (1u << r)) goto repeated;
+  slot *dst = slot_for(R, &R->m[t][r], (int)(R->given[t] >> r & 1u), at, section, key);
+  if (!dst) return 0;
   char *sub = NULL; /* value with the parameters' values, or NULL */
   if (R->pv && R->pv->n) {
     if (!(sub = substitute_params(value, R->pv, R->used))) {
@@ -260,9 +325,9 @@ static int handle(reader *R, const char *section, const char *key, const char *v
       return 0;
     }
   }
-  const int ok = mask_key(R, section, key, sub ? sub : value, value, &R->m[t][r]);
+  const int ok = mask_key(R, section, key, sub ? sub : value, value, dst);
   free(sub);
-  if (ok) R->given[t] |= 1u << r;
+  if (ok && !at) R->given[t] |= 1u << r;
   return ok;
 repeated:
   snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
@@ -304,9 +369,12 @@ static int points_key(reader *R, const char *section, const char *key,
   while (strncmp(section, place_names[p], strlen(place_names[p])))
     p++;
   const char *point = section + strlen(place_names[p]) + 1;
+  char base[64];
+  long at = 0;
+  const int bad_at = key_at(key, base, sizeof base, &at);
   for (int i = 0; i < 4; i++) {
     if (!strcmp(point, dim_names[i])) d = i;
-    if (!strcmp(key, dim_names[i])) k = i;
+    if (!bad_at && !strcmp(base, dim_names[i])) k = i;
   }
   R->any_pts = 1;
   if (d < 0 || d > place_top[p]) {
@@ -324,18 +392,21 @@ static int points_key(reader *R, const char *section, const char *key,
              place_top[p] > 2 ? ", cell" : "");
     return 0;
   }
-  if (R->pgiven[p][d] & (1u << k)) {
+  if (!at && R->pgiven[p][d] & (1u << k)) {
     snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
     return 0;
   }
+  slot *dst =
+      slot_for(R, &R->p[p][d][k], (int)(R->pgiven[p][d] >> k & 1u), at, section, key);
+  if (!dst) return 0;
   char *sub = NULL;
   if (R->pv && R->pv->n && !(sub = substitute_params(value, R->pv, R->used))) {
     snprintf(R->msg, sizeof R->msg, "out of memory");
     return 0;
   }
-  const int ok = mask_key(R, section, key, sub ? sub : value, value, &R->p[p][d][k]);
+  const int ok = mask_key(R, section, key, sub ? sub : value, value, dst);
   free(sub);
-  if (ok) R->pgiven[p][d] |= 1u << k;
+  if (ok && !at) R->pgiven[p][d] |= 1u << k;
   return ok;
 }
 
@@ -404,6 +475,21 @@ static ss_status weight_at(const slot *sl, const char *key, const char *where,
     w->exact[n] = w->exact[1];
     w->q[n] = w->q[1];
   }
+  *varies |= sl->nov > 0;
+  for (int i = 0; i < sl->nov; i++) { /* KEY@N: the value at valence N */
+    const slot *o = sl->ov[i];
+    const long n = sl->ovn[i];
+    ss_expr_value v = {(double)o->w.num / (double)o->w.den, 1, o->w.num, o->w.den};
+    ss_error xe = {0};
+    const ss_status st = o->ex ? ss_expr_eval(o->ex, n, &v, &xe) : SS_OK;
+    if (st == SS_ENOMEM) return ss_error_nomem(err, "weight expression");
+    if (st)
+      return ss_error_set(err, SS_EINPUT, "%s:%d: [%s] %s@%ld = '%.80s'%s", where,
+                          o->keyline, sec, key, n, o->etext, xe.msg);
+    w->d[n] = v.value;
+    w->exact[n] = (unsigned char)v.rational;
+    w->q[n] = (rational){v.num, v.den};
+  }
   return SS_OK;
 }
 
@@ -466,7 +552,8 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
     st = sum_at(t, w, n, varies, where, sec, line, &vary->rational, err);
   for (int r = 0; r < nr && !st; r++) {
     a->mask[t][r] = w[r].d[1];
-    if (!R->m[t][r].ex || !ss_expr_uses_n(R->m[t][r].ex)) continue;
+    const slot *sl = &R->m[t][r];
+    if (!sl->nov && (!sl->ex || !ss_expr_uses_n(sl->ex))) continue;
     if (!(tabs[r] = malloc(sizeof w[r].d))) {
       st = ss_error_nomem(err, "stencil weights");
       break;
@@ -810,15 +897,12 @@ static ss_status parse_with(const char *text, const char *where,
 done:
   for (int t = 0; t < SS_NCELLTYPES; t++)
     for (int r = 0; r < 4; r++) {
-      ss_expr_free(R->m[t][r].ex);
-      free(R->m[t][r].etext);
+      slot_clear(&R->m[t][r]);
       free(tabs[t][r]);
     }
   for (int p = 0; p < SS_PTS_PLACES; p++)
-    for (int d = 0; d < 16; d++) {
-      ss_expr_free(R->p[p][d / 4][d % 4].ex);
-      free(R->p[p][d / 4][d % 4].etext);
-    }
+    for (int d = 0; d < 16; d++)
+      slot_clear(&R->p[p][d / 4][d % 4]);
   free(R);
   return st;
 }

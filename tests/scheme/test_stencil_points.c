@@ -14,6 +14,8 @@
  *   - mutations: one weight of ccsolid.ini changed (an edge's face/edge
  *     split, a surface vertex's, a crease vertex's) makes the comparison
  *     fail — the test can see a wrong weight;
+ *   - KEY@N (a weight given apart at valence N): applied at N only, sums
+ *     checked there, bad keys refused;
  *   - bad points files: exit status and messages naming the file, the line
  *     and, where it depends on one, the valence.
  * Exits 77 (skipped) without libmatheval (the files' weights read n). */
@@ -368,6 +370,48 @@ static void test_bad(void) {
       "bad.ini:5: [volume.vertex]: this split makes no such point");
 }
 
+#define HEADM "[scheme]\nname = x\nfamily = averaging\nsplit = multilinear\n"
+
+/* KEY@N: a weight given apart at one valence.  MLCA's hex mask changed at
+ * n = 10 only (self + 1/100, opposite - 1/100) is MLCA's operator bit for
+ * bit on a periodic grid (n = 8 everywhere) and another one on a hex star
+ * with a vertex in 10 hexes; sums are checked at that valence alone;
+ * malformed, repeated or baseless keys are refused naming their line. */
+static void test_at_valence(void) {
+  ss_scheme *mlca = builtin("mlca");
+  ss_scheme *s = from_text(HEADM "[mask.hex]\nself = 1/8\nedge = 1/8\nface = 1/8\n"
+                                 "opposite = 1/8\nself@10 = 1/8 + 1/100\n"
+                                 "opposite@10 = 1/8 - 1/100\n",
+                           "at10.ini");
+  if (s) {
+    ss_cx *grid = tm_torus(3, 4);
+    same_operator(mlca, s, grid, "self@10 on a grid");
+    tm_link *l = tm_link_named("bipyramid:5"); /* the centre is in 10 hexes */
+    ss_cx *hs = tm_hex_star(l);
+    CHECK(!same_operator_q(mlca, s, hs, 0, "self@10"),
+          "a weight at n = 10 changed nothing on a star with a vertex of valence 10");
+    ss_cx_free(hs);
+    ss_cx_free(grid);
+    tm_link_free(l);
+  }
+  ss_scheme_free(s);
+  ss_scheme_free(mlca);
+  bad(HEADM "[mask.hex]\nself = 1/8\nedge = 1/8\nface = 1/8\nopposite = 1/8\n"
+            "self@5 = 1/8 + 1/1000\n",
+      "bad.ini:5: [mask.hex]: the weights sum to 1001/1000 at n = 5 over the 8 vertices");
+  bad(HEADM "[mask.hex]\nself@5 = 1/8\n",
+      "bad.ini:6: [mask.hex] self@5: give the weight at every valence first");
+  bad(HEADM "[mask.hex]\nself = 1/8\nself@5 = 1/8\nself@5 = 1/7\n",
+      "bad.ini:8: [mask.hex] self@5 is given twice");
+  bad(HEADM "[mask.hex]\nself = 1/8\nself@0 = 1/8\n",
+      "bad.ini:7: [mask.hex]: role 'self@0' is unknown");
+  bad(HEADM "[mask.hex]\nself = 1/8\nedge = 1/8\nface = 1/8\nopposite = 1/8\n"
+            "self@4 = 1/(n-4)\n",
+      "bad.ini:10: [mask.hex] self@4 = '1/(n-4)' is not finite at n = 4");
+  bad(HEADP "[crease.vertex]\nedge = 1/2\nvertex = 1/2\nedge@2 = 1/4\n",
+      "bad.ini:5: [crease.vertex]: the weights sum to 3/4 at n = 2, not 1");
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_stencil_points DATA/stencils\n");
@@ -382,5 +426,6 @@ int main(int argc, char **argv) {
   test_mutations();
   test_loop();
   test_bad();
+  test_at_valence();
   return ss_test_done("stencil_points");
 }
