@@ -38,6 +38,10 @@ int ss_scheme_weights_rational(const ss_scheme *s) {
   return !s->irrational;
 }
 
+int ss_scheme_volume_weights_rational(const ss_scheme *s) {
+  return s->ptab ? !s->irrational_volume : !s->irrational;
+}
+
 int ss_scheme_reach(const ss_scheme *s) {
   return s->reach;
 }

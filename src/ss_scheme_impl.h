@@ -40,6 +40,9 @@ struct ss_scheme {
                                          at valence n, the first equal one's
                                          address (as wrow in the rule) */
   int irrational;                     /* some weight is not rational */
+  int irrational_volume;              /* the points and neighbours families: some
+                                         weight of a volume rule is not rational
+                                         (ss_scheme_volume_weights_rational) */
   double *ptab;      /* the points family: w[place][d][k][n] of ss_points at
                         ptab[((place * 4 + d) * 4 + k) * (SS_AVG_NMAX + 1) + n]; NULL
                         for every other scheme */

@@ -314,5 +314,6 @@ ss_status ss_scheme_points_new(const char *name, const ss_points *p, ss_scheme *
   }
   (*out)->ptab = tab;
   (*out)->irrational = !p->rational;
+  (*out)->irrational_volume = !p->rational_volume;
   return SS_OK;
 }

@@ -11,11 +11,7 @@
 #include <ini.h>
 
 #include "ss_expr.h"
-
-/* An exact rational num/den, den > 0, in lowest terms. */
-typedef struct {
-  long long num, den;
-} rational;
+#include "ss_stencil_impl.h"
 
 static long long gcd_ll(long long a, long long b) {
   if (a < 0) a = -a;
@@ -65,7 +61,7 @@ static int parse_rational(const char *s, rational *out) {
 }
 
 /* sum += c * r, exactly; -1 on overflow. */
-static int add_scaled(rational *sum, long long c, rational r) {
+int ss_stencil_add_scaled(rational *sum, long long c, rational r) {
   long long a, b, d;
   if (__builtin_mul_overflow(sum->num, r.den, &a) ||
       __builtin_mul_overflow(c, r.num, &b) || __builtin_mul_overflow(b, sum->den, &b) ||
@@ -98,32 +94,18 @@ static int split_takes(ss_split_kind k, ss_cell_type t) {
   return t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET || t == SS_OCT;
 }
 
-#define MAXOVER 16 /* valences one weight is given at apart (KEY@N) at most */
-
-/* One weight of the file as read. */
-typedef struct slot slot;
-struct slot {
-  rational w;        /* a constant weight's value */
-  ss_expr *ex;       /* the weight if an expression, or NULL */
-  char *etext;       /* an expression's text, for messages */
-  int keyline;       /* its line */
-  int nov;           /* KEY@N lines: the weight at valence ovn[i] is ov[i] */
-  long ovn[MAXOVER]; /* their valences, 1..SS_AVG_NMAX, distinct */
-  slot *ov[MAXOVER]; /* their values (owned; no overrides of their own) */
-};
-
-static void slot_clear(slot *sl) {
+void ss_stencil_slot_clear(slot *sl) {
   ss_expr_free(sl->ex);
   free(sl->etext);
   for (int i = 0; i < sl->nov; i++) {
-    slot_clear(sl->ov[i]);
+    ss_stencil_slot_clear(sl->ov[i]);
     free(sl->ov[i]);
   }
 }
 
 /* "KEY@N": KEY into base (cap bytes) and N into *n (0 without @).  0, or -1
  * when N is not a valence 1..SS_AVG_NMAX written in digits. */
-static int key_at(const char *key, char *base, size_t cap, long *n) {
+int ss_stencil_key_at(const char *key, char *base, size_t cap, long *n) {
   const char *at = strchr(key, '@');
   const size_t len = at ? (size_t)(at - key) : strlen(key);
   snprintf(base, cap, "%.*s", (int)(len < cap ? len : cap - 1), key);
@@ -136,41 +118,6 @@ static int key_at(const char *key, char *base, size_t cap, long *n) {
   *n = v;
   return 0;
 }
-
-/* Sections of the points family: [PLACE.POINT], keys the averages. */
-static const char *const place_names[SS_PTS_PLACES] = {"volume", "surface", "crease"};
-static const char *const dim_names[4] = {"vertex", "edge", "face", "cell"};
-static const int place_top[SS_PTS_PLACES] = {3, 2, 1}; /* dimension averaged over */
-
-typedef struct {
-  char name[64]; /* [scheme] name */
-  int have_name, have_family, have_split;
-  int points; /* family = points (else averaging) */
-  ss_split_kind split;
-  slot m[SS_NCELLTYPES][4];          /* mask weights by type and role */
-  unsigned given[SS_NCELLTYPES];     /* bit r: role r given */
-  int has_mask[SS_NCELLTYPES];       /* a [mask.*] section seen */
-  slot p[SS_PTS_PLACES][4][4];       /* points: [place][point][average] */
-  unsigned pgiven[SS_PTS_PLACES][4]; /* bit k: average k given */
-  int has_pts[SS_PTS_PLACES][4];     /* a [PLACE.POINT] section seen */
-  int any_pts;                       /* some points section seen */
-  int pts_order[SS_PTS_PLACES * 4];  /* place * 4 + point of the sections seen,
-                                        in the file's order */
-  int npts;                          /* their number */
-  char msg[384];                     /* the handler's first complaint */
-  int msg_line;                      /* its line (1-based), 0 before any */
-  const char *text;                  /* the file's text, read line by line */
-  const char *next;                  /* where the next line starts in text */
-  int line;                          /* line of the text last handed to inih */
-  int newlines;                      /* newlines in text before next */
-  int long_line;                     /* first line longer than inih's buffer, or 0 */
-  ss_stencil_params *collect;        /* the [param] pass: parameters read here
-                                        (every other section ignored); else NULL */
-  ss_stencil_params own;             /* the weights pass: [param] read again here,
-                                        so that its errors come in the file's order */
-  const ss_stencil_params *pv;       /* the weights pass: the values substituted */
-  int used[SS_STENCIL_MAXPARAMS];    /* weights that use parameter i */
-} reader;
 
 /* inih's line reader over R->text: copies the next line (at most num - 1
  * bytes, a longer line in pieces) and counts lines, so that the handler knows
@@ -210,8 +157,8 @@ static int param_key(reader *R, const char *key, const char *value);
 
 /* The slot a key writes: sl itself (n = 0), or a new override of sl at
  * valence n; NULL with R->msg set (repeated valence, too many, no base). */
-static slot *slot_for(reader *R, slot *sl, int given, long n, const char *section,
-                      const char *key) {
+slot *ss_stencil_slot_for(reader *R, slot *sl, int given, long n, const char *section,
+                          const char *key) {
   if (n == 0) return sl;
   if (!given) {
     snprintf(R->msg, sizeof R->msg,
@@ -236,10 +183,9 @@ static slot *slot_for(reader *R, slot *sl, int given, long n, const char *sectio
   sl->ovn[sl->nov] = n;
   return sl->ov[sl->nov++];
 }
-static char *substitute_params(const char *value, const ss_stencil_params *pv, int *used);
-static int mask_key(reader *R, const char *section, const char *key, const char *text,
-                    const char *value, slot *w);
-static int points_key(reader *R, const char *section, const char *key, const char *value);
+char *ss_stencil_substitute(const char *value, const ss_stencil_params *pv, int *used);
+int ss_stencil_weight_key(reader *R, const char *section, const char *key,
+                          const char *text, const char *value, slot *w);
 
 static int handle(reader *R, const char *section, const char *key, const char *value) {
   if (!strcmp(section, "param")) return param_key(R, key, value);
@@ -255,10 +201,14 @@ static int handle(reader *R, const char *section, const char *key, const char *v
       strcpy(R->name, value);
     } else if (!strcmp(key, "family")) {
       if (R->have_family++) goto repeated;
-      R->points = !strcmp(value, "points");
-      if (strcmp(value, "averaging") && !R->points) {
+      R->family = !strcmp(value, "points")       ? FAM_POINTS
+                  : !strcmp(value, "neighbours") ? FAM_NEIGHBOURS
+                                                 : FAM_AVERAGING;
+      if (strcmp(value, "averaging") && R->family == FAM_AVERAGING) {
         snprintf(R->msg, sizeof R->msg,
-                 "[scheme] family '%.64s' is unknown (known: averaging, points)", value);
+                 "[scheme] family '%.64s' is unknown (known: averaging, points, "
+                 "neighbours)",
+                 value);
         return 0;
       }
     } else if (!strcmp(key, "split")) {
@@ -279,15 +229,13 @@ static int handle(reader *R, const char *section, const char *key, const char *v
     }
     return 1;
   }
-  for (int p = 0; p < SS_PTS_PLACES; p++) {
-    const size_t l = strlen(place_names[p]);
-    if (!strncmp(section, place_names[p], l) && section[l] == '.')
-      return points_key(R, section, key, value);
-  }
+  const int rk = ss_stencil_rule_key(R, section, key, value);
+  if (rk >= 0) return rk;
   if (strncmp(section, "mask.", 5)) {
     snprintf(R->msg, sizeof R->msg,
              "section [%.64s] is unknown (known: [scheme], [param], [mask.TYPE], "
-             "[volume|surface|crease.POINT])",
+             "[volume|surface|crease.POINT], [vertex], [edge], [centre], "
+             "[boundary.vertex|edge])",
              section);
     return 0;
   }
@@ -303,7 +251,7 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   int r = -1;
   char base[64];
   long at = 0;
-  const int bad_at = key_at(key, base, sizeof base, &at);
+  const int bad_at = ss_stencil_key_at(key, base, sizeof base, &at);
   for (int q = 0; q < ss_cell_nroles(t) && !bad_at; q++)
     if (!strcmp(base, role_names[t][q])) r = q;
   if (r < 0) {
@@ -316,16 +264,17 @@ static int handle(reader *R, const char *section, const char *key, const char *v
     return 0;
   }
   if (!at && R->given[t] & (1u << r)) goto repeated;
-  slot *dst = slot_for(R, &R->m[t][r], (int)(R->given[t] >> r & 1u), at, section, key);
+  slot *dst =
+      ss_stencil_slot_for(R, &R->m[t][r], (int)(R->given[t] >> r & 1u), at, section, key);
   if (!dst) return 0;
   char *sub = NULL; /* value with the parameters' values, or NULL */
   if (R->pv && R->pv->n) {
-    if (!(sub = substitute_params(value, R->pv, R->used))) {
+    if (!(sub = ss_stencil_substitute(value, R->pv, R->used))) {
       snprintf(R->msg, sizeof R->msg, "out of memory");
       return 0;
     }
   }
-  const int ok = mask_key(R, section, key, sub ? sub : value, value, dst);
+  const int ok = ss_stencil_weight_key(R, section, key, sub ? sub : value, value, dst);
   free(sub);
   if (ok && !at) R->given[t] |= 1u << r;
   return ok;
@@ -336,8 +285,8 @@ repeated:
 
 /* A weight into *w: text (value with the parameters' values), written as
  * value in the file. */
-static int mask_key(reader *R, const char *section, const char *key, const char *text,
-                    const char *value, slot *w) {
+int ss_stencil_weight_key(reader *R, const char *section, const char *key,
+                          const char *text, const char *value, slot *w) {
   const int pr = parse_rational(text, &w->w);
   if (pr == -2) {
     snprintf(R->msg, sizeof R->msg,
@@ -362,54 +311,6 @@ static int mask_key(reader *R, const char *section, const char *key, const char 
   return 1;
 }
 
-/* A key of a points section [PLACE.POINT]: an average's weight. */
-static int points_key(reader *R, const char *section, const char *key,
-                      const char *value) {
-  int p = 0, d = -1, k = -1;
-  while (strncmp(section, place_names[p], strlen(place_names[p])))
-    p++;
-  const char *point = section + strlen(place_names[p]) + 1;
-  char base[64];
-  long at = 0;
-  const int bad_at = key_at(key, base, sizeof base, &at);
-  for (int i = 0; i < 4; i++) {
-    if (!strcmp(point, dim_names[i])) d = i;
-    if (!bad_at && !strcmp(base, dim_names[i])) k = i;
-  }
-  R->any_pts = 1;
-  if (d < 0 || d > place_top[p]) {
-    snprintf(R->msg, sizeof R->msg,
-             "[%.64s]: unknown point '%.32s' (known on a %s: vertex%s%s%s)", section,
-             point, place_names[p], place_top[p] > 0 ? ", edge" : "",
-             place_top[p] > 1 ? ", face" : "", place_top[p] > 2 ? ", cell" : "");
-    return 0;
-  }
-  if (!R->has_pts[p][d]++) R->pts_order[R->npts++] = p * 4 + d;
-  if (k < 0 || k > place_top[p]) {
-    snprintf(R->msg, sizeof R->msg,
-             "[%.64s]: average '%.64s' is unknown (known: vertex%s%s%s)", section, key,
-             place_top[p] > 0 ? ", edge" : "", place_top[p] > 1 ? ", face" : "",
-             place_top[p] > 2 ? ", cell" : "");
-    return 0;
-  }
-  if (!at && R->pgiven[p][d] & (1u << k)) {
-    snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
-    return 0;
-  }
-  slot *dst =
-      slot_for(R, &R->p[p][d][k], (int)(R->pgiven[p][d] >> k & 1u), at, section, key);
-  if (!dst) return 0;
-  char *sub = NULL;
-  if (R->pv && R->pv->n && !(sub = substitute_params(value, R->pv, R->used))) {
-    snprintf(R->msg, sizeof R->msg, "out of memory");
-    return 0;
-  }
-  const int ok = mask_key(R, section, key, sub ? sub : value, value, dst);
-  free(sub);
-  if (ok && !at) R->pgiven[p][d] |= 1u << k;
-  return ok;
-}
-
 /* inih's handler: handle, keeping the first complaint and its line (inih
  * goes on after an error and reports the first error's line). */
 static int handler(void *user, const char *section, const char *key, const char *value) {
@@ -426,7 +327,7 @@ static int handler(void *user, const char *section, const char *key, const char 
 
 /* Line number (1-based) of the first line of text that is "[section]" after
  * trimming, or 0. */
-static int section_line(const char *text, const char *section) {
+int ss_stencil_section_line(const char *text, const char *section) {
   int line = 1;
   const size_t n = strlen(section);
   for (const char *p = text; *p; line++) {
@@ -441,19 +342,12 @@ static int section_line(const char *text, const char *section) {
   return 0;
 }
 
-/* The values of one weight at the valences n = 1..SS_AVG_NMAX. */
-typedef struct {
-  double d[SS_AVG_NMAX + 1];            /* the value */
-  rational q[SS_AVG_NMAX + 1];          /* the exact value, where exact[n] */
-  unsigned char exact[SS_AVG_NMAX + 1]; /* 1: rational (q[n]) */
-} weight_values;
-
 /* Weight sl, key `key` of section sec, at every valence (only n = 1 unless
  * it reads n): into *w; *varies |= it reads n.  SS_EINPUT "WHERE:LINE: [SEC]
  * KEY = 'EXPR' is not finite at n = N ...", SS_ENOMEM. */
-static ss_status weight_at(const slot *sl, const char *key, const char *where,
-                           const char *sec, weight_values *w, int *varies,
-                           ss_error *err) {
+ss_status ss_stencil_weight_at(const slot *sl, const char *key, const char *where,
+                               const char *sec, weight_values *w, int *varies,
+                               ss_error *err) {
   const ss_expr *e = sl->ex;
   const int reads = e && ss_expr_uses_n(e);
   *varies |= reads;
@@ -520,7 +414,7 @@ static ss_status sum_at(ss_cell_type t, const weight_values *w, long n, int vari
   rational sum = {0, 1};
   int overflow = 0;
   for (int j = 0; j < nv; j++)
-    overflow |= add_scaled(&sum, 1, w[ss_cell_role(t, 0, j)].q[n]);
+    overflow |= ss_stencil_add_scaled(&sum, 1, w[ss_cell_role(t, 0, j)].q[n]);
   if (overflow)
     return ss_error_set(err, SS_EINPUT,
                         "%s:%d: [%s]: weights too large to sum exactly in 64 bits%s",
@@ -547,7 +441,8 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
   int varies = 0;
   ss_status st = SS_OK;
   for (int r = 0; r < nr && !st; r++)
-    st = weight_at(&R->m[t][r], role_names[t][r], where, sec, w + r, &varies, err);
+    st = ss_stencil_weight_at(&R->m[t][r], role_names[t][r], where, sec, w + r, &varies,
+                              err);
   for (long n = 1; !st && n <= (varies ? SS_AVG_NMAX : 1); n++)
     st = sum_at(t, w, n, varies, where, sec, line, &vary->rational, err);
   for (int r = 0; r < nr && !st; r++) {
@@ -564,127 +459,6 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
   free(w);
   return st;
 }
-
-/* Check the sum of the weights of a points section at n: exactly when all
- * are rational there, else within 1e-12 (*rational = 0 then). */
-static ss_status points_sum(const weight_values *w, unsigned given, long n, int varies,
-                            const char *where, const char *sec, int line, int *all_q,
-                            ss_error *err) {
-  char at[48] = "";
-  if (varies) snprintf(at, sizeof at, " at n = %ld", n);
-  int exact = 1, overflow = 0;
-  double d = 0.0;
-  rational q = {0, 1};
-  for (int k = 0; k < 4; k++)
-    if (given >> k & 1u) {
-      exact &= w[k].exact[n];
-      d += w[k].d[n];
-      overflow |= w[k].exact[n] && add_scaled(&q, 1, w[k].q[n]);
-    }
-  if (!exact) *all_q = 0;
-  if (exact && overflow)
-    return ss_error_set(err, SS_EINPUT,
-                        "%s:%d: [%s]: weights too large to sum exactly in 64 bits%s",
-                        where, line, sec, at);
-  if (exact && q.num != q.den)
-    return ss_error_set(err, SS_EINPUT,
-                        "%s:%d: [%s]: the weights sum to %lld/%lld%s, not 1", where, line,
-                        sec, q.num, q.den, at);
-  if (!exact && !(fabs(d - 1.0) <= 1e-12))
-    return ss_error_set(err, SS_EINPUT,
-                        "%s:%d: [%s]: the weights sum to %.17g%s, not 1 (within 1e-12: "
-                        "some weight is not rational)",
-                        where, line, sec, d, at);
-  return SS_OK;
-}
-
-/* Which points sections a split takes (1) and needs (2): hex meshes take
- * every point up to the place's dimension (the cell and the surface's face
- * points are centroids unless given), triangle surfaces no volume and no
- * face points (Loop's split makes none). */
-static int points_section(int hexes, int p, int d) {
-  if (d > place_top[p] || (!hexes && (p == SS_PTS_VOLUME || d == 2))) return 0;
-  if (p == SS_PTS_VOLUME) return d <= 2 ? 2 : 1;
-  if (p == SS_PTS_SURFACE) return d <= 1 ? 2 : 1;
-  return d == 0 ? 2 : 1;
-}
-
-/* The points family's scheme from the sections read (ss_stencil.h). */
-static ss_status build_points(const reader *R, const char *text, const char *where,
-                              int sl, ss_scheme **out, ss_error *err) {
-  const int hexes = R->split == SS_SPLIT_MULTILINEAR;
-  const char *split = hexes ? "multilinear" : "tetoct";
-  char sec[32];
-  for (int t = 0; t < SS_NCELLTYPES; t++)
-    if (R->has_mask[t]) {
-      snprintf(sec, sizeof sec, "mask.%s", short_names[t]);
-      return ss_error_set(err, SS_EINPUT,
-                          "%s:%d: [%s]: family %s takes no masks (its sections are "
-                          "[volume|surface|crease.POINT])",
-                          where, section_line(text, sec), sec,
-                          R->points ? "points" : "averaging");
-    }
-  for (int p = 0; p < SS_PTS_PLACES; p++)
-    for (int d = 0; d < 4; d++) {
-      snprintf(sec, sizeof sec, "%s.%s", place_names[p], dim_names[d]);
-      const int how = points_section(hexes, p, d);
-      if (R->has_pts[p][d] && (!R->points || !how))
-        return ss_error_set(err, SS_EINPUT, "%s:%d: [%s]: %s", where,
-                            section_line(text, sec), sec,
-                            R->points ? "this split makes no such point"
-                                      : "family averaging takes masks only");
-    }
-  weight_values *w = malloc(4 * sizeof *w);
-  double *tabs[SS_PTS_PLACES][4][4];
-  memset(tabs, 0, sizeof tabs);
-  ss_points P;
-  memset(&P, 0, sizeof P);
-  P.split = R->split;
-  P.rational = 1;
-  ss_status st = w ? SS_OK : ss_error_nomem(err, "stencil weights");
-  for (int i = 0; i < R->npts && !st; i++) { /* in the file's order */
-    const int p = R->pts_order[i] / 4, d = R->pts_order[i] % 4;
-    snprintf(sec, sizeof sec, "%s.%s", place_names[p], dim_names[d]);
-    const int line = section_line(text, sec);
-    int varies = 0, ks[4], nk = 0;
-    for (int k = 0; k < 4; k++) /* the keys in the file's order */
-      if (R->pgiven[p][d] >> k & 1u) {
-        int j = nk++;
-        for (; j > 0 && R->p[p][d][ks[j - 1]].keyline > R->p[p][d][k].keyline; j--)
-          ks[j] = ks[j - 1];
-        ks[j] = k;
-      }
-    for (int j = 0; j < nk && !st; j++)
-      st = weight_at(&R->p[p][d][ks[j]], dim_names[ks[j]], where, sec, w + ks[j], &varies,
-                     err);
-    for (long n = 1; !st && n <= (varies ? SS_AVG_NMAX : 1); n++)
-      st = points_sum(w, R->pgiven[p][d], n, varies, where, sec, line, &P.rational, err);
-    for (int k = 0; k < 4 && !st; k++) {
-      if (!(R->pgiven[p][d] >> k & 1u)) continue;
-      if (!(tabs[p][d][k] = malloc(sizeof w[k].d))) {
-        st = ss_error_nomem(err, "stencil weights");
-        break;
-      }
-      memcpy(tabs[p][d][k], w[k].d, sizeof w[k].d);
-      P.w[p][d][k] = tabs[p][d][k];
-    }
-  }
-  for (int p = 0; p < SS_PTS_PLACES && !st; p++) /* after the file's own errors */
-    for (int d = 0; d < 4 && !st; d++) {
-      snprintf(sec, sizeof sec, "%s.%s", place_names[p], dim_names[d]);
-      if (!R->has_pts[p][d] && points_section(hexes, p, d) == 2)
-        st = ss_error_set(err, SS_EINPUT,
-                          "%s:%d: family points with split %s needs a [%s] section",
-                          where, sl, split, sec);
-    }
-  if (!st) st = ss_scheme_points_new(R->name, &P, out, err);
-  free(w);
-  for (int p = 0; p < SS_PTS_PLACES; p++)
-    for (int d = 0; d < 16; d++)
-      free(tabs[p][d / 4][d % 4]);
-  return st;
-}
-
 int ss_stencil_reserved(const char *name) {
   static const char *const names[] = {
       "n",     "exp",   "log",   "sqrt",    "sin",  "cos",     "tan",   "cot",
@@ -773,8 +547,7 @@ static int param_key(reader *R, const char *key, const char *value) {
 
 /* value with every identifier that names a parameter of pv replaced by
  * "(num/den)", counting uses in used[]; NULL out of memory. */
-static char *substitute_params(const char *value, const ss_stencil_params *pv,
-                               int *used) {
+char *ss_stencil_substitute(const char *value, const ss_stencil_params *pv, int *used) {
   const size_t len = strlen(value);
   char *out = malloc(len * 17 + 1), *o = out; /* "a" grows to "(-999999/999999)" */
   if (!out) return NULL;
@@ -848,14 +621,14 @@ static ss_status parse_with(const char *text, const char *where,
                         pv->p[i].line, pv->p[i].name);
       goto done;
     }
-  const int sl = section_line(text, "scheme");
+  const int sl = ss_stencil_section_line(text, "scheme");
   if (!R->have_name || !R->have_family || !R->have_split) {
     st = ss_error_set(err, SS_EINPUT, "%s:%d: [scheme] needs name, family and split%s",
                       where, sl ? sl : 1, sl ? "" : " (no [scheme] section)");
     goto done;
   }
-  if (R->points || R->any_pts) {
-    st = build_points(R, text, where, sl, out, err);
+  if (R->family != FAM_AVERAGING || R->nrs) {
+    st = ss_stencil_build_rules(R, text, where, sl, out, err);
     goto done;
   }
   ss_averaging a;
@@ -868,7 +641,7 @@ static ss_status parse_with(const char *text, const char *where,
     if (!R->has_mask[t]) continue;
     char sec[32];
     snprintf(sec, sizeof sec, "mask.%s", short_names[t]);
-    const int line = section_line(text, sec);
+    const int line = ss_stencil_section_line(text, sec);
     if (!split_takes(R->split, (ss_cell_type)t)) {
       st = ss_error_set(err, SS_EINPUT, "%s:%d: [%s]: split %s does not make %s", where,
                         line, sec,
@@ -897,12 +670,11 @@ static ss_status parse_with(const char *text, const char *where,
 done:
   for (int t = 0; t < SS_NCELLTYPES; t++)
     for (int r = 0; r < 4; r++) {
-      slot_clear(&R->m[t][r]);
+      ss_stencil_slot_clear(&R->m[t][r]);
       free(tabs[t][r]);
     }
-  for (int p = 0; p < SS_PTS_PLACES; p++)
-    for (int d = 0; d < 16; d++)
-      slot_clear(&R->p[p][d / 4][d % 4]);
+  for (int i = 0; i < NRSEC * 4; i++)
+    ss_stencil_slot_clear(&R->rs[i / 4][i % 4]);
   free(R);
   return st;
 }

@@ -52,6 +52,23 @@
  * rational); no [mask.*] sections.  data/stencils/ccsolid.ini and loop.ini
  * are the built-in ccsolid and loop so written.
  *
+ * The neighbours family (family = neighbours, split tetoct; ss_scheme.h,
+ * ss_neighbours): the box-spline paper's rules over rho, the neighbours by
+ * an edge or an octahedron's major diagonal.  Sections and keys: [vertex]
+ * self, rho (n = |rho(x)|, rho shared by the n); [edge] ends, rho (ends
+ * shared by the two ends, n = |rho(a) ∩ rho(b)|; the midpoint when n = 0);
+ * [centre] diagonal, equator (the octahedron centre: the two ends of its
+ * major diagonal, its other four corners; n = 6); [boundary.vertex] self,
+ * ring and [boundary.edge] ends, opposite (Loop-like rules on the faces held
+ * by one cell; n boundary neighbours, or vertices opposite the edge).  All
+ * five needed.  data/stencils/boxspline.ini is the built-in boxspline.
+ *
+ * A weight given apart at one valence: KEY@N = VALUE (N = 1..SS_AVG_NMAX,
+ * after KEY itself, at most 16 per key) replaces KEY's value at n = N, in
+ * every family (box-spline's (3.5) is edge ends@4 and rho@4).  The sums are
+ * checked at N with it.  With a [param] name in VALUE it is a parameter of
+ * one valence for `subspectra tune`.
+ *
  * Parameters: a [param] section names values that weights use by name,
  *
  *   [param]
