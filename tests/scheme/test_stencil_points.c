@@ -10,7 +10,8 @@
  *     boundary, a crease segment, a corner and explicit quads;
  *   - data/stencils/loop.ini: operators and surface-vertex local matrices
  *     (n = 3..12) equal to loop's (rational entries as rationals, Loop's
- *     cos(2 pi/n) entries within 1e-15), the same verdicts;
+ *     cos(2 pi/n) entries within 1e-15), the same verdicts, and the one-ring
+ *     spectrum Loop's closed form (1, 5/8 - n b, 3/8 + cos(2 pi j/n)/4);
  *   - data/stencils/boxspline.ini (the neighbours family): local matrices of
  *     vertex, edge and face cases identical to boxspline's as rationals,
  *     certified verdicts equal, operators on refined tet stars (octahedra,
@@ -23,6 +24,7 @@
  *   - bad points files: exit status and messages naming the file, the line
  *     and, where it depends on one, the valence.
  * Exits 77 (skipped) without libmatheval (the files' weights read n). */
+#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -288,6 +290,54 @@ static void test_mutations(void) {
   free(text);
 }
 
+/* Loop's one-ring spectrum in closed form (Fourier analysis of the rules,
+ * computed here from them, not by the code under test): the centre and the
+ * mean of its n neighbours give 1 and 5/8 - n b; neighbour mode j = 1..n-1
+ * gives 3/8 + cos(2 pi j/n)/4.  The one-ring block of loop.ini's local
+ * matrix must have exactly these eigenvalues (LAPACK, relative 1e-12). */
+static void loop_closed_form(const ss_scheme *s, int n) {
+  ss_error err = {0};
+  ss_local *M = NULL;
+  const ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0};
+  if (ss_local_new(s, &c, &M, &err)) {
+    CHECK(0, "loop closed form n = %d: %s", n, err.msg);
+    return;
+  }
+  const size_t m = M->n1;
+  CHECK(m == (size_t)n + 1, "loop n = %d: one-ring of %zu points", n, m);
+  if (m == (size_t)n + 1) {
+    double *A = malloc(m * m * sizeof *A), *wr = malloc(m * sizeof *wr),
+           *wi = malloc(m * sizeof *wi), *want = malloc(m * sizeof *want);
+    unsigned char *used = calloc(m, 1);
+    for (size_t i = 0; i < m; i++)
+      memcpy(A + i * m, M->S + i * M->n2, m * sizeof *A);
+    lapack_int info = LAPACKE_dgeev(LAPACK_ROW_MAJOR, 'N', 'N', (lapack_int)m, A,
+                                    (lapack_int)m, wr, wi, NULL, 1, NULL, 1);
+    const double t = 3.0 / 8.0 + cos(2.0 * M_PI / n) / 4.0, b = (5.0 / 8.0 - t * t) / n;
+    want[0] = 1.0;
+    want[1] = 5.0 / 8.0 - n * b;
+    for (int j = 1; j < n; j++)
+      want[j + 1] = 3.0 / 8.0 + cos(2.0 * M_PI * j / n) / 4.0;
+    int ok = info == 0;
+    for (size_t i = 0; ok && i < m; i++) { /* match each closed form once */
+      size_t best = m;
+      for (size_t k = 0; k < m; k++)
+        if (!used[k] && fabs(wi[k]) < 1e-12 && fabs(wr[k] - want[i]) < 1e-12 &&
+            (best == m || fabs(wr[k] - want[i]) < fabs(wr[best] - want[i])))
+          best = k;
+      ok = best < m;
+      if (ok) used[best] = 1;
+    }
+    CHECK(ok, "loop.ini n = %d: the one-ring spectrum is not Loop's closed form", n);
+    free(A);
+    free(wr);
+    free(wi);
+    free(want);
+    free(used);
+  }
+  ss_local_free(M);
+}
+
 static void test_loop(void) {
   char *text = read_text("loop.ini");
   ss_scheme *st = from_text(text, "loop.ini"), *lp = builtin("loop");
@@ -299,6 +349,7 @@ static void test_loop(void) {
     snprintf(what, sizeof what, "loop surface vertex %d", n);
     same_local(lp, st, c, 1, what, 1);
     same_verdicts(lp, st, c, 0, what);
+    loop_closed_form(st, n);
   }
   /* closed surfaces, a boundary (the star), creases and a corner */
   const char *links[] = {"icosahedron", "bipyramid:7"};
@@ -321,7 +372,8 @@ static void test_loop(void) {
   ss_cx *tor = tm_torus_triangles(4);
   CHECK(same_operator_q(lp, st, tor, 1, "torus"), "loop, triangle torus: differ");
   ss_cx_free(tor);
-  /* a mutated vertex weight (+1/64 on the old point) is seen */
+  /* a mutated vertex weight (+1/64 on the old point) is seen, and leaves
+   * the closed form (5/8 - n b moves) */
   char *t = replaced(text, "vertex = 1 - 2*", "vertex = 1/64 + 1 - 2*");
   char *t2 = replaced(t, "edge = 2*(", "edge = -1/64 + 2*(");
   ss_scheme *m = from_text(t2, "loop mutated");
