@@ -278,9 +278,10 @@ static void boundary_vertex(const topo *T, size_t x, ss_sink *k) {
                              T->bnd.ptr[x + 1] - T->bnd.ptr[x]);
 }
 
-/* Loop's boundary rule for the edge point f of (a, b) if both ends are on the
- * boundary and the edge is in a boundary triangle; 1 if emitted. */
-static int boundary_edge(const topo *T, size_t f, ss_idx a, ss_idx b, ss_sink *k) {
+/* The vertices opposite the edge (a, b) in boundary triangles, into
+ * T->common; their number (0 when an end is off the boundary or the edge is
+ * in no boundary triangle). */
+static size_t boundary_opposite(const topo *T, ss_idx a, ss_idx b) {
   if (!T->onb[a] || !T->onb[b]) return 0;
   size_t m = 0;
   for (size_t q = T->bnd.ptr[a]; q < T->bnd.ptr[a + 1]; q++) {
@@ -291,6 +292,13 @@ static int boundary_edge(const topo *T, size_t f, ss_idx a, ss_idx b, ss_sink *k
     /* bsearch finds some copy; a boundary face occurs once */
     if (hit && hit->opp) T->common[m++] = c;
   }
+  return m;
+}
+
+/* Loop's boundary rule for the edge point f of (a, b) if both ends are on the
+ * boundary and the edge is in a boundary triangle; 1 if emitted. */
+static int boundary_edge(const topo *T, size_t f, ss_idx a, ss_idx b, ss_sink *k) {
+  const size_t m = boundary_opposite(T, a, b);
   if (m == 0) return 0;
   ss_scheme_loop_edge_emit(k, f, a, b, T->common, m);
   return 1;
@@ -511,15 +519,7 @@ static void emit_shared(ss_sink *k, size_t f, ss_idx x, ss_idx y, double ws, dou
  * emitted, -1 beyond the tables. */
 static int nb_boundary_edge(const ss_scheme *s, const topo *T, size_t f, ss_idx a,
                             ss_idx b, ss_sink *k) {
-  if (!T->onb[a] || !T->onb[b]) return 0;
-  size_t m = 0;
-  for (size_t q = T->bnd.ptr[a]; q < T->bnd.ptr[a + 1]; q++) {
-    const ss_idx c = T->bnd.nb[q];
-    if (c == b) continue;
-    face t = make_face(a, b, c);
-    const face *hit = bsearch(&t, T->faces, T->nfa, sizeof *T->faces, face_cmp);
-    if (hit && hit->opp) T->common[m++] = c;
-  }
+  const size_t m = boundary_opposite(T, a, b);
   if (m == 0) return 0;
   if (m > SS_AVG_NMAX) return -1;
   emit_shared(k, f, a, b, nbw(s, SS_NB_BEDGE, 0, m), nbw(s, SS_NB_BEDGE, 1, m), T->common,

@@ -177,6 +177,7 @@ slot *ss_stencil_slot_for(reader *R, slot *sl, int given, long n, const char *se
     return NULL;
   }
   if (!(sl->ov[sl->nov] = calloc(1, sizeof *sl->ov[0]))) {
+    R->nomem = 1;
     snprintf(R->msg, sizeof R->msg, "out of memory");
     return NULL;
   }
@@ -270,6 +271,7 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   char *sub = NULL; /* value with the parameters' values, or NULL */
   if (R->pv && R->pv->n) {
     if (!(sub = ss_stencil_substitute(value, R->pv, R->used))) {
+      R->nomem = 1;
       snprintf(R->msg, sizeof R->msg, "out of memory");
       return 0;
     }
@@ -299,11 +301,13 @@ int ss_stencil_weight_key(reader *R, const char *section, const char *key,
   if (pr) { /* not p/q: an expression */
     ss_error xe = {0};
     if (ss_expr_new(text, &w->ex, &xe)) {
+      R->nomem |= xe.status == SS_ENOMEM;
       snprintf(R->msg, sizeof R->msg, "[%.64s] %s = '%.64s'%.160s", section, key, value,
                xe.msg);
       return 0;
     }
     if (!(w->etext = strdup(value))) {
+      R->nomem = 1;
       snprintf(R->msg, sizeof R->msg, "out of memory");
       return 0;
     }
@@ -587,7 +591,9 @@ ss_status ss_stencil_read_params(const char *text, const char *where,
   ss_status st = SS_OK;
   /* a [param] error that is the file's first; a line inih cannot read or
    * too long is left to the weights pass, which sees every error in order */
-  if (rc != 0 && R->msg_line == rc)
+  if (R->nomem)
+    st = ss_error_nomem(err, "stencil");
+  else if (rc != 0 && R->msg_line == rc)
     st = ss_error_set(err, SS_EINPUT, "%s:%d: %s", where, rc, R->msg);
   free(R);
   return st;
@@ -608,6 +614,10 @@ static ss_status parse_with(const char *text, const char *where,
   if (R->long_line && (rc == 0 || R->long_line <= rc)) {
     st = ss_error_set(err, SS_EINPUT, "%s:%d: a line longer than %d characters", where,
                       R->long_line, INI_MAX_LINE - 2);
+    goto done;
+  }
+  if (R->nomem) {
+    st = ss_error_nomem(err, "stencil weights");
     goto done;
   }
   if (rc != 0) { /* the first error: the handler's, or a line inih cannot read */

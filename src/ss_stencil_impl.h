@@ -48,6 +48,8 @@ typedef struct {
   int rs_order[NRSEC];            /* the sections seen, in the file's order */
   int nrs;                        /* their number */
   char msg[384];                  /* the handler's first complaint */
+  int nomem;                      /* an allocation failed in the handler: the
+                                     parse ends in SS_ENOMEM, whatever else */
   int msg_line;                   /* its line (1-based), 0 before any */
   const char *text;               /* the file's text, read line by line */
   const char *next;               /* where the next line starts in text */

@@ -92,6 +92,7 @@ int ss_stencil_rule_key(reader *R, const char *section, const char *key,
   if (!dst) return 0;
   char *sub = NULL;
   if (R->pv && R->pv->n && !(sub = ss_stencil_substitute(value, R->pv, R->used))) {
+    R->nomem = 1;
     snprintf(R->msg, sizeof R->msg, "out of memory");
     return 0;
   }

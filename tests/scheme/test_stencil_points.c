@@ -134,6 +134,27 @@ static void same_verdicts(const ss_scheme *a, const ss_scheme *b, ss_case c, int
   ss_result_clear(&rb);
 }
 
+/* The vertex cases of the links named: local matrices the same as
+ * rationals, and for the first ncert certified verdicts equal. */
+static void same_vertices(const ss_scheme *a, const ss_scheme *b,
+                          const char *const *links, size_t nlinks, size_t ncert,
+                          const char *name) {
+  for (size_t i = 0; i < nlinks; i++) {
+    ss_link *l = NULL;
+    ss_error err = {0};
+    if (ss_link_named(links[i], &l, &err)) {
+      CHECK(0, "%s: %s", links[i], err.msg);
+      continue;
+    }
+    const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
+    char what[96];
+    snprintf(what, sizeof what, "%s vertex %s", name, links[i]);
+    same_local(a, b, c, 0, what, 1);
+    if (i < ncert) same_verdicts(a, b, c, 1, what);
+    ss_link_free(l);
+  }
+}
+
 /* Refine cx once with a and b: the operators' entries the same (dense
  * comparison; same_entry).  Returns 1 when they are. */
 static int same_operator_q(const ss_scheme *a, const ss_scheme *b, const ss_cx *cx,
@@ -198,20 +219,7 @@ static void test_ccsolid(void) {
   ss_scheme *st = from_text(text, "ccsolid.ini"), *cc = builtin("ccsolid");
   if (!st) goto out;
   CHECK(ss_scheme_weights_rational(st), "ccsolid.ini: weights said not rational");
-  for (size_t i = 0; i < sizeof vlinks / sizeof *vlinks; i++) {
-    ss_link *l = NULL;
-    ss_error err = {0};
-    if (ss_link_named(vlinks[i], &l, &err)) {
-      CHECK(0, "%s: %s", vlinks[i], err.msg);
-      continue;
-    }
-    const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
-    char what[96];
-    snprintf(what, sizeof what, "ccsolid vertex %s", vlinks[i]);
-    same_local(cc, st, c, 0, what, 1);
-    if (i < 3) same_verdicts(cc, st, c, 1, what);
-    ss_link_free(l);
-  }
+  same_vertices(cc, st, vlinks, sizeof vlinks / sizeof *vlinks, 3, "ccsolid");
   const int edges[] = {3, 5, 6};
   for (int i = 0; i < 3; i++) {
     const ss_case c = {SS_CASE_EDGE, NULL, edges[i], SS_DIAG_BFS, 0};
@@ -430,17 +438,7 @@ static void test_boxspline(void) {
     free(tv);
   }
   const char *links[] = {"icosahedron", "octahedron", "bipyramid:5", "tetrahedron"};
-  for (int i = 0; i < 4; i++) {
-    ss_link *l = NULL;
-    ss_error err = {0};
-    if (ss_link_named(links[i], &l, &err)) exit(1);
-    const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
-    char what[64];
-    snprintf(what, sizeof what, "boxspline vertex %s", links[i]);
-    same_local(bx, st, c, 0, what, 1);
-    if (i < 2) same_verdicts(bx, st, c, 1, what);
-    ss_link_free(l);
-  }
+  same_vertices(bx, st, links, 4, 2, "boxspline");
   for (int n = 3; n <= 6; n++) {
     const ss_case c = {SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0};
     char what[64];
