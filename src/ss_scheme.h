@@ -63,6 +63,70 @@ typedef struct {
                    some is not, and certified verdicts say so, proving nothing */
 } ss_averaging_vary;
 
+/* The points family (ss_scheme_points.c): every new point a weighted sum of
+ * means of centroids of the coarse elements incident to its element (those
+ * containing it or contained in it).  A fine vertex of a split stands for a
+ * coarse element of dimension d (0 an old vertex, 1 an edge, 2 a face, 3 a
+ * cell); its new position is
+ *     sum over k of w[place][d][k](n) * (mean over the distinct coarse
+ *     elements E of dimension k with E in X or X in E of centroid(E)),
+ * X its element, n the number of elements of the place's top dimension at X,
+ * and place 0 (volume: points of a hex mesh off its surface, averaged over
+ * hexes), 1 (surface: the boundary faces and quad cells of a hex mesh as
+ * ccsolid takes them, or a triangle surface; averaged over its faces), 2
+ * (crease: crease edges and vertices after ss_crease.h, averaged over the
+ * crease edges).  Corners are interpolated. */
+enum { SS_PTS_VOLUME = 0, SS_PTS_SURFACE = 1, SS_PTS_CREASE = 2, SS_PTS_PLACES = 3 };
+
+typedef struct {
+  ss_split_kind split;                  /* SS_SPLIT_MULTILINEAR (hexes, quads, segments,
+                                           vertices) or SS_SPLIT_TETOCT (triangles, segments,
+                                           vertices: Loop's 1-to-4 split) */
+  const double *w[SS_PTS_PLACES][4][4]; /* w[place][d][k][n], n = 1..SS_AVG_NMAX
+                                           (w[..][0] unused), copied; NULL: 0 at
+                                           every n, and all NULL for (place, d):
+                                           the centroid of X (k = 0 weight 1) */
+  int rational;        /* 1: every weight is rational at every n (the exact
+                          path may read them) */
+  int rational_volume; /* 1: every weight of the volume place is */
+} ss_points;
+
+/* Build a points-family scheme (the weights copied).  For each (place, d)
+ * given, the weights must sum to 1 within 1e-12 at every n (SS_EINPUT naming
+ * them); SS_ENOMEM.  The rule refuses what ccsolid refuses (non-manifold hex
+ * meshes) and a fine vertex whose n exceeds SS_AVG_NMAX (SS_EINPUT). */
+ss_status ss_scheme_points_new(const char *name, const ss_points *p, ss_scheme **out,
+                               ss_error *err);
+
+/* The neighbours family (ss_scheme_boxspline.c): the box-spline paper's
+ * rules (ss_scheme_boxspline.c's header) with weights given per valence, on
+ * the tet/oct split of tets and octahedra with their major diagonals:
+ *   vertex x, n = |rho(x)|: w[VERTEX][0](n) x + w[VERTEX][1](n) / n each
+ *     rho neighbour (x stays when n = 0);
+ *   edge point of (a, b), n = |rho(a) ∩ rho(b)|: w[EDGE][0](n) / 2 on each
+ *     end + w[EDGE][1](n) / n on each common neighbour (the midpoint when
+ *     n = 0);
+ *   octahedron centre (n = 6): w[CENTRE][0] / 2 on each end of its major
+ *     diagonal, w[CENTRE][1] / 4 on each of the other four corners;
+ *   boundary vertex (on a face held by one cell), n boundary neighbours:
+ *     w[BVERTEX][0](n) x + w[BVERTEX][1](n) / n each;
+ *   boundary edge (in a boundary triangle), n vertices opposite it in
+ *     boundary triangles: w[BEDGE][0](n) / 2 each end + w[BEDGE][1](n) / n
+ *     each opposite vertex. */
+enum { SS_NB_VERTEX, SS_NB_EDGE, SS_NB_CENTRE, SS_NB_BVERTEX, SS_NB_BEDGE, SS_NB_RULES };
+
+typedef struct {
+  const double *w[SS_NB_RULES][2]; /* w[rule][key][n], n = 1..SS_AVG_NMAX, copied;
+                                      NULL: 0 at every n */
+  int rational;                    /* 1: every weight is rational at every n */
+  int rational_volume; /* 1: every weight of the vertex, edge and centre rules */
+} ss_neighbours;
+
+/* Build a neighbours-family scheme (weights copied).  Each rule's two
+ * weights must sum to 1 within 1e-12 at every n (SS_EINPUT); SS_ENOMEM. */
+ss_status ss_scheme_neighbours_new(const char *name, const ss_neighbours *nb,
+                                   ss_scheme **out, ss_error *err);
+
 /* Names of the built-in schemes, NULL-terminated. */
 const char *const *ss_scheme_names(void);
 
@@ -92,6 +156,15 @@ ss_status ss_scheme_averaging_vary_new(const char *name, const ss_averaging *a,
  * (ss_averaging_vary.rational = 0); 1 for every built-in scheme (Loop's
  * cos(2 pi / n) is found irrational by the reconstruction itself). */
 int ss_scheme_weights_rational(const ss_scheme *s);
+
+/* Whether the weights the rule applies inside a volume are all rational:
+ * those of the rows of a volume case's local matrix (3D vertex, edge and
+ * face cases, whose stars hold cells of the top dimension only, their
+ * boundary rows never read).  As ss_scheme_weights_rational, but a points
+ * or neighbours stencil whose irrational weights are only on its surface
+ * or creases (Loop's cos(2 pi / n) on a box-spline boundary) is rational
+ * here; the averaging family answers as ss_scheme_weights_rational. */
+int ss_scheme_volume_weights_rational(const ss_scheme *s);
 
 /* Free; NULL is a no-op. */
 void ss_scheme_free(ss_scheme *s);

@@ -31,6 +31,7 @@ void ss_scheme_free(ss_scheme *s) {
     free(s->vtab[t]);
     free(s->vrow[t]);
   }
+  free(s->ptab);
   free(s);
 }
 
@@ -71,6 +72,10 @@ ss_status ss_scheme_set_adapt(ss_scheme *s, const ss_adapt *a, ss_error *err) {
   s->adapt = *a;
   s->adaptive = 1;
   return SS_OK;
+}
+
+int ss_scheme_volume_weights_rational(const ss_scheme *s) {
+  return s->ptab ? !s->irrational_volume : !s->irrational;
 }
 
 int ss_scheme_reach(const ss_scheme *s) {

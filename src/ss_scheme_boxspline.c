@@ -516,3 +516,212 @@ ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err) {
   }
   return st;
 }
+
+/* The solid's boundary for the neighbours family, whose boundary rule is its
+ * own (weights per valence) where the built-in schemes refine the boundary
+ * as a Loop surface (loop_surface above): the faces held by one tet or
+ * octahedron, sorted; their edges as an adjacency; the vertices on them. */
+typedef struct {
+  face *faces;        /* the boundary faces, sorted */
+  size_t n;           /* their number */
+  adjacency bnd;      /* the boundary edges */
+  unsigned char *onb; /* nv flags: on the boundary */
+} nb_boundary;
+
+static void nb_boundary_free(nb_boundary *B) {
+  free(B->faces);
+  adj_free(&B->bnd);
+  free(B->onb);
+}
+
+static ss_status nb_boundary_make(const ss_cx *coarse, nb_boundary *B, ss_error *err) {
+  const size_t nv = coarse->nv, nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
+  memset(B, 0, sizeof *B);
+  const size_t nf = 4 * nt + 8 * no;
+  B->faces = malloc((nf + 1) * sizeof *B->faces);
+  B->onb = calloc(nv + 1, 1);
+  ss_idx *pairs = malloc((6 * nf + 1) * sizeof *pairs);
+  if (!B->faces || !B->onb || !pairs) goto nomem;
+  size_t n = 0;
+  for (size_t t = 0; t < nt; t++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
+    for (int i = 0; i < 4; i++)
+      B->faces[n++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
+  }
+  for (size_t o = 0; o < no; o++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
+    for (int q = 0; q < 8; q++)
+      B->faces[n++] = make_face(v[q & 1 ? 3 : 0], v[q & 2 ? 4 : 1], v[q & 4 ? 5 : 2]);
+  }
+  qsort(B->faces, n, sizeof *B->faces, face_cmp);
+  size_t m = 0, np = 0; /* the faces held once, compacted in place */
+  for (size_t i = 0; i < n;) {
+    size_t j = i + 1;
+    while (j < n && face_cmp(B->faces + i, B->faces + j) == 0)
+      j++;
+    if (j - i == 1) {
+      const ss_idx *v = B->faces[i].v;
+      for (int e = 0; e < 3; e++) {
+        pairs[2 * np] = v[e];
+        pairs[2 * np + 1] = v[(e + 1) % 3];
+        np++;
+        B->onb[v[e]] = 1;
+      }
+      B->faces[m++] = B->faces[i];
+    }
+    i = j;
+  }
+  B->n = m;
+  if (adj_make(nv, np, pairs, &B->bnd)) goto nomem;
+  free(pairs);
+  return SS_OK;
+nomem:
+  free(pairs);
+  nb_boundary_free(B);
+  return ss_error_nomem(err, "box-spline neighbours family: boundary");
+}
+
+/* The vertices opposite the edge (a, b) in boundary faces, into T->common;
+ * their number (0 when an end is off the boundary or the edge is in no
+ * boundary face). */
+static size_t boundary_opposite(const nb_boundary *B, const topo *T, ss_idx a, ss_idx b) {
+  if (!B->onb[a] || !B->onb[b]) return 0;
+  size_t m = 0;
+  for (size_t q = B->bnd.ptr[a]; q < B->bnd.ptr[a + 1]; q++) {
+    const ss_idx c = B->bnd.nb[q];
+    if (c == b) continue;
+    const face t = make_face(a, b, c);
+    if (bsearch(&t, B->faces, B->n, sizeof *B->faces, face_cmp)) T->common[m++] = c;
+  }
+  return m;
+}
+
+/* ---- the neighbours family: these rules with weights per valence ---- */
+
+/* Weight key of rule r at valence n (SS_AVG_NMAX at most: the caller checks). */
+static double nbw(const ss_scheme *s, int r, int key, size_t n) {
+  return s->ptab[(size_t)(r * 2 + key) * (SS_AVG_NMAX + 1) + n];
+}
+
+/* The valence n of a rule beyond the tables: SS_EINPUT naming the vertex. */
+static ss_status beyond(const ss_scheme *s, size_t x, size_t n, ss_error *err) {
+  return ss_error_set(err, SS_EINPUT,
+                      "scheme %s: fine vertex %zu has %zu neighbours in its rule, beyond "
+                      "the valences its weights are given for (1..%d)",
+                      s->name, x + 1, n, SS_AVG_NMAX);
+}
+
+/* Fine vertex f: self weight ws on x (or ws / 2 on each of x and y when y is
+ * given), wn / n on each of the n vertices nb. */
+static void emit_shared(ss_sink *k, size_t f, ss_idx x, ss_idx y, double ws, double wn,
+                        const ss_idx *nb, size_t n) {
+  if (y == SS_IDX_NONE) {
+    ss_sink_emit(k, f, x, ws);
+  } else {
+    ss_sink_emit(k, f, x, ws / 2.0);
+    ss_sink_emit(k, f, y, ws / 2.0);
+  }
+  for (size_t i = 0; i < n; i++)
+    ss_sink_emit(k, f, nb[i], wn / (double)n);
+}
+
+/* The boundary edge point f of (a, b) by the family's weights if both ends
+ * are on the boundary and the edge is in a boundary triangle; 1 if
+ * emitted, -1 beyond the tables. */
+static int nb_boundary_edge(const ss_scheme *s, const nb_boundary *B, const topo *T,
+                            size_t f, ss_idx a, ss_idx b, ss_sink *k) {
+  const size_t m = boundary_opposite(B, T, a, b);
+  if (m == 0) return 0;
+  if (m > SS_AVG_NMAX) return -1;
+  emit_shared(k, f, a, b, nbw(s, SS_NB_BEDGE, 0, m), nbw(s, SS_NB_BEDGE, 1, m), T->common,
+              m);
+  return 1;
+}
+
+static ss_status neighbours_rule(const ss_scheme *s, const ss_cx *coarse,
+                                 const ss_cx *fine, const ss_split *L, ss_sink *k,
+                                 ss_error *err) {
+  (void)fine;
+  const size_t nv = coarse->nv;
+  topo T;
+  nb_boundary B;
+  ss_status st = topo_make(coarse, L, 1, &T, err);
+  if (st) return st;
+  if ((st = nb_boundary_make(coarse, &B, err))) {
+    topo_free(&T);
+    return st;
+  }
+  for (size_t x = 0; x < nv && !st; x++) {
+    const adjacency *A = B.onb[x] ? &B.bnd : &T.nb;
+    const int r = B.onb[x] ? SS_NB_BVERTEX : SS_NB_VERTEX;
+    const size_t n = A->ptr[x + 1] - A->ptr[x];
+    if (n > SS_AVG_NMAX)
+      st = beyond(s, x, n, err);
+    else if (n == 0) /* a vertex in no cell keeps its place */
+      ss_sink_emit(k, x, x, 1.0);
+    else
+      emit_shared(k, x, (ss_idx)x, SS_IDX_NONE, nbw(s, r, 0, n), nbw(s, r, 1, n),
+                  A->nb + A->ptr[x], n);
+  }
+  for (size_t f = nv; f < L->nfine && !st; f++) {
+    if (ss_split_npar(L, f) != 2) continue;
+    const ss_idx a = L->parent[L->ptr[f]], b = L->parent[L->ptr[f] + 1];
+    const int bd = nb_boundary_edge(s, &B, &T, f, a, b, k);
+    if (bd) {
+      if (bd < 0) st = beyond(s, f, SS_AVG_NMAX + 1, err);
+      continue;
+    }
+    const size_t m = common_neighbours(&T, a, b);
+    if (m > SS_AVG_NMAX)
+      st = beyond(s, f, m, err);
+    else if (m == 0) /* no common neighbour: the midpoint */
+      emit_shared(k, f, a, b, 1.0, 0.0, NULL, 0);
+    else
+      emit_shared(k, f, a, b, nbw(s, SS_NB_EDGE, 0, m), nbw(s, SS_NB_EDGE, 1, m),
+                  T.common, m);
+  }
+  if (!st)
+    st = centres(coarse, L, nbw(s, SS_NB_CENTRE, 0, 6) / 2.0,
+                 nbw(s, SS_NB_CENTRE, 1, 6) / 4.0, k, err);
+  topo_free(&T);
+  nb_boundary_free(&B);
+  return st;
+}
+
+ss_status ss_scheme_neighbours_new(const char *name, const ss_neighbours *nb,
+                                   ss_scheme **out, ss_error *err) {
+  *out = NULL;
+  const size_t NN = SS_AVG_NMAX + 1;
+  double *tab = calloc(SS_NB_RULES * 2 * NN, sizeof *tab);
+  if (!tab) return ss_error_nomem(err, "neighbours weights");
+  static const char *const rules[SS_NB_RULES] = {"vertex", "edge", "centre",
+                                                 "boundary vertex", "boundary edge"};
+  for (int r = 0; r < SS_NB_RULES; r++)
+    for (size_t n = 1; n < NN; n++) {
+      double sum = 0.0;
+      for (int key = 0; key < 2; key++) {
+        const double v = nb->w[r][key] ? nb->w[r][key][n] : 0.0;
+        tab[(size_t)(r * 2 + key) * NN + n] = v;
+        sum += v;
+      }
+      if (!(fabs(sum - 1.0) <= 1e-12)) {
+        free(tab);
+        return ss_error_set(err, SS_EINPUT,
+                            "scheme %s: the %s weights sum to %.17g at n = %zu, not 1",
+                            name, rules[r], sum, n);
+      }
+    }
+  const unsigned accepts = (1u << SS_TET) | (1u << SS_OCT);
+  ss_status st =
+      ss_scheme_alloc(name, SS_SPLIT_TETOCT, accepts, neighbours_rule, out, err);
+  if (st) {
+    free(tab);
+    return st;
+  }
+  (*out)->ptab = tab;
+  (*out)->irrational = !nb->rational;
+  (*out)->irrational_volume = !nb->rational_volume;
+  (*out)->reach = 2; /* rho(e) reads both ends' neighbourhoods */
+  (*out)->diagonals = 1;
+  return SS_OK;
+}

@@ -48,6 +48,7 @@
  * holding a fine vertex, so the rule reaches one ring (ss_scheme_reach 1). */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "ss_scheme_impl.h"
 
@@ -238,10 +239,11 @@ static void add_face_children(cs_work *w, size_t h, int f) {
     }
 }
 
-/* The surface (header): its fine quads, the marks `on`, and the surface rule
- * on a split restricted to the marked vertices. */
-static ss_status surface_rule(const ss_cx *fine, const ss_split *L, cs_work *w,
-                              ss_sink *k, ss_error *err) {
+/* The surface (header): its fine quads w->quads, the marks w->on, and the
+ * split restricted to the marked vertices (w->lptr and *par, which the
+ * caller frees). */
+static ss_status build_surface(const ss_cx *fine, const ss_split *L, cs_work *w,
+                               ss_idx **par, ss_error *err) {
   const size_t nf = fine->nv;
   for (size_t q = 0; q < fine->nc[SS_QUAD]; q++) {
     const ss_idx *v = ss_cx_cell(fine, SS_QUAD, q);
@@ -266,27 +268,29 @@ static ss_status surface_rule(const ss_cx *fine, const ss_split *L, cs_work *w,
   /* a fine vertex off the surface is no edge or face of it: no parents */
   w->lptr[0] = 0;
   size_t m = 0;
-  ss_idx *par = malloc((L->ptr[nf] + 1) * sizeof *par);
-  if (!par) return ss_error_nomem(err, "ccsolid surface");
+  if (!(*par = malloc((L->ptr[nf] + 1) * sizeof **par)))
+    return ss_error_nomem(err, "ccsolid surface");
   for (size_t x = 0; x < nf; x++) {
     if (w->on[x])
       for (size_t q = L->ptr[x]; q < L->ptr[x + 1]; q++)
-        par[m++] = L->parent[q];
+        (*par)[m++] = L->parent[q];
     w->lptr[x + 1] = m;
   }
-  ss_split Ls = {L->ncoarse, nf, w->lptr, par};
+  return SS_OK;
+}
+
+/* The surface complex of w over fine's vertices (arrays borrowed). */
+static ss_cx surface_cx(const ss_cx *fine, const cs_work *w) {
   ss_cx surf = {0};
   surf.dim = fine->dim;
-  surf.nv = nf;
+  surf.nv = fine->nv;
   surf.nc[SS_QUAD] = w->nquads;
   surf.cells[SS_QUAD] = w->quads;
   surf.nc[SS_SEGMENT] = fine->nc[SS_SEGMENT];
   surf.cells[SS_SEGMENT] = fine->cells[SS_SEGMENT];
   surf.nc[SS_VERTEX] = fine->nc[SS_VERTEX];
   surf.cells[SS_VERTEX] = fine->cells[SS_VERTEX];
-  ss_status st = ss_scheme_catmull_clark_emit(&surf, &Ls, w->on, k, err);
-  free(par);
-  return st;
+  return surf;
 }
 
 /* The volume rules of the header for every fine vertex off the surface. */
@@ -341,57 +345,95 @@ static void volume_rule(const ss_cx *fine, const ss_split *L, const cs_work *w,
   }
 }
 
+/* The work of one refinement up to the rules: every array of w allocated,
+ * the lattices, the manifold checks and the surface (*par: the restricted
+ * split's parents, the caller frees it).  SS_EINPUT, SS_ENOMEM. */
+static ss_status prepare(const ss_cx *fine, const ss_split *L, cs_work *w, ss_idx **par,
+                         ss_error *err) {
+  const size_t nf = fine->nv, nc = L->ncoarse;
+  w->nhex = fine->nc[SS_HEX] / 8;
+  w->lat = malloc((w->nhex * NLAT + 1) * sizeof *w->lat);
+  w->uf = malloc((w->nhex * NLAT + 1) * sizeof *w->uf);
+  w->nhexat = calloc(nf + 1, sizeof *w->nhexat);
+  w->pair = malloc((nf + 1) * sizeof *w->pair);
+  w->nfaceat = calloc(nc + 1, sizeof *w->nfaceat);
+  w->nedgeat = calloc(nc + 1, sizeof *w->nedgeat);
+  w->bnd = calloc(nc + 1, 1);
+  w->on = calloc(nf + 1, 1);
+  w->expl = calloc(nf + 1, 1);
+  w->lptr = malloc((nf + 1) * sizeof *w->lptr);
+  if (!w->lat || !w->uf || !w->nhexat || !w->pair || !w->nfaceat || !w->nedgeat ||
+      !w->bnd || !w->on || !w->expl || !w->lptr)
+    return ss_error_nomem(err, "ccsolid rule");
+  build_lattices(fine, w);
+  for (size_t i = 0; i < w->nhex * NLAT; i++)
+    w->nhexat[w->lat[i]]++;
+  /* surface quads: the explicit ones and 4 per boundary face */
+  size_t nbface = 0;
+  for (size_t i = 0; i < w->nhex * NLAT; i++)
+    nbface += lat_kind((int)(i % NLAT)) == 2 && w->nhexat[w->lat[i]] == 1;
+  w->quads = malloc((4 * (fine->nc[SS_QUAD] + 4 * nbface) + 1) * sizeof *w->quads);
+  if (!w->quads) return ss_error_nomem(err, "ccsolid surface");
+  ss_status st = check_manifold(fine, L, w, err);
+  return st ? st : build_surface(fine, L, w, par, err);
+}
+
+static void work_clear(cs_work *w) {
+  free(w->lat);
+  free(w->uf);
+  free(w->nhexat);
+  free(w->pair);
+  free(w->nfaceat);
+  free(w->nedgeat);
+  free(w->bnd);
+  free(w->on);
+  free(w->expl);
+  free(w->quads);
+  free(w->lptr);
+}
+
 static ss_status ccsolid_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
                               const ss_split *L, ss_sink *k, ss_error *err) {
   (void)s;
   (void)coarse; /* the split complex and L say all this rule needs */
-  const size_t nf = fine->nv, nc = L->ncoarse;
   cs_work w = {0};
-  w.nhex = fine->nc[SS_HEX] / 8;
-  w.lat = malloc((w.nhex * NLAT + 1) * sizeof *w.lat);
-  w.uf = malloc((w.nhex * NLAT + 1) * sizeof *w.uf);
-  w.nhexat = calloc(nf + 1, sizeof *w.nhexat);
-  w.pair = malloc((nf + 1) * sizeof *w.pair);
-  w.nfaceat = calloc(nc + 1, sizeof *w.nfaceat);
-  w.nedgeat = calloc(nc + 1, sizeof *w.nedgeat);
-  w.bnd = calloc(nc + 1, 1);
-  w.on = calloc(nf + 1, 1);
-  w.expl = calloc(nf + 1, 1);
-  w.lptr = malloc((nf + 1) * sizeof *w.lptr);
-  ss_status st = SS_OK;
-  if (!w.lat || !w.uf || !w.nhexat || !w.pair || !w.nfaceat || !w.nedgeat || !w.bnd ||
-      !w.on || !w.expl || !w.lptr) {
-    st = ss_error_nomem(err, "ccsolid rule");
-    goto done;
+  ss_idx *par = NULL;
+  ss_status st = prepare(fine, L, &w, &par, err);
+  if (!st) {
+    ss_split Ls = {L->ncoarse, fine->nv, w.lptr, par};
+    ss_cx surf = surface_cx(fine, &w);
+    st = ss_scheme_catmull_clark_emit(&surf, &Ls, w.on, k, err);
   }
-  build_lattices(fine, &w);
-  for (size_t i = 0; i < w.nhex * NLAT; i++)
-    w.nhexat[w.lat[i]]++;
-  /* surface quads: the explicit ones and 4 per boundary face */
-  size_t nbface = 0;
-  for (size_t i = 0; i < w.nhex * NLAT; i++)
-    nbface += lat_kind((int)(i % NLAT)) == 2 && w.nhexat[w.lat[i]] == 1;
-  w.quads = malloc((4 * (fine->nc[SS_QUAD] + 4 * nbface) + 1) * sizeof *w.quads);
-  if (!w.quads) {
-    st = ss_error_nomem(err, "ccsolid surface");
-    goto done;
-  }
-  if ((st = check_manifold(fine, L, &w, err))) goto done;
-  if ((st = surface_rule(fine, L, &w, k, err))) goto done;
-  volume_rule(fine, L, &w, k);
-done:
-  free(w.lat);
-  free(w.uf);
-  free(w.nhexat);
-  free(w.pair);
-  free(w.nfaceat);
-  free(w.nedgeat);
-  free(w.bnd);
-  free(w.on);
-  free(w.expl);
-  free(w.quads);
-  free(w.lptr);
+  if (!st) volume_rule(fine, L, &w, k);
+  free(par);
+  work_clear(&w);
   return st;
+}
+
+ss_status ss_hex_surface_build(const ss_cx *fine, const ss_split *L, ss_hex_surface *out,
+                               ss_error *err) {
+  memset(out, 0, sizeof *out);
+  cs_work w = {0};
+  ss_idx *par = NULL;
+  ss_status st = prepare(fine, L, &w, &par, err);
+  if (!st) {
+    out->surf = surface_cx(fine, &w);
+    out->Ls = (ss_split){L->ncoarse, fine->nv, w.lptr, par};
+    out->on = w.on;
+    w.quads = NULL, w.lptr = NULL, w.on = NULL; /* now out's */
+  } else {
+    free(par);
+  }
+  work_clear(&w);
+  return st;
+}
+
+void ss_hex_surface_clear(ss_hex_surface *h) {
+  free(h->surf.cells[SS_QUAD]);
+  free(h->Ls.ptr);
+  free(h->Ls.parent);
+  free(h->on);
+  memset(h, 0, sizeof *h);
 }
 
 ss_status ss_scheme_ccsolid_new(ss_scheme **out, ss_error *err) {

@@ -40,14 +40,20 @@ struct ss_scheme {
                                          at valence n, the first equal one's
                                          address (as wrow in the rule) */
   int irrational;                     /* some weight is not rational */
-  int loop_surfaces;                  /* averaging: the vertices whose lowest cells are
-                                         triangles take Loop's rows on the triangle cells
-                                         (ss_loop_surface) instead of the triangle mask */
-  int loop_c_choice;                  /* 1: the boundary follows figure 14 of the
-                                         box-spline paper and takes ss_scheme_set_loop_c */
-  ss_loop_c loop_c;                   /* its smooth vertex weight (default Loop's beta) */
-  int adaptive;                       /* 1: refine with the adaptive bisect pass */
-  ss_adapt adapt;                     /* its criterion (ss_scheme_set_adapt) */
+  int irrational_volume;              /* the points and neighbours families: some
+                                         weight of a volume rule is not rational
+                                         (ss_scheme_volume_weights_rational) */
+  double *ptab;      /* the points family: w[place][d][k][n] of ss_points at
+                        ptab[((place * 4 + d) * 4 + k) * (SS_AVG_NMAX + 1) + n]; NULL
+                        for every other scheme */
+  int loop_surfaces; /* averaging: the vertices whose lowest cells are
+                        triangles take Loop's rows on the triangle cells
+                        (ss_loop_surface) instead of the triangle mask */
+  int loop_c_choice; /* 1: the boundary follows figure 14 of the
+                        box-spline paper and takes ss_scheme_set_loop_c */
+  ss_loop_c loop_c;  /* its smooth vertex weight (default Loop's beta) */
+  int adaptive;      /* 1: refine with the adaptive bisect pass */
+  ss_adapt adapt;    /* its criterion (ss_scheme_set_adapt) */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every
@@ -80,6 +86,28 @@ ss_status ss_scheme_quasi48_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_catmull_clark_emit(const ss_cx *surf, const ss_split *L,
                                        const unsigned char *on, ss_sink *k,
                                        ss_error *err);
+
+/* The surface of a split hex mesh as Catmull-Clark solids take it
+ * (ss_scheme_ccsolid.c, header comment "Boundaries and creases"): the fine
+ * quads of the boundary faces and of the explicit quad cells, with the fine
+ * segment and vertex cells; the vertices on them; and the split restricted
+ * to those (a fine vertex off the surface has no parents).  Built after the
+ * same manifold checks as the ccsolid rule (SS_EINPUT naming the vertices),
+ * for rules that refine hex meshes as ccsolid does with other weights
+ * (the points family, ss_scheme_points.c). */
+typedef struct {
+  ss_cx surf;        /* over fine's vertices: the surface quads (owned), fine's
+                        segment and vertex cells (borrowed) */
+  ss_split Ls;       /* the restricted split (ptr and parent owned) */
+  unsigned char *on; /* per fine vertex: 1 on the surface (owned) */
+} ss_hex_surface;
+
+/* Build *out for the split `fine` (a multilinear split of hexes, quads,
+ * segments and vertices) with L; clear it with ss_hex_surface_clear (also
+ * after a failure).  SS_EINPUT (non-manifold), SS_ENOMEM. */
+ss_status ss_hex_surface_build(const ss_cx *fine, const ss_split *L, ss_hex_surface *out,
+                               ss_error *err);
+void ss_hex_surface_clear(ss_hex_surface *h);
 
 /* The triangle cells of a split complex as a Loop surface, for a rule that
  * sends its rows in order (ss_scheme_averaging.c, tetoct's crease surfaces).

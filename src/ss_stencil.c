@@ -11,11 +11,7 @@
 #include <ini.h>
 
 #include "ss_expr.h"
-
-/* An exact rational num/den, den > 0, in lowest terms. */
-typedef struct {
-  long long num, den;
-} rational;
+#include "ss_stencil_impl.h"
 
 static long long gcd_ll(long long a, long long b) {
   if (a < 0) a = -a;
@@ -65,7 +61,7 @@ static int parse_rational(const char *s, rational *out) {
 }
 
 /* sum += c * r, exactly; -1 on overflow. */
-static int add_scaled(rational *sum, long long c, rational r) {
+int ss_stencil_add_scaled(rational *sum, long long c, rational r) {
   long long a, b, d;
   if (__builtin_mul_overflow(sum->num, r.den, &a) ||
       __builtin_mul_overflow(c, r.num, &b) || __builtin_mul_overflow(b, sum->den, &b) ||
@@ -98,30 +94,30 @@ static int split_takes(ss_split_kind k, ss_cell_type t) {
   return t == SS_SEGMENT || t == SS_TRIANGLE || t == SS_TET || t == SS_OCT;
 }
 
-typedef struct {
-  char name[64]; /* [scheme] name */
-  int have_name, have_family, have_split;
-  ss_split_kind split;
-  rational w[SS_NCELLTYPES][4];   /* weights by type and role (constant ones) */
-  ss_expr *ex[SS_NCELLTYPES][4];  /* the weights that are expressions, or NULL */
-  char *etext[SS_NCELLTYPES][4];  /* an expression's text, for messages */
-  int keyline[SS_NCELLTYPES][4];  /* the line of each weight */
-  unsigned given[SS_NCELLTYPES];  /* bit r: role r given */
-  int has_mask[SS_NCELLTYPES];    /* a [mask.*] section seen */
-  char msg[384];                  /* the handler's first complaint */
-  int msg_line;                   /* its line (1-based), 0 before any */
-  const char *text;               /* the file's text, read line by line */
-  const char *next;               /* where the next line starts in text */
-  int line;                       /* line of the text last handed to inih */
-  int newlines;                   /* newlines in text before next */
-  int long_line;                  /* first line longer than inih's buffer, or 0 */
-  ss_stencil_params *collect;     /* the [param] pass: parameters read here
-                                     (every other section ignored); else NULL */
-  ss_stencil_params own;          /* the weights pass: [param] read again here,
-                                     so that its errors come in the file's order */
-  const ss_stencil_params *pv;    /* the weights pass: the values substituted */
-  int used[SS_STENCIL_MAXPARAMS]; /* weights that use parameter i */
-} reader;
+void ss_stencil_slot_clear(slot *sl) {
+  ss_expr_free(sl->ex);
+  free(sl->etext);
+  for (int i = 0; i < sl->nov; i++) {
+    ss_stencil_slot_clear(sl->ov[i]);
+    free(sl->ov[i]);
+  }
+}
+
+/* "KEY@N": KEY into base (cap bytes) and N into *n (0 without @).  0, or -1
+ * when N is not a valence 1..SS_AVG_NMAX written in digits. */
+int ss_stencil_key_at(const char *key, char *base, size_t cap, long *n) {
+  const char *at = strchr(key, '@');
+  const size_t len = at ? (size_t)(at - key) : strlen(key);
+  snprintf(base, cap, "%.*s", (int)(len < cap ? len : cap - 1), key);
+  *n = 0;
+  if (!at) return 0;
+  char *end = NULL;
+  errno = 0;
+  const long v = isdigit((unsigned char)at[1]) ? strtol(at + 1, &end, 10) : -1;
+  if (v < 1 || v > SS_AVG_NMAX || errno || *end) return -1;
+  *n = v;
+  return 0;
+}
 
 /* inih's line reader over R->text: copies the next line (at most num - 1
  * bytes, a longer line in pieces) and counts lines, so that the handler knows
@@ -158,9 +154,39 @@ static int cell_type_of(const char *s, ss_cell_type *t) {
 }
 
 static int param_key(reader *R, const char *key, const char *value);
-static char *substitute_params(const char *value, const ss_stencil_params *pv, int *used);
-static int mask_key(reader *R, const char *section, const char *key, const char *text,
-                    const char *value, ss_cell_type t, int r);
+
+/* The slot a key writes: sl itself (n = 0), or a new override of sl at
+ * valence n; NULL with R->msg set (repeated valence, too many, no base). */
+slot *ss_stencil_slot_for(reader *R, slot *sl, int given, long n, const char *section,
+                          const char *key) {
+  if (n == 0) return sl;
+  if (!given) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.64s] %.64s: give the weight at every valence first (a key without @)",
+             section, key);
+    return NULL;
+  }
+  for (int i = 0; i < sl->nov; i++)
+    if (sl->ovn[i] == n) {
+      snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
+      return NULL;
+    }
+  if (sl->nov == MAXOVER) {
+    snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s: more than %d valences apart", section,
+             key, MAXOVER);
+    return NULL;
+  }
+  if (!(sl->ov[sl->nov] = calloc(1, sizeof *sl->ov[0]))) {
+    R->nomem = 1;
+    snprintf(R->msg, sizeof R->msg, "out of memory");
+    return NULL;
+  }
+  sl->ovn[sl->nov] = n;
+  return sl->ov[sl->nov++];
+}
+char *ss_stencil_substitute(const char *value, const ss_stencil_params *pv, int *used);
+int ss_stencil_weight_key(reader *R, const char *section, const char *key,
+                          const char *text, const char *value, slot *w);
 
 static int handle(reader *R, const char *section, const char *key, const char *value) {
   if (!strcmp(section, "param")) return param_key(R, key, value);
@@ -176,9 +202,14 @@ static int handle(reader *R, const char *section, const char *key, const char *v
       strcpy(R->name, value);
     } else if (!strcmp(key, "family")) {
       if (R->have_family++) goto repeated;
-      if (strcmp(value, "averaging")) {
+      R->family = !strcmp(value, "points")       ? FAM_POINTS
+                  : !strcmp(value, "neighbours") ? FAM_NEIGHBOURS
+                                                 : FAM_AVERAGING;
+      if (strcmp(value, "averaging") && R->family == FAM_AVERAGING) {
         snprintf(R->msg, sizeof R->msg,
-                 "[scheme] family '%.64s' is unknown (known: averaging)", value);
+                 "[scheme] family '%.64s' is unknown (known: averaging, points, "
+                 "neighbours)",
+                 value);
         return 0;
       }
     } else if (!strcmp(key, "split")) {
@@ -199,9 +230,13 @@ static int handle(reader *R, const char *section, const char *key, const char *v
     }
     return 1;
   }
+  const int rk = ss_stencil_rule_key(R, section, key, value);
+  if (rk >= 0) return rk;
   if (strncmp(section, "mask.", 5)) {
     snprintf(R->msg, sizeof R->msg,
-             "section [%.64s] is unknown (known: [scheme], [param], [mask.TYPE])",
+             "section [%.64s] is unknown (known: [scheme], [param], [mask.TYPE], "
+             "[volume|surface|crease.POINT], [vertex], [edge], [centre], "
+             "[boundary.vertex|edge])",
              section);
     return 0;
   }
@@ -215,8 +250,11 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   }
   R->has_mask[t] = 1;
   int r = -1;
-  for (int q = 0; q < ss_cell_nroles(t); q++)
-    if (!strcmp(key, role_names[t][q])) r = q;
+  char base[64];
+  long at = 0;
+  const int bad_at = ss_stencil_key_at(key, base, sizeof base, &at);
+  for (int q = 0; q < ss_cell_nroles(t) && !bad_at; q++)
+    if (!strcmp(base, role_names[t][q])) r = q;
   if (r < 0) {
     char known[64] = "";
     for (int q = 0; q < ss_cell_nroles(t); q++)
@@ -226,27 +264,32 @@ static int handle(reader *R, const char *section, const char *key, const char *v
              section, key, known);
     return 0;
   }
-  if (R->given[t] & (1u << r)) goto repeated;
+  if (!at && R->given[t] & (1u << r)) goto repeated;
+  slot *dst =
+      ss_stencil_slot_for(R, &R->m[t][r], (int)(R->given[t] >> r & 1u), at, section, key);
+  if (!dst) return 0;
   char *sub = NULL; /* value with the parameters' values, or NULL */
   if (R->pv && R->pv->n) {
-    if (!(sub = substitute_params(value, R->pv, R->used))) {
+    if (!(sub = ss_stencil_substitute(value, R->pv, R->used))) {
+      R->nomem = 1;
       snprintf(R->msg, sizeof R->msg, "out of memory");
       return 0;
     }
   }
-  const int ok = mask_key(R, section, key, sub ? sub : value, value, t, r);
+  const int ok = ss_stencil_weight_key(R, section, key, sub ? sub : value, value, dst);
   free(sub);
+  if (ok && !at) R->given[t] |= 1u << r;
   return ok;
 repeated:
   snprintf(R->msg, sizeof R->msg, "[%.64s] %.64s is given twice", section, key);
   return 0;
 }
 
-/* Weight r of type t: text (value with the parameters' values), written as
+/* A weight into *w: text (value with the parameters' values), written as
  * value in the file. */
-static int mask_key(reader *R, const char *section, const char *key, const char *text,
-                    const char *value, ss_cell_type t, int r) {
-  const int pr = parse_rational(text, &R->w[t][r]);
+int ss_stencil_weight_key(reader *R, const char *section, const char *key,
+                          const char *text, const char *value, slot *w) {
+  const int pr = parse_rational(text, &w->w);
   if (pr == -2) {
     snprintf(R->msg, sizeof R->msg,
              "[%.32s] %s = '%.40s': a numerator or denominator has more than 17 digits "
@@ -254,20 +297,21 @@ static int mask_key(reader *R, const char *section, const char *key, const char 
              section, key, value);
     return 0;
   }
-  R->keyline[t][r] = R->line;
+  w->keyline = R->line;
   if (pr) { /* not p/q: an expression */
     ss_error xe = {0};
-    if (ss_expr_new(text, &R->ex[t][r], &xe)) {
+    if (ss_expr_new(text, &w->ex, &xe)) {
+      R->nomem |= xe.status == SS_ENOMEM;
       snprintf(R->msg, sizeof R->msg, "[%.64s] %s = '%.64s'%.160s", section, key, value,
                xe.msg);
       return 0;
     }
-    if (!(R->etext[t][r] = strdup(value))) {
+    if (!(w->etext = strdup(value))) {
+      R->nomem = 1;
       snprintf(R->msg, sizeof R->msg, "out of memory");
       return 0;
     }
   }
-  R->given[t] |= 1u << r;
   return 1;
 }
 
@@ -287,7 +331,7 @@ static int handler(void *user, const char *section, const char *key, const char 
 
 /* Line number (1-based) of the first line of text that is "[section]" after
  * trimming, or 0. */
-static int section_line(const char *text, const char *section) {
+int ss_stencil_section_line(const char *text, const char *section) {
   int line = 1;
   const size_t n = strlen(section);
   for (const char *p = text; *p; line++) {
@@ -302,32 +346,24 @@ static int section_line(const char *text, const char *section) {
   return 0;
 }
 
-/* The values of one weight at the valences n = 1..SS_AVG_NMAX. */
-typedef struct {
-  double d[SS_AVG_NMAX + 1];            /* the value */
-  rational q[SS_AVG_NMAX + 1];          /* the exact value, where exact[n] */
-  unsigned char exact[SS_AVG_NMAX + 1]; /* 1: rational (q[n]) */
-} weight_values;
-
-/* Weight r of type t at every valence (only n = 1 unless it reads n): into
- * *w; *varies |= it reads n.  SS_EINPUT "WHERE:LINE: [SEC] KEY = 'EXPR' is
- * not finite at n = N ...", SS_ENOMEM. */
-static ss_status weight_at(const reader *R, ss_cell_type t, int r, const char *where,
-                           const char *sec, weight_values *w, int *varies,
-                           ss_error *err) {
-  const ss_expr *e = R->ex[t][r];
+/* Weight sl, key `key` of section sec, at every valence (only n = 1 unless
+ * it reads n): into *w; *varies |= it reads n.  SS_EINPUT "WHERE:LINE: [SEC]
+ * KEY = 'EXPR' is not finite at n = N ...", SS_ENOMEM. */
+ss_status ss_stencil_weight_at(const slot *sl, const char *key, const char *where,
+                               const char *sec, weight_values *w, int *varies,
+                               ss_error *err) {
+  const ss_expr *e = sl->ex;
   const int reads = e && ss_expr_uses_n(e);
   *varies |= reads;
   for (long n = 1; n <= (reads ? SS_AVG_NMAX : 1); n++) {
-    ss_expr_value v = {0.0, 1, R->w[t][r].num, R->w[t][r].den};
+    ss_expr_value v = {0.0, 1, sl->w.num, sl->w.den};
     if (!e) v.value = (double)v.num / (double)v.den; /* as it always was */
     ss_error xe = {0};
     const ss_status st = e ? ss_expr_eval(e, n, &v, &xe) : SS_OK;
     if (st == SS_ENOMEM) return ss_error_nomem(err, "weight expression");
     if (st)
       return ss_error_set(err, SS_EINPUT, "%s:%d: [%s] %s = '%.80s'%s", where,
-                          R->keyline[t][r], sec, role_names[t][r], R->etext[t][r],
-                          xe.msg);
+                          sl->keyline, sec, key, sl->etext, xe.msg);
     w->d[n] = v.value;
     w->exact[n] = (unsigned char)v.rational;
     w->q[n] = (rational){v.num, v.den};
@@ -336,6 +372,21 @@ static ss_status weight_at(const reader *R, ss_cell_type t, int r, const char *w
     w->d[n] = w->d[1];
     w->exact[n] = w->exact[1];
     w->q[n] = w->q[1];
+  }
+  *varies |= sl->nov > 0;
+  for (int i = 0; i < sl->nov; i++) { /* KEY@N: the value at valence N */
+    const slot *o = sl->ov[i];
+    const long n = sl->ovn[i];
+    ss_expr_value v = {(double)o->w.num / (double)o->w.den, 1, o->w.num, o->w.den};
+    ss_error xe = {0};
+    const ss_status st = o->ex ? ss_expr_eval(o->ex, n, &v, &xe) : SS_OK;
+    if (st == SS_ENOMEM) return ss_error_nomem(err, "weight expression");
+    if (st)
+      return ss_error_set(err, SS_EINPUT, "%s:%d: [%s] %s@%ld = '%.80s'%s", where,
+                          o->keyline, sec, key, n, o->etext, xe.msg);
+    w->d[n] = v.value;
+    w->exact[n] = (unsigned char)v.rational;
+    w->q[n] = (rational){v.num, v.den};
   }
   return SS_OK;
 }
@@ -367,7 +418,7 @@ static ss_status sum_at(ss_cell_type t, const weight_values *w, long n, int vari
   rational sum = {0, 1};
   int overflow = 0;
   for (int j = 0; j < nv; j++)
-    overflow |= add_scaled(&sum, 1, w[ss_cell_role(t, 0, j)].q[n]);
+    overflow |= ss_stencil_add_scaled(&sum, 1, w[ss_cell_role(t, 0, j)].q[n]);
   if (overflow)
     return ss_error_set(err, SS_EINPUT,
                         "%s:%d: [%s]: weights too large to sum exactly in 64 bits%s",
@@ -394,12 +445,14 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
   int varies = 0;
   ss_status st = SS_OK;
   for (int r = 0; r < nr && !st; r++)
-    st = weight_at(R, t, r, where, sec, w + r, &varies, err);
+    st = ss_stencil_weight_at(&R->m[t][r], role_names[t][r], where, sec, w + r, &varies,
+                              err);
   for (long n = 1; !st && n <= (varies ? SS_AVG_NMAX : 1); n++)
     st = sum_at(t, w, n, varies, where, sec, line, &vary->rational, err);
   for (int r = 0; r < nr && !st; r++) {
     a->mask[t][r] = w[r].d[1];
-    if (!R->ex[t][r] || !ss_expr_uses_n(R->ex[t][r])) continue;
+    const slot *sl = &R->m[t][r];
+    if (!sl->nov && (!sl->ex || !ss_expr_uses_n(sl->ex))) continue;
     if (!(tabs[r] = malloc(sizeof w[r].d))) {
       st = ss_error_nomem(err, "stencil weights");
       break;
@@ -410,7 +463,6 @@ static ss_status mask_weights(const reader *R, ss_cell_type t, const char *where
   free(w);
   return st;
 }
-
 int ss_stencil_reserved(const char *name) {
   static const char *const names[] = {
       "n",     "exp",   "log",   "sqrt",    "sin",  "cos",     "tan",   "cot",
@@ -499,8 +551,7 @@ static int param_key(reader *R, const char *key, const char *value) {
 
 /* value with every identifier that names a parameter of pv replaced by
  * "(num/den)", counting uses in used[]; NULL out of memory. */
-static char *substitute_params(const char *value, const ss_stencil_params *pv,
-                               int *used) {
+char *ss_stencil_substitute(const char *value, const ss_stencil_params *pv, int *used) {
   const size_t len = strlen(value);
   char *out = malloc(len * 17 + 1), *o = out; /* "a" grows to "(-999999/999999)" */
   if (!out) return NULL;
@@ -540,7 +591,9 @@ ss_status ss_stencil_read_params(const char *text, const char *where,
   ss_status st = SS_OK;
   /* a [param] error that is the file's first; a line inih cannot read or
    * too long is left to the weights pass, which sees every error in order */
-  if (rc != 0 && R->msg_line == rc)
+  if (R->nomem)
+    st = ss_error_nomem(err, "stencil");
+  else if (rc != 0 && R->msg_line == rc)
     st = ss_error_set(err, SS_EINPUT, "%s:%d: %s", where, rc, R->msg);
   free(R);
   return st;
@@ -563,6 +616,10 @@ static ss_status parse_with(const char *text, const char *where,
                       R->long_line, INI_MAX_LINE - 2);
     goto done;
   }
+  if (R->nomem) {
+    st = ss_error_nomem(err, "stencil weights");
+    goto done;
+  }
   if (rc != 0) { /* the first error: the handler's, or a line inih cannot read */
     st = ss_error_set(err, SS_EINPUT, "%s:%d: %s", where, rc,
                       R->msg_line == rc ? R->msg : "not an INI line");
@@ -574,10 +631,14 @@ static ss_status parse_with(const char *text, const char *where,
                         pv->p[i].line, pv->p[i].name);
       goto done;
     }
-  const int sl = section_line(text, "scheme");
+  const int sl = ss_stencil_section_line(text, "scheme");
   if (!R->have_name || !R->have_family || !R->have_split) {
     st = ss_error_set(err, SS_EINPUT, "%s:%d: [scheme] needs name, family and split%s",
                       where, sl ? sl : 1, sl ? "" : " (no [scheme] section)");
+    goto done;
+  }
+  if (R->family != FAM_AVERAGING || R->nrs) {
+    st = ss_stencil_build_rules(R, text, where, sl, out, err);
     goto done;
   }
   ss_averaging a;
@@ -590,7 +651,7 @@ static ss_status parse_with(const char *text, const char *where,
     if (!R->has_mask[t]) continue;
     char sec[32];
     snprintf(sec, sizeof sec, "mask.%s", short_names[t]);
-    const int line = section_line(text, sec);
+    const int line = ss_stencil_section_line(text, sec);
     if (!split_takes(R->split, (ss_cell_type)t)) {
       st = ss_error_set(err, SS_EINPUT, "%s:%d: [%s]: split %s does not make %s", where,
                         line, sec,
@@ -619,10 +680,11 @@ static ss_status parse_with(const char *text, const char *where,
 done:
   for (int t = 0; t < SS_NCELLTYPES; t++)
     for (int r = 0; r < 4; r++) {
-      ss_expr_free(R->ex[t][r]);
-      free(R->etext[t][r]);
+      ss_stencil_slot_clear(&R->m[t][r]);
       free(tabs[t][r]);
     }
+  for (int i = 0; i < NRSEC * 4; i++)
+    ss_stencil_slot_clear(&R->rs[i / 4][i % 4]);
   free(R);
   return st;
 }

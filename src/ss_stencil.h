@@ -5,7 +5,7 @@
  *
  *   [scheme]
  *   name = tetoct-variant
- *   family = averaging        ; the only family so far
+ *   family = averaging        ; or points (below)
  *   split = tetoct            ; or multilinear
  *   [mask.tet]                ; roles: self, edge
  *   self = -1/16
@@ -31,6 +31,43 @@
  * malformed weight, a weight not finite at some n, a sum other than 1 — is
  * SS_EINPUT with a message "FILE:LINE: ..." naming the key or section (the
  * first error of the file), and the valence n where it depends on one.
+ *
+ * The points family (family = points; ss_scheme.h, ss_points): every new
+ * point a weighted sum of named averages over the coarse elements at its
+ * element X (containing X or contained in it): `vertex` (the mean of the old
+ * points), `edge` (of the edge midpoints), `face` (of the face centroids),
+ * `cell` (of the cell centroids); n = the number of elements of the place's
+ * top dimension at X.  Sections [PLACE.POINT]: PLACE volume (points of a hex
+ * mesh off its surface; n hexes), surface (the boundary faces and quad cells
+ * of a hex mesh, as ccsolid takes them, or a triangle surface; n faces),
+ * crease (crease curves and vertices after ss_crease.h; n crease edges);
+ * POINT vertex, edge, face, cell up to the place's dimension; keys the
+ * averages up to it, absent ones 0.  split multilinear (hexes, quads,
+ * segments, vertices) needs volume.vertex, volume.edge, volume.face,
+ * surface.vertex, surface.edge and crease.vertex; split tetoct (triangle
+ * surfaces on Loop's 1-to-4 split; no volume sections, no face points)
+ * needs surface.vertex, surface.edge and crease.vertex.  Sections not given
+ * (volume.cell, surface.face, crease.edge) are the centroid; corners stay.
+ * The weights of each section must sum to 1 at every n (exactly when
+ * rational); no [mask.*] sections.  data/stencils/ccsolid.ini and loop.ini
+ * are the built-in ccsolid and loop so written.
+ *
+ * The neighbours family (family = neighbours, split tetoct; ss_scheme.h,
+ * ss_neighbours): the box-spline paper's rules over rho, the neighbours by
+ * an edge or an octahedron's major diagonal.  Sections and keys: [vertex]
+ * self, rho (n = |rho(x)|, rho shared by the n); [edge] ends, rho (ends
+ * shared by the two ends, n = |rho(a) ∩ rho(b)|; the midpoint when n = 0);
+ * [centre] diagonal, equator (the octahedron centre: the two ends of its
+ * major diagonal, its other four corners; n = 6); [boundary.vertex] self,
+ * ring and [boundary.edge] ends, opposite (Loop-like rules on the faces held
+ * by one cell; n boundary neighbours, or vertices opposite the edge).  All
+ * five needed.  data/stencils/boxspline.ini is the built-in boxspline.
+ *
+ * A weight given apart at one valence: KEY@N = VALUE (N = 1..SS_AVG_NMAX,
+ * after KEY itself, at most 16 per key) replaces KEY's value at n = N, in
+ * every family (box-spline's (3.5) is edge ends@4 and rho@4).  The sums are
+ * checked at N with it.  With a [param] name in VALUE it is a parameter of
+ * one valence for `subspectra tune`.
  *
  * Parameters: a [param] section names values that weights use by name,
  *

@@ -126,9 +126,12 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
     if (o->times) ss_clock_lap(&o->times->injective, &t0);
   }
   if (!st) judged_on(*cm, &out->cond, reg, inj);
-  if (!st && certify && !ss_scheme_weights_rational(s)) {
-    /* a weight known not to be rational (a stencil's cos(2 pi / n)): the
-     * rational reconstruction of S would stand for another matrix */
+  const int volume = c->kind != SS_CASE_SURFACE_VERTEX;
+  if (!st && certify &&
+      !(volume ? ss_scheme_volume_weights_rational(s) : ss_scheme_weights_rational(s))) {
+    /* a weight known not to be rational (a stencil's cos(2 pi / n)) among
+     * those S reads (a volume case reads no surface rule): the rational
+     * reconstruction of S would stand for another matrix */
     ss_verdict_unproven(&out->cond, "weights not rational (the exact path reads rational "
                                     "matrices only)");
     ss_verdict_unproven(&reg->verdict, "weights not rational");

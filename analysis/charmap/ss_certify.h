@@ -50,7 +50,8 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
  * command judges them: regularity (ss_charmap_judge, which may deepen M's
  * ring, and the symmetry test), injectivity (ss_charmap_injectivity) and,
  * with certify, the exact path (ss_certify) — unless the scheme's weights are
- * known not to be rational (ss_scheme_weights_rational): then the three are
+ * known not to be rational (ss_scheme_weights_rational; for volume cases
+ * ss_scheme_volume_weights_rational, the weights their rows read): then the three are
  * unproven, "weights not rational", and *x stays NULL.  *cm (caller frees; NULL without
  * a map) and *x (may be NULL; caller frees; set only with certify) as there;
  * out->cond is e's condition unless certify proves or unproves it.

@@ -39,6 +39,18 @@ expect_in 1 "fail       edge 8" "" "$exe" check "$st/mlca.ini" --edges 8
 sdir=$(mktemp -d)
 printf '[scheme]\nname = x\nfamily = averaging\nsplit = multilinear\n[mask.hex]\nself = 1/2\nedge = 1/8\nface = 0\nopposite = 0\n' >"$sdir/sum.ini"
 expect_in 2 "sum.ini:5: \[mask.hex\]: the weights sum to 7/8" "" "$exe" check "$sdir/sum.ini"
+# the points and neighbours families (docs/stencils.md): ccsolid.ini and
+# boxspline.ini judge every case as the built-in schemes do (two computations
+# compared, verdict lines and counts); a bad points file exits 2 naming the
+# file, the line and the valence
+for s in ccsolid boxspline; do
+  a=$("$exe" check "$st/$s.ini" --certify 2>&1 | tail -n +2)
+  b=$("$exe" check --scheme $s --certify 2>&1 | tail -n +2)
+  checks=$((checks + 1))
+  [ -n "$a" ] && [ "$a" = "$b" ] || fail "check $s.ini and --scheme $s differ: $a vs $b"
+done
+printf '[scheme]\nname = x\nfamily = points\nsplit = multilinear\n[volume.edge]\ncell = 1/n\nface = 2/n + (n-1)*(n-2)*(n-3)*(n-4)/24000\nedge = (n-3)/n\n' >"$sdir/pts.ini"
+expect_in 2 "pts.ini:5: \[volume.edge\]: the weights sum to 1001/1000 at n = 5, not 1" "" "$exe" check "$sdir/pts.ini"
 rm -rf "$sdir"
 expect_in 2 "no stencil file given" "" "$exe" check
 expect_in 2 "--vertices '3..5'" "" "$exe" check "$st/mlca.ini" --vertices 3..5

@@ -21,7 +21,9 @@ lands where gap >= 0.9 * 1/2 (its --keep) and reports the margin gap(a) of
 the rational it writes; over ?(-7/4, -1/2), whose middle fails, it lands in
 (-1, -1/2] near the optimum -1/2 (gap 1/4); over ?(-3, -3/2), where nothing
 passes, it exits 1; the written files read again and pass `check --certify`;
-bad input exits 2.  Exits 77 (skipped) without NLopt or libmatheval.
+bad input exits 2; a parameter given per valence (self@8 = a^3, ...) tunes
+the same way where the case's vertices have that valence, and not where they
+do not.  Exits 77 (skipped) without NLopt or libmatheval.
 
 The shipped data/stencils/tensor-family.ini (the same family with segment
 and quad masks) is tuned the same way.
@@ -201,6 +203,32 @@ if a is not None:
           "a = %s: gap %g below 0.9 of the optimum 1/4" % (a, gap_closed(float(a))))
     rc, _, _ = run("check", out, "--edges", "4..4")
     check(rc == 0, "the tuned file ?(-7/4, -1/2) does not pass check")
+
+# a per-valence parameter (KEY@N): MLCA's hex mask (1/8 each) everywhere but
+# at valence 8, where the family's weights read a.  Every fine vertex of the
+# regular case lies in 8 hexes, so the closed form is the family's: tune
+# lands in (-1, -1/2] with margin gap(a).  The same file with the weights
+# given at valence 7 instead leaves the case MLCA's (margin 1/2 whatever a):
+# the margin then differs from gap(a), which this check would see.
+AT8 = FAMILY.replace("self = a^3\nedge = a^2*(1-a)\nface = a*(1-a)^2\nopposite = (1-a)^3",
+                     "self = 1/8\nedge = 1/8\nface = 1/8\nopposite = 1/8\n"
+                     "self@8 = a^3\nedge@8 = a^2*(1-a)\nface@8 = a*(1-a)^2\n"
+                     "opposite@8 = (1-a)^3")
+for valence, want_family in (("8", True), ("7", False)):
+    path = os.path.join(tmp, "at%s.ini" % valence)
+    with open(path, "w") as f:
+        f.write(AT8.replace("@8", "@" + valence).format(lo="-7/4", hi="-1/2"))
+    out = os.path.join(tmp, "at%s-tuned.ini" % valence)
+    rc, so, se = run("tune", path, "--edges", "4..4", "--evals", "40", "-j", "2", "-o", out)
+    a, margin = tuned_value(out) if rc == 0 else (None, None)
+    check(rc == 0 and a is not None, "per-valence a@%s: exit %d: %s %s" % (valence, rc, so, se))
+    if a is None:
+        continue
+    fits = abs(margin - gap_closed(float(a))) < 1e-5 and -1 < a <= Fraction(-1, 2)
+    check(fits == want_family,
+          "a@%s = %s: margin %g, gap(a) %g (the weights at valence %s %s the case)" %
+          (valence, a, margin, gap_closed(float(a)), valence,
+           "must decide" if want_family else "cannot change"))
 
 # nothing passes: exit 1, the file written all the same
 rc, so, se, out = tune("-3", "-3/2", 12)

@@ -209,6 +209,29 @@ static ss_status op_stencil(const void *arg, double *digest, ss_error *err) {
   return st;
 }
 
+/* A stencil file and a mesh it refines once. */
+typedef struct {
+  const char *stencil, *mesh; /* paths */
+} refine_arg;
+
+/* Load the stencil, read the mesh, refine it once with the operator: the
+ * points and neighbours families' rules under allocation failures. */
+static ss_status op_stencil_refine(const void *arg, double *digest, ss_error *err) {
+  const refine_arg *a = arg;
+  ss_scheme *s = NULL;
+  ss_cx *cx = NULL, *fine = NULL;
+  gsl_spmatrix *R = NULL;
+  ss_status st = ss_stencil_load(a->stencil, &s, NULL, err);
+  if (!st) st = ss_mesh_read(a->mesh, SS_MESH_AUTO, &cx, err);
+  if (!st) st = ss_scheme_refine(s, cx, &fine, &R, err);
+  if (!st) *digest = (double)R->nz + (double)fine->nv;
+  if (R) gsl_spmatrix_free(R);
+  ss_cx_free(fine);
+  ss_cx_free(cx);
+  ss_scheme_free(s);
+  return st;
+}
+
 typedef struct {
   const char *path; /* the store file (removed before each run) */
   const ss_result *r;
@@ -293,6 +316,19 @@ int main(int argc, char **argv) {
   walk("mesh read (OBJ)", op_mesh, path);
   snprintf(path, sizeof path, "%s/data/stencils/mlca.ini", src);
   walk("stencil load", op_stencil, path);
+  {
+    static const char *const pairs[][3] = {
+        {"ccsolid.ini", "hexstar-icosahedron.mesh", "stencil points (hexes)"},
+        {"loop.ini", "icosahedron.obj", "stencil points (triangles)"},
+        {"boxspline.ini", "tetstar-icosahedron.mesh", "stencil neighbours"}};
+    for (int i = 0; i < 3; i++) {
+      char sp[4096], mp[4096];
+      snprintf(sp, sizeof sp, "%s/data/stencils/%s", src, pairs[i][0]);
+      snprintf(mp, sizeof mp, "%s/data/meshes/%s", src, pairs[i][1]);
+      const refine_arg ra = {sp, mp};
+      walk(pairs[i][2], op_stencil_refine, &ra);
+    }
+  }
 
   /* the store: a real result put into a fresh file */
   {
