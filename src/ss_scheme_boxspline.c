@@ -119,6 +119,37 @@ static face make_face(ss_idx a, ss_idx b, ss_idx c) {
   return f;
 }
 
+/* The faces held by exactly one tet or octahedron of coarse (the solid's
+ * boundary), sorted, into a new array with room for `extra` more faces;
+ * their number into *n.  NULL when out of memory. */
+static face *held_once(const ss_cx *coarse, size_t extra, size_t *n) {
+  const size_t nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
+  face *f = malloc((4 * nt + 8 * no + extra + 1) * sizeof *f);
+  if (!f) return NULL;
+  size_t all = 0;
+  for (size_t t = 0; t < nt; t++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
+    for (int i = 0; i < 4; i++)
+      f[all++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
+  }
+  for (size_t o = 0; o < no; o++) {
+    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
+    for (int q = 0; q < 8; q++)
+      f[all++] = make_face(v[q & 1 ? 3 : 0], v[q & 2 ? 4 : 1], v[q & 4 ? 5 : 2]);
+  }
+  qsort(f, all, sizeof *f, face_cmp);
+  size_t m = 0; /* compacted in place, still sorted */
+  for (size_t i = 0; i < all;) {
+    size_t j = i + 1;
+    while (j < all && face_cmp(f + i, f + j) == 0)
+      j++;
+    if (j - i == 1) f[m++] = f[i];
+    i = j;
+  }
+  *n = m;
+  return f;
+}
+
 /* The coarse complex's neighbourhoods, shared by both variants. */
 typedef struct {
   adjacency nb;    /* boxspline: rho (edges and diagonals); avg: edges; only the
@@ -265,33 +296,14 @@ static ss_idx mid_of(const midpoint *mids, size_t n, ss_idx a, ss_idx b) {
 static ss_status loop_surface(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
                               const ss_split *L, ss_loop_surface **out, ss_error *err) {
   *out = NULL;
-  const size_t nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
   const size_t ntri = coarse->nc[SS_TRIANGLE], nc = L->ncoarse;
-  face *f = malloc((4 * nt + 8 * no + ntri + 1) * sizeof *f);
+  size_t m = 0; /* the faces held once, then the triangle cells */
+  face *f = held_once(coarse, ntri, &m);
   midpoint *mids = malloc((L->nfine - nc + 1) * sizeof *mids);
   ss_idx *tri = NULL;
   ss_status st = SS_OK;
   if (!f || !mids) goto nomem;
-  size_t n = 0, nm = 0;
-  for (size_t t = 0; t < nt; t++) {
-    const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
-    for (int i = 0; i < 4; i++)
-      f[n++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
-  }
-  for (size_t o = 0; o < no; o++) {
-    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
-    for (int q = 0; q < 8; q++)
-      f[n++] = make_face(v[q & 1 ? 3 : 0], v[q & 2 ? 4 : 1], v[q & 4 ? 5 : 2]);
-  }
-  qsort(f, n, sizeof *f, face_cmp);
-  size_t m = 0; /* the faces held once, compacted in place */
-  for (size_t i = 0; i < n;) {
-    size_t j = i + 1;
-    while (j < n && face_cmp(f + i, f + j) == 0)
-      j++;
-    if (j - i == 1) f[m++] = f[i];
-    i = j;
-  }
+  size_t nm = 0;
   for (size_t t = 0; t < ntri; t++) {
     const ss_idx *v = ss_cx_cell(coarse, SS_TRIANGLE, t);
     f[m++] = make_face(v[0], v[1], v[2]);
@@ -535,44 +547,21 @@ static void nb_boundary_free(nb_boundary *B) {
 }
 
 static ss_status nb_boundary_make(const ss_cx *coarse, nb_boundary *B, ss_error *err) {
-  const size_t nv = coarse->nv, nt = coarse->nc[SS_TET], no = coarse->nc[SS_OCT];
+  const size_t nv = coarse->nv;
   memset(B, 0, sizeof *B);
-  const size_t nf = 4 * nt + 8 * no;
-  B->faces = malloc((nf + 1) * sizeof *B->faces);
+  B->faces = held_once(coarse, 0, &B->n);
   B->onb = calloc(nv + 1, 1);
-  ss_idx *pairs = malloc((6 * nf + 1) * sizeof *pairs);
+  ss_idx *pairs = B->faces ? malloc((6 * B->n + 1) * sizeof *pairs) : NULL;
   if (!B->faces || !B->onb || !pairs) goto nomem;
-  size_t n = 0;
-  for (size_t t = 0; t < nt; t++) {
-    const ss_idx *v = ss_cx_cell(coarse, SS_TET, t);
-    for (int i = 0; i < 4; i++)
-      B->faces[n++] = make_face(v[(i + 1) % 4], v[(i + 2) % 4], v[(i + 3) % 4]);
-  }
-  for (size_t o = 0; o < no; o++) {
-    const ss_idx *v = ss_cx_cell(coarse, SS_OCT, o);
-    for (int q = 0; q < 8; q++)
-      B->faces[n++] = make_face(v[q & 1 ? 3 : 0], v[q & 2 ? 4 : 1], v[q & 4 ? 5 : 2]);
-  }
-  qsort(B->faces, n, sizeof *B->faces, face_cmp);
-  size_t m = 0, np = 0; /* the faces held once, compacted in place */
-  for (size_t i = 0; i < n;) {
-    size_t j = i + 1;
-    while (j < n && face_cmp(B->faces + i, B->faces + j) == 0)
-      j++;
-    if (j - i == 1) {
-      const ss_idx *v = B->faces[i].v;
-      for (int e = 0; e < 3; e++) {
-        pairs[2 * np] = v[e];
-        pairs[2 * np + 1] = v[(e + 1) % 3];
-        np++;
-        B->onb[v[e]] = 1;
-      }
-      B->faces[m++] = B->faces[i];
+  for (size_t i = 0; i < B->n; i++) {
+    const ss_idx *v = B->faces[i].v;
+    for (int e = 0; e < 3; e++) {
+      pairs[6 * i + 2 * (size_t)e] = v[e];
+      pairs[6 * i + 2 * (size_t)e + 1] = v[(e + 1) % 3];
+      B->onb[v[e]] = 1;
     }
-    i = j;
   }
-  B->n = m;
-  if (adj_make(nv, np, pairs, &B->bnd)) goto nomem;
+  if (adj_make(nv, 3 * B->n, pairs, &B->bnd)) goto nomem;
   free(pairs);
   return SS_OK;
 nomem:
