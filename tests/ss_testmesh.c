@@ -655,3 +655,17 @@ size_t tm_boundary_faces(const ss_cx *cx, ss_idx **out) {
   *out = b;
   return k;
 }
+
+void tm_points_in(const ss_cx *a, const ss_cx *b, const unsigned char *skip,
+                  size_t *total, size_t *found) {
+  *total = *found = 0;
+  for (size_t v = 0; v < b->nv; v++) {
+    if (skip[v]) continue;
+    ++*total;
+    for (size_t u = 0; u < a->nv; u++)
+      if (!memcmp(a->x + 3 * u, b->x + 3 * v, 3 * sizeof(double))) {
+        ++*found;
+        break;
+      }
+  }
+}

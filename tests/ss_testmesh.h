@@ -50,6 +50,11 @@ ss_cx *tm_edge_ring(int n, int R, int nz);
  * count.  Written apart from the schemes': an octahedron's faces are the
  * triples of one vertex from each opposite pair. */
 size_t tm_boundary_faces(const ss_cx *cx, ss_idx **out);
+/* Of b's points not flagged in skip (nv flags), how many are also points of
+ * a, bit for bit, in any order (*found), and how many were looked for
+ * (*total). */
+void tm_points_in(const ss_cx *a, const ss_cx *b, const unsigned char *skip,
+                  size_t *total, size_t *found);
 /* Move every vertex by a pseudo-random offset of size <= amp (seeded). */
 void tm_jitter(ss_cx *cx, double amp, unsigned long seed);
 /* A relabelled copy: vertices and cells permuted, each cell's vertex list turned

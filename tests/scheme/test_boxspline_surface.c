@@ -179,16 +179,8 @@ static void test_hybrid(const char *scheme) {
   ss_cx *P1 = refine(scheme, plain, 1), *V1 = refine(scheme, vol, 1);
   if (P1 && V1) {
     unsigned char *on = surface_flags(V1);
-    size_t off = 0, same = 0; /* the split numbers edges in another order */
-    for (size_t v = 0; v < V1->nv; v++) {
-      if (on[v]) continue;
-      off++;
-      for (size_t u = 0; u < P1->nv; u++)
-        if (!memcmp(P1->x + 3 * u, V1->x + 3 * v, 3 * sizeof(double))) {
-          same++;
-          break;
-        }
-    }
+    size_t off, same; /* the split numbers edges in another order */
+    tm_points_in(P1, V1, on, &off, &same);
     CHECK(off > 0 && same == off, "%s: %zu of %zu interior points as without the wall",
           scheme, same, off);
     free(on);

@@ -164,16 +164,8 @@ static void test_loop_surface(const char *stencils, int creases) {
       unsigned char *on = calloc(V1->nv + 1, 1);
       for (size_t i = 0; i < 3 * V1->nc[SS_TRIANGLE]; i++)
         on[V1->cells[SS_TRIANGLE][i]] = 1;
-      size_t off = 0, same = 0; /* the split numbers edges in another order */
-      for (size_t v = 0; v < V1->nv; v++) {
-        if (on[v]) continue;
-        off++;
-        for (size_t u = 0; u < P1->nv; u++)
-          if (!memcmp(P1->x + 3 * u, V1->x + 3 * v, 3 * sizeof(double))) {
-            same++;
-            break;
-          }
-      }
+      size_t off, same; /* the split numbers edges in another order */
+      tm_points_in(P1, V1, on, &off, &same);
       CHECK(off > 0 && same == off, "%zu of %zu interior points as without triangles",
             same, off);
       free(on);
