@@ -184,9 +184,6 @@ slot *ss_stencil_slot_for(reader *R, slot *sl, int given, long n, const char *se
   sl->ovn[sl->nov] = n;
   return sl->ov[sl->nov++];
 }
-char *ss_stencil_substitute(const char *value, const ss_stencil_params *pv, int *used);
-int ss_stencil_weight_key(reader *R, const char *section, const char *key,
-                          const char *text, const char *value, slot *w);
 
 static int handle(reader *R, const char *section, const char *key, const char *value) {
   if (!strcmp(section, "param")) return param_key(R, key, value);
@@ -268,16 +265,7 @@ static int handle(reader *R, const char *section, const char *key, const char *v
   slot *dst =
       ss_stencil_slot_for(R, &R->m[t][r], (int)(R->given[t] >> r & 1u), at, section, key);
   if (!dst) return 0;
-  char *sub = NULL; /* value with the parameters' values, or NULL */
-  if (R->pv && R->pv->n) {
-    if (!(sub = ss_stencil_substitute(value, R->pv, R->used))) {
-      R->nomem = 1;
-      snprintf(R->msg, sizeof R->msg, "out of memory");
-      return 0;
-    }
-  }
-  const int ok = ss_stencil_weight_key(R, section, key, sub ? sub : value, value, dst);
-  free(sub);
+  const int ok = ss_stencil_weight_key(R, section, key, value, dst);
   if (ok && !at) R->given[t] |= 1u << r;
   return ok;
 repeated:
@@ -287,8 +275,8 @@ repeated:
 
 /* A weight into *w: text (value with the parameters' values), written as
  * value in the file. */
-int ss_stencil_weight_key(reader *R, const char *section, const char *key,
-                          const char *text, const char *value, slot *w) {
+static int weight_text(reader *R, const char *section, const char *key, const char *text,
+                       const char *value, slot *w) {
   const int pr = parse_rational(text, &w->w);
   if (pr == -2) {
     snprintf(R->msg, sizeof R->msg,
@@ -313,6 +301,19 @@ int ss_stencil_weight_key(reader *R, const char *section, const char *key,
     }
   }
   return 1;
+}
+
+int ss_stencil_weight_key(reader *R, const char *section, const char *key,
+                          const char *value, slot *w) {
+  char *sub = NULL; /* value with the parameters' values, or NULL */
+  if (R->pv && R->pv->n && !(sub = ss_stencil_substitute(value, R->pv, R->used))) {
+    R->nomem = 1;
+    snprintf(R->msg, sizeof R->msg, "out of memory");
+    return 0;
+  }
+  const int ok = weight_text(R, section, key, sub ? sub : value, value, w);
+  free(sub);
+  return ok;
 }
 
 /* inih's handler: handle, keeping the first complaint and its line (inih

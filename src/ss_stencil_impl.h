@@ -84,10 +84,10 @@ slot *ss_stencil_slot_for(reader *R, slot *sl, int given, long n, const char *se
 /* value with the parameters of pv substituted (caller frees); NULL without
  * memory. */
 char *ss_stencil_substitute(const char *value, const ss_stencil_params *pv, int *used);
-/* Read a weight's text into *w (value: as written, for messages); 0 with
- * R->msg set. */
+/* Read a weight written as value into *w, the parameters' values
+ * substituted first; 0 with R->msg set (R->nomem when out of memory). */
 int ss_stencil_weight_key(reader *R, const char *section, const char *key,
-                          const char *text, const char *value, slot *w);
+                          const char *value, slot *w);
 /* The weight of a slot at every valence (ss_stencil.c). */
 ss_status ss_stencil_weight_at(const slot *sl, const char *key, const char *where,
                                const char *sec, weight_values *w, int *varies,

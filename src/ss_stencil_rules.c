@@ -90,14 +90,7 @@ int ss_stencil_rule_key(reader *R, const char *section, const char *key,
   }
   slot *dst = ss_stencil_slot_for(R, &R->rs[i][k], given, at, section, key);
   if (!dst) return 0;
-  char *sub = NULL;
-  if (R->pv && R->pv->n && !(sub = ss_stencil_substitute(value, R->pv, R->used))) {
-    R->nomem = 1;
-    snprintf(R->msg, sizeof R->msg, "out of memory");
-    return 0;
-  }
-  const int ok = ss_stencil_weight_key(R, section, key, sub ? sub : value, value, dst);
-  free(sub);
+  const int ok = ss_stencil_weight_key(R, section, key, value, dst);
   if (ok && !at) R->rgiven[i] |= 1u << k;
   return ok;
 }
