@@ -178,6 +178,20 @@ done:
 
 /* ---- enclosed columns for an irrational eigenvalue ---- */
 
+/* A - lam I for the one-ring block A in doubles, column-major (n1 x n1, a
+ * new array; the one-ring rows read only one-ring columns), or NULL. */
+static double *shifted_block(const ss_exact *x, double lam) {
+  const size_t n1 = x->n1;
+  double *a = calloc(n1 * n1 + 1, sizeof *a);
+  if (!a) return NULL;
+  for (size_t i = 0; i < n1; i++) {
+    for (size_t k = x->A.ptr[i]; k < x->A.ptr[i + 1]; k++)
+      a[x->A.col[k] * n1 + i] = x->A.val[k];
+    a[i * n1 + i] -= lam;
+  }
+  return a;
+}
+
 /* For e = 1: the approximate eigenvector by two steps of inverse iteration
  * on one LU of A - lam in doubles (LAPACK), from a vector no eigenvector is
  * orthogonal to in practice (1 + i / (2 n1)); a tenth of the SVD's work.
@@ -188,16 +202,12 @@ done:
  * caller falls back to the SVD). */
 static int approx_vector(const ss_exact *x, double lam, double *xa) {
   const size_t n1 = x->n1;
-  double *a = calloc(n1 * n1 + 1, sizeof *a);
+  double *a = shifted_block(x, lam);
   lapack_int *piv = malloc((n1 + 1) * sizeof *piv);
   int rc = -1;
   if (!a || !piv) goto done;
-  for (size_t i = 0; i < n1; i++) {
-    for (size_t k = x->A.ptr[i]; k < x->A.ptr[i + 1]; k++)
-      a[x->A.col[k] * n1 + i] = x->A.val[k];
-    a[i * n1 + i] -= lam;
+  for (size_t i = 0; i < n1; i++)
     xa[i] = 1.0 + (double)i / (double)(2 * n1);
-  }
   const lapack_int nn = (lapack_int)n1;
   if (LAPACKE_dgetrf(LAPACK_COL_MAJOR, nn, nn, a, nn, piv)) goto done;
   for (int it = 0; it < 2; it++) { /* scaled: the largest |entry| (first) is +1 */
@@ -223,15 +233,10 @@ done:
 static int approx_basis(const ss_exact *x, double lam, int e, double *xa) {
   const size_t n1 = x->n1;
   if (e == 1 && !approx_vector(x, lam, xa)) return 0;
-  double *a = calloc(n1 * n1 + 1, sizeof *a), *vt = malloc((n1 * n1 + 1) * sizeof *vt),
+  double *a = shifted_block(x, lam), *vt = malloc((n1 * n1 + 1) * sizeof *vt),
          *sv = malloc((n1 + 1) * sizeof *sv), *sup = malloc((n1 + 1) * sizeof *sup);
   int rc = -1;
   if (!a || !vt || !sv || !sup) goto done;
-  for (size_t i = 0; i < n1; i++) {
-    for (size_t k = x->A.ptr[i]; k < x->A.ptr[i + 1]; k++)
-      a[x->A.col[k] * n1 + i] = x->A.val[k];
-    a[i * n1 + i] -= lam;
-  }
   const lapack_int nn = (lapack_int)n1;
   if (LAPACKE_dgesvd(LAPACK_COL_MAJOR, 'N', 'A', nn, nn, a, nn, sv, NULL, 1, vt, nn, sup))
     goto done;
