@@ -197,7 +197,7 @@ static void per_k(ss_strbuf *md, const ss_reproduce_results *l) {
     ss_report_exh_k g;
     ss_report_exh_init(&g, k);
     for (size_t i = 0; i < l->n; i++)
-      if (l->r[i].k == k) ss_report_exh_add(&g, l->r + i);
+      if (l->r[i].k == k) ss_report_exh_add(&g, l->r + i, 0);
     ss_report_exh_md_row(&g, l->o.certify, 0, line, sizeof line);
     ss_sb_printf(md, "%s", line);
   }

@@ -7,15 +7,19 @@
 # reports/README.md, "Exhaustive tables".
 #
 #   reports/exhaustive.sh [--max-k K] [--db FILE] [--out DIR] [--jobs N]
-#                         [--schemes "mlca tetoct boxspline"] [--psi-depth N]
+#                         [--schemes "mlca tetoct boxspline"]
+#                         [--psi-depth N | --psi-depth S=N,S=N...]
 #                         [--no-sweep]
 #
 # It runs, for each scheme S,
 #   subspectra sweep --scheme S --vertices 4..K --certify --db FILE --jobs N
 # (resumable: an interrupted run, rerun with the same arguments, computes only
 # what is missing; with --psi-depth N > 0 the schemes whose characteristic map
-# is judged on its polynomial pieces, mlca and ccsolid, are swept with
-# --psi-depth N too, and the tables count their verdicts about psi), then
+# is judged on psi (mlca and ccsolid on its polynomial pieces, tetoct and
+# boxspline at the ring's regular vertices by tangent masks) are swept with
+# --psi-depth N too, and the tables count their verdicts about psi;
+# --psi-depth S=N,... sets the depth per scheme, 0 or absent: the net only),
+# then
 # writes from the store
 #   DIR/exhaustive-vertices-k4-K.md        subspectra report --table exhaustive
 #   DIR/exhaustive-vertices-k4-K.csv       the same counts, --format csv
@@ -38,6 +42,7 @@ usage() {
 }
 
 kmax=12 db=exhaustive.db out=reports jobs=1 schemes="mlca tetoct boxspline" sweep=1 psi=0
+declare -A psi_at=()
 while (($#)); do
   case "$1" in
   --max-k) kmax=${2:?--max-k needs a value}; shift 2 ;;
@@ -55,12 +60,29 @@ if ! [[ $kmax =~ ^[0-9]+$ ]] || ((kmax < 4 || kmax > 20)); then
   echo "exhaustive.sh: --max-k '$kmax' is not an integer 4..20" >&2
   exit 2
 fi
-if ! [[ $psi =~ ^[0-9]+$ ]] || ((psi > 8)); then
-  echo "exhaustive.sh: --psi-depth '$psi' is not an integer 0..8" >&2
+# the schemes whose characteristic map the sweep judges on psi
+psi_judged() { case "$1" in mlca | ccsolid | tetoct | boxspline) return 0 ;; *) return 1 ;; esac; }
+if [[ $psi == *=* ]]; then
+  IFS=, read -ra pairs <<< "$psi"
+  for p in "${pairs[@]}"; do
+    s=${p%%=*} d=${p#*=}
+    if [[ $p != *=* ]] || ! psi_judged "$s" || ! [[ $d =~ ^[0-9]+$ ]] || ((d > 8)); then
+      echo "exhaustive.sh: --psi-depth: '$p' is not SCHEME=N with SCHEME one of mlca ccsolid tetoct boxspline and N 0..8" >&2
+      exit 2
+    fi
+    psi_at[$s]=$d
+  done
+  psi=0
+elif ! [[ $psi =~ ^[0-9]+$ ]] || ((psi > 8)); then
+  echo "exhaustive.sh: --psi-depth '$psi' is not an integer 0..8 or SCHEME=N,..." >&2
   exit 2
 fi
-# the sweep's --psi-depth for scheme $1: N for the schemes psi is judged for
-psi_of() { case "$1" in mlca | ccsolid) echo "$psi" ;; *) echo 0 ;; esac; }
+# the sweep's --psi-depth for scheme $1
+psi_of() {
+  if [[ -n ${psi_at[$1]:-} ]]; then echo "${psi_at[$1]}"
+  elif psi_judged "$1"; then echo "$psi"
+  else echo 0; fi
+}
 for s in $schemes; do
   case "$s" in
   mlca | tetoct | boxspline | boxspline-avg | ccsolid) ;;
@@ -125,13 +147,17 @@ stem=$out/exhaustive-vertices-k4-$kmax
   echo "# Exhaustive tables: every vertex one-ring with 4..$kmax vertices"
   echo
   echo "Written by \`reports/exhaustive.sh --max-k $kmax\` (the sweeps"
-  if ((psi > 0)); then
-    echo "\`subspectra sweep --scheme S --vertices 4..$kmax --certify\` (with \`--psi-depth $psi\` for"
-    echo "mlca and ccsolid: their columns \"on psi\" count verdicts about the characteristic map) for S in"
-  else
-    echo "\`subspectra sweep --scheme S --vertices 4..$kmax --certify\` for S in"
-  fi
+  on=""
+  for s in $schemes; do
+    d=$(psi_of "$s")
+    ((d > 0)) && on+="\`$s\` with \`--psi-depth $d\`, "
+  done
+  echo "\`subspectra sweep --scheme S --vertices 4..$kmax --certify\` for S in"
   echo "$(printf '`%s` ' $schemes)into one store, then \`subspectra report --table exhaustive\`);"
+  if [[ -n $on ]]; then
+    echo "judged on the characteristic map psi, not only its control net: ${on%, } (their"
+    echo "columns \"on psi\" count the verdicts proven about psi);"
+  fi
   echo "not part of \`./run\`.  How long it takes, and what \"certified\" covers:"
   echo "reports/README.md, \"Exhaustive tables\".  The links that do not pass:"
   echo "\`data/$(basename "$stem")-not-passing.csv.xz\` (\`xz -dc\` it)."

@@ -28,7 +28,7 @@ const char *ss_report_exh_class(const ss_result *r) {
   }
 }
 
-void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r) {
+void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r, int psi_asked) {
   if (!ss_result_has_link(r)) return;
   const ss_verdict_kind v = ss_result_verdict(r);
   g->links++;
@@ -48,7 +48,8 @@ void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r) {
   g->centre += v == SS_PASS && r->centre_corner_folds > 0;
   g->cert_pass += v == SS_PASS && ss_result_certified(r);
   g->cert_fail += v == SS_FAIL && ss_result_certified(r);
-  if (r->psi.ran) { /* the regularity verdict when it is about psi */
+  const int map = r->v.reg.on == SS_ON_NET || r->v.reg.on == SS_ON_PSI;
+  if (r->psi.ran || (psi_asked && map)) { /* the regularity verdict on psi */
     const int on = r->v.reg.on == SS_ON_PSI;
     g->psi_pass += on && r->v.reg.verdict == SS_PASS;
     g->psi_fail += on && r->v.reg.verdict == SS_FAIL;
@@ -105,6 +106,13 @@ static int identity_certified(const char *id) {
   return 0;
 }
 
+/* Whether identity id was swept with --psi-depth N > 0 (ss_store_identity
+ * appends " psi-depth=N" only then). */
+static int identity_psi(const char *id) {
+  const char *p = strstr(id, " psi-depth=");
+  return p && atoi(p + 11) > 0;
+}
+
 /* The per-k counts of the vertex and edge-point rows rows[a..b) (one
  * identity): *out[0..*nk) for k = 0..*nk-1 (entries with links = 0 count
  * nothing).  SS_ENOMEM. */
@@ -121,7 +129,8 @@ static ss_status count_group(const ss_report_row *rows, size_t a, size_t b,
   for (int k = 0; k <= kmax; k++)
     ss_report_exh_init(&g[k], k);
   for (size_t i = a; i < b; i++)
-    if (ss_result_has_link(&rows[i].r)) ss_report_exh_add(&g[rows[i].r.k], &rows[i].r);
+    if (ss_result_has_link(&rows[i].r))
+      ss_report_exh_add(&g[rows[i].r.k], &rows[i].r, identity_psi(rows[i].identity));
   *out = g;
   return SS_OK;
 }
@@ -145,13 +154,15 @@ static const char legend[] =
     "the double-precision net, not proven.\n";
 
 static const char legend_psi[] =
-    "On psi (sweeps with --psi-depth): the vertex cases whose characteristic map "
-    "was judged itself (on its polynomial pieces for mlca and ccsolid; at its "
-    "regular vertices and on its spokes for tetoct), by their regularity verdict "
-    "when it is a statement about psi itself (pass: det Dpsi of one sign on its "
-    "whole ring, fail: of both signs, or psi o sigma = psi; with --certify both "
-    "proven), else undecided (psi neither proven regular nor folded: the spoke "
-    "tubes, say); – where it was judged for no case of that k.\n";
+    "On psi (sweeps with --psi-depth): the vertex cases with a characteristic map, "
+    "by their regularity verdict when it is a statement about psi itself (mlca and "
+    "ccsolid: psi judged on its polynomial pieces; tetoct and boxspline: by exact "
+    "tangent masks at the ring's regular vertices, tetoct also on its spokes, "
+    "where the net does not pass) — pass: det Dpsi of one sign on its whole ring, "
+    "fail: of both signs, or psi o sigma = psi; with --certify both proven; else "
+    "undecided (psi neither proven regular nor folded: a net pass of tetoct or "
+    "boxspline, whose psi is not proven regular, or a net fold psi does not show "
+    "where it was looked for); – where no case of that k has a map.\n";
 
 /* One CSV row of the counts e of identity id, scheme sc; psi: the table has
  * the columns on psi. */
@@ -214,10 +225,12 @@ static json_object *json_count_row(const char *id, const char *sc,
   return o;
 }
 
-/* Whether psi was judged for some vertex case of rows[a..b). */
+/* Whether psi was judged, or asked for, for some vertex case of rows[a..b). */
 static int rows_have_psi(const ss_report_row *rows, size_t a, size_t b) {
   for (size_t i = a; i < b; i++)
-    if (rows[i].r.kind == SS_CASE_VERTEX && rows[i].r.psi.ran) return 1;
+    if (rows[i].r.kind == SS_CASE_VERTEX &&
+        (rows[i].r.psi.ran || identity_psi(rows[i].identity)))
+      return 1;
   return 0;
 }
 

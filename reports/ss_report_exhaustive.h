@@ -44,11 +44,13 @@ typedef struct {
                                    decide nothing: ss_charmap.h) */
   size_t cert_pass;             /* passes that are proven (ss_result_certified) */
   size_t cert_fail;             /* failures that are proven */
-  size_t psi_pass;              /* vertex cases where psi was judged on its
-                                   pieces (ss_result_psi), by psi's verdict:
-                                   pass */
+  size_t psi_pass;              /* vertex cases with a characteristic map
+                                   whose sweep asked for psi (--psi-depth),
+                                   by the regularity verdict when it is about
+                                   psi (ss_result_psi): pass */
   size_t psi_fail;              /* fail */
-  size_t psi_undecided;         /* undecided */
+  size_t psi_undecided;         /* neither (psi not judged, or judged
+                                   without a decision) */
   size_t edge_points;           /* links judged as a point on an edge */
   int edge_valence;             /* the last such link's edge valence */
   ss_verdict_kind edge_verdict; /* and its combined verdict */
@@ -58,8 +60,12 @@ typedef struct {
 void ss_report_exh_init(ss_report_exh_k *g, int k);
 
 /* Count r (a vertex or edge-point result with r->k == g->k) into g.  Other
- * kinds are ignored. */
-void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r);
+ * kinds are ignored.  psi_asked: r's sweep asked for psi (its identity has
+ * psi-depth=N), so a vertex case with a characteristic map is counted in
+ * the psi columns even where the judge found nothing to decide (tetoct and
+ * boxspline judge psi only where the net does not pass, and record no psi
+ * result when the ring's regular vertices show no fold). */
+void ss_report_exh_add(ss_report_exh_k *g, const ss_result *r, int psi_asked);
 
 /* Why r does not pass, in the classes of the table: "pass", "fail: eigenvalue
  * condition", "fail: regularity", "fail: injectivity only" or "undecided". */

@@ -176,7 +176,27 @@ row6=$(awk -F'|' '/^\| 6 \|/ { gsub(/ /, ""); print $3 "," $4 "," $(NF - 3) }' "
 [[ $row6 == 2,2,* && ${row6##*,} -ge 1 ]] &&
   ok "k = 6 with psi: 2 of 2 pass, ${row6##*,} on psi (the octahedron's linear psi)" ||
   fail "k = 6 with psi: links,pass,on-psi-pass = $row6"
-for args in "--max-k 3" "--max-k x" "--schemes loop" "--psi-depth 9" "--bogus"; do
+# --psi-depth per scheme: box-spline judged on psi (tangent masks at the
+# ring's regular vertices); every vertex case with a map is counted in the
+# psi columns (a net pass of box-spline is not a proof about psi: undecided
+# on psi), and k = 6's non-octahedral link is finding 3's proven fold of psi
+SUBSPECTRA=$exe "$script" --max-k 7 --schemes "mlca boxspline" --psi-depth boxspline=2,mlca=0 \
+  --db "$tmp/e.db" --out "$tmp/bq" --jobs 2 2> "$tmp/err" ||
+  { cat "$tmp/err"; fail "exhaustive.sh --psi-depth boxspline=2,mlca=0"; }
+md=$tmp/bq/exhaustive-vertices-k4-7.md
+grep -q '^## boxspline .* psi-depth=2$' "$md" && grep -q '^## mlca tol=1e-06 depth=6 rings=3 certified$' "$md" &&
+  ok "per-scheme psi depth: boxspline with psi, mlca without" ||
+  fail "per-scheme psi depth: sections $(grep '^## ' "$md")"
+# columns: 2 k, 3 links, 5 fail eigen, NF-3..NF-1 on psi pass/fail/undecided
+bad=$(awk -F'|' '/^## boxspline/ { on = 1; next } /^## / { on = 0 }
+  on && /^\| [0-9]+ \|/ { gsub(/ /, "");
+    if ($(NF-3) != "–" && $(NF-3) + $(NF-2) + $(NF-1) != $3 - $5) print "k=" $2 }' "$md")
+row6=$(awk -F'|' '/^## boxspline/ { on = 1 } on && /^\| 6 \|/ { gsub(/ /, ""); print $(NF-2); exit }' "$md")
+[[ -z $bad && $row6 == 1 ]] &&
+  ok "box-spline on psi: every case with a map counted, k = 6 one proven psi fold" ||
+  fail "box-spline on psi: sums differ at $bad; k = 6 on-psi fail '$row6'"
+for args in "--max-k 3" "--max-k x" "--schemes loop" "--psi-depth 9" "--psi-depth loop=2" \
+  "--psi-depth mlca=x" "--bogus"; do
   # shellcheck disable=SC2086
   SUBSPECTRA=$exe "$script" $args --db "$tmp/u.db" --out "$tmp/u" > /dev/null 2> "$tmp/err"
   rc=$?
