@@ -33,6 +33,10 @@ apply are refused.
     enumerate_links(kmin, kmax)    an iterator of every link (plantri ASCII), lazy
     subdivide(scheme, points, cells, levels)
                                    refined NumPy points and meshio-style cells
+    read_mesh(path), write_mesh(path, points, cells, point_data)
+                                   mesh files (.mesh, .vtk, .vtu, .obj, .msh,
+                                   TetGen) as the command line reads and
+                                   writes them, NumPy arrays in meshio's form
     limit(scheme, points, cells, cell, uvw, derivatives, fields)
                                    the limit volume of a hex mesh at many points:
                                    points, Jacobians, fields (NumPy arrays) as
@@ -65,7 +69,7 @@ from . import _cdef, _config
 
 __all__ = ["SubspectraError", "scheme_names", "local_matrix", "local_labels", "eigenvalues",
            "eigenvectors", "analyze", "jsr", "enumerate_links", "subdivide", "limit", "Limit",
-           "LimitValues", "store_table"]
+           "LimitValues", "store_table", "read_mesh", "write_mesh", "MeshData"]
 
 _ffi = FFI()
 # The declarations of the types and functions used here, generated from the
@@ -372,7 +376,10 @@ def local_labels(scheme, **case):
     the centre (row 0, all zeros), in units of the grid of the level S maps
     from, in the star's chart (ss_star.h): conical coordinates over the link
     for a vertex (d = k, one per link vertex), over the faces around the edge
-    and the edge itself for an edge (d = n + 1), over the n rays for a
+    and the edge itself for an edge (d = n + 1; the edge's ends are at
+    -+1 on the last coordinate, so the star's hexes are 1 x 1 x 2 in the
+    chart and a grid of cubes has an edge axis of length 1/2), over the n
+    rays for a
     surface vertex (d = n), barycentric for the face (d = 5).  Positions are
     a linear image of the chart: coords @ axes, axes one row per
     coordinate.  n1 is the one-ring's size, the first n1 rows.  The rows and
@@ -667,7 +674,8 @@ def _choose_diagonals(cx, diagonals, err):
     _check(_lib.ss_diag_choose(cx, d[0], 0, 0, err), err)
 
 
-# the limit volume and the results store, in modules of their own (they use
+# the limit volume, the results store and mesh files, in modules of their own (they use
 # the helpers above, hence imported last)
 from ._limit import Limit, LimitValues, limit  # noqa: E402
 from ._store import store_table  # noqa: E402
+from ._mesh import MeshData, read_mesh, write_mesh  # noqa: E402

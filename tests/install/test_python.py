@@ -244,6 +244,11 @@ if counts != want:
     fail("enumerate_links(4, 10): counts %s, want %s" % (counts, want))
 if got != cli("enumerate", "links", "--vertices", "4..10").split("\n")[:-1]:
     fail("enumerate_links(4, 10) differs from `enumerate links --vertices 4..10`")
+count = dict(tuple(map(int, line.split("\t"))) for line in
+             cli("enumerate", "links", "--vertices", "4..10", "--count").splitlines()
+             if not line.startswith("#"))
+if count != counts:
+    fail("enumerate_links(4, 10): counts %s, `enumerate links --count` %s" % (counts, count))
 part = [sorted(subspectra.enumerate_links(9, part=i, nparts=3)) for i in range(3)]
 if sorted(sum(part, [])) != sorted(t for t in got if t.startswith("9 ")):
     fail("enumerate_links(9, part=i, nparts=3): the parts are not a partition")
