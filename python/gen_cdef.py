@@ -36,6 +36,8 @@ NAMES = [
     "ss_limit", "ss_limit_point", "ss_verdicts", "ss_result_eigval", "ss_result_psi",
     "ss_result", "ss_store", "ss_store_mode", "ss_report_row", "ss_report_rows",
     "ss_report_summary", "ss_report_format",
+    # ss_mesh.h (read_mesh, write_mesh)
+    "ss_mesh_format", "ss_mesh_fields", "ss_mesh_write_opts",
     # functions
     "ss_scheme_names", "ss_scheme_new", "ss_scheme_free",
     "ss_link_parse", "ss_link_free", "ss_link_format", "ss_diag_parse",
@@ -54,6 +56,7 @@ NAMES = [
     "ss_limit_eval_fields", "ss_limit_eval_reference_fields",
     "ss_store_open", "ss_store_close", "ss_report_rows_load", "ss_report_rows_clear",
     "ss_report_table_write",
+    "ss_mesh_format_from_name", "ss_mesh_read_fields", "ss_mesh_write",
 ]
 
 

@@ -264,8 +264,8 @@ ss_status ss_report_case_json(const ss_pipeline *p, int neig, json_object *eigen
 }
 
 ss_report_analyze_opts ss_report_analyze_defaults(void) {
-  const ss_report_analyze_opts o = {1e-6, 16, SS_JAC_DEPTH,
-                                    ss_charmap_defaults().ring_levels, 0};
+  const ss_report_analyze_opts o = {
+      1e-6, 16, SS_JAC_DEPTH, ss_charmap_defaults().ring_levels, 0, SS_PSI_BOX_DEPTH, 0};
   return o;
 }
 
@@ -273,11 +273,18 @@ ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
                             const ss_report_analyze_opts *o, char **json, ss_error *err) {
   *json = NULL;
   if (!(o->tol > 0.0 && o->tol < 1.0) || o->neig < 1 || o->depth < 0 ||
-      o->ring_levels < 1 || o->ring_levels > SS_LOCAL_MAXRING)
+      o->ring_levels < 1 || o->ring_levels > SS_LOCAL_MAXRING || o->psi_depth < 0 ||
+      o->psi_depth > 8)
     return ss_error_set(err, SS_EINPUT,
                         "analyze options out of range: tol %g (0..1), eigenvalues %d "
-                        "(>= 1), depth %d (>= 0), ring levels %d (1..%d)",
-                        o->tol, o->neig, o->depth, o->ring_levels, SS_LOCAL_MAXRING);
+                        "(>= 1), depth %d (>= 0), ring levels %d (1..%d), psi depth %d "
+                        "(0..8)",
+                        o->tol, o->neig, o->depth, o->ring_levels, SS_LOCAL_MAXRING,
+                        o->psi_depth);
+  if (o->psi_tubes && (!o->certify || !o->psi_depth))
+    return ss_error_set(err, SS_EINPUT,
+                        "psi tubes need certify and a psi depth above 0, as "
+                        "`analyze --psi-tubes` needs --certify and --psi-depth");
   if (c->kind == SS_CASE_VERTEX && !c->link)
     return ss_error_set(err, SS_EINPUT, "a vertex case needs a link");
   ss_pipeline_opts po = ss_pipeline_defaults();
@@ -285,6 +292,8 @@ ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
   po.depth = o->depth;
   po.ring_levels = o->ring_levels;
   po.certify = o->certify;
+  po.psi_depth = o->psi_depth;
+  po.psi_tubes = o->psi_tubes;
   ss_pipeline *p = NULL;
   json_object *r = NULL;
   ss_status st = ss_pipeline_compute(s, c, &po, SS_PIPE_VERDICTS, NULL, &p, err);

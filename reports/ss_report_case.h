@@ -37,9 +37,15 @@ typedef struct {
   int depth;       /* hex subdivision depth limit (--depth; SS_JAC_DEPTH) */
   int ring_levels; /* ring levels judged at most (--ring-levels) */
   int certify;     /* nonzero: the exact path too (--certify) */
+  int psi_depth;   /* psi itself judged on its pieces down to boxes of side
+                      2^-psi_depth, 0..8; 0: the control net's verdicts only
+                      (--psi-depth; SS_PSI_BOX_DEPTH) */
+  int psi_tubes;   /* nonzero, with certify and psi_depth: the tubes round
+                      the spokes proven too (--psi-tubes; 0) */
 } ss_report_analyze_opts;
 
-/* The defaults of `analyze`. */
+/* The defaults of `analyze`: psi judged (psi_depth SS_PSI_BOX_DEPTH), as the
+ * command does unless told --psi-depth 0. */
 ss_report_analyze_opts ss_report_analyze_defaults(void);
 
 /* Analyse case c of scheme s as `subspectra analyze --format json` does: a
@@ -49,7 +55,8 @@ ss_report_analyze_opts ss_report_analyze_defaults(void);
  * o->certify), and the object of ss_report_case_json, written as plain
  * JSON text into *json (NUL-terminated, malloc'd, the caller frees it with
  * free).  c->link is not modified.  SS_EINPUT for a case the scheme does not
- * support or options out of range; the errors of the pipeline otherwise. */
+ * support or options out of range (psi_tubes without certify and psi_depth,
+ * which the command refuses too); the errors of the pipeline otherwise. */
 ss_status ss_report_analyze(const ss_scheme *s, const ss_case *c,
                             const ss_report_analyze_opts *o, char **json, ss_error *err);
 

@@ -170,6 +170,14 @@ int ss_report_plot_x(const ss_result *r) {
   return r->kind == SS_CASE_EDGE_POINT ? r->k - 2 : r->k;
 }
 
+const char *ss_report_plot_xlabel(ss_case_kind kind) {
+  return kind == SS_CASE_VERTEX ? "k (vertices of the link)"
+         : kind == SS_CASE_FACE ? ""
+         : kind == SS_CASE_EDGE_POINT
+             ? "valence n of the edge (the link: the bipyramid over n)"
+             : "valence n";
+}
+
 static double modulus(const ss_result *r, int i) {
   return i < r->neig ? hypot(r->eig[i].re, r->eig[i].im) : (double)NAN;
 }
@@ -326,11 +334,7 @@ static void column(cairo_t *cr, ss_case_kind kind, const ss_report_row **sel, si
   /* the zero line inside the panel, with room below it for "no map" */
   nice_range(fmin(slo, -0.08 * shi), fmax(shi, -0.08 * slo), &bot);
   const char *kname = ss_case_name(kind);
-  const char *xlabel = kind == SS_CASE_VERTEX ? "k (vertices of the link)"
-                       : kind == SS_CASE_FACE ? ""
-                       : kind == SS_CASE_EDGE_POINT
-                           ? "valence n of the edge (the link: the bipyramid over n)"
-                           : "valence n";
+  const char *xlabel = ss_report_plot_xlabel(kind);
   char title[96];
   snprintf(title, sizeof title, "%s: |λ1|..|λ4|", kname);
   axes(cr, &top, kind, title, xlabel);

@@ -41,6 +41,12 @@ ss_report_plot_opts ss_report_plot_defaults(void);
  * face. */
 int ss_report_plot_x(const ss_result *r);
 
+/* The label under the x axis of a column of case kind `kind`, naming what
+ * ss_report_plot_x plots there: "k (vertices of the link)" for vertices,
+ * "valence n ..." for edges, edge points and surface vertices, "" for the
+ * face (its one position is labelled "face").  A constant string. */
+const char *ss_report_plot_xlabel(ss_case_kind kind);
+
 /* Plot the rows of rows[0..n) whose identity is o->identity (see
  * ss_report_plot_opts) into the file at path, PNG or SVG by its extension
  * (.png, .svg, any case).  *plotted (may be NULL) receives the number of rows

@@ -25,13 +25,18 @@ apply are refused.
                                    eigenvectors (limit and tangent masks)
     analyze(scheme, **case, **options)
                                    the dictionary `subspectra analyze --format
-                                   json` prints; options tol, eigenvalues, depth,
-                                   ring_levels, certify as its --tol, ...
+                                   json` prints, psi-level verdicts included;
+                                   options tol, eigenvalues, depth, ring_levels,
+                                   certify, psi_depth, psi_tubes as its --tol, ...
     jsr(scheme, face=True | edge=N, **options)
                                    the dictionary of `subspectra jsr --format json`
     enumerate_links(kmin, kmax)    an iterator of every link (plantri ASCII), lazy
     subdivide(scheme, points, cells, levels)
                                    refined NumPy points and meshio-style cells
+    read_mesh(path), write_mesh(path, points, cells, point_data)
+                                   mesh files (.mesh, .vtk, .vtu, .obj, .msh,
+                                   TetGen) as the command line reads and
+                                   writes them, NumPy arrays in meshio's form
     limit(scheme, points, cells, cell, uvw, derivatives, fields)
                                    the limit volume of a hex mesh at many points:
                                    points, Jacobians, fields (NumPy arrays) as
@@ -64,7 +69,7 @@ from . import _cdef, _config
 
 __all__ = ["SubspectraError", "scheme_names", "local_matrix", "local_labels", "eigenvalues",
            "eigenvectors", "analyze", "jsr", "enumerate_links", "subdivide", "limit", "Limit",
-           "LimitValues", "store_table"]
+           "LimitValues", "store_table", "read_mesh", "write_mesh", "MeshData"]
 
 _ffi = FFI()
 # The declarations of the types and functions used here, generated from the
@@ -316,12 +321,27 @@ def eigenvectors(scheme, k=4, tol=1e-6, **case):
 
 
 def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, diagonals=None,
-            tol=None, eigenvalues=None, depth=None, ring_levels=None, certify=False, cls=None):
+            tol=None, eigenvalues=None, depth=None, ring_levels=None, certify=False, cls=None,
+            psi_depth=None, psi_tubes=False):
     """The dictionary `subspectra analyze --scheme SCHEME CASE --format json`
     prints (DESIGN section 7): matrix sizes, leading eigenvalues, the
     eigenvalue condition, regularity and injectivity of the characteristic
     map; options as analyze's --tol, --eigenvalues, --depth, --ring-levels,
-    --certify, and cls as --class (quasi48 surface vertices: 4 or 8)."""
+    --certify, --psi-depth, --psi-tubes, and cls as --class (quasi48 surface
+    vertices: 4 or 8).
+
+    The psi-level verdicts: as the command, psi itself is judged where it
+    can be (vertices of mlca, ccsolid, tetoct, boxspline; psi_depth 4 by
+    default, 1..8 boxes of side 2^-psi_depth; 0: the control net only).
+    d["regularity"]["judged_on"] says on what the verdict rests ("psi" or
+    "control-net"), d["regularity"]["net_verdict"] is the control net's own,
+    d["regularity"]["witness"] two points of opposite det Dpsi signs when psi
+    folds, and d["regularity"]["psi"] the psi test's own verdict, reason,
+    covered, uncovered, pieces, box_depth (and "tubes", "injectivity" where
+    they were decided), None where psi was not judged;
+    d["injectivity"]["judged_on"] likewise.  psi_tubes=True (with
+    certify=True and psi_depth > 0, mlca) proves the tubes round the spokes
+    too."""
     with _Case(scheme, vertex, edge, face, surface_vertex, diagonals, cls) as c:
         o = _ffi.new("ss_report_analyze_opts *", _lib.ss_report_analyze_defaults())
         if tol is not None:
@@ -333,6 +353,15 @@ def analyze(scheme, vertex=None, edge=None, face=False, surface_vertex=None, dia
         if ring_levels is not None:
             o.ring_levels = _integer("ring_levels", ring_levels)
         o.certify = 1 if _flag("certify", certify) else 0
+        if psi_depth is not None:
+            o.psi_depth = _integer("psi_depth", psi_depth)
+            if not 0 <= o.psi_depth <= 8:
+                raise ValueError("psi_depth: expected 0..8, not %d" % o.psi_depth)
+        if _flag("psi_tubes", psi_tubes):
+            if not certify or o.psi_depth == 0:
+                raise ValueError("psi_tubes: needs certify=True and psi_depth > 0, as "
+                                 "`analyze --psi-tubes` needs --certify")
+            o.psi_tubes = 1
         out = _ffi.new("char **")
         _check(_lib.ss_report_analyze(c.scheme, c.c, o, out, c.err), c.err)
         try:
@@ -347,7 +376,10 @@ def local_labels(scheme, **case):
     the centre (row 0, all zeros), in units of the grid of the level S maps
     from, in the star's chart (ss_star.h): conical coordinates over the link
     for a vertex (d = k, one per link vertex), over the faces around the edge
-    and the edge itself for an edge (d = n + 1), over the n rays for a
+    and the edge itself for an edge (d = n + 1; the edge's ends are at
+    -+1 on the last coordinate, so the star's hexes are 1 x 1 x 2 in the
+    chart and a grid of cubes has an edge axis of length 1/2), over the n
+    rays for a
     surface vertex (d = n), barycentric for the face (d = 5).  Positions are
     a linear image of the chart: coords @ axes, axes one row per
     coordinate.  n1 is the one-ring's size, the first n1 rows.  The rows and
@@ -642,7 +674,8 @@ def _choose_diagonals(cx, diagonals, err):
     _check(_lib.ss_diag_choose(cx, d[0], 0, 0, err), err)
 
 
-# the limit volume and the results store, in modules of their own (they use
+# the limit volume, the results store and mesh files, in modules of their own (they use
 # the helpers above, hence imported last)
 from ._limit import Limit, LimitValues, limit  # noqa: E402
 from ._store import store_table  # noqa: E402
+from ._mesh import MeshData, read_mesh, write_mesh  # noqa: E402

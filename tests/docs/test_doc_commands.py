@@ -13,16 +13,37 @@ beside it; "./run" and a leading "subspectra" stand for EXE.
 Compared after masking what a machine changes: times ("0.000 s", "(3s",
 "seconds":...), rates ("443749 links/s", "30.3 cases/s"), ETAs.  In the shown
 output "…" or "..." stands for anything: a line of its own for any number of
-lines (none included), inside a line for any text.  The exit status is not
-compared (pages show failures on purpose).
+lines (none included), inside a line for any text.  The exit status must be 0 unless the page says
+otherwise (pages show failures on purpose), on the line before the block:
+    <!-- doc-test: exit N [N ...] -->
+one status per command of the block in order, or one for all.
+
+A block without "$ " lines that shows commands without their output (a
+line "./run COMMAND ...", "subspectra COMMAND ...", "python3 data/...",
+"mpirun ...", or a shell "for" loop; a line "subspectra COMMAND: ..." is a
+message, not a command) is run whole as one bash script: its output is not
+compared, its exit status is (0 unless an "exit" line says otherwise; with
+set -e, so the status is the first failing command's).
+Any other block without "$ " lines is a listing.
 
 A page says when a block is not run, on the line before it:
     <!-- doc-test: skip REASON -->
-(a command whose output depends on a terminal, on minutes of computing, on MPI,
-on the machine's memory), or masks more in the next block:
+(the build script itself, a Slurm batch script, minutes of computing, a
+terminal), masks more in the next block:
     <!-- doc-test: mask REGEX -->
-Commands of other programs (python3, mpirun, sbatch) are not run; a block
-without "$ " lines is a listing, not a command with output.
+runs it with a placeholder of the page replaced (a user's file):
+    <!-- doc-test: replace TEXT WITH -->
+or runs it and compares only the exit status (output made for a terminal):
+    <!-- doc-test: run-only REASON -->
+A block of Python (its first line "import ..." or "from ...") runs with
+python3 and the package of this build (SS_DOC_PYBUILD: the build's python/
+folder with _cdef.py and _config.py, the package's sources taken from
+SRCDIR/python; SS_DOC_LIBRARY: the shared library; SS_DOC_PYTHON: the
+interpreter, python3 by default), its exit status
+compared; without SS_DOC_PYBUILD it is skipped, saying so.
+A "$ mpirun ..." command runs when mpirun is installed (as root with
+OMPI_ALLOW_RUN_AS_ROOT), else it is skipped, saying so; commands of other
+programs (python3, sbatch, srun) in "$ " lines are not run.
 
 Each page is a line of the output: commands run and matched, skipped (with
 the reasons).  Exit 1 if a command's output does not match, or if no command
@@ -70,7 +91,7 @@ def blocks(text):
             fence = not fence
             i += 1
             continue
-        m = re.match(r'\s*<!-- doc-test: (skip|mask) (.*?) -->\s*$', s)
+        m = re.match(r'\s*<!-- doc-test: (skip|mask|exit|replace|run-only) (.*?) -->\s*$', s)
         if m:
             pending.append((m.group(1), m.group(2)))
             i += 1
@@ -91,33 +112,92 @@ def blocks(text):
         i += 1
 
 
+# a line of a block that is a command shown without its output
+SCRIPT_LINE = re.compile(r'((\./run|subspectra) [a-z][-a-z0-9]*(\s|$)|python3 data/|mpirun |'
+                         r'for \w+ in .*; do$|srun |sbatch |meson |ninja |cc )')
+
+
+class Command:
+    """A command of a page: line, text, shown output (None: a script block,
+    output not compared), skip reason or None, extra masks, expected exit
+    status."""
+
+    def __init__(self, line, cmd, shown, skip, extra, status):
+        self.line, self.cmd, self.shown = line, cmd, shown
+        self.skip, self.extra, self.status = skip, extra, status
+
+
 def commands(text):
-    """Yield (line number, command, shown output lines, skip reason or None,
-    extra masks) for every "$ " command of a page."""
+    """Yield a Command for every "$ " command of a page, and one for every
+    block of commands shown without output."""
     for start, directives, body in blocks(text):
         skip = next((a for k, a in directives if k == 'skip'), None)
         extra = [re.compile(a) for k, a in directives if k == 'mask']
-        cur = None
+        status = next((list(map(int, a.split())) for k, a in directives if k == 'exit'), [0])
+        for k, a in directives:
+            if k == 'replace':
+                old, new = a.split(None, 1)
+                body = [s.replace(old, new) for s in body]
+        found = []
+        run_only = any(k == 'run-only' for k, a in directives)
         for j, s in enumerate(body):
             if s.startswith('$ '):
-                if cur:
-                    yield cur
-                cur = (start + j, s[2:], [], skip, extra)
-            elif cur:
-                cur[2].append(s)
-        if cur:
-            yield cur
+                found.append(Command(start + j, s[2:], None if run_only else [], skip, extra, 0))
+            elif found and found[-1].shown is not None:
+                found[-1].shown.append(s)
+        if found and body[0].strip() and not body[0].startswith('$ ') and not run_only:
+            # output shown before any command: a command line lost from the page
+            yield Command(start, None, body[:1], skip, extra, 0)
+        if not found and re.match(r'(import|from) \w', body[0] if body else ''):
+            found = [Command(start, 'python3\n' + '\n'.join(body), None, skip, extra, 0)]
+        elif not found and any(SCRIPT_LINE.match(s.strip()) for s in body):
+            found = [Command(start, '\n'.join(body), None, skip, extra, 0)]
+        for i, c in enumerate(found):
+            c.status = status[i] if i < len(status) else status[-1]
+            yield c
 
 
 def program_command(cmd):
     """The command with EXE for ./run and subspectra, or None when it runs
-    another program."""
+    another program; in "mpirun ... subspectra ..." EXE runs under mpirun."""
     first = re.split(r'\s*\|\s*', cmd)
-    if not any(re.match(r'(\./run|subspectra)\b', p) for p in first):
+    if not any(re.match(r'(mpirun .*?)?(\./run|subspectra)\b', p) for p in first):
         return None
-    if re.match(r'(mpirun|sbatch|srun|python3|/usr/bin/time)\b', cmd):
+    if re.match(r'(sbatch|srun|python3|/usr/bin/time)\b', cmd):
         return None
+    if cmd.startswith('mpirun '):
+        return re.sub(r'\s(\./run|subspectra)\b', ' "$SS"', cmd, count=1)
     return re.sub(r'(^|\|\s*)(\./run|subspectra)\b', r'\1"$SS"', cmd)
+
+
+def python_package(src, work):
+    """The Python package of this build under work/py (the sources from
+    SRCDIR/python, _cdef.py and _config.py from SS_DOC_PYBUILD), or None when
+    SS_DOC_PYBUILD is not set."""
+    build = os.environ.get('SS_DOC_PYBUILD')
+    if not build:
+        return None
+    pkg = os.path.join(work, 'py', 'subspectra')
+    os.makedirs(pkg)
+    for d in (os.path.join(src, 'python', 'subspectra'), build):
+        for f in os.listdir(d):
+            if f.endswith('.py'):
+                os.symlink(os.path.join(d, f), os.path.join(pkg, f))
+    return os.path.dirname(pkg)
+
+
+def run_only_cmd(c):
+    """Whether c is a "$ " command of a run-only block (one line, no
+    shown output to compare): run as a command, not as a script."""
+    return c.shown is None and '\n' not in c.cmd and not c.cmd.startswith('python3')
+
+
+def script_command(block):
+    """A block of commands shown without output as one bash script (set -e:
+    its status is the first failing command's): EXE for ./run and
+    subspectra where a line starts with them; the rest as shown."""
+    return 'set -e\n' + '\n'.join(re.sub(r'^(\s*)(\./run|subspectra)\b', r'\1"$SS"', s)
+                     for s in block.split('\n'))
 
 
 def matches(shown, out, err):
@@ -167,16 +247,38 @@ def run_page(exe, src, path, text, out):
     try:
         for d in ('data', 'tests'):
             os.symlink(os.path.join(src, d), os.path.join(work, d))
-        env = dict(os.environ, SS=exe, LC_ALL='C.UTF-8')
+        env = dict(os.environ, SS=exe, LC_ALL='C.UTF-8', OMPI_ALLOW_RUN_AS_ROOT='1',
+                   OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1')
         if env.get('LSAN_OPTIONS'):  # under the sanitizers: no statistics on stderr
             env['LSAN_OPTIONS'] += ':print_suppressions=0'
-        for line, cmd, shown, skip, extra in commands(text):
-            pc = program_command(cmd)
-            if skip is not None:
-                skipped.append(skip)
+        py = python_package(src, work)
+        if py:
+            env.update(PYTHONPATH=py, SUBSPECTRA_LIBRARY=os.environ.get('SS_DOC_LIBRARY', ''),
+                       SS_DOC_PYTHON=os.environ.get('SS_DOC_PYTHON', 'python3'))
+        for c in commands(text):
+            line, cmd, shown, extra = c.line, c.cmd, c.shown, c.extra
+            if cmd is not None and cmd.startswith('python3\n'):
+                if c.skip is not None or not py:
+                    skipped.append(c.skip or 'Python: the package is not built (SS_DOC_PYBUILD)')
+                    continue
+                cmd = c.cmd = "python3 - <<'DOC_PYTHON_EOF'\n" + cmd[8:] + '\nDOC_PYTHON_EOF'
+                shown = None
+            if cmd is None:
+                failures.append(f'{path}:{line}: output shown before any "$ " command: '
+                                f'{shown[0]}')
+                continue
+            pc = (program_command(cmd) if shown is not None or run_only_cmd(c)
+                  else script_command(cmd))
+            if cmd.startswith('python3 - <<'):  # the interpreter the package was built for
+                pc = '"$SS_DOC_PYTHON"' + cmd[7:]
+            if c.skip is not None:
+                skipped.append(c.skip)
                 continue
             if pc is None:
                 skipped.append('not subspectra: ' + cmd.split()[0])
+                continue
+            if cmd.startswith('mpirun ') and not shutil.which('mpirun'):
+                skipped.append('mpirun is not installed')
                 continue
             try:
                 p = subprocess.run(['bash', '-c', pc], cwd=work, env=env,
@@ -187,6 +289,13 @@ def run_page(exe, src, path, text, out):
                 continue
             ran += 1
             out, err = lines_of(p.stdout, extra), lines_of(p.stderr, extra)
+            if p.returncode != c.status:
+                failures.append(f'{path}:{line}: {cmd}\n  exit status {p.returncode}, the page '
+                                f'says {c.status}:\n' +
+                                ''.join(f'    {g}\n' for g in (err or out)[-20:]))
+                continue
+            if shown is None:
+                continue
             want = [mask(s, extra) for s in shown]
             if not matches(want, out, err):
                 failures.append(f'{path}:{line}: {cmd}\n  shown:\n' +
@@ -209,7 +318,9 @@ def self_test(exe, src):
              ('wrong line', good.replace('6\t2', '6\t3'), True),
              ('missing line', good.replace('    5\t1\n', ''), True),
              ('ellipsis', good.replace('    5\t1\n    6\t2\n', '    …\n'), False),
-             ('extra line', good.replace('6\t2\n', '6\t2\n    7\t5\n'), True))
+             ('extra line', good.replace('6\t2\n', '6\t2\n    7\t5\n'), True),
+             ('output before the command', good.replace(cmd, '    4\t1\n' + cmd), True),
+             ('exit status', good.replace('# T\n', '# T\n<!-- doc-test: exit 1 -->\n'), True))
     ok = True
     for name, text, want_fail in cases:
         ran, skipped, failures = run_page(exe, src, 'self-test', text, sys.stdout)

@@ -36,7 +36,8 @@
 #    through SUBSPECTRA_DATADIR, and its --help names the compiled-in datadir;
 #  - the Python package, installed under the platform's site directory (PYDIR,
 #    empty when not built), through test_python.py (PYTEST) and, beside it,
-#    test_python_limit.py (limit and the results store).
+#    test_python_limit.py (limit and the results store) and
+#    test_python_mesh.py (mesh files; S's row labels against meshes).
 set -u
 build=$1 src=$2 example=$3 prefix=$4 libdir=$5 datadir=$6 bindir=$7 mandir=$8 incdir=$9
 pydir=${10} pytest=${11} sanitize=${12} cxxprog=${13} checkexports=${14} man=${15}
@@ -349,6 +350,9 @@ EOC
     (cd "$tmp/elsewhere" && env "${pyenv[@]}" PYTHONPATH="$P" \
       SUBSPECTRA_LIBRARY="$L/libsubspectra.so.0" /usr/bin/python3 "$(dirname "$pytest")/test_python_limit.py" \
       "$B/subspectra" "$src") || fail "python package: limit, store_table"
+    (cd "$tmp/elsewhere" && env "${pyenv[@]}" PYTHONPATH="$P" \
+      SUBSPECTRA_LIBRARY="$L/libsubspectra.so.0" /usr/bin/python3 "$(dirname "$pytest")/test_python_mesh.py" \
+      "$B/subspectra" "$src") || fail "python package: read_mesh, write_mesh, local_labels on meshes"
   else
     fail "python package not installed under ${P#"$stage"}"
   fi

@@ -8,6 +8,10 @@ SUBSPECTRA_LIBRARY naming the staged shared library.  Checks
    aside): the same keys
    everywhere, the same strings and integers, numbers within a relative 1e-12
    (both run the same library code, so they agree to rounding or better);
+ - analyze()'s psi-level verdicts (psi_depth, psi_tubes) equal the command's
+   (--psi-depth, --psi-tubes) and say what is known of those cases: a pass on
+   psi's pieces for the regular vertex, a fold with two witnesses for MLCA's
+   k = 8 finding, the tubes proven with certify;
  - local_matrix() equals the Matrix Market export of `subspectra matrix`, and
    its rows sum to 1 (partition of unity);
  - eigenvalues() against closed forms: Catmull-Clark at valence n, lambda1 =
@@ -114,6 +118,46 @@ same(got, want, "mlca edge 5 with options")
 if len(got["eigenvalues"]) != 4:
     fail("eigenvalues=4 gave %d" % len(got["eigenvalues"]))
 
+# the psi-level verdicts (issue 40): analyze() judges psi itself as the
+# command does (psi_depth 4 by default), psi_depth=0 leaves it out, and
+# psi_tubes with certify proves the spokes' tubes -- each against the
+# command's JSON; and what they say, checked apart from the command: the
+# regular vertex passes on psi (the tricubic B-spline, 8 pieces), MLCA's k = 8
+# finding fails on psi with two witnesses of opposite det Dpsi signs
+K8 = "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb"
+K6 = "6 bcdef,afc,abfd,acfe,adf,aedcb"  # two spokes of valence 3: tubes to prove
+psi = {}
+for name, case, args in (
+        ("default", {"vertex": "octahedron"}, ["--vertex", "octahedron"]),
+        ("depth0", {"vertex": "octahedron", "psi_depth": 0},
+         ["--vertex", "octahedron", "--psi-depth", "0"]),
+        ("k8", {"vertex": K8, "psi_depth": 3}, ["--vertex", K8, "--psi-depth", "3"]),
+        ("tubes", {"vertex": K6, "certify": True, "psi_depth": 1, "psi_tubes": True},
+         ["--vertex", K6, "--certify", "--psi-depth", "1", "--psi-tubes"])):
+    want = json.loads(cli("analyze", "--scheme", "mlca", *args, "--format", "json"))
+    psi[name] = got = subspectra.analyze("mlca", **case)
+    for d in (got, want):
+        d["eigen_condition"].pop("exact_seconds", None)
+    same(got, want, "mlca %s (psi)" % name)
+g = psi["default"]["regularity"]
+if g["judged_on"] != "psi" or g["psi"]["verdict"] != "pass" or g["psi"]["pieces"] != 8 \
+        or g["psi"]["covered"] != 1.0:
+    fail("mlca octahedron: regularity not a pass judged on psi's 8 pieces: %s" % g)
+g = psi["depth0"]["regularity"]
+if g["judged_on"] != "control-net" or g["psi"] is not None:
+    fail("mlca octahedron, psi_depth=0: psi judged anyway: %s" % g)
+g = psi["k8"]["regularity"]
+w = g["witness"] or []
+if g["judged_on"] != "psi" or g["psi"]["verdict"] != "fail" or g["psi"]["box_depth"] != 3 \
+        or len(w) != 2 or not w[0]["det"][0] * w[1]["det"][1] < 0:
+    fail("mlca k = 8: not a fold of psi with two witnesses: %s" % g)
+g = psi["tubes"]["regularity"]
+t = g["psi"]["tubes"] if g["psi"] else None
+if not (g["verdict"] == "pass" and g["certified"] and g["judged_on"] == "psi") \
+        or not t or t["proven"] != t["boxes"] or t["boxes"] == 0:
+    fail("mlca %s, certified with tubes: %s" % (K6, g))
+print("ok: analyze: psi-level verdicts (psi_depth, psi_tubes) == analyze --format json")
+
 # the local matrix against the Matrix Market export
 S = subspectra.local_matrix("catmull-clark", surface_vertex=5)
 mtx = cli("matrix", "--scheme", "catmull-clark", "--surface-vertex", "5", "--format", "mtx")
@@ -200,6 +244,11 @@ if counts != want:
     fail("enumerate_links(4, 10): counts %s, want %s" % (counts, want))
 if got != cli("enumerate", "links", "--vertices", "4..10").split("\n")[:-1]:
     fail("enumerate_links(4, 10) differs from `enumerate links --vertices 4..10`")
+count = dict(tuple(map(int, line.split("\t"))) for line in
+             cli("enumerate", "links", "--vertices", "4..10", "--count").splitlines()
+             if not line.startswith("#"))
+if count != counts:
+    fail("enumerate_links(4, 10): counts %s, `enumerate links --count` %s" % (counts, count))
 part = [sorted(subspectra.enumerate_links(9, part=i, nparts=3)) for i in range(3)]
 if sorted(sum(part, [])) != sorted(t for t in got if t.startswith("9 ")):
     fail("enumerate_links(9, part=i, nparts=3): the parts are not a partition")
@@ -339,6 +388,14 @@ for kw, exc, what in (
         ({"edge": 5, "depth": 2.5}, TypeError, "depth: expected an integer, not 2.5"),
         ({"edge": 5, "eigenvalues": 3.5}, TypeError, "eigenvalues: expected an integer"),
         ({"edge": 5, "ring_levels": 1.5}, TypeError, "ring_levels: expected an integer"),
+        ({"vertex": "octahedron", "psi_depth": 9}, ValueError, "psi_depth: expected 0..8"),
+        ({"vertex": "octahedron", "psi_depth": 2.0}, TypeError,
+         "psi_depth: expected an integer, not 2.0"),
+        ({"vertex": "octahedron", "psi_tubes": True}, ValueError,
+         "psi_tubes: needs certify=True"),
+        ({"vertex": "octahedron", "certify": True, "psi_depth": 0, "psi_tubes": True},
+         ValueError, "psi_tubes: needs certify=True and psi_depth > 0"),
+        ({"vertex": "octahedron", "psi_tubes": 1}, TypeError, "psi_tubes: expected True"),
         ({"edge": 5, "cls": 8}, ValueError, "cls: the 4-8 class of a quasi48 surface_vertex"),
         ({"vertex": "octahedron", "cls": 4}, ValueError, "cls: the 4-8 class"),
         ({"edge": 5, "diagonals": 1}, TypeError, "diagonals: expected bfs"),

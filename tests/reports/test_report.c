@@ -722,6 +722,23 @@ static void test_plot(ss_store *st, const char *dir) {
           p->k, ss_report_plot_x(p), same);
   }
   CHECK(epoints == 2, "%zu edge points (bipyramid:3 and :5) in the store", epoints);
+  /* each column's axis label names what is plotted: "k" where the abscissa is
+   * the link's vertex count, "valence n" where it is the valence (issue 40: the
+   * edge-point column once said "valence n" but plotted k = n + 2) */
+  for (size_t i = 0; i < t.n; i++) {
+    const ss_result *p = &t.row[i].r;
+    const char *xl = ss_report_plot_xlabel(p->kind);
+    const int x = ss_report_plot_x(p);
+    if (!strncmp(xl, "valence n", 9))
+      CHECK(x == p->valence && p->valence > 0, "%s: label '%s', x = %d, valence %d",
+            ss_case_name(p->kind), xl, x, p->valence);
+    else if (!strncmp(xl, "k (vertices", 11))
+      CHECK(p->kind == SS_CASE_VERTEX && x == p->k, "%s: label '%s', x = %d, k %d",
+            ss_case_name(p->kind), xl, x, p->k);
+    else
+      CHECK(p->kind == SS_CASE_FACE && x == 0 && !*xl, "%s: label '%s', x = %d",
+            ss_case_name(p->kind), xl, x);
+  }
   /* vertex, edge and edge point: three columns */
   o.identity = ident_mlca;
   s = ss_report_plot(t.row, t.n, &o, png, &plotted, &err);
