@@ -46,9 +46,8 @@ static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charm
       goto done;
     }
     ss_error be = {0};
-    const ss_status bs = ex             ? ss_exact_basis(ex, lo, hi, &be)
-                         : cm->dim == 2 ? ss_fourier_basis(fx, lo, hi, &be)
-                                        : ss_error_set(&be, SS_EINPUT, "not a surface");
+    const ss_status bs =
+        ex ? ss_exact_basis(ex, lo, hi, &be) : ss_fourier_basis(fx, lo, hi, &be);
     if (bs == SS_ENOMEM) {
       st = ss_error_nomem(err, "basis enclosure");
       goto done;
@@ -68,7 +67,13 @@ done:
   return st;
 }
 
-/* The Fourier route's condition for a surface vertex (*fx: caller frees), or
+/* Whether case c's star turns about its centre (a surface vertex's rays, an
+ * edge's faces): the Fourier route's cases. */
+static int turns(const ss_case *c) {
+  return c->kind == SS_CASE_SURFACE_VERTEX || c->kind == SS_CASE_EDGE;
+}
+
+/* The Fourier route's condition for a surface vertex or an edge (*fx: caller frees), or
  * *fx NULL when the star's rotation and reflection do not map the two-ring
  * (then out stays undecided with why). */
 static ss_status fourier_condition(const ss_local *M, const ss_case *c, const char *why,
@@ -81,13 +86,14 @@ static ss_status fourier_condition(const ss_local *M, const ss_case *c, const ch
     free(refl);
     return ss_error_nomem(err, "Fourier blocks");
   }
-  /* ss_charmap_symmetry's candidates 0 (rotation by one ray) and nc - 1
+  /* ss_charmap_symmetry's candidates 0 (rotation by one ray or face about
+   * the centre) and rays - 1
    * (reflection by 0) */
   ss_charmap_sym y = {0};
   y.found = 1;
   ss_error pe = {0};
   ss_status st = ss_charmap_sym_perm(M, c, &y, rot, &pe);
-  y.index = M->ncoord - 1;
+  y.index = c->kind == SS_CASE_EDGE ? c->n - 1 : M->ncoord - 1;
   if (!st) st = ss_charmap_sym_perm(M, c, &y, refl, &pe);
   if (st == SS_ENOMEM) {
     *err = pe;
@@ -96,7 +102,9 @@ static ss_status fourier_condition(const ss_local *M, const ss_case *c, const ch
     snprintf(r, sizeof r, "%.200s; no Fourier blocks: %.200s", why, pe.msg);
     ss_verdict_unproven(cond, r);
     st = SS_OK;
-  } else if (!(st = ss_fourier_new(M->S, n, M->n1, rot, refl, M->ncoord, fx, err))) {
+  } else if (!(st = ss_fourier_new(M->S, n, M->n1, rot, refl,
+                                   c->kind == SS_CASE_EDGE ? c->n : M->ncoord, M->dim, fx,
+                                   err))) {
     int certified = 0;
     ss_fourier_condition(*fx, cond, &certified);
   }
@@ -131,7 +139,7 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
     return st;
   }
   out->cond = e->cond;
-  if (st && c->kind == SS_CASE_SURFACE_VERTEX) { /* algebraic: the balls */
+  if (st && turns(c)) { /* algebraic: the balls */
     if ((st = fourier_condition(M, c, xe.msg, &out->cond, &fx, err))) goto done;
     if (!fx) {
       ss_verdict_unproven(&reg->verdict, "no exact spectrum");
@@ -204,7 +212,7 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
   const int volume = c->kind != SS_CASE_SURFACE_VERTEX;
   const int rational =
       volume ? ss_scheme_volume_weights_rational(s) : ss_scheme_weights_rational(s);
-  if (!st && certify && !rational && !volume) /* algebraic weights: the balls */
+  if (!st && certify && !rational && turns(c)) /* algebraic weights: the balls */
     return certify_run(M, c, e, *cm, o, reg, inj, out, x, 0, err);
   if (!st && certify && !rational) {
     /* a weight known not to be rational (a stencil's cos(2 pi / n)) among

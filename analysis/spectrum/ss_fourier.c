@@ -22,10 +22,12 @@ enum {
 
 /* One Fourier block: S restricted to V_k. */
 typedef struct {
-  int k;       /* its mode, 0 <= k <= n / 2 */
-  size_t b;    /* orbits in it (its size) */
-  long *col;   /* norb entries: the orbit's column in the block, or -1 */
-  size_t *orb; /* b orbits, in column order */
+  int k;            /* its mode, 0 <= k <= n / 2 */
+  size_t b;         /* orbits in it (its size) */
+  long *col;        /* norb entries: the orbit's column in the block, or -1 */
+  size_t *orb;      /* b orbits, in column order */
+  acb_mat_struct B; /* S_k in balls (b x b), kept for the basis */
+  int has_b;        /* 1 once B is initialised */
 } fr_block;
 
 /* One eigenvalue enclosure (internal). */
@@ -36,6 +38,11 @@ typedef struct {
   int isolated;   /* one eigenvalue of the block in z */
   int real;       /* 1 proven real, -1 proven not, 0 unknown */
   acb_ptr vec;    /* isolated: its eigenvector over the block's orbits, or NULL */
+  int full;       /* 1: vec is S_k's eigenvector; 0: only its component's
+                     (zero elsewhere), which extend() completes */
+  size_t part;    /* its strongly connected component (a column of it) */
+  int counted;    /* 1: the ball holds as many eigenvalues as balls share it;
+                     0: it only bounds where they are (no proven failure) */
 } fr_root;
 
 struct ss_fourier {
@@ -55,8 +62,9 @@ struct ss_fourier {
   ss_fourier_root *pub; /* nrt public copies, same order */
   ss_verdict cond;      /* the condition */
   int certified;        /* 1 if cond is proven */
-  size_t lead[2];       /* on a pass: lambda1 (and lambda2 unless pair) */
-  int pair;             /* on a pass: 1 if lambda1 = lambda2 is one pair */
+  int m;                /* subdominant eigenvalues: 2 surface, 3 volume */
+  size_t lead[4];       /* on a pass: the roots of lambda1..m (a pair once) */
+  int nlead;            /* ... how many */
   double *lo, *hi;      /* on a pass: the basis enclosure (n x 2), or NULL */
   char bmsg[256];       /* why there is no basis on a pass */
 };
@@ -89,6 +97,7 @@ void ss_fourier_free(ss_fourier *f) {
   for (size_t b = 0; b < f->nblk; b++) {
     free(f->blk[b].col);
     free(f->blk[b].orb);
+    if (f->blk[b].has_b) acb_mat_clear(&f->blk[b].B);
   }
   if (f->w) _acb_vec_clear(f->w, f->order);
   free(f->blk);
@@ -208,59 +217,129 @@ static void block_matrix(const ss_fourier *f, const double *S, const fr_block *b
 
 /* The eigenvalue enclosures of B (b x b) into E, with their eigenvectors in
  * R (may be NULL) when the balls isolate them: 1 isolating balls, 0 common
- * balls of clusters, -1 none. */
+ * balls of clusters (each eigenvalue in its ball, multiplicities counted),
+ * 2 where even that fails (a Jordan block): every eigenvalue within
+ * acb_mat_eig_global_enclosure's eps of an approximation, balls that bound
+ * moduli but count nothing, -1 none. */
 static int enclose_eigen(acb_ptr E, acb_mat_t R, const acb_mat_t B) {
   const slong b = acb_mat_nrows(B);
   acb_ptr E0 = _acb_vec_init(b);
   acb_mat_t R0;
   acb_mat_init(R0, b, b);
   acb_mat_approx_eig_qr(E0, NULL, R0, B, NULL, 0, FR_PREC);
-  const int rc = acb_mat_eig_simple(E, NULL, R, B, E0, R0, FR_PREC) ? 1
-                 : acb_mat_eig_multiple(E, B, E0, R0, FR_PREC)      ? 0
-                                                                    : -1;
+  int rc = acb_mat_eig_simple(E, NULL, R, B, E0, R0, FR_PREC) ? 1
+           : acb_mat_eig_multiple(E, B, E0, R0, FR_PREC)      ? 0
+                                                              : -1;
+  if (rc < 0) {
+    mag_t eps;
+    mag_init(eps);
+    acb_mat_eig_global_enclosure(eps, B, E0, R0, FR_PREC);
+    for (slong i = 0; mag_is_finite(eps) && i < b; i++) {
+      acb_set(E + i, E0 + i);
+      acb_add_error_mag(E + i, eps);
+      rc = 2;
+    }
+    mag_clear(eps);
+  }
   acb_mat_clear(R0);
   _acb_vec_clear(E0, b);
   return rc;
 }
 
-/* When S_k's eigenvalues cluster: S_k = [A_k 0; B_k C_k] (the one-ring's
- * orbits, then the outer ones: S's one-ring rows read no outer point, and its
- * zeros are exact), so its spectrum is A_k's and C_k's, enclosed apart into
- * E with part[i] the sub-block and sim[i] 1 where the ball isolates its
- * eigenvalue there.  0, or -1 if a sub-block's are not enclosed. */
-static int split_eigen(const ss_fourier *f, const fr_block *bl, const acb_mat_t B,
-                       acb_ptr E, int *part, int *sim) {
-  slong at = 0;
-  for (int p = 0; p < 2; p++) {
-    slong m = 0, *idx = malloc((bl->b + 1) * sizeof *idx);
-    if (!idx) return -1;
-    for (size_t a = 0; a < bl->b; a++)
-      if ((f->rep[bl->orb[a]] < f->n1) == (p == 0)) idx[m++] = (slong)a;
-    acb_mat_t D;
+/* The closure of B's pattern (b x b): R[x b + y] = 1 when orbit x reads
+ * orbit y through entries that are not exactly 0 (x reads itself), and
+ * comp[x] the first column of x's strongly connected component.  NULL when
+ * out of memory. */
+static unsigned char *closure(const acb_mat_t B, size_t *comp) {
+  const size_t b = (size_t)acb_mat_nrows(B);
+  unsigned char *R = malloc(b * b + 1);
+  if (!R) return NULL;
+  for (size_t x = 0; x < b; x++)
+    for (size_t y = 0; y < b; y++)
+      R[x * b + y] = x == y || !acb_is_zero(acb_mat_entry(B, (slong)x, (slong)y));
+  for (size_t k = 0; k < b; k++)
+    for (size_t x = 0; x < b; x++)
+      if (R[x * b + k])
+        for (size_t y = 0; y < b; y++)
+          R[x * b + y] |= R[k * b + y];
+  for (size_t x = 0; x < b; x++) {
+    comp[x] = x;
+    for (size_t c = 0; c < x && comp[x] == x; c++)
+      if (R[x * b + c] && R[c * b + x]) comp[x] = c;
+  }
+  return R;
+}
+
+/* S_k is block triangular over the strongly connected components of its
+ * pattern (S's zeros are exact), so its spectrum is theirs: each
+ * component's principal block enclosed apart into E, part[i] its component,
+ * sim[i] 1 where the ball isolates its eigenvalue there, counted[i] 0 for
+ * a ball that only bounds (enclose_eigen's 2), vec[i] then its
+ * eigenvector (zero off the component; else NULL).  0, or -1 if a
+ * component's are not enclosed or out of memory. */
+static int split_eigen(const acb_mat_t B, const size_t *comp, acb_ptr E, size_t *part,
+                       int *sim, int *counted, acb_ptr *vec) {
+  const slong b = acb_mat_nrows(B);
+  slong at = 0, *idx = malloc(((size_t)b + 1) * sizeof *idx);
+  if (!idx) return -1;
+  int rc = 1;
+  for (slong c = 0; c < b && rc >= 0; c++) {
+    if (comp[c] != (size_t)c) continue;
+    slong m = 0;
+    for (slong a = 0; a < b; a++)
+      if (comp[a] == (size_t)c) idx[m++] = a;
+    acb_mat_t D, R;
     acb_mat_init(D, m, m);
+    acb_mat_init(R, m, m);
     for (slong x = 0; x < m; x++)
       for (slong y = 0; y < m; y++)
         acb_set(acb_mat_entry(D, x, y), acb_mat_entry(B, idx[x], idx[y]));
-    const int rc = m ? enclose_eigen(E + at, NULL, D) : 1;
-    for (slong x = 0; x < m; x++)
-      part[at + x] = p, sim[at + x] = rc == 1;
-    at += m;
+    rc = enclose_eigen(E + at, R, D);
+    for (slong x = 0; x < m && rc >= 0; x++, at++) {
+      part[at] = (size_t)c, sim[at] = rc == 1, counted[at] = rc != 2;
+      vec[at] = rc == 1 ? _acb_vec_init(b) : NULL;
+      for (slong y = 0; rc == 1 && y < m; y++)
+        acb_set(vec[at] + idx[y], acb_mat_entry(R, y, x));
+    }
+    acb_mat_clear(R);
     acb_mat_clear(D);
-    free(idx);
-    if (rc < 0) return -1;
   }
-  return 0;
+  free(idx);
+  return rc >= 0 ? 0 : -1;
 }
 
-/* The eigenvalues of block bi into f->rt: 1, or 0 if arb encloses none. */
-static int block_eigen(ss_fourier *f, size_t bi, const acb_mat_t B) {
+/* The eigenvalues of block bi (S_k in bl->B) into f->rt: 1, or 0 if arb
+ * encloses none (or out of memory). */
+static int block_eigen(ss_fourier *f, size_t bi) {
+  const acb_mat_struct *B = &f->blk[bi].B;
   const slong b = acb_mat_nrows(B);
   acb_ptr E = _acb_vec_init(b);
   acb_mat_t R;
   acb_mat_init(R, b, b);
-  int *part = calloc((size_t)b, sizeof *part), *sim = calloc((size_t)b, sizeof *sim);
-  const int whole = part && sim && enclose_eigen(E, R, B) == 1;
-  const int ok = part && sim && (whole || !split_eigen(f, f->blk + bi, B, E, part, sim));
+  size_t *part = calloc((size_t)b + 1, sizeof *part);
+  size_t *comp = malloc(((size_t)b + 1) * sizeof *comp);
+  int *sim = calloc((size_t)b + 1, sizeof *sim);
+  int *counted = calloc((size_t)b + 1, sizeof *counted);
+  acb_ptr *vec = calloc((size_t)b + 1, sizeof *vec);
+  unsigned char *reach = part && comp && sim && counted && vec ? closure(B, comp) : NULL;
+  size_t ncomp = 0;
+  for (slong a = 0; reach && a < b; a++)
+    ncomp += comp[a] == (size_t)a;
+  int ok = 0, whole = 0;
+  if (reach && ncomp == 1) { /* one component: the block at once */
+    const int rc = enclose_eigen(E, R, B);
+    ok = rc >= 0, whole = rc == 1;
+    for (slong i = 0; i < b; i++)
+      counted[i] = rc != 2;
+    for (slong i = 0; whole && i < b; i++) {
+      sim[i] = 1;
+      vec[i] = _acb_vec_init(b);
+      for (slong j = 0; j < b; j++)
+        acb_set(vec[i] + j, acb_mat_entry(R, j, i));
+    }
+  } else if (reach) {
+    ok = !split_eigen(B, comp, E, part, sim, counted, vec);
+  }
   acb_t cz;
   acb_init(cz);
   for (slong i = 0; ok && i < b; i++) {
@@ -270,10 +349,14 @@ static int block_eigen(ss_fourier *f, size_t bi, const acb_mat_t B) {
     acb_set(&r->z, E + i);
     acb_abs(&r->mod, &r->z, FR_PREC);
     r->blk = bi;
-    r->isolated = whole || sim[i]; /* and apart from the other sub-block's */
-    for (slong j = 0; !whole && j < b; j++)
+    r->part = part[i];
+    r->full = whole;
+    r->counted = counted[i];
+    r->isolated = sim[i]; /* and apart from the other components' */
+    for (slong j = 0; j < b; j++)
       if (part[j] != part[i] && acb_overlaps(E + i, E + j)) r->isolated = 0;
-    r->vec = NULL;
+    r->vec = vec[i];
+    vec[i] = NULL;
     acb_conj(cz, E + i);
     r->real = acb_overlaps(cz, E + i) ? 0 : -1;
     if (r->isolated && !r->real) {
@@ -281,17 +364,60 @@ static int block_eigen(ss_fourier *f, size_t bi, const acb_mat_t B) {
       for (slong j = 0; j < b; j++)
         if (j != i && acb_overlaps(cz, E + j)) r->real = 0;
     }
-    if (whole) {
-      r->vec = _acb_vec_init(b);
-      for (slong j = 0; j < b; j++)
-        acb_set(r->vec + j, acb_mat_entry(R, j, i));
-    }
   }
   acb_clear(cz);
+  for (slong i = 0; vec && i < b; i++)
+    if (vec[i]) _acb_vec_clear(vec[i], b);
+  free(vec);
+  free(reach);
   free(part);
+  free(comp);
   free(sim);
+  free(counted);
   acb_mat_clear(R);
   _acb_vec_clear(E, b);
+  return ok;
+}
+
+/* Complete root r's eigenvector from its component C to S_k: x is 0 where
+ * nothing reads C, and on the orbits Z that read C (through others) solves
+ * (S_k[Z][Z] - lambda) x_Z = -S_k[Z][C] x_C, lambda r's ball, which is apart
+ * from the other components' eigenvalues (r isolated).  1, or 0 when the
+ * solve is not proven (or out of memory). */
+static int extend(const ss_fourier *f, fr_root *r) {
+  const fr_block *bl = f->blk + r->blk;
+  const slong b = (slong)bl->b;
+  size_t *comp = malloc(((size_t)b + 1) * sizeof *comp);
+  slong *z = malloc(((size_t)b + 1) * sizeof *z), nz = 0;
+  unsigned char *reach = comp && z ? closure(&bl->B, comp) : NULL;
+  for (slong a = 0; reach && a < b; a++)
+    if (comp[a] != r->part && reach[(size_t)a * (size_t)b + r->part]) z[nz++] = a;
+  int ok = reach != NULL;
+  if (ok && nz) {
+    acb_mat_t M, y, rhs;
+    acb_mat_init(M, nz, nz);
+    acb_mat_init(y, nz, 1);
+    acb_mat_init(rhs, nz, 1);
+    for (slong x = 0; x < nz; x++) {
+      for (slong w = 0; w < nz; w++)
+        acb_set(acb_mat_entry(M, x, w), acb_mat_entry(&bl->B, z[x], z[w]));
+      acb_sub(acb_mat_entry(M, x, x), acb_mat_entry(M, x, x), &r->z, FR_PREC);
+      for (slong c = 0; c < b; c++)
+        if (comp[c] == r->part)
+          acb_submul(acb_mat_entry(rhs, x, 0), acb_mat_entry(&bl->B, z[x], c), r->vec + c,
+                     FR_PREC);
+    }
+    ok = acb_mat_solve(y, M, rhs, FR_PREC);
+    for (slong x = 0; ok && x < nz; x++)
+      acb_set(r->vec + z[x], acb_mat_entry(y, x, 0));
+    acb_mat_clear(rhs);
+    acb_mat_clear(y);
+    acb_mat_clear(M);
+  }
+  r->full = ok;
+  free(reach);
+  free(z);
+  free(comp);
   return ok;
 }
 
@@ -318,12 +444,10 @@ static int all_blocks(ss_fourier *f, const double *S, int *bad) {
     }
     f->nblk++;
     if (!bl->b) continue;
-    acb_mat_t B;
-    acb_mat_init(B, (slong)bl->b, (slong)bl->b);
-    block_matrix(f, S, bl, B);
-    const int ok = block_eigen(f, f->nblk - 1, B);
-    acb_mat_clear(B);
-    if (!ok) {
+    acb_mat_init(&bl->B, (slong)bl->b, (slong)bl->b);
+    bl->has_b = 1;
+    block_matrix(f, S, bl, &bl->B);
+    if (!block_eigen(f, f->nblk - 1)) {
       *bad = k;
       return 1;
     }
@@ -379,7 +503,7 @@ static int assess_one(ss_fourier *f, size_t *one) {
   for (size_t i = 0; i < f->nrt && !open; i++) {
     if (i == *one || arb_lt(&f->rt[i].mod, t)) continue;
     open = 1;
-    if (arb_gt(&f->rt[i].mod, t))
+    if (arb_gt(&f->rt[i].mod, t) && f->rt[i].counted)
       set_verdict(f, SS_FAIL, 1, "the eigenvalue %s has modulus > 1 (proven, balls)",
                   root_text(f, i, b1, sizeof b1));
     else
@@ -391,107 +515,131 @@ static int assess_one(ss_fourier *f, size_t *one) {
   return open;
 }
 
-/* Every root but one, a and b (SIZE_MAX: none) proven of modulus below x. */
-static int all_below(const ss_fourier *f, size_t one, size_t a, size_t b, const arb_t x) {
-  for (size_t i = 0; i < f->nrt; i++)
-    if (i != one && i != a && i != b && !arb_lt(&f->rt[i].mod, x)) return 0;
+/* Every root but one, the nl leading ones lead[] and skip (SIZE_MAX: none)
+ * proven of modulus below x. */
+static int rest_below(const ss_fourier *f, size_t one, const size_t *lead, int nl,
+                      const arb_t x, size_t skip) {
+  for (size_t i = 0; i < f->nrt; i++) {
+    int led = i == one || i == skip;
+    for (int j = 0; j < nl; j++)
+      led |= i == lead[j];
+    if (!led && !arb_lt(&f->rt[i].mod, x)) return 0;
+  }
   return 1;
 }
 
-/* The leading pair lambda1 = lambda2 = root a (a block 0 < k < n / 2). */
-static void assess_pair(ss_fourier *f, size_t one, size_t a) {
-  char b1[96];
-  const fr_root *r = f->rt + a;
-  const arb_struct *re = acb_realref(&r->z);
-  if (!r->isolated) {
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: lambda1 = lambda2 = %s not isolated in its block",
-                root_text(f, a, b1, sizeof b1));
-  } else if (r->real == -1) {
-    acb_t cz;
-    acb_init(cz);
-    acb_conj(cz, &r->z);
-    int top = 1; /* every other root below it, or its conjugate */
-    for (size_t i = 0; i < f->nrt; i++)
-      if (i != one && i != a && !arb_lt(&f->rt[i].mod, &r->mod) &&
-          !acb_overlaps(cz, &f->rt[i].z))
-        top = 0;
-    acb_clear(cz);
-    if (top)
-      set_verdict(f, SS_FAIL, 1, "lambda1 = %s is not real (proven, balls)",
-                  root_text(f, a, b1, sizeof b1));
-    else
-      set_verdict(f, SS_UNDECIDED, 0,
-                  "not certified: moduli of lambda1 and lambda3 not separated");
-  } else if (r->real == 0) {
-    set_verdict(f, SS_UNDECIDED, 0, "not certified: lambda1 = %s not proven real",
-                root_text(f, a, b1, sizeof b1));
-  } else if (!arb_is_positive(re)) {
-    if (arb_is_nonpositive(re) && all_below(f, one, a, SIZE_MAX, &r->mod))
-      set_verdict(f, SS_FAIL, 1, "lambda1 = lambda2 = %s is not positive (proven, balls)",
-                  root_text(f, a, b1, sizeof b1));
-    else
-      set_verdict(f, SS_UNDECIDED, 0, "not certified: the sign of lambda1 not decided");
-  } else if (!all_below(f, one, a, SIZE_MAX, re)) {
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: moduli of lambda2 and lambda3 not separated (balls)");
-  } else {
-    f->lead[0] = f->lead[1] = a;
-    f->pair = 1;
-    set_verdict(f, SS_PASS, 1, "%s", "");
-  }
+/* cz = conj(z).  Not inlined: GCC 12 inlining acb_conj on a root's ball into
+ * assess warns -Wstringop-overread (a false positive). */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void
+conj_ball(acb_t cz, const acb_t z) {
+  acb_conj(cz, z);
 }
 
-/* lambda1 = root a single (block 0 or n / 2), lambda2 root b. */
-static void assess_single(ss_fourier *f, size_t one, size_t a, size_t b) {
-  char b1[96], b2[96];
-  const fr_root *ra = f->rt + a, *rb = f->rt + b;
-  if (mult_of(f, rb) == 2) { /* lambda2 = lambda3: a tie if both are placed */
-    if (arb_gt(&ra->mod, &rb->mod) && all_below(f, one, a, b, &rb->mod))
-      set_verdict(f, SS_FAIL, 1,
-                  "exact tie: lambda2 = lambda3 = %s (Fourier modes k and n - k, proven)",
-                  root_text(f, b, b1, sizeof b1));
-    else
-      set_verdict(f, SS_UNDECIDED, 0,
-                  "not certified: moduli of lambda1, lambda2 = lambda3 and lambda4 not "
-                  "separated (balls)");
-    return;
-  }
-  const arb_struct *ea = acb_realref(&ra->z), *eb = acb_realref(&rb->z);
-  if (!ra->isolated || !rb->isolated || ra->real != 1 || rb->real != 1 ||
-      !arb_is_positive(ea) || !arb_is_positive(eb)) {
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: lambda1 = %s and lambda2 = %s not proven real, positive "
-                "and isolated",
-                root_text(f, a, b1, sizeof b1), root_text(f, b, b2, sizeof b2));
-  } else if (!all_below(f, one, a, b, ea) || !all_below(f, one, a, b, eb)) {
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: moduli of lambda2 and lambda3 not separated (balls)");
-  } else {
-    f->lead[0] = a;
-    f->lead[1] = b;
-    f->pair = 0;
-    set_verdict(f, SS_PASS, 1, "%s", "");
-  }
-}
-
-static void assess(ss_fourier *f) {
-  size_t one = 0;
-  if (assess_one(f, &one)) return;
-  size_t a = SIZE_MAX, b = SIZE_MAX; /* the two largest after lambda0 */
+/* The conjugate of root a (isolated): the one other ball of its block that
+ * meets conj(a's ball) holds conj(a), since S_k's spectrum is closed under
+ * conjugation; SIZE_MAX when that ball is not unique. */
+static size_t partner(const ss_fourier *f, size_t a) {
+  acb_t cz;
+  acb_init(cz);
+  conj_ball(cz, &f->rt[a].z);
+  size_t p = SIZE_MAX, count = 0;
   for (size_t i = 0; i < f->nrt; i++)
-    if (i != one && a == SIZE_MAX)
-      a = i;
-    else if (i != one && b == SIZE_MAX)
-      b = i;
-  if (a == SIZE_MAX || (mult_of(f, f->rt + a) == 1 && b == SIZE_MAX)) {
-    set_verdict(f, SS_FAIL, 1, "S has fewer than 3 eigenvalues");
+    if (i != a && f->rt[i].blk == f->rt[a].blk && acb_overlaps(cz, &f->rt[i].z))
+      p = i, count++;
+  acb_clear(cz);
+  return count == 1 ? p : SIZE_MAX;
+}
+
+/* lambda_m = lambda_m+1: the last leading root, a pair, straddles m. */
+static void assess_straddle(ss_fourier *f, size_t one, const size_t *lead, int nl) {
+  char b1[96];
+  const fr_root *r = f->rt + lead[nl - 1];
+  int placed = r->isolated && rest_below(f, one, lead, nl, &r->mod, SIZE_MAX);
+  for (int j = 0; j + 1 < nl; j++)
+    placed &= arb_gt(&f->rt[lead[j]].mod, &r->mod);
+  if (placed)
+    set_verdict(f, SS_FAIL, 1,
+                "exact tie: lambda%d = lambda%d = %s (Fourier modes k and n - k, proven)",
+                f->m, f->m + 1, root_text(f, lead[nl - 1], b1, sizeof b1));
+  else
+    set_verdict(f, SS_UNDECIDED, 0,
+                "not certified: moduli of lambda%d and lambda%d not separated (balls)",
+                f->m, f->m + 1);
+}
+
+/* Leading root j (lambda_pos): 0 if isolated, real and positive, else 1 with
+ * the verdict set. */
+static int assess_root(ss_fourier *f, size_t one, const size_t *lead, int nl, int j,
+                       int pos) {
+  char b1[96];
+  const fr_root *r = f->rt + lead[j];
+  const arb_struct *re = acb_realref(&r->z);
+  root_text(f, lead[j], b1, sizeof b1);
+  if (!r->isolated) {
+    set_verdict(f, SS_UNDECIDED, 0, "not certified: lambda%d = %s not isolated (balls)",
+                pos, b1);
+  } else if (r->real == -1) {
+    /* every other root below |r| but r's conjugate: the moduli >= |r| fill
+     * positions from at most pos on, and r, conj(r) share one, so a root that
+     * is not real is among lambda1..m or |lambda_m| = |lambda_m+1| */
+    const size_t p = partner(f, lead[j]);
+    if (p != SIZE_MAX && rest_below(f, one, lead, nl, &r->mod, p))
+      set_verdict(f, SS_FAIL, 1, "lambda%d = %s is not real (proven, balls)", pos, b1);
+    else
+      set_verdict(f, SS_UNDECIDED, 0,
+                  "not certified: lambda%d = %s is not real but not placed (balls)", pos,
+                  b1);
+  } else if (r->real == 0) {
+    set_verdict(f, SS_UNDECIDED, 0, "not certified: lambda%d = %s not proven real", pos,
+                b1);
+  } else if (!arb_is_positive(re)) {
+    if (arb_is_nonpositive(re) && rest_below(f, one, lead, nl, &r->mod, SIZE_MAX))
+      set_verdict(f, SS_FAIL, 1, "lambda%d = %s is not positive (proven, balls)", pos,
+                  b1);
+    else
+      set_verdict(f, SS_UNDECIDED, 0, "not certified: the sign of lambda%d not decided",
+                  pos);
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
+/* lambda1..lambda_m: the roots after lambda0, in order, until m copies are
+ * counted (a pair of modes k, n - k counts twice); each isolated, real and
+ * positive, and every later root proven below each of them. */
+static void assess(ss_fourier *f) {
+  size_t one = 0, lead[4];
+  if (assess_one(f, &one)) return;
+  int nl = 0, count = 0;
+  for (size_t i = 0; i < f->nrt && count < f->m; i++)
+    if (i != one) {
+      lead[nl++] = i;
+      count += mult_of(f, f->rt + i);
+    }
+  if (count < f->m) {
+    set_verdict(f, SS_FAIL, 1, "S has fewer than %d eigenvalues", f->m + 1);
     return;
   }
-  if (mult_of(f, f->rt + a) == 2)
-    assess_pair(f, one, a);
-  else
-    assess_single(f, one, a, b);
+  if (count > f->m) {
+    assess_straddle(f, one, lead, nl);
+    return;
+  }
+  for (int j = 0, pos = 1; j < nl; pos += mult_of(f, f->rt + lead[j]), j++)
+    if (assess_root(f, one, lead, nl, j, pos)) return;
+  for (int j = 0; j < nl; j++)
+    if (!rest_below(f, one, lead, nl, acb_realref(&f->rt[lead[j]].z), SIZE_MAX)) {
+      set_verdict(f, SS_UNDECIDED, 0,
+                  "not certified: moduli of lambda%d and lambda%d not separated (balls)",
+                  f->m, f->m + 1);
+      return;
+    }
+  memcpy(f->lead, lead, sizeof lead);
+  f->nlead = nl;
+  set_verdict(f, SS_PASS, 1, "%s", "");
 }
 
 /* Outward-rounded doubles around a ball. */
@@ -506,9 +654,9 @@ static void enclose(const arb_t x, double *lo, double *hi) {
 }
 
 /* Column c of the basis from root r (part 0: real, 1: imaginary). */
-static int lift(ss_fourier *f, const fr_root *r, int part, double *lo, double *hi) {
+static int lift(ss_fourier *f, fr_root *r, int part, double *lo, double *hi) {
   const fr_block *bl = f->blk + r->blk;
-  if (!r->vec) return 0;
+  if (!r->vec || (!r->full && !extend(f, r))) return 0;
   size_t big = 0; /* the entry of largest midpoint, made 1 */
   double best = -1.0;
   for (size_t j = 0; j < bl->b; j++) {
@@ -539,13 +687,14 @@ static int lift(ss_fourier *f, const fr_root *r, int part, double *lo, double *h
 
 static ss_status make_basis(ss_fourier *f, ss_error *err) {
   const size_t n = f->n;
-  f->lo = malloc((2 * n + 1) * sizeof *f->lo);
-  f->hi = malloc((2 * n + 1) * sizeof *f->hi);
+  f->lo = malloc(((size_t)f->m * n + 1) * sizeof *f->lo);
+  f->hi = malloc(((size_t)f->m * n + 1) * sizeof *f->hi);
   if (!f->lo || !f->hi) return ss_error_nomem(err, "Fourier basis");
   int ok = 1;
-  for (int c = 0; c < 2 && ok; c++)
-    ok = lift(f, f->rt + f->lead[f->pair ? 0 : c], f->pair ? c : 0, f->lo + (size_t)c * n,
-              f->hi + (size_t)c * n);
+  size_t c = 0; /* a pair gives two columns: Re x, Im x */
+  for (int j = 0; j < f->nlead && ok; j++)
+    for (int part = 0; part < mult_of(f, f->rt + f->lead[j]) && ok; part++, c++)
+      ok = lift(f, f->rt + f->lead[j], part, f->lo + c * n, f->hi + c * n);
   if (!ok) {
     free(f->lo);
     free(f->hi);
@@ -589,13 +738,17 @@ static ss_status check_input(ss_fourier *f, const double *S, const size_t *rot,
 }
 
 ss_status ss_fourier_new(const double *S, size_t n, size_t n1, const size_t *rot,
-                         const size_t *refl, int order, ss_fourier **out, ss_error *err) {
+                         const size_t *refl, int order, int m, ss_fourier **out,
+                         ss_error *err) {
   *out = NULL;
-  if (n1 < 1 || n1 > n) return ss_error_set(err, SS_EINPUT, "Fourier blocks: n1 %zu", n1);
+  if (n1 < 1 || n1 > n || (m != 2 && m != 3))
+    return ss_error_set(err, SS_EINPUT, "Fourier blocks: n1 %zu of %zu, m %d not 2 or 3",
+                        n1, n, m);
   ss_fourier *f = calloc(1, sizeof *f);
   if (!f) return ss_error_nomem(err, "Fourier blocks");
   f->n = n;
   f->n1 = n1;
+  f->m = m;
   f->order = order;
   snprintf(f->bmsg, sizeof f->bmsg, "%s", "the condition is not a certified pass");
   set_verdict(f, SS_UNDECIDED, 0, "%s", "not certified: not assessed");
@@ -623,17 +776,17 @@ ss_status ss_fourier_new(const double *S, size_t n, size_t n1, const size_t *rot
   }
   for (size_t i = 0; i < f->nrt; i++) {
     const fr_root *r = f->rt + i;
-    mag_t m;
-    mag_init(m);
-    mag_hypot(m, arb_radref(acb_realref(&r->z)), arb_radref(acb_imagref(&r->z)));
+    mag_t rad;
+    mag_init(rad);
+    mag_hypot(rad, arb_radref(acb_realref(&r->z)), arb_radref(acb_imagref(&r->z)));
     f->pub[i] = (ss_fourier_root){arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR),
                                   arf_get_d(arb_midref(acb_imagref(&r->z)), ARF_RND_NEAR),
-                                  mag_get_d(m),
+                                  mag_get_d(rad),
                                   mult_of(f, r),
                                   f->blk[r->blk].k,
                                   r->isolated,
                                   r->real};
-    mag_clear(m);
+    mag_clear(rad);
   }
   assess(f);
   if (f->cond.verdict == SS_PASS) st = make_basis(f, err);
@@ -660,7 +813,7 @@ ss_status ss_fourier_basis(const ss_fourier *f, double *lo, double *hi, ss_error
   if (f->cond.verdict != SS_PASS || !f->certified)
     return ss_error_set(err, SS_EINPUT, "%s", f->bmsg);
   if (!f->lo) return ss_error_set(err, SS_ENUMERIC, "%s", f->bmsg);
-  memcpy(lo, f->lo, 2 * f->n * sizeof *lo);
-  memcpy(hi, f->hi, 2 * f->n * sizeof *hi);
+  memcpy(lo, f->lo, (size_t)f->m * f->n * sizeof *lo);
+  memcpy(hi, f->hi, (size_t)f->m * f->n * sizeof *hi);
   return SS_OK;
 }

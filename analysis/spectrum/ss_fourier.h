@@ -1,8 +1,9 @@
-/* ss_fourier.h — the certified eigenvalue condition of a surface vertex's local
- * matrix whose entries are not rational (Loop's cos(2 pi / n), a stencil's
- * algebraic weights), from its Fourier blocks in ball arithmetic (DESIGN
- * section 5, "certified path"; `analyze --certify` where ss_exact cannot read
- * S as rationals).
+/* ss_fourier.h — the certified eigenvalue condition of a local matrix whose
+ * entries are not rational (Loop's cos(2 pi / n), a stencil's algebraic
+ * weights) and whose star turns about the centre (a surface vertex, a volume
+ * edge), from its Fourier blocks in ball arithmetic (DESIGN section 5,
+ * "certified path"; `analyze --certify` where ss_exact cannot read S as
+ * rationals).
  *
  * Entries.  Each computed entry s of S stands for the ball s +- 2^-40 max(1,
  * |s|): the window ss_exact's rational reconstruction also trusts the doubles
@@ -36,21 +37,22 @@
  * balls is real (its conjugate is an eigenvalue of S_k too, and lies in no
  * other ball); one whose ball misses its conjugate ball is not real.
  *
- * Condition (surface: m = 2), on this multiset:
+ * Condition (m = 2 on surfaces, 3 in volumes), on this multiset, balls in
+ * decreasing order of their moduli' midpoints:
  *   lambda0 = 1 simple: exactly one ball contains 1, isolated in S_0 (1 is an
  *     eigenvalue since rows sum to 1, so it is that ball's), every other
  *     modulus proven below 1 (one proven above 1: a certified fail);
- *   lambda1 = lambda2 from one isolated, real, positive eigenvalue of S_k,
- *     0 < k < n/2 (an exact tie, proven by the symmetry: the same eigenvalue
- *     in V_k and V_(n-k), simple in each, so not defective), or lambda1,
- *     lambda2 two isolated real positive eigenvalues of S_0 or S_(n/2);
- *     every other modulus proven below both.  Proven fails: the leading pair
- *     not real, or lambda2 = lambda3 exactly (a pair of S_k, 0 < k < n/2,
- *     right after a single lambda1).  Anything else is undecided.
+ *   lambda1..lambda_m: the next balls until m copies are counted, an
+ *     eigenvalue of S_k with 0 < k < n/2 counting twice (an exact tie,
+ *     proven by the symmetry: the same eigenvalue in V_k and V_(n-k), simple
+ *     in each, so not defective); each isolated, real and positive, and
+ *     every other modulus proven below each of them.  Proven fails: a
+ *     leading eigenvalue not real or not positive, or a pair straddling
+ *     lambda_m (lambda_m = lambda_m+1 exactly).  Anything else is undecided.
  * Basis on a pass: the eigenvector a of S_k lifted to x[P^t r_O] = a_O
  * omega^(k t) (0 elsewhere); for a pair, Re x and Im x (independent since x
  * and conj(x) lie in V_k and V_(n-k)), else x (real).  Enclosed as doubles
- * lo <= X <= hi, n x 2 column-major, as ss_exact_basis.
+ * lo <= X <= hi, n x m column-major, as ss_exact_basis.
  *
  * Cost: n / 2 + 1 blocks of the orbits' size, microseconds each; the
  * invariance check reads S twice (O(N^2)).  No global state. */
@@ -81,24 +83,26 @@ typedef struct {
 /* The Fourier analysis of S (n x n, row-major, its one-ring the first n1
  * points, which read no other: S = [A 0; B C]) under the rotation rot (a
  * permutation of 0..n-1, rot[i] the image of i, of order `order` >= 3) and the
- * reflection refl (refl rot refl = rot^-1), both keeping the one-ring.  *out
- * (caller frees, ss_fourier_free) holds the condition, undecided with the
- * reason when S is not invariant or something cannot be proven.  SS_EINPUT
- * for permutations that are not, SS_ENOMEM. */
+ * reflection refl (refl rot refl = rot^-1), both keeping the one-ring, for
+ * the condition on m = 2 (surface) or 3 (volume) subdominant eigenvalues.
+ * *out (caller frees, ss_fourier_free) holds the condition, undecided with
+ * the reason when S is not invariant or something cannot be proven.
+ * SS_EINPUT for permutations that are not, SS_ENOMEM. */
 ss_status ss_fourier_new(const double *S, size_t n, size_t n1, const size_t *rot,
-                         const size_t *refl, int order, ss_fourier **out, ss_error *err);
+                         const size_t *refl, int order, int m, ss_fourier **out,
+                         ss_error *err);
 
 /* Free; NULL is a no-op. */
 void ss_fourier_free(ss_fourier *f);
 
-/* The certified eigenvalue condition (surface), as ss_exact_condition. */
+/* The certified eigenvalue condition, as ss_exact_condition. */
 void ss_fourier_condition(const ss_fourier *f, ss_verdict *v, int *certified);
 
 /* The eigenvalue enclosures, by decreasing modulus (midpoints), each once
  * (see mult): *nroots of them, valid while f lives. */
 const ss_fourier_root *ss_fourier_roots(const ss_fourier *f, size_t *nroots);
 
-/* The subdominant basis enclosure (above) into lo, hi (n * 2 each): SS_OK, or
+/* The subdominant basis enclosure (above) into lo, hi (n * m each): SS_OK, or
  * SS_EINPUT when the condition is not a certified pass, SS_ENUMERIC when an
  * eigenvector could not be enclosed (the message says so). */
 ss_status ss_fourier_basis(const ss_fourier *f, double *lo, double *hi, ss_error *err);
