@@ -14,6 +14,8 @@
 #include "acb_mat.h"
 #include "arb.h"
 
+#include "ss_ball.h"
+
 enum {
   FR_PREC = 128, /* working precision, bits: the entries' balls (2^-40)
                     decide the width, not this */
@@ -642,17 +644,6 @@ static void assess(ss_fourier *f) {
   set_verdict(f, SS_PASS, 1, "%s", "");
 }
 
-/* Outward-rounded doubles around a ball. */
-static void enclose(const arb_t x, double *lo, double *hi) {
-  arf_t t;
-  arf_init(t);
-  arb_get_lbound_arf(t, x, 64);
-  *lo = arf_get_d(t, ARF_RND_FLOOR);
-  arb_get_ubound_arf(t, x, 64);
-  *hi = arf_get_d(t, ARF_RND_CEIL);
-  arf_clear(t);
-}
-
 /* Column c of the basis from root r (part 0: real, 1: imaginary). */
 static int lift(ss_fourier *f, fr_root *r, int part, double *lo, double *hi) {
   const fr_block *bl = f->blk + r->blk;
@@ -677,7 +668,7 @@ static int lift(ss_fourier *f, fr_root *r, int part, double *lo, double *hi) {
       continue;
     }
     acb_mul(v, a + c, f->w + ((size_t)bl->k * f->pos[i]) % (size_t)f->order, FR_PREC);
-    enclose(part ? acb_imagref(v) : acb_realref(v), lo + i, hi + i);
+    ss_ball_doubles(part ? acb_imagref(v) : acb_realref(v), lo + i, hi + i);
     ok = isfinite(lo[i]) && isfinite(hi[i]);
   }
   acb_clear(v);
