@@ -119,7 +119,10 @@ static void print_spectrum(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
   printf(")\n");
   if (p->opts.certify) {
     const ss_verdict *cond = &p->v.cond;
-    printf("eigenvalue condition, exact (%.2f s): %s%s%s%s\n", p->exact_seconds,
+    /* proven without an exact spectrum: the Fourier blocks in balls
+     * (ss_fourier.h, surface vertices with irrational weights) */
+    const char *how = p->ex || !cond->certified ? "exact" : "Fourier blocks in balls";
+    printf("eigenvalue condition, %s (%.2f s): %s%s%s%s\n", how, p->exact_seconds,
            ss_verdict_name(cond->verdict), certified_text(p, cond),
            cond->reason[0] ? ": " : "", cond->reason);
     size_t nr = 0;

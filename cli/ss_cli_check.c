@@ -22,7 +22,8 @@
 
 static const char *const usage_text =
     "usage: subspectra check (STENCIL.ini | --scheme S) [--vertices A..B]\n"
-    "                        [--edges A..B] [--face] [--tol T] [--depth D]\n"
+    "                        [--edges A..B] [--face] [--surface-vertices A..B]\n"
+    "                        [--tol T] [--depth D]\n"
     "                        [--certify] [--max-memory SIZE] [--jobs N]\n"
     "                        [--format text|json|junit] [--baseline FILE]\n"
     "                        [--progress]\n"
@@ -38,6 +39,10 @@ static const char *const usage_text =
     "                    hex stars for split multilinear, tet stars for tetoct)\n"
     "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
     "  --face            the face of two tets (split tetoct only)\n"
+    "  --surface-vertices A..B\n"
+    "                    every smooth surface vertex of valence A..B (3 <= A <=\n"
+    "                    B <= 256): a triangle surface's (Loop-like rules) or a\n"
+    "                    quad surface's\n"
     "  -s, --scheme S    a built-in scheme instead of a stencil file (mlca, tetoct,\n"
     "                    boxspline, boxspline-avg, ccsolid)\n"
     "  --certify         prove every verdict (exact spectrum, interval Jacobians);\n"
@@ -224,6 +229,7 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
   static const struct option opts[] = {{"vertices", required_argument, NULL, 'v'},
                                        {"edges", required_argument, NULL, 'e'},
                                        {"face", no_argument, NULL, 'f'},
+                                       {"surface-vertices", required_argument, NULL, 'S'},
                                        {"tol", required_argument, NULL, 't'},
                                        {"depth", required_argument, NULL, 'd'},
                                        {"certify", no_argument, NULL, 'c'},
@@ -308,6 +314,11 @@ int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases
                                 arg);
   } else if (c == 'f') {
     k->face = 1;
+  } else if (c == 'S') {
+    if (ss_cli_parse_range(arg, &k->sa, &k->sb) || k->sa < 3 || k->sb > 256 ||
+        k->sa > k->sb)
+      return ss_cli_usage_error(
+          cmd, "--surface-vertices '%s' is not A..B with 3 <= A <= B <= 256", arg);
   } else {
     return -1;
   }
@@ -343,6 +354,13 @@ int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k) {
   }
   if (face && add_case(g, (ss_case){SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, NULL, "face"))
     goto nomem;
+  for (long n = k->sa; n <= k->sb; n++) {
+    char what[40];
+    snprintf(what, sizeof what, "surface-vertex %ld", n);
+    if (add_case(g, (ss_case){SS_CASE_SURFACE_VERTEX, NULL, (int)n, SS_DIAG_BFS, 0}, NULL,
+                 what))
+      goto nomem;
+  }
   return 0;
 nomem:
   fprintf(stderr, "subspectra %s: out of memory\n", cmd);

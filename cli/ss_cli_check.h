@@ -18,7 +18,8 @@ typedef enum {
 
 /* One case of a check run. */
 typedef struct {
-  char *name;               /* "vertex <link>", "edge N" or "face"; owned */
+  char *name;               /* "vertex <link>", "edge N", "face" or
+                               "surface-vertex N"; owned */
   ss_case c;                /* the case (c.link points at link) */
   ss_link *link;            /* the vertex case's link, owned; NULL otherwise */
   ss_check_outcome outcome; /* how it ended */
@@ -51,16 +52,18 @@ typedef struct {
   long ea, eb; /* edge valences ea..eb; none when eb < ea */
   int face;    /* the face of two tets */
   int any;     /* some case option was given */
+  long sa, sb; /* surface vertices of valences sa..sb; none when sb < sa */
 } ss_check_cases;
 
 /* No case yet. */
 #define SS_CHECK_CASES_NONE                                                              \
-  { 0, -1, 0, -1, 0, 0 }
+  { 0, -1, 0, -1, 0, 0, 0, -1 }
 
 /* Option c of getopt_long with its argument arg if it is a case option
  * ('v' --vertices A..B with 4 <= A <= B <= 9, 'e' --edges A..B with
- * 3 <= A <= B <= 64, 'f' --face): 0 taken into k, SS_EXIT_USAGE after a
- * message ("subspectra CMD: ..."), -1 not a case option. */
+ * 3 <= A <= B <= 64, 'f' --face, 'S' --surface-vertices A..B with
+ * 3 <= A <= B <= 256): 0 taken into k, SS_EXIT_USAGE after a message
+ * ("subspectra CMD: ..."), -1 not a case option. */
 int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases *k);
 
 /* After the options: --face refused unless tetoct (SS_EXIT_USAGE after a

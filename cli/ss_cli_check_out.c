@@ -136,9 +136,10 @@ int ss_check_write_junit(const ss_check_run *r) {
   for (size_t i = 0; i < r->ncases; i++) {
     const ss_check_case *k = r->cases + i;
     printf("    <testcase classname=\"check.%s\" name=\"",
-           k->c.kind == SS_CASE_VERTEX ? "vertex"
-           : k->c.kind == SS_CASE_EDGE ? "edge"
-                                       : "face");
+           k->c.kind == SS_CASE_VERTEX           ? "vertex"
+           : k->c.kind == SS_CASE_EDGE           ? "edge"
+           : k->c.kind == SS_CASE_SURFACE_VERTEX ? "surface-vertex"
+                                                 : "face");
     xml_text(k->name);
     printf("\" time=\"%.3f\"", k->seconds);
     if (k->outcome == SS_CHECK_PASS) {

@@ -6,41 +6,21 @@
 #include <string.h>
 
 #include "ss_clock.h"
+#include "ss_fourier.h"
 
-ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
-                     const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
-                     ss_charmap_inj *inj, ss_certified *out, ss_exact **x,
-                     ss_error *err) {
-  const double t0 = ss_clock_wall();
-  memset(out, 0, sizeof *out);
-  if (x) *x = NULL;
-  reg->verdict.certified = inj->verdict.certified = 0;
-  ss_exact *ex = NULL;
+/* Regularity and injectivity once the condition cond is settled, the basis
+ * from ex (rational S) or fx (the Fourier route: algebraic weights, enclosed
+ * in their windows, ss_fourier.h). */
+static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charmap *cm,
+                             const ss_charmap_opts *o, const ss_verdict *cond,
+                             const ss_exact *ex, const ss_fourier *fx, long maxden,
+                             ss_regularity *reg, ss_charmap_inj *inj, ss_error *err) {
+  ss_status st = SS_OK;
   double *lo = NULL, *hi = NULL;
-  ss_exact_opts eo = ss_exact_defaults(M->dim);
-  eo.times = o->times ? &o->times->exact : NULL;
-  double c1 = o->times ? ss_clock_cpu() : 0.0;
-  ss_error xe = {0};
-  ss_status st = ss_exact_new(M->S, M->n2, M->n1, &eo, &ex, &xe);
-  if (st == SS_ENOMEM || st == SS_EINPUT) {
-    *err = xe;
-    if (o->times) ss_clock_lap(&o->times->certify, &c1);
-    return st;
-  }
-  if (st) { /* not rational, or FLINT could not: nothing is proven */
-    out->cond = e->cond;
-    ss_verdict_unproven(&out->cond, xe.msg);
-    ss_verdict_unproven(&reg->verdict, "no exact spectrum");
-    ss_verdict_unproven(&inj->verdict, "no exact spectrum");
-    st = SS_OK;
-    goto done;
-  }
-  ss_exact_condition(ex, &out->cond, &out->cond.certified);
-  out->cond.on = SS_ON_SPECTRUM;
-  if (!out->cond.certified) { /* undecided already, with its reason */
+  if (!cond->certified) { /* undecided already, with its reason */
     ss_verdict_unproven(&reg->verdict, "the eigenvalue condition is not proven");
     ss_verdict_unproven(&inj->verdict, "the eigenvalue condition is not proven");
-  } else if (out->cond.verdict != SS_PASS) {
+  } else if (cond->verdict != SS_PASS) {
     /* no characteristic map; keep a failure the double path proved from the
      * spectrum's kind (complex, defective), else there is nothing to judge */
     if (!(cm == NULL && reg->verdict.verdict == SS_FAIL)) {
@@ -66,7 +46,8 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
       goto done;
     }
     ss_error be = {0};
-    const ss_status bs = ss_exact_basis(ex, lo, hi, &be);
+    const ss_status bs =
+        ex ? ss_exact_basis(ex, lo, hi, &be) : ss_fourier_basis(fx, lo, hi, &be);
     if (bs == SS_ENOMEM) {
       st = ss_error_nomem(err, "basis enclosure");
       goto done;
@@ -75,14 +56,109 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
       char why[sizeof be.msg + 32];
       snprintf(why, sizeof why, "basis enclosure: %s", be.msg);
       ss_verdict_unproven(&reg->verdict, why);
-    } else if ((st = ss_charmap_certify(M, c, lo, hi, cm->dim, eo.maxden, o, reg, inj,
-                                        err))) {
-      goto done;
+    } else {
+      st = ss_charmap_certify(M, c, lo, hi, cm->dim, ex ? maxden : -maxden, o, reg, inj,
+                              err);
     }
   }
 done:
   free(lo);
   free(hi);
+  return st;
+}
+
+/* Whether case c's star turns about its centre (a surface vertex's rays, an
+ * edge's faces): the Fourier route's cases. */
+static int turns(const ss_case *c) {
+  return c->kind == SS_CASE_SURFACE_VERTEX || c->kind == SS_CASE_EDGE;
+}
+
+/* The Fourier route's condition for a surface vertex or an edge (*fx: caller frees), or
+ * *fx NULL when the star's rotation and reflection do not map the two-ring
+ * (then out stays undecided with why). */
+static ss_status fourier_condition(const ss_local *M, const ss_case *c, const char *why,
+                                   ss_verdict *cond, ss_fourier **fx, ss_error *err) {
+  *fx = NULL;
+  const size_t n = M->n2;
+  size_t *rot = malloc((n + 1) * sizeof *rot), *refl = malloc((n + 1) * sizeof *refl);
+  if (!rot || !refl) {
+    free(rot);
+    free(refl);
+    return ss_error_nomem(err, "Fourier blocks");
+  }
+  /* ss_charmap_symmetry's candidates 0 (rotation by one ray or face about
+   * the centre) and rays - 1
+   * (reflection by 0) */
+  ss_charmap_sym y = {0};
+  y.found = 1;
+  ss_error pe = {0};
+  ss_status st = ss_charmap_sym_perm(M, c, &y, rot, &pe);
+  y.index = c->kind == SS_CASE_EDGE ? c->n - 1 : M->ncoord - 1;
+  if (!st) st = ss_charmap_sym_perm(M, c, &y, refl, &pe);
+  if (st == SS_ENOMEM) {
+    *err = pe;
+  } else if (st) {
+    char r[sizeof cond->reason];
+    snprintf(r, sizeof r, "%.200s; no Fourier blocks: %.200s", why, pe.msg);
+    ss_verdict_unproven(cond, r);
+    st = SS_OK;
+  } else if (!(st = ss_fourier_new(M->S, n, M->n1, rot, refl,
+                                   c->kind == SS_CASE_EDGE ? c->n : M->ncoord, M->dim, fx,
+                                   err))) {
+    int certified = 0;
+    ss_fourier_condition(*fx, cond, &certified);
+  }
+  free(rot);
+  free(refl);
+  return st;
+}
+
+/* ss_certify; rational = 0: S is known not to be rational (a stencil's
+ * algebraic weight), so only the Fourier route may prove anything. */
+static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *e,
+                             const ss_charmap *cm, const ss_charmap_opts *o,
+                             ss_regularity *reg, ss_charmap_inj *inj, ss_certified *out,
+                             ss_exact **x, int rational, ss_error *err) {
+  const double t0 = ss_clock_wall();
+  memset(out, 0, sizeof *out);
+  if (x) *x = NULL;
+  reg->verdict.certified = inj->verdict.certified = 0;
+  ss_exact *ex = NULL;
+  ss_fourier *fx = NULL;
+  ss_exact_opts eo = ss_exact_defaults(M->dim);
+  eo.times = o->times ? &o->times->exact : NULL;
+  double c1 = o->times ? ss_clock_cpu() : 0.0;
+  ss_error xe = {0};
+  ss_status st = rational ? ss_exact_new(M->S, M->n2, M->n1, &eo, &ex, &xe) : SS_ENUMERIC;
+  if (!rational)
+    snprintf(xe.msg, sizeof xe.msg, "%s",
+             "weights not rational (the exact path reads rational matrices only)");
+  if (st == SS_ENOMEM || st == SS_EINPUT) {
+    *err = xe;
+    if (o->times) ss_clock_lap(&o->times->certify, &c1);
+    return st;
+  }
+  out->cond = e->cond;
+  if (st && turns(c)) { /* algebraic: the balls */
+    if ((st = fourier_condition(M, c, xe.msg, &out->cond, &fx, err))) goto done;
+    if (!fx) {
+      ss_verdict_unproven(&reg->verdict, "no exact spectrum");
+      ss_verdict_unproven(&inj->verdict, "no exact spectrum");
+      goto done;
+    }
+  } else if (st) { /* not rational, or FLINT could not: nothing is proven */
+    ss_verdict_unproven(&out->cond, xe.msg);
+    ss_verdict_unproven(&reg->verdict, "no exact spectrum");
+    ss_verdict_unproven(&inj->verdict, "no exact spectrum");
+    st = SS_OK;
+    goto done;
+  } else {
+    ss_exact_condition(ex, &out->cond, &out->cond.certified);
+  }
+  out->cond.on = SS_ON_SPECTRUM;
+  st = judge_after(M, c, cm, o, &out->cond, ex, fx, eo.maxden, reg, inj, err);
+done:
+  ss_fourier_free(fx);
   if (o->times) ss_clock_lap(&o->times->certify, &c1);
   out->seconds = ss_clock_wall() - t0;
   if (x && !st)
@@ -90,6 +166,13 @@ done:
   else
     ss_exact_free(ex);
   return st;
+}
+
+ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
+                     const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
+                     ss_charmap_inj *inj, ss_certified *out, ss_exact **x,
+                     ss_error *err) {
+  return certify_run(M, c, e, cm, o, reg, inj, out, x, 1, err);
 }
 
 /* What the double path's verdicts are statements about: the condition about
@@ -127,8 +210,11 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
   }
   if (!st) judged_on(*cm, &out->cond, reg, inj);
   const int volume = c->kind != SS_CASE_SURFACE_VERTEX;
-  if (!st && certify &&
-      !(volume ? ss_scheme_volume_weights_rational(s) : ss_scheme_weights_rational(s))) {
+  const int rational =
+      volume ? ss_scheme_volume_weights_rational(s) : ss_scheme_weights_rational(s);
+  if (!st && certify && !rational && turns(c)) /* algebraic weights: the balls */
+    return certify_run(M, c, e, *cm, o, reg, inj, out, x, 0, err);
+  if (!st && certify && !rational) {
     /* a weight known not to be rational (a stencil's cos(2 pi / n)) among
      * those S reads (a volume case reads no surface rule): the rational
      * reconstruction of S would stand for another matrix */

@@ -40,8 +40,9 @@ typedef struct {
  * place (verdicts, reasons, certified flags).  *x (may be NULL) receives the
  * exact spectrum, owned by the caller (ss_exact_free), NULL when it could not
  * be built.  A scheme whose weights are not small rationals is not an error:
- * everything is then "not certified".  SS_ENOMEM; SS_EINPUT for malformed
- * inputs. */
+ * everything is then "not certified", except at surface vertices and edges,
+ * whose condition the Fourier blocks in balls may prove (ss_fourier.h; *x
+ * stays NULL then).  SS_ENOMEM; SS_EINPUT for malformed inputs. */
 ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
                      const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
                      ss_charmap_inj *inj, ss_certified *out, ss_exact **x, ss_error *err);
@@ -52,7 +53,8 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
  * with certify, the exact path (ss_certify) — unless the scheme's weights are
  * known not to be rational (ss_scheme_weights_rational; for volume cases
  * ss_scheme_volume_weights_rational, the weights their rows read): then the three are
- * unproven, "weights not rational", and *x stays NULL.  *cm (caller frees; NULL without
+ * unproven, "weights not rational", and *x stays NULL (a surface vertex or an
+ * edge goes to the Fourier route instead).  *cm (caller frees; NULL without
  * a map) and *x (may be NULL; caller frees; set only with certify) as there;
  * out->cond is e's condition unless certify proves or unproves it.
  * Errors: those of the calls. */

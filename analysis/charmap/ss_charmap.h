@@ -285,8 +285,9 @@ ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
  * weight replaced by the enclosure of the rational of denominator at most
  * maxden it stands for (ss_exact_rational_enclose), in interval arithmetic
  * with outward rounding: the result holds the exact rule's net for every
- * net inside the input.  0, or -1 for a weight that is no such rational
- * (or dim outside 1..3). */
+ * net inside the input.  maxden < 0 (algebraic weights, ss_fourier.h): each
+ * weight w stands for w +- 2^-40 max(1, |w|) instead.  0, or -1 for a weight
+ * that is no such rational (or dim outside 1..3). */
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi);
 
@@ -297,7 +298,9 @@ int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const do
  * double path used, which changes no sign.  The ring's nets are pushed from
  * X in interval arithmetic (arb's double intervals, outward rounding), every
  * weight of the rule the rational of denominator <= maxden it rounds to
- * (ss_exact_rational), and each ring cell is judged by ss_jac_cell_interval:
+ * (ss_exact_rational; maxden < 0: its window, as ss_charmap_push_interval,
+ * and no symmetry proven), and each ring cell is judged by
+ * ss_jac_cell_interval:
  *   pass       proven when every cell of the deciding level is proven of one
  *              strict sign (the same for all);
  *   fail       proven when psi o sigma = psi is (P S = S P exactly, and the

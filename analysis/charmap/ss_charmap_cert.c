@@ -45,8 +45,17 @@ typedef struct {
 } wcache;
 
 /* The enclosure of weight w through the cache: 1, or 0 for a weight that is
- * no rational of denominator <= maxden (not remembered). */
+ * no rational of denominator <= maxden (not remembered).  maxden < 0: the
+ * weights are not read as rationals (algebraic, ss_fourier.h): each stands
+ * for its window w +- 2^-40 max(1, |w|), outward rounded. */
 static int weight_enclose(wcache *c, double w, long maxden, double *lo, double *hi) {
+  if (maxden < 0) {
+    if (!isfinite(w)) return 0;
+    const double d = ldexp(fmax(1.0, fabs(w)), -40);
+    *lo = nextafter(w - d, -INFINITY);
+    *hi = nextafter(w + d, INFINITY);
+    return 1;
+  }
   uint64_t b;
   memcpy(&b, &w, sizeof b);
   const size_t h = (size_t)((b * 0x9E3779B97F4A7C15ULL) >> 58); /* 0..63 */

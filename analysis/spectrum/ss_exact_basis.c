@@ -38,18 +38,8 @@
 #include "acb_mat.h"
 #include "arb_mat.h"
 
+#include "ss_ball.h"
 #include "ss_exact_impl.h"
-
-/* Outward-rounded doubles around a ball. */
-static void enclose(const arb_t b, double *lo, double *hi) {
-  arf_t t;
-  arf_init(t);
-  arb_get_lbound_arf(t, b, 64);
-  *lo = arf_get_d(t, ARF_RND_FLOOR);
-  arb_get_ubound_arf(t, b, 64);
-  *hi = arf_get_d(t, ARF_RND_CEIL);
-  arf_clear(t);
-}
 
 /* The entry of S at CSR position k as a ball (from the cache when it holds
  * this precision). */
@@ -523,7 +513,7 @@ static int ball_columns(ss_exact *x, size_t r, int e, int pos, double *lo, doubl
     }
   }
   for (size_t i = 0; i < n * (size_t)e; i++)
-    enclose(Xb + i, lo + i, hi + i);
+    ss_ball_doubles(Xb + i, lo + i, hi + i);
 done:
   free(xa);
   free(perm);
@@ -576,7 +566,7 @@ ss_status ss_exact_basis_make(ss_exact *x, ss_error *err) {
       st = exact_columns(x, r, e, &Xl, err);
       for (size_t i = 0; i < n * (size_t)e && !st; i++) {
         arb_set_fmpq(b, Xl.v + i, 128);
-        enclose(b, x->lo + col * n + i, x->hi + col * n + i);
+        ss_ball_doubles(b, x->lo + col * n + i, x->hi + col * n + i);
       }
     } else {
       int ok = ball_columns(x, root, e, pos, x->lo + col * n, x->hi + col * n);

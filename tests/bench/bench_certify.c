@@ -4,9 +4,13 @@
  * whole double-precision pipeline (ss_result_compute) and of the same with
  * the exact path (certify), measured side by side in one run, best of three
  * repetitions per case; prints both, their ratio, and how many verdicts were
- * proven.  One core.  `bench_certify [SAMPLES]` (default 6 links per k). */
+ * proven.  One core.  `bench_certify [SAMPLES]` (default 6 links per k).
+ * `bench_certify loop`: the same for Loop's surface vertices of valence 3..50
+ * (most proven by the Fourier blocks in balls, ss_fourier.h; 3, 4 and 6
+ * exactly). */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include <flint/flint.h>
@@ -45,7 +49,35 @@ static double best(const ss_scheme *s, const ss_case *c, int certify, ss_result 
   return t;
 }
 
+/* Loop's surface vertices, one line per valence. */
+static int bench_loop(void) {
+  static const int valences[] = {3, 4, 5, 6, 7, 10, 15, 20, 30, 40, 50};
+  ss_scheme *s = NULL;
+  ss_error err = {0};
+  if (ss_scheme_new("loop", &s, &err)) {
+    fprintf(stderr, "bench_certify: %s\n", err.msg);
+    return 1;
+  }
+  printf("certified vs double-precision verdicts, Loop's surface vertices, best of 3 "
+         "each, one core\n\n"
+         "  n  double s/case  certified s/case  ratio  proven\n");
+  for (size_t i = 0; i < sizeof valences / sizeof *valences; i++) {
+    const ss_case c = {SS_CASE_SURFACE_VERTEX, NULL, valences[i], SS_DIAG_BFS, 0};
+    ss_result rd, rc;
+    const double td = best(s, &c, 0, &rd), tc = best(s, &c, 1, &rc);
+    printf("%3d  %13.4f  %16.4f  %5.1f  %s\n", valences[i], td, tc, tc / td,
+           ss_result_certified(&rc) ? "yes" : "no");
+    fflush(stdout);
+    ss_result_clear(&rd);
+    ss_result_clear(&rc);
+  }
+  ss_scheme_free(s);
+  flint_cleanup_master();
+  return 0;
+}
+
 int main(int argc, char **argv) {
+  if (argc > 1 && !strcmp(argv[1], "loop")) return bench_loop();
   const int samples = argc > 1 ? atoi(argv[1]) : 6;
   if (samples < 1) {
     fprintf(stderr, "usage: bench_certify [SAMPLES]\n");
