@@ -180,6 +180,20 @@ int ss_exact_eigen_seeds(ss_exact *x);
 int ss_exact_principal(const ss_exact *x, const size_t *idx, size_t len, fmpz_t D,
                        fmpz_mat_t M);
 
+/* As ss_exact_principal, each row scaled by its own denominator: d[r] = the lcm
+ * of the denominators of row r's entries in the submatrix (d initialised to
+ * len entries by the caller), N = diag(d) times it (initialised len x len).
+ * Returns 0, or -1 when out of memory. */
+int ss_exact_principal_rows(const ss_exact *x, const size_t *idx, size_t len, fmpz *d,
+                            fmpz_mat_t N);
+
+/* P = det(x diag(d) - N) = (prod d_r) det(x - B), B = diag(d)^-1 N the rational
+ * matrix whose row r is N's over d[r] (N n x n, n >= 1, d > 0): B's
+ * characteristic polynomial times prod d_r, an integer polynomial, computed
+ * modulo primes above 2^62 with a bound from B's row sums and Frobenius norm
+ * (ss_exact_charpoly.c).  FLINT aborts if out of memory. */
+void ss_exact_charpoly(fmpz_poly_t P, const fmpz_mat_t N, const fmpz *d);
+
 /* The entry S[i][j] as a rational (0 where S has no entry). */
 void ss_exact_get(const ss_exact *x, size_t i, size_t j, fmpq_t v);
 
