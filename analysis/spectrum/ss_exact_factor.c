@@ -190,6 +190,7 @@ ss_status ss_exact_all_blocks(ss_exact *x, ss_error *err) {
       if (ss_exact_block_rows(x, first[h], jdx) == len &&
           same_block(x, idx, jdx, len, u, v))
         hit = first[h];
+    x->brep[b] = hit == SIZE_MAX ? b : hit;
     if (hit == SIZE_MAX) {
       st = block_charpoly(x, b, idx, len, err);
       if (len > 1 && b > 0) first[nfirst++] = b;

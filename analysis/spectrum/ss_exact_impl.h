@@ -57,6 +57,9 @@ struct ss_exact {
   size_t *bstart;       /* nblk + 1 offsets into bfac, bmult */
   size_t *bfac;         /* factors of each block's characteristic polynomial */
   int *bmult;           /* ... with their multiplicities in that block */
+  size_t *brep;         /* nblk: the first block with the same entries as
+                           block b (b itself if none; outer blocks > 1 x 1
+                           only, else b) */
   size_t nfac;          /* distinct factors */
   size_t facalloc;      /* allocated entries of fac */
   ss_exact_factor *fac; /* the merged factors */
