@@ -33,6 +33,7 @@ void ss_exact_free(ss_exact *x) {
   free(x->bstart);
   free(x->bfac);
   free(x->bmult);
+  free(x->brep);
   free(x->fac);
   free(x->rt);
   free(x->order);
@@ -92,7 +93,8 @@ ss_status ss_exact_new(const double *S, size_t n, size_t n1, const ss_exact_opts
   x->bstart = calloc(x->nblk + 1, sizeof *x->bstart);
   x->bfac = malloc((n + 1) * sizeof *x->bfac);
   x->bmult = malloc((n + 1) * sizeof *x->bmult);
-  if (!x->bstart || !x->bfac || !x->bmult) {
+  x->brep = malloc((x->nblk + 1) * sizeof *x->brep);
+  if (!x->bstart || !x->bfac || !x->bmult || !x->brep) {
     st = ss_error_nomem(err, "blocks");
     goto done;
   }

@@ -17,8 +17,10 @@
  * Spectrum.  S = [A 0; B C] and C is block lower triangular over the strongly
  * connected components of its sparsity graph, so the characteristic
  * polynomial of S is the product of those of A and of C's diagonal blocks
- * (equal blocks are computed once).  Each is computed exactly over Z (FLINT:
- * the block scaled by the common denominator of its entries) and factored
+ * (equal blocks are computed once).  Each is computed exactly over Z
+ * (multimodular, each row scaled by its own denominator: ss_exact_charpoly.c;
+ * rebuilt as the polynomial of the block scaled by the common denominator
+ * of its entries) and factored
  * into irreducibles over Q (fmpz_poly_factor); equal factors of different
  * blocks are merged, multiplicities added.  Distinct irreducible factors have
  * no common root and each has simple roots, so the distinct eigenvalues of S

@@ -10,6 +10,7 @@
 
 #include <flint/fmpz_mat.h>
 #include <flint/fmpz_poly_factor.h>
+#include <flint/fmpz_vec.h>
 
 #include "arb_fmpz_poly.h"
 #include "arf.h"
@@ -67,8 +68,11 @@ size_t ss_exact_block_rows(const ss_exact *x, size_t b, size_t *idx) {
 }
 
 /* The characteristic polynomial of block b (rows idx[0..len)), factored into
- * the merged list: the block scaled by the lcm D of its denominators is an
- * integer matrix M, det(y - M) = D^len det(y/D - block), so each irreducible
+ * the merged list.  It is computed with each row scaled by its own
+ * denominator (ss_exact_charpoly: P = (prod d_r) det(x - block)) and turned
+ * into that of the block scaled by the lcm D of its denominators, the integer
+ * matrix M = D block: det(y - M) = D^len det(y/D - block), whose coefficient
+ * of y^j is D^(len-j) P_j / prod d_r; factored as before, each irreducible
  * factor g(y) of M's polynomial gives the factor g(D x) of the block's, made
  * primitive (a linear substitution keeps it irreducible).  SS_ENOMEM. */
 static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t len,
@@ -88,28 +92,44 @@ static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t
     st = add_factor(x, b, g, 1, err);
     goto done;
   }
-  fmpz_mat_t M;
-  fmpz_t D, Dk, c;
-  fmpz_mat_init(M, (slong)len, (slong)len);
+  fmpz_mat_t N;
+  fmpz_t D, Dk, c, prod;
+  fmpz_mat_init(N, (slong)len, (slong)len);
+  fmpz *d = _fmpz_vec_init((slong)len);
   fmpz_init(D);
   fmpz_init(Dk);
   fmpz_init(c);
+  fmpz_init(prod);
   fmpz_poly_factor_t fac;
   fmpz_poly_factor_init(fac);
-  if (ss_exact_principal(x, idx, len, D, M)) {
+  if (ss_exact_principal_rows(x, idx, len, d, N)) {
     st = ss_error_nomem(err, "characteristic polynomial");
   } else {
     ss_exact_times *tm = x->o.times;
     double c1 = tm ? ss_clock_cpu() : 0.0;
-    fmpz_mat_charpoly(cp, M);
+    ss_exact_charpoly(g, N, d);
+    fmpz_one(D);
+    fmpz_one(prod);
+    for (size_t r = 0; r < len; r++) {
+      fmpz_lcm(D, D, d + r);
+      fmpz_mul(prod, prod, d + r);
+    }
+    fmpz_one(Dk); /* D^(len - j), j from len down */
+    for (slong j = (slong)len; j >= 0; j--) {
+      fmpz_poly_get_coeff_fmpz(c, g, j);
+      fmpz_mul(c, c, Dk);
+      fmpz_divexact(c, c, prod);
+      fmpz_poly_set_coeff_fmpz(cp, j, c);
+      fmpz_mul(Dk, Dk, D);
+    }
     if (tm) ss_clock_lap(&tm->charpoly, &c1);
     fmpz_poly_factor(fac, cp);
     if (tm) ss_clock_lap(&tm->factor, &c1);
     for (slong i = 0; i < fac->num && !st; i++) {
-      const slong d = fmpz_poly_degree(fac->p + i);
+      const slong deg = fmpz_poly_degree(fac->p + i);
       fmpz_poly_zero(g);
       fmpz_one(Dk);
-      for (slong j = 0; j <= d; j++) {
+      for (slong j = 0; j <= deg; j++) {
         fmpz_poly_get_coeff_fmpz(c, fac->p + i, j);
         fmpz_mul(c, c, Dk);
         fmpz_poly_set_coeff_fmpz(g, j, c);
@@ -120,10 +140,12 @@ static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t
     }
   }
   fmpz_poly_factor_clear(fac);
-  fmpz_mat_clear(M);
+  fmpz_mat_clear(N);
+  _fmpz_vec_clear(d, (slong)len);
   fmpz_clear(D);
   fmpz_clear(Dk);
   fmpz_clear(c);
+  fmpz_clear(prod);
 done:
   fmpz_poly_clear(g);
   fmpz_poly_clear(cp);
@@ -168,6 +190,7 @@ ss_status ss_exact_all_blocks(ss_exact *x, ss_error *err) {
       if (ss_exact_block_rows(x, first[h], jdx) == len &&
           same_block(x, idx, jdx, len, u, v))
         hit = first[h];
+    x->brep[b] = hit == SIZE_MAX ? b : hit;
     if (hit == SIZE_MAX) {
       st = block_charpoly(x, b, idx, len, err);
       if (len > 1 && b > 0) first[nfirst++] = b;

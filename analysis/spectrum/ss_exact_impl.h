@@ -57,6 +57,9 @@ struct ss_exact {
   size_t *bstart;       /* nblk + 1 offsets into bfac, bmult */
   size_t *bfac;         /* factors of each block's characteristic polynomial */
   int *bmult;           /* ... with their multiplicities in that block */
+  size_t *brep;         /* nblk: the first block with the same entries as
+                           block b (b itself if none; outer blocks > 1 x 1
+                           only, else b) */
   size_t nfac;          /* distinct factors */
   size_t facalloc;      /* allocated entries of fac */
   ss_exact_factor *fac; /* the merged factors */
@@ -179,6 +182,20 @@ int ss_exact_eigen_seeds(ss_exact *x);
  * memory. */
 int ss_exact_principal(const ss_exact *x, const size_t *idx, size_t len, fmpz_t D,
                        fmpz_mat_t M);
+
+/* As ss_exact_principal, each row scaled by its own denominator: d[r] = the lcm
+ * of the denominators of row r's entries in the submatrix (d initialised to
+ * len entries by the caller), N = diag(d) times it (initialised len x len).
+ * Returns 0, or -1 when out of memory. */
+int ss_exact_principal_rows(const ss_exact *x, const size_t *idx, size_t len, fmpz *d,
+                            fmpz_mat_t N);
+
+/* P = det(x diag(d) - N) = (prod d_r) det(x - B), B = diag(d)^-1 N the rational
+ * matrix whose row r is N's over d[r] (N n x n, n >= 1, d > 0): B's
+ * characteristic polynomial times prod d_r, an integer polynomial, computed
+ * modulo primes above 2^62 with a bound from B's row sums and Frobenius norm
+ * (ss_exact_charpoly.c).  FLINT aborts if out of memory. */
+void ss_exact_charpoly(fmpz_poly_t P, const fmpz_mat_t N, const fmpz *d);
 
 /* The entry S[i][j] as a rational (0 where S has no entry). */
 void ss_exact_get(const ss_exact *x, size_t i, size_t j, fmpq_t v);

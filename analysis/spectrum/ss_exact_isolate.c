@@ -44,6 +44,13 @@ static int isolated_balls(acb_srcptr z, slong d) {
   return 1;
 }
 
+/* log2 |c| for a nonzero integer c, in doubles. */
+static double log2_abs(const fmpz_t c) {
+  slong e;
+  const double m = fmpz_get_d_2exp(&e, c);
+  return log2(fabs(m)) + (double)e;
+}
+
 static int accurate(acb_srcptr z, slong d, slong bits) {
   for (slong i = 0; i < d; i++)
     if (acb_rel_accuracy_bits(z + i) < bits) return 0;
@@ -67,6 +74,56 @@ static void arrange(acb_ptr z, slong d, acb_ptr tmp) {
   }
 }
 
+/* The first precision of the seeded iteration: 2 times target, or target +
+ * L + 32 rounded up to whole limbs (at most 8 times target), L the bits a root's ball
+ * loses when its radius is validated (acb_poly_find_roots's inclusion radius d |f(z)| /
+ * |f'(z)| with f(z) evaluated in balls, relative to |z|): L = max over the
+ * seeds z_i of log2(d sum_k |c_k| |z_i|^k / (|c_d| prod_(j != i) |z_i - z_j|
+ * |z_i|)), in doubles from the seeds (f'(z_i) = c_d prod (z_i - z_j) at the
+ * roots).  MLCA k = 14's degree-68 factor loses 130-250 bits: at twice the
+ * target (256) its roots were isolated but not accurate, and that attempt,
+ * a third of its isolation, was wasted.  Only where to start: every attempt
+ * is accepted by the same tests. */
+static slong first_prec(const fmpz_poly_t f, acb_srcptr seeds, slong d, slong target) {
+  double *lc = malloc((size_t)(d + 1) * sizeof *lc), *zr = malloc((size_t)d * sizeof *zr),
+         *zi = malloc((size_t)d * sizeof *zi);
+  double L = 0.0;
+  int ok = lc && zr && zi;
+  for (slong k = 0; ok && k <= d; k++) /* log2 |c_k|, -inf for 0 */
+    lc[k] = fmpz_is_zero(f->coeffs + k) ? -HUGE_VAL : log2_abs(f->coeffs + k);
+  for (slong i = 0; ok && i < d; i++) {
+    zr[i] = arf_get_d(arb_midref(acb_realref(seeds + i)), ARF_RND_NEAR);
+    zi[i] = arf_get_d(arb_midref(acb_imagref(seeds + i)), ARF_RND_NEAR);
+  }
+  for (slong i = 0; ok && i < d; i++) {
+    const double r = hypot(zr[i], zi[i]), lr = log2(r);
+    if (!(r > 0.0) || !isfinite(lr)) {
+      ok = 0;
+      break;
+    }
+    double top = -HUGE_VAL; /* log2 sum_k |c_k| r^k */
+    for (slong k = 0; k <= d; k++)
+      top = fmax(top, lc[k] + (double)k * lr);
+    double sum = 0.0;
+    for (slong k = 0; k <= d; k++)
+      if (lc[k] > -HUGE_VAL) sum += exp2(lc[k] + (double)k * lr - top);
+    double li = log2((double)d) + top + log2(sum) - lc[d] - lr;
+    for (slong j = 0; j < d; j++)
+      if (j != i) li -= log2(hypot(zr[i] - zr[j], zi[i] - zi[j]));
+    if (!isfinite(li)) {
+      ok = 0;
+      break;
+    }
+    L = fmax(L, li);
+  }
+  free(lc);
+  free(zr);
+  free(zi);
+  if (!ok || (double)target + L + 32.0 <= 2.0 * (double)target) return 2 * target;
+  if ((double)target + L + 32.0 >= 8.0 * (double)target) return 8 * target;
+  return ((slong)ceil((double)target + L + 32.0) + 63) / 64 * 64; /* whole limbs */
+}
+
 void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds,
                             slong target_prec) {
   const slong d = fmpz_poly_degree(f);
@@ -79,10 +136,13 @@ void ss_exact_complex_roots(acb_ptr roots, const fmpz_poly_t f, acb_srcptr seeds
   acb_poly_init(cp);
   _acb_vec_set(start, seeds, d);
   int ok = 0;
-  /* at 2, 4, 8 times the target: a badly conditioned factor (MLCA k = 14's
-   * degree 68-70 one) needs more than twice the bits to reach the target
-   * accuracy; each attempt starts from the last one's midpoints */
-  for (slong prec = 2 * target_prec; !ok && prec <= 8 * target_prec; prec *= 2) {
+  /* from the precision the seeds' condition numbers ask for (at least twice
+   * the target: a badly conditioned factor, MLCA k = 14's degree 68-70 one,
+   * needs more), doubled up to 8 times the target; each attempt starts from
+   * the last one's midpoints */
+  for (slong prec = first_prec(f, seeds, d, target_prec), last = 0; !ok && !last;
+       prec = FLINT_MIN(2 * prec, 8 * target_prec)) {
+    last = prec >= 8 * target_prec;
     acb_poly_set_fmpz_poly(cp, f, prec);
     const slong got =
         acb_poly_find_roots(roots, cp, start, FLINT_MIN(4 * d + 64, prec), prec);

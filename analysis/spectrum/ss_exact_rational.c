@@ -269,3 +269,33 @@ int ss_exact_principal(const ss_exact *x, const size_t *idx, size_t len, fmpz_t 
   free(at);
   return 0;
 }
+
+int ss_exact_principal_rows(const ss_exact *x, const size_t *idx, size_t len, fmpz *d,
+                            fmpz_mat_t N) {
+  size_t *at = malloc((x->n + 1) * sizeof *at); /* column -> place in idx */
+  if (!at) return -1;
+  for (size_t j = 0; j < x->n; j++)
+    at[j] = SIZE_MAX;
+  for (size_t c = 0; c < len; c++)
+    at[idx[c]] = c;
+  fmpz_mat_zero(N);
+  fmpz_t t;
+  fmpz_init(t);
+  for (size_t r = 0; r < len; r++) {
+    fmpz_one(d + r);
+    for (size_t k = x->A.ptr[idx[r]]; k < x->A.ptr[idx[r] + 1]; k++)
+      if (at[x->A.col[k]] != SIZE_MAX) {
+        fmpz_set_si(t, x->q[k].den);
+        fmpz_lcm(d + r, d + r, t);
+      }
+    for (size_t k = x->A.ptr[idx[r]]; k < x->A.ptr[idx[r] + 1]; k++) {
+      const size_t c = at[x->A.col[k]];
+      if (c == SIZE_MAX) continue;
+      fmpz_divexact_si(t, d + r, x->q[k].den);
+      fmpz_mul_si(fmpz_mat_entry(N, (slong)r, (slong)c), t, x->q[k].num);
+    }
+  }
+  fmpz_clear(t);
+  free(at);
+  return 0;
+}
