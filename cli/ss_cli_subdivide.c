@@ -70,7 +70,18 @@ static const char *const usage_options =
     "                        the neighbours a wanted triangle needs refined first);\n"
     "                        the mesh stays conforming, points away stay put\n"
     "      --adapt-edge-length H  quasi48: refine only triangles with an edge\n"
-    "                        longer than H (with --adapt-box: both must hold)\n"
+    "                        longer than H\n"
+    "      --adapt-curvature T  quasi48: refine only triangles whose normal and a\n"
+    "                        neighbour's across an edge make an angle above T\n"
+    "                        degrees (0..180; the adapt criteria given must all\n"
+    "                        hold)\n"
+    "      --boundary B      quasi48's boundary (paper, 4.3): normal (default:\n"
+    "                        the boundary curve smoothed, cubic B-spline where\n"
+    "                        every edge splits, each old vertex's move projected\n"
+    "                        on its surface normal, so a planar boundary stays),\n"
+    "                        smooth (the curve rule unprojected) or fixed (the\n"
+    "                        boundary polygon never moves); tagged boundary\n"
+    "                        vertices and edges are kept in every mode\n"
     "      --format F        summary as text (default) or json, on stdout\n"
     "  -h, --help            this text\n"
     "\n";
@@ -93,7 +104,8 @@ static const char *const usage_schemes =
     "                 manifold hex meshes are refused\n"
     "  quasi48        quasi 4-8 surfaces (Velho-Gomes): triangles; one level is\n"
     "                 one longest-edge bisection pass (two make a 4-8 step);\n"
-    "                 boundaries, corners and segments (tags) stay fixed;\n"
+    "                 corners and segments (tags) stay fixed, the boundary\n"
+    "                 follows --boundary;\n"
     "                 non-manifold, zero-length edges and doubled triangles\n"
     "                 are refused\n"
     "\n"
@@ -165,7 +177,10 @@ typedef struct {
   int drop;                 /* --drop-unsupported */
   int hexify;               /* --hexify */
   const char *bc;           /* --boundary-c as given; NULL: not given */
-  ss_adapt adapt;           /* --adapt-box, --adapt-edge-length */
+  ss_adapt adapt;           /* --adapt-box, --adapt-edge-length,
+                               --adapt-curvature */
+  const char *bnd;          /* --boundary as given; NULL: not given */
+  ss_boundary boundary;     /* its rule */
   int adaptive;             /* either given */
   ss_loop_c loop_c;         /* its choice */
   FILE *sum;                /* the summary's stream: stdout, or stderr when
@@ -202,6 +217,8 @@ static int parse(int argc, char **argv, sub_opts *o) {
       {"boundary-c", required_argument, NULL, 'B'},
       {"adapt-box", required_argument, NULL, 'A'},
       {"adapt-edge-length", required_argument, NULL, 'E'},
+      {"adapt-curvature", required_argument, NULL, 'C'},
+      {"boundary", required_argument, NULL, 'b'},
       {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
   memset(o, 0, sizeof *o);
@@ -260,6 +277,30 @@ static int parse(int argc, char **argv, sub_opts *o) {
       o->adaptive = 1;
       break;
     }
+    case 'C': {
+      char *end = NULL;
+      const double deg = strtod(optarg, &end);
+      if (end == optarg || *end || !(deg >= 0.0 && deg <= 180.0))
+        return ss_cli_usage_error(
+            "subdivide",
+            "--adapt-curvature: expected an angle in degrees, 0..180, not '%s'", optarg);
+      o->adapt.use_angle = o->adaptive = 1;
+      o->adapt.max_angle = deg * (M_PI / 180.0);
+      break;
+    }
+    case 'b':
+      if (!strcmp(optarg, "normal"))
+        o->boundary = SS_BOUNDARY_NORMAL;
+      else if (!strcmp(optarg, "smooth"))
+        o->boundary = SS_BOUNDARY_SMOOTH;
+      else if (!strcmp(optarg, "fixed"))
+        o->boundary = SS_BOUNDARY_FIXED;
+      else
+        return ss_cli_usage_error(
+            "subdivide", "--boundary: expected normal, smooth or fixed, not '%s'",
+            optarg);
+      o->bnd = optarg;
+      break;
     case 'B':
       if (strcmp(optarg, "loop") && strcmp(optarg, "3/8k"))
         return ss_cli_usage_error(
@@ -485,7 +526,12 @@ int ss_cli_subdivide(int argc, char **argv) {
     goto done;
   }
   if (o.adaptive && ss_scheme_set_adapt(scheme, &o.adapt, &err)) {
-    rc = ss_cli_usage_error("subdivide", "--adapt-box/--adapt-edge-length: %s", err.msg);
+    rc = ss_cli_usage_error(
+        "subdivide", "--adapt-box/--adapt-edge-length/--adapt-curvature: %s", err.msg);
+    goto done;
+  }
+  if (o.bnd && ss_scheme_set_boundary(scheme, o.boundary, &err)) {
+    rc = ss_cli_usage_error("subdivide", "--boundary: %s", err.msg);
     goto done;
   }
   o.wopts.fields = &o.names;

@@ -67,9 +67,9 @@ static int same_complex(const ss_cx *a, const ss_cx *b) {
 
 static void test_uniform(const ss_cx *cx) {
   ss_cx *plain = refine_with("quasi48", NULL, cx, 6);
-  const ss_adapt all = {1, {-10, -10, -10, 10, 10, 10}, 0.0};
-  const ss_adapt fine = {0, {0}, 1e-9};
-  const ss_adapt both = {1, {-10, -10, -10, 10, 10, 10}, 1e-9};
+  const ss_adapt all = {1, {-10, -10, -10, 10, 10, 10}, 0.0, 0, 0.0};
+  const ss_adapt fine = {0, {0}, 1e-9, 0, 0.0};
+  const ss_adapt both = {1, {-10, -10, -10, 10, 10, 10}, 1e-9, 0, 0.0};
   const ss_adapt *a[3] = {&all, &fine, &both};
   const char *what[3] = {"a box holding it", "an edge length below all", "both"};
   for (int i = 0; i < 3; i++) {
@@ -292,7 +292,7 @@ static size_t left_behind(const ss_cx *old, const ss_cx *mid, const ss_cx *now,
 
 static void test_region(const ss_cx *cx) {
   ss_error err = {0};
-  const ss_adapt a = {1, {0.45, -2, -2, 2, 2, 2}, 0.0};
+  const ss_adapt a = {1, {0.45, -2, -2, 2, 2, 2}, 0.0, 0, 0.0};
   ss_scheme *s = NULL;
   ss_cx *lv[7] = {NULL};
   REQUIRE_OK_VOID(ss_scheme_new("quasi48", &s, &err), &err);
@@ -335,7 +335,7 @@ static double longest_edge(const ss_cx *cx) {
  * 40 levels): then no edge may be longer than h. */
 static void test_edge_length(const ss_cx *cx) {
   const double h0 = longest_edge(cx), h = 0.3 * h0;
-  const ss_adapt a = {0, {0}, h};
+  const ss_adapt a = {0, {0}, h, 0, 0.0};
   ss_cx *cur = refine_with("quasi48", NULL, cx, 0), *next = NULL;
   int l = 0;
   for (; cur && l < 40; l++) {
