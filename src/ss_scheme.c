@@ -208,7 +208,6 @@ ss_status ss_scheme_refine_step(const ss_scheme *s, const ss_cx *coarse, ss_cx *
   t.split = s->step_split;
   t.adaptive = 0;                 /* a step is a whole 4-8 cycle */
   t.boundary = SS_BOUNDARY_FIXED; /* a patch's boundary is not the surface's */
-  t.post = NULL;
   ss_cx *cx = NULL;
   gsl_spmatrix *R = NULL;
   ss_split *L = NULL;
@@ -370,7 +369,6 @@ static ss_status refine(const ss_scheme *s, const ss_cx *coarse, ss_cx **fine_ou
     ss_sink k = {L, dim, fine->x, y, NULL, SS_OK, NULL, NULL};
     if ((st = s->rule(s, coarse, fine, L, &k, err))) goto done;
   }
-  if (s->post && (st = s->post(s, coarse, fine, y, R_out != NULL, err))) goto done;
   /* Check results, not only input: finite coordinates can still overflow. */
   size_t f = first_nonfinite(y, nf, dim);
   if (f < nf) {

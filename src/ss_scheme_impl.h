@@ -12,15 +12,6 @@ typedef ss_status (*ss_rule_fn)(const ss_scheme *s, const ss_cx *coarse,
                                 const ss_cx *fine, const ss_split *L, ss_sink *k,
                                 ss_error *err);
 
-/* A scheme's step after the rule, on positions: y (fine->nv x dim) holds the
- * rule's fine positions, fine the split (positions at the split points) of
- * coarse; the step rewrites rows of y in place.  With `with_operator` set the
- * caller also hands out R, so the step must not move anything: SS_EINPUT
- * saying why if it would. */
-typedef ss_status (*ss_post_fn)(const ss_scheme *s, const ss_cx *coarse,
-                                const ss_cx *fine, double *y, int with_operator,
-                                ss_error *err);
-
 struct ss_scheme {
   char name[64];               /* scheme name, e.g. "mlca" */
   ss_split_kind split;         /* topological split */
@@ -64,8 +55,6 @@ struct ss_scheme {
   int adaptive;         /* 1: refine with the adaptive bisect pass */
   ss_adapt adapt;       /* its criterion (ss_scheme_set_adapt) */
   ss_boundary boundary; /* quasi48's boundary rule (ss_scheme_set_boundary) */
-  ss_post_fn post;      /* NULL, or a step after the rule on the positions that
-                           no operator gives (quasi48's normal boundary) */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every

@@ -21,8 +21,8 @@
  *    stays at its midpoint, an old one becomes 1/2 itself + 1/(2k) its k new
  *    boundary neighbours: the cubic B-spline where every edge splits), and
  *    by default (SS_BOUNDARY_NORMAL) an old vertex's displacement is then
- *    projected on its surface normal (normal_boundary, after the linear
- *    rule: a projection that depends on positions has no operator).  A
+ *    projected on its surface normal (normal_boundary, after the rows, in
+ *    positions: a projection that depends on positions has no operator).  A
  *    planar surface's boundary so stays where it is, section 4.1's "boundary
  *    vertices are not allowed to move".  SS_BOUNDARY_SMOOTH keeps the curve
  *    rule unprojected, SS_BOUNDARY_FIXED the boundary polygon;
@@ -159,9 +159,62 @@ static void old_row(const ss_triedge *te, const roles *r, size_t nc, size_t v,
   }
 }
 
+/* The normal boundary (SS_BOUNDARY_NORMAL), after the rows: each curve
+ * vertex v the curve rule moved (a new boundary neighbour) goes to
+ * x + n (n . (y - x)) / |n|^2 in the first three coordinates, x its position,
+ * y the rule's (in k's positions), n the sum of the cross products of the
+ * coarse triangles at v (area-weighted normal); a zero or non-finite n keeps
+ * x.  Building an operator (k's operator mode) it refuses instead: the
+ * projection depends on the positions. */
+static ss_status normal_boundary(const ss_scheme *s, const ss_cx *coarse, const roles *r,
+                                 ss_sink *k, ss_error *err) {
+  if (s->boundary != SS_BOUNDARY_NORMAL || coarse->dim < 3) return SS_OK;
+  const size_t nc = coarse->nv, dim = (size_t)coarse->dim;
+  size_t moved = 0, first = 0;
+  ss_idx x2[2];
+  for (size_t v = nc; v-- > 0;)
+    if (r->curve[v] && new_boundary_nbrs(r, v, nc, x2)) {
+      moved++;
+      first = v;
+    }
+  if (!moved) return SS_OK;
+  if (k->M || k->rows)
+    return ss_error_set(err, SS_EINPUT,
+                        "quasi48's normal-constrained boundary moves boundary vertex %zu "
+                        "along its normal, which no refinement operator does: choose the "
+                        "smooth or fixed boundary for an operator",
+                        first + 1);
+  double *nrm = calloc(3 * nc + 1, sizeof *nrm);
+  if (!nrm) return ss_error_nomem(err, "quasi48 boundary normals");
+  for (size_t t = 0; t < coarse->nc[SS_TRIANGLE]; t++) {
+    const ss_idx *c = ss_cx_cell(coarse, SS_TRIANGLE, t);
+    if (!r->curve[c[0]] && !r->curve[c[1]] && !r->curve[c[2]]) continue;
+    double a[3], b[3];
+    for (int i = 0; i < 3; i++) {
+      a[i] = coarse->x[c[1] * dim + (size_t)i] - coarse->x[c[0] * dim + (size_t)i];
+      b[i] = coarse->x[c[2] * dim + (size_t)i] - coarse->x[c[0] * dim + (size_t)i];
+    }
+    const double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                         a[0] * b[1] - a[1] * b[0]};
+    for (int j = 0; j < 3; j++)
+      for (int i = 0; i < 3 && r->curve[c[j]]; i++)
+        nrm[3 * c[j] + (size_t)i] += n[i];
+  }
+  for (size_t v = 0; v < nc; v++) {
+    if (!r->curve[v] || !new_boundary_nbrs(r, v, nc, x2)) continue;
+    const double *n = nrm + 3 * v, *p = coarse->x + v * dim;
+    double *q = k->y + v * dim;
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const double t = n[0] * (q[0] - p[0]) + n[1] * (q[1] - p[1]) + n[2] * (q[2] - p[2]);
+    for (int i = 0; i < 3; i++)
+      q[i] = nn > 0.0 && isfinite(t / nn) ? p[i] + n[i] * (t / nn) : p[i];
+  }
+  free(nrm);
+  return SS_OK;
+}
+
 static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
                               const ss_split *L, ss_sink *k, ss_error *err) {
-  (void)coarse; /* the split complex and L say all this rule needs */
   ss_triedge *te = NULL;
   roles r = {NULL, NULL, NULL};
   ss_status st = ss_triedge_new(fine, &te, err);
@@ -188,73 +241,9 @@ static ss_status quasi48_rule(const ss_scheme *s, const ss_cx *coarse, const ss_
   }
   for (size_t v = 0; v < nc && !st; v++)
     old_row(te, &r, nc, v, k);
+  if (!st) st = normal_boundary(s, coarse, &r, k, err);
   ss_triedge_free(te);
   roles_free(&r);
-  return st;
-}
-
-/* The normal boundary (SS_BOUNDARY_NORMAL): each curve vertex v the rule
- * moved (a new boundary neighbour) goes to x + n (n . (y - x)) / |n|^2 in the
- * first three coordinates, x its position, y the rule's, n the sum of the
- * cross products of the coarse triangles at v (area-weighted normal); a zero
- * or non-finite n keeps x. */
-static ss_status normal_boundary(const ss_scheme *s, const ss_cx *coarse,
-                                 const ss_cx *fine, double *y, int with_operator,
-                                 ss_error *err) {
-  if (s->boundary != SS_BOUNDARY_NORMAL || fine->dim < 3) return SS_OK;
-  const size_t nc = coarse->nv, dim = (size_t)fine->dim;
-  ss_triedge *te = NULL;
-  roles r = {NULL, NULL, NULL};
-  double *nrm = NULL;
-  ss_status st = ss_triedge_new(fine, &te, err);
-  if (st || (st = find_roles(s, fine, te, nc, &r, err))) goto done;
-  size_t moved = 0, first = 0;
-  ss_idx x2[2];
-  for (size_t v = nc; v-- > 0;)
-    if (r.curve[v] && new_boundary_nbrs(&r, v, nc, x2)) {
-      moved++;
-      first = v;
-    }
-  if (!moved) goto done;
-  if (with_operator) {
-    st = ss_error_set(err, SS_EINPUT,
-                      "quasi48's normal-constrained boundary moves boundary vertex %zu "
-                      "along its normal, which no refinement operator does: choose the "
-                      "smooth or fixed boundary for an operator",
-                      first + 1);
-    goto done;
-  }
-  if (!(nrm = calloc(3 * nc + 1, sizeof *nrm))) {
-    st = ss_error_nomem(err, "quasi48 boundary normals");
-    goto done;
-  }
-  for (size_t t = 0; t < coarse->nc[SS_TRIANGLE]; t++) {
-    const ss_idx *c = ss_cx_cell(coarse, SS_TRIANGLE, t);
-    if (!r.curve[c[0]] && !r.curve[c[1]] && !r.curve[c[2]]) continue;
-    double a[3], b[3];
-    for (int i = 0; i < 3; i++) {
-      a[i] = coarse->x[c[1] * dim + i] - coarse->x[c[0] * dim + i];
-      b[i] = coarse->x[c[2] * dim + i] - coarse->x[c[0] * dim + i];
-    }
-    const double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                         a[0] * b[1] - a[1] * b[0]};
-    for (int j = 0; j < 3; j++)
-      for (int i = 0; i < 3 && r.curve[c[j]]; i++)
-        nrm[3 * c[j] + i] += n[i];
-  }
-  for (size_t v = 0; v < nc; v++) {
-    if (!r.curve[v] || !new_boundary_nbrs(&r, v, nc, x2)) continue;
-    const double *n = nrm + 3 * v, *p = fine->x + v * dim;
-    double *q = y + v * dim;
-    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const double t = n[0] * (q[0] - p[0]) + n[1] * (q[1] - p[1]) + n[2] * (q[2] - p[2]);
-    for (int i = 0; i < 3; i++)
-      q[i] = nn > 0.0 && isfinite(t / nn) ? p[i] + n[i] * (t / nn) : p[i];
-  }
-done:
-  ss_triedge_free(te);
-  roles_free(&r);
-  free(nrm);
   return st;
 }
 
@@ -265,7 +254,6 @@ ss_status ss_scheme_quasi48_new(ss_scheme **out, ss_error *err) {
   /* an old vertex reads the neighbours of its new neighbours: the coarse
    * 1-rings of the vertices it combines */
   if (!st) (*out)->reach = 2;
-  if (!st) (*out)->post = normal_boundary; /* the default boundary, normal */
   /* the analysis refines stars topologically, a full 4-8 cycle per step
    * (ss_scheme_refine_step): on a 4-8 mesh the longest-edge criterion and the
    * topological one agree (section 2.3) */
