@@ -200,6 +200,55 @@ static int parse_box(const char *s, double b[6]) {
   return b[0] > b[3] || b[1] > b[4] || b[2] > b[5] ? -1 : 0;
 }
 
+/* quasi48's options (--adapt-box 'A', --adapt-edge-length 'E',
+ * --adapt-curvature 'C', --boundary 'b') into o: 0, or the exit status 2
+ * with the message printed. */
+static int quasi48_option(int c, const char *arg, sub_opts *o) {
+  switch (c) {
+  case 'A':
+    if (parse_box(arg, o->adapt.box))
+      return ss_cli_usage_error("subdivide",
+                                "--adapt-box: expected six numbers X0,Y0,Z0,X1,Y1,Z1 "
+                                "with X0 <= X1, Y0 <= Y1, Z0 <= Z1, not '%s'",
+                                arg);
+    o->adapt.use_box = o->adaptive = 1;
+    break;
+  case 'E': {
+    char *end = NULL;
+    o->adapt.max_edge = strtod(arg, &end);
+    if (end == arg || *end || !isfinite(o->adapt.max_edge) || !(o->adapt.max_edge > 0.0))
+      return ss_cli_usage_error(
+          "subdivide", "--adapt-edge-length: expected a length > 0, not '%s'", arg);
+    o->adaptive = 1;
+    break;
+  }
+  case 'C': {
+    char *end = NULL;
+    const double deg = strtod(arg, &end);
+    if (end == arg || *end || !(deg >= 0.0 && deg <= 180.0))
+      return ss_cli_usage_error(
+          "subdivide",
+          "--adapt-curvature: expected an angle in degrees, 0..180, not '%s'", arg);
+    o->adapt.use_angle = o->adaptive = 1;
+    o->adapt.max_angle = deg * (M_PI / 180.0);
+    break;
+  }
+  case 'b':
+    if (!strcmp(arg, "normal"))
+      o->boundary = SS_BOUNDARY_NORMAL;
+    else if (!strcmp(arg, "smooth"))
+      o->boundary = SS_BOUNDARY_SMOOTH;
+    else if (!strcmp(arg, "fixed"))
+      o->boundary = SS_BOUNDARY_FIXED;
+    else
+      return ss_cli_usage_error(
+          "subdivide", "--boundary: expected normal, smooth or fixed, not '%s'", arg);
+    o->bnd = arg;
+    break;
+  }
+  return 0;
+}
+
 /* argv into o: 0, -1 after --help (printed), or the exit status 2 with the
  * message printed. */
 static int parse(int argc, char **argv, sub_opts *o) {
@@ -260,46 +309,10 @@ static int parse(int argc, char **argv, sub_opts *o) {
       o->hexify = 1;
       break;
     case 'A':
-      if (parse_box(optarg, o->adapt.box))
-        return ss_cli_usage_error("subdivide",
-                                  "--adapt-box: expected six numbers X0,Y0,Z0,X1,Y1,Z1 "
-                                  "with X0 <= X1, Y0 <= Y1, Z0 <= Z1, not '%s'",
-                                  optarg);
-      o->adapt.use_box = o->adaptive = 1;
-      break;
-    case 'E': {
-      char *end = NULL;
-      o->adapt.max_edge = strtod(optarg, &end);
-      if (end == optarg || *end || !isfinite(o->adapt.max_edge) ||
-          !(o->adapt.max_edge > 0.0))
-        return ss_cli_usage_error(
-            "subdivide", "--adapt-edge-length: expected a length > 0, not '%s'", optarg);
-      o->adaptive = 1;
-      break;
-    }
-    case 'C': {
-      char *end = NULL;
-      const double deg = strtod(optarg, &end);
-      if (end == optarg || *end || !(deg >= 0.0 && deg <= 180.0))
-        return ss_cli_usage_error(
-            "subdivide",
-            "--adapt-curvature: expected an angle in degrees, 0..180, not '%s'", optarg);
-      o->adapt.use_angle = o->adaptive = 1;
-      o->adapt.max_angle = deg * (M_PI / 180.0);
-      break;
-    }
+    case 'E':
+    case 'C':
     case 'b':
-      if (!strcmp(optarg, "normal"))
-        o->boundary = SS_BOUNDARY_NORMAL;
-      else if (!strcmp(optarg, "smooth"))
-        o->boundary = SS_BOUNDARY_SMOOTH;
-      else if (!strcmp(optarg, "fixed"))
-        o->boundary = SS_BOUNDARY_FIXED;
-      else
-        return ss_cli_usage_error(
-            "subdivide", "--boundary: expected normal, smooth or fixed, not '%s'",
-            optarg);
-      o->bnd = optarg;
+      if (quasi48_option(c, optarg, o)) return SS_EXIT_USAGE;
       break;
     case 'B':
       if (strcmp(optarg, "loop") && strcmp(optarg, "3/8k"))
