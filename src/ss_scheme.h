@@ -266,7 +266,8 @@ ss_status ss_scheme_set_boundary(ss_scheme *s, ss_boundary b, ss_error *err);
  * R is not NULL, *R receives the refinement operator as a new CSR matrix of
  * size fine->nv x coarse->nv (caller frees), and the fine positions are R times
  * the coarse ones; every row of R is checked to sum to 1 (SS_EINTERNAL if not).
- * SS_EINPUT for cell types the scheme does not take or malformed cells, and
+ * SS_EINPUT for cell types the scheme does not take or malformed cells, for R
+ * requested where quasi48's normal boundary (ss_boundary) moves a vertex, and
  * for a fine position with a non-finite coordinate (the message names it and
  * the coarse vertices it derives from); SS_ENOMEM.  Cost: linear in the
  * complex; the operator adds a log factor. */
