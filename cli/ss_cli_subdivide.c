@@ -70,7 +70,18 @@ static const char *const usage_options =
     "                        the neighbours a wanted triangle needs refined first);\n"
     "                        the mesh stays conforming, points away stay put\n"
     "      --adapt-edge-length H  quasi48: refine only triangles with an edge\n"
-    "                        longer than H (with --adapt-box: both must hold)\n"
+    "                        longer than H\n"
+    "      --adapt-curvature T  quasi48: refine only triangles whose normal and a\n"
+    "                        neighbour's across an edge make an angle above T\n"
+    "                        degrees (0..180; the adapt criteria given must all\n"
+    "                        hold)\n"
+    "      --boundary B      quasi48's boundary (paper, 4.3): normal (default:\n"
+    "                        the boundary curve smoothed, cubic B-spline where\n"
+    "                        every edge splits, each old vertex's move projected\n"
+    "                        on its surface normal, so a planar boundary stays),\n"
+    "                        smooth (the curve rule unprojected) or fixed (the\n"
+    "                        boundary polygon never moves); tagged boundary\n"
+    "                        vertices and edges are kept in every mode\n"
     "      --format F        summary as text (default) or json, on stdout\n"
     "  -h, --help            this text\n"
     "\n";
@@ -93,7 +104,8 @@ static const char *const usage_schemes =
     "                 manifold hex meshes are refused\n"
     "  quasi48        quasi 4-8 surfaces (Velho-Gomes): triangles; one level is\n"
     "                 one longest-edge bisection pass (two make a 4-8 step);\n"
-    "                 boundaries, corners and segments (tags) stay fixed;\n"
+    "                 corners and segments (tags) stay fixed, the boundary\n"
+    "                 follows --boundary;\n"
     "                 non-manifold, zero-length edges and doubled triangles\n"
     "                 are refused\n"
     "\n"
@@ -165,7 +177,10 @@ typedef struct {
   int drop;                 /* --drop-unsupported */
   int hexify;               /* --hexify */
   const char *bc;           /* --boundary-c as given; NULL: not given */
-  ss_adapt adapt;           /* --adapt-box, --adapt-edge-length */
+  ss_adapt adapt;           /* --adapt-box, --adapt-edge-length,
+                               --adapt-curvature */
+  const char *bnd;          /* --boundary as given; NULL: not given */
+  ss_boundary boundary;     /* its rule */
   int adaptive;             /* either given */
   ss_loop_c loop_c;         /* its choice */
   FILE *sum;                /* the summary's stream: stdout, or stderr when
@@ -185,6 +200,55 @@ static int parse_box(const char *s, double b[6]) {
   return b[0] > b[3] || b[1] > b[4] || b[2] > b[5] ? -1 : 0;
 }
 
+/* quasi48's options (--adapt-box 'A', --adapt-edge-length 'E',
+ * --adapt-curvature 'C', --boundary 'b') into o: 0, or the exit status 2
+ * with the message printed. */
+static int quasi48_option(int c, const char *arg, sub_opts *o) {
+  switch (c) {
+  case 'A':
+    if (parse_box(arg, o->adapt.box))
+      return ss_cli_usage_error("subdivide",
+                                "--adapt-box: expected six numbers X0,Y0,Z0,X1,Y1,Z1 "
+                                "with X0 <= X1, Y0 <= Y1, Z0 <= Z1, not '%s'",
+                                arg);
+    o->adapt.use_box = o->adaptive = 1;
+    break;
+  case 'E': {
+    char *end = NULL;
+    o->adapt.max_edge = strtod(arg, &end);
+    if (end == arg || *end || !isfinite(o->adapt.max_edge) || !(o->adapt.max_edge > 0.0))
+      return ss_cli_usage_error(
+          "subdivide", "--adapt-edge-length: expected a length > 0, not '%s'", arg);
+    o->adaptive = 1;
+    break;
+  }
+  case 'C': {
+    char *end = NULL;
+    const double deg = strtod(arg, &end);
+    if (end == arg || *end || !(deg >= 0.0 && deg <= 180.0))
+      return ss_cli_usage_error(
+          "subdivide",
+          "--adapt-curvature: expected an angle in degrees, 0..180, not '%s'", arg);
+    o->adapt.use_angle = o->adaptive = 1;
+    o->adapt.max_angle = deg * (M_PI / 180.0);
+    break;
+  }
+  case 'b':
+    if (!strcmp(arg, "normal"))
+      o->boundary = SS_BOUNDARY_NORMAL;
+    else if (!strcmp(arg, "smooth"))
+      o->boundary = SS_BOUNDARY_SMOOTH;
+    else if (!strcmp(arg, "fixed"))
+      o->boundary = SS_BOUNDARY_FIXED;
+    else
+      return ss_cli_usage_error(
+          "subdivide", "--boundary: expected normal, smooth or fixed, not '%s'", arg);
+    o->bnd = arg;
+    break;
+  }
+  return 0;
+}
+
 /* argv into o: 0, -1 after --help (printed), or the exit status 2 with the
  * message printed. */
 static int parse(int argc, char **argv, sub_opts *o) {
@@ -202,6 +266,8 @@ static int parse(int argc, char **argv, sub_opts *o) {
       {"boundary-c", required_argument, NULL, 'B'},
       {"adapt-box", required_argument, NULL, 'A'},
       {"adapt-edge-length", required_argument, NULL, 'E'},
+      {"adapt-curvature", required_argument, NULL, 'C'},
+      {"boundary", required_argument, NULL, 'b'},
       {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
   memset(o, 0, sizeof *o);
@@ -243,23 +309,11 @@ static int parse(int argc, char **argv, sub_opts *o) {
       o->hexify = 1;
       break;
     case 'A':
-      if (parse_box(optarg, o->adapt.box))
-        return ss_cli_usage_error("subdivide",
-                                  "--adapt-box: expected six numbers X0,Y0,Z0,X1,Y1,Z1 "
-                                  "with X0 <= X1, Y0 <= Y1, Z0 <= Z1, not '%s'",
-                                  optarg);
-      o->adapt.use_box = o->adaptive = 1;
+    case 'E':
+    case 'C':
+    case 'b':
+      if (quasi48_option(c, optarg, o)) return SS_EXIT_USAGE;
       break;
-    case 'E': {
-      char *end = NULL;
-      o->adapt.max_edge = strtod(optarg, &end);
-      if (end == optarg || *end || !isfinite(o->adapt.max_edge) ||
-          !(o->adapt.max_edge > 0.0))
-        return ss_cli_usage_error(
-            "subdivide", "--adapt-edge-length: expected a length > 0, not '%s'", optarg);
-      o->adaptive = 1;
-      break;
-    }
     case 'B':
       if (strcmp(optarg, "loop") && strcmp(optarg, "3/8k"))
         return ss_cli_usage_error(
@@ -485,7 +539,12 @@ int ss_cli_subdivide(int argc, char **argv) {
     goto done;
   }
   if (o.adaptive && ss_scheme_set_adapt(scheme, &o.adapt, &err)) {
-    rc = ss_cli_usage_error("subdivide", "--adapt-box/--adapt-edge-length: %s", err.msg);
+    rc = ss_cli_usage_error(
+        "subdivide", "--adapt-box/--adapt-edge-length/--adapt-curvature: %s", err.msg);
+    goto done;
+  }
+  if (o.bnd && ss_scheme_set_boundary(scheme, o.boundary, &err)) {
+    rc = ss_cli_usage_error("subdivide", "--boundary: %s", err.msg);
     goto done;
   }
   o.wopts.fields = &o.names;

@@ -206,7 +206,8 @@ ss_status ss_scheme_refine_step(const ss_scheme *s, const ss_cx *coarse, ss_cx *
   *L_out = NULL;
   ss_scheme t = *s; /* the same rule on the step's (topological) split */
   t.split = s->step_split;
-  t.adaptive = 0; /* a step is a whole 4-8 cycle */
+  t.adaptive = 0;                 /* a step is a whole 4-8 cycle */
+  t.boundary = SS_BOUNDARY_FIXED; /* a patch's boundary is not the surface's */
   ss_cx *cx = NULL;
   gsl_spmatrix *R = NULL;
   ss_split *L = NULL;

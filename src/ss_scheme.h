@@ -229,11 +229,45 @@ ss_status ss_scheme_set_loop_c(ss_scheme *s, ss_loop_c c, ss_error *err);
  * its upper one, and for a negative or non-finite edge length. */
 ss_status ss_scheme_set_adapt(ss_scheme *s, const ss_adapt *a, ss_error *err);
 
+/* quasi48's boundary (quasi 4-8 paper, section 4.3: "boundary vertices are
+ * constrained to move along the surface normal direction"; figure 15(c):
+ * "boundary curves are smooth, except at the vertex shared with the tagged
+ * edge").  A boundary vertex that is a vertex cell or ends a segment cell
+ * (tagged), or where the boundary is not one curve (more than two boundary
+ * edges), is kept in every mode.  The curve rule is the cascade of section
+ * 3.2 along the boundary: a new boundary vertex stays at its edge's midpoint
+ * (the average of its two boundary neighbours), an old one becomes 1/2 itself
+ * + 1/(2k) the k new boundary neighbours (none: kept), the cubic B-spline
+ * where every boundary edge splits. */
+typedef enum {
+  SS_BOUNDARY_NORMAL = 0, /* default: the curve rule's displacement of an old
+                             boundary vertex projected on the line through it
+                             along the surface normal there (the sum of the
+                             cross products of its coarse triangles; none, a
+                             zero normal or fewer than 3 coordinates: kept), in
+                             the first three coordinates; coordinates past the
+                             third (fields) take the curve rule.  A planar
+                             surface's boundary therefore stays where it is
+                             (section 4.1, "boundary vertices are not allowed to
+                             move").  Not linear: ss_scheme_refine with R is
+                             refused for a mesh whose boundary it moves */
+  SS_BOUNDARY_SMOOTH = 1, /* the curve rule, unconstrained (linear) */
+  SS_BOUNDARY_FIXED = 2   /* old boundary vertices kept, new ones at midpoints:
+                             the boundary polygon never moves (linear) */
+} ss_boundary;
+
+/* Choose quasi48's boundary rule before the scheme is shared or used.  The
+ * analysis step (ss_scheme_refine_step) always keeps the boundary (a
+ * patch's boundary is not the surface's).  SS_EINPUT naming the scheme for
+ * other schemes or a value not in the enum. */
+ss_status ss_scheme_set_boundary(ss_scheme *s, ss_boundary b, ss_error *err);
+
 /* Refine `coarse` once.  *fine receives the refined complex (caller owns).  If
  * R is not NULL, *R receives the refinement operator as a new CSR matrix of
  * size fine->nv x coarse->nv (caller frees), and the fine positions are R times
  * the coarse ones; every row of R is checked to sum to 1 (SS_EINTERNAL if not).
- * SS_EINPUT for cell types the scheme does not take or malformed cells, and
+ * SS_EINPUT for cell types the scheme does not take or malformed cells, for R
+ * requested where quasi48's normal boundary (ss_boundary) moves a vertex, and
  * for a fine position with a non-finite coordinate (the message names it and
  * the coarse vertices it derives from); SS_ENOMEM.  Cost: linear in the
  * complex; the operator adds a log factor. */

@@ -65,12 +65,30 @@ ss_status ss_scheme_set_adapt(ss_scheme *s, const ss_adapt *a, ss_error *err) {
                           "adaptive box: coordinate %d runs from %g to %g (finite, lower "
                           "first)",
                           r + 1, a->box[r], a->box[r + 3]);
+  if (a->use_angle && !(a->max_angle >= 0.0 && a->max_angle <= M_PI))
+    return ss_error_set(err, SS_EINPUT,
+                        "adaptive curvature angle %g rad: expected an angle in 0..pi",
+                        a->max_angle);
   if (!(a->max_edge >= 0.0) || !isfinite(a->max_edge))
     return ss_error_set(err, SS_EINPUT,
                         "adaptive edge length %g: expected a finite length >= 0",
                         a->max_edge);
   s->adapt = *a;
   s->adaptive = 1;
+  return SS_OK;
+}
+
+ss_status ss_scheme_set_boundary(ss_scheme *s, ss_boundary b, ss_error *err) {
+  if (s->split != SS_SPLIT_BISECT)
+    return ss_error_set(err, SS_EINPUT,
+                        "scheme %s has no choice of boundary rule (quasi48 has: "
+                        "normal, smooth or fixed)",
+                        s->name);
+  if (b != SS_BOUNDARY_NORMAL && b != SS_BOUNDARY_SMOOTH && b != SS_BOUNDARY_FIXED)
+    return ss_error_set(err, SS_EINPUT,
+                        "boundary rule %d: expected normal (0), smooth (1) or fixed (2)",
+                        (int)b);
+  s->boundary = b;
   return SS_OK;
 }
 

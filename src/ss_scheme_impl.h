@@ -43,17 +43,18 @@ struct ss_scheme {
   int irrational_volume;              /* the points and neighbours families: some
                                          weight of a volume rule is not rational
                                          (ss_scheme_volume_weights_rational) */
-  double *ptab;      /* the points family: w[place][d][k][n] of ss_points at
-                        ptab[((place * 4 + d) * 4 + k) * (SS_AVG_NMAX + 1) + n]; NULL
-                        for every other scheme */
-  int loop_surfaces; /* averaging: the vertices whose lowest cells are
-                        triangles take Loop's rows on the triangle cells
-                        (ss_loop_surface) instead of the triangle mask */
-  int loop_c_choice; /* 1: the boundary follows figure 14 of the
-                        box-spline paper and takes ss_scheme_set_loop_c */
-  ss_loop_c loop_c;  /* its smooth vertex weight (default Loop's beta) */
-  int adaptive;      /* 1: refine with the adaptive bisect pass */
-  ss_adapt adapt;    /* its criterion (ss_scheme_set_adapt) */
+  double *ptab;         /* the points family: w[place][d][k][n] of ss_points at
+                           ptab[((place * 4 + d) * 4 + k) * (SS_AVG_NMAX + 1) + n]; NULL
+                           for every other scheme */
+  int loop_surfaces;    /* averaging: the vertices whose lowest cells are
+                           triangles take Loop's rows on the triangle cells
+                           (ss_loop_surface) instead of the triangle mask */
+  int loop_c_choice;    /* 1: the boundary follows figure 14 of the
+                           box-spline paper and takes ss_scheme_set_loop_c */
+  ss_loop_c loop_c;     /* its smooth vertex weight (default Loop's beta) */
+  int adaptive;         /* 1: refine with the adaptive bisect pass */
+  ss_adapt adapt;       /* its criterion (ss_scheme_set_adapt) */
+  ss_boundary boundary; /* quasi48's boundary rule (ss_scheme_set_boundary) */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every

@@ -106,9 +106,14 @@ ss_status ss_split_refine(ss_split_kind kind, const ss_cx *coarse, ss_cx **fine,
 /* Where an adaptive pass of the bisect split refines (quasi 4-8 adaptivity):
  * a triangle is wanted when every criterion set holds. */
 typedef struct {
-  int use_box;     /* 1: wanted only if its bounding box meets `box` */
-  double box[6];   /* x0, y0, z0, x1, y1, z1 (the first min(dim, 3) pairs read) */
-  double max_edge; /* > 0: wanted only if an edge is longer than this; 0: not set */
+  int use_box;      /* 1: wanted only if its bounding box meets `box` */
+  double box[6];    /* x0, y0, z0, x1, y1, z1 (the first min(dim, 3) pairs read) */
+  double max_edge;  /* > 0: wanted only if an edge is longer than this; 0: not set */
+  int use_angle;    /* 1: wanted only if the angle between its normal and a
+                       neighbour's across one of its edges exceeds max_angle
+                       (a discrete curvature, the dihedral angle's deviation
+                       from flat; first three coordinates, fewer: flat) */
+  double max_angle; /* that angle in radians, 0..pi (pi: nothing is wanted) */
 } ss_adapt;
 
 /* ss_split_refine with an adaptive bisect pass (kind SS_SPLIT_BISECT; adapt

@@ -159,11 +159,49 @@ static ss_status rank_edges(const ss_cx *coarse, const ss_triedge *te, ranked *o
   return SS_OK;
 }
 
-/* Whether triangle v is one the criterion a asks to refine: its bounding box
- * meets a's box (in the first min(dim, 3) coordinates), and its longest edge
- * is longer than a->max_edge; a criterion not set holds. */
-static int wanted(const ss_cx *cx, const ss_idx *v, const ss_adapt *a) {
+/* The unnormalized normal of triangle t (the cross product of two edges, in
+ * the first three coordinates) into n. */
+static void tri_normal(const ss_cx *cx, size_t t, double n[3]) {
+  const ss_idx *v = ss_cx_cell(cx, SS_TRIANGLE, t);
+  const size_t dim = (size_t)cx->dim;
+  double a[3], b[3];
+  for (size_t r = 0; r < 3; r++) {
+    a[r] = cx->x[(size_t)v[1] * dim + r] - cx->x[(size_t)v[0] * dim + r];
+    b[r] = cx->x[(size_t)v[2] * dim + r] - cx->x[(size_t)v[0] * dim + r];
+  }
+  n[0] = a[1] * b[2] - a[2] * b[1];
+  n[1] = a[2] * b[0] - a[0] * b[2];
+  n[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The angle in radians between the normals of the two triangles on edge e
+ * (0..pi; 0 for a boundary edge and with fewer than three coordinates, where
+ * the surface is flat). */
+static double edge_angle(const ss_cx *cx, const ss_triedge *te, size_t e) {
+  if (te->nface[e] != 2 || cx->dim < 3) return 0.0;
+  double n[3], m[3];
+  tri_normal(cx, te->face[2 * e], n);
+  tri_normal(cx, te->face[2 * e + 1], m);
+  const double c[3] = {n[1] * m[2] - n[2] * m[1], n[2] * m[0] - n[0] * m[2],
+                       n[0] * m[1] - n[1] * m[0]};
+  return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+               n[0] * m[0] + n[1] * m[1] + n[2] * m[2]);
+}
+
+/* Whether triangle t (corners v, edges in te) is one the criterion a asks to
+ * refine: its bounding box meets a's box (in the first min(dim, 3)
+ * coordinates), its longest edge is longer than a->max_edge, and the angle
+ * between its normal and a neighbour's across one of its edges exceeds
+ * a->max_angle; a criterion not set holds. */
+static int wanted(const ss_cx *cx, const ss_triedge *te, size_t t, const ss_idx *v,
+                  const ss_adapt *a) {
   const size_t dim = (size_t)cx->dim, nb = dim < 3 ? dim : 3;
+  if (a->use_angle) {
+    int bent = 0;
+    for (int k = 0; k < 3 && !bent; k++)
+      bent = edge_angle(cx, te, te->tedge[3 * t + (size_t)k]) > a->max_angle;
+    if (!bent) return 0;
+  }
   if (a->use_box)
     for (size_t r = 0; r < nb; r++) {
       double lo = INFINITY, hi = -INFINITY;
@@ -209,7 +247,7 @@ static ss_status restrict_splits(const ss_cx *coarse, const ss_triedge *te,
   }
   for (size_t t = 0; t < nt; t++)
     want[t] = keep[t] =
-        (unsigned char)wanted(coarse, ss_cx_cell(coarse, SS_TRIANGLE, t), a);
+        (unsigned char)wanted(coarse, te, t, ss_cx_cell(coarse, SS_TRIANGLE, t), a);
   for (size_t t = 0; t < nt; t++) {
     const size_t *ed = te->tedge + 3 * t;
     if (!want[t] || split[ed[0]] || split[ed[1]] || split[ed[2]]) continue;

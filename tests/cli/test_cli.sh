@@ -66,6 +66,26 @@ expect 2 "--adapt-box: expected six numbers" "$exe" subdivide --scheme quasi48 -
 expect 2 "--adapt-box: expected six numbers" "$exe" subdivide --scheme quasi48 --adapt-box 0,0,0,1,1 "$ico" -o "$tmp/q3.obj"
 expect 2 "--adapt-edge-length: expected a length > 0, not '-1'" "$exe" subdivide --scheme quasi48 --adapt-edge-length -1 "$ico" -o "$tmp/q3.obj"
 expect 2 "scheme loop does not refine adaptively" "$exe" subdivide --scheme loop --adapt-edge-length 1 "$ico" -o "$tmp/q3.obj"
+# --adapt-curvature: the icosahedron's dihedral angles are 41.8 degrees
+expect 0 "quasi48 level 1: 12 vertices" "$exe" subdivide --scheme quasi48 --adapt-curvature 42 "$ico" -o "$tmp/q3.obj"
+expect 0 "quasi48 level 1: 20 vertices" "$exe" subdivide --scheme quasi48 --adapt-curvature 41 "$ico" -o "$tmp/q3.obj"
+expect 2 "--adapt-curvature: expected an angle in degrees, 0..180, not '181'" "$exe" subdivide --scheme quasi48 --adapt-curvature 181 "$ico" -o "$tmp/q3.obj"
+expect 2 "--adapt-curvature: expected an angle in degrees, 0..180, not 'x'" "$exe" subdivide --scheme quasi48 --adapt-curvature x "$ico" -o "$tmp/q3.obj"
+# --boundary (test_quasi48_boundary checks the rules): a closed surface is the
+# same in every mode; bad values and other schemes exit 2
+expect 0 "wrote" "$exe" subdivide --scheme quasi48 --levels 3 --boundary smooth "$ico" -o "$tmp/q4.obj"
+expect 0 "wrote" "$exe" subdivide --scheme quasi48 --levels 3 --boundary fixed "$ico" -o "$tmp/q5.obj"
+expect 0 "wrote" "$exe" subdivide --scheme quasi48 --levels 3 "$ico" -o "$tmp/q6.obj"
+expect 0 "^" cmp "$tmp/q4.obj" "$tmp/q5.obj"
+expect 0 "^" cmp "$tmp/q4.obj" "$tmp/q6.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 2\n' >"$tmp/sq.obj"
+expect 0 "wrote" "$exe" subdivide --scheme quasi48 --levels 2 --boundary smooth "$tmp/sq.obj" -o "$tmp/q7.obj"
+expect 0 "wrote" "$exe" subdivide --scheme quasi48 --levels 2 --boundary normal "$tmp/sq.obj" -o "$tmp/q8.obj"
+expect 0 "wrote" "$exe" subdivide --scheme quasi48 --levels 2 --boundary fixed "$tmp/sq.obj" -o "$tmp/q9.obj"
+expect 1 "differ" cmp "$tmp/q7.obj" "$tmp/q9.obj"
+expect 0 "^" cmp "$tmp/q8.obj" "$tmp/q9.obj"
+expect 2 "--boundary: expected normal, smooth or fixed, not 'free'" "$exe" subdivide --scheme quasi48 --boundary free "$ico" -o "$tmp/q3.obj"
+expect 2 "--boundary: scheme loop has no choice of boundary rule" "$exe" subdivide --scheme loop --boundary smooth "$ico" -o "$tmp/q3.obj"
 expect 0 "UNSTRUCTURED_GRID" cat "$tmp/b.vtk"
 # Medit output: octahedra split into 4 tets each by default (said on stderr),
 # kept under the Octahedra extension keyword only on request

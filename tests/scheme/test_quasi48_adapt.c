@@ -67,9 +67,9 @@ static int same_complex(const ss_cx *a, const ss_cx *b) {
 
 static void test_uniform(const ss_cx *cx) {
   ss_cx *plain = refine_with("quasi48", NULL, cx, 6);
-  const ss_adapt all = {1, {-10, -10, -10, 10, 10, 10}, 0.0};
-  const ss_adapt fine = {0, {0}, 1e-9};
-  const ss_adapt both = {1, {-10, -10, -10, 10, 10, 10}, 1e-9};
+  const ss_adapt all = {1, {-10, -10, -10, 10, 10, 10}, 0.0, 0, 0.0};
+  const ss_adapt fine = {0, {0}, 1e-9, 0, 0.0};
+  const ss_adapt both = {1, {-10, -10, -10, 10, 10, 10}, 1e-9, 0, 0.0};
   const ss_adapt *a[3] = {&all, &fine, &both};
   const char *what[3] = {"a box holding it", "an edge length below all", "both"};
   for (int i = 0; i < 3; i++) {
@@ -169,7 +169,7 @@ static void check_spec(const ss_cx *c, const ss_triedge *tc, const unsigned char
 
 /* One adaptive level from c to f (split L): conforming, confined, fixed away. */
 static void check_level(const ss_cx *c, const ss_cx *f, const ss_split *L,
-                        const double *box, int level) {
+                        const unsigned char *want_in, int level) {
   ss_error err = {0};
   ss_triedge *tc = NULL, *tf = NULL;
   REQUIRE_OK_VOID(ss_triedge_new(c, &tc, &err), &err);
@@ -184,10 +184,10 @@ static void check_level(const ss_cx *c, const ss_cx *f, const ss_split *L,
   /* wanted triangles and the ones sharing an edge with them */
   const size_t nt = c->nc[SS_TRIANGLE];
   unsigned char *near = calloc(nt + 1, 1), *touched = calloc(c->nv + 1, 1);
-  unsigned char *want = calloc(nt + 1, 1);
+  const unsigned char *want = want_in;
   size_t nwant = 0;
   for (size_t t = 0; t < nt; t++)
-    nwant += want[t] = (unsigned char)in_box(c, ss_cx_cell(c, SS_TRIANGLE, t), box);
+    nwant += want[t];
   for (size_t t = 0; t < nt; t++) {
     near[t] |= want[t];
     for (int k = 0; want[t] && k < 3; k++) {
@@ -241,7 +241,6 @@ static void check_level(const ss_cx *c, const ss_cx *f, const ss_split *L,
   free(tri);
   free(near);
   free(touched);
-  free(want);
   ss_triedge_free(tc);
   ss_triedge_free(tf);
 }
@@ -292,7 +291,7 @@ static size_t left_behind(const ss_cx *old, const ss_cx *mid, const ss_cx *now,
 
 static void test_region(const ss_cx *cx) {
   ss_error err = {0};
-  const ss_adapt a = {1, {0.45, -2, -2, 2, 2, 2}, 0.0};
+  const ss_adapt a = {1, {0.45, -2, -2, 2, 2, 2}, 0.0, 0, 0.0};
   ss_scheme *s = NULL;
   ss_cx *lv[7] = {NULL};
   REQUIRE_OK_VOID(ss_scheme_new("quasi48", &s, &err), &err);
@@ -306,7 +305,13 @@ static void test_region(const ss_cx *cx) {
       CHECK(0, "level %d: %s", l, err.msg);
       break;
     }
-    check_level(lv[l - 1], lv[l], L, a.box, l);
+    const size_t nt = lv[l - 1]->nc[SS_TRIANGLE];
+    unsigned char *want = calloc(nt + 1, 1);
+    for (size_t t = 0; t < nt; t++)
+      want[t] =
+          (unsigned char)in_box(lv[l - 1], ss_cx_cell(lv[l - 1], SS_TRIANGLE, t), a.box);
+    check_level(lv[l - 1], lv[l], L, want, l);
+    free(want);
     if (l >= 2) left += left_behind(lv[l - 2], lv[l - 1], lv[l], a.box);
     gsl_spmatrix_free(R);
     ss_split_free(L);
@@ -335,7 +340,7 @@ static double longest_edge(const ss_cx *cx) {
  * 40 levels): then no edge may be longer than h. */
 static void test_edge_length(const ss_cx *cx) {
   const double h0 = longest_edge(cx), h = 0.3 * h0;
-  const ss_adapt a = {0, {0}, h};
+  const ss_adapt a = {0, {0}, h, 0, 0.0};
   ss_cx *cur = refine_with("quasi48", NULL, cx, 0), *next = NULL;
   int l = 0;
   for (; cur && l < 40; l++) {
@@ -356,6 +361,94 @@ static void test_edge_length(const ss_cx *cx) {
   ss_cx_free(cur);
 }
 
+/* The test's own reading of the curvature criterion: the angle between the
+ * unit normals of t and a triangle sharing an edge with it exceeds T. */
+static void bent(const ss_cx *cx, double T, unsigned char *want) {
+  const size_t nt = cx->nc[SS_TRIANGLE];
+  double *n = malloc((3 * nt + 1) * sizeof *n);
+  for (size_t t = 0; t < nt; t++) {
+    const ss_idx *v = ss_cx_cell(cx, SS_TRIANGLE, t);
+    const double *p = cx->x + 3 * v[0], *q = cx->x + 3 * v[1], *r = cx->x + 3 * v[2];
+    const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    double *m = n + 3 * t;
+    m[0] = a[1] * b[2] - a[2] * b[1];
+    m[1] = a[2] * b[0] - a[0] * b[2];
+    m[2] = a[0] * b[1] - a[1] * b[0];
+    const double l = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    for (int i = 0; i < 3; i++)
+      m[i] /= l;
+  }
+  for (size_t t = 0; t < nt; t++) {
+    want[t] = 0;
+    const ss_idx *v = ss_cx_cell(cx, SS_TRIANGLE, t);
+    for (size_t u = 0; u < nt; u++) { /* u shares two corners with t */
+      const ss_idx *w = ss_cx_cell(cx, SS_TRIANGLE, u);
+      int common = 0;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+          common += v[i] == w[j];
+      const double *a = n + 3 * t, *b = n + 3 * u;
+      if (u != t && common == 2 &&
+          acos(fmin(1.0, a[0] * b[0] + a[1] * b[1] + a[2] * b[2])) > T)
+        want[t] = 1;
+    }
+  }
+  free(n);
+}
+
+/* A dome: the sphere with z < 0 pressed onto z = 0 (a flat disc, angle 0
+ * between its triangles, and a curved cap).  --adapt-curvature 5 degrees:
+ * each of four levels conforming and confined to the bent triangles (the
+ * test's own angles); no level adds a vertex inside the flat disc away from
+ * its rim (radius below 0.55 of the disc's);
+ * 170 degrees, above every angle, refines nothing. */
+static void test_curvature(const ss_cx *sphere) {
+  ss_error err = {0};
+  ss_cx *dome = NULL;
+  REQUIRE_OK_VOID(ss_cx_copy(sphere, &dome, &err), &err);
+  double r2 = 0.0; /* the disc's radius, squared (Loop shrank the sphere) */
+  for (size_t v = 0; v < dome->nv; v++) {
+    const double *p = dome->x + 3 * v;
+    r2 = fmax(r2, p[0] * p[0] + p[1] * p[1]);
+    if (p[2] < 0.0) dome->x[3 * v + 2] = 0.0;
+  }
+  const double T = 5.0 * M_PI / 180.0;
+  const ss_adapt a = {0, {0}, 0.0, 1, T};
+  ss_scheme *s = NULL;
+  ss_cx *lv[5] = {NULL};
+  lv[0] = dome;
+  REQUIRE_OK_VOID(ss_scheme_new("quasi48", &s, &err), &err);
+  REQUIRE_OK_VOID(ss_scheme_set_adapt(s, &a, &err), &err);
+  size_t inside = 0;
+  for (int l = 1; l <= 4; l++) {
+    ss_split *L = NULL;
+    if (ss_scheme_refine_split(s, lv[l - 1], &lv[l], NULL, &L, &err)) {
+      CHECK(0, "curvature level %d: %s", l, err.msg);
+      break;
+    }
+    const size_t nt = lv[l - 1]->nc[SS_TRIANGLE];
+    unsigned char *want = calloc(nt + 1, 1);
+    bent(lv[l - 1], T, want);
+    check_level(lv[l - 1], lv[l], L, want, l);
+    for (size_t x = lv[l - 1]->nv; x < lv[l]->nv; x++) {
+      const double *p = lv[l]->x + 3 * x;
+      inside += p[2] == 0.0 && p[0] * p[0] + p[1] * p[1] < 0.3 * r2;
+    }
+    free(want);
+    ss_split_free(L);
+  }
+  CHECK(inside == 0, "curvature: %zu new vertices inside the flat disc", inside);
+  const ss_adapt none = {0, {0}, 0.0, 1, 170.0 * M_PI / 180.0};
+  ss_cx *f = refine_with("quasi48", &none, dome, 3);
+  CHECK(f && f->nv == dome->nv, "curvature above every angle: %zu vertices, not %zu",
+        f ? f->nv : 0, dome->nv);
+  ss_cx_free(f);
+  for (int l = 0; l <= 4; l++)
+    ss_cx_free(lv[l]);
+  ss_scheme_free(s);
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_quasi48_adapt DATA/MESHES\n");
@@ -372,6 +465,7 @@ int main(int argc, char **argv) {
     test_uniform(sphere);
     test_region(sphere);
     test_edge_length(sphere);
+    test_curvature(sphere);
   }
   ss_cx_free(sphere);
   ss_cx_free(ico);
