@@ -6,7 +6,7 @@
 #   reports/tubes.sh [--max-k K] [--psi-depth N] [--exe PATH] [--list FILE]
 #
 # Reads the links from the exhaustive tables' not-passing list
-# (reports/data/exhaustive-vertices-k4-12-not-passing.csv.xz: scheme mlca,
+# (reports/data/exhaustive-vertices-k4-13-not-passing.csv.xz: scheme mlca,
 # eigenvalue condition pass, regularity undecided, k <= K, default 11), or
 # from FILE (one plantri link per line), and runs for each
 #   subspectra analyze --scheme mlca --vertex LINK --certify --psi-depth N \
@@ -45,7 +45,7 @@ if [ -n "$list" ]; then
   [ -r "$list" ] || { echo "tubes.sh: cannot read '$list'" >&2; exit 2; }
   cp "$list" "$links"
 else
-  xz -dc "$here/data/exhaustive-vertices-k4-12-not-passing.csv.xz" | python3 -c '
+  xz -dc "$here/data/exhaustive-vertices-k4-13-not-passing.csv.xz" | python3 -c '
 import csv, sys
 for r in csv.DictReader(sys.stdin):
     if (r["scheme"] == "mlca" and r["eigen_condition"] == "pass"
