@@ -238,14 +238,22 @@ int ss_exact_entry(const ss_exact *x, size_t i, size_t j, long long *p, long lon
   return 1;
 }
 
-int ss_exact_principal(const ss_exact *x, const size_t *idx, size_t len, fmpz_t D,
-                       fmpz_mat_t M) {
-  size_t *at = malloc((x->n + 1) * sizeof *at); /* column -> place in idx */
-  if (!at) return -1;
+/* For every column j of x's matrix its place in idx[0..len) (SIZE_MAX where
+ * j is not in idx), malloc'd, or NULL. */
+static size_t *places(const ss_exact *x, const size_t *idx, size_t len) {
+  size_t *at = malloc((x->n + 1) * sizeof *at);
+  if (!at) return NULL;
   for (size_t j = 0; j < x->n; j++)
     at[j] = SIZE_MAX;
   for (size_t c = 0; c < len; c++)
     at[idx[c]] = c;
+  return at;
+}
+
+int ss_exact_principal(const ss_exact *x, const size_t *idx, size_t len, fmpz_t D,
+                       fmpz_mat_t M) {
+  size_t *at = places(x, idx, len);
+  if (!at) return -1;
   fmpz_one(D);
   for (size_t r = 0; r < len; r++)
     for (size_t k = x->A.ptr[idx[r]]; k < x->A.ptr[idx[r] + 1]; k++)
@@ -272,12 +280,8 @@ int ss_exact_principal(const ss_exact *x, const size_t *idx, size_t len, fmpz_t 
 
 int ss_exact_principal_rows(const ss_exact *x, const size_t *idx, size_t len, fmpz *d,
                             fmpz_mat_t N) {
-  size_t *at = malloc((x->n + 1) * sizeof *at); /* column -> place in idx */
+  size_t *at = places(x, idx, len);
   if (!at) return -1;
-  for (size_t j = 0; j < x->n; j++)
-    at[j] = SIZE_MAX;
-  for (size_t c = 0; c < len; c++)
-    at[idx[c]] = c;
   fmpz_mat_zero(N);
   fmpz_t t;
   fmpz_init(t);
