@@ -232,9 +232,12 @@ q "$tmp/tol.db" "UPDATE scheme SET tol = 1.0000006e-6 WHERE identity LIKE '% tol
 expect 2 "tol.db: scheme 'mlca tol=1e-06 depth=6 rings=3' was stored by an older subspectra for the tolerance 1.0000006" \
   "$exe" sweep --scheme mlca --edges 3..3 --db "$tmp/tol.db"
 
-# a store another program holds locked: said so (after a few seconds)
+# a store another program holds locked: said so (after a few seconds).  The
+# locker waits for the probe's read lock (.timeout): without it, BEGIN
+# EXCLUSIVE racing a probe failed with "database is locked" and the sqlite3
+# program went on to sleep holding nothing (seen once under load)
 cp "$tmp/p1.db" "$tmp/lock.db"
-sqlite3 "$tmp/lock.db" "PRAGMA locking_mode=EXCLUSIVE;" "BEGIN EXCLUSIVE;" \
+sqlite3 "$tmp/lock.db" ".timeout 10000" "PRAGMA locking_mode=EXCLUSIVE;" "BEGIN EXCLUSIVE;" \
   "INSERT INTO meta VALUES('lock','held');" ".shell sleep 20" "ROLLBACK;" >/dev/null 2>&1 &
 lockpid=$!
 locked=0
