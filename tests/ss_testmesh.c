@@ -8,6 +8,8 @@
 
 #include <gsl/gsl_rng.h>
 
+#include "ss_diag.h"
+
 #define PI 3.14159265358979323846
 
 static void die(const char *what) {
@@ -668,4 +670,25 @@ void tm_points_in(const ss_cx *a, const ss_cx *b, const unsigned char *skip,
         break;
       }
   }
+}
+
+ss_cx *tm_refined(const ss_scheme *s, const ss_cx *cx, int levels, ss_error *err) {
+  ss_cx *a = NULL, *b = NULL;
+  if (ss_cx_copy(cx, &a, err)) return NULL;
+  if (ss_scheme_reads_diagonals(s) && ss_diag_choose(a, SS_DIAG_BFS, 0, 0, err)) {
+    ss_cx_free(a);
+    return NULL;
+  }
+  for (int l = 0; l < levels; l++) {
+    if (ss_scheme_refine(s, a, &b, NULL, err)) {
+      char m[sizeof err->msg];
+      snprintf(m, sizeof m, "level %d: %.400s", l + 1, err->msg);
+      snprintf(err->msg, sizeof err->msg, "%s", m);
+      ss_cx_free(a);
+      return NULL;
+    }
+    ss_cx_free(a);
+    a = b;
+  }
+  return a;
 }

@@ -5,6 +5,7 @@
 #define SS_TESTMESH_H
 
 #include "ss_cx.h"
+#include "ss_scheme.h"
 
 /* A triangulated sphere with positions on the unit sphere. */
 typedef struct {
@@ -55,6 +56,9 @@ size_t tm_boundary_faces(const ss_cx *cx, ss_idx **out);
  * (*total). */
 void tm_points_in(const ss_cx *a, const ss_cx *b, const unsigned char *skip,
                   size_t *total, size_t *found);
+/* cx refined `levels` times by s (diagonals chosen by BFS first where s reads
+ * them): a new complex, or NULL with err set (" level L: " says which). */
+ss_cx *tm_refined(const ss_scheme *s, const ss_cx *cx, int levels, ss_error *err);
 /* Move every vertex by a pseudo-random offset of size <= amp (seeded). */
 void tm_jitter(ss_cx *cx, double amp, unsigned long seed);
 /* A relabelled copy: vertices and cells permuted, each cell's vertex list turned

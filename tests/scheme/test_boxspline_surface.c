@@ -70,20 +70,8 @@ static ss_cx *refine(const char *scheme, const ss_cx *cx, int levels) {
     CHECK(0, "%s: %s", scheme, err.msg);
     return NULL;
   }
-  ss_cx *a = NULL, *b = NULL;
-  if (ss_cx_copy(cx, &a, &err)) return NULL;
-  if (ss_scheme_reads_diagonals(s) && ss_diag_choose(a, SS_DIAG_BFS, 0, 0, &err))
-    CHECK(0, "diagonals: %s", err.msg);
-  for (int l = 0; l < levels; l++) {
-    if (ss_scheme_refine(s, a, &b, NULL, &err)) {
-      CHECK(0, "%s level %d: %s", scheme, l + 1, err.msg);
-      ss_cx_free(a);
-      ss_scheme_free(s);
-      return NULL;
-    }
-    ss_cx_free(a);
-    a = b;
-  }
+  ss_cx *a = tm_refined(s, cx, levels, &err);
+  CHECK(a, "%s %s", scheme, err.msg);
   ss_scheme_free(s);
   return a;
 }

@@ -69,18 +69,8 @@ static ss_cx *refine(const char *scheme, const ss_scheme *own, const ss_cx *cx,
     CHECK(0, "%s: %s", scheme, err.msg);
     return NULL;
   }
-  ss_cx *a = NULL, *b = NULL;
-  if (ss_cx_copy(cx, &a, &err)) return NULL;
-  for (int l = 0; l < levels; l++) {
-    if (ss_scheme_refine(own ? own : s, a, &b, NULL, &err)) {
-      CHECK(0, "%s level %d: %s", scheme, l + 1, err.msg);
-      ss_cx_free(a);
-      ss_scheme_free(s);
-      return NULL;
-    }
-    ss_cx_free(a);
-    a = b;
-  }
+  ss_cx *a = tm_refined(own ? own : s, cx, levels, &err);
+  CHECK(a, "%s %s", scheme, err.msg);
   ss_scheme_free(s);
   return a;
 }
