@@ -185,7 +185,9 @@ static int tokens(scan *s) {
   for (size_t i = 0; i <= s->len; i++) /* a NUL byte inside is junk, not an end */
     s->tb[i] = i < s->len && !s->buf[i] ? '\x01' : s->buf[i];
   int n = 0;
-  for (char *p = strtok(s->tb, " \t\r\v\f"); p; p = strtok(NULL, " \t\r\v\f")) {
+  char *save = NULL; /* strtok_r: strtok's hidden static broke concurrent reads */
+  for (char *p = strtok_r(s->tb, " \t\r\v\f", &save); p;
+       p = strtok_r(NULL, " \t\r\v\f", &save)) {
     if (n == MAXTOK) return MAXTOK + 1;
     s->tok[n++] = p;
   }
