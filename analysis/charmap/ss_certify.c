@@ -7,13 +7,15 @@
 
 #include "ss_clock.h"
 #include "ss_fourier.h"
+#include "ss_schur.h"
 
 /* Regularity and injectivity once the condition cond is settled, the basis
- * from ex (rational S) or fx (the Fourier route: algebraic weights, enclosed
- * in their windows, ss_fourier.h). */
+ * from ex (rational S), fx (the Fourier route: algebraic weights, enclosed
+ * in their windows, ss_fourier.h) or sx (the Schur route, ss_schur.h). */
 static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charmap *cm,
                              const ss_charmap_opts *o, const ss_verdict *cond,
-                             const ss_exact *ex, const ss_fourier *fx, long maxden,
+                             const ss_exact *ex, const ss_fourier *fx,
+                             const ss_schur *sx, long maxden,
                              ss_regularity *reg, ss_charmap_inj *inj, ss_error *err) {
   ss_status st = SS_OK;
   double *lo = NULL, *hi = NULL;
@@ -46,8 +48,9 @@ static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charm
       goto done;
     }
     ss_error be = {0};
-    const ss_status bs =
-        ex ? ss_exact_basis(ex, lo, hi, &be) : ss_fourier_basis(fx, lo, hi, &be);
+    const ss_status bs = ex   ? ss_exact_basis(ex, lo, hi, &be)
+                         : fx ? ss_fourier_basis(fx, lo, hi, &be)
+                              : ss_schur_basis(sx, lo, hi, &be);
     if (bs == SS_ENOMEM) {
       st = ss_error_nomem(err, "basis enclosure");
       goto done;
@@ -113,8 +116,34 @@ static ss_status fourier_condition(const ss_local *M, const ss_case *c, const ch
   return st;
 }
 
+/* The Schur route's condition for a volume vertex (*sx: caller frees), or
+ * *sx NULL when the link's automorphisms cannot be had (then cond stays
+ * undecided with why). */
+static ss_status schur_condition(const ss_local *M, const ss_case *c, const char *why,
+                                 ss_verdict *cond, ss_schur **sx, ss_error *err) {
+  *sx = NULL;
+  size_t *G = NULL, ng = 0;
+  ss_error pe = {0};
+  ss_status st = ss_charmap_sym_group(M, c, &G, &ng, &pe);
+  if (!st) st = ss_schur_new(M->S, M->n2, M->n1, G, ng, M->dim, sx, &pe);
+  if (st == SS_ENOMEM) {
+    *err = pe;
+  } else if (st) {
+    char r[sizeof cond->reason];
+    snprintf(r, sizeof r, "%.200s; no symmetry route: %.200s", why, pe.msg);
+    ss_verdict_unproven(cond, r);
+    st = SS_OK;
+  } else {
+    int certified = 0;
+    ss_schur_condition(*sx, cond, &certified);
+  }
+  free(G);
+  return st;
+}
+
 /* ss_certify; rational = 0: S is known not to be rational (a stencil's
- * algebraic weight), so only the Fourier route may prove anything. */
+ * algebraic weight), so only the Fourier route (a surface vertex, an edge) or
+ * the Schur route (a volume vertex) may prove anything. */
 static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *e,
                              const ss_charmap *cm, const ss_charmap_opts *o,
                              ss_regularity *reg, ss_charmap_inj *inj, ss_certified *out,
@@ -125,6 +154,7 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
   reg->verdict.certified = inj->verdict.certified = 0;
   ss_exact *ex = NULL;
   ss_fourier *fx = NULL;
+  ss_schur *sx = NULL;
   ss_exact_opts eo = ss_exact_defaults(M->dim);
   eo.times = o->times ? &o->times->exact : NULL;
   double c1 = o->times ? ss_clock_cpu() : 0.0;
@@ -146,6 +176,13 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
       ss_verdict_unproven(&inj->verdict, "no exact spectrum");
       goto done;
     }
+  } else if (st && !rational && c->kind == SS_CASE_VERTEX) { /* the link's group */
+    if ((st = schur_condition(M, c, xe.msg, &out->cond, &sx, err))) goto done;
+    if (!sx) {
+      ss_verdict_unproven(&reg->verdict, "no exact spectrum");
+      ss_verdict_unproven(&inj->verdict, "no exact spectrum");
+      goto done;
+    }
   } else if (st) { /* not rational, or FLINT could not: nothing is proven */
     ss_verdict_unproven(&out->cond, xe.msg);
     ss_verdict_unproven(&reg->verdict, "no exact spectrum");
@@ -156,9 +193,10 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
     ss_exact_condition(ex, &out->cond, &out->cond.certified);
   }
   out->cond.on = SS_ON_SPECTRUM;
-  st = judge_after(M, c, cm, o, &out->cond, ex, fx, eo.maxden, reg, inj, err);
+  st = judge_after(M, c, cm, o, &out->cond, ex, fx, sx, eo.maxden, reg, inj, err);
 done:
   ss_fourier_free(fx);
+  ss_schur_free(sx);
   if (o->times) ss_clock_lap(&o->times->certify, &c1);
   out->seconds = ss_clock_wall() - t0;
   if (x && !st)
@@ -212,7 +250,8 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
   const int volume = c->kind != SS_CASE_SURFACE_VERTEX;
   const int rational =
       volume ? ss_scheme_volume_weights_rational(s) : ss_scheme_weights_rational(s);
-  if (!st && certify && !rational && turns(c)) /* algebraic weights: the balls */
+  if (!st && certify && !rational && (turns(c) || c->kind == SS_CASE_VERTEX))
+    /* algebraic weights: the balls (Fourier blocks, or the link's group) */
     return certify_run(M, c, e, *cm, o, reg, inj, out, x, 0, err);
   if (!st && certify && !rational) {
     /* a weight known not to be rational (a stencil's cos(2 pi / n)) among

@@ -255,6 +255,16 @@ ss_status ss_charmap_symmetry(const ss_charmap *cm, const ss_local *M, const ss_
 ss_status ss_charmap_sym_perm(const ss_local *M, const ss_case *c,
                               const ss_charmap_sym *y, size_t *P, ss_error *err);
 
+/* The case's symmetry group on the two-ring: *ng permutations (*perms, ng *
+ * M->n2 entries, caller frees; (*perms)[g * n2 + i] the label index of
+ * sigma_g(label i)), the identity first, then every candidate of
+ * ss_charmap_symmetry that maps the two-ring (a vertex: all the link's
+ * automorphisms; an edge: its dihedral symmetries and flips).  Whether they
+ * commute with S is not checked here.  SS_ENOMEM; SS_EINPUT for a malformed
+ * case. */
+ss_status ss_charmap_sym_group(const ss_local *M, const ss_case *c, size_t **perms,
+                               size_t *ng, ss_error *err);
+
 /* ---- injectivity (ss_charmap_inj.c) ---- */
 
 /* The injectivity verdict. */

@@ -285,3 +285,43 @@ ss_status ss_charmap_sym_perm(const ss_local *M, const ss_case *c,
   free(C.aut);
   return st;
 }
+
+ss_status ss_charmap_sym_group(const ss_local *M, const ss_case *c, size_t **perms,
+                               size_t *ng, ss_error *err) {
+  *perms = NULL;
+  *ng = 0;
+  candidates C;
+  ss_status st = cand_new(M, c, &C, err);
+  if (st) return st;
+  const size_t n = M->n2;
+  const int count = cand_count(&C);
+  size_t *G = malloc(((size_t)count + 1) * n * sizeof *G + 1);
+  int *perm = malloc((size_t)C.nc * sizeof *perm);
+  if (!G || !perm) {
+    st = ss_error_nomem(err, "symmetry group");
+    goto done;
+  }
+  for (size_t i = 0; i < n; i++) /* the identity first */
+    G[i] = i;
+  size_t k = 1;
+  chart_map g = {C.nc, perm, -1};
+  char what[160];
+  for (int q = 0; q < count; q++) {
+    int reverses = 0, maps = 1;
+    cand_make(&C, q, &g, &reverses, what, sizeof what);
+    for (size_t i = 0; i < n && maps; i++) {
+      const ss_star_coord x = map_label(&g, M->label + i);
+      G[k * n + i] = ss_local_label_index(M, &x);
+      maps = G[k * n + i] != SIZE_MAX;
+    }
+    k += (size_t)maps; /* a candidate that does not map the two-ring is left out */
+  }
+  *perms = G;
+  *ng = k;
+  G = NULL;
+done:
+  free(G);
+  free(perm);
+  free(C.aut);
+  return st;
+}

@@ -17,9 +17,8 @@
 #include "ss_ball.h"
 
 enum {
-  FR_PREC = 128, /* working precision, bits: the entries' balls (2^-40)
-                    decide the width, not this */
-  FR_WINDOW = 40 /* an entry s stands for s +- 2^-40 max(1, |s|) */
+  FR_PREC = 128 /* working precision, bits: the entries' balls (2^-40,
+                   ss_ball_entry) decide the width, not this */
 };
 
 /* One Fourier block: S restricted to V_k. */
@@ -114,44 +113,12 @@ void ss_fourier_free(ss_fourier *f) {
   free(f);
 }
 
-static double window(double s) {
-  return ldexp(fmax(1.0, fabs(s)), -FR_WINDOW);
-}
-
-/* The ball an entry stands for: s +- 2^(e - 40) >= 2^-40 max(1, |s|); 0 for
- * an entry computed as 0 (no rule reads that point: the exact path's
- * reconstruction takes it for 0 too). */
-static void entry_ball(arb_t b, double s) {
-  int e = 0;
-  if (s == 0.0) {
-    arb_zero(b);
-    return;
-  }
-  if (fabs(s) > 1.0) (void)frexp(s, &e); /* |s| < 2^e */
-  arb_set_d(b, s);
-  arb_add_error_2exp_si(b, (slong)e - FR_WINDOW);
-}
-
 static int is_perm(const size_t *p, size_t n, unsigned char *seen) {
   memset(seen, 0, n);
   for (size_t i = 0; i < n; i++) {
     if (p[i] >= n || seen[p[i]]) return 0;
     seen[p[i]] = 1;
   }
-  return 1;
-}
-
-/* S[p i][p j] = S[i][j] within the windows: 1, or 0 with the entry. */
-static int invariant(const double *S, size_t n, const size_t *p, size_t *bi, size_t *bj) {
-  for (size_t i = 0; i < n; i++)
-    for (size_t j = 0; j < n; j++) {
-      const double a = S[i * n + j], b = S[p[i] * n + p[j]];
-      if ((a == 0.0) != (b == 0.0) || !(fabs(a - b) <= window(a) + window(b))) {
-        *bi = i;
-        *bj = j;
-        return 0;
-      }
-    }
   return 1;
 }
 
@@ -208,44 +175,13 @@ static void block_matrix(const ss_fourier *f, const double *S, const fr_block *b
     for (size_t j = 0; j < n; j++) {
       const long c = bl->col[f->orb_of[j]];
       if (c < 0) continue;
-      entry_ball(e, S[r * n + j]);
+      ss_ball_entry(e, S[r * n + j]);
       acb_mul_arb(t, f->w + ((size_t)bl->k * f->pos[j]) % (size_t)f->order, e, FR_PREC);
       acb_add(acb_mat_entry(B, (slong)a, c), acb_mat_entry(B, (slong)a, c), t, FR_PREC);
     }
   }
   acb_clear(t);
   arb_clear(e);
-}
-
-/* The eigenvalue enclosures of B (b x b) into E, with their eigenvectors in
- * R (may be NULL) when the balls isolate them: 1 isolating balls, 0 common
- * balls of clusters (each eigenvalue in its ball, multiplicities counted),
- * 2 where even that fails (a Jordan block): every eigenvalue within
- * acb_mat_eig_global_enclosure's eps of an approximation, balls that bound
- * moduli but count nothing, -1 none. */
-static int enclose_eigen(acb_ptr E, acb_mat_t R, const acb_mat_t B) {
-  const slong b = acb_mat_nrows(B);
-  acb_ptr E0 = _acb_vec_init(b);
-  acb_mat_t R0;
-  acb_mat_init(R0, b, b);
-  acb_mat_approx_eig_qr(E0, NULL, R0, B, NULL, 0, FR_PREC);
-  int rc = acb_mat_eig_simple(E, NULL, R, B, E0, R0, FR_PREC) ? 1
-           : acb_mat_eig_multiple(E, B, E0, R0, FR_PREC)      ? 0
-                                                              : -1;
-  if (rc < 0) {
-    mag_t eps;
-    mag_init(eps);
-    acb_mat_eig_global_enclosure(eps, B, E0, R0, FR_PREC);
-    for (slong i = 0; mag_is_finite(eps) && i < b; i++) {
-      acb_set(E + i, E0 + i);
-      acb_add_error_mag(E + i, eps);
-      rc = 2;
-    }
-    mag_clear(eps);
-  }
-  acb_mat_clear(R0);
-  _acb_vec_clear(E0, b);
-  return rc;
 }
 
 /* The closure of B's pattern (b x b): R[x b + y] = 1 when orbit x reads
@@ -276,7 +212,7 @@ static unsigned char *closure(const acb_mat_t B, size_t *comp) {
  * pattern (S's zeros are exact), so its spectrum is theirs: each
  * component's principal block enclosed apart into E, part[i] its component,
  * sim[i] 1 where the ball isolates its eigenvalue there, counted[i] 0 for
- * a ball that only bounds (enclose_eigen's 2), vec[i] then its
+ * a ball that only bounds (ss_ball_eig's 2), vec[i] then its
  * eigenvector (zero off the component; else NULL).  0, or -1 if a
  * component's are not enclosed or out of memory. */
 static int split_eigen(const acb_mat_t B, const size_t *comp, acb_ptr E, size_t *part,
@@ -296,7 +232,7 @@ static int split_eigen(const acb_mat_t B, const size_t *comp, acb_ptr E, size_t 
     for (slong x = 0; x < m; x++)
       for (slong y = 0; y < m; y++)
         acb_set(acb_mat_entry(D, x, y), acb_mat_entry(B, idx[x], idx[y]));
-    rc = enclose_eigen(E + at, R, D);
+    rc = ss_ball_eig(E + at, R, D, NULL, NULL, FR_PREC);
     for (slong x = 0; x < m && rc >= 0; x++, at++) {
       part[at] = (size_t)c, sim[at] = rc == 1, counted[at] = rc != 2;
       vec[at] = rc == 1 ? _acb_vec_init(b) : NULL;
@@ -329,7 +265,7 @@ static int block_eigen(ss_fourier *f, size_t bi) {
     ncomp += comp[a] == (size_t)a;
   int ok = 0, whole = 0;
   if (reach && ncomp == 1) { /* one component: the block at once */
-    const int rc = enclose_eigen(E, R, B);
+    const int rc = ss_ball_eig(E, R, B, NULL, NULL, FR_PREC);
     ok = rc >= 0, whole = rc == 1;
     for (slong i = 0; i < b; i++)
       counted[i] = rc != 2;
@@ -719,7 +655,7 @@ static ss_status check_input(ss_fourier *f, const double *S, const size_t *rot,
                           "Fourier blocks: the symmetries do not keep the one-ring");
   }
   size_t bi = 0, bj = 0;
-  *sym = invariant(S, n, rot, &bi, &bj) && invariant(S, n, refl, &bi, &bj);
+  *sym = ss_ball_invariant(S, n, rot, &bi, &bj) && ss_ball_invariant(S, n, refl, &bi, &bj);
   if (!*sym)
     set_verdict(f, SS_UNDECIDED, 0,
                 "not certified: S is not invariant under the star's rotation and "
