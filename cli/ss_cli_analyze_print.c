@@ -120,8 +120,11 @@ static void print_spectrum(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
   if (p->opts.certify) {
     const ss_verdict *cond = &p->v.cond;
     /* proven without an exact spectrum: the Fourier blocks in balls
-     * (ss_fourier.h, surface vertices with irrational weights) */
-    const char *how = p->ex || !cond->certified ? "exact" : "Fourier blocks in balls";
+     * (ss_fourier.h, surface vertices and edges with irrational weights) or
+     * the balls and Schur's lemma (ss_schur.h, volume vertices) */
+    const char *how = p->ex || !cond->certified     ? "exact"
+                      : p->c.kind == SS_CASE_VERTEX ? "balls, ties by Schur's lemma"
+                                                    : "Fourier blocks in balls";
     printf("eigenvalue condition, %s (%.2f s): %s%s%s%s\n", how, p->exact_seconds,
            ss_verdict_name(cond->verdict), certified_text(p, cond),
            cond->reason[0] ? ": " : "", cond->reason);

@@ -218,6 +218,16 @@ positive_re(const ss_schur *s, size_t r) {
   return arb_is_positive(re);
 }
 
+/* Whether Re of root r <= 0 is proven (not inlined: as conj_ball). */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static int
+nonpositive_re(const ss_schur *s, size_t r) {
+  const arb_struct *re = acb_realref(&s->rt[r].z);
+  return arb_is_nonpositive(re);
+}
+
 /* Whether root a is proven real: the conjugate of its ball meets no other
  * root (S is real, so the conjugate of its eigenvalue is an eigenvalue, in
  * some root: this one). */
@@ -293,7 +303,8 @@ static int rest_below(const ss_schur *s, size_t one, const size_t *lead, int nl,
  * of A, not defective, counted, meeting no other root (a tie proven by
  * Schur's lemma); else 1 with the verdict set (undecided), -1 out of
  * memory. */
-static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t ng) {
+static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t ng,
+                       size_t one, const size_t *lead, int nl) {
   char b1[64], why[200] = "";
   sc_root *o = s->rt + r;
   root_text(s, r, b1, sizeof b1);
@@ -306,8 +317,13 @@ static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t n
     snprintf(why, sizeof why, "lambda%d = %s not isolated (balls)", pos, b1);
   else if (!proven_real(s, r))
     snprintf(why, sizeof why, "lambda%d = %s not proven real", pos, b1);
-  else if (!positive_re(s, r))
+  else if (!positive_re(s, r)) {
+    if (nonpositive_re(s, r) && rest_below(s, one, lead, nl, &o->mod)) {
+      set_verdict(s, SS_FAIL, 1, "lambda%d = %s is not positive (proven, balls)", pos, b1);
+      return 1;
+    }
     snprintf(why, sizeof why, "lambda%d = %s not proven positive", pos, b1);
+  }
   if (*why) {
     set_verdict(s, SS_UNDECIDED, 0, "not certified: %s", why);
     return 1;
@@ -354,7 +370,7 @@ static int assess(ss_schur *s, const size_t *G, size_t ng) {
     return 0;
   }
   for (int j = 0, pos = 1; j < nl; pos += s->rt[lead[j]].count, j++) {
-    const int rc = assess_root(s, lead[j], pos, G, ng);
+    const int rc = assess_root(s, lead[j], pos, G, ng, one, lead, nl);
     if (rc) return rc < 0 ? -1 : 0;
   }
   for (int j = 0; j < nl; j++)

@@ -268,6 +268,7 @@ int main(int argc, char **argv) {
   if (alg && rat) {
     CHECK(!ss_scheme_volume_weights_rational(alg), "ccsolid-cos: read as rational");
     CHECK(ss_scheme_volume_weights_rational(rat), "ccsolid-rat: read as not rational");
+    agree(rat, alg, "tetrahedron");
     agree(rat, alg, "octahedron");
     agree(rat, alg, "bipyramid:3");
     agree(rat, alg, "bipyramid:6");
