@@ -141,6 +141,35 @@ static ss_status schur_condition(const ss_local *M, const ss_case *c, const char
   return st;
 }
 
+/* An edge the Fourier blocks leave undecided (MLCA-like: a Jordan block in
+ * the mode-0 block beside lambda0 = 1, which ss_ball_eig can only bound):
+ * the Schur route under the edge's dihedral symmetries and flips, whose
+ * clusters Rump's method encloses one by one, defective or not.  When it
+ * proves the condition it replaces the Fourier route (*fx freed, *sx set);
+ * otherwise cond keeps the Fourier route's reason, the Schur route's
+ * appended. */
+static ss_status edge_by_schur(const ss_local *M, const ss_case *c, ss_verdict *cond,
+                               ss_fourier **fx, ss_schur **sx, ss_error *err) {
+  ss_verdict sv = *cond;
+  ss_schur *s = NULL;
+  ss_status st = schur_condition(M, c, "", &sv, &s, err);
+  if (!st && s && sv.certified) {
+    ss_fourier_free(*fx);
+    *fx = NULL;
+    *sx = s;
+    *cond = sv;
+    return SS_OK;
+  }
+  if (!st) {
+    char r[sizeof cond->reason];
+    snprintf(r, sizeof r, "%.200s; by the edge's symmetries: %.200s", cond->reason,
+             sv.reason);
+    snprintf(cond->reason, sizeof cond->reason, "%s", r);
+  }
+  ss_schur_free(s);
+  return st;
+}
+
 /* ss_certify; rational = 0: S is known not to be rational (a stencil's
  * algebraic weight), so only the Fourier route (a surface vertex, an edge) or
  * the Schur route (a volume vertex) may prove anything. */
@@ -169,14 +198,21 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
     return st;
   }
   out->cond = e->cond;
+  out->route = "exact";
   if (st && turns(c)) { /* algebraic: the balls */
+    out->route = "Fourier blocks in balls";
     if ((st = fourier_condition(M, c, xe.msg, &out->cond, &fx, err))) goto done;
-    if (!fx) {
+    if (fx && !out->cond.certified && c->kind == SS_CASE_EDGE &&
+        (st = edge_by_schur(M, c, &out->cond, &fx, &sx, err)))
+      goto done;
+    if (sx) out->route = "balls, ties by Schur's lemma";
+    if (!fx && !sx) {
       ss_verdict_unproven(&reg->verdict, "no exact spectrum");
       ss_verdict_unproven(&inj->verdict, "no exact spectrum");
       goto done;
     }
   } else if (st && !rational && c->kind == SS_CASE_VERTEX) { /* the link's group */
+    out->route = "balls, ties by Schur's lemma";
     if ((st = schur_condition(M, c, xe.msg, &out->cond, &sx, err))) goto done;
     if (!sx) {
       ss_verdict_unproven(&reg->verdict, "no exact spectrum");
@@ -236,7 +272,7 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
                               const ss_eig *e, const ss_charmap_opts *o, int certify,
                               ss_charmap **cm, ss_regularity *reg, ss_charmap_inj *inj,
                               ss_certified *out, ss_exact **x, ss_error *err) {
-  *out = (ss_certified){e->cond, 0.0};
+  *out = (ss_certified){e->cond, 0.0, "exact"};
   *inj =
       (ss_charmap_inj){{SS_UNDECIDED, "no characteristic map", 0, SS_ON_NOTHING}, 0, 0};
   if (x) *x = NULL;

@@ -33,6 +33,9 @@ typedef struct {
   ss_verdict cond; /* the eigenvalue condition, proven (certified) or
                       undecided */
   double seconds;  /* time the exact path took (wall clock) */
+  const char *route; /* what proved or tried to: "exact" (NULL: the same),
+                        "Fourier blocks in balls" (ss_fourier.h) or "balls,
+                        ties by Schur's lemma" (ss_schur.h); a static string */
 } ss_certified;
 
 /* Run the exact path on case c (M, e from the double path; cm, reg, inj its

@@ -305,7 +305,7 @@ static int rest_below(const ss_schur *s, size_t one, const size_t *lead, int nl,
  * memory. */
 static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t ng,
                        size_t one, const size_t *lead, int nl) {
-  char b1[64], why[200] = "";
+  char b1[64], why[320] = "";
   sc_root *o = s->rt + r;
   root_text(s, r, b1, sizeof b1);
   if (o->blk >= 0)
@@ -339,12 +339,12 @@ static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t n
   }
   const int rc = ss_schur_character(s, r, G, ng, why, sizeof why);
   if (rc < 0) return -1;
-  if (rc > 0 || !o->scalar) {
+  if (rc > 0 || !(o->scalar || o->split)) {
     if (rc == 0)
       snprintf(why, sizeof why,
-               "<chi, chi> = [%.6g, %.6g] over the %zu symmetries is not proven 1: the "
-               "tie is not forced by the symmetry (a reducible representation, or "
-               "balls too wide)",
+               "<chi, chi> = [%.6g, %.6g] over the %zu symmetries is not proven 1 (nor "
+               "2, 3 with real constituents): the cluster is not forced by the "
+               "symmetry (balls too wide, or a constituent repeated)",
                o->nlo, o->nhi, ng);
     set_verdict(s, SS_UNDECIDED, 0, "not certified: %d eigenvalues in the ball of %s: %s",
                 o->count, b1, why);
@@ -361,7 +361,7 @@ static int assess(ss_schur *s, const size_t *G, size_t ng) {
   for (size_t i = 0; i < s->nrt && count < s->m; i++)
     if (i != one) {
       lead[nl++] = i;
-      s->rt[i].scalar = 0;
+      s->rt[i].scalar = s->rt[i].split = 0;
       count += s->rt[i].count;
     }
   if (count < s->m) {
@@ -380,6 +380,13 @@ static int assess(ss_schur *s, const size_t *G, size_t ng) {
                   s->m, s->m + 1);
       return 0;
     }
+  if (count > s->m && !s->rt[lead[nl - 1]].scalar) {
+    set_verdict(s, SS_UNDECIDED, 0,
+                "not certified: lambda%d and lambda%d in one cluster of %d distinct "
+                "constituents: their order not decided",
+                s->m, s->m + 1, s->rt[lead[nl - 1]].split);
+    return 0;
+  }
   if (count > s->m) { /* the last root, one eigenvalue, straddles m */
     char b1[64];
     set_verdict(s, SS_FAIL, 1,
@@ -414,7 +421,8 @@ static int publish(ss_schur *s) {
                                 r->blk < 0 ? 0 : (int)r->blk + 1,
                                 lead ? 2 : 0,
                                 r->nlo,
-                                r->nhi};
+                                r->nhi,
+                                r->scalar && r->count > 1 ? 1 : r->split};
     mag_clear(rad);
   }
   return 0;

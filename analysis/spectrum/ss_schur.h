@@ -82,6 +82,10 @@ typedef struct {
                         0: the rest */
   double norm_lo;    /* a leading root of count > 1: <chi, chi> >= norm_lo */
   double norm_hi;    /* ... and <= norm_hi (0, 0 when not computed) */
+  int constituents;  /* a leading root of count > 1: 1 for a tie proven by
+                        Schur's lemma, 2 or 3 for distinct real-type
+                        constituents (diagonalizable, real eigenvalues); 0
+                        not proven */
 } ss_schur_root;
 
 /* The analysis of S (n x n, row-major, one-ring the first n1 points: S =

@@ -26,6 +26,11 @@ typedef struct {
   int scalar;        /* 1: one eigenvalue, not defective (count 1, or a tie
                         proven by Schur's lemma) */
   double nlo, nhi;   /* <chi, chi> enclosed (0, 0: not computed) */
+  int split;         /* k = 2 or 3: V is proven the sum of k distinct
+                        irreducibles of real type (<chi, chi> = k and the
+                        Frobenius-Schur indicators (1 / |G|) sum chi(g^2)
+                        add up to k), so A on V is diagonalizable with real
+                        eigenvalues, one per constituent (not proven equal) */
   acb_mat_struct Xc; /* of A, counted: n1 x count, Rump's enclosure of a
                         basis of its invariant subspace V */
   int has_xc;        /* 1 once Xc is initialised */
@@ -73,7 +78,8 @@ int ss_schur_subspace(ss_schur *s, size_t r, char *why, size_t len);
 
 /* The character norm <chi, chi> of the group (ng elements, group as
  * ss_schur_new) on root r's enclosed V, into s->rt[r].nlo, nhi; sets
- * s->rt[r].scalar when it is proven in (0.5, 1.5).  0, or 1 with why when an
+ * s->rt[r].scalar when it is proven in (0.5, 1.5), s->rt[r].split (above)
+ * when it and the indicators' sum are proven in (k - 0.5, k + 0.5), k = 2, 3.  0, or 1 with why when an
  * element does not map the enclosure of V to itself or X_I is not proven
  * invertible; -1 out of memory. */
 int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, char *why,

@@ -77,6 +77,18 @@ static int rep_matrix(const arb_mat_t X, const arb_mat_t XIi, const slong *I,
   return 0;
 }
 
+/* Whether x is proven in (k - 0.5, k + 0.5). */
+static int near_int(const arb_t x, int k) {
+  arb_t h;
+  arb_init(h);
+  arb_set_d(h, k - 0.5);
+  int in = arb_gt(x, h);
+  arb_set_d(h, k + 0.5);
+  in = in && arb_lt(x, h);
+  arb_clear(h);
+  return in;
+}
+
 int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, char *why,
                        size_t len) {
   sc_root *o = s->rt + r;
@@ -89,7 +101,7 @@ int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, ch
   }
   pivots(X, I);
   arb_mat_t XI, XIi, Y, M, row, prod;
-  arb_t acc, chi;
+  arb_t acc, chi, ind;
   arb_mat_init(XI, c, c);
   arb_mat_init(XIi, c, c);
   arb_mat_init(Y, c, c);
@@ -98,6 +110,7 @@ int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, ch
   arb_mat_init(prod, 1, c);
   arb_init(acc);
   arb_init(chi);
+  arb_init(ind);
   int rc = 0;
   for (slong a = 0; a < c; a++)
     for (slong b = 0; b < c; b++)
@@ -114,17 +127,17 @@ int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, ch
     }
     arb_mat_trace(chi, M, SC_PREC);
     arb_addmul(acc, chi, chi, SC_PREC);
+    arb_mat_sqr(Y, M, SC_PREC); /* M_(g^2) = M_g^2: chi(g^2) */
+    arb_mat_trace(chi, Y, SC_PREC);
+    arb_add(ind, ind, chi, SC_PREC);
   }
   if (!rc) {
     arb_div_ui(acc, acc, (ulong)ng, SC_PREC);
+    arb_div_ui(ind, ind, (ulong)ng, SC_PREC);
     ss_ball_doubles(acc, &o->nlo, &o->nhi);
-    arb_t h;
-    arb_init(h);
-    arb_set_d(h, 0.5);
-    const int above = arb_gt(acc, h);
-    arb_set_d(h, 1.5);
-    o->scalar = above && arb_lt(acc, h); /* <chi, chi> = 1: irreducible */
-    arb_clear(h);
+    o->scalar = near_int(acc, 1); /* <chi, chi> = 1: irreducible */
+    for (int k = 2; k <= 3; k++) /* sum m_i^2 = k <= 3: every m_i = 1 */
+      if (near_int(acc, k) && near_int(ind, k)) o->split = k;
   }
   arb_mat_clear(XI);
   arb_mat_clear(XIi);
@@ -134,6 +147,7 @@ int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, ch
   arb_mat_clear(prod);
   arb_clear(acc);
   arb_clear(chi);
+  arb_clear(ind);
   return rc;
 }
 
