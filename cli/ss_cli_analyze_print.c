@@ -122,7 +122,7 @@ static void print_spectrum(const ss_cli_analyze_opts *o, const ss_pipeline *p) {
     /* proven without an exact spectrum: the Fourier blocks in balls
      * (ss_fourier.h, surface vertices and edges with irrational weights) or
      * the balls and Schur's lemma (ss_schur.h, volume vertices) */
-    const char *how = p->certified_by ? p->certified_by : "exact";
+    const char *how = p->route ? p->route : "exact";
     printf("eigenvalue condition, %s (%.2f s): %s%s%s%s\n", how, p->exact_seconds,
            ss_verdict_name(cond->verdict), certified_text(p, cond),
            cond->reason[0] ? ": " : "", cond->reason);

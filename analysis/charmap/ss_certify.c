@@ -14,9 +14,9 @@
  * in their windows, ss_fourier.h) or sx (the Schur route, ss_schur.h). */
 static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charmap *cm,
                              const ss_charmap_opts *o, const ss_verdict *cond,
-                             const ss_exact *ex, const ss_fourier *fx,
-                             const ss_schur *sx, long maxden,
-                             ss_regularity *reg, ss_charmap_inj *inj, ss_error *err) {
+                             const ss_exact *ex, const ss_fourier *fx, const ss_schur *sx,
+                             long maxden, ss_regularity *reg, ss_charmap_inj *inj,
+                             ss_error *err) {
   ss_status st = SS_OK;
   double *lo = NULL, *hi = NULL;
   if (!cond->certified) { /* undecided already, with its reason */

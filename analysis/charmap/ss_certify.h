@@ -30,9 +30,9 @@ SS_BEGIN_DECLS
 
 /* What the exact path adds to one case. */
 typedef struct {
-  ss_verdict cond; /* the eigenvalue condition, proven (certified) or
-                      undecided */
-  double seconds;  /* time the exact path took (wall clock) */
+  ss_verdict cond;   /* the eigenvalue condition, proven (certified) or
+                        undecided */
+  double seconds;    /* time the exact path took (wall clock) */
   const char *route; /* what proved or tried to: "exact" (NULL: the same),
                         "Fourier blocks in balls" (ss_fourier.h) or "balls,
                         ties by Schur's lemma" (ss_schur.h); a static string */
@@ -44,8 +44,10 @@ typedef struct {
  * exact spectrum, owned by the caller (ss_exact_free), NULL when it could not
  * be built.  A scheme whose weights are not small rationals is not an error:
  * everything is then "not certified", except at surface vertices and edges,
- * whose condition the Fourier blocks in balls may prove (ss_fourier.h; *x
- * stays NULL then).  SS_ENOMEM; SS_EINPUT for malformed inputs. */
+ * whose condition the Fourier blocks in balls may prove (ss_fourier.h), and
+ * at volume vertices and the edges the blocks leave undecided, the balls
+ * with ties by Schur's lemma (ss_schur.h); *x stays NULL then.  SS_ENOMEM; SS_EINPUT for
+ * malformed inputs. */
 ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
                      const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
                      ss_charmap_inj *inj, ss_certified *out, ss_exact **x, ss_error *err);
@@ -57,9 +59,9 @@ ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
  * known not to be rational (ss_scheme_weights_rational; for volume cases
  * ss_scheme_volume_weights_rational, the weights their rows read): then the three are
  * unproven, "weights not rational", and *x stays NULL (a surface vertex or an
- * edge goes to the Fourier route instead).  *cm (caller frees; NULL without
- * a map) and *x (may be NULL; caller frees; set only with certify) as there;
- * out->cond is e's condition unless certify proves or unproves it.
+ * edge goes to the Fourier route instead, a volume vertex to the Schur route).  *cm
+ * (caller frees; NULL without a map) and *x (may be NULL; caller frees; set only with
+ * certify) as there; out->cond is e's condition unless certify proves or unproves it.
  * Errors: those of the calls. */
 ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
                               const ss_eig *e, const ss_charmap_opts *o, int certify,

@@ -226,7 +226,7 @@ static ss_status verdicts(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) 
   if (st) return st;
   p->v = (ss_verdicts){cert.cond, p->reg.verdict, p->inj.verdict};
   p->exact_seconds = cert.seconds;
-  p->certified_by = cert.route;
+  p->route = cert.route;
   if (p->cm && (st = psi(p, tm, err))) return st;
   if (!p->cm && p->opts.force && p->e->basis) {
     if ((st = ss_charmap_new(p->M, p->e, &p->cm, err)) ||

@@ -144,7 +144,7 @@ typedef struct {
                               NULL when it could not be built */
   double exact_seconds;    /* verdicts with certify: the exact path's wall
                               clock */
-  const char *certified_by; /* verdicts with certify: the route that decided
+  const char *route;       /* verdicts with certify: the route that decided
                               the condition (ss_certified.route), or NULL */
   int forced;              /* verdicts with force: 1 if cm is a forced map */
   ss_verdicts v;           /* verdicts: the eigenvalue condition (eigen: the

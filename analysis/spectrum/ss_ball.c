@@ -57,7 +57,8 @@ int ss_ball_eig(acb_ptr E, acb_mat_t R, const acb_mat_t B, acb_ptr E0p, acb_mat_
   return rc;
 }
 
-int ss_ball_invariant(const double *S, size_t n, const size_t *p, size_t *bi, size_t *bj) {
+int ss_ball_invariant(const double *S, size_t n, const size_t *p, size_t *bi,
+                      size_t *bj) {
   for (size_t i = 0; i < n; i++)
     for (size_t j = 0; j < n; j++) {
       const double a = S[i * n + j], b = S[p[i] * n + p[j]];

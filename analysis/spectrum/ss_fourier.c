@@ -655,7 +655,8 @@ static ss_status check_input(ss_fourier *f, const double *S, const size_t *rot,
                           "Fourier blocks: the symmetries do not keep the one-ring");
   }
   size_t bi = 0, bj = 0;
-  *sym = ss_ball_invariant(S, n, rot, &bi, &bj) && ss_ball_invariant(S, n, refl, &bi, &bj);
+  *sym =
+      ss_ball_invariant(S, n, rot, &bi, &bj) && ss_ball_invariant(S, n, refl, &bi, &bj);
   if (!*sym)
     set_verdict(f, SS_UNDECIDED, 0,
                 "not certified: S is not invariant under the star's rotation and "

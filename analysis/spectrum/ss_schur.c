@@ -68,7 +68,8 @@ static int by_hash(const void *a, const void *b) {
 }
 
 /* Whether q (n entries) is one of the elements (H sorted by hash). */
-static int member(const hashed *H, size_t ng, const size_t *G, size_t n, const size_t *q) {
+static int member(const hashed *H, size_t ng, const size_t *G, size_t n,
+                  const size_t *q) {
   const uint64_t h = perm_hash(q, n);
   size_t a = 0, b = ng;
   while (a < b) { /* the first entry of hash >= h */
@@ -245,7 +246,8 @@ static int proven_real(const ss_schur *s, size_t a) {
 /* "0.4226+0i" */
 static const char *root_text(const ss_schur *s, size_t i, char *buf, size_t len) {
   const sc_root *r = s->rt + i;
-  snprintf(buf, len, "%.10g%+.3gi", arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR),
+  snprintf(buf, len, "%.10g%+.3gi",
+           arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR),
            arf_get_d(arb_midref(acb_imagref(&r->z)), ARF_RND_NEAR));
   return buf;
 }
@@ -319,7 +321,8 @@ static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t n
     snprintf(why, sizeof why, "lambda%d = %s not proven real", pos, b1);
   else if (!positive_re(s, r)) {
     if (nonpositive_re(s, r) && rest_below(s, one, lead, nl, &o->mod)) {
-      set_verdict(s, SS_FAIL, 1, "lambda%d = %s is not positive (proven, balls)", pos, b1);
+      set_verdict(s, SS_FAIL, 1, "lambda%d = %s is not positive (proven, balls)", pos,
+                  b1);
       return 1;
     }
     snprintf(why, sizeof why, "lambda%d = %s not proven positive", pos, b1);
@@ -449,7 +452,8 @@ static ss_status analyse(ss_schur *s, const double *S, const size_t *G, size_t n
   if (assess(s, G, ng) < 0) return ss_error_nomem(err, "Schur route");
   if (s->cond.verdict == SS_PASS) {
     for (int j = 0; j < s->nlead && !rc; j++)
-      if (!s->rt[s->lead[j]].has_x) rc = ss_schur_subspace(s, s->lead[j], s->bmsg, sizeof s->bmsg);
+      if (!s->rt[s->lead[j]].has_x)
+        rc = ss_schur_subspace(s, s->lead[j], s->bmsg, sizeof s->bmsg);
     if (!rc) rc = ss_schur_complete(s, S, s->bmsg, sizeof s->bmsg);
     if (rc < 0) return ss_error_nomem(err, "Schur basis");
   }

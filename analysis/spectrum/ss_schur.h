@@ -72,20 +72,20 @@ typedef struct ss_schur ss_schur; /* opaque: the enclosures */
 
 /* One root: a ball holding count eigenvalues of S. */
 typedef struct {
-  double re, im;     /* midpoint */
-  double rad;        /* |true - (re + i im)| <= rad for each of them */
-  int count;         /* eigenvalues in the ball (with multiplicity); 0: the
-                        ball only bounds where they are (a Jordan block) */
-  int outer;         /* 0: an eigenvalue of the one-ring block A; 1 + c: of
-                        C's component c */
-  int lead;          /* 1: lambda0; 2: among lambda1..m (or straddling m);
-                        0: the rest */
-  double norm_lo;    /* a leading root of count > 1: <chi, chi> >= norm_lo */
-  double norm_hi;    /* ... and <= norm_hi (0, 0 when not computed) */
-  int constituents;  /* a leading root of count > 1: 1 for a tie proven by
-                        Schur's lemma, 2 or 3 for distinct real-type
-                        constituents (diagonalizable, real eigenvalues); 0
-                        not proven */
+  double re, im;    /* midpoint */
+  double rad;       /* |true - (re + i im)| <= rad for each of them */
+  int count;        /* eigenvalues in the ball (with multiplicity); 0: the
+                       ball only bounds where they are (a Jordan block) */
+  int outer;        /* 0: an eigenvalue of the one-ring block A; 1 + c: of
+                       C's component c */
+  int lead;         /* 1: lambda0; 2: among lambda1..m (or straddling m);
+                       0: the rest */
+  double norm_lo;   /* a leading root of count > 1: <chi, chi> >= norm_lo */
+  double norm_hi;   /* ... and <= norm_hi (0, 0 when not computed) */
+  int constituents; /* a leading root of count > 1: 1 for a tie proven by
+                       Schur's lemma, 2 or 3 for distinct real-type
+                       constituents (diagonalizable, real eigenvalues); 0
+                       not proven */
 } ss_schur_root;
 
 /* The analysis of S (n x n, row-major, one-ring the first n1 points: S =

@@ -40,20 +40,20 @@ typedef struct {
 } sc_root;
 
 struct ss_schur {
-  size_t n, n1;        /* size of S; its one-ring points */
-  int m;               /* subdominant eigenvalues: 2 or 3 */
-  size_t nrt;          /* roots */
-  size_t cap;          /* roots allocated */
-  sc_root *rt;         /* nrt of them, by decreasing midpoint modulus */
-  ss_schur_root *pub;  /* nrt public copies, same order */
-  ss_csr csr;          /* S's nonzero entries */
-  ss_scc scc;          /* C's components */
-  ss_verdict cond;     /* the condition */
-  int certified;       /* 1 if cond is proven */
-  size_t lead[4];      /* on a pass: the roots of lambda1..m */
-  int nlead;           /* ... how many */
-  double *lo, *hi;     /* on a pass: the basis enclosure (n x m), or NULL */
-  char bmsg[256];      /* why there is no basis on a pass */
+  size_t n, n1;       /* size of S; its one-ring points */
+  int m;              /* subdominant eigenvalues: 2 or 3 */
+  size_t nrt;         /* roots */
+  size_t cap;         /* roots allocated */
+  sc_root *rt;        /* nrt of them, by decreasing midpoint modulus */
+  ss_schur_root *pub; /* nrt public copies, same order */
+  ss_csr csr;         /* S's nonzero entries */
+  ss_scc scc;         /* C's components */
+  ss_verdict cond;    /* the condition */
+  int certified;      /* 1 if cond is proven */
+  size_t lead[4];     /* on a pass: the roots of lambda1..m */
+  int nlead;          /* ... how many */
+  double *lo, *hi;    /* on a pass: the basis enclosure (n x m), or NULL */
+  char bmsg[256];     /* why there is no basis on a pass */
 };
 
 /* A new root appended to s->rt (zeroed, its balls initialised), or NULL
@@ -79,8 +79,8 @@ int ss_schur_subspace(ss_schur *s, size_t r, char *why, size_t len);
 /* The character norm <chi, chi> of the group (ng elements, group as
  * ss_schur_new) on root r's enclosed V, into s->rt[r].nlo, nhi; sets
  * s->rt[r].scalar when it is proven in (0.5, 1.5), s->rt[r].split (above)
- * when it and the indicators' sum are proven in (k - 0.5, k + 0.5), k = 2, 3.  0, or 1 with why when an
- * element does not map the enclosure of V to itself or X_I is not proven
+ * when it and the indicators' sum are proven in (k - 0.5, k + 0.5), k = 2, 3.  0, or 1
+ * with why when an element does not map the enclosure of V to itself or X_I is not proven
  * invertible; -1 out of memory. */
 int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, char *why,
                        size_t len);

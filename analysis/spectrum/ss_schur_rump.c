@@ -107,8 +107,8 @@ static int rump(const acb_mat_t B, const acb_t lam0, const acb_mat_t Xap, acb_t 
  * within CLUSTER of the real axis) gets a real orthonormal basis of the
  * members' real and imaginary parts (largest remaining first), so that the
  * enclosure's frozen rows are real.  0, or -1 out of memory. */
-static int approx(acb_srcptr E0, const acb_mat_t R0, const slong *m, slong k, acb_mat_t Xap,
-                  acb_t lam0) {
+static int approx(acb_srcptr E0, const acb_mat_t R0, const slong *m, slong k,
+                  acb_mat_t Xap, acb_t lam0) {
   const slong b = acb_mat_nrows(R0);
   double re = 0.0, im = 0.0;
   int real = 1;
@@ -205,7 +205,8 @@ static int by_clusters(ss_schur *s, const acb_mat_t B, long blk, acb_srcptr E0,
                        const acb_mat_t R0) {
   const slong b = acb_mat_nrows(B);
   const size_t first = s->nrt;
-  slong *cl = malloc(((size_t)b + 1) * sizeof *cl), *m = malloc(((size_t)b + 1) * sizeof *m);
+  slong *cl = malloc(((size_t)b + 1) * sizeof *cl),
+        *m = malloc(((size_t)b + 1) * sizeof *m);
   if (!cl || !m) {
     free(cl);
     free(m);

@@ -136,7 +136,7 @@ int ss_schur_character(ss_schur *s, size_t r, const size_t *group, size_t ng, ch
     arb_div_ui(ind, ind, (ulong)ng, SC_PREC);
     ss_ball_doubles(acc, &o->nlo, &o->nhi);
     o->scalar = near_int(acc, 1); /* <chi, chi> = 1: irreducible */
-    for (int k = 2; k <= 3; k++) /* sum m_i^2 = k <= 3: every m_i = 1 */
+    for (int k = 2; k <= 3; k++)  /* sum m_i^2 = k <= 3: every m_i = 1 */
       if (near_int(acc, k) && near_int(ind, k)) o->split = k;
   }
   arb_mat_clear(XI);
@@ -186,7 +186,8 @@ static int complete_root(const ss_schur *s, const double *S, size_t r, arb_mat_t
         for (slong j = 0; j < c; j++)
           arb_addmul(arb_mat_entry(R, x, j), w, arb_mat_entry(Z, (slong)col, j), SC_PREC);
       }
-      arb_add(arb_mat_entry(D, x, x), arb_mat_entry(D, x, x), acb_realref(&o->z), SC_PREC);
+      arb_add(arb_mat_entry(D, x, x), arb_mat_entry(D, x, x), acb_realref(&o->z),
+              SC_PREC);
     }
     rc = rc || !arb_mat_solve(Y, D, R, SC_PREC);
     for (slong x = 0; x < b && !rc; x++)
@@ -225,8 +226,9 @@ int ss_schur_complete(ss_schur *s, const double *S, char *why, size_t len) {
     free(s->lo);
     free(s->hi);
     s->lo = s->hi = NULL;
-    snprintf(why, len, "%s",
-             "the eigenvectors' outer rows not enclosed ((lambda - C) singular in balls)");
+    snprintf(
+        why, len, "%s",
+        "the eigenvectors' outer rows not enclosed ((lambda - C) singular in balls)");
   }
   return rc;
 }
