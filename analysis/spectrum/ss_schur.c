@@ -209,24 +209,15 @@ conj_ball(acb_t cz, const acb_t z) {
   acb_conj(cz, z);
 }
 
-/* Whether Re of root r > 0 is proven (not inlined: as conj_ball). */
+/* The proven sign of Re of root r: 1 positive, -1 not positive, 0 unknown
+ * (not inlined: as conj_ball). */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 static int
-positive_re(const ss_schur *s, size_t r) {
+re_sign(const ss_schur *s, size_t r) {
   const arb_struct *re = acb_realref(&s->rt[r].z);
-  return arb_is_positive(re);
-}
-
-/* Whether Re of root r <= 0 is proven (not inlined: as conj_ball). */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static int
-nonpositive_re(const ss_schur *s, size_t r) {
-  const arb_struct *re = acb_realref(&s->rt[r].z);
-  return arb_is_nonpositive(re);
+  return arb_is_positive(re) ? 1 : arb_is_nonpositive(re) ? -1 : 0;
 }
 
 /* Whether root a is proven real: the conjugate of its ball meets no other
@@ -319,8 +310,8 @@ static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t n
     snprintf(why, sizeof why, "lambda%d = %s not isolated (balls)", pos, b1);
   else if (!proven_real(s, r))
     snprintf(why, sizeof why, "lambda%d = %s not proven real", pos, b1);
-  else if (!positive_re(s, r)) {
-    if (nonpositive_re(s, r) && rest_below(s, one, lead, nl, &o->mod)) {
+  else if (re_sign(s, r) != 1) {
+    if (re_sign(s, r) == -1 && rest_below(s, one, lead, nl, &o->mod)) {
       set_verdict(s, SS_FAIL, 1, "lambda%d = %s is not positive (proven, balls)", pos,
                   b1);
       return 1;
