@@ -139,13 +139,18 @@ static void agree_case(const ss_scheme *rat, const ss_scheme *alg, const ss_case
   const ss_exact_root *rx = s ? ss_exact_roots(a.x, &nx) : NULL;
   const ss_schur_root *rs = s ? ss_schur_roots(s, &ns) : NULL;
   for (size_t i = 0; i < nx && i < 4; i++) {
-    int in = 0; /* eigenvalues counted by the balls that hold this root */
+    int in = 0, by = 1; /* eigenvalues counted by the balls that hold this root;
+                           a leading repeated one's cluster proven by the symmetry */
     for (size_t j = 0; j < ns; j++)
       if (hypot(rs[j].re - rx[i].re, rs[j].im - rx[i].im) <=
-          rs[j].rad + rx[i].rad + 1e-15)
+          rs[j].rad + rx[i].rad + 1e-15) {
         in += rs[j].count;
+        if (rs[j].lead == 2 && rs[j].count > 1) by = rs[j].constituents;
+      }
     CHECK(in == rx[i].mult, "%s: exact root %.17g%+.3gi (mult %d) in balls of count %d",
           link, rx[i].re, rx[i].im, rx[i].mult, in);
+    CHECK(by >= 1 || b.out.cond.verdict != SS_PASS,
+          "%s: the cluster of %.17g passed, not proven by the symmetry", link, rx[i].re);
   }
   ss_schur_free(s);
   free(G);
@@ -207,8 +212,9 @@ static void icosahedron(const ss_scheme *alg) {
   size_t t = 0; /* the triple */
   while (t < nr && rs[t].lead != 2)
     t++;
-  const int triple = t < nr && rs[t].count == 3 && rs[t].norm_lo <= 1 &&
-                     rs[t].norm_hi >= 1 && rs[t].norm_hi - rs[t].norm_lo < 1e-6;
+  const int triple = t < nr && rs[t].count == 3 && rs[t].constituents == 1 &&
+                     rs[t].norm_lo <= 1 && rs[t].norm_hi >= 1 &&
+                     rs[t].norm_hi - rs[t].norm_lo < 1e-6;
   CHECK(triple, "icosahedron: no triple of <chi, chi> = 1");
   if (!triple) goto done;
   for (int j = 1; j <= 3; j++) { /* LAPACK's lambda1..3 */
