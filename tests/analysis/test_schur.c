@@ -23,7 +23,8 @@
  *     exact roots in balls of their multiplicity.
  * Mutations (the tie is proven only by the symmetry, so breaking it must
  * leave the condition undecided, never a pass):
- *   - the icosahedral S with the group cut to {id, one reflection} or {id}:
+ * On the octahedron (48 automorphisms, the 1/2 triple T1u):
+ *   - the group cut to {id, an involution} or {id}:
  *     <chi, chi> = 5 or 9, "not forced by the symmetry", undecided;
  *   - one entry of S moved by 1e-9 (the row still summing to 1): "not
  *     invariant", undecided;
@@ -225,54 +226,75 @@ static void icosahedron(const ss_scheme *alg) {
           v->im, rs[t].re, rs[t].rad);
   }
   CHECK(rs[t].rad < 1e-9, "icosahedron: the triple's radius %.3g", rs[t].rad);
+done:
+  ss_schur_free(s);
+  free(G);
+  run_free(&a);
+  ss_link_free(l);
+}
+
+/* The mutations on the octahedron (its 48 automorphisms, the 1/2 triple
+ * T1u): a group too small to force the tie, S moved, elements that are no
+ * automorphisms. */
+static void mutations(const ss_scheme *alg) {
+  ss_link *l = NULL;
+  ss_error err = {0};
+  if (!CHECK_OK(ss_link_named("octahedron", &l, &err), &err)) return;
+  const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
+  run r;
+  const run *a = &r;
+  size_t *G = NULL, ng = 0;
+  if (!run_case(alg, &c, &r) ||
+      !CHECK_OK(ss_charmap_sym_group(r.M, &c, &G, &ng, &err), &err))
+    goto done;
+  CHECK(ng == 48, "octahedron: %zu automorphisms, want 48", ng);
   /* mutations: a group too small to force the tie */
   size_t refl = 1; /* some automorphism of order 2 */
   while (refl < ng) {
     size_t i = 0;
-    while (i < a.M->n2 && G[refl * a.M->n2 + G[refl * a.M->n2 + i]] == i)
+    while (i < a->M->n2 && G[refl * a->M->n2 + G[refl * a->M->n2 + i]] == i)
       i++;
-    if (i == a.M->n2) break;
+    if (i == a->M->n2) break;
     refl++;
   }
-  const size_t n = a.M->n2;
+  const size_t n = a->M->n2;
   size_t *H = malloc(2 * n * sizeof *H);
   double *S = malloc(n * n * sizeof *S);
   if (H && S && refl < ng) {
     memcpy(H, G, n * sizeof *H);
     memcpy(H + n, G + refl * n, n * sizeof *H);
-    expect(&a, NULL, H, 2, SS_UNDECIDED, "not forced by the symmetry", SS_OK,
-           "icosahedron, {id, an involution}");
-    expect(&a, NULL, H, 1, SS_UNDECIDED, "not forced by the symmetry", SS_OK,
-           "icosahedron, {id}");
+    expect(a, NULL, H, 2, SS_UNDECIDED, "not forced by the symmetry", SS_OK,
+           "{id, an involution}");
+    expect(a, NULL, H, 1, SS_UNDECIDED, "not forced by the symmetry", SS_OK,
+           "octahedron, {id}");
     /* one entry moved (row sum kept) */
-    memcpy(S, a.M->S, n * n * sizeof *S);
+    memcpy(S, a->M->S, n * n * sizeof *S);
     size_t i = 1, j = 0;
     while (j + 1 < n && !(S[i * n + j] != 0 && S[i * n + j + 1] != 0))
       j++;
     S[i * n + j] += 1e-9;
     S[i * n + j + 1] -= 1e-9;
-    expect(&a, S, G, ng, SS_UNDECIDED, "not invariant", SS_OK, "icosahedron, S moved");
+    expect(a, S, G, ng, SS_UNDECIDED, "not invariant", SS_OK, "octahedron, S moved");
     /* a transposition of two one-ring points 1 and 2: not an automorphism */
     for (size_t q = 0; q < n; q++)
       H[n + q] = q;
     H[n + 1] = 2, H[n + 2] = 1;
-    expect(&a, NULL, H, 2, SS_UNDECIDED, "not invariant", SS_OK,
-           "icosahedron, {id, a transposition}");
+    expect(a, NULL, H, 2, SS_UNDECIDED, "not invariant", SS_OK,
+           "octahedron, {id, a transposition}");
     size_t *W = malloc(ng * n * sizeof *W); /* the group with one element wrong */
     if (W) {
       memcpy(W, G, ng * n * sizeof *W);
       memcpy(W + 5 * n, H + n, n * sizeof *W);
-      expect(&a, NULL, W, ng, SS_UNDECIDED, "not a group", SS_EINPUT,
-             "icosahedron, element 5 a transposition");
+      expect(a, NULL, W, ng, SS_UNDECIDED, "not a group", SS_EINPUT,
+             "octahedron, element 5 a transposition");
     }
     free(W);
   }
   free(H);
   free(S);
 done:
-  ss_schur_free(s);
   free(G);
-  run_free(&a);
+  run_free(&r);
   ss_link_free(l);
 }
 
@@ -298,6 +320,7 @@ int main(int argc, char **argv) {
     agree(rat, alg, "bipyramid:3");
     agree(rat, alg, "bipyramid:6");
     icosahedron(alg);
+    mutations(alg);
   }
   ss_scheme_free(alg);
   ss_scheme_free(rat);
