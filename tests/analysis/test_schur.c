@@ -264,7 +264,7 @@ static void mutations(const ss_scheme *alg) {
     memcpy(H, G, n * sizeof *H);
     memcpy(H + n, G + refl * n, n * sizeof *H);
     expect(a, NULL, H, 2, SS_UNDECIDED, "not forced by the symmetry", SS_OK,
-           "{id, an involution}");
+           "octahedron, {id, an involution}");
     expect(a, NULL, H, 1, SS_UNDECIDED, "not forced by the symmetry", SS_OK,
            "octahedron, {id}");
     /* one entry moved (row sum kept) */
