@@ -20,7 +20,10 @@
  *     cos(2*pi/n)/64 (the Fourier blocks leave these undecided: the edge's
  *     4n symmetries prove them; at n = 4 the 1/2 triple is two distinct
  *     constituents, along and across): the same certified verdicts, the
- *     exact roots in balls of their multiplicity.
+ *     exact roots in balls of their multiplicity; and the same two at the
+ *     icosahedron's vertex (S rational in value, 120 automorphisms): the
+ *     exact path's roots (FLINT's factored charpoly, the T1u triple a root
+ *     of a quartic) each in a Schur ball of its multiplicity.
  * Mutations (the tie is proven only by the symmetry, so breaking it must
  * leave the condition undecided, never a pass):
  * On the octahedron (48 automorphisms, the 1/2 triple T1u):
@@ -331,6 +334,7 @@ int main(int argc, char **argv) {
   ss_scheme *mcos =
       edited("mlca.ini", "self = 1/8", "self = 1/8 + cos(2*pi/n)/64 - cos(2*pi/n)/64",
              "mlca-cos.ini");
+  if (mcos) agree(mlca, mcos, "icosahedron"); /* the T1u triple against FLINT's roots */
   for (int n = 3; n <= 6 && mcos; n++) {
     char what[32];
     snprintf(what, sizeof what, "mlca edge %d", n);
