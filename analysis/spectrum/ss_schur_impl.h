@@ -12,7 +12,7 @@
 #include "ss_schur.h"
 
 enum {
-  SC_PREC = 128 /* working precision, bits: the entries' windows decide the
+  SC_PREC = 64 /* working precision, bits: the entries' windows decide the
                    width, not this */
 };
 
