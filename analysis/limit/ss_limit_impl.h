@@ -114,6 +114,29 @@ ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical
                       ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
                       ss_error *err);
 
+/* One refinement of a patch complex, from which any of its 8 children is cut
+ * (ss_lim_cut): ss_lim_step refines the whole patch for one child, so a box
+ * judged child by child would refine the same patch 8 times. */
+typedef struct {
+  const ss_cx *pcx; /* the parent patch complex (borrowed; cell 0 the target) */
+  ss_cx *fine;      /* pcx refined by the scheme */
+  void *R;          /* its refinement operator (a gsl_spmatrix, rows by fine
+                       vertex), or NULL when no rows were asked for */
+  ss_lim_adj fa;    /* fine's adjacency */
+  int64_t *loc;     /* scratch, fine->nv entries, all -1 between calls */
+} ss_lim_refined;
+
+/* Refine pcx once (with_rows: keep the refinement operator for ss_lim_cut's
+ * W).  *out is the caller's to free (ss_lim_refined_free, also after an
+ * error).  The errors of ss_lim_step's refinement. */
+ss_status ss_lim_refine(const ss_scheme *s, const ss_cx *pcx, int with_rows,
+                        ss_lim_refined *out, ss_error *err);
+/* Child k of r's cell 0, exactly as ss_lim_step(s, r->pcx, k, ...) gives it
+ * (W only when r kept the rows). */
+ss_status ss_lim_cut(const ss_lim_refined *r, int k, int canonical, ss_lim_patch *child,
+                     ss_lim_frame *g, ss_cx **ccx, double **W, ss_error *err);
+void ss_lim_refined_free(ss_lim_refined *r);
+
 #define SS_LIM_NPOW                                                                      \
   12 /* powers W^(2^i) kept for a defective run: runs are at most                        \
         about 1075 steps (the binary exponents of doubles) */
@@ -246,6 +269,9 @@ typedef struct {
   ss_lim_tensor *ten;  /* the layered structure, computed on first need */
   size_t src_cell;     /* coarse-only: a mesh cell with this patch, to rebuild the
                           instance cx from (it is dropped with the transitions) */
+  ss_lim_refined *rf;  /* cx refined once for its transitions while some of the
+                          8 are still to compute, else NULL (dropped with the
+                          transitions) */
 } ss_lim_state;
 
 /* Per coarse cell: its patch's state and where its points come from. */

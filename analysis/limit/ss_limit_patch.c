@@ -397,9 +397,15 @@ static void mark_regular(ss_lim_patch *out, int posok) {
   }
 }
 
-ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
-                             int64_t *loc, ss_lim_patch *out, ss_error *err) {
+/* ss_lim_patch_build; with bound (a patch of t in another frame) the walk
+ * stops as soon as its key is known to compare above bound's (*worse = 1,
+ * *out empty): the keys are written cell by cell in walk order, so the first
+ * cell whose 8 words differ decides memcmp of the whole keys. */
+static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                            int64_t *loc, const ss_lim_patch *bound, int *worse,
+                            ss_lim_patch *out, ss_error *err) {
   ss_status st = SS_OK;
+  *worse = 0;
   const ss_cx *cx = a->cx;
   const ss_idx *tv = ss_cx_cell(cx, SS_HEX, t);
   memset(out, 0, sizeof *out);
@@ -429,6 +435,15 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
   while (head < tail) {
     const walk_cell *A = &q[head];
     walk_number(cx, A, head, loc, out, &posok);
+    if (bound && head < bound->ncells) {
+      const int c =
+          memcmp(out->key + head * 8, bound->key + head * 8, 8 * sizeof *out->key);
+      if (c > 0) {
+        *worse = 1;
+        goto done;
+      }
+      if (c < 0) bound = NULL; /* below bound already: the whole walk is needed */
+    }
     for (int axis = 0; axis < 3; axis++)
       for (unsigned side = 0; side < 2; side++)
         if ((st = walk_across(a, tv, A, axis, side, q, &tail, err))) goto done;
@@ -450,8 +465,14 @@ done:
     loc[out->src[v]] = -1;
   free(mem);
   free(q);
-  if (st) ss_lim_patch_free(out);
+  if (st || *worse) ss_lim_patch_free(out);
   return st;
+}
+
+ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                             int64_t *loc, ss_lim_patch *out, ss_error *err) {
+  int worse;
+  return patch_walk(a, t, g, loc, NULL, &worse, out, err);
 }
 
 ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
@@ -468,10 +489,12 @@ ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
         h.flip[d] = (f >> d) & 1;
       }
       ss_lim_patch cand;
-      if ((st = ss_lim_patch_build(a, t, &h, loc, &cand, err))) {
+      int worse = 0; /* its key above the best's: walk stopped early */
+      if ((st = patch_walk(a, t, &h, loc, out->key ? out : NULL, &worse, &cand, err))) {
         ss_lim_patch_free(out);
         return st;
       }
+      if (worse) continue;
       int better = out->key == NULL;
       if (!better && cand.ncells == out->ncells) {
         int c = memcmp(cand.key, out->key, cand.ncells * 8 * sizeof *cand.key);
@@ -521,39 +544,51 @@ done:
   return st;
 }
 
-ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
-                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
-                      ss_error *err) {
-  ss_status st;
-  ss_cx *fine = NULL;
+void ss_lim_refined_free(ss_lim_refined *r) {
+  if (!r) return;
+  free(r->loc);
+  ss_lim_adj_free(&r->fa);
+  if (r->R) gsl_spmatrix_free(r->R);
+  ss_cx_free(r->fine);
+  memset(r, 0, sizeof *r);
+}
+
+ss_status ss_lim_refine(const ss_scheme *s, const ss_cx *pcx, int with_rows,
+                        ss_lim_refined *out, ss_error *err) {
+  memset(out, 0, sizeof *out);
+  out->pcx = pcx;
   gsl_spmatrix *R = NULL;
-  ss_lim_adj fa = {0};
-  int64_t *loc = NULL;
+  ss_status st = ss_scheme_refine(s, pcx, &out->fine, with_rows ? &R : NULL, err);
+  out->R = R;
+  if (st) return st;
+  if ((st = ss_lim_adj_build(out->fine, &out->fa, err))) return st;
+  out->loc = malloc((out->fine->nv + 1) * sizeof *out->loc);
+  if (!out->loc) return ss_error_nomem(err, "patch scratch");
+  for (size_t v = 0; v < out->fine->nv; v++)
+    out->loc[v] = -1;
+  return SS_OK;
+}
+
+ss_status ss_lim_cut(const ss_lim_refined *r, int k, int canonical, ss_lim_patch *child,
+                     ss_lim_frame *g, ss_cx **ccx, double **W, ss_error *err) {
+  ss_status st;
+  const ss_cx *fine = r->fine, *pcx = r->pcx;
+  const gsl_spmatrix *R = r->R;
   memset(child, 0, sizeof *child);
   *ccx = NULL;
   if (W) *W = NULL;
-  if ((st = ss_scheme_refine(s, pcx, &fine, W ? &R : NULL, err))) goto done;
+  if (W && !R) return ss_error_set(err, SS_EINTERNAL, "limit: rows not kept");
   /* child k of cell 0 is fine hex k, holding coarse corner k at its corner k */
   if (fine->nc[SS_HEX] < 8 ||
-      ss_cx_cell(fine, SS_HEX, (size_t)k)[k] != ss_cx_cell(pcx, SS_HEX, 0)[k]) {
-    st = ss_error_set(err, SS_EINTERNAL,
-                      "limit: the split did not put child %d at corner %d of its parent",
-                      k, k);
-    goto done;
-  }
-  if ((st = ss_lim_adj_build(fine, &fa, err))) goto done;
-  loc = malloc((fine->nv + 1) * sizeof *loc);
-  if (!loc) {
-    st = ss_error_nomem(err, "patch scratch");
-    goto done;
-  }
-  for (size_t v = 0; v < fine->nv; v++)
-    loc[v] = -1;
+      ss_cx_cell(fine, SS_HEX, (size_t)k)[k] != ss_cx_cell(pcx, SS_HEX, 0)[k])
+    return ss_error_set(
+        err, SS_EINTERNAL,
+        "limit: the split did not put child %d at corner %d of its parent", k, k);
   if (canonical)
-    st = ss_lim_patch_canonical(&fa, (size_t)k, loc, child, g, err);
+    st = ss_lim_patch_canonical(&r->fa, (size_t)k, r->loc, child, g, err);
   else {
     *g = ss_lim_frame_id();
-    st = ss_lim_patch_build(&fa, (size_t)k, g, loc, child, err);
+    st = ss_lim_patch_build(&r->fa, (size_t)k, g, r->loc, child, err);
   }
   if (st || (st = ss_lim_patch_complex(fine, child, ccx, err))) goto done;
   if (W) {
@@ -564,8 +599,8 @@ ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical
       goto done;
     }
     for (size_t i = 0; i < Kc; i++) {
-      size_t r = child->src[i];
-      for (int q = R->p[r]; q < R->p[r + 1]; q++)
+      size_t q0 = child->src[i];
+      for (int q = R->p[q0]; q < R->p[q0 + 1]; q++)
         w[i * K + (size_t)R->i[q]] = R->data[q];
     }
     *W = w;
@@ -576,9 +611,18 @@ done:
     ss_cx_free(*ccx);
     *ccx = NULL;
   }
-  free(loc);
-  ss_lim_adj_free(&fa);
-  if (R) gsl_spmatrix_free(R);
-  ss_cx_free(fine);
+  return st;
+}
+
+ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
+                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
+                      ss_error *err) {
+  ss_lim_refined r;
+  memset(child, 0, sizeof *child);
+  *ccx = NULL;
+  if (W) *W = NULL;
+  ss_status st = ss_lim_refine(s, pcx, W != NULL, &r, err);
+  if (!st) st = ss_lim_cut(&r, k, canonical, child, g, ccx, W, err);
+  ss_lim_refined_free(&r);
   return st;
 }

@@ -19,7 +19,15 @@ void ss_lim_tensor_free(ss_lim_tensor *t) {
   free(t);
 }
 
+static void drop_refined(ss_lim_state *s) {
+  if (!s->rf) return;
+  ss_lim_refined_free(s->rf);
+  free(s->rf);
+  s->rf = NULL;
+}
+
 static void drop_transitions(ss_lim_state *s) {
+  drop_refined(s);
   for (int k = 0; k < 8; k++)
     if (s->tr[k]) {
       free(s->tr[k]->W);
@@ -171,7 +179,18 @@ ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
   ss_lim_patch child;
   ss_cx *ccx;
   double t0 = ss_clock_cpu();
-  if ((st = ss_lim_step(L->s, s->cx, k, 1, &child, &t->g, &ccx, &t->W, err))) {
+  /* one refinement of the patch for all its children (the walks ask for them
+   * one at a time: each used to refine the patch again) */
+  if (!s->rf && !(s->rf = calloc(1, sizeof *s->rf))) {
+    free(t);
+    return ss_error_nomem(err, "refined patch");
+  }
+  if (!s->rf->fine && (st = ss_lim_refine(L->s, s->cx, 1, s->rf, err))) {
+    drop_refined(s);
+    free(t);
+    return st;
+  }
+  if ((st = ss_lim_cut(s->rf, k, 1, &child, &t->g, &ccx, &t->W, err))) {
     free(t);
     return st;
   }
@@ -182,6 +201,10 @@ ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
   }
   ss_clock_lap(&L->stats.matrix_s, &t0);
   L->st[i]->tr[k] = t; /* L->st may have moved, the state has not */
+  int all = 1;
+  for (int j = 0; j < 8; j++)
+    all &= s->tr[j] != NULL;
+  if (all) drop_refined(s);
   L->stats.transitions++;
   L->st[t->next]->coarse_only = 0; /* a child's patch: keep its transitions */
   if (s->coarse_only && !s->held) {
