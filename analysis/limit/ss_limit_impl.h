@@ -218,8 +218,17 @@ typedef struct {
   size_t next;     /* state of the child patch */
   ss_lim_frame g;  /* the child's canonical frame relative to the inherited one */
   double *W;       /* rows: child patch points from parent patch points */
+  size_t *rp;      /* W's nonzeros row by row (a walk's step reads only
+                      these): row i's are rp[i] .. rp[i + 1] - 1 of */
+  size_t *ci;      /* their columns, ascending in each row */
   ss_lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
 } ss_lim_trans;
+
+/* P (K x D, taken over) <- W P (Kc x D) over t's nonzeros, in column order:
+ * the same sums as the dense product that skips zero weights.  SS_ENOMEM
+ * (ss_limit_state.c). */
+ss_status ss_lim_trans_apply(const ss_lim_trans *t, size_t Kc, size_t K, size_t D,
+                             double **P, ss_error *err);
 
 /* The layered structure of a patch around an extraordinary edge (the
  * paper's eq. (1)): the patch points in 4 layers along the edge, columns
