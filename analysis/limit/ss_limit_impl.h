@@ -19,14 +19,17 @@
  * the crease cells (vertex cells, segments, quads: lower-dimensional cells,
  * which the schemes refine as creases and boundaries) at each vertex. */
 typedef struct {
-  const ss_cx *cx; /* the complex (borrowed) */
-  size_t nh;       /* hexes */
-  size_t *vptr;    /* nv + 1 offsets into vcell */
-  size_t *vcell;   /* hexes at each vertex */
-  int64_t *nb;     /* nh * 6: neighbour across stored face 2 * axis + side, or -1 */
-  size_t *cptr;    /* nv + 1 offsets into ccell */
-  size_t *ccell;   /* crease cells at each vertex, as 4 * index + type
-                      (SS_VERTEX, SS_SEGMENT or SS_QUAD) */
+  const ss_cx *cx;      /* the complex (borrowed) */
+  size_t nh;            /* hexes */
+  size_t *vptr;         /* nv + 1 offsets into vcell */
+  size_t *vcell;        /* hexes at each vertex */
+  int64_t *nb;          /* nh * 6: neighbour across stored face 2 * axis + side, or -1 */
+  size_t *cptr;         /* nv + 1 offsets into ccell */
+  size_t *ccell;        /* crease cells at each vertex, as 4 * index + type
+                           (SS_VERTEX, SS_SEGMENT or SS_QUAD) */
+  unsigned char *cmark; /* scratch of a patch walk, nh entries, all 0 between
+                           walks: 1 a cell of the patch (at a corner of the
+                           target), 2 one already walked */
 } ss_lim_adj;
 
 /* Crease cell types a patch carries, and the words of one in a patch's

@@ -21,6 +21,7 @@ void ss_lim_adj_free(ss_lim_adj *a) {
   free(a->nb);
   free(a->cptr);
   free(a->ccell);
+  free(a->cmark);
   memset(a, 0, sizeof *a);
 }
 
@@ -59,9 +60,18 @@ static ss_status crease_incidence(const ss_cx *cx, ss_lim_adj *a, ss_error *err)
   return SS_OK;
 }
 
-static int cmp_u32(const void *x, const void *y) {
-  uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
-  return (a > b) - (a < b);
+/* Sort 4 words ascending (a face's corners: qsort cost more than the rest of
+ * the adjacency). */
+static void sort4(uint32_t k[4]) {
+  static const int net[5][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}, {1, 2}};
+  for (int i = 0; i < 5; i++) {
+    const int a = net[i][0], b = net[i][1];
+    if (k[a] > k[b]) {
+      const uint32_t t = k[a];
+      k[a] = k[b];
+      k[b] = t;
+    }
+  }
 }
 
 ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
@@ -73,7 +83,8 @@ ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
   a->vptr = calloc(cx->nv + 1, sizeof *a->vptr);
   a->vcell = malloc((a->nh * 8 + 1) * sizeof *a->vcell);
   a->nb = malloc((a->nh * 6 + 1) * sizeof *a->nb);
-  if (!a->vptr || !a->vcell || !a->nb) {
+  a->cmark = calloc(a->nh + 1, sizeof *a->cmark);
+  if (!a->vptr || !a->vcell || !a->nb || !a->cmark) {
     st = ss_error_nomem(err, "hex adjacency");
     goto done;
   }
@@ -100,7 +111,7 @@ ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
       uint32_t key[4];
       for (unsigned b = 0; b < 8; b++)
         if ((int)((b >> axis) & 1u) == side) key[n++] = v[cidx(b)];
-      qsort(key, 4, sizeof key[0], cmp_u32);
+      sort4(key);
       uint32_t found;
       int ins;
       if ((st = ss_hash_insert(h, key, (uint32_t)(c * 6 + (size_t)f), &found, &ins, err)))
@@ -273,14 +284,6 @@ typedef struct {
 } walk_cell;
 
 /* Whether hex c shares a vertex with the 8 vertices tv. */
-static int touches(const ss_cx *cx, size_t c, const ss_idx *tv) {
-  const ss_idx *v = ss_cx_cell(cx, SS_HEX, c);
-  for (int i = 0; i < 8; i++)
-    for (int j = 0; j < 8; j++)
-      if (v[i] == tv[j]) return 1;
-  return 0;
-}
-
 /* The member cells of the patch of hex t (corners tv): every hex at a corner
  * of t, each once, into mem; returns their number. */
 static size_t member_cells(const ss_lim_adj *a, const ss_idx *tv, size_t *mem) {
@@ -324,12 +327,11 @@ static void walk_number(const ss_cx *cx, const walk_cell *A, size_t head, int64_
 }
 
 /* The neighbour of walked cell A across its framed face (axis, side), if it
- * touches t (corners tv) and is not walked yet: appended to q at *tail, its
- * frame carried over the shared face.  SS_EINTERNAL if the face's vertices
- * are not the neighbour's. */
-static ss_status walk_across(const ss_lim_adj *a, const ss_idx *tv, const walk_cell *A,
-                             int axis, unsigned side, walk_cell *q, size_t *tail,
-                             ss_error *err) {
+ * is a cell of the patch not walked yet (a->cmark 1: at a corner of the
+ * target; then 2): appended to q at *tail, its frame carried over the shared
+ * face.  SS_EINTERNAL if the face's vertices are not the neighbour's. */
+static ss_status walk_across(const ss_lim_adj *a, const walk_cell *A, int axis,
+                             unsigned side, walk_cell *q, size_t *tail, ss_error *err) {
   const ss_cx *cx = a->cx;
   const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
   /* the stored face holding the framed face (axis, side) */
@@ -343,11 +345,9 @@ static ss_status walk_across(const ss_lim_adj *a, const ss_idx *tv, const walk_c
   int saxis = agree & 1u ? 0 : agree & 2u ? 1 : 2;
   int sside = (int)((s0 >> saxis) & 1u);
   int64_t B = a->nb[A->cell * 6 + (size_t)(2 * saxis + sside)];
-  if (B < 0 || !touches(cx, (size_t)B, tv)) return SS_OK;
-  int seen = 0;
-  for (size_t m = 0; m < *tail && !seen; m++)
-    seen = q[m].cell == (size_t)B;
-  if (seen) return SS_OK;
+  /* cmark: 1 a cell at a corner of t not walked yet (patch_walk) */
+  if (B < 0 || a->cmark[B] != 1) return SS_OK;
+  a->cmark[B] = 2;
   walk_cell *C = &q[*tail];
   C->cell = (size_t)B;
   const ss_idx *bv = ss_cx_cell(cx, SS_HEX, (size_t)B);
@@ -425,6 +425,9 @@ static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g
     goto done;
   }
   nmem = member_cells(a, tv, mem);
+  for (size_t m = 0; m < nmem; m++)
+    a->cmark[mem[m]] = 1;
+  a->cmark[t] = 2;
   /* the walk */
   size_t head = 0, tail = 0;
   q[tail].cell = t;
@@ -446,7 +449,7 @@ static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g
     }
     for (int axis = 0; axis < 3; axis++)
       for (unsigned side = 0; side < 2; side++)
-        if ((st = walk_across(a, tv, A, axis, side, q, &tail, err))) goto done;
+        if ((st = walk_across(a, A, axis, side, q, &tail, err))) goto done;
     head++;
   }
   out->ncells = tail;
@@ -463,6 +466,8 @@ static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g
 done:
   for (size_t v = 0; v < out->nv; v++)
     loc[out->src[v]] = -1;
+  for (size_t m = 0; m < nmem; m++)
+    a->cmark[mem[m]] = 0;
   free(mem);
   free(q);
   if (st || *worse) ss_lim_patch_free(out);
