@@ -214,7 +214,8 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, size_t D,
 /* ---- the evaluator's cache and object (ss_limit.c, ss_limit_state.c,
  * ss_limit_tensor.c, ss_limit_walk.c) ---- */
 
-#define SS_LIM_RECENT 64 /* coarse-only states whose transitions are kept */
+#define SS_LIM_RECENT  64 /* coarse-only states whose transitions are kept */
+#define SS_LIM_REFINED 32 /* states whose refinement is kept (ss_lim_state.rf) */
 
 /* A cached (key, child) transition. */
 typedef struct {
@@ -312,8 +313,14 @@ struct ss_limit {
    * with the mesh; points are usually asked cell by cell. */
   size_t recent[SS_LIM_RECENT]; /* ring of coarse-only states holding transitions */
   size_t nrecent;               /* entries ever pushed (the ring's head) */
-  int tensor;                   /* use eq. (1) where an edge's runs factor (default
-                                   1; ss_limit_set_tensor) */
+  /* States holding a refinement (ss_lim_state.rf) are kept to the
+   * SS_LIM_REFINED most recent: a refined patch with its rows is up to about
+   * half a megabyte, and a state whose other children are never asked for
+   * would keep it for good. */
+  size_t refined[SS_LIM_REFINED]; /* ring of states holding a refinement */
+  size_t nrefined;                /* entries ever pushed (the ring's head) */
+  int tensor;                     /* use eq. (1) where an edge's runs factor (default
+                                     1; ss_limit_set_tensor) */
   ss_limit_stats stats;
 };
 

@@ -221,10 +221,19 @@ ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
     free(t);
     return ss_error_nomem(err, "refined patch");
   }
-  if (!s->rf->fine && (st = ss_lim_refine(L->s, s->cx, 1, s->rf, err))) {
-    drop_refined(s);
-    free(t);
-    return st;
+  if (!s->rf->fine) {
+    if ((st = ss_lim_refine(L->s, s->cx, 1, s->rf, err))) {
+      drop_refined(s);
+      free(t);
+      return st;
+    }
+    /* the oldest of the ring gives its refinement up (it may be gone already,
+     * or this state itself: then nothing is dropped) */
+    size_t slot = L->nrefined % SS_LIM_REFINED;
+    if (L->nrefined >= SS_LIM_REFINED && L->refined[slot] != i)
+      drop_refined(L->st[L->refined[slot]]);
+    L->refined[slot] = i;
+    L->nrefined++;
   }
   if ((st = ss_lim_cut(s->rf, k, 1, &child, &t->g, &ccx, &t->W, err))) {
     free(t);
