@@ -61,23 +61,20 @@ static ss_lim_pt framed(const ss_lim_frame *g0, const double x[3]) {
   return q;
 }
 
-/* P <- W P (Kc x K), relative to o (recentred on the first point). */
-static ss_status step_points(const double *W, size_t Kc, size_t K, double **P,
+/* P <- W P (Kc x K, t's rows), relative to o (recentred on the first
+ * point).  Over W's nonzeros only: a zero weight adds a zero, which changes
+ * no sum (the sums start at +0, and +0 + -0 is +0). */
+static ss_status step_points(const ss_lim_trans *t, size_t Kc, size_t K, double **P,
                              double o[3], ss_error *err) {
-  double *Q = calloc(Kc * 3 + 1, sizeof *Q);
-  if (!Q) return ss_error_nomem(err, "patch points");
-  for (size_t i = 0; i < Kc; i++)
-    for (size_t j = 0; j < K; j++)
-      for (int d = 0; d < 3; d++)
-        Q[i * 3 + (size_t)d] += W[i * K + j] * (*P)[j * 3 + (size_t)d];
+  ss_status st = ss_lim_trans_apply(t, Kc, K, 3, P, err);
+  if (st) return st;
+  double *Q = *P;
   const double c[3] = {Q[0], Q[1], Q[2]};
   for (size_t i = 0; i < Kc; i++)
     for (int d = 0; d < 3; d++)
       Q[i * 3 + (size_t)d] -= c[d];
   for (int d = 0; d < 3; d++)
     o[d] += c[d];
-  free(*P);
-  *P = Q;
   return SS_OK;
 }
 
@@ -122,7 +119,7 @@ static ss_status to_fixed(ss_limit *L, size_t cell, const double x[3],
                           "the probe leaves the edge point's sub-cell after %d steps: "
                           "take it closer to the edge",
                           f->steps);
-    if ((st = step_points(t->W, L->st[t->next]->patch.nv, L->st[s]->patch.nv, &f->P, f->o,
+    if ((st = step_points(t, L->st[t->next]->patch.nv, L->st[s]->patch.nv, &f->P, f->o,
                           err)))
       return st;
     ss_lim_advance(&pt, k, &t->g, f->M);

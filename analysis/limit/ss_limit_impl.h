@@ -19,14 +19,17 @@
  * the crease cells (vertex cells, segments, quads: lower-dimensional cells,
  * which the schemes refine as creases and boundaries) at each vertex. */
 typedef struct {
-  const ss_cx *cx; /* the complex (borrowed) */
-  size_t nh;       /* hexes */
-  size_t *vptr;    /* nv + 1 offsets into vcell */
-  size_t *vcell;   /* hexes at each vertex */
-  int64_t *nb;     /* nh * 6: neighbour across stored face 2 * axis + side, or -1 */
-  size_t *cptr;    /* nv + 1 offsets into ccell */
-  size_t *ccell;   /* crease cells at each vertex, as 4 * index + type
-                      (SS_VERTEX, SS_SEGMENT or SS_QUAD) */
+  const ss_cx *cx;      /* the complex (borrowed) */
+  size_t nh;            /* hexes */
+  size_t *vptr;         /* nv + 1 offsets into vcell */
+  size_t *vcell;        /* hexes at each vertex */
+  int64_t *nb;          /* nh * 6: neighbour across stored face 2 * axis + side, or -1 */
+  size_t *cptr;         /* nv + 1 offsets into ccell */
+  size_t *ccell;        /* crease cells at each vertex, as 4 * index + type
+                           (SS_VERTEX, SS_SEGMENT or SS_QUAD) */
+  unsigned char *cmark; /* scratch of a patch walk, nh entries, all 0 between
+                           walks: 1 a cell of the patch (at a corner of the
+                           target), 2 one already walked */
 } ss_lim_adj;
 
 /* Crease cell types a patch carries, and the words of one in a patch's
@@ -114,6 +117,29 @@ ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical
                       ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
                       ss_error *err);
 
+/* One refinement of a patch complex, from which any of its 8 children is cut
+ * (ss_lim_cut): ss_lim_step refines the whole patch for one child, so a box
+ * judged child by child would refine the same patch 8 times. */
+typedef struct {
+  const ss_cx *pcx; /* the parent patch complex (borrowed; cell 0 the target) */
+  ss_cx *fine;      /* pcx refined by the scheme */
+  void *R;          /* its refinement operator (a gsl_spmatrix, rows by fine
+                       vertex), or NULL when no rows were asked for */
+  ss_lim_adj fa;    /* fine's adjacency */
+  int64_t *loc;     /* scratch, fine->nv entries, all -1 between calls */
+} ss_lim_refined;
+
+/* Refine pcx once (with_rows: keep the refinement operator for ss_lim_cut's
+ * W).  *out is the caller's to free (ss_lim_refined_free, also after an
+ * error).  The errors of ss_lim_step's refinement. */
+ss_status ss_lim_refine(const ss_scheme *s, const ss_cx *pcx, int with_rows,
+                        ss_lim_refined *out, ss_error *err);
+/* Child k of r's cell 0, exactly as ss_lim_step(s, r->pcx, k, ...) gives it
+ * (W only when r kept the rows). */
+ss_status ss_lim_cut(const ss_lim_refined *r, int k, int canonical, ss_lim_patch *child,
+                     ss_lim_frame *g, ss_cx **ccx, double **W, ss_error *err);
+void ss_lim_refined_free(ss_lim_refined *r);
+
 #define SS_LIM_NPOW                                                                      \
   12 /* powers W^(2^i) kept for a defective run: runs are at most                        \
         about 1075 steps (the binary exponents of doubles) */
@@ -188,15 +214,25 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, size_t D,
 /* ---- the evaluator's cache and object (ss_limit.c, ss_limit_state.c,
  * ss_limit_tensor.c, ss_limit_walk.c) ---- */
 
-#define SS_LIM_RECENT 64 /* coarse-only states whose transitions are kept */
+#define SS_LIM_RECENT  64 /* coarse-only states whose transitions are kept */
+#define SS_LIM_REFINED 32 /* states whose refinement is kept (ss_lim_state.rf) */
 
 /* A cached (key, child) transition. */
 typedef struct {
   size_t next;     /* state of the child patch */
   ss_lim_frame g;  /* the child's canonical frame relative to the inherited one */
   double *W;       /* rows: child patch points from parent patch points */
+  size_t *rp;      /* W's nonzeros row by row (a walk's step reads only
+                      these): row i's are rp[i] .. rp[i + 1] - 1 of */
+  size_t *ci;      /* their columns, ascending in each row */
   ss_lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
 } ss_lim_trans;
+
+/* P (K x D, taken over) <- W P (Kc x D) over t's nonzeros, in column order:
+ * the same sums as the dense product that skips zero weights.  SS_ENOMEM
+ * (ss_limit_state.c). */
+ss_status ss_lim_trans_apply(const ss_lim_trans *t, size_t Kc, size_t K, size_t D,
+                             double **P, ss_error *err);
 
 /* The layered structure of a patch around an extraordinary edge (the
  * paper's eq. (1)): the patch points in 4 layers along the edge, columns
@@ -246,6 +282,9 @@ typedef struct {
   ss_lim_tensor *ten;  /* the layered structure, computed on first need */
   size_t src_cell;     /* coarse-only: a mesh cell with this patch, to rebuild the
                           instance cx from (it is dropped with the transitions) */
+  ss_lim_refined *rf;  /* cx refined once for its transitions while some of the
+                          8 are still to compute, else NULL (dropped with the
+                          transitions) */
 } ss_lim_state;
 
 /* Per coarse cell: its patch's state and where its points come from. */
@@ -274,8 +313,14 @@ struct ss_limit {
    * with the mesh; points are usually asked cell by cell. */
   size_t recent[SS_LIM_RECENT]; /* ring of coarse-only states holding transitions */
   size_t nrecent;               /* entries ever pushed (the ring's head) */
-  int tensor;                   /* use eq. (1) where an edge's runs factor (default
-                                   1; ss_limit_set_tensor) */
+  /* States holding a refinement (ss_lim_state.rf) are kept to the
+   * SS_LIM_REFINED most recent: a refined patch with its rows is up to about
+   * half a megabyte, and a state whose other children are never asked for
+   * would keep it for good. */
+  size_t refined[SS_LIM_REFINED]; /* ring of states holding a refinement */
+  size_t nrefined;                /* entries ever pushed (the ring's head) */
+  int tensor;                     /* use eq. (1) where an edge's runs factor (default
+                                     1; ss_limit_set_tensor) */
   ss_limit_stats stats;
 };
 

@@ -21,6 +21,7 @@ void ss_lim_adj_free(ss_lim_adj *a) {
   free(a->nb);
   free(a->cptr);
   free(a->ccell);
+  free(a->cmark);
   memset(a, 0, sizeof *a);
 }
 
@@ -59,9 +60,18 @@ static ss_status crease_incidence(const ss_cx *cx, ss_lim_adj *a, ss_error *err)
   return SS_OK;
 }
 
-static int cmp_u32(const void *x, const void *y) {
-  uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
-  return (a > b) - (a < b);
+/* Sort 4 words ascending (a face's corners: qsort cost more than the rest of
+ * the adjacency). */
+static void sort4(uint32_t k[4]) {
+  static const int net[5][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}, {1, 2}};
+  for (int i = 0; i < 5; i++) {
+    const int a = net[i][0], b = net[i][1];
+    if (k[a] > k[b]) {
+      const uint32_t t = k[a];
+      k[a] = k[b];
+      k[b] = t;
+    }
+  }
 }
 
 ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
@@ -73,7 +83,8 @@ ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
   a->vptr = calloc(cx->nv + 1, sizeof *a->vptr);
   a->vcell = malloc((a->nh * 8 + 1) * sizeof *a->vcell);
   a->nb = malloc((a->nh * 6 + 1) * sizeof *a->nb);
-  if (!a->vptr || !a->vcell || !a->nb) {
+  a->cmark = calloc(a->nh + 1, sizeof *a->cmark);
+  if (!a->vptr || !a->vcell || !a->nb || !a->cmark) {
     st = ss_error_nomem(err, "hex adjacency");
     goto done;
   }
@@ -100,7 +111,7 @@ ss_status ss_lim_adj_build(const ss_cx *cx, ss_lim_adj *a, ss_error *err) {
       uint32_t key[4];
       for (unsigned b = 0; b < 8; b++)
         if ((int)((b >> axis) & 1u) == side) key[n++] = v[cidx(b)];
-      qsort(key, 4, sizeof key[0], cmp_u32);
+      sort4(key);
       uint32_t found;
       int ins;
       if ((st = ss_hash_insert(h, key, (uint32_t)(c * 6 + (size_t)f), &found, &ins, err)))
@@ -273,14 +284,6 @@ typedef struct {
 } walk_cell;
 
 /* Whether hex c shares a vertex with the 8 vertices tv. */
-static int touches(const ss_cx *cx, size_t c, const ss_idx *tv) {
-  const ss_idx *v = ss_cx_cell(cx, SS_HEX, c);
-  for (int i = 0; i < 8; i++)
-    for (int j = 0; j < 8; j++)
-      if (v[i] == tv[j]) return 1;
-  return 0;
-}
-
 /* The member cells of the patch of hex t (corners tv): every hex at a corner
  * of t, each once, into mem; returns their number. */
 static size_t member_cells(const ss_lim_adj *a, const ss_idx *tv, size_t *mem) {
@@ -324,12 +327,11 @@ static void walk_number(const ss_cx *cx, const walk_cell *A, size_t head, int64_
 }
 
 /* The neighbour of walked cell A across its framed face (axis, side), if it
- * touches t (corners tv) and is not walked yet: appended to q at *tail, its
- * frame carried over the shared face.  SS_EINTERNAL if the face's vertices
- * are not the neighbour's. */
-static ss_status walk_across(const ss_lim_adj *a, const ss_idx *tv, const walk_cell *A,
-                             int axis, unsigned side, walk_cell *q, size_t *tail,
-                             ss_error *err) {
+ * is a cell of the patch not walked yet (a->cmark 1: at a corner of the
+ * target; then 2): appended to q at *tail, its frame carried over the shared
+ * face.  SS_EINTERNAL if the face's vertices are not the neighbour's. */
+static ss_status walk_across(const ss_lim_adj *a, const walk_cell *A, int axis,
+                             unsigned side, walk_cell *q, size_t *tail, ss_error *err) {
   const ss_cx *cx = a->cx;
   const ss_idx *av = ss_cx_cell(cx, SS_HEX, A->cell);
   /* the stored face holding the framed face (axis, side) */
@@ -343,11 +345,9 @@ static ss_status walk_across(const ss_lim_adj *a, const ss_idx *tv, const walk_c
   int saxis = agree & 1u ? 0 : agree & 2u ? 1 : 2;
   int sside = (int)((s0 >> saxis) & 1u);
   int64_t B = a->nb[A->cell * 6 + (size_t)(2 * saxis + sside)];
-  if (B < 0 || !touches(cx, (size_t)B, tv)) return SS_OK;
-  int seen = 0;
-  for (size_t m = 0; m < *tail && !seen; m++)
-    seen = q[m].cell == (size_t)B;
-  if (seen) return SS_OK;
+  /* cmark: 1 a cell at a corner of t not walked yet (patch_walk) */
+  if (B < 0 || a->cmark[B] != 1) return SS_OK;
+  a->cmark[B] = 2;
   walk_cell *C = &q[*tail];
   C->cell = (size_t)B;
   const ss_idx *bv = ss_cx_cell(cx, SS_HEX, (size_t)B);
@@ -397,9 +397,15 @@ static void mark_regular(ss_lim_patch *out, int posok) {
   }
 }
 
-ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
-                             int64_t *loc, ss_lim_patch *out, ss_error *err) {
+/* ss_lim_patch_build; with bound (a patch of t in another frame) the walk
+ * stops as soon as its key is known to compare above bound's (*worse = 1,
+ * *out empty): the keys are written cell by cell in walk order, so the first
+ * cell whose 8 words differ decides memcmp of the whole keys. */
+static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                            int64_t *loc, const ss_lim_patch *bound, int *worse,
+                            ss_lim_patch *out, ss_error *err) {
   ss_status st = SS_OK;
+  *worse = 0;
   const ss_cx *cx = a->cx;
   const ss_idx *tv = ss_cx_cell(cx, SS_HEX, t);
   memset(out, 0, sizeof *out);
@@ -419,6 +425,9 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
     goto done;
   }
   nmem = member_cells(a, tv, mem);
+  for (size_t m = 0; m < nmem; m++)
+    a->cmark[mem[m]] = 1;
+  a->cmark[t] = 2;
   /* the walk */
   size_t head = 0, tail = 0;
   q[tail].cell = t;
@@ -429,9 +438,18 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
   while (head < tail) {
     const walk_cell *A = &q[head];
     walk_number(cx, A, head, loc, out, &posok);
+    if (bound && head < bound->ncells) {
+      const int c =
+          memcmp(out->key + head * 8, bound->key + head * 8, 8 * sizeof *out->key);
+      if (c > 0) {
+        *worse = 1;
+        goto done;
+      }
+      if (c < 0) bound = NULL; /* below bound already: the whole walk is needed */
+    }
     for (int axis = 0; axis < 3; axis++)
       for (unsigned side = 0; side < 2; side++)
-        if ((st = walk_across(a, tv, A, axis, side, q, &tail, err))) goto done;
+        if ((st = walk_across(a, A, axis, side, q, &tail, err))) goto done;
     head++;
   }
   out->ncells = tail;
@@ -448,10 +466,18 @@ ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *
 done:
   for (size_t v = 0; v < out->nv; v++)
     loc[out->src[v]] = -1;
+  for (size_t m = 0; m < nmem; m++)
+    a->cmark[mem[m]] = 0;
   free(mem);
   free(q);
-  if (st) ss_lim_patch_free(out);
+  if (st || *worse) ss_lim_patch_free(out);
   return st;
+}
+
+ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
+                             int64_t *loc, ss_lim_patch *out, ss_error *err) {
+  int worse;
+  return patch_walk(a, t, g, loc, NULL, &worse, out, err);
 }
 
 ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
@@ -468,10 +494,12 @@ ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
         h.flip[d] = (f >> d) & 1;
       }
       ss_lim_patch cand;
-      if ((st = ss_lim_patch_build(a, t, &h, loc, &cand, err))) {
+      int worse = 0; /* its key above the best's: walk stopped early */
+      if ((st = patch_walk(a, t, &h, loc, out->key ? out : NULL, &worse, &cand, err))) {
         ss_lim_patch_free(out);
         return st;
       }
+      if (worse) continue;
       int better = out->key == NULL;
       if (!better && cand.ncells == out->ncells) {
         int c = memcmp(cand.key, out->key, cand.ncells * 8 * sizeof *cand.key);
@@ -521,39 +549,51 @@ done:
   return st;
 }
 
-ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
-                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
-                      ss_error *err) {
-  ss_status st;
-  ss_cx *fine = NULL;
+void ss_lim_refined_free(ss_lim_refined *r) {
+  if (!r) return;
+  free(r->loc);
+  ss_lim_adj_free(&r->fa);
+  if (r->R) gsl_spmatrix_free(r->R);
+  ss_cx_free(r->fine);
+  memset(r, 0, sizeof *r);
+}
+
+ss_status ss_lim_refine(const ss_scheme *s, const ss_cx *pcx, int with_rows,
+                        ss_lim_refined *out, ss_error *err) {
+  memset(out, 0, sizeof *out);
+  out->pcx = pcx;
   gsl_spmatrix *R = NULL;
-  ss_lim_adj fa = {0};
-  int64_t *loc = NULL;
+  ss_status st = ss_scheme_refine(s, pcx, &out->fine, with_rows ? &R : NULL, err);
+  out->R = R;
+  if (st) return st;
+  if ((st = ss_lim_adj_build(out->fine, &out->fa, err))) return st;
+  out->loc = malloc((out->fine->nv + 1) * sizeof *out->loc);
+  if (!out->loc) return ss_error_nomem(err, "patch scratch");
+  for (size_t v = 0; v < out->fine->nv; v++)
+    out->loc[v] = -1;
+  return SS_OK;
+}
+
+ss_status ss_lim_cut(const ss_lim_refined *r, int k, int canonical, ss_lim_patch *child,
+                     ss_lim_frame *g, ss_cx **ccx, double **W, ss_error *err) {
+  ss_status st;
+  const ss_cx *fine = r->fine, *pcx = r->pcx;
+  const gsl_spmatrix *R = r->R;
   memset(child, 0, sizeof *child);
   *ccx = NULL;
   if (W) *W = NULL;
-  if ((st = ss_scheme_refine(s, pcx, &fine, W ? &R : NULL, err))) goto done;
+  if (W && !R) return ss_error_set(err, SS_EINTERNAL, "limit: rows not kept");
   /* child k of cell 0 is fine hex k, holding coarse corner k at its corner k */
   if (fine->nc[SS_HEX] < 8 ||
-      ss_cx_cell(fine, SS_HEX, (size_t)k)[k] != ss_cx_cell(pcx, SS_HEX, 0)[k]) {
-    st = ss_error_set(err, SS_EINTERNAL,
-                      "limit: the split did not put child %d at corner %d of its parent",
-                      k, k);
-    goto done;
-  }
-  if ((st = ss_lim_adj_build(fine, &fa, err))) goto done;
-  loc = malloc((fine->nv + 1) * sizeof *loc);
-  if (!loc) {
-    st = ss_error_nomem(err, "patch scratch");
-    goto done;
-  }
-  for (size_t v = 0; v < fine->nv; v++)
-    loc[v] = -1;
+      ss_cx_cell(fine, SS_HEX, (size_t)k)[k] != ss_cx_cell(pcx, SS_HEX, 0)[k])
+    return ss_error_set(
+        err, SS_EINTERNAL,
+        "limit: the split did not put child %d at corner %d of its parent", k, k);
   if (canonical)
-    st = ss_lim_patch_canonical(&fa, (size_t)k, loc, child, g, err);
+    st = ss_lim_patch_canonical(&r->fa, (size_t)k, r->loc, child, g, err);
   else {
     *g = ss_lim_frame_id();
-    st = ss_lim_patch_build(&fa, (size_t)k, g, loc, child, err);
+    st = ss_lim_patch_build(&r->fa, (size_t)k, g, r->loc, child, err);
   }
   if (st || (st = ss_lim_patch_complex(fine, child, ccx, err))) goto done;
   if (W) {
@@ -564,8 +604,8 @@ ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical
       goto done;
     }
     for (size_t i = 0; i < Kc; i++) {
-      size_t r = child->src[i];
-      for (int q = R->p[r]; q < R->p[r + 1]; q++)
+      size_t q0 = child->src[i];
+      for (int q = R->p[q0]; q < R->p[q0 + 1]; q++)
         w[i * K + (size_t)R->i[q]] = R->data[q];
     }
     *W = w;
@@ -576,9 +616,18 @@ done:
     ss_cx_free(*ccx);
     *ccx = NULL;
   }
-  free(loc);
-  ss_lim_adj_free(&fa);
-  if (R) gsl_spmatrix_free(R);
-  ss_cx_free(fine);
+  return st;
+}
+
+ss_status ss_lim_step(const ss_scheme *s, const ss_cx *pcx, int k, int canonical,
+                      ss_lim_patch *child, ss_lim_frame *g, ss_cx **ccx, double **W,
+                      ss_error *err) {
+  ss_lim_refined r;
+  memset(child, 0, sizeof *child);
+  *ccx = NULL;
+  if (W) *W = NULL;
+  ss_status st = ss_lim_refine(s, pcx, W != NULL, &r, err);
+  if (!st) st = ss_lim_cut(&r, k, canonical, child, g, ccx, W, err);
+  ss_lim_refined_free(&r);
   return st;
 }

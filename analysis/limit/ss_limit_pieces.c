@@ -119,20 +119,24 @@ static ss_status box(trav *t, ss_lim_patch *p, ss_cx *pcx, box_enc *e, int depth
     ss_lim_tube_free(u);
   } else {
     const double h = ldexp(1.0, -depth - 1);
+    ss_lim_refined rf; /* the box's patch refined once for all its children */
+    int refined = 0;
     for (int k = 0; k < 8 && !st && !t->stop; k++) {
       const unsigned b = ss_cube_corner_bits(3, k);
       const double o[3] = {origin[0] + ((b & 1u) ? h : 0.0),
                            origin[1] + ((b & 2u) ? h : 0.0),
                            origin[2] + ((b & 4u) ? h : 0.0)};
       if (t->skip && t->skip(t->cell, depth + 1, o, t->arg)) continue;
+      if (!refined) {
+        refined = 1;
+        if ((st = ss_lim_refine(t->L->s, pcx, e->lo != NULL, &rf, err))) break;
+      }
       ss_lim_patch child;
       ss_lim_frame g;
       ss_cx *ccx = NULL;
       double *W = NULL;
       box_enc ce = {NULL, NULL};
-      if ((st =
-               ss_lim_step(t->L->s, pcx, k, 0, &child, &g, &ccx, e->lo ? &W : NULL, err)))
-        break;
+      if ((st = ss_lim_cut(&rf, k, 0, &child, &g, &ccx, e->lo ? &W : NULL, err))) break;
       if (e->lo && (st = enc_step(t, W, child.nv, pcx->nv, e, &ce, err))) {
         free(W);
         ss_lim_patch_free(&child);
@@ -142,6 +146,7 @@ static ss_status box(trav *t, ss_lim_patch *p, ss_cx *pcx, box_enc *e, int depth
       free(W);
       st = box(t, &child, ccx, &ce, depth + 1, o, err);
     }
+    if (refined) ss_lim_refined_free(&rf);
   }
 out:
   ss_lim_patch_free(p);

@@ -4,19 +4,22 @@
  *
  * From the cell's box (depth 0): a box whose patch is the 3x3x3 block of a
  * grid is one piece; otherwise its 8 children (child k the octant at corner
- * k, its patch refined once from the box's by ss_lim_step, as the reference
- * evaluator ss_limit_eval_reference does), down to maxdepth, where a box
+ * k, its patch cut from one refinement of the box's patch, ss_lim_refine and
+ * ss_lim_cut, the same patch the reference evaluator ss_limit_eval_reference
+ * reaches by ss_lim_step), down to maxdepth, where a box
  * still irregular is left uncovered (round an extraordinary vertex or edge
  * boxes never become regular).  Every patch is cut in the frame inherited
  * from the cell's vertex order, so a piece's own parameters are the box's,
  * axis for axis: t in [0,1]^3 is the cell's origin + 2^-depth t, and det
- * D_x(limit) = 2^(3 depth) det D_t(piece).  Nothing is cached: each box costs
- * one refinement of its parent's patch (about a millisecond).
+ * D_x(limit) = 2^(3 depth) det D_t(piece).  Nothing is cached across boxes:
+ * each box that is split costs one refinement of its patch (about a
+ * millisecond), shared by its children (until 2026-12-06 each child refined
+ * the parent again: 7-8 refinements per box).
  *
  * Points.  A piece's net is the refined patch's (rows of the scheme applied
  * in doubles).  With an enclosure of the mesh's points (ss_limit_pieces_
  * enclosed), each patch also carries intervals holding its true points: the
- * rows of each step (ss_lim_step's W) applied in interval arithmetic with
+ * rows of each step (ss_lim_cut's W) applied in interval arithmetic with
  * outward rounding, every nonzero weight replaced by the caller's enclosure
  * of the rule's true weight (e.g. the rational ss_exact_rational
  * reconstructs), so a piece's intervals hold the net of the exact rule

@@ -19,10 +19,20 @@ void ss_lim_tensor_free(ss_lim_tensor *t) {
   free(t);
 }
 
+static void drop_refined(ss_lim_state *s) {
+  if (!s->rf) return;
+  ss_lim_refined_free(s->rf);
+  free(s->rf);
+  s->rf = NULL;
+}
+
 static void drop_transitions(ss_lim_state *s) {
+  drop_refined(s);
   for (int k = 0; k < 8; k++)
     if (s->tr[k]) {
       free(s->tr[k]->W);
+      free(s->tr[k]->rp);
+      free(s->tr[k]->ci);
       ss_lim_eig_free(s->tr[k]->eig);
       free(s->tr[k]);
       s->tr[k] = NULL;
@@ -147,6 +157,40 @@ ss_status ss_lim_cell_state(ss_limit *L, size_t c, ss_error *err) {
   return SS_OK;
 }
 
+/* t's nonzeros (rp, ci) from W (Kc x K).  SS_ENOMEM. */
+static ss_status sparse_rows(ss_lim_trans *t, size_t Kc, size_t K, ss_error *err) {
+  size_t nz = 0;
+  for (size_t q = 0; q < Kc * K; q++)
+    nz += t->W[q] != 0.0;
+  t->rp = malloc((Kc + 1) * sizeof *t->rp);
+  t->ci = malloc((nz + 1) * sizeof *t->ci);
+  if (!t->rp || !t->ci) return ss_error_nomem(err, "transition rows");
+  nz = 0;
+  for (size_t i = 0; i < Kc; i++) {
+    t->rp[i] = nz;
+    for (size_t j = 0; j < K; j++)
+      if (t->W[i * K + j] != 0.0) t->ci[nz++] = j;
+  }
+  t->rp[Kc] = nz;
+  return SS_OK;
+}
+
+ss_status ss_lim_trans_apply(const ss_lim_trans *t, size_t Kc, size_t K, size_t D,
+                             double **P, ss_error *err) {
+  double *Q = calloc(Kc * D + 1, sizeof *Q);
+  if (!Q) return ss_error_nomem(err, "patch points");
+  for (size_t i = 0; i < Kc; i++)
+    for (size_t q = t->rp[i]; q < t->rp[i + 1]; q++) {
+      const size_t j = t->ci[q];
+      const double w = t->W[i * K + j];
+      for (size_t d = 0; d < D; d++)
+        Q[i * D + d] += w * (*P)[j * D + d];
+    }
+  free(*P);
+  *P = Q;
+  return SS_OK;
+}
+
 /* The transition of state i into child k, computed on first use. */
 ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
                             ss_error *err) {
@@ -171,17 +215,45 @@ ss_status ss_lim_transition(ss_limit *L, size_t i, int k, ss_lim_trans **out,
   ss_lim_patch child;
   ss_cx *ccx;
   double t0 = ss_clock_cpu();
-  if ((st = ss_lim_step(L->s, s->cx, k, 1, &child, &t->g, &ccx, &t->W, err))) {
+  /* one refinement of the patch for all its children (the walks ask for them
+   * one at a time: each used to refine the patch again) */
+  if (!s->rf && !(s->rf = calloc(1, sizeof *s->rf))) {
+    free(t);
+    return ss_error_nomem(err, "refined patch");
+  }
+  if (!s->rf->fine) {
+    if ((st = ss_lim_refine(L->s, s->cx, 1, s->rf, err))) {
+      drop_refined(s);
+      free(t);
+      return st;
+    }
+    /* the oldest of the ring gives its refinement up (it may be gone already,
+     * or this state itself: then nothing is dropped) */
+    size_t slot = L->nrefined % SS_LIM_REFINED;
+    if (L->nrefined >= SS_LIM_REFINED && L->refined[slot] != i)
+      drop_refined(L->st[L->refined[slot]]);
+    L->refined[slot] = i;
+    L->nrefined++;
+  }
+  if ((st = ss_lim_cut(s->rf, k, 1, &child, &t->g, &ccx, &t->W, err))) {
     free(t);
     return st;
   }
-  if ((st = state_of(L, &child, ccx, &t->next, err))) {
+  const size_t Kc = child.nv, K = s->patch.nv;
+  if ((st = state_of(L, &child, ccx, &t->next, err)) ||
+      (st = sparse_rows(t, Kc, K, err))) {
     free(t->W);
+    free(t->rp);
+    free(t->ci);
     free(t);
     return st;
   }
   ss_clock_lap(&L->stats.matrix_s, &t0);
   L->st[i]->tr[k] = t; /* L->st may have moved, the state has not */
+  int all = 1;
+  for (int j = 0; j < 8; j++)
+    all &= s->tr[j] != NULL;
+  if (all) drop_refined(s);
   L->stats.transitions++;
   L->st[t->next]->coarse_only = 0; /* a child's patch: keep its transitions */
   if (s->coarse_only && !s->held) {

@@ -90,16 +90,19 @@ static ss_status kids_make(const ss_scheme *s, const ss_cx *pcx, kids *k, int *f
                            ss_error *err) {
   memset(k, 0, sizeof *k);
   *framed = 1;
-  for (int i = 0; i < 8 && *framed; i++) {
+  ss_lim_refined r; /* refined once for the 8 */
+  ss_status st = ss_lim_refine(s, pcx, 1, &r, err);
+  for (int i = 0; i < 8 && *framed && !st; i++) {
     ss_lim_frame g;
     ss_cx *ccx = NULL;
-    const ss_status st = ss_lim_step(s, pcx, i, 0, &k->ch[i], &g, &ccx, &k->W[i], err);
+    st = ss_lim_cut(&r, i, 0, &k->ch[i], &g, &ccx, &k->W[i], err);
     ss_cx_free(ccx);
-    if (st) return st;
+    if (st) break;
     k->made[i] = 1;
     *framed = ss_lim_frame_is_id(&g);
   }
-  return SS_OK;
+  ss_lim_refined_free(&r);
+  return st;
 }
 
 /* Rows W (nc x K) factor exactly as A_b (x) X: child point u in layer lu[u]

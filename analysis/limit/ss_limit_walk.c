@@ -590,7 +590,8 @@ ss_status ss_lim_walk(ss_limit *L, size_t s, double *P, double *o, int sc, ss_li
         continue;
       }
     }
-    if ((st = apply(t->W, L->st[t->next]->patch.nv, S->patch.nv, D, &P, err))) goto done;
+    if ((st = ss_lim_trans_apply(t, L->st[t->next]->patch.nv, S->patch.nv, D, &P, err)))
+      goto done;
     ss_lim_advance(&pt, k, &t->g, M);
     for (int j = 0; j < 3; j++)
       if (A[j].on &&
