@@ -1,0 +1,164 @@
+#!/usr/bin/env bash
+# reports/tuned.sh — MLCA with valence-dependent weights beside MLCA (issue 39):
+# data/stencils/mlca-valence.ini tuned by `subspectra tune`, then both files
+# swept with certified verdicts over every vertex link with 4..K vertices and
+# the edges of valence 3..10, counted per k, with the links the tuned file
+# repairs and breaks.  Not part of ./run (about 10 min of CPU, most of it
+# tune: 80 evaluations of 270 cases).  See reports/README.md, "Finding 10".
+#
+#   reports/tuned.sh [--max-k K] [--db FILE] [--out DIR] [--jobs N]
+#                    [--evals N] [--no-tune]
+#
+# Steps:
+#  1. subspectra sweep --stencil data/stencils/mlca.ini --vertices 4..K
+#       --edges 3..10 --certify --db FILE  (MLCA as a stencil; resumable)
+#  2. the tuning set: the links with 9..K vertices that pass under step 1,
+#     and finding 1's link; then
+#       subspectra tune data/stencils/mlca-valence.ini --vertices 4..8
+#         --links SET --edges 3..7 --evals N -o data/stencils/mlca-valence-tuned.ini
+#     (every case MLCA passes must keep passing, finding 1 must be repaired;
+#     the failures that no weight of the family moves are left out, since
+#     tune maximises the smallest margin and one of them would pin it).
+#     --no-tune keeps the tuned file as it is.
+#  3. the same sweep of the tuned file;
+#  4. DIR/tuned-mlca-k4-K.md: the exhaustive rows and the summary of both
+#     files (subspectra report), the links repaired and broken (the stores'
+#     verdicts joined on the canonical link), tune's smallest margin.
+# K is 9 or 10 (default 10).  The program: $SUBSPECTRA, else
+# build/cli/subspectra beside this script's folder, else subspectra on PATH.
+# Exit status: 0 written, 1 a sweep or tune ended with an error, 2 bad usage.
+set -euo pipefail
+
+usage() {
+  sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'
+}
+
+kmax=10 db=tuned.db out=reports jobs=1 evals=80 tune=1
+while (($#)); do
+  case "$1" in
+  --max-k) kmax=${2:?--max-k needs a value}; shift 2 ;;
+  --db) db=${2:?--db needs a file}; shift 2 ;;
+  --out) out=${2:?--out needs a folder}; shift 2 ;;
+  --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
+  --evals) evals=${2:?--evals needs a number}; shift 2 ;;
+  --no-tune) tune=0; shift ;;
+  -h | --help) usage; exit 0 ;;
+  *) echo "tuned.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+if [[ $kmax != 9 && $kmax != 10 ]]; then
+  echo "tuned.sh: --max-k '$kmax' is not 9 or 10" >&2
+  exit 2
+fi
+here=$(cd "$(dirname "$0")/.." && pwd)
+exe=${SUBSPECTRA:-}
+if [[ -z $exe ]]; then
+  if [[ -x $here/build/cli/subspectra ]]; then exe=$here/build/cli/subspectra
+  else exe=$(command -v subspectra || true); fi
+fi
+[[ -n $exe && -x $exe ]] || { echo "tuned.sh: no subspectra program (set SUBSPECTRA)" >&2; exit 2; }
+command -v python3 > /dev/null || { echo "tuned.sh: python3 is needed" >&2; exit 2; }
+orig=$here/data/stencils/mlca.ini
+family=$here/data/stencils/mlca-valence.ini
+tuned=$here/data/stencils/mlca-valence-tuned.ini
+finding1="8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb"
+
+sweep() { # sweep FILE: certified, every link 4..K and edges 3..10
+  echo "tuned.sh: sweep --stencil $1 --vertices 4..$kmax --edges 3..10 --certify (store $db)" >&2
+  local rc=0
+  "$exe" sweep --stencil "$1" --vertices "4..$kmax" --edges 3..10 --certify \
+    --jobs "$jobs" --db "$db" --quiet || rc=$?
+  if ((rc != 0 && rc != 1)); then
+    echo "tuned.sh: the sweep of $1 ended with status $rc; rerun to resume" >&2
+    exit 1
+  fi
+}
+name_of() { sed -n 's/^name *= *\([^ ;]*\).*/\1/p' "$1" | head -1; }
+# the store identity of stencil file $1 (its bytes' hash), from a one-case
+# sweep into a scratch store: a store may hold older tuned files too
+ident() {
+  local tmp
+  tmp=$(mktemp -d)
+  echo "$finding1" | "$exe" sweep --stencil "$1" --links - --certify --db "$tmp/i.db" --quiet > /dev/null 2>&1 || true
+  "$exe" report --db "$tmp/i.db" --table cases --format csv |
+    python3 -c 'import csv, sys; print(next(csv.DictReader(sys.stdin))["identity"])'
+  rm -rf "$tmp"
+}
+
+sweep "$orig"
+[[ -f $db ]] || { echo "tuned.sh: no store $db" >&2; exit 2; }
+set_file=$(mktemp)
+trap 'rm -f "$set_file"' EXIT
+if ((tune)); then
+  "$exe" report --db "$db" --table cases --format csv \
+    --where "kind = 'vertex' AND k BETWEEN 9 AND $kmax AND verdict = 'pass' AND scheme = '$(name_of "$orig")'" |
+    python3 -c 'import csv, sys
+for r in sorted(csv.DictReader(sys.stdin), key=lambda r: (int(r["k"]), r["link"])): print(r["link"])' > "$set_file"
+  echo "$finding1" >> "$set_file"
+  echo "tuned.sh: tune $family on $(wc -l < "$set_file") links with 9..$kmax vertices (and finding 1), --vertices 4..8, --edges 3..7" >&2
+  rc=0
+  "$exe" tune "$family" --vertices 4..8 --links "$set_file" --edges 3..7 --evals "$evals" \
+    --jobs "$jobs" -o "$tuned" || rc=$?
+  ((rc == 0 || rc == 1)) || { echo "tuned.sh: tune ended with status $rc" >&2; exit 1; }
+fi
+[[ -f $tuned ]] || { echo "tuned.sh: no $tuned (run without --no-tune)" >&2; exit 2; }
+sweep "$tuned"
+
+where="identity IN ('$(ident "$orig")', '$(ident "$tuned")')"
+md=$out/tuned-mlca-k4-$kmax.md
+{
+  echo "# MLCA with valence-dependent weights beside MLCA: links with 4..$kmax vertices"
+  echo
+  echo "Written by \`reports/tuned.sh --max-k $kmax\` (not part of \`./run\`):"
+  echo "\`data/stencils/mlca-valence.ini\` (hex masks self 1/8 + 7t/8, the other"
+  echo "roles (1 - t)/8, with t = t_n free at n = 6, 10, 12, 14, 16 fine hexes;"
+  echo "n = 8, every regular point, is MLCA) tuned by \`subspectra tune\` on every"
+  echo "case MLCA passes with 4..$kmax vertices, finding 1's link and edges 3..7,"
+  echo "then both files swept with certified verdicts (\`subspectra sweep"
+  echo "--stencil F --vertices 4..$kmax --edges 3..10 --certify\`).  The findings:"
+  echo "reports/README.md, \"Finding 10\"."
+  echo
+  echo "Tuned weights (\`data/stencils/mlca-valence-tuned.ini\`; the smallest margin"
+  echo "is tune's, over its cases: min(spectral gap, minimum scaled Jacobian)):"
+  echo
+  grep -E '^t[0-9]+ = ' "$tuned" | sed 's/^/    /'
+  echo
+  echo "## Vertex links (mlca-stencil: MLCA; mlca-valence: tuned)"
+  echo
+  "$exe" report --db "$db" --where "$where" --table exhaustive
+  echo
+  echo "## Summary per case kind and k (worst minimum scaled Jacobian, |lambda1|)"
+  echo
+  "$exe" report --db "$db" --where "$where" --table summary
+  echo
+  echo "## Links whose verdict changes"
+  echo
+  "$exe" report --db "$db" --table cases --format csv --where "$where AND kind = 'vertex'" |
+    python3 -c '
+import csv, sys
+orig, tuned = sys.argv[1], sys.argv[2]
+v = {}
+for r in csv.DictReader(sys.stdin):
+    v.setdefault(r["link"], {})[r["scheme"]] = (r["verdict"], r["k"])
+rep = sorted((int(x[orig][1]), l, x[orig][0]) for l, x in v.items()
+             if orig in x and tuned in x and x[orig][0] != "pass" and x[tuned][0] == "pass")
+brk = sorted((int(x[orig][1]), l, x[tuned][0]) for l, x in v.items()
+             if orig in x and tuned in x and x[orig][0] == "pass" and x[tuned][0] != "pass")
+other = sorted((int(x[orig][1]), l, x[orig][0], x[tuned][0]) for l, x in v.items()
+               if orig in x and tuned in x and "pass" not in (x[orig][0], x[tuned][0])
+               and x[orig][0] != x[tuned][0])
+print("Repaired (do not pass under MLCA, pass tuned): %d" % len(rep))
+print()
+for k, l, o in rep: print("- k = %d, MLCA %s: `%s`" % (k, o, l))
+print()
+print("Broken (pass under MLCA, not tuned): %d" % len(brk))
+print()
+for k, l, t in brk: print("- k = %d, tuned %s: `%s`" % (k, t, l))
+print()
+print("Not passing under either, verdict changed: %d" % len(other))
+print()
+for k, l, o, t in other: print("- k = %d, MLCA %s, tuned %s: `%s`" % (k, o, t, l))
+' "$(name_of "$orig")" "$(name_of "$tuned")"
+} > "$md.tmp"
+mv "$md.tmp" "$md"
+echo "tuned.sh: wrote $md" >&2
