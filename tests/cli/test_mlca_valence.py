@@ -18,6 +18,8 @@ written by reports/tuned.sh) against MLCA and against closed forms.
    (5 + cos(4 pi/n) + cos(2 pi/n) sqrt(2 (9 + cos(4 pi/n))))/16 (computed
    here), is 1/2 at n = 8 and above it at n = 9, so edges 8 and 9 keep
    failing lambda3 > |lambda4| under the tuned file, with those values.
+4. check --links FILE (as tune takes it): the links of a file, comments
+   skipped; an unreadable link names FILE:LINE and exits 2.
 Exits 77 (skipped) without libmatheval (the tuned weights are expressions).
 
 usage: test_mlca_valence.py SUBSPECTRA SOURCE_ROOT"""
@@ -108,6 +110,19 @@ for n in (8, 9):
     l3 = max(mu2, 0.5)
     check(len(lam) > 4 and abs(lam[3] - l3) <= 1e-9 * l3 and abs(lam[4] - l3) <= 1e-9 * l3,
           "edge %d: lambda3, lambda4 = %s, closed form %.12g" % (n, lam[3:5], l3))
+
+# 4. check --links
+with tempfile.TemporaryDirectory() as d:
+    p = os.path.join(d, "links.txt")
+    with open(p, "w") as f:
+        f.write("# finding 1 and the regular vertex\n%s\noctahedron\n" % FINDING1)
+    rc, out, _ = run("check", MLCA, "--links", p)
+    check(rc == 1 and "2 cases: 1 pass, 1 fail" in out and "fail       vertex 8 " in out,
+          "check --links: exit %d\n%s" % (rc, out))
+    with open(p, "a") as f:
+        f.write("9 zzz\n")
+    rc, _, err = run("check", MLCA, "--links", p)
+    check(rc == 2 and "links.txt:4:" in err, "check --links, a bad line: exit %d %s" % (rc, err))
 
 if failed:
     sys.exit(1)
