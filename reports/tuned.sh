@@ -104,7 +104,8 @@ fi
 [[ -f $tuned ]] || { echo "tuned.sh: no $tuned (run without --no-tune)" >&2; exit 2; }
 sweep "$tuned"
 
-where="identity IN ('$(ident "$orig")', '$(ident "$tuned")')"
+id_orig=$(ident "$orig") id_tuned=$(ident "$tuned")
+where="identity IN ('$id_orig', '$id_tuned')"
 md=$out/tuned-mlca-k4-$kmax.md
 {
   echo "# MLCA with valence-dependent weights beside MLCA: links with 4..$kmax vertices"
@@ -123,7 +124,9 @@ md=$out/tuned-mlca-k4-$kmax.md
   echo
   grep -E '^t[0-9]+ = ' "$tuned" | sed 's/^/    /'
   echo
-  echo "## Vertex links (mlca-stencil: MLCA; mlca-valence: tuned)"
+  echo "## Vertex links"
+  echo
+  echo "\`$id_orig\` is \`data/stencils/mlca.ini\` (MLCA), \`$id_tuned\` the tuned file."
   echo
   "$exe" report --db "$db" --where "$where" --table exhaustive
   echo
@@ -137,9 +140,14 @@ md=$out/tuned-mlca-k4-$kmax.md
     python3 -c '
 import csv, sys
 orig, tuned = sys.argv[1], sys.argv[2]
+def cls(r):  # the first condition that does not pass, as the tables count
+    for c in ("eigen_condition", "regularity", "injectivity"):
+        if r[c] != "pass":
+            return "%s %s" % (r[c], c.replace("eigen_condition", "eigenvalue condition"))
+    return "pass"
 v = {}
 for r in csv.DictReader(sys.stdin):
-    v.setdefault(r["link"], {})[r["scheme"]] = (r["verdict"], r["k"])
+    v.setdefault(r["link"], {})[r["scheme"]] = (cls(r), r["k"])
 rep = sorted((int(x[orig][1]), l, x[orig][0]) for l, x in v.items()
              if orig in x and tuned in x and x[orig][0] != "pass" and x[tuned][0] == "pass")
 brk = sorted((int(x[orig][1]), l, x[tuned][0]) for l, x in v.items()
@@ -149,15 +157,15 @@ other = sorted((int(x[orig][1]), l, x[orig][0], x[tuned][0]) for l, x in v.items
                and x[orig][0] != x[tuned][0])
 print("Repaired (do not pass under MLCA, pass tuned): %d" % len(rep))
 print()
-for k, l, o in rep: print("- k = %d, MLCA %s: `%s`" % (k, o, l))
+for k, l, o in rep: print("- k = %d, MLCA: %s: `%s`" % (k, o, l))
 print()
 print("Broken (pass under MLCA, not tuned): %d" % len(brk))
 print()
-for k, l, t in brk: print("- k = %d, tuned %s: `%s`" % (k, t, l))
+for k, l, t in brk: print("- k = %d, tuned: %s: `%s`" % (k, t, l))
 print()
-print("Not passing under either, verdict changed: %d" % len(other))
+print("Not passing under either, class changed: %d" % len(other))
 print()
-for k, l, o, t in other: print("- k = %d, MLCA %s, tuned %s: `%s`" % (k, o, t, l))
+for k, l, o, t in other: print("- k = %d, MLCA: %s; tuned: %s: `%s`" % (k, o, t, l))
 ' "$(name_of "$orig")" "$(name_of "$tuned")"
 } > "$md.tmp"
 mv "$md.tmp" "$md"
