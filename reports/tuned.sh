@@ -3,8 +3,9 @@
 # data/stencils/mlca-valence.ini tuned by `subspectra tune`, then both files
 # swept with certified verdicts over every vertex link with 4..K vertices and
 # the edges of valence 3..10, counted per k, with the links the tuned file
-# repairs and breaks.  Not part of ./run (about 10 min of CPU, most of it
-# tune: 80 evaluations of 270 cases).  See reports/README.md, "Finding 10".
+# repairs and breaks, and each failing link tuned alone.  Not part of ./run
+# (about 25 min on the shared 2-core machine: 80 evaluations of 270 cases,
+# 40 of each failing link).  See reports/README.md, "Finding 10".
 #
 #   reports/tuned.sh [--max-k K] [--db FILE] [--out DIR] [--jobs N]
 #                    [--evals N] [--no-tune]
@@ -12,13 +13,15 @@
 # Steps:
 #  1. subspectra sweep --stencil data/stencils/mlca.ini --vertices 4..K
 #       --edges 3..10 --certify --db FILE  (MLCA as a stencil; resumable)
-#  2. the tuning set: the links with 9..K vertices that pass under step 1,
+#  2. each vertex link that does not pass under step 1 tuned alone
+#     (tune --links ONE --evals 40; DIR/data/tuned-mlca-k4-K-alone.csv), then
+#     the tuning set: the links with 9..K vertices that pass under step 1,
 #     and finding 1's link; then
 #       subspectra tune data/stencils/mlca-valence.ini --vertices 4..8
 #         --links SET --edges 3..7 --evals N -o data/stencils/mlca-valence-tuned.ini
 #     (every case MLCA passes must keep passing, finding 1 must be repaired;
-#     the failures that no weight of the family moves are left out, since
-#     tune maximises the smallest margin and one of them would pin it).
+#     the other failures are left out, since tune maximises the smallest
+#     margin and one that no point moves would pin it).
 #     --no-tune keeps the tuned file as it is.
 #  3. the same sweep of the tuned file;
 #  4. DIR/tuned-mlca-k4-K.md: the exhaustive rows and the summary of both
@@ -33,7 +36,7 @@ usage() {
   sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'
 }
 
-kmax=10 db=tuned.db out=reports jobs=1 evals=80 tune=1
+kmax=10 db=tuned.db out=reports jobs=1 evals=80 tune=1 alone_evals=40
 while (($#)); do
   case "$1" in
   --max-k) kmax=${2:?--max-k needs a value}; shift 2 ;;
@@ -89,7 +92,26 @@ sweep "$orig"
 [[ -f $db ]] || { echo "tuned.sh: no store $db" >&2; exit 2; }
 set_file=$(mktemp)
 trap 'rm -f "$set_file"' EXIT
+alone=$out/data/tuned-mlca-k4-$kmax-alone.csv
 if ((tune)); then
+  # 2a. every vertex link MLCA does not pass, tuned alone
+  mkdir -p "$out/data"
+  "$exe" report --db "$db" --table cases --format csv \
+    --where "kind = 'vertex' AND k BETWEEN 4 AND $kmax AND verdict != 'pass' AND identity = '$(ident "$orig")'" |
+    python3 -c 'import csv, sys
+for r in sorted(csv.DictReader(sys.stdin), key=lambda r: (int(r["k"]), r["link"])): print(r["link"])' > "$set_file"
+  echo "tuned.sh: tune $family on each of the $(wc -l < "$set_file") links MLCA does not pass, alone ($alone_evals evaluations)" >&2
+  one=$(mktemp) scratch=$(mktemp)
+  echo "link,margin,point" > "$alone.tmp"
+  while read -r l; do
+    echo "$l" > "$one"
+    line=$("$exe" tune "$family" --links "$one" --evals "$alone_evals" -o "$scratch" 2>&1 |
+      sed -n 's/^search: .*best smallest margin \([^ ]*\) at \(.*\)$/\1,\2/p') || true
+    echo "\"$l\",${line:-,}" >> "$alone.tmp"
+  done < "$set_file"
+  rm -f "$one" "$scratch"
+  mv "$alone.tmp" "$alone"
+  # 2b. the tuning set
   "$exe" report --db "$db" --table cases --format csv \
     --where "kind = 'vertex' AND k BETWEEN 9 AND $kmax AND verdict = 'pass' AND scheme = '$(name_of "$orig")'" |
     python3 -c 'import csv, sys
@@ -101,7 +123,7 @@ for r in sorted(csv.DictReader(sys.stdin), key=lambda r: (int(r["k"]), r["link"]
     --jobs "$jobs" -o "$tuned" || rc=$?
   ((rc == 0 || rc == 1)) || { echo "tuned.sh: tune ended with status $rc" >&2; exit 1; }
 fi
-[[ -f $tuned ]] || { echo "tuned.sh: no $tuned (run without --no-tune)" >&2; exit 2; }
+[[ -f $tuned && -f $alone ]] || { echo "tuned.sh: no $tuned or $alone (run without --no-tune)" >&2; exit 2; }
 sweep "$tuned"
 
 id_orig=$(ident "$orig") id_tuned=$(ident "$tuned")
@@ -133,6 +155,23 @@ md=$out/tuned-mlca-k4-$kmax.md
   echo "## Summary per case kind and k (worst minimum scaled Jacobian, |lambda1|)"
   echo
   "$exe" report --db "$db" --where "$where" --table summary
+  echo
+  echo "## The links MLCA does not pass, each tuned alone"
+  echo
+  echo "\`subspectra tune mlca-valence.ini --links ONE --evals $alone_evals\` on each"
+  echo "link alone: the best smallest margin found (positive: that link can pass"
+  echo "with some t_n; negative: no point of the search made it pass, which is"
+  echo "evidence, not proof)."
+  echo
+  python3 -c 'import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+pos = sum(1 for r in rows if r["margin"] and float(r["margin"]) > 0)
+print("%d of %d pass alone." % (pos, len(rows)))
+print()
+print("| k | link | margin | at |")
+print("|--:|---|--:|---|")
+for r in sorted(rows, key=lambda r: -float(r["margin"] or "-99")):
+    print("| %s | `%s` | %s | %s |" % (r["link"].split()[0], r["link"], r["margin"] or "error", r["point"]))' "$alone"
   echo
   echo "## Links whose verdict changes"
   echo
