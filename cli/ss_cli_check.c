@@ -23,7 +23,7 @@
 static const char *const usage_text =
     "usage: subspectra check (STENCIL.ini | --scheme S) [--vertices A..B]\n"
     "                        [--edges A..B] [--face] [--surface-vertices A..B]\n"
-    "                        [--tol T] [--depth D]\n"
+    "                        [--links FILE] [--tol T] [--depth D]\n"
     "                        [--certify] [--max-memory SIZE] [--jobs N]\n"
     "                        [--format text|json|junit] [--baseline FILE]\n"
     "                        [--progress]\n"
@@ -39,6 +39,8 @@ static const char *const usage_text =
     "                    hex stars for split multilinear, tet stars for tetoct)\n"
     "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
     "  --face            the face of two tets (split tetoct only)\n"
+    "  --links FILE      the vertex links in FILE, one a line (plantri ASCII or a\n"
+    "                    name; '#' comments; '-' stdin), any number of vertices\n"
     "  --surface-vertices A..B\n"
     "                    every smooth surface vertex of valence A..B (3 <= A <=\n"
     "                    B <= 256): a triangle surface's (Loop-like rules) or a\n"
@@ -171,6 +173,40 @@ static int visit(const ss_link *l, void *ctx) {
   return 0;
 }
 
+/* The vertex cases of --links FILE, one link a line ('#' comments; '-'
+ * stdin): 0, or an exit status after a message. */
+static int list_links(gate *g, const char *cmd, const char *path) {
+  FILE *f = strcmp(path, "-") ? fopen(path, "r") : stdin;
+  const char *name = f == stdin ? "stdin" : path;
+  if (!f) {
+    fprintf(stderr, "subspectra %s: --links %s: cannot open\n", cmd, path);
+    return SS_EXIT_USAGE;
+  }
+  char *line = NULL, *p;
+  size_t cap = 0, before = g->run->ncases;
+  long lineno = 0;
+  int rc = SS_EXIT_OK;
+  while (!rc && (p = ss_cli_next_item(f, &line, &cap, &lineno))) {
+    ss_error err = {0};
+    ss_link *l = NULL;
+    if (ss_link_parse(p, &l, &err)) {
+      fprintf(stderr, "subspectra %s: %s:%ld: %s\n", cmd, name, lineno, err.msg);
+      rc = SS_EXIT_USAGE;
+    } else if (visit(l, g)) {
+      fprintf(stderr, "subspectra %s: out of memory\n", cmd);
+      rc = SS_EXIT_USAGE;
+    }
+    ss_link_free(l);
+  }
+  free(line);
+  if (f != stdin) fclose(f);
+  if (!rc && g->run->ncases == before) {
+    fprintf(stderr, "subspectra %s: --links %s: no links read\n", cmd, name);
+    rc = SS_EXIT_USAGE;
+  }
+  return rc;
+}
+
 /* Run every case on `jobs` threads; in text format print each case that does
  * not pass as soon as it and every case before it are done (the order of the
  * list, whatever the threads); with progress a line on stderr at most once a
@@ -229,6 +265,7 @@ static int parse_opts(int argc, char **argv, check_opts *o) {
   static const struct option opts[] = {{"vertices", required_argument, NULL, 'v'},
                                        {"edges", required_argument, NULL, 'e'},
                                        {"face", no_argument, NULL, 'f'},
+                                       {"links", required_argument, NULL, 'L'},
                                        {"surface-vertices", required_argument, NULL, 'S'},
                                        {"tol", required_argument, NULL, 't'},
                                        {"depth", required_argument, NULL, 'd'},
@@ -314,6 +351,8 @@ int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases
                                 arg);
   } else if (c == 'f') {
     k->face = 1;
+  } else if (c == 'L') {
+    k->links = arg;
   } else if (c == 'S') {
     if (ss_cli_parse_range(arg, &k->sa, &k->sb) || k->sa < 3 || k->sb > 256 ||
         k->sa > k->sb)
@@ -345,6 +384,10 @@ int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k) {
       fprintf(stderr, "subspectra %s: %s\n", cmd, g->failed ? "out of memory" : err.msg);
       return g->failed ? SS_EXIT_USAGE : ss_cli_exit_status(err.status);
     }
+  }
+  if (k->links) {
+    const int rc = list_links(g, cmd, k->links);
+    if (rc) return rc;
   }
   for (long n = ea; n <= eb; n++) {
     char what[32];

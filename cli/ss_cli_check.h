@@ -48,21 +48,22 @@ typedef struct {
 
 /* The cases asked for on the command line (check, tune). */
 typedef struct {
-  long va, vb; /* vertex links with va..vb vertices; none when vb < va */
-  long ea, eb; /* edge valences ea..eb; none when eb < ea */
-  int face;    /* the face of two tets */
-  int any;     /* some case option was given */
-  long sa, sb; /* surface vertices of valences sa..sb; none when sb < sa */
+  long va, vb;       /* vertex links with va..vb vertices; none when vb < va */
+  long ea, eb;       /* edge valences ea..eb; none when eb < ea */
+  int face;          /* the face of two tets */
+  int any;           /* some case option was given */
+  long sa, sb;       /* surface vertices of valences sa..sb; none when sb < sa */
+  const char *links; /* --links FILE: vertex links one a line ('-' stdin); NULL none */
 } ss_check_cases;
 
 /* No case yet. */
 #define SS_CHECK_CASES_NONE                                                              \
-  { 0, -1, 0, -1, 0, 0, 0, -1 }
+  { 0, -1, 0, -1, 0, 0, 0, -1, NULL }
 
 /* Option c of getopt_long with its argument arg if it is a case option
  * ('v' --vertices A..B with 4 <= A <= B <= 9, 'e' --edges A..B with
  * 3 <= A <= B <= 64, 'f' --face, 'S' --surface-vertices A..B with
- * 3 <= A <= B <= 256): 0 taken into k, SS_EXIT_USAGE after a message
+ * 3 <= A <= B <= 256, 'L' --links FILE): 0 taken into k, SS_EXIT_USAGE after a message
  * ("subspectra CMD: ..."), -1 not a case option. */
 int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases *k);
 
@@ -72,8 +73,9 @@ int ss_check_case_option(int c, const char *arg, const char *cmd, ss_check_cases
 int ss_check_cases_default(ss_check_cases *k, const char *cmd, int tetoct,
                            const char *what);
 
-/* List the cases k into r->cases (appended).  0, or an exit status after a
- * message on stderr ("subspectra CMD: ..."). */
+/* List the cases k into r->cases (appended; --links' links after --vertices',
+ * in the file's order, as given: no isomorphic repeats are dropped).  0, or an exit
+ * status after a message on stderr ("subspectra CMD: ..."). */
 int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k);
 
 /* Analyse every case of r under s (shared read-only) with ro on `jobs`

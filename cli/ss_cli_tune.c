@@ -15,7 +15,7 @@
 static const char *const usage_text =
     "usage: subspectra tune STENCIL.ini [--vertices A..B] [--edges A..B] [--face]\n"
     "                       [--evals N] [--jobs N] [-o FILE] [--keep F]\n"
-    "                       [--tol T] [--depth D] [--progress]\n"
+    "                       [--links FILE] [--tol T] [--depth D] [--progress]\n"
     "\n"
     "Choose the free parameters of a stencil file ([param] NAME = ?(LO, HI), used\n"
     "by name in the weights) so that every case passes, maximising the smallest\n"
@@ -32,6 +32,8 @@ static const char *const usage_text =
     "  --vertices A..B   every vertex link with A..B vertices (4 <= A <= B <= 9)\n"
     "  --edges A..B      every edge valence A..B (3 <= A <= B <= 64)\n"
     "  --face            the face of two tets (split tetoct only)\n"
+    "  --links FILE      the vertex links in FILE, one a line (plantri ASCII or a\n"
+    "                    name; '#' comments; '-' stdin), any number of vertices\n"
     "  --evals N         evaluations of every case at one point (default 120,\n"
     "                    2..100000)\n"
     "  -j, --jobs N      cases analysed at once, on N threads (default 1)\n"
@@ -229,6 +231,7 @@ static int parse_opts(int argc, char **argv, tune_opts *o) {
   static const struct option opts[] = {{"vertices", required_argument, NULL, 'v'},
                                        {"edges", required_argument, NULL, 'e'},
                                        {"face", no_argument, NULL, 'f'},
+                                       {"links", required_argument, NULL, 'L'},
                                        {"tol", required_argument, NULL, 't'},
                                        {"depth", required_argument, NULL, 'd'},
                                        {"evals", required_argument, NULL, 'n'},
