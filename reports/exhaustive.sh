@@ -90,13 +90,7 @@ for s in $schemes; do
      exit 2 ;;
   esac
 done
-here=$(cd "$(dirname "$0")/.." && pwd)
-exe=${SUBSPECTRA:-}
-if [[ -z $exe ]]; then
-  if [[ -x $here/build/cli/subspectra ]]; then exe=$here/build/cli/subspectra
-  else exe=$(command -v subspectra || true); fi
-fi
-[[ -n $exe && -x $exe ]] || { echo "exhaustive.sh: no subspectra program (set SUBSPECTRA)" >&2; exit 2; }
+source "$(dirname "$0")/find-program.sh" exhaustive.sh
 command -v xz > /dev/null || { echo "exhaustive.sh: xz is needed" >&2; exit 2; }
 mkdir -p "$out/data"
 

@@ -53,13 +53,7 @@ if [[ $kmax != 9 && $kmax != 10 ]]; then
   echo "tuned.sh: --max-k '$kmax' is not 9 or 10" >&2
   exit 2
 fi
-here=$(cd "$(dirname "$0")/.." && pwd)
-exe=${SUBSPECTRA:-}
-if [[ -z $exe ]]; then
-  if [[ -x $here/build/cli/subspectra ]]; then exe=$here/build/cli/subspectra
-  else exe=$(command -v subspectra || true); fi
-fi
-[[ -n $exe && -x $exe ]] || { echo "tuned.sh: no subspectra program (set SUBSPECTRA)" >&2; exit 2; }
+source "$(dirname "$0")/find-program.sh" tuned.sh
 command -v python3 > /dev/null || { echo "tuned.sh: python3 is needed" >&2; exit 2; }
 orig=$here/data/stencils/mlca.ini
 family=$here/data/stencils/mlca-valence.ini
