@@ -10,6 +10,7 @@
 #include <lapacke.h>
 
 #include "double_interval.h"
+#include "ss_ball.h"
 #include "ss_charmap.h"
 #include "ss_charmap_cert_impl.h"
 #include "ss_clock.h"
@@ -140,11 +141,13 @@ int ss_charmap_cert_sym_margin(double dx2, double e2, double mu0, double gap) {
 }
 
 /* psi o sigma = psi proven: P commutes with the exact S (entries compared as
- * the rationals they stand for) and, with X the enclosed basis (midpoint Xm,
- * radius E), ||P Xm - Xm||_F + 2 ||E||_F < (s_min(Xm) - ||E||_F) gap / 2: if
- * M_sigma != I then ||P X - X|| = ||X (M_sigma - I)|| >= s_min(X) gap.  The
- * few norms are computed in double with a margin of a factor 2.  Returns 1
- * proven, 0 not, -1 out of memory. */
+ * the rationals they stand for; for algebraic weights, maxden < 0, S is
+ * invariant within the entries' windows, the premise under which the ball
+ * routes enclosed the basis: DESIGN section 5) and, with X the enclosed basis (midpoint
+ * Xm, radius E), ||P Xm - Xm||_F + 2 ||E||_F < (s_min(Xm) - ||E||_F) gap / 2: if M_sigma
+ * != I then ||P X - X|| = ||X (M_sigma - I)|| >= s_min(X) gap.  The few norms are
+ * computed in double with a margin of a factor 2.  Returns 1 proven, 0 not, -1 out of
+ * memory. */
 static int sym_proven(const ss_local *M, const ss_case *c, const ss_charmap_sym *y,
                       const double *lo, const double *hi, int m, long maxden,
                       ss_error *err) {
@@ -152,7 +155,11 @@ static int sym_proven(const ss_local *M, const ss_case *c, const ss_charmap_sym 
   size_t *P = malloc((n + 1) * sizeof *P);
   if (!P) return -1;
   int ok = ss_charmap_sym_perm(M, c, y, P, err) == SS_OK;
-  for (size_t i = 0; ok && i < n; i++)
+  size_t bi, bj;
+  if (ok && maxden < 0) /* algebraic: invariant within the windows, the premise
+                         * under which the basis was enclosed (DESIGN 5) */
+    ok = ss_ball_invariant(M->S, n, P, &bi, &bj);
+  for (size_t i = 0; ok && maxden >= 0 && i < n; i++)
     for (size_t j = 0; ok && j < n; j++) {
       const double a = M->S[i * n + j], b = M->S[P[i] * n + P[j]];
       long long pa = 0, qa = 1, pb = 0, qb = 1;

@@ -162,11 +162,15 @@ static void agree_case(const ss_scheme *rat, const ss_scheme *alg, const ss_case
   if (ok) run_free(&b), run_free(&a);
 }
 
-/* agree_case at the vertex of a named link (ccsolid: edge valences 3, 4, 6). */
+/* agree_case at the vertex of a named link (ccsolid: edge valences 3, 4, 6),
+ * or one in plantri ASCII. */
 static void agree(const ss_scheme *rat, const ss_scheme *alg, const char *link) {
   ss_link *l = NULL;
   ss_error err = {0};
-  if (!CHECK_OK(ss_link_named(link, &l, &err), &err)) return;
+  const int plantri = link[0] >= '0' && link[0] <= '9';
+  if (!CHECK_OK(plantri ? ss_link_parse(link, &l, &err) : ss_link_named(link, &l, &err),
+                &err))
+    return;
   const ss_case c = {SS_CASE_VERTEX, l, 0, SS_DIAG_BFS, 0};
   agree_case(rat, alg, &c, link);
   ss_link_free(l);
@@ -335,6 +339,10 @@ int main(int argc, char **argv) {
       edited("mlca.ini", "self = 1/8", "self = 1/8 + cos(2*pi/n)/64 - cos(2*pi/n)/64",
              "mlca-cos.ini");
   if (mcos) agree(mlca, mcos, "icosahedron"); /* the T1u triple against FLINT's roots */
+  /* finding 1's link (reports/README.md): psi o sigma = psi, a certified
+   * regularity failure on the exact path, must be certified on the balls too
+   * (S invariant under sigma within the windows) */
+  if (mcos) agree(mlca, mcos, "8 bcdefgh,ahc,abhd,ache,adhf,aehg,afh,agfedcb");
   for (int n = 4; n <= 5 && mcos; n++) {
     char what[32];
     snprintf(what, sizeof what, "mlca edge %d", n);
