@@ -25,6 +25,8 @@
 #   DIR/exhaustive-vertices-k4-K.csv       the same counts, --format csv
 #   DIR/data/exhaustive-vertices-k4-K-not-passing.csv.xz
 #                                          --table not-passing --format csv, xz
+# (exhaustive-vertices-psi-k4-K.* when some scheme is judged on psi, so the
+# tables about psi sit beside those about the control net),
 # restricted to the schemes and k asked for (a store may hold more).  A
 # (scheme, k) whose links the store does not hold all of (a sweep that was
 # interrupted) is left out of all three files and named in the Markdown's
@@ -136,7 +138,11 @@ for s in $schemes; do
   unset have
 done
 where+=$partial
-stem=$out/exhaustive-vertices-k4-$kmax
+# the tables about psi are named apart from those about the control net
+any_psi=0
+for s in $schemes; do (($(psi_of "$s") > 0)) && any_psi=1; done
+if ((any_psi)); then stem=$out/exhaustive-vertices-psi-k4-$kmax
+else stem=$out/exhaustive-vertices-k4-$kmax; fi
 {
   echo "# Exhaustive tables: every vertex one-ring with 4..$kmax vertices"
   echo

@@ -168,7 +168,8 @@ bad=$(awk '/^- tetoct k = / { h = $6; sub(/\(/, "", h); if (h + 0 >= $8 + 0) pri
 # pass on psi (DESIGN section 5)
 SUBSPECTRA=$exe "$script" --max-k 6 --schemes mlca --psi-depth 2 --db "$tmp/e.db" \
   --out "$tmp/q" --jobs 2 2> "$tmp/err" || { cat "$tmp/err"; fail "exhaustive.sh --psi-depth 2"; }
-md=$tmp/q/exhaustive-vertices-k4-6.md
+md=$tmp/q/exhaustive-vertices-psi-k4-6.md
+[[ ! -e $tmp/q/exhaustive-vertices-k4-6.md ]] || fail "--psi-depth wrote the control net's file name"
 [[ $(grep -c '^## ' "$md") == 1 ]] && grep -q '^## mlca .* certified psi-depth=2$' "$md" &&
   ok "exhaustive.sh --psi-depth 2: one section, the psi identity" ||
   fail "exhaustive.sh --psi-depth 2: sections $(grep '^## ' "$md")"
@@ -183,7 +184,7 @@ row6=$(awk -F'|' '/^\| 6 \|/ { gsub(/ /, ""); print $3 "," $4 "," $(NF - 3) }' "
 SUBSPECTRA=$exe "$script" --max-k 7 --schemes "mlca boxspline" --psi-depth boxspline=2,mlca=0 \
   --db "$tmp/e.db" --out "$tmp/bq" --jobs 2 2> "$tmp/err" ||
   { cat "$tmp/err"; fail "exhaustive.sh --psi-depth boxspline=2,mlca=0"; }
-md=$tmp/bq/exhaustive-vertices-k4-7.md
+md=$tmp/bq/exhaustive-vertices-psi-k4-7.md
 grep -q '^## boxspline .* psi-depth=2$' "$md" && grep -q '^## mlca tol=1e-06 depth=6 rings=3 certified$' "$md" &&
   ok "per-scheme psi depth: boxspline with psi, mlca without" ||
   fail "per-scheme psi depth: sections $(grep '^## ' "$md")"
