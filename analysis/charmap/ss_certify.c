@@ -202,14 +202,17 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
     return st;
   }
   out->cond = e->cond;
-  out->route = "exact";
-  if (st && turns(c)) { /* algebraic: the balls */
+  out->route =
+      rational ? "exact" : "none tried"; /* what was tried: the exact path or nothing */
+  if (st && turns(c)) {            /* algebraic: the balls */
     out->route = "Fourier blocks in balls";
     if ((st = fourier_condition(M, c, xe.msg, &out->cond, &fx, err))) goto done;
-    if (fx && !out->cond.certified && c->kind == SS_CASE_EDGE &&
-        (st = edge_by_schur(M, c, &out->cond, &fx, &sx, err)))
-      goto done;
-    if (sx) out->route = "balls, ties by Schur's lemma";
+    const int both = fx && !out->cond.certified && c->kind == SS_CASE_EDGE;
+    if (both && (st = edge_by_schur(M, c, &out->cond, &fx, &sx, err))) goto done;
+    if (sx)
+      out->route = "balls, ties by Schur's lemma";
+    else if (both) /* the edge's symmetries tried too, in vain */
+      out->route = "Fourier blocks in balls, then ties by Schur's lemma";
     if (!fx && !sx) {
       ss_verdict_unproven(&reg->verdict, "no exact spectrum");
       ss_verdict_unproven(&inj->verdict, "no exact spectrum");
@@ -280,7 +283,7 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
                               const ss_eig *e, const ss_charmap_opts *o, int certify,
                               ss_charmap **cm, ss_regularity *reg, ss_charmap_inj *inj,
                               ss_certified *out, ss_exact **x, ss_error *err) {
-  *out = (ss_certified){e->cond, 0.0, "exact"};
+  *out = (ss_certified){e->cond, 0.0, "none tried"};
   *inj =
       (ss_charmap_inj){{SS_UNDECIDED, "no characteristic map", 0, SS_ON_NOTHING}, 0, 0};
   if (x) *x = NULL;
