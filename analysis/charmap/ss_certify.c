@@ -202,9 +202,9 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
     return st;
   }
   out->cond = e->cond;
-  out->route =
-      rational ? "exact" : "none tried"; /* what was tried: the exact path or nothing */
-  if (st && turns(c)) {            /* algebraic: the balls */
+  /* the route tried so far: the exact path, or nothing */
+  out->route = rational ? "exact" : "none tried";
+  if (st && turns(c)) { /* algebraic: the balls */
     out->route = "Fourier blocks in balls";
     if ((st = fourier_condition(M, c, xe.msg, &out->cond, &fx, err))) goto done;
     const int both = fx && !out->cond.certified && c->kind == SS_CASE_EDGE;
