@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "ss_error.h"
+#include "ss_link.h"
 #include "ss_scheme.h"
 
 enum { SS_EXIT_OK = 0, SS_EXIT_FAIL = 1, SS_EXIT_USAGE = 2 };
@@ -107,6 +108,13 @@ int ss_cli_parse_part(const char *s, long *part, long *nparts);
  * Returns the item, which lives in *line until the next call, or NULL at the
  * end of the input; *lineno counts every line read, for messages. */
 char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno);
+/* The links of --links PATH (one a line as ss_cli_next_item reads them;
+ * '-' stdin) for command cmd, each parsed and handed to take(l, ctx), which
+ * owns l from then on and returns 0, or nonzero when out of memory.  0, or
+ * SS_EXIT_USAGE after a message on stderr (PATH cannot be opened, a line is
+ * not a link, take failed, no links at all). */
+int ss_cli_read_links(const char *cmd, const char *path,
+                      int (*take)(ss_link *l, void *ctx), void *ctx);
 /* Monotonic wall-clock seconds (ss_clock_wall). */
 double ss_cli_now(void);
 #ifndef SS_DATADIR

@@ -173,37 +173,10 @@ static int visit(const ss_link *l, void *ctx) {
   return 0;
 }
 
-/* The vertex cases of --links FILE, one link a line ('#' comments; '-'
- * stdin): 0, or an exit status after a message. */
-static int list_links(gate *g, const char *cmd, const char *path) {
-  FILE *f = strcmp(path, "-") ? fopen(path, "r") : stdin;
-  const char *name = f == stdin ? "stdin" : path;
-  if (!f) {
-    fprintf(stderr, "subspectra %s: --links %s: cannot open\n", cmd, path);
-    return SS_EXIT_USAGE;
-  }
-  char *line = NULL, *p;
-  size_t cap = 0, before = g->run->ncases;
-  long lineno = 0;
-  int rc = SS_EXIT_OK;
-  while (!rc && (p = ss_cli_next_item(f, &line, &cap, &lineno))) {
-    ss_error err = {0};
-    ss_link *l = NULL;
-    if (ss_link_parse(p, &l, &err)) {
-      fprintf(stderr, "subspectra %s: %s:%ld: %s\n", cmd, name, lineno, err.msg);
-      rc = SS_EXIT_USAGE;
-    } else if (visit(l, g)) {
-      fprintf(stderr, "subspectra %s: out of memory\n", cmd);
-      rc = SS_EXIT_USAGE;
-    }
-    ss_link_free(l);
-  }
-  free(line);
-  if (f != stdin) fclose(f);
-  if (!rc && g->run->ncases == before) {
-    fprintf(stderr, "subspectra %s: --links %s: no links read\n", cmd, name);
-    rc = SS_EXIT_USAGE;
-  }
+/* A vertex case of --links (ss_cli_read_links: l is ours). */
+static int take_link(ss_link *l, void *ctx) {
+  const int rc = visit(l, ctx);
+  ss_link_free(l);
   return rc;
 }
 
@@ -386,7 +359,7 @@ int ss_check_list(ss_check_run *r, const char *cmd, const ss_check_cases *k) {
     }
   }
   if (k->links) {
-    const int rc = list_links(g, cmd, k->links);
+    const int rc = ss_cli_read_links(cmd, k->links, take_link, g);
     if (rc) return rc;
   }
   for (long n = ea; n <= eb; n++) {

@@ -245,49 +245,26 @@ static int visit(const ss_link *l, void *ctx) {
 
 /* The links of --links, all read and checked before anything runs. */
 typedef struct {
-  ss_link **l; /* the links */
-  size_t n;    /* how many */
+  ss_link **l;  /* the links */
+  size_t n;     /* how many */
+  size_t alloc; /* room for */
 } linklist;
 
-static int read_links(const char *path, linklist *ll) {
-  FILE *f = strcmp(path, "-") ? fopen(path, "r") : stdin;
-  const char *name = strcmp(path, "-") ? path : "stdin";
-  if (!f) {
-    fprintf(stderr, "subspectra sweep: --links %s: cannot open\n", path);
-    return SS_EXIT_USAGE;
-  }
-  char *line = NULL, *p;
-  size_t cap = 0, alloc = 0;
-  long lineno = 0;
-  int rc = SS_EXIT_OK;
-  while ((p = ss_cli_next_item(f, &line, &cap, &lineno))) {
-    ss_error err = {0};
-    ss_link *l = NULL;
-    if (ss_link_parse(p, &l, &err)) {
-      fprintf(stderr, "subspectra sweep: %s:%ld: %s\n", name, lineno, err.msg);
-      rc = SS_EXIT_USAGE;
-      break;
+/* One link of --links appended (ss_cli_read_links: l is ours). */
+static int take_link(ss_link *l, void *ctx) {
+  linklist *ll = ctx;
+  if (ll->n == ll->alloc) {
+    const size_t alloc = ll->alloc ? 2 * ll->alloc : 64;
+    ss_link **q = realloc(ll->l, alloc * sizeof *q);
+    if (!q) {
+      ss_link_free(l);
+      return 1;
     }
-    if (ll->n == alloc) {
-      alloc = alloc ? 2 * alloc : 64;
-      ss_link **q = realloc(ll->l, alloc * sizeof *q);
-      if (!q) {
-        ss_link_free(l);
-        fprintf(stderr, "subspectra sweep: out of memory reading %s\n", name);
-        rc = SS_EXIT_USAGE;
-        break;
-      }
-      ll->l = q;
-    }
-    ll->l[ll->n++] = l;
+    ll->l = q;
+    ll->alloc = alloc;
   }
-  free(line);
-  if (f != stdin) fclose(f);
-  if (!rc && ll->n == 0) {
-    fprintf(stderr, "subspectra sweep: --links %s: no links read\n", name);
-    rc = SS_EXIT_USAGE;
-  }
-  return rc;
+  ll->l[ll->n++] = l;
+  return 0;
 }
 
 /* A link of --links by its canonical form, for finding repeats. */
@@ -454,8 +431,8 @@ int ss_sweep_open(int argc, char **argv, ss_sweep_role role, ss_sweep **out) {
     *out = w;
     return -1;
   }
-  linklist ll = {NULL, 0};
-  rc = a.links ? read_links(a.links, &ll) : SS_EXIT_OK;
+  linklist ll = {NULL, 0, 0};
+  rc = a.links ? ss_cli_read_links("sweep", a.links, take_link, &ll) : SS_EXIT_OK;
   if (!rc && a.links)
     rc = dedupe_links(&ll, a.vtext && volume ? a.va : 1, a.vtext && volume ? a.vb : 0,
                       &w->dups);

@@ -127,6 +127,40 @@ char *ss_cli_next_item(FILE *f, char **line, size_t *cap, long *lineno) {
   return NULL;
 }
 
+int ss_cli_read_links(const char *cmd, const char *path,
+                      int (*take)(ss_link *l, void *ctx), void *ctx) {
+  FILE *f = strcmp(path, "-") ? fopen(path, "r") : stdin;
+  const char *name = f == stdin ? "stdin" : path;
+  if (!f) {
+    fprintf(stderr, "subspectra %s: --links %s: cannot open\n", cmd, path);
+    return SS_EXIT_USAGE;
+  }
+  char *line = NULL, *p;
+  size_t cap = 0, n = 0;
+  long lineno = 0;
+  int rc = SS_EXIT_OK;
+  while (!rc && (p = ss_cli_next_item(f, &line, &cap, &lineno))) {
+    ss_error err = {0};
+    ss_link *l = NULL;
+    if (ss_link_parse(p, &l, &err)) {
+      fprintf(stderr, "subspectra %s: %s:%ld: %s\n", cmd, name, lineno, err.msg);
+      rc = SS_EXIT_USAGE;
+    } else if (take(l, ctx)) {
+      fprintf(stderr, "subspectra %s: out of memory reading %s\n", cmd, name);
+      rc = SS_EXIT_USAGE;
+    } else {
+      n++;
+    }
+  }
+  free(line);
+  if (f != stdin) fclose(f);
+  if (!rc && !n) {
+    fprintf(stderr, "subspectra %s: --links %s: no links read\n", cmd, name);
+    rc = SS_EXIT_USAGE;
+  }
+  return rc;
+}
+
 int ss_cli_parse_range(const char *s, long *a, long *b) {
   const char *dots = strstr(s, "..");
   if (!dots) {

@@ -10,13 +10,12 @@
 #include "ss_schur.h"
 
 /* Regularity and injectivity once the condition cond is settled, the basis
- * from ex (rational S), fx (the Fourier route: algebraic weights, enclosed
- * in their windows, ss_fourier.h) or sx (the Schur route, ss_schur.h). */
+ * from ex (rational S) or else bo (a ball route's: algebraic weights,
+ * enclosed in their windows, ss_fourier.h or ss_schur.h). */
 static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charmap *cm,
                              const ss_charmap_opts *o, const ss_verdict *cond,
-                             const ss_exact *ex, const ss_fourier *fx, const ss_schur *sx,
-                             long maxden, ss_regularity *reg, ss_charmap_inj *inj,
-                             ss_error *err) {
+                             const ss_exact *ex, const ss_ball_outcome *bo, long maxden,
+                             ss_regularity *reg, ss_charmap_inj *inj, ss_error *err) {
   ss_status st = SS_OK;
   double *lo = NULL, *hi = NULL;
   if (!cond->certified) { /* undecided already, with its reason */
@@ -48,9 +47,8 @@ static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charm
       goto done;
     }
     ss_error be = {0};
-    const ss_status bs = ex   ? ss_exact_basis(ex, lo, hi, &be)
-                         : fx ? ss_fourier_basis(fx, lo, hi, &be)
-                              : ss_schur_basis(sx, lo, hi, &be);
+    const ss_status bs =
+        ex ? ss_exact_basis(ex, lo, hi, &be) : ss_ball_outcome_basis(bo, lo, hi, &be);
     if (bs == SS_ENOMEM) {
       st = ss_error_nomem(err, "basis enclosure");
       goto done;
@@ -76,6 +74,22 @@ static int turns(const ss_case *c) {
   return c->kind == SS_CASE_SURFACE_VERTEX || c->kind == SS_CASE_EDGE;
 }
 
+/* A ball route that could not be set up (st from its symmetries or its
+ * constructor, pe the message): SS_ENOMEM passed on in *err; otherwise cond
+ * undecided with why and the route's words (`no Fourier blocks`, `no
+ * symmetry route`) and SS_OK. */
+static ss_status route_refused(ss_status st, const ss_error *pe, const char *why,
+                               const char *none, ss_verdict *cond, ss_error *err) {
+  if (st == SS_ENOMEM) {
+    *err = *pe;
+    return st;
+  }
+  char r[sizeof cond->reason];
+  snprintf(r, sizeof r, "%.200s; %s: %.200s", why, none, pe->msg);
+  ss_verdict_unproven(cond, r);
+  return SS_OK;
+}
+
 /* The Fourier route's condition for a surface vertex or an edge (*fx: caller frees), or
  * *fx NULL when the star's rotation and reflection do not map the two-ring
  * (then out stays undecided with why). */
@@ -98,18 +112,13 @@ static ss_status fourier_condition(const ss_local *M, const ss_case *c, const ch
   ss_status st = ss_charmap_sym_perm(M, c, &y, rot, &pe);
   y.index = c->kind == SS_CASE_EDGE ? c->n - 1 : M->ncoord - 1;
   if (!st) st = ss_charmap_sym_perm(M, c, &y, refl, &pe);
-  if (st == SS_ENOMEM) {
-    *err = pe;
-  } else if (st) {
-    char r[sizeof cond->reason];
-    snprintf(r, sizeof r, "%.200s; no Fourier blocks: %.200s", why, pe.msg);
-    ss_verdict_unproven(cond, r);
-    st = SS_OK;
-  } else if (!(st = ss_fourier_new(M->S, n, M->n1, rot, refl,
-                                   c->kind == SS_CASE_EDGE ? c->n : M->ncoord, M->dim, fx,
-                                   err))) {
+  if (st)
+    st = route_refused(st, &pe, why, "no Fourier blocks", cond, err);
+  else if (!(st = ss_fourier_new(M->S, n, M->n1, rot, refl,
+                                 c->kind == SS_CASE_EDGE ? c->n : M->ncoord, M->dim, fx,
+                                 err))) {
     int certified = 0;
-    ss_fourier_condition(*fx, cond, &certified);
+    ss_ball_outcome_condition(ss_fourier_outcome(*fx), cond, &certified);
   }
   free(rot);
   free(refl);
@@ -126,16 +135,11 @@ static ss_status schur_condition(const ss_local *M, const ss_case *c, const char
   ss_error pe = {0};
   ss_status st = ss_charmap_sym_group(M, c, &G, &ng, &pe);
   if (!st) st = ss_schur_new(M->S, M->n2, M->n1, G, ng, M->dim, sx, &pe);
-  if (st == SS_ENOMEM) {
-    *err = pe;
-  } else if (st) {
-    char r[sizeof cond->reason];
-    snprintf(r, sizeof r, "%.200s; no symmetry route: %.200s", why, pe.msg);
-    ss_verdict_unproven(cond, r);
-    st = SS_OK;
+  if (st) {
+    st = route_refused(st, &pe, why, "no symmetry route", cond, err);
   } else {
     int certified = 0;
-    ss_schur_condition(*sx, cond, &certified);
+    ss_ball_outcome_condition(ss_schur_outcome(*sx), cond, &certified);
   }
   free(G);
   return st;
@@ -198,14 +202,17 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
     return st;
   }
   out->cond = e->cond;
-  out->route = "exact";
+  /* the route tried so far: the exact path, or nothing */
+  out->route = rational ? "exact" : "none tried";
   if (st && turns(c)) { /* algebraic: the balls */
     out->route = "Fourier blocks in balls";
     if ((st = fourier_condition(M, c, xe.msg, &out->cond, &fx, err))) goto done;
-    if (fx && !out->cond.certified && c->kind == SS_CASE_EDGE &&
-        (st = edge_by_schur(M, c, &out->cond, &fx, &sx, err)))
-      goto done;
-    if (sx) out->route = "balls, ties by Schur's lemma";
+    const int both = fx && !out->cond.certified && c->kind == SS_CASE_EDGE;
+    if (both && (st = edge_by_schur(M, c, &out->cond, &fx, &sx, err))) goto done;
+    if (sx)
+      out->route = "balls, ties by Schur's lemma";
+    else if (both) /* the edge's symmetries tried too, in vain */
+      out->route = "Fourier blocks in balls, then ties by Schur's lemma";
     if (!fx && !sx) {
       ss_verdict_unproven(&reg->verdict, "no exact spectrum");
       ss_verdict_unproven(&inj->verdict, "no exact spectrum");
@@ -229,7 +236,11 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
     ss_exact_condition(ex, &out->cond, &out->cond.certified);
   }
   out->cond.on = SS_ON_SPECTRUM;
-  st = judge_after(M, c, cm, o, &out->cond, ex, fx, sx, eo.maxden, reg, inj, err);
+  st = judge_after(M, c, cm, o, &out->cond, ex,
+                   fx   ? ss_fourier_outcome(fx)
+                   : sx ? ss_schur_outcome(sx)
+                        : NULL,
+                   eo.maxden, reg, inj, err);
 done:
   ss_fourier_free(fx);
   ss_schur_free(sx);
@@ -272,7 +283,7 @@ ss_status ss_certify_verdicts(const ss_scheme *s, const ss_case *c, ss_local *M,
                               const ss_eig *e, const ss_charmap_opts *o, int certify,
                               ss_charmap **cm, ss_regularity *reg, ss_charmap_inj *inj,
                               ss_certified *out, ss_exact **x, ss_error *err) {
-  *out = (ss_certified){e->cond, 0.0, "exact"};
+  *out = (ss_certified){e->cond, 0.0, "none tried"};
   *inj =
       (ss_charmap_inj){{SS_UNDECIDED, "no characteristic map", 0, SS_ON_NOTHING}, 0, 0};
   if (x) *x = NULL;

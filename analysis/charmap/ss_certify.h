@@ -34,8 +34,12 @@ typedef struct {
                         undecided */
   double seconds;    /* time the exact path took (wall clock) */
   const char *route; /* what proved or tried to: "exact" (NULL: the same),
-                        "Fourier blocks in balls" (ss_fourier.h) or "balls,
-                        ties by Schur's lemma" (ss_schur.h); a static string */
+                        "Fourier blocks in balls" (ss_fourier.h), "balls,
+                        ties by Schur's lemma" (ss_schur.h), "Fourier blocks
+                        in balls, then ties by Schur's lemma" (an edge both
+                        left undecided), or "none tried" (nothing tried: without
+                        certify, or weights not rational where no ball route
+                        applies); a static string */
 } ss_certified;
 
 /* Run the exact path on case c (M, e from the double path; cm, reg, inj its

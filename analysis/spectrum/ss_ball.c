@@ -1,8 +1,13 @@
-/* ss_ball.c — arb balls as doubles, entries' windows, eigenvalue enclosures
- * (ss_ball.h). */
+/* ss_ball.c — arb balls as doubles, entries' windows, eigenvalue enclosures,
+ * the ball routes' outcome and shared steps (ss_ball.h). */
 #include "ss_ball.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 void ss_ball_doubles(const arb_t x, double *lo, double *hi) {
   arf_t t;
@@ -70,4 +75,125 @@ int ss_ball_invariant(const double *S, size_t n, const size_t *p, size_t *bi,
       }
     }
   return 1;
+}
+
+/* ---- the ball routes' outcome ---- */
+
+void ss_ball_outcome_init(ss_ball_outcome *o, size_t n, int m) {
+  memset(o, 0, sizeof *o);
+  o->n = n;
+  o->m = m;
+  snprintf(o->bmsg, sizeof o->bmsg, "%s", "the condition is not a certified pass");
+  ss_ball_verdict(o, SS_UNDECIDED, 0, "%s", "not certified: not assessed");
+}
+
+void ss_ball_outcome_clear(ss_ball_outcome *o) {
+  free(o->lo);
+  free(o->hi);
+  o->lo = o->hi = NULL;
+}
+
+void ss_ball_verdict(ss_ball_outcome *o, ss_verdict_kind v, int certified,
+                     const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  o->cond.verdict = v;
+  vsnprintf(o->cond.reason, sizeof o->cond.reason, fmt, ap);
+  va_end(ap);
+  o->cond.certified = certified;
+  o->cond.on = SS_ON_SPECTRUM;
+}
+
+void ss_ball_outcome_condition(const ss_ball_outcome *o, ss_verdict *v, int *certified) {
+  *v = o->cond;
+  *certified = o->cond.certified;
+}
+
+ss_status ss_ball_outcome_basis(const ss_ball_outcome *o, double *lo, double *hi,
+                                ss_error *err) {
+  if (o->cond.verdict != SS_PASS || !o->cond.certified)
+    return ss_error_set(err, SS_EINPUT, "%s", o->bmsg);
+  if (!o->lo) return ss_error_set(err, SS_ENUMERIC, "%s", o->bmsg);
+  memcpy(lo, o->lo, (size_t)o->m * o->n * sizeof *lo);
+  memcpy(hi, o->hi, (size_t)o->m * o->n * sizeof *hi);
+  return SS_OK;
+}
+
+/* ---- the ball routes' shared steps ---- */
+
+void ss_ball_mid(const ss_ball_root *r, double *re, double *im, double *rad) {
+  *re = arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR);
+  *im = arf_get_d(arb_midref(acb_imagref(&r->z)), ARF_RND_NEAR);
+  if (rad) {
+    mag_t m;
+    mag_init(m);
+    mag_hypot(m, arb_radref(acb_realref(&r->z)), arb_radref(acb_imagref(&r->z)));
+    *rad = mag_get_d(m);
+    mag_clear(m);
+  }
+}
+
+const ss_ball_root *ss_ball_at(const ss_ball_roots *r, size_t i) {
+  return (const ss_ball_root *)((const char *)r->at + i * r->size);
+}
+
+size_t ss_ball_ones(const ss_ball_roots *r, size_t *one) {
+  acb_t u;
+  acb_init(u);
+  acb_one(u);
+  size_t ones = 0;
+  for (size_t i = 0; i < r->nrt; i++)
+    if (acb_contains(&ss_ball_at(r, i)->z, u)) ones++, *one = i;
+  acb_clear(u);
+  return ones;
+}
+
+int ss_ball_below_one(const ss_ball_roots *r, size_t one, ss_ball_outcome *o) {
+  char b1[96];
+  arb_t t;
+  arb_init(t);
+  arb_one(t);
+  int open = 0;
+  for (size_t i = 0; i < r->nrt && !open; i++) {
+    const ss_ball_root *x = ss_ball_at(r, i);
+    if (i == one || arb_lt(&x->mod, t)) continue;
+    open = 1;
+    if (arb_gt(&x->mod, t) && x->counted)
+      ss_ball_verdict(o, SS_FAIL, 1, "the eigenvalue %s has modulus > 1 (proven, balls)",
+                      r->text(r->route, i, b1, sizeof b1));
+    else
+      ss_ball_verdict(
+          o, SS_UNDECIDED, 0,
+          "not certified: the modulus of the eigenvalue %s and 1 not separated",
+          r->text(r->route, i, b1, sizeof b1));
+  }
+  arb_clear(t);
+  return open;
+}
+
+int ss_ball_rest_below(const ss_ball_roots *r, size_t one, const size_t *lead, int nl,
+                       const arb_t x, size_t skip) {
+  for (size_t i = 0; i < r->nrt; i++) {
+    int led = i == one || i == skip;
+    for (int j = 0; j < nl; j++)
+      led |= i == lead[j];
+    if (!led && !arb_lt(&ss_ball_at(r, i)->mod, x)) return 0;
+  }
+  return 1;
+}
+
+static double mid_mod(const ss_ball_root *r) {
+  return arf_get_d(arb_midref(&r->mod), ARF_RND_NEAR);
+}
+
+int ss_ball_by_modulus(const void *a, const void *b) {
+  const double x = mid_mod(a), y = mid_mod(b);
+  return x > y ? -1 : x < y;
+}
+
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+void ss_ball_conj(acb_t cz, const acb_t z) {
+  acb_conj(cz, z);
 }

@@ -3,7 +3,6 @@
 #include "ss_fourier.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,17 +32,14 @@ typedef struct {
 
 /* One eigenvalue enclosure (internal). */
 typedef struct {
-  acb_struct z;   /* the ball */
-  arb_struct mod; /* |z| enclosed */
-  size_t blk;     /* its block */
-  int isolated;   /* one eigenvalue of the block in z */
-  int real;       /* 1 proven real, -1 proven not, 0 unknown */
-  acb_ptr vec;    /* isolated: its eigenvector over the block's orbits, or NULL */
-  int full;       /* 1: vec is S_k's eigenvector; 0: only its component's
-                     (zero elsewhere), which extend() completes */
-  size_t part;    /* its strongly connected component (a column of it) */
-  int counted;    /* 1: the ball holds as many eigenvalues as balls share it;
-                     0: it only bounds where they are (no proven failure) */
+  ss_ball_root ball; /* the ball, |z|, counted (first: ss_ball_roots) */
+  size_t blk;        /* its block */
+  int isolated;      /* one eigenvalue of the block in z */
+  int real;          /* 1 proven real, -1 proven not, 0 unknown */
+  acb_ptr vec;       /* isolated: its eigenvector over the block's orbits, or NULL */
+  int full;          /* 1: vec is S_k's eigenvector; 0: only its component's
+                        (zero elsewhere), which extend() completes */
+  size_t part;       /* its strongly connected component (a column of it) */
 } fr_root;
 
 struct ss_fourier {
@@ -61,38 +57,17 @@ struct ss_fourier {
   size_t nrt;           /* eigenvalue enclosures */
   fr_root *rt;          /* nrt of them, by decreasing midpoint modulus */
   ss_fourier_root *pub; /* nrt public copies, same order */
-  ss_verdict cond;      /* the condition */
-  int certified;        /* 1 if cond is proven */
+  ss_ball_outcome out;  /* the condition and on a pass the basis */
   int m;                /* subdominant eigenvalues: 2 surface, 3 volume */
   size_t lead[4];       /* on a pass: the roots of lambda1..m (a pair once) */
   int nlead;            /* ... how many */
-  double *lo, *hi;      /* on a pass: the basis enclosure (n x 2), or NULL */
-  char bmsg[256];       /* why there is no basis on a pass */
 };
-
-static void set_verdict(ss_fourier *f, ss_verdict_kind v, int certified, const char *fmt,
-                        ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-
-static void set_verdict(ss_fourier *f, ss_verdict_kind v, int certified, const char *fmt,
-                        ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  f->cond.verdict = v;
-  vsnprintf(f->cond.reason, sizeof f->cond.reason, fmt, ap);
-  va_end(ap);
-  f->cond.certified = f->certified = certified;
-  f->cond.on = SS_ON_SPECTRUM;
-}
 
 void ss_fourier_free(ss_fourier *f) {
   if (!f) return;
   for (size_t i = 0; i < f->nrt; i++) {
-    acb_clear(&f->rt[i].z);
-    arb_clear(&f->rt[i].mod);
+    acb_clear(&f->rt[i].ball.z);
+    arb_clear(&f->rt[i].ball.mod);
     if (f->rt[i].vec) _acb_vec_clear(f->rt[i].vec, (slong)f->blk[f->rt[i].blk].b);
   }
   for (size_t b = 0; b < f->nblk; b++) {
@@ -108,8 +83,7 @@ void ss_fourier_free(ss_fourier *f) {
   free(f->osize);
   free(f->orb_of);
   free(f->pos);
-  free(f->lo);
-  free(f->hi);
+  ss_ball_outcome_clear(&f->out);
   free(f);
 }
 
@@ -282,14 +256,14 @@ static int block_eigen(ss_fourier *f, size_t bi) {
   acb_init(cz);
   for (slong i = 0; ok && i < b; i++) {
     fr_root *r = f->rt + f->nrt++;
-    acb_init(&r->z);
-    arb_init(&r->mod);
-    acb_set(&r->z, E + i);
-    acb_abs(&r->mod, &r->z, FR_PREC);
+    acb_init(&r->ball.z);
+    arb_init(&r->ball.mod);
+    acb_set(&r->ball.z, E + i);
+    acb_abs(&r->ball.mod, &r->ball.z, FR_PREC);
     r->blk = bi;
     r->part = part[i];
     r->full = whole;
-    r->counted = counted[i];
+    r->ball.counted = counted[i];
     r->isolated = sim[i]; /* and apart from the other components' */
     for (slong j = 0; j < b; j++)
       if (part[j] != part[i] && acb_overlaps(E + i, E + j)) r->isolated = 0;
@@ -339,7 +313,7 @@ static int extend(const ss_fourier *f, fr_root *r) {
     for (slong x = 0; x < nz; x++) {
       for (slong w = 0; w < nz; w++)
         acb_set(acb_mat_entry(M, x, w), acb_mat_entry(&bl->B, z[x], z[w]));
-      acb_sub(acb_mat_entry(M, x, x), acb_mat_entry(M, x, x), &r->z, FR_PREC);
+      acb_sub(acb_mat_entry(M, x, x), acb_mat_entry(M, x, x), &r->ball.z, FR_PREC);
       for (slong c = 0; c < b; c++)
         if (comp[c] == r->part)
           acb_submul(acb_mat_entry(rhs, x, 0), acb_mat_entry(&bl->B, z[x], c), r->vec + c,
@@ -398,82 +372,42 @@ static int mult_of(const ss_fourier *f, const fr_root *r) {
   return k > 0 && 2 * k < f->order ? 2 : 1;
 }
 
-static double mid_mod(const fr_root *r) {
-  return arf_get_d(arb_midref(&r->mod), ARF_RND_NEAR);
-}
-
-static int by_modulus(const void *a, const void *b) {
-  const double x = mid_mod(a), y = mid_mod(b);
-  return x > y ? -1 : x < y;
-}
-
 /* "0.4226+0.0000i (Fourier mode 1)" */
-static const char *root_text(const ss_fourier *f, size_t i, char *buf, size_t len) {
-  const fr_root *r = f->rt + i;
-  snprintf(buf, len, "%.10g%+.3gi (Fourier mode %d)",
-           arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR),
-           arf_get_d(arb_midref(acb_imagref(&r->z)), ARF_RND_NEAR), f->blk[r->blk].k);
+static const char *root_text(const void *route, size_t i, char *buf, size_t len) {
+  const ss_fourier *f = route;
+  double re = 0.0, im = 0.0;
+  ss_ball_mid(&f->rt[i].ball, &re, &im, NULL);
+  snprintf(buf, len, "%.10g%+.3gi (Fourier mode %d)", re, im, f->blk[f->rt[i].blk].k);
   return buf;
+}
+
+/* f's roots for the steps ss_ball shares with ss_schur. */
+static ss_ball_roots roots_of(const ss_fourier *f) {
+  return (ss_ball_roots){f->rt, f->nrt, sizeof *f->rt, root_text, f};
 }
 
 /* lambda0 = 1 simple and every other modulus below 1: 1 with the verdict set
  * otherwise; *one its index. */
 static int assess_one(ss_fourier *f, size_t *one) {
-  char b1[96];
-  acb_t u;
-  acb_init(u);
-  acb_one(u);
-  size_t ones = 0;
-  for (size_t i = 0; i < f->nrt; i++)
-    if (acb_contains(&f->rt[i].z, u)) ones++, *one = i;
-  acb_clear(u);
+  const ss_ball_roots R = roots_of(f);
+  const size_t ones = ss_ball_ones(&R, one);
   if (ones != 1 || f->blk[f->rt[*one].blk].k != 0 || !f->rt[*one].isolated) {
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: lambda0 = 1 not isolated by the Fourier blocks' balls "
-                "(%zu contain 1)",
-                ones);
+    ss_ball_verdict(
+        &f->out, SS_UNDECIDED, 0,
+        "not certified: lambda0 = 1 not isolated by the Fourier blocks' balls "
+        "(%zu contain 1)",
+        ones);
     return 1;
   }
-  arb_t t;
-  arb_init(t);
-  arb_one(t);
-  int open = 0;
-  for (size_t i = 0; i < f->nrt && !open; i++) {
-    if (i == *one || arb_lt(&f->rt[i].mod, t)) continue;
-    open = 1;
-    if (arb_gt(&f->rt[i].mod, t) && f->rt[i].counted)
-      set_verdict(f, SS_FAIL, 1, "the eigenvalue %s has modulus > 1 (proven, balls)",
-                  root_text(f, i, b1, sizeof b1));
-    else
-      set_verdict(f, SS_UNDECIDED, 0,
-                  "not certified: the modulus of the eigenvalue %s and 1 not separated",
-                  root_text(f, i, b1, sizeof b1));
-  }
-  arb_clear(t);
-  return open;
+  return ss_ball_below_one(&R, *one, &f->out);
 }
 
 /* Every root but one, the nl leading ones lead[] and skip (SIZE_MAX: none)
  * proven of modulus below x. */
 static int rest_below(const ss_fourier *f, size_t one, const size_t *lead, int nl,
                       const arb_t x, size_t skip) {
-  for (size_t i = 0; i < f->nrt; i++) {
-    int led = i == one || i == skip;
-    for (int j = 0; j < nl; j++)
-      led |= i == lead[j];
-    if (!led && !arb_lt(&f->rt[i].mod, x)) return 0;
-  }
-  return 1;
-}
-
-/* cz = conj(z).  Not inlined: GCC 12 inlining acb_conj on a root's ball into
- * assess warns -Wstringop-overread (a false positive). */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void
-conj_ball(acb_t cz, const acb_t z) {
-  acb_conj(cz, z);
+  const ss_ball_roots R = roots_of(f);
+  return ss_ball_rest_below(&R, one, lead, nl, x, skip);
 }
 
 /* The conjugate of root a (isolated): the one other ball of its block that
@@ -482,10 +416,10 @@ conj_ball(acb_t cz, const acb_t z) {
 static size_t partner(const ss_fourier *f, size_t a) {
   acb_t cz;
   acb_init(cz);
-  conj_ball(cz, &f->rt[a].z);
+  ss_ball_conj(cz, &f->rt[a].ball.z);
   size_t p = SIZE_MAX, count = 0;
   for (size_t i = 0; i < f->nrt; i++)
-    if (i != a && f->rt[i].blk == f->rt[a].blk && acb_overlaps(cz, &f->rt[i].z))
+    if (i != a && f->rt[i].blk == f->rt[a].blk && acb_overlaps(cz, &f->rt[i].ball.z))
       p = i, count++;
   acb_clear(cz);
   return count == 1 ? p : SIZE_MAX;
@@ -495,17 +429,19 @@ static size_t partner(const ss_fourier *f, size_t a) {
 static void assess_straddle(ss_fourier *f, size_t one, const size_t *lead, int nl) {
   char b1[96];
   const fr_root *r = f->rt + lead[nl - 1];
-  int placed = r->isolated && rest_below(f, one, lead, nl, &r->mod, SIZE_MAX);
+  int placed = r->isolated && rest_below(f, one, lead, nl, &r->ball.mod, SIZE_MAX);
   for (int j = 0; j + 1 < nl; j++)
-    placed &= arb_gt(&f->rt[lead[j]].mod, &r->mod);
+    placed &= arb_gt(&f->rt[lead[j]].ball.mod, &r->ball.mod);
   if (placed)
-    set_verdict(f, SS_FAIL, 1,
-                "exact tie: lambda%d = lambda%d = %s (Fourier modes k and n - k, proven)",
-                f->m, f->m + 1, root_text(f, lead[nl - 1], b1, sizeof b1));
+    ss_ball_verdict(
+        &f->out, SS_FAIL, 1,
+        "exact tie: lambda%d = lambda%d = %s (Fourier modes k and n - k, proven)", f->m,
+        f->m + 1, root_text(f, lead[nl - 1], b1, sizeof b1));
   else
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: moduli of lambda%d and lambda%d not separated (balls)",
-                f->m, f->m + 1);
+    ss_ball_verdict(
+        &f->out, SS_UNDECIDED, 0,
+        "not certified: moduli of lambda%d and lambda%d not separated (balls)", f->m,
+        f->m + 1);
 }
 
 /* Leading root j (lambda_pos): 0 if isolated, real and positive, else 1 with
@@ -514,32 +450,33 @@ static int assess_root(ss_fourier *f, size_t one, const size_t *lead, int nl, in
                        int pos) {
   char b1[96];
   const fr_root *r = f->rt + lead[j];
-  const arb_struct *re = acb_realref(&r->z);
+  const arb_struct *re = acb_realref(&r->ball.z);
   root_text(f, lead[j], b1, sizeof b1);
   if (!r->isolated) {
-    set_verdict(f, SS_UNDECIDED, 0, "not certified: lambda%d = %s not isolated (balls)",
-                pos, b1);
+    ss_ball_verdict(&f->out, SS_UNDECIDED, 0,
+                    "not certified: lambda%d = %s not isolated (balls)", pos, b1);
   } else if (r->real == -1) {
     /* every other root below |r| but r's conjugate: the moduli >= |r| fill
      * positions from at most pos on, and r, conj(r) share one, so a root that
      * is not real is among lambda1..m or |lambda_m| = |lambda_m+1| */
     const size_t p = partner(f, lead[j]);
-    if (p != SIZE_MAX && rest_below(f, one, lead, nl, &r->mod, p))
-      set_verdict(f, SS_FAIL, 1, "lambda%d = %s is not real (proven, balls)", pos, b1);
+    if (p != SIZE_MAX && rest_below(f, one, lead, nl, &r->ball.mod, p))
+      ss_ball_verdict(&f->out, SS_FAIL, 1, "lambda%d = %s is not real (proven, balls)",
+                      pos, b1);
     else
-      set_verdict(f, SS_UNDECIDED, 0,
-                  "not certified: lambda%d = %s is not real but not placed (balls)", pos,
-                  b1);
+      ss_ball_verdict(&f->out, SS_UNDECIDED, 0,
+                      "not certified: lambda%d = %s is not real but not placed (balls)",
+                      pos, b1);
   } else if (r->real == 0) {
-    set_verdict(f, SS_UNDECIDED, 0, "not certified: lambda%d = %s not proven real", pos,
-                b1);
+    ss_ball_verdict(&f->out, SS_UNDECIDED, 0,
+                    "not certified: lambda%d = %s not proven real", pos, b1);
   } else if (!arb_is_positive(re)) {
-    if (arb_is_nonpositive(re) && rest_below(f, one, lead, nl, &r->mod, SIZE_MAX))
-      set_verdict(f, SS_FAIL, 1, "lambda%d = %s is not positive (proven, balls)", pos,
-                  b1);
+    if (arb_is_nonpositive(re) && rest_below(f, one, lead, nl, &r->ball.mod, SIZE_MAX))
+      ss_ball_verdict(&f->out, SS_FAIL, 1,
+                      "lambda%d = %s is not positive (proven, balls)", pos, b1);
     else
-      set_verdict(f, SS_UNDECIDED, 0, "not certified: the sign of lambda%d not decided",
-                  pos);
+      ss_ball_verdict(&f->out, SS_UNDECIDED, 0,
+                      "not certified: the sign of lambda%d not decided", pos);
   } else {
     return 0;
   }
@@ -559,7 +496,7 @@ static void assess(ss_fourier *f) {
       count += mult_of(f, f->rt + i);
     }
   if (count < f->m) {
-    set_verdict(f, SS_FAIL, 1, "S has fewer than %d eigenvalues", f->m + 1);
+    ss_ball_verdict(&f->out, SS_FAIL, 1, "S has fewer than %d eigenvalues", f->m + 1);
     return;
   }
   if (count > f->m) {
@@ -569,15 +506,16 @@ static void assess(ss_fourier *f) {
   for (int j = 0, pos = 1; j < nl; pos += mult_of(f, f->rt + lead[j]), j++)
     if (assess_root(f, one, lead, nl, j, pos)) return;
   for (int j = 0; j < nl; j++)
-    if (!rest_below(f, one, lead, nl, acb_realref(&f->rt[lead[j]].z), SIZE_MAX)) {
-      set_verdict(f, SS_UNDECIDED, 0,
-                  "not certified: moduli of lambda%d and lambda%d not separated (balls)",
-                  f->m, f->m + 1);
+    if (!rest_below(f, one, lead, nl, acb_realref(&f->rt[lead[j]].ball.z), SIZE_MAX)) {
+      ss_ball_verdict(
+          &f->out, SS_UNDECIDED, 0,
+          "not certified: moduli of lambda%d and lambda%d not separated (balls)", f->m,
+          f->m + 1);
       return;
     }
   memcpy(f->lead, lead, sizeof lead);
   f->nlead = nl;
-  set_verdict(f, SS_PASS, 1, "%s", "");
+  ss_ball_verdict(&f->out, SS_PASS, 1, "%s", "");
 }
 
 /* Column c of the basis from root r (part 0: real, 1: imaginary). */
@@ -614,19 +552,19 @@ static int lift(ss_fourier *f, fr_root *r, int part, double *lo, double *hi) {
 
 static ss_status make_basis(ss_fourier *f, ss_error *err) {
   const size_t n = f->n;
-  f->lo = malloc(((size_t)f->m * n + 1) * sizeof *f->lo);
-  f->hi = malloc(((size_t)f->m * n + 1) * sizeof *f->hi);
-  if (!f->lo || !f->hi) return ss_error_nomem(err, "Fourier basis");
+  f->out.lo = malloc(((size_t)f->m * n + 1) * sizeof *f->out.lo);
+  f->out.hi = malloc(((size_t)f->m * n + 1) * sizeof *f->out.hi);
+  if (!f->out.lo || !f->out.hi) return ss_error_nomem(err, "Fourier basis");
   int ok = 1;
   size_t c = 0; /* a pair gives two columns: Re x, Im x */
   for (int j = 0; j < f->nlead && ok; j++)
     for (int part = 0; part < mult_of(f, f->rt + f->lead[j]) && ok; part++, c++)
-      ok = lift(f, f->rt + f->lead[j], part, f->lo + c * n, f->hi + c * n);
+      ok = lift(f, f->rt + f->lead[j], part, f->out.lo + c * n, f->out.hi + c * n);
   if (!ok) {
-    free(f->lo);
-    free(f->hi);
-    f->lo = f->hi = NULL;
-    snprintf(f->bmsg, sizeof f->bmsg, "%s",
+    free(f->out.lo);
+    free(f->out.hi);
+    f->out.lo = f->out.hi = NULL;
+    snprintf(f->out.bmsg, sizeof f->out.bmsg, "%s",
              "an eigenvector of a Fourier block was not enclosed");
   }
   return SS_OK;
@@ -658,10 +596,10 @@ static ss_status check_input(ss_fourier *f, const double *S, const size_t *rot,
   *sym =
       ss_ball_invariant(S, n, rot, &bi, &bj) && ss_ball_invariant(S, n, refl, &bi, &bj);
   if (!*sym)
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: S is not invariant under the star's rotation and "
-                "reflection (entry %zu, %zu): the Fourier blocks do not apply",
-                bi, bj);
+    ss_ball_verdict(&f->out, SS_UNDECIDED, 0,
+                    "not certified: S is not invariant under the star's rotation and "
+                    "reflection (entry %zu, %zu): the Fourier blocks do not apply",
+                    bi, bj);
   return SS_OK;
 }
 
@@ -678,8 +616,7 @@ ss_status ss_fourier_new(const double *S, size_t n, size_t n1, const size_t *rot
   f->n1 = n1;
   f->m = m;
   f->order = order;
-  snprintf(f->bmsg, sizeof f->bmsg, "%s", "the condition is not a certified pass");
-  set_verdict(f, SS_UNDECIDED, 0, "%s", "not certified: not assessed");
+  ss_ball_outcome_init(&f->out, n, m);
   int sym = 0;
   ss_status st = check_input(f, S, rot, refl, &sym, err);
   if (st || !sym) goto done; /* not invariant: the verdict says so */
@@ -691,12 +628,13 @@ ss_status ss_fourier_new(const double *S, size_t n, size_t n1, const size_t *rot
     goto done;
   }
   if (rc > 0) {
-    set_verdict(f, SS_UNDECIDED, 0,
-                "not certified: the eigenvalues of Fourier block %d not enclosed", bad);
+    ss_ball_verdict(&f->out, SS_UNDECIDED, 0,
+                    "not certified: the eigenvalues of Fourier block %d not enclosed",
+                    bad);
     goto done;
   }
   /* by decreasing modulus: the vectors move with their roots */
-  qsort(f->rt, f->nrt, sizeof *f->rt, by_modulus);
+  qsort(f->rt, f->nrt, sizeof *f->rt, ss_ball_by_modulus);
   f->pub = calloc(f->nrt + 1, sizeof *f->pub);
   if (!f->pub) {
     st = ss_error_nomem(err, "Fourier blocks");
@@ -704,20 +642,13 @@ ss_status ss_fourier_new(const double *S, size_t n, size_t n1, const size_t *rot
   }
   for (size_t i = 0; i < f->nrt; i++) {
     const fr_root *r = f->rt + i;
-    mag_t rad;
-    mag_init(rad);
-    mag_hypot(rad, arb_radref(acb_realref(&r->z)), arb_radref(acb_imagref(&r->z)));
-    f->pub[i] = (ss_fourier_root){arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR),
-                                  arf_get_d(arb_midref(acb_imagref(&r->z)), ARF_RND_NEAR),
-                                  mag_get_d(rad),
-                                  mult_of(f, r),
-                                  f->blk[r->blk].k,
-                                  r->isolated,
-                                  r->real};
-    mag_clear(rad);
+    double re = 0.0, im = 0.0, rad = 0.0;
+    ss_ball_mid(&r->ball, &re, &im, &rad);
+    f->pub[i] = (ss_fourier_root){
+        re, im, rad, mult_of(f, r), f->blk[r->blk].k, r->isolated, r->real};
   }
   assess(f);
-  if (f->cond.verdict == SS_PASS) st = make_basis(f, err);
+  if (f->out.cond.verdict == SS_PASS) st = make_basis(f, err);
 done:
   if (st) {
     ss_fourier_free(f);
@@ -727,21 +658,11 @@ done:
   return SS_OK;
 }
 
-void ss_fourier_condition(const ss_fourier *f, ss_verdict *v, int *certified) {
-  *v = f->cond;
-  *certified = f->certified;
+const ss_ball_outcome *ss_fourier_outcome(const ss_fourier *f) {
+  return &f->out;
 }
 
 const ss_fourier_root *ss_fourier_roots(const ss_fourier *f, size_t *nroots) {
   *nroots = f->pub ? f->nrt : 0;
   return f->pub;
-}
-
-ss_status ss_fourier_basis(const ss_fourier *f, double *lo, double *hi, ss_error *err) {
-  if (f->cond.verdict != SS_PASS || !f->certified)
-    return ss_error_set(err, SS_EINPUT, "%s", f->bmsg);
-  if (!f->lo) return ss_error_set(err, SS_ENUMERIC, "%s", f->bmsg);
-  memcpy(lo, f->lo, (size_t)f->m * f->n * sizeof *lo);
-  memcpy(hi, f->hi, (size_t)f->m * f->n * sizeof *hi);
-  return SS_OK;
 }

@@ -62,6 +62,7 @@
 #include <stddef.h>
 
 #include "ss_api.h"
+#include "ss_ball_outcome.h"
 #include "ss_error.h"
 #include "ss_verdict.h"
 
@@ -95,17 +96,14 @@ ss_status ss_fourier_new(const double *S, size_t n, size_t n1, const size_t *rot
 /* Free; NULL is a no-op. */
 void ss_fourier_free(ss_fourier *f);
 
-/* The certified eigenvalue condition, as ss_exact_condition. */
-void ss_fourier_condition(const ss_fourier *f, ss_verdict *v, int *certified);
+/* The certified eigenvalue condition and on a pass the subdominant basis
+ * enclosure (above), read by ss_ball_outcome_condition and
+ * ss_ball_outcome_basis: valid while f lives. */
+const ss_ball_outcome *ss_fourier_outcome(const ss_fourier *f);
 
 /* The eigenvalue enclosures, by decreasing modulus (midpoints), each once
  * (see mult): *nroots of them, valid while f lives. */
 const ss_fourier_root *ss_fourier_roots(const ss_fourier *f, size_t *nroots);
-
-/* The subdominant basis enclosure (above) into lo, hi (n * m each): SS_OK, or
- * SS_EINPUT when the condition is not a certified pass, SS_ENUMERIC when an
- * eigenvector could not be enclosed (the message says so). */
-ss_status ss_fourier_basis(const ss_fourier *f, double *lo, double *hi, ss_error *err);
 
 SS_END_DECLS
 

@@ -4,7 +4,6 @@
 #include "ss_schur.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,29 +12,11 @@
 #include "ss_ball.h"
 #include "ss_schur_impl.h"
 
-static void set_verdict(ss_schur *s, ss_verdict_kind v, int certified, const char *fmt,
-                        ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-
-static void set_verdict(ss_schur *s, ss_verdict_kind v, int certified, const char *fmt,
-                        ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  s->cond.verdict = v;
-  vsnprintf(s->cond.reason, sizeof s->cond.reason, fmt, ap);
-  va_end(ap);
-  s->cond.certified = s->certified = certified;
-  s->cond.on = SS_ON_SPECTRUM;
-}
-
 void ss_schur_free(ss_schur *s) {
   if (!s) return;
   for (size_t i = 0; i < s->nrt; i++) {
-    acb_clear(&s->rt[i].z);
-    arb_clear(&s->rt[i].mod);
+    acb_clear(&s->rt[i].ball.z);
+    arb_clear(&s->rt[i].ball.mod);
     if (s->rt[i].has_x) arb_mat_clear(&s->rt[i].X);
     if (s->rt[i].has_xc) acb_mat_clear(&s->rt[i].Xc);
   }
@@ -43,8 +24,7 @@ void ss_schur_free(ss_schur *s) {
   ss_scc_free(&s->scc);
   free(s->rt);
   free(s->pub);
-  free(s->lo);
-  free(s->hi);
+  ss_ball_outcome_clear(&s->out);
   free(s);
 }
 
@@ -148,8 +128,8 @@ sc_root *ss_schur_root_new(ss_schur *s) {
   }
   sc_root *o = s->rt + s->nrt++;
   memset(o, 0, sizeof *o);
-  acb_init(&o->z);
-  arb_init(&o->mod);
+  acb_init(&o->ball.z);
+  arb_init(&o->ball.mod);
   return o;
 }
 
@@ -183,40 +163,21 @@ static int all_roots(ss_schur *s, const double *S, long *bad) {
   return out;
 }
 
-static double mid_mod(const sc_root *r) {
-  return arf_get_d(arb_midref(&r->mod), ARF_RND_NEAR);
-}
-
-static int by_modulus(const void *a, const void *b) {
-  const double x = mid_mod(a), y = mid_mod(b);
-  return x > y ? -1 : x < y;
-}
-
 /* Whether root a's ball meets no other root's. */
 static int alone(const ss_schur *s, size_t a) {
   for (size_t i = 0; i < s->nrt; i++)
-    if (i != a && acb_overlaps(&s->rt[i].z, &s->rt[a].z)) return 0;
+    if (i != a && acb_overlaps(&s->rt[i].ball.z, &s->rt[a].ball.z)) return 0;
   return 1;
 }
 
-/* cz = conj(z).  Not inlined: GCC 12 inlining acb_conj on a root's ball
- * warns -Wstringop-overread (a false positive, as in ss_fourier.c). */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void
-conj_ball(acb_t cz, const acb_t z) {
-  acb_conj(cz, z);
-}
-
 /* The proven sign of Re of root r: 1 positive, -1 not positive, 0 unknown
- * (not inlined: as conj_ball). */
+ * (not inlined: as ss_ball_conj). */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 static int
 re_sign(const ss_schur *s, size_t r) {
-  const arb_struct *re = acb_realref(&s->rt[r].z);
+  const arb_struct *re = acb_realref(&s->rt[r].ball.z);
   return arb_is_positive(re) ? 1 : arb_is_nonpositive(re) ? -1 : 0;
 }
 
@@ -226,70 +187,48 @@ re_sign(const ss_schur *s, size_t r) {
 static int proven_real(const ss_schur *s, size_t a) {
   acb_t cz;
   acb_init(cz);
-  conj_ball(cz, &s->rt[a].z);
-  int ok = acb_overlaps(cz, &s->rt[a].z);
+  ss_ball_conj(cz, &s->rt[a].ball.z);
+  int ok = acb_overlaps(cz, &s->rt[a].ball.z);
   for (size_t i = 0; i < s->nrt && ok; i++)
-    if (i != a && acb_overlaps(cz, &s->rt[i].z)) ok = 0;
+    if (i != a && acb_overlaps(cz, &s->rt[i].ball.z)) ok = 0;
   acb_clear(cz);
   return ok;
 }
 
 /* "0.4226+0i" */
-static const char *root_text(const ss_schur *s, size_t i, char *buf, size_t len) {
-  const sc_root *r = s->rt + i;
-  snprintf(buf, len, "%.10g%+.3gi",
-           arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR),
-           arf_get_d(arb_midref(acb_imagref(&r->z)), ARF_RND_NEAR));
+static const char *root_text(const void *route, size_t i, char *buf, size_t len) {
+  const ss_schur *s = route;
+  double re = 0.0, im = 0.0;
+  ss_ball_mid(&s->rt[i].ball, &re, &im, NULL);
+  snprintf(buf, len, "%.10g%+.3gi", re, im);
   return buf;
+}
+
+/* s's roots for the steps ss_ball shares with ss_fourier. */
+static ss_ball_roots roots_of(const ss_schur *s) {
+  return (ss_ball_roots){s->rt, s->nrt, sizeof *s->rt, root_text, s};
 }
 
 /* lambda0 = 1 simple and every other modulus below 1: 1 with the verdict set
  * otherwise; *one its index. */
 static int assess_one(ss_schur *s, size_t *one) {
-  char b1[64];
-  acb_t u;
-  acb_init(u);
-  acb_one(u);
-  size_t ones = 0;
-  for (size_t i = 0; i < s->nrt; i++)
-    if (acb_contains(&s->rt[i].z, u)) ones++, *one = i;
-  acb_clear(u);
+  const ss_ball_roots R = roots_of(s);
+  const size_t ones = ss_ball_ones(&R, one);
   const sc_root *o = s->rt + *one;
-  if (ones != 1 || o->blk != -1 || o->count != 1 || !o->counted || !alone(s, *one)) {
-    set_verdict(s, SS_UNDECIDED, 0,
-                "not certified: lambda0 = 1 not isolated by the balls (%zu contain 1)",
-                ones);
+  if (ones != 1 || o->blk != -1 || o->count != 1 || !o->ball.counted || !alone(s, *one)) {
+    ss_ball_verdict(
+        &s->out, SS_UNDECIDED, 0,
+        "not certified: lambda0 = 1 not isolated by the balls (%zu contain 1)", ones);
     return 1;
   }
-  arb_t t;
-  arb_init(t);
-  arb_one(t);
-  int open = 0;
-  for (size_t i = 0; i < s->nrt && !open; i++) {
-    if (i == *one || arb_lt(&s->rt[i].mod, t)) continue;
-    open = 1;
-    if (arb_gt(&s->rt[i].mod, t) && s->rt[i].counted)
-      set_verdict(s, SS_FAIL, 1, "the eigenvalue %s has modulus > 1 (proven, balls)",
-                  root_text(s, i, b1, sizeof b1));
-    else
-      set_verdict(s, SS_UNDECIDED, 0,
-                  "not certified: the modulus of the eigenvalue %s and 1 not separated",
-                  root_text(s, i, b1, sizeof b1));
-  }
-  arb_clear(t);
-  return open;
+  return ss_ball_below_one(&R, *one, &s->out);
 }
 
 /* Every root but one and the nl leading ones proven of modulus below x. */
 static int rest_below(const ss_schur *s, size_t one, const size_t *lead, int nl,
                       const arb_t x) {
-  for (size_t i = 0; i < s->nrt; i++) {
-    int led = i == one;
-    for (int j = 0; j < nl; j++)
-      led |= i == lead[j];
-    if (!led && !arb_lt(&s->rt[i].mod, x)) return 0;
-  }
-  return 1;
+  const ss_ball_roots R = roots_of(s);
+  return ss_ball_rest_below(&R, one, lead, nl, x, SIZE_MAX);
 }
 
 /* Leading root r (lambda_pos..): 0 when it is one real positive eigenvalue
@@ -306,20 +245,20 @@ static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t n
              "lambda%d = %s is an eigenvalue of the outer block (component %ld), where "
              "the symmetry route does not look",
              pos, b1, o->blk);
-  else if (!o->counted || !alone(s, r))
+  else if (!o->ball.counted || !alone(s, r))
     snprintf(why, sizeof why, "lambda%d = %s not isolated (balls)", pos, b1);
   else if (!proven_real(s, r))
     snprintf(why, sizeof why, "lambda%d = %s not proven real", pos, b1);
   else if (re_sign(s, r) != 1) {
-    if (re_sign(s, r) == -1 && rest_below(s, one, lead, nl, &o->mod)) {
-      set_verdict(s, SS_FAIL, 1, "lambda%d = %s is not positive (proven, balls)", pos,
-                  b1);
+    if (re_sign(s, r) == -1 && rest_below(s, one, lead, nl, &o->ball.mod)) {
+      ss_ball_verdict(&s->out, SS_FAIL, 1,
+                      "lambda%d = %s is not positive (proven, balls)", pos, b1);
       return 1;
     }
     snprintf(why, sizeof why, "lambda%d = %s not proven positive", pos, b1);
   }
   if (*why) {
-    set_verdict(s, SS_UNDECIDED, 0, "not certified: %s", why);
+    ss_ball_verdict(&s->out, SS_UNDECIDED, 0, "not certified: %s", why);
     return 1;
   }
   if (o->count == 1) {
@@ -327,8 +266,8 @@ static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t n
     return 0;
   }
   if (ss_schur_subspace(s, r, why, sizeof why)) {
-    set_verdict(s, SS_UNDECIDED, 0, "not certified: lambda%d..%d = %s: %s", pos,
-                pos + o->count - 1, b1, why);
+    ss_ball_verdict(&s->out, SS_UNDECIDED, 0, "not certified: lambda%d..%d = %s: %s", pos,
+                    pos + o->count - 1, b1, why);
     return 1;
   }
   const int rc = ss_schur_character(s, r, G, ng, why, sizeof why);
@@ -340,8 +279,9 @@ static int assess_root(ss_schur *s, size_t r, int pos, const size_t *G, size_t n
                "2, 3 with real constituents): the cluster is not forced by the "
                "symmetry (balls too wide, or a constituent repeated)",
                o->nlo, o->nhi, ng);
-    set_verdict(s, SS_UNDECIDED, 0, "not certified: %d eigenvalues in the ball of %s: %s",
-                o->count, b1, why);
+    ss_ball_verdict(&s->out, SS_UNDECIDED, 0,
+                    "not certified: %d eigenvalues in the ball of %s: %s", o->count, b1,
+                    why);
     return 1;
   }
   return 0;
@@ -359,8 +299,8 @@ static int assess(ss_schur *s, const size_t *G, size_t ng) {
       count += s->rt[i].count;
     }
   if (count < s->m) {
-    set_verdict(s, SS_UNDECIDED, 0, "not certified: fewer than %d eigenvalues counted",
-                s->m + 1);
+    ss_ball_verdict(&s->out, SS_UNDECIDED, 0,
+                    "not certified: fewer than %d eigenvalues counted", s->m + 1);
     return 0;
   }
   for (int j = 0, pos = 1; j < nl; pos += s->rt[lead[j]].count, j++) {
@@ -368,31 +308,32 @@ static int assess(ss_schur *s, const size_t *G, size_t ng) {
     if (rc) return rc < 0 ? -1 : 0;
   }
   for (int j = 0; j < nl; j++)
-    if (!rest_below(s, one, lead, nl, acb_realref(&s->rt[lead[j]].z))) {
-      set_verdict(s, SS_UNDECIDED, 0,
-                  "not certified: moduli of lambda%d and lambda%d not separated (balls)",
-                  s->m, s->m + 1);
+    if (!rest_below(s, one, lead, nl, acb_realref(&s->rt[lead[j]].ball.z))) {
+      ss_ball_verdict(
+          &s->out, SS_UNDECIDED, 0,
+          "not certified: moduli of lambda%d and lambda%d not separated (balls)", s->m,
+          s->m + 1);
       return 0;
     }
   if (count > s->m && !s->rt[lead[nl - 1]].scalar) {
-    set_verdict(s, SS_UNDECIDED, 0,
-                "not certified: lambda%d and lambda%d in one cluster of %d distinct "
-                "constituents: their order not decided",
-                s->m, s->m + 1, s->rt[lead[nl - 1]].split);
+    ss_ball_verdict(&s->out, SS_UNDECIDED, 0,
+                    "not certified: lambda%d and lambda%d in one cluster of %d distinct "
+                    "constituents: their order not decided",
+                    s->m, s->m + 1, s->rt[lead[nl - 1]].split);
     return 0;
   }
   if (count > s->m) { /* the last root, one eigenvalue, straddles m */
     char b1[64];
-    set_verdict(s, SS_FAIL, 1,
-                "exact tie: lambda%d = lambda%d = %s (%d eigenvalues, one by Schur's "
-                "lemma, proven)",
-                s->m, s->m + 1, root_text(s, lead[nl - 1], b1, sizeof b1),
-                s->rt[lead[nl - 1]].count);
+    ss_ball_verdict(&s->out, SS_FAIL, 1,
+                    "exact tie: lambda%d = lambda%d = %s (%d eigenvalues, one by Schur's "
+                    "lemma, proven)",
+                    s->m, s->m + 1, root_text(s, lead[nl - 1], b1, sizeof b1),
+                    s->rt[lead[nl - 1]].count);
     return 0;
   }
   memcpy(s->lead, lead, sizeof lead);
   s->nlead = nl;
-  set_verdict(s, SS_PASS, 1, "%s", "");
+  ss_ball_verdict(&s->out, SS_PASS, 1, "%s", "");
   return 0;
 }
 
@@ -402,22 +343,20 @@ static int publish(ss_schur *s) {
   if (!s->pub) return -1;
   for (size_t i = 0; i < s->nrt; i++) {
     const sc_root *r = s->rt + i;
-    mag_t rad;
-    mag_init(rad);
-    mag_hypot(rad, arb_radref(acb_realref(&r->z)), arb_radref(acb_imagref(&r->z)));
+    double re = 0.0, im = 0.0, rad = 0.0;
+    ss_ball_mid(&r->ball, &re, &im, &rad);
     int lead = 0;
     for (int j = 0; j < s->nlead; j++)
       lead |= s->lead[j] == i;
-    s->pub[i] = (ss_schur_root){arf_get_d(arb_midref(acb_realref(&r->z)), ARF_RND_NEAR),
-                                arf_get_d(arb_midref(acb_imagref(&r->z)), ARF_RND_NEAR),
-                                mag_get_d(rad),
-                                r->counted ? r->count : 0,
+    s->pub[i] = (ss_schur_root){re,
+                                im,
+                                rad,
+                                r->ball.counted ? r->count : 0,
                                 r->blk < 0 ? 0 : (int)r->blk + 1,
                                 lead ? 2 : 0,
                                 r->nlo,
                                 r->nhi,
                                 r->scalar && r->count > 1 ? 1 : r->split};
-    mag_clear(rad);
   }
   return 0;
 }
@@ -430,22 +369,24 @@ static ss_status analyse(ss_schur *s, const double *S, const size_t *G, size_t n
   if (rc < 0) return ss_error_nomem(err, "Schur route");
   if (rc > 0) {
     if (bad < 0)
-      set_verdict(s, SS_UNDECIDED, 0,
-                  "not certified: the eigenvalues of the one-ring block not enclosed");
+      ss_ball_verdict(
+          &s->out, SS_UNDECIDED, 0,
+          "not certified: the eigenvalues of the one-ring block not enclosed");
     else
-      set_verdict(s, SS_UNDECIDED, 0,
-                  "not certified: the eigenvalues of the outer block's component %ld not "
-                  "enclosed",
-                  bad);
+      ss_ball_verdict(
+          &s->out, SS_UNDECIDED, 0,
+          "not certified: the eigenvalues of the outer block's component %ld not "
+          "enclosed",
+          bad);
     return SS_OK;
   }
-  qsort(s->rt, s->nrt, sizeof *s->rt, by_modulus);
+  qsort(s->rt, s->nrt, sizeof *s->rt, ss_ball_by_modulus);
   if (assess(s, G, ng) < 0) return ss_error_nomem(err, "Schur route");
-  if (s->cond.verdict == SS_PASS) {
+  if (s->out.cond.verdict == SS_PASS) {
     for (int j = 0; j < s->nlead && !rc; j++)
       if (!s->rt[s->lead[j]].has_x)
-        rc = ss_schur_subspace(s, s->lead[j], s->bmsg, sizeof s->bmsg);
-    if (!rc) rc = ss_schur_complete(s, S, s->bmsg, sizeof s->bmsg);
+        rc = ss_schur_subspace(s, s->lead[j], s->out.bmsg, sizeof s->out.bmsg);
+    if (!rc) rc = ss_schur_complete(s, S, s->out.bmsg, sizeof s->out.bmsg);
     if (rc < 0) return ss_error_nomem(err, "Schur basis");
   }
   if (publish(s)) return ss_error_nomem(err, "Schur route");
@@ -466,16 +407,16 @@ ss_status ss_schur_new(const double *S, size_t n, size_t n1, const size_t *group
   s->n = n;
   s->n1 = n1;
   s->m = m;
-  snprintf(s->bmsg, sizeof s->bmsg, "%s", "the condition is not a certified pass");
-  set_verdict(s, SS_UNDECIDED, 0, "%s", "not certified: not assessed");
+  ss_ball_outcome_init(&s->out, n, m);
   size_t bi = 0, bj = 0, g = 0;
   while (g < ng && ss_ball_invariant(S, n, group + g * n, &bi, &bj))
     g++;
   if (g < ng)
-    set_verdict(s, SS_UNDECIDED, 0,
-                "not certified: S is not invariant under symmetry %zu of %zu (entry %zu, "
-                "%zu): Schur's lemma does not apply",
-                g, ng, bi, bj);
+    ss_ball_verdict(
+        &s->out, SS_UNDECIDED, 0,
+        "not certified: S is not invariant under symmetry %zu of %zu (entry %zu, "
+        "%zu): Schur's lemma does not apply",
+        g, ng, bi, bj);
   else
     st = analyse(s, S, group, ng, err);
   if (st) {
@@ -486,21 +427,11 @@ ss_status ss_schur_new(const double *S, size_t n, size_t n1, const size_t *group
   return SS_OK;
 }
 
-void ss_schur_condition(const ss_schur *s, ss_verdict *v, int *certified) {
-  *v = s->cond;
-  *certified = s->certified;
+const ss_ball_outcome *ss_schur_outcome(const ss_schur *s) {
+  return &s->out;
 }
 
 const ss_schur_root *ss_schur_roots(const ss_schur *s, size_t *nroots) {
   *nroots = s->pub ? s->nrt : 0;
   return s->pub;
-}
-
-ss_status ss_schur_basis(const ss_schur *s, double *lo, double *hi, ss_error *err) {
-  if (s->cond.verdict != SS_PASS || !s->certified)
-    return ss_error_set(err, SS_EINPUT, "%s", s->bmsg);
-  if (!s->lo) return ss_error_set(err, SS_ENUMERIC, "%s", s->bmsg);
-  memcpy(lo, s->lo, (size_t)s->m * s->n * sizeof *lo);
-  memcpy(hi, s->hi, (size_t)s->m * s->n * sizeof *hi);
-  return SS_OK;
 }

@@ -63,6 +63,7 @@
 #include <stddef.h>
 
 #include "ss_api.h"
+#include "ss_ball_outcome.h"
 #include "ss_error.h"
 #include "ss_verdict.h"
 
@@ -102,17 +103,14 @@ ss_status ss_schur_new(const double *S, size_t n, size_t n1, const size_t *group
 /* Free; NULL is a no-op. */
 void ss_schur_free(ss_schur *s);
 
-/* The certified eigenvalue condition, as ss_exact_condition. */
-void ss_schur_condition(const ss_schur *s, ss_verdict *v, int *certified);
+/* The certified eigenvalue condition and on a pass the subdominant basis
+ * enclosure (above), read by ss_ball_outcome_condition and
+ * ss_ball_outcome_basis: valid while s lives. */
+const ss_ball_outcome *ss_schur_outcome(const ss_schur *s);
 
 /* The roots, by decreasing modulus (midpoints): *nroots of them, valid while
  * s lives (0 when the enclosures were not computed). */
 const ss_schur_root *ss_schur_roots(const ss_schur *s, size_t *nroots);
-
-/* The subdominant basis enclosure (above) into lo, hi (n * m each): SS_OK, or
- * SS_EINPUT when the condition is not a certified pass, SS_ENUMERIC when it
- * could not be enclosed (the message says so). */
-ss_status ss_schur_basis(const ss_schur *s, double *lo, double *hi, ss_error *err);
 
 SS_END_DECLS
 

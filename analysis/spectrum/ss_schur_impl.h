@@ -8,6 +8,7 @@
 #include "arb.h"
 #include "arb_mat.h"
 
+#include "ss_ball.h"
 #include "ss_scc.h"
 #include "ss_schur.h"
 
@@ -18,10 +19,9 @@ enum {
 
 /* One root (internal): a ball and what is proven of it. */
 typedef struct {
-  acb_struct z;      /* the ball */
-  arb_struct mod;    /* |z| enclosed */
+  ss_ball_root ball; /* the ball, |z|, counted: 1 when the enclosure counted
+                        them, 0 bounds only (first: ss_ball_roots) */
   int count;         /* eigenvalues in it */
-  int counted;       /* 1: the enclosure counted them (0: bounds only) */
   long blk;          /* -1: A; else the component of C */
   int scalar;        /* 1: one eigenvalue, not defective (count 1, or a tie
                         proven by Schur's lemma) */
@@ -40,20 +40,17 @@ typedef struct {
 } sc_root;
 
 struct ss_schur {
-  size_t n, n1;       /* size of S; its one-ring points */
-  int m;              /* subdominant eigenvalues: 2 or 3 */
-  size_t nrt;         /* roots */
-  size_t cap;         /* roots allocated */
-  sc_root *rt;        /* nrt of them, by decreasing midpoint modulus */
-  ss_schur_root *pub; /* nrt public copies, same order */
-  ss_csr csr;         /* S's nonzero entries */
-  ss_scc scc;         /* C's components */
-  ss_verdict cond;    /* the condition */
-  int certified;      /* 1 if cond is proven */
-  size_t lead[4];     /* on a pass: the roots of lambda1..m */
-  int nlead;          /* ... how many */
-  double *lo, *hi;    /* on a pass: the basis enclosure (n x m), or NULL */
-  char bmsg[256];     /* why there is no basis on a pass */
+  size_t n, n1;        /* size of S; its one-ring points */
+  int m;               /* subdominant eigenvalues: 2 or 3 */
+  size_t nrt;          /* roots */
+  size_t cap;          /* roots allocated */
+  sc_root *rt;         /* nrt of them, by decreasing midpoint modulus */
+  ss_schur_root *pub;  /* nrt public copies, same order */
+  ss_csr csr;          /* S's nonzero entries */
+  ss_scc scc;          /* C's components */
+  ss_ball_outcome out; /* the condition and on a pass the basis (n x m) */
+  size_t lead[4];      /* on a pass: the roots of lambda1..m */
+  int nlead;           /* ... how many */
 };
 
 /* A new root appended to s->rt (zeroed, its balls initialised), or NULL

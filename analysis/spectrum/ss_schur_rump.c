@@ -192,8 +192,8 @@ static slong clusters(acb_srcptr E0, slong b, slong *cl) {
 static void drop_from(ss_schur *s, size_t first) {
   while (s->nrt > first) {
     sc_root *o = s->rt + --s->nrt;
-    acb_clear(&o->z);
-    arb_clear(&o->mod);
+    acb_clear(&o->ball.z);
+    arb_clear(&o->ball.mod);
     if (o->has_xc) acb_mat_clear(&o->Xc);
   }
 }
@@ -228,8 +228,8 @@ static int by_clusters(ss_schur *s, const acb_mat_t B, long blk, acb_srcptr E0,
     if (o) {
       o->count = (int)k;
       o->blk = blk;
-      ok = rump(B, lam0, Xap, &o->z, X);
-      acb_abs(&o->mod, &o->z, SC_PREC);
+      ok = rump(B, lam0, Xap, &o->ball.z, X);
+      acb_abs(&o->ball.mod, &o->ball.z, SC_PREC);
     }
     if (ok == 1 && blk < 0) { /* A's: the basis kept for the ties */
       acb_mat_init(&o->Xc, b, k);
@@ -241,9 +241,9 @@ static int by_clusters(ss_schur *s, const acb_mat_t B, long blk, acb_srcptr E0,
   }
   for (size_t i = first; i < s->nrt && ok == 1; i++)
     for (size_t j = first; j < i && ok == 1; j++)
-      if (acb_overlaps(&s->rt[i].z, &s->rt[j].z)) ok = 0;
+      if (acb_overlaps(&s->rt[i].ball.z, &s->rt[j].ball.z)) ok = 0;
   for (size_t i = first; i < s->nrt && ok == 1; i++)
-    s->rt[i].counted = 1;
+    s->rt[i].ball.counted = 1;
   if (ok != 1) drop_from(s, first);
   acb_clear(lam0);
   free(cl);
@@ -270,9 +270,9 @@ int ss_schur_block(ss_schur *s, const acb_mat_t B, long blk) {
         rc = -1;
         break;
       }
-      acb_set(&o->z, E0 + i);
-      acb_add_error_mag(&o->z, eps);
-      acb_abs(&o->mod, &o->z, SC_PREC);
+      acb_set(&o->ball.z, E0 + i);
+      acb_add_error_mag(&o->ball.z, eps);
+      acb_abs(&o->ball.mod, &o->ball.z, SC_PREC);
       o->count = 1;
       o->blk = blk;
     }

@@ -186,7 +186,7 @@ static int complete_root(const ss_schur *s, const double *S, size_t r, arb_mat_t
         for (slong j = 0; j < c; j++)
           arb_addmul(arb_mat_entry(R, x, j), w, arb_mat_entry(Z, (slong)col, j), SC_PREC);
       }
-      arb_add(arb_mat_entry(D, x, x), arb_mat_entry(D, x, x), acb_realref(&o->z),
+      arb_add(arb_mat_entry(D, x, x), arb_mat_entry(D, x, x), acb_realref(&o->ball.z),
               SC_PREC);
     }
     rc = rc || !arb_mat_solve(Y, D, R, SC_PREC);
@@ -203,9 +203,9 @@ static int complete_root(const ss_schur *s, const double *S, size_t r, arb_mat_t
 
 int ss_schur_complete(ss_schur *s, const double *S, char *why, size_t len) {
   const size_t n = s->n;
-  s->lo = malloc(((size_t)s->m * n + 1) * sizeof *s->lo);
-  s->hi = malloc(((size_t)s->m * n + 1) * sizeof *s->hi);
-  if (!s->lo || !s->hi) return -1;
+  s->out.lo = malloc(((size_t)s->m * n + 1) * sizeof *s->out.lo);
+  s->out.hi = malloc(((size_t)s->m * n + 1) * sizeof *s->out.hi);
+  if (!s->out.lo || !s->out.hi) return -1;
   int rc = 0;
   size_t col = 0;
   for (int j = 0; j < s->nlead && !rc; j++) {
@@ -216,16 +216,16 @@ int ss_schur_complete(ss_schur *s, const double *S, char *why, size_t len) {
     rc = complete_root(s, S, r, Z);
     for (slong q = 0; q < c && !rc; q++, col++)
       for (size_t i = 0; i < n && !rc; i++) {
-        double *lo = s->lo + col * n + i, *hi = s->hi + col * n + i;
+        double *lo = s->out.lo + col * n + i, *hi = s->out.hi + col * n + i;
         ss_ball_doubles(arb_mat_entry(Z, (slong)i, q), lo, hi);
         rc = !(isfinite(*lo) && isfinite(*hi));
       }
     arb_mat_clear(Z);
   }
   if (rc) {
-    free(s->lo);
-    free(s->hi);
-    s->lo = s->hi = NULL;
+    free(s->out.lo);
+    free(s->out.hi);
+    s->out.lo = s->out.hi = NULL;
     snprintf(
         why, len, "%s",
         "the eigenvectors' outer rows not enclosed ((lambda - C) singular in balls)");

@@ -41,6 +41,7 @@
 
 #include "ss_certify.h"
 #include "ss_enum.h"
+#include "ss_stencil.h"
 #include "ss_test.h"
 #include "ss_testcase.h"
 #include "ss_testlink.h"
@@ -143,6 +144,9 @@ static int both(const ss_scheme *s, const ss_case *c, verdicts *cv, const char *
         "%s: injectivity pass certified %d", what, inj_certified(&cv->inj));
   CHECK(cv->exact && cv->out.seconds >= 0.0, "%s: no exact spectrum for rational weights",
         what);
+  CHECK(!strcmp(dv.out.route, "none tried") && !strcmp(cv->out.route, "exact"),
+        "%s: route without certify '%s', with it '%s'", what, dv.out.route,
+        cv->out.route);
   return 0;
 }
 
@@ -242,6 +246,49 @@ static void test_cases(void) {
 
 /* ---- nothing to prove with ---- */
 
+/* The route each case names (ss_certified.route) is the one tried: on
+ * data/stencils/tetoct.ini with the tet's self weight written with a cos
+ * (value unchanged, so the weights read as not rational), the face has no
+ * ball route and names none; the edge the Fourier blocks, the vertex the
+ * Schur route (never "exact", which cannot read these weights). */
+static void routes(void) {
+  const char *text = "[scheme]\nname = tetoct-cos\nfamily = averaging\nsplit = tetoct\n"
+                     "[mask.segment]\nself = 1/2\nother = 1/2\n"
+                     "[mask.triangle]\nself = 1/4\nedge = 3/8\n"
+                     "[mask.tet]\nself = -1/16 + (cos(2*pi/7) - cos(2*pi/7))/64\n"
+                     "edge = 17/48\n"
+                     "[mask.oct]\nself = 3/8\nedge = 1/12\nopposite = 7/24\n";
+  ss_scheme *s = NULL;
+  ss_link *oct = NULL;
+  ss_error err = {0};
+  REQUIRE_OK_VOID(ss_stencil_parse(text, "tetoct-cos", &s, &err), &err);
+  CHECK(!ss_scheme_volume_weights_rational(s), "tetoct-cos: read as rational");
+  REQUIRE_OK_VOID(ss_link_named("octahedron", &oct, &err), &err);
+  const struct {
+    ss_case c;
+    const char *route, *what;
+  } cases[3] = {
+      {{SS_CASE_FACE, NULL, 0, SS_DIAG_BFS, 0}, "none tried", "face"},
+      {{SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS, 0}, "Fourier blocks in balls", "edge 4"},
+      {{SS_CASE_VERTEX, oct, 0, SS_DIAG_BFS, 0},
+       "balls, ties by Schur's lemma",
+       "octahedron"}};
+  for (int i = 0; i < 3; i++) {
+    verdicts cv;
+    if (judge(s, &cases[i].c, 1, &cv, cases[i].what)) continue;
+    CHECK(!strcmp(cv.out.route, cases[i].route) && !cv.exact,
+          "tetoct-cos %s: route '%s', want '%s' (%s: %s)", cases[i].what, cv.out.route,
+          cases[i].route, ss_verdict_name(cv.out.cond.verdict), cv.out.cond.reason);
+    if (i == 0)
+      CHECK(cv.out.cond.verdict == SS_UNDECIDED &&
+                strstr(cv.out.cond.reason, "not rational"),
+            "tetoct-cos face: %s (%s)", ss_verdict_name(cv.out.cond.verdict),
+            cv.out.cond.reason);
+  }
+  ss_link_free(oct);
+  ss_scheme_free(s);
+}
+
 static void test_unprovable(void) {
   ss_scheme *loop = ss_testcase_scheme("loop");
   verdicts dv, cv;
@@ -254,7 +301,10 @@ static void test_unprovable(void) {
           "loop 5: %s (%s) / %s (%s) / %s", ss_verdict_name(cv.out.cond.verdict),
           cv.out.cond.reason, ss_verdict_name(cv.reg.verdict.verdict),
           cv.reg.verdict.reason, ss_verdict_name(cv.inj.verdict.verdict));
+  CHECK(!strcmp(cv.out.route, "Fourier blocks in balls"), "loop 5: route '%s'",
+        cv.out.route);
   ss_scheme_free(loop);
+  routes();
   /* the exact condition passes but the double path handed no map: the
    * regularity it claims is not proven */
   ss_link *oct = NULL;

@@ -171,7 +171,7 @@ static void loop_case(const ss_scheme *s, int n, const char *name) {
   if (CHECK_OK(analyse(M, &c, M->S, 0, &f, &err), &err)) {
     ss_verdict v;
     int cert = 0;
-    ss_fourier_condition(f, &v, &cert);
+    ss_ball_outcome_condition(ss_fourier_outcome(f), &v, &cert);
     CHECK(v.verdict == SS_PASS && cert, "%s: the balls' condition %s (%s)", what,
           ss_verdict_name(v.verdict), v.reason);
     closed_forms(f, n, M->n2, what);
@@ -187,7 +187,7 @@ static void loop_case(const ss_scheme *s, int n, const char *name) {
     if (CHECK_OK(analyse(M, &c, S, 0, &g, &err), &err)) {
       ss_verdict v;
       int cert = 1;
-      ss_fourier_condition(g, &v, &cert);
+      ss_ball_outcome_condition(ss_fourier_outcome(g), &v, &cert);
       CHECK(v.verdict == SS_UNDECIDED && !cert && strstr(v.reason, "not invariant"),
             "%s moved by 1e-9: %s (%s)", what, ss_verdict_name(v.verdict), v.reason);
     }
@@ -232,7 +232,7 @@ static void hand_made(double lam0, double eps, ss_verdict_kind want, const char 
   if (!CHECK_OK(ss_fourier_new(S, SZ, SZ, rot, refl, N, 2, &f, &err), &err)) return;
   ss_verdict v;
   int cert = 0;
-  ss_fourier_condition(f, &v, &cert);
+  ss_ball_outcome_condition(ss_fourier_outcome(f), &v, &cert);
   CHECK(v.verdict == want && cert == (want != SS_UNDECIDED) && strstr(v.reason, why),
         "hand-made lam0 %g eps %g: %s (%s), want %s with '%s'", lam0, eps,
         ss_verdict_name(v.verdict), v.reason, ss_verdict_name(want), why);

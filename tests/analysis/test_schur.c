@@ -191,7 +191,7 @@ static void expect(const run *r, const double *S, const size_t *G, size_t ng,
   if (s) {
     ss_verdict v;
     int cert = 0;
-    ss_schur_condition(s, &v, &cert);
+    ss_ball_outcome_condition(ss_schur_outcome(s), &v, &cert);
     CHECK(v.verdict == want && cert == (want != SS_UNDECIDED) && strstr(v.reason, why),
           "%s: %s (%s), want %s with '%s'", what, ss_verdict_name(v.verdict), v.reason,
           ss_verdict_name(want), why);
