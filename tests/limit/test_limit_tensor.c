@@ -84,9 +84,9 @@ static int run(const char *name, int n, int *prod) {
           dp, dj);
     CHECK(dref <= 1e-12, "%s, edge %d: eq. (1) and the reference differ by %g", name, n,
           dref);
-    printf("%s, edge %d: eq. (1) applies; on/off %.1e (point) %.1e (Jacobian), "
+    printf("%s, edge %d: eq. (1) %s; on/off %.1e (point) %.1e (Jacobian), "
            "reference %.1e\n",
-           name, n, dp, dj, dref);
+           name, n, st.tensor ? "applies" : "does not apply", dp, dj, dref);
   } else {
     CHECK(st.tensor == 0, "%s, edge %d: a Joy-MacCracken edge factored", name, n);
   }
