@@ -15,7 +15,10 @@
  * (or lying in E).  Elements are compared as sorted sets of coarse
  * vertices; each distinct one counts once, whatever number of fine cells
  * shows it.  The mean of centroids is emitted on the coarse vertices
- * themselves (weight / count / |E| each), so this rule shares nothing with
+ * themselves (weight / count / |E| each).  An old vertex on an extraordinary
+ * edge (ss_points.axis) is recognised from the same elements — the valence
+ * of an edge is the number of hexes among them holding it — and takes the
+ * axis weights when the scheme has them.  So this rule shares nothing with
  * the built-in ccsolid and loop rules but the surface (ss_hex_surface_build)
  * and the crease classification (ss_crease.h): tests compare the two. */
 #include <math.h>
