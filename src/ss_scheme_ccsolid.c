@@ -367,10 +367,10 @@ static void vertex_rule(const cs_work *w, const ss_idx *lat, const int *t, ss_id
     u[i] = 1;
     const ss_idx e = lat[lat_index(u)];
     const double ne = (double)w->nhexat[e]; /* each edge seen from its ne hexes */
-    double we = 3.0 / (n * ned);            /* the edge's share of 3 E / n */
     if (m > 0.0) /* along: (m - 3)/(4m) each of 2; across: 1/m each of m */
-      we = ne == m ? (m - 3.0) / (4.0 * m) : 1.0 / (m * m);
-    ss_sink_emit(k, x, e, we / ne);
+      ss_sink_emit(k, x, e, (ne == m ? (m - 3.0) / (4.0 * m) : 1.0 / (m * m)) / ne);
+    else /* 3 E / n over ned edges (as before the variant, bit for bit) */
+      ss_sink_emit(k, x, e, 3.0 / (n * ned * ne));
     u[(i + 1) % 3] = 1; /* the face spanned by directions i, i + 1 */
     ss_sink_emit(k, x, lat[lat_index(u)], 3.0 / (n * nfa * 2.0));
   }
