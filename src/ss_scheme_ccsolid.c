@@ -61,7 +61,9 @@
  * half-ball (hexes not connected through faces at the vertex, or a link of
  * Euler characteristic other than 2, closed, or 1, with boundary) is refused
  * (SS_EINPUT, naming the vertices).  All of this is read from the cells
- * holding a fine vertex, so the rule reaches one ring (ss_scheme_reach 1). */
+ * holding a fine vertex, so the rule reaches one ring (ss_scheme_reach 1);
+ * so is ccsolid-tensor's test of a vertex on an extraordinary edge (an edge
+ * at P lies only in hexes holding P). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
