@@ -46,7 +46,7 @@ static const char *const usage_text =
     "                    B <= 256): a triangle surface's (Loop-like rules) or a\n"
     "                    quad surface's\n"
     "  -s, --scheme S    a built-in scheme instead of a stencil file (mlca, tetoct,\n"
-    "                    boxspline, boxspline-avg, ccsolid)\n"
+    "                    boxspline, boxspline-avg, ccsolid, ccsolid-tensor)\n"
     "  --certify         prove every verdict (exact spectrum, interval Jacobians);\n"
     "                    a verdict that cannot be proven counts as undecided\n"
     "  --max-memory SIZE memory budget of one case (K, M, G, T: powers of 1000;\n"

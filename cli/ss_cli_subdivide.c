@@ -34,7 +34,8 @@ static const char *const usage_text =
  * characters C11 compilers must support). */
 static const char *const usage_options =
     "  -s, --scheme S        mlca | tetoct | boxspline | boxspline-avg |\n"
-    "                        catmull-clark | loop | ccsolid | quasi48\n"
+    "                        catmull-clark | loop | ccsolid | ccsolid-tensor |\n"
+    "                        quasi48\n"
     "  -l, --levels L        number of refinement levels, 0..12 (default 1)\n"
     "  -o, --output OUT      output file (written whole or not at all: an old\n"
     "                        OUT stays if writing fails); when OUT is standard\n"
@@ -102,6 +103,9 @@ static const char *const usage_schemes =
     "                 faces and given quadrilaterals refine as Catmull-Clark\n"
     "                 surfaces, segments are creases, corners are kept; non-\n"
     "                 manifold hex meshes are refused\n"
+    "  ccsolid-tensor the same, but a vertex on an extraordinary edge takes the\n"
+    "                 tensor product of the cubic curve along the edge and\n"
+    "                 Catmull-Clark across it (docs/schemes.md)\n"
     "  quasi48        quasi 4-8 surfaces (Velho-Gomes): triangles; one level is\n"
     "                 one longest-edge bisection pass (two make a 4-8 step);\n"
     "                 corners and segments (tags) stay fixed, the boundary\n"

@@ -30,14 +30,15 @@ static const entry registry[] = {
     {"boxspline", ss_scheme_boxspline_new},
     {"boxspline-avg", ss_scheme_boxspline_avg_new},
     {"ccsolid", ss_scheme_ccsolid_new},
+    {"ccsolid-tensor", ss_scheme_ccsolid_tensor_new},
     {"quasi48", ss_scheme_quasi48_new},
 };
 #define NREG (sizeof registry / sizeof registry[0])
 
 const char *const *ss_scheme_names(void) {
-  static const char *const names[NREG + 1] = {"mlca",    "tetoct",    "catmull-clark",
-                                              "loop",    "boxspline", "boxspline-avg",
-                                              "ccsolid", "quasi48",   NULL};
+  static const char *const names[NREG + 1] = {
+      "mlca",          "tetoct",  "catmull-clark",  "loop",    "boxspline",
+      "boxspline-avg", "ccsolid", "ccsolid-tensor", "quasi48", NULL};
   return names;
 }
 
@@ -47,7 +48,7 @@ ss_status ss_scheme_new(const char *name, ss_scheme **out, ss_error *err) {
     if (strcmp(name, registry[i].name) == 0) return registry[i].make(out, err);
   return ss_error_set(err, SS_EINPUT,
                       "unknown scheme '%s' (known: mlca, tetoct, catmull-clark, loop, "
-                      "boxspline, boxspline-avg, ccsolid, quasi48)",
+                      "boxspline, boxspline-avg, ccsolid, ccsolid-tensor, quasi48)",
                       name);
 }
 

@@ -17,6 +17,8 @@
  *   boxspline-avg  the same averaged over the three diagonal directions
  *   ccsolid        Catmull-Clark solids (Joy-MacCracken rules) on hex meshes;
  *                  boundaries as Catmull-Clark surfaces (ss_scheme_ccsolid.c)
+ *   ccsolid-tensor the same with the tensor-product vertex rule on
+ *                  extraordinary edges (curve x Catmull-Clark; ss_scheme_ccsolid.c)
  *   quasi48        quasi 4-8 surfaces: longest-edge bisection (a geometry-
  *                  sensitive split) + cascade convolution (ss_scheme_quasi48.c)
  * plus the `averaging` family (split + one mask per cell type) that stencil files
@@ -78,6 +80,22 @@ typedef struct {
  * crease edges).  Corners are interpolated. */
 enum { SS_PTS_VOLUME = 0, SS_PTS_SURFACE = 1, SS_PTS_CREASE = 2, SS_PTS_PLACES = 3 };
 
+/* The averages of a vertex on an extraordinary edge (ss_points.axis): an old
+ * vertex off the surface with n = 2m hexes and m + 2 edges, two of valence
+ * m != 4 in no common hex (along: the extraordinary edge through it) and m of
+ * valence 4 (across) — its link is the bipyramid over m.  ALONG and ACROSS
+ * are the means of those edges' midpoints; VERTEX, EDGE, FACE, CELL as in the
+ * volume.vertex rule. */
+enum {
+  SS_AXIS_VERTEX = 0,
+  SS_AXIS_ALONG = 1,
+  SS_AXIS_ACROSS = 2,
+  SS_AXIS_EDGE = 3,
+  SS_AXIS_FACE = 4,
+  SS_AXIS_CELL = 5,
+  SS_AXIS_KEYS = 6
+};
+
 typedef struct {
   ss_split_kind split;                  /* SS_SPLIT_MULTILINEAR (hexes, quads, segments,
                                            vertices) or SS_SPLIT_TETOCT (triangles, segments,
@@ -86,6 +104,11 @@ typedef struct {
                                            (w[..][0] unused), copied; NULL: 0 at
                                            every n, and all NULL for (place, d):
                                            the centroid of X (k = 0 weight 1) */
+  const double *axis[SS_AXIS_KEYS];     /* axis[k][n]: the rule of a vertex on an
+                                           extraordinary edge (SS_AXIS_*), n = 2m
+                                           its hexes, copied; NULL: 0 at every n,
+                                           and all NULL: such vertices take
+                                           w[SS_PTS_VOLUME][0] like any other */
   int rational;        /* 1: every weight is rational at every n (the exact
                           path may read them) */
   int rational_volume; /* 1: every weight of the volume place is */

@@ -32,6 +32,7 @@ void ss_scheme_free(ss_scheme *s) {
     free(s->vrow[t]);
   }
   free(s->ptab);
+  free(s->paxis);
   free(s);
 }
 

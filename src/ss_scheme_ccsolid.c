@@ -23,6 +23,22 @@
  * a tensor product of the Catmull-Clark surface rule and the cubic curve
  * rule (docs/schemes.md, "Catmull-Clark solids").
  *
+ * ccsolid-tensor: the same rules but at a vertex P on an extraordinary edge —
+ * interior, with n = 2m hexes, m + 2 edges: two of valence m != 4 that share
+ * no hex ("along", the extraordinary edge through P) and m of valence 4
+ * ("across"), i.e. the link bipyramid:m —
+ *   vertex point  (m - 3)/(2m) (P + E_along) + (1/m) E_across + C / n + 3 A / n,
+ * E_along, E_across the means of the midpoints of the edges along and across.
+ * This is the tensor product of the cubic curve rule (1/8, 3/4, 1/8) along
+ * the edge and Catmull-Clark's valence-m surface vertex rule across it: its
+ * weights on six classes of points (P, its m neighbours across, its m
+ * diagonals across; each in P's layer and in the two next) against the six
+ * averages' (P, E_along, E_across, the faces across, the faces along, C)
+ * make a triangular system (docs/schemes.md); the cell and face weights come
+ * out as Joy and MacCracken's, so only the edges' and P's change.  Every
+ * other point keeps the rules above (on a regular grid there is no such
+ * vertex: the tricubic B-spline still).
+ *
  * Boundaries and creases.  The "surface" of the mesh is its boundary faces
  * (quads of exactly one hex) together with the quad cells given explicitly
  * in the mesh.  Every vertex on the surface, on a segment cell or a vertex
@@ -45,7 +61,9 @@
  * half-ball (hexes not connected through faces at the vertex, or a link of
  * Euler characteristic other than 2, closed, or 1, with boundary) is refused
  * (SS_EINPUT, naming the vertices).  All of this is read from the cells
- * holding a fine vertex, so the rule reaches one ring (ss_scheme_reach 1). */
+ * holding a fine vertex, so the rule reaches one ring (ss_scheme_reach 1);
+ * so is ccsolid-tensor's test of a vertex on an extraordinary edge (an edge
+ * at P lies only in hexes holding P). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,6 +105,8 @@ typedef struct {
   ss_idx *quads;       /* fine surface quads, 4 each */
   size_t nquads;       /* surface quads held */
   size_t *lptr;        /* restricted split: parent offsets */
+  uint32_t *axis;      /* ccsolid-tensor, per coarse vertex: m if it lies on an
+                          extraordinary edge of valence m (header), else 0 */
 } cs_work;
 
 static uint32_t uf_find(uint32_t *uf, uint32_t a) {
@@ -293,6 +313,71 @@ static ss_cx surface_cx(const ss_cx *fine, const cs_work *w) {
   return surf;
 }
 
+/* w->axis (header, ccsolid-tensor): the coarse vertices off the surface
+ * whose edges of valence other than 4 are exactly two, m each, in no common
+ * hex, with 2m hexes and m + 2 edges at the vertex.  ends: 2 per coarse
+ * vertex, scratch. */
+static void find_axes(size_t nc, cs_work *w, ss_idx *ends) {
+  const ss_idx none = (ss_idx)-1;
+  for (size_t v = 0; v < nc; v++) {
+    w->axis[v] = 1; /* a candidate until refuted */
+    ends[2 * v] = ends[2 * v + 1] = none;
+  }
+  for (size_t h = 0; h < w->nhex; h++)
+    for (int p = 0; p < NLAT; p++) {
+      const ss_idx x = w->lat[h * NLAT + (size_t)p];
+      if (lat_kind(p) != 0 || !w->axis[x]) continue;
+      int t[3], odd = 0;
+      lat_digits(p, t);
+      for (int i = 0; i < 3 && !w->on[x]; i++) {
+        int u[3] = {t[0], t[1], t[2]};
+        u[i] = 1;
+        const ss_idx e = w->lat[h * NLAT + (size_t)lat_index(u)];
+        if (w->nhexat[e] == 4) continue;
+        odd++;
+        if (ends[2 * x] == none || ends[2 * x] == e)
+          ends[2 * x] = e;
+        else if (ends[2 * x + 1] == none || ends[2 * x + 1] == e)
+          ends[2 * x + 1] = e;
+        else
+          odd = 9; /* a third */
+      }
+      if (w->on[x] || odd > 1) w->axis[x] = 0;
+    }
+  for (size_t v = 0; v < nc; v++) {
+    if (!w->axis[v] || ends[2 * v + 1] == none) {
+      w->axis[v] = 0;
+      continue;
+    }
+    const uint32_t m = w->nhexat[ends[2 * v]];
+    const int ok = m >= 3 && w->nhexat[ends[2 * v + 1]] == m && w->nhexat[v] == 2 * m &&
+                   w->nedgeat[v] == m + 2;
+    w->axis[v] = ok ? m : 0;
+  }
+}
+
+/* The vertex rule at fine vertex x from hex lat (its corner t): Joy and
+ * MacCracken's, or the tensor product's where w->axis[x] (header). */
+static void vertex_rule(const cs_work *w, const ss_idx *lat, const int *t, ss_idx x,
+                        ss_sink *k) {
+  const double n = (double)w->nhexat[x];
+  const double m = w->axis ? (double)w->axis[x] : 0.0;
+  ss_sink_emit(k, x, lat[13], 1.0 / (n * n));
+  const double nfa = (double)w->nfaceat[x], ned = (double)w->nedgeat[x];
+  for (int i = 0; i < 3; i++) {
+    int u[3] = {t[0], t[1], t[2]};
+    u[i] = 1;
+    const ss_idx e = lat[lat_index(u)];
+    const double ne = (double)w->nhexat[e]; /* each edge seen from its ne hexes */
+    if (m > 0.0) /* along: (m - 3)/(4m) each of 2; across: 1/m each of m */
+      ss_sink_emit(k, x, e, (ne == m ? (m - 3.0) / (4.0 * m) : 1.0 / (m * m)) / ne);
+    else /* 3 E / n over ned edges (as before the variant, bit for bit) */
+      ss_sink_emit(k, x, e, 3.0 / (n * ned * ne));
+    u[(i + 1) % 3] = 1; /* the face spanned by directions i, i + 1 */
+    ss_sink_emit(k, x, lat[lat_index(u)], 3.0 / (n * nfa * 2.0));
+  }
+}
+
 /* The volume rules of the header for every fine vertex off the surface. */
 static void volume_rule(const ss_cx *fine, const ss_split *L, const cs_work *w,
                         ss_sink *k) {
@@ -305,6 +390,8 @@ static void volume_rule(const ss_cx *fine, const ss_split *L, const cs_work *w,
       ss_sink_emit(k, x, x, 1.0); /* cell point, or a vertex in no cell */
     else if (np == 4)
       ss_sink_emit(k, x, x, 0.5);
+    else if (np == 1 && w->axis && w->axis[x]) /* (m - 3)/(2m), n = 2m */
+      ss_sink_emit(k, x, x, (n - 6.0) / (2.0 * n));
     else
       ss_sink_emit(k, x, x, (n - (np == 2 ? 3.0 : 7.0)) / n);
   }
@@ -329,17 +416,8 @@ static void volume_rule(const ss_cx *fine, const ss_split *L, const cs_work *w,
           /* 2 A / n over n faces, each seen from its 2 hexes */
           ss_sink_emit(k, x, lat[lat_index(u)], 1.0 / (n * n));
         }
-      } else { /* vertex */
-        ss_sink_emit(k, x, c, 1.0 / (n * n));
-        const double nfa = (double)w->nfaceat[x], ned = (double)w->nedgeat[x];
-        for (int i = 0; i < 3; i++) {
-          int u[3] = {t[0], t[1], t[2]};
-          u[i] = 1;
-          const ss_idx e = lat[lat_index(u)];
-          ss_sink_emit(k, x, e, 3.0 / (n * ned * (double)w->nhexat[e]));
-          u[(i + 1) % 3] = 1; /* the face spanned by directions i, i + 1 */
-          ss_sink_emit(k, x, lat[lat_index(u)], 3.0 / (n * nfa * 2.0));
-        }
+      } else {
+        vertex_rule(w, lat, t, x, k);
       }
     }
   }
@@ -379,6 +457,7 @@ static ss_status prepare(const ss_cx *fine, const ss_split *L, cs_work *w, ss_id
 }
 
 static void work_clear(cs_work *w) {
+  free(w->axis);
   free(w->lat);
   free(w->uf);
   free(w->nhexat);
@@ -394,11 +473,18 @@ static void work_clear(cs_work *w) {
 
 static ss_status ccsolid_rule(const ss_scheme *s, const ss_cx *coarse, const ss_cx *fine,
                               const ss_split *L, ss_sink *k, ss_error *err) {
-  (void)s;
   (void)coarse; /* the split complex and L say all this rule needs */
   cs_work w = {0};
   ss_idx *par = NULL;
   ss_status st = prepare(fine, L, &w, &par, err);
+  if (!st && s->tensor_axis) {
+    ss_idx *ends = malloc((2 * L->ncoarse + 1) * sizeof *ends);
+    if (!ends || !(w.axis = malloc((L->ncoarse + 1) * sizeof *w.axis)))
+      st = ss_error_nomem(err, "ccsolid-tensor rule");
+    else
+      find_axes(L->ncoarse, &w, ends);
+    free(ends);
+  }
   if (!st) {
     ss_split Ls = {L->ncoarse, fine->nv, w.lptr, par};
     ss_cx surf = surface_cx(fine, &w);
@@ -441,4 +527,13 @@ ss_status ss_scheme_ccsolid_new(ss_scheme **out, ss_error *err) {
       (1u << SS_VERTEX) | (1u << SS_SEGMENT) | (1u << SS_QUAD) | (1u << SS_HEX);
   return ss_scheme_alloc("ccsolid", SS_SPLIT_MULTILINEAR, accepts, ccsolid_rule, out,
                          err);
+}
+
+ss_status ss_scheme_ccsolid_tensor_new(ss_scheme **out, ss_error *err) {
+  unsigned accepts =
+      (1u << SS_VERTEX) | (1u << SS_SEGMENT) | (1u << SS_QUAD) | (1u << SS_HEX);
+  ss_status st = ss_scheme_alloc("ccsolid-tensor", SS_SPLIT_MULTILINEAR, accepts,
+                                 ccsolid_rule, out, err);
+  if (!st) (*out)->tensor_axis = 1;
+  return st;
 }

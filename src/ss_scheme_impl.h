@@ -55,6 +55,11 @@ struct ss_scheme {
   int adaptive;         /* 1: refine with the adaptive bisect pass */
   ss_adapt adapt;       /* its criterion (ss_scheme_set_adapt) */
   ss_boundary boundary; /* quasi48's boundary rule (ss_scheme_set_boundary) */
+  int tensor_axis;      /* ccsolid-tensor: a vertex on an extraordinary edge takes
+                           the tensor-product rule (ss_scheme_ccsolid.c) */
+  double *paxis;        /* the points family's [volume.axis] (a vertex on an
+                           extraordinary edge): w[k][n] at paxis[k * (SS_AVG_NMAX
+                           + 1) + n], k = SS_AXIS_*; NULL when not given */
 };
 
 /* Allocate a scheme with the given parts (ss_scheme_base.c, below every
@@ -74,6 +79,7 @@ ss_status ss_scheme_loop_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_boxspline_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_boxspline_avg_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_ccsolid_new(ss_scheme **out, ss_error *err);
+ss_status ss_scheme_ccsolid_tensor_new(ss_scheme **out, ss_error *err);
 ss_status ss_scheme_quasi48_new(ss_scheme **out, ss_error *err);
 
 /* The Catmull-Clark surface rule (ss_scheme_catmull_clark.c) on the quads,

@@ -15,7 +15,10 @@
  * (or lying in E).  Elements are compared as sorted sets of coarse
  * vertices; each distinct one counts once, whatever number of fine cells
  * shows it.  The mean of centroids is emitted on the coarse vertices
- * themselves (weight / count / |E| each), so this rule shares nothing with
+ * themselves (weight / count / |E| each).  An old vertex on an extraordinary
+ * edge (ss_points.axis) is recognised from the same elements — the valence
+ * of an edge is the number of hexes among them holding it — and takes the
+ * axis weights when the scheme has them.  So this rule shares nothing with
  * the built-in ccsolid and loop rules but the surface (ss_hex_surface_build)
  * and the crease classification (ss_crease.h): tests compare the two. */
 #include <math.h>
@@ -115,6 +118,57 @@ static element cell_element(const ss_split *L, const place_cells *P, size_t c) {
   return e;
 }
 
+/* The hexes among the u elements e that hold element i. */
+static size_t cells_holding(const element *e, size_t u, size_t i) {
+  size_t c = 0;
+  for (size_t j = 0; j < u; j++)
+    c += e[j].n == 8 && subset(e + i, e + j);
+  return c;
+}
+
+/* m if the old vertex whose u distinct incident elements are e (count[k] of
+ * dimension k, multilinear) lies on an extraordinary edge (ss_points.axis:
+ * 2m hexes, m + 2 edges, exactly two of valence m != 4 in no common hex,
+ * the others of valence 4); 0 otherwise.  along[0..1]: those two. */
+static size_t axis_valence(const element *e, size_t u, const size_t *count,
+                           size_t *along) {
+  size_t na = 0, m = 0;
+  for (size_t i = 0; i < u; i++) {
+    if (e[i].n != 2) continue;
+    const size_t v = cells_holding(e, u, i);
+    if (v == 4) continue;
+    if (na == 2 || (na && v != m)) return 0;
+    m = v;
+    along[na++] = i;
+  }
+  if (na != 2 || m < 3 || count[3] != 2 * m || count[1] != m + 2) return 0;
+  for (size_t j = 0; j < u; j++)
+    if (e[j].n == 8 && subset(e + along[0], e + j) && subset(e + along[1], e + j))
+      return 0;
+  return m;
+}
+
+/* The row of an old vertex on an extraordinary edge of valence m (its u
+ * elements e, count[k] of dimension k; along: the two edges along) by the
+ * scheme's [volume.axis] weights at n = 2m. */
+static void emit_axis(const ss_scheme *s, size_t x, const element *e, size_t u,
+                      const size_t *count, size_t m, const size_t *along, ss_sink *k) {
+  const size_t NN = SS_AVG_NMAX + 1, n = 2 * m;
+  const double *w = s->paxis;
+  for (size_t i = 0; i < u; i++) {
+    const int kd = element_dim(SS_SPLIT_MULTILINEAR, e[i].n);
+    static const int key[4] = {SS_AXIS_VERTEX, SS_AXIS_EDGE, SS_AXIS_FACE, SS_AXIS_CELL};
+    double wk = w[(size_t)key[kd] * NN + n] / (double)count[kd];
+    if (kd == 1)
+      wk += i == along[0] || i == along[1]
+                ? w[(size_t)SS_AXIS_ALONG * NN + n] / 2.0
+                : w[(size_t)SS_AXIS_ACROSS * NN + n] / (double)m;
+    if (wk == 0.0) continue;
+    for (int j = 0; j < e[i].n; j++)
+      ss_sink_emit(k, x, e[i].v[j], wk / (double)e[i].n);
+  }
+}
+
 /* Scratch of one rule: the candidate elements of one fine vertex. */
 typedef struct {
   element *e; /* cap of them */
@@ -160,6 +214,12 @@ static ss_status emit_point(const ss_scheme *s, const ss_split *L, const place_c
                         "scheme %s: fine vertex %zu has %zu cells at its element, beyond "
                         "the valences its weights are given for (1..%d)",
                         s->name, x + 1, n, SS_AVG_NMAX);
+  size_t along[2], ma = 0;
+  if (place == SS_PTS_VOLUME && d == 0 && s->paxis &&
+      (ma = axis_valence(W->e, u, count, along))) {
+    emit_axis(s, x, W->e, u, count, ma, along, k);
+    return SS_OK;
+  }
   const double *w = s->ptab + (size_t)(place * 4 + d) * 4 * (SS_AVG_NMAX + 1);
   for (size_t i = 0; i < u; i++) {
     const int kd = element_dim(s->split, W->e[i].n);
@@ -268,6 +328,39 @@ done:
   return st;
 }
 
+/* p's axis weights as a table (*tab, NULL when none is given), their sums
+ * checked at every n.  SS_EINPUT, SS_ENOMEM. */
+static ss_status axis_table(const char *name, const ss_points *p, double **tab,
+                            ss_error *err) {
+  const size_t NN = SS_AVG_NMAX + 1;
+  int given = 0;
+  for (int k = 0; k < SS_AXIS_KEYS; k++)
+    given |= p->axis[k] != NULL;
+  *tab = NULL;
+  if (!given) return SS_OK;
+  if (p->split != SS_SPLIT_MULTILINEAR)
+    return ss_error_set(err, SS_EINPUT,
+                        "scheme %s: axis weights (a vertex on an extraordinary edge) "
+                        "need the multilinear split",
+                        name);
+  if (!(*tab = calloc(SS_AXIS_KEYS * NN, sizeof **tab)))
+    return ss_error_nomem(err, "points weights");
+  for (size_t n = 1; n < NN; n++) {
+    double sum = 0.0;
+    for (int k = 0; k < SS_AXIS_KEYS; k++)
+      sum += (*tab)[(size_t)k * NN + n] = p->axis[k] ? p->axis[k][n] : 0.0;
+    if (!(fabs(sum - 1.0) <= 1e-12)) {
+      free(*tab);
+      *tab = NULL;
+      return ss_error_set(err, SS_EINPUT,
+                          "scheme %s: the volume axis weights sum to %.17g at n = %zu, "
+                          "not 1",
+                          name, sum, n);
+    }
+  }
+  return SS_OK;
+}
+
 ss_status ss_scheme_points_new(const char *name, const ss_points *p, ss_scheme **out,
                                ss_error *err) {
   *out = NULL;
@@ -305,14 +398,18 @@ ss_status ss_scheme_points_new(const char *name, const ss_points *p, ss_scheme *
         }
       }
     }
+  double *axis = NULL;
+  ss_status st = axis_table(name, p, &axis, err);
   unsigned accepts = (1u << SS_VERTEX) | (1u << SS_SEGMENT) |
                      (hexes ? (1u << SS_QUAD) | (1u << SS_HEX) : (1u << SS_TRIANGLE));
-  ss_status st = ss_scheme_alloc(name, p->split, accepts, points_rule, out, err);
+  if (!st) st = ss_scheme_alloc(name, p->split, accepts, points_rule, out, err);
   if (st) {
     free(tab);
+    free(axis);
     return st;
   }
   (*out)->ptab = tab;
+  (*out)->paxis = axis;
   (*out)->irrational = !p->rational;
   (*out)->irrational_volume = !p->rational_volume;
   return SS_OK;

@@ -684,8 +684,8 @@ done:
       ss_stencil_slot_clear(&R->m[t][r]);
       free(tabs[t][r]);
     }
-  for (int i = 0; i < NRSEC * 4; i++)
-    ss_stencil_slot_clear(&R->rs[i / 4][i % 4]);
+  for (int i = 0; i < NRSEC * RKEYS; i++)
+    ss_stencil_slot_clear(&R->rs[i / RKEYS][i % RKEYS]);
   free(R);
   return st;
 }

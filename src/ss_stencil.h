@@ -49,8 +49,14 @@
  * needs surface.vertex, surface.edge and crease.vertex.  Sections not given
  * (volume.cell, surface.face, crease.edge) are the centroid; corners stay.
  * The weights of each section must sum to 1 at every n (exactly when
- * rational); no [mask.*] sections.  data/stencils/ccsolid.ini and loop.ini
- * are the built-in ccsolid and loop so written.
+ * rational); no [mask.*] sections.  [volume.axis] (multilinear, optional):
+ * the rule of an old vertex on an extraordinary edge (ss_points.axis: 2m
+ * hexes, its link the bipyramid over m != 4; n = 2m) in place of
+ * volume.vertex, keys vertex, along (the mean of the midpoints of the two
+ * edges of valence m), across (of the m others), edge, face, cell; along
+ * and across in any other section are refused.  data/stencils/ccsolid.ini,
+ * ccsolid-tensor.ini and loop.ini are the built-in ccsolid, ccsolid-tensor
+ * and loop so written.
  *
  * The neighbours family (family = neighbours, split tetoct; ss_scheme.h,
  * ss_neighbours): the box-spline paper's rules over rho, the neighbours by

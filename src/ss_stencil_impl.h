@@ -31,8 +31,11 @@ struct slot {
 enum { FAM_AVERAGING = 0, FAM_POINTS = 1, FAM_NEIGHBOURS = 2 };
 
 /* Rule sections (ss_stencil_rules.c): the points family's [PLACE.POINT]
- * as place * 4 + point (0..11), then the neighbours family's five. */
-#define NRSEC 17
+ * as place * 4 + point (0..11), then the neighbours family's five, then the
+ * points family's [volume.axis] (RSEC_AXIS); RKEYS keys each at most. */
+#define NRSEC     18
+#define RSEC_AXIS 17
+#define RKEYS     SS_AXIS_KEYS
 
 typedef struct {
   char name[64]; /* [scheme] name */
@@ -42,7 +45,7 @@ typedef struct {
   slot m[SS_NCELLTYPES][4];       /* mask weights by type and role */
   unsigned given[SS_NCELLTYPES];  /* bit r: role r given */
   int has_mask[SS_NCELLTYPES];    /* a [mask.*] section seen */
-  slot rs[NRSEC][4];              /* rule sections' weights by key */
+  slot rs[NRSEC][RKEYS];          /* rule sections' weights by key */
   unsigned rgiven[NRSEC];         /* bit k: key k given */
   int has_rs[NRSEC];              /* the section seen */
   int rs_order[NRSEC];            /* the sections seen, in the file's order */

@@ -15,6 +15,9 @@
 static const char *const place_names[SS_PTS_PLACES] = {"volume", "surface", "crease"};
 static const char *const dim_names[4] = {"vertex", "edge", "face", "cell"};
 static const int place_top[SS_PTS_PLACES] = {3, 2, 1}; /* dimension averaged over */
+/* [volume.axis]: a vertex on an extraordinary edge (ss_points.axis). */
+static const char *const axis_keys[SS_AXIS_KEYS] = {"vertex", "along", "across",
+                                                    "edge",   "face",  "cell"};
 
 /* The neighbours family: sections 12.. and their keys. */
 static const char *const nb_names[SS_NB_RULES] = {"vertex", "edge", "centre",
@@ -27,6 +30,13 @@ static const char *const nb_keys[SS_NB_RULES][2] = {{"self", "rho"},
 
 /* Section i's name into buf and its keys (*nk of them) into keys. */
 static void section_of(int i, char *buf, size_t cap, const char **keys, int *nk) {
+  if (i == RSEC_AXIS) {
+    snprintf(buf, cap, "volume.axis");
+    *nk = SS_AXIS_KEYS;
+    for (int k = 0; k < *nk; k++)
+      keys[k] = axis_keys[k];
+    return;
+  }
   if (i < 12) {
     const int p = i / 4, d = i % 4;
     snprintf(buf, cap, "%s.%s", place_names[p], dim_names[d]);
@@ -46,15 +56,17 @@ static void section_of(int i, char *buf, size_t cap, const char **keys, int *nk)
 static int section_index(reader *R, const char *section) {
   for (int j = 0; j < SS_NB_RULES; j++)
     if (!strcmp(section, nb_names[j])) return 12 + j;
+  if (!strcmp(section, "volume.axis")) return RSEC_AXIS;
   for (int p = 0; p < SS_PTS_PLACES; p++) {
     const size_t l = strlen(place_names[p]);
     if (strncmp(section, place_names[p], l) || section[l] != '.') continue;
     for (int d = 0; d <= place_top[p]; d++)
       if (!strcmp(section + l + 1, dim_names[d])) return p * 4 + d;
     snprintf(R->msg, sizeof R->msg,
-             "[%.64s]: unknown point '%.32s' (known on a %s: vertex%s%s%s)", section,
+             "[%.64s]: unknown point '%.32s' (known on a %s: vertex%s%s%s%s)", section,
              section + l + 1, place_names[p], place_top[p] > 0 ? ", edge" : "",
-             place_top[p] > 1 ? ", face" : "", place_top[p] > 2 ? ", cell" : "");
+             place_top[p] > 1 ? ", face" : "", place_top[p] > 2 ? ", cell" : "",
+             p == SS_PTS_VOLUME ? ", axis" : "");
     return -2;
   }
   return -1;
@@ -67,13 +79,20 @@ int ss_stencil_rule_key(reader *R, const char *section, const char *key,
   if (i == -2) return 0;
   if (!R->has_rs[i]++) R->rs_order[R->nrs++] = i;
   char name[32], base[64];
-  const char *keys[4];
+  const char *keys[RKEYS];
   int nk = 0, k = -1;
   long at = 0;
   section_of(i, name, sizeof name, keys, &nk);
   const int bad_at = ss_stencil_key_at(key, base, sizeof base, &at);
   for (int j = 0; j < nk && !bad_at; j++)
     if (!strcmp(base, keys[j])) k = j;
+  if (k < 0 && i < 12 && (!strcmp(base, "along") || !strcmp(base, "across"))) {
+    snprintf(R->msg, sizeof R->msg,
+             "[%.64s]: average '%.64s' is defined only at a vertex on an extraordinary "
+             "edge, in [volume.axis]",
+             section, key);
+    return 0;
+  }
   if (k < 0) {
     char known[64] = "";
     for (int j = 0; j < nk; j++)
@@ -105,7 +124,7 @@ static ss_status rules_sum(const weight_values *w, unsigned given, long n, int v
   int exact = 1, overflow = 0;
   double d = 0.0;
   rational q = {0, 1};
-  for (int k = 0; k < 4; k++)
+  for (int k = 0; k < RKEYS; k++)
     if (given >> k & 1u) {
       exact &= w[k].exact[n];
       d += w[k].d[n];
@@ -134,6 +153,7 @@ static ss_status rules_sum(const weight_values *w, unsigned given, long n, int v
  * triangle surfaces no volume and no face points (Loop's split makes none);
  * the neighbours family takes and needs its five sections. */
 static int section_role(int fam, int hexes, int i) {
+  if (i == RSEC_AXIS) return fam == FAM_POINTS && hexes;
   if (i >= 12) return fam == FAM_NEIGHBOURS ? 2 : 0;
   const int p = i / 4, d = i % 4;
   if (fam != FAM_POINTS || (!hexes && (p == SS_PTS_VOLUME || d == 2))) return 0;
@@ -148,11 +168,11 @@ static ss_status section_tables(const reader *R, int i, const char *where,
                                 const char *text, weight_values *w, double **tabs,
                                 int *all_q, ss_error *err) {
   char sec[32];
-  const char *keys[4];
-  int nkeys = 0, varies = 0, ks[4], nk = 0;
+  const char *keys[RKEYS];
+  int nkeys = 0, varies = 0, ks[RKEYS], nk = 0;
   section_of(i, sec, sizeof sec, keys, &nkeys);
   const int line = ss_stencil_section_line(text, sec);
-  for (int k = 0; k < 4; k++) /* the keys in the file's order */
+  for (int k = 0; k < RKEYS; k++) /* the keys in the file's order */
     if (R->rgiven[i] >> k & 1u) {
       int j = nk++;
       for (; j > 0 && R->rs[i][ks[j - 1]].keyline > R->rs[i][k].keyline; j--)
@@ -165,7 +185,7 @@ static ss_status section_tables(const reader *R, int i, const char *where,
                               &varies, err);
   for (long n = 1; !st && n <= (varies ? SS_AVG_NMAX : 1); n++)
     st = rules_sum(w, R->rgiven[i], n, varies, where, sec, line, all_q, err);
-  for (int k = 0; k < 4 && !st; k++) {
+  for (int k = 0; k < RKEYS && !st; k++) {
     if (!(R->rgiven[i] >> k & 1u)) continue;
     if (!(tabs[k] = malloc(sizeof w[k].d))) return ss_error_nomem(err, "stencil weights");
     memcpy(tabs[k], w[k].d, sizeof w[k].d);
@@ -180,7 +200,7 @@ static ss_status check_sections(const reader *R, const char *text, const char *w
   static const char *const fam[] = {"averaging", "points", "neighbours"};
   const int hexes = R->split == SS_SPLIT_MULTILINEAR;
   char sec[32];
-  const char *keys[4];
+  const char *keys[RKEYS];
   int nk;
   static const char *const mask[SS_NCELLTYPES] = {
       [SS_SEGMENT] = "segment", [SS_TRIANGLE] = "triangle", [SS_QUAD] = "quad",
@@ -205,7 +225,7 @@ static ss_status check_sections(const reader *R, const char *text, const char *w
     const int i = R->rs_order[j];
     section_of(i, sec, sizeof sec, keys, &nk);
     if (section_role(R->family, hexes, i)) continue;
-    const int other = i < 12 ? FAM_POINTS : FAM_NEIGHBOURS;
+    const int other = i < 12 || i == RSEC_AXIS ? FAM_POINTS : FAM_NEIGHBOURS;
     if (R->family != other)
       return ss_error_set(err, SS_EINPUT, "%s:%d: [%s]: a section of family %s, not %s",
                           where, ss_stencil_section_line(text, sec), sec, fam[other],
@@ -221,8 +241,8 @@ ss_status ss_stencil_build_rules(const reader *R, const char *text, const char *
   ss_status st = check_sections(R, text, where, sl, err);
   if (st) return st;
   const int hexes = R->split == SS_SPLIT_MULTILINEAR;
-  weight_values *w = malloc(4 * sizeof *w);
-  double *tabs[NRSEC][4];
+  weight_values *w = malloc(RKEYS * sizeof *w);
+  double *tabs[NRSEC][RKEYS];
   memset(tabs, 0, sizeof tabs);
   int all_q = 1, vol_q = 1; /* every weight rational; every volume rule's */
   if (!w) st = ss_error_nomem(err, "stencil weights");
@@ -231,10 +251,10 @@ ss_status ss_stencil_build_rules(const reader *R, const char *text, const char *
     int q = 1;
     st = section_tables(R, i, where, text, w, tabs[i], &q, err);
     all_q &= q;
-    if (i < 4 || (i >= 12 && i < 12 + SS_NB_BVERTEX)) vol_q &= q;
+    if (i < 4 || (i >= 12 && i < 12 + SS_NB_BVERTEX) || i == RSEC_AXIS) vol_q &= q;
   }
   char sec[32];
-  const char *keys[4];
+  const char *keys[RKEYS];
   int nk;
   for (int i = 0; i < NRSEC && !st; i++) /* after the file's own errors */
     if (!R->has_rs[i] && section_role(R->family, hexes, i) == 2) {
@@ -253,6 +273,8 @@ ss_status ss_stencil_build_rules(const reader *R, const char *text, const char *
     for (int i = 0; i < 12; i++)
       for (int k = 0; k < 4; k++)
         P.w[i / 4][i % 4][k] = tabs[i][k];
+    for (int k = 0; k < SS_AXIS_KEYS; k++)
+      P.axis[k] = tabs[RSEC_AXIS][k];
     st = ss_scheme_points_new(R->name, &P, out, err);
   } else if (!st) {
     ss_neighbours N;
@@ -265,7 +287,7 @@ ss_status ss_stencil_build_rules(const reader *R, const char *text, const char *
     st = ss_scheme_neighbours_new(R->name, &N, out, err);
   }
   free(w);
-  for (int i = 0; i < NRSEC * 4; i++)
-    free(tabs[i / 4][i % 4]);
+  for (int i = 0; i < NRSEC * RKEYS; i++)
+    free(tabs[i / RKEYS][i % RKEYS]);
   return st;
 }

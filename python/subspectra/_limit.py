@@ -69,10 +69,11 @@ class Limit:
         L = Limit(scheme, points, cells, fields=None)
 
     scheme: a scheme that splits hexahedra multilinearly with a one-ring
-    rule and is the tricubic B-spline on grids (mlca, ccsolid).  points: an
-    (n, 3) array of control points.  cells: meshio's cells (a dict
-    {"hexahedron": (m, 8) int array} or a list of (type, array) pairs or
-    CellBlocks; VTK's vertex order, indices from 0) holding hexahedra only.
+    rule and is the tricubic B-spline on grids (mlca, ccsolid,
+    ccsolid-tensor).  points: an (n, 3) array of control points.  cells:
+    meshio's cells (a dict {"hexahedron": (m, 8) int array} or a list of
+    (type, array) pairs or CellBlocks; VTK's vertex order, indices from 0)
+    holding hexahedra only.
     fields: None, an (n,) or (n, nf) array of scalar values per control
     point (density, a temperature): they are subdivided with the same
     weights as the coordinates, so their limits come with every point.

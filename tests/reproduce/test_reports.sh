@@ -9,8 +9,9 @@
 # (not written by reproduce): reports/README.md, the exhaustive tables
 # (reports/exhaustive-*, reports/data/exhaustive-*, made by
 # reports/exhaustive.sh), the k = 11 sweep (reports/vertices-k11-certified.md,
-# made by `subspectra sweep`), reports/tuned-* (reports/tuned.sh), and the sources beside them (*.c, *.h,
-# meson.build).
+# made by `subspectra sweep`), reports/tuned-* (reports/tuned.sh),
+# reports/ccsolid-tensor-* (reports/ccsolid-tensor.sh), and the sources beside
+# them (*.c, *.h, meson.build).
 # About 3 minutes on an idle machine (psi and its spokes on the MLCA and ccsolid
 # vertex tables).
 set -u
@@ -44,7 +45,7 @@ while IFS= read -r f; do
   [ -f "$out/$f" ] || { echo "FAIL: reports/$f is no longer written by reproduce"; bad=1; }
 done < <(cd "$src/reports" && find . -type f \( -name '*.md' -o -name '*.tsv' \
   -o -name '*.jsonl' -o -name '*.png' \) ! -name 'exhaustive-*' ! -path ./README.md \
-  ! -name 'vertices-k11-certified.md' ! -name 'tuned-*' |
+  ! -name 'vertices-k11-certified.md' ! -name 'tuned-*' ! -name 'ccsolid-tensor-*' |
   sed 's|^\./||' | LC_ALL=C sort)
 [ "$n" -ge 50 ] || { echo "FAIL: only $n files written"; bad=1; }
 [ "$bad" -eq 0 ] && echo "ok: $n files written by reproduce --certify, each equal to reports/"

@@ -12,6 +12,8 @@
  *   5. extraordinary edges: the local matrix against the tensor product of
  *      the Catmull-Clark surface matrix and the cubic curve's (equal off the
  *      edge's own vertices; the rotation-invariant part differs for n != 4);
+ *      ccsolid-tensor's equal to it in every row, its spectrum the surface's
+ *      times the curve's with Catmull-Clark's lambda_1(n) in closed form;
  *   6. non-manifold and tet input refused. */
 #include <lapacke.h>
 #include <stdlib.h>
@@ -692,16 +694,27 @@ static void print_leading(size_t m, const double *wr, const double *wi,
   }
 }
 
-/* The edge of valence n: the ccsolid matrix S against the separable operator
- * T = S_cc (x) S_curve, built here label by label from the Catmull-Clark
- * surface matrix of valence n and the curve's mask (an edge label is a
- * surface label plus an axis coordinate t in -2..2).  Derivation (README):
- * only the rows of the points on the edge itself (surface label 0, t even)
- * differ, by rotation-invariant rows, so S and T agree on every Fourier mode
- * w != 0 and differ (n != 4) on w = 0.  Checked: the rows, and the spectra
- * as spec S + spec T_0 = spec T + spec S_0 (the _0 blocks are mode 0). */
-static void check_edge(int n) {
-  ss_local *S = local("ccsolid", (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0});
+/* How many of the m eigenvalues (wr, wi) are within 1e-12 (relative) of x. */
+static int count_near(size_t m, const double *wr, const double *wi, double x) {
+  int c = 0;
+  for (size_t i = 0; i < m; i++)
+    c += hypot(wr[i] - x, wi[i]) <= 1e-12 * fmax(1.0, fabs(x));
+  return c;
+}
+
+/* The edge of valence n: the scheme's matrix S (ccsolid or ccsolid-tensor)
+ * against the separable operator T = S_cc (x) S_curve, built here label by
+ * label from the Catmull-Clark surface matrix of valence n and the curve's
+ * mask (an edge label is a surface label plus an axis coordinate t in
+ * -2..2).  Derivation (README): for ccsolid only the rows of the points on
+ * the edge itself (surface label 0, t even) differ, by rotation-invariant
+ * rows, so S and T agree on every Fourier mode w != 0 and differ (n != 4) on
+ * w = 0.  Checked: the rows, and the spectra as spec S + spec T_0 = spec T +
+ * spec S_0 (the _0 blocks are mode 0).  For ccsolid-tensor no row differs:
+ * S = T entry for entry, and spec S is spec S_cc times the curve's. */
+static void check_edge(const char *name, int n) {
+  const int tensor = !strcmp(name, "ccsolid-tensor");
+  ss_local *S = local(name, (ss_case){SS_CASE_EDGE, NULL, n, SS_DIAG_BFS, 0});
   ss_local *Q =
       local("catmull-clark", (ss_case){SS_CASE_SURFACE_VERTEX, NULL, n, SS_DIAG_BFS, 0});
   const size_t n2 = S->n2, q2 = Q->n2;
@@ -756,8 +769,8 @@ static void check_edge(int n) {
   CHECK(on_edge <= 1e-15, "edge %d: edge-point rows differ from the tensor rule by %g", n,
         on_edge);
   CHECK(asym <= 1e-15, "edge %d: the difference is not rotation-invariant (%g)", n, asym);
-  if (n == 4)
-    CHECK(on_vertex <= 1e-15, "regular edge: vertex rows differ by %g", on_vertex);
+  if (n == 4 || tensor) /* entries <= 1 summed in other orders: a few ulps */
+    CHECK(on_vertex <= 4e-15, "%s edge %d: vertex rows differ by %g", name, n, on_vertex);
   else
     CHECK(on_vertex > 1e-3, "edge %d: vertex rows equal the tensor rule (%g)", n,
           on_vertex);
@@ -772,8 +785,9 @@ static void check_edge(int n) {
     size_t j = ss_local_label_index(S, &b);
     CHECK(i != SIZE_MAX && j != SIZE_MAX, "edge %d: axis labels missing", n);
     if (i != SIZE_MAX && j != SIZE_MAX) {
-      CHECK_CLOSE(S->S[i * n2 + j], 1.0 - 37.0 / (16.0 * n), 1e-14,
-                  "edge %d: JM vertex weight on itself", n);
+      CHECK_CLOSE(S->S[i * n2 + j],
+                  tensor ? 0.75 * (1.0 - 7.0 / (4.0 * n)) : 1.0 - 37.0 / (16.0 * n),
+                  1e-14, "%s edge %d: vertex weight on itself", name, n);
       CHECK_CLOSE(T[i * n2 + j], 0.75 * (1.0 - 7.0 / (4.0 * n)), 1e-14,
                   "edge %d: tensor vertex weight on itself", n);
     }
@@ -815,18 +829,27 @@ static void check_edge(int n) {
   CHECK(dswap < 1e-12, "edge %d: spec S + spec T_0 != spec T + spec S_0 (%g)", n, dswap);
   const double d0 = multiset_dist(m, xr + n2, xi + n2, sr + n2, si + n2);
   const double dall = multiset_dist(n2, sr, si, tr, tt);
-  if (n == 4)
-    CHECK(dall < 1e-12, "regular edge: spectrum differs from the tensor product (%g)",
-          dall);
+  if (n == 4 || tensor)
+    CHECK(dall < 1e-12 && d0 < 1e-12,
+          "%s edge %d: spectrum differs from the tensor product (%g, mode 0 %g)", name, n,
+          dall, d0);
   else
     CHECK(d0 > 1e-3 && dall > 1e-3,
           "edge %d: the mode-0 spectrum equals the tensor product's (%g, %g)", n, d0,
           dall);
+  if (tensor) { /* Catmull-Clark's subdominant pair (closed form) times 1 and 1/2 */
+    const double c = cos(2.0 * M_PI / n);
+    const double l1 = (5.0 + c + cos(M_PI / n) * sqrt(2.0 * (9.0 + c))) / 16.0;
+    const int a = count_near(n2, sr, si, l1), b = count_near(n2, sr, si, l1 / 2.0);
+    CHECK(a >= 2 && b >= 2 && count_near(n2, sr, si, 0.25) >= 1,
+          "%s edge %d: lambda_1(n) = %.15g x {1, 1/2} not double in spec S (%d, %d)",
+          name, n, l1, a, b);
+  }
   /* the leading mode-0 eigenvalues after 1 (distinct values), for docs/schemes.md */
-  printf("edge %2d: rows off the edge equal (%.0e); modes w != 0 equal (%.0e); mode 0 "
+  printf("%s edge %2d: rows off the edge equal (%.0e); modes w != 0 equal (%.0e); mode 0 "
          "differs by %.3g:",
-         n, off, dswap, d0);
-  print_leading(m, xr + n2, xi + n2, "ccsolid");
+         name, n, off, dswap, d0);
+  print_leading(m, xr + n2, xi + n2, name);
   print_leading(m, sr + n2, si + n2, "tensor");
   printf("\n");
   free(xr);
@@ -850,8 +873,10 @@ done:
 }
 
 static void test_edges(void) {
-  for (int n = 3; n <= 10; n++)
-    check_edge(n);
+  for (int n = 3; n <= 10; n++) {
+    check_edge("ccsolid", n);
+    check_edge("ccsolid-tensor", n);
+  }
 }
 
 /* ---- 6. bad input ---- */
@@ -931,6 +956,7 @@ int main(void) {
   test_regular_vertex();
   test_grid_convergence();
   op_check_tensor_rule("ccsolid", 3, 4);
+  op_check_tensor_rule("ccsolid-tensor", 3, 4);
   test_naive();
   test_boundary();
   test_edges();

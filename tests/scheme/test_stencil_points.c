@@ -2,12 +2,13 @@
  * ss_scheme_points.c) against the built-in schemes it must reproduce, whose
  * rules are written independently (ss_scheme_ccsolid.c's lattices and
  * hand-counted weights, ss_scheme_loop.c's neighbour sums):
- *   - data/stencils/ccsolid.ini: local matrices of vertex cases (regular,
- *     bipyramids, icosahedron, tetrahedron) and edge cases (n = 3, 5, 6)
- *     identical to ccsolid's entry for entry as exact rationals (each entry
- *     reconstructed, ss_exact_rational), the same certified verdicts, and
- *     refinement operators identical as rationals on meshes with a
- *     boundary, a crease segment, a corner and explicit quads;
+ *   - data/stencils/ccsolid.ini and ccsolid-tensor.ini: local matrices of
+ *     vertex cases (regular, bipyramids, icosahedron, tetrahedron) and edge
+ *     cases (n = 3, 5, 6) identical to ccsolid's (ccsolid-tensor's) entry for
+ *     entry as exact rationals (each entry reconstructed, ss_exact_rational),
+ *     the same certified verdicts, and refinement operators identical as
+ *     rationals on meshes with a boundary, a crease segment, a corner and
+ *     explicit quads (and a vertex on an extraordinary edge: bipyramid:5's);
  *   - data/stencils/loop.ini: operators and surface-vertex local matrices
  *     (n = 3..12) equal to loop's (rational entries as rationals, Loop's
  *     cos(2 pi/n) entries within 1e-15), the same verdicts, and the one-ring
@@ -17,8 +18,9 @@
  *     certified verdicts equal, operators on refined tet stars (octahedra,
  *     boundary) equal, the k = 4 rule (3.5) dropped seen;
  *   - mutations: one weight of ccsolid.ini changed (an edge's face/edge
- *     split, a surface vertex's, a crease vertex's) makes the comparison
- *     fail — the test can see a wrong weight;
+ *     split, a surface vertex's, a crease vertex's) or of ccsolid-tensor.ini's
+ *     [volume.axis] (along/across, vertex/along) makes the comparison fail —
+ *     the test can see a wrong weight;
  *   - KEY@N (a weight given apart at valence N): applied at N only, sums
  *     checked there, bad keys refused;
  *   - bad points files: exit status and messages naming the file, the line
@@ -214,17 +216,18 @@ static ss_cx *creased_star(const char *link, int quads) {
 static const char *const vlinks[] = {"octahedron", "bipyramid:5", "icosahedron",
                                      "tetrahedron", "bipyramid:3"};
 
-static void test_ccsolid(void) {
-  char *text = read_text("ccsolid.ini");
-  ss_scheme *st = from_text(text, "ccsolid.ini"), *cc = builtin("ccsolid");
+/* The stencil file against the built-in scheme name. */
+static void test_ccsolid(const char *file, const char *name) {
+  char *text = read_text(file);
+  ss_scheme *st = from_text(text, file), *cc = builtin(name);
   if (!st) goto out;
-  CHECK(ss_scheme_weights_rational(st), "ccsolid.ini: weights said not rational");
-  same_vertices(cc, st, vlinks, sizeof vlinks / sizeof *vlinks, 3, "ccsolid");
+  CHECK(ss_scheme_weights_rational(st), "%s: weights said not rational", file);
+  same_vertices(cc, st, vlinks, sizeof vlinks / sizeof *vlinks, 3, name);
   const int edges[] = {3, 5, 6};
   for (int i = 0; i < 3; i++) {
     const ss_case c = {SS_CASE_EDGE, NULL, edges[i], SS_DIAG_BFS, 0};
     char what[64];
-    snprintf(what, sizeof what, "ccsolid edge %d", edges[i]);
+    snprintf(what, sizeof what, "%s edge %d", name, edges[i]);
     same_local(cc, st, c, 0, what, 1);
     same_verdicts(cc, st, c, 1, what);
   }
@@ -233,11 +236,17 @@ static void test_ccsolid(void) {
   for (int i = 0; i < 3; i++) {
     ss_cx *m = creased_star(meshes[i], i == 0);
     CHECK(same_operator_q(cc, st, m, 0, meshes[i]),
-          "ccsolid, creased hex star %s: operators differ", meshes[i]);
+          "%s, creased hex star %s: operators differ", name, meshes[i]);
     ss_cx_free(m);
   }
+  tm_link *l = tm_link_named("bipyramid:5"); /* its centre is on an extraordinary edge */
+  ss_cx *hs = tm_hex_star(l);
+  tm_jitter(hs, 0.1, 3);
+  CHECK(same_operator_q(cc, st, hs, 0, "star"), "%s, hex star bipyramid:5: differ", name);
+  ss_cx_free(hs);
+  tm_link_free(l);
   ss_cx *grid = tm_torus(3, 4);
-  CHECK(same_operator_q(cc, st, grid, 0, "grid"), "ccsolid, periodic grid: differ");
+  CHECK(same_operator_q(cc, st, grid, 0, "grid"), "%s, periodic grid: differ", name);
   ss_cx_free(grid);
 out:
   ss_scheme_free(st);
@@ -294,6 +303,32 @@ static void test_mutations(void) {
     free(t);
   }
   ss_link_free(l);
+  ss_scheme_free(cc);
+  free(text);
+  /* [volume.axis]: seen on the edge case of valence 5, not on valence 4's */
+  text = read_text("ccsolid-tensor.ini");
+  cc = builtin("ccsolid-tensor");
+  const char *amut[][3] = {
+      {"across = 2/n\nalong = (n - 6)/(2*n)",
+       "across = 2/n + 1/64\nalong = (n - 6)/(2*n) - 1/64", "axis along/across"},
+      {"along = (n - 6)/(2*n)\nvertex = (n - 6)/(2*n)",
+       "along = (n - 6)/(2*n) + 1/64\nvertex = (n - 6)/(2*n) - 1/64",
+       "axis vertex/along"},
+  };
+  for (int i = 0; i < 2; i++) {
+    char *t = replaced(text, amut[i][0], amut[i][1]);
+    ss_scheme *s = from_text(t, amut[i][2]);
+    if (s) {
+      CHECK(!same_local(cc, s, (ss_case){SS_CASE_EDGE, NULL, 5, SS_DIAG_BFS, 0}, 0,
+                        amut[i][2], 0),
+            "mutation of the %s weights went unseen", amut[i][2]);
+      CHECK(same_local(cc, s, (ss_case){SS_CASE_EDGE, NULL, 4, SS_DIAG_BFS, 0}, 0,
+                       amut[i][2], 1),
+            "%s: [volume.axis] read at a regular edge", amut[i][2]);
+    }
+    ss_scheme_free(s);
+    free(t);
+  }
   ss_scheme_free(cc);
   free(text);
 }
@@ -513,6 +548,18 @@ static void test_bad(void) {
   bad("[scheme]\nname = x\nfamily = points\nsplit = tetoct\n[volume.vertex]\nvertex = "
       "1\n",
       "bad.ini:5: [volume.vertex]: this split makes no such point");
+  /* the axis averages: only in [volume.axis], which only hexes have */
+  bad(HEADP "[volume.vertex]\ncell = 1/n\nalong = 1 - 1/n\n",
+      "bad.ini:7: [volume.vertex]: average 'along' is defined only at a vertex on an "
+      "extraordinary edge, in [volume.axis]");
+  bad(HEADP "[surface.vertex]\nacross = 1\n",
+      "bad.ini:6: [surface.vertex]: average 'across' is defined only at a vertex on an "
+      "extraordinary edge");
+  bad(HEADP CCREST "[volume.axis]\nvertex = 1/2\nalong = 1/4\nacross = 1/n\n",
+      "bad.ini:27: [volume.axis]: the weights sum to 7/4 at n = 1, not 1");
+  bad("[scheme]\nname = x\nfamily = points\nsplit = tetoct\n[volume.axis]\nvertex = "
+      "1\n",
+      "bad.ini:5: [volume.axis]: this split makes no such point");
 }
 
 #define HEADM "[scheme]\nname = x\nfamily = averaging\nsplit = multilinear\n"
@@ -567,7 +614,8 @@ int main(int argc, char **argv) {
     return 77;
   }
   dir = argv[1];
-  test_ccsolid();
+  test_ccsolid("ccsolid.ini", "ccsolid");
+  test_ccsolid("ccsolid-tensor.ini", "ccsolid-tensor");
   test_mutations();
   test_loop();
   test_boxspline();
