@@ -25,7 +25,8 @@ typedef struct {
   long long den; /* denominator, > 0 (at most maxden) */
 } ss_exact_rat;
 
-/* One distinct irreducible factor over Q of the characteristic polynomial. */
+/* One distinct irreducible factor over Q of the characteristic polynomial (or,
+ * with ss_exact_opts.lazy, a squarefree one not proven irreducible: unproven). */
 typedef struct {
   fmpz_poly_t f; /* primitive, positive leading coefficient */
   int mult;      /* multiplicity in the characteristic polynomial of S */
@@ -144,7 +145,7 @@ ss_status ss_exact_basis_make(ss_exact *x, ss_error *err);
 /* Isolate the roots of factor k at precision prec (sets z, mod, real), a
  * refinement from the balls it has when it was isolated before
  * (ss_exact_isolate.c).  Squarefree input only: the factors are
- * irreducible. */
+ * irreducible, or (lazy) squarefree by construction. */
 void ss_exact_isolate(ss_exact *x, size_t k, long prec);
 
 /* The d roots of the squarefree integer polynomial f (degree d >= 1) into

@@ -326,7 +326,7 @@ void ss_exact_isolate(ss_exact *x, size_t k, long prec) {
     } else {
       s = eigen_seeds(x, k, d);
     }
-    ss_exact_complex_roots(z, F->f, s, prec); /* F->f is irreducible */
+    ss_exact_complex_roots(z, F->f, s, prec); /* F->f is squarefree */
     for (slong i = 0; i < d; i++) {
       acb_set(&R[i].z, z + i);
       R[i].real = acb_is_real(z + i);
