@@ -190,6 +190,7 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
   ss_schur *sx = NULL;
   ss_exact_opts eo = ss_exact_defaults(M->dim);
   eo.times = o->times ? &o->times->exact : NULL;
+  eo.lazy = o->exact_lazy;
   double c1 = o->times ? ss_clock_cpu() : 0.0;
   ss_error xe = {0};
   ss_status st = rational ? ss_exact_new(M->S, M->n2, M->n1, &eo, &ex, &xe) : SS_ENUMERIC;

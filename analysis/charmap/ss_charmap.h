@@ -118,6 +118,11 @@ typedef struct {
                               falls 4x per level) */
   ss_charmap_times *times; /* NULL (the default), or where to add the stages'
                               thread CPU times (above); borrowed */
+  int exact_lazy;          /* nonzero: the certified path's exact spectrum
+                              proves a factor irreducible only where a verdict
+                              needs it (ss_exact_opts.lazy; the same verdicts,
+                              not always the same printed factors); 0, the
+                              default: fmpz_poly_factor's factors */
 } ss_charmap_opts;
 
 /* One ring level's cells by verdict. */

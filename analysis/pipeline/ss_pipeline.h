@@ -83,6 +83,11 @@ typedef struct {
   int ring_levels;      /* ring levels judged at most,
                            1..SS_LOCAL_MAXRING (ss_charmap_opts) */
   int certify;          /* nonzero: the exact path too (ss_certify) */
+  int exact_lazy;       /* nonzero, with certify: factors proven irreducible
+                           only where a verdict needs it
+                           (ss_charmap_opts.exact_lazy: sweeps and check,
+                           which store verdicts; analyze prints the factors
+                           as minimal polynomials and keeps 0) */
   int force;            /* nonzero: the eigenvectors' basis even when the
                            eigenvalue condition fails (ss_eig_opts.force),
                            and a forced map built and judged for a

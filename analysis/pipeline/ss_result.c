@@ -6,7 +6,7 @@
 
 ss_result_opts ss_result_defaults(void) {
   const ss_charmap_opts co = ss_charmap_defaults();
-  return (ss_result_opts){1e-6, co.depth, co.ring_levels, 0, 0, 0, 0.0};
+  return (ss_result_opts){1e-6, co.depth, co.ring_levels, 0, 0, 0, 0.0, 0};
 }
 
 void ss_result_clear(ss_result *r) {
@@ -72,6 +72,7 @@ ss_status ss_result_compute_ws(const ss_scheme *s, const ss_case *c,
   po.depth = o->depth;
   po.ring_levels = o->ring_levels;
   po.certify = o->certify;
+  po.exact_lazy = !o->exact_full;
   po.psi_depth = o->psi_depth;
   po.psi_tubes = o->psi_tubes;
   po.max_bytes = o->max_bytes;

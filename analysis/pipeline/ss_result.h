@@ -39,6 +39,12 @@ typedef struct {
                        estimate exceeds it fails with SS_ENOMEM before anything
                        is built; <= 0: none.  Not part of the identity: it
                        decides whether a case runs, never its verdict */
+  int exact_full;   /* nonzero, with certify: every factor of the exact
+                       spectrum proven irreducible (fmpz_poly_factor); 0, the
+                       default: only where a verdict needs it
+                       (ss_pipeline_opts.exact_lazy).  Not part of the
+                       identity: the same verdicts (bench_pipeline --phases
+                       --certify --exact-full compares the two) */
 } ss_result_opts;
 
 /* One eigenvalue as kept in a result. */

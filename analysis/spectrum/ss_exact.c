@@ -9,11 +9,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <flint/nmod_poly.h>
+#include <flint/ulong_extras.h>
+
 #include "ss_clock.h"
 #include "ss_exact_impl.h"
 
 ss_exact_opts ss_exact_defaults(int dim) {
-  ss_exact_opts o = {1L << 18, 128, 4096, dim, 400, 1, NULL};
+  ss_exact_opts o = {1L << 18, 128, 4096, dim, 400, 1, 0, NULL};
   return o;
 }
 
@@ -26,6 +29,7 @@ void ss_exact_free(ss_exact *x) {
   }
   for (size_t k = 0; k < x->nfac; k++)
     fmpz_poly_clear(x->fac[k].f);
+  fmpz_clear(&x->dA);
   if (x->qb) _arb_vec_clear(x->qb, (slong)x->A.ptr[x->n]); /* before A */
   ss_csr_free(&x->A);
   ss_scc_free(&x->K);
@@ -48,8 +52,104 @@ void ss_exact_free(ss_exact *x) {
   free(x);
 }
 
+/* Whether a and b (integer polynomials of degree >= 1) have no common root:
+ * their gcd modulo a prime dividing neither leading coefficient is 1 (a
+ * common factor over Q would be one over Z, of positive degree modulo it),
+ * else FLINT's exact gcd. */
+static int coprime(const fmpz_poly_t a, const fmpz_poly_t b) {
+  mp_limb_t p = UWORD(1) << 62;
+  do
+    p = n_nextprime(p, 1);
+  while (!fmpz_fdiv_ui(fmpz_poly_lead(a), p) || !fmpz_fdiv_ui(fmpz_poly_lead(b), p));
+  nmod_poly_t u, v, g;
+  nmod_poly_init(u, p);
+  nmod_poly_init(v, p);
+  nmod_poly_init(g, p);
+  fmpz_poly_get_nmod_poly(u, a);
+  fmpz_poly_get_nmod_poly(v, b);
+  nmod_poly_gcd(g, u, v);
+  int yes = nmod_poly_degree(g) == 0;
+  nmod_poly_clear(u);
+  nmod_poly_clear(v);
+  nmod_poly_clear(g);
+  if (!yes) {
+    fmpz_poly_t h;
+    fmpz_poly_init(h);
+    fmpz_poly_gcd(h, a, b);
+    yes = fmpz_poly_degree(h) == 0;
+    fmpz_poly_clear(h);
+  }
+  return yes;
+}
+
+/* ss_exact_opts.lazy: what the condition's steps assume of a factor that an
+ * unproven one (squarefree, not proven irreducible) satisfies only when it
+ * has multiplicity 1 in S and no root in common with any other factor
+ * (distinct factors, distinct roots; its roots' multiplicity is then 1),
+ * and x - 1 is a factor (assess_lambda0 looks for it).  1 when so. */
+static int lazy_premises(const ss_exact *x) {
+  int one = 0;
+  for (size_t k = 0; k < x->nfac; k++) {
+    const fmpz_poly_struct *f = x->fac[k].f;
+    one |= fmpz_poly_degree(f) == 1 && fmpz_is_one(f->coeffs + 1) &&
+           fmpz_equal_si(f->coeffs, -1);
+  }
+  if (!one || x->lazy_bad) return 0;
+  for (size_t k = 0; k < x->nfac; k++) {
+    if (!x->fac[k].unproven) continue;
+    if (x->fac[k].mult != 1) return 0;
+    for (size_t j = 0; j < x->nfac; j++)
+      if (j != k && !coprime(x->fac[k].f, x->fac[j].f)) return 0;
+  }
+  return 1;
+}
+
+/* ss_exact_opts.lazy: whether x stands as computed.  What reads a factor's
+ * irreducibility: the non-defectiveness of a root of multiplicity > 1 (none
+ * is unproven: lazy_premises), the basis of lambda1..m (exact for a rational
+ * root, Rump's method for an irrational one: an unproven factor's leading
+ * root is proven irrational when dA times its ball holds no integer, the
+ * roots of a monic integer polynomial being integers when rational) and the
+ * exact moduli and reflections that prove ties (an unproven factor may hide
+ * a reflection, and leave open what FLINT's factors would decide).  So: the
+ * condition certified, each leading root of an unproven factor proven
+ * irrational, and on a pass the basis as requested; otherwise the exact path
+ * starts again with fmpz_poly_factor.  A certified failure stands: each of
+ * its proofs (moduli of balls, realness and sign of isolated roots,
+ * positions counted by multiplicities, exact ties by multiplicity or proven
+ * equal moduli) holds for squarefree factors without common roots. */
+static int lazy_accepted(const ss_exact *x) {
+  if (x->lazy_bad || !x->certified) return 0;
+  if (x->cond.verdict != SS_PASS) return 1;
+  int ok = 1;
+  arb_t y;
+  arb_init(y);
+  for (size_t j = 0; j < x->nlead && ok; j++) {
+    const ss_exact_rt *R = x->rt + x->lead[j];
+    if (!x->fac[R->factor].unproven) continue;
+    arb_mul_fmpz(y, acb_realref(&R->z), &x->dA, x->fac[R->factor].prec + 64);
+    ok = !arb_contains_int(y); /* irrational, as its minimal polynomial says */
+  }
+  arb_clear(y);
+  return ok && (!x->o.basis || x->bstatus == SS_OK);
+}
+
+static ss_status exact_run(const double *S, size_t n, size_t n1, const ss_exact_opts *o,
+                           ss_exact **out, ss_error *err);
+
 ss_status ss_exact_new(const double *S, size_t n, size_t n1, const ss_exact_opts *o,
                        ss_exact **out, ss_error *err) {
+  ss_status st = exact_run(S, n, n1, o, out, err);
+  if (st || !o->lazy || lazy_accepted(*out)) return st;
+  ss_exact_free(*out);
+  ss_exact_opts full = *o;
+  full.lazy = 0;
+  return exact_run(S, n, n1, &full, out, err);
+}
+
+/* ss_exact_new with the options as given. */
+static ss_status exact_run(const double *S, size_t n, size_t n1, const ss_exact_opts *o,
+                           ss_exact **out, ss_error *err) {
   *out = NULL;
   ss_status st = ss_scc_check_form(S, n, n1, err);
   if (st) return st;
@@ -98,7 +198,18 @@ ss_status ss_exact_new(const double *S, size_t n, size_t n1, const ss_exact_opts
     st = ss_error_nomem(err, "blocks");
     goto done;
   }
+  if (tm) c1 = ss_clock_cpu();
+  if (ss_exact_eigen_values(x)) { /* seeds of the isolation, candidates of the
+                                     factoring's linear factors */
+    st = ss_error_nomem(err, "root seeds");
+    goto done;
+  }
+  if (tm) ss_clock_lap(&tm->isolate, &c1);
   if ((st = ss_exact_all_blocks(x, err))) goto done; /* times its own stages */
+  if (o->lazy && !lazy_premises(x)) {
+    x->lazy_bad = 1; /* ss_exact_new starts again */
+    goto done;
+  }
   if (tm) c1 = ss_clock_cpu();
   if (ss_exact_eigen_seeds(x)) { /* the seeds are isolation's */
     st = ss_error_nomem(err, "root seeds");

@@ -32,6 +32,28 @@
  * the same tests whatever the start) and refined until the moduli of all
  * roots that matter to the order are separated, or until maxprec bits.
  *
+ * Lazy factoring (ss_exact_opts.lazy, what sweeps and check use): the
+ * one-ring block's polynomial is split into its squarefree parts, the simple
+ * part's linear factors are found from the block's LAPACK eigenvalues (each
+ * candidate rational checked exactly) and divided out, and when the rest has
+ * degree >= 12 it is kept whole, not proven irreducible (the degree-68
+ * factor of an MLCA k = 14 link: FLINT's proof was 6-12 ms a case); the
+ * other parts and blocks are factored as above (ss_exact_squarefree.c).
+ * Such an unproven factor must have multiplicity 1 in S and no root in
+ * common with any other factor (checked: gcds modulo a prime, exactly where
+ * those do not decide), so that the roots stay distinct with their
+ * multiplicities; then every step below holds for it (conjugates and
+ * reflections are roots of the factors named, its roots are isolated as a
+ * squarefree polynomial's), except what reads irreducibility: a root's
+ * minimal polynomial (ss_exact_minpoly and ss_exact_root.degree give the
+ * unproven factor), the non-defectiveness of a multiple root (none is
+ * unproven), and exact moduli or reflections hidden inside it.  So the
+ * result stands only when the condition is certified, no root among
+ * lambda1..lambdam is an unproven factor's, and a pass has its basis;
+ * otherwise ss_exact_new starts again with every factor FLINT's.  The
+ * verdicts are those of the full factorisation (tests/analysis/
+ * test_exact_lazy.c; certified sweeps before and after agree).
+ *
  * Order: distinct roots by decreasing modulus, real before complex, larger
  * real part first, then larger imaginary part (ss_eig's order).  Two distinct
  * roots of equal modulus are tied exactly when that is proven: complex
@@ -159,6 +181,10 @@ typedef struct {
                             characteristic polynomial is computed (default 400);
                             larger: every verdict undecided, not certified */
   int basis;             /* nonzero: enclose the subdominant basis on a pass */
+  int lazy;              /* nonzero: the one-ring block's simple part is not
+                            proven irreducible where nothing needs it (below,
+                            "Lazy factoring"); 0, the default: every factor
+                            is fmpz_poly_factor's */
   ss_exact_times *times; /* NULL (the default), or where to add the stages'
                             thread CPU times (above); borrowed */
 } ss_exact_opts;

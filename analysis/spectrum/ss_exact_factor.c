@@ -28,8 +28,9 @@ static long find_factor(const ss_exact *x, const fmpz_poly_t g) {
 /* Add multiplicity e of the normalised irreducible g to block b's list and to
  * the merged factors.  SS_ENOMEM. */
 static ss_status add_factor(ss_exact *x, size_t b, const fmpz_poly_t g, int e,
-                            ss_error *err) {
+                            int unproven, ss_error *err) {
   long k = find_factor(x, g);
+  if (k >= 0 && (unproven || x->fac[k].unproven)) x->lazy_bad = 1;
   if (k < 0) {
     if (x->nfac == x->facalloc) {
       size_t na = x->facalloc ? 2 * x->facalloc : 16;
@@ -44,6 +45,7 @@ static ss_status add_factor(ss_exact *x, size_t b, const fmpz_poly_t g, int e,
     fmpz_poly_init(F->f);
     fmpz_poly_set(F->f, g);
     F->refl = -1;
+    F->unproven = unproven;
   }
   x->fac[k].mult += e;
   /* each block lists a factor once (distinct factors of one polynomial) */
@@ -51,6 +53,15 @@ static ss_status add_factor(ss_exact *x, size_t b, const fmpz_poly_t g, int e,
   x->bfac[at] = (size_t)k;
   x->bmult[at] = e;
   return SS_OK;
+}
+
+/* The number of block b's eigenvalues at the start of x->ev (b = 0, the
+ * one-ring block, is computed first). */
+static size_t eigen_count(const ss_exact *x, size_t b) {
+  size_t ne = 0;
+  while (ne < x->nev && x->evb[ne] == b)
+    ne++;
+  return ne;
 }
 
 /* The rows (= columns) of block b of S: the one-ring, or outer component
@@ -72,7 +83,8 @@ size_t ss_exact_block_rows(const ss_exact *x, size_t b, size_t *idx) {
  * denominator (ss_exact_charpoly: P = (prod d_r) det(x - block)) and turned
  * into that of the block scaled by the lcm D of its denominators, the integer
  * matrix M = D block: det(y - M) = D^len det(y/D - block), whose coefficient
- * of y^j is D^(len-j) P_j / prod d_r; factored as before, each irreducible
+ * of y^j is D^(len-j) P_j / prod d_r; factored as before (the one-ring
+ * block with ss_exact_opts.lazy: ss_exact_factor_lazy), each irreducible
  * factor g(y) of M's polynomial gives the factor g(D x) of the block's, made
  * primitive (a linear substitution keeps it irreducible).  SS_ENOMEM. */
 static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t len,
@@ -89,7 +101,7 @@ static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t
     fmpz_neg(fmpq_numref(v), fmpq_numref(v));
     fmpz_poly_set_coeff_fmpz(g, 0, fmpq_numref(v));
     fmpq_clear(v);
-    st = add_factor(x, b, g, 1, err);
+    st = add_factor(x, b, g, 1, 0, err);
     goto done;
   }
   fmpz_mat_t N;
@@ -123,7 +135,12 @@ static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t
       fmpz_mul(Dk, Dk, D);
     }
     if (tm) ss_clock_lap(&tm->charpoly, &c1);
-    fmpz_poly_factor(fac, cp);
+    slong kept = -1; /* the unproven factor (lazy, the one-ring block) */
+    if (x->o.lazy && b == 0) fmpz_set(&x->dA, D);
+    if (x->o.lazy && b == 0)
+      kept = ss_exact_factor_lazy(fac, cp, D, x->ev, x->ev ? eigen_count(x, 0) : 0);
+    else
+      fmpz_poly_factor(fac, cp);
     if (tm) ss_clock_lap(&tm->factor, &c1);
     for (slong i = 0; i < fac->num && !st; i++) {
       const slong deg = fmpz_poly_degree(fac->p + i);
@@ -136,7 +153,7 @@ static ss_status block_charpoly(ss_exact *x, size_t b, const size_t *idx, size_t
         fmpz_mul(Dk, Dk, D);
       }
       fmpz_poly_primitive_part(g, g); /* also makes the leading coefficient > 0 */
-      st = add_factor(x, b, g, (int)fac->exp[i], err);
+      st = add_factor(x, b, g, (int)fac->exp[i], i == kept, err);
     }
   }
   fmpz_poly_factor_clear(fac);

@@ -10,6 +10,7 @@
 #include <flint/fmpq.h>
 #include <flint/fmpz_mat.h>
 #include <flint/fmpz_poly.h>
+#include <flint/fmpz_poly_factor.h>
 
 #include "acb.h"
 #include "arb_mat.h"
@@ -24,7 +25,8 @@ typedef struct {
   long long den; /* denominator, > 0 (at most maxden) */
 } ss_exact_rat;
 
-/* One distinct irreducible factor over Q of the characteristic polynomial. */
+/* One distinct irreducible factor over Q of the characteristic polynomial (or,
+ * with ss_exact_opts.lazy, a squarefree one not proven irreducible: unproven). */
 typedef struct {
   fmpz_poly_t f; /* primitive, positive leading coefficient */
   int mult;      /* multiplicity in the characteristic polynomial of S */
@@ -33,6 +35,8 @@ typedef struct {
   long refl;     /* the factor whose roots are minus its roots, or -1 */
   int exact_nsq; /* 1 if |root|^2 is rational (linear factors, quadratics with
                     complex roots, cyclotomic factors) */
+  int unproven;  /* 1: squarefree but not proven irreducible (ss_exact_opts.lazy:
+                    the one-ring block's simple part, ss_exact_factor_lazy) */
 } ss_exact_factor;
 
 /* One distinct eigenvalue (internal). */
@@ -60,6 +64,13 @@ struct ss_exact {
   size_t *brep;         /* nblk: the first block with the same entries as
                            block b (b itself if none; outer blocks > 1 x 1
                            only, else b) */
+  int lazy_bad;         /* 1: with ss_exact_opts.lazy, an unproven factor met
+                           another block's factor (start again with
+                           fmpz_poly_factor) */
+  fmpz dA;              /* lazy: the lcm of the one-ring block's denominators
+                           (its eigenvalues times dA are the roots of the monic
+                           integer polynomial factored: a rational one is an
+                           integer) */
   size_t nfac;          /* distinct factors */
   size_t facalloc;      /* allocated entries of fac */
   ss_exact_factor *fac; /* the merged factors */
@@ -134,7 +145,7 @@ ss_status ss_exact_basis_make(ss_exact *x, ss_error *err);
 /* Isolate the roots of factor k at precision prec (sets z, mod, real), a
  * refinement from the balls it has when it was isolated before
  * (ss_exact_isolate.c).  Squarefree input only: the factors are
- * irreducible. */
+ * irreducible, or (lazy) squarefree by construction. */
 void ss_exact_isolate(ss_exact *x, size_t k, long prec);
 
 /* The d roots of the squarefree integer polynomial f (degree d >= 1) into
@@ -176,6 +187,11 @@ int ss_exact_rump_tmat(arb_mat_t T, const double *r, const arb_mat_t A, const ar
  * failure (no seeds for that block). */
 int ss_exact_eigen_seeds(ss_exact *x);
 
+/* The first half of ss_exact_eigen_seeds, before the factoring: the blocks'
+ * eigenvalues into x->ev, x->evb (also the candidates of the factors' linear
+ * parts, ss_exact_factor_poly).  0, or -1 when out of memory. */
+int ss_exact_eigen_values(ss_exact *x);
+
 /* The principal submatrix of S on rows and columns idx[0..len) scaled to
  * integers: D = the lcm of its entries' denominators, M = D times it (M
  * initialised len x len by the caller).  Returns 0, or -1 when out of
@@ -196,6 +212,17 @@ int ss_exact_principal_rows(const ss_exact *x, const size_t *idx, size_t len, fm
  * modulo primes above 2^62 with a bound from B's row sums and Frobenius norm
  * (ss_exact_charpoly.c).  FLINT aborts if out of memory. */
 void ss_exact_charpoly(fmpz_poly_t P, const fmpz_mat_t N, const fmpz *d);
+
+/* The factors of G (degree >= 1, integer coefficients, the polynomial of
+ * scale times the one-ring block) into fac as ss_exact_opts.lazy asks
+ * (ss_exact_squarefree.c): FLINT's irreducible factors of every squarefree
+ * part, except the simple part (exponent 1) when it has degree >= 12 after
+ * its linear factors are divided out (found from cand: ncand complex doubles,
+ * re and im interleaved, the block's eigenvalues; a candidate is used only
+ * when it is an exact root): that rest is kept whole.  Returns its index in
+ * fac, or -1 when every factor is FLINT's.  FLINT aborts if out of memory. */
+slong ss_exact_factor_lazy(fmpz_poly_factor_t fac, const fmpz_poly_t G,
+                           const fmpz_t scale, const double *cand, size_t ncand);
 
 /* The entry S[i][j] as a rational (0 where S has no entry). */
 void ss_exact_get(const ss_exact *x, size_t i, size_t j, fmpq_t v);

@@ -240,6 +240,12 @@ static void block_doubles(const ss_exact *x, size_t blk, double *a, size_t sz) {
 }
 
 int ss_exact_eigen_seeds(ss_exact *x) {
+  if (!x->ev && ss_exact_eigen_values(x)) return -1;
+  give_eigenvalues(x);
+  return 0;
+}
+
+int ss_exact_eigen_values(ss_exact *x) {
   const size_t n = x->n;
   x->ev = malloc((2 * n + 1) * sizeof *x->ev);
   x->evf = malloc((n + 1) * sizeof *x->evf);
@@ -265,7 +271,6 @@ int ss_exact_eigen_seeds(ss_exact *x) {
       x->evb[x->nev] = blk;
     }
   }
-  give_eigenvalues(x);
   rc = 0;
 done:
   free(a);
@@ -321,7 +326,7 @@ void ss_exact_isolate(ss_exact *x, size_t k, long prec) {
     } else {
       s = eigen_seeds(x, k, d);
     }
-    ss_exact_complex_roots(z, F->f, s, prec); /* F->f is irreducible */
+    ss_exact_complex_roots(z, F->f, s, prec); /* F->f is squarefree */
     for (slong i = 0; i < d; i++) {
       acb_set(&R[i].z, z + i);
       R[i].real = acb_is_real(z + i);

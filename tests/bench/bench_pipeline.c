@@ -32,6 +32,10 @@
  * spectrum's, the interval Jacobians per ring level, psi's parts) beside the
  * double path's whole, best of 3 runs per case.
  *
+ * --exact-full (with --certify, either mode): every factor of the exact
+ * spectrum proven irreducible, as before issue 37's lazy factoring
+ * (ss_result_opts.exact_full), for comparisons in one binary.
+ *
  * --project [--kmax K] [--samples N] [--certify [--psi-depth D]]: the
  * exhaustive sweeps projected (issue 20; certified, as `sweep --certify`
  * computes each case, with --certify: issue 37).  For each k = 4..K (default 16) every
@@ -727,7 +731,7 @@ static int project(const ss_scheme *sc, const ss_result_opts *ro, long want, int
 }
 
 int main(int argc, char **argv) {
-  int k = 12, jobs = 2, proj = 0, kmax = 16, ph = 0, cert = 0, psi_depth = 0;
+  int k = 12, jobs = 2, proj = 0, kmax = 16, ph = 0, cert = 0, psi_depth = 0, full = 0;
   long want = 0;
   const char *scheme = "mlca";
   for (int i = 1; i < argc; i++) {
@@ -743,6 +747,10 @@ int main(int argc, char **argv) {
       cert = 1;
       continue;
     }
+    if (!strcmp(argv[i], "--exact-full")) {
+      full = 1;
+      continue;
+    }
     if (i + 1 == argc) break;
     if (!strcmp(argv[i], "--k")) k = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--kmax")) kmax = atoi(argv[i + 1]);
@@ -754,9 +762,10 @@ int main(int argc, char **argv) {
   }
   if (!want) want = proj ? 50 : cert ? 10 : 100;
   if (k < 4 || k > 14 || kmax < 4 || kmax > 16 || want < 1 || jobs < 1 || psi_depth < 0 ||
-      psi_depth > 8 || (cert && !ph && !proj)) {
+      psi_depth > 8 || (cert && !ph && !proj) || (full && !cert)) {
     fprintf(stderr, "bench_pipeline: --k 4..14, --kmax 4..16, --samples >= 1, --jobs "
-                    ">= 1, --psi-depth 0..8, --certify with --phases or --project\n");
+                    ">= 1, --psi-depth 0..8, --certify with --phases or --project, "
+                    "--exact-full with --certify\n");
     return 2;
   }
 #if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
@@ -773,6 +782,7 @@ int main(int argc, char **argv) {
     ss_result_opts pro = ss_result_defaults();
     pro.certify = cert;
     pro.psi_depth = psi_depth;
+    pro.exact_full = full;
     if (cert) printf("certified (sweep --certify%s)\n", psi_depth ? " --psi-depth" : "");
     const int rc = project(sc, &pro, want, kmax, jobs);
     ss_scheme_free(sc);
@@ -789,7 +799,7 @@ int main(int argc, char **argv) {
          s.n, (unsigned long long)counts[k], k, s.stride);
   if (ph) {
     const int rc =
-        cert ? bench_certify_phases(sc, s.l, s.n, psi_depth) : phases(sc, &ro, &s);
+        cert ? bench_certify_phases(sc, s.l, s.n, psi_depth, full) : phases(sc, &ro, &s);
     for (size_t i = 0; i < s.n; i++)
       ss_link_free(s.l[i]);
     free(s.l);

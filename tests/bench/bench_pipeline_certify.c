@@ -204,11 +204,12 @@ static int cmp_double(const void *a, const void *b) {
 
 /* The sample's double and certified runs, best of 3 each; t[p * n + i]. */
 static int measure(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_depth,
-                   double *t, int *proven, int *flips) {
+                   int exact_full, double *t, int *proven, int *flips) {
   ss_pipeline_workspace *w = ss_pipeline_workspace_new();
   ss_result_opts rd = ss_result_defaults(), rc = rd;
   rd.psi_depth = rc.psi_depth = psi_depth;
   rc.certify = 1;
+  rc.exact_full = exact_full;
   int failed = !w;
   for (size_t i = 0; i < n && !failed; i++) {
     double best = 1e300, bestd = 1e300, v[NC];
@@ -244,12 +245,12 @@ static int measure(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_dep
   return failed;
 }
 
-int bench_certify_phases(const ss_scheme *sc, ss_link *const *l, size_t n,
-                         int psi_depth) {
+int bench_certify_phases(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_depth,
+                         int exact_full) {
   double *t = calloc(NC * n + 1, sizeof *t), *ratio = malloc((n + 1) * sizeof *ratio);
   int proven = 0, flips = 0;
   if (!t || !ratio) return 1;
-  const int failed = measure(sc, l, n, psi_depth, t, &proven, &flips);
+  const int failed = measure(sc, l, n, psi_depth, exact_full, t, &proven, &flips);
   if (failed) {
     free(t);
     free(ratio);

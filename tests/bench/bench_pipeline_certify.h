@@ -11,7 +11,9 @@
 
 /* The n links l, each run three times certified and three times on the
  * double path with psi judged to psi_depth (0: not, as sweep runs); prints
- * the table.  0, or 1 on a failure. */
-int bench_certify_phases(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_depth);
+ * the table.  exact_full: every factor proven irreducible
+ * (ss_result_opts.exact_full).  0, or 1 on a failure. */
+int bench_certify_phases(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_depth,
+                         int exact_full);
 
 #endif
