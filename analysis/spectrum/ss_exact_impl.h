@@ -106,6 +106,12 @@ struct ss_exact {
  * room to spare). */
 #define SS_EXACT_MAXDEN_LIMIT (1L << 31)
 
+/* ss_exact_rational with the acceptance |s - p/q| <= reltol max(1, |s|)
+ * (0 < reltol < 1) instead of 2^-40: the rational of denominator at most
+ * maxden nearest to s, 1 with *p / *q in lowest terms (q > 0), else 0. */
+int ss_exact_rational_within(double s, long maxden, double reltol, long long *p,
+                             long long *q);
+
 /* Reconstruct every entry of S (n x n, row-major) into x->A and x->q and
  * check the row sums (ss_exact_rational.c).  SS_ENUMERIC naming the entry or
  * row, SS_ENOMEM. */

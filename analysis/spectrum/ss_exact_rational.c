@@ -124,8 +124,13 @@ static int dyadic(double s, long maxden, long long *p, long long *q) {
 }
 
 int ss_exact_rational(double s, long maxden, long long *p, long long *q) {
+  return ss_exact_rational_within(s, maxden, ldexp(1.0, -40), p, q);
+}
+
+int ss_exact_rational_within(double s, long maxden, double reltol, long long *p,
+                             long long *q) {
   if (!isfinite(s) || maxden < 1 || maxden > SS_EXACT_MAXDEN_LIMIT ||
-      !(fabs(s) <= MAXABS))
+      !(fabs(s) <= MAXABS) || !(reltol > 0.0 && reltol < 1.0))
     return 0;
   if (dyadic(s, maxden, p, q)) return 1;
   arf_t f;
@@ -140,13 +145,15 @@ int ss_exact_rational(double s, long maxden, long long *p, long long *q) {
   const int neg = fmpq_sgn(v) < 0;
   fmpq_abs(v, v);
   nearest_rational(r, v, maxden);
-  fmpq_sub(d, r, v);
-  fmpq_abs(d, d);
   if (fmpq_cmp_ui(v, 1) > 0)
     fmpq_set(bound, v);
   else
     fmpq_one(bound);
-  fmpq_div_2exp(bound, bound, 40);
+  arf_set_d(f, reltol); /* exact: 2^-40 for ss_exact_rational */
+  arf_get_fmpq(d, f);
+  fmpq_mul(bound, bound, d);
+  fmpq_sub(d, r, v);
+  fmpq_abs(d, d);
   int ok = fmpq_cmp(d, bound) <= 0 && fmpz_fits_si(fmpq_numref(r)) &&
            fmpz_fits_si(fmpq_denref(r));
   if (ok) {

@@ -29,34 +29,12 @@
 
 enum {
   SQ_MIN_DEGREE = 12, /* a smaller simple part: FLINT's factors (fast there) */
-  SQ_MAX_DEN = 4096   /* largest denominator of a candidate rational root */
+  SQ_MAX_DEN = 4096   /* largest denominator of a candidate rational root
+                         (ss_exact_rational_within) */
 };
 
 static const double SQ_TOL = 1e-10; /* a candidate's distance to the eigenvalue,
                                        relative to max(1, |eigenvalue|) */
-
-/* The rational a / b (b <= SQ_MAX_DEN, a convergent of v's continued
- * fraction) within SQ_TOL of v: 1, or 0 when there is none. */
-static int near_rational(double v, long *a, long *b) {
-  const double tol = SQ_TOL * fmax(1.0, fabs(v));
-  double x = v;
-  long p0 = 1, q0 = 0, p1 = (long)floor(x), q1 = 1;
-  for (int it = 0; it < 40; it++) {
-    if (fabs(v - (double)p1 / (double)q1) <= tol) {
-      *a = p1;
-      *b = q1;
-      return 1;
-    }
-    const double frac = x - floor(x);
-    if (frac < 1e-15) return 0;
-    x = 1.0 / frac;
-    if (x > 1e9) return 0;
-    const long t = (long)floor(x), p2 = t * p1 + p0, q2 = t * q1 + q0;
-    if (q2 > SQ_MAX_DEN || labs(p2) > (1L << 40)) return 0;
-    p0 = p1, q0 = q1, p1 = p2, q1 = q2;
-  }
-  return 0;
-}
 
 /* Divide out of h (primitive, squarefree) each linear factor b y - a whose
  * root a / b = scale v is exact for a real candidate v among cand (re, im
@@ -71,11 +49,12 @@ static void split_linear(fmpz_poly_factor_t fac, fmpz_poly_t h, slong e,
   fmpz_poly_init(q);
   for (size_t i = 0; i < ncand && fmpz_poly_degree(h) > 1; i++) {
     const double re = cand[2 * i], im = cand[2 * i + 1];
-    long a = 0, b = 1;
-    if (fabs(im) > SQ_TOL * fmax(1.0, fabs(re)) || !near_rational(re, &a, &b) || !a)
+    long long a = 0, b = 1; /* the nearest rational, as the exact path reads S */
+    if (fabs(im) > SQ_TOL * fmax(1.0, fabs(re)) ||
+        !ss_exact_rational_within(re, SQ_MAX_DEN, SQ_TOL, &a, &b) || !a)
       continue;
-    fmpz_mul_si(fmpq_numref(r), scale, a);
-    fmpz_set_si(fmpq_denref(r), b);
+    fmpz_mul_si(fmpq_numref(r), scale, (slong)a);
+    fmpz_set_si(fmpq_denref(r), (slong)b);
     fmpq_canonicalise(r);
     fmpz_poly_evaluate_fmpq(val, h, r);
     if (!fmpq_is_zero(val)) continue;
