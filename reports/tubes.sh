@@ -4,11 +4,16 @@
 # reports/README.md, finding 5).  Not part of ./run (about 6 s of CPU a link).
 #
 #   reports/tubes.sh [--max-k K] [--psi-depth N] [--exe PATH] [--list FILE]
+#                    [--net-folds] [--data DIR] [--links-only]
 #
 # Reads the links from the exhaustive tables' not-passing list
-# (reports/data/exhaustive-vertices-k4-13-not-passing.csv.xz: scheme mlca,
-# eigenvalue condition pass, regularity undecided, k <= K, default 11), or
-# from FILE (one plantri link per line), and runs for each
+# (DIR/exhaustive-vertices-k4-13-not-passing.csv.xz, DIR default
+# reports/data: scheme mlca, eigenvalue condition pass, regularity undecided,
+# k <= K, default 11), or with --net-folds the links whose control net's fold
+# is certified there (regularity fail, certified) while the table judged on
+# psi (DIR/exhaustive-vertices-psi-k4-13-not-passing.csv.xz) leaves psi's
+# regularity undecided, or from FILE (one plantri link per line);
+# --links-only prints the links chosen and stops.  It runs for each
 #   subspectra analyze --scheme mlca --vertex LINK --certify --psi-depth N \
 #       --psi-tubes --format json
 # (N default 2) printing one JSON line per link (link, regularity and
@@ -21,13 +26,19 @@ maxk=11
 depth=2
 exe=${SUBSPECTRA:-"$here/../build/cli/subspectra"}
 list=""
+data="$here/data"
+select=undecided
+only=0
 while [ $# -gt 0 ]; do
   case "$1" in
   --max-k) maxk=$2; shift 2 ;;
   --psi-depth) depth=$2; shift 2 ;;
   --exe) exe=$2; shift 2 ;;
   --list) list=$2; shift 2 ;;
-  -h | --help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --net-folds) select=net-folds; shift ;;
+  --data) data=$2; shift 2 ;;
+  --links-only) only=1; shift ;;
+  -h | --help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "tubes.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -45,13 +56,34 @@ if [ -n "$list" ]; then
   [ -r "$list" ] || { echo "tubes.sh: cannot read '$list'" >&2; exit 2; }
   cp "$list" "$links"
 else
-  xz -dc "$here/data/exhaustive-vertices-k4-13-not-passing.csv.xz" | python3 -c '
-import csv, sys
-for r in csv.DictReader(sys.stdin):
-    if (r["scheme"] == "mlca" and r["eigen_condition"] == "pass"
-            and r["regularity"] == "undecided" and int(r["k"]) <= int(sys.argv[1])):
-        print(r["link"])
-' "$maxk" >"$links"
+  for f in exhaustive-vertices-k4-13-not-passing.csv.xz exhaustive-vertices-psi-k4-13-not-passing.csv.xz; do
+    [ -r "$data/$f" ] || { echo "tubes.sh: cannot read '$data/$f' (--data DIR)" >&2; exit 2; }
+  done
+  python3 - "$maxk" "$select" "$data/exhaustive-vertices-k4-13-not-passing.csv.xz" \
+    "$data/exhaustive-vertices-psi-k4-13-not-passing.csv.xz" >"$links" <<'PY'
+import csv, io, lzma, sys
+maxk, select, net, psi = int(sys.argv[1]), sys.argv[2], sys.argv[3], sys.argv[4]
+def rows(path):
+    with lzma.open(path, "rt", newline="") as f:
+        for r in csv.DictReader(f):
+            if (r["scheme"] == "mlca" and r["case"] == "vertex"
+                    and r["eigen_condition"] == "pass" and int(r["k"]) <= maxk):
+                yield r
+if select == "undecided":
+    for r in rows(net):
+        if r["regularity"] == "undecided":
+            print(r["link"])
+else:  # the net's certified folds that psi leaves undecided
+    psi_undecided = {r["link"] for r in rows(psi) if r["regularity"] == "undecided"}
+    for r in rows(net):
+        if (r["regularity"] == "fail" and r["certified"] == "1"
+                and r["link"] in psi_undecided):
+            print(r["link"])
+PY
+fi
+if [ "$only" = 1 ]; then
+  cat "$links"
+  exit 0
 fi
 while IFS= read -r link; do
   [ -z "$link" ] && continue
