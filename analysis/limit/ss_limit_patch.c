@@ -457,16 +457,24 @@ static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g
   for (size_t m = 0; m < nmem; m++)
     a->cmark[mem[m]] = 1;
   a->cmark[t] = 2;
-  /* the walk */
-  size_t head = 0, tail = 0;
+  /* the walk, breadth first: cells are numbered in the order they are
+   * queued, and a cell's 6 faces are crossed (queueing its neighbours) in
+   * order, cell by cell -- but only when the queue needs its next cell, so
+   * that a frame refused at an early cell crossed few faces (the queue, and
+   * so every key, is the same) */
+  size_t head = 0, tail = 0, ex = 0;
+  int face = 0;
   q[tail].cell = t;
   for (unsigned b = 0; b < 8; b++)
     q[tail].sig[b] = cidx(frame_bits(g, b));
   q[tail].off[0] = q[tail].off[1] = q[tail].off[2] = 0;
   tail++;
-  while (head < tail) {
-    const walk_cell *A = &q[head];
-    walk_number(cx, A, head, loc, out, &posok);
+  for (;;) {
+    for (; tail <= head && ex < tail; face = (face + 1) % 6, ex += face == 0)
+      if ((st = walk_across(a, &q[ex], face / 2, (unsigned)face % 2, q, &tail, err)))
+        goto done;
+    if (head >= tail) break;
+    walk_number(cx, &q[head], head, loc, out, &posok);
     if (bound && head < bound->ncells) {
       const int c =
           memcmp(out->key + head * 8, bound->key + head * 8, 8 * sizeof *out->key);
@@ -476,9 +484,6 @@ static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g
       }
       if (c < 0) bound = NULL; /* below bound already: the whole walk is needed */
     }
-    for (int axis = 0; axis < 3; axis++)
-      for (unsigned side = 0; side < 2; side++)
-        if ((st = walk_across(a, A, axis, side, q, &tail, err))) goto done;
     head++;
   }
   out->ncells = tail;
