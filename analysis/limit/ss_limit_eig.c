@@ -210,35 +210,37 @@ done:
   return st;
 }
 
-/* C[i][d] = sum_j A[j * K + i] P[j][d] (D = 3) for rows i0 .. i0 + n - 1,
- * n <= 4, each sum formed from +0 in the order of j: exactly the sums of
- * the loop over j outside (ss_lim_eig_coef's definition), with the four
- * rows' twelve partial sums kept in registers instead of in C. */
-static void coef_rows3(const double *A, size_t K, const double *P, size_t i0, size_t n,
-                       double *C) {
-  double c[4][3] = {{0}};
-  if (n == 4) {
-    for (size_t j = 0; j < K; j++) {
-      const double *a = A + j * K + i0, *p = P + j * 3;
+/* Y[r][d] = sum_t A[j_t * K + r] X[j_t][d] (D = 3, A column-major K x K) for
+ * rows r0 .. r0 + n - 1, n <= 4, over j_t = idx[t], t = 0 .. m - 1 (idx NULL:
+ * j_t = t), each sum formed from +0 in the order of t: exactly the sums of
+ * the plain loops (over j outside, each entry of Y updated in turn), with
+ * the four rows' twelve partial sums kept in registers instead of in Y.
+ * V^-1 P (every point) and V C (the components of nonzero coefficients). */
+static void rows3(const double *A, size_t K, const double *X, const size_t *idx, size_t m,
+                  size_t r0, size_t n, double *Y) {
+  double y[4][3] = {{0}};
+  for (size_t t = 0; t < m; t++) {
+    const size_t j = idx ? idx[t] : t;
+    const double *a = A + j * K + r0, *x = X + j * 3;
+    if (n == 4) {
       for (int q = 0; q < 4; q++)
         for (int d = 0; d < 3; d++)
-          c[q][d] += a[q] * p[d];
-    }
-  } else {
-    for (size_t j = 0; j < K; j++)
+          y[q][d] += a[q] * x[d];
+    } else {
       for (size_t q = 0; q < n; q++)
         for (int d = 0; d < 3; d++)
-          c[q][d] += A[j * K + i0 + q] * P[j * 3 + (size_t)d];
+          y[q][d] += a[q] * x[d];
+    }
   }
   for (size_t q = 0; q < n; q++)
-    memcpy(C + (i0 + q) * 3, c[q], sizeof c[q]);
+    memcpy(Y + (r0 + q) * 3, y[q], sizeof y[q]);
 }
 
 void ss_lim_eig_coef(const ss_lim_eig *e, size_t D, const double *P, double *C) {
   const size_t K = e->K;
   if (D == 3) {
     for (size_t i0 = 0; i0 < K; i0 += 4)
-      coef_rows3(e->Vinv, K, P, i0, K - i0 < 4 ? K - i0 : 4, C);
+      rows3(e->Vinv, K, P, NULL, K, i0, K - i0 < 4 ? K - i0 : 4, C);
     return;
   }
   memset(C, 0, K * D * sizeof *C);
@@ -325,28 +327,6 @@ static ss_status power_defective(const ss_lim_eig *e, long m, size_t D, double *
   return SS_OK;
 }
 
-/* P[r][d] = sum_i V[i * K + r] C[i][d] (D = 3) for rows r0 .. r0 + n - 1,
- * n <= 4, over the components nz[0 .. nn - 1] in that order, from +0. */
-static void combine_rows3(const double *V, size_t K, const double *C, const size_t *nz,
-                          size_t nn, size_t r0, size_t n, double *P) {
-  double p[4][3] = {{0}};
-  if (n == 4) {
-    for (size_t t = 0; t < nn; t++) {
-      const double *v = V + nz[t] * K + r0, *c = C + nz[t] * 3;
-      for (int q = 0; q < 4; q++)
-        for (int d = 0; d < 3; d++)
-          p[q][d] += v[q] * c[d];
-    }
-  } else {
-    for (size_t t = 0; t < nn; t++)
-      for (size_t q = 0; q < n; q++)
-        for (int d = 0; d < 3; d++)
-          p[q][d] += V[nz[t] * K + r0 + q] * C[nz[t] * 3 + (size_t)d];
-  }
-  for (size_t q = 0; q < n; q++)
-    memcpy(P + (r0 + q) * 3, p[q], sizeof p[q]);
-}
-
 /* P (K x D) = V C over the components whose coefficients are not all 0 (a
  * component of zero coefficients adds nothing: the sums start at +0, and
  * +0 + -0 is +0), each entry summed in the order of the components.  nz:
@@ -359,7 +339,7 @@ static void combine(const ss_lim_eig *e, size_t D, const double *C, double *P,
     for (size_t i = 0; i < K; i++)
       if (C[i * 3] != 0.0 || C[i * 3 + 1] != 0.0 || C[i * 3 + 2] != 0.0) nz[nn++] = i;
     for (size_t r0 = 0; r0 < K; r0 += 4)
-      combine_rows3(e->V, K, C, nz, nn, r0, K - r0 < 4 ? K - r0 : 4, P);
+      rows3(e->V, K, C, nz, nn, r0, K - r0 < 4 ? K - r0 : 4, P);
     return;
   }
   memset(P, 0, K * D * sizeof *P);
