@@ -145,6 +145,58 @@ static ss_status eval_net(ss_limit *L, size_t s, double *Q, ss_lim_pt y, int der
   return st;
 }
 
+struct ss_lim_chi {
+  ss_lim_pt at;     /* the point, in the run's frame */
+  ss_limit_point v; /* chi there (p[0], p[1]) with its derivatives */
+};
+
+static int same_pt(const ss_lim_pt *a, const ss_lim_pt *b) {
+  for (int d = 0; d < 3; d++)
+    if (a->s[d] != b->s[d] || a->d[d] != b->d[d]) return 0;
+  return 1;
+}
+
+/* chi (the run's across pair: eigenvectors i and j of e, the run f->t's) at
+ * the probe f->pr with its derivatives, into pc.  Its walk depends on the
+ * run, the pair and the point alone, so the spokes' samples that reach the
+ * same run at the same point (a cell's points of one depth along the edge,
+ * and the cells of one patch) share one walk: kept with the run, and
+ * copied, the same bits. */
+static ss_status across(ss_limit *L, const fixed_pt *f, const ss_lim_eig *e, size_t i,
+                        size_t j, size_t cell, ss_limit_point *pc, ss_error *err) {
+  const size_t K = e->K;
+  const int k = ss_cube_corner_index(3, f->b);
+  ss_lim_trans *t;
+  ss_status st = ss_lim_transition(L, f->s, k, &t, err);
+  if (st) return st;
+  for (size_t q = 0; q < t->nchi; q++)
+    if (same_pt(&t->chi[q].at, &f->pr)) {
+      *pc = t->chi[q].v;
+      return SS_OK;
+    }
+  double *Qc = calloc(K * 3 + 1, sizeof *Qc);
+  if (!Qc) return ss_error_nomem(err, "edge modes");
+  for (size_t r = 0; r < K; r++) {
+    Qc[r * 3 + 0] = e->V[i * K + r];
+    Qc[r * 3 + 1] = e->V[j * K + r];
+  }
+  /* the run again after the walk, which may have computed transitions (a
+   * run's own state is a child's patch, whose transitions stay) */
+  if ((st = eval_net(L, f->s, Qc, f->pr, 1, cell, pc, err)) ||
+      (st = ss_lim_transition(L, f->s, k, &t, err)))
+    return st;
+  const size_t n = t->nchi;
+  if ((n & (n - 1)) == 0) { /* full at powers of 2 (0 included) */
+    ss_lim_chi *c = realloc(t->chi, (n ? 2 * n : 4) * sizeof *c);
+    if (!c) return SS_OK; /* a cache only: the value stands */
+    t->chi = c;
+  }
+  t->chi[n].at = f->pr;
+  t->chi[n].v = *pc;
+  t->nchi = n + 1;
+  return SS_OK;
+}
+
 /* The point b + e_af / 2 of the fixed point's cell (on the edge). */
 static ss_lim_pt along_point(const fixed_pt *f) {
   ss_lim_pt y;
@@ -213,14 +265,14 @@ static ss_status model(ss_limit *L, const fixed_pt *f, const ss_lim_eig *e,
   ss_status st;
   const size_t K = e->K;
   unsigned char *half = calloc(K + 1, 1);
-  double *Qh = calloc(K * 3 + 1, sizeof *Qh), *Qc = calloc(K * 3 + 1, sizeof *Qc);
-  if (!half || !Qh || !Qc) {
-    free(half), free(Qh), free(Qc);
+  double *Qh = calloc(K * 3 + 1, sizeof *Qh);
+  if (!half || !Qh) {
+    free(half), free(Qh);
     return ss_error_nomem(err, "edge modes");
   }
   size_t i = 0, j = 0;
   if ((st = pick_modes(e, half, &i, &j, &out->next, err))) {
-    free(half), free(Qh), free(Qc);
+    free(half), free(Qh);
     return st;
   }
   out->mu[0] = creal(e->lam[i]);
@@ -230,10 +282,6 @@ static ss_status model(ss_limit *L, const fixed_pt *f, const ss_lim_eig *e,
       for (size_t r = 0; r < K; r++)
         for (int d = 0; d < 3; d++)
           Qh[r * 3 + (size_t)d] += e->V[q * K + r] * C[q * 3 + (size_t)d];
-  for (size_t r = 0; r < K; r++) {
-    Qc[r * 3 + 0] = e->V[i * K + r];
-    Qc[r * 3 + 1] = e->V[j * K + r];
-  }
   for (int d = 0; d < 3; d++) {
     out->B[d][0] = C[i * 3 + (size_t)d];
     out->B[d][1] = C[j * 3 + (size_t)d];
@@ -243,11 +291,9 @@ static ss_status model(ss_limit *L, const fixed_pt *f, const ss_lim_eig *e,
   /* a' along the edge: 2 phi_h(b + e_af / 2), signed (ss_limit_walk's
    * fixed-point Jacobian) */
   ss_limit_point ph, pc;
-  if ((st = eval_net(L, f->s, Qh, along_point(f), 0, cell, &ph, err))) {
-    free(Qc);
+  if ((st = eval_net(L, f->s, Qh, along_point(f), 0, cell, &ph, err)) ||
+      (st = across(L, f, e, i, j, cell, &pc, err)))
     return st;
-  }
-  if ((st = eval_net(L, f->s, Qc, f->pr, 1, cell, &pc, err))) return st;
   const double sg = (f->b >> f->af) & 1u ? -2.0 : 2.0;
   double J[3][3];
   for (int r = 0; r < 3; r++)

@@ -26,7 +26,11 @@
  *
  * Independence from ss_limit_eval: the walk to x0 is the plain one (never
  * the tensor shortcut, eq. (1)), and the modes come from the run's own
- * eigenvectors, not from differences of limit points.  Double precision. */
+ * eigenvectors, not from differences of limit points.  Double precision.
+ * chi's walk to the probe is kept with the run (ss_lim_trans.chi) and
+ * copied for a later call that reaches the same run at the same point: a
+ * function of the two alone, so the results are those of a fresh walk, bit
+ * for bit (tests/psi/test_psi_spoke.c). */
 #ifndef SS_LIMIT_EDGE_H
 #define SS_LIMIT_EDGE_H
 

@@ -210,8 +210,39 @@ done:
   return st;
 }
 
+/* Y[r][d] = sum_t A[j_t * K + r] X[j_t][d] (D = 3, A column-major K x K) for
+ * rows r0 .. r0 + n - 1, n <= 4, over j_t = idx[t], t = 0 .. m - 1 (idx NULL:
+ * j_t = t), each sum formed from +0 in the order of t: exactly the sums of
+ * the plain loops (over j outside, each entry of Y updated in turn), with
+ * the four rows' twelve partial sums kept in registers instead of in Y.
+ * V^-1 P (every point) and V C (the components of nonzero coefficients). */
+static void rows3(const double *A, size_t K, const double *X, const size_t *idx, size_t m,
+                  size_t r0, size_t n, double *Y) {
+  double y[4][3] = {{0}};
+  for (size_t t = 0; t < m; t++) {
+    const size_t j = idx ? idx[t] : t;
+    const double *a = A + j * K + r0, *x = X + j * 3;
+    if (n == 4) {
+      for (int q = 0; q < 4; q++)
+        for (int d = 0; d < 3; d++)
+          y[q][d] += a[q] * x[d];
+    } else {
+      for (size_t q = 0; q < n; q++)
+        for (int d = 0; d < 3; d++)
+          y[q][d] += a[q] * x[d];
+    }
+  }
+  for (size_t q = 0; q < n; q++)
+    memcpy(Y + (r0 + q) * 3, y[q], sizeof y[q]);
+}
+
 void ss_lim_eig_coef(const ss_lim_eig *e, size_t D, const double *P, double *C) {
   const size_t K = e->K;
+  if (D == 3) {
+    for (size_t i0 = 0; i0 < K; i0 += 4)
+      rows3(e->Vinv, K, P, NULL, K, i0, K - i0 < 4 ? K - i0 : 4, C);
+    return;
+  }
   memset(C, 0, K * D * sizeof *C);
   for (size_t j = 0; j < K; j++) {
     const double *col = e->Vinv + j * K, *p = P + j * D;
@@ -296,6 +327,34 @@ static ss_status power_defective(const ss_lim_eig *e, long m, size_t D, double *
   return SS_OK;
 }
 
+/* P (K x D) = V C over the components whose coefficients are not all 0 (a
+ * component of zero coefficients adds nothing: the sums start at +0, and
+ * +0 + -0 is +0), each entry summed in the order of the components.  nz:
+ * scratch of K entries, or NULL (then the plain loop). */
+static void combine(const ss_lim_eig *e, size_t D, const double *C, double *P,
+                    size_t *nz) {
+  const size_t K = e->K;
+  size_t nn = 0;
+  if (D == 3 && nz) {
+    for (size_t i = 0; i < K; i++)
+      if (C[i * 3] != 0.0 || C[i * 3 + 1] != 0.0 || C[i * 3 + 2] != 0.0) nz[nn++] = i;
+    for (size_t r0 = 0; r0 < K; r0 += 4)
+      rows3(e->V, K, C, nz, nn, r0, K - r0 < 4 ? K - r0 : 4, P);
+    return;
+  }
+  memset(P, 0, K * D * sizeof *P);
+  for (size_t i = 0; i < K; i++) {
+    const double *col = e->V + i * K, *c = C + i * D;
+    size_t z = 0;
+    while (z < D && c[z] == 0.0)
+      z++;
+    if (z == D) continue;
+    for (size_t r = 0; r < K; r++)
+      for (size_t d = 0; d < D; d++)
+        P[r * D + d] += col[r] * c[d];
+  }
+}
+
 ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, size_t D, double *P,
                            double *shift, int *scale, ss_error *err) {
   const size_t K = e->K;
@@ -324,15 +383,19 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, size_t D, double *P,
   if (!C) return ss_error_nomem(err, "eigen power");
   for (size_t d = 0; d < D; d++)
     sh[d] = 0.0;
-  ss_lim_eig_coef(e, D, P, C);
-  for (size_t i = 0; i < K; i++) {
+  if (m < 0) {
+    /* the limit: only the eigenvalue-1 coefficients survive, formed as
+     * ss_lim_eig_coef forms them (from +0 in the order of the points) */
+    memset(C, 0, K * D * sizeof *C);
+    const double *vi = e->Vinv;
+    for (size_t j = 0; j < K; j++)
+      for (size_t d = 0; d < D; d++)
+        C[e->one * D + d] += vi[j * K + e->one] * P[j * D + d];
+  } else {
+    ss_lim_eig_coef(e, D, P, C);
+  }
+  for (size_t i = 0; i < K && m >= 0; i++) {
     double *c = C + i * D;
-    if (m < 0) {
-      if (i != e->one)
-        for (size_t d = 0; d < D; d++)
-          c[d] = 0.0;
-      continue;
-    }
     if (i == e->one && shift) {
       double vbar = 0.0;
       for (size_t r = 0; r < K; r++)
@@ -361,17 +424,9 @@ ss_status ss_lim_eig_power(const ss_lim_eig *e, long m, size_t D, double *P,
     for (size_t d = 0; d < D; d++)
       c[d] *= f;
   }
-  memset(P, 0, K * D * sizeof *P);
-  for (size_t i = 0; i < K; i++) {
-    const double *col = e->V + i * K, *c = C + i * D;
-    size_t nz = 0;
-    while (nz < D && c[nz] == 0.0)
-      nz++;
-    if (nz == D) continue;
-    for (size_t r = 0; r < K; r++)
-      for (size_t d = 0; d < D; d++)
-        P[r * D + d] += col[r] * c[d];
-  }
+  size_t *nz = malloc((K + 1) * sizeof *nz); /* NULL: the plain loop, the same sums */
+  combine(e, D, C, P, nz);
+  free(nz);
   if (shift) memcpy(shift, sh, D * sizeof *sh);
   free(C);
   if (scale) *scale = (int)s;

@@ -217,6 +217,10 @@ ss_status ss_lim_eig_half_part(const ss_lim_eig *e, const double *W, size_t D,
 #define SS_LIM_RECENT  64 /* coarse-only states whose transitions are kept */
 #define SS_LIM_REFINED 32 /* states whose refinement is kept (ss_lim_state.rf) */
 
+/* A value of a stationary run's across pair chi (ss_limit_edge.c: the limit
+ * of the net of its two eigenvectors) at one point of the run's sub-cell. */
+typedef struct ss_lim_chi ss_lim_chi;
+
 /* A cached (key, child) transition. */
 typedef struct {
   size_t next;     /* state of the child patch */
@@ -226,6 +230,9 @@ typedef struct {
                       these): row i's are rp[i] .. rp[i + 1] - 1 of */
   size_t *ci;      /* their columns, ascending in each row */
   ss_lim_eig *eig; /* for a stationary run (next == self, g = id): lazily */
+  ss_lim_chi *chi; /* a stationary run's chi at the points asked so far
+                      (ss_limit_edge.c), each as its walk gave it */
+  size_t nchi;     /* their number (room: the next power of 2) */
 } ss_lim_trans;
 
 /* P (K x D, taken over) <- W P (Kc x D) over t's nonzeros, in column order:

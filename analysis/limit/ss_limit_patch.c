@@ -6,12 +6,17 @@
 #include "ss_hash.h"
 #include "ss_limit_impl.h"
 
+/* ss_cube_corner_bits(3, .) and ss_cube_corner_index(3, .), one table (the
+ * map is its own inverse: corners 2 and 3 swap, and 6 and 7), here because
+ * the framed walk asks for them in its innermost loops. */
+static const unsigned char corner3[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+
 /* Stored corner index of the corner with binary coordinates b. */
 static int cidx(unsigned b) {
-  return ss_cube_corner_index(3, b);
+  return corner3[b & 7u];
 }
 static unsigned cbits(int k) {
-  return ss_cube_corner_bits(3, k);
+  return corner3[k & 7];
 }
 
 void ss_lim_adj_free(ss_lim_adj *a) {
@@ -397,47 +402,79 @@ static void mark_regular(ss_lim_patch *out, int posok) {
   }
 }
 
-/* ss_lim_patch_build; with bound (a patch of t in another frame) the walk
- * stops as soon as its key is known to compare above bound's (*worse = 1,
- * *out empty): the keys are written cell by cell in walk order, so the first
- * cell whose 8 words differ decides memcmp of the whole keys. */
+/* What patch_walk needs of hex t in every frame: the member cells (every
+ * hex at a corner of t) and room for the walk's queue. */
+typedef struct {
+  size_t *mem;  /* the member cells */
+  size_t nmem;  /* their number */
+  size_t cap;   /* room: the cells at t's corners, with repeats */
+  walk_cell *q; /* cap cells */
+} walk_room;
+
+static void room_free(walk_room *w) {
+  free(w->mem);
+  free(w->q);
+}
+
+static ss_status room_make(const ss_lim_adj *a, size_t t, walk_room *w, ss_error *err) {
+  const ss_idx *tv = ss_cx_cell(a->cx, SS_HEX, t);
+  memset(w, 0, sizeof *w);
+  for (int i = 0; i < 8; i++)
+    w->cap += a->vptr[tv[i] + 1] - a->vptr[tv[i]];
+  w->mem = malloc((w->cap + 1) * sizeof *w->mem);
+  w->q = malloc((w->cap + 1) * sizeof *w->q);
+  if (!w->mem || !w->q) {
+    room_free(w);
+    return ss_error_nomem(err, "patch");
+  }
+  w->nmem = member_cells(a, tv, w->mem);
+  return SS_OK;
+}
+
+/* ss_lim_patch_build with the room w of t; with bound (a patch of t in
+ * another frame) the walk stops as soon as its key is known to compare above
+ * bound's (*worse = 1, *out empty): the keys are written cell by cell in walk
+ * order, so the first cell whose 8 words differ decides memcmp of the whole
+ * keys. */
 static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
-                            int64_t *loc, const ss_lim_patch *bound, int *worse,
-                            ss_lim_patch *out, ss_error *err) {
+                            int64_t *loc, const ss_lim_patch *bound, const walk_room *w,
+                            int *worse, ss_lim_patch *out, ss_error *err) {
   ss_status st = SS_OK;
   *worse = 0;
   const ss_cx *cx = a->cx;
   const ss_idx *tv = ss_cx_cell(cx, SS_HEX, t);
   memset(out, 0, sizeof *out);
-  /* the member cells: every hex at a corner of t (counted, to check that the
-   * walk reaches them all) */
-  size_t nmem = 0, cap = 0;
-  for (int i = 0; i < 8; i++)
-    cap += a->vptr[tv[i] + 1] - a->vptr[tv[i]];
-  size_t *mem = malloc((cap + 1) * sizeof *mem);
-  walk_cell *q = malloc((cap + 1) * sizeof *q);
+  const size_t cap = w->cap, nmem = w->nmem, *mem = w->mem;
+  walk_cell *q = w->q;
   int posok = 1;
   out->key = malloc((cap * 8 + 1) * sizeof *out->key);
   out->src = malloc((cap * 8 + 1) * sizeof *out->src);
   out->pos = malloc((cap * 8 + 1) * sizeof *out->pos);
-  if (!mem || !q || !out->key || !out->src || !out->pos) {
-    st = ss_error_nomem(err, "patch");
-    goto done;
+  if (!out->key || !out->src || !out->pos) {
+    ss_lim_patch_free(out);
+    return ss_error_nomem(err, "patch");
   }
-  nmem = member_cells(a, tv, mem);
   for (size_t m = 0; m < nmem; m++)
     a->cmark[mem[m]] = 1;
   a->cmark[t] = 2;
-  /* the walk */
-  size_t head = 0, tail = 0;
+  /* the walk, breadth first: cells are numbered in the order they are
+   * queued, and a cell's 6 faces are crossed (queueing its neighbours) in
+   * order, cell by cell -- but only when the queue needs its next cell, so
+   * that a frame refused at an early cell crossed few faces (the queue, and
+   * so every key, is the same) */
+  size_t head = 0, tail = 0, ex = 0;
+  int face = 0;
   q[tail].cell = t;
   for (unsigned b = 0; b < 8; b++)
     q[tail].sig[b] = cidx(frame_bits(g, b));
   q[tail].off[0] = q[tail].off[1] = q[tail].off[2] = 0;
   tail++;
-  while (head < tail) {
-    const walk_cell *A = &q[head];
-    walk_number(cx, A, head, loc, out, &posok);
+  for (;;) {
+    for (; tail <= head && ex < tail; face = (face + 1) % 6, ex += face == 0)
+      if ((st = walk_across(a, &q[ex], face / 2, (unsigned)face % 2, q, &tail, err)))
+        goto done;
+    if (head >= tail) break;
+    walk_number(cx, &q[head], head, loc, out, &posok);
     if (bound && head < bound->ncells) {
       const int c =
           memcmp(out->key + head * 8, bound->key + head * 8, 8 * sizeof *out->key);
@@ -447,9 +484,6 @@ static ss_status patch_walk(const ss_lim_adj *a, size_t t, const ss_lim_frame *g
       }
       if (c < 0) bound = NULL; /* below bound already: the whole walk is needed */
     }
-    for (int axis = 0; axis < 3; axis++)
-      for (unsigned side = 0; side < 2; side++)
-        if ((st = walk_across(a, A, axis, side, q, &tail, err))) goto done;
     head++;
   }
   out->ncells = tail;
@@ -468,8 +502,6 @@ done:
     loc[out->src[v]] = -1;
   for (size_t m = 0; m < nmem; m++)
     a->cmark[mem[m]] = 0;
-  free(mem);
-  free(q);
   if (st || *worse) ss_lim_patch_free(out);
   return st;
 }
@@ -477,15 +509,22 @@ done:
 ss_status ss_lim_patch_build(const ss_lim_adj *a, size_t t, const ss_lim_frame *g,
                              int64_t *loc, ss_lim_patch *out, ss_error *err) {
   int worse;
-  return patch_walk(a, t, g, loc, NULL, &worse, out, err);
+  walk_room w;
+  memset(out, 0, sizeof *out);
+  ss_status st = room_make(a, t, &w, err);
+  if (!st) st = patch_walk(a, t, g, loc, NULL, &w, &worse, out, err);
+  room_free(&w);
+  return st;
 }
 
 ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
                                  ss_lim_patch *out, ss_lim_frame *g, ss_error *err) {
   static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                   {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  ss_status st;
+  walk_room w;
   memset(out, 0, sizeof *out);
+  ss_status st = room_make(a, t, &w, err);
+  if (st) return st;
   for (int p = 0; p < 6; p++)
     for (int f = 0; f < 8; f++) {
       ss_lim_frame h;
@@ -495,8 +534,10 @@ ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
       }
       ss_lim_patch cand;
       int worse = 0; /* its key above the best's: walk stopped early */
-      if ((st = patch_walk(a, t, &h, loc, out->key ? out : NULL, &worse, &cand, err))) {
+      if ((st = patch_walk(a, t, &h, loc, out->key ? out : NULL, &w, &worse, &cand,
+                           err))) {
         ss_lim_patch_free(out);
+        room_free(&w);
         return st;
       }
       if (worse) continue;
@@ -516,6 +557,7 @@ ss_status ss_lim_patch_canonical(const ss_lim_adj *a, size_t t, int64_t *loc,
         ss_lim_patch_free(&cand);
       }
     }
+  room_free(&w);
   return SS_OK;
 }
 

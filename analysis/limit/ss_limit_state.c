@@ -34,6 +34,7 @@ static void drop_transitions(ss_lim_state *s) {
       free(s->tr[k]->rp);
       free(s->tr[k]->ci);
       ss_lim_eig_free(s->tr[k]->eig);
+      free(s->tr[k]->chi);
       free(s->tr[k]);
       s->tr[k] = NULL;
     }
@@ -179,6 +180,24 @@ ss_status ss_lim_trans_apply(const ss_lim_trans *t, size_t Kc, size_t K, size_t 
                              double **P, ss_error *err) {
   double *Q = calloc(Kc * D + 1, sizeof *Q);
   if (!Q) return ss_error_nomem(err, "patch points");
+  if (D == 3) {
+    /* the same sums, each row's three kept in registers */
+    const double *X = *P;
+    for (size_t i = 0; i < Kc; i++) {
+      double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+      const double *w = t->W + i * K;
+      for (size_t q = t->rp[i]; q < t->rp[i + 1]; q++) {
+        const size_t j = t->ci[q];
+        a0 += w[j] * X[j * 3];
+        a1 += w[j] * X[j * 3 + 1];
+        a2 += w[j] * X[j * 3 + 2];
+      }
+      Q[i * 3] = a0, Q[i * 3 + 1] = a1, Q[i * 3 + 2] = a2;
+    }
+    free(*P);
+    *P = Q;
+    return SS_OK;
+  }
   for (size_t i = 0; i < Kc; i++)
     for (size_t q = t->rp[i]; q < t->rp[i + 1]; q++) {
       const size_t j = t->ci[q];

@@ -21,6 +21,9 @@
  *   - no limit when 1 is not simple (two closed classes) or another
  *     eigenvalue has modulus 1 (a 2-cycle: -1): one = SIZE_MAX and
  *     ss_lim_eig_power(m < 0) is SS_ENUMERIC, finite powers still exact.
+ *   - bit for bit (issue 37): the products with three columns, kept four
+ *     rows at a time in registers, equal the plain loops of the definition
+ *     (V^-1 P, the powers, the limit's single component, a plain step).
  * Mutations this catches (tried by hand: the report of issue 33):
  *   - the rotation of a complex pair's coefficients with the sign of sin
  *     flipped in the second row: W^m P differs from repeated products;
@@ -380,6 +383,100 @@ static void test_half_part(gsl_rng *r) {
   }
 }
 
+/* P (K x 4) from the K x 3 Q, a fourth column of other values: the plain
+ * loops (D != 3) act on each column alike, so their first three columns are
+ * the sums of the definition, in its order. */
+static void widen(const double *Q, size_t K, gsl_rng *r, double *P) {
+  for (size_t i = 0; i < K; i++) {
+    memcpy(P + i * 4, Q + i * 3, 3 * sizeof *P);
+    P[i * 4 + 3] = gsl_rng_uniform(r);
+  }
+}
+
+/* Whether the K x 3 a equals the first three columns of the K x 4 b, bit
+ * for bit. */
+static int same3(const double *a, const double *b, size_t K) {
+  for (size_t i = 0; i < K; i++)
+    if (memcmp(a + i * 3, b + i * 4, 3 * sizeof *a)) return 0;
+  return 1;
+}
+
+/* The products with three columns (four rows' sums kept in registers, the
+ * evaluator's common case) against the plain loops of the definition, bit
+ * for bit: each entry is a sum from +0 in the order of the points (V^-1 P),
+ * of the components (V C, over those of nonzero coefficients) or of a row's
+ * nonzeros (a plain step), so any other order -- the sums split, reversed or
+ * fused -- changes last bits, and the spokes' evidence with them (issue 37).
+ * K = 11, not a multiple of 4 (the last rows alone); the first point 0, as
+ * the walk's recentred nets have it; the limit (m < 0) forms only the
+ * eigenvalue-1 coefficients: against the whole C with the others zeroed. */
+static void test_bitwise(gsl_rng *r) {
+  enum { K = 11 };
+  double D[K * K] = {0}, W[K * K];
+  const double reals[K] = {1.0, 0, 0, 0.5, -0.45, 0.3, 0.2, -0.1, 0.05, 0.4, -0.25};
+  for (int i = 0; i < K; i++)
+    D[i * K + i] = reals[i];
+  D[1 * K + 1] = D[2 * K + 2] = 0.6 * cos(0.7);
+  D[1 * K + 2] = 0.6 * sin(0.7), D[2 * K + 1] = -0.6 * sin(0.7);
+  similar(K, D, W);
+  ss_lim_eig *e = NULL;
+  ss_error err = {0};
+  REQUIRE_OK_VOID(ss_lim_eig_new(W, K, &e, &err), &err);
+  double P[K * 3], C[K * 3], P4[K * 4], C4[K * 4], sh[3], sh4[4];
+  points(r, K, P);
+  P[0] = P[1] = P[2] = 0.0;
+  widen(P, K, r, P4);
+  ss_lim_eig_coef(e, 3, P, C);
+  ss_lim_eig_coef(e, 4, P4, C4);
+  CHECK(same3(C, C4, K), "bitwise: V^-1 P with 3 columns differs from the plain loop");
+  const long ms[3] = {1, 7, 40};
+  for (int t = 0; t < 3; t++) {
+    double Q[K * 3], Q4[K * 4];
+    memcpy(Q, P, sizeof Q);
+    memcpy(Q4, P4, sizeof Q4);
+    int s3 = 0, s4 = 0;
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], 3, Q, sh, &s3, &err), &err);
+    REQUIRE_OK_VOID(ss_lim_eig_power(e, ms[t], 4, Q4, sh4, &s4, &err), &err);
+    CHECK(same3(Q, Q4, K) && !memcmp(sh, sh4, sizeof sh) && s3 == s4,
+          "bitwise: W^%ld P with 3 columns differs from the plain loops", ms[t]);
+  }
+  /* the limit: V (C with only the eigenvalue-1 row) in the definition's
+   * order, from the whole C of the plain loop */
+  double L[K * 3], want[K * 3] = {0};
+  memcpy(L, P, sizeof L);
+  REQUIRE_OK_VOID(ss_lim_eig_power(e, -1, 3, L, NULL, NULL, &err), &err);
+  for (size_t i = 0; i < K; i++)
+    for (int d = 0; d < 3; d++)
+      want[i * 3 + (size_t)d] += e->V[e->one * K + i] * C4[e->one * 4 + (size_t)d];
+  CHECK(!memcmp(L, want, sizeof L), "bitwise: the limit differs from V C's one term");
+  /* a plain step over W's nonzeros (a third of them zeroed) */
+  size_t rp[K + 1], ci[K * K], nz = 0;
+  for (size_t i = 0; i < K * K; i++)
+    if (gsl_rng_uniform(r) < 0.33) W[i] = 0.0;
+  for (size_t i = 0; i < K; i++) {
+    rp[i] = nz;
+    for (size_t j = 0; j < K; j++)
+      if (W[i * K + j] != 0.0) ci[nz++] = j;
+  }
+  rp[K] = nz;
+  ss_lim_trans tr = {0};
+  tr.W = W, tr.rp = rp, tr.ci = ci;
+  double *X = malloc(sizeof P), *X4 = malloc(sizeof P4);
+  if (!X || !X4) {
+    CHECK(0, "bitwise: memory");
+    free(X), free(X4), ss_lim_eig_free(e);
+    return;
+  }
+  memcpy(X, P, sizeof P);
+  memcpy(X4, P4, sizeof P4);
+  REQUIRE_OK_VOID(ss_lim_trans_apply(&tr, K, K, 3, &X, &err), &err);
+  REQUIRE_OK_VOID(ss_lim_trans_apply(&tr, K, K, 4, &X4, &err), &err);
+  CHECK(same3(X, X4, K), "bitwise: a plain step with 3 columns differs from the loop");
+  free(X);
+  free(X4);
+  ss_lim_eig_free(e);
+}
+
 int main(void) {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(r, 1033);
@@ -388,6 +485,7 @@ int main(void) {
   test_defective(r);
   test_no_limit(r);
   test_half_part(r);
+  test_bitwise(r);
   gsl_rng_free(r);
   return ss_test_done("limit_eig");
 }

@@ -26,7 +26,16 @@
  *   - a fold across a spoke: the net pushed through F(y) = ((y1 - c)^2, y2,
  *     y3), c = psi's first coordinate at a point of a spoke, changes the
  *     spoke's sign along it (det DF = 2 (y1 - c)): sign change, with two
- *     witnesses whose det Dpsi by ss_limit_eval have opposite signs.
+ *     witnesses whose det Dpsi by ss_limit_eval have opposite signs;
+ *   - the classification against a reference (issue 37: the evaluator keeps
+ *     an edge run's chi per probe point and its products run in registers):
+ *     every sample recomputed by ss_limit_edge_model and ss_limit_eval on an
+ *     evaluator of its own whose kept chi are dropped before each sample
+ *     (each sample's chi from its own walk), the spoke's fields folded here
+ *     from the list of samples, and every field of every spoke equal bit for
+ *     bit: MLCA links of k = 8..13 (one sign, degenerate by reflections,
+ *     both in one case), the fold (sign change, witnesses) and ccsolid.
+ *     A kept chi returned for another probe point fails it.
  *
  * The reflection, derived.  Let sigma be an automorphism of the link that
  * reverses orientation and fixes the spoke's vertex; it permutes the
@@ -49,6 +58,7 @@
 #include "ss_dense.h"
 #include "ss_limit.h"
 #include "ss_limit_edge.h"
+#include "ss_limit_impl.h"
 #include "ss_link.h"
 #include "ss_local.h"
 #include "ss_pipeline.h"
@@ -169,6 +179,180 @@ static void against_eval(ss_limit *L, const ss_psi_spoke *sp, double mu) {
   }
   CHECK(fabs(lim[1] - lim[0]) < 0.02 * fabs(lim[1]) && fabs(lim[1]) > 1e-3,
         "det Dpsi (2 mu)^-2j converges to a nonzero limit: %g then %g", lim[0], lim[1]);
+}
+
+/* Drop every run's kept chi (ss_limit_edge.c): the next sample's comes
+ * from its own walk. */
+static void drop_chi(ss_limit *L) {
+  for (size_t i = 0; i < L->nst; i++)
+    for (int k = 0; k < 8; k++) {
+      ss_lim_trans *t = L->st[i]->tr[k];
+      if (!t) continue;
+      free(t->chi);
+      t->chi = NULL;
+      t->nchi = 0;
+    }
+}
+
+/* Whether two doubles are the same bits (NaN included). */
+static int bits_eq(double a, double b) {
+  return !memcmp(&a, &b, sizeof a);
+}
+
+static int sample_eq(const ss_psi_spoke_sample *a, const ss_psi_spoke_sample *b) {
+  int eq = a->cell == b->cell && a->axis == b->axis && bits_eq(a->x0, b->x0) &&
+           bits_eq(a->s, b->s) && bits_eq(a->rel, b->rel) &&
+           bits_eq(a->det_eval, b->det_eval);
+  for (int d = 0; d < 3; d++)
+    eq &= bits_eq(a->at[d], b->at[d]) && bits_eq(a->on[d], b->on[d]);
+  return eq;
+}
+
+/* One reference sample: cell c's spoke along axis a from p at corner bits
+ * pb, at x0, by the two public routes on L (its kept chi dropped first);
+ * mu and next of the run into *mu, *next. */
+static int ref_sample(ss_limit *L, size_t c, int pb, int a, double x0,
+                      ss_psi_spoke_sample *o, double *mu, double *next) {
+  const double h = ldexp(1.0, -SS_PSI_SPOKE_PROBE);
+  memset(o, 0, sizeof *o);
+  for (int d = 0; d < 3; d++) {
+    const int hi = (pb >> d) & 1;
+    o->on[d] = d == a ? (hi ? 1.0 - x0 : x0) : hi;
+    o->at[d] = d == a ? o->on[d] : (hi ? 1.0 - h : h);
+  }
+  o->cell = c, o->axis = a, o->x0 = x0;
+  ss_limit_edge e;
+  ss_error err = {0};
+  drop_chi(L);
+  if (ss_limit_edge_model(L, c, o->on, a, o->at, &e, &err)) return -1;
+  o->det_eval = det_at(L, c, o->at);
+  o->s = e.det, o->rel = e.rel;
+  *mu = hypot(e.mu[0], e.mu[1]);
+  *next = e.next;
+  return 0;
+}
+
+/* Spoke v's fields from its samples' list (n of them, in the order taken),
+ * as the header defines them; its class by ss_psi_spoke_classify. */
+static void ref_fold(const ss_psi_spoke_sample *sm, const double *mu, const double *nx,
+                     size_t n, ss_psi_spoke *sp) {
+  sp->nsamples = n;
+  for (size_t i = 0; i < n; i++) {
+    const double as = fabs(sm[i].s),
+                 rd = fabs(sm[i].s - sm[i].det_eval) / fabs(sm[i].det_eval);
+    sp->mu = mu[i];
+    sp->gap = fmax(sp->gap, nx[i] / mu[i]);
+    if (i == 0 || as < sp->smin) sp->smin = as, sp->min = sm[i];
+    sp->smax = fmax(sp->smax, as);
+    if (!(rd <= sp->reldiff)) sp->reldiff = rd;
+    if (i == 0 || sm[i].rel < sp->relmin) sp->relmin = sm[i].rel;
+    if (sm[i].rel < SS_PSI_SPOKE_DEGENERATE) {
+      sp->ndegenerate++;
+      continue;
+    }
+    sp->ndisagree += sm[i].det_eval != 0.0 && (sm[i].s > 0.0) != (sm[i].det_eval > 0.0);
+    const int k = sm[i].s > 0.0 ? 0 : 1;
+    if (!(sp->sign & (1 << k))) sp->w[k] = sm[i];
+    sp->sign |= 1 << k;
+  }
+  ss_psi_spoke_classify(sp);
+}
+
+/* Every field of spoke a equal to b's, bit for bit. */
+static int spoke_eq(const ss_psi_spoke *a, const ss_psi_spoke *b) {
+  int eq = a->vertex == b->vertex && a->valence == b->valence && a->cls == b->cls &&
+           a->sign == b->sign && a->nsamples == b->nsamples &&
+           a->ndegenerate == b->ndegenerate && a->ndisagree == b->ndisagree &&
+           bits_eq(a->reldiff, b->reldiff) && bits_eq(a->smin, b->smin) &&
+           bits_eq(a->smax, b->smax) && bits_eq(a->relmin, b->relmin) &&
+           bits_eq(a->mu, b->mu) && bits_eq(a->gap, b->gap) &&
+           sample_eq(&a->min, &b->min);
+  for (int k = 0; k < 2 && a->cls == SS_SPOKE_SIGN_CHANGE; k++)
+    eq &= sample_eq(&a->w[k], &b->w[k]);
+  return eq;
+}
+
+/* The classification of M's spokes with net x under s against the reference
+ * (above), spoke by spoke; returns the spokes compared. */
+static size_t against_reference(const ss_scheme *s, const ss_local *M, const double *x,
+                                const char *what) {
+  ss_psi_spokes r = {0};
+  ss_limit *L = NULL;
+  ss_error err = {0};
+  ss_psi_spoke_sample *sm = NULL;
+  double *mu = NULL, *nx = NULL;
+  size_t done = 0;
+  if (ss_psi_spokes_of(s, M, x, &r, &err) || ss_psi_two_ring_limit(s, M, x, &L, &err)) {
+    CHECK(0, "%s: classification: %s", what, err.msg);
+    goto out;
+  }
+  const size_t cap = M->ncells * 3 * SS_PSI_SPOKE_SAMPLES;
+  sm = malloc(cap * sizeof *sm), mu = malloc(cap * sizeof *mu),
+  nx = malloc(cap * sizeof *nx);
+  if (!sm || !mu || !nx) goto out;
+  for (size_t i = 0; i < r.n; i++) {
+    const ss_psi_spoke *sp = &r.spoke[i];
+    size_t n = 0;
+    for (size_t c = 0; c < M->ncells; c++) {
+      const int j = ss_local_centre_corner(M, c);
+      if (j < 0) continue;
+      const int pb = (int)ss_cube_corner_bits(3, j);
+      for (int a = 0; a < 3; a++) {
+        const int far = ss_cube_corner_index(3, (unsigned)pb ^ (1u << a));
+        const ss_star_coord *l = &M->label[M->corner[c * SS_MAXCELLVERTS + (size_t)far]];
+        if (l->n != 1 || !(l->val[0] > 0) || (int)l->idx[0] != sp->vertex) continue;
+        for (int q = 0; q < SS_PSI_SPOKE_SAMPLES; q++, n++)
+          if (ref_sample(L, c, pb, a, 0.5 + q / 16.0, &sm[n], &mu[n], &nx[n])) {
+            CHECK(0, "%s: reference sample failed", what);
+            goto out;
+          }
+      }
+    }
+    ss_psi_spoke ref;
+    memset(&ref, 0, sizeof ref);
+    ref.vertex = sp->vertex, ref.valence = sp->valence;
+    ref_fold(sm, mu, nx, n, &ref);
+    CHECK(spoke_eq(sp, &ref),
+          "%s: spoke %c (%s, %zu samples): a field differs from "
+          "the reference's (s_min %a vs %a)",
+          what, 'a' + sp->vertex, ss_psi_spoke_class_name(sp->cls), sp->nsamples,
+          sp->smin, ref.smin);
+    done++;
+  }
+out:
+  free(sm), free(mu), free(nx);
+  ss_limit_free(L);
+  ss_psi_spokes_free(&r);
+  return done;
+}
+
+/* The reference comparison on MLCA links of k = 8..13 and one under
+ * ccsolid. */
+static void references(const ss_scheme *s) {
+  static const char *const links[] = {
+      "8 hgecdf,hfdceg,aebd,acbf,agbc,adbh,ahbe,afbg",
+      K9,
+      K10,
+      "11 jigeckdfh,jhfdcegi,aebdk,akcbf,agbc,adbh,aibe,afbj,ajbg,ahbi,acd",
+      "12 jigelckdfh,jhfdcegi,alebdk,akcbf,agbcl,adbh,aibe,afbj,ajbg,ahbi,acd,aec",
+      "13 "
+      "bmkigecdfhjl,aljhfdcegikm,aebd,acbf,agbc,adbh,aibe,afbj,akbg,ahbl,ambi,ajb,abk"};
+  size_t n = 0;
+  for (size_t i = 0; i < sizeof links / sizeof *links; i++) {
+    ss_pipeline *p = run(s, links[i], 0);
+    CHECK(p != NULL, "reference: pipeline of %s", links[i]);
+    if (p) n += against_reference(s, p->M, p->cm->x, links[i]);
+    ss_pipeline_free(p);
+  }
+  ss_scheme *cc = NULL;
+  ss_error err = {0};
+  ss_pipeline *p = NULL;
+  if (!ss_scheme_new("ccsolid", &cc, &err) && (p = run(cc, K10, 0)) != NULL)
+    n += against_reference(cc, p->M, p->cm->x, "ccsolid");
+  CHECK(p != NULL, "reference: ccsolid: %s", err.msg);
+  CHECK(n >= 40, "reference: %zu spokes compared", n);
+  ss_pipeline_free(p);
+  ss_scheme_free(cc);
 }
 
 static void icosahedron(const ss_scheme *s) {
@@ -468,6 +652,7 @@ static void fold(const ss_scheme *s) {
     CHECK(0, "fold: spokes of F(X)");
     goto done;
   }
+  CHECK(against_reference(s, p->M, y, "fold") == q.n, "fold: the reference");
   const ss_psi_spoke *sp = spoke_of(&q, r.spoke[0].vertex);
   CHECK(sp && sp->cls == SS_SPOKE_SIGN_CHANGE, "fold: spoke %c: %s",
         'a' + r.spoke[0].vertex, sp ? ss_psi_spoke_class_name(sp->cls) : "none");
@@ -564,6 +749,7 @@ int main(void) {
   fold(s);
   degenerate_verdict(s);
   bad_input(s);
+  references(s);
   ss_scheme_free(s);
   return ss_test_done("psi_spoke");
 }
