@@ -2,7 +2,11 @@
  * 10, "certified verdicts").
  *
  * After the double-precision analysis (ss_local, ss_eig, ss_charmap_judge,
- * ss_charmap_injectivity) of a case, the exact path:
+ * ss_charmap_injectivity) of a case, with ss_charmap_opts.similarity and
+ * exact_lazy a rational S first goes to the verified similarity (ss_simil.h),
+ * which proves generic passes (condition and basis, then step 2 below) from
+ * one approximate diagonalisation per diagonal block; where it decides
+ * nothing, and otherwise always, the exact path:
  *   1. the exact spectrum of S (ss_exact: rational S, factored characteristic
  *      polynomials, isolated roots) decides the eigenvalue condition, which
  *      replaces the double-precision one when it is proven and becomes
@@ -34,6 +38,8 @@ typedef struct {
                         undecided */
   double seconds;    /* time the exact path took (wall clock) */
   const char *route; /* what proved or tried to: "exact" (NULL: the same),
+                        "verified similarity" (a pass, ss_simil.h, with
+                        ss_charmap_opts.similarity),
                         "Fourier blocks in balls" (ss_fourier.h), "balls,
                         ties by Schur's lemma" (ss_schur.h), "Fourier blocks
                         in balls, then ties by Schur's lemma" (an edge both
