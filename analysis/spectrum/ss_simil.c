@@ -196,29 +196,67 @@ done:
 
 /* ---- the rational matrix ---- */
 
+__extension__ typedef __int128 i128;
+
+static long long gcd_ll(long long a, long long b) {
+  while (b) {
+    const long long t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
+
+/* Whether sum_k p[k] / q[k] (q > 0, |p| < 2^53, q <= 2^31) is exactly 1:
+ * in 128-bit integers over the common denominator when that fits below
+ * 2^62, else in FLINT's rationals. */
+static int sums_to_one(const long long *p, const long long *q, size_t nk) {
+  long long D = 1;
+  int fits = nk < 1024;
+  for (size_t k = 0; k < nk && fits; k++) {
+    const long long g = gcd_ll(D, q[k]), f = q[k] / g;
+    fits = D <= (1LL << 62) / f;
+    if (fits) D *= f;
+  }
+  if (fits) { /* |p (D / q)| < 2^115, nk of them < 2^125 */
+    i128 t = 0;
+    for (size_t k = 0; k < nk; k++)
+      t += (i128)p[k] * (D / q[k]);
+    return t == (i128)D;
+  }
+  fmpq_t sum, r;
+  fmpq_init(sum);
+  fmpq_init(r);
+  for (size_t k = 0; k < nk; k++) {
+    fmpq_set_si(r, (slong)p[k], (ulong)q[k]);
+    fmpq_add(sum, sum, r);
+  }
+  const int one = fmpq_is_one(sum);
+  fmpq_clear(sum);
+  fmpq_clear(r);
+  return one;
+}
+
 int ss_simil_rational(ss_simil *s, long maxden) {
   const ss_csr *A = &s->A;
   const size_t nnz = A->ptr[s->n];
   s->lo = malloc((nnz + 1) * sizeof *s->lo);
   s->hi = malloc((nnz + 1) * sizeof *s->hi);
-  if (!s->lo || !s->hi) return -1;
-  fmpq_t sum, q;
-  fmpq_init(sum);
-  fmpq_init(q);
-  int ok = 1;
-  for (size_t i = 0; i < s->n && ok; i++) {
-    fmpq_zero(sum);
-    for (size_t k = A->ptr[i]; k < A->ptr[i + 1] && ok; k++) {
-      long long p = 0, d = 1;
-      ok = ss_exact_rational(A->val[k], maxden, &p, &d) &&
-           ss_exact_rational_enclose(A->val[k], maxden, s->lo + k, s->hi + k);
-      if (!ok) break;
-      fmpq_set_si(q, (slong)p, (ulong)d);
-      fmpq_add(sum, sum, q);
-    }
-    if (ok && !fmpq_is_one(sum)) ok = 0;
+  long long *p = malloc((nnz + 1) * sizeof *p), *q = malloc((nnz + 1) * sizeof *q);
+  int ok = s->lo && s->hi && p && q ? 1 : -1;
+  for (size_t k = 0; k < nnz && ok == 1; k++) {
+    const long long big = 1LL << 53;
+    ok = ss_exact_rational(A->val[k], maxden, p + k, q + k) && p[k] < big &&
+         -p[k] < big && q[k] <= (1LL << 31);
+    if (!ok) break;
+    const double v = (double)p[k] / (double)q[k]; /* p, q exact: correctly rounded */
+    const int exact = fma(v, (double)q[k], -(double)p[k]) == 0.0;
+    s->lo[k] = exact ? v : nextafter(v, -INFINITY);
+    s->hi[k] = exact ? v : nextafter(v, INFINITY);
   }
-  fmpq_clear(sum);
-  fmpq_clear(q);
+  for (size_t i = 0; i < s->n && ok == 1; i++)
+    ok = sums_to_one(p + A->ptr[i], q + A->ptr[i], A->ptr[i + 1] - A->ptr[i]);
+  free(p);
+  free(q);
   return ok;
 }

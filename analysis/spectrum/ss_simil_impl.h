@@ -14,6 +14,9 @@ struct ss_simil {
   ss_scc K;            /* the outer block's components */
   double *lo, *hi;     /* per nonzero of A: an interval of doubles holding the
                           rational entry */
+  arb_ptr eb;          /* per nonzero of A: the entry as a ball (the basis) */
+  size_t *rep;         /* per component: the first with an equal block */
+  size_t *dstart;      /* per component: its first disc */
   ss_simil_disc *d;    /* discs, n at most */
   size_t nd;           /* discs so far */
   double *Xa;          /* A's X (n1 x n1 row-major, real parts then

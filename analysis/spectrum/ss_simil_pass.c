@@ -11,16 +11,22 @@
 
 enum { PREC = 80 };
 
-/* Entry k of S as a ball holding the rational. */
-static void entry(const ss_simil *s, size_t k, arb_t b) {
+/* The entries of S as balls holding the rationals (s->eb); 0, -1 out of
+ * memory. */
+static int entry_balls(ss_simil *s) {
+  const size_t nnz = s->A.ptr[s->n];
+  s->eb = _arb_vec_init((slong)nnz + 1);
   arf_t a, c;
   arf_init(a);
   arf_init(c);
-  arf_set_d(a, s->lo[k]);
-  arf_set_d(c, s->hi[k]);
-  arb_set_interval_arf(b, a, c, PREC);
+  for (size_t k = 0; k < nnz; k++) {
+    arf_set_d(a, s->lo[k]);
+    arf_set_d(c, s->hi[k]);
+    arb_set_interval_arf(s->eb + k, a, c, PREC);
+  }
   arf_clear(a);
   arf_clear(c);
+  return 0;
 }
 
 /* Entry k of S as a double t and a radius r with |S_k - t| <= r. */
@@ -33,28 +39,52 @@ static void mid_rad(const ss_simil *s, size_t k, double *t, double *r) {
  * memory. */
 static int all_discs(ss_simil *s) {
   const size_t n1 = s->n1;
-  const size_t big = n1 > s->K.largest ? n1 : s->K.largest;
-  double *T = calloc(big * big + 1, sizeof *T), *Tr = calloc(big * big + 1, sizeof *Tr);
+  double *T = calloc(n1 * n1 + 1, sizeof *T), *Tr = calloc(n1 * n1 + 1, sizeof *Tr);
   int rc = T && Tr ? 0 : -1;
   for (size_t i = 0; i < n1 && !rc; i++)
     for (size_t k = s->A.ptr[i]; k < s->A.mid[i]; k++)
       mid_rad(s, k, T + i * n1 + s->A.col[k], Tr + i * n1 + s->A.col[k]);
   if (!rc) rc = ss_simil_block(s, T, Tr, n1, -1);
   if (!rc && !s->Xa) rc = 1;
+  double **seen = calloc((size_t)s->K.n + 1, sizeof *seen); /* distinct blocks */
+  if (!seen) rc = -1;
   for (long c = 0; c < s->K.n && !rc; c++) {
     const size_t st = s->K.start[c], sz = s->K.start[c + 1] - st;
-    memset(T, 0, sz * sz * sizeof *T);
-    memset(Tr, 0, sz * sz * sizeof *Tr);
+    double *B = malloc((2 * sz * sz + 1) * sizeof *B);
+    if (!B) {
+      rc = -1;
+      break;
+    }
+    memset(B, 0, 2 * sz * sz * sizeof *B);
     for (size_t u = 0; u < sz; u++) {
       const size_t i = n1 + s->K.comp[st + u];
       for (size_t k = s->A.mid[i]; k < s->A.ptr[i + 1]; k++) {
         const size_t j = s->A.col[k] - n1;
         if (s->K.cid[j] != (size_t)c) continue;
-        mid_rad(s, k, T + u * sz + s->K.pos[j], Tr + u * sz + s->K.pos[j]);
+        mid_rad(s, k, B + u * sz + s->K.pos[j], B + sz * sz + u * sz + s->K.pos[j]);
       }
     }
-    rc = ss_simil_block(s, T, Tr, sz, c);
+    size_t r = (size_t)c;
+    for (long d = 0; d < c && r == (size_t)c; d++)
+      if (seen[d] && s->K.start[d + 1] - s->K.start[d] == sz &&
+          !memcmp(seen[d], B, 2 * sz * sz * sizeof *B))
+        r = (size_t)d;
+    s->rep[c] = r;
+    s->dstart[c] = s->nd;
+    if (r != (size_t)c) { /* the same discs as its first occurrence's */
+      for (size_t u = 0; u < sz; u++) {
+        s->d[s->nd] = s->d[s->dstart[r] + u];
+        s->d[s->nd++].block = c;
+      }
+      free(B);
+      continue;
+    }
+    seen[c] = B;
+    rc = ss_simil_block(s, B, B + sz * sz, sz, c);
   }
+  for (long c = 0; seen && c < s->K.n; c++)
+    free(seen[c]);
+  free(seen);
   free(T);
   free(Tr);
   return rc;
@@ -167,11 +197,13 @@ static int one_ring_column(const ss_simil *s, size_t i, arb_ptr y) {
 }
 
 /* Outer rows of the column y (n balls, A's rows set) for lambda in lam:
- * (C_cc - lam) y_c = -(rows c on earlier columns) y; 1, 0 not verified. */
+ * (C_cc - lam) y_c = -(rows c on earlier columns) y, a block's factors shared
+ * by the later components with the same block; 1, 0 not verified, -1 out of
+ * memory. */
 static int outer_rows(const ss_simil *s, const arb_t lam, arb_ptr y) {
   const size_t n1 = s->n1;
-  arb_t a;
-  arb_init(a);
+  ss_ball_solver *fs = calloc((size_t)s->K.n + 1, sizeof *fs);
+  if (!fs) return -1;
   int ok = 1;
   for (long c = 0; c < s->K.n && ok; c++) {
     const size_t st = s->K.start[c], sz = s->K.start[c + 1] - st;
@@ -183,23 +215,27 @@ static int outer_rows(const ss_simil *s, const arb_t lam, arb_ptr y) {
       const size_t i = n1 + s->K.comp[st + u];
       for (size_t k = s->A.ptr[i]; k < s->A.ptr[i + 1]; k++) {
         const size_t j = s->A.col[k];
-        entry(s, k, a);
         if (j >= n1 && s->K.cid[j - n1] == (size_t)c)
           arb_add(arb_mat_entry(M, u, s->K.pos[j - n1]),
-                  arb_mat_entry(M, u, s->K.pos[j - n1]), a, PREC);
+                  arb_mat_entry(M, u, s->K.pos[j - n1]), s->eb + k, PREC);
         else
-          arb_submul(arb_mat_entry(R, u, 0), a, y + j, PREC);
+          arb_submul(arb_mat_entry(R, u, 0), s->eb + k, y + j, PREC);
       }
       arb_sub(arb_mat_entry(M, u, u), arb_mat_entry(M, u, u), lam, PREC);
     }
-    ok = arb_mat_solve(Y, M, R, PREC);
+    const size_t r = s->rep[c];
+    if (sz > 1 && !fs[r].kind) ss_ball_solver_make(fs + r, M, 1, PREC);
+    ok = sz > 1 ? ss_ball_solver_solve(fs + r, Y, M, R, PREC)
+                : arb_mat_solve(Y, M, R, PREC);
     for (size_t u = 0; u < sz && ok; u++)
       arb_set(y + n1 + s->K.comp[st + u], arb_mat_entry(Y, u, 0));
     arb_mat_clear(M);
     arb_mat_clear(R);
     arb_mat_clear(Y);
   }
-  arb_clear(a);
+  for (long c = 0; c < s->K.n; c++)
+    ss_ball_solver_clear(fs + c);
+  free(fs);
   return ok;
 }
 
@@ -212,7 +248,7 @@ static int basis(ss_simil *s) {
   arb_ptr y = _arb_vec_init((slong)n);
   arb_t lam;
   arb_init(lam);
-  int ok = lo && hi ? 1 : -1;
+  int ok = lo && hi && !entry_balls(s) ? 1 : -1;
   for (int q = 0; q < m && ok == 1; q++) {
     const ss_simil_disc *d = s->d + s->lead[q + 1];
     ok = one_ring_column(s, s->lead[q + 1], y);
@@ -244,7 +280,9 @@ static ss_status run(ss_simil *s, const double *S, long maxden, ss_error *err) {
     snprintf(s->why, sizeof s->why, "S is not a rational matrix of row sums 1");
   if (rc == 1) {
     s->d = malloc((s->n + 1) * sizeof *s->d);
-    rc = s->d ? all_discs(s) : -1;
+    s->rep = malloc(((size_t)s->K.n + 1) * sizeof *s->rep);
+    s->dstart = malloc(((size_t)s->K.n + 1) * sizeof *s->dstart);
+    rc = s->d && s->rep && s->dstart ? all_discs(s) : -1;
     if (rc == 1) snprintf(s->why, sizeof s->why, "a block's similarity not verified");
     rc = rc == 0 ? 1 : rc == 1 ? 0 : -1;
   }
@@ -295,11 +333,14 @@ ss_status ss_simil_new(const double *S, size_t n, size_t n1, int m, long maxden,
 
 void ss_simil_free(ss_simil *s) {
   if (!s) return;
+  if (s->eb) _arb_vec_clear(s->eb, (slong)s->A.ptr[s->n] + 1);
   ss_csr_free(&s->A);
   ss_scc_free(&s->K);
   free(s->lo);
   free(s->hi);
   free(s->d);
+  free(s->rep);
+  free(s->dstart);
   free(s->Xa);
   ss_ball_outcome_clear(&s->out);
   free(s);
