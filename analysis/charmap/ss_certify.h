@@ -52,7 +52,7 @@ typedef struct {
  * map and verdicts, or cm NULL without a map).  reg and inj are updated in
  * place (verdicts, reasons, certified flags).  *x (may be NULL) receives the
  * exact spectrum, owned by the caller (ss_exact_free), NULL when it could not
- * be built.  A scheme whose weights are not small rationals is not an error:
+ * be built or was not needed (the verified similarity proved the pass).  A scheme whose weights are not small rationals is not an error:
  * everything is then "not certified", except at surface vertices and edges,
  * whose condition the Fourier blocks in balls may prove (ss_fourier.h), and
  * at volume vertices and the edges the blocks leave undecided, the balls

@@ -67,28 +67,28 @@
  * runs as before.  Only passes are decided, so no verdict other than a pass
  * can come from this route.
  *
- * Basis on a pass.  For lambda = mu in A's disc i (enlarged as above, radius
- * rho'_i about Re c_i), let w be the eigenvector of M = X^-1 A X scaled so
- * that its largest entry in modulus is 1, at index p.  Row p of (M - mu) w = 0
- * gives |M_pp - mu| <= sum_{k != p} |M_pk|: mu is in M's disc p, so p = i (mu
- * is in no other disc), and w_i = 1, |w_j| <= 1.  Row j != i:
- * |w_j| |M_jj - mu| <= sum_{k != j} |M_jk| |w_k|, and with s + t <= rho_j
- * (s the off-diagonal row sum, t = |M_jj - Bt_jj|) and d_j = |Bt_jj - Re c_i|
- * - rho'_i <= |Bt_jj - mu|, |w_j| <= s / (d_j - t) <= rho_j / d_j =: beta_j
- * (s / (d - t) with s = rho - t decreases in t when rho < d).  A's
- * eigenvector X w has Re(X w) = X_i + Re(sum_{j != i} w_j X_j): real (X_i is
- * dgeev's real vector), an eigenvector for the real lambda unless zero, and
- * enclosed entrywise by X_qi +- sum_{j != i} beta_j |X_qj|; its largest
- * entry (exactly 1) stays away from 0, so it is not zero.  Outer rows: for
- * each component c in order, (C_cc - lambda) y_c = -(S's rows c on A and the
- * earlier components) y, solved in arb with lambda the disc's real interval
- * (arb_mat_solve proves C_cc - lambda invertible for every lambda in it;
- * lambda is no eigenvalue of C, whose discs lie below lambda_m).  Returned as
- * an ss_ball_outcome (ss_ball.h): lo <= X <= hi, n x m column-major, column j
- * for lambda_j+1, as ss_exact_basis; the widths are those of the bounds
- * above (about 1e-13 relative where X is well conditioned) rather than the
- * exact path's 2 ulp.  A basis that cannot be proven (an outer solve not
- * verified, a column that may vanish) refuses the pass.
+ * Basis on a pass. For lambda = mu in A's disc i (enlarged as above, radius
+ * rho'_i about Re c_i), let w be the eigenvector of M = X^-1 A X scaled so that
+ * its largest entry in modulus is 1, at index p. Row p of (M - mu) w = 0 gives
+ * |M_pp - mu| <= sum_{k != p} |M_pk|: mu is in M's disc p, so p = i (mu is in
+ * no other disc), and w_i = 1, |w_j| <= 1. Row j != i: |w_j| |M_jj - mu| <=
+ * sum_{k != j} |M_jk| |w_k|, and with s + t <= rho_j (s the off-diagonal row
+ * sum, t = |M_jj - Bt_jj|) and d_j = |Bt_jj - Re c_i| - rho'_i <= |Bt_jj - mu|
+ * and d_j > rho_j (the discs are disjoint), |w_j| <= s / (d_j - t) <= rho_j /
+ * d_j, so |w_j| <= min(1, rho_j / d_j) =: beta_j (s / (d - t) with s = rho - t
+ * decreases in t when rho < d). A's eigenvector X w has Re(X w) = X_i +
+ * Re(sum_{j != i} w_j X_j): real (X_i is dgeev's real vector), an eigenvector
+ * for the real lambda unless zero, and enclosed entrywise by X_qi +- sum_{j !=
+ * i} beta_j |X_qj|; its largest entry (exactly 1) stays away from 0, so it is
+ * not zero. Outer rows: for each component c in order, (C_cc - lambda) y_c =
+ * -(S's rows c on A and the earlier components) y, solved in arb with lambda
+ * the disc's real interval (arb_mat_solve proves C_cc - lambda invertible for
+ * every lambda in it; lambda is no eigenvalue of C, whose discs lie below
+ * lambda_m). Returned as an ss_ball_outcome (ss_ball.h): lo <= X <= hi, n x m
+ * column-major, column j for lambda_j+1, as ss_exact_basis; the widths are
+ * those of the bounds above (about 1e-13 relative where X is well conditioned)
+ * rather than the exact path's 2 ulp. A basis that cannot be proven (an outer
+ * solve not verified, a column that may vanish) refuses the pass.
  *
  * Cost: per block k^3 for dgeev and three complex products in doubles (A of
  * MLCA k = 14: ~70 x 70), the discs O(k^2), the pass O(n d) for d discs, the

@@ -174,10 +174,10 @@ static int one_ring_column(const ss_simil *s, size_t i, arb_ptr y) {
   const double ri = ss_simil_up(D[i].rad + fabs(D[i].im));
   double *beta = malloc((k + 1) * sizeof *beta);
   if (!beta) return -1;
-  for (size_t j = 0; j < k; j++) {
+  for (size_t j = 0; j < k; j++) { /* |w_j| <= min(1, rho_j / d_j), d_j > rho_j */
     const double d = ss_simil_dn(dist(D + j, D[i].re, 0.0) - ri);
-    beta[j] = j == i ? 0.0 : ss_simil_up(D[j].rad / d);
-    if (j != i && !(d > 0.0)) {
+    beta[j] = j == i ? 0.0 : fmin(1.0, ss_simil_up(D[j].rad / d));
+    if (j != i && !(d > D[j].rad)) {
       free(beta);
       return 0;
     }
