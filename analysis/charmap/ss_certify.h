@@ -52,12 +52,12 @@ typedef struct {
  * map and verdicts, or cm NULL without a map).  reg and inj are updated in
  * place (verdicts, reasons, certified flags).  *x (may be NULL) receives the
  * exact spectrum, owned by the caller (ss_exact_free), NULL when it could not
- * be built or was not needed (the verified similarity proved the pass).  A scheme whose weights are not small rationals is not an error:
- * everything is then "not certified", except at surface vertices and edges,
- * whose condition the Fourier blocks in balls may prove (ss_fourier.h), and
- * at volume vertices and the edges the blocks leave undecided, the balls
- * with ties by Schur's lemma (ss_schur.h); *x stays NULL then.  SS_ENOMEM; SS_EINPUT for
- * malformed inputs. */
+ * be built or was not needed (the verified similarity proved the pass).  A scheme whose
+ * weights are not small rationals is not an error: everything is then "not certified",
+ * except at surface vertices and edges, whose condition the Fourier blocks in balls may
+ * prove (ss_fourier.h), and at volume vertices and the edges the blocks leave undecided,
+ * the balls with ties by Schur's lemma (ss_schur.h); *x stays NULL then.  SS_ENOMEM;
+ * SS_EINPUT for malformed inputs. */
 ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
                      const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
                      ss_charmap_inj *inj, ss_certified *out, ss_exact **x, ss_error *err);
