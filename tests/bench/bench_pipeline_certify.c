@@ -57,7 +57,25 @@
  * instead of an SVD); tet/oct's root isolation 0.016 -> 0.0014 s at k = 14
  * (its degree 20-23 factors are outer blocks', now seeded too).  MLCA k = 14
  * is now characteristic polynomials 0.019, isolation 0.016, basis 0.013,
- * factoring 0.009, interval Jacobians 0.009 of 0.093 s. */
+ * factoring 0.009, interval Jacobians 0.009 of 0.093 s.
+ *
+ * Measured 2026-12-06 14:46-14:48 UTC (load 8-9: a background sweep and
+ * other sessions), main 620359d against the verified similarity's pre-pass
+ * (ss_simil.h, branch i37gersh 14ec89b), one after the other, 13 links each,
+ * psi not judged; certified / double, ratio of the means, and the certified
+ * path's own CPU per case (the exact path's stages before, the pre-pass and
+ * the rest of ss_certify after):
+ *   MLCA k = 12     2.62 -> 1.92   0.0346 -> 0.0102 s
+ *   MLCA k = 14     2.60 -> 1.88   0.0433 -> 0.0110 s
+ *   tet/oct k = 12  2.28 -> 1.82   0.0108 -> 0.0043 s
+ *   tet/oct k = 14  2.62 -> 1.97   0.0108 -> 0.0068 s
+ *   box-spline 12   1.24 -> 1.16   0.0028 -> 0.0011 s
+ *   box-spline 14   1.27 -> 1.15   0.0044 -> 0.0009 s
+ * Every one of the 78 cases was decided by the pre-pass (none fell back to
+ * the exact path; the certified counts are equal).  At MLCA k = 14 the
+ * pre-pass is about 4 ms of discs (A's dgeev and three complex 75 x 75
+ * products), 3-4 ms of outer block solves in arb for the basis, 1 ms of
+ * rational reconstruction. */
 #include "bench_pipeline_certify.h"
 
 #include <stdio.h>
