@@ -292,18 +292,17 @@ static ss_status run(ss_simil *s, const double *S, long maxden, ss_error *err) {
   if (rc == 1) {
     const ss_simil_disc *D = s->d;
     s->passed = 1;
+    const ss_simil_disc *last = D + s->lead[s->m];
+    char vals[64];
+    int len = 0;
+    for (int q = 1; q <= s->m; q++)
+      len += snprintf(vals + len, sizeof vals - (size_t)len, "%s%.6g", q > 1 ? ", " : "",
+                      D[s->lead[q]].re);
     snprintf(
         s->why, sizeof s->why,
-        "certified by a verified similarity: 1 simple, lambda1..%d = %.6g, %.6g%s%.6g "
-        "real, simple and isolated in Gershgorin discs, all others in |z| < %.6g",
-        s->m, D[s->lead[1]].re, D[s->lead[2]].re, s->m == 3 ? ", " : "",
-        s->m == 3 ? D[s->lead[3]].re : 0.0,
-        ss_simil_dn(D[s->lead[s->m]].re - D[s->lead[s->m]].rad -
-                    fabs(D[s->lead[s->m]].im)));
-    if (s->m == 2) { /* no third value */
-      char *z = strstr(s->why, "0 real");
-      if (z) memmove(z, z + 2, strlen(z + 2) + 1);
-    }
+        "certified by a verified similarity: 1 simple, lambda1..%d = %s real, simple "
+        "and isolated in Gershgorin discs, all others in |z| < %.6g",
+        s->m, vals, ss_simil_dn(last->re - ss_simil_up(last->rad + fabs(last->im))));
     ss_ball_verdict(&s->out, SS_PASS, 1, "%s", s->why);
   }
   return SS_OK;
