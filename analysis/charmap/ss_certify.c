@@ -8,10 +8,12 @@
 #include "ss_clock.h"
 #include "ss_fourier.h"
 #include "ss_schur.h"
+#include "ss_simil.h"
 
 /* Regularity and injectivity once the condition cond is settled, the basis
  * from ex (rational S) or else bo (a ball route's: algebraic weights,
- * enclosed in their windows, ss_fourier.h or ss_schur.h). */
+ * enclosed in their windows, ss_fourier.h or ss_schur.h, maxden < 0; or the
+ * verified similarity's on a rational S, ss_simil.h, maxden > 0). */
 static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charmap *cm,
                              const ss_charmap_opts *o, const ss_verdict *cond,
                              const ss_exact *ex, const ss_ball_outcome *bo, long maxden,
@@ -58,8 +60,7 @@ static ss_status judge_after(const ss_local *M, const ss_case *c, const ss_charm
       snprintf(why, sizeof why, "basis enclosure: %s", be.msg);
       ss_verdict_unproven(&reg->verdict, why);
     } else {
-      st = ss_charmap_certify(M, c, lo, hi, cm->dim, ex ? maxden : -maxden, o, reg, inj,
-                              err);
+      st = ss_charmap_certify(M, c, lo, hi, cm->dim, maxden, o, reg, inj, err);
     }
   }
 done:
@@ -174,6 +175,40 @@ static ss_status edge_by_schur(const ss_local *M, const ss_case *c, ss_verdict *
   return st;
 }
 
+/* The verified similarity's pre-pass on a rational S (ss_simil.h): on a
+ * proven pass (*passed = 1) the condition and the judgements from its basis,
+ * the exact path never run; otherwise nothing is changed and the exact path
+ * decides as before. */
+static ss_status by_similarity(const ss_local *M, const ss_case *c, const ss_charmap *cm,
+                               const ss_charmap_opts *o, long maxden, ss_regularity *reg,
+                               ss_charmap_inj *inj, ss_certified *out, int *passed,
+                               ss_error *err) {
+  ss_exact_times *tm = o->times ? &o->times->exact : NULL;
+  const double c0 = tm ? ss_clock_cpu() : 0.0;
+  ss_simil *sm = NULL;
+  ss_error se = {0};
+  ss_status st = ss_simil_new(M->S, M->n2, M->n1, M->dim, maxden, &sm, &se);
+  *passed = !st && ss_simil_passed(sm);
+  if (tm) {
+    tm->simil += ss_clock_cpu() - c0;
+    tm->simil_tried++;
+    tm->simil_passed += *passed;
+  }
+  if (st == SS_ENOMEM) *err = se;
+  if (st == SS_ENOMEM || !*passed) {
+    ss_simil_free(sm);
+    return st == SS_ENOMEM ? st : SS_OK;
+  }
+  int certified = 0;
+  ss_ball_outcome_condition(ss_simil_outcome(sm), &out->cond, &certified);
+  out->route = "verified similarity";
+  out->cond.on = SS_ON_SPECTRUM;
+  st = judge_after(M, c, cm, o, &out->cond, NULL, ss_simil_outcome(sm), maxden, reg, inj,
+                   err);
+  ss_simil_free(sm);
+  return st;
+}
+
 /* ss_certify; rational = 0: S is known not to be rational (a stencil's
  * algebraic weight), so only the Fourier route (a surface vertex, an edge) or
  * the Schur route (a volume vertex) may prove anything. */
@@ -193,6 +228,15 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
   eo.lazy = o->exact_lazy;
   double c1 = o->times ? ss_clock_cpu() : 0.0;
   ss_error xe = {0};
+  if (rational && o->similarity && o->exact_lazy) {
+    int passed = 0;
+    ss_status st = by_similarity(M, c, cm, o, eo.maxden, reg, inj, out, &passed, err);
+    if (st || passed) {
+      if (o->times) ss_clock_lap(&o->times->certify, &c1);
+      out->seconds = ss_clock_wall() - t0;
+      return st;
+    }
+  }
   ss_status st = rational ? ss_exact_new(M->S, M->n2, M->n1, &eo, &ex, &xe) : SS_ENUMERIC;
   if (!rational)
     snprintf(xe.msg, sizeof xe.msg, "%s",
@@ -241,7 +285,7 @@ static ss_status certify_run(const ss_local *M, const ss_case *c, const ss_eig *
                    fx   ? ss_fourier_outcome(fx)
                    : sx ? ss_schur_outcome(sx)
                         : NULL,
-                   eo.maxden, reg, inj, err);
+                   ex ? eo.maxden : -eo.maxden, reg, inj, err);
 done:
   ss_fourier_free(fx);
   ss_schur_free(sx);

@@ -2,7 +2,11 @@
  * 10, "certified verdicts").
  *
  * After the double-precision analysis (ss_local, ss_eig, ss_charmap_judge,
- * ss_charmap_injectivity) of a case, the exact path:
+ * ss_charmap_injectivity) of a case, with ss_charmap_opts.similarity and
+ * exact_lazy a rational S first goes to the verified similarity (ss_simil.h),
+ * which proves generic passes (condition and basis, then step 2 below) from
+ * one approximate diagonalisation per diagonal block; where it decides
+ * nothing, and otherwise always, the exact path:
  *   1. the exact spectrum of S (ss_exact: rational S, factored characteristic
  *      polynomials, isolated roots) decides the eigenvalue condition, which
  *      replaces the double-precision one when it is proven and becomes
@@ -34,6 +38,8 @@ typedef struct {
                         undecided */
   double seconds;    /* time the exact path took (wall clock) */
   const char *route; /* what proved or tried to: "exact" (NULL: the same),
+                        "verified similarity" (a pass, ss_simil.h, with
+                        ss_charmap_opts.similarity),
                         "Fourier blocks in balls" (ss_fourier.h), "balls,
                         ties by Schur's lemma" (ss_schur.h), "Fourier blocks
                         in balls, then ties by Schur's lemma" (an edge both
@@ -46,12 +52,12 @@ typedef struct {
  * map and verdicts, or cm NULL without a map).  reg and inj are updated in
  * place (verdicts, reasons, certified flags).  *x (may be NULL) receives the
  * exact spectrum, owned by the caller (ss_exact_free), NULL when it could not
- * be built.  A scheme whose weights are not small rationals is not an error:
- * everything is then "not certified", except at surface vertices and edges,
- * whose condition the Fourier blocks in balls may prove (ss_fourier.h), and
- * at volume vertices and the edges the blocks leave undecided, the balls
- * with ties by Schur's lemma (ss_schur.h); *x stays NULL then.  SS_ENOMEM; SS_EINPUT for
- * malformed inputs. */
+ * be built or was not needed (the verified similarity proved the pass).  A scheme whose
+ * weights are not small rationals is not an error: everything is then "not certified",
+ * except at surface vertices and edges, whose condition the Fourier blocks in balls may
+ * prove (ss_fourier.h), and at volume vertices and the edges the blocks leave undecided,
+ * the balls with ties by Schur's lemma (ss_schur.h); *x stays NULL then.  SS_ENOMEM;
+ * SS_EINPUT for malformed inputs. */
 ss_status ss_certify(const ss_local *M, const ss_case *c, const ss_eig *e,
                      const ss_charmap *cm, const ss_charmap_opts *o, ss_regularity *reg,
                      ss_charmap_inj *inj, ss_certified *out, ss_exact **x, ss_error *err);

@@ -12,7 +12,7 @@
 #include "ss_clock.h"
 
 ss_charmap_opts ss_charmap_defaults(void) {
-  return (ss_charmap_opts){SS_JAC_DEPTH, 3, 0.5, NULL, 0};
+  return (ss_charmap_opts){SS_JAC_DEPTH, 3, 0.5, NULL, 0, 0};
 }
 
 /* Forget the kept ring level (ss_charmap.h), freeing it. */

@@ -123,6 +123,12 @@ typedef struct {
                               needs it (ss_exact_opts.lazy; the same verdicts,
                               not always the same printed factors); 0, the
                               default: fmpz_poly_factor's factors */
+  int similarity;          /* nonzero, with exact_lazy: a rational S is first
+                              tried by the verified similarity (ss_simil.h),
+                              which proves passes only; the exact path runs
+                              where it decides nothing, and *x (ss_certify) is
+                              then NULL on its passes.  0, the default: the
+                              exact path alone */
 } ss_charmap_opts;
 
 /* One ring level's cells by verdict. */

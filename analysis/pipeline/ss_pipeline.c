@@ -216,6 +216,7 @@ static ss_status verdicts(ss_pipeline *p, ss_pipeline_times *tm, ss_error *err) 
   co.ring_levels = p->opts.ring_levels;
   co.times = tm ? &tm->charmap : NULL;
   co.exact_lazy = p->opts.exact_lazy;
+  co.similarity = p->opts.exact_lazy && !p->opts.psi_depth; /* psi reads p->ex */
   ss_certified cert;
   ss_progress_step(&p->opts.progress,
                    p->opts.certify ? "regularity, injectivity, exact path"

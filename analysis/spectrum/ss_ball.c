@@ -197,3 +197,55 @@ __attribute__((noinline))
 void ss_ball_conj(acb_t cz, const acb_t z) {
   acb_conj(cz, z);
 }
+
+void ss_ball_solver_make(ss_ball_solver *f, const arb_mat_t M, slong m, long wp) {
+  const slong n = arb_mat_nrows(M);
+  f->perm = flint_malloc((size_t)(n + 1) * sizeof *f->perm);
+  arb_mat_init(f->M, n, n);
+  arb_mat_init(f->R, n, n);
+  arb_mat_init(f->LU, n, n);
+  arb_mat_set(f->M, M);
+  if (n <= 4 || (double)wp > 10.0 * (double)n) {
+    f->kind = 1;
+    f->ok = arb_mat_lu(f->perm, f->LU, M, wp);
+  } else if ((double)m < 0.1 * (double)n + 1.0) {
+    arb_mat_t Id, RM;
+    arb_mat_init(Id, n, n);
+    arb_mat_init(RM, n, n);
+    arb_mat_one(Id);
+    f->kind = 2;
+    f->ok = arb_mat_approx_solve(f->R, M, Id, wp);
+    if (f->ok) {
+      arb_mat_mul(RM, f->R, M, wp);
+      f->ok = arb_mat_lu(f->perm, f->LU, RM, wp);
+    }
+    arb_mat_clear(Id);
+    arb_mat_clear(RM);
+  } else {
+    f->kind = 3;
+  }
+}
+
+void ss_ball_solver_clear(ss_ball_solver *f) {
+  if (!f->kind) return;
+  flint_free(f->perm);
+  arb_mat_clear(f->M);
+  arb_mat_clear(f->R);
+  arb_mat_clear(f->LU);
+}
+
+int ss_ball_solver_solve(const ss_ball_solver *f, arb_mat_t X, const arb_mat_t M,
+                         const arb_mat_t B, long wp) {
+  if (f->kind == 3 || !arb_mat_equal(M, f->M)) return arb_mat_solve(X, M, B, wp);
+  if (!f->ok) return 0;
+  if (f->kind == 1) {
+    arb_mat_solve_lu_precomp(X, f->perm, f->LU, B, wp);
+    return 1;
+  }
+  arb_mat_t RB;
+  arb_mat_init(RB, arb_mat_nrows(B), arb_mat_ncols(B));
+  arb_mat_mul(RB, f->R, B, wp);
+  arb_mat_solve_lu_precomp(X, f->perm, f->LU, RB, wp);
+  arb_mat_clear(RB);
+  return 1;
+}

@@ -130,4 +130,36 @@ int ss_ball_by_modulus(const void *a, const void *b);
  * warns -Wstringop-overread (a false positive). */
 void ss_ball_conj(acb_t cz, const acb_t z);
 
+/* arb_mat_solve(X, M, B, wp) for one outer block minus lambda M (the
+ * exact path's and the verified similarity's outer solves), factored
+ * once for the later components with the same block (the lattice repeats
+ * them: MLCA k = 14 has 74 outer components of which 4-8 distinct blocks are
+ * larger than 1 x 1, and the solves were 40 % of the basis enclosure).  The
+ * steps are arb_mat_solve's own (arb 2.23): below 5 rows or above 10 bits a
+ * row, the LU of M and its triangular solves; else, with fewer right-hand
+ * sides than n / 10 + 1, an approximate inverse R of M (arb_mat_approx_solve
+ * of M X = I), the LU of R M and the triangular solves of R B; else
+ * arb_mat_solve itself each time.  So the balls are the ones arb_mat_solve
+ * gives, and a later component reuses the factors only when its M equals the
+ * first one's entry for entry. */
+typedef struct {
+  int kind;     /* 0: not made; 1: LU of M; 2: LU of R M; 3: arb_mat_solve */
+  int ok;       /* the factorisation succeeded (arb_mat_solve's result) */
+  slong *perm;  /* the LU's row permutation */
+  arb_mat_t M;  /* the block minus lambda it was made from */
+  arb_mat_t R;  /* kind 2: the approximate inverse of M */
+  arb_mat_t LU; /* the LU factors of M (kind 1) or R M (kind 2) */
+} ss_ball_solver;
+
+/* Factor M (m right-hand sides to come) at wp into f (zeroed on entry). */
+void ss_ball_solver_make(ss_ball_solver *f, const arb_mat_t M, slong m, long wp);
+
+/* Free f's factors (a zeroed f: nothing). */
+void ss_ball_solver_clear(ss_ball_solver *f);
+
+/* X = M^-1 B as arb_mat_solve(X, M, B, wp) gives it, with f's factors when
+ * M is f's block; 1, or 0 when not proven invertible. */
+int ss_ball_solver_solve(const ss_ball_solver *f, arb_mat_t X, const arb_mat_t M,
+                         const arb_mat_t B, long wp);
+
 #endif

@@ -168,6 +168,9 @@ typedef struct {
                       classes, comparisons, exact ranks (non-defectiveness) */
   double basis;    /* the subdominant basis enclosure without refinements */
   long cases;      /* exact spectra timed */
+  double simil;    /* the verified similarity's pre-pass (ss_simil.h), whether
+                      it passed or left the case to the exact path */
+  long simil_tried, simil_passed; /* cases it ran on, and proved */
 } ss_exact_times;
 
 /* Options of the exact path. */

@@ -438,86 +438,12 @@ done:
   return ok;
 }
 
-/* arb_mat_solve(X, M, B, wp) for one outer block minus lambda M, factored
- * once for the later components with the same block (the lattice repeats
- * them: MLCA k = 14 has 74 outer components of which 4-8 distinct blocks are
- * larger than 1 x 1, and the solves were 40 % of the basis enclosure).  The
- * steps are arb_mat_solve's own (arb 2.23): below 5 rows or above 10 bits a
- * row, the LU of M and its triangular solves; else, with fewer right-hand
- * sides than n / 10 + 1, an approximate inverse R of M (arb_mat_approx_solve
- * of M X = I), the LU of R M and the triangular solves of R B; else
- * arb_mat_solve itself each time.  So the balls are the ones arb_mat_solve
- * gives, and a later component reuses the factors only when its M equals the
- * first one's entry for entry. */
-typedef struct {
-  int kind;     /* 0: not made; 1: LU of M; 2: LU of R M; 3: arb_mat_solve */
-  int ok;       /* the factorisation succeeded (arb_mat_solve's result) */
-  slong *perm;  /* the LU's row permutation */
-  arb_mat_t M;  /* the block minus lambda it was made from */
-  arb_mat_t R;  /* kind 2: the approximate inverse of M */
-  arb_mat_t LU; /* the LU factors of M (kind 1) or R M (kind 2) */
-} block_solver;
-
-static void solver_make(block_solver *f, const arb_mat_t M, slong m, long wp) {
-  const slong n = arb_mat_nrows(M);
-  f->perm = flint_malloc((size_t)(n + 1) * sizeof *f->perm);
-  arb_mat_init(f->M, n, n);
-  arb_mat_init(f->R, n, n);
-  arb_mat_init(f->LU, n, n);
-  arb_mat_set(f->M, M);
-  if (n <= 4 || (double)wp > 10.0 * (double)n) {
-    f->kind = 1;
-    f->ok = arb_mat_lu(f->perm, f->LU, M, wp);
-  } else if ((double)m < 0.1 * (double)n + 1.0) {
-    arb_mat_t Id, RM;
-    arb_mat_init(Id, n, n);
-    arb_mat_init(RM, n, n);
-    arb_mat_one(Id);
-    f->kind = 2;
-    f->ok = arb_mat_approx_solve(f->R, M, Id, wp);
-    if (f->ok) {
-      arb_mat_mul(RM, f->R, M, wp);
-      f->ok = arb_mat_lu(f->perm, f->LU, RM, wp);
-    }
-    arb_mat_clear(Id);
-    arb_mat_clear(RM);
-  } else {
-    f->kind = 3;
-  }
-}
-
-static void solver_clear(block_solver *f) {
-  if (!f->kind) return;
-  flint_free(f->perm);
-  arb_mat_clear(f->M);
-  arb_mat_clear(f->R);
-  arb_mat_clear(f->LU);
-}
-
-/* X = M^-1 B as arb_mat_solve(X, M, B, wp) gives it, with f's factors when
- * M is f's block; 1, or 0 when not proven invertible. */
-static int solver_solve(const block_solver *f, arb_mat_t X, const arb_mat_t M,
-                        const arb_mat_t B, long wp) {
-  if (f->kind == 3 || !arb_mat_equal(M, f->M)) return arb_mat_solve(X, M, B, wp);
-  if (!f->ok) return 0;
-  if (f->kind == 1) {
-    arb_mat_solve_lu_precomp(X, f->perm, f->LU, B, wp);
-    return 1;
-  }
-  arb_mat_t RB;
-  arb_mat_init(RB, arb_mat_nrows(B), arb_mat_ncols(B));
-  arb_mat_mul(RB, f->R, B, wp);
-  arb_mat_solve_lu_precomp(X, f->perm, f->LU, RB, wp);
-  arb_mat_clear(RB);
-  return 1;
-}
-
 /* Rows >= n1 of Xb (n x e): (C_cc - lambda) x_c = -B x1 - (earlier
  * components), lambda the ball lam, component by component; 1 when every
  * block is proven invertible, 0 when not, -1 out of memory. */
 static int ball_extend(const ss_exact *x, const arb_t lam, int e, long wp, arb_ptr Xb) {
   const size_t n = x->n, n1 = x->n1;
-  block_solver *fs = calloc((size_t)x->K.n + 1, sizeof *fs);
+  ss_ball_solver *fs = calloc((size_t)x->K.n + 1, sizeof *fs);
   if (!fs) return -1;
   arb_t a;
   arb_init(a);
@@ -544,8 +470,9 @@ static int ball_extend(const ss_exact *x, const arb_t lam, int e, long wp, arb_p
       arb_sub(arb_mat_entry(Mc, u, u), arb_mat_entry(Mc, u, u), lam, wp);
     }
     const size_t rep = x->brep[c + 1] - 1; /* the first component with this block */
-    if (sz > 1 && !fs[rep].kind) solver_make(fs + rep, Mc, e, wp);
-    ok = sz > 1 ? solver_solve(fs + rep, Xc, Mc, R, wp) : arb_mat_solve(Xc, Mc, R, wp);
+    if (sz > 1 && !fs[rep].kind) ss_ball_solver_make(fs + rep, Mc, e, wp);
+    ok = sz > 1 ? ss_ball_solver_solve(fs + rep, Xc, Mc, R, wp)
+                : arb_mat_solve(Xc, Mc, R, wp);
     for (size_t u = 0; u < sz && ok; u++)
       for (int q = 0; q < e; q++)
         arb_set(Xb + (size_t)q * n + n1 + x->K.comp[s + u], arb_mat_entry(Xc, u, q));
@@ -554,7 +481,7 @@ static int ball_extend(const ss_exact *x, const arb_t lam, int e, long wp, arb_p
     arb_mat_clear(Xc);
   }
   for (long c = 0; c < x->K.n; c++)
-    solver_clear(fs + c);
+    ss_ball_solver_clear(fs + c);
   free(fs);
   arb_clear(a);
   return ok;

@@ -27,7 +27,10 @@
  *     regularity proven by the Fourier blocks' balls (ss_fourier; its own
  *     test_fourier), injectivity the double path's, uncertified;
  *   - ss_certify without a map from the double path (cm NULL) proves no
- *     regularity even when the exact condition passes.
+ *     regularity even when the exact condition passes;
+ *   - with the verified similarity first (ss_simil.h, as sweeps run it): the
+ *     same verdicts and certified flags, the similarity deciding passes only
+ *     (and some: the route ran).
  * Mutations this catches (tried by hand: the report of issue 33):
  *   - the regularity left as it was when the weights are not rational (the
  *     "no exact spectrum" unproven dropped): an uncertified pass (Loop's,
@@ -69,6 +72,8 @@ typedef struct {
   int exact;          /* 1 if an exact spectrum was returned */
 } verdicts;
 
+/* certify: 0 the double path, 1 the exact path, 2 the verified similarity
+ * first (ss_charmap_opts.similarity, with lazy factoring). */
 static int judge(const ss_scheme *s, const ss_case *c, int certify, verdicts *v,
                  const char *what) {
   ss_local *M = NULL;
@@ -80,7 +85,8 @@ static int judge(const ss_scheme *s, const ss_case *c, int certify, verdicts *v,
   int ok = !ss_local_new(s, c, &M, &err);
   if (ok) {
     const ss_eig_opts eo = ss_eig_defaults(M->dim);
-    const ss_charmap_opts o = ss_charmap_defaults();
+    ss_charmap_opts o = ss_charmap_defaults();
+    o.exact_lazy = o.similarity = certify == 2; /* as sweeps run it */
     ok = !ss_eig_new(M->S, M->n2, M->n1, &eo, &e, &err) &&
          !ss_certify_verdicts(s, c, M, e, &o, certify, &cm, &v->reg, &v->inj, &v->out, &x,
                               &err);
@@ -109,6 +115,34 @@ static int undecided_why(const ss_verdict *v, const ss_verdict *dbl) {
   return v->verdict != SS_UNDECIDED || !strncmp(v->reason, "not certified", 13) ||
          !strncmp(v->reason, "no characteristic map", 21) ||
          (dbl->verdict == SS_UNDECIDED && !strcmp(v->reason, dbl->reason));
+}
+
+/* Cases the verified similarity decided (the route ran; checked in main). */
+static int by_similarity;
+
+/* The verified similarity's pre-pass changes no verdict and no certified
+ * flag of the exact path's (cv), and it decides passes only. */
+static void same_by_similarity(const ss_scheme *s, const ss_case *c, const verdicts *cv,
+                               const char *what) {
+  verdicts sv;
+  if (judge(s, c, 2, &sv, what)) return;
+  const int sim = !strcmp(sv.out.route, "verified similarity");
+  by_similarity += sim;
+  CHECK(sv.out.cond.verdict == cv->out.cond.verdict &&
+            sv.out.cond.certified == cv->out.cond.certified &&
+            sv.reg.verdict.verdict == cv->reg.verdict.verdict &&
+            sv.reg.verdict.certified == cv->reg.verdict.certified &&
+            sv.inj.verdict.verdict == cv->inj.verdict.verdict &&
+            sv.inj.verdict.certified == cv->inj.verdict.certified,
+        "%s: with the similarity %s/%s/%s, exact path %s/%s/%s (route %s)", what,
+        ss_verdict_name(sv.out.cond.verdict), ss_verdict_name(sv.reg.verdict.verdict),
+        ss_verdict_name(sv.inj.verdict.verdict), ss_verdict_name(cv->out.cond.verdict),
+        ss_verdict_name(cv->reg.verdict.verdict),
+        ss_verdict_name(cv->inj.verdict.verdict), sv.out.route);
+  CHECK(!sim || (sv.out.cond.verdict == SS_PASS && !sv.exact &&
+                 strstr(sv.out.cond.reason, "verified similarity")),
+        "%s: the similarity decided %s (%s)", what, ss_verdict_name(sv.out.cond.verdict),
+        sv.out.cond.reason);
 }
 
 /* Both paths on one case, the general properties; *cv receives the
@@ -147,6 +181,7 @@ static int both(const ss_scheme *s, const ss_case *c, verdicts *cv, const char *
   CHECK(!strcmp(dv.out.route, "none tried") && !strcmp(cv->out.route, "exact"),
         "%s: route without certify '%s', with it '%s'", what, dv.out.route,
         cv->out.route);
+  same_by_similarity(s, c, cv, what);
   return 0;
 }
 
@@ -334,6 +369,7 @@ int main(void) {
   test_links();
   test_cases();
   test_unprovable();
+  CHECK(by_similarity > 0, "the verified similarity decided none of the cases");
   flint_cleanup(); /* FLINT's caches, for the leak checker */
   return ss_test_done("certify");
 }

@@ -57,7 +57,25 @@
  * instead of an SVD); tet/oct's root isolation 0.016 -> 0.0014 s at k = 14
  * (its degree 20-23 factors are outer blocks', now seeded too).  MLCA k = 14
  * is now characteristic polynomials 0.019, isolation 0.016, basis 0.013,
- * factoring 0.009, interval Jacobians 0.009 of 0.093 s. */
+ * factoring 0.009, interval Jacobians 0.009 of 0.093 s.
+ *
+ * Measured 2026-12-06 14:46-14:48 UTC (load 8-9: a background sweep and
+ * other sessions), main 620359d against the verified similarity's pre-pass
+ * (ss_simil.h, branch i37gersh 14ec89b), one after the other, 13 links each,
+ * psi not judged; certified / double, ratio of the means, and the certified
+ * path's own CPU per case (the exact path's stages before, the pre-pass and
+ * the rest of ss_certify after):
+ *   MLCA k = 12     2.62 -> 1.92   0.0346 -> 0.0102 s
+ *   MLCA k = 14     2.60 -> 1.88   0.0433 -> 0.0110 s
+ *   tet/oct k = 12  2.28 -> 1.82   0.0108 -> 0.0043 s
+ *   tet/oct k = 14  2.62 -> 1.97   0.0108 -> 0.0068 s
+ *   box-spline 12   1.24 -> 1.16   0.0028 -> 0.0011 s
+ *   box-spline 14   1.27 -> 1.15   0.0044 -> 0.0009 s
+ * Every one of the 78 cases was decided by the pre-pass (none fell back to
+ * the exact path; the certified counts are equal).  At MLCA k = 14 the
+ * pre-pass is about 4 ms of discs (A's dgeev and three complex 75 x 75
+ * products), 3-4 ms of outer block solves in arb for the basis, 1 ms of
+ * rational reconstruction. */
 #include "bench_pipeline_certify.h"
 
 #include <stdio.h>
@@ -80,6 +98,7 @@ enum {
   C_DEEPJAC,  /* its Jacobian test */
   C_SYM,      /* symmetry test */
   C_INJ,      /* injectivity */
+  C_SIMIL,    /* the verified similarity's pre-pass */
   C_RAT,      /* the exact path */
   C_CHARPOLY, /* characteristic polynomials */
   C_FACTOR,   /* factoring */
@@ -112,6 +131,7 @@ static const char *const c_name[NC] = {
     "deeper ring level: Jacobian test (double)",
     "symmetry test (double)",
     "injectivity test (double)",
+    "verified similarity (pre-pass)",
     "exact: rational S, components",
     "exact: characteristic polynomials",
     "exact: factoring over Q",
@@ -151,6 +171,7 @@ static void stages(const ss_pipeline_times *tm, double *v) {
                            c->deep_jac,
                            c->symmetry,
                            c->injective,
+                           x->simil,
                            ex[0],
                            ex[1],
                            ex[2],
@@ -170,7 +191,7 @@ static void stages(const ss_pipeline_times *tm, double *v) {
   for (int p = 0; p < 6; p++)
     exsum += ex[p];
   memcpy(v, w, sizeof w);
-  v[C_EXOTHER] = c->certify - exsum - lev - c->cert_sym;
+  v[C_EXOTHER] = c->certify - exsum - x->simil - lev - c->cert_sym;
   v[C_SUM] = 0.0;
   for (int p = 0; p < C_SUM; p++)
     v[C_SUM] += v[p];
@@ -179,7 +200,8 @@ static void stages(const ss_pipeline_times *tm, double *v) {
 /* One run of link l: the whole's thread CPU into *t, the stages into v
  * (NULL: untimed stages), the result into *r.  0, or 1 on failure. */
 static int run(const ss_scheme *sc, const ss_link *l, const ss_result_opts *ro,
-               ss_pipeline_workspace *w, double *t, double *v, ss_result *r) {
+               ss_pipeline_workspace *w, double *t, double *v, ss_result *r,
+               long *simil) {
   ss_pipeline_times tm;
   memset(&tm, 0, sizeof tm);
   w->times = v ? &tm : NULL;
@@ -194,6 +216,10 @@ static int run(const ss_scheme *sc, const ss_link *l, const ss_result_opts *ro,
     return 1;
   }
   if (v) stages(&tm, v);
+  if (simil) {
+    simil[0] += tm.charmap.exact.simil_tried;
+    simil[1] += tm.charmap.exact.simil_passed;
+  }
   return 0;
 }
 
@@ -204,7 +230,7 @@ static int cmp_double(const void *a, const void *b) {
 
 /* The sample's double and certified runs, best of 3 each; t[p * n + i]. */
 static int measure(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_depth,
-                   int exact_full, double *t, int *proven, int *flips) {
+                   int exact_full, double *t, int *proven, int *flips, long *simil) {
   ss_pipeline_workspace *w = ss_pipeline_workspace_new();
   ss_result_opts rd = ss_result_defaults(), rc = rd;
   rd.psi_depth = rc.psi_depth = psi_depth;
@@ -216,9 +242,9 @@ static int measure(const ss_scheme *sc, ss_link *const *l, size_t n, int psi_dep
     for (int rep = 0; rep < 3 && !failed; rep++) {
       ss_result a, b;
       double ta, tb;
-      failed += run(sc, l[i], &rd, w, &ta, NULL, &a);
+      failed += run(sc, l[i], &rd, w, &ta, NULL, &a, NULL);
       if (failed) break;
-      failed += run(sc, l[i], &rc, w, &tb, v, &b);
+      failed += run(sc, l[i], &rc, w, &tb, v, &b, rep == 0 ? simil : NULL);
       if (failed) {
         ss_result_clear(&a);
         break;
@@ -249,8 +275,9 @@ int bench_certify_phases(const ss_scheme *sc, ss_link *const *l, size_t n, int p
                          int exact_full) {
   double *t = calloc(NC * n + 1, sizeof *t), *ratio = malloc((n + 1) * sizeof *ratio);
   int proven = 0, flips = 0;
+  long simil[2] = {0, 0};
   if (!t || !ratio) return 1;
-  const int failed = measure(sc, l, n, psi_depth, exact_full, t, &proven, &flips);
+  const int failed = measure(sc, l, n, psi_depth, exact_full, t, &proven, &flips, simil);
   if (failed) {
     free(t);
     free(ratio);
@@ -276,6 +303,9 @@ int bench_certify_phases(const ss_scheme *sc, ss_link *const *l, size_t n, int p
          "%.2f .. %.2f\n",
          mean[C_WHOLE] / mean[C_DOUBLE], gsl_stats_median_from_sorted_data(ratio, 1, n),
          ratio[0], ratio[n - 1]);
+  printf("  verified similarity: %ld of %ld cases tried proved their pass; %ld went on "
+         "to the exact path\n",
+         simil[1], simil[0], simil[0] - simil[1]);
   free(t);
   free(ratio);
   return 0;
