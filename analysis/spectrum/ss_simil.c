@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include <flint/fmpq.h>
+#include <flint/ulong_extras.h>
 #include <lapacke.h>
 
 #include "ss_exact.h"
@@ -198,15 +199,6 @@ done:
 
 __extension__ typedef __int128 i128;
 
-static long long gcd_ll(long long a, long long b) {
-  while (b) {
-    const long long t = a % b;
-    a = b;
-    b = t;
-  }
-  return a;
-}
-
 /* Whether sum_k p[k] / q[k] (q > 0, |p| < 2^53, q <= 2^31) is exactly 1:
  * in 128-bit integers over the common denominator when that fits below
  * 2^62, else in FLINT's rationals. */
@@ -214,7 +206,7 @@ static int sums_to_one(const long long *p, const long long *q, size_t nk) {
   long long D = 1;
   int fits = nk < 1024;
   for (size_t k = 0; k < nk && fits; k++) {
-    const long long g = gcd_ll(D, q[k]), f = q[k] / g;
+    const long long g = (long long)n_gcd((ulong)D, (ulong)q[k]), f = q[k] / g;
     fits = D <= (1LL << 62) / f;
     if (fits) D *= f;
   }

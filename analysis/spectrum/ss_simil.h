@@ -3,8 +3,9 @@
  * lazy exact path's pre-pass; `sweep`/`check --certify`).
  *
  * Matrix.  S is read as ss_exact.h says: every entry the rational of
- * denominator <= maxden it rounds to (ss_exact_rational_enclose: an interval
- * of doubles holding it), every row summing to exactly 1 (checked in
+ * denominator <= maxden it rounds to (ss_exact_rational's reconstruction,
+ * enclosed in the doubles p/q rounds to: a point where p/q is a double, else
+ * its two neighbours), every row summing to exactly 1 (checked in
  * rationals).  Everything below is about that rational matrix.  S = [A 0; B C]
  * and C is block lower triangular over the strongly connected components of
  * its pattern (ss_scc.h), so the spectrum of S (with multiplicities) is the
