@@ -15,7 +15,9 @@
 #include "ss_charmap_cert_impl.h"
 #include "ss_clock.h"
 #include "ss_exact.h"
-#include "ss_jac_num.h" /* mul_di: di_fast_mul inline, the same bits */
+
+/* the larger of two non-NaN doubles, inline (fmax is a call here) */
+#define MAXD(a, b) ((a) > (b) ? (a) : (b))
 
 /* An interval net: lo and hi, point by point (dim coordinates each). */
 typedef struct {
@@ -73,29 +75,64 @@ static int weight_enclose(wcache *c, double w, long maxden, double *lo, double *
   return 1;
 }
 
+/* The push in midpoint-radius form (ss_charmap.h's enclosure, by another
+ * arithmetic than di_t's four products a term).  With u = 2^-53, gamma_n =
+ * n u / (1 - n u), inputs p = pm +- pr (pm = the box's midpoint, pr >= its
+ * distance to either end) and weights w = wm +- wr (wr = 0 for the
+ * dyadic weights of the rules): for every p and w in their boxes,
+ *   |sum w p - fl(sum wm pm)| <= sum (|wm| pr + wr (|pm| + pr)) + gamma_n A,
+ * A = sum |wm| |pm| (Higham, 3.1: a sum of n products rounded to nearest in
+ * any order), n the row's length.  The bound r is formed from nonnegative
+ * doubles (its own rounding below (n + 8) u relatively) and taken times
+ * 1 + 2^-20, plus 2^-1000 for underflow; the output's ends m -+ r are moved
+ * out by 2 u (|m| + r) more, which covers their subtraction's rounding.  An
+ * input box that is not finite or not ordered, a result that is not finite,
+ * or a row of 2^20 terms or more gives the whole line (-inf, inf): nothing
+ * proven there, as a di_t enclosure would be. */
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi) {
   if (dim < 1 || dim > 3) return -1;
+  const double u = 0x1p-53;
   wcache wc;
   memset(wc.used, 0, sizeof wc.used);
+  const size_t np = R->nprev * (size_t)dim;
+  double *pm = malloc((2 * np + 1) * sizeof *pm);
+  if (!pm) return -1;
+  double *pr = pm + np;
+  for (size_t k = 0; k < np; k++) {
+    const int ok = plo[k] <= phi[k] && isfinite(plo[k]) && isfinite(phi[k]);
+    pm[k] = ok ? 0.5 * plo[k] + 0.5 * phi[k] : 0.0;
+    pr[k] = ok ? MAXD(phi[k] - pm[k], pm[k] - plo[k]) : (double)INFINITY;
+  }
   for (size_t i = 0; i < R->nv; i++) {
-    /* each weight enclosed once for the coordinates; each coordinate's sum
-     * still runs over the row in order */
-    di_t s[3] = {di_interval(0.0, 0.0), di_interval(0.0, 0.0), di_interval(0.0, 0.0)};
+    const size_t len = R->ptr[i + 1] - R->ptr[i];
+    double m[3] = {0.0, 0.0, 0.0}, r[3] = {0.0, 0.0, 0.0}, A[3] = {0.0, 0.0, 0.0};
     for (size_t q = R->ptr[i]; q < R->ptr[i + 1]; q++) {
       double lo, hi;
-      if (!weight_enclose(&wc, R->w[q], maxden, &lo, &hi)) return -1;
-      const di_t w = di_interval(lo, hi);
+      if (!weight_enclose(&wc, R->w[q], maxden, &lo, &hi)) {
+        free(pm);
+        return -1;
+      }
+      const double wm = lo == hi ? lo : 0.5 * lo + 0.5 * hi,
+                   wr = lo == hi ? 0.0 : MAXD(hi - wm, wm - lo), wa = fabs(wm);
+      const size_t k0 = R->col[q] * (size_t)dim;
       for (int d = 0; d < dim; d++) {
-        const size_t k = R->col[q] * (size_t)dim + (size_t)d;
-        s[d] = di_fast_add(s[d], mul_di(w, di_interval(plo[k], phi[k])));
+        const double a = pm[k0 + (size_t)d], b = pr[k0 + (size_t)d];
+        m[d] += wm * a;
+        A[d] += wa * fabs(a);
+        r[d] += wa * b + wr * (fabs(a) + b);
       }
     }
+    const double g = (double)len * u / (1.0 - (double)len * u);
     for (int d = 0; d < dim; d++) {
-      olo[i * (size_t)dim + (size_t)d] = s[d].a;
-      ohi[i * (size_t)dim + (size_t)d] = s[d].b;
+      double e = (r[d] + g * A[d]) * (1.0 + 0x1p-20) + 0x1p-1000;
+      e += 2.0 * u * (fabs(m[d]) + e);
+      const int ok = isfinite(m[d]) && isfinite(e) && len < (1u << 20);
+      olo[i * (size_t)dim + (size_t)d] = ok ? m[d] - e : -(double)INFINITY;
+      ohi[i * (size_t)dim + (size_t)d] = ok ? m[d] + e : (double)INFINITY;
     }
   }
+  free(pm);
   return 0;
 }
 

@@ -89,39 +89,13 @@ static const ss_jac_order hex_order = {
 /* ---- the interval hex test's quick start ---- */
 
 /* The 27 Lagrange values of det J of the hex x (intervals, hex_order) from
- * its 12 edge vectors: d x / d t_a at the point (i, j, l) / 2 is the bilinear
- * interpolation, in the other two parameters, of the four edges along axis a
- * (x(b with bit a) - x(b)) at 0, 1/2, 1: an edge, the half sum of two, or
- * the half sum of two such.  So 3 x 9 derivative vectors, each reused at the
- * three points that share it, instead of hex_lagrange_di's sums of about 11
- * scaled corners per derivative and point.  Other roundings than
+ * its 12 edge vectors (hex_derivs_di): 3 x 9 derivative vectors, each reused
+ * at the three points that share it, instead of hex_lagrange_di's sums of
+ * about 11 scaled corners per derivative and point.  Other roundings than
  * hex_lagrange_di's (an enclosure of the same values, other last bits). */
 static void hex_lagrange_edges(const di_t *x, di_t *v) {
-  di_t D[3][9][3]; /* D[a][i1 + 3 i2]: d x / d t_a, indices i1, i2 of the
-                      other two axes, the lower one first */
-  for (int a = 0; a < 3; a++) {
-    const int c1 = a == 0 ? 1 : 0, c2 = a == 2 ? 1 : 2;
-    di_t E[2][2][3]; /* the edge along a at bits (b1, b2) of axes c1, c2 */
-    for (unsigned b1 = 0; b1 < 2; b1++)
-      for (unsigned b2 = 0; b2 < 2; b2++) {
-        const unsigned b = b1 << c1 | b2 << c2;
-        diff_di(3, x + 3 * hex_order.index[b | 1u << a], x + 3 * hex_order.index[b],
-                E[b1][b2]);
-      }
-    for (int r = 0; r < 3; r++) {
-      di_t G[3][2]; /* along c1 at 0, 1/2, 1, for each bit of c2 */
-      for (int b2 = 0; b2 < 2; b2++) {
-        G[0][b2] = E[0][b2][r];
-        G[2][b2] = E[1][b2][r];
-        G[1][b2] = scale_di(add_di(E[0][b2][r], E[1][b2][r]), 0.5);
-      }
-      for (int i1 = 0; i1 < 3; i1++) {
-        D[a][i1][r] = G[i1][0];
-        D[a][i1 + 6][r] = G[i1][1];
-        D[a][i1 + 3][r] = scale_di(add_di(G[i1][0], G[i1][1]), 0.5);
-      }
-    }
-  }
+  di_t D[3][9][3];
+  hex_derivs_di(x, D);
   for (int p = 0; p < 27; p++) {
     const int t[3] = {p % 3, (p / 3) % 3, p / 9};
     v[p] = det3_di(D[0][t[1] + 3 * t[2]], D[1][t[0] + 3 * t[2]], D[2][t[0] + 3 * t[1]]);
@@ -138,6 +112,80 @@ static int hex_quick_sign(const di_t *x) {
   for (int q = 0; q < 27; q++) {
     pos &= gt0_di(c[q], 0.0);
     neg &= lt0_di(c[q], 0.0);
+  }
+  return pos ? 1 : neg ? -1 : 0;
+}
+
+/* ---- the interval hex test's first try: one evaluation at the midpoints ---- */
+
+/* the larger of two non-NaN doubles, inline (fmax is a call here) */
+#define MAXD(a, b) ((a) > (b) ? (a) : (b))
+
+/* ss_jac.h.  Let u = 2^-53 and gamma_k = k u / (1 - k u) (rounding to
+ * nearest; Higham, Accuracy and Stability, 3.1: a straight-line program of
+ * sums and products whose paths hold at most k roundings errs by at most
+ * gamma_k times the same program on the inputs' magnitudes with every sign
+ * made +).
+ *  1. Corners: m = the midpoints, R >= max |x - m| over coordinates and
+ *     boxes (max(hi - m, m - lo), computed).
+ *  2. Derivatives (hex_derivs_d at m): each exact D(x) combines corners with
+ *     magnitudes summing to 2, so |D(x) - D(m)| <= 2 R; D~ = fl(D(m)) has
+ *     one subtraction then at most two halved sums (the halving exact), so
+ *     |D~ - D(m)| <= gamma_3 Dmax, Dmax the largest |D~| (an edge: the
+ *     edges are among the D~, every D~ an average of them).  So every entry
+ *     of D(x) is within e = 2 R + gamma_3 Dmax (1 + u) of D~.
+ *  3. det J at point p: with a = the largest |D~| entry at p,
+ *     |det D(x) - det D~| <= perm(|D~| + e) - perm(|D~|) <= 6((a + e)^3 - a^3)
+ *     (det is multilinear; perm is increasing), and det3_d's rounding
+ *     (5 per path, magnitudes perm(|D~|) <= 6 a^3) <= gamma_5 6 a^3: so
+ *     |det J(x)(p) - v~_p| <= e_p = 6 e (3 a^2 + 3 a e + e^2) + 31 u a^3.
+ *  4. Bernstein coefficients c = B v (bernstein_d: 2 roundings per axis):
+ *     |c(x) - c~| <= |B| (e + gamma_6 |v~|) =: E, |B| the same transform
+ *     with its -1/2 made +1/2.
+ * Every bound above is a sum or product of nonnegative doubles whose own
+ * rounding is below 40 u relatively: E is multiplied by 1 + 2^-20.
+ * Underflow (absolute error <= 2^-1074 an operation, at most 2^101-fold
+ * amplified below) is covered by adding 2^-900 to every e_p; entries above
+ * 2^100 or a cell below 2^-300 (Dmax) are not tried. */
+int ss_jac_hex_midrad(const double *lo, const double *hi, double *c, double *E) {
+  const double u = 0x1p-53, g3 = 3.0 * u / (1.0 - 3.0 * u),
+               g6 = 6.0 * u / (1.0 - 6.0 * u);
+  double m[24], R = 0.0;
+  for (int i = 0; i < 24; i++) {
+    if (!(isfinite(lo[i]) && isfinite(hi[i]) && lo[i] <= hi[i])) return 0;
+    m[i] = 0.5 * lo[i] + 0.5 * hi[i];
+    R = MAXD(R, MAXD(hi[i] - m[i], m[i] - lo[i]));
+  }
+  double D[3][9][3], dmax = 0.0;
+  hex_derivs_d(m, D);
+  for (int a = 0; a < 3; a++)
+    for (int i = 0; i < 9; i++)
+      for (int r = 0; r < 3; r++)
+        dmax = MAXD(dmax, fabs(D[a][i][r]));
+  if (!(dmax <= 0x1p100) || dmax < 0x1p-300 || !(R <= 0x1p100)) return 0;
+  const double e = 2.0 * R + g3 * dmax * (1.0 + u);
+  for (int p = 0; p < 27; p++) {
+    const int t[3] = {p % 3, (p / 3) % 3, p / 9};
+    const double *d0 = D[0][t[1] + 3 * t[2]], *d1 = D[1][t[0] + 3 * t[2]],
+                 *d2 = D[2][t[0] + 3 * t[1]];
+    double a = 0.0;
+    for (int r = 0; r < 3; r++)
+      a = MAXD(a, MAXD(fabs(d0[r]), MAXD(fabs(d1[r]), fabs(d2[r]))));
+    c[p] = det3_d(d0, d1, d2);
+    E[p] = 6.0 * e * (3.0 * a * a + 3.0 * a * e + e * e) + 31.0 * u * a * a * a +
+           0x1p-900 + g6 * fabs(c[p]);
+  }
+  bernstein_d(c);
+  for (int ax = 0, stride = 1; ax < 3; ax++, stride *= 3) /* |B| */
+    for (int w = 0; w < 9; w++) {
+      const int q = line_start_d(ax, w) + stride;
+      E[q] = 2.0 * E[q] + 0.5 * (E[q - stride] + E[q + stride]);
+    }
+  int pos = 1, neg = 1;
+  for (int q = 0; q < 27; q++) {
+    E[q] *= 1.0 + 0x1p-20;
+    pos &= c[q] > E[q];
+    neg &= c[q] < -E[q];
   }
   return pos ? 1 : neg ? -1 : 0;
 }
@@ -333,7 +381,12 @@ void ss_jac_cell_interval_sign(ss_cell_type t, const double *lo, const double *h
   double mid[SS_MAXCELLVERTS * 3];
   if (!interval_corners(t, lo, hi, dim, xi, mid, r)) return;
   r->min_scaled = r->max_scaled = NAN;
-  const int s = t == SS_HEX ? hex_quick_sign(xi) : 0;
+  int s = 0;
+  if (t == SS_HEX && dim == 3) {
+    double c[27], E[27];
+    s = ss_jac_hex_midrad(lo, hi, c, E);
+    if (!s) s = hex_quick_sign(xi);
+  }
   if (s) {
     r->sign = s > 0 ? SS_JAC_POSITIVE : SS_JAC_NEGATIVE;
     return;

@@ -139,6 +139,18 @@ void ss_jac_cell_interval(ss_cell_type t, const double *lo, const double *hi, in
 void ss_jac_cell_interval_sign(ss_cell_type t, const double *lo, const double *hi,
                                int dim, int maxdepth, ss_jac_result *r);
 
+/* The 27 Bernstein coefficients of det J of a hex (dim 3) whose corners are
+ * known within boxes lo[i] <= x[i] <= hi[i], from one evaluation in doubles
+ * at the boxes' midpoints: c[q] the value there, E[q] an a-priori bound on
+ * how far the true coefficient of any hex in the boxes lies from it (the
+ * boxes' widths and every rounding; the derivation is at the definition).
+ * Returns +1 or -1 when every c[q] is beyond E[q] on that side of 0 (det J
+ * has that sign on the whole cell, for every hex in the boxes), 0 otherwise,
+ * also for a bound that is not finite, lo[i] > hi[i], or entries outside
+ * [2^-300, 2^100] in size (c and E then unspecified).  A third of the
+ * interval test's cost: ss_jac_cell_interval_sign tries it first. */
+int ss_jac_hex_midrad(const double *lo, const double *hi, double *c, double *E);
+
 /* Jacobian determinant of the trilinear map of the hex with corners x (8 x 3)
  * at the parameter point (u, v, w) in [0,1]^3: the reference value the
  * Bernstein test bounds (for tests and pictures). */

@@ -199,6 +199,41 @@ static void JN(box_point)(const JN(box) * b, int i, int j, int l, double *p) {
   p[2] = b->lo[2] + b->size * 0.5 * l;
 }
 
+/* The derivatives of the trilinear map of the hex x (hex_order) at the 27
+ * Lagrange points (i, j, l) / 2 from its 12 edge vectors: d x / d t_a there
+ * is the bilinear interpolation, in the other two parameters, of the four
+ * edges along axis a (x(b with bit a) - x(b)) at 0, 1/2, 1 -- an edge, the
+ * half sum of two, or the half sum of two such -- so 3 x 9 vectors, each
+ * shared by the three points on its line.  D[a][i1 + 3 i2]: axis a, indices
+ * i1, i2 of the other two axes, the lower one first.  Each is a combination
+ * of the corners whose coefficients' magnitudes sum to 2, formed by one
+ * subtraction and at most two halved sums. */
+static void JN(hex_derivs)(const NUM *x, NUM D[3][9][3]) {
+  for (int a = 0; a < 3; a++) {
+    const int c1 = a == 0 ? 1 : 0, c2 = a == 2 ? 1 : 2;
+    NUM E[2][2][3]; /* the edge along a at bits (b1, b2) of axes c1, c2 */
+    for (unsigned b1 = 0; b1 < 2; b1++)
+      for (unsigned b2 = 0; b2 < 2; b2++) {
+        const unsigned b = b1 << c1 | b2 << c2;
+        JN(diff)
+        (3, x + 3 * hex_order.index[b | 1u << a], x + 3 * hex_order.index[b], E[b1][b2]);
+      }
+    for (int r = 0; r < 3; r++) {
+      NUM G[3][2]; /* along c1 at 0, 1/2, 1, for each bit of c2 */
+      for (int b2 = 0; b2 < 2; b2++) {
+        G[0][b2] = E[0][b2][r];
+        G[2][b2] = E[1][b2][r];
+        G[1][b2] = JN(scale)(JN(add)(E[0][b2][r], E[1][b2][r]), 0.5);
+      }
+      for (int i1 = 0; i1 < 3; i1++) {
+        D[a][i1][r] = G[i1][0];
+        D[a][i1 + 6][r] = G[i1][1];
+        D[a][i1 + 3][r] = JN(scale)(JN(add)(G[i1][0], G[i1][1]), 0.5);
+      }
+    }
+  }
+}
+
 /* The 27 Lagrange values on {0, 1/2, 1}^3 of a triquadratic into its
  * Bernstein coefficients, in place, axis by axis: the middle of each line
  * 2 c - (c_0 + c_2) / 2, its ends unchanged. */
