@@ -304,11 +304,13 @@ ss_status ss_charmap_injectivity(const ss_charmap *cm, const ss_regularity *reg,
 /* Push an interval net (plo <= net <= phi, R->nprev points of dim
  * coordinates) through ring level R into olo, ohi (R->nv points), each
  * weight replaced by the enclosure of the rational of denominator at most
- * maxden it stands for (ss_exact_rational_enclose), in interval arithmetic
- * with outward rounding: the result holds the exact rule's net for every
- * net inside the input.  maxden < 0 (algebraic weights, ss_fourier.h): each
- * weight w stands for w +- 2^-40 max(1, |w|) instead.  0, or -1 for a weight
- * that is no such rational (or dim outside 1..3). */
+ * maxden it stands for (ss_exact_rational_enclose), in midpoint-radius
+ * arithmetic with an a-priori rounding bound (ss_charmap_cert.c): the result
+ * holds the exact rule's net for every net inside the input.  maxden < 0
+ * (algebraic weights, ss_fourier.h): each weight w stands for
+ * w +- 2^-40 max(1, |w|) instead.  An input box that is not finite gives the
+ * whole line in the rows that read it.  0, or -1 for a weight that is no
+ * such rational (or dim outside 1..3). */
 int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const double *phi,
                              int dim, long maxden, double *olo, double *ohi);
 
@@ -317,11 +319,11 @@ int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const do
  * column-major, the rows in S's order) of a basis of the subdominant
  * invariant subspace (ss_exact_basis): the basis may differ from the one the
  * double path used, which changes no sign.  The ring's nets are pushed from
- * X in interval arithmetic (arb's double intervals, outward rounding), every
- * weight of the rule the rational of denominator <= maxden it rounds to
- * (ss_exact_rational; maxden < 0: its window, as ss_charmap_push_interval,
- * and no symmetry proven), and each ring cell is judged by
- * ss_jac_cell_interval:
+ * X by ss_charmap_push_interval (enclosures: midpoint and radius with an
+ * a-priori rounding bound), every weight of the rule the rational of
+ * denominator <= maxden it rounds to (ss_exact_rational; maxden < 0: its
+ * window, and no symmetry proven), and each ring cell is judged by
+ * ss_jac_cell_interval_sign (ss_jac_hex_midrad first, then arb's di_t):
  *   pass       proven when every cell of the deciding level is proven of one
  *              strict sign (the same for all);
  *   fail       proven when psi o sigma = psi is (P S = S P exactly, and the

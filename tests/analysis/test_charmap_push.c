@@ -27,6 +27,7 @@
 #include "ss_local.h"
 #include "ss_scheme.h"
 #include "ss_test.h"
+#include "ss_testq.h"
 
 /* deterministic uniform numbers in [-1, 1) */
 static double rnd(uint64_t *s) {
@@ -34,25 +35,13 @@ static double rnd(uint64_t *s) {
   return (double)(*s >> 11) / 4503599627370496.0 - 1.0;
 }
 
-/* q = d exactly (d finite): its 53-bit integer mantissa times 2^e */
-static void set_d(fmpq_t q, double d) {
-  int e;
-  const double f = frexp(d, &e);
-  fmpq_set_si(q, (slong)ldexp(f, 53), 1);
-  e -= 53;
-  if (e >= 0)
-    fmpq_mul_2exp(q, q, (flint_bitcnt_t)e);
-  else
-    fmpq_div_2exp(q, q, (flint_bitcnt_t)-e);
-}
-
 /* lo <= v <= hi exactly */
 static int inside(const fmpq_t v, double lo, double hi) {
   fmpq_t b;
   fmpq_init(b);
-  set_d(b, lo);
+  ss_testq_set_d(b, lo);
   int ok = fmpq_cmp(b, v) <= 0;
-  set_d(b, hi);
+  ss_testq_set_d(b, hi);
   ok &= fmpq_cmp(v, b) <= 0;
   fmpq_clear(b);
   return ok;
@@ -118,7 +107,7 @@ static void push_level(const ss_local_ring *R, long maxden, double width, uint64
           long long p = 0, qq = 1;
           if (!ss_exact_rational(R->w[q], maxden, &p, &qq)) continue;
           fmpq_set_si(w, (slong)p, (ulong)qq);
-          set_d(v, y[R->col[q] * dim + (size_t)d]);
+          ss_testq_set_d(v, y[R->col[q] * dim + (size_t)d]);
           fmpq_mul(v, v, w);
           fmpq_add(s, s, v);
         }

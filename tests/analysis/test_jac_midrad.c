@@ -15,23 +15,12 @@
 #include "ss_cx.h"
 #include "ss_jac.h"
 #include "ss_test.h"
+#include "ss_testq.h"
 
 /* deterministic uniform numbers in [-1, 1) */
 static double rnd(uint64_t *s) {
   *s = *s * 6364136223846793005ull + 1442695040888963407ull;
   return (double)(*s >> 11) / 4503599627370496.0 - 1.0;
-}
-
-/* q = d exactly (d finite): its 53-bit integer mantissa times 2^e */
-static void set_d(fmpq_t q, double d) {
-  int e;
-  const double f = frexp(d, &e); /* d = f 2^e, |f| in [1/2, 1) */
-  fmpq_set_si(q, (slong)ldexp(f, 53), 1);
-  e -= 53;
-  if (e >= 0)
-    fmpq_mul_2exp(q, q, (flint_bitcnt_t)e);
-  else
-    fmpq_div_2exp(q, q, (flint_bitcnt_t)-e);
 }
 
 /* det of the 3 x 3 rational matrix with rows a, b, c into d */
@@ -79,7 +68,7 @@ static void detj_q(fmpq_t d, const double *x, fmpq *const t) {
         fmpq_mul(w, w, f);
       }
       for (int r = 0; r < 3; r++) {
-        set_d(xq, x[3 * k + r]);
+        ss_testq_set_d(xq, x[3 * k + r]);
         fmpq_mul(f, w, xq);
         fmpq_add(&J[a][r], &J[a][r], f);
       }
@@ -158,10 +147,10 @@ static int within(const fmpq_t ce, double cm, double E) {
   fmpq_t d, e;
   fmpq_init(d);
   fmpq_init(e);
-  set_d(d, cm);
+  ss_testq_set_d(d, cm);
   fmpq_sub(d, ce, d);
   fmpq_abs(d, d);
-  set_d(e, E);
+  ss_testq_set_d(e, E);
   const int ok = fmpq_cmp(d, e) <= 0;
   fmpq_clear(d);
   fmpq_clear(e);
@@ -245,7 +234,7 @@ static void test_containment(void) {
         outside += !within(ce + q, c[q], E[q]);
         mut_out += wi >= 3 && !within(ce + q, c0[q], E0[q]);
         if (s) contra += fmpq_sgn(ce + q) != s;
-        set_d(v, c[q]);
+        ss_testq_set_d(v, c[q]);
         fmpq_sub(v, ce + q, v);
         const double dev = fabs(fmpq_get_d(v));
         if (wi >= 4 && E[q] > 0) tight = fmax(tight, dev / E[q]);
