@@ -127,15 +127,17 @@ void ss_jac_cell_interval(ss_cell_type t, const double *lo, const double *hi, in
                           int maxdepth, ss_jac_result *r);
 
 /* The verdict of ss_jac_cell_interval without the measures (min_scaled and
- * max_scaled NaN), the certified path's cell test: for a hex, first the 27
- * Bernstein coefficients enclosed from its 12 edge vectors (each derivative
- * of the trilinear map at a Lagrange point is an edge or a half sum of
- * edges: about a third of the operations), all of one sign giving that sign
- * at depth 0; otherwise, and for the other cell types, exactly
- * ss_jac_cell_interval's traversal.  Both enclosures are proofs, so the
- * verdict is ss_jac_cell_interval's wherever that one is POSITIVE, NEGATIVE
- * or FOLDED, and may be POSITIVE or NEGATIVE where that one is UNDECIDED
- * (the two enclosures differ in their last bits). */
+ * max_scaled NaN), the certified path's cell test: for a hex in dim 3, first
+ * ss_jac_hex_midrad (one evaluation at the midpoints, an a-priori bound),
+ * then the 27 Bernstein coefficients enclosed in di_t from its 12 edge
+ * vectors (each derivative of the trilinear map at a Lagrange point is an
+ * edge or a half sum of edges: about a third of the operations), either
+ * proving one sign giving that sign at depth 0; otherwise, and for the
+ * other cell types, exactly ss_jac_cell_interval's traversal.  All three
+ * enclosures are proofs, so the verdict is ss_jac_cell_interval's wherever
+ * that one is POSITIVE, NEGATIVE or FOLDED, and may be POSITIVE or NEGATIVE
+ * where that one is UNDECIDED (the enclosures differ in their last bits and
+ * widths). */
 void ss_jac_cell_interval_sign(ss_cell_type t, const double *lo, const double *hi,
                                int dim, int maxdepth, ss_jac_result *r);
 
