@@ -16,9 +16,6 @@
 #include "ss_clock.h"
 #include "ss_exact.h"
 
-/* the larger of two non-NaN doubles, inline (fmax is a call here) */
-#define MAXD(a, b) ((a) > (b) ? (a) : (b))
-
 /* An interval net: lo and hi, point by point (dim coordinates each). */
 typedef struct {
   double *lo, *hi;
@@ -102,7 +99,7 @@ int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const do
   for (size_t k = 0; k < np; k++) {
     const int ok = plo[k] <= phi[k] && isfinite(plo[k]) && isfinite(phi[k]);
     pm[k] = ok ? 0.5 * plo[k] + 0.5 * phi[k] : 0.0;
-    pr[k] = ok ? MAXD(phi[k] - pm[k], pm[k] - plo[k]) : (double)INFINITY;
+    pr[k] = ok ? FLINT_MAX(phi[k] - pm[k], pm[k] - plo[k]) : (double)INFINITY;
   }
   for (size_t i = 0; i < R->nv; i++) {
     const size_t len = R->ptr[i + 1] - R->ptr[i];
@@ -114,7 +111,7 @@ int ss_charmap_push_interval(const ss_local_ring *R, const double *plo, const do
         return -1;
       }
       const double wm = lo == hi ? lo : 0.5 * lo + 0.5 * hi,
-                   wr = lo == hi ? 0.0 : MAXD(hi - wm, wm - lo), wa = fabs(wm);
+                   wr = lo == hi ? 0.0 : FLINT_MAX(hi - wm, wm - lo), wa = fabs(wm);
       const size_t k0 = R->col[q] * (size_t)dim;
       for (int d = 0; d < dim; d++) {
         const double a = pm[k0 + (size_t)d], b = pr[k0 + (size_t)d];

@@ -118,9 +118,6 @@ static int hex_quick_sign(const di_t *x) {
 
 /* ---- the interval hex test's first try: one evaluation at the midpoints ---- */
 
-/* the larger of two non-NaN doubles, inline (fmax is a call here) */
-#define MAXD(a, b) ((a) > (b) ? (a) : (b))
-
 /* ss_jac.h.  Let u = 2^-53 and gamma_k = k u / (1 - k u) (rounding to
  * nearest; Higham, Accuracy and Stability, 3.1: a straight-line program of
  * sums and products whose paths hold at most k roundings errs by at most
@@ -154,14 +151,14 @@ int ss_jac_hex_midrad(const double *lo, const double *hi, double *c, double *E) 
   for (int i = 0; i < 24; i++) {
     if (!(isfinite(lo[i]) && isfinite(hi[i]) && lo[i] <= hi[i])) return 0;
     m[i] = 0.5 * lo[i] + 0.5 * hi[i];
-    R = MAXD(R, MAXD(hi[i] - m[i], m[i] - lo[i]));
+    R = FLINT_MAX(R, FLINT_MAX(hi[i] - m[i], m[i] - lo[i]));
   }
   double D[3][9][3], dmax = 0.0;
   hex_derivs_d(m, D);
   for (int a = 0; a < 3; a++)
     for (int i = 0; i < 9; i++)
       for (int r = 0; r < 3; r++)
-        dmax = MAXD(dmax, fabs(D[a][i][r]));
+        dmax = FLINT_MAX(dmax, fabs(D[a][i][r]));
   if (!(dmax <= 0x1p100) || dmax < 0x1p-300 || !(R <= 0x1p100)) return 0;
   const double e = 2.0 * R + g3 * dmax * (1.0 + u);
   for (int p = 0; p < 27; p++) {
@@ -170,7 +167,7 @@ int ss_jac_hex_midrad(const double *lo, const double *hi, double *c, double *E) 
                  *d2 = D[2][t[0] + 3 * t[1]];
     double a = 0.0;
     for (int r = 0; r < 3; r++)
-      a = MAXD(a, MAXD(fabs(d0[r]), MAXD(fabs(d1[r]), fabs(d2[r]))));
+      a = FLINT_MAX(a, FLINT_MAX(fabs(d0[r]), FLINT_MAX(fabs(d1[r]), fabs(d2[r]))));
     c[p] = det3_d(d0, d1, d2);
     E[p] = 6.0 * e * (3.0 * a * a + 3.0 * a * e + e * e) + 31.0 * u * a * a * a +
            0x1p-900 + g6 * fabs(c[p]);
