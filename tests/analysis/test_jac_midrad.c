@@ -179,7 +179,7 @@ static void random_hex(uint64_t *s, double jig, int sc, double far, double *x) {
 
 /* The boxes' containment on random hexes: the exact coefficients of hexes at
  * the boxes' corners, midpoints and random points inside lie within E of c.
- * Returns how many boxes the sign was decided for. */
+ * It also counts the boxes whose sign was decided. */
 static void test_containment(void) {
   uint64_t seed = 2026;
   fmpq ce[27];
